@@ -1,0 +1,1 @@
+"""The ``fabtiles`` command line. Heavy libraries are imported inside commands only."""

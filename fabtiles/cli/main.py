@@ -1,0 +1,121 @@
+"""Entry point of the ``fabtiles`` command.
+
+A :class:`~fabtiles.FabtilesError` becomes one line on stderr and exit status 2;
+anything else escaping is a bug and keeps its traceback.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from .._errors import FabtilesError
+
+
+class _Group(click.Group):
+    """A click group that reports FabtilesError as one line and exit status 2."""
+
+    def invoke(self, ctx):
+        try:
+            return super().invoke(ctx)
+        except FabtilesError as exc:
+            click.echo(f"fabtiles: error: {exc}", err=True)
+            ctx.exit(2)
+
+
+@click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="fabtiles")
+def cli():
+    """fabtiles: Islamic star patterns as laser-cut and 3D-printable tiles.
+
+    Stars and rosettes on concentric circles and the tangent-circle tiling of
+    Mansourifar & Shi, "Next Generation of Star Patterns", exported as DXF/SVG
+    for laser cutters and STL/3MF/STEP for printers and CAD.
+    """
+
+
+def _float_list(text: str) -> tuple[float, ...]:
+    try:
+        return tuple(float(x) for x in text.replace(" ", "").split(",") if x != "")
+    except ValueError:
+        raise click.BadParameter(f"expected comma-separated numbers like 51,70,172, got {text!r}")
+
+
+@cli.command()
+def presets():
+    """List the presets (the rows of the paper's tables) with their parameters."""
+    from ..pattern.presets import PRESET_NOTES, PRESETS
+
+    for name, p in PRESETS.items():
+        radii = ",".join(f"{r:g}" for r in p["radii"])
+        special = p["special"] if p["special"] is not None else "-"
+        line = (f"{name:<13} n={p['n']:<3} radii={radii:<16} alpha={p['alpha']:<3g} "
+                f"spr={p['spr']:<5g} special={special}")
+        note = PRESET_NOTES[name]
+        click.echo(line + (f"   ({note})" if note else ""))
+
+
+@cli.command()
+@click.option("--preset", help="A preset name (see `fabtiles presets`).")
+@click.option("--n", "n", type=int, help="Points on each circle (3..120).")
+@click.option("--radii", help="Comma-separated radii, e.g. 51,70,172.")
+@click.option("--alpha", type=float, help="Angular offset of the special points, degrees.")
+@click.option("--spr", type=float, help="Special points lie at r(special) - spr.")
+@click.option("--special", type=int, help="1-based index of the special circle (2..S).")
+@click.option("--rotation", type=float, help="Degrees added to every angle.")
+@click.option("--size", "size_mm", type=float, default=100.0, show_default=True,
+              help="Width of the picture in mm.")
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False),
+              help="SVG file to write.")
+def star(preset, n, radii, alpha, spr, special, rotation, size_mm, output):
+    """Draw one star or rosette as an SVG preview.
+
+    \b
+    fabtiles star --preset table1-part1 -o star.svg
+    fabtiles star --n 8 --radii 51,70,172 -o star.svg
+    """
+    from ..export.svg import write_motif_svg
+    from ..pattern.star import Star
+
+    given = {k: v for k, v in dict(n=n, alpha=alpha, spr=spr, special=special,
+                                    rotation=rotation).items() if v is not None}
+    if radii is not None:
+        given["radii"] = _float_list(radii)
+    if preset is not None:
+        motif = Star.preset(preset).replace(**given)
+    else:
+        missing = [k for k in ("n", "radii") if k not in given]
+        if missing:
+            raise click.UsageError(f"give --preset, or --n and --radii (missing: --{', --'.join(missing)})")
+        motif = Star(**given)
+    if not output.lower().endswith(".svg"):
+        raise click.BadParameter(f"the output must be an .svg file, got {output!r}", param_hint="-o")
+    write_motif_svg(output, motif.segments(), size_mm=size_mm, title=repr(motif))
+    click.echo(f"wrote {output} ({len(motif.segments())} segments)")
+
+
+def _register_optional_commands():
+    """Commands defined in their own modules (imported lazily by click when run)."""
+    import importlib
+
+    for module in ("build", "serve", "batch"):
+        try:
+            mod = importlib.import_module(f"{__package__}.{module}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__package__}.{module}":
+                raise
+            continue
+        cli.add_command(mod.command)
+
+
+_register_optional_commands()
+
+
+def main(argv=None):
+    """Run the CLI (console-script entry point)."""
+    return cli.main(args=argv, prog_name="fabtiles")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

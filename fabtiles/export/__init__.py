@@ -1,0 +1,1 @@
+"""Writers for each output format. Each module imports its own heavy library lazily."""

@@ -1,0 +1,4 @@
+"""Pure math of the patterns: motifs on concentric circles and circle packings.
+
+Only numpy here: no shapely, no file I/O.
+"""
