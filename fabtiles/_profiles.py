@@ -1,0 +1,236 @@
+"""Machine and material profiles: validated, frozen fabrication settings.
+
+Profiles are TOML files. The bundled ones live in the repository's ``profiles/``
+folder (installed as the package ``fabtiles.profiles``); a user's own profile is
+given by path. Every key is checked when the file is loaded: an unknown key or
+a bad value is a :class:`~fabtiles.ProfileError` that names the file and the key.
+
+>>> p = load_profile("laser-3mm-plywood")
+>>> p.kerf_mm, p.layers.outer_cut.name
+(0.15, 'CUT_OUTER')
+>>> load_profile("fdm-0.4mm").min_wall_mm
+0.8
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from dataclasses import dataclass, fields
+from importlib import resources
+from pathlib import Path
+
+from ._errors import ProfileError
+
+try:  # Python 3.11+
+    import tomllib
+except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+LASER_MODES = ("pierced", "score")
+PRINT_STYLES = ("relief", "pierced", "deboss")
+DXF_VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
+
+
+@dataclass(frozen=True)
+class Layer:
+    """A DXF layer: its name and AutoCAD Color Index (1..255)."""
+
+    name: str
+    color: int
+
+
+@dataclass(frozen=True)
+class LaserLayers:
+    """Layer of each laser operation."""
+
+    inner_cut: Layer = Layer("CUT_INNER", 1)
+    outer_cut: Layer = Layer("CUT_OUTER", 5)
+    score: Layer = Layer("SCORE", 3)
+
+
+@dataclass(frozen=True)
+class LaserProfile:
+    """Settings of one laser cutter and sheet material (all lengths in mm)."""
+
+    name: str
+    description: str = ""
+    kerf_mm: float = 0.15
+    min_feature_mm: float = 1.0
+    min_hole_mm: float = 1.2
+    tolerance_mm: float = 0.01
+    bed_mm: tuple[float, float] = (600.0, 400.0)
+    mode: str = "pierced"
+    strict: bool = False
+    dxf_version: str = "R2000"
+    layers: LaserLayers = LaserLayers()
+    kind = "laser"
+
+
+@dataclass(frozen=True)
+class PrinterProfile:
+    """Settings of one 3D printer (all lengths in mm)."""
+
+    name: str
+    description: str = ""
+    nozzle_mm: float = 0.4
+    min_wall_mm: float = 0.8
+    layer_height_mm: float = 0.2
+    base_mm: float = 2.0
+    relief_mm: float = 1.2
+    pierced_mm: float = 3.0
+    deboss_mm: float = 0.8
+    style: str = "relief"
+    bed_mm: tuple[float, float] = (256.0, 256.0)
+    strict: bool = False
+    kind = "printer"
+
+
+def bundled_profiles() -> tuple[str, ...]:
+    """Names of the profiles shipped with fabtiles.
+
+    >>> "fdm-0.4mm" in bundled_profiles()
+    True
+    """
+    root = resources.files("fabtiles.profiles")
+    return tuple(sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml")))
+
+
+def load_profile(profile, *, kind: str | None = None):
+    """Load a profile by bundled name, or from a ``.toml`` path; pass profiles through.
+
+    Parameters
+    ----------
+    profile : str, Path, LaserProfile or PrinterProfile
+        A bundled name (see :func:`bundled_profiles`), a path to a TOML file, or
+        an already loaded profile.
+    kind : {"laser", "printer"}, optional
+        The kind the caller needs; a profile of the other kind is an error.
+    """
+    if isinstance(profile, (LaserProfile, PrinterProfile)):
+        result = profile
+    else:
+        if not isinstance(profile, (str, Path)):
+            raise ProfileError(f"profile must be a profile name or a path to a .toml file, got {profile!r}")
+        text, source, name = _read(profile)
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise ProfileError(f"{source}: not valid TOML: {exc}") from None
+        result = _parse(data, source, name)
+    if kind is not None and result.kind != kind:
+        raise ProfileError(
+            f"profile {result.name!r} is a {result.kind} profile, but a {kind} profile is needed here; "
+            f"bundled {kind} profiles: {', '.join(n for n in bundled_profiles() if _kind_of(n) == kind)}"
+        )
+    return result
+
+
+def _kind_of(name: str) -> str:
+    return "laser" if name.startswith("laser") else "printer"
+
+
+def _read(profile) -> tuple[str, str, str]:
+    text_form = str(profile)
+    looks_like_path = isinstance(profile, Path) or text_form.endswith(".toml") or "/" in text_form or "\\" in text_form
+    if looks_like_path:
+        path = Path(profile)
+        try:
+            return path.read_text(encoding="utf-8"), str(path), path.stem
+        except (OSError, UnicodeDecodeError) as exc:
+            raise ProfileError(f"cannot read profile file {str(path)!r}: {exc}") from None
+    names = bundled_profiles()
+    if text_form not in names:
+        hint = difflib.get_close_matches(text_form, names, n=1)
+        hint_text = f" (did you mean {hint[0]!r}?)" if hint else ""
+        raise ProfileError(
+            f"profile {text_form!r} does not exist{hint_text}; bundled profiles: {', '.join(names)}; "
+            "or give the path of a .toml file"
+        )
+    res = resources.files("fabtiles.profiles") / f"{text_form}.toml"
+    return res.read_text(encoding="utf-8"), f"profiles/{text_form}.toml", text_form
+
+
+def _unknown(source, where, keys, allowed):
+    for key in keys:
+        if key not in allowed:
+            hint = difflib.get_close_matches(key, allowed, n=1)
+            hint_text = f" (did you mean {hint[0]!r}?)" if hint else ""
+            raise ProfileError(
+                f"{source}: unknown key {where}{key!r}{hint_text}; valid keys: {', '.join(allowed)}"
+            )
+
+
+def _positive(source, key, value, *, allow_zero=False):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ProfileError(f"{source}: {key} must be a finite number, got {value!r}")
+    if value < 0 or (value == 0 and not allow_zero):
+        raise ProfileError(f"{source}: {key} must be {'>= 0' if allow_zero else '> 0'}, got {value!r}")
+    return float(value)
+
+
+def _parse(data: dict, source: str, name: str):
+    _unknown(source, "", data, ("kind", "description", "laser", "printer", "layers"))
+    kind = data.get("kind")
+    if kind not in ("laser", "printer"):
+        raise ProfileError(f"{source}: kind must be one of: laser, printer, got {kind!r}")
+    description = data.get("description", "")
+    if not isinstance(description, str):
+        raise ProfileError(f"{source}: description must be text, got {description!r}")
+    other = "printer" if kind == "laser" else "laser"
+    if other in data or (kind == "printer" and "layers" in data):
+        bad = other if other in data else "layers"
+        raise ProfileError(f"{source}: a {kind} profile cannot have a [{bad}] section")
+    cls = LaserProfile if kind == "laser" else PrinterProfile
+    section = data.get(kind, {})
+    if not isinstance(section, dict):
+        raise ProfileError(f"{source}: [{kind}] must be a table")
+    allowed = [f.name for f in fields(cls) if f.name not in ("name", "description", "layers")]
+    _unknown(source, f"{kind}.", section, allowed)
+    values = {}
+    for key, value in section.items():
+        full = f"{kind}.{key}"
+        if key == "bed_mm":
+            if not isinstance(value, list) or len(value) != 2:
+                raise ProfileError(f"{source}: {full} must be [width, height] in mm, got {value!r}")
+            values[key] = tuple(_positive(source, full, v) for v in value)
+        elif key == "strict":
+            if not isinstance(value, bool):
+                raise ProfileError(f"{source}: {full} must be true or false, got {value!r}")
+            values[key] = value
+        elif key in ("mode", "style", "dxf_version"):
+            choices = {"mode": LASER_MODES, "style": PRINT_STYLES, "dxf_version": DXF_VERSIONS}[key]
+            if value not in choices:
+                raise ProfileError(f"{source}: {full} = {value!r} is not valid, must be one of: {', '.join(choices)}")
+            values[key] = value
+        else:
+            values[key] = _positive(source, full, value, allow_zero=(key == "kerf_mm"))
+    if kind == "laser":
+        values["layers"] = _parse_layers(data.get("layers", {}), source)
+    return cls(name=name, description=description, **values)
+
+
+def _parse_layers(section, source) -> LaserLayers:
+    if not isinstance(section, dict):
+        raise ProfileError(f"{source}: [layers] must be a table")
+    allowed = [f.name for f in fields(LaserLayers)]
+    _unknown(source, "layers.", section, allowed)
+    layers = {}
+    for key, value in section.items():
+        full = f"layers.{key}"
+        if not isinstance(value, dict):
+            raise ProfileError(f"{source}: {full} must be a table like {{ name = \"CUT\", color = 1 }}")
+        _unknown(source, f"{full}.", value, ("name", "color"))
+        default = getattr(LaserLayers(), key)
+        lname = value.get("name", default.name)
+        color = value.get("color", default.color)
+        if not isinstance(lname, str) or not lname or any(c in lname for c in '<>/\\":;?*|=\''):
+            raise ProfileError(f"{source}: {full}.name must be a non-empty DXF layer name without <>/\\\":;?*|=', got {lname!r}")
+        if isinstance(color, bool) or not isinstance(color, int) or not 1 <= color <= 255:
+            raise ProfileError(f"{source}: {full}.color must be an AutoCAD Color Index 1..255, got {color!r}")
+        layers[key] = Layer(lname, color)
+    result = LaserLayers(**layers)
+    names = [result.inner_cut.name, result.outer_cut.name, result.score.name]
+    if len(set(names)) != 3:
+        raise ProfileError(f"{source}: layers need three different names, got {', '.join(names)}")
+    return result

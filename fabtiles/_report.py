@@ -1,0 +1,65 @@
+"""What an export did and what the fabrication checks found.
+
+A :class:`Report` is the Python result object of an export; the CLI prints its
+summary. A finding is a warning unless the profile is strict, in which case the
+export raises :class:`~fabtiles.FabricationError` listing the findings and writes
+nothing.
+
+>>> r = Report(path="t.dxf", format="dxf")
+>>> r.add("small_hole", "3 holes narrower than 1.2 mm", count=3)
+>>> r.ok
+False
+>>> print(r.summary())
+t.dxf (dxf): 1 warning
+  - small_hole: 3 holes narrower than 1.2 mm
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ._errors import FabricationError
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One fabrication problem: a short code, a sentence, and how many places."""
+
+    code: str
+    message: str
+    count: int = 1
+    locations: tuple[tuple[float, float], ...] = ()
+
+
+@dataclass
+class Report:
+    """Result of one export: the file, measured figures and findings."""
+
+    path: str
+    format: str
+    stats: dict = field(default_factory=dict)
+    findings: list[Finding] = field(default_factory=list)
+
+    def add(self, code: str, message: str, *, count: int = 1, locations=()) -> None:
+        """Record a finding."""
+        self.findings.append(Finding(code, message, count, tuple(tuple(map(float, p)) for p in locations)))
+
+    @property
+    def ok(self) -> bool:
+        """True when no check found anything."""
+        return not self.findings
+
+    def raise_if_strict(self, strict: bool) -> None:
+        """Turn the findings into a FabricationError when ``strict``."""
+        if strict and self.findings:
+            lines = "; ".join(f"{f.code}: {f.message}" for f in self.findings)
+            raise FabricationError(
+                f"fabrication checks failed for {self.path} (profile is strict): {lines}; "
+                "fix the design or set strict = false in the profile"
+            )
+
+    def summary(self) -> str:
+        """A few lines for people: the file, then one line per finding."""
+        n = len(self.findings)
+        head = f"{self.path} ({self.format}): " + ("ok" if n == 0 else f"{n} warning{'s' if n > 1 else ''}")
+        return "\n".join([head] + [f"  - {f.code}: {f.message}" for f in self.findings])

@@ -1,0 +1,1 @@
+"""Shapely layer: stroking, union, clipping, validation."""
