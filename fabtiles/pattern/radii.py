@@ -34,7 +34,7 @@ def straight_radii(n, r1, r2, count) -> tuple[float, ...]:
     Examples
     --------
     >>> [round(r, 3) for r in straight_radii(n=8, r1=51, r2=70, count=3)]
-    [51.0, 70.0, 238.216]
+    [51.0, 70.0, 147.303]
     """
     n = check_int("n", n, low=3, high=MAX_N)
     r1 = check_float("r1", r1, low=0, low_open=True)
@@ -51,11 +51,12 @@ def straight_radii(n, r1, r2, count) -> tuple[float, ...]:
         denom = ux * dy - uy * dx
         s = (ax * dy - ay * dx) / denom if abs(denom) > 1e-12 * math.hypot(dx, dy) else math.inf
         if not math.isfinite(s) or s <= 0:
-            why = "is parallel to" if not math.isfinite(s) else "meets only behind the centre"
+            ray = f"the ray of circle {w} (at {math.degrees(phi):g} degrees)"
+            why = f"is parallel to {ray}" if not math.isfinite(s) else f"meets {ray} only behind the centre"
             raise ParameterError(
                 f"straight_radii: circle {w} cannot be reached: the line through P(1,1) and P(2,1) "
-                f"{why} the ray of circle {w} at {math.degrees(phi):g} degrees; use fewer circles "
-                f"(count <= {w - 1}) or change r1/r2 (n={n}, r1={r1:g}, r2={r2:g})"
+                f"{why}; use fewer circles (count <= {w - 1}) or change r1/r2 "
+                f"(n={n}, r1={r1:g}, r2={r2:g})"
             )
         radii.append(s)
     return tuple(radii)
