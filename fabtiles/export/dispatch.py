@@ -1,0 +1,115 @@
+"""One entry point for every output format: pick the writer from the file suffix.
+
+Laser formats (``.dxf``, ``.svg``) take a laser profile, print formats
+(``.stl``, ``.3mf``, ``.step``) a printer profile. Each writer module is
+imported only when its format is asked for, so a DXF export never loads
+manifold3d and only STEP loads build123d/OCP.
+"""
+
+from __future__ import annotations
+
+import importlib
+from pathlib import Path
+
+from .._errors import ParameterError
+from .._profiles import load_profile
+
+FORMATS = ("dxf", "svg", "stl", "3mf", "step")
+"""Output formats, by file suffix."""
+
+LASER_OPTIONS = ("mode", "dxf_version", "kerf_mm", "fill_small_holes")
+PRINT_OPTIONS = ("style", "base_mm", "relief_mm", "pierced_mm", "deboss_mm")
+
+DEFAULT_LASER_PROFILE = "laser-3mm-plywood"
+DEFAULT_PRINTER_PROFILE = "fdm-0.4mm"
+
+# format -> (module, function, kind of profile)
+_WRITERS = {
+    "dxf": ("dxf", "write_dxf", "laser"),
+    "svg": ("laser_svg", "write_laser_svg", "laser"),
+    "stl": ("mesh", "write_stl", "printer"),
+    "3mf": ("mesh", "write_3mf", "printer"),
+    "step": ("step", "write_step", "printer"),
+}
+
+
+def format_of(path) -> str:
+    """The output format named by a path's suffix.
+
+    >>> format_of("tile.DXF")
+    'dxf'
+    >>> format_of("tile.png")
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.ParameterError: 'png' is not a valid output format (from the suffix of 'tile.png'), must be one of: dxf, svg, stl, 3mf, step
+    """
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if suffix not in FORMATS:
+        raise ParameterError(
+            f"{suffix!r} is not a valid output format (from the suffix of {str(path)!r}), "
+            f"must be one of: {', '.join(FORMATS)}"
+        )
+    return suffix
+
+
+def profile_kind(fmt: str) -> str:
+    """``"laser"`` or ``"printer"``: which profile a format takes."""
+    return _WRITERS[fmt][2]
+
+
+def export_geometry(path, *, region, outline, centrelines=None, stroke=None, profile=None, **options):
+    """Write ``region`` (material, file coordinates in mm) in the format of ``path``.
+
+    Parameters
+    ----------
+    path : str or Path
+        Output file; its suffix picks the format (see :data:`FORMATS`).
+    region, outline : shapely geometry
+        The material and the tile outline, lower-left of the outline's bounds at (0, 0).
+    centrelines : ndarray (k, 2, 2), optional
+        Centre-lines, for the laser score mode.
+    stroke : float, optional
+        Stroke width, for the fabrication checks.
+    profile : str, Path or profile, optional
+        Laser profile for dxf/svg (default ``laser-3mm-plywood``), printer profile for
+        stl/3mf/step (default ``fdm-0.4mm``).
+    **options
+        Laser: ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``.
+        Print: ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``.
+
+    Returns
+    -------
+    Report
+        What was written and what the fabrication checks found.
+    """
+    fmt = format_of(path)
+    module, func, kind = _WRITERS[fmt]
+    allowed = LASER_OPTIONS if kind == "laser" else PRINT_OPTIONS
+    for key in options:
+        if key not in allowed:
+            raise ParameterError(
+                f"{key!r} is not a valid option for .{fmt} files, must be one of: {', '.join(allowed)}"
+            )
+    options = {k: v for k, v in options.items() if v is not None}
+    default = DEFAULT_LASER_PROFILE if kind == "laser" else DEFAULT_PRINTER_PROFILE
+    profile = load_profile(profile if profile is not None else default, kind=kind)
+    writer = getattr(importlib.import_module(f"{__package__}.{module}"), func)
+    if kind == "laser":
+        return writer(path, region=region, outline=outline, centrelines=centrelines,
+                      profile=profile, stroke=stroke, **options)
+    return writer(path, region=region, outline=outline, profile=profile, stroke=stroke, **options)
+
+
+def export_tile(tile, path, *, profile=None, **options):
+    """Write a :class:`~fabtiles.Tile` in the format of ``path``; see :func:`export_geometry`."""
+    fmt = format_of(path)
+    centrelines = tile.segments() if profile_kind(fmt) == "laser" else None
+    return export_geometry(
+        path,
+        region=tile.region(),
+        outline=tile.outline_shape(),
+        centrelines=centrelines,
+        stroke=tile.stroke,
+        profile=profile,
+        **options,
+    )
