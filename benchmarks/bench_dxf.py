@@ -1,0 +1,127 @@
+"""Benchmark: laser DXF of a 600 x 400 mm sheet of table3-3 stars, R = 15 mm.
+
+Issue 4 budget: the DXF of this sheet (about 9,000 holes, 40,000 segments)
+is written in under 2 s end to end (checks, kerf contours, DXF) on a 2-core
+machine. The material region itself is the input: it is built once (several
+seconds of shapely union) and cached as WKB in the temporary folder.
+
+Run::
+
+    /work/venv/bin/python benchmarks/bench_dxf.py [--repeat 3] [--svg] [--r12]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import shapely
+
+CACHE = Path(tempfile.gettempdir()) / "fabtiles-bench-sheet-600x400-R15.wkb"
+SIZE = (600.0, 400.0)
+RADIUS = 15.0
+FRAME = 5.0
+STROKE = 1.0
+
+
+def _motif_segments(star, centres, circle_radius):
+    seg = star.segments()
+    extent = float(np.hypot(seg[..., 0], seg[..., 1]).max())
+    seg = seg * (circle_radius / extent)
+    return (seg[None] + centres[:, None, None, :]).reshape(-1, 2, 2)
+
+
+def sheet_centrelines(size=SIZE, radius=RADIUS):
+    """Centre-lines of a hex packing of table3-3 stars over ``size``, lattice (0, 0) at the centre."""
+    from fabtiles import Star
+
+    w, h = size
+    R = radius
+    ii, jj = np.meshgrid(np.arange(-40, 41), np.arange(-40, 41))
+    p = np.stack([ii.ravel() * 2 * R + jj.ravel() * R, jj.ravel() * math.sqrt(3) * R], axis=-1)
+    keep = (np.abs(p[:, 0]) < w / 2 + R) & (np.abs(p[:, 1]) < h / 2 + R)
+    p = p[keep]
+    gaps = np.concatenate([p + [R, R / math.sqrt(3)], p + [R, -R / math.sqrt(3)]])
+    gkeep = (np.abs(gaps[:, 0]) < w / 2 + R) & (np.abs(gaps[:, 1]) < h / 2 + R)
+    big = _motif_segments(Star.preset("table3-3"), p, R)
+    small = _motif_segments(Star(n=6, radii=(0.5, 1.0)), gaps[gkeep], R * (2 / math.sqrt(3) - 1))
+    seg = np.concatenate([big, small]) + [w / 2, h / 2]
+    return seg
+
+
+def sheet_region(size=SIZE, radius=RADIUS, frame=FRAME, stroke=STROKE, *, cache=CACHE):
+    """The material region (stroked bands + frame, clipped to the rectangle), cached as WKB."""
+    if cache is not None and cache.exists():
+        return shapely.from_wkb(cache.read_bytes())
+    w, h = size
+    seg = sheet_centrelines(size, radius)
+    lines = shapely.linestrings(seg)
+    bands = shapely.buffer(lines, stroke / 2, cap_style="flat", join_style="mitre")
+    outline = shapely.box(0, 0, w, h)
+    inner = shapely.box(frame, frame, w - frame, h - frame)
+    pattern = shapely.union_all(bands, grid_size=None)
+    region = shapely.union(shapely.intersection(pattern, outline),
+                           shapely.difference(outline, inner))
+    region = shapely.normalize(region)
+    if cache is not None:
+        cache.write_bytes(shapely.to_wkb(region))
+    return region
+
+
+def main(argv=None):
+    from fabtiles.export.dxf import write_dxf
+    from fabtiles.export.laser_svg import write_laser_svg
+    from fabtiles.geometry.contours import laser_contours
+    from fabtiles.geometry.laser_checks import check_laser
+    from fabtiles._profiles import load_profile
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--svg", action="store_true", help="also time the laser SVG")
+    ap.add_argument("--r12", action="store_true", help="also time the R12 DXF")
+    args = ap.parse_args(argv)
+
+    t = time.perf_counter()
+    region = sheet_region()
+    print(f"region: {time.perf_counter() - t:.2f} s (cache {CACHE})")
+    outline = shapely.box(0, 0, *SIZE)
+    holes = int(shapely.get_num_interior_rings(shapely.get_parts(region)).sum())
+    nseg = int(shapely.get_num_coordinates(region)) - len(shapely.get_parts(region)) - holes
+    print(f"sheet {SIZE[0]:g} x {SIZE[1]:g} mm, R = {RADIUS:g}: {holes} holes, ~{nseg} segments")
+    profile = load_profile("laser-3mm-plywood", kind="laser")
+
+    def best(label, fn):
+        times = []
+        for _ in range(args.repeat):
+            t0 = time.perf_counter()
+            out = fn()
+            times.append(time.perf_counter() - t0)
+        print(f"{label:<28} best {min(times):.3f} s   (runs: {', '.join(f'{x:.3f}' for x in times)})")
+        return out, min(times)
+
+    best("checks", lambda: check_laser(region, outline, profile, stroke=STROKE))
+    best("kerf contours", lambda: laser_contours(region, outline, kerf_mm=profile.kerf_mm,
+                                                 tolerance_mm=profile.tolerance_mm))
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "sheet.dxf"
+        report, total = best("write_dxf end to end", lambda: write_dxf(
+            path, region=region, outline=outline, profile=profile, stroke=STROKE))
+        print(f"  {path.stat().st_size / 1e6:.1f} MB; stats: {report.stats}")
+        print("  " + report.summary().replace("\n", "\n  "))
+        if args.r12:
+            best("write_dxf R12", lambda: write_dxf(path, region=region, outline=outline,
+                                                    profile=profile, stroke=STROKE, dxf_version="R12"))
+        if args.svg:
+            best("write_laser_svg", lambda: write_laser_svg(
+                Path(tmp) / "sheet.svg", region=region, outline=outline, profile=profile, stroke=STROKE))
+    verdict = "PASS" if total < 2.0 else "FAIL"
+    print(f"budget 2.0 s: {verdict} ({total:.3f} s)")
+    return 0 if total < 2.0 else 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

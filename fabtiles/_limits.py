@@ -1,0 +1,92 @@
+"""Work limits, checked before work starts so no request or design can hang.
+
+The numbers are estimates from the pattern's parameters alone (no geometry is
+built): the count of centre-line segments a tile will hold, and its size.
+
+>>> lim = Limits(max_segments=100, max_size_mm=500)
+>>> check_size(600, 400, lim)
+Traceback (most recent call last):
+...
+fabtiles._errors.LimitError: the tile is 600 x 400 mm, larger than the limit of 500 mm on a side; make it smaller
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ._errors import LimitError
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Largest job accepted: segments before clipping, tile side in mm, and the same for STEP."""
+
+    max_segments: int = 400_000
+    max_size_mm: float = 3000.0
+    max_step_segments: int = 60_000
+
+
+CLI_LIMITS = Limits()
+"""Limits of ``fabtiles build``: a 1,200 x 600 mm sheet fits with room to spare."""
+
+WEB_LIMITS = Limits(max_segments=120_000, max_size_mm=1200.0, max_step_segments=30_000)
+"""Limits of the web app: every request answers in seconds."""
+
+
+def check_size(width_mm: float, height_mm: float, limits: Limits) -> None:
+    """Refuse a tile larger than ``limits.max_size_mm`` on either side."""
+    if max(width_mm, height_mm) > limits.max_size_mm:
+        raise LimitError(
+            f"the tile is {width_mm:g} x {height_mm:g} mm, larger than the limit of "
+            f"{limits.max_size_mm:g} mm on a side; make it smaller"
+        )
+
+
+def estimate_segments(pattern, width_mm: float, height_mm: float) -> int:
+    """Centre-line segments a pattern will put on a ``width x height`` tile (an upper estimate).
+
+    >>> from fabtiles.pattern.star import Star
+    >>> estimate_segments(Star(n=8, radii=(1, 2)), 100, 100)
+    16
+    """
+    motif = getattr(pattern, "motif", None)
+    if motif is None:  # a single Star
+        return len(pattern.segments())
+    radius = float(pattern.radius)
+    main = len(motif.segments())
+    gap_motif = getattr(pattern, "gap_motif", None)
+    gap = len(gap_motif.segments()) if gap_motif is not None else 0
+    cell_area, gaps_per_cell = getattr(pattern, "cell_area_and_gaps", lambda: (2 * math.sqrt(3) * radius**2, 2))()
+    # Circles whose centres lie within one radius of the tile can reach into it.
+    cells = (width_mm + 4 * radius) * (height_mm + 4 * radius) / cell_area
+    ring = 64 if getattr(pattern, "outline_circles", False) else 0
+    return int(math.ceil(cells * (main + ring + gaps_per_cell * (gap + ring))))
+
+
+def check_segments(count: int, limits: Limits, *, what: str = "the tile") -> None:
+    """Refuse more than ``limits.max_segments`` segments."""
+    if count > limits.max_segments:
+        raise LimitError(
+            f"{what} would hold about {count:,} segments, more than the limit of "
+            f"{limits.max_segments:,}; make the tile smaller, the packing radius larger, or n smaller"
+        )
+
+
+def check_tile(pattern, width_mm: float, height_mm: float, limits: Limits) -> int:
+    """Check size and segment count before any geometry is built; return the estimate."""
+    check_size(width_mm, height_mm, limits)
+    count = estimate_segments(pattern, width_mm, height_mm)
+    check_segments(count, limits)
+    return count
+
+
+def check_export(tile, fmt: str, limits: Limits) -> None:
+    """Formats with their own, lower limits (STEP is slow on huge solids)."""
+    if fmt == "step":
+        count = estimate_segments(tile.pattern, tile.width_mm, tile.height_mm)
+        if count > limits.max_step_segments:
+            raise LimitError(
+                f"STEP export of about {count:,} segments is over the limit of "
+                f"{limits.max_step_segments:,}; export STL or 3MF, or a smaller tile"
+            )

@@ -1,0 +1,136 @@
+"""Query parameters of the web API, flattened from the design file's keys.
+
+``?preset=table3-3&radius=15&width=150`` becomes the same nested dictionary a
+design file holds (SPEC section 7), so the web app and ``fabtiles build`` share
+one validation path. Problems raise :class:`QueryError`, which names the field.
+
+>>> design = design_from_query({"n": "8", "radii": "51,70,172", "packing": "none", "width": "100"})
+>>> design["motif"], design["tile"]["size"]
+({'n': 8, 'radii': [51.0, 70.0, 172.0]}, [100.0, 100.0])
+"""
+
+from __future__ import annotations
+
+import math
+
+from .._errors import FabtilesError
+
+
+class QueryError(FabtilesError, ValueError):
+    """A query parameter is malformed; ``field`` names it."""
+
+    def __init__(self, message: str, field: str):
+        super().__init__(message)
+        self.field = field
+
+
+def _number(field, text, *, integer=False):
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        kind = "an integer" if integer else "a number"
+        raise QueryError(f"{field} must be {kind}, got {text!r}", field) from None
+    if not math.isfinite(value):
+        raise QueryError(f"{field} must be a finite number, got {text!r}", field)
+    if integer:
+        if not value.is_integer():
+            raise QueryError(f"{field} must be an integer, got {text!r}", field)
+        return int(value)
+    return value
+
+
+def _numbers(field, text):
+    parts = [p for p in str(text).replace(" ", "").split(",") if p]
+    if not parts:
+        raise QueryError(f"{field} must be comma-separated numbers like 51,70,172, got {text!r}", field)
+    return [_number(field, p) for p in parts]
+
+
+def _flag(field, text):
+    low = str(text).lower()
+    if low in ("1", "true", "yes", "on"):
+        return True
+    if low in ("0", "false", "no", "off", ""):
+        return False
+    raise QueryError(f"{field} must be true or false, got {text!r}", field)
+
+
+def _text(field, text):
+    return str(text)
+
+
+# query key -> (section, design key, parser)
+FIELDS = {
+    "preset": ("motif", "preset", _text),
+    "n": ("motif", "n", lambda f, t: _number(f, t, integer=True)),
+    "radii": ("motif", "radii", _numbers),
+    "alpha": ("motif", "alpha", _number),
+    "spr": ("motif", "spr", _number),
+    "special": ("motif", "special", lambda f, t: None if str(t).lower() in ("", "none") else _number(f, t, integer=True)),
+    "rotation": ("motif", "rotation", _number),
+    "packing": ("packing", "kind", _text),
+    "radius": ("packing", "radius", _number),
+    "fill": ("packing", "fill", _number),
+    "outline_circles": ("packing", "outline_circles", _flag),
+    "gap_n": ("gap_motif", "n", lambda f, t: _number(f, t, integer=True)),
+    "gap_radii": ("gap_motif", "radii", _numbers),
+    "gap_preset": ("gap_motif", "preset", _text),
+    "outline": ("tile", "outline", _text),
+    "width": ("tile", "width", _number),
+    "height": ("tile", "height", _number),
+    "frame": ("tile", "frame", _number),
+    "stroke": ("tile", "stroke", _number),
+    "join": ("tile", "join", _text),
+    "corner_radius": ("tile", "corner_radius", _number),
+    "laser_profile": ("output", "laser_profile", _text),
+    "printer_profile": ("output", "printer_profile", _text),
+    "laser_mode": ("output", "laser_mode", _text),
+    "print_style": ("output", "print_style", _text),
+}
+
+DEFAULTS = {
+    "preset": "table3-3",
+    "packing": "hex",
+    "radius": "15",
+    "outline": "square",
+    "width": "150",
+    "frame": "5",
+    "stroke": "1",
+}
+"""What the page starts with: the paper's third tiling result on a 150 mm square."""
+
+
+def design_from_query(query) -> dict:
+    """Turn flat query parameters into a nested design dictionary (SPEC section 7).
+
+    Unknown parameters are an error naming the parameter and the valid ones.
+    """
+    design: dict = {"motif": {}, "packing": {}, "tile": {}, "output": {}}
+    gap: dict = {}
+    for key, raw in query.items():
+        if key not in FIELDS:
+            raise QueryError(
+                f"{key!r} is not a valid parameter, must be one of: {', '.join(FIELDS)}", key
+            )
+        section, name, parse = FIELDS[key]
+        value = parse(key, raw)
+        (gap if section == "gap_motif" else design[section])[name] = value
+    motif = design["motif"]
+    if "preset" in motif and motif["preset"] == "":
+        del motif["preset"]
+    if motif.get("special", 0) is None:
+        del motif["special"]
+    if design["packing"].get("kind", "hex") == "none":
+        if gap or len(design["packing"]) > 1:
+            extra = sorted(k for k in query if FIELDS[k][0] in ("packing", "gap_motif") and k != "packing")
+            raise QueryError(f"{extra[0]} has no meaning with packing=none; remove it or choose packing=hex or square", extra[0])
+        del design["packing"]
+    elif gap:
+        design["packing"]["gap_motif"] = gap
+    tile = design["tile"]
+    width, height = tile.pop("width", None), tile.pop("height", None)
+    if width is not None or height is not None:
+        if width is None:
+            raise QueryError("width is missing: give width (and height for a rectangle)", "width")
+        tile["size"] = [width, height if height is not None else width]
+    return {k: v for k, v in design.items() if v or k == "tile"}

@@ -1,0 +1,223 @@
+// fabtiles web page: controls -> URL query -> /api/preview.svg, /api/checks, /api/export/*.
+"use strict";
+
+const SLIDERS = {
+  "motif-sliders": [
+    ["n", "n (points)", 3, 48, 1],
+    ["alpha", "alpha (deg)", -90, 90, 0.5],
+    ["spr", "spr", -300, 300, 1],
+    ["rotation", "rotation (deg)", -180, 180, 0.5],
+  ],
+  "packing-sliders": [
+    ["radius", "radius R (mm)", 3, 100, 0.5],
+    ["gap_n", "gap n", 3, 24, 1],
+    ["gap_inner", "gap inner r", 0.05, 1.5, 0.05],
+  ],
+  "tile-sliders": [
+    ["width", "width (mm)", 20, 600, 1],
+    ["height", "height (mm)", 20, 400, 1],
+    ["frame", "frame (mm)", 0, 30, 0.5],
+    ["stroke", "stroke (mm)", 0.2, 6, 0.1],
+    ["corner_radius", "corner r (mm)", 0, 30, 0.5],
+  ],
+};
+
+const state = {
+  preset: "table3-3", n: 12, radii: [123, 85, 178], alpha: 23, spr: -7, special: 2, rotation: 0,
+  packing: "hex", radius: 15, gap_n: 6, gap_inner: 0.5, outline_circles: false,
+  outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
+  laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
+};
+let presets = {};
+
+function $(id) { return document.getElementById(id); }
+
+function slider(container, key, label, min, max, step) {
+  const row = document.createElement("label");
+  row.className = "row";
+  row.innerHTML = `<span>${label}</span><input type="range" min="${min}" max="${max}" step="${step}"
+     id="${key}-range"><input type="number" step="${step}" id="${key}" name="${key}">`;
+  container.appendChild(row);
+  const err = document.createElement("div");
+  err.className = "err";
+  err.dataset.for = key === "gap_inner" ? "gap_radii" : key;
+  container.appendChild(err);
+  const range = row.querySelector("input[type=range]"), box = row.querySelector("input[type=number]");
+  const set = (v) => { range.value = v; box.value = v; };
+  set(state[key]);
+  const changed = (v) => {
+    state[key] = Number(v);
+    set(v);
+    if (["n", "alpha", "spr", "rotation"].includes(key)) state.preset = "";
+    update();
+  };
+  range.addEventListener("input", () => changed(range.value));
+  box.addEventListener("change", () => changed(box.value));
+}
+
+function radiiSliders() {
+  const box = $("radii-sliders");
+  box.innerHTML = "";
+  state.radii.forEach((r, k) => {
+    const row = document.createElement("label");
+    row.className = "row";
+    row.innerHTML = `<span>r${k + 1}</span><input type="range" min="1" max="400" step="1" id="r${k + 1}-range">
+       <input type="number" step="any" min="0" id="r${k + 1}">`;
+    box.appendChild(row);
+    const range = row.querySelector("input[type=range]"), num = row.querySelector("input[type=number]");
+    range.value = r; num.value = r;
+    const changed = (v) => { state.radii[k] = Number(v); range.value = v; num.value = v; state.preset = ""; update(); };
+    range.addEventListener("input", () => changed(range.value));
+    num.addEventListener("change", () => changed(num.value));
+  });
+  $("circles").value = state.radii.length;
+  const sp = $("special"), keep = state.special;
+  sp.innerHTML = '<option value="">none (a star)</option>';
+  for (let w = 2; w <= state.radii.length; w++) sp.add(new Option(`circle ${w}`, String(w)));
+  sp.value = keep && keep <= state.radii.length ? String(keep) : "";
+}
+
+function query() {
+  const q = new URLSearchParams();
+  if (state.preset) {
+    q.set("preset", state.preset);
+    if (state.rotation) q.set("rotation", state.rotation);
+  } else {
+    q.set("n", state.n);
+    q.set("radii", state.radii.join(","));
+    q.set("alpha", state.alpha);
+    q.set("spr", state.spr);
+    q.set("special", state.special || "none");
+    q.set("rotation", state.rotation);
+  }
+  q.set("packing", state.packing);
+  if (state.packing !== "none") {
+    q.set("radius", state.radius);
+    q.set("gap_n", state.gap_n);
+    q.set("gap_radii", `${state.gap_inner},1`);
+    q.set("outline_circles", state.outline_circles ? "true" : "false");
+  }
+  q.set("outline", state.outline);
+  q.set("width", state.width);
+  if (state.outline === "rectangle") q.set("height", state.height);
+  for (const k of ["frame", "stroke", "corner_radius", "join", "laser_profile", "laser_mode",
+                   "printer_profile", "print_style"]) q.set(k, state[k]);
+  return q;
+}
+
+function fromUrl() {
+  const q = new URLSearchParams(location.search);
+  if (![...q.keys()].length) return;
+  for (const [k, v] of q) {
+    if (k === "radii") state.radii = v.split(",").map(Number);
+    else if (k === "gap_radii") state.gap_inner = Number(v.split(",")[0]);
+    else if (k === "special") state.special = v === "none" || v === "" ? 0 : Number(v);
+    else if (k === "outline_circles") state.outline_circles = v === "true";
+    else if (k in state) state[k] = typeof state[k] === "number" ? Number(v) : v;
+  }
+  if (!q.has("preset")) state.preset = "";
+  if (q.has("preset")) applyPreset(state.preset, false);
+}
+
+function applyPreset(name, redraw = true) {
+  const p = presets[name];
+  if (!p) return;
+  Object.assign(state, { preset: name, n: p.n, radii: [...p.radii], alpha: p.alpha, spr: p.spr,
+                         special: p.special || 0 });
+  if (redraw) syncControls();
+}
+
+function syncControls() {
+  for (const group of Object.values(SLIDERS)) for (const [key] of group) {
+    $(key).value = state[key]; $(`${key}-range`).value = state[key];
+  }
+  for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style"])
+    $(key).value = state[key];
+  $("preset").value = state.preset;
+  $("outline_circles").checked = state.outline_circles;
+  radiiSliders();
+}
+
+let timer = null, seq = 0;
+function update() {
+  clearTimeout(timer);
+  timer = setTimeout(refresh, 120);
+}
+
+function showError(field, message) {
+  document.querySelectorAll(".err").forEach((e) => { e.textContent = ""; });
+  document.querySelectorAll(".bad").forEach((e) => e.classList.remove("bad"));
+  const status = $("status");
+  status.className = message ? "error" : "";
+  status.textContent = message ? `✗ ${message}` : "";
+  if (!message) return;
+  let target = document.querySelector(`.err[data-for="${field}"]`);
+  if (!target && field === "radii") target = document.querySelector('.err[data-for="radii"]');
+  if (target) target.textContent = message;
+  const control = $(field) || $(`${field}-range`) || (field === "radii" ? $("radii-sliders") : null);
+  if (control) control.classList.add("bad");
+}
+
+async function refresh() {
+  const q = query(), mine = ++seq;
+  history.replaceState(null, "", `?${q}`);
+  for (const a of document.querySelectorAll("#downloads a[data-format]"))
+    a.href = `/api/export/${a.dataset.format}?${q}`;
+  $("download-design").href = `/api/design.toml?${q}`;
+  const res = await fetch(`/api/preview.svg?${q}`);
+  if (mine !== seq) return;
+  if (!res.ok) {
+    const body = await res.json().catch(() => ({ error: res.statusText, field: null }));
+    showError(body.field, body.error);
+    return;
+  }
+  const svg = await res.text();
+  $("preview").src = "data:image/svg+xml;charset=utf-8," + encodeURIComponent(svg);
+  $("preview").dataset.version = String(mine);
+  showError(null, "");
+  const checks = await fetch(`/api/checks?${q}`);
+  if (mine !== seq || !checks.ok) return;
+  const data = await checks.json();
+  const list = $("checks");
+  list.innerHTML = "";
+  const items = data.findings || [];
+  if (!items.length) list.innerHTML = '<li class="ok">✓ no problems found</li>';
+  for (const f of items) {
+    const li = document.createElement("li");
+    li.textContent = `${f.where ? f.where + ": " : ""}${f.code}: ${f.message}`;
+    list.appendChild(li);
+  }
+  $("status").textContent = data.summary || "";
+}
+
+async function init() {
+  presets = await (await fetch("/api/presets")).json();
+  const sel = $("preset");
+  for (const name of Object.keys(presets)) sel.add(new Option(name, name));
+  const profiles = await (await fetch("/api/profiles")).json();
+  for (const n of profiles.laser) $("laser_profile").add(new Option(n, n));
+  for (const n of profiles.printer) $("printer_profile").add(new Option(n, n));
+  fromUrl();
+  for (const [box, list] of Object.entries(SLIDERS))
+    for (const [key, label, min, max, step] of list) slider($(box), key, label, min, max, step);
+  syncControls();
+  sel.addEventListener("change", () => {
+    if (sel.value) applyPreset(sel.value); else state.preset = "";
+    update();
+  });
+  $("circles").addEventListener("change", () => {
+    const s = Math.max(2, Math.min(8, Number($("circles").value) || 2));
+    while (state.radii.length < s) state.radii.push(state.radii[state.radii.length - 1] + 20);
+    state.radii.length = s;
+    state.preset = "";
+    radiiSliders();
+    update();
+  });
+  $("special").addEventListener("change", () => { state.special = Number($("special").value) || 0; state.preset = ""; update(); });
+  $("outline_circles").addEventListener("change", () => { state.outline_circles = $("outline_circles").checked; update(); });
+  for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style"])
+    $(key).addEventListener("change", () => { state[key] = $(key).value; update(); });
+  refresh();
+}
+
+init();
