@@ -1,0 +1,92 @@
+"""Laser SVG: the DXF's contours and layers, as stroke colours, at true millimetre size.
+
+For laser software that prefers SVG. One ``<g id="LAYER">`` per operation (score,
+inner cuts, outer cut, in cut order), its stroke the RGB of the layer's ACI colour
+(1 red ``#FF0000``, 3 green ``#00FF00``, 5 blue ``#0000FF``, ...), no fill, hairline
+stroke width. ``width``/``height`` are in mm and the viewBox is in mm, so one user
+unit is one millimetre; the y axis is flipped so the picture looks like the DXF.
+Coordinates are printed with 4 decimals (0.1 um), so the file is reproducible
+byte for byte.
+"""
+
+from __future__ import annotations
+
+from .._io import atomic_write
+from .._report import Report
+from ..geometry.laser_checks import LaserJob, prepare_laser
+
+HAIRLINE_MM = 0.025
+"""Stroke width of the paths (a 0.001 inch hairline: "cut, don't engrave" for most drivers)."""
+
+
+def aci_to_hex(color: int) -> str:
+    """``#RRGGBB`` of an AutoCAD Color Index.
+
+    >>> aci_to_hex(1), aci_to_hex(3), aci_to_hex(5)
+    ('#FF0000', '#00FF00', '#0000FF')
+    """
+    from ezdxf.colors import aci2rgb
+
+    r, g, b = aci2rgb(color)
+    return f"#{r:02X}{g:02X}{b:02X}"
+
+
+def _num(x: float) -> str:
+    s = f"{x:.4f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def _path_data(ring, flip: float, closed: bool) -> str:
+    pts = [f"{_num(x)} {_num(flip - y)}" for x, y in ring.tolist()]
+    return "M" + "L".join(pts) + ("Z" if closed else "")
+
+
+def svg_text(job: LaserJob) -> str:
+    """The laser SVG of a prepared job, as text."""
+    xmin, ymin, xmax, ymax = job.bounds
+    w, h = xmax - xmin, ymax - ymin
+    layers = job.profile.layers
+    head = (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(w)}mm" height="{_num(h)}mm" '
+        f'viewBox="{_num(xmin)} {_num(-ymax)} {_num(w)} {_num(h)}">\n'
+        f"<title>fabtiles laser {job.mode}, profile {_escape(job.profile.name)}, kerf {_num(job.kerf_mm)} mm"
+        "</title>\n"
+    )
+    out = [head]
+    for rings, layer, closed in ((job.score, layers.score, False), (job.inner, layers.inner_cut, True),
+                                 (job.outer, layers.outer_cut, True)):
+        if not rings:
+            continue
+        out.append(f'<g id="{_escape(layer.name)}" fill="none" stroke="{aci_to_hex(layer.color)}" '
+                   f'stroke-width="{_num(HAIRLINE_MM)}">\n')
+        out.extend(f'<path d="{_path_data(r, 0.0, closed)}"/>\n' for r in rings)
+        out.append("</g>\n")
+    out.append("</svg>\n")
+    return "".join(out)
+
+
+def _escape(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")
+
+
+def write_laser_svg(path, *, region, outline, centrelines=None, profile, mode=None, kerf_mm=None,
+                    fill_small_holes: bool = False, stroke=None, dxf_version=None) -> Report:
+    """Write the laser SVG of a tile's material ``region`` to ``path``.
+
+    Same parameters, checks, contours and cut order as
+    :func:`fabtiles.export.dxf.write_dxf` (``dxf_version`` is accepted and ignored).
+
+    >>> import tempfile, pathlib
+    >>> from shapely.geometry import box
+    >>> plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "plate.svg"
+    >>> r = write_laser_svg(out, region=plate, outline=box(0, 0, 40, 40), profile="laser-3mm-plywood", kerf_mm=0)
+    >>> 'width="40mm"' in out.read_text(), r.stats["inner_contours"]
+    (True, 1)
+    """
+    job, report = prepare_laser(path, "svg", region=region, outline=outline, centrelines=centrelines,
+                                profile=profile, mode=mode, dxf_version=dxf_version, kerf_mm=kerf_mm,
+                                fill_small_holes=fill_small_holes, stroke=stroke)
+    atomic_write(path, svg_text(job))
+    return report

@@ -1,0 +1,339 @@
+"""Laser fabrication checks, and the one preparation step shared by the laser writers.
+
+:func:`check_laser` reports, into a :class:`~fabtiles._report.Report`:
+
+``small_hole``
+    Holes no disc of ``min_hole_mm`` fits in (their inscribed width is smaller):
+    they char shut or burn away. ``fill_small_holes=True`` on the writers fills them.
+``thin_bridge``
+    Material narrower than ``min_feature_mm`` between two boundaries of the same
+    part (two holes, or a hole and the outer edge): two rings of one part closer
+    than the minimum. Thin dead-end spikes (star tips) are not bridges and are not
+    reported; a thin neck with no hole on either side is not seen either.
+``loose_part``
+    Pieces of material not joined to the main piece of their tile (every piece but
+    the largest inside each outline polygon): they fall out of the sheet.
+
+A tile larger than the profile's bed (either way round) is not a finding but a
+:class:`~fabtiles.FabricationError` (:func:`check_fits_bed`): the file could not be
+cut, so it is never written. Likewise a stroke thinner than ``min_feature_mm``, a
+kerf below 0 or wider than the stroke are :class:`~fabtiles.ParameterError` (SPEC
+section 5), raised by :func:`prepare_laser` before any work.
+
+>>> from shapely.geometry import box
+>>> from fabtiles._profiles import load_profile
+>>> plate = box(0, 0, 50, 50).difference(box(10, 10, 10.5, 10.5))
+>>> report = check_laser(plate, box(0, 0, 50, 50), load_profile("laser-3mm-plywood"))
+>>> [f.code for f in report.findings]
+['small_hole']
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import shapely
+
+from .._errors import FabricationError, ParameterError, ProfileError
+from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, load_profile
+from .._report import Report
+from .._validate import check_choice, check_float
+from .contours import laser_contours, outline_contours, polygon_parts, score_paths
+
+MAX_LOCATIONS = 20
+"""At most this many locations are listed per finding."""
+
+
+def _holes(parts: np.ndarray):
+    """Interior rings of ``parts`` as polygons, with the index of their part."""
+    nholes = shapely.get_num_interior_rings(parts)
+    owner = np.repeat(np.arange(len(parts)), nholes)
+    idx = np.concatenate([np.arange(k) for k in nholes]) if len(parts) else np.empty(0, int)
+    return shapely.polygons(shapely.get_interior_ring(parts[owner], idx)), owner
+
+
+def small_hole_mask(holes: np.ndarray, min_hole_mm: float) -> np.ndarray:
+    """True for each hole polygon that no disc of diameter ``min_hole_mm`` fits in.
+
+    Cheap tests first (bounding box, area, a disc at the centroid), a negative
+    buffer only for the undecided ones.
+
+    >>> from shapely.geometry import box
+    >>> small_hole_mask(np.array([box(0, 0, 1, 1), box(0, 0, 5, 5), box(0, 0, 1, 9)]), 1.2).tolist()
+    [True, False, True]
+    """
+    holes = np.asarray(holes, dtype=object)
+    r = min_hole_mm / 2
+    b = shapely.bounds(holes)
+    small = (np.minimum(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1]) < min_hole_mm) | (
+        shapely.area(holes) < math.pi * r * r)
+    todo = np.flatnonzero(~small)
+    if len(todo):
+        c = shapely.centroid(holes[todo])
+        roomy = shapely.contains_properly(holes[todo], c) & (
+            shapely.distance(c, shapely.get_exterior_ring(holes[todo])) >= r)
+        todo = todo[~roomy]
+    if len(todo):
+        small[todo] = shapely.is_empty(shapely.buffer(holes[todo], -r, quad_segs=4))
+    return small
+
+
+def fill_small_holes(region, min_hole_mm: float, *, tolerance_mm: float = 0.0):
+    """``region`` with its holes narrower than ``min_hole_mm`` filled: ``(region, count)``.
+
+    Degenerate holes (area <= ``tolerance_mm**2``) are filled too but not counted.
+
+    >>> from shapely.geometry import box
+    >>> plate = box(0, 0, 9, 9).difference(box(1, 1, 1.5, 1.5)).difference(box(4, 4, 8, 8))
+    >>> filled, n = fill_small_holes(plate, 1.2)
+    >>> n, len(filled.interiors)
+    (1, 1)
+    """
+    parts = polygon_parts(region)
+    holes, owner = _holes(parts)
+    if not len(holes):
+        return region, 0
+    small = small_hole_mask(holes, min_hole_mm)
+    degenerate = shapely.area(holes) <= tolerance_mm ** 2
+    drop = small | degenerate
+    if not drop.any():
+        return region, 0
+    keep = ~drop
+    rings = shapely.get_exterior_ring(holes[keep])
+    shells = shapely.get_exterior_ring(parts)
+    allr = np.concatenate([shells, rings])
+    index = np.concatenate([np.arange(len(parts)), owner[keep]])
+    order = np.argsort(index, kind="stable")  # each part's shell first, then its holes
+    new = shapely.polygons(allr[order], indices=index[order])
+    out = new[0] if len(new) == 1 and region.geom_type == "Polygon" else shapely.multipolygons(new)
+    return out, int((small & ~degenerate).sum())
+
+
+_fill_small_holes = fill_small_holes
+
+
+def check_fits_bed(outline, profile: LaserProfile) -> None:
+    """Raise :class:`~fabtiles.FabricationError` if ``outline`` does not fit the bed either way round.
+
+    >>> from shapely.geometry import box
+    >>> check_fits_bed(box(0, 0, 400, 600), load_profile("laser-3mm-plywood"))  # fits turned
+    >>> check_fits_bed(box(0, 0, 700, 100), load_profile("laser-3mm-plywood"))
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.FabricationError: the tile is 700 x 100 mm, larger than the 600 x 400 mm bed of laser profile 'laser-3mm-plywood' (either way round); make the tile smaller or use a profile with a larger bed_mm
+    """
+    xmin, ymin, xmax, ymax = outline.bounds
+    w, h = xmax - xmin, ymax - ymin
+    bw, bh = profile.bed_mm
+    eps = 1e-6
+    if (w <= bw + eps and h <= bh + eps) or (w <= bh + eps and h <= bw + eps):
+        return
+    raise FabricationError(
+        f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of laser profile "
+        f"{profile.name!r} (either way round); make the tile smaller or use a profile with a larger bed_mm"
+    )
+
+
+def _split_long_rings(rings: np.ndarray, max_points: int = 64):
+    """Rings with more than ``max_points`` points cut into 2-point segments (for a spatial index).
+
+    Returns the pieces and, for each, the index of its ring.
+    """
+    npts = shapely.get_num_coordinates(rings)
+    big = np.flatnonzero(npts > max_points)
+    small = np.flatnonzero(npts <= max_points)
+    if not len(big):
+        return rings, np.arange(len(rings))
+    coords, idx = shapely.get_coordinates(rings[big], return_index=True)
+    same = idx[1:] == idx[:-1]
+    segs = shapely.linestrings(np.stack([coords[:-1][same], coords[1:][same]], axis=1))
+    return np.concatenate([rings[small], segs]), np.concatenate([small, big[idx[:-1][same]]])
+
+
+def _locations(points, limit=MAX_LOCATIONS):
+    pts = shapely.get_coordinates(np.asarray(points, dtype=object)[:limit])
+    return [tuple(np.round(p, 3)) for p in pts]
+
+
+def check_laser(region, outline, profile, *, stroke=None, report: Report | None = None,
+                validate: bool = True) -> Report:
+    """Run the fabrication checks of the pierced mode on ``region``; findings go into ``report``.
+
+    Parameters
+    ----------
+    region : shapely Polygon or MultiPolygon
+        The material (nominal, before the kerf offset).
+    outline : shapely Polygon or MultiPolygon, optional
+        The tile outline(s); on a sheet, one polygon per tile (loose parts are counted per tile).
+    profile : str, Path or LaserProfile
+    stroke : float, optional
+        Stroke width, for messages only.
+    report : Report, optional
+        Added to and returned; a new one (path ``""``) otherwise.
+    validate : bool
+        Check ``region`` is valid polygonal geometry (skip when the caller already did).
+    """
+    profile = load_profile(profile, kind="laser")
+    report = report if report is not None else Report(path="", format="laser")
+    parts = polygon_parts(region) if validate else shapely.get_parts(region)
+    holes, owner = _holes(parts)
+    tol2 = profile.tolerance_mm ** 2
+    real = shapely.area(holes) > tol2
+    holes, owner = holes[real], owner[real]
+
+    if len(holes):
+        small = small_hole_mask(holes, profile.min_hole_mm)
+        if small.any():
+            n = int(small.sum())
+            report.add("small_hole",
+                       f"{n} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
+                       "(they burn away or char shut; fill_small_holes=True fills them)",
+                       count=n, locations=_locations(shapely.point_on_surface(holes[small])))
+
+    # thin bridges: two rings of the same part closer than the minimum feature
+    f = profile.min_feature_mm
+    rings = np.concatenate([shapely.get_exterior_ring(parts), shapely.get_exterior_ring(holes)])
+    part_of = np.concatenate([np.arange(len(parts)), owner])
+    items, ring_of = _split_long_rings(rings)
+    # candidate pairs: bounding boxes grown by f/2 overlap; then an exact distance test
+    env = shapely.box(*(shapely.bounds(items) + [-f / 2, -f / 2, f / 2, f / 2]).T)
+    a, b = shapely.STRtree(env).query(env)
+    ra, rb = ring_of[a], ring_of[b]
+    sel = (ra < rb) & (part_of[ra] == part_of[rb])
+    a, b = a[sel], b[sel]
+    near = shapely.dwithin(items[a], items[b], f * (1 - 1e-9))
+    a, b = a[near], b[near]
+    _, first = np.unique(ring_of[a] * len(rings) + ring_of[b], return_index=True)
+    a, b = a[first], b[first]
+    if len(a):
+        lines = shapely.shortest_line(items[a[:MAX_LOCATIONS]], items[b[:MAX_LOCATIONS]])
+        width = float(shapely.distance(items[a], items[b]).min())
+        extra = f"; the stroke is {stroke:g} mm" if stroke is not None else ""
+        report.add("thin_bridge",
+                   f"{len(a)} bridge{'s' if len(a) > 1 else ''} narrower than min_feature_mm = {f:g} mm "
+                   f"(narrowest {width:.3g} mm{extra}): they may burn through or break",
+                   count=len(a), locations=_locations(shapely.line_interpolate_point(lines, 0.5, normalized=True)))
+
+    # loose parts: all but the largest piece inside each outline polygon
+    if len(parts) > 1:
+        group = np.full(len(parts), -1)
+        if outline is not None:
+            tiles = polygon_parts(outline, "outline")
+            pa, pb = shapely.STRtree(tiles).query(shapely.point_on_surface(parts), predicate="within")
+            group[pa] = pb
+        area = shapely.area(parts)
+        loose = np.ones(len(parts), dtype=bool)
+        for g in np.unique(group):
+            members = np.flatnonzero(group == g)
+            loose[members[np.argmax(area[members])]] = False
+        if loose.any():
+            n = int(loose.sum())
+            report.add("loose_part",
+                       f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
+                       f"(they fall out; largest {area[loose].max():.3g} mm^2)",
+                       count=n, locations=_locations(shapely.point_on_surface(parts[loose])))
+    return report
+
+
+@dataclass
+class LaserJob:
+    """Everything a laser writer needs: resolved options and the contours in cut order."""
+
+    profile: LaserProfile
+    mode: str
+    dxf_version: str
+    kerf_mm: float
+    inner: list = field(default_factory=list)
+    outer: list = field(default_factory=list)
+    score: list = field(default_factory=list)
+    bounds: tuple = (0.0, 0.0, 0.0, 0.0)
+
+
+def _check_profile(profile: LaserProfile) -> None:
+    for key in ("inner_cut", "outer_cut", "score"):
+        layer = getattr(profile.layers, key)
+        if isinstance(layer.color, bool) or not isinstance(layer.color, int) or not 1 <= layer.color <= 255:
+            raise ProfileError(f"profile {profile.name!r}: layers.{key}.color must be an AutoCAD Color "
+                               f"Index 1..255, got {layer.color!r}")
+        if not isinstance(layer.name, str) or not layer.name or any(c in layer.name for c in '<>/\\":;?*|=\''):
+            raise ProfileError(f"profile {profile.name!r}: layers.{key}.name must be a non-empty DXF layer "
+                               f"name without <>/\\\":;?*|=', got {layer.name!r}")
+
+
+def _length(rings, closed: bool) -> float:
+    """Total length of polylines (closed: with the closing edge)."""
+    if not rings:
+        return 0.0
+    flat = np.concatenate(rings)
+    total = float(np.hypot(*np.diff(flat, axis=0).T).sum())
+    starts = np.cumsum([0] + [len(r) for r in rings])
+    # remove the jumps between polylines, add the closing edges
+    jumps = flat[starts[1:-1]] - flat[starts[1:-1] - 1]
+    total -= float(np.hypot(*jumps.T).sum())
+    if closed:
+        close = flat[starts[:-1]] - flat[starts[1:] - 1]
+        total += float(np.hypot(*close.T).sum())
+    return total
+
+
+def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode=None, dxf_version=None,
+                  kerf_mm=None, fill_small_holes: bool = False, stroke=None):
+    """Validate the options, run the checks and build the contours: ``(LaserJob, Report)``.
+
+    Raises before anything is written: :class:`~fabtiles.ParameterError` for bad
+    options, :class:`~fabtiles.ProfileError` for a bad profile,
+    :class:`~fabtiles.FabricationError` for a tile larger than the bed or, with a
+    strict profile, any finding.
+    """
+    profile = load_profile(profile, kind="laser")
+    _check_profile(profile)
+    mode = check_choice("mode", profile.mode if mode is None else mode, LASER_MODES)
+    dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
+                               DXF_VERSIONS)
+    kerf = check_float("kerf_mm", profile.kerf_mm if kerf_mm is None else kerf_mm, low=0)
+    if stroke is not None:
+        stroke = check_float("stroke", stroke, low=0, low_open=True)
+        if stroke < profile.min_feature_mm:
+            raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of laser "
+                                 f"profile {profile.name!r}, got {stroke:g}")
+        if kerf > stroke:
+            raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {kerf:g}")
+    if not isinstance(fill_small_holes, bool):
+        raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}")
+    parts = polygon_parts(region)
+    outline_parts = polygon_parts(outline, "outline")
+    check_fits_bed(outline, profile)
+
+    report = Report(path=str(path), format=fmt)
+    job = LaserJob(profile, mode, dxf_version, kerf)
+    report.stats.update(profile=profile.name, mode=mode, kerf_mm=kerf)
+    if fmt == "dxf":
+        report.stats["dxf_version"] = dxf_version
+    if mode == "pierced":
+        if fill_small_holes:
+            region, filled = _fill_small_holes(region, profile.min_hole_mm,
+                                                tolerance_mm=profile.tolerance_mm)
+            report.stats["filled_holes"] = filled
+            parts = shapely.get_parts(region)
+        check_laser(region, outline, profile, stroke=stroke, report=report, validate=False)
+        report.raise_if_strict(profile.strict)
+        job.inner, job.outer = laser_contours(region, outline, kerf_mm=kerf, tolerance_mm=profile.tolerance_mm,
+                                              validate=False)
+        report.stats["area_mm2"] = round(float(shapely.area(parts).sum()), 3)
+    else:
+        if centrelines is None or len(np.asarray(centrelines)) == 0:
+            raise ParameterError("the score mode needs centrelines (an array of shape (k, 2, 2)), got none")
+        job.outer = outline_contours(outline, kerf_mm=kerf, tolerance_mm=profile.tolerance_mm)
+        job.score = score_paths(centrelines, outline, tolerance_mm=profile.tolerance_mm)
+        report.stats["area_mm2"] = round(float(shapely.area(outline_parts).sum()), 3)
+        report.stats["score_paths"] = len(job.score)
+        report.stats["score_length_mm"] = round(_length(job.score, False), 3)
+    allr = job.inner + job.outer + job.score
+    flat = np.concatenate(allr) if allr else np.zeros((1, 2))
+    job.bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
+    report.stats.update(inner_contours=len(job.inner), outer_contours=len(job.outer),
+                        vertices=int(sum(len(r) for r in allr)),
+                        cut_length_mm=round(_length(job.inner + job.outer, True), 3))
+    return job, report

@@ -1,0 +1,291 @@
+"""Laser DXF (issue 4): read every file back with ezdxf and check what a laser needs."""
+
+from __future__ import annotations
+
+import io
+import subprocess
+import sys
+from dataclasses import replace
+
+import numpy as np
+import pytest
+import shapely
+from dxf_helpers import (
+    CUT_TYPES,
+    assert_golden,
+    dxf_entities,
+    edge_problems,
+    even_odd_area,
+    is_closed,
+    island_region,
+    motif_tile,
+    read_checked,
+    ring_polygons,
+    star_plate,
+    thin_bridge_region,
+    tiny_hole_region,
+    vertices,
+)
+from shapely.geometry import box
+
+from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError
+from fabtiles._profiles import Layer, LaserLayers, load_profile
+from fabtiles.export.dxf import build_document, dxf_text, write_dxf
+from fabtiles.geometry.contours import MITRE_LIMIT
+from fabtiles.geometry.laser_checks import prepare_laser
+
+PLY = load_profile("laser-3mm-plywood")
+INNER, OUTER, SCORE = PLY.layers.inner_cut, PLY.layers.outer_cut, PLY.layers.score
+
+
+def check_laser_dxf(path, region, *, kerf, version="R2000", profile=PLY):
+    """Everything the issue asks of a pierced laser DXF."""
+    doc = read_checked(path)
+    if version != "R12":
+        assert doc.header["$INSUNITS"] == 4
+        assert doc.units == 4
+    layers = profile.layers
+    for layer in (layers.inner_cut, layers.outer_cut, layers.score):
+        assert doc.layers.get(layer.name).color == layer.color
+    msp = list(doc.modelspace())
+    assert msp, "no entities"
+    want_type = "POLYLINE" if version == "R12" else "LWPOLYLINE"
+    seen_outer = False
+    for e in msp:
+        assert e.dxftype() == want_type
+        assert e.dxf.layer in (layers.inner_cut.name, layers.outer_cut.name)
+        assert is_closed(e)
+        assert e.dxf.color == (layers.inner_cut if e.dxf.layer == layers.inner_cut.name else layers.outer_cut).color
+        pts = vertices(e)
+        assert len(pts) >= 3
+        assert edge_problems(pts) == (0, 0)
+        if e.dxf.layer == layers.outer_cut.name:
+            seen_outer = True
+        else:
+            assert not seen_outer, "an inner contour comes after an outer contour"
+    grown = region.buffer(kerf / 2, join_style="mitre", mitre_limit=MITRE_LIMIT) if kerf else region
+    area = even_odd_area(ring_polygons(doc, (layers.inner_cut.name, layers.outer_cut.name)))
+    assert area == pytest.approx(grown.area, rel=0.005)
+    return doc
+
+
+@pytest.mark.parametrize("version", ["R2000", "R12", "R2018"])
+@pytest.mark.parametrize("kerf", [0.0, 0.15, 0.4])
+def test_star_plate_round_trip(tmp_path, version, kerf):
+    region, outline = star_plate()
+    path = tmp_path / "plate.dxf"
+    report = write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=kerf, dxf_version=version)
+    doc = check_laser_dxf(path, region, kerf=kerf, version=version)
+    assert report.ok, report.summary()
+    assert report.stats["inner_contours"] == 9 and report.stats["outer_contours"] == 1
+    assert report.stats["dxf_version"] == version
+    xmin, ymin, xmax, ymax = (np.vstack([vertices(e) for e in doc.modelspace()]).min(0).tolist()
+                              + np.vstack([vertices(e) for e in doc.modelspace()]).max(0).tolist())
+    assert (xmin, ymin, xmax, ymax) == pytest.approx((-kerf / 2, -kerf / 2, 60 + kerf / 2, 60 + kerf / 2))
+
+
+@pytest.mark.parametrize("kerf", [0.0, 0.2])
+def test_motif_tile_round_trip(tmp_path, kerf):
+    region, outline, _ = motif_tile()
+    path = tmp_path / "motif.dxf"
+    report = write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=kerf, stroke=1.2)
+    check_laser_dxf(path, region, kerf=kerf)
+    assert report.stats["inner_contours"] > 20
+    assert report.stats["cut_length_mm"] > 400
+    assert report.stats["area_mm2"] == pytest.approx(region.area, rel=1e-6)
+
+
+def test_kerf_keeps_star_tips_sharp(tmp_path):
+    region, outline = star_plate(grid=1)
+    path = tmp_path / "p.dxf"
+    write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=0.3)
+    inner = [vertices(e) for e in read_checked(path).modelspace() if e.dxf.layer == INNER.name]
+    assert len(inner) == 1 and len(inner[0]) == 16  # 8 tips and 8 notches: no rounding, no bevel
+
+
+def test_score_mode(tmp_path):
+    region, outline, seg = motif_tile()
+    path = tmp_path / "score.dxf"
+    report = write_dxf(path, region=region, outline=outline, centrelines=seg, profile=PLY, mode="score")
+    doc = read_checked(path)
+    ents = list(doc.modelspace())
+    score = [e for e in ents if e.dxf.layer == SCORE.name]
+    cut = [e for e in ents if e.dxf.layer != SCORE.name]
+    assert len(cut) == 1 and cut[0].dxf.layer == OUTER.name and is_closed(cut[0])
+    assert ents[-1] is cut[-1] or ents[-1].dxf.handle == cut[-1].dxf.handle  # scoring before the cut
+    assert score and all(e.dxftype() == "LWPOLYLINE" and not is_closed(e) for e in score)
+    assert all(e.dxf.color == SCORE.color for e in score)
+    assert len(score) < 0.7 * len(seg)  # chains merged, not a LINE soup
+    total = sum(float(np.hypot(*np.diff(vertices(e), axis=0).T).sum()) for e in score)
+    clipped = shapely.intersection(shapely.multilinestrings(shapely.linestrings(seg)), outline).length
+    assert total == pytest.approx(clipped, rel=1e-6)
+    assert report.stats["score_paths"] == len(score)
+    for e in score:
+        assert edge_problems(vertices(e), closed=False)[0] == 0
+
+
+def test_score_mode_r12(tmp_path):
+    region, outline, seg = motif_tile()
+    path = tmp_path / "score12.dxf"
+    write_dxf(path, region=region, outline=outline, centrelines=seg, profile=PLY, mode="score", dxf_version="R12")
+    ents = list(read_checked(path).modelspace())
+    assert {e.dxftype() for e in ents} == {"POLYLINE"}
+    assert [is_closed(e) for e in ents if e.dxf.layer == SCORE.name] == [False] * (len(ents) - 1)
+
+
+def test_layers_from_profile_file(tmp_path):
+    prof = tmp_path / "prof" / "my-laser.toml"
+    prof.parent.mkdir()
+    prof.write_text('kind = "laser"\n[laser]\nkerf_mm = 0.1\n[layers]\n'
+                    'inner_cut = { name = "HOLES", color = 6 }\nouter_cut = { name = "OUTLINE", color = 2 }\n'
+                    'score = { name = "ETCH", color = 4 }\n')
+    region, outline = star_plate()
+    path = tmp_path / "out" / "p.dxf"
+    write_dxf(path, region=region, outline=outline, profile=prof)
+    check_laser_dxf(path, region, kerf=0.1, profile=load_profile(prof))
+    names = {e[0] for e in dxf_entities(path)}
+    assert names == {"HOLES", "OUTLINE"}
+
+
+def test_island_and_loose_parts(tmp_path):
+    region, outline = island_region()
+    path = tmp_path / "i.dxf"
+    report = write_dxf(path, region=region, outline=outline, profile=PLY)
+    assert [f.code for f in report.findings] == ["loose_part"]
+    assert report.findings[0].locations == ((25.0, 25.0),)
+    doc = check_laser_dxf(path, region, kerf=PLY.kerf_mm)
+    ents = [(e.dxf.layer, vertices(e)) for e in doc.modelspace()]
+    # island outline (inside the hole) is cut before the hole around it, the plate's outline last
+    assert [layer for layer, _ in ents] == [INNER.name, INNER.name, OUTER.name]
+    assert ents[0][1][:, 0].min() == pytest.approx(20 - PLY.kerf_mm / 2)
+    assert ents[1][1][:, 0].min() == pytest.approx(10 + PLY.kerf_mm / 2)
+
+
+def test_fill_small_holes(tmp_path):
+    region, outline = tiny_hole_region()
+    path = tmp_path / "t.dxf"
+    report = write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=0.1)
+    assert [f.code for f in report.findings] == ["small_hole"]
+    assert report.stats["inner_contours"] == 2
+    report = write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=0.1, fill_small_holes=True)
+    assert report.ok and report.stats["filled_holes"] == 1 and report.stats["inner_contours"] == 1
+    assert report.summary().endswith("ok")
+
+
+def test_strict_profile_refuses_and_writes_nothing(tmp_path):
+    strict = replace(PLY, strict=True)
+    region, outline = thin_bridge_region()
+    path = tmp_path / "out.dxf"
+    with pytest.raises(FabricationError, match="thin_bridge.*strict"):
+        write_dxf(path, region=region, outline=outline, profile=strict)
+    assert list(tmp_path.iterdir()) == []
+    region, outline = star_plate()
+    assert write_dxf(path, region=region, outline=outline, profile=strict).ok
+
+
+def test_failure_keeps_existing_file(tmp_path):
+    region, outline = star_plate()
+    path = tmp_path / "keep.dxf"
+    write_dxf(path, region=region, outline=outline, profile=PLY)
+    before = path.read_bytes()
+    with pytest.raises(ParameterError):
+        write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=-1)
+    assert path.read_bytes() == before
+    assert [p.name for p in tmp_path.iterdir()] == ["keep.dxf"]
+
+
+BAD = [
+    (dict(kerf_mm=-0.1), ParameterError, r"kerf_mm must be a finite number >= 0, got -0.1"),
+    (dict(kerf_mm=float("nan")), ParameterError, r"kerf_mm must be a finite number"),
+    (dict(kerf_mm=1.5, stroke=1.2), ParameterError, r"kerf_mm must be >= 0 and <= the stroke \(1.2 mm\), got 1.5"),
+    (dict(stroke=0.5), ParameterError, r"stroke must be >= min_feature_mm = 1 mm .*, got 0.5"),
+    (dict(profile="laser-9mm-unobtainium"), ProfileError, r"profile 'laser-9mm-unobtainium' does not exist"),
+    (dict(profile="fdm-0.4mm"), ProfileError, r"printer profile, but a laser profile is needed"),
+    (dict(profile=replace(PLY, layers=LaserLayers(inner_cut=Layer("CUT_INNER", 300)))), ProfileError,
+     r"layers.inner_cut.color must be an AutoCAD Color Index 1..255, got 300"),
+    (dict(mode="engrave"), ParameterError, r"'engrave' is not a valid mode, must be one of: pierced, score"),
+    (dict(dxf_version="R14"), ParameterError, r"'R14' is not a valid dxf_version"),
+    (dict(mode="score"), ParameterError, r"score mode needs centrelines"),
+    (dict(region=box(0, 0, 1, 1).boundary), ParameterError, r"region must be a shapely Polygon or MultiPolygon"),
+    (dict(region=shapely.Polygon()), ParameterError, r"region is empty"),
+    (dict(region=shapely.Polygon([(0, 0), (10, 10), (10, 0), (0, 10)])), ParameterError, r"region is not a valid"),
+    (dict(outline=box(0, 0, 700, 300)), FabricationError, r"the tile is 700 x 300 mm, larger than the 600 x 400 mm bed"),
+    (dict(fill_small_holes="yes"), ParameterError, r"fill_small_holes must be True or False"),
+]
+
+
+@pytest.mark.parametrize("change, error, message", BAD, ids=[m[:30] for _, _, m in BAD])
+def test_bad_input_is_an_error_and_no_file(tmp_path, change, error, message):
+    region, outline = star_plate()
+    args = dict(region=region, outline=outline, profile=PLY) | change
+    with pytest.raises(error, match=message) as info:
+        write_dxf(tmp_path / "bad.dxf", **args)
+    assert isinstance(info.value, FabtilesError)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_bad_profile_colour_in_file(tmp_path):
+    prof = tmp_path / "p.toml"
+    prof.write_text('kind = "laser"\n[layers]\nscore = { name = "S", color = 0 }\n')
+    region, outline = star_plate()
+    with pytest.raises(ProfileError, match=r"layers.score.color must be an AutoCAD Color Index 1..255, got 0"):
+        write_dxf(tmp_path / "out.dxf", region=region, outline=outline, profile=prof)
+    assert [p.name for p in tmp_path.iterdir()] == ["p.toml"]
+
+
+@pytest.mark.parametrize("version", ["R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018"])
+@pytest.mark.parametrize("mode", ["pierced", "score"])
+def test_fast_writer_matches_ezdxf(version, mode):
+    region, outline, seg = motif_tile(size=60, stroke=1.5)
+    job, _ = prepare_laser("x.dxf", "dxf", region=region, outline=outline, centrelines=seg, profile=PLY,
+                           dxf_version=version, mode=mode)
+    fast, _ = dxf_text(job)
+    stream = io.StringIO()
+    build_document(job).write(stream)
+    ref = stream.getvalue()
+
+    def body(text):
+        start = text.index("ENTITIES")
+        return text[start:text.index("ENDSEC", start)]
+
+    def handseed(text):
+        at = text.find("$HANDSEED")
+        return text[at:at + 30] if at >= 0 else None
+
+    assert body(fast) == body(ref)
+    assert handseed(fast) == handseed(ref)
+
+
+def test_sheet_sized_tile_and_bed_turned(tmp_path):
+    region, outline = star_plate(size=400, grid=4)  # 400 x 400: fits the 600 x 400 bed
+    assert write_dxf(tmp_path / "a.dxf", region=region, outline=outline, profile=PLY).ok
+    tall = box(0, 0, 400, 600)  # fits turned by 90 degrees
+    assert write_dxf(tmp_path / "b.dxf", region=tall, outline=tall, profile=PLY).ok
+
+
+@pytest.mark.parametrize("name, mode, version", [("star_plate", "pierced", "R2000"),
+                                                 ("star_plate_r12", "pierced", "R12"),
+                                                 ("motif_score", "score", "R2000")])
+def test_golden(tmp_path, name, mode, version):
+    if name.startswith("star_plate"):
+        region, outline = star_plate(grid=2)
+        seg = None
+    else:
+        region, outline, seg = motif_tile(size=50, stroke=1.2, preset="table2-left")
+    path = tmp_path / f"{name}.dxf"
+    write_dxf(path, region=region, outline=outline, centrelines=seg, profile=PLY, mode=mode, dxf_version=version)
+    assert_golden(path, name)
+
+
+def test_importing_the_writer_does_not_load_ezdxf():
+    code = "import sys, fabtiles.export.dxf, fabtiles.export.laser_svg; assert 'ezdxf' not in sys.modules"
+    subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_dispatch_passes_options(tmp_path):
+    from fabtiles.export.dispatch import export_geometry
+
+    region, outline = star_plate()
+    report = export_geometry(tmp_path / "d.dxf", region=region, outline=outline, stroke=1.0, kerf_mm=0.0)
+    assert report.stats["kerf_mm"] == 0.0 and report.format == "dxf"
+    assert all(e[1] in CUT_TYPES for e in dxf_entities(tmp_path / "d.dxf"))

@@ -1,0 +1,88 @@
+"""Laser SVG: same contours and layers as the DXF, stroke colours, true mm size, reproducible."""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+from dxf_helpers import dxf_entities, motif_tile, star_plate
+from shapely.geometry import box
+
+from fabtiles import FabricationError, ParameterError, ProfileError
+from fabtiles._profiles import load_profile
+from fabtiles.export.dxf import write_dxf
+from fabtiles.export.laser_svg import aci_to_hex, write_laser_svg
+
+PLY = load_profile("laser-3mm-plywood")
+NS = {"s": "http://www.w3.org/2000/svg"}
+
+
+def parse_path(d: str) -> np.ndarray:
+    nums = [float(v) for v in re.findall(r"-?\d+(?:\.\d+)?", d)]
+    return np.array(nums).reshape(-1, 2)
+
+
+def test_same_contours_as_dxf(tmp_path):
+    region, outline = star_plate()
+    svg, dxf = tmp_path / "p.svg", tmp_path / "p.dxf"
+    r1 = write_laser_svg(svg, region=region, outline=outline, profile=PLY)
+    r2 = write_dxf(dxf, region=region, outline=outline, profile=PLY)
+    assert r1.format == "svg" and {k: v for k, v in r1.stats.items() if k != "dxf_version"} == \
+        {k: v for k, v in r2.stats.items() if k != "dxf_version"}
+    root = ET.parse(svg).getroot()
+    k = PLY.kerf_mm / 2
+    assert root.get("width") == f"{60 + 2 * k:g}mm" and root.get("height") == f"{60 + 2 * k:g}mm"
+    assert [float(v) for v in root.get("viewBox").split()] == pytest.approx([-k, -60 - k, 60 + 2 * k, 60 + 2 * k])
+    groups = root.findall("s:g", NS)
+    assert [g.get("id") for g in groups] == ["CUT_INNER", "CUT_OUTER"]
+    assert [g.get("stroke") for g in groups] == ["#FF0000", "#0000FF"]
+    assert all(g.get("fill") == "none" for g in groups)
+    paths = [(g.get("id"), p.get("d")) for g in groups for p in g.findall("s:path", NS)]
+    ents = dxf_entities(dxf)
+    assert [layer for layer, _ in paths] == [e[0] for e in ents]
+    for (_, d), e in zip(paths, ents):
+        assert d.startswith("M") and d.endswith("Z")
+        pts = parse_path(d)
+        pts[:, 1] = -pts[:, 1]  # y flipped back
+        assert pts == pytest.approx(np.array(e[4]), abs=1e-3)
+
+
+def test_score_mode_and_colours(tmp_path):
+    region, outline, seg = motif_tile()
+    svg = tmp_path / "s.svg"
+    write_laser_svg(svg, region=region, outline=outline, centrelines=seg, profile=PLY, mode="score", kerf_mm=0)
+    root = ET.parse(svg).getroot()
+    groups = {g.get("id"): g for g in root.findall("s:g", NS)}
+    assert list(groups) == ["SCORE", "CUT_OUTER"]
+    assert groups["SCORE"].get("stroke") == "#00FF00"
+    assert all(not p.get("d").endswith("Z") for p in groups["SCORE"].findall("s:path", NS))
+    assert root.get("width") == "100mm"
+
+
+def test_reproducible_byte_for_byte(tmp_path):
+    region, outline, _ = motif_tile()
+    a, b = tmp_path / "a.svg", tmp_path / "b.svg"
+    write_laser_svg(a, region=region, outline=outline, profile=PLY)
+    write_laser_svg(b, region=region, outline=outline, profile=PLY)
+    assert a.read_bytes() == b.read_bytes()
+    text = a.read_text()
+    assert not re.search(r"[ ML]-0[ LZ\"]", text) and not re.search(r"\de[-+]?\d", text)
+
+
+def test_aci_colours():
+    assert [aci_to_hex(c) for c in (1, 2, 3, 4, 5, 6, 7)] == [
+        "#FF0000", "#FFFF00", "#00FF00", "#00FFFF", "#0000FF", "#FF00FF", "#FFFFFF"]
+
+
+@pytest.mark.parametrize("change, error", [
+    (dict(kerf_mm=-1), ParameterError),
+    (dict(profile="nope"), ProfileError),
+    (dict(outline=box(0, 0, 601, 401)), FabricationError),
+])
+def test_bad_input_no_file(tmp_path, change, error):
+    region, outline = star_plate()
+    with pytest.raises(error):
+        write_laser_svg(tmp_path / "x.svg", **(dict(region=region, outline=outline, profile=PLY) | change))
+    assert list(tmp_path.iterdir()) == []
