@@ -15,8 +15,35 @@ from ._errors import (
     ParameterError,
     ProfileError,
 )
+from ._profiles import LaserProfile, PrinterProfile, load_profile
+from ._report import Report
+from .design import load_design
+from .pattern.packing import HexPacking, SquarePacking
 from .pattern.radii import straight_radii
 from .pattern.star import Star
+
+# Names whose modules import shapely are loaded on first use, so that
+# `import fabtiles` (and `fabtiles --help`) stays light.
+_LAZY = {
+    "Tile": "._tile",
+    "SeamlessFit": ".geometry.seamless",
+    "seamless_fit": ".geometry.seamless",
+    "seamless_radius": ".geometry.seamless",
+}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'fabtiles' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
 
 __version__ = "0.1.0"
 
@@ -24,9 +51,20 @@ __all__ = [
     "DesignError",
     "FabricationError",
     "FabtilesError",
+    "HexPacking",
+    "LaserProfile",
     "LimitError",
     "ParameterError",
+    "PrinterProfile",
     "ProfileError",
+    "Report",
+    "SeamlessFit",
+    "SquarePacking",
     "Star",
+    "Tile",
+    "load_design",
+    "load_profile",
+    "seamless_fit",
+    "seamless_radius",
     "straight_radii",
 ]

@@ -9,7 +9,18 @@ EXPECTED = {
     "LimitError",
     "ParameterError",
     "ProfileError",
+    "HexPacking",
+    "LaserProfile",
+    "PrinterProfile",
+    "Report",
+    "SeamlessFit",
+    "SquarePacking",
     "Star",
+    "Tile",
+    "load_design",
+    "load_profile",
+    "seamless_fit",
+    "seamless_radius",
     "straight_radii",
 }
 

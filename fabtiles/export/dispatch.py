@@ -103,7 +103,7 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
 def export_tile(tile, path, *, profile=None, **options):
     """Write a :class:`~fabtiles.Tile` in the format of ``path``; see :func:`export_geometry`."""
     fmt = format_of(path)
-    centrelines = tile.segments() if profile_kind(fmt) == "laser" else None
+    centrelines = tile.centrelines() if profile_kind(fmt) == "laser" else None
     return export_geometry(
         path,
         region=tile.region(),

@@ -1,0 +1,43 @@
+"""The public :class:`Tile`: the geometry tile plus export and work limits."""
+
+from __future__ import annotations
+
+from . import _limits
+from .geometry.tile import Tile as _GeometryTile
+
+
+class Tile(_GeometryTile):
+    """A tile to fabricate: an outline of a size, a frame, and a stroked pattern.
+
+    See :class:`fabtiles.geometry.tile.Tile` for the geometry. Construction also
+    checks the work limits (:data:`fabtiles._limits.CLI_LIMITS`) from the
+    parameters alone, before any geometry is built.
+
+    >>> import fabtiles as ft
+    >>> tile = ft.Tile("square", 60, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")),
+    ...                frame=3, stroke=1.0)
+    >>> tile.region().is_valid
+    True
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        _limits.check_tile(self.pattern, self.width_mm, self.height_mm, _limits.CLI_LIMITS)
+
+    def export(self, path, *, profile=None, **options):
+        """Write the tile to ``path``; the suffix picks the format.
+
+        ``.dxf`` and ``.svg`` take a laser profile (default ``laser-3mm-plywood``),
+        ``.stl``, ``.3mf`` and ``.step`` a printer profile (default ``fdm-0.4mm``).
+        Options: laser ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``;
+        print ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``.
+        The file is written atomically: on any error nothing is left behind.
+
+        Returns
+        -------
+        Report
+            What was written and what the fabrication checks found.
+        """
+        from .export.dispatch import export_tile
+
+        return export_tile(self, path, profile=profile, **options)

@@ -1,0 +1,404 @@
+"""Design files: a TOML description of one tile, validated into frozen dataclasses (SPEC section 7).
+
+A design has four sections; every key is checked, and an unknown key is an
+error naming the key, its section and the valid keys (with a "did you mean").
+
+``[motif]`` (required)
+    ``preset = "table3-3"`` plus optional overrides of its parameters, or the
+    parameters ``n``, ``radii``, ``alpha``, ``spr``, ``special``, ``rotation``.
+``[packing]`` (optional; without it the tile holds one motif)
+    ``kind`` ("hex" | "square"), ``radius`` (mm), ``outline_circles``, ``fill``,
+    ``gap_motif`` (inline table like ``[motif]``, or a preset name), ``seamless``
+    (true: fit the radius, and a rectangle's height, with
+    :func:`~fabtiles.geometry.seamless.seamless_fit`).
+``[tile]`` (required)
+    ``outline``, ``size``, ``frame``, ``stroke``, ``join``, ``miter_limit``, ``corner_radius``.
+``[output]`` (optional)
+    ``formats`` (subset of dxf svg stl 3mf step; default ["svg"]), ``laser_profile``,
+    ``printer_profile``, ``laser_mode``, ``print_style``, ``name`` (default: the
+    file's stem).
+
+>>> d = design_from_text('''
+... [motif]
+... preset = "table3-3"
+... [packing]
+... radius = 12.5
+... [tile]
+... outline = "square"
+... size = 100
+... ''', name="demo")
+>>> d.name, d.packing.kind, d.output.formats
+('demo', 'hex', ('svg',))
+>>> d.tile_spec.size
+(100.0, 100.0)
+>>> build_tile(d).width_mm
+100.0
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+try:  # Python 3.11+
+    import tomllib
+except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+from ._errors import DesignError, FabtilesError
+from ._profiles import LASER_MODES, PRINT_STYLES
+from .pattern.packing import PACKINGS
+from .pattern.star import Star
+
+FORMATS = ("dxf", "svg", "stl", "3mf", "step")
+"""Output formats a design may ask for."""
+
+SECTIONS = ("motif", "packing", "tile", "output")
+MOTIF_KEYS = ("preset", "n", "radii", "alpha", "spr", "special", "rotation")
+PACKING_KEYS = ("kind", "radius", "outline_circles", "fill", "gap_motif", "seamless")
+TILE_KEYS = ("outline", "size", "frame", "stroke", "join", "miter_limit", "corner_radius")
+OUTPUT_KEYS = ("formats", "laser_profile", "printer_profile", "laser_mode", "print_style", "name")
+"""The valid keys of ``[output]`` (the exporters read the mode/style/profile keys)."""
+
+_KEYS = {"motif": MOTIF_KEYS, "packing": PACKING_KEYS, "tile": TILE_KEYS, "output": OUTPUT_KEYS}
+
+
+@dataclass(frozen=True)
+class MotifSpec:
+    """A motif: a preset name and/or Star parameters (overrides of the preset)."""
+
+    preset: str | None = None
+    params: tuple[tuple[str, Any], ...] = ()
+
+    def star(self) -> Star:
+        """Build the :class:`~fabtiles.pattern.star.Star`."""
+        params = dict(self.params)
+        if self.preset is not None:
+            return Star.preset(self.preset).replace(**params)
+        return Star(**params)
+
+
+@dataclass(frozen=True)
+class PackingSpec:
+    """The ``[packing]`` section."""
+
+    kind: str = "hex"
+    radius: float = 12.5
+    outline_circles: bool = False
+    fill: float = 1.0
+    gap_motif: MotifSpec | None = None
+    seamless: bool = False
+
+
+@dataclass(frozen=True)
+class TileSpec:
+    """The ``[tile]`` section (``size`` normalised to a float pair)."""
+
+    outline: str = "square"
+    size: tuple[float, float] = (150.0, 150.0)
+    frame: float = 0.0
+    stroke: float = 1.0
+    join: str = "miter"
+    miter_limit: float = 4.0
+    corner_radius: float = 0.0
+
+
+@dataclass(frozen=True)
+class OutputSpec:
+    """The ``[output]`` section."""
+
+    formats: tuple[str, ...] = ("svg",)
+    laser_profile: str | None = None
+    printer_profile: str | None = None
+    laser_mode: str = "pierced"
+    print_style: str = "relief"
+    name: str | None = None
+
+
+@dataclass(frozen=True)
+class Design:
+    """A validated design. ``name`` is ``[output] name`` or the file's stem."""
+
+    name: str
+    motif: MotifSpec
+    tile_spec: TileSpec
+    packing: PackingSpec | None = None
+    output: OutputSpec = field(default_factory=OutputSpec)
+    source: str = "<design>"
+
+    def build_tile(self, tile_cls=None):
+        """The :class:`~fabtiles.geometry.tile.Tile` of this design (see :func:`build_tile`)."""
+        return build_tile(self, tile_cls=tile_cls)
+
+
+# -- loading ------------------------------------------------------------------
+def load_design(path, overrides=()) -> Design:
+    """Read and validate a design file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The TOML file.
+    overrides : iterable of str
+        ``"section.key=value"`` strings, the value in TOML syntax (``tile.size=[200,200]``,
+        ``tile.outline=hexagon`` -- a bare word is taken as a string). Applied
+        before validation.
+
+    Raises
+    ------
+    DesignError
+        The file cannot be read or parsed, a key is unknown or a value is bad.
+        The message names the file and the key.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise DesignError(f"cannot read design file {str(path)!r}: {reason}") from None
+    return design_from_text(text, name=path.stem, source=str(path), overrides=overrides)
+
+
+def design_from_text(text: str, *, name: str = "design", source: str = "<design>", overrides=()) -> Design:
+    """Parse and validate a design given as TOML text (see :func:`load_design`)."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DesignError(f"{source}: not valid TOML: {exc}") from None
+    for item in overrides:
+        apply_override(data, item, source=source)
+    return design_from_dict(data, name=name, source=source)
+
+
+def parse_override(item: str) -> tuple[list[str], Any]:
+    """Split ``"section.key=value"`` into the key path and the TOML value.
+
+    >>> parse_override("tile.size=[200, 200]")
+    (['tile', 'size'], [200, 200])
+    >>> parse_override("tile.outline=hexagon")
+    (['tile', 'outline'], 'hexagon')
+    """
+    if not isinstance(item, str) or "=" not in item:
+        raise DesignError(f"--set expects section.key=value, got {item!r}")
+    key, value = (s.strip() for s in item.split("=", 1))
+    parts = key.split(".")
+    if len(parts) < 2 or not all(re.fullmatch(r"[A-Za-z0-9_-]+", p) for p in parts):
+        raise DesignError(f"--set expects section.key=value (like tile.size=[200,200]), got {item!r}")
+    try:
+        parsed = tomllib.loads(f"v = {value}")["v"]
+    except tomllib.TOMLDecodeError:
+        if re.fullmatch(r"[A-Za-z_][\w.+-]*", value):
+            parsed = value  # a bare word: a string
+        else:
+            raise DesignError(f"--set {key}: {value!r} is not a TOML value") from None
+    return parts, parsed
+
+
+def apply_override(data: dict, item: str, *, source: str = "<design>") -> None:
+    """Set one ``section.key=value`` override in the raw design mapping, in place."""
+    parts, value = parse_override(item)
+    node = data
+    for k, p in enumerate(parts[:-1]):
+        nxt = node.setdefault(p, {})
+        if not isinstance(nxt, dict):
+            raise DesignError(f"{source}: --set {'.'.join(parts)}: {'.'.join(parts[:k + 1])} is not a table")
+        node = nxt
+    node[parts[-1]] = value
+
+
+def design_from_dict(data: dict, *, name: str = "design", source: str = "<design>") -> Design:
+    """Validate a raw design mapping (as parsed from TOML) into a :class:`Design`.
+
+    Every value is checked by building the tile (cheap: no geometry is computed).
+    """
+    _check_keys(data, SECTIONS, "the design", source, what="section")
+    for sec in SECTIONS:
+        if sec in data and not isinstance(data[sec], dict):
+            raise DesignError(f"{source}: [{sec}] must be a table, got {data[sec]!r}")
+    for sec in ("motif", "tile"):
+        if sec not in data:
+            raise DesignError(f"{source}: the design needs a [{sec}] section")
+    motif = _motif_spec(data["motif"], source, "[motif]")
+    packing = _packing_spec(data["packing"], source) if "packing" in data else None
+    tile_spec = _tile_spec(data["tile"], source)
+    output = _output_spec(data.get("output", {}), source)
+    name = output.name or name
+    design = Design(name=name, motif=motif, tile_spec=tile_spec, packing=packing, output=output,
+                    source=source)
+    # Values: build the pieces, turning their ParameterError into a DesignError naming the key.
+    try:
+        star = motif.star()
+    except FabtilesError as exc:
+        raise DesignError(f"{source}: [motif] {exc}") from None
+    if packing is not None:
+        try:
+            _build_packing(packing, star)
+        except FabtilesError as exc:
+            raise DesignError(f"{source}: [packing] {exc}") from None
+    try:
+        design = _fit_seamless(design)
+        build_tile(design)
+    except FabtilesError as exc:
+        raise DesignError(f"{source}: [tile] {exc}") from None
+    return design
+
+
+def build_tile(design: Design, *, tile_cls=None):
+    """Build the tile a design describes.
+
+    ``tile_cls`` is the class to instantiate (default
+    :class:`fabtiles.geometry.tile.Tile`; pass a subclass, e.g. one that can export).
+    """
+    from .geometry.tile import Tile
+
+    tile_cls = tile_cls or Tile
+    star = design.motif.star()
+    pattern = star if design.packing is None else _build_packing(design.packing, star)
+    t = design.tile_spec
+    return tile_cls(t.outline, t.size, pattern, frame=t.frame, stroke=t.stroke, join=t.join,
+                    miter_limit=t.miter_limit, corner_radius=t.corner_radius)
+
+
+def _fit_seamless(design: Design) -> Design:
+    from dataclasses import replace
+
+    from .geometry.seamless import seamless_fit
+
+    p = design.packing
+    if p is None or not p.seamless:
+        return design
+    t = design.tile_spec
+    fit = seamless_fit(t.outline, t.size, p.radius, packing=p.kind)
+    return replace(design, packing=replace(p, radius=fit.radius), tile_spec=replace(t, size=fit.size))
+
+
+def _build_packing(p: PackingSpec, star: Star):
+    gap = p.gap_motif.star() if p.gap_motif is not None else None
+    return PACKINGS[p.kind](p.radius, star, gap, outline_circles=p.outline_circles, fill=p.fill)
+
+
+# -- sections -------------------------------------------------------------------
+def _check_keys(table: dict, valid, where: str, source: str, what: str = "key") -> None:
+    for key in table:
+        if key not in valid:
+            near = difflib.get_close_matches(str(key), valid, n=1)
+            hint = f"; did you mean {near[0]!r}?" if near else ""
+            raise DesignError(f"{source}: unknown {what} {key!r} in {where}{hint} "
+                              f"(valid {what}s: {', '.join(valid)})")
+
+
+def _motif_spec(table, source: str, where: str) -> MotifSpec:
+    if isinstance(table, str):  # a preset name (gap_motif = "table1-part1")
+        table = {"preset": table}
+    if not isinstance(table, dict):
+        raise DesignError(f"{source}: {where} must be a table or a preset name, got {table!r}")
+    _check_keys(table, MOTIF_KEYS, where, source)
+    preset = table.get("preset")
+    if preset is not None and not isinstance(preset, str):
+        raise DesignError(f"{source}: {where} preset must be a string, got {preset!r}")
+    params = {k: v for k, v in table.items() if k != "preset"}
+    if preset is None:
+        missing = [k for k in ("n", "radii") if k not in params]
+        if missing:
+            raise DesignError(f"{source}: {where} needs preset = \"...\" or the parameters n and radii "
+                              f"(missing: {', '.join(missing)})")
+    if "radii" in params and isinstance(params["radii"], list):
+        params["radii"] = tuple(params["radii"])
+    spec = MotifSpec(preset=preset, params=tuple(sorted(params.items())))
+    try:
+        spec.star()
+    except FabtilesError as exc:
+        raise DesignError(f"{source}: {where} {exc}") from None
+    return spec
+
+
+def _typed(table, key, kinds, source, where, text, default):
+    if key not in table:
+        return default
+    value = table[key]
+    if isinstance(value, bool) and bool not in kinds:
+        ok = False
+    else:
+        ok = isinstance(value, kinds)
+    if not ok:
+        raise DesignError(f"{source}: {where} {key} must be {text}, got {value!r}")
+    return value
+
+
+def _choice(table, key, choices, source, where, default):
+    value = table.get(key, default)
+    if value is None and key not in table:
+        return None  # not given: the profile's default applies
+    if value not in choices:
+        raise DesignError(f"{source}: {where} {key} = {value!r} is not valid, must be one of: "
+                          f"{', '.join(choices)}")
+    return value
+
+
+def _packing_spec(table: dict, source: str) -> PackingSpec:
+    where = "[packing]"
+    _check_keys(table, PACKING_KEYS, where, source)
+    num = (int, float)
+    gap = table.get("gap_motif")
+    return PackingSpec(
+        kind=_choice(table, "kind", tuple(PACKINGS), source, where, "hex"),
+        radius=float(_typed(table, "radius", num, source, where, "a number of mm > 0", 12.5)),
+        outline_circles=_typed(table, "outline_circles", (bool,), source, where, "true or false", False),
+        fill=float(_typed(table, "fill", num, source, where, "a number in (0, 1]", 1.0)),
+        gap_motif=None if gap is None else _motif_spec(gap, source, "[packing] gap_motif"),
+        seamless=_typed(table, "seamless", (bool,), source, where, "true or false", False),
+    )
+
+
+def _tile_spec(table: dict, source: str) -> TileSpec:
+    from .geometry.stroke import JOINS
+    from .geometry.tile import OUTLINES, _check_size
+
+    where = "[tile]"
+    _check_keys(table, TILE_KEYS, where, source)
+    num = (int, float)
+    outline = _choice(table, "outline", OUTLINES, source, where, "square")
+    if "size" not in table:
+        raise DesignError(f"{source}: {where} needs size (mm: a number, or [width, height])")
+    try:
+        size = _check_size(outline, table["size"])
+    except FabtilesError as exc:
+        raise DesignError(f"{source}: {where} {exc}") from None
+    return TileSpec(
+        outline=outline,
+        size=size,
+        frame=float(_typed(table, "frame", num, source, where, "a number of mm >= 0", 0.0)),
+        stroke=float(_typed(table, "stroke", num, source, where, "a number of mm > 0", 1.0)),
+        join=_choice(table, "join", JOINS, source, where, "miter"),
+        miter_limit=float(_typed(table, "miter_limit", num, source, where, "a number >= 1", 4.0)),
+        corner_radius=float(_typed(table, "corner_radius", num, source, where, "a number of mm >= 0", 0.0)),
+    )
+
+
+def _output_spec(table: dict, source: str) -> OutputSpec:
+    where = "[output]"
+    _check_keys(table, OUTPUT_KEYS, where, source)
+    formats = table.get("formats", ["svg"])
+    if isinstance(formats, str):
+        formats = [formats]
+    if not isinstance(formats, list) or not formats:
+        raise DesignError(f"{source}: {where} formats must be a non-empty list of: {', '.join(FORMATS)}")
+    for f in formats:
+        if f not in FORMATS:
+            raise DesignError(f"{source}: {where} formats: {f!r} is not a valid format, must be one of: "
+                              f"{', '.join(FORMATS)}")
+    name = _typed(table, "name", (str,), source, where, "a string", None)
+    if name is not None and not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9._ -]*", name):
+        raise DesignError(f"{source}: {where} name must be a plain file name (letters, digits, . _ - "
+                          f"and spaces, no folders), got {name!r}")
+    return OutputSpec(
+        formats=tuple(dict.fromkeys(formats)),
+        laser_profile=_typed(table, "laser_profile", (str,), source, where, "a profile name or path", None),
+        printer_profile=_typed(table, "printer_profile", (str,), source, where, "a profile name or path", None),
+        laser_mode=_choice(table, "laser_mode", LASER_MODES, source, where, None),
+        print_style=_choice(table, "print_style", PRINT_STYLES, source, where, None),
+        name=name,
+    )

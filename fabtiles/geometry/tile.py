@@ -1,0 +1,296 @@
+"""A tile: an outline, a size, a frame and a pattern, turned into material (SPEC section 3).
+
+Coordinates are millimetres in *file coordinates*: the outline's bounding box has
+its lower-left corner at (0, 0). The pattern's own frame (lattice point (0, 0) of a
+packing, or the centre of a single motif) sits at the tile's centre.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+
+import numpy as np
+import shapely
+from shapely.geometry import MultiPolygon, Polygon
+
+from .._errors import ParameterError
+from .._validate import check_choice, check_float
+from ..pattern.packing import _Packing
+from ..pattern.star import Star
+from .stroke import JOINS, _graph, stroke_cross_section, to_cross_section, to_shapely
+
+OUTLINES = ("square", "rectangle", "hexagon", "circle")
+"""Valid tile outlines. ``hexagon`` is pointy-top, its size is the width across flats."""
+
+TOLERANCE = 0.005
+"""Largest chord error (mm) of flattened arcs: circles, round joins, rounded corners."""
+
+
+def _segments_for(radius: float, sweep: float = 2 * math.pi, multiple: int = 1) -> int:
+    """Chords needed on an arc of ``radius`` and ``sweep`` for sagitta <= TOLERANCE."""
+    if radius <= TOLERANCE:
+        return multiple
+    step = 2.0 * math.acos(1.0 - TOLERANCE / radius)
+    k = max(1, math.ceil(sweep / step))
+    return multiple * math.ceil(k / multiple)
+
+
+def outline_polygon(outline: str, width: float, height: float, corner_radius: float = 0.0,
+                    centre=(0.0, 0.0)) -> Polygon:
+    """The outline as a shapely Polygon centred at ``centre``.
+
+    ``width``/``height`` are the bounding box of the outline (for a pointy-top
+    hexagon: across flats and across corners). Rounded corners are the opening
+    of the sharp outline by a disc of ``corner_radius``.
+
+    >>> round(outline_polygon("hexagon", 10, 20 / math.sqrt(3)).area, 4)
+    86.6025
+    """
+    cx, cy = centre
+    if outline in ("square", "rectangle"):
+        poly = shapely.box(cx - width / 2, cy - height / 2, cx + width / 2, cy + height / 2)
+    elif outline == "hexagon":
+        # Pointy-top: vertical sides at cx +- width/2, points at cy +- height/2 (exact).
+        hw, hh = width / 2, height / 2
+        poly = Polygon([(cx + hw, cy - hh / 2), (cx + hw, cy + hh / 2), (cx, cy + hh),
+                        (cx - hw, cy + hh / 2), (cx - hw, cy - hh / 2), (cx, cy - hh)])
+    else:  # circle
+        k = _segments_for(width / 2, multiple=24)
+        t = np.linspace(0.0, 2 * math.pi, k, endpoint=False)
+        return Polygon(np.stack([cx + width / 2 * np.cos(t), cy + width / 2 * np.sin(t)], axis=1))
+    if corner_radius > 0:
+        quad = max(1, _segments_for(corner_radius, math.pi / 2))
+        poly = poly.buffer(-corner_radius, join_style="mitre").buffer(
+            corner_radius, quad_segs=quad, join_style="round")
+    return shapely.geometry.polygon.orient(poly, 1.0)
+
+
+class Tile:
+    """A tile of material: pattern centre-lines stroked, framed and clipped to an outline.
+
+    Parameters
+    ----------
+    outline : {"square", "rectangle", "hexagon", "circle"}
+        Shape of the tile. The hexagon is pointy-top.
+    size : float or (float, float)
+        mm. ``square``, ``hexagon`` (width across flats) and ``circle`` (diameter)
+        take one number or an equal pair; ``rectangle`` takes ``(width, height)``.
+    pattern : HexPacking, SquarePacking or Star
+        A packing (its lattice point (0, 0) at the tile centre), or a single motif
+        centred and scaled to the largest circle inside the frame.
+    frame : float
+        Width of the solid margin along the outline, mm (>= 0; 0 for seamless tiles).
+    stroke : float
+        Width of the band around each centre-line, mm (> 0, at most the packing
+        radius, or the motif circle's radius for a single motif).
+    join : {"miter", "round", "bevel"}
+        How bands meet at vertices. Miter keeps star tips sharp.
+    miter_limit : float
+        Largest distance of a miter tip from its vertex, in half stroke widths (>= 1);
+        beyond it the miter is cut square at that distance.
+    corner_radius : float
+        Radius of rounded outline corners, mm (0 for sharp; not for circles).
+
+    Examples
+    --------
+    >>> from fabtiles.pattern.packing import HexPacking
+    >>> pack = HexPacking(radius=12.5, motif=Star.preset("table3-3"))
+    >>> tile = Tile("square", 60, pack, frame=3, stroke=0.8)
+    >>> tile.width_mm, tile.height_mm
+    (60.0, 60.0)
+    >>> tile.region().is_valid, tile.outline_shape().bounds
+    (True, (0.0, 0.0, 60.0, 60.0))
+    >>> Tile("square", 60, pack, join="zigzag")
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.ParameterError: 'zigzag' is not a valid join, must be one of: miter, round, bevel
+    """
+
+    def __init__(self, outline, size, pattern, *, frame=0.0, stroke=1.0, join="miter",
+                 miter_limit=4.0, corner_radius=0.0):
+        self._outline = check_choice("outline", outline, OUTLINES)
+        self._size = _check_size(self._outline, size)
+        if not isinstance(pattern, (_Packing, Star)):
+            raise ParameterError(
+                f"pattern must be a HexPacking, SquarePacking or Star, got {type(pattern).__name__}")
+        self._pattern = pattern
+        self._frame = check_float("frame", frame, low=0)
+        self._stroke = check_float("stroke", stroke, low=0, low_open=True)
+        self._join = check_choice("join", join, JOINS)
+        self._miter_limit = check_float("miter_limit", miter_limit, low=1)
+        self._corner_radius = check_float("corner_radius", corner_radius, low=0)
+        w = self._size[0]
+        self._width = w
+        self._height = 2 * w / math.sqrt(3) if self._outline == "hexagon" else self._size[1]
+        across = min(self._size)  # the narrowest width across the outline
+        if across <= 2 * self._frame:
+            raise ParameterError(
+                f"tile size {_fmt_size(self._size)} mm is too small for frame {self._frame:g} mm: "
+                f"the {self._outline} must be wider than twice the frame ({2 * self._frame:g} mm)")
+        if self._corner_radius > 0:
+            if self._outline == "circle":
+                raise ParameterError(
+                    f"corner_radius must be 0 for a circle outline, got {self._corner_radius:g}")
+            if self._corner_radius > across / 2:
+                raise ParameterError(
+                    f"corner_radius must be >= 0 and <= {across / 2:g} (half the tile's "
+                    f"narrowest width), got {self._corner_radius:g}")
+        limit, what = ((pattern.radius, "the packing radius") if isinstance(pattern, _Packing)
+                       else (self.motif_radius, "the motif circle's radius"))
+        if self._stroke > limit:
+            raise ParameterError(
+                f"stroke must be > 0 and <= {limit:g} mm ({what}), got {self._stroke:g}")
+        self._segments = None
+        self._region = None
+        self._centrelines = None
+
+    # -- parameters ---------------------------------------------------------
+    outline = property(lambda self: self._outline, doc="Outline name.")
+    size = property(lambda self: self._size, doc="Size as given, normalised to a float pair.")
+    pattern = property(lambda self: self._pattern, doc="The packing or single Star.")
+    frame = property(lambda self: self._frame, doc="Frame width, mm.")
+    stroke = property(lambda self: self._stroke, doc="Stroke width, mm.")
+    join = property(lambda self: self._join, doc="Join style.")
+    miter_limit = property(lambda self: self._miter_limit, doc="Miter limit, half stroke widths.")
+    corner_radius = property(lambda self: self._corner_radius, doc="Corner radius, mm.")
+    width_mm = property(lambda self: self._width, doc="Width of the outline's bounding box, mm.")
+    height_mm = property(lambda self: self._height, doc="Height of the outline's bounding box, mm.")
+
+    def params(self) -> dict:
+        """The constructor arguments, so ``Tile(**tile.params())`` rebuilds the tile."""
+        return dict(outline=self._outline, size=self._size, pattern=self._pattern, frame=self._frame,
+                    stroke=self._stroke, join=self._join, miter_limit=self._miter_limit,
+                    corner_radius=self._corner_radius)
+
+    def replace(self, **changes) -> "Tile":
+        """A copy (of the same class) with some parameters changed, validated again.
+
+        >>> t = Tile("circle", 50, Star.preset("table2-left"), frame=2)
+        >>> t.replace(size=80).width_mm
+        80.0
+        """
+        return type(self)(**{**self.params(), **changes})
+
+    def __repr__(self) -> str:
+        return (f"{type(self).__name__}({self._outline!r}, {_fmt_size(self._size)}, {self._pattern!r}, "
+                f"frame={self._frame:g}, stroke={self._stroke:g}, join={self._join!r})")
+
+    @property
+    def centre(self) -> tuple[float, float]:
+        """Centre of the tile (the pattern's origin) in file coordinates."""
+        return (self._width / 2, self._height / 2)
+
+    @property
+    def motif_radius(self) -> float:
+        """Radius of the circle a single motif fills: the inscribed circle inside the frame."""
+        return min(self._size) / 2 - self._frame
+
+    # -- geometry -------------------------------------------------------------
+    def outline_shape(self) -> Polygon:
+        """The outline as a shapely Polygon in file coordinates (bbox lower-left at (0, 0))."""
+        return outline_polygon(self._outline, self._width, self._height, self._corner_radius,
+                               self.centre)
+
+    def inner_shape(self) -> Polygon:
+        """The outline inset by the frame (the patterned area), file coordinates."""
+        f = self._frame
+        if f == 0:
+            return self.outline_shape()
+        if self._outline == "hexagon":
+            w = self._width - 2 * f
+            wh = (w, 2 * w / math.sqrt(3))
+        else:
+            wh = (self._width - 2 * f, self._height - 2 * f)
+        return outline_polygon(self._outline, *wh, max(0.0, self._corner_radius - f), self.centre)
+
+    def segments(self) -> np.ndarray:
+        """Centre-lines ``(k, 2, 2)`` in file coordinates (mm), before clipping.
+
+        For a packing: every motif whose circle reaches the outline's bounding box
+        (grown by half the stroke), so the segments cover the whole outline.
+        """
+        if self._segments is None:
+            cx, cy = self.centre
+            if isinstance(self._pattern, Star):
+                star = self._pattern
+                seg = star.segments() * (self.motif_radius / star.extent)
+            else:
+                h = self._stroke / 2
+                seg = self._pattern.segments((-cx - h, -cy - h, cx + h, cy + h))
+            self._segments = seg + np.array([cx, cy])
+        return self._segments.copy()
+
+    def region(self) -> Polygon | MultiPolygon:
+        """The material: union of the stroked bands and the frame, clipped to the outline.
+
+        A valid shapely Polygon or MultiPolygon in file coordinates, computed once
+        and cached (see :mod:`fabtiles.geometry.stroke` for how and why).
+        """
+        if self._region is None:
+            import manifold3d as m3d
+
+            bands = stroke_cross_section(self.segments(), self._stroke, join=self._join,
+                                         miter_limit=self._miter_limit, tolerance=TOLERANCE)
+            outline = self.outline_shape()
+            parts = [bands]
+            if self._frame > 0:
+                parts.append(to_cross_section(outline.difference(self.inner_shape())))
+            material = m3d.CrossSection.batch_boolean(parts, m3d.OpType.Add) if len(parts) > 1 else bands
+            clipped = m3d.CrossSection.batch_boolean([material, to_cross_section(outline)],
+                                                     m3d.OpType.Intersect)
+            self._region = to_shapely(clipped)
+        return self._region
+
+    def centrelines(self) -> np.ndarray:
+        """Centre-lines clipped to the outline, ``(k, 2, 2)`` float array in file coordinates.
+
+        For the laser "score" mode. Every outline is convex, so each segment clips
+        to at most one segment; pieces of zero length are dropped, endpoints closer
+        than 1e-6 mm are merged and duplicate segments (shared by two motifs) kept once.
+        """
+        if self._centrelines is None:
+            seg = self.segments()
+            lines = shapely.linestrings(seg)
+            outline = self.outline_shape()
+            shapely.prepare(outline)
+            clipped = shapely.intersection(lines, outline)
+            keep = shapely.get_type_id(clipped) == 1  # LineString
+            coords, idx = shapely.get_coordinates(clipped[keep], return_index=True)
+            if len(coords):
+                first = np.r_[0, np.flatnonzero(np.diff(idx)) + 1]
+                last = np.r_[first[1:] - 1, len(idx) - 1]
+                out = np.stack([coords[first], coords[last]], axis=1)
+                verts, edges = _graph(out)
+                out = verts[edges]
+            else:
+                out = np.empty((0, 2, 2))
+            self._centrelines = out
+        return self._centrelines.copy()
+
+
+def _fmt_size(size) -> str:
+    return f"({size[0]:g}, {size[1]:g})"
+
+
+def _check_size(outline: str, size) -> tuple[float, float]:
+    if isinstance(size, numbers.Real) and not isinstance(size, bool):
+        if outline == "rectangle":
+            raise ParameterError(f"size of a rectangle must be a pair (width, height) in mm, got {size!r}")
+        s = check_float("size", size, low=0, low_open=True)
+        return (s, s)
+    try:
+        pair = list(size)
+    except TypeError:
+        raise ParameterError(f"size must be a number or a (width, height) pair in mm, got {size!r}") from None
+    if len(pair) != 2:
+        raise ParameterError(f"size must be a number or a (width, height) pair in mm, got {size!r}")
+    w = check_float("size[0]", pair[0], low=0, low_open=True)
+    h = check_float("size[1]", pair[1], low=0, low_open=True)
+    if outline != "rectangle" and w != h:
+        what = {"square": "side", "hexagon": "width across flats", "circle": "diameter"}[outline]
+        raise ParameterError(
+            f"size of a {outline} is one number (its {what}) or an equal pair, got ({w:g}, {h:g}); "
+            f"use outline 'rectangle' for unequal sides" if outline == "square" else
+            f"size of a {outline} is one number (its {what}) or an equal pair, got ({w:g}, {h:g})")
+    return (w, h)

@@ -1,0 +1,36 @@
+"""Re-render the SVG previews of every sample design into samples/renders/.
+
+    /work/venv/bin/python samples/render.py
+
+The files are reproducible byte for byte; tests/cli/test_build.py checks that
+rendering each sample gives exactly the committed file.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import fabtiles
+from fabtiles.design import load_design
+from fabtiles.export.preview_svg import write_tile_svg
+
+HERE = Path(__file__).resolve().parent
+
+
+def render(design_path, out_dir) -> Path:
+    """Write the preview SVG of one design into ``out_dir``; return its path."""
+    design = load_design(design_path)
+    path = Path(out_dir) / f"{design.name}.svg"
+    write_tile_svg(path, design.build_tile(tile_cls=fabtiles.Tile), title=design.name)
+    return path
+
+
+def main() -> None:
+    out = HERE / "renders"
+    for path in sorted(HERE.glob("*.toml")):
+        written = render(path, out)
+        print(f"wrote {written.relative_to(HERE.parent)}")
+
+
+if __name__ == "__main__":
+    main()

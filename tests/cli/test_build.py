@@ -1,0 +1,141 @@
+"""``fabtiles build``: outputs, overrides, errors (exit 2, nothing written), golden renders."""
+
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from fabtiles import FabtilesError
+from fabtiles.cli import build as build_mod
+from fabtiles.cli.main import cli
+
+ROOT = Path(__file__).resolve().parents[2]
+SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
+RENDERS = ROOT / "samples" / "renders"
+
+SMALL = """
+[motif]
+preset = "table3-1"
+
+[packing]
+radius = 8
+
+[tile]
+outline = "square"
+size = 60
+frame = 3
+stroke = 1.0
+
+[output]
+formats = ["svg"]
+"""
+
+
+def run(*args):
+    return CliRunner().invoke(cli, list(map(str, args)), catch_exceptions=False)
+
+
+@pytest.fixture
+def design(tmp_path):
+    path = tmp_path / "small.toml"
+    path.write_text(SMALL, encoding="utf-8")
+    return path
+
+
+def test_build_writes_the_svg(design, tmp_path):
+    out = tmp_path / "out"
+    result = run("build", design, "-o", out)
+    assert result.exit_code == 0, result.output
+    svg = (out / "small.svg").read_text()
+    # The laser SVG: true mm size, grown by the plywood profile's kerf (0.15 mm).
+    assert 'width="60.15mm" height="60.15mm"' in svg and 'viewBox="' in svg
+    assert 'id="CUT_INNER"' in svg and 'id="CUT_OUTER"' in svg
+    assert sorted(p.name for p in out.iterdir()) == ["small.svg"]  # no staging left over
+    assert f"wrote {out / 'small.svg'}" in result.output
+
+
+def test_set_overrides_and_output_name(design, tmp_path):
+    out = tmp_path / "out"
+    result = run("build", design, "-o", out, "--set", "tile.size=[80, 40]", "--set",
+                 "tile.outline=rectangle", "--set", 'output.name="wide"')
+    assert result.exit_code == 0, result.output
+    assert 'width="80.15mm" height="40.15mm"' in (out / "wide.svg").read_text()
+
+
+@pytest.mark.parametrize(
+    "extra, match",
+    [
+        (["--set", "tile.sise=3"], r"unknown key 'sise' in \[tile\]; did you mean 'size'\?"),
+        (["--set", "tile.stroke=50"], r"stroke must be > 0 and <= 8 mm \(the packing radius\), got 50"),
+        (["--set", "tile.frame=40"], r"too small for frame 40 mm"),
+        (["--set", "motif.n=2"], r"\[motif\] n must be an integer >= 3"),
+        (["--set", "oops"], r"--set expects section.key=value, got 'oops'"),
+    ],
+)
+def test_bad_input_exits_2_and_writes_nothing(design, tmp_path, extra, match):
+    import re
+
+    out = tmp_path / "out"
+    result = run("build", design, "-o", out, *extra)
+    assert result.exit_code == 2
+    assert re.search(match, result.output), result.output
+    assert result.output.startswith("fabtiles: error: ") and result.output.count("\n") == 1
+    assert not out.exists()
+
+
+def test_unreadable_design_exits_2(tmp_path):
+    result = run("build", tmp_path / "missing.toml", "-o", tmp_path / "out")
+    assert result.exit_code == 2
+    assert "cannot read design file" in result.output and "missing.toml" in result.output
+    assert not (tmp_path / "out").exists()
+
+
+def test_output_folder_is_a_file(design, tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("keep")
+    result = run("build", design, "-o", blocker / "sub")
+    assert result.exit_code == 2 and "fabtiles: error:" in result.output
+    assert blocker.read_text() == "keep"
+
+
+def test_unknown_format_option_is_a_usage_error(design, tmp_path):
+    result = run("build", design, "-o", tmp_path / "out", "--format", "png")
+    assert result.exit_code == 2 and "'png' is not one of" in result.output
+
+
+def test_failing_format_keeps_existing_files(design, tmp_path, monkeypatch):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "small.svg").write_text("old")
+
+    def boom(tile, fmt, path, design):
+        if fmt == "stl":
+            raise FabtilesError("mesh is not watertight")
+        path.write_text("new")
+
+    monkeypatch.setattr(build_mod, "_export", boom)
+    result = run("build", design, "-o", out, "--format", "svg", "--format", "stl")
+    assert result.exit_code == 2 and "mesh is not watertight" in result.output
+    assert (out / "small.svg").read_text() == "old"
+    assert sorted(p.name for p in out.iterdir()) == ["small.svg"]
+
+
+@pytest.mark.parametrize("sample", SAMPLES, ids=[p.stem for p in SAMPLES])
+def test_sample_renders_are_golden(sample, tmp_path):
+    import runpy
+
+    render = runpy.run_path(str(ROOT / "samples" / "render.py"))["render"]
+    got = render(sample, tmp_path).read_bytes()
+    expected = (RENDERS / f"{sample.stem}.svg").read_bytes()
+    assert got == expected, f"re-render with: python samples/render.py ({sample.name} changed)"
+
+
+def test_custom_sizes_example(tmp_path):
+    import runpy
+
+    mod = runpy.run_path(str(ROOT / "samples" / "custom_sizes.py"))
+    mod["main"](str(tmp_path))
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert len(names) == 6 and "rectangle-200x120.svg" in names
+    assert any(n.startswith("seamless-200x129.90") for n in names)
