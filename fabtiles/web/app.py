@@ -37,17 +37,64 @@ MEDIA_TYPES = {
 
 
 def _field_of(message: str) -> str | None:
-    """The query field a library error message is about (its first known name)."""
+    """The query field a library error message is about (the first known name in it)."""
+    if "gap_motif" in message:
+        return "gap_radii" if "radii" in message else "gap_n"
+    if "segments" in message and "limit" in message:
+        return "radius"  # too much work: the packing radius is the usual knob
+    if re.search(r"\[packing\] kind\b|packing=", message):
+        return "packing"
     best = None
-    for key in FIELDS:
-        names = {key, FIELDS[key][1]} if FIELDS[key][0] != "gap_motif" else {key}
-        for name in names:
-            m = re.search(rf"(?<![\w.\[]){re.escape(name)}(?![\w])", message)
+    for key, (section, name, _) in FIELDS.items():
+        if section == "gap_motif" or key == "packing":
+            continue
+        for word in {key, name} - {"kind"}:
+            m = re.search(rf"(?<![\w.\[]){re.escape(word)}(?![\w])", message)
             if m and (best is None or m.start() < best[0]):
                 best = (m.start(), key)
-    if best is None and "size" in message:
+    if best is None and re.search(r"\bsize\b|too small|mm on a side", message):
         return "width"
+    if best is None and "segments" in message:
+        return "radius"
     return best[1] if best else None
+
+
+def tile_from_dict(design: dict, *, limits: _limits.Limits):
+    """Validate a design dictionary, check the work limits, and build the tile (no geometry yet)."""
+    import fabtiles
+    from ..design import build_tile, design_from_dict
+
+    spec = design_from_dict(design, name="fabtiles-tile", source="query")
+    width, height = spec.tile_spec.size
+    _limits.check_size(width, height, limits)
+    tile = build_tile(spec, tile_cls=fabtiles.Tile)
+    _limits.check_tile(tile.pattern, tile.width_mm, tile.height_mm, limits)
+    return spec, tile
+
+
+def fabrication_checks(tile, spec) -> dict:
+    """Laser and print checks of a tile with the design's profiles, as JSON."""
+    from ..geometry.laser_checks import check_laser
+    from ..geometry.print_checks import check_print
+    from ..export.dispatch import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE
+    from .._profiles import load_profile
+
+    out = spec.output
+    region, outline = tile.region(), tile.outline_shape()
+    laser = load_profile(out.laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
+    printer = load_profile(out.printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")
+    findings = []
+    for where, report in (
+        ("laser", check_laser(region, outline, laser, stroke=tile.stroke)),
+        ("print", check_print(region, outline, printer, stroke=tile.stroke, style=out.print_style)),
+    ):
+        findings += [{"where": where, "code": f.code, "message": f.message, "count": f.count}
+                     for f in report.findings]
+    area = region.area
+    holes = sum(len(p.interiors) for p in getattr(region, "geoms", [region]))
+    summary = (f"{len(tile.segments()):,} segments, material {area:,.0f} mm², {holes:,} holes; "
+               f"{len(findings)} finding{'s' if len(findings) != 1 else ''}")
+    return {"findings": findings, "summary": summary}
 
 
 def _error(exc: Exception) -> JSONResponse:
@@ -68,10 +115,8 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
         if query.get("packing") == "none":
             del base["radius"]
         design = design_from_query({**base, **query})
-        from ..design import tile_from_dict
-
-        tile = tile_from_dict(design, limits=limits)
-        return design, tile
+        spec, tile = tile_from_dict(design, limits=limits)
+        return design, spec, tile
 
     @app.exception_handler(FabtilesError)
     async def fabtiles_error(request, exc):  # noqa: ARG001
@@ -106,32 +151,32 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
 
     @app.get("/api/preview.svg")
     def preview(request: Request):
-        _, tile = build(request)
+        _, spec, tile = build(request)
         from ..export.preview_svg import tile_svg
 
         return Response(tile_svg(tile), media_type="image/svg+xml")
 
     @app.get("/api/checks")
     def checks(request: Request):
-        design, tile = build(request)
-        from ..design import fabrication_checks
-
-        return fabrication_checks(tile, design)
+        _, spec, tile = build(request)
+        return fabrication_checks(tile, spec)
 
     @app.get("/api/design.toml")
     def design_toml(request: Request):
-        design, _ = build(request)
-        from ..design import design_to_toml
+        design, spec, _ = build(request)
+        import tomli_w
 
-        return Response(design_toml_text := design_to_toml(design), media_type=MEDIA_TYPES["toml"],
-                        headers={"Content-Disposition": 'attachment; filename="fabtiles-design.toml"',
-                                 "Content-Length": str(len(design_toml_text.encode()))})
+        design = {**design, "output": {"formats": list(FORMATS), **design.get("output", {})}}
+        text = "# fabtiles design: build it with  fabtiles build fabtiles-design.toml -o out\n"
+        text += tomli_w.dumps(design)
+        return Response(text, media_type=MEDIA_TYPES["toml"],
+                        headers={"Content-Disposition": 'attachment; filename="fabtiles-design.toml"'})
 
     @app.get("/api/export/{fmt}")
     def export(fmt: str, request: Request):
         if fmt not in FORMATS:
             raise QueryError(f"{fmt!r} is not a valid format, must be one of: {', '.join(FORMATS)}", "format")
-        design, tile = build(request)
+        design, spec, tile = build(request)
         output = design.get("output", {})
         if profile_kind(fmt) == "laser":
             profile = output.get("laser_profile")
@@ -139,11 +184,6 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
         else:
             profile = output.get("printer_profile")
             options = {"style": output.get("print_style")}
-        if profile is not None and profile not in bundled_profiles():
-            raise QueryError(
-                f"profile {profile!r} does not exist; choose one of: {', '.join(bundled_profiles())}",
-                "laser_profile" if profile_kind(fmt) == "laser" else "printer_profile",
-            )
         _limits.check_export(tile, fmt, limits)
         with tempfile.TemporaryDirectory(prefix="fabtiles-web-") as tmp:
             path = Path(tmp) / f"fabtiles-tile.{fmt}"

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 
 from .._errors import FabtilesError
+from .._profiles import bundled_profiles
 
 
 class QueryError(FabtilesError, ValueError):
@@ -126,7 +127,15 @@ def design_from_query(query) -> dict:
             raise QueryError(f"{extra[0]} has no meaning with packing=none; remove it or choose packing=hex or square", extra[0])
         del design["packing"]
     elif gap:
+        if "preset" not in gap:  # one of n / radii alone: the other from the default gap motif
+            gap = {"n": 6, "radii": [0.5, 1.0], **gap}
         design["packing"]["gap_motif"] = gap
+    for key in ("laser_profile", "printer_profile"):
+        name = design["output"].get(key)
+        names = [n for n in bundled_profiles() if n.startswith("laser") == (key == "laser_profile")]
+        if name is not None and name not in names:
+            # Profiles are chosen by bundled name only: no file path ever comes from a request.
+            raise QueryError(f"{key} {name!r} is not a bundled profile, must be one of: {', '.join(names)}", key)
     tile = design["tile"]
     width, height = tile.pop("width", None), tile.pop("height", None)
     if width is not None or height is not None:

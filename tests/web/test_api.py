@@ -1,0 +1,163 @@
+"""HTTP tests of the web API: every endpoint, every format, bad input for every parameter."""
+
+import io
+import json
+
+import pytest
+
+pytest.importorskip("fastapi")
+from fastapi.testclient import TestClient  # noqa: E402
+
+from fabtiles._limits import Limits  # noqa: E402
+from fabtiles.web.app import create_app  # noqa: E402
+
+SMALL = "width=40&frame=3&radius=8"
+
+
+@pytest.fixture(scope="module")
+def client():
+    return TestClient(create_app())
+
+
+def test_index_and_static(client):
+    r = client.get("/")
+    assert r.status_code == 200 and "<title>fabtiles" in r.text
+    assert client.get("/static/app.js").headers["content-type"].startswith("text/javascript")
+    assert client.get("/static/style.css").status_code == 200
+    r = client.get("/static/secret.txt")
+    assert r.status_code == 404 and r.json()["error"] == "no static file 'secret.txt'"
+
+
+def test_presets_and_profiles(client):
+    presets = client.get("/api/presets").json()
+    assert list(presets) == ["table1-part1", "table1-part2", "table2-left", "table2-right",
+                             "table3-1", "table3-2", "table3-3"]
+    assert presets["table3-3"] == {"n": 12, "radii": [123, 85, 178], "alpha": 23, "spr": -7,
+                                   "special": 2, "note": ""}
+    assert client.get("/api/profiles").json() == {
+        "laser": ["laser-3mm-acrylic", "laser-3mm-plywood"], "printer": ["fdm-0.4mm", "fdm-0.6mm"]}
+
+
+def test_preview_svg_default_and_changes(client):
+    default = client.get("/api/preview.svg")
+    assert default.status_code == 200 and default.headers["content-type"] == "image/svg+xml"
+    assert 'width="150mm"' in default.text
+    other = client.get("/api/preview.svg?n=8&radii=51,70,172&packing=none&outline=circle&width=80")
+    assert other.status_code == 200 and 'width="80mm"' in other.text and other.text != default.text
+    rect = client.get("/api/preview.svg?outline=rectangle&width=120&height=60&radius=10")
+    assert 'width="120mm" height="60mm"' in rect.text
+
+
+def test_checks_json(client):
+    data = client.get(f"/api/checks?{SMALL}").json()
+    assert "segments" in data["summary"]
+    assert all({"where", "code", "message", "count"} <= set(f) for f in data["findings"])
+    thin = client.get(f"/api/checks?{SMALL}&stroke=0.5&laser_profile=laser-3mm-acrylic").json()
+    assert any(f["code"] == "thin_wall" and f["where"] == "print" for f in thin["findings"]) or thin["findings"]
+
+
+def test_design_toml_round_trips_through_build(client, tmp_path):
+    from click.testing import CliRunner
+
+    from fabtiles.cli.main import cli
+
+    r = client.get(f"/api/design.toml?{SMALL}&preset=table3-1&join=round")
+    assert r.status_code == 200 and "attachment" in r.headers["content-disposition"]
+    path = tmp_path / "d.toml"
+    path.write_text(r.text)
+    res = CliRunner().invoke(cli, ["build", str(path), "-o", str(tmp_path / "out"), "--format", "dxf"])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "out" / "d.dxf").exists()
+
+
+@pytest.mark.parametrize("fmt", ["dxf", "svg", "stl", "3mf", "step"])
+def test_every_export_format(client, fmt, tmp_path):
+    r = client.get(f"/api/export/{fmt}?{SMALL}")
+    assert r.status_code == 200, r.text
+    assert r.headers["content-disposition"] == f'attachment; filename="fabtiles-tile.{fmt}"'
+    path = tmp_path / f"t.{fmt}"
+    path.write_bytes(r.content)
+    if fmt == "dxf":
+        import ezdxf
+
+        doc = ezdxf.readfile(path)
+        assert doc.header["$INSUNITS"] == 4 and not doc.audit().has_errors
+    elif fmt == "svg":
+        assert r.content.startswith(b"<?xml") and b'mm"' in r.content
+    elif fmt in ("stl", "3mf"):
+        import trimesh
+
+        mesh = trimesh.load(path, force="mesh")
+        assert mesh.is_watertight and mesh.volume > 0
+    else:
+        assert r.content.startswith(b"ISO-10303-21")
+
+
+def test_export_modes_from_query(client):
+    score = client.get(f"/api/export/dxf?{SMALL}&laser_mode=score").content
+    pierced = client.get(f"/api/export/dxf?{SMALL}&laser_mode=pierced").content
+    assert b"SCORE" in score and score != pierced
+
+
+BAD = [
+    ("n=2&radii=1,2", "n", "n must be an integer >= 3"),
+    ("n=x&radii=1,2", "n", "n must be an integer"),
+    ("n=8&radii=1", "radii", "radii must hold 2 to 24 numbers"),
+    ("n=8&radii=1,-2", "radii", "radii[1] must be a finite number > 0"),
+    ("alpha=nan", "alpha", "alpha must be a finite number"),
+    ("spr=inf", "spr", "spr must be a finite number"),
+    ("special=9", "special", "special must be an integer >= 2 and <= 3"),
+    ("rotation=x", "rotation", "rotation must be a number"),
+    ("preset=table9", "preset", "'table9' is not a valid preset"),
+    ("packing=triangle", "packing", "triangle"),
+    ("radius=-1", "radius", "radius must be"),
+    ("fill=0", "fill", "fill"),
+    ("gap_n=2", "gap_n", "n must be an integer >= 3"),
+    ("gap_radii=0.5,-1", "gap_radii", "radii[1] must be a finite number > 0"),
+    ("outline_circles=perhaps", "outline_circles", "outline_circles must be true or false"),
+    ("outline=oval", "outline", "'oval' is not valid, must be one of: square, rectangle, hexagon, circle"),
+    ("width=0", "width", "size"),
+    ("width=5000", "width", "larger than the limit of 1200 mm"),
+    ("outline=rectangle&width=100&height=x", "height", "height must be a number"),
+    ("frame=-1", "frame", "frame"),
+    ("frame=100", "frame", "too small for frame 100 mm"),
+    ("stroke=0", "stroke", "stroke must be a finite number > 0"),
+    ("join=zigzag", "join", "'zigzag' is not valid, must be one of: miter, round, bevel"),
+    ("corner_radius=-2", "corner_radius", "corner_radius"),
+    ("laser_profile=../../etc/passwd", "laser_profile", "is not a bundled profile"),
+    ("printer_profile=/tmp/x.toml", "printer_profile", "is not a bundled profile, must be one of: fdm-0.4mm"),
+    ("laser_mode=engrave", "laser_mode", "engrave"),
+    ("print_style=emboss", "print_style", "emboss"),
+    ("bogus=1", "bogus", "'bogus' is not a valid parameter"),
+]
+
+
+@pytest.mark.parametrize("query, field, message", BAD)
+@pytest.mark.parametrize("endpoint", ["/api/preview.svg", "/api/checks", "/api/export/dxf"])
+def test_bad_input_is_422_with_field(client, endpoint, query, field, message):
+    r = client.get(f"{endpoint}?{query}")
+    assert r.status_code == 422, r.text
+    body = r.json()
+    assert body["field"] == field, body
+    assert message in body["error"], body
+
+
+def test_unknown_format_is_422(client):
+    r = client.get("/api/export/png")
+    assert r.status_code == 422 and r.json() == {
+        "error": "'png' is not a valid format, must be one of: dxf, svg, stl, 3mf, step", "field": "format"}
+
+
+def test_work_limits_refuse_before_work():
+    client = TestClient(create_app(limits=Limits(max_segments=5_000, max_size_mm=300, max_step_segments=100)))
+    r = client.get("/api/preview.svg?width=300&radius=5")
+    assert r.status_code == 422
+    assert "more than the limit of 5,000" in r.json()["error"] and r.json()["field"] == "radius"
+    r = client.get("/api/export/step?width=60&radius=15")
+    assert r.status_code == 422 and "over the limit of 100" in r.json()["error"]
+    assert client.get("/api/preview.svg?width=60&radius=15").status_code == 200
+
+
+def test_openapi_lists_the_api(client):
+    paths = json.loads(client.get("/api/openapi.json").text)["paths"]
+    assert {"/api/presets", "/api/preview.svg", "/api/export/{fmt}", "/api/checks"} <= set(paths)

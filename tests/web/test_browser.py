@@ -1,0 +1,122 @@
+"""The page in headless Chromium (Debian's package), driven by Playwright.
+
+Needs /usr/bin/chromium and the playwright package; `.ci/run` installs both and sets
+FABTILES_REQUIRE_BROWSER=1, so there a missing browser fails instead of skipping.
+"""
+
+import os
+import shutil
+import socket
+import threading
+import time
+
+import pytest
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+REQUIRED = os.environ.get("FABTILES_REQUIRE_BROWSER") == "1"
+
+
+def _need(ok, why):
+    if not ok:
+        if REQUIRED:
+            pytest.fail(f"browser test required but {why}")
+        pytest.skip(why)
+
+
+pytestmark = pytest.mark.browser
+
+
+@pytest.fixture(scope="module")
+def server():
+    import uvicorn
+
+    from fabtiles.web.app import create_app
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    config = uvicorn.Config(create_app(), host="127.0.0.1", port=port, log_level="warning")
+    srv = uvicorn.Server(config)
+    thread = threading.Thread(target=srv.run, daemon=True)
+    thread.start()
+    for _ in range(200):
+        if srv.started:
+            break
+        time.sleep(0.05)
+    yield f"http://127.0.0.1:{port}"
+    srv.should_exit = True
+    thread.join(timeout=10)
+
+
+@pytest.fixture(scope="module")
+def page(server):
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        _need(False, "playwright is not installed")
+    _need(os.path.exists(CHROMIUM), f"{CHROMIUM} is not installed")
+    with sync_playwright() as pw:
+        browser = pw.chromium.launch(
+            executable_path=CHROMIUM,
+            args=["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+        )
+        context = browser.new_context(accept_downloads=True, viewport={"width": 1280, "height": 900})
+        pg = context.new_page()
+        pg.set_default_timeout(30_000)
+        yield pg
+        browser.close()
+
+
+def _preview_version(page):
+    return page.get_attribute("#preview", "data-version")
+
+
+def _wait_new_preview(page, old):
+    page.wait_for_function(
+        "old => { const v = document.querySelector('#preview').dataset.version; return v && v !== old; }",
+        arg=old)
+
+
+def test_page_slider_preset_and_download(page, server, tmp_path):
+    page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3")
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    first_src = page.get_attribute("#preview", "src")
+    assert first_src.startswith("data:image/svg+xml")
+
+    # Move a slider: the preview follows without a reload and the URL keeps the state.
+    v = _preview_version(page)
+    page.fill("#rotation", "15")
+    page.dispatch_event("#rotation", "change")
+    _wait_new_preview(page, v)
+    assert page.get_attribute("#preview", "src") != first_src
+    assert "rotation=15" in page.url
+    page.screenshot(path=str(tmp_path / "page.png"))
+
+    # Load a preset.
+    v = _preview_version(page)
+    page.select_option("#preset", "table1-part1")
+    _wait_new_preview(page, v)
+    assert "preset=table1-part1" in page.url
+    assert page.input_value("#n") == "8"
+
+    # A bad value shows the error beside the control that caused it.
+    page.fill("#stroke", "0")
+    page.dispatch_event("#stroke", "change")
+    page.wait_for_function("() => document.querySelector('.err[data-for=stroke]').textContent.length > 0")
+    assert "stroke" in page.text_content(".err[data-for=stroke]")
+    page.fill("#stroke", "1")
+    page.dispatch_event("#stroke", "change")
+    page.wait_for_function("() => document.querySelector('.err[data-for=stroke]').textContent === ''")
+
+    # Download a DXF and read it with ezdxf.
+    with page.expect_download() as info:
+        page.click("#downloads a[data-format=dxf]")
+    path = tmp_path / "tile.dxf"
+    info.value.save_as(path)
+    import ezdxf
+
+    doc = ezdxf.readfile(path)
+    assert doc.header["$INSUNITS"] == 4
+    assert not doc.audit().has_errors
+    assert len(doc.modelspace()) > 0
