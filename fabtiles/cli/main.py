@@ -99,7 +99,7 @@ def _register_optional_commands():
     """Commands defined in their own modules (imported lazily by click when run)."""
     import importlib
 
-    for module in ("build", "serve", "batch"):
+    for module in ("build", "batch", "serve"):
         try:
             mod = importlib.import_module(f"{__package__}.{module}")
         except ModuleNotFoundError as exc:
@@ -112,9 +112,25 @@ def _register_optional_commands():
 _register_optional_commands()
 
 
+def _exit_on_sigterm(signum, frame):  # noqa: ARG001
+    # Raise instead of dying, so every `finally` runs: temporary files and staging
+    # folders are removed and no partial output is left behind.
+    raise SystemExit(128 + signum)
+
+
 def main(argv=None):
     """Run the CLI (console-script entry point)."""
+    import signal
+
+    if threading_is_main():
+        signal.signal(signal.SIGTERM, _exit_on_sigterm)
     return cli.main(args=argv, prog_name="fabtiles")
+
+
+def threading_is_main() -> bool:
+    import threading
+
+    return threading.current_thread() is threading.main_thread()
 
 
 if __name__ == "__main__":  # pragma: no cover

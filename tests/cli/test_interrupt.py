@@ -1,0 +1,73 @@
+"""Kill a real `fabtiles build` mid-work: never a partial file, never a damaged earlier one."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+DESIGN = """
+[motif]
+preset = "table3-3"
+[packing]
+radius = 10
+[tile]
+outline = "rectangle"
+size = [300, 200]
+frame = 5
+stroke = 1.0
+[output]
+formats = ["dxf", "svg", "stl"]
+"""
+
+
+def _start(design, out):
+    return subprocess.Popen([sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+def test_interrupted_build_leaves_old_files_and_no_partial_ones(tmp_path, sig):
+    design = tmp_path / "sheet.toml"
+    design.write_text(DESIGN)
+    out = tmp_path / "out"
+    out.mkdir()
+    old = {f"sheet.{fmt}": f"good {fmt} file from an earlier build".encode() for fmt in ("dxf", "svg", "stl")}
+    for name, data in old.items():
+        (out / name).write_bytes(data)
+
+    # A full run, to know how long it takes here; then interrupt at fractions of it.
+    t = time.perf_counter()
+    full = _start(design, tmp_path / "full")
+    assert full.wait(timeout=300) == 0, full.stderr.read().decode()
+    duration = time.perf_counter() - t
+    complete = {p.name: p.read_bytes() for p in (tmp_path / "full").iterdir()}
+    assert set(complete) == set(old)
+
+    interrupted = 0
+    for fraction in (0.3, 0.55, 0.8, 0.95):
+        proc = _start(design, out)
+        time.sleep(duration * fraction)
+        if proc.poll() is None:
+            proc.send_signal(sig)
+            interrupted += 1
+        rc = proc.wait(timeout=120)
+        names = sorted(os.listdir(out))
+        # Nothing else in the folder: no temporary, staging or partial file.
+        assert names == sorted(old), names
+        for name in names:
+            data = (out / name).read_bytes()
+            if rc == 0:
+                assert len(data) > 100  # a complete new build replaced the old files
+            else:
+                # Interrupted: every file is either the earlier one or a complete new one.
+                assert data == old[name] or len(data) > 100, name
+        if rc == 0:  # restore the earlier files for the next round
+            for name, data in old.items():
+                (out / name).write_bytes(data)
+        else:
+            assert rc in (1, 2, 128 + sig, -sig), rc  # click reports Ctrl+C as "Aborted!", status 1
+    assert interrupted >= 2
