@@ -11,7 +11,7 @@ from __future__ import annotations
 import importlib
 from pathlib import Path
 
-from .._errors import ParameterError
+from .._errors import FabricationError, ParameterError
 from .._profiles import load_profile
 
 FORMATS = ("dxf", "svg", "stl", "3mf", "step")
@@ -91,6 +91,11 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
                 f"{key!r} is not a valid option for .{fmt} files, must be one of: {', '.join(allowed)}"
             )
     options = {k: v for k, v in options.items() if v is not None}
+    if region is None or region.is_empty:
+        raise FabricationError(
+            "the tile holds no material: every stroke of its pattern falls outside the outline; "
+            "add a frame, make the tile larger, or make the packing radius smaller"
+        )
     default = DEFAULT_LASER_PROFILE if kind == "laser" else DEFAULT_PRINTER_PROFILE
     profile = load_profile(profile if profile is not None else default, kind=kind)
     writer = getattr(importlib.import_module(f"{__package__}.{module}"), func)

@@ -168,7 +168,40 @@ def stroke_cross_section(segments, width, *, join="miter", miter_limit=4.0, tole
     polys = [band_polygons(verts, edges, half)]
     polys += join_polygons(verts, edges, half, join=join, miter_limit=miter_limit, tolerance=tolerance)
     contours = [p for block in polys for p in block]
+    band_area = 2.0 * half * float(np.linalg.norm(verts[edges[:, 1]] - verts[edges[:, 0]], axis=1).sum())
+    span = verts.max(axis=0) - verts.min(axis=0) + 2.0 * half
+    if band_area > _DENSE * float(span[0] * span[1]):
+        return _bucketed_union(contours)
     return m3d.CrossSection(contours, m3d.FillRule.Positive)
+
+
+# Bands covering their bounding box this many times over count as dense.
+_DENSE = 2.0
+
+
+def _bucketed_union(contours, per_bucket: int = 128):
+    """Union in two levels: small spatial buckets first, then the buckets' results.
+
+    When strokes are as wide as the pattern's features, every band overlaps dozens of
+    others and one Clipper2 batch spends its time on edge intersections (measured: a
+    55 mm circle tile at R = 2 mm, stroke 1.9 mm, outline circles: 7.0 s in one batch,
+    1.4 s bucketed). Each bucket's union drops the interior edges before the final
+    union. On sparse patterns (the 600 x 400 mm sheet) one batch is faster (0.27 s
+    against 0.45 s), hence the density test in :func:`stroke_cross_section`.
+    """
+    m3d = _cs()
+    centres = np.array([c.mean(axis=0) for c in contours])
+    lo = centres.min(axis=0)
+    cells = max(1, int(math.sqrt(len(contours) / per_bucket)))
+    size = float((centres.max(axis=0) - lo).max()) / cells + 1e-9
+    cell = np.floor((centres - lo) / size).astype(np.int64)
+    key = cell[:, 0] * (cells + 1) + cell[:, 1]
+    order = np.argsort(key, kind="stable")
+    sorted_keys = key[order]
+    cuts = np.flatnonzero(np.r_[True, sorted_keys[1:] != sorted_keys[:-1], True])
+    parts = [m3d.CrossSection([contours[i] for i in order[a:b]], m3d.FillRule.Positive)
+             for a, b in zip(cuts[:-1], cuts[1:])]
+    return m3d.CrossSection.batch_boolean(parts, m3d.OpType.Add)
 
 
 def to_cross_section(geom):

@@ -1,0 +1,452 @@
+"""3D-printable meshes: binary STL and 3MF, checked as a slicer will read them.
+
+Styles (heights from the printer profile, overridable per call):
+
+``relief``
+    A base plate of the outline, ``base_mm`` thick, with the material region raised
+    ``relief_mm`` on top. STL: one body. 3MF: two named bodies, ``"base"`` and
+    ``"pattern"``, touching at ``z = base_mm`` without overlapping, so a slicer can
+    give each its own filament.
+``pierced``
+    The material region alone, ``pierced_mm`` thick (body ``"pattern"``).
+``deboss``
+    A plate ``base_mm`` thick with the region sunk as grooves ``deboss_mm`` deep
+    (body ``"plate"``).
+
+Meshes are built directly as stacked prisms (see :mod:`fabtiles.export._mesh_build`),
+with every x, y on a 2**-10 mm grid that float32 stores exactly. Before anything is
+written, each body is checked the way a slicer reads the file: the float32
+triangles are merged by position, then trimesh must find it watertight, wound
+consistently, of positive volume, one body per part and free of degenerate faces.
+A mesh failing any of this is a :class:`~fabtiles.FabricationError`, never a file.
+trimesh and manifold3d are imported only inside the functions.
+"""
+
+from __future__ import annotations
+
+import io
+
+import numpy as np
+
+from .._errors import FabricationError
+from .._io import atomic_write
+from .._profiles import load_profile
+from .._report import Report
+from ._mesh_build import (
+    QUANTUM,
+    Stack,
+    check_shapes,
+    coverage,
+    coverage_pair,
+    mesh_coverage,
+    polygons_of,
+    resolve_stack,
+    snap,
+)
+
+VOLUME_TOLERANCE = 0.005
+"""Largest relative difference allowed between a mesh's volume and area x height."""
+
+
+# --------------------------------------------------------------------------- building
+
+
+def _prepare(region, outline, profile, style, heights, stroke=None, *, path="", fmt=""):
+    """Validate everything and run the printability checks; nothing is built yet."""
+    from ..geometry.print_checks import check_print
+
+    profile = load_profile(profile, kind="printer")
+    stack = resolve_stack(profile, style, **heights)
+    region, outline = check_shapes(region, outline)
+    report = Report(path=str(path), format=fmt)
+    check_print(region, outline, profile, stroke=stroke, style=stack.style, base_mm=stack.base,
+                relief_mm=stack.relief, pierced_mm=stack.pierced, deboss_mm=stack.deboss, report=report)
+    report.raise_if_strict(profile.strict)
+    return profile, stack, report
+
+
+def _snapped(region, outline):
+    import shapely
+
+    o = snap(outline)
+    rb, ob = np.array(region.bounds), np.array(outline.bounds)
+    if np.any(rb[:2] < ob[:2] - 1e-6) or np.any(rb[2:] > ob[2:] + 1e-6):
+        region = shapely.intersection(region, outline)
+    r = snap(region)
+    if r.is_empty or o.is_empty:
+        raise FabricationError("the material region is empty once clipped to the outline and snapped to 1 micron")
+    return r, o
+
+
+def _body_arrays(kind: str, r, o, stack: Stack):
+    """Vertices and faces of one body: ``"relief"``, ``"base"``, ``"pattern"``, ``"pierced"``, ``"plate"``."""
+    b, h, t, d = stack.base, stack.relief, stack.pierced, stack.deboss
+    if kind == "relief":
+        cov = coverage_pair(r, o, region_z=b + h, rest_z=b, bottom=0.0)
+    elif kind == "base":
+        cov = coverage([(o, b)], bottom=0.0)
+    elif kind == "pattern":
+        cov = coverage([(r, b + h)], bottom=b)
+    elif kind == "pierced":
+        cov = coverage([(r, t)], bottom=0.0)
+    elif kind == "plate":
+        cov = coverage_pair(r, o, region_z=b - d, rest_z=b, bottom=0.0)
+    else:  # pragma: no cover - internal
+        raise ValueError(kind)
+    return mesh_coverage(cov)
+
+
+def _expected(kind, r, o, stack):
+    """Expected volume and number of bodies of one body kind."""
+    b, h = stack.base, stack.relief
+    nr = len(polygons_of(r))
+    no = len(polygons_of(o))
+    return {
+        "relief": (o.area * b + r.area * h, no),
+        "base": (o.area * b, no),
+        "pattern": (r.area * h, nr),
+        "pierced": (r.area * stack.pierced, nr),
+        "plate": (o.area * b - r.area * stack.deboss, no),
+    }[kind]
+
+
+def _kinds(style: str, single: bool):
+    if style == "relief":
+        return {"body": "relief"} if single else {"base": "base", "pattern": "pattern"}
+    if style == "pierced":
+        return {"pattern": "pierced"}
+    return {"plate": "plate"}
+
+
+def _bridge_pinches(r):
+    """The region with its pinch points (a vertex shared by two rings) bridged by a tiny square."""
+    import shapely
+
+    parts = shapely.get_parts(r)
+    rings = np.concatenate([shapely.get_exterior_ring(parts)]
+                           + [shapely.get_interior_ring(p, np.arange(shapely.get_num_interior_rings(p)))
+                              for p in parts])
+    coords, ring = shapely.get_coordinates(rings, return_index=True)
+    closing = np.r_[ring[1:] != ring[:-1], True]  # each ring's repeated first point
+    coords, ring = coords[~closing], ring[~closing]
+    key = np.round(coords / QUANTUM).astype(np.int64)
+    _, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    pinch = coords[cnt[inv.ravel()] > 1]
+    if not len(pinch):
+        return None
+    squares = shapely.buffer(shapely.points(np.unique(pinch, axis=0)), 3 * QUANTUM, quad_segs=1)
+    return snap(shapely.union_all(np.concatenate([[r], squares])))
+
+
+def _close_round(r):
+    """The region closed by a few microns with round joins: breaks every point contact."""
+    import shapely
+
+    q = 3 * QUANTUM
+    return snap(shapely.buffer(shapely.buffer(r, q, quad_segs=2), -q, quad_segs=2))
+
+
+def _checked_body(kind, name, r, o, stack):
+    """One body, checked through its STL bytes as a slicer reads them.
+
+    Returns ``(data, vertices, faces, region)``: the STL bytes, the merged float32
+    mesh and the region actually used. Where two boundaries of the region touch at
+    a single point (a mesh edge would join four faces), it retries with those
+    contacts bridged by a few microns of material.
+    """
+    repairs = [lambda g: g, _bridge_pinches, _close_round]
+    error = None
+    for repair in repairs:
+        g = repair(r) if kind != "base" else r
+        if g is None:
+            continue
+        try:
+            verts, faces = _body_arrays(kind, g, o, stack)
+            volume, bodies = _expected(kind, g, o, stack)
+            data = stl_bytes(verts, faces)
+            mverts, mfaces = check_triangles(read_stl_triangles(data), name=name, volume=volume, bodies=bodies)
+            return data, mverts, mfaces, g
+        except FabricationError as exc:
+            error = error or exc
+            if kind == "base":
+                break
+    raise error
+
+
+def _build(region, outline, stack: Stack, *, single: bool):
+    """Checked trimesh bodies by name; ``single`` fuses a relief into one body (STL)."""
+    import trimesh
+
+    r, o = _snapped(region, outline)
+    out = {}
+    for name, kind in _kinds(stack.style, single).items():
+        _, verts, faces, _ = _checked_body(kind, name, r, o, stack)
+        out[name] = trimesh.Trimesh(vertices=verts, faces=faces, process=False, validate=False)
+    return out
+
+
+def build_meshes(*, region, outline, profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None,
+                 deboss_mm=None):
+    """The named, checked bodies of a printed tile, as trimesh meshes (mm).
+
+    Parameters
+    ----------
+    region : shapely Polygon or MultiPolygon
+        The material, in file coordinates (mm, outline's lower-left corner at the origin).
+    outline : shapely Polygon
+        The tile outline.
+    profile : str, Path or PrinterProfile
+        Printer profile: default style and heights.
+    style : {"relief", "pierced", "deboss"}, optional
+    base_mm, relief_mm, pierced_mm, deboss_mm : float, optional
+        Heights overriding the profile's.
+
+    Returns
+    -------
+    dict of str to trimesh.Trimesh
+        relief: ``{"base", "pattern"}``; pierced: ``{"pattern"}``; deboss: ``{"plate"}``.
+        Vertices are float32-exact; every body passed :func:`check_mesh`.
+    """
+    profile = load_profile(profile, kind="printer")
+    stack = resolve_stack(profile, style, base_mm, relief_mm, pierced_mm, deboss_mm)
+    region, outline = check_shapes(region, outline)
+    return _build(region, outline, stack, single=False)
+
+
+# --------------------------------------------------------------------------- checks
+
+
+def _merge_float32(tris32: np.ndarray):
+    """Merge float32 triangle corners by exact position, as a slicer does.
+
+    Returns ``(vertices (n, 3) float64, faces (m, 3) int64)``.
+    """
+    flat = np.ascontiguousarray(tris32.reshape(-1, 3), dtype=np.float32) + np.float32(0)  # -0.0 -> 0.0
+    bits = flat.view(np.uint32).astype(np.uint64)
+    key = (bits[:, 0] * np.uint64(0x9E3779B97F4A7C15)) ^ (bits[:, 1] * np.uint64(0xC2B2AE3D27D4EB4F)) \
+        ^ (bits[:, 2] * np.uint64(0x165667B19E3779F9)) ^ (bits[:, 2] << np.uint64(32))
+    _, first, inv = np.unique(key, return_index=True, return_inverse=True)
+    inv = inv.ravel()
+    if not np.array_equal(flat[first][inv], flat):  # a hash collision: merge exactly instead
+        order = np.lexsort(flat.T[::-1])
+        srt = flat[order]
+        new = np.ones(len(srt), bool)
+        new[1:] = np.any(srt[1:] != srt[:-1], axis=1)
+        ids = np.cumsum(new) - 1
+        inv = np.empty(len(flat), np.int64)
+        inv[order] = ids
+        first = order[new]
+    return flat[first].astype(np.float64), inv.reshape(-1, 3).astype(np.int64)
+
+
+def count_bodies(n_vertices: int, edges: np.ndarray) -> int:
+    """Connected components of a graph (union-find by hooking and pointer jumping, in numpy).
+
+    >>> count_bodies(5, np.array([[0, 1], [1, 2], [3, 4]]))
+    2
+    """
+    parent = np.arange(n_vertices)
+    u, v = edges[:, 0], edges[:, 1]
+    while True:
+        pu, pv = parent[u], parent[v]
+        diff = pu != pv
+        if not diff.any():
+            break
+        lo, hi = np.minimum(pu[diff], pv[diff]), np.maximum(pu[diff], pv[diff])
+        np.minimum.at(parent, hi, lo)
+        while True:
+            nxt = parent[parent]
+            if np.array_equal(nxt, parent):
+                break
+            parent = nxt
+    used = np.zeros(n_vertices, bool)
+    used[edges.ravel()] = True
+    return int(np.count_nonzero((parent == np.arange(n_vertices)) & used))
+
+
+def check_mesh(vertices, faces, *, name="mesh", volume=None, bodies=None):
+    """Check a mesh as a slicer reads it; return it as a trimesh.Trimesh (float32-exact).
+
+    The triangles are rounded to float32 (what STL stores) and merged by position.
+    Then there must be no collapsed or zero-area face, every edge must join exactly
+    two faces wound in opposite directions (watertight, consistent winding), the
+    volume must be positive (and within 0.5 % of ``volume`` if given) and the mesh
+    must hold ``bodies`` connected bodies if given.
+
+    Raises
+    ------
+    FabricationError
+        Naming the body and what failed.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    >>> f = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    >>> round(float(check_mesh(v, f, volume=1 / 6, bodies=1).volume), 6)
+    0.166667
+    >>> check_mesh(v, f[:3])
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.FabricationError: the mesh mesh is not watertight as a slicer reads it (float32): 3 open edges; nothing was written
+    """
+    import trimesh
+
+    tris32 = np.asarray(vertices, dtype=np.float64)[np.asarray(faces)].astype(np.float32)
+    verts, faces = check_triangles(tris32, name=name, volume=volume, bodies=bodies)
+    return trimesh.Trimesh(vertices=verts, faces=faces, process=False, validate=False)
+
+
+def check_triangles(tris32, *, name="mesh", volume=None, bodies=None):
+    """Check float32 triangles (m, 3, 3) as a slicer reads them; see :func:`check_mesh`.
+
+    Returns the merged ``(vertices, faces)``.
+    """
+    def fail(why):
+        raise FabricationError(f"the {name} mesh {why}; nothing was written")
+
+    if not np.isfinite(tris32).all():
+        fail("has non-finite coordinates")
+    if not len(tris32):
+        fail("is empty")
+    verts, faces = _merge_float32(tris32)
+    collapsed = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])
+    if collapsed.any():
+        fail(f"has {int(collapsed.sum())} faces that collapse when rounded to float32")
+    t = tris32.astype(np.float64)
+    cross = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    zero = ~np.any(cross != 0, axis=1)
+    if zero.any():
+        fail(f"has {int(zero.sum())} zero-area faces in float32")
+    # every directed edge exactly once and its reverse exactly once:
+    # watertight, 2-manifold and consistently wound
+    n = len(verts)
+    u = faces.ravel()
+    v = faces[:, [1, 2, 0]].ravel()
+    key = np.sort(u * n + v)
+    dup = int(np.count_nonzero(key[1:] == key[:-1]))
+    rev = np.sort(v * n + u)
+    missing = 0
+    if not np.array_equal(rev, key):
+        pos = np.minimum(np.searchsorted(key, rev), len(key) - 1)
+        missing = max(int(np.count_nonzero(key[pos] != rev)), 1)
+    if dup or missing:
+        problems = []
+        if missing:
+            problems.append(f"{missing} open edges")
+        if dup:
+            problems.append(f"{dup} edges wound the same way twice or shared by more than two faces")
+        fail("is not watertight as a slicer reads it (float32): " + ", ".join(problems))
+    vol = float(np.einsum("ij,ij->i", t[:, 0], cross).sum() / 6.0)
+    if not vol > 0:
+        fail(f"has a volume of {vol:g} mm^3 (it must be positive: faces point inward)")
+    if volume is not None and abs(vol - volume) > VOLUME_TOLERANCE * abs(volume):
+        fail(f"has a volume of {vol:.6g} mm^3, not the {volume:.6g} mm^3 of area x height (0.5 % allowed)")
+    if bodies is not None:
+        found = count_bodies(n, np.stack([u, v], axis=1))
+        if found != bodies:
+            fail(f"has {found} separate bodies where {bodies} {'was' if bodies == 1 else 'were'} expected")
+    return verts, faces
+
+
+# --------------------------------------------------------------------------- STL
+
+
+def stl_bytes(vertices, faces) -> bytes:
+    """Binary STL (float32, normals from the float32 corners) of a mesh.
+
+    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    >>> len(stl_bytes(v, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]))
+    284
+    """
+    tris = np.asarray(vertices, dtype=np.float64)[np.asarray(faces)].astype(np.float32)
+    normals = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]).astype(np.float64)
+    lengths = np.linalg.norm(normals, axis=1, keepdims=True)
+    normals = (normals / np.where(lengths > 0, lengths, 1)).astype(np.float32)
+    rec = np.zeros(len(tris), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
+    rec["n"] = normals
+    rec["v"] = tris
+    header = b"fabtiles binary STL, units mm".ljust(80, b" ")
+    return header + np.uint32(len(tris)).tobytes() + rec.tobytes()
+
+
+def read_stl_triangles(data: bytes) -> np.ndarray:
+    """The float32 triangles (m, 3, 3) of binary STL bytes, as a slicer reads them."""
+    if len(data) < 84:
+        raise FabricationError("not a binary STL: shorter than its header")
+    n = int(np.frombuffer(data, "<u4", 1, 80)[0])
+    if len(data) != 84 + 50 * n:
+        raise FabricationError(f"not a binary STL: {len(data)} bytes for {n} triangles")
+    rec = np.frombuffer(data, dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")], count=n, offset=84)
+    return rec["v"].copy()
+
+
+def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
+              pierced_mm=None, deboss_mm=None) -> Report:
+    """Write a binary STL (mm) of the tile, one watertight body (a relief's plate and pattern fused).
+
+    The STL bytes are read back and checked as a slicer reads them before the
+    file is written atomically. Parameters as :func:`build_meshes`, plus ``stroke``
+    (mm, for the thin-wall check). Strict profile with findings, or a bad mesh:
+    :class:`~fabtiles.FabricationError` and no file.
+    """
+    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
+    profile, stack, report = _prepare(region, outline, profile, style, heights, stroke, path=path, fmt="stl")
+    r, o = _snapped(region, outline)
+    ((name, kind),) = _kinds(stack.style, single=True).items()
+    # the bytes are read back and checked exactly as a slicer will read them
+    data, mverts, mfaces, _ = _checked_body(kind, name, r, o, stack)
+    atomic_write(path, data)
+    tri = mverts[mfaces]
+    report.stats.update(_stack_stats(stack), bodies=[name], triangles=len(mfaces),
+                        volume_mm3=float(np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6),
+                        bounds_mm=[mverts.min(axis=0).tolist(), mverts.max(axis=0).tolist()])
+    return report
+
+
+def _stack_stats(stack):
+    return dict(style=stack.style,
+                heights_mm={"relief": {"base": stack.base, "relief": stack.relief},
+                            "pierced": {"pierced": stack.pierced},
+                            "deboss": {"base": stack.base, "deboss": stack.deboss}}[stack.style])
+
+
+def _stats(report, stack, meshes):
+    report.stats.update(
+        _stack_stats(stack),
+        bodies=list(meshes),
+        triangles=int(sum(len(m.faces) for m in meshes.values())),
+        volume_mm3=float(sum(m.volume for m in meshes.values())),
+        bounds_mm=np.vstack([m.bounds for m in meshes.values()]).tolist(),
+    )
+
+
+# --------------------------------------------------------------------------- 3MF
+
+
+def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
+              pierced_mm=None, deboss_mm=None) -> Report:
+    """Write a 3MF (unit millimetre) of the tile's named bodies (see :func:`build_meshes`).
+
+    A relief holds two objects, ``"base"`` and ``"pattern"``, touching at
+    ``z = base_mm`` and not overlapping, for a two-colour print. The written
+    package is read back: the names must survive. Parameters as :func:`write_stl`.
+    """
+    import trimesh
+
+    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
+    profile, stack, report = _prepare(region, outline, profile, style, heights, stroke, path=path, fmt="3mf")
+    meshes = _build(region, outline, stack, single=False)
+    scene = trimesh.Scene()
+    for name, mesh in meshes.items():
+        scene.add_geometry(mesh, geom_name=name, node_name=name)
+    data = scene.export(file_type="3mf")
+    back = trimesh.load(io.BytesIO(data), file_type="3mf", process=False)
+    names = sorted(getattr(back, "geometry", {}).keys())
+    if names != sorted(meshes):
+        raise FabricationError(f"the 3MF package lost its body names (read back {names}, wrote {sorted(meshes)}); "
+                               "nothing was written")
+    atomic_write(path, data)
+    _stats(report, stack, meshes)
+    return report
+

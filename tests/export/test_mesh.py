@@ -1,0 +1,254 @@
+"""STL and 3MF export (issue 5): watertight, right volume and bounds, checked as a slicer reads them."""
+
+from __future__ import annotations
+
+import zipfile
+
+import numpy as np
+import pytest
+import shapely
+from shapely.geometry import box
+
+from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star
+from fabtiles.export import mesh
+from fabtiles.geometry.tile import Tile
+from fabtiles.pattern.packing import HexPacking
+
+trimesh = pytest.importorskip("trimesh")
+m3 = pytest.importorskip("manifold3d")
+
+B, H, T, D = 2.0, 1.2, 3.0, 0.8  # fdm-0.4mm heights
+STYLES = ("relief", "pierced", "deboss")
+
+
+def small_tile(preset="table3-3", outline="square", size=40):
+    return Tile(outline, size, HexPacking(10, Star.preset(preset)), frame=3, stroke=1.0)
+
+
+@pytest.fixture(scope="module")
+def shapes():
+    tile = small_tile()
+    return tile.region(), tile.outline_shape()
+
+
+def expected_volume(style, region, outline):
+    return {"relief": outline.area * B + region.area * H,
+            "pierced": region.area * T,
+            "deboss": outline.area * B - region.area * D}[style]
+
+
+def top(style):
+    return {"relief": B + H, "pierced": T, "deboss": B}[style]
+
+
+def load_stl(path):
+    m = trimesh.load(path, file_type="stl")  # merges vertices by position, like a slicer
+    return m
+
+
+def assert_solid(m, volume, bounds_xy, zmax, bodies=1, zmin=0.0):
+    assert m.is_watertight
+    assert m.is_winding_consistent
+    assert m.volume > 0
+    assert m.volume == pytest.approx(volume, rel=0.005)
+    assert m.body_count == bodies
+    lo, hi = m.bounds
+    assert lo[0] >= bounds_xy[0] - 1e-3 and lo[1] >= bounds_xy[1] - 1e-3
+    assert hi[0] <= bounds_xy[2] + 1e-3 and hi[1] <= bounds_xy[3] + 1e-3
+    assert lo[2] == pytest.approx(zmin, abs=1e-5)
+    assert hi[2] == pytest.approx(zmax, abs=1e-5)
+
+
+def manifold_of(m):
+    return m3.Manifold(m3.Mesh(vert_properties=np.asarray(m.vertices, np.float32),
+                               tri_verts=np.asarray(m.faces, np.uint32)))
+
+
+@pytest.mark.parametrize("preset", Star.presets())
+@pytest.mark.parametrize("style", STYLES)
+def test_stl_every_preset_and_style(tmp_path, preset, style):
+    tile = small_tile(preset)
+    region, outline = tile.region(), tile.outline_shape()
+    path = tmp_path / "t.stl"
+    report = mesh.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", style=style,
+                            stroke=tile.stroke)
+    assert report.format == "stl" and report.stats["style"] == style
+    data = path.read_bytes()
+    assert len(data) == 84 + 50 * int(np.frombuffer(data, "<u4", 1, 80)[0])  # binary STL
+    nparts = len(shapely.get_parts(region)) if style == "pierced" else 1
+    assert_solid(load_stl(path), expected_volume(style, region, outline), outline.bounds, top(style), nparts)
+
+
+@pytest.mark.parametrize("outline", ["hexagon", "circle"])
+@pytest.mark.parametrize("style", STYLES)
+def test_stl_other_outlines(tmp_path, outline, style):
+    tile = small_tile(outline=outline, preset="table2-right")
+    region, shape = tile.region(), tile.outline_shape()
+    mesh.write_stl(tmp_path / "t.stl", region=region, outline=shape, profile="fdm-0.4mm", style=style)
+    m = load_stl(tmp_path / "t.stl")
+    assert m.is_watertight and m.is_winding_consistent
+    assert m.volume == pytest.approx(expected_volume(style, region, shape), rel=0.005)
+
+
+@pytest.mark.parametrize("preset", ["table3-3", "table1-part1", "table2-left"])
+def test_3mf_relief_two_named_bodies_that_touch_without_overlap(tmp_path, preset):
+    tile = small_tile(preset)
+    region, outline = tile.region(), tile.outline_shape()
+    path = tmp_path / "t.3mf"
+    mesh.write_3mf(path, region=region, outline=outline, profile="fdm-0.4mm")
+    model = zipfile.ZipFile(path).read("3D/3dmodel.model").decode()
+    assert 'unit="millimeter"' in model
+    scene = trimesh.load(path, file_type="3mf")
+    assert sorted(scene.geometry) == ["base", "pattern"]
+    base, pattern = scene.geometry["base"], scene.geometry["pattern"]
+    assert_solid(base, outline.area * B, outline.bounds, B)
+    assert_solid(pattern, region.area * H, outline.bounds, B + H, zmin=B,
+                 bodies=len(shapely.get_parts(region)))
+    # they touch at z = b and do not overlap
+    overlap = (manifold_of(base) ^ manifold_of(pattern)).volume()
+    assert overlap == pytest.approx(0.0, abs=1e-6 * base.volume)
+    union = (manifold_of(base) + manifold_of(pattern)).volume()
+    assert union == pytest.approx(base.volume + pattern.volume, rel=1e-6)
+
+
+@pytest.mark.parametrize("style,names", [("pierced", ["pattern"]), ("deboss", ["plate"])])
+def test_3mf_other_styles(tmp_path, shapes, style, names):
+    region, outline = shapes
+    mesh.write_3mf(tmp_path / "t.3mf", region=region, outline=outline, profile="fdm-0.4mm", style=style)
+    scene = trimesh.load(tmp_path / "t.3mf", file_type="3mf")
+    assert sorted(scene.geometry) == names
+    m = scene.geometry[names[0]]
+    assert_solid(m, expected_volume(style, region, outline), outline.bounds, top(style))
+
+
+def test_build_meshes_bodies(shapes):
+    region, outline = shapes
+    got = mesh.build_meshes(region=region, outline=outline, profile="fdm-0.4mm")
+    assert sorted(got) == ["base", "pattern"]
+    assert got["base"].volume == pytest.approx(outline.area * B, rel=1e-6)
+    got = mesh.build_meshes(region=region, outline=outline, profile="fdm-0.6mm", style="deboss", deboss_mm=0.6)
+    assert list(got) == ["plate"]
+    assert got["plate"].volume == pytest.approx(outline.area * 2.4 - region.area * 0.6, rel=0.005)
+
+
+def test_heights_override_profile(tmp_path, shapes):
+    region, outline = shapes
+    report = mesh.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm",
+                            base_mm=3, relief_mm=2.5)
+    m = load_stl(tmp_path / "t.stl")
+    assert m.bounds[1][2] == pytest.approx(5.5)
+    assert m.volume == pytest.approx(outline.area * 3 + region.area * 2.5, rel=0.005)
+    assert report.stats["heights_mm"] == {"base": 3.0, "relief": 2.5}
+
+
+def test_vertices_are_float32_exact(shapes):
+    region, outline = shapes
+    for m in mesh.build_meshes(region=region, outline=outline, profile="fdm-0.4mm").values():
+        v = np.asarray(m.vertices)
+        assert np.array_equal(v.astype(np.float32).astype(np.float64), v)
+
+
+def test_check_catches_float32_collapse():
+    # a sliver: two vertices 1e-5 mm apart at x = 600 are one float32 number
+    v = np.array([[600, 0, 0], [601, 0, 0], [600, 1, 0], [600, 0, 1], [600.00001, 0, 0]], float)
+    f = np.array([[0, 2, 1], [4, 1, 3], [0, 3, 2], [1, 2, 3], [0, 4, 3]])
+    with pytest.raises(FabricationError, match="collapse when rounded to float32"):
+        mesh.check_mesh(v, f)
+
+
+def test_check_catches_open_and_inward_meshes():
+    box_mesh = trimesh.creation.box()
+    with pytest.raises(FabricationError, match="not watertight"):
+        mesh.check_mesh(box_mesh.vertices, box_mesh.faces[:-1])
+    with pytest.raises(FabricationError, match="volume"):
+        mesh.check_mesh(box_mesh.vertices, box_mesh.faces[:, ::-1])
+    with pytest.raises(FabricationError, match="2 separate bodies"):
+        two = trimesh.util.concatenate([box_mesh, box_mesh.copy().apply_translation((5, 0, 0))])
+        mesh.check_mesh(two.vertices, two.faces, bodies=1)
+
+
+def test_pinched_region_is_bridged(tmp_path):
+    # two squares touching at one corner: four faces would share the corner's edge
+    region = box(1, 1, 5, 5).union(box(5, 5, 9, 9))
+    outline = box(0, 0, 10, 10)
+    mesh.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm", style="pierced")
+    m = load_stl(tmp_path / "t.stl")
+    assert m.is_watertight and m.volume == pytest.approx(32 * T, rel=1e-3)
+
+
+# --------------------------------------------------------------------------- bad input
+
+
+BAD = [
+    (dict(base_mm=0), ParameterError, "base_mm must be a finite number > 0"),
+    (dict(relief_mm=-1), ParameterError, "relief_mm must be a finite number > 0"),
+    (dict(pierced_mm=float("nan"), style="pierced"), ParameterError, "pierced_mm must be a finite number"),
+    (dict(style="deboss", deboss_mm=2.0), ParameterError, "deboss_mm must be smaller than base_mm"),
+    (dict(style="deboss", deboss_mm=3, base_mm=2.5), ParameterError, "deboss_mm must be smaller than base_mm"),
+    (dict(style="emboss"), ParameterError, "'emboss' is not a valid style"),
+    (dict(profile="fdm-9mm"), ProfileError, "profile 'fdm-9mm' does not exist"),
+    (dict(profile="laser-3mm-plywood"), ProfileError, "a printer profile is needed"),
+]
+
+
+@pytest.mark.parametrize("writer", ["write_stl", "write_3mf"])
+@pytest.mark.parametrize("kwargs,exc,msg", BAD)
+def test_bad_input_no_file(tmp_path, shapes, writer, kwargs, exc, msg):
+    region, outline = shapes
+    kwargs = {"profile": "fdm-0.4mm", **kwargs}
+    path = tmp_path / "t.out"
+    with pytest.raises(exc, match=msg):
+        getattr(mesh, writer)(path, region=region, outline=outline, **kwargs)
+    assert list(tmp_path.iterdir()) == []
+    assert issubclass(exc, FabtilesError)
+
+
+def test_bad_geometry(tmp_path, shapes):
+    region, outline = shapes
+    with pytest.raises(ParameterError, match="region must be a shapely Polygon"):
+        mesh.write_stl(tmp_path / "t.stl", region="square", outline=outline, profile="fdm-0.4mm")
+    with pytest.raises(ParameterError, match="region must have an area > 0"):
+        mesh.write_stl(tmp_path / "t.stl", region=shapely.Polygon(), outline=outline, profile="fdm-0.4mm")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_strict_profile_with_findings_writes_nothing(tmp_path, shapes):
+    region, outline = shapes
+    strict = tmp_path / "strict.toml"
+    strict.write_text('kind = "printer"\n[printer]\nmin_wall_mm = 1.5\nstrict = true\n')
+    good = tmp_path / "t.stl"
+    good.write_bytes(b"keep me")
+    with pytest.raises(FabricationError, match="thin_wall"):
+        mesh.write_stl(good, region=region, outline=outline, profile=strict, stroke=1.0)
+    assert good.read_bytes() == b"keep me"
+
+
+def test_findings_are_reported(tmp_path, shapes):
+    region, outline = shapes
+    report = mesh.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm",
+                            stroke=0.5, relief_mm=0.3)
+    assert [f.code for f in report.findings] == ["thin_wall", "thin_layer"]
+    assert (tmp_path / "t.stl").exists()
+
+
+def test_no_heavy_imports_at_import_time():
+    import subprocess
+    import sys
+
+    code = ("import sys, fabtiles.export.mesh, fabtiles.export.step, fabtiles.geometry.print_checks; "
+            "print([m for m in ('trimesh', 'manifold3d', 'OCP', 'build123d') if m in sys.modules])")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
+
+
+@pytest.mark.slow
+def test_sheet_600x400_relief_stl(tmp_path):
+    tile = Tile("rectangle", (600, 400), HexPacking(15, Star.preset("table3-3")), frame=5, stroke=1.0)
+    region, outline = tile.region(), tile.outline_shape()
+    path = tmp_path / "sheet.stl"
+    mesh.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
+    tris = mesh.read_stl_triangles(path.read_bytes())
+    verts, faces = mesh.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
+    m = trimesh.Trimesh(verts, faces, process=False)
+    assert m.is_watertight and m.is_winding_consistent
+    assert m.bounds.ravel().tolist() == pytest.approx([0, 0, 0, 600, 400, B + H], abs=1e-5)
