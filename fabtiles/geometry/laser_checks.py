@@ -38,12 +38,11 @@ import shapely
 
 from .._errors import FabricationError, ParameterError, ProfileError
 from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, load_profile
+from .narrow import locations, narrow_places
 from .._report import Report
 from .._validate import check_choice, check_float
 from .contours import laser_contours, outline_contours, polygon_parts, score_paths
 
-MAX_LOCATIONS = 20
-"""At most this many locations are listed per finding."""
 
 
 def _holes(parts: np.ndarray):
@@ -136,27 +135,6 @@ def check_fits_bed(outline, profile: LaserProfile) -> None:
     )
 
 
-def _split_long_rings(rings: np.ndarray, max_points: int = 64):
-    """Rings with more than ``max_points`` points cut into 2-point segments (for a spatial index).
-
-    Returns the pieces and, for each, the index of its ring.
-    """
-    npts = shapely.get_num_coordinates(rings)
-    big = np.flatnonzero(npts > max_points)
-    small = np.flatnonzero(npts <= max_points)
-    if not len(big):
-        return rings, np.arange(len(rings))
-    coords, idx = shapely.get_coordinates(rings[big], return_index=True)
-    same = idx[1:] == idx[:-1]
-    segs = shapely.linestrings(np.stack([coords[:-1][same], coords[1:][same]], axis=1))
-    return np.concatenate([rings[small], segs]), np.concatenate([small, big[idx[:-1][same]]])
-
-
-def _locations(points, limit=MAX_LOCATIONS):
-    pts = shapely.get_coordinates(np.asarray(points, dtype=object)[:limit])
-    return [tuple(np.round(p, 3)) for p in pts]
-
-
 def check_laser(region, outline, profile, *, stroke=None, report: Report | None = None,
                 validate: bool = True) -> Report:
     """Run the fabrication checks of the pierced mode on ``region``; findings go into ``report``.
@@ -190,33 +168,18 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
             report.add("small_hole",
                        f"{n} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
                        "(they burn away or char shut; fill_small_holes=True fills them)",
-                       count=n, locations=_locations(shapely.point_on_surface(holes[small])))
+                       count=n, locations=locations(shapely.point_on_surface(holes[small])))
 
-    # thin bridges: two rings of the same part closer than the minimum feature
+    # thin bridges: two rings of the same part closer than the minimum feature (within the
+    # profile's tolerance: a band exactly min_feature_mm wide is fine to cut)
     f = profile.min_feature_mm
-    rings = np.concatenate([shapely.get_exterior_ring(parts), shapely.get_exterior_ring(holes)])
-    part_of = np.concatenate([np.arange(len(parts)), owner])
-    items, ring_of = _split_long_rings(rings)
-    # candidate pairs: bounding boxes grown by f/2 overlap; then an exact distance test
-    env = shapely.box(*(shapely.bounds(items) + [-f / 2, -f / 2, f / 2, f / 2]).T)
-    a, b = shapely.STRtree(env).query(env)
-    ra, rb = ring_of[a], ring_of[b]
-    sel = (ra < rb) & (part_of[ra] == part_of[rb])
-    a, b = a[sel], b[sel]
-    # Within the profile's tolerance is not narrower: a band exactly min_feature_mm wide
-    # measures a hair less after Clipper2's integer rounding, and is fine to cut.
-    near = shapely.dwithin(items[a], items[b], f - profile.tolerance_mm)
-    a, b = a[near], b[near]
-    _, first = np.unique(ring_of[a] * len(rings) + ring_of[b], return_index=True)
-    a, b = a[first], b[first]
-    if len(a):
-        lines = shapely.shortest_line(items[a[:MAX_LOCATIONS]], items[b[:MAX_LOCATIONS]])
-        width = float(shapely.distance(items[a], items[b]).min())
+    count, width, mids = narrow_places(region, f, tolerance=profile.tolerance_mm)
+    if count:
         extra = f"; the stroke is {stroke:g} mm" if stroke is not None else ""
         report.add("thin_bridge",
-                   f"{len(a)} bridge{'s' if len(a) > 1 else ''} narrower than min_feature_mm = {f:g} mm "
+                   f"{count} bridge{'s' if count > 1 else ''} narrower than min_feature_mm = {f:g} mm "
                    f"(narrowest {width:.3g} mm{extra}): they may burn through or break",
-                   count=len(a), locations=_locations(shapely.line_interpolate_point(lines, 0.5, normalized=True)))
+                   count=count, locations=locations(mids))
 
     # loose parts: all but the largest piece inside each outline polygon
     if len(parts) > 1:
@@ -235,7 +198,7 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
             report.add("loose_part",
                        f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
                        f"(they fall out; largest {area[loose].max():.3g} mm^2)",
-                       count=n, locations=_locations(shapely.point_on_surface(parts[loose])))
+                       count=n, locations=locations(shapely.point_on_surface(parts[loose])))
     return report
 
 

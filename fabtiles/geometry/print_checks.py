@@ -30,66 +30,10 @@ import shapely
 
 from .._profiles import load_profile
 from .._report import Report
+from .narrow import locations, narrow_places
 
-MAX_LOCATIONS = 20
-"""At most this many locations are listed per finding."""
-
-
-def _locations(points, limit=MAX_LOCATIONS):
-    pts = shapely.get_coordinates(np.asarray(points, dtype=object)[:limit])
-    return [tuple(np.round(p, 3)) for p in pts]
-
-
-def _segments_of(rings: np.ndarray, max_points: int = 64):
-    """Rings with many points cut into 2-point segments (for a spatial index), with their ring index."""
-    npts = shapely.get_num_coordinates(rings)
-    big = np.flatnonzero(npts > max_points)
-    small = np.flatnonzero(npts <= max_points)
-    if not len(big):
-        return rings, np.arange(len(rings))
-    coords, idx = shapely.get_coordinates(rings[big], return_index=True)
-    same = idx[1:] == idx[:-1]
-    segs = shapely.linestrings(np.stack([coords[:-1][same], coords[1:][same]], axis=1))
-    return np.concatenate([rings[small], segs]), np.concatenate([small, big[idx[:-1][same]]])
-
-
-def thin_walls(region, width: float):
-    """Places where two boundaries of the same piece of ``region`` are closer than ``width``.
-
-    Returns ``(count, narrowest, midpoints)``. Thin dead-end spikes (star tips)
-    belong to one boundary and are not reported.
-
-    >>> from shapely.geometry import box
-    >>> thin_walls(box(0, 0, 10, 10).difference(box(1, 1, 9.5, 9)), 0.8)[:2]
-    (1, 0.5)
-    """
-    parts = shapely.get_parts(region)
-    parts = parts[shapely.area(parts) > 0]
-    if not len(parts):
-        return 0, float("inf"), []
-    n_int = shapely.get_num_interior_rings(parts)
-    owner = np.repeat(np.arange(len(parts)), n_int)
-    idx = np.concatenate([np.arange(k) for k in n_int]) if len(owner) else np.zeros(0, int)
-    holes = shapely.get_interior_ring(parts[owner], idx) if len(owner) else np.zeros(0, object)
-    rings = np.concatenate([shapely.get_exterior_ring(parts), holes])
-    part_of = np.concatenate([np.arange(len(parts)), owner])
-    items, ring_of = _segments_of(rings)
-    grow = np.array([-width / 2, -width / 2, width / 2, width / 2])
-    env = shapely.box(*(shapely.bounds(items) + grow).T)
-    a, b = shapely.STRtree(env).query(env)
-    ra, rb = ring_of[a], ring_of[b]
-    sel = (ra < rb) & (part_of[ra] == part_of[rb])
-    a, b = a[sel], b[sel]
-    near = shapely.dwithin(items[a], items[b], width * (1 - 1e-9))
-    a, b = a[near], b[near]
-    if not len(a):
-        return 0, float("inf"), []
-    _, first = np.unique(ring_of[a] * len(rings) + ring_of[b], return_index=True)
-    a, b = a[first], b[first]
-    narrowest = float(shapely.distance(items[a], items[b]).min())
-    lines = shapely.shortest_line(items[a[:MAX_LOCATIONS]], items[b[:MAX_LOCATIONS]])
-    mids = shapely.line_interpolate_point(lines, 0.5, normalized=True)
-    return len(a), narrowest, mids
+WALL_TOLERANCE_MM = 0.01
+"""A wall this much thinner than the minimum still counts as the minimum (rounding)."""
 
 
 def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=None, relief_mm=None,
@@ -123,12 +67,12 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
                        f"the stroke is {stroke:g} mm, narrower than min_wall_mm = {wall:g} mm "
                        f"(about two line widths of the {profile.nozzle_mm:g} mm nozzle): walls print thin or not at all")
     else:
-        count, narrowest, mids = thin_walls(region, wall)
+        count, narrowest, mids = narrow_places(region, wall, tolerance=WALL_TOLERANCE_MM)
         if count:
             report.add("thin_wall",
                        f"{count} wall{'s' if count > 1 else ''} narrower than min_wall_mm = {wall:g} mm "
                        f"(narrowest {narrowest:.3g} mm): they print thin or not at all",
-                       count=count, locations=_locations(mids))
+                       count=count, locations=locations(mids))
 
     layers = 2 * profile.layer_height_mm
     heights = {
@@ -163,5 +107,5 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
             report.add("loose_part",
                        f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
                        f"(a pierced tile falls apart; largest {area[loose].max():.3g} mm^2)",
-                       count=n, locations=_locations(shapely.point_on_surface(parts[loose])))
+                       count=n, locations=locations(shapely.point_on_surface(parts[loose])))
     return report

@@ -7,7 +7,8 @@ import shapely
 from shapely.geometry import box
 
 from fabtiles import ParameterError
-from fabtiles.geometry.print_checks import check_print, thin_walls
+from fabtiles.geometry.narrow import narrow_places
+from fabtiles.geometry.print_checks import check_print
 
 
 def codes(report):
@@ -33,13 +34,13 @@ def test_thin_wall_found_from_geometry_without_stroke():
     f = r.findings[0]
     assert "narrowest 0.5 mm" in f.message and f.locations
     assert 19.5 <= f.locations[0][0] <= 20
-    count, narrowest, _ = thin_walls(plate, 0.8)
+    count, narrowest, _ = narrow_places(plate, 0.8)
     assert count == 1 and narrowest == pytest.approx(0.5)
 
 
-def test_star_tips_are_not_thin_walls():
+def test_star_tips_are_not_narrow_places():
     tip = shapely.Polygon([(0, 0), (10, 0), (5, 20)])  # a sharp spike: one boundary
-    assert thin_walls(tip, 0.8)[0] == 0
+    assert narrow_places(tip, 0.8)[0] == 0
 
 
 @pytest.mark.parametrize("style,kw,what", [
