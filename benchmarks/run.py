@@ -53,6 +53,17 @@ def _peak_mb() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
+def _profile(fmt: str):
+    """The bundled profiles, the laser's bed made large enough for the 1,200 mm sheets."""
+    import dataclasses
+
+    from fabtiles import load_profile
+
+    if fmt in ("dxf", "svg"):
+        return dataclasses.replace(load_profile("laser-3mm-plywood"), bed_mm=(1300.0, 900.0))
+    return load_profile("fdm-0.4mm")
+
+
 def run_scenario(name: str) -> dict:
     """Run one scenario in this process and return its figures."""
     spec = SCENARIOS[name]
@@ -80,7 +91,7 @@ def run_scenario(name: str) -> dict:
     sizes = {}
     for fmt in spec["stages"][2:]:
         path = out / f"{name}.{fmt}"
-        stage(fmt, lambda: tile.export(path))
+        stage(fmt, lambda: tile.export(path, profile=_profile(fmt)))
         sizes[fmt] = path.stat().st_size
     front = sum(r["seconds"] for r in rows if r["stage"] in ("pattern", "region"))
     end_to_end = {f"{r['stage']} end to end": front + r["seconds"] for r in rows if r["stage"] in sizes}
@@ -106,7 +117,7 @@ def run_scaling(width: float, height: float) -> dict:
     times["region"] = time.perf_counter() - t
     with tempfile.TemporaryDirectory() as tmp:
         t = time.perf_counter()
-        tile.export(Path(tmp) / "s.dxf")
+        tile.export(Path(tmp) / "s.dxf", profile=_profile("dxf"))
         times["dxf"] = time.perf_counter() - t
     return {"size": [width, height], "segments": int(len(segments)), "seconds": times, "peak_mb": _peak_mb()}
 

@@ -16,7 +16,7 @@ error naming the key, its section and the valid keys (with a "did you mean").
 ``[output]`` (optional)
     ``formats`` (subset of dxf svg stl 3mf step; default ["svg"]), ``laser_profile``,
     ``printer_profile``, ``laser_mode``, ``print_style``, ``name`` (default: the
-    file's stem).
+    file's stem), ``fill_small_holes`` (laser: fill holes too small to cut).
 
 >>> d = design_from_text('''
 ... [motif]
@@ -60,7 +60,8 @@ SECTIONS = ("motif", "packing", "tile", "output")
 MOTIF_KEYS = ("preset", "n", "radii", "alpha", "spr", "special", "rotation")
 PACKING_KEYS = ("kind", "radius", "outline_circles", "fill", "gap_motif", "seamless")
 TILE_KEYS = ("outline", "size", "frame", "stroke", "join", "miter_limit", "corner_radius")
-OUTPUT_KEYS = ("formats", "laser_profile", "printer_profile", "laser_mode", "print_style", "name")
+OUTPUT_KEYS = ("formats", "laser_profile", "printer_profile", "laser_mode", "print_style", "name",
+               "fill_small_holes")
 """The valid keys of ``[output]`` (the exporters read the mode/style/profile keys)."""
 
 _KEYS = {"motif": MOTIF_KEYS, "packing": PACKING_KEYS, "tile": TILE_KEYS, "output": OUTPUT_KEYS}
@@ -113,9 +114,10 @@ class OutputSpec:
     formats: tuple[str, ...] = ("svg",)
     laser_profile: str | None = None
     printer_profile: str | None = None
-    laser_mode: str = "pierced"
-    print_style: str = "relief"
+    laser_mode: str | None = None
+    print_style: str | None = None
     name: str | None = None
+    fill_small_holes: bool = False
 
 
 @dataclass(frozen=True)
@@ -401,4 +403,5 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
         laser_mode=_choice(table, "laser_mode", LASER_MODES, source, where, None),
         print_style=_choice(table, "print_style", PRINT_STYLES, source, where, None),
         name=name,
+        fill_small_holes=_typed(table, "fill_small_holes", (bool,), source, where, "true or false", False),
     )

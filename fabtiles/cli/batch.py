@@ -24,8 +24,12 @@ def build_one(design_file: str, outdir: str, formats, overrides) -> tuple[str, b
 
     try:
         design = load_design(design_file, overrides=overrides)
-        written = build_design(design, outdir, formats or None)
-        return design_file, True, f"{len(written)} file{'s' if len(written) != 1 else ''}", [str(p) for p in written]
+        reports = build_design(design, outdir, formats or None)
+        warnings = sum(len(r.findings) for r in reports)
+        message = f"{len(reports)} file{'s' if len(reports) != 1 else ''}"
+        if warnings:
+            message += f", {warnings} fabrication warning{'s' if warnings != 1 else ''}"
+        return design_file, True, message, [r.path for r in reports]
     except FabtilesError as exc:
         return design_file, False, str(exc), []
     except Exception:  # a bug: report it with its traceback, keep the batch going

@@ -146,31 +146,84 @@ def _close_round(r):
     return snap(shapely.buffer(shapely.buffer(r, q, quad_segs=2), -q, quad_segs=2))
 
 
+def _nonmanifold_points(verts, faces):
+    """The x, y of every vertex on an edge that does not pair up with exactly one reverse edge."""
+    verts, faces = _merge_float32(np.asarray(verts, np.float64)[np.asarray(faces)].astype(np.float32))
+    n = len(verts)
+    u, v = faces.ravel(), faces[:, [1, 2, 0]].ravel()
+    key = u * n + v
+    uniq, count = np.unique(key, return_counts=True)
+    rev = v * n + u
+    pos = np.minimum(np.searchsorted(uniq, rev), len(uniq) - 1)
+    has_rev = uniq[pos] == rev
+    bad = np.isin(key, uniq[count > 1]) | ~has_rev
+    ends = np.unique(np.concatenate([u[bad], v[bad]]))
+    return np.unique(verts[ends, :2], axis=0)
+
+
+def _bridge_points(r, o, points):
+    """The region with a few microns of material added around ``points`` (the squares clipped to the outline).
+
+    Only the squares are clipped: clipping the whole region again would move its
+    other vertices along a slanted outline edge and make new contacts there.
+    """
+    import shapely
+
+    squares = shapely.buffer(shapely.points(points), 3 * QUANTUM, quad_segs=1)
+    return snap(shapely.union(r, shapely.intersection(shapely.union_all(squares), o)))
+
+
 def _checked_body(kind, name, r, o, stack):
     """One body, checked through its STL bytes as a slicer reads them.
 
     Returns ``(data, vertices, faces, region)``: the STL bytes, the merged float32
     mesh and the region actually used. Where two boundaries of the region touch at
     a single point (a mesh edge would join four faces), it retries with those
-    contacts bridged by a few microns of material.
+    contacts bridged by a few microns of material. Last, it bridges wherever the
+    mesh has an unpaired edge, a few rounds: contacts that only appear once the
+    region is cut against the outline on the grid (a seamless tile whose strokes
+    cross right at its edge).
     """
-    repairs = [lambda g: g, _bridge_pinches, _close_round]
+    def attempt(g):
+        verts, faces = _body_arrays(kind, g, o, stack)
+        try:
+            volume, bodies = _expected(kind, g, o, stack)
+            data = stl_bytes(verts, faces)
+            mverts, mfaces = check_triangles(read_stl_triangles(data), name=name, volume=volume, bodies=bodies)
+        except FabricationError as exc:
+            exc.mesh = (verts, faces)
+            raise
+        return data, mverts, mfaces, g
+
     error = None
-    for repair in repairs:
+    for repair in (lambda g: g, _bridge_pinches, _close_round):
         g = repair(r) if kind != "base" else r
         if g is None:
             continue
         try:
-            verts, faces = _body_arrays(kind, g, o, stack)
-            volume, bodies = _expected(kind, g, o, stack)
-            data = stl_bytes(verts, faces)
-            mverts, mfaces = check_triangles(read_stl_triangles(data), name=name, volume=volume, bodies=bodies)
-            return data, mverts, mfaces, g
+            return attempt(g)
         except FabricationError as exc:
             error = error or exc
             if kind == "base":
-                break
+                raise
+    points, exc = np.empty((0, 2)), error
+    for _ in range(BRIDGE_ROUNDS):
+        if getattr(exc, "mesh", None) is None:
+            break
+        found = _nonmanifold_points(*exc.mesh)
+        if not len(found):
+            break
+        points = np.unique(np.concatenate([points, found]), axis=0)
+        g = _bridge_points(r, o, points)
+        try:
+            return attempt(g)
+        except FabricationError as new:
+            exc = new
     raise error
+
+
+BRIDGE_ROUNDS = 4
+"""Rounds of bridging a region at the unpaired edges of its mesh before giving up."""
 
 
 def _build(region, outline, stack: Stack, *, single: bool):

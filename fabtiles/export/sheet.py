@@ -91,6 +91,11 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
         if x + w > bed_w + eps or y + h > bed_h + eps:
             if fill and placed:
                 break
+            if fill:
+                raise FabricationError(
+                    f"not even one tile fits on the {bed_w:g} x {bed_h:g} mm bed of laser profile "
+                    f"{profile.name!r} (tile {i} is {w:g} x {h:g} mm); use smaller tiles or a profile "
+                    f"with a larger bed_mm")
             raise FabricationError(
                 f"{len(order)} tiles do not fit on the {bed_w:g} x {bed_h:g} mm bed of laser profile "
                 f"{profile.name!r} with a gap of {gap:g} mm (tile {i} is {w:g} x {h:g} mm, "

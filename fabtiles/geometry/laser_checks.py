@@ -167,7 +167,8 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
             n = int(small.sum())
             report.add("small_hole",
                        f"{n} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
-                       "(they burn away or char shut; fill_small_holes=True fills them)",
+                       "(they burn away or char shut; fill them with fill_small_holes=True, "
+                       "or fill_small_holes = true in a design's [output])",
                        count=n, locations=locations(shapely.point_on_surface(holes[small])))
 
     # thin bridges: two rings of the same part closer than the minimum feature (within the

@@ -139,3 +139,21 @@ def test_custom_sizes_example(tmp_path):
     names = sorted(p.name for p in tmp_path.iterdir())
     assert len(names) == 6 and "rectangle-200x120.svg" in names
     assert any(n.startswith("seamless-200x129.90") for n in names)
+
+
+def test_build_prints_findings_and_fills_small_holes_on_request(tmp_path):
+    sample = ROOT / "samples" / "table3-3.toml"
+    plain = run("build", sample, "-o", tmp_path / "a", "--format", "dxf")
+    assert plain.exit_code == 0, plain.output
+    assert "(dxf): 1 warning" in plain.output and "small_hole:" in plain.output
+    assert "fill_small_holes = true in a design's [output]" in plain.output
+    filled = run("build", sample, "-o", tmp_path / "b", "--format", "dxf", "--set", "output.fill_small_holes=true")
+    assert filled.exit_code == 0, filled.output
+    assert "(dxf): ok" in filled.output
+    # Filling removes the holes from the cut: fewer inner contours.
+    import ezdxf
+
+    count = {k: sum(1 for e in ezdxf.readfile(tmp_path / k / "table3-3.dxf").modelspace()) for k in "ab"}
+    assert count["b"] < count["a"]
+    bad = run("build", sample, "-o", tmp_path / "c", "--set", "output.fill_small_holes=1")
+    assert bad.exit_code == 2 and "[output] fill_small_holes must be true or false, got 1" in bad.output

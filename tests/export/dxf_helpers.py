@@ -3,7 +3,9 @@
 ``dxf_entities(path)`` turns a DXF into a list of plain tuples (layer, type,
 closed, colour, rounded vertices) for entity-by-entity comparison;
 ``assert_golden(path, golden)`` compares with ``tests/export/golden/<name>.json``
-and rewrites the golden file instead when ``FABTILES_UPDATE_GOLDEN=1``.
+and rewrites the golden file instead when ``FABTILES_UPDATE_GOLDEN=1``
+(``assert_golden_summary`` likewise, with counts and a sample of the entities of a
+large file). ``check_laser_dxf`` checks a pierced laser DXF as the issue asks.
 The region builders make small realistic test parts with shapely.
 """
 
@@ -61,23 +63,86 @@ def dxf_entities(path, decimals: int = 4) -> list[tuple]:
     return out
 
 
+def golden_text(data) -> str:
+    """The bytes of a golden file: a list of entities one per line, or a summary dict, as JSON.
+
+    Deterministic (same data, same text), so ``FABTILES_UPDATE_GOLDEN=1`` rewrites
+    an unchanged golden byte for byte.
+    """
+    if isinstance(data, dict):
+        return json.dumps(data, indent=1, sort_keys=True) + "\n"
+    return "[\n" + ",\n".join(json.dumps(list(e)) for e in data) + "\n]\n"
+
+
+def _update_golden(golden: Path) -> bool:
+    """True when ``golden`` is to be (re)written; an error when it is missing and not asked to."""
+    update = os.environ.get("FABTILES_UPDATE_GOLDEN") == "1"
+    if not update and not golden.exists():
+        raise AssertionError(f"no golden file {golden}; run with FABTILES_UPDATE_GOLDEN=1 to create it")
+    return update
+
+
+def _entity(e) -> tuple:
+    """A golden entity read back from JSON, as :func:`dxf_entities` gives it."""
+    return (e[0], e[1], e[2], e[3], tuple(tuple(p) for p in e[4]))
+
+
+def assert_same_entity(got, want, k, decimals: int = 4) -> None:
+    """Entity ``k``: same layer, type, closed flag, colour and vertex count; vertices within rounding."""
+    assert got[:4] == want[:4], f"entity {k}: {got[:4]} != golden {want[:4]}"
+    assert len(got[4]) == len(want[4]), f"entity {k}: {len(got[4])} vertices, golden has {len(want[4])}"
+    diff = np.abs(np.array(got[4]) - np.array(want[4])).max() if got[4] else 0.0
+    assert diff <= 2 * 10.0 ** -decimals, f"entity {k}: vertices differ by {diff}"
+
+
 def assert_golden(path, name: str, decimals: int = 4) -> None:
     """Compare the entities of DXF ``path`` with ``golden/<name>.json``, entity by entity."""
     got = dxf_entities(path, decimals)
     golden = GOLDEN / f"{name}.json"
-    if os.environ.get("FABTILES_UPDATE_GOLDEN") == "1" or not golden.exists():
-        if not golden.exists() and os.environ.get("FABTILES_UPDATE_GOLDEN") != "1":
-            raise AssertionError(f"no golden file {golden}; run with FABTILES_UPDATE_GOLDEN=1 to create it")
+    if _update_golden(golden):
         golden.parent.mkdir(parents=True, exist_ok=True)
-        golden.write_text("[\n" + ",\n".join(json.dumps(list(e)) for e in got) + "\n]\n")
+        golden.write_text(golden_text(got))
         return
-    want = [(e[0], e[1], e[2], e[3], tuple(tuple(p) for p in e[4])) for e in json.loads(golden.read_text())]
+    want = [_entity(e) for e in json.loads(golden.read_text())]
     assert len(got) == len(want), f"{len(got)} entities, golden has {len(want)}"
     for k, (g, w) in enumerate(zip(got, want)):
-        assert g[:4] == w[:4], f"entity {k}: {g[:4]} != golden {w[:4]}"
-        assert len(g[4]) == len(w[4]), f"entity {k}: {len(g[4])} vertices, golden has {len(w[4])}"
-        diff = np.abs(np.array(g[4]) - np.array(w[4])).max() if g[4] else 0.0
-        assert diff <= 2 * 10.0 ** -decimals, f"entity {k}: vertices differ by {diff}"
+        assert_same_entity(g, w, k, decimals)
+
+
+def entity_summary(entities, samples: int = 40) -> dict:
+    """Counts of a (large) DXF's entities and every n-th entity, for :func:`assert_golden_summary`."""
+    layers: dict = {}
+    for e in entities:
+        key = f"{e[0]} {e[1]} {'closed' if e[2] else 'open'} {e[3]}"
+        layers[key] = layers.get(key, 0) + 1
+    step = max(1, len(entities) // samples)
+    return {
+        "entities": len(entities),
+        "vertices": sum(len(e[4]) for e in entities),
+        "by_layer_type_closed_colour": layers,
+        "sample_every": step,
+        "sample": [list(e) for e in entities[::step]],
+    }
+
+
+def assert_golden_summary(path, name: str, decimals: int = 4, samples: int = 40) -> None:
+    """Compare a large DXF with ``golden/<name>.json``: exact counts, every n-th entity in full.
+
+    For files whose full golden would be megabytes: entity and vertex counts (in
+    total and per layer, type, closed flag and colour) must match exactly, and
+    about ``samples`` entities spread over the file are compared entity by entity.
+    """
+    got = entity_summary(dxf_entities(path, decimals), samples)
+    golden = GOLDEN / f"{name}.json"
+    if _update_golden(golden):
+        golden.parent.mkdir(parents=True, exist_ok=True)
+        golden.write_text(golden_text(got))
+        return
+    want = json.loads(golden.read_text())
+    for key in ("entities", "vertices", "by_layer_type_closed_colour", "sample_every"):
+        assert got[key] == want[key], f"{key}: {got[key]} != golden {want[key]}"
+    for k, (g, w) in enumerate(zip(got["sample"], want["sample"])):
+        assert_same_entity(_entity(g), _entity(w), k * want["sample_every"], decimals)
 
 
 def ring_polygons(doc, layers) -> list:
@@ -86,11 +151,62 @@ def ring_polygons(doc, layers) -> list:
 
 
 def even_odd_area(polygons) -> float:
-    """Area enclosed by an odd number of the rings (the material a laser leaves)."""
-    result = shapely.Polygon()
-    for p in polygons:
-        result = result.symmetric_difference(p)
-    return float(result.area)
+    """Area enclosed by an odd number of the rings (the material a laser leaves).
+
+    The symmetric difference of all rings, reduced pairwise (a balanced tree, not
+    a running fold): seconds, not minutes, for the thousands of rings of a sheet.
+    """
+    geoms = np.array(list(polygons), dtype=object)
+    if not len(geoms):
+        return 0.0
+    while len(geoms) > 1:
+        pairs = len(geoms) // 2 * 2
+        geoms = np.concatenate([shapely.symmetric_difference(geoms[0:pairs:2], geoms[1:pairs:2]),
+                                geoms[pairs:]])
+    return float(geoms[0].area)
+
+
+def check_laser_dxf(path, region, *, kerf, version="R2000", profile="laser-3mm-plywood"):
+    """Everything the issue asks of a pierced laser DXF; returns the ezdxf document.
+
+    Audit clean, ``$INSUNITS`` = 4 (not in R12), the profile's layers and colours,
+    only closed polylines of the version's type on the cut layers, no zero-length or
+    repeated edges, inner contours before outer ones, and the even-odd area of the
+    contours equal to ``region`` grown by ``kerf / 2`` within 0.5 %.
+    """
+    import pytest
+
+    from fabtiles._profiles import load_profile
+    from fabtiles.geometry.contours import MITRE_LIMIT
+
+    profile = load_profile(profile, kind="laser")
+    doc = read_checked(path)
+    if version != "R12":
+        assert doc.header["$INSUNITS"] == 4
+        assert doc.units == 4
+    layers = profile.layers
+    for layer in (layers.inner_cut, layers.outer_cut, layers.score):
+        assert doc.layers.get(layer.name).color == layer.color
+    msp = list(doc.modelspace())
+    assert msp, "no entities"
+    want_type = "POLYLINE" if version == "R12" else "LWPOLYLINE"
+    seen_outer = False
+    for e in msp:
+        assert e.dxftype() == want_type
+        assert e.dxf.layer in (layers.inner_cut.name, layers.outer_cut.name)
+        assert is_closed(e)
+        assert e.dxf.color == (layers.inner_cut if e.dxf.layer == layers.inner_cut.name else layers.outer_cut).color
+        pts = vertices(e)
+        assert len(pts) >= 3
+        assert edge_problems(pts) == (0, 0)
+        if e.dxf.layer == layers.outer_cut.name:
+            seen_outer = True
+        else:
+            assert not seen_outer, "an inner contour comes after an outer contour"
+    grown = region.buffer(kerf / 2, join_style="mitre", mitre_limit=MITRE_LIMIT) if kerf else region
+    area = even_odd_area(ring_polygons(doc, (layers.inner_cut.name, layers.outer_cut.name)))
+    assert area == pytest.approx(grown.area, rel=0.005)
+    return doc
 
 
 def edge_problems(pts: np.ndarray, closed: bool = True) -> tuple[int, int]:

@@ -13,14 +13,13 @@ import shapely
 from dxf_helpers import (
     CUT_TYPES,
     assert_golden,
+    check_laser_dxf,
     dxf_entities,
     edge_problems,
-    even_odd_area,
     is_closed,
     island_region,
     motif_tile,
     read_checked,
-    ring_polygons,
     star_plate,
     thin_bridge_region,
     tiny_hole_region,
@@ -31,42 +30,10 @@ from shapely.geometry import box
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError
 from fabtiles._profiles import Layer, LaserLayers, load_profile
 from fabtiles.export.dxf import build_document, dxf_text, write_dxf
-from fabtiles.geometry.contours import MITRE_LIMIT
 from fabtiles.geometry.laser_checks import prepare_laser
 
 PLY = load_profile("laser-3mm-plywood")
 INNER, OUTER, SCORE = PLY.layers.inner_cut, PLY.layers.outer_cut, PLY.layers.score
-
-
-def check_laser_dxf(path, region, *, kerf, version="R2000", profile=PLY):
-    """Everything the issue asks of a pierced laser DXF."""
-    doc = read_checked(path)
-    if version != "R12":
-        assert doc.header["$INSUNITS"] == 4
-        assert doc.units == 4
-    layers = profile.layers
-    for layer in (layers.inner_cut, layers.outer_cut, layers.score):
-        assert doc.layers.get(layer.name).color == layer.color
-    msp = list(doc.modelspace())
-    assert msp, "no entities"
-    want_type = "POLYLINE" if version == "R12" else "LWPOLYLINE"
-    seen_outer = False
-    for e in msp:
-        assert e.dxftype() == want_type
-        assert e.dxf.layer in (layers.inner_cut.name, layers.outer_cut.name)
-        assert is_closed(e)
-        assert e.dxf.color == (layers.inner_cut if e.dxf.layer == layers.inner_cut.name else layers.outer_cut).color
-        pts = vertices(e)
-        assert len(pts) >= 3
-        assert edge_problems(pts) == (0, 0)
-        if e.dxf.layer == layers.outer_cut.name:
-            seen_outer = True
-        else:
-            assert not seen_outer, "an inner contour comes after an outer contour"
-    grown = region.buffer(kerf / 2, join_style="mitre", mitre_limit=MITRE_LIMIT) if kerf else region
-    area = even_odd_area(ring_polygons(doc, (layers.inner_cut.name, layers.outer_cut.name)))
-    assert area == pytest.approx(grown.area, rel=0.005)
-    return doc
 
 
 @pytest.mark.parametrize("version", ["R2000", "R12", "R2018"])

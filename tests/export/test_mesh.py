@@ -7,6 +7,7 @@ import zipfile
 import numpy as np
 import pytest
 import shapely
+from mesh_helpers import B, H, STYLES, T, assert_solid, assert_touch_without_overlap, expected_volume, load_stl, top
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star
@@ -15,10 +16,7 @@ from fabtiles.geometry.tile import Tile
 from fabtiles.pattern.packing import HexPacking
 
 trimesh = pytest.importorskip("trimesh")
-m3 = pytest.importorskip("manifold3d")
-
-B, H, T, D = 2.0, 1.2, 3.0, 0.8  # fdm-0.4mm heights
-STYLES = ("relief", "pierced", "deboss")
+pytest.importorskip("manifold3d")
 
 
 def small_tile(preset="table3-3", outline="square", size=40):
@@ -29,39 +27,6 @@ def small_tile(preset="table3-3", outline="square", size=40):
 def shapes():
     tile = small_tile()
     return tile.region(), tile.outline_shape()
-
-
-def expected_volume(style, region, outline):
-    return {"relief": outline.area * B + region.area * H,
-            "pierced": region.area * T,
-            "deboss": outline.area * B - region.area * D}[style]
-
-
-def top(style):
-    return {"relief": B + H, "pierced": T, "deboss": B}[style]
-
-
-def load_stl(path):
-    m = trimesh.load(path, file_type="stl")  # merges vertices by position, like a slicer
-    return m
-
-
-def assert_solid(m, volume, bounds_xy, zmax, bodies=1, zmin=0.0):
-    assert m.is_watertight
-    assert m.is_winding_consistent
-    assert m.volume > 0
-    assert m.volume == pytest.approx(volume, rel=0.005)
-    assert m.body_count == bodies
-    lo, hi = m.bounds
-    assert lo[0] >= bounds_xy[0] - 1e-3 and lo[1] >= bounds_xy[1] - 1e-3
-    assert hi[0] <= bounds_xy[2] + 1e-3 and hi[1] <= bounds_xy[3] + 1e-3
-    assert lo[2] == pytest.approx(zmin, abs=1e-5)
-    assert hi[2] == pytest.approx(zmax, abs=1e-5)
-
-
-def manifold_of(m):
-    return m3.Manifold(m3.Mesh(vert_properties=np.asarray(m.vertices, np.float32),
-                               tri_verts=np.asarray(m.faces, np.uint32)))
 
 
 @pytest.mark.parametrize("preset", Star.presets())
@@ -105,10 +70,7 @@ def test_3mf_relief_two_named_bodies_that_touch_without_overlap(tmp_path, preset
     assert_solid(pattern, region.area * H, outline.bounds, B + H, zmin=B,
                  bodies=len(shapely.get_parts(region)))
     # they touch at z = b and do not overlap
-    overlap = (manifold_of(base) ^ manifold_of(pattern)).volume()
-    assert overlap == pytest.approx(0.0, abs=1e-6 * base.volume)
-    union = (manifold_of(base) + manifold_of(pattern)).volume()
-    assert union == pytest.approx(base.volume + pattern.volume, rel=1e-6)
+    assert_touch_without_overlap(base, pattern)
 
 
 @pytest.mark.parametrize("style,names", [("pierced", ["pattern"]), ("deboss", ["plate"])])

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 import shapely
+from mesh_helpers import B, D, H, T, solids_of, step_bounds
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError, ProfileError, Star
@@ -12,30 +13,6 @@ from fabtiles.pattern.packing import HexPacking
 
 pytest.importorskip("OCP")
 step = pytest.importorskip("fabtiles.export.step")
-
-B, H, T, D = 2.0, 1.2, 3.0, 0.8
-
-
-def solids_of(shape):
-    from OCP.TopAbs import TopAbs_SOLID
-    from OCP.TopExp import TopExp_Explorer
-
-    n, exp = 0, TopExp_Explorer(shape, TopAbs_SOLID)
-    while exp.More():
-        n += 1
-        exp.Next()
-    return n
-
-
-def bounds(shape):
-    from OCP.Bnd import Bnd_Box
-    from OCP.BRepBndLib import BRepBndLib
-
-    bb = Bnd_Box()
-    BRepBndLib.Add_s(shape, bb)
-    bb.SetGap(0.0)
-    lo, hi = bb.CornerMin(), bb.CornerMax()
-    return lo.X(), lo.Y(), lo.Z(), hi.X(), hi.Y(), hi.Z()
 
 
 @pytest.mark.parametrize("outline", ["square", "hexagon"])
@@ -55,7 +32,7 @@ def test_step_styles(tmp_path, outline, style):
                 "deboss": shape.area * B - region.area * D}[style]
     assert step._volume(back) == pytest.approx(expected, rel=0.005)
     top = {"relief": B + H, "pierced": T, "deboss": B}[style]
-    x0, y0, z0, x1, y1, z1 = bounds(back)
+    x0, y0, z0, x1, y1, z1 = step_bounds(back)
     assert z0 == pytest.approx(0, abs=1e-3) and z1 == pytest.approx(top, abs=1e-3)
     assert x0 >= -1e-3 and y0 >= -1e-3
     assert x1 <= shape.bounds[2] + 1e-3 and y1 <= shape.bounds[3] + 1e-3

@@ -1,0 +1,180 @@
+"""``fabtiles build --sheet / --copies N``: tiles laid out on the laser profile's bed (issue 4)."""
+
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "export"))
+from dxf_helpers import check_laser_dxf, is_closed, read_checked, vertices  # noqa: E402
+
+import fabtiles  # noqa: E402
+from fabtiles import FabtilesError  # noqa: E402
+from fabtiles._profiles import load_profile  # noqa: E402
+from fabtiles.cli import build as build_mod  # noqa: E402
+from fabtiles.cli.build import layout_tile_sheet  # noqa: E402
+from fabtiles.cli.main import cli  # noqa: E402
+from fabtiles.design import load_design  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+PLY = load_profile("laser-3mm-plywood")
+INNER, OUTER, SCORE = PLY.layers.inner_cut.name, PLY.layers.outer_cut.name, PLY.layers.score.name
+
+SMALL = """
+[motif]
+preset = "table3-1"
+
+[packing]
+radius = 8
+
+[tile]
+outline = "square"
+size = 60
+frame = 3
+stroke = 1.0
+
+[output]
+formats = ["dxf", "svg", "stl"]
+laser_profile = "laser-3mm-plywood"
+"""
+
+
+def run(*args):
+    return CliRunner().invoke(cli, list(map(str, args)), catch_exceptions=False)
+
+
+@pytest.fixture
+def design(tmp_path):
+    path = tmp_path / "small.toml"
+    path.write_text(SMALL, encoding="utf-8")
+    return path
+
+
+def check_sheet_dxf(path, design_path, copies, kerf=PLY.kerf_mm):
+    """The sheet DXF: the laser checks, ``copies`` outer contours, every one inside the bed."""
+    design = load_design(design_path)
+    tile = design.build_tile(tile_cls=fabtiles.Tile)
+    sheet = layout_tile_sheet(tile, design, copies=copies)
+    doc = check_laser_dxf(path, sheet.region, kerf=kerf, profile=PLY)  # layers, order, closed, area
+    outer = [vertices(e) for e in doc.modelspace() if e.dxf.layer == OUTER]
+    assert len(outer) == copies
+    pts = np.vstack([vertices(e) for e in doc.modelspace()])
+    assert pts.min(0) == pytest.approx([-kerf / 2, -kerf / 2])
+    assert (pts.max(0) <= np.array(PLY.bed_mm)).all()
+    return doc
+
+
+def test_copies_writes_a_sheet_of_n_tiles(design, tmp_path):
+    out = tmp_path / "out"
+    result = run("build", design, "-o", out, "--copies", 7, "--format", "dxf", "--format", "svg")
+    assert result.exit_code == 0, result.output
+    assert sorted(p.name for p in out.iterdir()) == ["small-sheet.dxf", "small-sheet.svg"]
+    wrote = [line.split(" (")[0] for line in result.stdout.splitlines() if line.startswith("wrote ")]
+    assert wrote == [f"wrote {out / 'small-sheet.dxf'}", f"wrote {out / 'small-sheet.svg'}"]
+    assert "(dxf):" in result.stdout and "(svg):" in result.stdout  # each with its checks
+    assert result.stderr == ""
+    check_sheet_dxf(out / "small-sheet.dxf", design, 7)
+    svg = (out / "small-sheet.svg").read_text()
+    assert 'id="CUT_INNER"' in svg and 'id="CUT_OUTER"' in svg
+    width, height = (float(v) for v in re.search(r'width="([\d.]+)mm" height="([\d.]+)mm"', svg).groups())
+    assert width <= PLY.bed_mm[0] and height <= PLY.bed_mm[1]
+
+
+def test_sheet_fills_the_bed_and_skips_print_formats(tmp_path):
+    design = tmp_path / "coaster.toml"  # one motif per tile: a small file for 54 tiles
+    design.write_text(SMALL.replace("[packing]\nradius = 8\n", "").replace("table3-1", "table2-left"))
+    out = tmp_path / "out"
+    result = run("build", design, "-o", out, "--sheet", "--format", "dxf", "--format", "stl")
+    assert result.exit_code == 0, result.output
+    assert [p.name for p in out.iterdir()] == ["coaster-sheet.dxf"]
+    assert result.stderr == "fabtiles: note: skipped stl: a sheet is laid out for the laser formats (dxf, svg) only\n"
+    gap = PLY.kerf_mm + 2
+    fit = [int((bed + gap) // (60 + gap)) for bed in PLY.bed_mm]  # 9 x 6 tiles of 60 mm
+    assert fit == [9, 6]
+    check_sheet_dxf(out / "coaster-sheet.dxf", design, fit[0] * fit[1])
+
+
+def test_score_mode_sheet_and_gap(design, tmp_path):
+    out = tmp_path / "out"
+    result = run("build", design, "-o", out, "--copies", 2, "--gap", 10, "--format", "dxf",
+                 "--set", "output.laser_mode=score")
+    assert result.exit_code == 0, result.output
+    ents = list(read_checked(out / "small-sheet.dxf").modelspace())
+    outer = [vertices(e) for e in ents if e.dxf.layer == OUTER]
+    assert len(outer) == 2 and all(is_closed(e) for e in ents if e.dxf.layer == OUTER)
+    assert {e.dxf.layer for e in ents} == {OUTER, SCORE}
+    assert all(not is_closed(e) for e in ents if e.dxf.layer == SCORE)
+    assert outer[1][:, 0].min() - outer[0][:, 0].max() == pytest.approx(10 - PLY.kerf_mm)
+
+
+def test_a_bed_sized_tile_is_one_copy(tmp_path):
+    big = tmp_path / "big.toml"
+    big.write_text('[motif]\npreset = "table2-left"\n[tile]\noutline = "rectangle"\nsize = [600, 400]\n'
+                   'frame = 5\nstroke = 1.5\n[output]\nformats = ["dxf"]\n')
+    result = run("build", big, "-o", tmp_path / "out", "--sheet")
+    assert result.exit_code == 0, result.output
+    doc = read_checked(tmp_path / "out" / "big-sheet.dxf")
+    assert [e.dxf.layer for e in doc.modelspace()].count(OUTER) == 1
+
+
+def test_the_large_pattern_sample_is_the_benchmark_sheet():
+    design = load_design(ROOT / "samples" / "sheet-600x400.toml")
+    profile = load_profile(design.output.laser_profile)
+    t = design.tile_spec
+    assert (t.outline, t.size, t.frame, t.stroke) == ("rectangle", tuple(profile.bed_mm), 5.0, 1.0)
+    assert design.motif.preset == "table3-3" and design.packing.radius == 15
+    assert design.output.formats == ("dxf", "svg")
+
+
+def test_help_documents_sheets():
+    text = " ".join(run("build", "--help").output.split())
+    assert "--sheet" in text and "--copies N" in text
+    assert "Print formats (stl, 3mf, step) have no sheet: they are skipped" in text
+    assert "samples/sheet-600x400.toml" in text
+
+
+@pytest.mark.parametrize(
+    "extra, match",
+    [
+        (["--copies", 55], r"55 tiles do not fit on the 600 x 400 mm bed of laser profile 'laser-3mm-plywood'"),
+        (["--copies", 0], r"copies must be an integer"),
+        (["--sheet", "--gap", 0.1], r"gap_mm must be a finite number > 0.15"),
+        (["--sheet", "--format", "stl"], r"a sheet is laid out for the laser formats \(dxf, svg\) only, "
+                                         r"but the formats asked for are: stl; add --format dxf"),
+        (["--sheet", "--set", "tile.size=700"], r"not even one tile fits on the 600 x 400 mm bed"),
+        (["--copies", 2, "--set", 'output.laser_profile="fdm-0.4mm"'], r"printer profile, but a laser profile"),
+    ],
+)
+def test_bad_sheet_exits_2_writes_nothing(design, tmp_path, extra, match):
+    out = tmp_path / "out"
+    result = run("build", design, "-o", out, *extra)
+    assert result.exit_code == 2, result.output
+    assert result.stdout == ""
+    assert result.stderr.startswith("fabtiles: error: ") and result.stderr.count("\n") == 1
+    assert re.search(match, result.stderr), result.stderr
+    assert not out.exists()
+
+
+def test_failing_sheet_format_keeps_existing_files(design, tmp_path, monkeypatch):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "small-sheet.dxf").write_text("old")
+    calls = []
+
+    def boom(layout, tile, path, design):
+        calls.append(path.suffix)
+        if path.suffix == ".svg":
+            raise FabtilesError("disk on fire")
+        path.write_text("new")
+
+    monkeypatch.setattr(build_mod, "_export_sheet", boom)
+    result = run("build", design, "-o", out, "--copies", 2, "--format", "dxf", "--format", "svg")
+    assert result.exit_code == 2 and result.stderr == "fabtiles: error: disk on fire\n"
+    assert calls == [".dxf", ".svg"]
+    assert [p.name for p in out.iterdir()] == ["small-sheet.dxf"]
+    assert (out / "small-sheet.dxf").read_text() == "old"

@@ -1,0 +1,137 @@
+"""Checks shared by the 3D export tests: STL, 3MF (trimesh, manifold3d) and STEP (OCP).
+
+Heights are those of the ``fdm-0.4mm`` printer profile unless given.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+B, H, T, D = 2.0, 1.2, 3.0, 0.8
+"""Base, relief, pierced and deboss heights of ``fdm-0.4mm`` (mm)."""
+
+STYLES = ("relief", "pierced", "deboss")
+
+
+def expected_volume(style, region, outline, b=B, h=H, t=T, d=D):
+    """Volume of a printed part from the areas of the region and the outline (mm^3).
+
+    Parameters
+    ----------
+    style : {"relief", "pierced", "deboss"}
+    region, outline : shapely geometry
+        The material region and the tile outline.
+    b, h, t, d : float, optional
+        Base, relief, pierced and deboss heights (mm).
+    """
+    return {"relief": outline.area * b + region.area * h,
+            "pierced": region.area * t,
+            "deboss": outline.area * b - region.area * d}[style]
+
+
+def top(style, b=B, h=H, t=T):
+    """Height of the top of a part of ``style`` (mm)."""
+    return {"relief": b + h, "pierced": t, "deboss": b}[style]
+
+
+def load_stl(path):
+    """An STL read by trimesh, vertices merged by position as a slicer does."""
+    import trimesh
+
+    return trimesh.load(path, file_type="stl")
+
+
+def assert_solid(m, volume, bounds_xy, zmax, bodies=1, zmin=0.0):
+    """Assert that a trimesh body is watertight, wound consistently, of the right volume and size.
+
+    Parameters
+    ----------
+    m : trimesh.Trimesh
+    volume : float
+        Expected volume; 0.5 % allowed.
+    bounds_xy : tuple of 4 floats
+        ``(xmin, ymin, xmax, ymax)`` the mesh must lie within (1 micron allowed).
+    zmax, zmin : float
+        Expected top and bottom heights.
+    bodies : int
+        Expected number of connected bodies.
+    """
+    assert m.is_watertight
+    assert m.is_winding_consistent
+    assert m.volume > 0
+    assert m.volume == pytest.approx(volume, rel=0.005)
+    assert m.body_count == bodies
+    lo, hi = m.bounds
+    assert lo[0] >= bounds_xy[0] - 1e-3 and lo[1] >= bounds_xy[1] - 1e-3
+    assert hi[0] <= bounds_xy[2] + 1e-3 and hi[1] <= bounds_xy[3] + 1e-3
+    assert lo[2] == pytest.approx(zmin, abs=1e-5)
+    assert hi[2] == pytest.approx(zmax, abs=1e-5)
+
+
+def manifold_of(m):
+    """A trimesh body as a manifold3d Manifold (for boolean checks)."""
+    import manifold3d as m3
+
+    return m3.Manifold(m3.Mesh(vert_properties=np.asarray(m.vertices, np.float32),
+                               tri_verts=np.asarray(m.faces, np.uint32)))
+
+
+def assert_touch_without_overlap(base, pattern):
+    """Assert that two bodies overlap by no volume (they may share faces)."""
+    overlap = (manifold_of(base) ^ manifold_of(pattern)).volume()
+    assert overlap == pytest.approx(0.0, abs=1e-6 * base.volume)
+    union = (manifold_of(base) + manifold_of(pattern)).volume()
+    assert union == pytest.approx(base.volume + pattern.volume, rel=1e-6)
+
+
+def solids_of(shape):
+    """Number of solids in an OCP shape."""
+    from OCP.TopAbs import TopAbs_SOLID
+    from OCP.TopExp import TopExp_Explorer
+
+    n, exp = 0, TopExp_Explorer(shape, TopAbs_SOLID)
+    while exp.More():
+        n += 1
+        exp.Next()
+    return n
+
+
+def step_bounds(shape):
+    """``(xmin, ymin, zmin, xmax, ymax, zmax)`` of an OCP shape, without OCCT's gap."""
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+
+    bb = Bnd_Box()
+    BRepBndLib.Add_s(shape, bb)
+    bb.SetGap(0.0)
+    lo, hi = bb.CornerMin(), bb.CornerMax()
+    return lo.X(), lo.Y(), lo.Z(), hi.X(), hi.Y(), hi.Z()
+
+
+def assert_step_solid(shape, volume, bounds_xy, zmax, solids=1):
+    """Assert that a STEP shape read back is valid and closed, with the right solids, volume and size.
+
+    The volume is fabtiles' exact one (:func:`fabtiles.export.step._volume`): OCCT's
+    default integration is a few % off on the files' C0 B-spline walls (see the
+    comment above that function).
+    """
+    from OCP.BRep import BRep_Tool
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.TopAbs import TopAbs_SHELL
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    from fabtiles.export import step
+
+    assert solids_of(shape) == solids
+    assert BRepCheck_Analyzer(shape).IsValid()
+    exp = TopExp_Explorer(shape, TopAbs_SHELL)
+    while exp.More():
+        assert BRep_Tool.IsClosed_s(TopoDS.Shell(exp.Current()))
+        exp.Next()
+    assert step._volume(shape) == pytest.approx(volume, rel=0.005)
+    x0, y0, z0, x1, y1, z1 = step_bounds(shape)
+    assert z0 == pytest.approx(0, abs=1e-3) and z1 == pytest.approx(zmax, abs=1e-3)
+    assert x0 >= bounds_xy[0] - 1e-3 and y0 >= bounds_xy[1] - 1e-3
+    assert x1 <= bounds_xy[2] + 1e-3 and y1 <= bounds_xy[3] + 1e-3

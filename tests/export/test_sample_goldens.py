@@ -1,0 +1,132 @@
+"""Golden DXFs of the samples (issue 4), compared entity by entity.
+
+Every ``samples/*.toml`` design is built into its pierced laser DXF, with its
+laser profile, through ``fabtiles build``'s own code; the file is checked as the
+issue asks (:func:`dxf_helpers.check_laser_dxf`) and compared with
+``tests/export/golden/sample-<name>.json``. One sample is also built in score mode
+and as R12. Samples too large for a full golden (the 600 x 400 mm sheet) are
+compared by counts and a spread sample of their entities.
+
+Regenerate after an intended change of the geometry or the writer::
+
+    FABTILES_UPDATE_GOLDEN=1 /work/venv/bin/pytest tests/export/test_sample_goldens.py
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from dxf_helpers import (
+    GOLDEN,
+    assert_golden,
+    assert_golden_summary,
+    check_laser_dxf,
+    edge_problems,
+    golden_text,
+    is_closed,
+    read_checked,
+    star_plate,
+    vertices,
+)
+
+import fabtiles
+from fabtiles._profiles import load_profile
+from fabtiles.cli.build import build_design
+from fabtiles.design import load_design
+from fabtiles.export.dispatch import DEFAULT_LASER_PROFILE, export_tile
+from fabtiles.export.dxf import write_dxf
+
+ROOT = Path(__file__).resolve().parents[2]
+SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
+LARGE = {"sheet-600x400"}
+"""Samples whose full golden would be megabytes: counts and a sample of entities only."""
+ONE = ROOT / "samples" / "rosette.toml"
+"""The sample also built in score mode and as R12 (small: one rosette in a circle)."""
+
+
+def build(sample: Path, out: Path, mode: str = "pierced"):
+    """Build ``sample``'s DXF in ``mode`` as ``fabtiles build`` does: (path, tile, profile)."""
+    design = load_design(sample, overrides=[f"output.laser_mode={mode}"])
+    [report] = build_design(design, out, ["dxf"])
+    path = Path(report.path)
+    tile = design.build_tile(tile_cls=fabtiles.Tile)
+    return path, tile, load_profile(design.output.laser_profile or DEFAULT_LASER_PROFILE)
+
+
+@pytest.mark.parametrize("sample", SAMPLES, ids=[p.stem for p in SAMPLES])
+def test_sample_dxf_is_golden(sample, tmp_path):
+    path, tile, profile = build(sample, tmp_path)
+    assert path.name == f"{sample.stem}.dxf"
+    check_laser_dxf(path, tile.region(), kerf=profile.kerf_mm, version=profile.dxf_version, profile=profile)
+    if sample.stem in LARGE:
+        assert_golden_summary(path, f"sample-{sample.stem}")
+    else:
+        assert_golden(path, f"sample-{sample.stem}")
+
+
+def test_sample_score_dxf_is_golden(tmp_path):
+    path, tile, profile = build(ONE, tmp_path, mode="score")
+    doc = read_checked(path)
+    assert doc.header["$INSUNITS"] == 4
+    layers = profile.layers
+    ents = list(doc.modelspace())
+    cut = [e for e in ents if e.dxf.layer != layers.score.name]
+    score = [e for e in ents if e.dxf.layer == layers.score.name]
+    # The outline alone on the cut layer, closed and last; the centre-lines open, scored first.
+    assert [e.dxf.layer for e in cut] == [layers.outer_cut.name] and is_closed(cut[0])
+    assert ents[-1].dxf.handle == cut[0].dxf.handle
+    assert score and all(e.dxftype() == "LWPOLYLINE" and not is_closed(e) for e in score)
+    assert all(edge_problems(vertices(e), closed=False)[0] == 0 for e in score)
+    outline = vertices(cut[0])
+    half = profile.kerf_mm / 2
+    assert outline.min(0) == pytest.approx([-half, -half], abs=profile.tolerance_mm)
+    assert outline.max(0) == pytest.approx([tile.width_mm + half, tile.height_mm + half], abs=profile.tolerance_mm)
+    assert_golden(path, f"sample-{ONE.stem}-score")
+
+
+def test_sample_r12_dxf_is_golden(tmp_path):
+    design = load_design(ONE)
+    tile = design.build_tile(tile_cls=fabtiles.Tile)
+    profile = load_profile(design.output.laser_profile or DEFAULT_LASER_PROFILE)
+    path = tmp_path / f"{ONE.stem}-r12.dxf"
+    report = export_tile(tile, path, profile=profile, mode="pierced", dxf_version="R12")
+    assert report.stats["dxf_version"] == "R12"
+    check_laser_dxf(path, tile.region(), kerf=profile.kerf_mm, version="R12", profile=profile)
+    assert_golden(path, f"sample-{ONE.stem}-r12")
+
+
+def test_every_sample_golden_is_present_and_canonical():
+    """One golden per sample (none left over), each exactly as the helpers write it."""
+    names = {f"sample-{p.stem}.json" for p in SAMPLES} | {f"sample-{ONE.stem}-{x}.json" for x in ("score", "r12")}
+    assert {p.name for p in GOLDEN.glob("sample-*.json")} == names
+    for name in sorted(names):
+        text = (GOLDEN / name).read_text()
+        assert golden_text(json.loads(text)) == text, f"{name} was not written by golden_text"
+        assert len(text) < 2_000_000, f"{name} is {len(text):,} bytes; store a summary instead"
+
+
+def test_summary_golden_catches_a_changed_entity(tmp_path, monkeypatch):
+    """A summary golden is not just counts: a moved vertex in a sampled entity fails."""
+    import dxf_helpers
+
+    region, outline = star_plate(grid=4)
+    path = tmp_path / "p.dxf"
+    write_dxf(path, region=region, outline=outline, profile="laser-3mm-plywood")
+    monkeypatch.setattr(dxf_helpers, "GOLDEN", tmp_path / "golden")
+    monkeypatch.setenv("FABTILES_UPDATE_GOLDEN", "1")
+    assert_golden_summary(path, "plate", samples=5)
+    first = (tmp_path / "golden" / "plate.json").read_bytes()
+    assert_golden_summary(path, "plate", samples=5)
+    assert (tmp_path / "golden" / "plate.json").read_bytes() == first  # reproducible
+    monkeypatch.delenv("FABTILES_UPDATE_GOLDEN")
+    assert_golden_summary(path, "plate", samples=5)
+    data = json.loads(first)
+    assert data["entities"] == 17 and data["sample_every"] == 3
+    data["sample"][1][4][0][0] += 0.01
+    (tmp_path / "golden" / "plate.json").write_text(golden_text(data))
+    with pytest.raises(AssertionError, match=r"entity 3: vertices differ by 0\.0(1|099)"):
+        assert_golden_summary(path, "plate", samples=5)
+    with pytest.raises(AssertionError, match=r"no golden file .*missing\.json"):
+        assert_golden_summary(path, "missing")

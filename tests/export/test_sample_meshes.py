@@ -1,0 +1,127 @@
+"""Every sample design in every print style, as STL, 3MF and STEP (issue 5).
+
+Each ``samples/*.toml`` (but the 600 x 400 mm benchmark sheet) is built as its
+design says and written through the public :meth:`fabtiles.Tile.export` with the
+design's printer profile, in each style (relief, pierced, deboss). The files are
+read back (trimesh for STL and 3MF, OCP for STEP) and must be watertight (STEP: a
+valid closed B-rep), of the volume of region area x heights within 0.5 %, within
+the outline's bounds from z = 0 to the style's top, with the expected number of
+bodies; a two-colour 3MF's ``base`` and ``pattern`` must not overlap.
+
+STEP costs ~24 s and ~18 MB for one full 150 mm sample (about 1 s at 40 mm),
+so STL and 3MF run at full size while STEP runs with each design shrunk to
+``STEP_SIZE_MM`` (``--set tile.size=...``: same motif, packing, frame, stroke
+and, for the seamless one, a refitted seamless radius), in every style; one
+STEP (``STEP_FULL``, the 100 mm rosette coaster in relief) runs at full size.
+"""
+
+from __future__ import annotations
+
+import functools
+import zipfile
+from pathlib import Path
+
+import pytest
+import shapely
+from mesh_helpers import (
+    STYLES,
+    assert_solid,
+    assert_step_solid,
+    assert_touch_without_overlap,
+    expected_volume,
+    load_stl,
+    top,
+)
+
+import fabtiles
+from fabtiles.design import load_design
+from fabtiles.export._mesh_build import resolve_stack
+from fabtiles.export.dispatch import DEFAULT_PRINTER_PROFILE
+
+trimesh = pytest.importorskip("trimesh")
+pytest.importorskip("manifold3d")
+
+ROOT = Path(__file__).resolve().parents[2]
+SKIP = {"sheet-600x400"}
+"""The benchmark sheet: far too big for a test of every format and style."""
+SAMPLES = [p for p in sorted((ROOT / "samples").glob("*.toml")) if p.stem not in SKIP]
+IDS = [p.stem for p in SAMPLES]
+
+STEP_SIZE_MM = 40.0
+"""Size the samples are shrunk to for STEP (longest side, mm)."""
+STEP_FULL = ("rosette", "relief")
+"""The one sample and style written as STEP at full size."""
+
+
+@functools.lru_cache(maxsize=None)
+def sample_tile(path: Path, shrink: bool = False):
+    """``(tile, printer profile)`` of a sample, optionally shrunk for STEP."""
+    design = load_design(path)
+    w, h = design.tile_spec.size
+    if shrink and max(w, h) > STEP_SIZE_MM:
+        f = STEP_SIZE_MM / max(w, h)
+        value = f"{w * f:g}" if w == h else f"[{w * f:g}, {h * f:g}]"
+        design = load_design(path, overrides=[f"tile.size={value}"])
+    tile = design.build_tile(tile_cls=fabtiles.Tile)
+    return tile, design.output.printer_profile or DEFAULT_PRINTER_PROFILE
+
+
+def expectations(tile, profile, style):
+    """Region, outline, stack heights and the expected volume, top and body count."""
+    region, outline = tile.region(), tile.outline_shape()
+    s = resolve_stack(profile, style)
+    volume = expected_volume(style, region, outline, s.base, s.relief, s.pierced, s.deboss)
+    parts = len(shapely.get_parts(region)) if style == "pierced" else len(shapely.get_parts(outline))
+    return region, outline, s, volume, top(style, s.base, s.relief, s.pierced), parts
+
+
+def test_samples_found():
+    assert len(SAMPLES) >= 5 and "rosette" in IDS
+
+
+@pytest.mark.parametrize("style", STYLES)
+@pytest.mark.parametrize("sample", SAMPLES, ids=IDS)
+def test_sample_stl(tmp_path, sample, style):
+    tile, profile = sample_tile(sample)
+    region, outline, _, volume, zmax, parts = expectations(tile, profile, style)
+    path = tmp_path / "t.stl"
+    report = tile.export(path, profile=profile, style=style)
+    assert report.format == "stl" and report.stats["style"] == style
+    assert_solid(load_stl(path), volume, outline.bounds, zmax, bodies=parts)
+
+
+@pytest.mark.parametrize("style", STYLES)
+@pytest.mark.parametrize("sample", SAMPLES, ids=IDS)
+def test_sample_3mf(tmp_path, sample, style):
+    tile, profile = sample_tile(sample)
+    region, outline, s, volume, zmax, parts = expectations(tile, profile, style)
+    path = tmp_path / "t.3mf"
+    report = tile.export(path, profile=profile, style=style)
+    assert report.format == "3mf"
+    assert 'unit="millimeter"' in zipfile.ZipFile(path).read("3D/3dmodel.model").decode()
+    scene = trimesh.load(path, file_type="3mf")
+    if style != "relief":
+        assert list(scene.geometry) == [{"pierced": "pattern", "deboss": "plate"}[style]]
+        assert_solid(next(iter(scene.geometry.values())), volume, outline.bounds, zmax, bodies=parts)
+        return
+    assert sorted(scene.geometry) == ["base", "pattern"]
+    base, pattern = scene.geometry["base"], scene.geometry["pattern"]
+    assert_solid(base, outline.area * s.base, outline.bounds, s.base, bodies=parts)
+    assert_solid(pattern, region.area * s.relief, outline.bounds, zmax, zmin=s.base,
+                 bodies=len(shapely.get_parts(region)))
+    assert base.volume + pattern.volume == pytest.approx(volume, rel=0.005)
+    assert_touch_without_overlap(base, pattern)
+
+
+@pytest.mark.parametrize("style", STYLES)
+@pytest.mark.parametrize("sample", SAMPLES, ids=IDS)
+def test_sample_step(tmp_path, sample, style):
+    pytest.importorskip("OCP")
+    from fabtiles.export import step
+
+    tile, profile = sample_tile(sample, shrink=(sample.stem, style) != STEP_FULL)
+    region, outline, _, volume, zmax, parts = expectations(tile, profile, style)
+    path = tmp_path / "t.step"
+    report = tile.export(path, profile=profile, style=style)
+    assert report.format == "step" and report.stats["solids"] == parts
+    assert_step_solid(step.read_step(path), volume, outline.bounds, zmax, solids=parts)
