@@ -176,12 +176,20 @@ def snap(geom):
     return shapely.set_precision(geom, QUANTUM)
 
 
-def _grid_lines(lo: float, hi: float, size: float) -> np.ndarray:
-    """Interior cell lines between lo and hi, on the quantum grid, off round numbers."""
+GRID_SHIFT_MM = 41 * QUANTUM
+"""How far the cell lines move on each retry of a mesh whose defect lies on a cell line."""
+
+
+def _grid_lines(lo: float, hi: float, size: float, shift: int = 0) -> np.ndarray:
+    """Interior cell lines between lo and hi, on the quantum grid, off round numbers.
+
+    ``shift`` moves every line by ``shift * GRID_SHIFT_MM``: a retry for the rare
+    ring that, noded at a line and snapped, lands on a neighbouring ring's edge.
+    """
     n = max(1, int(math.ceil((hi - lo) / size)))
     step = (hi - lo) / n
     # 0.3125 + 0.0390625 mm offsets keep lines off the round values designs use
-    lines = lo + step * np.arange(1, n) + 0.3515625
+    lines = lo + step * np.arange(1, n) + 0.3515625 + shift * GRID_SHIFT_MM
     return np.round(lines / QUANTUM) * QUANTUM
 
 
@@ -252,8 +260,11 @@ def node_polygons(geom, xs, ys):
     return polys[0] if len(polys) == 1 else shapely.MultiPolygon(list(polys))
 
 
-def cells_for(geoms, cell_vertices: int = CELL_VERTICES):
-    """Cell lines (xs, ys) for geometries with about ``cell_vertices`` vertices a cell."""
+def cells_for(geoms, cell_vertices: int = CELL_VERTICES, shift: int = 0):
+    """Cell lines (xs, ys) for geometries with about ``cell_vertices`` vertices a cell.
+
+    ``shift`` moves the lines (see :func:`_grid_lines`).
+    """
     import shapely
 
     bounds = np.array([g.bounds for g in geoms])
@@ -263,7 +274,7 @@ def cells_for(geoms, cell_vertices: int = CELL_VERTICES):
     area = max((x1 - x0) * (y1 - y0), 1e-9)
     size = math.sqrt(area * cell_vertices / max(nverts, 1))
     size = max(size, 2.0)
-    return _grid_lines(x0, x1, size), _grid_lines(y0, y1, size), (x0, y0, x1, y1)
+    return _grid_lines(x0, x1, size, shift), _grid_lines(y0, y1, size, shift), (x0, y0, x1, y1)
 
 
 def split_cells(geom, xs, ys, box):
@@ -325,7 +336,7 @@ class Coverage:
     ys: np.ndarray = None
 
 
-def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES) -> Coverage:
+def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES, shift: int = 0) -> Coverage:
     """Cut a stack into small pieces for meshing.
 
     Parameters
@@ -335,11 +346,13 @@ def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES) -> Co
         the top of each.
     bottom : float
         Height of the common bottom.
+    cell_vertices : int
+        About this many region vertices per cell.
+    shift : int
+        Moves the cell lines (see :func:`_grid_lines`).
     """
-    import shapely
-
     geoms = [g for g, _ in layers if not g.is_empty]
-    xs, ys, box = cells_for(geoms, cell_vertices)
+    xs, ys, box = cells_for(geoms, cell_vertices, shift)
     levels = np.array(sorted({bottom, *[z for _, z in layers]}))
     pieces = []
     for geom, z in layers:
@@ -583,17 +596,17 @@ def mesh_coverage(cov: Coverage):
 
 
 def coverage_pair(region, outline, *, region_z: float, rest_z: float, bottom: float,
-                  cell_vertices: int = CELL_VERTICES) -> Coverage:
+                  cell_vertices: int = CELL_VERTICES, shift: int = 0) -> Coverage:
     """Cut an outline into the region (top at ``region_z``) and the rest (``rest_z``).
 
     Both inputs must be on the quantum grid. Cells fully inside the outline are
     split by a plain overlay (which keeps every input vertex); cells on the
     outline's edge use one snap-rounded overlay for both parts, so the two parts
-    share their vertices exactly there too.
+    share their vertices exactly there too. ``shift`` moves the cell lines.
     """
     import shapely
 
-    xs, ys, box = cells_for([region, outline], cell_vertices)
+    xs, ys, box = cells_for([region, outline], cell_vertices, shift)
     levels = np.array(sorted({bottom, region_z, rest_z}))
     lr = int(np.searchsorted(levels, region_z))
     lo = int(np.searchsorted(levels, rest_z))

@@ -78,22 +78,26 @@ def _snapped(region, outline):
     return r, o
 
 
-def _body_arrays(kind: str, r, o, stack: Stack):
-    """Vertices and faces of one body: ``"relief"``, ``"base"``, ``"pattern"``, ``"pierced"``, ``"plate"``."""
+def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0):
+    """Vertices, faces and cell lines of one body.
+
+    ``kind`` is ``"relief"``, ``"base"``, ``"pattern"``, ``"pierced"`` or ``"plate"``;
+    ``shift`` moves the meshing cell lines. Returns ``(vertices, faces, (xs, ys))``.
+    """
     b, h, t, d = stack.base, stack.relief, stack.pierced, stack.deboss
     if kind == "relief":
-        cov = coverage_pair(r, o, region_z=b + h, rest_z=b, bottom=0.0)
+        cov = coverage_pair(r, o, region_z=b + h, rest_z=b, bottom=0.0, shift=shift)
     elif kind == "base":
-        cov = coverage([(o, b)], bottom=0.0)
+        cov = coverage([(o, b)], bottom=0.0, shift=shift)
     elif kind == "pattern":
-        cov = coverage([(r, b + h)], bottom=b)
+        cov = coverage([(r, b + h)], bottom=b, shift=shift)
     elif kind == "pierced":
-        cov = coverage([(r, t)], bottom=0.0)
+        cov = coverage([(r, t)], bottom=0.0, shift=shift)
     elif kind == "plate":
-        cov = coverage_pair(r, o, region_z=b - d, rest_z=b, bottom=0.0)
+        cov = coverage_pair(r, o, region_z=b - d, rest_z=b, bottom=0.0, shift=shift)
     else:  # pragma: no cover - internal
         raise ValueError(kind)
-    return mesh_coverage(cov)
+    return (*mesh_coverage(cov), (cov.xs, cov.ys))
 
 
 def _expected(kind, r, o, stack):
@@ -147,18 +151,30 @@ def _close_round(r):
 
 
 def _nonmanifold_points(verts, faces):
-    """The x, y of every vertex on an edge that does not pair up with exactly one reverse edge."""
-    verts, faces = _merge_float32(np.asarray(verts, np.float64)[np.asarray(faces)].astype(np.float32))
+    """The x, y of every vertex on an edge that does not pair up with exactly one reverse edge.
+
+    ``verts, faces`` is a mesh merged by float32 position (what
+    :func:`check_triangles` attaches to its error as ``mesh``). One sort of the
+    undirected edge keys: a good edge's key occurs twice, in opposite directions.
+
+    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    >>> _nonmanifold_points(v, np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2]])).tolist()
+    [[0.0, 0.0], [0.0, 1.0], [1.0, 0.0]]
+    """
+    faces = np.asarray(faces)
     n = len(verts)
     u, v = faces.ravel(), faces[:, [1, 2, 0]].ravel()
-    key = u * n + v
-    uniq, count = np.unique(key, return_counts=True)
-    rev = v * n + u
-    pos = np.minimum(np.searchsorted(uniq, rev), len(uniq) - 1)
-    has_rev = uniq[pos] == rev
-    bad = np.isin(key, uniq[count > 1]) | ~has_rev
+    key = np.minimum(u, v) * n + np.maximum(u, v)
+    order = np.argsort(key, kind="stable")
+    ks = key[order]
+    start = np.flatnonzero(np.r_[True, ks[1:] != ks[:-1]])
+    count = np.diff(np.r_[start, len(ks)])
+    forward = (u < v)[order]
+    good = count == 2
+    good[good] = forward[start[good]] != forward[start[good] + 1]
+    bad = order[np.repeat(~good, count)]
     ends = np.unique(np.concatenate([u[bad], v[bad]]))
-    return np.unique(verts[ends, :2], axis=0)
+    return np.unique(np.asarray(verts)[ends, :2], axis=0)
 
 
 def _bridge_points(r, o, points):
@@ -173,27 +189,50 @@ def _bridge_points(r, o, points):
     return snap(shapely.union(r, shapely.intersection(shapely.union_all(squares), o)))
 
 
+def _on_cell_lines(points, lines) -> bool:
+    """True when any of ``points`` (x, y) lies on one of the cell lines ``(xs, ys)``."""
+    xs, ys = lines
+    return bool(len(points)) and bool(np.isin(points[:, 0], xs).any() or np.isin(points[:, 1], ys).any())
+
+
 def _checked_body(kind, name, r, o, stack):
     """One body, checked through its STL bytes as a slicer reads them.
 
     Returns ``(data, vertices, faces, region)``: the STL bytes, the merged float32
-    mesh and the region actually used. Where two boundaries of the region touch at
-    a single point (a mesh edge would join four faces), it retries with those
-    contacts bridged by a few microns of material. Last, it bridges wherever the
-    mesh has an unpaired edge, a few rounds: contacts that only appear once the
-    region is cut against the outline on the grid (a seamless tile whose strokes
-    cross right at its edge).
+    mesh and the region actually used. Two kinds of defect are repaired:
+
+    - a defect on a meshing cell line (a ring noded at the line and snapped onto
+      a neighbouring ring's edge): the region is fine, the cut was unlucky, so the
+      same region is meshed again with the cell lines moved (``GRID_SHIFTS`` tries);
+    - two boundaries of the region touching at a single point (a mesh edge would
+      join four faces): it retries with those contacts bridged by a few microns of
+      material, then closed by a few microns, and last bridges wherever the mesh
+      has an unpaired edge, a few rounds (contacts that only appear once the region
+      is cut against the outline on the grid: a seamless tile whose strokes cross
+      right at its edge).
+
+    A GEOS failure inside a repair counts as a failed attempt; what is raised in
+    the end is the first attempt's :class:`~fabtiles.FabricationError`.
     """
+    import shapely
+
     def attempt(g):
-        verts, faces = _body_arrays(kind, g, o, stack)
-        try:
-            volume, bodies = _expected(kind, g, o, stack)
-            data = stl_bytes(verts, faces)
-            mverts, mfaces = check_triangles(read_stl_triangles(data), name=name, volume=volume, bodies=bodies)
-        except FabricationError as exc:
-            exc.mesh = (verts, faces)
-            raise
-        return data, mverts, mfaces, g
+        for shift in range(GRID_SHIFTS):
+            try:
+                verts, faces, lines = _body_arrays(kind, g, o, stack, shift)
+            except shapely.errors.GEOSException as exc:
+                raise FabricationError(f"the {name} mesh could not be cut into cells ({exc}); "
+                                       "nothing was written") from None
+            try:
+                volume, bodies = _expected(kind, g, o, stack)
+                data = stl_bytes(verts, faces)
+                mverts, mfaces = check_triangles(read_stl_triangles(data), name=name, volume=volume, bodies=bodies)
+            except FabricationError as exc:
+                mesh = getattr(exc, "mesh", None)
+                if mesh is not None and shift + 1 < GRID_SHIFTS and _on_cell_lines(_nonmanifold_points(*mesh), lines):
+                    continue
+                raise
+            return data, mverts, mfaces, g
 
     error = None
     for repair in (lambda g: g, _bridge_pinches, _close_round):
@@ -221,6 +260,9 @@ def _checked_body(kind, name, r, o, stack):
             exc = new
     raise error
 
+
+GRID_SHIFTS = 3
+"""Meshing tries with moved cell lines when a defect lies on a cell line."""
 
 BRIDGE_ROUNDS = 4
 """Rounds of bridging a region at the unpaired edges of its mesh before giving up."""
@@ -355,14 +397,18 @@ def check_triangles(tris32, *, name="mesh", volume=None, bodies=None):
 
     Returns the merged ``(vertices, faces)``.
     """
+    merged = None
+
     def fail(why):
-        raise FabricationError(f"the {name} mesh {why}; nothing was written")
+        exc = FabricationError(f"the {name} mesh {why}; nothing was written")
+        exc.mesh = merged  # (vertices, faces) merged by float32 position, or None
+        raise exc
 
     if not np.isfinite(tris32).all():
         fail("has non-finite coordinates")
     if not len(tris32):
         fail("is empty")
-    verts, faces = _merge_float32(tris32)
+    verts, faces = merged = _merge_float32(tris32)
     collapsed = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])
     if collapsed.any():
         fail(f"has {int(collapsed.sum())} faces that collapse when rounded to float32")

@@ -214,3 +214,47 @@ def test_sheet_600x400_relief_stl(tmp_path):
     m = trimesh.Trimesh(verts, faces, process=False)
     assert m.is_watertight and m.is_winding_consistent
     assert m.bounds.ravel().tolist() == pytest.approx([0, 0, 0, 600, 400, B + H], abs=1e-5)
+
+
+def test_on_cell_lines():
+    lines = (np.array([10.0, 20.0]), np.array([5.0]))
+    assert mesh._on_cell_lines(np.array([[10.0, 7.3]]), lines)
+    assert mesh._on_cell_lines(np.array([[1.0, 7.3], [3.0, 5.0]]), lines)
+    assert not mesh._on_cell_lines(np.array([[10.5, 5.5]]), lines)
+    assert not mesh._on_cell_lines(np.empty((0, 2)), lines)
+
+
+@pytest.mark.slow
+def test_defect_on_a_cell_line_is_meshed_again_with_moved_lines(tmp_path, monkeypatch):
+    # On this sheet a ring noded at the cell line y = 60.3515625 and snapped lands on a
+    # neighbouring ring's edge (seen at x = 694.89): the first mesh has two edges shared
+    # three ways. The region is fine; the retry with moved cell lines must mesh it.
+    tile = Tile("rectangle", (1200, 600), HexPacking(15, Star.preset("table3-3")), frame=5, stroke=1.0)
+    region, outline = tile.region(), tile.outline_shape()
+    shifts = []
+    body_arrays = mesh._body_arrays
+
+    def spy(kind, r, o, stack, shift=0):
+        shifts.append(shift)
+        return body_arrays(kind, r, o, stack, shift)
+
+    monkeypatch.setattr(mesh, "_body_arrays", spy)
+    path = tmp_path / "sheet.stl"
+    mesh.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
+    assert shifts[:2] == [0, 1], f"this sheet no longer exercises the moved-lines retry: {shifts}"
+    tris = mesh.read_stl_triangles(path.read_bytes())
+    verts, faces = mesh.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
+    assert np.ptp(verts, axis=0) == pytest.approx([1200, 600, B + H], abs=1e-5)
+
+
+def test_geos_failure_while_cutting_cells_is_a_fabrication_error(tmp_path, shapes, monkeypatch):
+    region, outline = shapes
+
+    def broken(*args, **kwargs):
+        raise shapely.errors.GEOSException("TopologyException: side location conflict at 1 2")
+
+    monkeypatch.setattr(mesh, "coverage_pair", broken)
+    path = tmp_path / "t.stl"
+    with pytest.raises(FabricationError, match=r"the body mesh could not be cut into cells \(TopologyException"):
+        mesh.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm")
+    assert not path.exists()
