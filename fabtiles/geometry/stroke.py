@@ -40,6 +40,9 @@ JOINS = ("miter", "round", "bevel")
 
 _MERGE = 1e-6  # mm: endpoints closer than about this are one vertex
 
+MIN_HOLE_AREA = 1e-10
+"""Holes smaller than this (mm^2) in a stroked union are rounding noise and dropped."""
+
 
 def _cs():
     import manifold3d
@@ -47,16 +50,19 @@ def _cs():
     return manifold3d
 
 
-def _graph(segments: np.ndarray):
-    """Merged vertices ``(v, 2)`` and unique undirected edges ``(e, 2)`` of the segments."""
+def _graph(segments: np.ndarray, *, return_ids: bool = False):
+    """Merged vertices ``(v, 2)`` and unique undirected edges ``(e, 2)`` of the segments.
+
+    With ``return_ids``, also the vertex ids ``(k, 2)`` of every input segment.
+    """
     pts = segments.reshape(-1, 2)
     key = np.round(pts / _MERGE).astype(np.int64)
     uniq, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
     verts = pts[first]
-    ids = inverse.reshape(-1, 2)
-    ids = ids[ids[:, 0] != ids[:, 1]]
+    seg_ids = inverse.reshape(-1, 2)
+    ids = seg_ids[seg_ids[:, 0] != seg_ids[:, 1]]
     ids = np.unique(np.sort(ids, axis=1), axis=0)
-    return verts, ids
+    return (verts, ids, seg_ids) if return_ids else (verts, ids)
 
 
 def band_polygons(verts: np.ndarray, edges: np.ndarray, half: float) -> np.ndarray:
@@ -68,8 +74,11 @@ def band_polygons(verts: np.ndarray, edges: np.ndarray, half: float) -> np.ndarr
     return np.stack([a - n, b - n, b + n, a + n], axis=1)
 
 
-def join_polygons(verts, edges, half, *, join="miter", miter_limit=4.0, tolerance=0.005):
-    """Join (and round cap) polygons at every outer corner, as a list of ``(k, m, 2)`` arrays."""
+def join_polygons(verts, edges, half, *, join="miter", miter_limit=4.0, tolerance=0.005, at=None):
+    """Join (and round cap) polygons at every outer corner, as a list of ``(k, m, 2)`` arrays.
+
+    ``at`` (bool per vertex), if given, limits them to those vertices.
+    """
     v = np.concatenate([edges[:, 0], edges[:, 1]])
     other = np.concatenate([edges[:, 1], edges[:, 0]])
     d = verts[other] - verts[v]
@@ -88,6 +97,8 @@ def join_polygons(verts, edges, half, *, join="miter", miter_limit=4.0, toleranc
     outer = gap > math.pi + 1e-12
     if join != "round":
         outer &= degree >= 2  # butt caps
+    if at is not None:
+        outer &= at[v]
     sel = np.flatnonzero(outer)
     if len(sel) == 0:
         return []
@@ -96,13 +107,19 @@ def join_polygons(verts, edges, half, *, join="miter", miter_limit=4.0, toleranc
     phi = gap[sel]
     out = []
     if join == "round":
+        # arc from a0 + 90 deg to a0 + phi - 90 deg (sweep phi - 180 deg <= 180 deg), each
+        # with as many chords as its own sweep needs (a slight bend needs one, a cap 12 at
+        # the default tolerance), grouped by count so each group is one array
         step = 2.0 * math.acos(max(-1.0, 1.0 - tolerance / half)) if tolerance < half else math.pi / 2
-        k = max(2, math.ceil(math.pi / step))
-        t = np.linspace(0.0, 1.0, k + 1)
-        # arc from a0 + 90 deg to a0 + phi - 90 deg (sweep phi - 180 deg <= 180 deg)
-        th = (a0 + math.pi / 2)[:, None] + (phi - math.pi)[:, None] * t[None, :]
-        arc = c[:, None, :] + half * np.stack([np.cos(th), np.sin(th)], axis=-1)
-        out.append(np.concatenate([_anchor(c, a0, phi, half)[:, None, :], arc], axis=1))
+        sweep = phi - math.pi
+        count = np.maximum(1, np.ceil(sweep / step - 1e-9)).astype(np.int64)
+        anchor = _anchor(c, a0, phi, half)
+        for k in np.unique(count).tolist():
+            g = count == k
+            t = np.linspace(0.0, 1.0, k + 1)
+            th = (a0[g] + math.pi / 2)[:, None] + sweep[g][:, None] * t[None, :]
+            arc = c[g][:, None, :] + half * np.stack([np.cos(th), np.sin(th)], axis=-1)
+            out.append(np.concatenate([anchor[g][:, None, :], arc], axis=1))
         return out
     da = np.stack([np.cos(a0), np.sin(a0)], axis=1)
     db = np.stack([np.cos(a0 + phi), np.sin(a0 + phi)], axis=1)
@@ -142,7 +159,7 @@ def _anchor(c, a0, phi, half):
     return c + 0.5 * half * np.stack([np.cos(back), np.sin(back)], axis=1)
 
 
-def stroke_cross_section(segments, width, *, join="miter", miter_limit=4.0, tolerance=0.005):
+def stroke_cross_section(segments, width, *, join="miter", miter_limit=4.0, tolerance=0.005, circles=None):
     """Union of the stroked ``segments`` as a ``manifold3d.CrossSection``.
 
     Parameters
@@ -156,23 +173,82 @@ def stroke_cross_section(segments, width, *, join="miter", miter_limit=4.0, tole
         Largest miter distance from the vertex, in half-widths (>= 1).
     tolerance : float
         Largest chord error of round joins, mm.
+    circles : tuple of arrays (centres (m, 2), radii (m,)), optional
+        Circles stroked too, as the chords of
+        :func:`~fabtiles.pattern.packing.circle_segments` (what a packing's
+        ``outline_circles`` adds to its segments; leave them out of ``segments``).
+        Each chord polygon is stroked as one exact annulus: its miter offsets,
+        the same angles at radius ``r +- half / cos(pi / k)``. That is the union its
+        chords' miter-joined bands would give (round and bevel joins differ from it
+        by at most ``2 * 0.005 * half / r`` mm, under the chords' own 0.005 mm
+        flattening), at a fraction of the cost: one ring pair per circle instead of
+        a band and a join per chord (measured, 150 mm table3-3 tile, R = 15 mm,
+        outline circles: the region in 100 ms instead of 200 ms; same holes, the
+        boundaries within 2e-3 mm). Joins where ``segments`` meet a circle are
+        computed with the chords, so motif tips on a circle keep their shape.
     """
     m3d = _cs()
     seg = np.asarray(segments, dtype=float).reshape(-1, 2, 2)
-    if len(seg) == 0:
+    chords = np.empty((0, 2, 2))
+    if circles is not None:
+        from ..pattern.packing import circle_segments
+
+        chords = circle_segments(*circles)
+    if len(seg) + len(chords) == 0:
         return m3d.CrossSection()
     half = width / 2.0
-    verts, edges = _graph(seg)
+    verts, edges, seg_ids = _graph(np.concatenate([seg, chords]), return_ids=True)
     if len(edges) == 0:
         return m3d.CrossSection()
-    polys = [band_polygons(verts, edges, half)]
-    polys += join_polygons(verts, edges, half, join=join, miter_limit=miter_limit, tolerance=tolerance)
+    rings = []
+    at = None
+    band_edges = edges
+    if len(chords):
+        # bands for the motif edges only; joins only where a motif edge ends
+        n = len(verts)
+        ids = np.sort(seg_ids, axis=1)
+        chord_key = np.unique(ids[len(seg):, 0] * n + ids[len(seg):, 1])
+        band_edges = edges[~np.isin(edges[:, 0] * n + edges[:, 1], chord_key)]
+        at = np.zeros(n, bool)
+        at[band_edges.ravel()] = True
+        rings = _annulus_rings(*circles, half)
+    polys = [band_polygons(verts, band_edges, half)] if len(band_edges) else []
+    polys += join_polygons(verts, edges, half, join=join, miter_limit=miter_limit, tolerance=tolerance, at=at)
     contours = [p for block in polys for p in block]
     band_area = 2.0 * half * float(np.linalg.norm(verts[edges[:, 1]] - verts[edges[:, 0]], axis=1).sum())
     span = verts.max(axis=0) - verts.min(axis=0) + 2.0 * half
-    if band_area > _DENSE * float(span[0] * span[1]):
-        return _bucketed_union(contours)
-    return m3d.CrossSection(contours, m3d.FillRule.Positive)
+    if contours and band_area > _DENSE * float(span[0] * span[1]):
+        bands = _bucketed_union(contours)
+        return m3d.CrossSection.batch_boolean([bands, m3d.CrossSection(rings, m3d.FillRule.Positive)],
+                                              m3d.OpType.Add) if rings else bands
+    # An annulus's hole (clockwise) is nested in its own shell, so the positive fill
+    # rule unions shells, holes and bands correctly in one batch.
+    return m3d.CrossSection(contours + rings, m3d.FillRule.Positive)
+
+
+def _annulus_rings(centres, radii, half) -> list:
+    """The rings of the stroked chord polygon of every circle: shells CCW, holes CW.
+
+    A circle of radius ``r`` with ``k`` chords (vertices at angles ``2 pi j / k``)
+    stroked to half-width ``half`` with miter joins is the annulus between the
+    regular ``k``-gons of radius ``r +- half / cos(pi / k)`` at the same angles;
+    when ``r cos(pi / k) <= half`` the bands cover the middle and it is a disk.
+    """
+    from ..pattern.packing import chord_count
+
+    centres = np.asarray(centres, dtype=float).reshape(-1, 2)
+    radii = np.broadcast_to(np.asarray(radii, dtype=float), (len(centres),))
+    rings = []
+    for r in np.unique(radii):
+        k = chord_count(r)
+        t = np.linspace(0.0, 2.0 * math.pi, k + 1)[:-1]
+        unit = np.stack([np.cos(t), np.sin(t)], axis=-1)
+        d = half / math.cos(math.pi / k)
+        for c in centres[radii == r]:
+            rings.append(c + (r + d) * unit)
+            if r - d > 0:
+                rings.append(c + (r - d) * unit[::-1])
+    return rings
 
 
 # Bands covering their bounding box this many times over count as dense.
@@ -249,6 +325,11 @@ def to_shapely(cs) -> Polygon | MultiPolygon:
     lr = shapely.linearrings(np.concatenate(rings), indices=np.repeat(np.arange(len(rings)), lens))
     ccw = shapely.is_ccw(lr)
     part_of = np.array(part_of)
+    # Holes of no size: where many band edges cross at one point, Clipper2 can leave a
+    # speck of ~1e-15 mm^2 (seen on table3-3 tiles); it is rounding noise, not a hole.
+    speck = ~ccw & (shapely.area(shapely.polygons(lr)) < MIN_HOLE_AREA)
+    if speck.any():
+        lr, ccw, part_of = lr[~speck], ccw[~speck], part_of[~speck]
     polys = []
     for k in np.unique(part_of):
         mine = part_of == k

@@ -230,8 +230,17 @@ class Tile:
         if self._region is None:
             import manifold3d as m3d
 
-            bands = stroke_cross_section(self.segments(), self._stroke, join=self._join,
-                                         miter_limit=self._miter_limit, tolerance=TOLERANCE)
+            segments, circles = self.segments(), None
+            if not isinstance(self._pattern, Star) and self._pattern.outline_circles:
+                # the circles as exact annuli, the motifs as bands (see stroke_cross_section)
+                cx, cy = self.centre
+                h = self._stroke / 2
+                window = (-cx - h, -cy - h, cx + h, cy + h)
+                segments = self._pattern.motif_segments(window) + np.array([cx, cy])
+                centres, radii = self._pattern.circles(window)
+                circles = (centres + np.array([cx, cy]), radii)
+            bands = stroke_cross_section(segments, self._stroke, join=self._join,
+                                         miter_limit=self._miter_limit, tolerance=TOLERANCE, circles=circles)
             outline = self.outline_shape()
             parts = [bands]
             if self._frame > 0:

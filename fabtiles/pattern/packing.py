@@ -36,12 +36,24 @@ def default_gap_motif() -> Star:
     return Star(n=6, radii=(0.5, 1.0))
 
 
+def chord_count(radius: float, *, tolerance: float = 0.005, multiple: int = 24) -> int:
+    """Chords on a circle of ``radius`` for sagitta <= ``tolerance``, rounded up to a multiple of ``multiple``.
+
+    >>> chord_count(15.0), chord_count(1.0)
+    (144, 48)
+    """
+    ratio = min(1.0, tolerance / radius)
+    k = max(multiple, math.ceil(math.pi / math.acos(1.0 - ratio)))
+    return multiple * math.ceil(k / multiple)
+
+
 def circle_segments(centres, radii, *, tolerance: float = 0.005, multiple: int = 24) -> np.ndarray:
     """Circles flattened to chords, ``(k, 2, 2)``, with sagitta <= ``tolerance``.
 
-    Each circle gets the same number of chords per size, rounded up to a
-    multiple of ``multiple`` and starting at angle 0, so the tangency points of
+    Each circle gets the same number of chords per size (:func:`chord_count`),
+    a multiple of ``multiple`` starting at angle 0, so the tangency points of
     the hex and square packings (multiples of 30 and 45 degrees) are vertices.
+    The chords of one circle are consecutive, counter-clockwise.
 
     >>> seg = circle_segments([[0.0, 0.0]], [10.0])
     >>> seg.shape[0] % 24, round(float(np.hypot(*seg[:, 0].T).max()), 9)
@@ -52,9 +64,7 @@ def circle_segments(centres, radii, *, tolerance: float = 0.005, multiple: int =
     out = []
     for r in np.unique(radii):
         sel = centres[radii == r]
-        ratio = min(1.0, tolerance / r)
-        k = max(multiple, math.ceil(math.pi / math.acos(1.0 - ratio)))
-        k = multiple * math.ceil(k / multiple)
+        k = chord_count(r, tolerance=tolerance, multiple=multiple)
         t = np.linspace(0.0, 2.0 * math.pi, k + 1)
         ring = r * np.stack([np.cos(t), np.sin(t)], axis=-1)
         one = np.stack([ring[:-1], ring[1:]], axis=1)  # (k, 2, 2)
@@ -189,19 +199,29 @@ class _Packing:
 
         Each motif's segments are computed once per circle size and translated to
         every centre by broadcasting. With ``outline_circles`` the circles are
-        added as chords (sagitta <= 0.005 mm).
+        added as chords (sagitta <= 0.005 mm, see :func:`circle_segments`), after
+        the motifs.
 
         >>> p = HexPacking(radius=10, motif=Star(n=8, radii=(1, 2)))
         >>> p.segments((0, 0, 12, 8)).shape  # 4 big motifs (16 each) + 1 gap motif (12)
         (76, 2, 2)
         """
+        parts = [self.motif_segments(window)]
+        if self.outline_circles:
+            parts.append(circle_segments(*self.circles(window)))
+        return np.concatenate(parts)
+
+    def motif_segments(self, window) -> np.ndarray:
+        """The motifs' centre-lines alone (without the outline circles), ``(k, 2, 2)`` mm.
+
+        >>> p = HexPacking(radius=10, motif=Star(n=8, radii=(1, 2)), outline_circles=True)
+        >>> len(p.motif_segments((0, 0, 12, 8)))
+        76
+        """
         parts = []
         for which, centres in (("big", self.lattice_points(window)), ("gap", self.gap_centres(window))):
             unit = self.placed_motif(which)
             parts.append((unit[None] + centres[:, None, None, :]).reshape(-1, 2, 2))
-        if self.outline_circles:
-            centres, radii = self.circles(window)
-            parts.append(circle_segments(centres, radii))
         return np.concatenate(parts)
 
     def params(self) -> dict:
