@@ -5,6 +5,7 @@ Run by hand from a checkout (never in CI: these machines are shared and noisy)::
     python benchmarks/run.py                 # all scenarios, writes benchmarks/results.md
     python benchmarks/run.py --quick         # skip the 1,200 x 600 mm sheet and the scaling table
     python benchmarks/run.py --baselines     # also time the straightforward pipelines
+    python benchmarks/run.py --baselines --readme   # and put the tables into README.md
 
 Each scenario runs in a fresh Python process, so the figures include the
 imports each stage pays for, and the memory of one scenario does not leak into
@@ -152,12 +153,52 @@ def run_baselines() -> dict:
     return result
 
 
-def _child(kind: str, arg: str) -> dict:
+OCCT_STEP_LIMIT_S = 600
+"""How long the one-face OCCT baseline may spend writing its STEP before it is stopped."""
+
+
+def run_occt_face_baseline(stage: str) -> dict:
+    """The straightforward STEP pipeline: the 200 x 200 mm tile's material as ONE build123d
+    face (all holes in it), extruded; ``stage`` is "extrude" or "step" (extrude, then write).
+
+    Run in a child process with a time limit (see :func:`main`): the write may not end.
+    """
+    import numpy as np
+    import shapely
+    from build123d import Face, Wire, export_step, extrude
+
+    import fabtiles as ft
+
+    tile = ft.Tile("square", 200, ft.HexPacking(radius=15, motif=ft.Star.preset("table3-3")), frame=5.0, stroke=1.0)
+    region = tile.region()
+    polys = list(getattr(region, "geoms", [region]))
+    t = time.perf_counter()
+    solids = []
+    for poly in polys:
+        outer = Wire.make_polygon([tuple(p) + (0.0,) for p in np.asarray(poly.exterior.coords)[:-1]])
+        inner = [Wire.make_polygon([tuple(p) + (0.0,) for p in np.asarray(r.coords)[:-1]]) for r in poly.interiors]
+        solids.append(extrude(Face(outer, inner), amount=1.2))
+    out = {"holes": int(sum(len(p.interiors) for p in polys)),
+           "vertices": int(shapely.get_num_coordinates(region)),
+           "extrude_s": time.perf_counter() - t}
+    if stage == "step":
+        with tempfile.TemporaryDirectory() as tmp:
+            t = time.perf_counter()
+            export_step(solids[0], Path(tmp) / "naive.step")
+            out["step_s"] = time.perf_counter() - t
+            out["step_mb"] = (Path(tmp) / "naive.step").stat().st_size / 1e6
+    return out
+
+
+def _child(kind: str, arg: str, timeout: float | None = None) -> dict:
     code = (
         "import json, sys; sys.path.insert(0, %r); import run; "
         "print('@@' + json.dumps(run.%s))" % (str(HERE), arg)
     )
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    try:
+        proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return {"error": f"stopped after {timeout:g} s", "kind": kind, "timeout": timeout}
     if proc.returncode != 0:
         return {"error": proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else "failed", "kind": kind}
     line = [l for l in proc.stdout.splitlines() if l.startswith("@@")][-1]
@@ -219,8 +260,23 @@ def report(results: dict) -> str:
     if results.get("baselines"):
         lines += ["", "Straightforward pipelines, for comparison:", "", "| pipeline | seconds |", "|---|---:|"]
         for what, sec in results["baselines"].items():
-            lines.append(f"| {what} | {sec:.1f} |")
+            lines.append(f"| {what} | {sec} |" if isinstance(sec, str) else f"| {what} | {sec:.1f} |")
     return "\n".join(lines) + "\n"
+
+
+README_START = "<!-- benchmarks/run.py --readme: start -->"
+README_END = "<!-- benchmarks/run.py --readme: end -->"
+
+
+def update_readme(readme: Path, text: str) -> None:
+    """Replace what stands between the two markers in ``readme`` with the report (no title)."""
+    body = text.split("\n", 2)[2].strip() if text.startswith("# ") else text.strip()
+    doc = readme.read_text()
+    if README_START not in doc or README_END not in doc:
+        raise SystemExit(f"{readme} has no benchmark markers ({README_START} ... {README_END})")
+    head, rest = doc.split(README_START, 1)
+    _, tail = rest.split(README_END, 1)
+    readme.write_text(f"{head}{README_START}\n{body}\n{README_END}{tail}")
 
 
 def main(argv=None) -> int:
@@ -229,6 +285,8 @@ def main(argv=None) -> int:
     ap.add_argument("--baselines", action="store_true", help="also time the straightforward pipelines (slow)")
     ap.add_argument("--only", nargs="*", choices=list(SCENARIOS), help="run only these scenarios")
     ap.add_argument("-o", "--output", default=str(HERE / "results.md"), help="markdown report to write")
+    ap.add_argument("--readme", action="store_true",
+                    help="also replace the README's section between the bench markers with the report")
     args = ap.parse_args(argv)
     names = args.only or [n for n in SCENARIOS if not (args.quick and n == "sheet-1200x600")]
     results = {"startup_s": startup_seconds(), "scenarios": []}
@@ -243,8 +301,20 @@ def main(argv=None) -> int:
     if args.baselines:
         print("baselines ...", file=sys.stderr, flush=True)
         results["baselines"] = _child("baselines", "run_baselines()")
+        face = _child("occt", "run_occt_face_baseline('extrude')")
+        what = "one OCCT face for the 200x200 tile"
+        if "error" not in face:
+            results["baselines"][f"{what} ({face['holes']:,} holes): face + extrude"] = face["extrude_s"]
+        step = _child("occt", "run_occt_face_baseline('step')", timeout=OCCT_STEP_LIMIT_S)
+        if "error" in step:
+            results["baselines"][f"{what}: face + extrude + STEP write"] = f"> {OCCT_STEP_LIMIT_S} (stopped, no file)"
+        else:
+            results["baselines"][f"{what}: face + extrude + STEP write ({step['step_mb']:.0f} MB)"] = \
+                step["extrude_s"] + step["step_s"]
     text = report(results)
     Path(args.output).write_text(text)
+    if args.readme:
+        update_readme(HERE.parent / "README.md", text)
     (Path(args.output).with_suffix(".json")).write_text(json.dumps(results, indent=1))
     print(text)
     return 0

@@ -16,7 +16,9 @@ error naming the key, its section and the valid keys (with a "did you mean").
 ``[output]`` (optional)
     ``formats`` (subset of dxf svg stl 3mf step; default ["svg"]), ``laser_profile``,
     ``printer_profile``, ``laser_mode``, ``print_style``, ``name`` (default: the
-    file's stem), ``fill_small_holes`` (laser: fill holes too small to cut).
+    file's stem), ``fill_small_holes`` (laser: fill holes too small to cut),
+    ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm`` (print heights
+    overriding the printer profile's).
 
 >>> d = design_from_text('''
 ... [motif]
@@ -60,8 +62,11 @@ SECTIONS = ("motif", "packing", "tile", "output")
 MOTIF_KEYS = ("preset", "n", "radii", "alpha", "spr", "special", "rotation")
 PACKING_KEYS = ("kind", "radius", "outline_circles", "fill", "gap_motif", "seamless")
 TILE_KEYS = ("outline", "size", "frame", "stroke", "join", "miter_limit", "corner_radius")
+HEIGHT_KEYS = ("base_mm", "relief_mm", "pierced_mm", "deboss_mm")
+"""The ``[output]`` keys overriding the printer profile's heights (mm)."""
+
 OUTPUT_KEYS = ("formats", "laser_profile", "printer_profile", "laser_mode", "print_style", "name",
-               "fill_small_holes")
+               "fill_small_holes") + HEIGHT_KEYS
 """The valid keys of ``[output]`` (the exporters read the mode/style/profile keys)."""
 
 _KEYS = {"motif": MOTIF_KEYS, "packing": PACKING_KEYS, "tile": TILE_KEYS, "output": OUTPUT_KEYS}
@@ -118,6 +123,14 @@ class OutputSpec:
     print_style: str | None = None
     name: str | None = None
     fill_small_holes: bool = False
+    base_mm: float | None = None
+    relief_mm: float | None = None
+    pierced_mm: float | None = None
+    deboss_mm: float | None = None
+
+    def heights(self) -> dict:
+        """The height overrides given (mm), as keyword arguments of the print exporters."""
+        return {k: getattr(self, k) for k in HEIGHT_KEYS if getattr(self, k) is not None}
 
 
 @dataclass(frozen=True)
@@ -404,4 +417,16 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
         print_style=_choice(table, "print_style", PRINT_STYLES, source, where, None),
         name=name,
         fill_small_holes=_typed(table, "fill_small_holes", (bool,), source, where, "true or false", False),
+        **{key: _height(table, key, source, where) for key in HEIGHT_KEYS},
     )
+
+
+def _height(table, key, source, where):
+    """A height override of ``[output]`` (mm, > 0 and at most MAX_HEIGHT_MM), or None."""
+    from .export._mesh_build import MAX_HEIGHT_MM
+
+    text = f"a number of mm > 0 and <= {MAX_HEIGHT_MM:g}"
+    value = _typed(table, key, (int, float), source, where, text, None)
+    if value is not None and not (0 < value <= MAX_HEIGHT_MM):  # also refuses NaN
+        raise DesignError(f"{source}: {where} {key} must be {text}, got {value!r}")
+    return None if value is None else float(value)

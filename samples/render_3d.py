@@ -1,6 +1,8 @@
 """Render the relief STL of samples/table3-3.toml as a shaded picture for the README.
 
-    /work/venv/bin/python samples/render_3d.py [--out PATH] [--size 900x700]
+    python samples/render_3d.py [--out PATH] [--size 900x700]
+
+Needs Pillow (installed with the ``step`` extra; else ``pip install pillow``).
 
 A small software renderer (numpy and Pillow, no GPU): the two bodies of the
 relief (``build_meshes``: base plate and raised pattern) are seen in perspective

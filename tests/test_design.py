@@ -226,3 +226,16 @@ def test_build_tile_with_a_subclass():
 
     d = design_from_text(BASE)
     assert type(build_tile(d, tile_cls=MyTile)) is MyTile
+
+
+def test_print_heights_override_the_profile():
+    design = design_from_text(BASE + "[output]\nbase_mm = 3\nrelief_mm = 0.6\n")
+    assert design.output.heights() == {"base_mm": 3.0, "relief_mm": 0.6}
+    assert design_from_text(BASE).output.heights() == {}
+
+
+@pytest.mark.parametrize("value", ["0", "-1", "1001", "nan", "inf", '"2"', "true"])
+@pytest.mark.parametrize("key", ["base_mm", "relief_mm", "pierced_mm", "deboss_mm"])
+def test_bad_print_heights(key, value):
+    with pytest.raises(DesignError, match=rf"\[output\] {key} must be a number of mm > 0 and <= 1000, got"):
+        design_from_text(BASE + f"[output]\n{key} = {value}\n")

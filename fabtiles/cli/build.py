@@ -38,7 +38,7 @@ def _export(tile, fmt: str, path: Path, design):
     if dispatch.profile_kind(fmt) == "laser":
         return dispatch.export_tile(tile, path, profile=out.laser_profile, mode=out.laser_mode,
                                     fill_small_holes=out.fill_small_holes)
-    return dispatch.export_tile(tile, path, profile=out.printer_profile, style=out.print_style)
+    return dispatch.export_tile(tile, path, profile=out.printer_profile, style=out.print_style, **out.heights())
 
 
 def sheet_formats(formats) -> tuple[tuple[str, ...], tuple[str, ...]]:

@@ -157,3 +157,21 @@ def test_build_prints_findings_and_fills_small_holes_on_request(tmp_path):
     assert count["b"] < count["a"]
     bad = run("build", sample, "-o", tmp_path / "c", "--set", "output.fill_small_holes=1")
     assert bad.exit_code == 2 and "[output] fill_small_holes must be true or false, got 1" in bad.output
+
+
+def test_design_heights_reach_the_mesh(design, tmp_path):
+    import numpy as np
+
+    from fabtiles.export.mesh import read_stl_triangles
+
+    res = run("build", design, "-o", tmp_path, "--format", "stl",
+              "--set", "output.base_mm=3", "--set", "output.relief_mm=0.6")
+    assert res.exit_code == 0, res.output
+    z = read_stl_triangles((tmp_path / "small.stl").read_bytes())[..., 2]
+    assert np.unique(z).tolist() == pytest.approx([0.0, 3.0, 3.6])
+    # a deboss deeper than the plate: refused, nothing written
+    res = run("build", design, "-o", tmp_path / "d", "--format", "stl", "--set", 'output.print_style="deboss"',
+              "--set", "output.deboss_mm=2.5")
+    assert res.exit_code == 2
+    assert "deboss_mm must be smaller than base_mm (the plate is 2 mm thick), got 2.5" in res.output
+    assert not (tmp_path / "d").exists()
