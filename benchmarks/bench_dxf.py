@@ -10,7 +10,7 @@ cached as WKB in the temporary folder.
 
 Run::
 
-    /work/venv/bin/python benchmarks/bench_dxf.py [--repeat 3] [--svg] [--r12] [--synthetic]
+    python benchmarks/bench_dxf.py [--repeat 3] [--svg] [--r12] [--synthetic]
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Time the material region of a 600 x 400 mm sheet (run by hand).
 
-    /work/venv/bin/python benchmarks/bench_region.py [--no-baseline] [--repeat N]
+    python benchmarks/bench_region.py [--no-baseline] [--repeat N]
 
 Sheet: rectangle 600 x 400 mm, HexPacking R = 15 mm, main motif table3-3, default
 gap motif, stroke 1.0 mm, frame 5 mm. Prints the time of the pattern segments, of

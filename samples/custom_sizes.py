@@ -1,6 +1,6 @@
 """Build a run of tiles in several custom sizes with the Python API.
 
-    /work/venv/bin/python samples/custom_sizes.py OUTDIR
+    python samples/custom_sizes.py OUTDIR
 
 Writes one SVG preview per size into OUTDIR: the table3-3 tiling in square,
 rectangular and hexagonal tiles, plus a seamless rectangle whose radius and

@@ -1,6 +1,6 @@
 """Re-render the SVG previews of every sample design into samples/renders/.
 
-    /work/venv/bin/python samples/render.py
+    python samples/render.py
 
 The files are reproducible byte for byte; tests/cli/test_build.py checks that
 rendering each sample gives exactly the committed file.

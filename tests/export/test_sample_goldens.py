@@ -9,7 +9,7 @@ compared by counts and a spread sample of their entities.
 
 Regenerate after an intended change of the geometry or the writer::
 
-    FABTILES_UPDATE_GOLDEN=1 /work/venv/bin/pytest tests/export/test_sample_goldens.py
+    FABTILES_UPDATE_GOLDEN=1 python -m pytest tests/export/test_sample_goldens.py
 """
 
 from __future__ import annotations
