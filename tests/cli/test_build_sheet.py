@@ -8,44 +8,25 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "export"))
 from dxf_helpers import check_laser_dxf, is_closed, read_checked, vertices  # noqa: E402
+from test_build import SMALL as BUILD_SMALL  # noqa: E402  (the same small design)
+from test_build import run  # noqa: E402
 
 import fabtiles  # noqa: E402
 from fabtiles import FabtilesError  # noqa: E402
 from fabtiles._profiles import load_profile  # noqa: E402
 from fabtiles.cli import build as build_mod  # noqa: E402
 from fabtiles.cli.build import layout_tile_sheet  # noqa: E402
-from fabtiles.cli.main import cli  # noqa: E402
 from fabtiles.design import load_design  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 PLY = load_profile("laser-3mm-plywood")
 INNER, OUTER, SCORE = PLY.layers.inner_cut.name, PLY.layers.outer_cut.name, PLY.layers.score.name
 
-SMALL = """
-[motif]
-preset = "table3-1"
-
-[packing]
-radius = 8
-
-[tile]
-outline = "square"
-size = 60
-frame = 3
-stroke = 1.0
-
-[output]
-formats = ["dxf", "svg", "stl"]
-laser_profile = "laser-3mm-plywood"
-"""
-
-
-def run(*args):
-    return CliRunner().invoke(cli, list(map(str, args)), catch_exceptions=False)
+SMALL = BUILD_SMALL.replace('formats = ["svg"]', 'formats = ["dxf", "svg", "stl"]\nlaser_profile = "laser-3mm-plywood"')
+assert SMALL != BUILD_SMALL
 
 
 @pytest.fixture
