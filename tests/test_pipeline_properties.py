@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
+from hypothesis_scale import examples
 
 import fabtiles as ft
 
@@ -56,7 +57,7 @@ def _parts(geom):
     return list(getattr(geom, "geoms", [geom]))
 
 
-@settings(max_examples=40)
+@settings(max_examples=examples(40))
 @given(tiles())
 def test_any_valid_tile_has_a_valid_region_inside_its_outline(tile):
     region = tile.region()
@@ -76,7 +77,7 @@ def _profile(tmp_path, stroke):
     return path
 
 
-@settings(max_examples=25, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=examples(25), suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(tile=tiles(), r12=st.booleans(), score=st.booleans())
 def test_any_valid_tile_writes_a_clean_dxf(tmp_path, tile, r12, score):
     import ezdxf
@@ -99,7 +100,7 @@ def test_any_valid_tile_writes_a_clean_dxf(tmp_path, tile, r12, score):
             assert e.is_closed
 
 
-@settings(max_examples=12, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=examples(12), suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(tile=tiles(), style=st.sampled_from(["relief", "pierced", "deboss"]), fmt=st.sampled_from(["stl", "3mf"]))
 def test_any_valid_tile_writes_a_watertight_mesh(tmp_path, tile, style, fmt):
     import trimesh
@@ -119,7 +120,7 @@ def test_any_valid_tile_writes_a_watertight_mesh(tmp_path, tile, style, fmt):
 
 
 @pytest.mark.slow
-@settings(max_examples=4, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=examples(4), suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(tile=tiles())
 def test_any_valid_tile_writes_one_step_solid(tmp_path, tile):
     path = tmp_path / "t.step"
@@ -155,7 +156,7 @@ anything = st.one_of(
 )
 
 
-@settings(max_examples=300)
+@settings(max_examples=examples(300))
 @given(n=anything, radii=anything, alpha=anything, spr=anything, special=anything, rotation=anything)
 def test_star_accepts_or_raises_fabtiles_error(n, radii, alpha, spr, special, rotation):
     try:
@@ -167,7 +168,7 @@ def test_star_accepts_or_raises_fabtiles_error(n, radii, alpha, spr, special, ro
     assert seg.ndim == 3 and np.isfinite(seg).all()
 
 
-@settings(max_examples=200)
+@settings(max_examples=examples(200))
 @given(outline=st.one_of(st.sampled_from(OUTLINES), anything), size=anything, frame=anything,
        stroke=anything, join=st.one_of(st.sampled_from(["miter", "round", "bevel"]), anything),
        radius=anything, corner=anything)
@@ -183,7 +184,7 @@ def test_tile_accepts_or_raises_fabtiles_error(outline, size, frame, stroke, joi
     assert tile.region().is_valid
 
 
-@settings(max_examples=60, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=examples(60), suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(kerf=anything, mode=anything, version=anything, style=anything, base=anything, relief=anything)
 def test_export_options_accept_or_raise_fabtiles_error(tmp_path, kerf, mode, version, style, base, relief):
     tile = ft.Tile("square", 30, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")), frame=2,

@@ -9,6 +9,7 @@ import pytest
 import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from hypothesis_scale import examples
 from shapely.geometry import LinearRing, Polygon, box
 
 from fabtiles import ParameterError
@@ -135,7 +136,7 @@ def test_score_paths_merge_clip_and_dedupe():
         score_paths(np.full((1, 2, 2), np.nan), box(0, 0, 1, 1))
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=examples(25), deadline=None)
 @given(kerf=st.floats(0, 0.6), n=st.integers(3, 9), rot=st.floats(0, 90), ri=st.floats(0.8, 3.5))
 def test_kerf_area_property(kerf, n, rot, ri):
     plate = box(0, 0, 30, 20).difference(star(10, 10, 4, ri, n, rot)).difference(star(21, 10, 4, ri, n, -rot))

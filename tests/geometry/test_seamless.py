@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from hypothesis_scale import examples
 from shapely import affinity
 
 from fabtiles import ParameterError, Star
@@ -33,7 +34,7 @@ def test_hexagon_and_square_fits_keep_the_size():
 
 
 @given(w=st.floats(20, 500), h=st.floats(20, 500), r=st.floats(1, 40))
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60), deadline=None)
 def test_fit_is_an_exact_period_nearest_the_radius(w, h, r):
     fit = seamless_fit("rectangle", (w, h), r)
     m, k = fit.repeats

@@ -7,6 +7,7 @@ import pytest
 import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from hypothesis_scale import examples
 from shapely.geometry import Point
 
 from fabtiles import ParameterError, Star
@@ -227,7 +228,7 @@ def test_centrelines_are_clipped_to_the_outline():
 @given(outline=st.sampled_from(["square", "hexagon", "circle"]), size=st.floats(30, 90),
        frame=st.floats(0, 6), stroke=st.floats(0.3, 2.0), join=st.sampled_from(["miter", "round", "bevel"]),
        motif=st.sampled_from(Star.presets()))
-@settings(max_examples=12, deadline=None)
+@settings(max_examples=examples(12), deadline=None)
 def test_region_is_always_valid_and_contained(outline, size, frame, stroke, join, motif):
     t = Tile(outline, size, HexPacking(radius=9, motif=Star.preset(motif)), frame=frame, stroke=stroke,
              join=join)

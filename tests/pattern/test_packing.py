@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from hypothesis_scale import examples
 
 from fabtiles import LimitError, ParameterError, Star
 from fabtiles.pattern.packing import (
@@ -143,7 +144,7 @@ def test_circle_segments_tolerance():
 
 @given(R=st.floats(0.5, 30), x0=st.floats(-100, 100), y0=st.floats(-100, 100),
        w=st.floats(0, 80), h=st.floats(0, 80))
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=examples(40), deadline=None)
 def test_every_circle_meeting_the_window_is_listed(R, x0, y0, w, h):
     p = HexPacking(radius=R, motif=MOTIF)
     window = (x0, y0, x0 + w, y0 + h)

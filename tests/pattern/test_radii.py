@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from hypothesis_scale import examples
 
 import fabtiles as ft
 
@@ -21,7 +22,7 @@ def _collinear(star):
     return np.abs(cross).max() / (np.linalg.norm(d, axis=1).max() ** 2)
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=examples(100), deadline=None)
 @given(
     n=st.integers(3, 60),
     r1=st.floats(1, 100),

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from hypothesis_scale import examples
 
 import fabtiles as ft
 from fabtiles.pattern.star import MAX_CIRCLES, MAX_N
@@ -185,7 +186,7 @@ def _mirror(seg, deg):
     return seg @ m.T
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60), deadline=None)
 @given(stars())
 def test_n_fold_rotational_symmetry(star):
     seg = star.segments()
@@ -193,7 +194,7 @@ def test_n_fold_rotational_symmetry(star):
     assert same_set(_rotate(seg, 360 / star.n), seg, tol)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60), deadline=None)
 @given(stars())
 def test_mirror_symmetry_about_the_first_ray(star):
     seg = star.segments()
@@ -201,7 +202,7 @@ def test_mirror_symmetry_about_the_first_ray(star):
     assert same_set(_mirror(seg, star.rotation), seg, tol)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=examples(60), deadline=None)
 @given(stars())
 def test_count_formula_when_nothing_degenerates(star):
     seg = star.segments()
@@ -216,7 +217,7 @@ def test_count_formula_when_nothing_degenerates(star):
         assert len(seg) == formula
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=examples(40), deadline=None)
 @given(stars())
 def test_extent_is_max_endpoint_radius(star):
     seg = star.segments()
