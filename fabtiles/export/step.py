@@ -481,7 +481,9 @@ def read_step(path):
 def build_solid(*, region, outline, stack: Stack):
     """The B-rep of a tile (a solid, or a compound of solids for a pierced tile in pieces).
 
-    Returns ``(shape, mesh_volume, n_parts)``; the shape passed :func:`check_solid`.
+    Returns ``(shape, mesh_volume, n_parts)``. The mesh it is built beside passed
+    :func:`~fabtiles.export.mesh.check_triangles`; the shape itself is checked with
+    :func:`check_solid` once written and read back (:func:`write_step`).
     """
     o = _ocp()
     r, ol = _snapped(region, outline)

@@ -216,10 +216,14 @@ class Tile:
                 star = self._pattern
                 seg = star.segments() * (self.motif_radius / star.extent)
             else:
-                h = self._stroke / 2
-                seg = self._pattern.segments((-cx - h, -cy - h, cx + h, cy + h))
+                seg = self._pattern.segments(self._window())
             self._segments = seg + np.array([cx, cy])
         return self._segments.copy()
+
+    def _window(self) -> tuple[float, float, float, float]:
+        """The outline's bounding box grown by half the stroke, in pattern coordinates."""
+        cx, cy, h = *self.centre, self._stroke / 2
+        return (-cx - h, -cy - h, cx + h, cy + h)
 
     def region(self) -> Polygon | MultiPolygon:
         """The material: union of the stroked bands and the frame, clipped to the outline.
@@ -230,15 +234,13 @@ class Tile:
         if self._region is None:
             import manifold3d as m3d
 
-            segments, circles = self.segments(), None
-            if not isinstance(self._pattern, Star) and self._pattern.outline_circles:
-                # the circles as exact annuli, the motifs as bands (see stroke_cross_section)
-                cx, cy = self.centre
-                h = self._stroke / 2
-                window = (-cx - h, -cy - h, cx + h, cy + h)
-                segments = self._pattern.motif_segments(window) + np.array([cx, cy])
-                centres, radii = self._pattern.circles(window)
-                circles = (centres + np.array([cx, cy]), radii)
+            if isinstance(self._pattern, Star) or not self._pattern.outline_circles:
+                segments, circles = self.segments(), None
+            else:  # the circles as exact annuli, the motifs as bands (see stroke_cross_section)
+                centre = np.array(self.centre)
+                segments = self._pattern.motif_segments(self._window()) + centre
+                centres, radii = self._pattern.circles(self._window())
+                circles = (centres + centre, radii)
             bands = stroke_cross_section(segments, self._stroke, join=self._join,
                                          miter_limit=self._miter_limit, tolerance=TOLERANCE, circles=circles)
             outline = self.outline_shape()
