@@ -93,7 +93,7 @@ def layout_tile_sheet(tile, design, *, copies=None, gap_mm=None):
 
 
 def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: int | None = None,
-                 gap_mm: float | None = None) -> list:
+                 gap_mm: float | None = None, file_name: str | None = None) -> list:
     """Write ``OUTDIR/<design name>.<format>`` for each format, all or nothing.
 
     Parameters
@@ -112,6 +112,9 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
         Lay exactly this many copies on the sheet (implies ``sheet``).
     gap_mm : float, optional
         Space between tiles on the sheet (> kerf); default: the kerf + 2 mm.
+    file_name : str, optional
+        The name of the one file written (one format only), instead of
+        ``<design name>[-sheet].<format>``.
 
     Returns
     -------
@@ -150,10 +153,10 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
         staged = []
         for fmt in formats:
             if layout is None:
-                path = staging / f"{design.name}.{fmt}"
+                path = staging / (file_name or f"{design.name}.{fmt}")
                 report = _export(tile, fmt, path, design)
             else:
-                path = staging / f"{design.name}{SHEET_SUFFIX}.{fmt}"
+                path = staging / (file_name or f"{design.name}{SHEET_SUFFIX}.{fmt}")
                 report = _export_sheet(layout, tile, path, design)
             staged.append((path, report))
         for path, report in staged:
@@ -189,10 +192,34 @@ def _tile_class():
         return None
 
 
+def single_file_target(output, formats):
+    """``(path, format)`` when ``output`` names one file by a format's suffix, else None.
+
+    >>> single_file_target("out/tile.DXF", ())
+    (PosixPath('out/tile.DXF'), 'dxf')
+    >>> single_file_target("out", ()) is None
+    True
+
+    Raises :class:`click.UsageError` (exit status 2) when ``formats`` asks for another
+    format or for several.
+    """
+    path = Path(output)
+    fmt = path.suffix.lower().lstrip(".")
+    if fmt not in FORMATS:
+        return None
+    others = [f for f in dict.fromkeys(formats) if f != fmt]
+    if others:
+        raise click.UsageError(
+            f"-o {output} writes one .{fmt} file, but --format asks for {', '.join(dict.fromkeys(formats))}; "
+            f"drop --format, or give an output folder for several formats")
+    return path, fmt
+
+
 @click.command("build")
 @click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", "outdir", required=True, type=click.Path(file_okay=False),
-              help="Folder to write OUTDIR/<design name>.<format> into.")
+@click.option("-o", "--output", "outdir", required=True, type=click.Path(),
+              help="Folder to write OUTDIR/<design name>.<format> into; or one file, named with "
+                   "its format's suffix (tile.dxf, tile.STL, ...), to write just that file.")
 @click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
               help="Override a design value, in TOML syntax: --set tile.size=[200,200] (repeatable).")
 @click.option("--format", "formats", multiple=True, type=click.Choice(FORMATS),
@@ -219,16 +246,26 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
     the size of the bed instead (tile.outline = "rectangle", size = [600, 400]),
     as samples/sheet-600x400.toml does.
 
+    With -o FILE named with a format's suffix (.dxf .svg .stl .3mf .step, any
+    case), writes just that file, in that format.
+
     \b
     fabtiles build samples/table3-3.toml -o out/
+    fabtiles build samples/table3-3.toml -o tile.dxf
     fabtiles build samples/table3-3.toml -o out/ --set tile.size=[200,200] --format svg
     fabtiles build samples/table3-3.toml -o out/ --sheet
     fabtiles build samples/rosette.toml -o out/ --copies 12 --format dxf
     fabtiles build samples/sheet-600x400.toml -o out/
     """
+    target = single_file_target(outdir, formats)
     design = load_design(design_file, overrides=overrides)
     sheet = sheet or copies is not None or gap_mm is not None
-    reports = build_design(design, outdir, formats or None, sheet=sheet, copies=copies, gap_mm=gap_mm)
+    if target is not None:
+        outdir, formats = target[0].parent, (target[1],)
+        reports = build_design(design, outdir, formats, sheet=sheet, copies=copies, gap_mm=gap_mm,
+                               file_name=target[0].name)
+    else:
+        reports = build_design(design, outdir, formats or None, sheet=sheet, copies=copies, gap_mm=gap_mm)
     for report in reports:
         click.echo(f"wrote {report.summary()}")  # the file, then one line per fabrication finding
     skipped = sheet_formats(dict.fromkeys(formats or design.output.formats))[1] if sheet else ()

@@ -82,15 +82,19 @@ def build_document(job: LaserJob, *, entities: bool = True):
     else:
         doc = ezdxf.new(job.dxf_version, setup=False, units=units.MM)
         doc.header["$MEASUREMENT"] = 1
+    # The drawing's extents (some laser programs zoom to them). ezdxf copies the model
+    # space layout's extents over the header's when it writes, unless one of them is the
+    # zero vector (a tile at the origin without kerf): so both are set.
     xmin, ymin, xmax, ymax = job.bounds
-    doc.header["$EXTMIN"] = (xmin, ymin, 0.0)
-    doc.header["$EXTMAX"] = (xmax, ymax, 0.0)
+    msp = doc.modelspace()
+    for key, value in (("extmin", (xmin, ymin, 0.0)), ("extmax", (xmax, ymax, 0.0))):
+        msp.dxf.set(key, value)
+        doc.header[f"${key.upper()}"] = value
     layers = job.profile.layers
     for layer in (layers.inner_cut, layers.outer_cut, layers.score):
         doc.layers.add(layer.name, color=layer.color)
     if not entities:
         return doc
-    msp = doc.modelspace()
     for rings, layer, closed in _groups(job):
         attribs = {"layer": layer.name, "color": layer.color}
         for ring in rings:

@@ -256,3 +256,44 @@ def test_dispatch_passes_options(tmp_path):
     report = export_geometry(tmp_path / "d.dxf", region=region, outline=outline, stroke=1.0, kerf_mm=0.0)
     assert report.stats["kerf_mm"] == 0.0 and report.format == "dxf"
     assert all(e[1] in CUT_TYPES for e in dxf_entities(tmp_path / "d.dxf"))
+
+
+def _entity_extents(doc) -> tuple:
+    pts = np.vstack([vertices(e) for e in doc.modelspace()])
+    return (*pts.min(0).tolist(), *pts.max(0).tolist())
+
+
+@pytest.mark.parametrize("version", ["R12", "R2000", "R2018"])
+@pytest.mark.parametrize("kerf", [0.0, 0.3])
+@pytest.mark.parametrize("mode", ["pierced", "score"])
+def test_header_extents_are_the_entities_bounding_box(tmp_path, version, kerf, mode):
+    """$EXTMIN/$EXTMAX (laser programs zoom to them) bound every entity written, kerf included."""
+    import ezdxf
+
+    region, outline, lines = motif_tile()
+    path = tmp_path / "motif.dxf"
+    write_dxf(path, region=region, outline=outline, centrelines=lines, profile=PLY, kerf_mm=kerf,
+              dxf_version=version, mode=mode, stroke=1.2)
+    doc = ezdxf.readfile(path)
+    xmin, ymin, xmax, ymax = _entity_extents(doc)
+    assert tuple(doc.header["$EXTMIN"]) == pytest.approx((xmin, ymin, 0.0), abs=1e-9)
+    assert tuple(doc.header["$EXTMAX"]) == pytest.approx((xmax, ymax, 0.0), abs=1e-9)
+    # the kerf offset is part of the extents: the outer contour lies kerf/2 outside the outline
+    assert (xmin, ymin) == pytest.approx((-kerf / 2, -kerf / 2), abs=1e-6)
+
+
+def test_sheet_header_extents(tmp_path):
+    """A sheet's extents span all of its tiles."""
+    import ezdxf
+
+    from fabtiles.export.sheet import layout_sheet
+
+    sheet = layout_sheet([star_plate(size=100)], PLY, copies=5)
+    path = tmp_path / "sheet.dxf"
+    write_dxf(path, region=sheet.region, outline=sheet.outline, profile=PLY)
+    doc = ezdxf.readfile(path)
+    xmin, ymin, xmax, ymax = _entity_extents(doc)
+    kerf = PLY.kerf_mm
+    assert (xmax, ymax) == pytest.approx((sheet.size[0] + kerf / 2, sheet.size[1] + kerf / 2), abs=1e-6)
+    assert tuple(doc.header["$EXTMIN"])[:2] == pytest.approx((xmin, ymin), abs=1e-9)
+    assert tuple(doc.header["$EXTMAX"])[:2] == pytest.approx((xmax, ymax), abs=1e-9)

@@ -1,0 +1,111 @@
+"""The laser DXF as LibreCAD (Debian's ``librecad``) reads it: printed to PDF headless.
+
+``librecad dxf2pdf`` runs without a display with ``QT_QPA_PLATFORM=offscreen``. The
+PDF's page content is plain drawing operators: per colour, the line segments LibreCAD
+drew. They must be the file's polylines, edge for edge, in the layers' colours and
+in the file's proportions. `.ci/run` installs librecad and sets
+FABTILES_REQUIRE_LIBRECAD=1, so there a missing program fails instead of skipping.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import zlib
+
+import numpy as np
+import pytest
+from dxf_helpers import motif_tile, star_plate, vertices
+
+from fabtiles._profiles import load_profile
+from fabtiles.export.dxf import write_dxf
+
+LIBRECAD = shutil.which("librecad")
+PLY = load_profile("laser-3mm-plywood")
+# ACI colours of the plywood profile's layers as LibreCAD prints them (RGB 0..1)
+RGB = {1: (1.0, 0.0, 0.0), 3: (0.0, 1.0, 0.0), 5: (0.0, 0.0, 1.0)}
+
+
+@pytest.fixture(scope="module")
+def librecad():
+    if LIBRECAD is None:
+        if os.environ.get("FABTILES_REQUIRE_LIBRECAD") == "1":
+            pytest.fail("LibreCAD test required but `librecad` is not installed (apt-get install librecad)")
+        pytest.skip("librecad is not installed")
+    return LIBRECAD
+
+
+def _print_pdf(librecad, dxf, tmp_path):
+    # LibreCAD 2.2 ignores -o for one file: it prints <name>.dxf to <name>.pdf beside it
+    env = dict(os.environ, QT_QPA_PLATFORM="offscreen", XDG_RUNTIME_DIR=str(tmp_path))
+    subprocess.run([librecad, "dxf2pdf", "-a", str(dxf)], env=env, check=True,
+                   capture_output=True, timeout=120, cwd=tmp_path)
+    return dxf.with_suffix(".pdf").read_bytes()
+
+
+def _segments_by_colour(pdf: bytes) -> dict:
+    """The stroked line segments of the PDF's page, by stroke colour: {rgb: array (k, 2, 2)}."""
+    out: dict = {}
+    for stream in re.findall(rb"stream\r?\n(.*?)endstream", pdf, re.S):
+        try:
+            text = zlib.decompress(stream).decode("latin-1")
+        except zlib.error:
+            text = stream.decode("latin-1")
+        colour, start, stack = None, None, []
+        for tok in text.split():
+            if tok == "SCN" and len(stack) >= 3:
+                colour = tuple(float(v) for v in stack[-3:])
+            elif tok == "m":
+                start = (float(stack[-2]), float(stack[-1]))
+            elif tok == "l" and colour is not None and start is not None:
+                end = (float(stack[-2]), float(stack[-1]))
+                out.setdefault(colour, []).append((start, end))
+                start = end
+            stack = stack[-8:] + [tok] if tok not in ("m", "l") else []
+    return {c: np.array(s) for c, s in out.items()}
+
+
+def _dxf_edges(path, layer) -> int:
+    import ezdxf
+
+    n = 0
+    for e in ezdxf.readfile(path).modelspace():
+        if e.dxf.layer == layer.name:
+            n += len(vertices(e)) - (0 if e.is_closed else 1)
+    return n
+
+
+def _extent(points) -> np.ndarray:
+    pts = np.asarray(points).reshape(-1, 2)
+    return pts.max(0) - pts.min(0)
+
+
+@pytest.mark.parametrize("version", ["R12", "R2000"])
+def test_librecad_draws_the_cut_contours(librecad, tmp_path, version):
+    region, outline = star_plate()
+    dxf = tmp_path / "plate.dxf"
+    write_dxf(dxf, region=region, outline=outline, profile=PLY, dxf_version=version)
+    drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
+    inner, outer = drawn[RGB[PLY.layers.inner_cut.color]], drawn[RGB[PLY.layers.outer_cut.color]]
+    assert len(inner) == _dxf_edges(dxf, PLY.layers.inner_cut)  # 9 stars of 16 edges
+    assert len(outer) == _dxf_edges(dxf, PLY.layers.outer_cut) == 4
+    # proportions: the stars span 60 - 2 * 2.5 mm of the 60.15 mm outer contour (kerf 0.15 mm)
+    scale = _extent(outer)[0] / (60 + PLY.kerf_mm)
+    assert _extent(outer)[1] / scale == pytest.approx(60 + PLY.kerf_mm, rel=1e-3)
+    import ezdxf
+
+    doc = ezdxf.readfile(dxf)
+    stars = np.vstack([vertices(e) for e in doc.modelspace() if e.dxf.layer == PLY.layers.inner_cut.name])
+    assert _extent(inner) / scale == pytest.approx(_extent(stars), rel=2e-3)
+
+
+def test_librecad_draws_the_score_paths(librecad, tmp_path):
+    region, outline, lines = motif_tile()
+    dxf = tmp_path / "score.dxf"
+    write_dxf(dxf, region=region, outline=outline, centrelines=lines, profile=PLY, mode="score", stroke=1.2)
+    drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
+    assert len(drawn[RGB[PLY.layers.score.color]]) == _dxf_edges(dxf, PLY.layers.score)
+    assert len(drawn[RGB[PLY.layers.outer_cut.color]]) == 4
+    assert RGB[PLY.layers.inner_cut.color] not in drawn
