@@ -23,12 +23,33 @@ from ._errors import FabricationError
 
 @dataclass(frozen=True)
 class Finding:
-    """One fabrication problem: a short code, a sentence, and how many places."""
+    """One fabrication problem: a short code, a sentence, how many places, and where.
+
+    ``locations`` are points in file coordinates (mm) where the problem is (a small
+    hole's widest point, a thin bridge's or wall's narrowest point, a loose part's
+    representative point); ``sizes`` the measured size at each of them, in ``unit``
+    (a width in mm; a loose part's area in mm^2); ``worst`` the worst size of all
+    ``count`` places (the narrowest width, the largest loose part), or None when the
+    finding has no size (a height, a bed size).
+    """
 
     code: str
     message: str
     count: int = 1
     locations: tuple[tuple[float, float], ...] = ()
+    sizes: tuple[float, ...] = ()
+    worst: float | None = None
+    unit: str = "mm"
+
+    def where(self, limit: int = 3) -> str:
+        """The first ``limit`` locations as text, for people.
+
+        >>> Finding("small_hole", "", 3, ((1.0, 2.5), (3.0, 4.0), (5.0, 6.0))).where(2)
+        '(1, 2.5), (3, 4) and 1 more'
+        """
+        shown = ", ".join(f"({x:g}, {y:g})" for x, y in self.locations[:limit])
+        rest = self.count - min(limit, len(self.locations))
+        return shown + (f" and {rest:,} more" if shown and rest > 0 else "")
 
 
 @dataclass
@@ -40,9 +61,11 @@ class Report:
     stats: dict = field(default_factory=dict)
     findings: list[Finding] = field(default_factory=list)
 
-    def add(self, code: str, message: str, *, count: int = 1, locations=()) -> None:
-        """Record a finding."""
-        self.findings.append(Finding(code, message, count, tuple(tuple(map(float, p)) for p in locations)))
+    def add(self, code: str, message: str, *, count: int = 1, locations=(), sizes=(), worst=None,
+            unit: str = "mm") -> None:
+        """Record a finding (see :class:`Finding`)."""
+        self.findings.append(Finding(code, message, count, tuple(tuple(map(float, p)) for p in locations),
+                                     tuple(map(float, sizes)), None if worst is None else float(worst), unit))
 
     @property
     def ok(self) -> bool:

@@ -38,7 +38,7 @@ import shapely
 
 from .._errors import FabricationError, ParameterError, ProfileError
 from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, load_profile
-from .narrow import locations, narrow_places
+from .narrow import MAX_LOCATIONS, locations, narrow_places
 from .._report import Report
 from .._validate import check_choice, check_float
 from .contours import laser_contours, outline_contours, polygon_parts, score_paths
@@ -77,6 +77,24 @@ def small_hole_mask(holes: np.ndarray, min_hole_mm: float) -> np.ndarray:
     if len(todo):
         small[todo] = shapely.is_empty(shapely.buffer(holes[todo], -r, quad_segs=4))
     return small
+
+
+def hole_widths(holes: np.ndarray, *, tolerance_mm: float = 0.01):
+    """The widest point of each hole polygon and its width (the largest disc inside it).
+
+    Returns ``(centres, widths)``: shapely Points and their diameters (mm), from
+    GEOS's maximum inscribed circle within ``tolerance_mm``.
+
+    >>> from shapely.geometry import box
+    >>> centres, widths = hole_widths(np.array([box(0, 0, 2, 1)]))
+    >>> shapely.get_coordinates(centres).round(2).tolist(), widths.round(2).tolist()
+    ([[0.5, 0.5]], [1.0])
+    """
+    holes = np.asarray(holes, dtype=object)
+    # GEOS's maximum inscribed circle: about 20 us a hole at 0.01 mm (680 holes of the
+    # default web tile in 14 ms).
+    lines = shapely.maximum_inscribed_circle(holes, max(tolerance_mm, 1e-4))
+    return shapely.get_point(lines, 0), 2 * shapely.length(lines)
 
 
 def fill_small_holes(region, min_hole_mm: float, *, tolerance_mm: float = 0.0):
@@ -165,22 +183,25 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
         small = small_hole_mask(holes, profile.min_hole_mm)
         if small.any():
             n = int(small.sum())
+            centres, widths = hole_widths(holes[small], tolerance_mm=profile.tolerance_mm)
             report.add("small_hole",
                        f"{n} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
-                       "(they burn away or char shut; fill them with fill_small_holes=True, "
-                       "or fill_small_holes = true in a design's [output])",
-                       count=n, locations=locations(shapely.point_on_surface(holes[small])))
+                       f"(narrowest {widths.min():.3g} mm; they burn away or char shut; fill them with "
+                       "fill_small_holes=True, or fill_small_holes = true in a design's [output])",
+                       count=n, locations=locations(centres), sizes=widths[:MAX_LOCATIONS].round(3),
+                       worst=round(float(widths.min()), 3))
 
     # thin bridges: two rings of the same part closer than the minimum feature (within the
     # profile's tolerance: a band exactly min_feature_mm wide is fine to cut)
     f = profile.min_feature_mm
-    count, width, mids = narrow_places(region, f, tolerance=profile.tolerance_mm)
+    count, width, mids, widths = narrow_places(region, f, tolerance=profile.tolerance_mm)
     if count:
         extra = f"; the stroke is {stroke:g} mm" if stroke is not None else ""
         report.add("thin_bridge",
                    f"{count} bridge{'s' if count > 1 else ''} narrower than min_feature_mm = {f:g} mm "
                    f"(narrowest {width:.3g} mm{extra}): they may burn through or break",
-                   count=count, locations=locations(mids))
+                   count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
+                   worst=round(width, 3))
 
     # loose parts: all but the largest piece inside each outline polygon
     if len(parts) > 1:
@@ -199,7 +220,9 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
             report.add("loose_part",
                        f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
                        f"(they fall out; largest {area[loose].max():.3g} mm^2)",
-                       count=n, locations=locations(shapely.point_on_surface(parts[loose])))
+                       count=n, locations=locations(shapely.point_on_surface(parts[loose])),
+                       sizes=area[loose][:MAX_LOCATIONS].round(3), worst=round(float(area[loose].max()), 3),
+                       unit="mm^2")
     return report
 
 

@@ -7,11 +7,24 @@ spike, such as a star tip, belongs to one ring and is not reported.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 import shapely
 
-MAX_LOCATIONS = 20
-"""At most this many locations are listed per finding."""
+MAX_LOCATIONS = 100_000
+"""At most this many locations are listed per finding (a 1,200 x 600 mm sheet has about 20,000 holes)."""
+
+
+class NarrowPlaces(NamedTuple):
+    """What :func:`narrow_places` found: one entry per pair of boundaries closer than the width."""
+
+    count: int
+    narrowest: float
+    points: np.ndarray
+    """The narrowest point of each pair (the midpoint of its shortest line), shapely Points."""
+    widths: np.ndarray
+    """The material's width there (mm)."""
 
 
 def locations(points, limit: int = MAX_LOCATIONS) -> list[tuple[float, float]]:
@@ -40,22 +53,24 @@ def split_long_rings(rings: np.ndarray, max_points: int = 64):
     return np.concatenate([rings[small], segs]), np.concatenate([small, big[idx[:-1][same]]])
 
 
-def narrow_places(region, width: float, *, tolerance: float = 0.0):
+def narrow_places(region, width: float, *, tolerance: float = 0.0) -> NarrowPlaces:
     """Pairs of boundaries of the same piece of ``region`` closer than ``width - tolerance``.
 
     ``tolerance`` keeps material exactly ``width`` wide from being reported (after
-    Clipper2's integer rounding it measures a hair less). Returns ``(count,
-    narrowest, midpoints)``: one count per pair of rings, the smallest distance, and
-    the midpoints of the shortest lines of the first :data:`MAX_LOCATIONS` pairs.
+    Clipper2's integer rounding it measures a hair less). Returns a
+    :class:`NarrowPlaces`: one entry per pair of rings, at the narrowest point
+    between the two rings, with the width there.
 
     >>> from shapely.geometry import box
-    >>> narrow_places(box(0, 0, 10, 10).difference(box(1, 1, 9.5, 9)), 0.8)[:2]
-    (1, 0.5)
+    >>> found = narrow_places(box(0, 0, 10, 10).difference(box(1, 1, 9.5, 9)), 0.8)
+    >>> found.count, found.narrowest, shapely.get_coordinates(found.points).tolist()
+    (1, 0.5, [[9.75, 9.0]])
     """
+    none = NarrowPlaces(0, float("inf"), np.empty(0, object), np.empty(0))
     parts = shapely.get_parts(region)
     parts = parts[shapely.area(parts) > 0]
     if not len(parts):
-        return 0, float("inf"), []
+        return none
     n_int = shapely.get_num_interior_rings(parts)
     owner = np.repeat(np.arange(len(parts)), n_int)
     idx = np.concatenate([np.arange(k) for k in n_int]) if len(owner) else np.zeros(0, int)
@@ -73,9 +88,14 @@ def narrow_places(region, width: float, *, tolerance: float = 0.0):
     near = shapely.dwithin(items[a], items[b], width - tolerance)
     a, b = a[near], b[near]
     if not len(a):
-        return 0, float("inf"), []
-    _, first = np.unique(ring_of[a] * len(rings) + ring_of[b], return_index=True)
-    a, b = a[first], b[first]
-    narrowest = float(shapely.distance(items[a], items[b]).min())
-    lines = shapely.shortest_line(items[a[:MAX_LOCATIONS]], items[b[:MAX_LOCATIONS]])
-    return len(a), narrowest, shapely.line_interpolate_point(lines, 0.5, normalized=True)
+        return none
+    # per pair of rings, the closest pair of pieces (long rings are cut into segments)
+    dist = shapely.distance(items[a], items[b])
+    key = ring_of[a] * len(rings) + ring_of[b]
+    order = np.lexsort((dist, key))
+    _, first = np.unique(key[order], return_index=True)
+    pick = order[first]
+    a, b, dist = a[pick], b[pick], dist[pick]
+    lines = shapely.shortest_line(items[a], items[b])
+    points = shapely.line_interpolate_point(lines, 0.5, normalized=True)
+    return NarrowPlaces(len(a), float(dist.min()), points, dist)

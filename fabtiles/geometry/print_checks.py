@@ -30,7 +30,7 @@ import shapely
 
 from .._profiles import load_profile
 from .._report import Report
-from .narrow import locations, narrow_places
+from .narrow import MAX_LOCATIONS, locations, narrow_places
 
 WALL_TOLERANCE_MM = 0.01
 """A wall this much thinner than the minimum still counts as the minimum (rounding)."""
@@ -61,18 +61,26 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
     report = report if report is not None else Report(path="", format="print")
     wall = profile.min_wall_mm
 
-    if stroke is not None:
-        if stroke < wall * (1 - 1e-9):
-            report.add("thin_wall",
-                       f"the stroke is {stroke:g} mm, narrower than min_wall_mm = {wall:g} mm "
-                       f"(about two line widths of the {profile.nozzle_mm:g} mm nozzle): walls print thin or not at all")
+    if stroke is not None and stroke >= wall * (1 - 1e-9):
+        pass  # every band is at least the stroke wide: no wall to look for
+    elif stroke is not None:
+        # The whole pattern is thin; the places come from the geometry (where two
+        # boundaries of one piece are closer than the minimum), for the overlay.
+        found = narrow_places(region, wall, tolerance=WALL_TOLERANCE_MM)
+        report.add("thin_wall",
+                   f"the stroke is {stroke:g} mm, narrower than min_wall_mm = {wall:g} mm "
+                   f"(about two line widths of the {profile.nozzle_mm:g} mm nozzle): walls print thin or not at all",
+                   count=max(found.count, 1), locations=locations(found.points),
+                   sizes=found.widths[:MAX_LOCATIONS].round(3),
+                   worst=round(min(stroke, found.narrowest), 3))
     else:
-        count, narrowest, mids = narrow_places(region, wall, tolerance=WALL_TOLERANCE_MM)
+        count, narrowest, mids, widths = narrow_places(region, wall, tolerance=WALL_TOLERANCE_MM)
         if count:
             report.add("thin_wall",
                        f"{count} wall{'s' if count > 1 else ''} narrower than min_wall_mm = {wall:g} mm "
                        f"(narrowest {narrowest:.3g} mm): they print thin or not at all",
-                       count=count, locations=locations(mids))
+                       count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
+                       worst=round(narrowest, 3))
 
     layers = 2 * profile.layer_height_mm
     heights = {
@@ -107,5 +115,7 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
             report.add("loose_part",
                        f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
                        f"(a pierced tile falls apart; largest {area[loose].max():.3g} mm^2)",
-                       count=n, locations=locations(shapely.point_on_surface(parts[loose])))
+                       count=n, locations=locations(shapely.point_on_surface(parts[loose])),
+                       sizes=area[loose][:MAX_LOCATIONS].round(3), worst=round(float(area[loose].max()), 3),
+                       unit="mm^2")
     return report

@@ -39,7 +39,13 @@ def test_small_holes_reported_with_locations():
     assert codes(report) == ["small_hole"]
     f = report.findings[0]
     assert f.count == 2 and "min_hole_mm = 1.2 mm" in f.message
-    assert sorted(f.locations) == [(10.4, 10.4), (30.25, 35.0)]
+    (x1, y1), (x2, y2) = sorted(f.locations)
+    assert (x1, y1) == (10.4, 10.4)
+    assert x2 == 30.25 and 30.25 <= y2 <= 39.75  # anywhere along the slot's middle line
+    # each location carries the hole's width there (its largest inscribed disc)
+    sizes = dict(zip(f.locations, f.sizes))
+    assert sizes[(x1, y1)] == pytest.approx(0.8, abs=0.02) and sizes[(x2, y2)] == pytest.approx(0.5, abs=0.02)
+    assert f.worst == pytest.approx(0.5, abs=0.02) and f.unit == "mm"
 
 
 def test_small_hole_mask_agrees_with_negative_buffer():
@@ -75,6 +81,7 @@ def test_thin_bridge_between_holes():
     assert f.count == 1 and "narrowest 0.4 mm" in f.message
     x, y = f.locations[0]
     assert x == pytest.approx(20.2) and 5 <= y <= 25
+    assert f.sizes == pytest.approx((0.4,)) and f.worst == pytest.approx(0.4)
 
 
 def test_thin_wall_to_the_outline_and_long_rings():

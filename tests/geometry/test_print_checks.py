@@ -34,7 +34,7 @@ def test_thin_wall_found_from_geometry_without_stroke():
     f = r.findings[0]
     assert "narrowest 0.5 mm" in f.message and f.locations
     assert 19.5 <= f.locations[0][0] <= 20
-    count, narrowest, _ = narrow_places(plate, 0.8)
+    count, narrowest, _, _ = narrow_places(plate, 0.8)
     assert count == 1 and narrowest == pytest.approx(0.5)
 
 
@@ -68,6 +68,17 @@ def test_loose_parts_only_matter_when_pierced():
     assert codes(check_print(two, box(0, 0, 12, 5), "fdm-0.4mm", stroke=1)) == []
     r = check_print(two, box(0, 0, 12, 5), "fdm-0.4mm", stroke=1, style="pierced")
     assert codes(r) == ["loose_part"] and r.findings[0].count == 1
+    f = r.findings[0]
+    assert f.locations == ((11.0, 1.0),) and f.sizes == (4.0,) and f.worst == 4.0 and f.unit == "mm^2"
+
+
+def test_thin_stroke_walls_are_located():
+    # two 0.6 mm bands around a hole: the stroke is too thin, the walls are where it shows
+    plate = box(0, 0, 10.6, 10).difference(box(0.6, 0.6, 10, 9.4))
+    r = check_print(plate, box(0, 0, 10.6, 10), "fdm-0.4mm", stroke=0.6)
+    f = r.findings[0]
+    assert f.code == "thin_wall" and f.locations and f.worst == pytest.approx(0.6)
+    assert all(s == pytest.approx(0.6) for s in f.sizes)
 
 
 def test_bad_heights_are_errors():
