@@ -43,8 +43,50 @@ def region_path_data(region, height: float) -> str:
     return "".join(out)
 
 
+MARK_COLOURS = {"small_hole": "#ff8c00", "thin_bridge": "#e6007e", "thin_wall": "#e6007e",
+                "loose_part": "#00a651"}
+"""Stroke colour of each finding's marks (others: :data:`MARK_COLOUR`)."""
+MARK_COLOUR = "#ffd400"
+
+
+def findings_overlay(findings, height: float, *, mark_mm: float = 1.5) -> str:
+    """SVG marks, one per location of each finding, in a ``<g class="findings">``.
+
+    Each mark is a circle of class ``finding <code>`` with ``data-where`` (laser or
+    print) and a ``<title>`` giving its size; y is flipped like the picture.
+
+    Parameters
+    ----------
+    findings : iterable of (str, Finding)
+        Where each finding comes from and the finding (see :meth:`fabtiles.checks.CheckResult.findings`).
+    height : float
+        Height of the picture (mm), to flip y.
+    mark_mm : float
+        Radius of a mark.
+
+    >>> from fabtiles._report import Finding
+    >>> f = Finding("small_hole", "1 hole", 1, ((2.0, 1.0),), (0.62,), 0.62)
+    >>> print(findings_overlay([("laser", f)], 10))
+    <g class="findings" fill="none" stroke-width="0.375">
+    <circle class="finding small_hole" data-where="laser" cx="2" cy="9" r="1.5" stroke="#ff8c00"><title>small hole, 0.62 mm (laser)</title></circle>
+    </g>
+    """
+    out = [f'<g class="findings" fill="none" stroke-width="{_num(mark_mm / 4)}">']
+    for where, f in findings:
+        colour = MARK_COLOURS.get(f.code, MARK_COLOUR)
+        what = f.code.replace("_", " ")
+        unit = "mm²" if f.unit == "mm^2" else f.unit
+        for k, (x, y) in enumerate(f.locations):
+            size = f", {f.sizes[k]:.3g} {unit}" if k < len(f.sizes) else ""
+            out.append(f'<circle class="finding {_attr(f.code)}" data-where="{_attr(where)}" '
+                       f'cx="{_num(x)}" cy="{_num(height - y)}" r="{_num(mark_mm)}" stroke="{colour}">'
+                       f"<title>{_escape(what)}{size} ({_escape(where)})</title></circle>")
+    out.append("</g>")
+    return "\n".join(out)
+
+
 def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
-             background: str = "#ffffff", title: str | None = None) -> str:
+             background: str = "#ffffff", title: str | None = None, findings=None) -> str:
     """An SVG picture of ``tile`` at true size: material filled, outline stroked.
 
     Parameters
@@ -54,6 +96,8 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
         SVG colours.
     title : str, optional
         ``<title>`` of the picture; defaults to ``repr(tile)``.
+    findings : iterable of (str, Finding), optional
+        Fabrication findings to mark where they are (see :func:`findings_overlay`).
 
     Examples
     --------
@@ -69,6 +113,8 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
     outline = region_path_data(tile.outline_shape(), h)
     title = repr(tile) if title is None else title
     line = max(0.1, min(w, h) / 500)
+    # marks 1 % of the tile's smaller side (1.5 mm on 150 mm), never under 0.5 mm
+    marks = "" if findings is None else findings_overlay(findings, h, mark_mm=max(0.5, min(w, h) / 100)) + "\n"
     return (
         '<?xml version="1.0" encoding="UTF-8"?>\n'
         f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(w)}mm" height="{_num(h)}mm" '
@@ -77,7 +123,7 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
         f'<rect width="100%" height="100%" fill="{background}"/>\n'
         f'<path d="{d}" fill="{fill}" fill-rule="evenodd" stroke="none"/>\n'
         f'<path d="{outline}" fill="none" stroke="{outline_color}" stroke-width="{_num(line)}"/>\n'
-        "</svg>\n"
+        f"{marks}</svg>\n"
     )
 
 
@@ -88,3 +134,7 @@ def write_tile_svg(path, tile, **options) -> None:
 
 def _escape(text: str) -> str:
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def _attr(text: str) -> str:
+    return _escape(text).replace('"', "&quot;")

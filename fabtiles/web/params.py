@@ -60,6 +60,10 @@ def _text(field, text):
     return str(text)
 
 
+def _special(field, text):
+    return None if str(text).lower() in ("", "none") else _number(field, text, integer=True)
+
+
 # query key -> (section, design key, parser)
 FIELDS = {
     "preset": ("motif", "preset", _text),
@@ -67,7 +71,7 @@ FIELDS = {
     "radii": ("motif", "radii", _numbers),
     "alpha": ("motif", "alpha", _number),
     "spr": ("motif", "spr", _number),
-    "special": ("motif", "special", lambda f, t: None if str(t).lower() in ("", "none") else _number(f, t, integer=True)),
+    "special": ("motif", "special", _special),
     "rotation": ("motif", "rotation", _number),
     "packing": ("packing", "kind", _text),
     "radius": ("packing", "radius", _number),
@@ -76,6 +80,11 @@ FIELDS = {
     "gap_n": ("gap_motif", "n", lambda f, t: _number(f, t, integer=True)),
     "gap_radii": ("gap_motif", "radii", _numbers),
     "gap_preset": ("gap_motif", "preset", _text),
+    "gap_alpha": ("gap_motif", "alpha", _number),
+    "gap_spr": ("gap_motif", "spr", _number),
+    "gap_special": ("gap_motif", "special", _special),
+    "gap_rotation": ("gap_motif", "rotation", _number),
+    "seamless": ("packing", "seamless", _flag),
     "outline": ("tile", "outline", _text),
     "width": ("tile", "width", _number),
     "height": ("tile", "height", _number),
@@ -83,10 +92,17 @@ FIELDS = {
     "stroke": ("tile", "stroke", _number),
     "join": ("tile", "join", _text),
     "corner_radius": ("tile", "corner_radius", _number),
+    "miter_limit": ("tile", "miter_limit", _number),
     "laser_profile": ("output", "laser_profile", _text),
     "printer_profile": ("output", "printer_profile", _text),
     "laser_mode": ("output", "laser_mode", _text),
     "print_style": ("output", "print_style", _text),
+    "fill_small_holes": ("output", "fill_small_holes", _flag),
+    "base_mm": ("output", "base_mm", _number),
+    "relief_mm": ("output", "relief_mm", _number),
+    "pierced_mm": ("output", "pierced_mm", _number),
+    "deboss_mm": ("output", "deboss_mm", _number),
+    "name": ("output", "name", _text),
 }
 
 DEFAULTS = {
@@ -97,8 +113,19 @@ DEFAULTS = {
     "width": "150",
     "frame": "5",
     "stroke": "1",
+    "fill_small_holes": "true",
 }
-"""What the page starts with: the paper's third tiling result on a 150 mm square."""
+"""What the page starts with: the paper's third tiling result on a 150 mm square.
+
+Holes too small for the laser profile are filled by default, as the flagship sample
+``samples/table3-3.toml`` does: the default tile has 680 holes under the plywood
+profile's 1.2 mm, and the bridges between them are as thin as 0.155 mm; filled, the
+DXF cuts cleanly. ``fill_small_holes=false`` cuts them (and reports them).
+"""
+
+NOT_WEB_PARAMS = {("output", "formats")}
+"""Design keys with no query parameter, and why: each download is one format (the
+design TOML from the app lists them all)."""
 
 
 def design_from_query(query) -> dict:
@@ -121,6 +148,8 @@ def design_from_query(query) -> dict:
         del motif["preset"]
     if motif.get("special", 0) is None:
         del motif["special"]
+    if gap.get("special", 0) is None:
+        del gap["special"]
     if design["packing"].get("kind", "hex") == "none":
         if gap or len(design["packing"]) > 1:
             extra = sorted(k for k in query if FIELDS[k][0] in ("packing", "gap_motif") and k != "packing")

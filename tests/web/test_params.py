@@ -56,3 +56,53 @@ def test_bad_query_names_the_field(query, field, match):
     with pytest.raises(QueryError, match=match) as info:
         design_from_query(query)
     assert info.value.field == field
+
+
+# Query parameters that carry a design key under another name (or two).
+QUERY_NAMES = {("tile", "width"): ("tile", "size"), ("tile", "height"): ("tile", "size")}
+
+
+def test_every_design_key_is_a_query_parameter():
+    """The web app says everything a design file says (and nothing else)."""
+    from fabtiles import design
+    from fabtiles.web.params import FIELDS, NOT_WEB_PARAMS
+
+    keys = {("motif", k) for k in design.MOTIF_KEYS}
+    keys |= {("packing", k) for k in design.PACKING_KEYS if k != "gap_motif"}
+    keys |= {("gap_motif", k) for k in design.MOTIF_KEYS}  # [packing] gap_motif = { ... }
+    keys |= {("tile", k) for k in design.TILE_KEYS} | {("output", k) for k in design.OUTPUT_KEYS}
+    web = {QUERY_NAMES.get((section, name), (section, name)) for section, name, _ in FIELDS.values()}
+    assert NOT_WEB_PARAMS <= keys
+    assert web == keys - NOT_WEB_PARAMS, (keys - NOT_WEB_PARAMS - web, web - keys)
+
+
+def test_new_keys_map_to_the_design_and_validate():
+    from fabtiles.design import design_from_dict
+
+    d = design_from_query({
+        "preset": "table3-3", "radius": "10", "seamless": "true", "gap_alpha": "10", "gap_spr": "-0.1",
+        "gap_special": "2", "gap_rotation": "30", "outline": "hexagon", "width": "60", "miter_limit": "2.5",
+        "fill_small_holes": "false", "base_mm": "2.5", "relief_mm": "1", "pierced_mm": "3",
+        "deboss_mm": "0.6", "name": "my-tile",
+    })
+    assert d["packing"] == {"radius": 10.0, "seamless": True, "gap_motif": {
+        "n": 6, "radii": [0.5, 1.0], "alpha": 10.0, "spr": -0.1, "special": 2, "rotation": 30.0}}
+    assert d["tile"] == {"outline": "hexagon", "size": [60.0, 60.0], "miter_limit": 2.5}
+    assert d["output"] == {"fill_small_holes": False, "base_mm": 2.5, "relief_mm": 1.0, "pierced_mm": 3.0,
+                           "deboss_mm": 0.6, "name": "my-tile"}
+    spec = design_from_dict(d, source="query")
+    assert spec.name == "my-tile" and spec.output.heights()["base_mm"] == 2.5
+    assert design_from_query({"gap_special": "none"}).get("packing") is None
+
+
+@pytest.mark.parametrize("query, field, match", [
+    ({"fill_small_holes": "sometimes"}, "fill_small_holes", r"fill_small_holes must be true or false"),
+    ({"seamless": "2"}, "seamless", r"seamless must be true or false"),
+    ({"base_mm": "thick"}, "base_mm", r"base_mm must be a number, got 'thick'"),
+    ({"miter_limit": "inf"}, "miter_limit", r"miter_limit must be a finite number"),
+    ({"gap_special": "x"}, "gap_special", r"gap_special must be an integer"),
+])
+def test_bad_new_keys_name_the_field(query, field, match):
+    with pytest.raises(QueryError, match=match) as info:
+        design_from_query(query)
+    assert info.value.field == field

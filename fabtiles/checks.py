@@ -1,0 +1,98 @@
+"""The fabrication checks of a design, without writing any file.
+
+:func:`check_tile` runs what the exporters would run on a tile: the laser checks
+of the laser profile (pierced mode; in the score mode only the outline is cut and
+there is nothing to check but the bed), on the region as the laser file would hold
+it (with ``fill_small_holes``, the small holes filled first), and the print checks
+of the printer profile with the design's style and heights. Used by
+``fabtiles check``, the web app's checks and the preview's findings overlay.
+
+Unlike an export, nothing here raises for the fabrication problems themselves: a
+tile larger than the laser bed is a ``bed_size`` finding, a stroke thinner than
+the profile allows shows up as thin bridges.
+
+>>> import fabtiles as ft
+>>> tile = ft.Tile("square", 40, ft.HexPacking(radius=8, motif=ft.Star.preset("table3-3")), frame=3)
+>>> result = check_tile(tile, fill_small_holes=True)
+>>> [(where, f.code) for where, f in result.findings()], result.filled_holes > 0
+([], True)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ._errors import FabricationError
+from ._profiles import load_profile
+from ._report import Finding, Report
+
+DEFAULT_LASER_PROFILE = "laser-3mm-plywood"
+DEFAULT_PRINTER_PROFILE = "fdm-0.4mm"
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """The reports of :func:`check_tile`: ``laser`` and ``print`` (paths are empty)."""
+
+    laser: Report
+    print: Report
+    filled_holes: int = 0
+
+    def findings(self) -> list[tuple[str, Finding]]:
+        """Every finding with where it comes from (``"laser"`` or ``"print"``)."""
+        return [("laser", f) for f in self.laser.findings] + [("print", f) for f in self.print.findings]
+
+    @property
+    def ok(self) -> bool:
+        """True when neither check found anything."""
+        return self.laser.ok and self.print.ok
+
+
+def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=None, fill_small_holes=False,
+               print_style=None, heights=None) -> CheckResult:
+    """Run the laser and print checks of ``tile`` (see the module text).
+
+    Parameters
+    ----------
+    tile : Tile
+    laser_profile, printer_profile : str, Path or profile, optional
+        Defaults: ``laser-3mm-plywood`` and ``fdm-0.4mm``.
+    laser_mode : {"pierced", "score"}, optional
+        Default: the laser profile's.
+    fill_small_holes : bool
+        Check the laser region with its too-small holes filled (as the laser files would be).
+    print_style : {"relief", "pierced", "deboss"}, optional
+        Default: the printer profile's.
+    heights : dict, optional
+        ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm`` overrides.
+    """
+    from .geometry.laser_checks import check_fits_bed, check_laser
+    from .geometry.laser_checks import fill_small_holes as fill
+    from .geometry.print_checks import check_print
+
+    laser = load_profile(laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
+    printer = load_profile(printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")
+    region, outline = tile.region(), tile.outline_shape()
+    laser_report = Report(path="", format="laser")
+    try:
+        check_fits_bed(outline, laser)
+    except FabricationError as exc:
+        laser_report.add("bed_size", str(exc))
+    filled = 0
+    if (laser_mode or laser.mode) == "pierced" and not region.is_empty:
+        cut = region
+        if fill_small_holes:
+            cut, filled = fill(region, laser.min_hole_mm, tolerance_mm=laser.tolerance_mm)
+        check_laser(cut, outline, laser, stroke=tile.stroke, report=laser_report, validate=False)
+    print_report = check_print(region, outline, printer, stroke=tile.stroke, style=print_style,
+                               report=Report(path="", format="print"), **(heights or {}))
+    return CheckResult(laser_report, print_report, filled)
+
+
+def check_design(design, tile=None) -> CheckResult:
+    """:func:`check_tile` with the profiles, modes and options of a :class:`~fabtiles.design.Design`."""
+    out = design.output
+    tile = tile if tile is not None else design.build_tile()
+    return check_tile(tile, laser_profile=out.laser_profile, printer_profile=out.printer_profile,
+                      laser_mode=out.laser_mode, fill_small_holes=out.fill_small_holes,
+                      print_style=out.print_style, heights=out.heights())
