@@ -1,0 +1,83 @@
+"""``fabtiles check``: run a design's fabrication checks without writing its files.
+
+The laser checks of the design's laser profile (on the region as the laser files
+would hold it: with ``fill_small_holes``, its small holes filled) and the print
+checks of its printer profile, style and heights (see :mod:`fabtiles.checks`).
+Each finding is one line: where (laser or print), code, count, worst value and
+the first places. ``-o overlay.svg`` writes a picture of the tile with a mark at
+every place (written atomically).
+
+Exit status: 0 when nothing was found, 1 when there are findings, 2 on bad input
+(one line on stderr, no file written).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from .._errors import ParameterError
+
+SHOWN_PLACES = 3
+"""Places listed per finding on the terminal (the overlay shows them all)."""
+
+
+def finding_line(where: str, finding) -> str:
+    """One line for a finding: where, code, count, worst value, first places.
+
+    >>> from fabtiles._report import Finding
+    >>> f = Finding("thin_bridge", "...", 12, ((1.0, 2.0),), (0.155,), 0.155)
+    >>> finding_line("laser", f)
+    'laser thin_bridge: 12, worst 0.155 mm, at (1, 2) and 11 more'
+    """
+    parts = [f"{where} {finding.code}: {finding.count:,}"]
+    if finding.worst is not None:
+        unit = "mm²" if finding.unit == "mm^2" else finding.unit
+        parts.append(f"worst {finding.worst:g} {unit}")
+    if finding.locations:
+        parts.append(f"at {finding.where(SHOWN_PLACES)}")
+    else:
+        parts.append(finding.message)
+    return ", ".join(parts)
+
+
+@click.command("check")
+@click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False),
+              help="Write an SVG picture of the tile with a mark at every finding.")
+def command(design_file, output):
+    """Run the laser and print checks of a design; write no fabrication file.
+
+    \b
+    fabtiles check samples/table3-3.toml
+    fabtiles check my-tile.toml -o overlay.svg
+
+    Exit status 0: clean; 1: findings; 2: bad input.
+    """
+    import fabtiles
+
+    from ..checks import check_design
+    from ..design import load_design
+    from ..export.preview_svg import write_tile_svg
+
+    if output is not None and Path(output).suffix.lower() != ".svg":
+        raise ParameterError(f"the overlay (-o) must be an .svg file, got {output!r}")
+    design = load_design(design_file)
+    tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
+    result = check_design(design, tile)
+    out = design.output
+    laser = f"laser profile {out.laser_profile or 'laser-3mm-plywood'}"
+    if result.filled_holes:
+        laser += f" ({result.filled_holes:,} small holes filled)"
+    click.echo(f"{design_file}: {laser}, printer profile {out.printer_profile or 'fdm-0.4mm'}")
+    findings = result.findings()
+    for where, f in findings:
+        click.echo("  " + finding_line(where, f))
+    if output is not None:
+        write_tile_svg(output, tile, findings=findings, title=f"{design.name}: fabrication findings")
+        click.echo(f"wrote {output}")
+    n = len(findings)
+    click.echo(f"{n} finding{'s' if n != 1 else ''}" if n else "ok: nothing found")
+    if n:
+        click.get_current_context().exit(1)

@@ -1,0 +1,79 @@
+"""``fabtiles check``: findings printed, overlay written, exit 0 / 1 / 2."""
+
+import re
+
+import pytest
+from click.testing import CliRunner
+
+from fabtiles.cli.main import cli
+
+DESIGN = """
+[motif]
+preset = "table3-3"
+
+[packing]
+radius = 10
+
+[tile]
+outline = "square"
+size = 60
+frame = 3
+stroke = 1.0
+
+[output]
+laser_profile = "laser-3mm-plywood"
+fill_small_holes = {fill}
+"""
+
+
+def run(*args):
+    return CliRunner().invoke(cli, ["check", *map(str, args)], catch_exceptions=False)
+
+
+@pytest.fixture
+def designs(tmp_path):
+    paths = {}
+    for fill in ("true", "false"):
+        p = tmp_path / f"fill-{fill}.toml"
+        p.write_text(DESIGN.format(fill=fill))
+        paths[fill] = p
+    return paths
+
+
+def test_clean_design_exits_0_and_its_overlay_has_no_marks(designs, tmp_path):
+    out = tmp_path / "clean.svg"
+    res = run(designs["true"], "-o", out)
+    assert res.exit_code == 0, res.output
+    assert "small holes filled" in res.output and res.output.rstrip().endswith("ok: nothing found")
+    text = out.read_text()
+    assert text.startswith("<?xml") and 'class="findings"' in text and 'class="finding ' not in text
+
+
+def test_findings_are_printed_and_marked(designs, tmp_path):
+    out = tmp_path / "overlay.svg"
+    res = run(designs["false"], "-o", out)
+    assert res.exit_code == 1, res.output
+    line = next(x for x in res.output.splitlines() if "small_hole" in x)
+    m = re.fullmatch(r"\s+laser small_hole: ([\d,]+), worst ([\d.]+) mm, at \([\d., -]+\).* and ([\d,]+) more", line)
+    assert m, line
+    count = int(m[1].replace(",", ""))
+    assert 0 < float(m[2]) < 1.2
+    marks = re.findall(r'<circle class="finding small_hole" data-where="laser" cx="([\d.]+)" cy="([\d.]+)"', out.read_text())
+    assert len(marks) == count
+    assert all(0 <= float(x) <= 60 and 0 <= float(y) <= 60 for x, y in marks)
+    assert run(designs["false"]).exit_code == 1  # without -o: same status, no file
+
+
+@pytest.mark.parametrize("args, message", [
+    (["missing.toml"], "cannot read design file"),
+    (["{false}", "-o", "{tmp}/overlay.png"], "the overlay (-o) must be an .svg file"),
+    (["{bad}", "-o", "{tmp}/overlay.svg"], "unknown key 'strok' in [tile]"),
+])
+def test_bad_input_exits_2_and_writes_nothing(designs, tmp_path, args, message):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(DESIGN.format(fill="true").replace("stroke", "strok"))
+    args = [a.format(false=designs["false"], bad=bad, tmp=tmp_path) for a in args]
+    res = CliRunner().invoke(cli, ["check", *args])
+    assert res.exit_code == 2, res.output
+    assert message in res.output
+    assert not list(tmp_path.glob("overlay*"))
