@@ -1,0 +1,170 @@
+"""Strands and over/under (SPEC 2c): crossings against brute force, alternation along strands."""
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis_scale import examples
+
+import fabtiles as ft
+from fabtiles.pattern.interlace import weave
+
+ROSETTES = ["table1-part2", "table2-left", "table2-right", "table3-1", "table3-2", "table3-3"]
+
+
+def brute_crossings(seg, eps=1e-6):
+    """Interior crossing points of every pair of segments, O(n^2), and four-end straight joints."""
+    out = []
+    for (p, p2), (q, q2) in itertools.combinations(seg, 2):
+        r, s = p2 - p, q2 - q
+        den = r[0] * s[1] - r[1] * s[0]
+        if abs(den) < 1e-9 * np.linalg.norm(r) * np.linalg.norm(s):
+            continue
+        t = ((q - p)[0] * s[1] - (q - p)[1] * s[0]) / den
+        u = ((q - p)[0] * r[1] - (q - p)[1] * r[0]) / den
+        lr, ls = np.linalg.norm(r), np.linalg.norm(s)
+        if eps / lr < t < 1 - eps / lr and eps / ls < u < 1 - eps / ls:
+            out.append(p + t * r)
+    # straight joints: four ends at one point, as two straight lines
+    ends = {}
+    for a, b in seg:
+        for x, y in ((a, b), (b, a)):
+            key = tuple(np.round(x, 5))
+            d = (y - x) / np.linalg.norm(y - x)
+            ends.setdefault(key, []).append(d)
+    for key, ds in ends.items():
+        if len(ds) == 4:
+            ang = np.argsort([math.atan2(d[1], d[0]) for d in ds])
+            a, b, c, e = (ds[i] for i in ang)  # opposite ends, bending by < 30 degrees
+            if a @ c < -math.cos(math.radians(30)) and b @ e < -math.cos(math.radians(30)):
+                out.append(np.array(key))
+    return np.array(out).reshape(-1, 2)
+
+
+def sorted_points(p, decimals=5):
+    return sorted(map(tuple, np.round(np.asarray(p), decimals) + 0.0))
+
+
+def check_alternation(w):
+    """Every crossing: one visit over, one under; along every strand the visits alternate."""
+    assert len(w.visit_crossing) == 2 * len(w)
+    over_count = np.bincount(w.visit_crossing, weights=w.visit_over.astype(float), minlength=len(w))
+    assert np.all(over_count == 1)
+    order = np.lexsort((w.visit_pos, w.visit_strand))
+    st_, over = w.visit_strand[order], w.visit_over[order]
+    same = st_[1:] == st_[:-1]
+    assert np.all(over[1:][same] != over[:-1][same])
+
+
+@pytest.mark.parametrize("preset", ROSETTES)
+def test_rosette_crossings_match_brute_force_and_alternate(preset):
+    seg = ft.Star.preset(preset).segments()
+    w = weave(seg)
+    assert len(w) > 0
+    assert sorted_points(w.points) == sorted_points(brute_crossings(seg))
+    assert w.conflicts == 0
+    check_alternation(w)
+
+
+def test_small_tile_crossings_match_brute_force():
+    tile = ft.Tile("square", 50, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-1")), frame=2)
+    seg = tile.segments()
+    w = weave(seg)
+    assert sorted_points(w.points) == sorted_points(brute_crossings(seg))
+    assert w.conflicts == 0
+    check_alternation(w)
+
+
+@pytest.mark.parametrize("radii", [(51, 70, 172), ft.straight_radii(n=8, r1=51, r2=70, count=3)])
+def test_plain_star_weaves_through_its_inner_points(radii):
+    w = weave(ft.Star(n=8, radii=radii).segments())
+    assert len(w) == 8 and len(w.knots) == 0 and w.conflicts == 0
+    check_alternation(w)
+
+
+def test_three_lines_through_one_point_is_a_knot():
+    # three lines through the origin and one line crossing them all elsewhere
+    ang = np.radians([0, 60, 120])
+    d = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    seg = np.concatenate([np.stack([-2 * d, 2 * d], axis=1), [[[-3, 1], [3, 1]]]])
+    w = weave(seg)
+    assert sorted_points(w.knots) == [(0.0, 0.0)]
+    # the three lines go straight through the knot: four strands, each crossing y = 1 once
+    # except the horizontal one; only the two-strand crossings carry over/under
+    assert len(w) == 2
+    assert len(np.unique(w.strand)) == 4
+    check_alternation(w)
+
+
+def test_a_tip_turns_the_strand():
+    # a V whose arms cross two parallel lines: one strand through the tip, crossings alternate on it
+    seg = np.array([[[-2, 2], [0, 0]], [[0, 0], [2, 2]], [[-3, 1], [3, 1]], [[-3, 1.5], [3, 1.5]]])
+    w = weave(seg)
+    assert w.strand[0] == w.strand[1]
+    assert len(w) == 4
+    check_alternation(w)
+
+
+def test_strands_and_visits_are_linear_not_quadratic_in_count():
+    # a grid of 40 + 40 lines: 1600 crossings, every line alternating
+    lines = [[[-1, y], [41, y]] for y in range(40)] + [[[x, -1], [x, 41]] for x in range(40)]
+    w = weave(np.array(lines, float))
+    assert len(w) == 1600 and w.conflicts == 0
+    check_alternation(w)
+
+
+def test_broken_pieces_leave_the_over_strand_whole():
+    x = np.array([[[-1, 0], [1, 0]], [[0, -1], [0, 1]]], float)
+    w = weave(x)
+    b = w.broken_pieces(0.1, 0.05)
+    over_is_horizontal = w.over[0] == 0
+    horiz = b[np.isclose(b[:, 0, 1], b[:, 1, 1])]
+    vert = b[~np.isclose(b[:, 0, 1], b[:, 1, 1])]
+    whole, broken = (horiz, vert) if over_is_horizontal else (vert, horiz)
+    assert len(whole) == 1 and len(broken) == 2
+    gap = np.sort(np.abs(broken[:, :, :]).min(axis=1).max(axis=1))
+    assert np.allclose(gap, 0.15)
+
+
+def test_max_gap_is_where_an_under_gap_reaches_the_next_crossing():
+    seg = np.array([[[0, 0], [4, 0]], [[1, -1], [1, 1]], [[3, -1], [3, 1]]], float)
+    assert math.isclose(weave(seg).max_gap(0.25), 1.75)
+    assert weave(seg[:2]).max_gap(0.25) == math.inf
+
+
+def test_empty_and_single_segment():
+    assert len(weave(np.empty((0, 2, 2)))) == 0
+    w = weave(np.array([[[0, 0], [1, 0]]], float))
+    assert len(w) == 0 and w.strand.tolist() == [0]
+
+
+radius = st.floats(1, 300)
+
+
+@st.composite
+def motifs(draw):
+    n = draw(st.integers(3, 16))
+    radii = draw(st.lists(radius, min_size=2, max_size=4))
+    special = draw(st.none() | st.integers(2, len(radii)))
+    return ft.Star(n=n, radii=radii, alpha=draw(st.floats(-80, 80)), spr=draw(st.floats(-100, 100)),
+                   special=special, rotation=draw(st.floats(0, 360)))
+
+
+@settings(max_examples=examples(60), deadline=None)
+@given(motifs())
+def test_alternation_holds_for_random_motifs(star):
+    w = weave(star.segments())
+    assert w.conflicts == 0
+    check_alternation(w)
+
+
+@settings(max_examples=examples(15), deadline=None)
+@given(motifs(), st.sampled_from([ft.HexPacking, ft.SquarePacking]), st.floats(6, 20))
+def test_alternation_holds_for_random_packings(star, packing, r):
+    # the motifs only: outline circles kiss each other and are not woven (see Tile.weave)
+    w = weave(packing(radius=r, motif=star).motif_segments((-30, -30, 30, 30)))
+    assert w.conflicts == 0
+    check_alternation(w)
