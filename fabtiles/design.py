@@ -183,9 +183,30 @@ def design_from_text(text: str, *, name: str = "design", source: str = "<design>
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise DesignError(f"{source}: not valid TOML: {exc}") from None
+    if not overrides:
+        return design_from_dict(data, name=name, source=source)
+    import copy
+
+    original = copy.deepcopy(data)
     for item in overrides:
         apply_override(data, item, source=source)
-    return design_from_dict(data, name=name, source=source)
+    try:
+        return design_from_dict(data, name=name, source=source)
+    except DesignError as exc:
+        raise _blame_overrides(exc, original, tuple(overrides), name=name, source=source) from None
+
+
+def _blame_overrides(exc: DesignError, original: dict, overrides: tuple, *, name: str, source: str):
+    """The error of a design with overrides, naming the --set options when the file alone is valid."""
+    try:
+        design_from_dict(original, name=name, source=source)
+    except DesignError:
+        return exc  # the file itself is at fault (too): keep naming it
+    message = str(exc).removeprefix(f"{source}: ")
+    keys = {item: parse_override(item)[0] for item in overrides}
+    guilty = [item for item, parts in keys.items()
+              if re.search(rf"(?<![\w]){re.escape(parts[-1])}(?![\w])", message)] or list(overrides)
+    return DesignError(f"{' '.join(f'--set {item}' for item in guilty)}: {message}")
 
 
 def parse_override(item: str) -> tuple[list[str], Any]:

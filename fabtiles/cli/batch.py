@@ -1,39 +1,42 @@
-"""``fabtiles batch``: build many designs in parallel processes.
+"""``fabtiles batch``: build many designs in parallel processes or on a Dask cluster.
 
-One failing design is reported and skipped; the others go on. Each design is
-built all-or-nothing by :func:`fabtiles.cli.build.build_design`, so a failure
-leaves no partial file. Exit status 0 only when every design succeeded.
+One failing design is reported and skipped; the others go on. The builds run in
+:mod:`fabtiles.jobs` through the build pipeline (all or nothing per design, so a
+failure leaves no partial file). Exit status 0 only when every design succeeded.
 """
 
 from __future__ import annotations
 
+import functools
 import os
 import sys
-import traceback
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 import click
 
+from ..design import FORMATS
 
-def build_one(design_file: str, outdir: str, formats, overrides) -> tuple[str, bool, str, list[str]]:
-    """Build one design (in a worker process): ``(design, ok, message, written paths)``."""
-    from .._errors import FabtilesError
-    from ..design import load_design
-    from .build import build_design
 
-    try:
-        design = load_design(design_file, overrides=overrides)
-        reports = build_design(design, outdir, formats or None)
-        warnings = sum(len(r.findings) for r in reports)
-        message = f"{len(reports)} file{'s' if len(reports) != 1 else ''}"
-        if warnings:
-            message += f", {warnings} fabrication warning{'s' if warnings != 1 else ''}"
-        return design_file, True, message, [r.path for r in reports]
-    except FabtilesError as exc:
-        return design_file, False, str(exc), []
-    except Exception:  # a bug: report it with its traceback, keep the batch going
-        return design_file, False, "internal error (a bug, please report):\n" + traceback.format_exc(), []
+def run_and_report(jobs, *, workers, scheduler, label: str, keys) -> list:
+    """Run ``jobs`` with a progress bar on a terminal; print each outcome and its findings, in order."""
+    from ..jobs import run_jobs
+
+    outcomes = []
+    with click.progressbar(length=len(jobs), label=label, file=sys.stderr,
+                           hidden=not sys.stderr.isatty()) as bar:
+        for outcome in run_jobs(jobs, workers=workers, scheduler=scheduler):
+            outcomes.append(outcome)
+            bar.update(1)
+    order = {k: i for i, k in enumerate(keys)}
+    outcomes.sort(key=lambda o: order[o.key])
+    for o in outcomes:
+        if o.ok:
+            click.echo(f"ok     {o.key}: {o.message}")
+            for line in o.findings:
+                click.echo(f"         - {line}")
+        else:
+            click.echo(f"FAILED {o.key}: {o.message}", err=True)
+    return outcomes
 
 
 @click.command("batch")
@@ -43,41 +46,40 @@ def build_one(design_file: str, outdir: str, formats, overrides) -> tuple[str, b
               help="Folder to write OUTDIR/<design name>.<format> into.")
 @click.option("-j", "--jobs", type=click.IntRange(1, 64), default=None,
               help="Parallel processes (default: the number of CPU cores).")
+@click.option("--scheduler", metavar="ADDRESS",
+              help="Run every design as a task on a Dask cluster (e.g. tcp://10.0.0.5:8786); "
+                   "needs the dask extra.")
 @click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
               help="Override a value in every design, TOML syntax (repeatable).")
-@click.option("--format", "formats", multiple=True, type=click.Choice(("dxf", "svg", "stl", "3mf", "step")),
+@click.option("--format", "formats", multiple=True, type=click.Choice(FORMATS),
               help="Output format (repeatable); default: each design's [output] formats.")
-def command(design_files, outdir, jobs, overrides, formats):
+def command(design_files, outdir, jobs, scheduler, overrides, formats):
     """Build many designs in parallel; a failing design is reported and skipped.
+
+    Each design's fabrication findings are listed under it.
 
     \b
     fabtiles batch samples/*.toml -o out/ --jobs 2
+    fabtiles batch samples/*.toml -o out/ --scheduler tcp://10.0.0.5:8786
     """
+    from ..design import load_design
+    from ..jobs import Job
+
     stems = {}
     for f in design_files:
         stem = Path(f).stem
         if stem in stems and stems[stem] != f:
             raise click.UsageError(f"two designs would write the same files: {stems[stem]} and {f}; rename one")
         stems[stem] = f
-    jobs = jobs or os.cpu_count() or 1
-    show_bar = sys.stderr.isatty()
-    results = []
-    with ProcessPoolExecutor(max_workers=min(jobs, len(design_files))) as pool:
-        futures = [pool.submit(build_one, f, outdir, tuple(formats), tuple(overrides)) for f in design_files]
-        with click.progressbar(length=len(futures), label="building", file=sys.stderr,
-                               hidden=not show_bar) as bar:
-            for fut in as_completed(futures):
-                results.append(fut.result())
-                bar.update(1)
-    order = {f: k for k, f in enumerate(design_files)}
-    results.sort(key=lambda r: order[r[0]])
-    failed = [r for r in results if not r[1]]
-    for design, ok, message, written in results:
-        if ok:
-            click.echo(f"ok     {design}: {message}")
-        else:
-            click.echo(f"FAILED {design}: {message}", err=True)
-    click.echo(f"{len(results) - len(failed)} of {len(results)} designs built"
+    if scheduler is not None and jobs is not None:
+        raise click.UsageError("--jobs sets local processes; with --scheduler the cluster's workers build")
+    design_files = list(dict.fromkeys(design_files))
+    work = [Job(f, functools.partial(load_design, f, overrides=tuple(overrides)), str(outdir), tuple(formats))
+            for f in design_files]
+    outcomes = run_and_report(work, workers=jobs or os.cpu_count() or 1, scheduler=scheduler,
+                              label="building", keys=design_files)
+    failed = [o for o in outcomes if not o.ok]
+    click.echo(f"{len(outcomes) - len(failed)} of {len(outcomes)} designs built"
                + (f", {len(failed)} failed" if failed else ""))
     if failed:
         sys.exit(2)

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import os
 import re
-import tempfile
 from pathlib import Path
 
 from fastapi import FastAPI, Request
@@ -20,7 +19,7 @@ from fastapi.responses import FileResponse, JSONResponse, Response
 from .. import _limits
 from .._errors import FabtilesError
 from .._profiles import bundled_profiles
-from ..export.dispatch import FORMATS, profile_kind
+from ..export.dispatch import FORMATS
 from ..pattern.presets import PRESET_NOTES, PRESETS
 from .params import DEFAULTS, FIELDS, QueryError, design_from_query
 
@@ -60,16 +59,12 @@ def _field_of(message: str) -> str | None:
 
 
 def tile_from_dict(design: dict, *, limits: _limits.Limits):
-    """Validate a design dictionary, check the work limits, and build the tile (no geometry yet)."""
-    import fabtiles
-    from ..design import build_tile, design_from_dict
+    """Validate a design dictionary and build its tile (no geometry yet) within the work limits."""
+    from ..build import prepare_tile
+    from ..design import design_from_dict
 
     spec = design_from_dict(design, name="fabtiles-tile", source="query")
-    width, height = spec.tile_spec.size
-    _limits.check_size(width, height, limits)
-    tile = build_tile(spec, tile_cls=fabtiles.Tile)
-    _limits.check_tile(tile.pattern, tile.width_mm, tile.height_mm, limits)
-    return spec, tile
+    return spec, prepare_tile(spec, limits=limits)
 
 
 def fabrication_checks(tile, spec) -> dict:
@@ -176,19 +171,11 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
     def export(fmt: str, request: Request):
         if fmt not in FORMATS:
             raise QueryError(f"{fmt!r} is not a valid format, must be one of: {', '.join(FORMATS)}", "format")
-        design, spec, tile = build(request)
-        output = design.get("output", {})
-        if profile_kind(fmt) == "laser":
-            profile = output.get("laser_profile")
-            options = {"mode": output.get("laser_mode")}
-        else:
-            profile = output.get("printer_profile")
-            options = {"style": output.get("print_style")}
-        _limits.check_export(tile, fmt, limits)
-        with tempfile.TemporaryDirectory(prefix="fabtiles-web-") as tmp:
-            path = Path(tmp) / f"fabtiles-tile.{fmt}"
-            tile.export(path, profile=profile, **options)
-            data = path.read_bytes()
+        from ..build import build_bytes
+
+        _, spec, _ = build(request)
+        # The build pipeline, as `fabtiles build`: the design's profiles and options, the limits.
+        data, _ = build_bytes(spec, fmt, limits=limits, file_name=f"fabtiles-tile.{fmt}")
         return Response(data, media_type=MEDIA_TYPES[fmt],
                         headers={"Content-Disposition": f'attachment; filename="fabtiles-tile.{fmt}"'})
 

@@ -52,3 +52,19 @@ def test_batch_refuses_clashing_names(tmp_path):
     proc = run_batch(SAMPLES / "rosette.toml", tmp_path / "a" / "rosette.toml", "-o", tmp_path / "out")
     assert proc.returncode == 2 and "two designs would write the same files" in proc.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_batch_prints_each_designs_findings(tmp_path):
+    proc = run_batch(SAMPLES / "table3-3.toml", SAMPLES / "rosette.toml", "-o", tmp_path, "--format", "dxf",
+                     "--set", "output.fill_small_holes=false", "--jobs", "1")
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    head = [k for k, line in enumerate(lines) if line.startswith(f"ok     {SAMPLES / 'table3-3.toml'}: 1 file, ")]
+    assert head, proc.stdout
+    assert lines[head[0] + 1].startswith("         - table3-3.dxf: small_hole: ")
+
+
+def test_batch_bad_set_names_the_option(tmp_path):
+    proc = run_batch(SAMPLES / "rosette.toml", "-o", tmp_path, "--set", "tile.stroke=-1")
+    assert proc.returncode == 2
+    assert f"FAILED {SAMPLES / 'rosette.toml'}: --set tile.stroke=-1: [tile] stroke must be" in proc.stderr

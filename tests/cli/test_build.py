@@ -7,7 +7,7 @@ import pytest
 from click.testing import CliRunner
 
 from fabtiles import FabtilesError
-from fabtiles.cli import build as build_mod
+from fabtiles import build as build_mod
 from fabtiles.cli.main import cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -114,7 +114,7 @@ def test_failing_format_keeps_existing_files(design, tmp_path, monkeypatch):
             raise FabtilesError("mesh is not watertight")
         path.write_text("new")
 
-    monkeypatch.setattr(build_mod, "_export", boom)
+    monkeypatch.setattr(build_mod, "export_format", boom)
     result = run("build", design, "-o", out, "--format", "svg", "--format", "stl")
     assert result.exit_code == 2 and "mesh is not watertight" in result.output
     assert (out / "small.svg").read_text() == "old"

@@ -17,8 +17,8 @@ from test_build import run  # noqa: E402
 import fabtiles  # noqa: E402
 from fabtiles import FabtilesError  # noqa: E402
 from fabtiles._profiles import load_profile  # noqa: E402
-from fabtiles.cli import build as build_mod  # noqa: E402
-from fabtiles.cli.build import layout_tile_sheet  # noqa: E402
+from fabtiles import build as build_mod  # noqa: E402
+from fabtiles.build import layout_tile_sheet  # noqa: E402
 from fabtiles.design import load_design  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -153,7 +153,7 @@ def test_failing_sheet_format_keeps_existing_files(design, tmp_path, monkeypatch
             raise FabtilesError("disk on fire")
         path.write_text("new")
 
-    monkeypatch.setattr(build_mod, "_export_sheet", boom)
+    monkeypatch.setattr(build_mod, "export_sheet", boom)
     result = run("build", design, "-o", out, "--copies", 2, "--format", "dxf", "--format", "svg")
     assert result.exit_code == 2 and result.stderr == "fabtiles: error: disk on fire\n"
     assert calls == [".dxf", ".svg"]

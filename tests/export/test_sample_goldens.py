@@ -33,7 +33,7 @@ from dxf_helpers import (
 
 import fabtiles
 from fabtiles._profiles import load_profile
-from fabtiles.cli.build import build_design
+from fabtiles.build import build_design
 from fabtiles.design import load_design
 from fabtiles.export.dispatch import DEFAULT_LASER_PROFILE, export_tile
 from fabtiles.export.dxf import write_dxf
@@ -49,7 +49,7 @@ ONE = ROOT / "samples" / "rosette.toml"
 def build(sample: Path, out: Path, mode: str = "pierced"):
     """Build ``sample``'s DXF in ``mode`` as ``fabtiles build`` does: (path, tile, profile)."""
     design = load_design(sample, overrides=[f"output.laser_mode={mode}"])
-    [report] = build_design(design, out, ["dxf"])
+    [report] = build_design(design, out, ["dxf"]).reports
     path = Path(report.path)
     tile = design.build_tile(tile_cls=fabtiles.Tile)
     return path, tile, load_profile(design.output.laser_profile or DEFAULT_LASER_PROFILE)

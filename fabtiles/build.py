@@ -1,0 +1,342 @@
+"""The build pipeline: from a validated design to its files, for every front end.
+
+``fabtiles build``, ``batch`` and ``sweep``, the web app's downloads and a cluster
+worker all come through here, so an option a design gains reaches every one of them,
+and the work limits are checked once, in :func:`prepare_tile` and
+:func:`check_format_limits`, for everyone (the STEP limit too).
+
+All or nothing: the tile's geometry is computed first; every file is then written
+into a staging folder inside the output folder and moved into place only when all
+formats have succeeded. A failure leaves no new or partial file and never clobbers
+an existing one. Sheets (``sheet=True`` or ``copies``) write the laser formats as
+``<design name>-sheet.<format>``: copies of the tile on the laser profile's bed.
+
+>>> import tempfile
+>>> from fabtiles.design import design_from_text
+>>> d = design_from_text('''
+... [motif]
+... preset = "table3-1"
+... [tile]
+... size = 40
+... ''', name="demo")
+>>> out = tempfile.mkdtemp()
+>>> [Path(r.path).name for r in build_design(d, out, ["svg", "dxf"]).reports]
+['demo.svg', 'demo.dxf']
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import socket
+import tempfile
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import _limits
+from ._errors import FabtilesError, ParameterError
+from ._report import Report
+
+SHEET_SUFFIX = "-sheet"
+"""Sheet files are ``<design name>-sheet.<format>``, next to (never over) the tile's files."""
+
+STAGING_PREFIX = ".fabtiles-build-"
+"""Staging folders inside an output folder: ``.fabtiles-build-<host>-<pid>-<random>``."""
+
+
+@dataclass
+class BuildResult:
+    """What one build wrote: a report per file (``report.path`` is its final path)."""
+
+    reports: list[Report] = field(default_factory=list)
+    skipped: tuple[str, ...] = ()
+    """Print formats left out of a sheet."""
+
+    @property
+    def paths(self) -> list[str]:
+        return [r.path for r in self.reports]
+
+    @property
+    def findings(self) -> int:
+        return sum(len(r.findings) for r in self.reports)
+
+
+def sheet_formats(formats) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Split ``formats`` into the laser formats a sheet is written in and the skipped print formats.
+
+    >>> sheet_formats(["svg", "stl", "dxf"])
+    (('svg', 'dxf'), ('stl',))
+    """
+    from .export.dispatch import profile_kind
+
+    laser = tuple(f for f in formats if profile_kind(f) == "laser")
+    return laser, tuple(f for f in formats if f not in laser)
+
+
+def prepare_tile(design, *, limits: _limits.Limits = _limits.CLI_LIMITS):
+    """The design's tile, after checking its size and segment count against ``limits``.
+
+    No geometry is built before the limits pass.
+    """
+    from .geometry.tile import Tile
+
+    width, height = design.tile_spec.size
+    _limits.check_size(width, height, limits)
+    tile = design.build_tile(tile_cls=Tile)
+    _limits.check_tile(tile.pattern, tile.width_mm, tile.height_mm, limits)
+    return tile
+
+
+def check_format_limits(tile, formats, limits: _limits.Limits) -> None:
+    """The formats' own, lower limits (STEP is slow on huge solids)."""
+    for fmt in formats:
+        _limits.check_export(tile, fmt, limits)
+
+
+def layout_tile_sheet(tile, design, *, copies=None, gap_mm=None, limits: _limits.Limits = _limits.CLI_LIMITS):
+    """Copies of ``tile`` on the bed of the design's laser profile.
+
+    Parameters
+    ----------
+    tile : Tile
+        The design's tile.
+    design : Design
+        Gives the laser profile (its bed size and kerf).
+    copies : int, optional
+        Exactly this many copies; default: as many as fit on the bed.
+    gap_mm : float, optional
+        Space between tiles; default: the kerf + 2 mm.
+    limits : Limits
+        The sheet's segments (all copies) are checked against them.
+
+    Returns
+    -------
+    Sheet
+        See :func:`~fabtiles.export.sheet.layout_sheet`.
+
+    Raises
+    ------
+    FabricationError
+        The copies (or even one tile) do not fit on the bed.
+    LimitError
+        The sheet would hold more segments than ``limits`` allow.
+    """
+    from .export.dispatch import DEFAULT_LASER_PROFILE
+    from .export.sheet import layout_sheet
+
+    profile = design.output.laser_profile or DEFAULT_LASER_PROFILE
+    options = dict(copies=1 if copies is None else copies, gap_mm=gap_mm, fill=copies is None)
+    outline = tile.outline_shape()
+    # Place the outlines alone first (cheap), to refuse an oversized job before any work.
+    placed = layout_sheet([(outline, outline)], profile, **options)
+    _limits.check_segments(len(tile.segments()) * len(placed.offsets), limits,
+                           what=f"the sheet of {len(placed.offsets)} tiles")
+    return layout_sheet([(tile.region(), outline)], profile, centrelines=[tile.centrelines()], **options)
+
+
+def export_format(tile, fmt: str, path: Path, design) -> Report:
+    """Write one format of the tile with the design's profiles and options; return its report."""
+    from .export import dispatch
+
+    out = design.output
+    if dispatch.profile_kind(fmt) == "laser":
+        return dispatch.export_tile(tile, path, profile=out.laser_profile, mode=out.laser_mode,
+                                    fill_small_holes=out.fill_small_holes)
+    return dispatch.export_tile(tile, path, profile=out.printer_profile, style=out.print_style, **out.heights())
+
+
+def export_sheet(layout, tile, path: Path, design) -> Report:
+    """Write one laser format of a sheet; return its report."""
+    from .export.dispatch import export_geometry
+
+    out = design.output
+    return export_geometry(path, region=layout.region, outline=layout.outline, centrelines=layout.centrelines,
+                           stroke=tile.stroke, profile=out.laser_profile, mode=out.laser_mode,
+                           fill_small_holes=out.fill_small_holes)
+
+
+def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: int | None = None,
+                 gap_mm: float | None = None, file_name: str | None = None,
+                 limits: _limits.Limits = _limits.CLI_LIMITS) -> BuildResult:
+    """Write ``OUTDIR/<design name>.<format>`` for each format, all or nothing.
+
+    Parameters
+    ----------
+    design : Design
+        The validated design.
+    outdir : str or Path
+        Output folder (created when missing; removed again if a failed build created it).
+    formats : iterable of str, optional
+        Default: the design's ``[output] formats``.
+    sheet : bool
+        Write the laser formats as a sheet, ``OUTDIR/<design name>-sheet.<format>``:
+        copies of the tile on the laser profile's bed (as many as fit unless ``copies``
+        is given). Print formats are skipped (see :func:`sheet_formats`).
+    copies : int, optional
+        Lay exactly this many copies on the sheet (implies ``sheet``).
+    gap_mm : float, optional
+        Space between tiles on the sheet (> kerf; implies ``sheet``); default: the kerf + 2 mm.
+    file_name : str, optional
+        The name of the one file written (one format only), instead of
+        ``<design name>[-sheet].<format>``.
+    limits : Limits
+        Work limits (:data:`fabtiles._limits.CLI_LIMITS` for the command line).
+
+    Returns
+    -------
+    BuildResult
+        One report per file written, with the fabrication checks' findings.
+
+    Raises
+    ------
+    FabtilesError
+        On any failure, with nothing written: among others, a sheet asked for with
+        only print formats, copies that do not fit on the bed, a job over the limits.
+    """
+    formats = tuple(dict.fromkeys(formats or design.output.formats))
+    sheet = sheet or copies is not None or gap_mm is not None
+    skipped: tuple[str, ...] = ()
+    if sheet:
+        formats, skipped = sheet_formats(formats)
+        if not formats:
+            raise FabtilesError(
+                f"a sheet is laid out for the laser formats (dxf, svg) only, but the formats asked "
+                f"for are: {', '.join(skipped)}; add --format dxf or --format svg")
+    if file_name is not None and len(formats) != 1:
+        raise ParameterError(f"file_name {file_name!r} names one file, but {len(formats)} formats are asked "
+                             f"for: {', '.join(formats)}")
+    tile = prepare_tile(design, limits=limits)
+    check_format_limits(tile, formats, limits)
+    # Compute (and fail) before anything is written; a sheet that cannot fit fails before the tile.
+    layout = layout_tile_sheet(tile, design, copies=copies, gap_mm=gap_mm, limits=limits) if sheet else None
+    tile.region()
+    with staging_folder(outdir) as (staging, final):
+        staged = []
+        for fmt in formats:
+            if layout is None:
+                path = staging / (file_name or f"{design.name}.{fmt}")
+                report = export_format(tile, fmt, path, design)
+            else:
+                path = staging / (file_name or f"{design.name}{SHEET_SUFFIX}.{fmt}")
+                report = export_sheet(layout, tile, path, design)
+            staged.append((path, report))
+        for path, report in staged:
+            report.path = str(final(path))
+    return BuildResult([report for _, report in staged], skipped)
+
+
+class staging_folder:
+    """A staging folder inside ``outdir``: ``with staging_folder(out) as (staging, move): ...``.
+
+    ``move(path)`` puts a staged file into ``outdir`` (an atomic rename) and returns
+    its final path. On leaving, the staging folder is removed, and so is ``outdir``
+    when it was created here and stayed empty (a failed build leaves no folder).
+    The staging folder's name carries the host and process id, so that
+    :func:`remove_stale_staging` can tell a dead process's leftovers from a live one's.
+    """
+
+    def __init__(self, outdir):
+        self.outdir = Path(outdir)
+
+    def __enter__(self):
+        outdir = self.outdir
+        if outdir.exists() and not outdir.is_dir():
+            raise FabtilesError(f"output folder {str(outdir)!r} exists and is not a folder")
+        self.existed = outdir.exists()
+        try:
+            outdir.mkdir(parents=True, exist_ok=True)
+            prefix = f"{STAGING_PREFIX}{socket.gethostname()}-{os.getpid()}-"
+            self.staging = Path(tempfile.mkdtemp(prefix=prefix, dir=outdir))
+        except OSError as exc:
+            raise FabtilesError(f"cannot create output folder {str(outdir)!r}: {exc.strerror or exc}") from None
+        return self.staging, self._move
+
+    def _move(self, path: Path) -> Path:
+        target = self.outdir / path.name
+        os.replace(path, target)
+        return target
+
+    def __exit__(self, kind, exc, tb):
+        shutil.rmtree(self.staging, ignore_errors=True)
+        if not self.existed and self.outdir.is_dir() and not any(self.outdir.iterdir()):
+            self.outdir.rmdir()  # a failed build leaves no folder it created either
+        if isinstance(exc, OSError):
+            raise FabtilesError(f"cannot write into {str(self.outdir)!r}: {exc.strerror or exc}") from None
+        return False
+
+
+def remove_stale_staging(outdir) -> int:
+    """Remove staging folders in ``outdir`` left by dead processes of this host; return how many.
+
+    A process killed outright (SIGKILL, a lost cluster worker) cannot clean up: its
+    staging folder stays, hidden, while the final files are never partial.
+    """
+    outdir = Path(outdir)
+    host = socket.gethostname()
+    removed = 0
+    if not outdir.is_dir():
+        return 0
+    for path in outdir.glob(f"{STAGING_PREFIX}*"):
+        parts = path.name[len(STAGING_PREFIX):].rsplit("-", 2)  # host (may hold "-"), pid, random
+        if len(parts) != 3 or parts[0] != host or not parts[1].isdigit() or _alive(int(parts[1])):
+            continue
+        shutil.rmtree(path, ignore_errors=True)
+        removed += 1
+    return removed
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | None = None) -> tuple[bytes, Report]:
+    """Build one format of ``design`` and return the file's bytes and report (the web app's downloads)."""
+    with tempfile.TemporaryDirectory(prefix="fabtiles-") as tmp:
+        result = build_design(design, tmp, (fmt,), file_name=file_name, limits=limits)
+        report = result.reports[0]
+        data = Path(report.path).read_bytes()
+    return data, report
+
+
+@dataclass
+class Outcome:
+    """The result of one job of a batch or sweep (picklable: it crosses processes and machines)."""
+
+    key: str
+    ok: bool
+    message: str
+    paths: list[str] = field(default_factory=list)
+    findings: list[str] = field(default_factory=list)
+    """One line per fabrication finding, ``"<file name>: <code>: <message>"``."""
+
+
+def outcome_of(key: str, result: BuildResult) -> Outcome:
+    """An :class:`Outcome` for a successful build."""
+    n = len(result.reports)
+    message = f"{n} file{'s' if n != 1 else ''}"
+    if result.findings:
+        message += f", {result.findings} fabrication warning{'s' if result.findings != 1 else ''}"
+    lines = [f"{Path(r.path).name}: {f.code}: {f.message}" for r in result.reports for f in r.findings]
+    return Outcome(key, True, message, result.paths, lines)
+
+
+def run_job(key: str, make_design, outdir, formats=None) -> Outcome:
+    """Build one design for a batch or sweep, never raising: failures become an :class:`Outcome`.
+
+    ``make_design`` is a callable returning the validated design (so that loading
+    and validation errors are this job's failure too).
+    """
+    try:
+        result = build_design(make_design(), outdir, formats or None)
+        return outcome_of(key, result)
+    except FabtilesError as exc:
+        return Outcome(key, False, str(exc))
+    except Exception:  # a bug: report it with its traceback, keep the batch going
+        return Outcome(key, False, "internal error (a bug, please report):\n" + traceback.format_exc())

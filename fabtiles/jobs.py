@@ -1,0 +1,104 @@
+"""Run many builds: in local processes, or as tasks on a Dask cluster.
+
+``fabtiles batch`` and ``fabtiles sweep`` hand their designs here as :class:`Job`\\ s;
+each is built by :func:`fabtiles.build.run_job` (all or nothing, through a staging
+folder), locally in a process pool or on the workers of a ``dask.distributed``
+scheduler. A job never raises: a failure comes back as a failed
+:class:`~fabtiles.build.Outcome` and the others go on. A cluster worker lost in the
+middle of a task leaves no partial file (the staging folder never becomes an
+output) and the scheduler runs the task again elsewhere.
+
+>>> jobs = [Job("a", lambda: None, "out")]
+>>> jobs[0].key
+'a'
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass
+
+from ._errors import FabtilesError
+from .build import Outcome, remove_stale_staging, run_job
+
+CONNECT_TIMEOUT_S = 8.0
+"""How long to wait for a Dask scheduler before giving up (the CLI answers within 10 s)."""
+
+
+@dataclass(frozen=True)
+class Job:
+    """One design to build: a key (for reports), a callable giving the validated design, the output."""
+
+    key: str
+    make_design: Callable
+    outdir: str
+    formats: tuple[str, ...] = ()
+
+
+def _run(job: Job) -> Outcome:
+    return run_job(job.key, job.make_design, job.outdir, job.formats)
+
+
+def run_jobs(jobs: Sequence[Job], *, workers: int = 1, scheduler: str | None = None) -> Iterator[Outcome]:
+    """Build ``jobs``, yielding each :class:`~fabtiles.build.Outcome` as it completes.
+
+    Parameters
+    ----------
+    jobs : sequence of Job
+    workers : int
+        Local processes (without ``scheduler``); 1 builds in this process.
+    scheduler : str, optional
+        Address of a ``dask.distributed`` scheduler (``tcp://host:8786``): every job
+        runs as a task on its workers.
+
+    Raises
+    ------
+    FabtilesError
+        The scheduler cannot be reached (within :data:`CONNECT_TIMEOUT_S`), or
+        ``distributed`` is not installed.
+    """
+    if scheduler is not None:
+        yield from _run_dask(jobs, scheduler)
+    elif workers <= 1 or len(jobs) <= 1:
+        for job in jobs:
+            yield _run(job)
+    else:
+        with ProcessPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
+            for fut in as_completed([pool.submit(_run, job) for job in jobs]):
+                yield fut.result()
+    for outdir in dict.fromkeys(job.outdir for job in jobs):
+        remove_stale_staging(outdir)
+
+
+def connect(scheduler: str):
+    """A ``distributed.Client`` of ``scheduler``, or a FabtilesError within the connect timeout."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise FabtilesError("--scheduler needs the dask extra: pip install 'fabtiles[dask]'") from None
+    try:
+        return Client(scheduler, timeout=CONNECT_TIMEOUT_S, set_as_default=False)
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise FabtilesError(f"cannot reach the Dask scheduler at {scheduler!r} within "
+                            f"{CONNECT_TIMEOUT_S:g} s ({exc}); check the address and that "
+                            f"`dask scheduler` is running") from None
+
+
+def _run_dask(jobs: Sequence[Job], scheduler: str) -> Iterator[Outcome]:
+    from distributed import as_completed as dask_completed
+
+    client = connect(scheduler)
+    try:
+        # pure=False: two jobs with equal arguments are still two tasks; the scheduler
+        # reruns the task of a lost worker elsewhere (its allowed-failures setting).
+        futures = [client.submit(_run, job, pure=False) for job in jobs]
+        by_future = {f.key: job for f, job in zip(futures, jobs)}
+        for fut in dask_completed(futures):
+            try:
+                yield fut.result()
+            except Exception as exc:  # the task itself died (e.g. its workers kept being killed)
+                job = by_future[fut.key]
+                yield Outcome(job.key, False, f"the cluster could not run this job: {type(exc).__name__}: {exc}")
+    finally:
+        client.close()
