@@ -18,6 +18,7 @@ from ._errors import (
 from ._profiles import LaserProfile, PrinterProfile, load_profile
 from ._report import Report
 from .design import load_design
+from .pattern.archimedean import ArchimedeanPacking
 from .pattern.packing import HexPacking, SquarePacking
 from .pattern.radii import straight_radii
 from .pattern.star import Star
@@ -48,6 +49,7 @@ def __dir__():
 __version__ = "0.1.0"
 
 __all__ = [
+    "ArchimedeanPacking",
     "DesignError",
     "FabricationError",
     "FabtilesError",

@@ -51,6 +51,8 @@ def estimate_segments(pattern, width_mm: float, height_mm: float) -> int:
     >>> estimate_segments(Star(n=8, radii=(1, 2)), 100, 100)
     16
     """
+    if hasattr(pattern, "segment_count"):  # counts its own motifs per polygon kind
+        return pattern.segment_count((-width_mm / 2, -height_mm / 2, width_mm / 2, height_mm / 2))
     motif = getattr(pattern, "motif", None)
     if motif is None:  # a single Star
         return len(pattern.segments())

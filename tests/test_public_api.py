@@ -3,6 +3,7 @@
 import fabtiles
 
 EXPECTED = {
+    "ArchimedeanPacking",
     "DesignError",
     "FabricationError",
     "FabtilesError",

@@ -16,6 +16,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from .._errors import ParameterError
 from .._validate import check_choice, check_float
+from ..pattern.archimedean import ArchimedeanPacking
 from ..pattern.packing import _Packing
 from ..pattern.star import Star
 from .stroke import JOINS, _graph, stroke_cross_section, to_cross_section, to_shapely
@@ -76,7 +77,7 @@ class Tile:
     size : float or (float, float)
         mm. ``square``, ``hexagon`` (width across flats) and ``circle`` (diameter)
         take one number or an equal pair; ``rectangle`` takes ``(width, height)``.
-    pattern : HexPacking, SquarePacking or Star
+    pattern : HexPacking, SquarePacking, ArchimedeanPacking or Star
         A packing (its lattice point (0, 0) at the tile centre), or a single motif
         centred and scaled to the largest circle inside the frame.
     frame : float
@@ -91,6 +92,15 @@ class Tile:
         beyond it the miter is cut square at that distance.
     corner_radius : float
         Radius of rounded outline corners, mm (0 for sharp; not for circles).
+    interlace : bool
+        Weave the strands over and under each other (SPEC 2c, see
+        :mod:`fabtiles.geometry.interlace`): the drawing, the score lines and
+        the relief show it.
+    interlace_gap_mm : float, optional
+        Clearance each side of an over band, mm (>= 0; default a third of the stroke).
+    interlace_cut : bool
+        Laser, pierced: cut the under strands' gaps through too (tabs keep every
+        piece joined).
 
     Examples
     --------
@@ -108,12 +118,14 @@ class Tile:
     """
 
     def __init__(self, outline, size, pattern, *, frame=0.0, stroke=1.0, join="miter",
-                 miter_limit=4.0, corner_radius=0.0):
+                 miter_limit=4.0, corner_radius=0.0, interlace=False, interlace_gap_mm=None,
+                 interlace_cut=False):
         self._outline = check_choice("outline", outline, OUTLINES)
         self._size = _check_size(self._outline, size)
-        if not isinstance(pattern, (_Packing, Star)):
+        if not isinstance(pattern, (_Packing, ArchimedeanPacking, Star)):
             raise ParameterError(
-                f"pattern must be a HexPacking, SquarePacking or Star, got {type(pattern).__name__}")
+                f"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking or Star, "
+                f"got {type(pattern).__name__}")
         self._pattern = pattern
         self._frame = check_float("frame", frame, low=0)
         self._stroke = check_float("stroke", stroke, low=0, low_open=True)
@@ -136,14 +148,19 @@ class Tile:
                 raise ParameterError(
                     f"corner_radius must be >= 0 and <= {across / 2:g} (half the tile's "
                     f"narrowest width), got {self._corner_radius:g}")
-        limit, what = ((pattern.radius, "the packing radius") if isinstance(pattern, _Packing)
-                       else (self.motif_radius, "the motif circle's radius"))
+        limit, what = ((self.motif_radius, "the motif circle's radius") if isinstance(pattern, Star)
+                       else (pattern.radius, "the packing radius"))
         if self._stroke > limit:
             raise ParameterError(
                 f"stroke must be > 0 and <= {limit:g} mm ({what}), got {self._stroke:g}")
+        self._interlace = _check_bool("interlace", interlace)
+        self._interlace_cut = _check_bool("interlace_cut", interlace_cut)
+        self._interlace_gap = (None if interlace_gap_mm is None
+                               else check_float("interlace_gap_mm", interlace_gap_mm, low=0))
         self._segments = None
         self._region = None
         self._centrelines = None
+        self._weave = None
 
     # -- parameters ---------------------------------------------------------
     outline = property(lambda self: self._outline, doc="Outline name.")
@@ -161,7 +178,30 @@ class Tile:
         """The constructor arguments, so ``Tile(**tile.params())`` rebuilds the tile."""
         return dict(outline=self._outline, size=self._size, pattern=self._pattern, frame=self._frame,
                     stroke=self._stroke, join=self._join, miter_limit=self._miter_limit,
-                    corner_radius=self._corner_radius)
+                    corner_radius=self._corner_radius, interlace=self._interlace,
+                    interlace_gap_mm=self._interlace_gap, interlace_cut=self._interlace_cut)
+
+    interlace = property(lambda self: self._interlace, doc="Whether the strands are woven.")
+    interlace_cut = property(lambda self: self._interlace_cut, doc="Cut the under gaps (laser, pierced).")
+
+    @property
+    def interlace_gap_mm(self) -> float:
+        """Clearance each side of an over band, mm: as given, else a third of the stroke."""
+        return self._stroke / 3 if self._interlace_gap is None else self._interlace_gap
+
+    def weave(self):
+        """The strands and their over/under (:class:`fabtiles.pattern.interlace.Weave`), cached.
+
+        Woven are the motifs' centre-lines, in file coordinates (outline circles
+        kiss each other at every tangency and are not woven). Raises
+        :class:`~fabtiles.ParameterError` when ``interlace_gap_mm`` is so large
+        that an under strand's gap reaches the next crossing along it.
+        """
+        if self._weave is None:
+            from .interlace import checked_weave
+
+            self._weave = checked_weave(self)
+        return self._weave
 
     def replace(self, **changes) -> "Tile":
         """A copy (of the same class) with some parameters changed, validated again.
@@ -261,23 +301,30 @@ class Tile:
         than 1e-6 mm are merged and duplicate segments (shared by two motifs) kept once.
         """
         if self._centrelines is None:
-            seg = self.segments()
-            lines = shapely.linestrings(seg)
-            outline = self.outline_shape()
-            shapely.prepare(outline)
-            clipped = shapely.intersection(lines, outline)
-            keep = shapely.get_type_id(clipped) == 1  # LineString
-            coords, idx = shapely.get_coordinates(clipped[keep], return_index=True)
-            if len(coords):
-                first = np.r_[0, np.flatnonzero(np.diff(idx)) + 1]
-                last = np.r_[first[1:] - 1, len(idx) - 1]
-                out = np.stack([coords[first], coords[last]], axis=1)
-                verts, edges = _graph(out)
-                out = verts[edges]
-            else:
-                out = np.empty((0, 2, 2))
-            self._centrelines = out
+            self._centrelines = clip_segments(self.segments(), self.outline_shape())
         return self._centrelines.copy()
+
+
+def clip_segments(seg: np.ndarray, outline) -> np.ndarray:
+    """Segments ``(k, 2, 2)`` clipped to a convex ``outline``, merged as :meth:`Tile.centrelines` says."""
+    lines = shapely.linestrings(seg)
+    shapely.prepare(outline)
+    clipped = shapely.intersection(lines, outline)
+    keep = shapely.get_type_id(clipped) == 1  # LineString
+    coords, idx = shapely.get_coordinates(clipped[keep], return_index=True)
+    if not len(coords):
+        return np.empty((0, 2, 2))
+    first = np.r_[0, np.flatnonzero(np.diff(idx)) + 1]
+    last = np.r_[first[1:] - 1, len(idx) - 1]
+    out = np.stack([coords[first], coords[last]], axis=1)
+    verts, edges = _graph(out)
+    return verts[edges]
+
+
+def _check_bool(name: str, value) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise ParameterError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
 
 
 def _fmt_size(size) -> str:

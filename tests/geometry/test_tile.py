@@ -98,7 +98,7 @@ def test_bad_tiles(args, kwargs, match):
 
 
 def test_bad_pattern_and_single_star_stroke():
-    with pytest.raises(ParameterError, match=r"pattern must be a HexPacking, SquarePacking or Star, got str"):
+    with pytest.raises(ParameterError, match=r"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking or Star, got str"):
         Tile("square", 100, "table3-3")
     with pytest.raises(ParameterError, match=r"stroke must be > 0 and <= 5 mm \(the motif circle's radius\), got 6"):
         Tile("square", 20, Star.preset("table1-part1"), frame=5, stroke=6)

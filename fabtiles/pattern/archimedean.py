@@ -1,0 +1,368 @@
+"""The tile operation on the 11 Archimedean tilings (SPEC section 2b).
+
+Pure numpy. In an edge-to-edge tiling by regular polygons of edge ``a`` the
+incircle of each p-gon (radius ``a / (2 tan(pi/p))``) touches the incircles of
+its p neighbours at the shared edges' midpoints, so the incircles are a packing
+of tangent circles; around every tiling vertex they leave a gap, filled by its
+gap circle (the largest circle in the gap, see :mod:`fabtiles.pattern.tilings`).
+Each incircle holds the motif of its polygon kind, each gap circle the gap motif,
+scaled to the circle as in :class:`~fabtiles.pattern.packing.HexPacking`.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from types import MappingProxyType
+
+import numpy as np
+
+from .._errors import LimitError, ParameterError
+from .._validate import check_float
+from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, default_gap_motif
+from .star import Star
+from .tilings import NAMES, TILINGS, inradius, unit_cell
+
+DEFAULT_MOTIFS = MappingProxyType({
+    3: dict(n=6, radii=(0.5, 1.0)),
+    4: dict(n=8, radii=(0.55, 1.0)),
+    6: dict(n=12, radii=(123, 85, 178), alpha=23, spr=-7, special=2),  # preset table3-3
+    8: dict(n=8, radii=(51, 70, 172)),  # preset table1-part1
+    12: dict(n=12, radii=(123, 85, 178), alpha=23, spr=-7, special=2),
+})
+"""Polygon sides -> Star parameters of the motif used when ``motifs`` names no motif for that kind."""
+
+
+def _turn(star: Star) -> float:
+    """Direction (radians) of the points on the motif's largest circle, the ones turned to the
+    tangency points: circle ``w`` (0-based) holds points at ``rotation + w * 180 / n``."""
+    w = int(np.argmax(star.radii))
+    return math.radians(star.rotation + w * 180.0 / star.n)
+
+
+def _rotated(seg: np.ndarray, angle: float, step: float) -> np.ndarray:
+    """``seg`` turned by ``angle`` modulo the motif's symmetry ``step`` (no turn when that is 0,
+    so 6.6.6 and 4.4.4.4 place motifs exactly as HexPacking and SquarePacking do)."""
+    angle = angle % step
+    if min(angle, step - angle) < 1e-12:
+        return seg
+    c, s = math.cos(angle), math.sin(angle)
+    return seg @ np.array([[c, s], [-s, c]])
+
+
+class ArchimedeanPacking:
+    """An Archimedean tiling's incircles and gap circles, a motif in each (immutable).
+
+    Parameters
+    ----------
+    tiling : str
+        One of :meth:`tilings` (``"4.8.8"``), or an exponent form (``"3^4.6"``).
+    edge : float
+        Edge length ``a`` of the tiling's polygons, mm (> 0).
+    motifs : mapping of int to Star or str, optional
+        Motif (a :class:`~fabtiles.pattern.star.Star` or a preset name) per polygon
+        kind, keyed by its number of sides; kinds not given get
+        :data:`DEFAULT_MOTIFS`. Each motif is turned so the points of its largest
+        circle face the polygon's edge midpoints (with ``n`` a multiple of ``p``
+        they land on the tangency points, so neighbouring motifs meet).
+    gap_motif : Star or str, optional
+        Motif of the gap circles (default ``Star(n=6, radii=(0.5, 1.0))``), turned
+        so its largest circle's points face the largest polygon it touches.
+    outline_circles : bool, keyword-only
+        Also stroke the circles themselves.
+    fill : float, keyword-only
+        Motif extent as a fraction of its circle's radius, in (0, 1].
+
+    Examples
+    --------
+    >>> p = ArchimedeanPacking("4.8.8", edge=20, motifs={8: "table3-3"})
+    >>> p.tiling, p.kinds, round(p.incircle_radius(8), 4), tuple(round(v, 4) for v in p.period)
+    ('4.8.8', (4, 8), 24.1421, (48.2843, 48.2843))
+    >>> c, r = p.circles((-5, -5, 5, 5))
+    >>> len(r), p.circle_sides((-5, -5, 5, 5)).tolist()
+    (1, [8])
+    >>> ArchimedeanPacking("4.8.8", edge=20, motifs={6: "table3-3"})
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.ParameterError: motifs key 6 is not a polygon of the tiling 4.8.8, must be one of: 4, 8
+    """
+
+    __slots__ = ("_tiling", "_edge", "_motifs", "_gap_motif", "_outline_circles", "_fill", "_cell",
+                 "_units")
+
+    def __init__(self, tiling, edge, motifs=None, gap_motif=None, *, outline_circles=False, fill=1.0):
+        cell = unit_cell(tiling)
+        kinds = tuple(sorted(set(cell.sides.tolist())))
+        given = {}
+        if motifs is not None:
+            if not hasattr(motifs, "items"):
+                raise ParameterError(f"motifs must be a mapping from polygon sides to a Star or preset "
+                                     f"name, like {{8: 'table3-3'}}, got {motifs!r}")
+            for key, star in motifs.items():
+                given[_kind(key, kinds, cell.name)] = _motif(f"motifs[{key!r}]", star)
+        full = tuple((p, given.get(p) or Star(**DEFAULT_MOTIFS[p])) for p in kinds)
+        gap = default_gap_motif() if gap_motif is None else _motif("gap_motif", gap_motif)
+        if not isinstance(outline_circles, bool):
+            raise ParameterError(f"outline_circles must be true or false, got {outline_circles!r}")
+        init = object.__setattr__
+        init(self, "_tiling", cell.name)
+        init(self, "_edge", check_float("edge", edge, low=0, low_open=True))
+        init(self, "_motifs", full)
+        init(self, "_gap_motif", gap)
+        init(self, "_outline_circles", outline_circles)
+        init(self, "_fill", check_float("fill", fill, low=0, high=1, low_open=True))
+        init(self, "_cell", cell)
+        init(self, "_units", {})
+
+    def __setattr__(self, name, value):
+        raise AttributeError(f"ArchimedeanPacking is immutable; use replace({name.lstrip('_')}=...)")
+
+    __delattr__ = __setattr__
+
+    # -- parameters ---------------------------------------------------------
+    tiling = property(lambda self: self._tiling, doc="Vertex configuration, as in :meth:`tilings`.")
+    edge = property(lambda self: self._edge, doc="Edge length of the polygons, mm.")
+    gap_motif = property(lambda self: self._gap_motif, doc="Motif of the gap circles.")
+    outline_circles = property(lambda self: self._outline_circles, doc="Whether the circles are stroked.")
+    fill = property(lambda self: self._fill, doc="Motif extent / circle radius.")
+
+    @property
+    def motifs(self):
+        """Polygon sides -> motif, for every kind of the tiling (read-only mapping)."""
+        return MappingProxyType(dict(self._motifs))
+
+    @property
+    def kinds(self) -> tuple[int, ...]:
+        """The polygon kinds of the tiling (numbers of sides), ascending."""
+        return tuple(p for p, _ in self._motifs)
+
+    @property
+    def radius(self) -> float:
+        """The smallest incircle radius, mm: the largest stroke a tile of this packing takes."""
+        return inradius(self.kinds[0], self._edge)
+
+    def incircle_radius(self, sides: int) -> float:
+        """Incircle radius of the tiling's ``sides``-gons, ``edge / (2 tan(pi / sides))``, mm."""
+        return inradius(_kind(sides, self.kinds, self._tiling), self._edge)
+
+    @staticmethod
+    def tilings() -> tuple[str, ...]:
+        """The 11 vertex configurations.
+
+        >>> len(ArchimedeanPacking.tilings()), ArchimedeanPacking.tilings()[:3]
+        (11, ('3.3.3.3.3.3', '4.4.4.4', '6.6.6'))
+        """
+        return TILINGS
+
+    @staticmethod
+    def tiling_name(tiling) -> str:
+        """Common name of a tiling.
+
+        >>> ArchimedeanPacking.tiling_name("3^4.6")
+        'snub hexagonal'
+        """
+        return NAMES[unit_cell(tiling).name]
+
+    @property
+    def lattice(self) -> np.ndarray:
+        """The two lattice vectors (rows), mm."""
+        return self._cell.lattice * self._edge
+
+    @property
+    def period(self) -> tuple[float, float]:
+        """Smallest rectangular period ``(px, py)`` of the packing, mm (see :func:`rectangular_period`)."""
+        px, py = rectangular_period(self._tiling)
+        return (px * self._edge, py * self._edge)
+
+    def params(self) -> dict:
+        """The constructor arguments."""
+        return dict(tiling=self._tiling, edge=self._edge, motifs=self.motifs, gap_motif=self._gap_motif,
+                    outline_circles=self._outline_circles, fill=self._fill)
+
+    def replace(self, **changes) -> "ArchimedeanPacking":
+        """A copy with some parameters changed (validated again).
+
+        >>> ArchimedeanPacking("3.6.3.6", 10).replace(edge=5).edge
+        5.0
+        """
+        return type(self)(**{**self.params(), **changes})
+
+    def _key(self):
+        return (self._tiling, self._edge, self._motifs, self._gap_motif, self._outline_circles, self._fill)
+
+    def __eq__(self, other) -> bool:
+        return type(other) is type(self) and self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def __repr__(self) -> str:
+        motifs = ", ".join(f"{p}: {s!r}" for p, s in self._motifs)
+        extra = ", outline_circles=True" if self._outline_circles else ""
+        extra += f", fill={self._fill:g}" if self._fill != 1.0 else ""
+        return (f"ArchimedeanPacking({self._tiling!r}, edge={self._edge:g}, motifs={{{motifs}}}, "
+                f"gap_motif={self._gap_motif!r}{extra})")
+
+    # -- circles --------------------------------------------------------------
+    def _entries(self):
+        """Per unit-cell circle: offset (mm), radius (mm), sides (0: gap)."""
+        cell, a = self._cell, self._edge
+        offsets = np.concatenate([cell.centres, cell.gap_centres]) * a
+        radii = np.concatenate([cell.radii(), cell.gap_radii]) * a
+        sides = np.concatenate([cell.sides, np.zeros(len(cell.gap_radii), dtype=int)])
+        return offsets, radii, sides
+
+    def _placed(self, window):
+        """``(centres, entry index)`` of every circle whose bounding box meets ``window``,
+        incircles first then gap circles, each group rows bottom to top, left to right."""
+        x0, y0, x1, y1 = _check_window(window)
+        offsets, radii, sides = self._entries()
+        basis = self.lattice
+        inv = np.linalg.inv(basis.T)
+        pts, idx = [], []
+        lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
+        margins = radii * (1 + 1e-9)
+        for off, m in zip(offsets, margins):
+            corners = np.array([[x0 - m, y0 - m], [x1 + m, y0 - m], [x0 - m, y1 + m], [x1 + m, y1 + m]])
+            ij = (corners - off) @ inv.T
+            lo, hi = np.minimum(lo, np.floor(ij.min(axis=0))), np.maximum(hi, np.ceil(ij.max(axis=0)))
+        count = float(np.prod(hi - lo + 1)) * len(offsets)
+        if count > MAX_CIRCLES_IN_WINDOW:
+            raise LimitError(
+                f"the window holds about {count:.3g} circles, more than the limit of "
+                f"{MAX_CIRCLES_IN_WINDOW}; use a larger edge (got {self._edge:g} mm) or a smaller tile")
+        jj, ii = np.meshgrid(np.arange(lo[1], hi[1] + 1), np.arange(lo[0], hi[0] + 1), indexing="ij")
+        lattice = ii.reshape(-1, 1) * basis[0] + jj.reshape(-1, 1) * basis[1]
+        for e, (off, m) in enumerate(zip(offsets, margins)):
+            p = lattice + off
+            keep = (p[:, 0] >= x0 - m) & (p[:, 0] <= x1 + m) & (p[:, 1] >= y0 - m) & (p[:, 1] <= y1 + m)
+            pts.append(p[keep])
+            idx.append(np.full(int(keep.sum()), e))
+        pts, idx = np.concatenate(pts), np.concatenate(idx)
+        order = np.lexsort((np.round(pts[:, 0], 9), np.round(pts[:, 1], 9), sides[idx] == 0))
+        return pts[order], idx[order]
+
+    def circles(self, window) -> tuple[np.ndarray, np.ndarray]:
+        """Centres ``(m, 2)`` and radii ``(m,)`` of every circle that may meet ``window``.
+
+        ``window`` is ``(xmin, ymin, xmax, ymax)`` in the packing's frame (a polygon
+        centred on the origin); a circle is kept when its bounding box meets it.
+        Incircles first, then gap circles, each rows bottom to top, left to right.
+
+        >>> c, r = ArchimedeanPacking("6.6.6", edge=10).circles((0, 0, 8, 6))
+        >>> c.round(3).tolist(), r.round(3).tolist()
+        ([[0.0, 0.0], [8.66, 5.0]], [8.66, 1.34])
+        """
+        pts, idx = self._placed(window)
+        return pts, self._entries()[1][idx]
+
+    def circle_sides(self, window) -> np.ndarray:
+        """For each circle of :meth:`circles` (same order), the sides of its polygon; 0 for a gap circle.
+
+        >>> ArchimedeanPacking("3.4.6.4", edge=10).circle_sides((-1, -1, 1, 1)).tolist()
+        [6]
+        """
+        return self._entries()[2][self._placed(window)[1]]
+
+    def segment_count(self, window) -> int:
+        """Centre-line segments :meth:`segments` returns for ``window``, counted without placing them.
+
+        >>> ArchimedeanPacking("4.4.4.4", edge=10).segment_count((0, 0, 6, 6))  # 4 squares, 1 gap
+        76
+        """
+        per = np.array([len(u) for u in self._unit_motifs()])
+        count = int(per[self._placed(window)[1]].sum())
+        if self._outline_circles:
+            _, radii = self.circles(window)
+            r, k = np.unique(radii, return_counts=True)
+            count += sum(chord_count(float(v)) * int(m) for v, m in zip(r, k))
+        return count
+
+    # -- motifs ---------------------------------------------------------------
+    def _unit_motifs(self) -> list:
+        """Per unit-cell circle: its motif's segments scaled to the circle, turned, centred at 0."""
+        if "all" not in self._units:
+            cell = self._cell
+            _, radii, _ = self._entries()
+            stars = dict(self._motifs)
+            turns = [(stars[int(p)], a) for p, a in zip(cell.sides, cell.angles)]
+            turns += [(self._gap_motif, a) for a in cell.gap_angles]
+            cache, out = {}, []
+            for (star, angle), r in zip(turns, radii):
+                key = (star, round(angle - _turn(star), 12), r)
+                if key not in cache:
+                    seg = star.segments() * (r * self._fill / star.extent)
+                    cache[key] = _rotated(seg, angle - _turn(star), 2 * math.pi / star.n)
+                out.append(cache[key])
+            self._units["all"] = out
+        return self._units["all"]
+
+    def motif_segments(self, window) -> np.ndarray:
+        """The motifs' centre-lines alone (without outline circles), ``(k, 2, 2)`` mm."""
+        pts, idx = self._placed(window)
+        units = self._unit_motifs()
+        parts = [np.empty((0, 2, 2))]
+        for e in np.unique(idx):
+            unit = units[e]
+            parts.append((unit[None] + pts[idx == e][:, None, None, :]).reshape(-1, 2, 2))
+        return np.concatenate(parts)
+
+    def segments(self, window) -> np.ndarray:
+        """Centre-lines of every motif whose circle meets ``window``, ``(k, 2, 2)`` mm; with
+        ``outline_circles`` the circles follow as chords (:func:`~fabtiles.pattern.packing.circle_segments`).
+
+        >>> ArchimedeanPacking("4.4.4.4", edge=10).segments((0, 0, 6, 6)).shape
+        (76, 2, 2)
+        """
+        parts = [self.motif_segments(window)]
+        if self._outline_circles:
+            parts.append(circle_segments(*self.circles(window)))
+        return np.concatenate(parts)
+
+
+def rectangular_period(tiling) -> tuple[float, float]:
+    """The smallest axis-aligned rectangle ``(px, py)`` that is a period of the tiling, edge 1.
+
+    ``(px, 0)`` and ``(0, py)`` are the shortest lattice vectors along the axes: the first
+    lattice vector is along x for every tiling, and the vertical one is found as the
+    smallest whole combination with zero x.
+
+    >>> [round(v, 4) for v in rectangular_period("6.6.6")]
+    [1.7321, 3.0]
+    """
+    lat = unit_cell(tiling).lattice
+    px = float(lat[0, 0])
+    # j * v2 + i * v1 vertical: i = -j * v2x / px must be whole.
+    for j in range(1, 13):
+        i = -j * lat[1, 0] / px
+        if abs(i - round(i)) < 1e-9:
+            return px, float(abs(j * lat[1, 1]))
+    raise AssertionError(f"no rectangular period for {tiling}")  # pragma: no cover - every tiling has one
+
+
+def _kind(key, kinds, tiling) -> int:
+    text = ", ".join(map(str, kinds))
+    if isinstance(key, str) and key.strip().isdigit():
+        key = int(key)
+    if isinstance(key, bool) or not isinstance(key, numbers.Integral) or int(key) not in kinds:
+        raise ParameterError(f"motifs key {key!r} is not a polygon of the tiling {tiling}, "
+                             f"must be one of: {text}")
+    return int(key)
+
+
+def _motif(name, star) -> Star:
+    if isinstance(star, str):
+        return Star.preset(star)
+    if not isinstance(star, Star):
+        raise ParameterError(f"{name} must be a Star or a preset name, got {star!r}")
+    return star
+
+
+def _check_window(window):
+    try:
+        x0, y0, x1, y1 = (float(v) for v in window)
+    except (TypeError, ValueError):
+        raise ParameterError(f"window must be (xmin, ymin, xmax, ymax), got {window!r}") from None
+    if not all(math.isfinite(v) for v in (x0, y0, x1, y1)) or x1 < x0 or y1 < y0:
+        raise ParameterError(f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}")
+    return x0, y0, x1, y1
