@@ -1,0 +1,73 @@
+"""Write the laser test card (:mod:`fabtiles.geometry.calibration`) as DXF or SVG.
+
+The card goes through the tile writers' own pieces: kerf-compensated closed
+contours in cut order (inner first, see :func:`~fabtiles.geometry.contours.laser_contours`)
+on the profile's cut layers, the size labels as open polylines on its score layer,
+and the DXF and SVG text of :mod:`fabtiles.export.dxf` and :mod:`fabtiles.export.laser_svg`.
+The card is not checked like a tile: its part inside the window is loose and its
+smallest features are under the limits on purpose.
+
+>>> import tempfile, pathlib
+>>> out = pathlib.Path(tempfile.mkdtemp()) / "card.svg"
+>>> report = write_card(out, "laser-3mm-plywood")
+>>> report.stats["features"], report.stats["inner_contours"]
+(14, 16)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._errors import ParameterError
+from .._io import atomic_write
+from .._profiles import DXF_VERSIONS, load_profile
+from .._report import Report
+from .._validate import check_choice
+from ..geometry.calibration import calibration_card
+from ..geometry.contours import laser_contours
+from ..geometry.laser_checks import LaserJob
+
+CARD_FORMATS = ("dxf", "svg")
+
+
+def card_job(profile, *, dxf_version=None):
+    """The card of ``profile`` as a :class:`~fabtiles.geometry.laser_checks.LaserJob`, and the card."""
+    profile = load_profile(profile, kind="laser")
+    version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
+                           DXF_VERSIONS)
+    card = calibration_card(profile)
+    job = LaserJob(profile, "pierced", version, profile.kerf_mm)
+    job.inner, job.outer = laser_contours(card.region, card.outline, kerf_mm=profile.kerf_mm,
+                                          tolerance_mm=profile.tolerance_mm)
+    job.score = [np.asarray(p, dtype=float) for p in card.labels]
+    flat = np.concatenate(job.inner + job.outer + job.score)
+    job.bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
+    return job, card
+
+
+def write_card(path, profile, *, dxf_version=None) -> Report:
+    """Write the test card of a laser profile to ``path`` (``.dxf`` or ``.svg``), atomically.
+
+    Returns a :class:`~fabtiles._report.Report` whose stats give the card's size,
+    its features and contour counts.
+    """
+    from pathlib import Path
+
+    fmt = Path(path).suffix.lower().lstrip(".")
+    if fmt not in CARD_FORMATS:
+        raise ParameterError(f"the card must be a .dxf or .svg file, got {str(path)!r}")
+    job, card = card_job(profile, dxf_version=dxf_version)
+    if fmt == "dxf":
+        from .dxf import dxf_text
+
+        text, encoding = dxf_text(job)
+        atomic_write(path, text.encode(encoding, errors="dxfreplace"))
+    else:
+        from .laser_svg import svg_text
+
+        atomic_write(path, svg_text(job))
+    report = Report(path=str(path), format=fmt)
+    report.stats.update(profile=job.profile.name, kerf_mm=job.kerf_mm, size_mm=[card.width_mm, card.height_mm],
+                        features=len(card.features), inner_contours=len(job.inner),
+                        outer_contours=len(job.outer), score_paths=len(job.score))
+    return report
