@@ -46,12 +46,14 @@ def finding_line(where: str, finding) -> str:
 @click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="Write an SVG picture of the tile with a mark at every finding.")
-def command(design_file, output):
+@click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
+              help="Override a design value, in TOML syntax: --set output.fill_small_holes=false (repeatable).")
+def command(design_file, output, overrides):
     """Run the laser and print checks of a design; write no fabrication file.
 
     \b
     fabtiles check samples/table3-3.toml
-    fabtiles check my-tile.toml -o overlay.svg
+    fabtiles check my-tile.toml -o overlay.svg --set output.fill_small_holes=false
 
     Exit status 0: clean; 1: findings; 2: bad input.
     """
@@ -63,7 +65,7 @@ def command(design_file, output):
 
     if output is not None and Path(output).suffix.lower() != ".svg":
         raise ParameterError(f"the overlay (-o) must be an .svg file, got {output!r}")
-    design = load_design(design_file)
+    design = load_design(design_file, overrides=overrides)
     tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
     result = check_design(design, tile)
     out = design.output

@@ -21,7 +21,7 @@ from .._errors import FabtilesError
 from .._profiles import bundled_profiles
 from ..export.dispatch import FORMATS
 from ..pattern.presets import PRESET_NOTES, PRESETS
-from .params import DEFAULTS, FIELDS, QueryError, design_from_query
+from .params import DEFAULTS, FIELDS, QueryError, design_from_query, parse_flag
 
 STATIC = Path(__file__).with_name("static")
 
@@ -68,28 +68,18 @@ def tile_from_dict(design: dict, *, limits: _limits.Limits):
 
 
 def fabrication_checks(tile, spec) -> dict:
-    """Laser and print checks of a tile with the design's profiles, as JSON."""
-    from ..geometry.laser_checks import check_laser
-    from ..geometry.print_checks import check_print
-    from ..export.dispatch import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE
-    from .._profiles import load_profile
+    """Laser and print checks of a tile with the design's profiles and options, as JSON."""
+    from ..checks import check_design
 
-    out = spec.output
-    region, outline = tile.region(), tile.outline_shape()
-    laser = load_profile(out.laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
-    printer = load_profile(out.printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")
-    findings = []
-    for where, report in (
-        ("laser", check_laser(region, outline, laser, stroke=tile.stroke)),
-        ("print", check_print(region, outline, printer, stroke=tile.stroke, style=out.print_style)),
-    ):
-        findings += [{"where": where, "code": f.code, "message": f.message, "count": f.count}
-                     for f in report.findings]
-    area = region.area
+    result = check_design(spec, tile)
+    findings = [{"where": where, "code": f.code, "message": f.message, "count": f.count, "worst": f.worst,
+                 "unit": f.unit} for where, f in result.findings()]
+    region = tile.region()
     holes = sum(len(p.interiors) for p in getattr(region, "geoms", [region]))
-    summary = (f"{len(tile.segments()):,} segments, material {area:,.0f} mm², {holes:,} holes; "
+    filled = f" ({result.filled_holes:,} too small to cut, filled)" if result.filled_holes else ""
+    summary = (f"{len(tile.segments()):,} segments, material {region.area:,.0f} mm², {holes:,} holes{filled}; "
                f"{len(findings)} finding{'s' if len(findings) != 1 else ''}")
-    return {"findings": findings, "summary": summary}
+    return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes}
 
 
 def _error(exc: Exception) -> JSONResponse:
@@ -102,8 +92,10 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
     limits = limits or _limits.WEB_LIMITS
     app = FastAPI(title="fabtiles", docs_url="/api/docs", openapi_url="/api/openapi.json")
 
-    def build(request: Request):
+    def build(request: Request, *, view=()):
         query = dict(request.query_params)
+        for key in view:  # parameters of the view, not of the design
+            query.pop(key, None)
         base = dict(DEFAULTS)
         if ("n" in query or "radii" in query) and "preset" not in query:
             del base["preset"]  # the motif's own parameters replace the default preset
@@ -146,10 +138,17 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
 
     @app.get("/api/preview.svg")
     def preview(request: Request):
-        _, spec, tile = build(request)
+        """The tile as SVG; ``findings=true`` marks each finding of the checks where it is."""
+        show = parse_flag("findings", request.query_params.get("findings", "false"))
+        _, spec, tile = build(request, view=("findings",))
         from ..export.preview_svg import tile_svg
 
-        return Response(tile_svg(tile), media_type="image/svg+xml")
+        findings = None
+        if show:
+            from ..checks import check_design
+
+            findings = check_design(spec, tile).findings()
+        return Response(tile_svg(tile, findings=findings), media_type="image/svg+xml")
 
     @app.get("/api/checks")
     def checks(request: Request):

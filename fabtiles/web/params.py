@@ -47,13 +47,21 @@ def _numbers(field, text):
     return [_number(field, p) for p in parts]
 
 
-def _flag(field, text):
+def parse_flag(field, text):
+    """``true``/``false`` (also 1/0, yes/no, on/off) as a bool; anything else is a :class:`QueryError`.
+
+    >>> parse_flag("findings", "on"), parse_flag("findings", "0")
+    (True, False)
+    """
     low = str(text).lower()
     if low in ("1", "true", "yes", "on"):
         return True
     if low in ("0", "false", "no", "off", ""):
         return False
     raise QueryError(f"{field} must be true or false, got {text!r}", field)
+
+
+_flag = parse_flag
 
 
 def _text(field, text):

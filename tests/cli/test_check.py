@@ -62,6 +62,7 @@ def test_findings_are_printed_and_marked(designs, tmp_path):
     assert len(marks) == count
     assert all(0 <= float(x) <= 60 and 0 <= float(y) <= 60 for x, y in marks)
     assert run(designs["false"]).exit_code == 1  # without -o: same status, no file
+    assert run(designs["false"], "--set", "output.fill_small_holes=true").exit_code == 0
 
 
 @pytest.mark.parametrize("args, message", [

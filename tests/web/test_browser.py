@@ -120,3 +120,46 @@ def test_page_slider_preset_and_download(page, server, tmp_path):
     assert doc.header["$INSUNITS"] == 4
     assert not doc.audit().has_errors
     assert len(doc.modelspace()) > 0
+
+
+def test_findings_marks_fill_and_heights_controls(page, server):
+    page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3&fill_small_holes=false")
+    page.wait_for_function("() => document.querySelector('#checks li[data-code]')")
+    assert not page.is_checked("#fill_small_holes")  # the URL's state reaches the controls
+    assert page.is_checked("#show_findings")
+    holes = page.locator("#marks circle.finding.small_hole").count()
+    assert holes > 0 and page.locator("#marks circle.finding.hl").count() == 0
+    from urllib.parse import unquote
+
+    assert 'class="finding small_hole"' in unquote(page.get_attribute("#preview", "src"))
+
+    # Choosing a finding in the list highlights its marks (and only those); choosing it again clears.
+    page.click("#checks li[data-code=small_hole][data-where=laser]")
+    assert page.locator("#marks circle.finding.small_hole.hl").count() == holes
+    assert page.locator("#marks circle.finding.hl").count() == holes
+    assert "chosen" in page.get_attribute("#checks li[data-code=small_hole]", "class")
+    page.click("#checks li[data-code=small_hole][data-where=laser]")
+    assert page.locator("#marks circle.finding.hl").count() == 0
+
+    # Fill the small holes: the findings and their marks go, the URL says so.
+    v = _preview_version(page)
+    page.check("#fill_small_holes")
+    _wait_new_preview(page, v)
+    page.wait_for_function("() => document.querySelector('#checks li.ok')")
+    assert "fill_small_holes=true" in page.url
+    assert page.locator("#marks circle.finding").count() == 0
+
+    # Print heights go into the URL and every download link.
+    v = _preview_version(page)
+    page.fill("#base_mm", "3")
+    page.dispatch_event("#base_mm", "change")
+    _wait_new_preview(page, v)
+    assert "base_mm=3" in page.url
+    assert "base_mm=3" in page.get_attribute("#downloads a[data-format=stl]", "href")
+    assert "base_mm=3" in page.get_attribute("#download-design", "href")
+
+    # The marks can be switched off: the preview is then the plain tile.
+    v = _preview_version(page)
+    page.uncheck("#show_findings")
+    _wait_new_preview(page, v)
+    assert "findings" not in page.get_attribute("#preview", "src")

@@ -19,6 +19,7 @@ const SLIDERS = {
     ["frame", "frame (mm)", 0, 30, 0.5],
     ["stroke", "stroke (mm)", 0.2, 6, 0.1],
     ["corner_radius", "corner r (mm)", 0, 30, 0.5],
+    ["miter_limit", "miter limit", 1, 20, 0.5],
   ],
 };
 
@@ -27,7 +28,13 @@ const state = {
   packing: "hex", radius: 15, gap_n: 6, gap_inner: 0.5, outline_circles: false,
   outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
   laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
+  miter_limit: 4, seamless: false, fill_small_holes: true, name: "",
+  base_mm: "", relief_mm: "", pierced_mm: "", deboss_mm: "",  // "": the printer profile's
 };
+// Options sent only when set (text boxes and checkboxes of the design's [output] and [packing]).
+const TEXT_KEYS = ["name", "base_mm", "relief_mm", "pierced_mm", "deboss_mm"];
+const FLAG_KEYS = ["seamless", "fill_small_holes"];
+let showFindings = true, chosen = null;  // the findings overlay; the finding chosen in the list
 let presets = {};
 
 function $(id) { return document.getElementById(id); }
@@ -96,12 +103,16 @@ function query() {
     q.set("gap_n", state.gap_n);
     q.set("gap_radii", `${state.gap_inner},1`);
     q.set("outline_circles", state.outline_circles ? "true" : "false");
+    if (state.seamless) q.set("seamless", "true");
   }
   q.set("outline", state.outline);
   q.set("width", state.width);
   if (state.outline === "rectangle") q.set("height", state.height);
   for (const k of ["frame", "stroke", "corner_radius", "join", "laser_profile", "laser_mode",
                    "printer_profile", "print_style"]) q.set(k, state[k]);
+  if (state.miter_limit !== 4) q.set("miter_limit", state.miter_limit);
+  q.set("fill_small_holes", state.fill_small_holes ? "true" : "false");
+  for (const k of TEXT_KEYS) if (String(state[k]).trim() !== "") q.set(k, String(state[k]).trim());
   return q;
 }
 
@@ -112,7 +123,8 @@ function fromUrl() {
     if (k === "radii") state.radii = v.split(",").map(Number);
     else if (k === "gap_radii") state.gap_inner = Number(v.split(",")[0]);
     else if (k === "special") state.special = v === "none" || v === "" ? 0 : Number(v);
-    else if (k === "outline_circles") state.outline_circles = v === "true";
+    else if (k === "outline_circles" || FLAG_KEYS.includes(k)) state[k] = v === "true";
+    else if (TEXT_KEYS.includes(k)) state[k] = v;
     else if (k in state) state[k] = typeof state[k] === "number" ? Number(v) : v;
   }
   if (!q.has("preset")) state.preset = "";
@@ -135,6 +147,8 @@ function syncControls() {
     $(key).value = state[key];
   $("preset").value = state.preset;
   $("outline_circles").checked = state.outline_circles;
+  for (const k of FLAG_KEYS) $(k).checked = state[k];
+  for (const k of TEXT_KEYS) $(k).value = state[k];
   radiiSliders();
 }
 
@@ -164,7 +178,7 @@ async function refresh() {
   for (const a of document.querySelectorAll("#downloads a[data-format]"))
     a.href = `/api/export/${a.dataset.format}?${q}`;
   $("download-design").href = `/api/design.toml?${q}`;
-  const res = await fetch(`/api/preview.svg?${q}`);
+  const res = await fetch(`/api/preview.svg?${q}${showFindings ? "&findings=true" : ""}`);
   if (mine !== seq) return;
   if (!res.ok) {
     const body = await res.json().catch(() => ({ error: res.statusText, field: null }));
@@ -173,6 +187,7 @@ async function refresh() {
   }
   const svg = await res.text();
   $("preview").src = "data:image/svg+xml;charset=utf-8," + encodeURIComponent(svg);
+  showMarks(svg);
   $("preview").dataset.version = String(mine);
   showError(null, "");
   const checks = await fetch(`/api/checks?${q}`);
@@ -185,9 +200,45 @@ async function refresh() {
   for (const f of items) {
     const li = document.createElement("li");
     li.textContent = `${f.where ? f.where + ": " : ""}${f.code}: ${f.message}`;
+    li.dataset.code = f.code;
+    li.dataset.where = f.where;
+    li.tabIndex = 0;
+    li.title = "show where";
+    li.addEventListener("click", () => choose(li));
+    li.addEventListener("keydown", (e) => { if (e.key === "Enter" || e.key === " ") choose(li); });
     list.appendChild(li);
   }
+  const again = chosen && list.querySelector(`li[data-code="${chosen.code}"][data-where="${chosen.where}"]`);
+  if (again) choose(again, true); else chosen = null;
   $("status").textContent = data.summary || "";
+}
+
+// The marks of the preview's findings, copied into #marks (an SVG laid over the
+// picture with the same viewBox), where choosing a finding can highlight them.
+function showMarks(svgText) {
+  const marks = $("marks");
+  marks.innerHTML = "";
+  if (!showFindings) return;
+  const doc = new DOMParser().parseFromString(svgText, "image/svg+xml");
+  const root = doc.documentElement, group = doc.querySelector("g.findings");
+  marks.setAttribute("viewBox", root.getAttribute("viewBox"));
+  if (group) marks.appendChild(document.importNode(group, true));
+  highlight();
+}
+
+function highlight() {
+  for (const m of $("marks").querySelectorAll(".finding")) {
+    const on = chosen && m.classList.contains(chosen.code) && m.dataset.where === chosen.where;
+    m.classList.toggle("hl", Boolean(on));
+  }
+  $("marks").classList.toggle("choosing", Boolean(chosen));
+}
+
+function choose(li, keep = false) {
+  const same = chosen && chosen.code === li.dataset.code && chosen.where === li.dataset.where;
+  chosen = same && !keep ? null : { code: li.dataset.code, where: li.dataset.where };
+  for (const item of $("checks").querySelectorAll("li")) item.classList.toggle("chosen", item === li && Boolean(chosen));
+  highlight();
 }
 
 async function init() {
@@ -215,6 +266,10 @@ async function init() {
   });
   $("special").addEventListener("change", () => { state.special = Number($("special").value) || 0; state.preset = ""; update(); });
   $("outline_circles").addEventListener("change", () => { state.outline_circles = $("outline_circles").checked; update(); });
+  for (const k of FLAG_KEYS) $(k).addEventListener("change", () => { state[k] = $(k).checked; update(); });
+  for (const k of TEXT_KEYS) $(k).addEventListener("change", () => { state[k] = $(k).value; update(); });
+  $("show_findings").checked = showFindings;
+  $("show_findings").addEventListener("change", () => { showFindings = $("show_findings").checked; update(); });
   for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style"])
     $(key).addEventListener("change", () => { state[key] = $(key).value; update(); });
   refresh();
