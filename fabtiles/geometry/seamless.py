@@ -7,6 +7,12 @@ Periods (SPEC section 2): the hex packing repeats every ``2R`` across and
 lattice point is seamless with the hex packing (its neighbours sit at
 ``(2R m, 0)`` and ``(R m, sqrt(3) R m)``, both lattice vectors). Tiles laid edge to
 edge then continue each other's pattern; use ``frame=0`` for them.
+
+An Archimedean tiling (``packing="4.8.8"`` etc., the scale is then its edge ``a``)
+repeats every ``(px a, py a)`` (:func:`~fabtiles.pattern.archimedean.rectangular_period`):
+rectangles fit every tiling, squares those with ``px = py`` (4.4.4.4, 4.8.8,
+3.3.4.3.4), hexagons those on a triangular lattice whose first vector ``(px a, 0)``
+and second ``(px a / 2, px a sqrt(3) / 2)`` are the hexagon's neighbours for ``m = 1``.
 """
 
 from __future__ import annotations
@@ -16,7 +22,9 @@ from dataclasses import dataclass
 
 from .._errors import ParameterError
 from .._validate import check_choice, check_float
-from .tile import OUTLINES, _check_size
+from ..pattern.archimedean import rectangular_period
+from ..pattern.tilings import TILINGS, canonical, unit_cell
+from .tile import OUTLINES, check_tile_size
 
 
 @dataclass(frozen=True)
@@ -26,7 +34,7 @@ class SeamlessFit:
     Attributes
     ----------
     radius : float
-        Packing radius R, mm.
+        Packing radius R, mm (for an Archimedean tiling: its edge ``a``).
     size : tuple of float
         Tile size to use: ``(W, H)`` for a rectangle, ``(s, s)`` otherwise. The
         width is the one asked for; a rectangle's height is moved to the nearest
@@ -39,6 +47,11 @@ class SeamlessFit:
     radius: float
     size: tuple[float, float]
     repeats: tuple[int, int]
+
+    @property
+    def edge(self) -> float:
+        """The same number under the name an Archimedean tiling uses: its edge ``a``, mm."""
+        return self.radius
 
 
 def seamless_fit(outline, size, radius, *, packing="hex") -> SeamlessFit:
@@ -56,8 +69,9 @@ def seamless_fit(outline, size, radius, *, packing="hex") -> SeamlessFit:
     size : float or (float, float)
         As for :class:`~fabtiles.geometry.tile.Tile`, mm.
     radius : float
-        The packing radius wanted, mm (> 0).
-    packing : {"hex", "square"}
+        The packing radius wanted, mm (> 0); for a tiling, the edge wanted.
+    packing : {"hex", "square"} or str
+        Or a tiling of :meth:`~fabtiles.ArchimedeanPacking.tilings` (any form it takes).
 
     Raises
     ------
@@ -73,10 +87,17 @@ def seamless_fit(outline, size, radius, *, packing="hex") -> SeamlessFit:
     (12.5, (200.0, 129.904), (8, 3))
     >>> seamless_fit("hexagon", 150, 13).radius
     12.5
+    >>> fit = seamless_fit("square", 150, 20, packing="4.8.8")
+    >>> round(fit.edge, 4), fit.repeats
+    (20.7107, (3, 3))
     """
     outline = check_choice("outline", outline, OUTLINES)
-    packing = check_choice("packing", packing, ("hex", "square"))
-    w, h = _check_size(outline, size)
+    if isinstance(packing, str) and packing not in ("hex", "square") and packing[:1].isdigit():
+        return _tiling_fit(outline, size, radius, canonical(packing))
+    if not isinstance(packing, str) or packing not in ("hex", "square"):
+        raise ParameterError(f"{packing!r} is not a valid packing, must be one of: hex, square, "
+                             f"or a tiling ({', '.join(TILINGS)})")
+    w, h = check_tile_size(outline, size)
     radius = check_float("radius", radius, low=0, low_open=True)
     if outline == "circle":
         raise ParameterError("a circle outline cannot be seamless (circles do not tile the plane); "
@@ -94,6 +115,31 @@ def seamless_fit(outline, size, radius, *, packing="hex") -> SeamlessFit:
         k = max(1, round(h / up))
         return SeamlessFit(radius=r, size=(w, k * up), repeats=(m, k))
     return SeamlessFit(radius=r, size=(w, w), repeats=(m, m))
+
+
+def _tiling_fit(outline, size, edge, tiling) -> SeamlessFit:
+    w, h = check_tile_size(outline, size)
+    edge = check_float("edge", edge, low=0, low_open=True)
+    px, py = rectangular_period(tiling)
+    lat = unit_cell(tiling).lattice
+    hexagonal = abs(lat[1, 0] - px / 2) < 1e-9 and abs(lat[1, 1] - px * math.sqrt(3) / 2) < 1e-9
+    if outline == "circle":
+        raise ParameterError("a circle outline cannot be seamless (circles do not tile the plane); "
+                             "use a rectangle, square or hexagon")
+    if outline == "square" and abs(px - py) > 1e-9:
+        raise ParameterError(f"a square tile cannot be seamless with the tiling {tiling} (its periods "
+                             f"{px:.4g}a and {py:.4g}a are incommensurable); use outline 'rectangle'"
+                             + (" or 'hexagon'" if hexagonal else ""))
+    if outline == "hexagon" and not hexagonal:
+        raise ParameterError(f"a hexagon tile cannot be seamless with the tiling {tiling} (its lattice "
+                             f"is not triangular); use outline 'rectangle'"
+                             + (" or 'square'" if abs(px - py) < 1e-9 else ""))
+    m = max(1, round(w / (px * edge)))
+    a = w / (px * m)
+    if outline == "rectangle":
+        k = max(1, round(h / (py * a)))
+        return SeamlessFit(radius=a, size=(w, k * py * a), repeats=(m, k))
+    return SeamlessFit(radius=a, size=(w, w), repeats=(m, m))
 
 
 def seamless_radius(outline, size, radius, *, packing="hex") -> float:

@@ -1,0 +1,86 @@
+"""Seamless tiles of the 11 Archimedean tilings: fitted edge/size, neighbours continue the pattern."""
+
+import math
+
+import numpy as np
+import pytest
+from shapely import affinity
+
+from fabtiles import ArchimedeanPacking, ParameterError
+from fabtiles.geometry.seamless import seamless_fit
+from fabtiles.geometry.tile import Tile
+from fabtiles.pattern.archimedean import rectangular_period
+from fabtiles.pattern.tilings import TILINGS
+
+SQUARE = ("4.4.4.4", "4.8.8", "3.3.4.3.4")
+HEXAGON = ("3.3.3.3.3.3", "6.6.6", "3.6.3.6", "3.12.12", "4.6.12", "3.3.3.3.6", "3.4.6.4")
+
+
+def neighbours_continue(tile, steps):
+    """Largest area where the tile moved by a step differs from a 3x bigger tile cut there."""
+    w, h = tile.width_mm, tile.height_mm
+    big = tile.replace(outline="rectangle", size=(3 * w, 3 * h))
+    reference = big.region()
+    centre = np.array(big.centre) - np.array(tile.centre)
+    worst = 0.0
+    for step in steps:
+        dx, dy = centre + np.asarray(step)
+        moved = affinity.translate(tile.region(), dx, dy)
+        cut = reference.intersection(affinity.translate(tile.outline_shape(), dx, dy))
+        worst = max(worst, moved.symmetric_difference(cut).area)
+    return worst
+
+
+@pytest.mark.parametrize("tiling", TILINGS)
+def test_rectangle_fit_of_every_tiling(tiling):
+    fit = seamless_fit("rectangle", (60, 45), 6, packing=tiling)
+    px, py = rectangular_period(tiling)
+    m, k = fit.repeats
+    assert fit.size[0] == 60 and px * fit.edge * m == pytest.approx(60)
+    assert fit.size[1] == pytest.approx(py * fit.edge * k)
+    assert abs(60 / (px * 6) - m) <= 0.5 + 1e-9 or m == 1
+    pack = ArchimedeanPacking(tiling, fit.edge)
+    tile = Tile("rectangle", fit.size, pack, stroke=0.5)
+    w, h = fit.size
+    assert neighbours_continue(tile, [(w, 0), (0, h), (-w, h)]) < 1e-4
+
+
+@pytest.mark.parametrize("tiling", SQUARE)
+def test_square_fit(tiling):
+    fit = seamless_fit("square", 50, 7, packing=tiling)
+    assert fit.size == (50.0, 50.0) and fit.repeats[0] == fit.repeats[1]
+    tile = Tile("square", 50, ArchimedeanPacking(tiling, fit.edge), stroke=0.5)
+    assert neighbours_continue(tile, [(50, 0), (0, 50), (50, 50)]) < 1e-4
+
+
+@pytest.mark.parametrize("tiling", HEXAGON)
+def test_hexagon_fit(tiling):
+    fit = seamless_fit("hexagon", 60, 5, packing=tiling)
+    w = fit.size[0]
+    assert w == 60 and rectangular_period(tiling)[0] * fit.edge * fit.repeats[0] == pytest.approx(60)
+    tile = Tile("hexagon", 60, ArchimedeanPacking(tiling, fit.edge, outline_circles=True), stroke=0.5)
+    s3 = math.sqrt(3)
+    assert neighbours_continue(tile, [(w, 0), (w / 2, s3 / 2 * w), (-w / 2, s3 / 2 * w)]) < 1e-4
+
+
+@pytest.mark.parametrize("tiling", sorted(set(TILINGS) - set(SQUARE)))
+def test_square_refused_where_periods_are_incommensurable(tiling):
+    with pytest.raises(ParameterError, match=rf"a square tile cannot be seamless with the tiling {tiling}"):
+        seamless_fit("square", 100, 10, packing=tiling)
+
+
+@pytest.mark.parametrize("tiling", sorted(set(TILINGS) - set(HEXAGON)))
+def test_hexagon_refused_off_triangular_lattices(tiling):
+    with pytest.raises(ParameterError, match=rf"a hexagon tile cannot be seamless with the tiling {tiling}"):
+        seamless_fit("hexagon", 100, 10, packing=tiling)
+
+
+def test_bad_tiling_fits():
+    with pytest.raises(ParameterError, match=r"a circle outline cannot be seamless"):
+        seamless_fit("circle", 100, 10, packing="4.8.8")
+    with pytest.raises(ParameterError, match=r"'5.5.5' is not a valid tiling, must be one of"):
+        seamless_fit("rectangle", (100, 80), 10, packing="5.5.5")
+    with pytest.raises(ParameterError, match=r"edge must be a finite number > 0, got -1"):
+        seamless_fit("rectangle", (100, 80), -1, packing="3^6")
+    with pytest.raises(ParameterError, match=r"None is not a valid packing, must be one of: hex, square"):
+        seamless_fit("rectangle", (100, 80), 10, packing=None)
