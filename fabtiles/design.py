@@ -391,7 +391,7 @@ def _packing_spec(table: dict, source: str) -> PackingSpec:
 
 def _tile_spec(table: dict, source: str) -> TileSpec:
     from .geometry.stroke import JOINS
-    from .geometry.tile import OUTLINES, _check_size
+    from .geometry.tile import OUTLINES, check_tile_size
 
     where = "[tile]"
     _check_keys(table, TILE_KEYS, where, source)
@@ -400,7 +400,7 @@ def _tile_spec(table: dict, source: str) -> TileSpec:
     if "size" not in table:
         raise DesignError(f"{source}: {where} needs size (mm: a number, or [width, height])")
     try:
-        size = _check_size(outline, table["size"])
+        size = check_tile_size(outline, table["size"])
     except FabtilesError as exc:
         raise DesignError(f"{source}: {where} {exc}") from None
     return TileSpec(
@@ -444,7 +444,7 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
 
 def _height(table, key, source, where):
     """A height override of ``[output]`` (mm, > 0 and at most MAX_HEIGHT_MM), or None."""
-    from .export._mesh_build import MAX_HEIGHT_MM
+    from .geometry.stack import MAX_HEIGHT_MM
 
     text = f"a number of mm > 0 and <= {MAX_HEIGHT_MM:g}"
     value = _typed(table, key, (int, float), source, where, text, None)

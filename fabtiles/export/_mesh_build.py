@@ -33,83 +33,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._errors import FabricationError, ParameterError
-from .._profiles import PRINT_STYLES, PrinterProfile, load_profile
-from .._validate import check_choice, check_float
+from ..geometry.stack import MAX_HEIGHT_MM, Stack, resolve_stack  # noqa: F401  (the mesh and STEP writers' names)
 
 QUANTUM = 2.0**-10
 """Grid of every x, y coordinate in a mesh (mm): about 1 micron, exact in float32."""
 
-MAX_HEIGHT_MM = 1000.0
-"""Largest base, relief, pierced or deboss height accepted (mm)."""
-
 CELL_VERTICES = 1500
 """Target number of region vertices per meshing cell."""
-
-
-@dataclass(frozen=True)
-class Stack:
-    """The resolved style and heights of one printed part (mm).
-
-    ``base`` is the plate thickness b (relief, deboss), ``relief`` the pattern
-    height h above the plate (relief), ``pierced`` the thickness t (pierced),
-    ``deboss`` the groove depth d (deboss).
-    """
-
-    style: str
-    base: float
-    relief: float
-    pierced: float
-    deboss: float
-
-    @property
-    def top(self) -> float:
-        """Height of the highest point of the part."""
-        return {"relief": self.base + self.relief, "pierced": self.pierced, "deboss": self.base}[self.style]
-
-    def expected_volume(self, region_area: float, outline_area: float) -> float:
-        """Volume of the part from the areas of the material region and the outline."""
-        if self.style == "relief":
-            return outline_area * self.base + region_area * self.relief
-        if self.style == "pierced":
-            return region_area * self.pierced
-        return outline_area * self.base - region_area * self.deboss
-
-
-def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None, deboss_mm=None) -> Stack:
-    """The style and heights of a part: the call's values, else the profile's.
-
-    Parameters
-    ----------
-    profile : str, Path or PrinterProfile
-        Printer profile giving the defaults.
-    style : {"relief", "pierced", "deboss"}, optional
-    base_mm, relief_mm, pierced_mm, deboss_mm : float, optional
-        Heights in mm, each > 0 and at most ``MAX_HEIGHT_MM``; a deboss must be
-        shallower than the plate.
-
-    Examples
-    --------
-    >>> resolve_stack("fdm-0.4mm", relief_mm=2).top
-    4.0
-    >>> resolve_stack("fdm-0.4mm", style="deboss", deboss_mm=2.5)
-    Traceback (most recent call last):
-    ...
-    fabtiles._errors.ParameterError: deboss_mm must be smaller than base_mm (the plate is 2 mm thick), got 2.5
-    """
-    profile = load_profile(profile, kind="printer")
-    assert isinstance(profile, PrinterProfile)
-    style = check_choice("style", profile.style if style is None else style, PRINT_STYLES)
-    values = {}
-    for key, given in (("base_mm", base_mm), ("relief_mm", relief_mm),
-                       ("pierced_mm", pierced_mm), ("deboss_mm", deboss_mm)):
-        value = getattr(profile, key) if given is None else given
-        values[key] = check_float(key, value, low=0, low_open=True, high=MAX_HEIGHT_MM)
-    if style == "deboss" and values["deboss_mm"] >= values["base_mm"]:
-        raise ParameterError(
-            f"deboss_mm must be smaller than base_mm (the plate is {values['base_mm']:g} mm thick), "
-            f"got {values['deboss_mm']:g}"
-        )
-    return Stack(style, values["base_mm"], values["relief_mm"], values["pierced_mm"], values["deboss_mm"])
 
 
 def check_shapes(region, outline):

@@ -54,7 +54,7 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
     report : Report, optional
         Added to and returned; a new one (path ``""``) otherwise.
     """
-    from ..export._mesh_build import resolve_stack
+    from .stack import resolve_stack
 
     profile = load_profile(profile, kind="printer")
     stack = resolve_stack(profile, style, base_mm, relief_mm, pierced_mm, deboss_mm)

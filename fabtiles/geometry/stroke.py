@@ -50,7 +50,7 @@ def _cs():
     return manifold3d
 
 
-def _graph(segments: np.ndarray, *, return_ids: bool = False):
+def segment_graph(segments: np.ndarray, *, return_ids: bool = False):
     """Merged vertices ``(v, 2)`` and unique undirected edges ``(e, 2)`` of the segments.
 
     With ``return_ids``, also the vertex ids ``(k, 2)`` of every input segment.
@@ -197,7 +197,7 @@ def stroke_cross_section(segments, width, *, join="miter", miter_limit=4.0, tole
     if len(seg) + len(chords) == 0:
         return m3d.CrossSection()
     half = width / 2.0
-    verts, edges, seg_ids = _graph(np.concatenate([seg, chords]), return_ids=True)
+    verts, edges, seg_ids = segment_graph(np.concatenate([seg, chords]), return_ids=True)
     if len(edges) == 0:
         return m3d.CrossSection()
     rings = []

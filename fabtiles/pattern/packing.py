@@ -72,7 +72,7 @@ def circle_segments(centres, radii, *, tolerance: float = 0.005, multiple: int =
     return np.concatenate(out) if out else np.empty((0, 2, 2))
 
 
-class _Packing:
+class Packing:
     """Shared machinery of the packings; a subclass only defines its lattice.
 
     Subclasses set ``kind``, ``gap_ratio`` (gap circle radius / R) and implement
@@ -250,7 +250,7 @@ class _Packing:
                 f"gap_motif={self.gap_motif!r}{extra})")
 
 
-class HexPacking(_Packing):
+class HexPacking(Packing):
     """Hexagonal packing of tangent circles with a motif in each (paper section 5).
 
     Parameters
@@ -288,7 +288,7 @@ class HexPacking(_Packing):
         return (2.0 * self.radius, 2.0 * math.sqrt(3.0) * self.radius)
 
 
-class SquarePacking(_Packing):
+class SquarePacking(Packing):
     """Square packing of tangent circles, a gap circle in each cell (same parameters as
     :class:`HexPacking`; gap circle radius ``(sqrt(2) - 1) R``).
 

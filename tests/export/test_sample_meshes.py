@@ -35,7 +35,7 @@ from mesh_helpers import (
 
 import fabtiles
 from fabtiles.design import load_design
-from fabtiles.export._mesh_build import resolve_stack
+from fabtiles.geometry.stack import resolve_stack
 from fabtiles.export.dispatch import DEFAULT_PRINTER_PROFILE
 
 trimesh = pytest.importorskip("trimesh")

@@ -63,7 +63,7 @@ def test_prism_volume_matches_occt_gauss_kronrod():
     from OCP.GProp import GProp_GProps
 
     from fabtiles.export.mesh import _snapped
-    from fabtiles.export._mesh_build import resolve_stack
+    from fabtiles.geometry.stack import resolve_stack
 
     region = box(0, 0, 20, 10).difference(box(2, 2, 18, 8)).union(box(5, 2, 6, 8))
     r, o = _snapped(region, box(0, 0, 20, 10))

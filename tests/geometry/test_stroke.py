@@ -17,7 +17,7 @@ def _segments(radius, stroke_width):
 def test_dense_strokes_take_the_bucketed_union_with_the_same_result(monkeypatch):
     seg = _segments(2.0, 1.9)
     half = 0.95
-    verts, edges = stroke._graph(seg)
+    verts, edges = stroke.segment_graph(seg)
     polys = [stroke.band_polygons(verts, edges, half)] + stroke.join_polygons(verts, edges, half)
     contours = [p for block in polys for p in block]
     bucketed = stroke._bucketed_union(contours, per_bucket=16)

@@ -1,0 +1,88 @@
+"""Layers you can trust: the import contracts of `.importlinter`, and no borrowed private names."""
+
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "fabtiles"
+
+# Private names still imported across modules, each with the reason it is not fixed yet.
+PENDING = {
+    # the STEP writer is being rewritten; it borrows the mesh writer's helpers until then
+    ("fabtiles/export/step.py", "fabtiles.export.mesh"),
+}
+
+
+def test_import_contracts_are_kept():
+    """pattern -> geometry -> export -> build -> front ends, with no import going up (lazy ones too)."""
+    lint = Path(sys.executable).with_name("lint-imports")
+    proc = subprocess.run([str(lint), str(ROOT / ".importlinter")], cwd=ROOT, capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert "Contracts: 3 kept, 0 broken." in proc.stdout
+
+
+def test_the_layer_contract_catches_an_import_going_up(tmp_path):
+    """The contract is live: a geometry module importing export breaks it."""
+    import shutil
+
+    copy = tmp_path / "fabtiles"
+    shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__", "static", "*.toml"))
+    (copy / "geometry" / "upward.py").write_text("from ..export import dispatch\n")
+    lint = Path(sys.executable).with_name("lint-imports")
+    proc = subprocess.run([str(lint), str(ROOT / ".importlinter")], cwd=tmp_path, capture_output=True, text=True,
+                          timeout=300, env={"PYTHONPATH": str(tmp_path), "PATH": ""})
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    assert "fabtiles.geometry is not allowed to import fabtiles.export" in proc.stdout
+    assert "fabtiles.geometry.upward -> fabtiles.export.dispatch" in proc.stdout
+
+
+def _module_name(path: Path, root: Path) -> str:
+    parts = list(path.relative_to(root).with_suffix("").parts)
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _resolve(path: Path, root: Path, node: ast.ImportFrom) -> str:
+    if not node.level:
+        return node.module or ""
+    base = _module_name(path, root).split(".")
+    base = base if path.name == "__init__.py" else base[:-1]
+    base = base[: len(base) - node.level + 1]
+    return ".".join(base + ([node.module] if node.module else []))
+
+
+def borrowed_private_names(package: Path = PACKAGE) -> list[str]:
+    """``from module import _name`` where ``_name`` is not a module: a private name of another module."""
+    found = []
+    root = package.parent
+    for path in sorted(package.rglob("*.py")):
+        rel = str(path.relative_to(root))
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not isinstance(node, ast.ImportFrom):
+                continue
+            source = _resolve(path, root, node)
+            for alias in node.names:
+                name = alias.name
+                if not name.startswith("_") or name.startswith("__"):
+                    continue
+                if (root / Path(*source.split("."), f"{name}.py")).exists():
+                    continue  # a private module of the package (fabtiles._limits): that is its purpose
+                if (rel, source) in PENDING:
+                    continue
+                found.append(f"{rel}:{node.lineno} imports {name} from {source}")
+    return found
+
+
+def test_no_module_imports_another_modules_private_names():
+    assert borrowed_private_names() == []
+
+
+def test_the_private_name_check_finds_one(tmp_path):
+    pkg = tmp_path / "fabtiles"
+    (pkg / "geometry").mkdir(parents=True)
+    (pkg / "geometry" / "borrow.py").write_text("from .tile import _secret\n")
+    assert borrowed_private_names(pkg) == ["fabtiles/geometry/borrow.py:1 imports _secret from fabtiles.geometry.tile"]
