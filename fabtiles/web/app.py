@@ -174,9 +174,9 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
 
         _, spec, _ = build(request)
         # The build pipeline, as `fabtiles build`: the design's profiles and options, the limits.
-        data, _ = build_bytes(spec, fmt, limits=limits, file_name=f"fabtiles-tile.{fmt}")
+        data, _ = build_bytes(spec, fmt, limits=limits, file_name=f"{spec.name}.{fmt}")
         return Response(data, media_type=MEDIA_TYPES[fmt],
-                        headers={"Content-Disposition": f'attachment; filename="fabtiles-tile.{fmt}"'})
+                        headers={"Content-Disposition": f'attachment; filename="{spec.name}.{fmt}"'})
 
     return app
 

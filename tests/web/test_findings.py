@@ -118,3 +118,11 @@ def test_fill_small_holes_reaches_the_laser_downloads(client):
     filled = client.get(f"/api/export/svg?{SMALL}").content
     cut = client.get(f"/api/export/svg?{SMALL}&fill_small_holes=false").content
     assert filled.count(b"<path") < cut.count(b"<path")
+
+
+def test_name_names_the_downloads(client):
+    r = client.get(f"/api/export/svg?{SMALL}&name=my-tile")
+    assert r.headers["content-disposition"] == 'attachment; filename="my-tile.svg"'
+    assert 'name = "my-tile"' in client.get(f"/api/design.toml?{SMALL}&name=my-tile").text
+    r = client.get(f"/api/export/svg?{SMALL}&name=../x")
+    assert r.status_code == 422 and r.json()["field"] == "name"
