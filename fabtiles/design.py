@@ -7,10 +7,14 @@ error naming the key, its section and the valid keys (with a "did you mean").
     ``preset = "table3-3"`` plus optional overrides of its parameters, or the
     parameters ``n``, ``radii``, ``alpha``, ``spr``, ``special``, ``rotation``.
 ``[packing]`` (optional; without it the tile holds one motif)
-    ``kind`` ("hex" | "square"), ``radius`` (mm), ``outline_circles``, ``fill``,
+    ``kind`` ("hex" | "square" | "archimedean"), ``radius`` (mm), ``outline_circles``, ``fill``,
     ``gap_motif`` (inline table like ``[motif]``, or a preset name), ``seamless``
     (true: fit the radius, and a rectangle's height, with
-    :func:`~fabtiles.geometry.seamless.seamless_fit`).
+    :func:`~fabtiles.geometry.seamless.seamless_fit`). ``kind = "archimedean"``
+    takes ``tiling`` ("4.8.8", see :class:`~fabtiles.ArchimedeanPacking`) and ``edge``
+    (mm) instead of ``radius``, and ``[packing.motifs]``: a motif per polygon kind keyed
+    by its sides (``8 = "table3-3"``, ``4 = { n = 8, radii = [1, 2] }``); ``[motif]``
+    is then optional and fills the kinds not listed.
 ``[tile]`` (required)
     ``outline``, ``size``, ``frame``, ``stroke``, ``join``, ``miter_limit``, ``corner_radius``.
 ``[output]`` (optional)
@@ -60,7 +64,10 @@ FORMATS = ("dxf", "svg", "stl", "3mf", "step")
 
 SECTIONS = ("motif", "packing", "tile", "output")
 MOTIF_KEYS = ("preset", "n", "radii", "alpha", "spr", "special", "rotation")
-PACKING_KEYS = ("kind", "radius", "outline_circles", "fill", "gap_motif", "seamless")
+PACKING_KEYS = ("kind", "radius", "outline_circles", "fill", "gap_motif", "seamless", "tiling", "edge",
+                "motifs")
+ARCHIMEDEAN_KEYS = ("tiling", "edge", "motifs")
+"""The ``[packing]`` keys of ``kind = "archimedean"`` alone (it has no ``radius``)."""
 TILE_KEYS = ("outline", "size", "frame", "stroke", "join", "miter_limit", "corner_radius")
 HEIGHT_KEYS = ("base_mm", "relief_mm", "pierced_mm", "deboss_mm")
 """The ``[output]`` keys overriding the printer profile's heights (mm)."""
@@ -97,6 +104,9 @@ class PackingSpec:
     fill: float = 1.0
     gap_motif: MotifSpec | None = None
     seamless: bool = False
+    tiling: str | None = None
+    edge: float = 20.0
+    motifs: tuple[tuple[int, MotifSpec], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -254,11 +264,11 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
     for sec in SECTIONS:
         if sec in data and not isinstance(data[sec], dict):
             raise DesignError(f"{source}: [{sec}] must be a table, got {data[sec]!r}")
-    for sec in ("motif", "tile"):
-        if sec not in data:
-            raise DesignError(f"{source}: the design needs a [{sec}] section")
-    motif = _motif_spec(data["motif"], source, "[motif]")
     packing = _packing_spec(data["packing"], source) if "packing" in data else None
+    for sec in ("motif", "tile"):
+        if sec not in data and not (sec == "motif" and packing is not None and packing.kind == "archimedean"):
+            raise DesignError(f"{source}: the design needs a [{sec}] section")
+    motif = _motif_spec(data["motif"], source, "[motif]") if "motif" in data else None
     tile_spec = _tile_spec(data["tile"], source)
     output = _output_spec(data.get("output", {}), source)
     name = output.name or name
@@ -266,7 +276,7 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
                     source=source)
     # Values: build the pieces, turning their ParameterError into a DesignError naming the key.
     try:
-        star = motif.star()
+        star = motif.star() if motif is not None else None
     except FabtilesError as exc:
         raise DesignError(f"{source}: [motif] {exc}") from None
     if packing is not None:
@@ -291,7 +301,7 @@ def build_tile(design: Design, *, tile_cls=None):
     from .geometry.tile import Tile
 
     tile_cls = tile_cls or Tile
-    star = design.motif.star()
+    star = design.motif.star() if design.motif is not None else None
     pattern = star if design.packing is None else _build_packing(design.packing, star)
     t = design.tile_spec
     return tile_cls(t.outline, t.size, pattern, frame=t.frame, stroke=t.stroke, join=t.join,
@@ -307,12 +317,25 @@ def _fit_seamless(design: Design) -> Design:
     if p is None or not p.seamless:
         return design
     t = design.tile_spec
+    if p.kind == "archimedean":
+        fit = seamless_fit(t.outline, t.size, p.edge, packing=p.tiling)
+        return replace(design, packing=replace(p, edge=fit.edge), tile_spec=replace(t, size=fit.size))
     fit = seamless_fit(t.outline, t.size, p.radius, packing=p.kind)
     return replace(design, packing=replace(p, radius=fit.radius), tile_spec=replace(t, size=fit.size))
 
 
-def _build_packing(p: PackingSpec, star: Star):
+def _build_packing(p: PackingSpec, star: Star | None):
     gap = p.gap_motif.star() if p.gap_motif is not None else None
+    if p.kind == "archimedean":
+        from .pattern.archimedean import ArchimedeanPacking
+        from .pattern.tilings import unit_cell
+
+        motifs = {sides: spec.star() for sides, spec in p.motifs}
+        if star is not None:  # [motif] fills the kinds [packing.motifs] leaves out
+            kinds = set(unit_cell(p.tiling).sides.tolist())
+            motifs = {**{k: star for k in kinds - set(motifs)}, **motifs}
+        return ArchimedeanPacking(p.tiling, p.edge, motifs, gap, outline_circles=p.outline_circles,
+                                  fill=p.fill)
     return PACKINGS[p.kind](p.radius, star, gap, outline_circles=p.outline_circles, fill=p.fill)
 
 
@@ -379,14 +402,47 @@ def _packing_spec(table: dict, source: str) -> PackingSpec:
     _check_keys(table, PACKING_KEYS, where, source)
     num = (int, float)
     gap = table.get("gap_motif")
+    kind = _choice(table, "kind", tuple(PACKINGS) + ("archimedean",), source, where, "hex")
+    extra = _archimedean_spec(table, source) if kind == "archimedean" else {}
+    if kind != "archimedean":
+        wrong = [k for k in ARCHIMEDEAN_KEYS if k in table]
+        if wrong:
+            raise DesignError(f"{source}: {where} {wrong[0]} is a key of kind = \"archimedean\", "
+                              f"not of kind = {kind!r}; set kind = \"archimedean\" or remove it")
     return PackingSpec(
-        kind=_choice(table, "kind", tuple(PACKINGS), source, where, "hex"),
+        kind=kind,
+        **extra,
         radius=float(_typed(table, "radius", num, source, where, "a number of mm > 0", 12.5)),
         outline_circles=_typed(table, "outline_circles", (bool,), source, where, "true or false", False),
         fill=float(_typed(table, "fill", num, source, where, "a number in (0, 1]", 1.0)),
         gap_motif=None if gap is None else _motif_spec(gap, source, "[packing] gap_motif"),
         seamless=_typed(table, "seamless", (bool,), source, where, "true or false", False),
     )
+
+
+def _archimedean_spec(table: dict, source: str) -> dict:
+    from .pattern.tilings import TILINGS
+
+    where = "[packing]"
+    if "radius" in table:
+        raise DesignError(f"{source}: {where} kind = \"archimedean\" has no radius: give the tiling's "
+                          f"edge (mm) instead, like edge = {table['radius']!r}")
+    if "tiling" not in table:
+        raise DesignError(f"{source}: {where} kind = \"archimedean\" needs tiling = one of: "
+                          f"{', '.join(TILINGS)}")
+    tiling = _typed(table, "tiling", (str,), source, where, f"one of: {', '.join(TILINGS)}", None)
+    edge = float(_typed(table, "edge", (int, float), source, where, "a number of mm > 0", 20.0))
+    raw = table.get("motifs", {})
+    if not isinstance(raw, dict):
+        raise DesignError(f"{source}: [packing.motifs] must be a table keyed by polygon sides "
+                          f"(8 = \"table3-3\"), got {raw!r}")
+    motifs = []
+    for key, value in raw.items():
+        if not str(key).isdigit():
+            raise DesignError(f"{source}: [packing.motifs] key {key!r} must be a polygon's number of "
+                              f"sides, like 8 = \"table3-3\"")
+        motifs.append((int(key), _motif_spec(value, source, f"[packing.motifs] {key}")))
+    return dict(tiling=tiling, edge=edge, motifs=tuple(sorted(motifs)))
 
 
 def _tile_spec(table: dict, source: str) -> TileSpec:

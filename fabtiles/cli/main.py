@@ -44,7 +44,7 @@ def _float_list(text: str) -> tuple[float, ...]:
 
 @cli.command()
 def presets():
-    """List the presets (the rows of the paper's tables) with their parameters."""
+    """List the presets (the rows of the paper's tables) with their parameters, and the tilings."""
     from ..pattern.presets import PRESET_NOTES, PRESETS
 
     for name, p in PRESETS.items():
@@ -54,6 +54,12 @@ def presets():
                 f"spr={p['spr']:<5g} special={special}")
         note = PRESET_NOTES[name]
         click.echo(line + (f"   ({note})" if note else ""))
+    from ..pattern.tilings import NAMES, TILINGS, unit_cell
+
+    click.echo('\nTilings ([packing] kind = "archimedean", tiling = "..."), motifs keyed by polygon sides:')
+    for name in TILINGS:
+        kinds = ",".join(map(str, sorted(set(unit_cell(name).sides.tolist()))))
+        click.echo(f"{name:<13} {NAMES[name]:<24} polygons {kinds}")
 
 
 @cli.command()
