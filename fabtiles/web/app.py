@@ -39,13 +39,16 @@ def _field_of(message: str) -> str | None:
     """The query field a library error message is about (the first known name in it)."""
     if "gap_motif" in message:
         return "gap_radii" if "radii" in message else "gap_n"
+    kind = re.search(r"motifs(?: key|\]) '?(\d+)", message)  # a motif per polygon kind
+    if kind and f"motif_{kind.group(1)}" in FIELDS:
+        return f"motif_{kind.group(1)}"
     if "segments" in message and "limit" in message:
         return "radius"  # too much work: the packing radius is the usual knob
     if re.search(r"\[packing\] kind\b|packing=", message):
         return "packing"
     best = None
     for key, (section, name, _) in FIELDS.items():
-        if section == "gap_motif" or key == "packing":
+        if section in ("gap_motif", "motifs") or key == "packing":
             continue
         for word in {key, name} - {"kind"}:
             m = re.search(rf"(?<![\w.\[]){re.escape(word)}(?![\w])", message)
@@ -99,8 +102,8 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
         base = dict(DEFAULTS)
         if ("n" in query or "radii" in query) and "preset" not in query:
             del base["preset"]  # the motif's own parameters replace the default preset
-        if query.get("packing") == "none":
-            del base["radius"]
+        if query.get("packing") in ("none", "archimedean"):
+            del base["radius"]  # no packing radius (a tiling has an edge)
         design = design_from_query({**base, **query})
         spec, tile = tile_from_dict(design, limits=limits)
         return design, spec, tile
@@ -125,6 +128,13 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
     def presets():
         return {name: {**dict(p), "radii": list(p["radii"]), "note": PRESET_NOTES[name]}
                 for name, p in PRESETS.items()}
+
+    @app.get("/api/tilings")
+    def tilings():
+        """The Archimedean tilings of packing=archimedean: name and polygon kinds (motif_<sides>)."""
+        from ..pattern.tilings import NAMES, TILINGS, unit_cell
+
+        return {t: {"name": NAMES[t], "kinds": sorted(set(unit_cell(t).sides.tolist()))} for t in TILINGS}
 
     @app.get("/api/profiles")
     def profiles():

@@ -93,6 +93,9 @@ FIELDS = {
     "gap_special": ("gap_motif", "special", _special),
     "gap_rotation": ("gap_motif", "rotation", _number),
     "seamless": ("packing", "seamless", _flag),
+    "tiling": ("packing", "tiling", _text),
+    "edge": ("packing", "edge", _number),
+    **{f"motif_{p}": ("motifs", str(p), _text) for p in (3, 4, 6, 8, 12)},
     "outline": ("tile", "outline", _text),
     "width": ("tile", "width", _number),
     "height": ("tile", "height", _number),
@@ -143,6 +146,7 @@ def design_from_query(query) -> dict:
     """
     design: dict = {"motif": {}, "packing": {}, "tile": {}, "output": {}}
     gap: dict = {}
+    motifs: dict = {}  # packing=archimedean: a preset per polygon kind (motif_8=table3-3)
     for key, raw in query.items():
         if key not in FIELDS:
             raise QueryError(
@@ -150,6 +154,10 @@ def design_from_query(query) -> dict:
             )
         section, name, parse = FIELDS[key]
         value = parse(key, raw)
+        if section == "motifs":
+            if value not in ("", "default"):
+                motifs[name] = value
+            continue
         (gap if section == "gap_motif" else design[section])[name] = value
     motif = design["motif"]
     if "preset" in motif and motif["preset"] == "":
@@ -159,11 +167,17 @@ def design_from_query(query) -> dict:
     if gap.get("special", 0) is None:
         del gap["special"]
     if design["packing"].get("kind", "hex") == "none":
-        if gap or len(design["packing"]) > 1:
-            extra = sorted(k for k in query if FIELDS[k][0] in ("packing", "gap_motif") and k != "packing")
+        if gap or motifs or len(design["packing"]) > 1:
+            extra = sorted(k for k in query if FIELDS[k][0] in ("packing", "gap_motif", "motifs") and k != "packing")
             raise QueryError(f"{extra[0]} has no meaning with packing=none; remove it or choose packing=hex or square", extra[0])
         del design["packing"]
-    elif gap:
+    if motifs and "packing" in design:
+        if design["packing"].get("kind") != "archimedean":
+            first = f"motif_{next(iter(motifs))}"
+            raise QueryError(f"{first} is a motif per polygon kind of packing=archimedean; remove it or "
+                             f"choose packing=archimedean", first)
+        design["packing"]["motifs"] = motifs
+    if "packing" in design and gap:
         if "preset" not in gap:  # one of n / radii alone: the other from the default gap motif
             gap = {"n": 6, "radii": [0.5, 1.0], **gap}
         design["packing"]["gap_motif"] = gap

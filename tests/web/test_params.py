@@ -59,7 +59,8 @@ def test_bad_query_names_the_field(query, field, match):
 
 
 # Query parameters that carry a design key under another name (or two).
-QUERY_NAMES = {("tile", "width"): ("tile", "size"), ("tile", "height"): ("tile", "size")}
+QUERY_NAMES = {("tile", "width"): ("tile", "size"), ("tile", "height"): ("tile", "size"),
+               **{("motifs", str(p)): ("packing", "motifs") for p in (3, 4, 6, 8, 12)}}  # motif_<sides>
 
 
 def test_every_design_key_is_a_query_parameter():

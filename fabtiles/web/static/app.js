@@ -10,6 +10,7 @@ const SLIDERS = {
   ],
   "packing-sliders": [
     ["radius", "radius R (mm)", 3, 100, 0.5],
+    ["edge", "edge a (mm)", 3, 100, 0.5],
     ["gap_n", "gap n", 3, 24, 1],
     ["gap_inner", "gap inner r", 0.05, 1.5, 0.05],
   ],
@@ -26,6 +27,7 @@ const SLIDERS = {
 const state = {
   preset: "table3-3", n: 12, radii: [123, 85, 178], alpha: 23, spr: -7, special: 2, rotation: 0,
   packing: "hex", radius: 15, gap_n: 6, gap_inner: 0.5, outline_circles: false,
+  tiling: "4.8.8", edge: 20, motifs: {},  // packing=archimedean: motifs[sides] = preset ("" = the motif above)
   outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
   laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
   miter_limit: 4, seamless: false, fill_small_holes: true, name: "",
@@ -35,13 +37,14 @@ const state = {
 const TEXT_KEYS = ["name", "base_mm", "relief_mm", "pierced_mm", "deboss_mm"];
 const FLAG_KEYS = ["seamless", "fill_small_holes"];
 let showFindings = true, chosen = null;  // the findings overlay; the finding chosen in the list
-let presets = {};
+let presets = {}, tilings = {};
 
 function $(id) { return document.getElementById(id); }
 
 function slider(container, key, label, min, max, step) {
   const row = document.createElement("label");
   row.className = "row";
+  row.id = `${key}-row`;
   row.innerHTML = `<span>${label}</span><input type="range" min="${min}" max="${max}" step="${step}"
      id="${key}-range"><input type="number" step="${step}" id="${key}" name="${key}">`;
   container.appendChild(row);
@@ -99,7 +102,12 @@ function query() {
   }
   q.set("packing", state.packing);
   if (state.packing !== "none") {
-    q.set("radius", state.radius);
+    if (state.packing === "archimedean") {
+      q.set("tiling", state.tiling);
+      q.set("edge", state.edge);
+      for (const p of (tilings[state.tiling] || { kinds: [] }).kinds)
+        if (state.motifs[p]) q.set(`motif_${p}`, state.motifs[p]);
+    } else q.set("radius", state.radius);
     q.set("gap_n", state.gap_n);
     q.set("gap_radii", `${state.gap_inner},1`);
     q.set("outline_circles", state.outline_circles ? "true" : "false");
@@ -123,6 +131,7 @@ function fromUrl() {
     if (k === "radii") state.radii = v.split(",").map(Number);
     else if (k === "gap_radii") state.gap_inner = Number(v.split(",")[0]);
     else if (k === "special") state.special = v === "none" || v === "" ? 0 : Number(v);
+    else if (k.startsWith("motif_")) state.motifs[k.slice(6)] = v;
     else if (k === "outline_circles" || FLAG_KEYS.includes(k)) state[k] = v === "true";
     else if (TEXT_KEYS.includes(k)) state[k] = v;
     else if (k in state) state[k] = typeof state[k] === "number" ? Number(v) : v;
@@ -146,6 +155,8 @@ function syncControls() {
   for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style"])
     $(key).value = state[key];
   $("preset").value = state.preset;
+  $("tiling").value = state.tiling;
+  tilingControls();
   $("outline_circles").checked = state.outline_circles;
   for (const k of FLAG_KEYS) $(k).checked = state[k];
   for (const k of TEXT_KEYS) $(k).value = state[k];
@@ -241,8 +252,35 @@ function choose(li, keep = false) {
   highlight();
 }
 
+// packing=archimedean: the tiling menu, a motif menu per polygon kind, edge instead of radius.
+function tilingControls() {
+  const arch = state.packing === "archimedean";
+  $("tiling-controls").hidden = !arch;
+  $("edge-row").hidden = !arch;
+  $("radius-row").hidden = arch;
+  const box = $("kind-motifs");
+  box.innerHTML = "";
+  for (const p of arch && tilings[state.tiling] ? tilings[state.tiling].kinds : []) {
+    const row = document.createElement("label");
+    row.className = "row";
+    row.innerHTML = `<span>${p}-gons</span><select id="motif_${p}" name="motif_${p}"></select>`;
+    box.appendChild(row);
+    const err = document.createElement("div");
+    err.className = "err";
+    err.dataset.for = `motif_${p}`;
+    box.appendChild(err);
+    const sel = row.querySelector("select");
+    sel.add(new Option("the motif above", ""));
+    for (const name of Object.keys(presets)) sel.add(new Option(name, name));
+    sel.value = state.motifs[p] || "";
+    sel.addEventListener("change", () => { state.motifs[p] = sel.value; update(); });
+  }
+}
+
 async function init() {
   presets = await (await fetch("/api/presets")).json();
+  tilings = await (await fetch("/api/tilings")).json();
+  for (const [t, info] of Object.entries(tilings)) $("tiling").add(new Option(`${t} (${info.name})`, t));
   const sel = $("preset");
   for (const name of Object.keys(presets)) sel.add(new Option(name, name));
   const profiles = await (await fetch("/api/profiles")).json();
@@ -272,6 +310,8 @@ async function init() {
   $("show_findings").addEventListener("change", () => { showFindings = $("show_findings").checked; update(); });
   for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style"])
     $(key).addEventListener("change", () => { state[key] = $(key).value; update(); });
+  for (const key of ["packing", "tiling"])
+    $(key).addEventListener("change", () => { state[key] = $(key).value; tilingControls(); if (key === "tiling") update(); });
   refresh();
 }
 
