@@ -57,7 +57,7 @@ def profile_kind(fmt: str) -> str:
     return _WRITERS[fmt][2]
 
 
-def export_geometry(path, *, region, outline, centrelines=None, stroke=None, profile=None, **options):
+def export_geometry(path, *, region, outline, centrelines=None, stroke=None, profile=None, dips=None, **options):
     """Write ``region`` (material, file coordinates in mm) in the format of ``path``.
 
     Parameters
@@ -70,6 +70,9 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
         Centre-lines, for the laser score mode.
     stroke : float, optional
         Stroke width, for the fabrication checks.
+    dips : shapely geometry, optional
+        Print: where an interlaced relief's under strands dip (see
+        :mod:`fabtiles.export.layers`).
     profile : str, Path or profile, optional
         Laser profile for dxf/svg (default ``laser-3mm-plywood``), printer profile for
         stl/3mf/step (default ``fdm-0.4mm``).
@@ -102,19 +105,51 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
     if kind == "laser":
         return writer(path, region=region, outline=outline, centrelines=centrelines,
                       profile=profile, stroke=stroke, **options)
+    if dips is not None and not dips.is_empty:
+        import inspect
+
+        if "dips" not in inspect.signature(writer).parameters:
+            raise ParameterError(f"an interlaced relief cannot be written as .{fmt} yet; "
+                                 "write .stl, or pass interlace=False")
+        options["dips"] = dips
     return writer(path, region=region, outline=outline, profile=profile, stroke=stroke, **options)
 
 
 def export_tile(tile, path, *, profile=None, **options):
-    """Write a :class:`~fabtiles.Tile` in the format of ``path``; see :func:`export_geometry`."""
+    """Write a :class:`~fabtiles.Tile` in the format of ``path``; see :func:`export_geometry`.
+
+    An interlaced tile (SPEC 2c, :mod:`fabtiles.geometry.interlace`) scores its
+    centre-lines broken where a strand passes under, cuts the under gaps in
+    pierced mode with ``interlace_cut`` (leaving tabs ``min(min_feature_mm,
+    stroke / 2)`` wide), and dips its relief's under strands.
+    """
     fmt = format_of(path)
-    centrelines = tile.centrelines() if profile_kind(fmt) == "laser" else None
+    kind = profile_kind(fmt)
+    region, centrelines, dips = tile.region(), None, None
+    woven = getattr(tile, "interlace", False)
+    if kind == "laser":
+        centrelines = tile.centrelines()
+        if woven:
+            from ..geometry import interlace
+
+            laser = load_profile(profile if profile is not None else DEFAULT_LASER_PROFILE, kind="laser")
+            mode = options.get("mode") or laser.mode
+            if mode == "score":
+                centrelines = interlace.tile_score_lines(tile)
+            elif tile.interlace_cut:
+                region = interlace.tile_cut_region(tile, min(laser.min_feature_mm, tile.stroke / 2))
+    elif woven and (options.get("style") or load_profile(
+            profile if profile is not None else DEFAULT_PRINTER_PROFILE, kind="printer").style) == "relief":
+        from ..geometry import interlace
+
+        dips = interlace.tile_dips(tile)
     return export_geometry(
         path,
-        region=tile.region(),
+        region=region,
         outline=tile.outline_shape(),
         centrelines=centrelines,
         stroke=tile.stroke,
         profile=profile,
+        dips=dips,
         **options,
     )

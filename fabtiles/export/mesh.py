@@ -78,14 +78,20 @@ def _snapped(region, outline):
     return r, o
 
 
-def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0):
-    """Vertices, faces and cell lines of one body.
+def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0, dips=None):
+    """Vertices, faces and cell lines of one body (``dips``: an interlaced relief's, see
+    :func:`fabtiles.export.layers.body_layers`).
 
     ``kind`` is ``"relief"``, ``"base"``, ``"pattern"``, ``"pierced"`` or ``"plate"``;
     ``shift`` moves the meshing cell lines. Returns ``(vertices, faces, (xs, ys))``.
     """
     b, h, t, d = stack.base, stack.relief, stack.pierced, stack.deboss
-    if kind == "relief":
+    if dips is not None and not dips.is_empty and kind in ("relief", "pattern"):
+        from .layers import body_layers
+
+        layers, bottom = body_layers(kind, r, o, stack, dips)
+        cov = coverage(layers, bottom=bottom, shift=shift)
+    elif kind == "relief":
         cov = coverage_pair(r, o, region_z=b + h, rest_z=b, bottom=0.0, shift=shift)
     elif kind == "base":
         cov = coverage([(o, b)], bottom=0.0, shift=shift)
@@ -100,11 +106,16 @@ def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0):
     return (*mesh_coverage(cov), (cov.xs, cov.ys))
 
 
-def _expected(kind, r, o, stack):
+def _expected(kind, r, o, stack, dips=None):
     """Expected volume and number of bodies of one body kind."""
     b, h = stack.base, stack.relief
     nr = len(polygons_of(r))
     no = len(polygons_of(o))
+    if dips is not None and kind in ("relief", "pattern"):
+        from .layers import dips_volume
+
+        full = {"relief": o.area * b + r.area * h, "pattern": r.area * h}[kind]
+        return full - dips_volume(r, dips, stack), {"relief": no, "pattern": nr}[kind]
     return {
         "relief": (o.area * b + r.area * h, no),
         "base": (o.area * b, no),
@@ -195,7 +206,7 @@ def _on_cell_lines(points, lines) -> bool:
     return bool(len(points)) and bool(np.isin(points[:, 0], xs).any() or np.isin(points[:, 1], ys).any())
 
 
-def _checked_body(kind, name, r, o, stack):
+def _checked_body(kind, name, r, o, stack, dips=None):
     """One body, checked through its STL bytes as a slicer reads them.
 
     Returns ``(data, vertices, faces, region)``: the STL bytes, the merged float32
@@ -219,12 +230,13 @@ def _checked_body(kind, name, r, o, stack):
     def attempt(g):
         for shift in range(GRID_SHIFTS):
             try:
-                verts, faces, lines = _body_arrays(kind, g, o, stack, shift)
+                extra = {} if dips is None else {"dips": dips}
+                verts, faces, lines = _body_arrays(kind, g, o, stack, shift, **extra)
             except shapely.errors.GEOSException as exc:
                 raise FabricationError(f"the {name} mesh could not be cut into cells ({exc}); "
                                        "nothing was written") from None
             try:
-                volume, bodies = _expected(kind, g, o, stack)
+                volume, bodies = _expected(kind, g, o, stack, dips)
                 data = stl_bytes(verts, faces)
                 mverts, mfaces = check_triangles(read_stl_triangles(data), name=name, volume=volume, bodies=bodies)
             except FabricationError as exc:
@@ -481,12 +493,13 @@ def read_stl_triangles(data: bytes) -> np.ndarray:
 
 
 def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
-              pierced_mm=None, deboss_mm=None) -> Report:
+              pierced_mm=None, deboss_mm=None, dips=None) -> Report:
     """Write a binary STL (mm) of the tile, one watertight body (a relief's plate and pattern fused).
 
     The STL bytes are read back and checked as a slicer reads them before the
     file is written atomically. Parameters as :func:`build_meshes`, plus ``stroke``
-    (mm, for the thin-wall check). Strict profile with findings, or a bad mesh:
+    (mm, for the thin-wall check) and ``dips`` (an interlaced relief's, see
+    :mod:`fabtiles.export.layers`). Strict profile with findings, or a bad mesh:
     :class:`~fabtiles.FabricationError` and no file.
     """
     heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
@@ -494,7 +507,7 @@ def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_m
     r, o = _snapped(region, outline)
     ((name, kind),) = _kinds(stack.style, single=True).items()
     # the bytes are read back and checked exactly as a slicer will read them
-    data, mverts, mfaces, _ = _checked_body(kind, name, r, o, stack)
+    data, mverts, mfaces, _ = _checked_body(kind, name, r, o, stack, dips)
     atomic_write(path, data)
     tri = mverts[mfaces]
     report.stats.update(_stack_stats(stack), bodies=[name], triangles=len(mfaces),

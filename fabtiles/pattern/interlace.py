@@ -127,28 +127,28 @@ class Weave:
         return np.stack([pos - half, pos + half], axis=1)
 
     def max_gap(self, half_width) -> float:
-        """Largest gap for which no under gap reaches a neighbouring crossing on its strand.
+        """Largest gap before the gaps along some strand add up to its whole length.
 
-        ``inf`` when no strand has two crossings.
+        A strand's gaps (one per crossing where it is under, ``2 (half_width + gap) /
+        sin`` long each) swallow it when their total reaches its length; this is the
+        largest ``gap`` below that for every strand (negative when the over bands
+        alone swallow a strand; ``inf`` without crossings).
 
         >>> w = weave(np.array([[[0, 0], [4, 0]], [[1, -1], [1, 1]], [[3, -1], [3, 1]]], float))
         >>> round(w.max_gap(0.25), 6)
-        1.75
+        0.75
         """
-        if len(self.visit_pos) < 2:
+        sel = ~self.visit_over
+        if not sel.any():
             return float("inf")
-        order = np.lexsort((self.visit_pos, self.visit_strand))
-        st, pos = self.visit_strand[order], self.visit_pos[order]
-        cr, over = self.visit_crossing[order], self.visit_over[order]
-        same = st[1:] == st[:-1]
-        d = (pos[1:] - pos[:-1])[same]
-        sin_a, sin_b = self.sin[cr[:-1][same]], self.sin[cr[1:][same]]
-        lim = []
-        # an under crossing's gap half length (h + g) / sin must stay below the distance d
-        for under_side, s in ((~over[:-1][same], sin_a), (~over[1:][same], sin_b)):
-            if under_side.any():
-                lim.append(np.min(d[under_side] * s[under_side]) - half_width)
-        return float(min(lim)) if lim else float("inf")
+        strand = self.visit_strand[sel]
+        inv_sin = 1.0 / self.sin[self.visit_crossing[sel]]
+        n = len(self.strand_length)
+        total_inv = np.bincount(strand, weights=inv_sin, minlength=n)
+        has = total_inv > 0
+        # sum over gaps 2 (h + g) / sin_i < L  <=>  g < (L / 2 - h S) / S, S = sum 1 / sin_i
+        limit = (self.strand_length[has] / 2 - half_width * total_inv[has]) / total_inv[has]
+        return float(limit.min())
 
     def broken_pieces(self, half_width, gap) -> np.ndarray:
         """The pieces with each under strand's gap removed: ``(q, 2, 2)`` segments.

@@ -129,10 +129,17 @@ def test_broken_pieces_leave_the_over_strand_whole():
     assert np.allclose(gap, 0.15)
 
 
-def test_max_gap_is_where_an_under_gap_reaches_the_next_crossing():
+def test_max_gap_is_where_the_gaps_add_up_to_a_whole_strand():
+    # a 4 long line under at one of two crossings (limit 2 - 0.25), 2 long crossers (1 - 0.25)
     seg = np.array([[[0, 0], [4, 0]], [[1, -1], [1, 1]], [[3, -1], [3, 1]]], float)
-    assert math.isclose(weave(seg).max_gap(0.25), 1.75)
-    assert weave(seg[:2]).max_gap(0.25) == math.inf
+    assert math.isclose(weave(seg).max_gap(0.25), 0.75)
+    # at 60 degrees a gap is 1 / sin 60 times longer along the under strand
+    c, s = math.cos(math.pi / 3), math.sin(math.pi / 3)
+    two = np.array([[[-5, 0], [5, 0]], [[-c, -s], [c, s]]], float)
+    w = weave(two)
+    under_len = 10.0 if w.under[0] == 0 else 2.0
+    assert math.isclose(w.max_gap(0.25), under_len / 2 * s - 0.25)
+    assert weave(seg[:1]).max_gap(0.25) == math.inf
 
 
 def test_empty_and_single_segment():

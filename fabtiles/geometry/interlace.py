@@ -1,0 +1,189 @@
+"""The shapes of a woven tile (SPEC 2c): where the under strands dip, break or are cut.
+
+The strands and their over/under come from :func:`fabtiles.pattern.interlace.weave`.
+At each crossing the under strand is hidden over the over band's width plus the
+clearance ``gap`` on each side. Since the over band itself stays whole, what
+changes is two thin **slivers** of the under band, one each side of the over
+band, ``gap`` wide (in the 2.5D relief, the under strand's dip is seen only
+there):
+
+- the woven drawing (preview, :func:`woven_region`): the region without the
+  slivers, so every under band stops ``gap`` short of the band it passes under;
+- the relief (:func:`dips`): the slivers lowered to the dip level;
+- the laser score lines (:func:`score_lines`): the under centre-line broken over
+  the whole hidden length;
+- ``interlace_cut`` (:func:`cut_region`): the slivers cut through, each leaving
+  a tab across the middle (along the under centre-line) so that no piece falls
+  out: a strand cut at every crossing where it is under would otherwise leave
+  loose pieces between its crossings.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from ..pattern.interlace import Weave
+
+
+INSET_MM = 0.02
+"""The relief's dips stop this far (20 microns, far below a nozzle's width) inside the bands' edges.
+
+A dip that reached a band's edge would share it with the band's outline; cut on the
+2**-10 mm meshing grid, near-collinear edges there leave spikes a grid step thin
+that break the mesh (every rosette preset failed so). Strictly inside the
+material, a dip is a hole in the full-height level, vertex for vertex.
+"""
+
+
+def _parallelograms(w: Weave, a0, a1, b0, b1) -> np.ndarray:
+    """Shapely polygons ``p + a d_u / sin + b d_o / sin`` for a in [a0, a1], b in [b0, b1].
+
+    ``a`` is the distance from the over centre-line, ``b`` from the under one
+    (both measured square to those lines); one polygon per crossing.
+    """
+    p, du, do, s = w.points, w.under_dir, w.over_dir, w.sin[:, None]
+    corners = [p + (a * du + b * do) / s for a, b in ((a0, b0), (a1, b0), (a1, b1), (a0, b1))]
+    ring = np.stack(corners + corners[:1], axis=1)
+    return shapely.polygons(ring)
+
+
+def slivers(w: Weave, half: float, gap: float, *, tab: float = 0.0) -> np.ndarray:
+    """The under band's hidden slivers beside each over band, as shapely polygons.
+
+    ``half`` is half the stroke, ``gap`` the clearance. Each sliver reaches
+    ``half + gap`` across the under centre-line, so it cuts the under band
+    through; a ``tab`` > 0 leaves that width uncut along the under centre-line.
+
+    >>> import numpy as np
+    >>> from fabtiles.pattern.interlace import weave
+    >>> w = weave(np.array([[[-2, 0], [2, 0]], [[0, -2], [0, 2]]], float))
+    >>> [round(p.area, 4) for p in slivers(w, 0.5, 0.25)]
+    [0.375, 0.375]
+    >>> len(slivers(w, 0.5, 0.25, tab=0.2))
+    4
+    """
+    if not len(w) or gap <= 0:
+        return np.empty(0, dtype=object)
+    reach = half + gap
+    parts = []
+    for a0, a1 in ((half, half + gap), (-half - gap, -half)):
+        if tab > 0:
+            parts.append(_parallelograms(w, a0, a1, tab / 2, reach))
+            parts.append(_parallelograms(w, a0, a1, -reach, -tab / 2))
+        else:
+            parts.append(_parallelograms(w, a0, a1, -reach, reach))
+    return np.concatenate(parts)
+
+
+def dips(region, w: Weave, half: float, gap: float):
+    """Where the relief's under strands dip: the slivers within the material, inset by :data:`INSET_MM`."""
+    s = slivers(w, half, gap)
+    if not len(s):
+        return shapely.Polygon()
+    inside = shapely.intersection(region, shapely.union_all(s))
+    return polygonal(shapely.buffer(inside, -INSET_MM, join_style="mitre"))
+
+
+def polygonal(geom):
+    """The polygons of an overlay result (dropping the lines and points it may hold)."""
+    parts = shapely.get_parts(geom)
+    parts = parts[(shapely.get_type_id(parts) == 3) & (shapely.area(parts) > 0)] if len(parts) else parts
+    return shapely.MultiPolygon(list(parts)) if len(parts) else shapely.Polygon()
+
+
+def woven_region(region, w: Weave, half: float, gap: float):
+    """The material with the slivers taken out: the classic woven drawing, filled."""
+    s = slivers(w, half, gap)
+    if not len(s):
+        return region
+    return polygonal(shapely.difference(region, shapely.union_all(s)))
+
+
+def cut_region(region, w: Weave, half: float, gap: float, tab: float):
+    """The material of a pierced ``interlace_cut`` tile: the slivers cut, tabs left across."""
+    s = slivers(w, half, gap, tab=tab)
+    if not len(s):
+        return region
+    return polygonal(shapely.difference(region, shapely.union_all(s)))
+
+
+def score_lines(w: Weave, half: float, gap: float, clip) -> np.ndarray:
+    """The score centre-lines ``(k, 2, 2)``: under strands broken, clipped by ``clip(segments)``."""
+    return clip(w.broken_pieces(half, gap))
+
+
+# --------------------------------------------------------------------------- tiles
+
+
+def woven_segments(tile) -> np.ndarray:
+    """The centre-lines a tile weaves, file coordinates: its motifs (not its outline circles)."""
+    pattern = tile.pattern
+    if not getattr(pattern, "outline_circles", False) or not hasattr(pattern, "motif_segments"):
+        return tile.segments()
+    return pattern.motif_segments(tile._window()) + np.array(tile.centre)
+
+
+def checked_weave(tile) -> Weave:
+    """The weave of a tile, its gap checked against :meth:`Weave.max_gap`.
+
+    Raises :class:`~fabtiles.ParameterError` when the given ``interlace_gap_mm`` is
+    so large that the gaps swallow a strand.
+    """
+    from .._errors import ParameterError
+    from ..pattern.interlace import weave
+
+    w = weave(woven_segments(tile))
+    given = tile.params()["interlace_gap_mm"]
+    if given is not None and len(w):
+        limit = max(w.max_gap(tile.stroke / 2), 0.0)
+        if given > limit:
+            raise ParameterError(
+                f"interlace_gap_mm must be >= 0 and <= {limit:.3g} mm for this pattern and stroke "
+                f"(a larger gap hides a whole strand under its crossings), got {given:g}; "
+                "make it smaller, or leave it out for the default")
+    return w
+
+
+def tile_gap(tile) -> float:
+    """The clearance a tile uses, mm: ``interlace_gap_mm``; by default a third of the
+    stroke, lowered where needed so that no strand is swallowed (never below 0)."""
+    w = tile.weave()
+    if tile.params()["interlace_gap_mm"] is not None or not len(w):
+        return tile.interlace_gap_mm
+    return min(tile.interlace_gap_mm, max(w.max_gap(tile.stroke / 2), 0.0))
+
+
+def tile_dips(tile):
+    """The relief dips of an interlaced tile (empty when it is not interlaced)."""
+    if not tile.interlace:
+        return shapely.Polygon()
+    return dips(tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile))
+
+
+def tile_drawing(tile):
+    """The filled woven drawing of a tile: its region, under bands stopped short (if interlaced)."""
+    if not tile.interlace:
+        return tile.region()
+    return woven_region(tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile))
+
+
+def tile_score_lines(tile) -> np.ndarray:
+    """The laser score lines of a tile: centre-lines, under strands broken if interlaced."""
+    if not tile.interlace:
+        return tile.centrelines()
+    from .tile import clip_segments
+
+    w = tile.weave()
+    seg = w.broken_pieces(tile.stroke / 2, tile_gap(tile))
+    all_seg = tile.segments()
+    if len(all_seg) > len(w.strand):  # the outline circles follow the motifs: scored whole
+        seg = np.concatenate([seg, all_seg[len(w.strand):]])
+    return clip_segments(seg, tile.outline_shape())
+
+
+def tile_cut_region(tile, tab: float):
+    """The pierced material of a tile with ``interlace_cut``: slivers cut, ``tab`` wide tabs left."""
+    if not (tile.interlace and tile.interlace_cut):
+        return tile.region()
+    return cut_region(tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile), tab)
