@@ -25,9 +25,7 @@ from dataclasses import dataclass
 from ._errors import FabricationError
 from ._profiles import load_profile
 from ._report import Finding, Report
-
-DEFAULT_LASER_PROFILE = "laser-3mm-plywood"
-DEFAULT_PRINTER_PROFILE = "fdm-0.4mm"
+from .export.dispatch import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE
 
 
 @dataclass(frozen=True)

@@ -59,7 +59,7 @@ def command(design_file, output, overrides):
     """
     import fabtiles
 
-    from ..checks import check_design
+    from ..checks import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE, check_design
     from ..design import load_design
     from ..export.preview_svg import write_tile_svg
 
@@ -69,10 +69,10 @@ def command(design_file, output, overrides):
     tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
     result = check_design(design, tile)
     out = design.output
-    laser = f"laser profile {out.laser_profile or 'laser-3mm-plywood'}"
+    laser = f"laser profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
     if result.filled_holes:
         laser += f" ({result.filled_holes:,} small holes filled)"
-    click.echo(f"{design_file}: {laser}, printer profile {out.printer_profile or 'fdm-0.4mm'}")
+    click.echo(f"{design_file}: {laser}, printer profile {out.printer_profile or DEFAULT_PRINTER_PROFILE}")
     findings = result.findings()
     for where, f in findings:
         click.echo("  " + finding_line(where, f))
