@@ -10,7 +10,35 @@ from __future__ import annotations
 
 
 class FabtilesError(Exception):
-    """Root of every error fabtiles raises on purpose."""
+    """Root of every error fabtiles raises on purpose.
+
+    ``param`` names what the error is about, when that is one parameter: a
+    keyword argument (``"stroke"``) or, for a design, its key (``"tile.stroke"``).
+    Front ends use it to point at the field to fix, instead of reading the message.
+
+    >>> err = ParameterError("stroke must be > 0, got -1", param="stroke")
+    >>> err.param, str(err)
+    ('stroke', 'stroke must be > 0, got -1')
+    >>> import pickle
+    >>> pickle.loads(pickle.dumps(err)).param
+    'stroke'
+    """
+
+    def __init__(self, *args, param: str | None = None):
+        super().__init__(*args)
+        self.param = param
+
+    def __reduce__(self):
+        # Keep ``param`` across processes (batch and cluster workers).
+        return (_rebuild, (type(self), self.args, self.param, self.__dict__))
+
+
+def _rebuild(cls, args, param, state):
+    err = cls.__new__(cls)
+    Exception.__init__(err, *args)
+    err.__dict__.update(state)
+    err.param = param
+    return err
 
 
 class ParameterError(FabtilesError, ValueError):

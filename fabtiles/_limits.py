@@ -40,7 +40,8 @@ def check_size(width_mm: float, height_mm: float, limits: Limits) -> None:
     if max(width_mm, height_mm) > limits.max_size_mm:
         raise LimitError(
             f"the tile is {width_mm:g} x {height_mm:g} mm, larger than the limit of "
-            f"{limits.max_size_mm:g} mm on a side; make it smaller"
+            f"{limits.max_size_mm:g} mm on a side; make it smaller",
+            param="tile.size",
         )
 
 
@@ -73,7 +74,8 @@ def check_segments(count: int, limits: Limits, *, what: str = "the tile") -> Non
     if count > limits.max_segments:
         raise LimitError(
             f"{what} would hold about {count:,} segments, more than the limit of "
-            f"{limits.max_segments:,}; make the tile smaller, the packing radius larger, or n smaller"
+            f"{limits.max_segments:,}; make the tile smaller, the packing radius larger, or n smaller",
+            param="packing.radius",  # the usual knob
         )
 
 

@@ -2,7 +2,7 @@
 
 Each raises :class:`~fabtiles.ParameterError` with a message that names the
 parameter, the value given and the allowed range, so the caller knows how to
-fix the call.
+fix the call; the error's ``param`` is the parameter's name.
 """
 
 from __future__ import annotations
@@ -28,10 +28,14 @@ def check_int(name: str, value, *, low: int | None = None, high: int | None = No
         if isinstance(value, numbers.Real) and not isinstance(value, bool) and math.isfinite(value) and float(value).is_integer():
             value = int(value)
         else:
-            raise ParameterError(f"{name} must be an integer{_range_text(low, high)}, got {value!r}")
+            raise ParameterError(
+                f"{name} must be an integer{_range_text(low, high)}, got {value!r}", param=_base(name)
+            )
     value = int(value)
     if (low is not None and value < low) or (high is not None and value > high):
-        raise ParameterError(f"{name} must be an integer{_range_text(low, high)}, got {value}")
+        raise ParameterError(
+            f"{name} must be an integer{_range_text(low, high)}, got {value}", param=_base(name)
+        )
     return value
 
 
@@ -55,18 +59,21 @@ def check_float(
     """
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ParameterError(
-            f"{name} must be a finite number{_range_text(low, high, low_open, high_open)}, got {value!r}"
+            f"{name} must be a finite number{_range_text(low, high, low_open, high_open)}, got {value!r}",
+            param=_base(name),
         )
     value = float(value)
     if not math.isfinite(value):
         raise ParameterError(
-            f"{name} must be a finite number{_range_text(low, high, low_open, high_open)}, got {value}"
+            f"{name} must be a finite number{_range_text(low, high, low_open, high_open)}, got {value}",
+            param=_base(name),
         )
     bad_low = low is not None and (value <= low if low_open else value < low)
     bad_high = high is not None and (value >= high if high_open else value > high)
     if bad_low or bad_high:
         raise ParameterError(
-            f"{name} must be a finite number{_range_text(low, high, low_open, high_open)}, got {_fmt(value)}"
+            f"{name} must be a finite number{_range_text(low, high, low_open, high_open)}, got {_fmt(value)}",
+            param=_base(name),
         )
     return value
 
@@ -80,7 +87,9 @@ def check_choice(name: str, value, choices: Sequence[str]) -> str:
     fabtiles._errors.ParameterError: 'zigzag' is not a valid join, must be one of: miter, round, bevel
     """
     if not isinstance(value, str) or value not in choices:
-        raise ParameterError(f"{value!r} is not a valid {name}, must be one of: {', '.join(choices)}")
+        raise ParameterError(
+            f"{value!r} is not a valid {name}, must be one of: {', '.join(choices)}", param=_base(name)
+        )
     return value
 
 
@@ -99,15 +108,23 @@ def check_float_seq(
     (1.0, 2.0)
     """
     if isinstance(values, (str, bytes)) or not isinstance(values, Iterable):
-        raise ParameterError(f"{name} must be a sequence of {min_len} to {max_len} numbers, got {values!r}")
+        raise ParameterError(
+            f"{name} must be a sequence of {min_len} to {max_len} numbers, got {values!r}", param=_base(name)
+        )
     values = list(values)
     if not min_len <= len(values) <= max_len:
         raise ParameterError(
-            f"{name} must hold {min_len} to {max_len} numbers, got {len(values)}: {values!r}"
+            f"{name} must hold {min_len} to {max_len} numbers, got {len(values)}: {values!r}",
+            param=_base(name),
         )
     return tuple(
         check_float(f"{name}[{k}]", v, low=low, low_open=low_open) for k, v in enumerate(values)
     )
+
+
+def _base(name: str) -> str:
+    """The parameter a checked name belongs to: ``radii[1]`` -> ``radii``."""
+    return name.split("[", 1)[0]
 
 
 def _fmt(x: float) -> str:

@@ -278,17 +278,17 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
     try:
         star = motif.star() if motif is not None else None
     except FabtilesError as exc:
-        raise DesignError(f"{source}: [motif] {exc}") from None
+        raise DesignError(f"{source}: [motif] {exc}", param=_key("[motif]", exc)) from None
     if packing is not None:
         try:
             _build_packing(packing, star)
         except FabtilesError as exc:
-            raise DesignError(f"{source}: [packing] {exc}") from None
+            raise DesignError(f"{source}: [packing] {exc}", param=_key("[packing]", exc)) from None
     try:
         design = _fit_seamless(design)
         build_tile(design)
     except FabtilesError as exc:
-        raise DesignError(f"{source}: [tile] {exc}") from None
+        raise DesignError(f"{source}: [tile] {exc}", param=_key("[tile]", exc)) from None
     return design
 
 
@@ -370,8 +370,20 @@ def _motif_spec(table, source: str, where: str) -> MotifSpec:
     try:
         spec.star()
     except FabtilesError as exc:
-        raise DesignError(f"{source}: {where} {exc}") from None
+        raise DesignError(f"{source}: {where} {exc}", param=_key(where, exc)) from None
     return spec
+
+
+def _key(where: str, exc=None, *, key=None) -> str | None:
+    """The design key an error is about, for front ends: ``"packing.gap_motif.n"``.
+
+    >>> _key("[packing] gap_motif", key="n"), _key("[tile]", DesignError("x"))
+    ('packing.gap_motif.n', None)
+    """
+    name = key or getattr(exc, "param", None)
+    if name is None or "." in name:  # unknown, or already a design key (a work limit's)
+        return name
+    return ".".join(where.replace("[", "").replace("]", "").split() + [name])
 
 
 def _typed(table, key, kinds, source, where, text, default):
@@ -383,7 +395,7 @@ def _typed(table, key, kinds, source, where, text, default):
     else:
         ok = isinstance(value, kinds)
     if not ok:
-        raise DesignError(f"{source}: {where} {key} must be {text}, got {value!r}")
+        raise DesignError(f"{source}: {where} {key} must be {text}, got {value!r}", param=_key(where, key=key))
     return value
 
 
@@ -393,7 +405,7 @@ def _choice(table, key, choices, source, where, default):
         return None  # not given: the profile's default applies
     if value not in choices:
         raise DesignError(f"{source}: {where} {key} = {value!r} is not valid, must be one of: "
-                          f"{', '.join(choices)}")
+                          f"{', '.join(choices)}", param=_key(where, key=key))
     return value
 
 
@@ -458,7 +470,7 @@ def _tile_spec(table: dict, source: str) -> TileSpec:
     try:
         size = check_tile_size(outline, table["size"])
     except FabtilesError as exc:
-        raise DesignError(f"{source}: {where} {exc}") from None
+        raise DesignError(f"{source}: {where} {exc}", param=_key(where, exc)) from None
     return TileSpec(
         outline=outline,
         size=size,

@@ -125,7 +125,7 @@ class Tile:
         if not isinstance(pattern, (Packing, ArchimedeanPacking, Star)):
             raise ParameterError(
                 f"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking or Star, "
-                f"got {type(pattern).__name__}")
+                f"got {type(pattern).__name__}", param="pattern")
         self._pattern = pattern
         self._frame = check_float("frame", frame, low=0)
         self._stroke = check_float("stroke", stroke, low=0, low_open=True)
@@ -139,20 +139,20 @@ class Tile:
         if across <= 2 * self._frame:
             raise ParameterError(
                 f"tile size {_fmt_size(self._size)} mm is too small for frame {self._frame:g} mm: "
-                f"the {self._outline} must be wider than twice the frame ({2 * self._frame:g} mm)")
+                f"the {self._outline} must be wider than twice the frame ({2 * self._frame:g} mm)", param="frame")
         if self._corner_radius > 0:
             if self._outline == "circle":
                 raise ParameterError(
-                    f"corner_radius must be 0 for a circle outline, got {self._corner_radius:g}")
+                    f"corner_radius must be 0 for a circle outline, got {self._corner_radius:g}", param="corner_radius")
             if self._corner_radius > across / 2:
                 raise ParameterError(
                     f"corner_radius must be >= 0 and <= {across / 2:g} (half the tile's "
-                    f"narrowest width), got {self._corner_radius:g}")
+                    f"narrowest width), got {self._corner_radius:g}", param="corner_radius")
         limit, what = ((self.motif_radius, "the motif circle's radius") if isinstance(pattern, Star)
                        else (pattern.radius, "the packing radius"))
         if self._stroke > limit:
             raise ParameterError(
-                f"stroke must be > 0 and <= {limit:g} mm ({what}), got {self._stroke:g}")
+                f"stroke must be > 0 and <= {limit:g} mm ({what}), got {self._stroke:g}", param="stroke")
         self._interlace = _check_bool("interlace", interlace)
         self._interlace_cut = _check_bool("interlace_cut", interlace_cut)
         self._interlace_gap = (None if interlace_gap_mm is None
@@ -329,7 +329,7 @@ def clip_segments(seg: np.ndarray, outline) -> np.ndarray:
 
 def _check_bool(name: str, value) -> bool:
     if not isinstance(value, (bool, np.bool_)):
-        raise ParameterError(f"{name} must be True or False, got {value!r}")
+        raise ParameterError(f"{name} must be True or False, got {value!r}", param=name)
     return bool(value)
 
 
@@ -340,15 +340,17 @@ def _fmt_size(size) -> str:
 def check_tile_size(outline: str, size) -> tuple[float, float]:
     if isinstance(size, numbers.Real) and not isinstance(size, bool):
         if outline == "rectangle":
-            raise ParameterError(f"size of a rectangle must be a pair (width, height) in mm, got {size!r}")
+            raise ParameterError(f"size of a rectangle must be a pair (width, height) in mm, got {size!r}",
+                                 param="size")
         s = check_float("size", size, low=0, low_open=True)
         return (s, s)
     try:
         pair = list(size)
     except TypeError:
-        raise ParameterError(f"size must be a number or a (width, height) pair in mm, got {size!r}") from None
+        raise ParameterError(f"size must be a number or a (width, height) pair in mm, got {size!r}",
+                             param="size") from None
     if len(pair) != 2:
-        raise ParameterError(f"size must be a number or a (width, height) pair in mm, got {size!r}")
+        raise ParameterError(f"size must be a number or a (width, height) pair in mm, got {size!r}", param="size")
     w = check_float("size[0]", pair[0], low=0, low_open=True)
     h = check_float("size[1]", pair[1], low=0, low_open=True)
     if outline != "rectangle" and w != h:
@@ -356,5 +358,5 @@ def check_tile_size(outline: str, size) -> tuple[float, float]:
         raise ParameterError(
             f"size of a {outline} is one number (its {what}) or an equal pair, got ({w:g}, {h:g}); "
             f"use outline 'rectangle' for unequal sides" if outline == "square" else
-            f"size of a {outline} is one number (its {what}) or an equal pair, got ({w:g}, {h:g})")
+            f"size of a {outline} is one number (its {what}) or an equal pair, got ({w:g}, {h:g})", param="size")
     return (w, h)

@@ -1,4 +1,4 @@
-"""Circle packings filled with motifs: the paper's tile operation (SPEC section 2).
+"""Circle packings filled with motifs: the paper's tile operation (see ``docs/tile-operation.md``).
 
 Pure numpy. A packing knows where its circles are and which motif fills each;
 it hands out circle centres/radii and the centre-line segments of every motif
@@ -82,22 +82,43 @@ class Packing:
 
     kind = ""
     gap_ratio = 0.0
+    __slots__ = ("_radius", "_motif", "_gap_motif", "_outline_circles", "_fill", "_unit")
 
     def __init__(self, radius, motif, gap_motif=None, *, outline_circles=False, fill=1.0):
-        self.radius = check_float("radius", radius, low=0, low_open=True)
+        radius = check_float("radius", radius, low=0, low_open=True)
         if not isinstance(motif, Star):
-            raise ParameterError(f"motif must be a Star, got {motif!r}")
+            raise ParameterError(f"motif must be a Star, got {motif!r}", param="motif")
         if gap_motif is None:
             gap_motif = default_gap_motif()
         if not isinstance(gap_motif, Star):
-            raise ParameterError(f"gap_motif must be a Star or None (the default), got {gap_motif!r}")
+            raise ParameterError(f"gap_motif must be a Star or None (the default), got {gap_motif!r}",
+                                 param="gap_motif")
         if not isinstance(outline_circles, bool):
-            raise ParameterError(f"outline_circles must be true or false, got {outline_circles!r}")
-        self.motif = motif
-        self.gap_motif = gap_motif
-        self.outline_circles = outline_circles
-        self.fill = check_float("fill", fill, low=0, high=1, low_open=True)
-        self._unit = {}
+            raise ParameterError(f"outline_circles must be true or false, got {outline_circles!r}",
+                                 param="outline_circles")
+        init = object.__setattr__  # the only writes: a packing is read-only once built
+        init(self, "_radius", radius)
+        init(self, "_motif", motif)
+        init(self, "_gap_motif", gap_motif)
+        init(self, "_outline_circles", outline_circles)
+        init(self, "_fill", check_float("fill", fill, low=0, high=1, low_open=True))
+        init(self, "_unit", {})  # "big"/"gap" -> placed motif (read-only array), filled on first use
+
+    def __setattr__(self, name, value):
+        raise AttributeError(f"{type(self).__name__} is read-only; use packing.replace({name.lstrip('_')}=...) "
+                             f"for a changed copy")
+
+    def __delattr__(self, name):
+        self.__setattr__(name, None)
+
+    def __reduce__(self):
+        return (_packing, (type(self), self.params()))
+
+    radius = property(lambda self: self._radius, doc="Radius R of the big circles, mm.")
+    motif = property(lambda self: self._motif, doc="Motif of the big circles.")
+    gap_motif = property(lambda self: self._gap_motif, doc="Motif of the gap circles.")
+    outline_circles = property(lambda self: self._outline_circles, doc="Whether the circles are stroked.")
+    fill = property(lambda self: self._fill, doc="Motif extent / circle radius.")
 
     # -- lattice ------------------------------------------------------------
     def _basis(self) -> np.ndarray:  # pragma: no cover - abstract
@@ -188,11 +209,14 @@ class Packing:
         12.5
         """
         if which not in ("big", "gap"):
-            raise ParameterError(f"{which!r} is not a valid motif, must be one of: big, gap")
-        if which not in self._unit:
+            raise ParameterError(f"{which!r} is not a valid motif, must be one of: big, gap", param="which")
+        unit = self._unit.get(which)
+        if unit is None:
             star, c = (self.motif, self.radius) if which == "big" else (self.gap_motif, self.gap_radius)
-            self._unit[which] = star.segments() * (c * self.fill / star.extent)
-        return self._unit[which].copy()
+            unit = star.segments() * (c * self.fill / star.extent)
+            unit.flags.writeable = False  # the cache is never handed out (a copy is)
+            self._unit[which] = unit  # two threads may both compute it: the same array either way
+        return unit.copy()
 
     def segments(self, window) -> np.ndarray:
         """Centre-lines of every motif whose circle meets ``window``, ``(k, 2, 2)`` mm.
@@ -276,6 +300,7 @@ class HexPacking(Packing):
 
     kind = "hex"
     gap_ratio = 2.0 / math.sqrt(3.0) - 1.0
+    __slots__ = ()
 
     def _basis(self):
         return np.array([[2.0, 0.0], [1.0, math.sqrt(3.0)]])
@@ -301,6 +326,7 @@ class SquarePacking(Packing):
 
     kind = "square"
     gap_ratio = math.sqrt(2.0) - 1.0
+    __slots__ = ()
 
     def _basis(self):
         return np.array([[2.0, 0.0], [0.0, 2.0]])
@@ -315,6 +341,11 @@ class SquarePacking(Packing):
 
 PACKINGS = {"hex": HexPacking, "square": SquarePacking}
 """Packing kind name -> class."""
+
+
+def _packing(cls, params: dict):
+    """Rebuild a pickled packing."""
+    return cls(**params)
 
 
 def _check_window(window):

@@ -22,7 +22,7 @@ class Star:
     ``rotation + (w - 1) * 180 / n + (i - 1) * 360 / n`` for ``i = 1..n``. Adjacent
     circles are joined point to point; when ``special`` names circle ``w + 1``, two
     special points at radius ``r(w+1) - spr`` and angles ``+-alpha`` around each
-    point of that circle turn the star into a rosette (SPEC section 1).
+    point of that circle turn the star into a rosette (see ``docs/construction.md``).
 
     Parameters
     ----------
@@ -48,19 +48,43 @@ class Star:
     172.0
     >>> Star(n=9, radii=(93, 225), alpha=48, spr=-68, special=2).segments().shape
     (36, 2, 2)
+
+    A Star is read-only (its segments are cached): change it with :meth:`replace`.
+
+    >>> star.n = 9
+    Traceback (most recent call last):
+    ...
+    AttributeError: Star is read-only; use star.replace(n=...) for a changed copy
     """
 
-    __slots__ = ("n", "radii", "alpha", "spr", "special", "rotation", "_segments")
+    __slots__ = ("_n", "_radii", "_alpha", "_spr", "_special", "_rotation", "_segments")
 
     def __init__(self, n, radii, *, alpha=0.0, spr=0.0, special=None, rotation=0.0):
-        self.n = check_int("n", n, low=3, high=MAX_N)
-        self.radii = check_float_seq("radii", radii, min_len=2, max_len=MAX_CIRCLES, low=0, low_open=True)
-        self.alpha = check_float("alpha", alpha)
-        self.spr = check_float("spr", spr)
-        s = len(self.radii)
-        self.special = None if special is None else check_int("special", special, low=2, high=s)
-        self.rotation = check_float("rotation", rotation)
-        self._segments = None
+        init = object.__setattr__  # the only writes: a Star is read-only once built
+        init(self, "_n", check_int("n", n, low=3, high=MAX_N))
+        init(self, "_radii", check_float_seq("radii", radii, min_len=2, max_len=MAX_CIRCLES, low=0, low_open=True))
+        init(self, "_alpha", check_float("alpha", alpha))
+        init(self, "_spr", check_float("spr", spr))
+        s = len(self._radii)
+        init(self, "_special", None if special is None else check_int("special", special, low=2, high=s))
+        init(self, "_rotation", check_float("rotation", rotation))
+        init(self, "_segments", None)
+
+    def __setattr__(self, name, value):
+        raise AttributeError(f"Star is read-only; use star.replace({name.lstrip('_')}=...) for a changed copy")
+
+    def __delattr__(self, name):
+        self.__setattr__(name, None)
+
+    def __reduce__(self):
+        return (_star, (self.params(),))
+
+    n = property(lambda self: self._n, doc="Points on each circle.")
+    radii = property(lambda self: self._radii, doc="Radius of each circle (a tuple).")
+    alpha = property(lambda self: self._alpha, doc="Angular offset of the special points, degrees.")
+    spr = property(lambda self: self._spr, doc="The special points lie at r(special) - spr.")
+    special = property(lambda self: self._special, doc="1-based special circle, or None.")
+    rotation = property(lambda self: self._rotation, doc="Degrees added to every angle.")
 
     # -- construction -------------------------------------------------------
     @classmethod
@@ -76,7 +100,7 @@ class Star:
         """
         if not isinstance(name, str) or name not in PRESETS:
             raise ParameterError(
-                f"{name!r} is not a valid preset, must be one of: {', '.join(PRESETS)}"
+                f"{name!r} is not a valid preset, must be one of: {', '.join(PRESETS)}", param="preset"
             )
         return cls(**PRESETS[name], rotation=rotation)
 
@@ -145,7 +169,10 @@ class Star:
         a fresh copy.
         """
         if self._segments is None:
-            self._segments = _dedupe(self._raw_segments())
+            # Computed once; the cache is never handed out (a copy is) and cannot be written.
+            seg = _dedupe(self._raw_segments())
+            seg.flags.writeable = False
+            object.__setattr__(self, "_segments", seg)
         return self._segments.copy()
 
     @property
@@ -172,6 +199,11 @@ class Star:
                 out += [np.stack((a, t), axis=1), np.stack((b, t), axis=1)]
         # Interleave so the segments of one point i stay together (stable, readable output).
         return np.stack(out, axis=1).reshape(-1, 2, 2)
+
+
+def _star(params: dict) -> Star:
+    """Rebuild a pickled Star."""
+    return Star(**params)
 
 
 def _dedupe(seg: np.ndarray) -> np.ndarray:

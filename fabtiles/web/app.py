@@ -85,8 +85,26 @@ def fabrication_checks(tile, spec) -> dict:
     return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes}
 
 
+def field_of_param(param: str | None) -> str | None:
+    """The query field of the design key an error names (its ``param``).
+
+    >>> field_of_param("packing.gap_motif.n"), field_of_param("tile.size"), field_of_param("packing.kind")
+    ('gap_n', 'width', 'packing')
+    """
+    parts = (param or "").split(".")
+    if len(parts) == 3 and parts[:2] in (["packing", "gap_motif"], ["packing", "motifs"]):
+        parts = parts[1:]
+    if len(parts) != 2:
+        return None
+    if parts == ["tile", "size"]:
+        return "width"
+    return next((key for key, (section, name, _) in FIELDS.items() if [section, name] == parts), None)
+
+
 def _error(exc: Exception) -> JSONResponse:
-    field = getattr(exc, "field", None) or _field_of(str(exc))
+    # The field from the error's parameter; reading the message is the fallback for the
+    # few errors that name no single parameter.
+    field = getattr(exc, "field", None) or field_of_param(getattr(exc, "param", None)) or _field_of(str(exc))
     return JSONResponse({"error": str(exc), "field": field}, status_code=422)
 
 

@@ -1,0 +1,34 @@
+"""The web app names the field of a bad input from the error's parameter, not its message."""
+
+from __future__ import annotations
+
+import pytest
+
+pytest.importorskip("fastapi")
+from fastapi.testclient import TestClient  # noqa: E402
+from test_api import BAD  # noqa: E402
+
+from fabtiles.web import app as app_mod  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def client():
+    return TestClient(app_mod.create_app())
+
+
+@pytest.mark.parametrize("query, field, message", BAD)
+def test_field_comes_from_the_parameter(client, monkeypatch, query, field, message):
+    """With the message-reading fallback switched off, every bad query still names its field."""
+    monkeypatch.setattr(app_mod, "_field_of", lambda message: None)
+    r = client.get(f"/api/checks?{query}")
+    assert r.status_code == 422 and message in r.json()["error"], r.text
+    assert r.json()["field"] == field, r.json()
+
+
+def test_segment_limit_names_the_radius(monkeypatch):
+    from fabtiles._limits import Limits
+
+    monkeypatch.setattr(app_mod, "_field_of", lambda message: None)
+    client = TestClient(app_mod.create_app(limits=Limits(max_segments=100)))
+    r = client.get("/api/checks?width=100&radius=5")
+    assert r.status_code == 422 and r.json()["field"] == "radius", r.json()
