@@ -28,13 +28,13 @@ def main(argv=None):
     ap.add_argument("--out", default=None)
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
-    from fabtiles.export import mesh
+    from fabtiles.export import mesh, threemf
 
     tile = sheet_tile()
     region, outline = tile.region(), tile.outline_shape()
     t1 = time.perf_counter()
     out = Path(args.out or tempfile.mkdtemp()) / f"sheet.{args.format}"
-    writer = mesh.write_stl if args.format == "stl" else mesh.write_3mf
+    writer = mesh.write_stl if args.format == "stl" else threemf.write_3mf
     report = writer(out, region=region, outline=outline, profile="fdm-0.4mm", style=args.style, stroke=tile.stroke)
     t2 = time.perf_counter()
     print(f"region {t1 - t0:.2f} s, {args.format} {t2 - t1:.2f} s, total {t2 - t0:.2f} s; "

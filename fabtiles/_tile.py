@@ -30,7 +30,8 @@ class Tile(_GeometryTile):
         ``.dxf`` and ``.svg`` take a laser profile (default ``laser-3mm-plywood``),
         ``.stl``, ``.3mf`` and ``.step`` a printer profile (default ``fdm-0.4mm``).
         Options: laser ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``;
-        print ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``.
+        print ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``, and for
+        ``.3mf`` ``inlay`` (deboss: the grooves filled flush as a second part).
         The file is written atomically: on any error nothing is left behind.
 
         Returns

@@ -19,6 +19,8 @@ FORMATS = ("dxf", "svg", "stl", "3mf", "step")
 
 LASER_OPTIONS = ("mode", "dxf_version", "kerf_mm", "fill_small_holes")
 PRINT_OPTIONS = ("style", "base_mm", "relief_mm", "pierced_mm", "deboss_mm")
+THREEMF_OPTIONS = PRINT_OPTIONS + ("inlay",)
+"""The 3MF writer's options: the print options and ``inlay`` (deboss grooves filled as a second part)."""
 
 DEFAULT_LASER_PROFILE = "laser-3mm-plywood"
 DEFAULT_PRINTER_PROFILE = "fdm-0.4mm"
@@ -28,7 +30,7 @@ _WRITERS = {
     "dxf": ("dxf", "write_dxf", "laser"),
     "svg": ("laser_svg", "write_laser_svg", "laser"),
     "stl": ("mesh", "write_stl", "printer"),
-    "3mf": ("mesh", "write_3mf", "printer"),
+    "3mf": ("threemf", "write_3mf", "printer"),
     "step": ("step", "write_step", "printer"),
 }
 
@@ -78,7 +80,8 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
         stl/3mf/step (default ``fdm-0.4mm``).
     **options
         Laser: ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``.
-        Print: ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``.
+        Print: ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``;
+        ``.3mf`` also ``inlay``.
 
     Returns
     -------
@@ -87,7 +90,7 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
     """
     fmt = format_of(path)
     module, func, kind = _WRITERS[fmt]
-    allowed = LASER_OPTIONS if kind == "laser" else PRINT_OPTIONS
+    allowed = LASER_OPTIONS if kind == "laser" else THREEMF_OPTIONS if fmt == "3mf" else PRINT_OPTIONS
     for key in options:
         if key not in allowed:
             raise ParameterError(

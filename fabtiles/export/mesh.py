@@ -1,17 +1,18 @@
-"""3D-printable meshes: binary STL and 3MF, checked as a slicer will read them.
+"""3D-printable meshes and binary STL, checked as a slicer will read them.
 
 Styles (heights from the printer profile, overridable per call):
 
 ``relief``
     A base plate of the outline, ``base_mm`` thick, with the material region raised
-    ``relief_mm`` on top. STL: one body. 3MF: two named bodies, ``"base"`` and
-    ``"pattern"``, touching at ``z = base_mm`` without overlapping, so a slicer can
-    give each its own filament.
+    ``relief_mm`` on top. STL: one body. As parts (3MF, see
+    :mod:`fabtiles.export.threemf`): ``"base"`` and ``"pattern"``, touching at
+    ``z = base_mm`` without overlapping, so a slicer can give each its own filament.
 ``pierced``
     The material region alone, ``pierced_mm`` thick (body ``"pattern"``).
 ``deboss``
     A plate ``base_mm`` thick with the region sunk as grooves ``deboss_mm`` deep
-    (body ``"plate"``).
+    (body ``"plate"``); optionally a second part ``"inlay"`` filling the grooves
+    flush with the plate's top, for a two-colour inlay print.
 
 Meshes are built directly as stacked prisms (see :mod:`fabtiles.export._mesh_build`),
 with every x, y on a 2**-10 mm grid that float32 stores exactly. Before anything is
@@ -24,11 +25,11 @@ trimesh and manifold3d are imported only inside the functions.
 
 from __future__ import annotations
 
-import io
+from typing import NamedTuple
 
 import numpy as np
 
-from .._errors import FabricationError
+from .._errors import FabricationError, ParameterError
 from .._io import atomic_write
 from .._profiles import load_profile
 from .._report import Report
@@ -51,8 +52,11 @@ VOLUME_TOLERANCE = 0.005
 # --------------------------------------------------------------------------- building
 
 
-def _prepare(region, outline, profile, style, heights, stroke=None, *, path="", fmt=""):
-    """Validate everything and run the printability checks; nothing is built yet."""
+def prepare_print(region, outline, profile, style, heights, stroke=None, *, path="", fmt=""):
+    """Validate everything and run the printability checks; nothing is built yet.
+
+    Returns ``(profile, stack, report)``; a strict profile with findings raises.
+    """
     from ..geometry.print_checks import check_print
 
     profile = load_profile(profile, kind="printer")
@@ -63,6 +67,9 @@ def _prepare(region, outline, profile, style, heights, stroke=None, *, path="", 
                 relief_mm=stack.relief, pierced_mm=stack.pierced, deboss_mm=stack.deboss, report=report)
     report.raise_if_strict(profile.strict)
     return profile, stack, report
+
+
+_prepare = prepare_print  # the name step.py imports
 
 
 def _snapped(region, outline):
@@ -82,7 +89,8 @@ def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0, dips=None):
     """Vertices, faces and cell lines of one body (``dips``: an interlaced relief's, see
     :func:`fabtiles.export.layers.body_layers`).
 
-    ``kind`` is ``"relief"``, ``"base"``, ``"pattern"``, ``"pierced"`` or ``"plate"``;
+    ``kind`` is ``"relief"``, ``"base"``, ``"pattern"``, ``"pierced"``, ``"plate"`` or
+    ``"inlay"`` (the plate's grooves filled flush);
     ``shift`` moves the meshing cell lines. Returns ``(vertices, faces, (xs, ys))``.
     """
     b, h, t, d = stack.base, stack.relief, stack.pierced, stack.deboss
@@ -101,6 +109,8 @@ def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0, dips=None):
         cov = coverage([(r, t)], bottom=0.0, shift=shift)
     elif kind == "plate":
         cov = coverage_pair(r, o, region_z=b - d, rest_z=b, bottom=0.0, shift=shift)
+    elif kind == "inlay":
+        cov = coverage([(r, b)], bottom=b - d, shift=shift)
     else:  # pragma: no cover - internal
         raise ValueError(kind)
     return (*mesh_coverage(cov), (cov.xs, cov.ys))
@@ -122,15 +132,16 @@ def _expected(kind, r, o, stack, dips=None):
         "pattern": (r.area * h, nr),
         "pierced": (r.area * stack.pierced, nr),
         "plate": (o.area * b - r.area * stack.deboss, no),
+        "inlay": (r.area * stack.deboss, nr),
     }[kind]
 
 
-def _kinds(style: str, single: bool):
+def _kinds(style: str, single: bool, inlay: bool = False):
     if style == "relief":
         return {"body": "relief"} if single else {"base": "base", "pattern": "pattern"}
     if style == "pierced":
         return {"pattern": "pierced"}
-    return {"plate": "plate"}
+    return {"plate": "plate", "inlay": "inlay"} if inlay and not single else {"plate": "plate"}
 
 
 def _bridge_pinches(r):
@@ -280,20 +291,46 @@ BRIDGE_ROUNDS = 4
 """Rounds of bridging a region at the unpaired edges of its mesh before giving up."""
 
 
-def _build(region, outline, stack: Stack, *, single: bool):
-    """Checked trimesh bodies by name; ``single`` fuses a relief into one body (STL)."""
-    import trimesh
+class CheckedPart(NamedTuple):
+    """One checked part of a print: its merged float32-exact mesh and what it must measure."""
 
+    vertices: np.ndarray
+    """(n, 3) float64 holding float32 values, merged by position."""
+    faces: np.ndarray
+    """(m, 3) int64."""
+    volume_mm3: float
+    """Area x height of the region actually meshed."""
+    bodies: int
+    """Connected bodies expected."""
+
+
+def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay: bool = False, dips=None):
+    """The checked parts of a print by name, in print order (see :func:`build_meshes`).
+
+    ``single`` fuses a relief into one body (STL); ``inlay`` adds the deboss
+    grooves' filling as a second part; ``dips`` lowers an interlaced relief's under
+    strands (see :mod:`fabtiles.export.layers`). Every part passed :func:`check_triangles`.
+    Returns a dict of name to :class:`CheckedPart`.
+    """
     r, o = _snapped(region, outline)
     out = {}
-    for name, kind in _kinds(stack.style, single).items():
-        _, verts, faces, _ = _checked_body(kind, name, r, o, stack)
-        out[name] = trimesh.Trimesh(vertices=verts, faces=faces, process=False, validate=False)
+    for name, kind in _kinds(stack.style, single, inlay).items():
+        _, verts, faces, used = _checked_body(kind, name, r, o, stack, dips)
+        volume, bodies = _expected(kind, used, o, stack, dips)
+        out[name] = CheckedPart(verts, faces, float(volume), int(bodies))
     return out
 
 
+def _build(region, outline, stack: Stack, *, single: bool, inlay: bool = False):
+    """Checked trimesh bodies by name; ``single`` fuses a relief into one body (STL)."""
+    import trimesh
+
+    return {name: trimesh.Trimesh(vertices=p.vertices, faces=p.faces, process=False, validate=False)
+            for name, p in checked_parts(region, outline, stack, single=single, inlay=inlay).items()}
+
+
 def build_meshes(*, region, outline, profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None,
-                 deboss_mm=None):
+                 deboss_mm=None, inlay=False):
     """The named, checked bodies of a printed tile, as trimesh meshes (mm).
 
     Parameters
@@ -307,17 +344,36 @@ def build_meshes(*, region, outline, profile, style=None, base_mm=None, relief_m
     style : {"relief", "pierced", "deboss"}, optional
     base_mm, relief_mm, pierced_mm, deboss_mm : float, optional
         Heights overriding the profile's.
+    inlay : bool, optional
+        Deboss only: add the part ``"inlay"`` filling the grooves flush.
 
     Returns
     -------
     dict of str to trimesh.Trimesh
-        relief: ``{"base", "pattern"}``; pierced: ``{"pattern"}``; deboss: ``{"plate"}``.
-        Vertices are float32-exact; every body passed :func:`check_mesh`.
+        relief: ``{"base", "pattern"}``; pierced: ``{"pattern"}``; deboss: ``{"plate"}``
+        (and ``"inlay"``). Vertices are float32-exact; every body passed :func:`check_mesh`.
     """
     profile = load_profile(profile, kind="printer")
     stack = resolve_stack(profile, style, base_mm, relief_mm, pierced_mm, deboss_mm)
+    check_inlay(stack, inlay)
     region, outline = check_shapes(region, outline)
-    return _build(region, outline, stack, single=False)
+    return _build(region, outline, stack, single=False, inlay=inlay)
+
+
+def check_inlay(stack: Stack, inlay) -> None:
+    """Refuse ``inlay`` unless it is a bool, and true only for the deboss style.
+
+    >>> from fabtiles.export._mesh_build import resolve_stack
+    >>> check_inlay(resolve_stack("fdm-0.4mm", "relief"), True)
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.ParameterError: inlay=True needs style='deboss' (the inlay fills the deboss grooves), got style='relief'; pass style='deboss' or drop inlay
+    """
+    if not isinstance(inlay, (bool, np.bool_)):
+        raise ParameterError(f"inlay must be True or False, got {inlay!r}")
+    if inlay and stack.style != "deboss":
+        raise ParameterError(f"inlay=True needs style='deboss' (the inlay fills the deboss grooves), "
+                             f"got style={stack.style!r}; pass style='deboss' or drop inlay")
 
 
 # --------------------------------------------------------------------------- checks
@@ -503,62 +559,22 @@ def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_m
     :class:`~fabtiles.FabricationError` and no file.
     """
     heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    profile, stack, report = _prepare(region, outline, profile, style, heights, stroke, path=path, fmt="stl")
+    profile, stack, report = prepare_print(region, outline, profile, style, heights, stroke, path=path, fmt="stl")
     r, o = _snapped(region, outline)
     ((name, kind),) = _kinds(stack.style, single=True).items()
     # the bytes are read back and checked exactly as a slicer will read them
     data, mverts, mfaces, _ = _checked_body(kind, name, r, o, stack, dips)
     atomic_write(path, data)
     tri = mverts[mfaces]
-    report.stats.update(_stack_stats(stack), bodies=[name], triangles=len(mfaces),
+    report.stats.update(stack_stats(stack), bodies=[name], triangles=len(mfaces),
                         volume_mm3=float(np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6),
                         bounds_mm=[mverts.min(axis=0).tolist(), mverts.max(axis=0).tolist()])
     return report
 
 
-def _stack_stats(stack):
+def stack_stats(stack):
+    """The report statistics naming a stack's style and its heights (mm)."""
     return dict(style=stack.style,
                 heights_mm={"relief": {"base": stack.base, "relief": stack.relief},
                             "pierced": {"pierced": stack.pierced},
                             "deboss": {"base": stack.base, "deboss": stack.deboss}}[stack.style])
-
-
-def _stats(report, stack, meshes):
-    report.stats.update(
-        _stack_stats(stack),
-        bodies=list(meshes),
-        triangles=int(sum(len(m.faces) for m in meshes.values())),
-        volume_mm3=float(sum(m.volume for m in meshes.values())),
-        bounds_mm=np.vstack([m.bounds for m in meshes.values()]).tolist(),
-    )
-
-
-# --------------------------------------------------------------------------- 3MF
-
-
-def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
-              pierced_mm=None, deboss_mm=None) -> Report:
-    """Write a 3MF (unit millimetre) of the tile's named bodies (see :func:`build_meshes`).
-
-    A relief holds two objects, ``"base"`` and ``"pattern"``, touching at
-    ``z = base_mm`` and not overlapping, for a two-colour print. The written
-    package is read back: the names must survive. Parameters as :func:`write_stl`.
-    """
-    import trimesh
-
-    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    profile, stack, report = _prepare(region, outline, profile, style, heights, stroke, path=path, fmt="3mf")
-    meshes = _build(region, outline, stack, single=False)
-    scene = trimesh.Scene()
-    for name, mesh in meshes.items():
-        scene.add_geometry(mesh, geom_name=name, node_name=name)
-    data = scene.export(file_type="3mf")
-    back = trimesh.load(io.BytesIO(data), file_type="3mf", process=False)
-    names = sorted(getattr(back, "geometry", {}).keys())
-    if names != sorted(meshes):
-        raise FabricationError(f"the 3MF package lost its body names (read back {names}, wrote {sorted(meshes)}); "
-                               "nothing was written")
-    atomic_write(path, data)
-    _stats(report, stack, meshes)
-    return report
-

@@ -135,3 +135,17 @@ def assert_step_solid(shape, volume, bounds_xy, zmax, solids=1):
     assert z0 == pytest.approx(0, abs=1e-3) and z1 == pytest.approx(zmax, abs=1e-3)
     assert x0 >= bounds_xy[0] - 1e-3 and y0 >= bounds_xy[1] - 1e-3
     assert x1 <= bounds_xy[2] + 1e-3 and y1 <= bounds_xy[3] + 1e-3
+
+
+def load_3mf_parts(path):
+    """The parts of a fabtiles 3MF as trimesh bodies, split as PrusaSlicer splits them.
+
+    Each part's vertices are merged by position within the part only (slicers keep
+    parts apart: a part's face may lie on another's).
+    """
+    import trimesh
+
+    from fabtiles.export.threemf import read_3mf
+
+    return {name: trimesh.Trimesh(vertices=p.vertices.astype(np.float64), faces=p.faces, process=True)
+            for name, p in read_3mf(path).items()}

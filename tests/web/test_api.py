@@ -84,11 +84,19 @@ def test_every_export_format(client, fmt, tmp_path):
         assert doc.header["$INSUNITS"] == 4 and not doc.audit().has_errors
     elif fmt == "svg":
         assert r.content.startswith(b"<?xml") and b'mm"' in r.content
-    elif fmt in ("stl", "3mf"):
+    elif fmt == "stl":
         import trimesh
 
         mesh = trimesh.load(path, force="mesh")
         assert mesh.is_watertight and mesh.volume > 0
+    elif fmt == "3mf":  # one object of parts, each closed
+        import trimesh
+
+        from fabtiles.export.threemf import read_3mf
+
+        for part in read_3mf(path).values():
+            mesh = trimesh.Trimesh(part.vertices.astype(float), part.faces)
+            assert mesh.is_watertight and mesh.volume > 0
     else:
         assert r.content.startswith(b"ISO-10303-21")
 
