@@ -1,6 +1,6 @@
 """fabtiles: Islamic star patterns turned into laser-cut and 3D-printable tiles.
 
-The public API, fixed for scripts (SPEC section 6), is exactly ``__all__``.
+The public API, fixed for scripts (``docs/file-conventions.md``), is exactly ``__all__``.
 
 >>> import fabtiles as ft
 >>> ft.Star(n=8, radii=(51, 70, 172)).segments().shape

@@ -1,4 +1,4 @@
-"""Design files: a TOML description of one tile, validated into frozen dataclasses (SPEC section 7).
+"""Design files: a TOML description of one tile, validated into frozen dataclasses (reference: ``docs/design-files.md``).
 
 A design has four sections; every key is checked, and an unknown key is an
 error naming the key, its section and the valid keys (with a "did you mean").

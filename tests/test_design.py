@@ -1,4 +1,4 @@
-"""Design files (SPEC section 7): loading, overrides and every error."""
+"""Design files (docs/design-files.md): loading, overrides and every error."""
 
 from pathlib import Path
 

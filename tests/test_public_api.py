@@ -1,4 +1,4 @@
-"""The public API is exactly ``fabtiles.__all__``; scripts rely on these names (SPEC section 6)."""
+"""The public API is exactly ``fabtiles.__all__``; scripts rely on these names (docs/file-conventions.md)."""
 
 import fabtiles
 

@@ -121,7 +121,7 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
 def export_tile(tile, path, *, profile=None, **options):
     """Write a :class:`~fabtiles.Tile` in the format of ``path``; see :func:`export_geometry`.
 
-    An interlaced tile (SPEC 2c, :mod:`fabtiles.geometry.interlace`) scores its
+    An interlaced tile (``docs/tile-operation.md``, :mod:`fabtiles.geometry.interlace`) scores its
     centre-lines broken where a strand passes under, cuts the under gaps in
     pierced mode with ``interlace_cut`` (leaving tabs ``min(min_feature_mm,
     stroke / 2)`` wide), and dips its relief's under strands.

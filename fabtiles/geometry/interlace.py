@@ -1,4 +1,4 @@
-"""The shapes of a woven tile (SPEC 2c): where the under strands dip, break or are cut.
+"""The shapes of a woven tile (``docs/tile-operation.md``): where the under strands dip, break or are cut.
 
 The strands and their over/under come from :func:`fabtiles.pattern.interlace.weave`.
 At each crossing the under strand is hidden over the over band's width plus the

@@ -17,8 +17,8 @@
 A tile larger than the profile's bed (either way round) is not a finding but a
 :class:`~fabtiles.FabricationError` (:func:`check_fits_bed`): the file could not be
 cut, so it is never written. Likewise a stroke thinner than ``min_feature_mm``, a
-kerf below 0 or wider than the stroke are :class:`~fabtiles.ParameterError` (SPEC
-section 5), raised by :func:`prepare_laser` before any work.
+kerf below 0 or wider than the stroke are :class:`~fabtiles.ParameterError` (see
+``docs/file-conventions.md``), raised by :func:`prepare_laser` before any work.
 
 >>> from shapely.geometry import box
 >>> from fabtiles._profiles import load_profile

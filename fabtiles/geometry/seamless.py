@@ -1,6 +1,6 @@
 """Seamless tiles: fit the packing radius so a tile is an exact period of the packing.
 
-Periods (SPEC section 2): the hex packing repeats every ``2R`` across and
+Periods (``docs/tile-operation.md``): the hex packing repeats every ``2R`` across and
 ``2 sqrt(3) R`` up; the square packing every ``2R`` both ways. A rectangle
 ``W x H`` is seamless when ``W = 2R m`` and ``H = 2 sqrt(3) R k`` (hex) or
 ``H = 2R k`` (square); a pointy-top hexagon of across-flats ``2R m`` centred on a

@@ -1,4 +1,4 @@
-"""A tile: an outline, a size, a frame and a pattern, turned into material (SPEC section 3).
+"""A tile: an outline, a size, a frame and a pattern, turned into material (``docs/file-conventions.md``).
 
 Coordinates are millimetres in *file coordinates*: the outline's bounding box has
 its lower-left corner at (0, 0). The pattern's own frame (lattice point (0, 0) of a
@@ -93,7 +93,7 @@ class Tile:
     corner_radius : float
         Radius of rounded outline corners, mm (0 for sharp; not for circles).
     interlace : bool
-        Weave the strands over and under each other (SPEC 2c, see
+        Weave the strands over and under each other (``docs/tile-operation.md``, see
         :mod:`fabtiles.geometry.interlace`): the drawing, the score lines and
         the relief show it.
     interlace_gap_mm : float, optional

@@ -1,4 +1,4 @@
-"""The tile operation on the 11 Archimedean tilings (SPEC section 2b).
+"""The tile operation on the 11 Archimedean tilings (``docs/tile-operation.md``).
 
 Pure numpy. In an edge-to-edge tiling by regular polygons of edge ``a`` the
 incircle of each p-gon (radius ``a / (2 tan(pi/p))``) touches the incircles of

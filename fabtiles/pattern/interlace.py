@@ -1,4 +1,4 @@
-"""Interlace: strands through the centre-lines and an alternating over/under (SPEC 2c).
+"""Interlace: strands through the centre-lines and an alternating over/under (``docs/tile-operation.md``, "Interlace").
 
 Pure numpy. From centre-line segments ``(k, 2, 2)``:
 

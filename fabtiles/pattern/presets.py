@@ -1,4 +1,4 @@
-"""The rows of the paper's tables 1-3 as named motif presets (SPEC section 1)."""
+"""The rows of the paper's tables 1-3 as named motif presets (``docs/construction.md``)."""
 
 from __future__ import annotations
 

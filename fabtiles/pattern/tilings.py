@@ -1,4 +1,4 @@
-"""The 11 Archimedean tilings as translational unit cells, and their gap circles (SPEC section 2b).
+"""The 11 Archimedean tilings as translational unit cells, and their gap circles (``docs/tile-operation.md``).
 
 Pure numpy. Each tiling is given by two lattice vectors and the regular polygons
 of one cell (centre, number of sides, direction of one edge midpoint), all for

@@ -1,7 +1,7 @@
 """Query parameters of the web API, flattened from the design file's keys.
 
 ``?preset=table3-3&radius=15&width=150`` becomes the same nested dictionary a
-design file holds (SPEC section 7), so the web app and ``fabtiles build`` share
+design file holds (``docs/design-files.md``), so the web app and ``fabtiles build`` share
 one validation path. Problems raise :class:`QueryError`, which names the field.
 
 >>> design = design_from_query({"n": "8", "radii": "51,70,172", "packing": "none", "width": "100"})
@@ -140,7 +140,7 @@ design TOML from the app lists them all)."""
 
 
 def design_from_query(query) -> dict:
-    """Turn flat query parameters into a nested design dictionary (SPEC section 7).
+    """Turn flat query parameters into a nested design dictionary (``docs/design-files.md``).
 
     Unknown parameters are an error naming the parameter and the valid ones.
     """

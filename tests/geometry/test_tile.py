@@ -1,4 +1,4 @@
-"""Tile: outlines, validation, stroking with joins, frame, clipping (SPEC section 3)."""
+"""Tile: outlines, validation, stroking with joins, frame, clipping (docs/file-conventions.md)."""
 
 import math
 

@@ -1,4 +1,4 @@
-"""The 11 Archimedean tilings as packings against SPEC section 2b."""
+"""The 11 Archimedean tilings as packings against docs/tile-operation.md."""
 
 import math
 from fractions import Fraction

@@ -1,4 +1,4 @@
-"""Strands and over/under (SPEC 2c): crossings against brute force, alternation along strands."""
+"""Strands and over/under (docs/tile-operation.md): crossings against brute force, alternation along strands."""
 
 import itertools
 import math

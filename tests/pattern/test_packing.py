@@ -1,4 +1,4 @@
-"""Circle packings against SPEC section 2: centres, radii, tangency, motif placement."""
+"""Circle packings against docs/tile-operation.md: centres, radii, tangency, motif placement."""
 
 import itertools
 import math

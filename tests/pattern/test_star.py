@@ -1,4 +1,4 @@
-"""The motif engine against SPEC section 1, to the letter."""
+"""The motif engine against docs/construction.md, to the letter."""
 
 import math
 
@@ -23,7 +23,7 @@ PRESET_COUNTS = {
 
 
 def spec_segments(n, radii, alpha=0.0, spr=0.0, special=None, rotation=0.0):
-    """SPEC section 1 transcribed literally, 1-based, one segment at a time."""
+    """docs/construction.md transcribed literally, 1-based, one segment at a time."""
 
     def theta(w, i):
         return rotation + (w - 1) * 180 / n + (i - 1) * 360 / n
