@@ -1,6 +1,6 @@
 """Render the relief STL of samples/table3-3.toml as a shaded picture for the README.
 
-    python samples/render_3d.py [--out PATH] [--size 900x700]
+    python samples/render_3d.py [--out PATH] [--size 900x700] [--design TOML]
 
 Needs Pillow (installed with the ``step`` extra; else ``pip install pillow``).
 
@@ -216,10 +216,11 @@ def main(argv=None) -> Path:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", type=Path, default=OUT)
+    ap.add_argument("--design", type=Path, default=DESIGN, help="the design to render (default table3-3)")
     ap.add_argument("--size", default="900x700", help="WIDTHxHEIGHT in pixels")
     args = ap.parse_args(argv)
     width, height = (int(s) for s in args.size.lower().split("x"))
-    pixels = render(relief_bodies(), width, height)
+    pixels = render(relief_bodies(args.design), width, height)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     Image.fromarray(pixels, "RGB").save(args.out, format="PNG", optimize=True)
     print(f"wrote {args.out}")
