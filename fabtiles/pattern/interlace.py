@@ -76,8 +76,13 @@ class Weave:
         Strand id of every input segment (-1 for a degenerate one).
     knots : ndarray (m, 2)
         Points where three or more lines (or a T) meet: no over/under there.
+    ends : ndarray (e, 2)
+        Points where a strand ends (a free tip, a T's stem, an unpaired end at a knot).
     conflicts : int
-        Crossings where the alternation could not hold (0 for closed strands).
+        Crossings where the alternation could not hold. 0 when no strand ends
+        (closed strands always alternate); strands that end inside the pattern
+        can make it impossible, and then along the second strand of each such
+        crossing the alternation breaks there.
     pieces : ndarray (p, 2, 2)
         The segments cut at every crossing and knot, each oriented along its strand.
     piece_strand, piece_segment, piece_start : ndarray (p,)
@@ -98,6 +103,7 @@ class Weave:
     sin: np.ndarray
     strand: np.ndarray
     knots: np.ndarray
+    ends: np.ndarray
     conflicts: int
     pieces: np.ndarray
     piece_strand: np.ndarray
@@ -472,7 +478,7 @@ def weave(segments) -> Weave:
     return Weave(
         points=verts[cvert], over=piece_seg[v_piece[over_visit]], under=piece_seg[v_piece[under_visit]],
         over_dir=odir, under_dir=udir, sin=np.abs(_cross(odir, udir)), strand=seg_strand,
-        knots=verts[knot_v], conflicts=conflicts, pieces=pieces, piece_strand=strand_of, piece_segment=piece_seg,
+        knots=verts[knot_v], ends=verts[piece_v.ravel()[partner < 0]], conflicts=conflicts, pieces=pieces, piece_strand=strand_of, piece_segment=piece_seg,
         piece_start=start_pos, strand_length=np.array(strand_len), strand_closed=np.array(strand_closed, bool),
         visit_strand=v_strand, visit_pos=v_pos, visit_crossing=visit_crossing, visit_over=visit_over,
     )

@@ -49,14 +49,19 @@ def sorted_points(p, decimals=5):
 
 
 def check_alternation(w):
-    """Every crossing: one visit over, one under; along every strand the visits alternate."""
+    """Every crossing: one visit over, one under; along every strand the visits alternate,
+    except next to a conflict (possible only when strands end inside the pattern)."""
     assert len(w.visit_crossing) == 2 * len(w)
     over_count = np.bincount(w.visit_crossing, weights=w.visit_over.astype(float), minlength=len(w))
     assert np.all(over_count == 1)
     order = np.lexsort((w.visit_pos, w.visit_strand))
     st_, over = w.visit_strand[order], w.visit_over[order]
     same = st_[1:] == st_[:-1]
-    assert np.all(over[1:][same] != over[:-1][same])
+    broken = same & (over[1:] == over[:-1])
+    if len(w.ends) == 0:
+        assert w.conflicts == 0
+    # each conflict breaks the alternation on one strand, next to that one crossing
+    assert np.count_nonzero(broken) <= 2 * w.conflicts
 
 
 @pytest.mark.parametrize("preset", ROSETTES)
@@ -96,6 +101,15 @@ def test_three_lines_through_one_point_is_a_knot():
     # except the horizontal one; only the two-strand crossings carry over/under
     assert len(w) == 2
     assert len(np.unique(w.strand)) == 4
+    check_alternation(w)
+
+
+def test_a_closed_loop_of_strands_always_alternates():
+    # a triangle's three lines extended into a closed loop with a figure-eight: no ends
+    pts = np.array([[0, 0], [4, 0], [1, 3], [1, -1], [3, -1], [3, 3]], float)
+    loop = np.stack([pts, np.roll(pts, -1, axis=0)], axis=1)
+    w = weave(loop)
+    assert len(w.ends) == 0 and len(w) > 0 and w.conflicts == 0
     check_alternation(w)
 
 
@@ -163,15 +177,12 @@ def motifs(draw):
 @settings(max_examples=examples(60), deadline=None)
 @given(motifs())
 def test_alternation_holds_for_random_motifs(star):
-    w = weave(star.segments())
-    assert w.conflicts == 0
-    check_alternation(w)
+    # conflicts only where strands end inside the motif (check_alternation); closed strands never
+    check_alternation(weave(star.segments()))
 
 
 @settings(max_examples=examples(15), deadline=None)
 @given(motifs(), st.sampled_from([ft.HexPacking, ft.SquarePacking]), st.floats(6, 20))
 def test_alternation_holds_for_random_packings(star, packing, r):
     # the motifs only: outline circles kiss each other and are not woven (see Tile.weave)
-    w = weave(packing(radius=r, motif=star).motif_segments((-30, -30, 30, 30)))
-    assert w.conflicts == 0
-    check_alternation(w)
+    check_alternation(weave(packing(radius=r, motif=star).motif_segments((-30, -30, 30, 30))))
