@@ -420,7 +420,8 @@ def _packing_spec(table: dict, source: str) -> PackingSpec:
         wrong = [k for k in ARCHIMEDEAN_KEYS if k in table]
         if wrong:
             raise DesignError(f"{source}: {where} {wrong[0]} is a key of kind = \"archimedean\", "
-                              f"not of kind = {kind!r}; set kind = \"archimedean\" or remove it")
+                              f"not of kind = {kind!r}; set kind = \"archimedean\" or remove it",
+                              param=_key(where, key=wrong[0]))
     return PackingSpec(
         kind=kind,
         **extra,
@@ -438,21 +439,21 @@ def _archimedean_spec(table: dict, source: str) -> dict:
     where = "[packing]"
     if "radius" in table:
         raise DesignError(f"{source}: {where} kind = \"archimedean\" has no radius: give the tiling's "
-                          f"edge (mm) instead, like edge = {table['radius']!r}")
+                          f"edge (mm) instead, like edge = {table['radius']!r}", param=_key(where, key="radius"))
     if "tiling" not in table:
         raise DesignError(f"{source}: {where} kind = \"archimedean\" needs tiling = one of: "
-                          f"{', '.join(TILINGS)}")
+                          f"{', '.join(TILINGS)}", param=_key(where, key="tiling"))
     tiling = _typed(table, "tiling", (str,), source, where, f"one of: {', '.join(TILINGS)}", None)
     edge = float(_typed(table, "edge", (int, float), source, where, "a number of mm > 0", 20.0))
     raw = table.get("motifs", {})
     if not isinstance(raw, dict):
         raise DesignError(f"{source}: [packing.motifs] must be a table keyed by polygon sides "
-                          f"(8 = \"table3-3\"), got {raw!r}")
+                          f"(8 = \"table3-3\"), got {raw!r}", param=_key(where, key="motifs"))
     motifs = []
     for key, value in raw.items():
         if not str(key).isdigit():
             raise DesignError(f"{source}: [packing.motifs] key {key!r} must be a polygon's number of "
-                              f"sides, like 8 = \"table3-3\"")
+                              f"sides, like 8 = \"table3-3\"", param=_key(where, key="motifs"))
         motifs.append((int(key), _motif_spec(value, source, f"[packing.motifs] {key}")))
     return dict(tiling=tiling, edge=edge, motifs=tuple(sorted(motifs)))
 

@@ -75,3 +75,15 @@ def test_archimedean_keys_refused_with_other_kinds():
 def test_motif_still_required_without_archimedean():
     with pytest.raises(DesignError, match=r"the design needs a \[motif\] section"):
         design_from_text('[packing]\nkind = "hex"\n[tile]\nsize = 100\n')
+
+
+def test_design_errors_name_their_key():
+    with pytest.raises(DesignError) as info:
+        design_from_text(BASE.replace("edge = 20", "radius = 20"))
+    assert info.value.param == "packing.radius"
+    with pytest.raises(DesignError) as info:
+        design_from_text(BASE.replace('tiling = "4.8.8"', 'tiling = "5.5.5"'))
+    assert info.value.param == "packing.tiling"
+    with pytest.raises(DesignError) as info:
+        design_from_text(BASE.replace('8 = "table3-3"', '6 = "table3-3"'))
+    assert info.value.param == "packing.motifs"

@@ -97,13 +97,14 @@ class ArchimedeanPacking:
         if motifs is not None:
             if not hasattr(motifs, "items"):
                 raise ParameterError(f"motifs must be a mapping from polygon sides to a Star or preset "
-                                     f"name, like {{8: 'table3-3'}}, got {motifs!r}")
+                                     f"name, like {{8: 'table3-3'}}, got {motifs!r}", param="motifs")
             for key, star in motifs.items():
                 given[_kind(key, kinds, cell.name)] = _motif(f"motifs[{key!r}]", star)
         full = tuple((p, given.get(p) or Star(**DEFAULT_MOTIFS[p])) for p in kinds)
         gap = default_gap_motif() if gap_motif is None else _motif("gap_motif", gap_motif)
         if not isinstance(outline_circles, bool):
-            raise ParameterError(f"outline_circles must be true or false, got {outline_circles!r}")
+            raise ParameterError(f"outline_circles must be true or false, got {outline_circles!r}",
+                                 param="outline_circles")
         init = object.__setattr__
         init(self, "_tiling", cell.name)
         init(self, "_edge", check_float("edge", edge, low=0, low_open=True))
@@ -230,7 +231,8 @@ class ArchimedeanPacking:
         if count > MAX_CIRCLES_IN_WINDOW:
             raise LimitError(
                 f"the window holds about {count:.3g} circles, more than the limit of "
-                f"{MAX_CIRCLES_IN_WINDOW}; use a larger edge (got {self._edge:g} mm) or a smaller tile")
+                f"{MAX_CIRCLES_IN_WINDOW}; use a larger edge (got {self._edge:g} mm) or a smaller tile",
+                param="edge")
         jj, ii = np.meshgrid(np.arange(lo[1], hi[1] + 1), np.arange(lo[0], hi[0] + 1), indexing="ij")
         lattice = ii.reshape(-1, 1) * basis[0] + jj.reshape(-1, 1) * basis[1]
         for e, (off, m) in enumerate(zip(offsets, margins)):
@@ -346,15 +348,19 @@ def _kind(key, kinds, tiling) -> int:
         key = int(key)
     if isinstance(key, bool) or not isinstance(key, numbers.Integral) or int(key) not in kinds:
         raise ParameterError(f"motifs key {key!r} is not a polygon of the tiling {tiling}, "
-                             f"must be one of: {text}")
+                             f"must be one of: {text}", param="motifs")
     return int(key)
 
 
 def _motif(name, star) -> Star:
     if isinstance(star, str):
-        return Star.preset(star)
+        try:
+            return Star.preset(star)
+        except ParameterError as exc:
+            raise ParameterError(str(exc), param=name.split("[")[0]) from None
     if not isinstance(star, Star):
-        raise ParameterError(f"{name} must be a Star or a preset name, got {star!r}")
+        raise ParameterError(f"{name} must be a Star or a preset name, got {star!r}",
+                             param=name.split("[")[0])
     return star
 
 
@@ -362,7 +368,8 @@ def _check_window(window):
     try:
         x0, y0, x1, y1 = (float(v) for v in window)
     except (TypeError, ValueError):
-        raise ParameterError(f"window must be (xmin, ymin, xmax, ymax), got {window!r}") from None
+        raise ParameterError(f"window must be (xmin, ymin, xmax, ymax), got {window!r}", param="window") from None
     if not all(math.isfinite(v) for v in (x0, y0, x1, y1)) or x1 < x0 or y1 < y0:
-        raise ParameterError(f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}")
+        raise ParameterError(f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}",
+                             param="window")
     return x0, y0, x1, y1

@@ -96,7 +96,7 @@ def canonical(tiling) -> str:
         name = None
     if name is None:
         raise ParameterError(f"{tiling!r} is not a valid tiling, must be one of: {', '.join(TILINGS)} "
-                             f"(exponent forms such as 3^4.6 also work)")
+                             f"(exponent forms such as 3^4.6 also work)", param="tiling")
     return name
 
 

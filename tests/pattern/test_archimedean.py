@@ -267,3 +267,18 @@ def test_segment_count_matches_segments():
             p = ArchimedeanPacking(tiling, 9, outline_circles=outline)
             w = (-23, -11, 31, 17)
             assert p.segment_count(w) == len(p.segments(w))
+
+
+@pytest.mark.parametrize("call, param", [
+    (lambda: ArchimedeanPacking("5.5.5", 10), "tiling"),
+    (lambda: ArchimedeanPacking("4.8.8", 0), "edge"),
+    (lambda: ArchimedeanPacking("4.8.8", 10, {6: "table3-3"}), "motifs"),
+    (lambda: ArchimedeanPacking("4.8.8", 10, {8: "nope"}), "motifs"),
+    (lambda: ArchimedeanPacking("4.8.8", 10, gap_motif="nope"), "gap_motif"),
+    (lambda: ArchimedeanPacking("4.8.8", 10).circles(None), "window"),
+    (lambda: ArchimedeanPacking("4.8.8", 0.01).circles((0, 0, 900, 900)), "edge"),
+])
+def test_errors_name_their_parameter(call, param):
+    with pytest.raises((ParameterError, LimitError)) as info:
+        call()
+    assert info.value.param == param
