@@ -41,6 +41,9 @@ from ._report import Report
 SHEET_SUFFIX = "-sheet"
 """Sheet files are ``<design name>-sheet.<format>``, next to (never over) the tile's files."""
 
+PREVIEW_SUFFIX = ".preview.svg"
+"""The tile's picture, ``<design name>.preview.svg`` (``build_design(..., preview=True)``)."""
+
 STAGING_PREFIX = ".fabtiles-build-"
 """Staging folders inside an output folder: ``.fabtiles-build-<host>-<pid>-<random>``."""
 
@@ -52,6 +55,8 @@ class BuildResult:
     reports: list[Report] = field(default_factory=list)
     skipped: tuple[str, ...] = ()
     """Print formats left out of a sheet."""
+    preview: str | None = None
+    """The path of the tile's picture, when asked for."""
 
     @property
     def paths(self) -> list[str]:
@@ -157,7 +162,7 @@ def export_sheet(layout, tile, path: Path, design) -> Report:
 
 
 def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: int | None = None,
-                 gap_mm: float | None = None, file_name: str | None = None,
+                 gap_mm: float | None = None, file_name: str | None = None, preview: bool = False,
                  limits: _limits.Limits = _limits.CLI_LIMITS) -> BuildResult:
     """Write ``OUTDIR/<design name>.<format>`` for each format, all or nothing.
 
@@ -180,6 +185,9 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
     file_name : str, optional
         The name of the one file written (one format only), instead of
         ``<design name>[-sheet].<format>``.
+    preview : bool
+        Also write ``<design name>.preview.svg``, the tile's picture (the material
+        filled, see :func:`~fabtiles.export.preview_svg.tile_svg`), staged with the rest.
     limits : Limits
         Work limits (:data:`fabtiles._limits.CLI_LIMITS` for the command line).
 
@@ -221,9 +229,16 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
                 path = staging / (file_name or f"{design.name}{SHEET_SUFFIX}.{fmt}")
                 report = export_sheet(layout, tile, path, design)
             staged.append((path, report))
+        picture = None
+        if preview:
+            from ._io import atomic_write
+            from .export.preview_svg import tile_svg
+
+            picture = atomic_write(staging / f"{design.name}{PREVIEW_SUFFIX}", tile_svg(tile, title=design.name))
         for path, report in staged:
             report.path = str(final(path))
-    return BuildResult([report for _, report in staged], skipped)
+        picture = str(final(picture)) if picture is not None else None
+    return BuildResult([report for _, report in staged], skipped, picture)
 
 
 class staging_folder:
@@ -315,6 +330,8 @@ class Outcome:
     paths: list[str] = field(default_factory=list)
     findings: list[str] = field(default_factory=list)
     """One line per fabrication finding, ``"<file name>: <code>: <message>"``."""
+    preview: str | None = None
+    """The tile's picture, when asked for."""
 
 
 def outcome_of(key: str, result: BuildResult) -> Outcome:
@@ -324,17 +341,17 @@ def outcome_of(key: str, result: BuildResult) -> Outcome:
     if result.findings:
         message += f", {result.findings} fabrication warning{'s' if result.findings != 1 else ''}"
     lines = [f"{Path(r.path).name}: {f.code}: {f.message}" for r in result.reports for f in r.findings]
-    return Outcome(key, True, message, result.paths, lines)
+    return Outcome(key, True, message, result.paths, lines, result.preview)
 
 
-def run_job(key: str, make_design, outdir, formats=None) -> Outcome:
+def run_job(key: str, make_design, outdir, formats=None, *, preview: bool = False) -> Outcome:
     """Build one design for a batch or sweep, never raising: failures become an :class:`Outcome`.
 
     ``make_design`` is a callable returning the validated design (so that loading
     and validation errors are this job's failure too).
     """
     try:
-        result = build_design(make_design(), outdir, formats or None)
+        result = build_design(make_design(), outdir, formats or None, preview=preview)
         return outcome_of(key, result)
     except FabtilesError as exc:
         return Outcome(key, False, str(exc))

@@ -34,10 +34,11 @@ class Job:
     make_design: Callable
     outdir: str
     formats: tuple[str, ...] = ()
+    preview: bool = False
 
 
 def _run(job: Job) -> Outcome:
-    return run_job(job.key, job.make_design, job.outdir, job.formats)
+    return run_job(job.key, job.make_design, job.outdir, job.formats, preview=job.preview)
 
 
 def run_jobs(jobs: Sequence[Job], *, workers: int = 1, scheduler: str | None = None) -> Iterator[Outcome]:

@@ -17,8 +17,12 @@ import click
 from ..design import FORMATS
 
 
-def run_and_report(jobs, *, workers, scheduler, label: str, keys) -> list:
-    """Run ``jobs`` with a progress bar on a terminal; print each outcome and its findings, in order."""
+def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, explain=None) -> list:
+    """Run ``jobs`` with a progress bar on a terminal; print each outcome and its findings, in order.
+
+    ``labels`` adds a text to a job's key in the report (a sweep's varied values);
+    ``explain(outcome)`` words a failure (default: its message).
+    """
     from ..jobs import run_jobs
 
     outcomes = []
@@ -29,13 +33,15 @@ def run_and_report(jobs, *, workers, scheduler, label: str, keys) -> list:
             bar.update(1)
     order = {k: i for i, k in enumerate(keys)}
     outcomes.sort(key=lambda o: order[o.key])
+    labels = labels or {}
     for o in outcomes:
+        name = f"{o.key} ({labels[o.key]})" if o.key in labels else o.key
         if o.ok:
-            click.echo(f"ok     {o.key}: {o.message}")
+            click.echo(f"ok     {name}: {o.message}")
             for line in o.findings:
                 click.echo(f"         - {line}")
         else:
-            click.echo(f"FAILED {o.key}: {o.message}", err=True)
+            click.echo(f"FAILED {name}: {explain(o) if explain else o.message}", err=True)
     return outcomes
 
 
