@@ -116,9 +116,14 @@ class ArchimedeanPacking:
         init(self, "_units", {})
 
     def __setattr__(self, name, value):
-        raise AttributeError(f"ArchimedeanPacking is immutable; use replace({name.lstrip('_')}=...)")
+        raise AttributeError(f"ArchimedeanPacking is read-only; use packing.replace({name.lstrip('_')}=...)")
 
-    __delattr__ = __setattr__
+    def __delattr__(self, name):
+        self.__setattr__(name, None)
+
+    def __reduce__(self):
+        # Slots and a refusing __setattr__: pickle and copy rebuild from the parameters.
+        return (_rebuild, ({**self.params(), "motifs": dict(self._motifs)},))
 
     # -- parameters ---------------------------------------------------------
     tiling = property(lambda self: self._tiling, doc="Vertex configuration, as in :meth:`tilings`.")
@@ -295,6 +300,7 @@ class ArchimedeanPacking:
                 if key not in cache:
                     seg = star.segments() * (r * self._fill / star.extent)
                     cache[key] = _rotated(seg, angle - _turn(star), 2 * math.pi / star.n)
+                    cache[key].setflags(write=False)  # shared by every circle of the kind
                 out.append(cache[key])
             self._units["all"] = out
         return self._units["all"]
@@ -340,6 +346,10 @@ def rectangular_period(tiling) -> tuple[float, float]:
         if abs(i - round(i)) < 1e-9:
             return px, float(abs(j * lat[1, 1]))
     raise AssertionError(f"no rectangular period for {tiling}")  # pragma: no cover - every tiling has one
+
+
+def _rebuild(params: dict) -> ArchimedeanPacking:
+    return ArchimedeanPacking(**params)
 
 
 def _kind(key, kinds, tiling) -> int:

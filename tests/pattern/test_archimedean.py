@@ -1,6 +1,8 @@
 """The 11 Archimedean tilings as packings against docs/tile-operation.md."""
 
+import copy
 import math
+import pickle
 from fractions import Fraction
 
 import numpy as np
@@ -98,10 +100,18 @@ def test_immutable_and_hashable():
     q = ArchimedeanPacking("4.8^2", 20.0, {8: Star.preset("table3-3")})
     assert p == q and hash(p) == hash(q) and len({p, q}) == 1
     assert p != p.replace(edge=10) and p.replace(edge=10).edge == 10
-    with pytest.raises(AttributeError, match="immutable"):
+    with pytest.raises(AttributeError, match=r"ArchimedeanPacking is read-only; use packing\.replace\(edge="):
         p.edge = 5
-    with pytest.raises(AttributeError, match="immutable"):
+    with pytest.raises(AttributeError, match="read-only"):
         p._edge = 5
+    with pytest.raises(AttributeError, match="read-only"):
+        del p.tiling
+    for twin in (pickle.loads(pickle.dumps(p)), copy.deepcopy(p), copy.copy(p)):
+        assert twin == p and hash(twin) == hash(p)
+        assert np.array_equal(twin.segments((0, 0, 30, 30)), p.segments((0, 0, 30, 30)))
+    seg = p.segments((0, 0, 30, 30))
+    seg[:] = 0  # a fresh array: the packing's placed motifs are unchanged
+    assert p.segments((0, 0, 30, 30)).any()
     with pytest.raises(TypeError):
         p.motifs[8] = Star(n=8, radii=(1, 2))
     assert set(p.motifs) == {4, 8} and "4.8.8" in repr(p)
