@@ -16,7 +16,9 @@ error naming the key, its section and the valid keys (with a "did you mean").
     by its sides (``8 = "table3-3"``, ``4 = { n = 8, radii = [1, 2] }``); ``[motif]``
     is then optional and fills the kinds not listed.
 ``[tile]`` (required)
-    ``outline``, ``size``, ``frame``, ``stroke``, ``join``, ``miter_limit``, ``corner_radius``.
+    ``outline``, ``size``, ``frame``, ``stroke``, ``join``, ``miter_limit``, ``corner_radius``,
+    ``interlace``, ``interlace_gap_mm``, ``interlace_cut`` (woven strands, see
+    :mod:`fabtiles.geometry.interlace`).
 ``[output]`` (optional)
     ``formats`` (subset of dxf svg stl 3mf step; default ["svg"]), ``laser_profile``,
     ``printer_profile``, ``laser_mode``, ``print_style``, ``name`` (default: the
@@ -68,7 +70,8 @@ PACKING_KEYS = ("kind", "radius", "outline_circles", "fill", "gap_motif", "seaml
                 "motifs")
 ARCHIMEDEAN_KEYS = ("tiling", "edge", "motifs")
 """The ``[packing]`` keys of ``kind = "archimedean"`` alone (it has no ``radius``)."""
-TILE_KEYS = ("outline", "size", "frame", "stroke", "join", "miter_limit", "corner_radius")
+TILE_KEYS = ("outline", "size", "frame", "stroke", "join", "miter_limit", "corner_radius", "interlace",
+             "interlace_gap_mm", "interlace_cut")
 HEIGHT_KEYS = ("base_mm", "relief_mm", "pierced_mm", "deboss_mm")
 """The ``[output]`` keys overriding the printer profile's heights (mm)."""
 
@@ -120,6 +123,9 @@ class TileSpec:
     join: str = "miter"
     miter_limit: float = 4.0
     corner_radius: float = 0.0
+    interlace: bool = False
+    interlace_gap_mm: float | None = None
+    interlace_cut: bool = False
 
 
 @dataclass(frozen=True)
@@ -305,7 +311,8 @@ def build_tile(design: Design, *, tile_cls=None):
     pattern = star if design.packing is None else _build_packing(design.packing, star)
     t = design.tile_spec
     return tile_cls(t.outline, t.size, pattern, frame=t.frame, stroke=t.stroke, join=t.join,
-                    miter_limit=t.miter_limit, corner_radius=t.corner_radius)
+                    miter_limit=t.miter_limit, corner_radius=t.corner_radius, interlace=t.interlace,
+                    interlace_gap_mm=t.interlace_gap_mm, interlace_cut=t.interlace_cut)
 
 
 def _fit_seamless(design: Design) -> Design:
@@ -480,7 +487,15 @@ def _tile_spec(table: dict, source: str) -> TileSpec:
         join=_choice(table, "join", JOINS, source, where, "miter"),
         miter_limit=float(_typed(table, "miter_limit", num, source, where, "a number >= 1", 4.0)),
         corner_radius=float(_typed(table, "corner_radius", num, source, where, "a number of mm >= 0", 0.0)),
+        interlace=_typed(table, "interlace", (bool,), source, where, "true or false", False),
+        interlace_gap_mm=_optional_float(_typed(table, "interlace_gap_mm", num, source, where,
+                                                "a number of mm >= 0", None)),
+        interlace_cut=_typed(table, "interlace_cut", (bool,), source, where, "true or false", False),
     )
+
+
+def _optional_float(value):
+    return None if value is None else float(value)
 
 
 def _output_spec(table: dict, source: str) -> OutputSpec:

@@ -89,6 +89,10 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
              background: str = "#ffffff", title: str | None = None, findings=None) -> str:
     """An SVG picture of ``tile`` at true size: material filled, outline stroked.
 
+    An interlaced tile is drawn woven: each band outlined, and stopped short
+    (by its clearance) where it passes under another (see
+    :func:`fabtiles.geometry.interlace.tile_drawing`).
+
     Parameters
     ----------
     tile : Tile
@@ -108,8 +112,17 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
     True
     """
     w, h = tile.width_mm, tile.height_mm
-    region = tile.region()
+    woven = getattr(tile, "interlace", False)
+    if woven:
+        from ..geometry.interlace import tile_drawing
+
+        region = tile_drawing(tile)
+    else:
+        region = tile.region()
     d = region_path_data(region, h)
+    # the bands' outlines: a tenth of the stroke
+    band_edge = f'stroke="{_BAND_EDGE}" stroke-width="{_num(tile.stroke / 10)}"' if woven else 'stroke="none"'
+
     outline = region_path_data(tile.outline_shape(), h)
     title = repr(tile) if title is None else title
     line = max(0.1, min(w, h) / 500)
@@ -121,10 +134,14 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
         f'viewBox="0 0 {_num(w)} {_num(h)}">\n'
         f"<title>{_escape(title)}</title>\n"
         f'<rect width="100%" height="100%" fill="{background}"/>\n'
-        f'<path d="{d}" fill="{fill}" fill-rule="evenodd" stroke="none"/>\n'
+        f'<path d="{d}" fill="{fill}" fill-rule="evenodd" {band_edge}/>\n'
         f'<path d="{outline}" fill="none" stroke="{outline_color}" stroke-width="{_num(line)}"/>\n'
         f"{marks}</svg>\n"
     )
+
+
+_BAND_EDGE = "#0b1a3a"
+"""Colour of a woven drawing's band outlines (darker than the default fill)."""
 
 
 def write_tile_svg(path, tile, **options) -> None:

@@ -48,12 +48,13 @@ def _parallelograms(w: Weave, a0, a1, b0, b1) -> np.ndarray:
     return shapely.polygons(ring)
 
 
-def slivers(w: Weave, half: float, gap: float, *, tab: float = 0.0) -> np.ndarray:
+def slivers(w: Weave, half: float, gap: float, *, tab: float = 0.0, reach=None) -> np.ndarray:
     """The under band's hidden slivers beside each over band, as shapely polygons.
 
     ``half`` is half the stroke, ``gap`` the clearance. Each sliver reaches
-    ``half + gap`` across the under centre-line, so it cuts the under band
-    through; a ``tab`` > 0 leaves that width uncut along the under centre-line.
+    ``reach`` (default ``half + gap``) across the under centre-line, so it cuts
+    the under band through; a ``tab`` > 0 leaves that width uncut along the under
+    centre-line.
 
     >>> import numpy as np
     >>> from fabtiles.pattern.interlace import weave
@@ -65,7 +66,7 @@ def slivers(w: Weave, half: float, gap: float, *, tab: float = 0.0) -> np.ndarra
     """
     if not len(w) or gap <= 0:
         return np.empty(0, dtype=object)
-    reach = half + gap
+    reach = half + gap if reach is None else reach
     parts = []
     for a0, a1 in ((half, half + gap), (-half - gap, -half)):
         if tab > 0:
@@ -76,12 +77,29 @@ def slivers(w: Weave, half: float, gap: float, *, tab: float = 0.0) -> np.ndarra
     return np.concatenate(parts)
 
 
-def dips(region, w: Weave, half: float, gap: float):
-    """Where the relief's under strands dip: the slivers within the material, inset by :data:`INSET_MM`."""
-    s = slivers(w, half, gap)
+def _hidden(w, half, gap, within, tab=0.0):
+    """The union of the slivers, clipped to ``within`` (the patterned area: never the frame)."""
+    s = slivers(w, half, gap, tab=tab)
     if not len(s):
+        return None
+    u = shapely.union_all(s)
+    return u if within is None else _overlay(shapely.intersection, u, within)
+
+
+def _overlay(op, a, b):
+    """``op(a, b)``; when GEOS meets a robustness failure, again on a 2**-20 mm grid (about 1 nm)."""
+    try:
+        return op(a, b)
+    except shapely.errors.GEOSException:
+        return op(a, b, grid_size=2.0**-20)
+
+
+def dips(region, w: Weave, half: float, gap: float, within=None):
+    """Where the relief's under strands dip: the slivers within the material, inset by :data:`INSET_MM`."""
+    u = _hidden(w, half, gap, within)
+    if u is None:
         return shapely.Polygon()
-    inside = shapely.intersection(region, shapely.union_all(s))
+    inside = _overlay(shapely.intersection, region, u)
     return polygonal(shapely.buffer(inside, -INSET_MM, join_style="mitre"))
 
 
@@ -92,20 +110,49 @@ def polygonal(geom):
     return shapely.MultiPolygon(list(parts)) if len(parts) else shapely.Polygon()
 
 
-def woven_region(region, w: Weave, half: float, gap: float):
+def woven_region(region, w: Weave, half: float, gap: float, within=None):
     """The material with the slivers taken out: the classic woven drawing, filled."""
-    s = slivers(w, half, gap)
-    if not len(s):
-        return region
-    return polygonal(shapely.difference(region, shapely.union_all(s)))
+    u = _hidden(w, half, gap, within)
+    return region if u is None else polygonal(_overlay(shapely.difference, region, u))
 
 
-def cut_region(region, w: Weave, half: float, gap: float, tab: float):
-    """The material of a pierced ``interlace_cut`` tile: the slivers cut, tabs left across."""
-    s = slivers(w, half, gap, tab=tab)
-    if not len(s):
+def cut_region(region, w: Weave, half: float, gap: float, tab: float, within=None):
+    """The material of a pierced ``interlace_cut`` tile: the slivers cut, tabs left across.
+
+    Only across the under band (``half`` each side of its centre-line). A sliver
+    whose cut would still free a piece (a band running close beside the over band,
+    cut too) is left uncut, a few rounds, so every piece stays joined: the number
+    of parts never grows.
+    """
+    cuts = slivers(w, half, gap, tab=tab, reach=half)
+    if not len(cuts):
         return region
-    return polygonal(shapely.difference(region, shapely.union_all(s)))
+    if within is not None:
+        cuts = cuts[shapely.intersects(cuts, within)]
+    n_parts = len(shapely.get_parts(region))
+    keep = np.ones(len(cuts), bool)
+    out = region
+    for _ in range(CUT_ROUNDS):
+        u = shapely.union_all(cuts[keep])
+        if within is not None:
+            u = _overlay(shapely.intersection, u, within)
+        # on a 2**-16 mm grid: the kerf offset of holes this close failed in GEOS without it
+        out = polygonal(shapely.difference(region, u, grid_size=2.0**-16))
+        parts = shapely.get_parts(out)
+        if len(parts) <= n_parts:
+            return out
+        main = np.argsort(shapely.area(parts))[::-1][:n_parts]
+        loose = np.delete(parts, main)
+        tree = shapely.STRtree(cuts)
+        hit = tree.query(loose, predicate="intersects")[1]
+        if not keep[hit].any():
+            break
+        keep[hit] = False
+    return region if len(shapely.get_parts(out)) > n_parts else out
+
+
+CUT_ROUNDS = 4
+"""Rounds of leaving uncut the slivers that would free a piece (``interlace_cut``)."""
 
 
 def score_lines(w: Weave, half: float, gap: float, clip) -> np.ndarray:
@@ -158,14 +205,14 @@ def tile_dips(tile):
     """The relief dips of an interlaced tile (empty when it is not interlaced)."""
     if not tile.interlace:
         return shapely.Polygon()
-    return dips(tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile))
+    return dips(tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile), _within(tile))
 
 
 def tile_drawing(tile):
     """The filled woven drawing of a tile: its region, under bands stopped short (if interlaced)."""
     if not tile.interlace:
         return tile.region()
-    return woven_region(tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile))
+    return woven_region(tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile), _within(tile))
 
 
 def tile_score_lines(tile) -> np.ndarray:
@@ -186,4 +233,9 @@ def tile_cut_region(tile, tab: float):
     """The pierced material of a tile with ``interlace_cut``: slivers cut, ``tab`` wide tabs left."""
     if not (tile.interlace and tile.interlace_cut):
         return tile.region()
-    return cut_region(tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile), tab)
+    return cut_region(tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile), tab, _within(tile))
+
+
+def _within(tile):
+    """Where a tile's weave may hide bands: inside its frame (the frame stays whole)."""
+    return tile.inner_shape() if tile.frame > 0 else None
