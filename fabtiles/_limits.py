@@ -69,13 +69,14 @@ def estimate_segments(pattern, width_mm: float, height_mm: float) -> int:
     return big * per_big + gap * per_gap
 
 
-def check_segments(count: int, limits: Limits, *, what: str = "the tile") -> None:
-    """Refuse more than ``limits.max_segments`` segments."""
+def check_segments(count: int, limits: Limits, *, what: str = "the tile", knob: str = "radius") -> None:
+    """Refuse more than ``limits.max_segments`` segments; ``knob`` is the packing's scale
+    (``radius``, or ``edge`` for an Archimedean tiling)."""
     if count > limits.max_segments:
         raise LimitError(
             f"{what} would hold about {count:,} segments, more than the limit of "
-            f"{limits.max_segments:,}; make the tile smaller, the packing radius larger, or n smaller",
-            param="packing.radius",  # the usual knob
+            f"{limits.max_segments:,}; make the tile smaller, the packing {knob} larger, or n smaller",
+            param=f"packing.{knob}",  # the usual knob
         )
 
 
@@ -83,7 +84,7 @@ def check_tile(pattern, width_mm: float, height_mm: float, limits: Limits) -> in
     """Check size and segment count before any geometry is built; return the estimate."""
     check_size(width_mm, height_mm, limits)
     count = estimate_segments(pattern, width_mm, height_mm)
-    check_segments(count, limits)
+    check_segments(count, limits, knob="edge" if hasattr(pattern, "edge") else "radius")
     return count
 
 

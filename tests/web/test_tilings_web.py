@@ -79,3 +79,11 @@ def test_page_tiling_menu_and_motif_per_kind(page, server):  # noqa: F811 - fixt
     page.goto(page.url)
     page.wait_for_function("() => document.querySelector('#preview').dataset.version")
     assert page.input_value("#tiling") == "4.6.12" and page.input_value("#motif_12") == "table3-1"
+
+
+def test_too_much_work_points_at_the_edge(client):
+    r = client.get("/api/preview.svg", params={"preset": "table3-3", "packing": "archimedean",
+                                                "tiling": "3.3.3.3.6", "edge": "3", "width": "1000",
+                                                "stroke": "0.5"})
+    assert r.status_code == 422 and r.json()["field"] == "edge"
+    assert "the packing edge larger" in r.json()["error"]
