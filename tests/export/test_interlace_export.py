@@ -207,3 +207,23 @@ def test_design_file_keys(tmp_path):
 
 def test_default_gap_is_a_third_of_the_stroke():
     assert math.isclose(small_tile(stroke=1.5).interlace_gap_mm, 0.5)
+
+
+def test_3mf_pattern_part_dips_too(tmp_path):
+    out = tmp_path / "woven.3mf"
+    small_tile().export(out)
+    from fabtiles.export.threemf import read_3mf
+
+    parts = read_3mf(out)
+    mesh = trimesh.Trimesh(parts["pattern"].vertices, parts["pattern"].faces, process=False)
+    assert mesh.is_watertight
+    up = mesh.face_normals[:, 2] > 0.999
+    assert {round(float(z), 4) for z in mesh.triangles_center[up, 2]} == {round(BASE + RELIEF / 2, 4), BASE + RELIEF}
+
+
+def test_step_relief_dips_with_the_mesh_volume(tmp_path):
+    tile = ft.Tile("circle", 30, ft.Star.preset("table3-1"), frame=1.5, stroke=1.0, interlace=True)
+    stl = tile.export(tmp_path / "t.stl")
+    step = tile.export(tmp_path / "t.step")
+    assert step.stats["volume_mm3"] == pytest.approx(stl.stats["volume_mm3"], rel=1e-3)
+    assert step.stats["volume_mm3"] < tile.replace(interlace=False).export(tmp_path / "p.stl").stats["volume_mm3"]
