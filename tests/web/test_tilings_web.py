@@ -87,3 +87,14 @@ def test_too_much_work_points_at_the_edge(client):
                                                 "stroke": "0.5"})
     assert r.status_code == 422 and r.json()["field"] == "edge"
     assert "the packing edge larger" in r.json()["error"]
+
+
+def test_design_toml_download_builds_the_same_packing(client):
+    from fabtiles.design import design_from_text
+
+    params = {"packing": "archimedean", "tiling": "4.6.12", "edge": "12", "motif_4": "table1-part1",
+              "width": "150"}
+    text = client.get("/api/design.toml", params=params).text
+    assert "[packing.motifs]" in text and '4 = "table1-part1"' in text
+    pack = design_from_text(text).build_tile().pattern
+    assert pack.tiling == "4.6.12" and pack.edge == 12 and pack.motifs[4].n == 8
