@@ -32,10 +32,11 @@ const state = {
   laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
   miter_limit: 4, seamless: false, fill_small_holes: true, name: "",
   base_mm: "", relief_mm: "", pierced_mm: "", deboss_mm: "",  // "": the printer profile's
+  interlace: false, interlace_gap_mm: "", interlace_cut: false,  // woven strands; "": a third of the stroke
 };
 // Options sent only when set (text boxes and checkboxes of the design's [output] and [packing]).
-const TEXT_KEYS = ["name", "base_mm", "relief_mm", "pierced_mm", "deboss_mm"];
-const FLAG_KEYS = ["seamless", "fill_small_holes"];
+const TEXT_KEYS = ["name", "base_mm", "relief_mm", "pierced_mm", "deboss_mm", "interlace_gap_mm"];
+const FLAG_KEYS = ["seamless", "fill_small_holes", "interlace", "interlace_cut"];
 let showFindings = true, chosen = null;  // the findings overlay; the finding chosen in the list
 let presets = {}, tilings = {};
 
@@ -119,6 +120,8 @@ function query() {
   for (const k of ["frame", "stroke", "corner_radius", "join", "laser_profile", "laser_mode",
                    "printer_profile", "print_style"]) q.set(k, state[k]);
   if (state.miter_limit !== 4) q.set("miter_limit", state.miter_limit);
+  if (state.interlace) q.set("interlace", "true");
+  if (state.interlace_cut) q.set("interlace_cut", "true");
   q.set("fill_small_holes", state.fill_small_holes ? "true" : "false");
   for (const k of TEXT_KEYS) if (String(state[k]).trim() !== "") q.set(k, String(state[k]).trim());
   return q;
