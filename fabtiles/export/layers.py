@@ -25,27 +25,48 @@ def dip_z(stack) -> float:
     return stack.base + DIP_FRACTION * stack.relief
 
 
-def split_region(r, dips):
+def split_region(r, dips, *, holes: bool = True):
     """``(full, dips)``: the region cut into its full-height part and its dips, on the grid.
 
-    ``dips`` lie strictly inside ``r`` (see :data:`fabtiles.geometry.interlace.INSET_MM`),
-    so the full part is ``r`` with the dips as holes, vertex for vertex; dip parts
-    thinner than :data:`THIN_MM` are left at full height. ``dips`` may be None or empty.
+    ``dips`` must lie strictly inside ``r``, as :func:`fabtiles.geometry.interlace.dips`
+    makes them (20 grid steps inside, so snapping keeps them there). The full part
+    is then ``r`` with the dips as holes, vertex for vertex: each dip is added as a
+    hole of the part of ``r`` holding it, no overlay of the whole region. Dip parts
+    thinner than :data:`THIN_MM` stay at full height. ``dips`` may be None or empty;
+    ``holes=False`` returns ``r`` itself as the full part.
     """
     import shapely
 
-    from ..geometry.interlace import polygonal
     from ._mesh_build import snap
 
     if dips is None or dips.is_empty:
         return r, shapely.Polygon()
-    d = polygonal(shapely.intersection(snap(dips), r))
-    parts = shapely.get_parts(d)
+    parts = shapely.get_parts(snap(dips))
     parts = parts[~_thin(parts)] if len(parts) else parts
     if not len(parts):
         return r, shapely.Polygon()
-    d = snap(shapely.MultiPolygon(list(parts)))
-    return polygonal(shapely.difference(r, d)), d
+    d = shapely.MultiPolygon(list(parts))
+    if not holes:
+        return r, d
+    owners = shapely.get_parts(r)
+    corner = shapely.get_coordinates(shapely.get_point(shapely.get_exterior_ring(parts), 0))
+    owner_of = np.full(len(parts), -1)
+    hit, cand = shapely.STRtree(owners).query(shapely.points(corner))
+    for k in np.unique(cand):  # point in polygon, part by part (prepared: the sheet is one part)
+        sel = hit[cand == k]
+        shapely.prepare(owners[k])
+        inside = shapely.contains_xy(owners[k], corner[sel, 0], corner[sel, 1])
+        owner_of[sel[inside]] = k
+    full = []
+    for k, poly in enumerate(owners):
+        mine = parts[owner_of == k]
+        if not len(mine):
+            full.append(poly)
+            continue
+        rings = [np.asarray(x.coords) for x in poly.interiors] + \
+                [np.asarray(x.exterior.coords) for x in mine]
+        full.append(shapely.Polygon(np.asarray(poly.exterior.coords), rings))
+    return shapely.MultiPolygon(full), d
 
 
 THIN_MM = 3 * 2.0**-10
@@ -112,5 +133,70 @@ def dips_volume(r, dips, stack) -> float:
     """Volume a relief loses to its dips (mm^3): their area times the depth below full height."""
     if dips is None or dips.is_empty:
         return 0.0
-    _, dip = split_region(r, dips)
+    _, dip = split_region(r, dips, holes=False)
     return dip.area * (stack.base + stack.relief - dip_z(stack))
+
+
+def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0):
+    """The meshing coverage of an interlaced ``relief`` or ``pattern`` body: the layers of
+    :func:`body_layers`, built the fast way.
+
+    The body without dips is cut into cells as usual (the relief by
+    ``coverage_pair``, no overlay of the whole sheet); the dips, strictly inside the
+    region, are cut at the same cell lines and taken out of the region's piece of
+    their cell as holes. No overlay of a whole sheet: ``coverage`` of the three
+    layers took 12 s on the 600 x 400 mm sheet, this 5 s (4.6 s without dips).
+
+    >>> from shapely.geometry import box
+    >>> from fabtiles.export._mesh_build import Stack
+    >>> stack = Stack("relief", base=2.0, relief=1.0, pierced=3.0, deboss=0.5)
+    >>> cov = body_coverage("relief", box(1, 1, 3, 3), box(0, 0, 4, 4), stack, box(1.5, 1.5, 2, 2.5))
+    >>> cov.levels.tolist(), sorted(round(p.area, 3) for p, _ in cov.pieces)
+    ([0.0, 2.0, 2.5, 3.0], [0.5, 3.5, 12.0])
+    """
+    import shapely
+
+    from ._mesh_build import (
+        CELL_VERTICES,
+        Coverage,
+        cells_for,
+        coverage,
+        coverage_pair,
+        node_polygons,
+        split_cells,
+    )
+
+    b, h = stack.base, stack.relief
+    full, dip = split_region(r, dips, holes=False)
+    if kind == "relief":
+        cov = coverage_pair(r, o, region_z=b + h, rest_z=b, bottom=0.0, shift=shift)
+        xs, ys, box = cells_for([r, o], CELL_VERTICES, shift)
+    elif kind == "pattern":
+        cov = coverage([(r, b + h)], bottom=b, shift=shift)
+        xs, ys, box = cells_for([r], CELL_VERTICES, shift)
+    else:
+        raise ValueError(f"{kind!r} has no dips, must be one of: relief, pattern")
+    if dip.is_empty:
+        return cov
+    d_cells, ex, ey = split_cells(node_polygons(dip, xs, ys), xs, ys, box)
+    by_cell = {(i, j): g for i, j, g in d_cells}
+    levels = np.array(sorted({*cov.levels.tolist(), dip_z(stack)}))
+    remap = np.searchsorted(levels, cov.levels)
+    top, low = int(np.searchsorted(levels, b + h)), int(np.searchsorted(levels, dip_z(stack)))
+    pieces = []
+    for piece, lvl in cov.pieces:
+        lvl = int(remap[lvl])
+        if lvl == top:
+            x0, y0, x1, y1 = piece.bounds
+            cell = (int(np.searchsorted(ex, (x0 + x1) / 2)) - 1, int(np.searchsorted(ey, (y0 + y1) / 2)) - 1)
+            d = by_cell.get(cell)
+            if d is not None:
+                # the dips lie inside the piece (off its edges but for the cell lines): exact
+                pieces.append((shapely.difference(piece, d), top))
+                pieces.append((d, low))
+                continue
+        pieces.append((piece, lvl))
+    from ._mesh_build import coverage_from_cells
+
+    out = coverage_from_cells(pieces, levels, cov.xs, cov.ys)
+    return Coverage(out.pieces, out.levels, cov.xs, cov.ys)

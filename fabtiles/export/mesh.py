@@ -95,10 +95,9 @@ def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0, dips=None):
     """
     b, h, t, d = stack.base, stack.relief, stack.pierced, stack.deboss
     if dips is not None and not dips.is_empty and kind in ("relief", "pattern"):
-        from .layers import body_layers
+        from .layers import body_coverage
 
-        layers, bottom = body_layers(kind, r, o, stack, dips)
-        cov = coverage(layers, bottom=bottom, shift=shift)
+        cov = body_coverage(kind, r, o, stack, dips, shift=shift)
     elif kind == "relief":
         cov = coverage_pair(r, o, region_z=b + h, rest_z=b, bottom=0.0, shift=shift)
     elif kind == "base":

@@ -95,12 +95,28 @@ def _overlay(op, a, b):
 
 
 def dips(region, w: Weave, half: float, gap: float, within=None):
-    """Where the relief's under strands dip: the slivers within the material, inset by :data:`INSET_MM`."""
-    u = _hidden(w, half, gap, within)
-    if u is None:
+    """Where the relief's under strands dip: each under band's two slivers, inset by :data:`INSET_MM`.
+
+    A sliver is kept only where it lies strictly inside the material (and inside
+    ``within``): one whose under band ends or merges into other material within
+    the gap (a strand's tip just past the crossing) gets no dip. Built from the
+    crossings alone, with one containment test per sliver against the prepared
+    region: overlaying the slivers with the region of the 600 x 400 mm sheet took 16 s.
+    """
+    e = INSET_MM
+    if not len(w) or gap <= 2 * e or half <= e:
         return shapely.Polygon()
-    inside = _overlay(shapely.intersection, region, u)
-    return polygonal(shapely.buffer(inside, -INSET_MM, join_style="mitre"))
+    band = (-half + e, half - e)  # across the under band, off its edges
+    parts = np.concatenate([_parallelograms(w, half + e, half + gap - e, *band),
+                            _parallelograms(w, -half - gap + e, -half - e, *band)])
+    shapely.prepare(region)
+    keep = shapely.contains_properly(region, parts)
+    if within is not None:
+        shapely.prepare(within)
+        keep &= shapely.contains_properly(within, parts)
+    if not keep.any():
+        return shapely.Polygon()
+    return polygonal(shapely.union_all(parts[keep]))
 
 
 def polygonal(geom):
