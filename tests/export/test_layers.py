@@ -1,0 +1,70 @@
+"""The levels of a printed body (export/layers.py): the layer list and the fast coverage agree."""
+
+import numpy as np
+import pytest
+import shapely
+from shapely.geometry import box
+
+import fabtiles as ft
+from fabtiles.export import mesh
+from fabtiles.export._mesh_build import Stack, coverage, mesh_coverage
+from fabtiles.export.layers import body_coverage, body_layers, dip_z, split_region
+from fabtiles.geometry.interlace import tile_dips
+
+STACK = Stack("relief", base=2.0, relief=1.2, pierced=3.0, deboss=0.8)
+
+
+def woven():
+    tile = ft.Tile("square", 40, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")), frame=2,
+                   stroke=1.0, interlace=True)
+    r, o = mesh._snapped(tile.region(), tile.outline_shape())
+    return r, o, tile_dips(tile)
+
+
+def areas_by_level(pieces):
+    out = {}
+    for geom, z in pieces:
+        out[round(float(z), 6)] = out.get(round(float(z), 6), 0.0) + geom.area
+    return out
+
+
+@pytest.mark.parametrize("kind", ["relief", "pattern"])
+def test_fast_coverage_has_the_layers_of_body_layers(kind):
+    r, o, d = woven()
+    layers, bottom = body_layers(kind, r, o, STACK, d)
+    cov = body_coverage(kind, r, o, STACK, d)
+    slow = areas_by_level(layers)
+    fast = areas_by_level([(p, cov.levels[lvl]) for p, lvl in cov.pieces])
+    assert fast.keys() == slow.keys() and dip_z(STACK) in fast
+    for z in slow:
+        assert fast[z] == pytest.approx(slow[z], rel=1e-9, abs=1e-6)
+    # both mesh into the same watertight body
+    for c in (cov, coverage(layers, bottom=bottom)):
+        v, f = mesh_coverage(c)
+        mesh.check_mesh(v, f, bodies=1 if kind == "relief" else None)
+
+
+def test_dips_are_holes_of_the_full_level():
+    r, o, d = woven()
+    full, dip = split_region(r, d)
+    assert full.is_valid and full.area + dip.area == pytest.approx(r.area)
+    assert shapely.get_num_interior_rings(shapely.get_parts(full)).sum() > \
+        shapely.get_num_interior_rings(shapely.get_parts(r)).sum()
+
+
+def test_no_dips_is_the_plain_body():
+    r, o = box(1, 1, 3, 3), box(0, 0, 4, 4)
+    assert split_region(r, None)[0] is r
+    layers, bottom = body_layers("relief", r, o, STACK, None)
+    assert [z for _, z in layers] == [STACK.base + STACK.relief, STACK.base] and bottom == 0.0
+    assert [z for _, z in body_layers("pierced", r, o, STACK)[0]] == [STACK.pierced]
+    assert [z for _, z in body_layers("base", r, o, STACK)[0]] == [STACK.base]
+    assert [z for _, z in body_layers("plate", r, o, STACK)[0]] == [STACK.base - STACK.deboss, STACK.base]
+
+
+def test_unknown_kinds_are_refused():
+    r, o = box(1, 1, 3, 3), box(0, 0, 4, 4)
+    with pytest.raises(ValueError, match=r"'lid' is not a valid body kind, must be one of: relief, base"):
+        body_layers("lid", r, o, STACK)
+    with pytest.raises(ValueError, match=r"'pierced' has no dips, must be one of: relief, pattern"):
+        body_coverage("pierced", r, o, STACK, box(1.5, 1.5, 2, 2))
