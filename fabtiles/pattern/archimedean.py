@@ -34,10 +34,11 @@ DEFAULT_MOTIFS = MappingProxyType({
 
 
 def _turn(star: Star) -> float:
-    """Direction (radians) of the points on the motif's largest circle, the ones turned to the
-    tangency points: circle ``w`` (0-based) holds points at ``rotation + w * 180 / n``."""
+    """Direction (radians) of the points on the motif's largest circle before its own
+    ``rotation``: circle ``w`` (0-based) holds points at ``rotation + w * 180 / n``. These are
+    turned to the tangency points; the motif's ``rotation`` then turns it further."""
     w = int(np.argmax(star.radii))
-    return math.radians(star.rotation + w * 180.0 / star.n)
+    return math.radians(w * 180.0 / star.n)
 
 
 def _rotated(seg: np.ndarray, angle: float, step: float) -> np.ndarray:
@@ -64,7 +65,8 @@ class ArchimedeanPacking:
         kind, keyed by its number of sides; kinds not given get
         :data:`DEFAULT_MOTIFS`. Each motif is turned so the points of its largest
         circle face the polygon's edge midpoints (with ``n`` a multiple of ``p``
-        they land on the tangency points, so neighbouring motifs meet).
+        they land on the tangency points, so neighbouring motifs meet); its own
+        ``rotation`` turns it further.
     gap_motif : Star or str, optional
         Motif of the gap circles (default ``Star(n=6, radii=(0.5, 1.0))``), turned
         so its largest circle's points face the largest polygon it touches.

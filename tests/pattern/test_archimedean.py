@@ -292,3 +292,15 @@ def test_errors_name_their_parameter(call, param):
     with pytest.raises((ParameterError, LimitError)) as info:
         call()
     assert info.value.param == param
+
+
+def test_motif_rotation_turns_it_further():
+    plain = ArchimedeanPacking("4.8.8", 10, {8: Star(n=8, radii=(0.5, 1))})
+    turned = ArchimedeanPacking("4.8.8", 10, {8: Star(n=8, radii=(0.5, 1), rotation=10)})
+    # The octagon at the origin: its motif's tips at the edge midpoints (0, 45, ... degrees),
+    # then 10 degrees further.
+    for pack, offset in ((plain, 0.0), (turned, 10.0)):
+        seg = pack.motif_segments((-1, -1, 1, 1)).reshape(-1, 2)
+        far = seg[np.hypot(*seg.T) > pack.incircle_radius(8) - 1e-6]
+        angles = np.sort(np.round(np.degrees(np.arctan2(far[:, 1], far[:, 0])) % 360, 6))
+        assert np.allclose(np.unique(angles), (offset + 45 * np.arange(8)) % 360)
