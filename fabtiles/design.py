@@ -232,6 +232,8 @@ def parse_override(item: str) -> tuple[list[str], Any]:
     (['tile', 'size'], [200, 200])
     >>> parse_override("tile.outline=hexagon")
     (['tile', 'outline'], 'hexagon')
+    >>> parse_override("packing.tiling=3^4.6")  # a bare tiling name: a string too
+    (['packing', 'tiling'], '3^4.6')
     """
     if not isinstance(item, str) or "=" not in item:
         raise DesignError(f"--set expects section.key=value, got {item!r}")
@@ -242,8 +244,8 @@ def parse_override(item: str) -> tuple[list[str], Any]:
     try:
         parsed = tomllib.loads(f"v = {value}")["v"]
     except tomllib.TOMLDecodeError:
-        if re.fullmatch(r"[A-Za-z_][\w.+-]*", value):
-            parsed = value  # a bare word: a string
+        if re.fullmatch(r"[A-Za-z_][\w.+-]*|[0-9][0-9^.]*", value):
+            parsed = value  # a bare word or tiling (4.8.8, 3^6): a string
         else:
             raise DesignError(f"--set {key}: {value!r} is not a TOML value") from None
     return parts, parsed

@@ -66,3 +66,13 @@ def test_too_many_circles_exits_2(tmp_path):
     res = run("build", path, "-o", tmp_path / "out", "--set", "packing.edge=4", "--set", "tile.size=2500")
     assert res.exit_code == 2 and "more than the limit of 400,000" in res.output
     assert not (tmp_path / "out").exists()
+
+
+def test_bare_tiling_names_in_set_and_vary(tmp_path):
+    path = tmp_path / "t.toml"
+    path.write_text(DESIGN, encoding="utf-8")
+    res = run("build", path, "-o", tmp_path / "out", "--set", "packing.tiling=3^4.6")
+    assert res.exit_code == 0, res.output
+    res = run("sweep", path, "--vary", "packing.tiling=3.6.3.6,6^3", "-o", tmp_path / "sweep")
+    assert res.exit_code == 0, res.output
+    assert len(list((tmp_path / "sweep").rglob("*.svg"))) == 2
