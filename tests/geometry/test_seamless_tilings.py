@@ -4,6 +4,9 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis_scale import examples
 from shapely import affinity
 
 from fabtiles import ArchimedeanPacking, ParameterError
@@ -84,3 +87,16 @@ def test_bad_tiling_fits():
         seamless_fit("rectangle", (100, 80), -1, packing="3^6")
     with pytest.raises(ParameterError, match=r"None is not a valid packing, must be one of: hex, square"):
         seamless_fit("rectangle", (100, 80), 10, packing=None)
+
+
+@given(tiling=st.sampled_from(TILINGS), w=st.floats(20, 500), h=st.floats(20, 500), edge=st.floats(1, 40))
+@settings(max_examples=examples(60), deadline=None)
+def test_fit_is_an_exact_period_nearest_the_edge(tiling, w, h, edge):
+    fit = seamless_fit("rectangle", (w, h), edge, packing=tiling)
+    px, py = rectangular_period(tiling)
+    m, k = fit.repeats
+    assert m >= 1 and k >= 1 and fit.size[0] == w
+    assert px * fit.edge * m == pytest.approx(w, rel=1e-12)
+    assert py * fit.edge * k == pytest.approx(fit.size[1], rel=1e-12)
+    assert abs(w / (px * edge) - m) <= 0.5 + 1e-9 or m == 1
+    assert abs(h / (py * fit.edge) - k) <= 0.5 + 1e-9 or k == 1
