@@ -97,11 +97,15 @@ def _overlay(op, a, b):
 def dips(region, w: Weave, half: float, gap: float, within=None):
     """Where the relief's under strands dip: each under band's two slivers, inset by :data:`INSET_MM`.
 
-    A sliver is kept only where it lies strictly inside the material (and inside
+    A sliver is kept only where it lies inside the material (and inside
     ``within``): one whose under band ends or merges into other material within
     the gap (a strand's tip just past the crossing) gets no dip. Built from the
-    crossings alone, with one containment test per sliver against the prepared
-    region: overlaying the slivers with the region of the 600 x 400 mm sheet took 16 s.
+    crossings alone: each sliver's corners, edge midpoints and centre are tested
+    against the prepared region (0.05 s for the 14,736 slivers of the 600 x 400 mm
+    sheet; a containment test of each polygon took 0.6 s, an overlay of the region
+    with the slivers 16 s). A sliver is far thinner than any hole between bands, so
+    no hole hides between its test points; the mesh check would catch one that did.
+    Only slivers that overlap another (crossings closer than a gap) are merged.
     """
     e = INSET_MM
     if not len(w) or gap <= 2 * e or half <= e:
@@ -109,14 +113,22 @@ def dips(region, w: Weave, half: float, gap: float, within=None):
     band = (-half + e, half - e)  # across the under band, off its edges
     parts = np.concatenate([_parallelograms(w, half + e, half + gap - e, *band),
                             _parallelograms(w, -half - gap + e, -half - e, *band)])
-    shapely.prepare(region)
-    keep = shapely.contains_properly(region, parts)
-    if within is not None:
-        shapely.prepare(within)
-        keep &= shapely.contains_properly(within, parts)
-    if not keep.any():
+    ring = shapely.get_coordinates(shapely.get_exterior_ring(parts)).reshape(len(parts), 5, 2)[:, :4]
+    probes = np.concatenate([ring, (ring + np.roll(ring, -1, axis=1)) / 2, ring.mean(axis=1, keepdims=True)],
+                            axis=1)
+    keep = np.ones(len(parts), bool)
+    for area in (region, within):
+        if area is not None:
+            shapely.prepare(area)
+            keep &= shapely.contains_xy(area, probes[..., 0], probes[..., 1]).all(axis=1)
+    parts = parts[keep]
+    if not len(parts):
         return shapely.Polygon()
-    return polygonal(shapely.union_all(parts[keep]))
+    a, b = shapely.STRtree(parts).query(parts, predicate="intersects")
+    touching = np.zeros(len(parts), bool)
+    touching[a[a != b]] = True
+    merged = shapely.get_parts(shapely.union_all(parts[touching])) if touching.any() else parts[:0]
+    return polygonal(shapely.MultiPolygon(list(parts[~touching]) + list(merged)))
 
 
 def polygonal(geom):
