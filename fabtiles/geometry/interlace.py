@@ -199,10 +199,7 @@ def score_lines(w: Weave, half: float, gap: float, clip) -> np.ndarray:
 
 def woven_segments(tile) -> np.ndarray:
     """The centre-lines a tile weaves, file coordinates: its motifs (not its outline circles)."""
-    pattern = tile.pattern
-    if not getattr(pattern, "outline_circles", False) or not hasattr(pattern, "motif_segments"):
-        return tile.segments()
-    return pattern.motif_segments(tile._window()) + np.array(tile.centre)
+    return tile.motif_segments()
 
 
 def checked_weave(tile) -> Weave:

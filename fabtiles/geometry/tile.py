@@ -260,6 +260,18 @@ class Tile:
             self._segments = seg + np.array([cx, cy])
         return self._segments.copy()
 
+    def motif_segments(self) -> np.ndarray:
+        """The motifs' centre-lines alone (without a packing's outline circles), file coordinates.
+
+        >>> from fabtiles.pattern.packing import HexPacking
+        >>> t = Tile("square", 40, HexPacking(10, Star.preset("table3-3"), outline_circles=True))
+        >>> len(t.motif_segments()) < len(t.segments())
+        True
+        """
+        if isinstance(self._pattern, Star) or not getattr(self._pattern, "outline_circles", False):
+            return self.segments()
+        return self._pattern.motif_segments(self._window()) + np.array(self.centre)
+
     def _window(self) -> tuple[float, float, float, float]:
         """The outline's bounding box grown by the farthest a band reaches past its centre-lines
         (half the stroke; a miter tip up to ``miter_limit`` half strokes), pattern coordinates.

@@ -227,3 +227,30 @@ def test_step_relief_dips_with_the_mesh_volume(tmp_path):
     step = tile.export(tmp_path / "t.step")
     assert step.stats["volume_mm3"] == pytest.approx(stl.stats["volume_mm3"], rel=1e-3)
     assert step.stats["volume_mm3"] < tile.replace(interlace=False).export(tmp_path / "p.stl").stats["volume_mm3"]
+
+
+@pytest.mark.parametrize("tiling", ["4.8.8", "3.12.12"])
+def test_archimedean_tilings_weave(tmp_path, tiling):
+    tile = ft.Tile("square", 50, ft.ArchimedeanPacking(tiling, 15), frame=2, stroke=1.0, interlace=True)
+    w = tile.weave()
+    assert len(w) > 0 and w.conflicts == 0
+    _, tops = relief_tops(tile.export(tmp_path / "t.stl") and tmp_path / "t.stl")
+    assert round(BASE + RELIEF / 2, 4) in tops
+    woven = tile.export(tmp_path / "t.dxf", mode="score").stats["score_length_mm"]
+    assert woven < tile.replace(interlace=False).export(tmp_path / "u.dxf", mode="score").stats["score_length_mm"]
+
+
+def test_outline_circles_are_scored_whole_and_not_woven(tmp_path):
+    pack = ft.HexPacking(radius=12, motif=ft.Star.preset("table3-1"), outline_circles=True)
+    tile = ft.Tile("square", 50, pack, frame=2, stroke=1.0, interlace=True)
+    assert len(tile.weave().strand) == len(tile.motif_segments()) < len(tile.segments())
+    from fabtiles.geometry.interlace import tile_score_lines
+
+    lines = tile_score_lines(tile)
+    # every circle chord inside the outline is still there, whole
+    circles = tile.segments()[len(tile.motif_segments()):]
+    mid = circles.mean(axis=1)
+    inside = (mid > 0.5).all(axis=1) & (mid < 49.5).all(axis=1)
+    lmid = lines.mean(axis=1)
+    d = np.linalg.norm(mid[inside][:, None] - lmid[None], axis=2).min(axis=1)
+    assert np.all(d < 1e-6)
