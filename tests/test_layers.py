@@ -11,10 +11,7 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "fabtiles"
 
 # Private names still imported across modules, each with the reason it is not fixed yet.
-PENDING = {
-    # the STEP writer is being rewritten; it borrows the mesh writer's helpers until then
-    ("fabtiles/export/step.py", "fabtiles.export.mesh"),
-}
+PENDING: set = set()
 
 
 def test_import_contracts_are_kept():

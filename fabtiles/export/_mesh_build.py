@@ -417,8 +417,12 @@ class Topology:
     tri_level: np.ndarray | None
 
 
-def topology(cov: Coverage, *, triangulate: bool = True) -> Topology:
+def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) -> Topology:
     """Number the vertices of a coverage, pair its edges and (optionally) triangulate its pieces.
+
+    Vertices are the same when they round to the same grid point, or with
+    ``exact``, when their coordinates are equal (pieces of one exact overlay
+    share their vertices bit for bit; the STEP writer's B-rep keeps them so).
 
     Raises :class:`~fabtiles.FabricationError` if two pieces claim the same
     directed edge (they overlap), which a proper coverage never does.
@@ -462,14 +466,19 @@ def topology(cov: Coverage, *, triangulate: bool = True) -> Topology:
             tri_lvl.append(np.full(len(tris), plevel[k]))
         if not tri_idx:
             raise FabricationError("nothing to mesh: the material region is empty")
-    ij = np.round(pts / QUANTUM).astype(np.int64)
-    keys = (ij[:, 0] + (1 << 30)) * (1 << 31) + (ij[:, 1] + (1 << 30))
-    uniq, inv = np.unique(keys, return_inverse=True)
-    inv = inv.ravel()
-    n2 = len(uniq)
-    xy = np.zeros((n2, 2))
-    xy[inv] = pts
-    xy = np.round(xy / QUANTUM) * QUANTUM
+    if exact:
+        xy, inv = np.unique(pts, axis=0, return_inverse=True)
+        inv = inv.ravel()
+        n2 = len(xy)
+    else:
+        ij = np.round(pts / QUANTUM).astype(np.int64)
+        keys = (ij[:, 0] + (1 << 30)) * (1 << 31) + (ij[:, 1] + (1 << 30))
+        uniq, inv = np.unique(keys, return_inverse=True)
+        inv = inv.ravel()
+        n2 = len(uniq)
+        xy = np.zeros((n2, 2))
+        xy[inv] = pts
+        xy = np.round(xy / QUANTUM) * QUANTUM
 
     u = inv
     v = inv[nxt]

@@ -69,7 +69,6 @@ def prepare_print(region, outline, profile, style, heights, stroke=None, *, path
     return profile, stack, report
 
 
-_prepare = prepare_print  # the name step.py imports
 
 
 def _snapped(region, outline):
@@ -301,6 +300,10 @@ class CheckedPart(NamedTuple):
     """Area x height of the region actually meshed."""
     bodies: int
     """Connected bodies expected."""
+    region: object
+    """The region actually meshed: snapped to the grid, point contacts bridged (shapely)."""
+    outline: object
+    """The outline, snapped to the grid (shapely)."""
 
 
 def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay: bool = False, dips=None):
@@ -316,7 +319,7 @@ def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay:
     for name, kind in _kinds(stack.style, single, inlay).items():
         _, verts, faces, used = _checked_body(kind, name, r, o, stack, dips)
         volume, bodies = _expected(kind, used, o, stack, dips)
-        out[name] = CheckedPart(verts, faces, float(volume), int(bodies))
+        out[name] = CheckedPart(verts, faces, float(volume), int(bodies), used, o)
     return out
 
 

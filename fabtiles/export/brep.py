@@ -1,0 +1,479 @@
+"""The planar boundary representation of a stacked part, as a CAD modeller would draw it.
+
+A printed tile is a stack (see :mod:`fabtiles.export._mesh_build`): polygons raised to
+a few levels above a flat bottom. Its B-rep here has planar faces and straight edges
+only, and one face per flat region:
+
+- each connected region at a level is ONE horizontal face with all its holes, and
+  the bottom of each solid is one face;
+- a vertical wall face per straight run of the boundary: walls of neighbouring
+  polygon sides that lie in the same vertical plane and share a vertical edge are
+  one face (a straight side of the outline is one face, even where the top of the
+  wall steps between levels);
+- vertical edges wherever walls of two planes meet (the outline's corners among
+  them), split only at the levels where a horizontal face meets them.
+
+Every edge is shared by exactly two faces, in opposite directions, by construction.
+The result is plain numpy data (:class:`Brep`); :mod:`fabtiles.export.step_file`
+writes it as STEP entities, :mod:`fabtiles.export.step` checks it with OCCT.
+
+Example: a 10 x 10 mm plate 2 mm thick is 6 faces, 12 edges and 8 vertices.
+
+>>> import shapely
+>>> from fabtiles.export._mesh_build import coverage
+>>> b = planar_brep(coverage([(shapely.box(0, 0, 10, 10), 2.0)], bottom=0.0))
+>>> len(b.faces), len(b.edges), len(b.points)
+(6, 12, 8)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from math import gcd
+
+import numpy as np
+
+from .._errors import FabricationError
+from ._mesh_build import QUANTUM, Coverage, topology
+
+
+@dataclass(frozen=True)
+class Face:
+    """A planar face: its plane and its loops of signed edge numbers.
+
+    ``loops[0]`` is the outer loop, counter-clockwise seen from outside; the
+    others are holes. Edge ``i`` is ``edges[i]`` run forwards, ``~i`` backwards.
+    """
+
+    origin: tuple  # a point of the plane (mm)
+    normal: tuple  # outward normal (direction ratios)
+    ref: tuple  # a direction in the plane (x axis of its placement)
+    loops: tuple  # tuple of tuples of signed edge numbers
+
+
+@dataclass(frozen=True)
+class Brep:
+    """Points, straight edges between them, planar faces, and the faces of each solid."""
+
+    points: np.ndarray  # (n, 3) float
+    edges: np.ndarray  # (m, 2) point indices, each edge runs from the first to the second
+    faces: tuple  # of Face
+    solids: tuple  # tuple of tuples of face indices, one closed shell each
+
+
+class _Edges:
+    """Edges made on demand, keyed so that every face finds the same edge object."""
+
+    def __init__(self):
+        self.points = {}
+        self.edges = {}
+        self.list = []
+
+    def point(self, vid, k):
+        key = (vid, k)
+        p = self.points.get(key)
+        if p is None:
+            p = self.points[key] = len(self.points)
+        return p
+
+    def horizontal(self, u, v, k):
+        """Signed edge from ring vertex u to v at level k."""
+        key = ("h", min(u, v), max(u, v), k)
+        e = self.edges.get(key)
+        if e is None:
+            e = self.edges[key] = len(self.list)
+            self.list.append((self.point(min(u, v), k), self.point(max(u, v), k)))
+        return e if u < v else ~e
+
+    def vertical(self, p, ka, kb):
+        """Signed edge at ring vertex p from level ka to the adjacent split level kb."""
+        lo, hi = min(ka, kb), max(ka, kb)
+        key = ("v", p, lo, hi)
+        e = self.edges.get(key)
+        if e is None:
+            e = self.edges[key] = len(self.list)
+            self.list.append((self.point(p, lo), self.point(p, hi)))
+        return e if ka < kb else ~e
+
+
+def _ring_polygons(topo, k):
+    """Rings of piece k grouped into polygons: [[outer ring, hole rings...], ...]."""
+    polys = []
+    for r in range(topo.piece_rings[k], topo.piece_rings[k + 1]):
+        xy = topo.xy[topo.vid[topo.ring_start[r]:topo.ring_start[r + 1]]]
+        area = 0.5 * np.sum(xy[:, 0] * np.roll(xy[:, 1], -1) - np.roll(xy[:, 0], -1) * xy[:, 1])
+        if area > 0 or not polys:
+            polys.append([r])
+        else:
+            polys[-1].append(r)
+    return polys
+
+
+def _chain(directed, what):
+    """Chain directed edges ``[(start node, end node, signed edge), ...]`` into closed loops.
+
+    At a node with several ways on (two loops touching at a point), the first
+    unused one is taken: each loop still closes, which is all a face needs.
+    """
+    out = {}
+    for i, (a, _, _) in enumerate(directed):
+        out.setdefault(a, []).append(i)
+    used = np.zeros(len(directed), bool)
+    loops = []
+    for i0 in range(len(directed)):
+        if used[i0]:
+            continue
+        loop, i = [], i0
+        while not used[i]:
+            used[i] = True
+            loop.append(i)
+            nxt = [j for j in out.get(directed[i][1], ()) if not used[j]]
+            if not nxt:
+                break
+            i = nxt[0]
+        if directed[loop[-1]][1] != directed[loop[0]][0]:
+            raise FabricationError(f"the B-rep of the {what} has an open loop; nothing was written")
+        loops.append(loop)
+    return loops
+
+
+def _loop_area(xy):
+    return 0.5 * float(np.sum(xy[:, 0] * np.roll(xy[:, 1], -1) - np.roll(xy[:, 0], -1) * xy[:, 1]))
+
+
+SIDE_TOLERANCE_MM = QUANTUM
+"""A boundary point this close to a straight side of the outline lies on it (the grid's rounding)."""
+
+
+def _onto_sides(xy, sides, outer):
+    """Points of the outer boundary on a straight side of the outline, moved exactly onto it.
+
+    On the 2**-10 mm grid a slanted side has no points between its corners: the
+    points where the region meets it sit up to ``SIDE_TOLERANCE_MM`` off the
+    line through its corners, which would split the side into faces at tiny
+    angles. They are put on that line, so that the side is one plane. ``outer`` holds the outer boundary's edges
+    ``(u, v)`` (material on the left); along each side a point that would fold
+    back stays where it is. Returns the points and each point's side (-1: none).
+    """
+    import shapely
+
+    out = np.array(xy, float)
+    side_of = np.full(len(xy), -1)
+    if sides is None or not len(sides) or not len(outer):
+        return out, side_of
+    sides = np.asarray(sides, float)
+    tree = shapely.STRtree(shapely.linestrings(sides.reshape(-1, 2, 2)))
+    ends = np.unique(np.asarray(outer).ravel())
+    pi, si = tree.query(shapely.points(out[ends]), predicate="dwithin", distance=SIDE_TOLERANCE_MM)
+    near = {}  # point -> sides it is near (corners: both of theirs)
+    for p, k in zip(ends[pi].tolist(), si.tolist()):
+        near.setdefault(p, set()).add(k)
+    succ = {}
+    for u, v in np.asarray(outer).tolist():
+        if k_common := (near.get(u, set()) & near.get(v, set())):
+            for k in k_common:
+                succ.setdefault((k, u), v)
+    for k in range(len(sides)):
+        a, d = sides[k, :2], sides[k, 2:] - sides[k, :2]
+        # runs start at points with no predecessor along this side
+        preds = {v for (kk, _), v in succ.items() if kk == k}
+        starts = [u for (kk, u) in succ if kk == k and u not in preds] or \
+                 [u for (kk, u) in succ if kk == k][:1]
+        for u in starts:
+            last, p, seen = -1.0, u, set()
+            while p is not None and p not in seen:
+                seen.add(p)
+                t = float(np.dot(out[p] - a, d) / np.dot(d, d))
+                corner = bool(np.all(xy[p] == sides[k, :2]) or np.all(xy[p] == sides[k, 2:]))
+                if corner:
+                    last = max(last, t)
+                elif side_of[p] < 0 and last < t < 1.0:
+                    out[p] = a + t * d
+                    side_of[p] = k
+                    last = t
+                p = succ.get((k, p))
+    return out, side_of
+
+
+def _keep_pieces_valid(topo, vxy, side_of, outer_loops):
+    """Move back the points whose move onto a side made a piece or a bottom loop invalid (in place).
+
+    A sliver of a piece thinner than the move (a region edge within a micron of
+    the side) would collapse; its points stay on the grid instead, as they were.
+    """
+    import shapely
+
+    ring_of_point = np.repeat(np.arange(len(topo.ring_start) - 1), np.diff(topo.ring_start))
+    poly_of_ring = np.repeat(np.arange(len(topo.piece_rings) - 1), np.diff(topo.piece_rings))
+    for _ in range(20):
+        moved = side_of >= 0
+        rings = np.unique(ring_of_point[moved[topo.vid]])
+        if not len(rings):
+            return
+        pieces = np.unique(poly_of_ring[rings])
+        bad_points = []
+        for k in pieces.tolist():
+            for poly in _piece_polygons(topo, k, vxy):
+                if not shapely.is_valid(poly[0]):
+                    bad_points.extend(poly[1])
+        for ids in outer_loops:
+            if len(ids) >= 3 and (side_of[ids] >= 0).any() and not shapely.is_valid(shapely.Polygon(vxy[ids])):
+                bad_points.extend(ids)
+        bad = [p for p in set(bad_points) if side_of[p] >= 0]
+        if not bad:
+            return
+        vxy[bad] = topo.xy[bad]
+        side_of[bad] = -1
+
+
+def _piece_polygons(topo, k, xy):
+    """Shapely polygons of piece k at points ``xy``, each with its point ids."""
+    import shapely
+
+    out = []
+    for rings in _ring_polygons(topo, k):
+        ids = [topo.vid[topo.ring_start[r]:topo.ring_start[r + 1]] for r in rings]
+        shells = [xy[i] for i in ids]
+        out.append((shapely.Polygon(shells[0], shells[1:]), np.concatenate(ids).tolist()))
+    return out
+
+
+def _side_of_wall(pa, pb, side_of, xy, sides):
+    """The side a wall from point pa to pb runs along (same direction), or -1."""
+    ks = {int(side_of[pa]), int(side_of[pb])} - {-1}
+    if len(ks) != 1:
+        if ks or sides is None:
+            return -1
+        # both ends corners: a whole side from corner to corner
+        for k, (x0, y0, x1, y1) in enumerate(np.asarray(sides, float)):
+            if (xy[pa] == (x0, y0)).all() and (xy[pb] == (x1, y1)).all():
+                return k
+        return -1
+    (k,) = ks
+    a, b = np.asarray(sides[k][:2], float), np.asarray(sides[k][2:], float)
+    for p in (pa, pb):  # the other end must be on the side too (or its corner)
+        if side_of[p] != k and not ((xy[p] == a).all() or (xy[p] == b).all()):
+            return -1
+    return k if np.dot(xy[pb] - xy[pa], b - a) > 0 else -1  # xy: the moved points
+
+
+def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid") -> Brep:
+    """The planar B-rep of a stack coverage (one closed shell per connected part).
+
+    ``cov`` should hold one piece per level (a single meshing cell), so that each
+    flat region is one face; pieces at the same level are merged first.
+    ``sides`` (k, 4): the straight sides ``(x0, y0, x1, y1)`` of the outline,
+    counter-clockwise; the walls along each are one face, whatever meets it.
+    """
+    import shapely
+
+    # one piece per level: a flat region is one face whatever the coverage's cells
+    by_level = {}
+    for geom, lvl in cov.pieces:
+        by_level.setdefault(int(lvl), []).append(geom)
+    pieces = []
+    for lvl, geoms in sorted(by_level.items()):
+        merged = geoms[0] if len(geoms) == 1 else shapely.coverage_union_all(geoms)
+        pieces.append((shapely.orient_polygons(merged), lvl))
+    cov = Coverage(pieces, cov.levels)
+    topo = topology(cov, triangulate=False, exact=True)
+    z = np.asarray(cov.levels, float)
+    ed = _Edges()
+    faces = []
+
+    # --- walls: one per ring edge whose neighbour across it is lower
+    u_all, v_all = topo.vid, topo.vid[topo.nxt]
+    w = np.flatnonzero((topo.level > topo.out_level) & (u_all != v_all))
+    wu, wv = u_all[w].tolist(), v_all[w].tolist()
+    wlo, whi = topo.out_level[w].tolist(), topo.level[w].tolist()
+    # split levels at each vertex: the bottoms and tops of the walls that meet there
+    splits = {}
+    for a, b, lo, hi in zip(wu, wv, wlo, whi):
+        for p in (a, b):
+            s = splits.setdefault(p, set())
+            s.add(lo)
+            s.add(hi)
+    splits = {p: sorted(s) for p, s in splits.items()}
+
+    def side(p, lo, hi, up):
+        """Signed vertical edges at vertex p from lo to hi (up) or hi to lo."""
+        ks = [k for k in splits[p] if lo <= k <= hi]
+        pairs = list(zip(ks[:-1], ks[1:]))
+        if up:
+            return [(ed.point(p, a), ed.point(p, b), ed.vertical(p, a, b)) for a, b in pairs]
+        return [(ed.point(p, b), ed.point(p, a), ed.vertical(p, b, a)) for a, b in reversed(pairs)]
+
+    ij = np.round(topo.xy / QUANTUM).astype(np.int64)
+    on_grid = np.all(ij * QUANTUM == topo.xy, axis=1)
+    outer = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
+    vxy, side_of = _onto_sides(topo.xy, sides, np.column_stack([u_all[outer], v_all[outer]]))
+    outer_loops = [[int(u_all[outer[i]]) for i in lp]
+                   for lp in _chain([(int(u_all[e]), int(v_all[e]), e) for e in outer], what)]
+    _keep_pieces_valid(topo, vxy, side_of, outer_loops)
+    sides_arr = None if sides is None else np.asarray(sides, float)
+    wall_edges = []  # per wall: its directed edges (start node, end node, signed edge)
+    keys = []
+    for a, b, lo, hi in zip(wu, wv, wlo, whi):
+        loop = [(ed.point(a, lo), ed.point(b, lo), ed.horizontal(a, b, lo))]
+        loop += side(b, lo, hi, up=True)
+        loop.append((ed.point(b, hi), ed.point(a, hi), ed.horizontal(b, a, hi)))
+        loop += side(a, lo, hi, up=False)
+        wall_edges.append(loop)
+        k = _side_of_wall(a, b, side_of, vxy, sides_arr)
+        if k >= 0:  # along a straight side of the outline: its plane
+            x0, y0, x1, y1 = sides_arr[k]
+            keys.append(("side", k, x1 - x0, y1 - y0))
+        elif side_of[a] >= 0 or side_of[b] >= 0 or not (on_grid[a] and on_grid[b]):  # a plane of its own
+            keys.append(("own", len(keys), *(vxy[b] - vxy[a]).tolist()))
+        else:  # exact integer key of the line through two grid points
+            dx, dy = (ij[b] - ij[a]).tolist()
+            g = gcd(dx, dy)
+            dx, dy = dx // g, dy // g
+            keys.append((dx, dy, dy * int(ij[a, 0]) - dx * int(ij[a, 1])))
+
+    # walls in one plane that share a vertical edge are one face (union-find)
+    parent = list(range(len(wall_edges)))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    users = {}
+    for i, loop in enumerate(wall_edges):
+        for _, _, e in loop:
+            users.setdefault(e if e >= 0 else ~e, []).append(i)
+    for e, us in users.items():
+        if len(us) == 2 and us[0] != us[1] and keys[us[0]] == keys[us[1]]:
+            ra, rb = find(us[0]), find(us[1])
+            if ra != rb:
+                parent[ra] = rb
+    groups = {}
+    for i in range(len(wall_edges)):
+        groups.setdefault(find(i), []).append(i)
+
+    pts = _node_xyz(ed, vxy, z)  # every wall node exists by now
+    for members in groups.values():
+        key = keys[members[0]]
+        dx, dy = key[-2:] if isinstance(key[0], str) else key[:2]
+        a0 = wu[members[0]]
+        origin = (float(vxy[a0, 0]), float(vxy[a0, 1]), float(z[wlo[members[0]]]))
+        if key[0] == "side":
+            origin = (float(sides_arr[key[1], 0]), float(sides_arr[key[1], 1]), origin[2])
+        normal, ref = (float(dy), float(-dx), 0.0), (float(dx), float(dy), 0.0)
+        if len(members) == 1:
+            faces.append(Face(origin, normal, ref, (tuple(e for _, _, e in wall_edges[members[0]]),)))
+            continue
+        # drop the edges inside the merged face (used by two of its walls), chain the rest
+        count = {}
+        for i in members:
+            for _, _, e in wall_edges[i]:
+                key = e if e >= 0 else ~e
+                count[key] = count.get(key, 0) + 1
+        directed = [d for i in members for d in wall_edges[i] if count[d[2] if d[2] >= 0 else ~d[2]] == 1]
+        loops = _chain(directed, what)
+        # the outer loop is the one of largest area in the wall's own (s, z) coordinates
+        dirn = np.array([dx, dy], float) / np.hypot(dx, dy)
+
+        def area(loop):
+            nodes = [directed[i][0] for i in loop]
+            p = pts[nodes]
+            return _loop_area(np.column_stack([p[:, :2] @ dirn, p[:, 2]]))
+
+        loops.sort(key=area, reverse=True)
+        faces.append(Face(origin, normal, ref, tuple(tuple(directed[i][2] for i in lp) for lp in loops)))
+
+    # --- horizontal tops: each polygon of each piece at its level
+    for k in range(len(topo.piece_level)):
+        lvl = int(topo.piece_level[k])
+        for rings in _ring_polygons(topo, k):
+            loops = []
+            for r in rings:
+                idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
+                uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
+                loops.append(tuple(ed.horizontal(a, b, lvl) for a, b in zip(uu, vv) if a != b))
+            faces.append(Face((0.0, 0.0, float(z[lvl])), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), tuple(loops)))
+
+    # --- bottoms: the ring edges with nothing beside them, run backwards
+    b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
+    directed = [(ed.point(vv, 0), ed.point(uu, 0), ed.horizontal(vv, uu, 0))
+                for uu, vv in zip(u_all[b].tolist(), v_all[b].tolist())]
+    loops = _chain(directed, what)
+    pts = _node_xyz(ed, vxy, z)
+    outers, holes = [], []
+    for lp in loops:
+        xy = pts[[directed[i][0] for i in lp], :2]
+        (outers if _loop_area(xy) < 0 else holes).append((lp, xy))  # seen from above, reversed
+    polys = [shapely.Polygon(xy) for _, xy in outers]
+    bottom_loops = [[tuple(directed[i][2] for i in lp)] for lp, _ in outers]
+    if holes:
+        tree = shapely.STRtree(polys)
+        for lp, xy in holes:
+            probe = shapely.Point(xy[0])
+            hits = [j for j in tree.query(probe) if polys[j].covers(probe)]
+            if not hits:
+                raise FabricationError(f"the B-rep of the {what} has a bottom hole outside every part; "
+                                       "nothing was written")
+            j = min(hits, key=lambda j: polys[j].area)
+            bottom_loops[j].append(tuple(directed[i][2] for i in lp))
+    for loops_ in bottom_loops:
+        faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops_)))
+
+    points = _node_xyz(ed, vxy, z)
+    edges = np.array(ed.list, dtype=np.int64).reshape(-1, 2)
+    return _compact(Brep(points, edges, tuple(faces), _solids(faces, len(edges))))
+
+
+def _compact(brep: Brep) -> Brep:
+    """Drop the edges inside merged faces, and points no edge uses; renumber."""
+    used = np.zeros(len(brep.edges), bool)
+    for face in brep.faces:
+        for loop in face.loops:
+            for e in loop:
+                used[e if e >= 0 else ~e] = True
+    new = np.cumsum(used) - 1
+    faces = tuple(Face(f.origin, f.normal, f.ref,
+                       tuple(tuple(int(new[e]) if e >= 0 else ~int(new[~e]) for e in loop) for loop in f.loops))
+                  for f in brep.faces)
+    edges = brep.edges[used]
+    keep = np.zeros(len(brep.points), bool)
+    keep[edges.ravel()] = True
+    renum = np.cumsum(keep) - 1
+    return Brep(brep.points[keep], renum[edges], faces, brep.solids)
+
+
+def _node_xyz(ed: _Edges, xy, z):
+    keys = np.array(list(ed.points.keys()), dtype=np.int64).reshape(-1, 2)
+    idx = np.array(list(ed.points.values()), dtype=np.int64)
+    out = np.empty((len(idx), 3))
+    out[idx, :2] = xy[keys[:, 0]]
+    out[idx, 2] = z[keys[:, 1]]
+    return out
+
+
+def _solids(faces, n_edges):
+    """Faces grouped into closed shells: faces are joined through the edges they share."""
+    parent = list(range(len(faces)))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    owner = np.full(n_edges, -1)
+    for f, face in enumerate(faces):
+        for loop in face.loops:
+            for e in loop:
+                e = e if e >= 0 else ~e
+                if owner[e] < 0:
+                    owner[e] = f
+                else:
+                    ra, rb = find(owner[e]), find(f)
+                    if ra != rb:
+                        parent[ra] = rb
+    groups = {}
+    for f in range(len(faces)):
+        groups.setdefault(find(f), []).append(f)
+    return tuple(tuple(g) for g in groups.values())
