@@ -69,8 +69,6 @@ def prepare_print(region, outline, profile, style, heights, stroke=None, *, path
     return profile, stack, report
 
 
-
-
 def _snapped(region, outline):
     import shapely
 
