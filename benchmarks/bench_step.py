@@ -1,6 +1,6 @@
 """Benchmark: STEP of a 200 x 200 mm relief tile (R = 15 mm, table3-3).
 
-Target (issue 5): under 30 s and under 20 MB on a 2-core machine, including the
+Target (issue 12): under 30 s, under 60 MB and under 1.5 GB peak on a 2-core machine, including the
 read-back check. Run: ``python benchmarks/bench_step.py [--size 200] [--style relief]``.
 """
 
