@@ -219,7 +219,7 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
     # Compute (and fail) before anything is written; a sheet that cannot fit fails before the tile.
     layout = layout_tile_sheet(tile, design, copies=copies, gap_mm=gap_mm, limits=limits) if sheet else None
     tile.region()
-    with staging_folder(outdir) as (staging, final):
+    with StagingFolder(outdir) as (staging, final):
         staged = []
         for fmt in formats:
             if layout is None:
@@ -241,8 +241,8 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
     return BuildResult([report for _, report in staged], skipped, picture)
 
 
-class staging_folder:
-    """A staging folder inside ``outdir``: ``with staging_folder(out) as (staging, move): ...``.
+class StagingFolder:
+    """A staging folder inside ``outdir``: ``with StagingFolder(out) as (staging, move): ...``.
 
     ``move(path)`` puts a staged file into ``outdir`` (an atomic rename) and returns
     its final path. On leaving, the staging folder is removed, and so is ``outdir``
