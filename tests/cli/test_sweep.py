@@ -83,3 +83,30 @@ def test_bad_sweeps_exit_2_and_write_nothing(design, tmp_path, args, match):
     assert res.exit_code == 2
     assert res.output.startswith("fabtiles: error: ") and re.search(match, res.output), res.output
     assert not out.exists()
+
+
+def test_progress_bar_on_a_terminal(design, tmp_path):
+    """On a terminal (stderr a pty) the sweep shows a progress bar; piped, it does not (see above)."""
+    import os
+    import pty
+    import subprocess
+    import sys
+
+    master, slave = pty.openpty()
+    proc = subprocess.run([sys.executable, "-m", "fabtiles", "sweep", str(design), "--vary", "tile.frame=2,3",
+                           "--format", "svg", "-o", str(tmp_path / "out"), "--jobs", "1"],
+                          stdout=subprocess.PIPE, stderr=slave, timeout=300)
+    os.close(slave)
+    chunks = []
+    while True:
+        try:
+            data = os.read(master, 65536)
+        except OSError:  # the pty is drained and closed
+            break
+        if not data:
+            break
+        chunks.append(data)
+    os.close(master)
+    shown = b"".join(chunks).decode(errors="replace")
+    assert proc.returncode == 0, shown
+    assert "sweeping" in shown and "50%" in shown and "100%" in shown, shown
