@@ -10,9 +10,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "fabtiles"
 
-# Private names still imported across modules, each with the reason it is not fixed yet.
-PENDING: set = set()
-
 
 def test_import_contracts_are_kept():
     """pattern -> geometry -> export -> build -> front ends, with no import going up (lazy ones too)."""
@@ -68,8 +65,6 @@ def borrowed_private_names(package: Path = PACKAGE) -> list[str]:
                     continue
                 if (root / Path(*source.split("."), f"{name}.py")).exists():
                     continue  # a private module of the package (fabtiles._limits): that is its purpose
-                if (rel, source) in PENDING:
-                    continue
                 found.append(f"{rel}:{node.lineno} imports {name} from {source}")
     return found
 
