@@ -219,7 +219,7 @@ def checked_weave(tile) -> Weave:
             raise ParameterError(
                 f"interlace_gap_mm must be >= 0 and <= {limit:.3g} mm for this pattern and stroke "
                 f"(a larger gap hides a whole strand under its crossings), got {given:g}; "
-                "make it smaller, or leave it out for the default")
+                "make it smaller, or leave it out for the default", param="interlace_gap_mm")
     return w
 
 

@@ -88,9 +88,17 @@ def fabrication_checks(tile, spec) -> dict:
 def field_of_param(param: str | None) -> str | None:
     """The query field of the design key an error names (its ``param``).
 
+    A bare parameter name (an error raised after the design was read, while the tile
+    is built) is the field of that name when exactly one field has it.
+
     >>> field_of_param("packing.gap_motif.n"), field_of_param("tile.size"), field_of_param("packing.kind")
     ('gap_n', 'width', 'packing')
+    >>> field_of_param("interlace_gap_mm"), field_of_param("n")
+    ('interlace_gap_mm', None)
     """
+    if param and "." not in param:
+        named = [key for key, (_, name, _) in FIELDS.items() if name == param]
+        return named[0] if len(named) == 1 else None
     parts = (param or "").split(".")
     if len(parts) == 3 and parts[:2] in (["packing", "gap_motif"], ["packing", "motifs"]):
         parts = parts[1:]
