@@ -331,30 +331,16 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid") -> Brep:
             dx, dy = dx // g, dy // g
             keys.append((dx, dy, dy * int(ij[a, 0]) - dx * int(ij[a, 1])))
 
-    # walls in one plane that share a vertical edge are one face (union-find)
-    parent = list(range(len(wall_edges)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
+    # walls in one plane that share a vertical edge are one face
     users = {}
     for i, loop in enumerate(wall_edges):
         for _, _, e in loop:
             users.setdefault(e if e >= 0 else ~e, []).append(i)
-    for e, us in users.items():
-        if len(us) == 2 and us[0] != us[1] and keys[us[0]] == keys[us[1]]:
-            ra, rb = find(us[0]), find(us[1])
-            if ra != rb:
-                parent[ra] = rb
-    groups = {}
-    for i in range(len(wall_edges)):
-        groups.setdefault(find(i), []).append(i)
+    groups = _groups(len(wall_edges), (us for us in users.values()
+                                       if len(us) == 2 and us[0] != us[1] and keys[us[0]] == keys[us[1]]))
 
     pts = _node_xyz(ed, vxy, z)  # every wall node exists by now
-    for members in groups.values():
+    for members in groups:
         key = keys[members[0]]
         dx, dy = key[-2:] if isinstance(key[0], str) else key[:2]
         a0 = wu[members[0]]
@@ -422,16 +408,23 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid") -> Brep:
 
     points = _node_xyz(ed, vxy, z)
     edges = np.array(ed.list, dtype=np.int64).reshape(-1, 2)
-    return _compact(Brep(points, edges, tuple(faces), _solids(faces, len(edges))))
+    return _compact(Brep(points, edges, tuple(faces), _solids(faces, len(edges))), what)
 
 
-def _compact(brep: Brep) -> Brep:
-    """Drop the edges inside merged faces, and points no edge uses; renumber."""
-    used = np.zeros(len(brep.edges), bool)
+def _compact(brep: Brep, what: str) -> Brep:
+    """Drop the edges inside merged faces, and points no edge uses; renumber.
+
+    Every edge left must be used once in each direction: a closed, manifold shell.
+    """
+    uses = np.zeros((len(brep.edges), 2), np.int64)
     for face in brep.faces:
         for loop in face.loops:
             for e in loop:
-                used[e if e >= 0 else ~e] = True
+                uses[e if e >= 0 else ~e, int(e < 0)] += 1
+    used = uses.any(axis=1)
+    if np.any(uses[used] != 1):
+        raise FabricationError(f"the B-rep of the {what} has an edge joining more than two faces "
+                               "(the region touches itself at a point); nothing was written")
     new = np.cumsum(used) - 1
     faces = tuple(Face(f.origin, f.normal, f.ref,
                        tuple(tuple(int(new[e]) if e >= 0 else ~int(new[~e]) for e in loop) for loop in f.loops))
@@ -452,17 +445,23 @@ def _node_xyz(ed: _Edges, xy, z):
     return out
 
 
+def _groups(n, pairs):
+    """The numbers 0..n-1 grouped by the pairs that join them (networkx's union-find)."""
+    from networkx.utils import UnionFind
+
+    sets = UnionFind(range(n))
+    for a, b in pairs:
+        sets.union(a, b)
+    groups = {}
+    for i in range(n):
+        groups.setdefault(sets[i], []).append(i)
+    return list(groups.values())
+
+
 def _solids(faces, n_edges):
     """Faces grouped into closed shells: faces are joined through the edges they share."""
-    parent = list(range(len(faces)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
     owner = np.full(n_edges, -1)
+    pairs = []
     for f, face in enumerate(faces):
         for loop in face.loops:
             for e in loop:
@@ -470,10 +469,5 @@ def _solids(faces, n_edges):
                 if owner[e] < 0:
                     owner[e] = f
                 else:
-                    ra, rb = find(owner[e]), find(f)
-                    if ra != rb:
-                        parent[ra] = rb
-    groups = {}
-    for f in range(len(faces)):
-        groups.setdefault(find(f), []).append(f)
-    return tuple(tuple(g) for g in groups.values())
+                    pairs.append((int(owner[e]), f))
+    return tuple(tuple(g) for g in _groups(len(faces), pairs))

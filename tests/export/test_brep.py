@@ -139,6 +139,13 @@ def test_any_stack_is_closed_planar_and_has_the_right_volume(layers):
         assert not (a.normal == c.normal and np.dot(np.subtract(a.origin, c.origin), a.normal) == 0)
 
 
+def test_a_region_touching_itself_at_a_point_is_refused():
+    """The writers bridge such contacts first (the mesh checks find them); the B-rep refuses them."""
+    pinch = shapely.MultiPolygon([box(0, 0, 1, 1), box(1, 1, 2, 2)])
+    with pytest.raises(FabricationError, match="an edge joining more than two faces"):
+        planar_brep(coverage([(pinch, 3.0)], bottom=0.0))
+
+
 def test_chain_refuses_an_open_loop():
     with pytest.raises(FabricationError, match="has an open loop; nothing was written"):
         _chain([(0, 1, 0), (1, 2, 1)], "test solid")
