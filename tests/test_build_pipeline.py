@@ -134,3 +134,32 @@ def test_a_bad_file_is_still_named_with_overrides():
     with pytest.raises(DesignError, match=r"^small\.toml: \[tile\] stroke must be"):
         design_from_text(SMALL.replace("stroke = 1.0", "stroke = 50"), source="small.toml",
                          overrides=["tile.frame=2"])
+
+
+def test_a_disk_error_is_a_fabtiles_error_and_leaves_nothing(tmp_path, monkeypatch):
+    from fabtiles import FabtilesError
+
+    def full(tile, fmt, path, design):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(pipeline, "export_format", full)
+    with pytest.raises(FabtilesError, match=r"cannot write into '.*out': No space left on device"):
+        pipeline.build_design(small(), tmp_path / "out", ["svg"])
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_output_folder_that_is_a_file(tmp_path):
+    from fabtiles import FabtilesError
+
+    (tmp_path / "f").write_text("keep")
+    with pytest.raises(FabtilesError, match=r"output folder '.*f' exists and is not a folder"):
+        pipeline.build_design(small(), tmp_path / "f", ["svg"])
+    with pytest.raises(FabtilesError, match=r"cannot create output folder '.*sub'"):
+        pipeline.build_design(small(), tmp_path / "f" / "sub", ["svg"])
+    assert (tmp_path / "f").read_text() == "keep"
+
+
+def test_preview_is_staged_with_the_files(tmp_path):
+    result = pipeline.build_design(small(), tmp_path, ["svg"], preview=True)
+    assert Path(result.preview) == tmp_path / "small.preview.svg"
+    assert result.preview not in result.paths and Path(result.preview).read_text().startswith("<?xml")

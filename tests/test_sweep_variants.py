@@ -71,3 +71,22 @@ def test_no_vary_or_a_key_twice():
         variants([], "d")
     with pytest.raises(ParameterError, match=r"--vary tile\.stroke is given twice"):
         variants([parse_vary("tile.stroke=1,2"), parse_vary("tile.stroke=3")], "d")
+
+
+def test_make_jobs_needs_a_readable_design(tmp_path):
+    from fabtiles import DesignError
+    from fabtiles.sweep import make_jobs
+
+    with pytest.raises(DesignError, match=r"cannot read design file '.*missing\.toml'"):
+        make_jobs(tmp_path / "missing.toml", variants([parse_vary("tile.frame=1")], "d"), tmp_path)
+
+
+def test_the_dask_extra_is_named_when_missing(monkeypatch):
+    import sys
+
+    from fabtiles import FabtilesError
+    from fabtiles.jobs import connect
+
+    monkeypatch.setitem(sys.modules, "distributed", None)  # as if not installed
+    with pytest.raises(FabtilesError, match=r"--scheduler needs the dask extra: pip install 'fabtiles\[dask\]'"):
+        connect("tcp://127.0.0.1:8786")

@@ -110,3 +110,10 @@ def test_progress_bar_on_a_terminal(design, tmp_path):
     shown = b"".join(chunks).decode(errors="replace")
     assert proc.returncode == 0, shown
     assert "sweeping" in shown and "50%" in shown and "100%" in shown, shown
+
+
+def test_jobs_and_scheduler_together_is_a_usage_error(design, tmp_path):
+    res = run("sweep", design, "--vary", "tile.frame=1,2", "-o", tmp_path / "o", "--jobs", "2",
+              "--scheduler", "tcp://127.0.0.1:1")
+    assert res.exit_code == 2 and "--jobs sets local processes" in res.output
+    assert not (tmp_path / "o").exists()
