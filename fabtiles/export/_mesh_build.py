@@ -518,13 +518,16 @@ def mesh_coverage(cov: Coverage):
     bottom = (tris * nl)[:, ::-1]
     u, v = topo.vid, topo.vid[topo.nxt]
     walls = []
-    for lo in range(nl - 1):
-        sel = (topo.out_level <= lo) & (topo.level > lo)
-        uu, vv = u[sel], v[sel]
-        a, b = uu * nl + lo, vv * nl + lo
-        c, d = vv * nl + lo + 1, uu * nl + lo + 1
-        walls.append(np.stack([a, b, c], axis=1))
-        walls.append(np.stack([a, c, d], axis=1))
+    if nl >= 4:
+        walls = [_ladder_walls(u, v, topo.out_level, topo.level, nl, len(topo.xy))]
+    else:
+        for lo in range(nl - 1):
+            sel = (topo.out_level <= lo) & (topo.level > lo)
+            uu, vv = u[sel], v[sel]
+            a, b = uu * nl + lo, vv * nl + lo
+            c, d = vv * nl + lo + 1, uu * nl + lo + 1
+            walls.append(np.stack([a, b, c], axis=1))
+            walls.append(np.stack([a, c, d], axis=1))
     faces = np.concatenate([top, bottom] + walls)
     used, faces = np.unique(faces.ravel(), return_inverse=True)
     faces = faces.reshape(-1, 3)
@@ -532,6 +535,52 @@ def mesh_coverage(cov: Coverage):
     verts[:, :2] = topo.xy[used // nl]
     verts[:, 2] = cov.levels[used % nl]
     return verts, faces
+
+
+def _ladder_walls(u, v, out_level, level, nl: int, n_vertices: int) -> np.ndarray:
+    """Wall triangles of the edges ``u -> v`` rising from ``out_level`` to ``level``, each
+    split only at the levels its end vertices need (``(m, 3)`` ids ``vertex * nl + level``).
+
+    With three or more levels over the bottom (an interlaced relief: plate, dips,
+    full height) splitting every wall at every level crossed doubles the walls of
+    every band edge that no dip touches (+400,000 triangles on the 600 x 400 mm
+    sheet). Here a wall's side at a vertex breaks only at the levels where some
+    wall at that vertex starts or ends, so the vertical edges still pair up; each
+    wall is a ladder between its two sides, one triangle per break.
+
+    >>> _ladder_walls(np.array([0]), np.array([1]), np.array([0]), np.array([2]), 4, 2).tolist()
+    [[0, 4, 6], [0, 6, 2]]
+    """
+    sel = out_level < level
+    u, v, lo, hi = u[sel], v[sel], out_level[sel].astype(np.int64), level[sel].astype(np.int64)
+    bits = (np.int64(1) << lo) | (np.int64(1) << hi)
+    mask = np.zeros(n_vertices, np.int64)
+    np.bitwise_or.at(mask, u, bits)
+    np.bitwise_or.at(mask, v, bits)
+    mu, mv = mask[u], mask[v]
+
+    def step(m, cur):
+        """The next break above ``cur`` on a side (``hi`` at the latest)."""
+        nxt = hi.copy()
+        for k in range(nl - 1, 0, -1):
+            here = (k > cur) & (k < hi) & (((m >> k) & 1) == 1)
+            nxt[here] = k
+        return nxt
+
+    a, b = lo.copy(), lo.copy()  # current level on u's side and on v's side
+    out = []
+    while True:
+        live = (a < hi) | (b < hi)
+        if not live.any():
+            break
+        na, nb = step(mu, a), step(mv, b)
+        right = live & (b < hi) & ((nb <= na) | (a >= hi))
+        left = live & ~right
+        out.append(np.stack([u[right] * nl + a[right], v[right] * nl + b[right], v[right] * nl + nb[right]], axis=1))
+        out.append(np.stack([u[left] * nl + a[left], v[left] * nl + b[left], u[left] * nl + na[left]], axis=1))
+        b = np.where(right, nb, b)
+        a = np.where(left, na, a)
+    return np.concatenate(out) if out else np.empty((0, 3), np.int64)
 
 
 def coverage_pair(region, outline, *, region_z: float, rest_z: float, bottom: float,

@@ -74,13 +74,17 @@ THIN_MM = 3 * 2.0**-10
 
 
 def _thin(parts):
+    """Parts no point of which is farther than :data:`THIN_MM` from their edge (at most).
+
+    Twice the area over the perimeter bounds the largest inscribed disc's radius
+    from above, so a part below :data:`THIN_MM` by it is thin (no buffer: 0.15 s
+    for the 10,287 dips of the 600 x 400 mm sheet).
+    """
     import shapely
 
     if not len(parts):
         return np.zeros(0, bool)
-    return shapely.is_empty(shapely.buffer(parts, -THIN_MM, quad_segs=1, join_style="mitre"))
-
-
+    return 2 * shapely.area(parts) < THIN_MM * shapely.length(parts)
 
 
 def body_layers(kind: str, r, o, stack, dips=None):
@@ -183,7 +187,7 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0):
     levels = np.array(sorted({*cov.levels.tolist(), dip_z(stack)}))
     remap = np.searchsorted(levels, cov.levels)
     top, low = int(np.searchsorted(levels, b + h)), int(np.searchsorted(levels, dip_z(stack)))
-    pieces = []
+    pieces, cut = [], []
     for piece, lvl in cov.pieces:
         lvl = int(remap[lvl])
         if lvl == top:
@@ -192,11 +196,10 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0):
             d = by_cell.get(cell)
             if d is not None:
                 # the dips lie inside the piece (off its edges but for the cell lines): exact
-                pieces.append((shapely.difference(piece, d), top))
-                pieces.append((d, low))
+                cut.append((shapely.difference(piece, d), top))
+                cut.append((d, low))
                 continue
-        pieces.append((piece, lvl))
+        pieces.append((piece, lvl))  # already oriented, as coverage_from_cells left it
     from ._mesh_build import coverage_from_cells
 
-    out = coverage_from_cells(pieces, levels, cov.xs, cov.ys)
-    return Coverage(out.pieces, out.levels, cov.xs, cov.ys)
+    return Coverage(pieces + coverage_from_cells(cut, levels).pieces, levels, cov.xs, cov.ys)
