@@ -49,7 +49,8 @@ def format_of(path) -> str:
     if suffix not in FORMATS:
         raise ParameterError(
             f"{suffix!r} is not a valid output format (from the suffix of {str(path)!r}), "
-            f"must be one of: {', '.join(FORMATS)}"
+            f"must be one of: {', '.join(FORMATS)}",
+            param="path",
         )
     return suffix
 
@@ -94,7 +95,8 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
     for key in options:
         if key not in allowed:
             raise ParameterError(
-                f"{key!r} is not a valid option for .{fmt} files, must be one of: {', '.join(allowed)}"
+                f"{key!r} is not a valid option for .{fmt} files, must be one of: {', '.join(allowed)}",
+                param=key,
             )
     options = {k: v for k, v in options.items() if v is not None}
     if region is None or region.is_empty:

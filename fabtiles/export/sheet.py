@@ -67,17 +67,18 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
     """
     profile = load_profile(profile, kind="laser")
     if not isinstance(tiles, (list, tuple)) or not tiles:
-        raise ParameterError("tiles must be a non-empty list of (region, outline) pairs")
+        raise ParameterError("tiles must be a non-empty list of (region, outline) pairs", param="tiles")
     copies = check_int("copies", copies, low=1, high=10_000)
     gap = check_float("gap_mm", profile.kerf_mm + GAP_EXTRA_MM if gap_mm is None else gap_mm,
                       low=profile.kerf_mm, low_open=True)
     if centrelines is not None and len(centrelines) != len(tiles):
-        raise ParameterError(f"centrelines must hold one array per tile ({len(tiles)}), got {len(centrelines)}")
+        raise ParameterError(f"centrelines must hold one array per tile ({len(tiles)}), got {len(centrelines)}",
+                             param="centrelines")
     bed_w, bed_h = profile.bed_mm
     sizes = []
     for k, pair in enumerate(tiles):
         if not isinstance(pair, (list, tuple)) or len(pair) != 2:
-            raise ParameterError(f"tiles[{k}] must be a (region, outline) pair, got {pair!r}")
+            raise ParameterError(f"tiles[{k}] must be a (region, outline) pair, got {pair!r}", param="tiles")
         xmin, ymin, xmax, ymax = pair[1].bounds
         sizes.append((xmax - xmin, ymax - ymin, xmin, ymin))
     order = list(range(len(tiles))) * (copies if not fill else 10_000)

@@ -55,15 +55,16 @@ def polygon_parts(region, name: str = "region") -> np.ndarray:
     2
     """
     if not isinstance(region, shapely.Geometry):
-        raise ParameterError(f"{name} must be a shapely Polygon or MultiPolygon, got {type(region).__name__}")
+        raise ParameterError(f"{name} must be a shapely Polygon or MultiPolygon, got {type(region).__name__}",
+                             param=name)
     parts = shapely.get_parts(region)
     if len(parts) == 0 or region.is_empty:
-        raise ParameterError(f"{name} is empty: there is nothing to cut")
+        raise ParameterError(f"{name} is empty: there is nothing to cut", param=name)
     kinds = set(shapely.get_type_id(parts).tolist())
     if not kinds <= {3}:
-        raise ParameterError(f"{name} must be a shapely Polygon or MultiPolygon, got {region.geom_type}")
+        raise ParameterError(f"{name} must be a shapely Polygon or MultiPolygon, got {region.geom_type}", param=name)
     if not shapely.is_valid(region):
-        raise ParameterError(f"{name} is not a valid polygon: {shapely.is_valid_reason(region)}")
+        raise ParameterError(f"{name} is not a valid polygon: {shapely.is_valid_reason(region)}", param=name)
     parts = parts[~shapely.is_empty(parts)]
     return parts
 
@@ -310,9 +311,10 @@ def score_paths(centrelines, outline, *, tolerance_mm: float = 0.01) -> list:
     """
     seg = np.asarray(centrelines, dtype=float)
     if seg.ndim != 3 or seg.shape[1:] != (2, 2):
-        raise ParameterError(f"centrelines must be an array of shape (k, 2, 2), got shape {seg.shape}")
+        raise ParameterError(f"centrelines must be an array of shape (k, 2, 2), got shape {seg.shape}",
+                             param="centrelines")
     if not np.all(np.isfinite(seg)):
-        raise ParameterError("centrelines must be finite numbers, got NaN or infinite values")
+        raise ParameterError("centrelines must be finite numbers, got NaN or infinite values", param="centrelines")
     seg = np.round(seg, ROUND_DECIMALS) + 0.0
     seg = seg[np.any(seg[:, 0] != seg[:, 1], axis=1)]
     # canonical direction, then drop exact repeats

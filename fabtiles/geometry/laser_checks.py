@@ -286,11 +286,13 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
         stroke = check_float("stroke", stroke, low=0, low_open=True)
         if stroke < profile.min_feature_mm:
             raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of laser "
-                                 f"profile {profile.name!r}, got {stroke:g}")
+                                 f"profile {profile.name!r}, got {stroke:g}", param="stroke")
         if kerf > stroke:
-            raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {kerf:g}")
+            raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {kerf:g}",
+                                 param="kerf_mm")
     if not isinstance(fill_small_holes, bool):
-        raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}")
+        raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}",
+                             param="fill_small_holes")
     parts = polygon_parts(region)
     outline_parts = polygon_parts(outline, "outline")
     check_fits_bed(outline, profile)
@@ -313,7 +315,8 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
         report.stats["area_mm2"] = round(float(shapely.area(parts).sum()), 3)
     else:
         if centrelines is None or len(np.asarray(centrelines)) == 0:
-            raise ParameterError("the score mode needs centrelines (an array of shape (k, 2, 2)), got none")
+            raise ParameterError("the score mode needs centrelines (an array of shape (k, 2, 2)), got none",
+                                 param="centrelines")
         job.outer = outline_contours(outline, kerf_mm=kerf, tolerance_mm=profile.tolerance_mm)
         job.score = score_paths(centrelines, outline, tolerance_mm=profile.tolerance_mm)
         report.stats["area_mm2"] = round(float(shapely.area(outline_parts).sum()), 3)

@@ -81,6 +81,7 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
     if style == "deboss" and values["deboss_mm"] >= values["base_mm"]:
         raise ParameterError(
             f"deboss_mm must be smaller than base_mm (the plate is {values['base_mm']:g} mm thick), "
-            f"got {values['deboss_mm']:g}"
+            f"got {values['deboss_mm']:g}",
+            param="deboss_mm",
         )
     return Stack(style, values["base_mm"], values["relief_mm"], values["pierced_mm"], values["deboss_mm"])
