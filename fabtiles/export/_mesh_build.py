@@ -33,10 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._errors import FabricationError, ParameterError
-from ..geometry.stack import MAX_HEIGHT_MM, Stack, resolve_stack  # noqa: F401  (the mesh and STEP writers' names)
-
-QUANTUM = 2.0**-10
-"""Grid of every x, y coordinate in a mesh (mm): about 1 micron, exact in float32."""
+from ..geometry.stack import MAX_HEIGHT_MM, QUANTUM, Stack, resolve_stack  # noqa: F401  (the writers' names)
 
 CELL_VERTICES = 1500
 """Target number of region vertices per meshing cell."""
