@@ -40,7 +40,7 @@ def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, ye
     built, 2 when some failed or on bad input.
 
     \b
-    fabtiles sweep samples/table3-3.toml --vary packing.radius=10:20:5 --vary tile.stroke=0.8,1.2 -o sweep/
+    fabtiles sweep samples/table3-3.toml --vary packing.radius=10:20:5 --vary tile.stroke=1,1.5 -o sweep/
     fabtiles sweep samples/rosette.toml --vary motif.preset=table3-1,table3-2,table3-3 -o presets/ --format svg
     """
     from ..sweep import explain, make_jobs, parse_vary, variants, write_index
