@@ -148,7 +148,9 @@ def export_format(tile, fmt: str, path: Path, design) -> Report:
     if dispatch.profile_kind(fmt) == "laser":
         return dispatch.export_tile(tile, path, profile=out.laser_profile, mode=out.laser_mode,
                                     fill_small_holes=out.fill_small_holes)
-    return dispatch.export_tile(tile, path, profile=out.printer_profile, style=out.print_style, **out.heights())
+    extra = {"inlay": True} if out.inlay and fmt == "3mf" else {}  # the inlay is a 3MF part
+    return dispatch.export_tile(tile, path, profile=out.printer_profile, style=out.print_style, **out.heights(),
+                                **extra)
 
 
 def export_sheet(layout, tile, path: Path, design) -> Report:

@@ -24,7 +24,8 @@ error naming the key, its section and the valid keys (with a "did you mean").
     ``printer_profile``, ``laser_mode``, ``print_style``, ``name`` (default: the
     file's stem), ``fill_small_holes`` (laser: fill holes too small to cut),
     ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm`` (print heights
-    overriding the printer profile's).
+    overriding the printer profile's), ``inlay`` (a deboss tile's 3MF gets a second
+    part filling the grooves flush, for a two-colour inlay print).
 
 >>> d = design_from_text('''
 ... [motif]
@@ -76,7 +77,7 @@ HEIGHT_KEYS = ("base_mm", "relief_mm", "pierced_mm", "deboss_mm")
 """The ``[output]`` keys overriding the printer profile's heights (mm)."""
 
 OUTPUT_KEYS = ("formats", "laser_profile", "printer_profile", "laser_mode", "print_style", "name",
-               "fill_small_holes") + HEIGHT_KEYS
+               "fill_small_holes", "inlay") + HEIGHT_KEYS
 """The valid keys of ``[output]`` (the exporters read the mode/style/profile keys)."""
 
 _KEYS = {"motif": MOTIF_KEYS, "packing": PACKING_KEYS, "tile": TILE_KEYS, "output": OUTPUT_KEYS}
@@ -139,6 +140,7 @@ class OutputSpec:
     print_style: str | None = None
     name: str | None = None
     fill_small_holes: bool = False
+    inlay: bool = False
     base_mm: float | None = None
     relief_mm: float | None = None
     pierced_mm: float | None = None
@@ -524,6 +526,7 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
         print_style=_choice(table, "print_style", PRINT_STYLES, source, where, None),
         name=name,
         fill_small_holes=_typed(table, "fill_small_holes", (bool,), source, where, "true or false", False),
+        inlay=_typed(table, "inlay", (bool,), source, where, "true or false", False),
         **{key: _height(table, key, source, where) for key in HEIGHT_KEYS},
     )
 

@@ -163,3 +163,26 @@ def test_preview_is_staged_with_the_files(tmp_path):
     result = pipeline.build_design(small(), tmp_path, ["svg"], preview=True)
     assert Path(result.preview) == tmp_path / "small.preview.svg"
     assert result.preview not in result.paths and Path(result.preview).read_text().startswith("<?xml")
+
+
+def test_inlay_key_gives_the_deboss_3mf_its_inlay_part(tmp_path):
+    """[output] inlay = true: the 3MF holds the plate and the inlay; the STL of the same build is one body."""
+    from fabtiles.export.threemf import read_3mf
+
+    design = small(overrides=["output.print_style=deboss", "output.inlay=true"])
+    assert design.output.inlay is True
+    pipeline.build_design(design, tmp_path, formats=["3mf", "stl"])
+    assert list(read_3mf(tmp_path / "small.3mf")) == ["plate", "inlay"]
+    assert (tmp_path / "small.stl").stat().st_size > 0
+
+
+def test_inlay_needs_the_deboss_style(tmp_path):
+    design = small(overrides=["output.inlay=true"])
+    with pytest.raises(ParameterError, match="inlay=True needs style='deboss'"):
+        pipeline.build_design(design, tmp_path, formats=["3mf"])
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_inlay_must_be_a_flag():
+    with pytest.raises(DesignError, match=r"inlay must be true or false"):
+        small(overrides=["output.inlay=1"])

@@ -112,6 +112,7 @@ FIELDS = {
     "laser_mode": ("output", "laser_mode", _text),
     "print_style": ("output", "print_style", _text),
     "fill_small_holes": ("output", "fill_small_holes", _flag),
+    "inlay": ("output", "inlay", _flag),
     "base_mm": ("output", "base_mm", _number),
     "relief_mm": ("output", "relief_mm", _number),
     "pierced_mm": ("output", "pierced_mm", _number),

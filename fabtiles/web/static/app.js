@@ -33,10 +33,11 @@ const state = {
   miter_limit: 4, seamless: false, fill_small_holes: true, name: "",
   base_mm: "", relief_mm: "", pierced_mm: "", deboss_mm: "",  // "": the printer profile's
   interlace: false, interlace_gap_mm: "", interlace_cut: false,  // woven strands; "": a third of the stroke
+  inlay: false,  // deboss: the 3MF gets a second part filling the grooves
 };
 // Options sent only when set (text boxes and checkboxes of the design's [output] and [packing]).
 const TEXT_KEYS = ["name", "base_mm", "relief_mm", "pierced_mm", "deboss_mm", "interlace_gap_mm"];
-const FLAG_KEYS = ["seamless", "fill_small_holes", "interlace", "interlace_cut"];
+const FLAG_KEYS = ["seamless", "fill_small_holes", "interlace", "interlace_cut", "inlay"];
 let showFindings = true, chosen = null;  // the findings overlay; the finding chosen in the list
 let presets = {}, tilings = {};
 
@@ -122,6 +123,7 @@ function query() {
   if (state.miter_limit !== 4) q.set("miter_limit", state.miter_limit);
   if (state.interlace) q.set("interlace", "true");
   if (state.interlace_cut) q.set("interlace_cut", "true");
+  if (state.inlay) q.set("inlay", "true");
   q.set("fill_small_holes", state.fill_small_holes ? "true" : "false");
   for (const k of TEXT_KEYS) if (String(state[k]).trim() !== "") q.set(k, String(state[k]).trim());
   return q;
