@@ -250,7 +250,7 @@ def tile_score_lines(tile) -> np.ndarray:
     """The laser score lines of a tile: centre-lines, under strands broken if interlaced."""
     if not tile.interlace:
         return tile.centrelines()
-    from .tile import clip_segments
+    from .stroke import clip_segments
 
     w = tile.weave()
     seg = w.broken_pieces(tile.stroke / 2, tile_gap(tile))

@@ -65,6 +65,22 @@ def segment_graph(segments: np.ndarray, *, return_ids: bool = False):
     return (verts, ids, seg_ids) if return_ids else (verts, ids)
 
 
+def clip_segments(seg: np.ndarray, outline) -> np.ndarray:
+    """Segments ``(k, 2, 2)`` clipped to a convex ``outline``, merged where they meet (:meth:`Tile.centrelines`)."""
+    lines = shapely.linestrings(seg)
+    shapely.prepare(outline)
+    clipped = shapely.intersection(lines, outline)
+    keep = shapely.get_type_id(clipped) == 1  # LineString
+    coords, idx = shapely.get_coordinates(clipped[keep], return_index=True)
+    if not len(coords):
+        return np.empty((0, 2, 2))
+    first = np.r_[0, np.flatnonzero(np.diff(idx)) + 1]
+    last = np.r_[first[1:] - 1, len(idx) - 1]
+    out = np.stack([coords[first], coords[last]], axis=1)
+    verts, edges = segment_graph(out)
+    return verts[edges]
+
+
 def band_polygons(verts: np.ndarray, edges: np.ndarray, half: float) -> np.ndarray:
     """One counter-clockwise quad ``(e, 4, 2)`` of half-width ``half`` per edge."""
     a, b = verts[edges[:, 0]], verts[edges[:, 1]]

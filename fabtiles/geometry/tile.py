@@ -19,7 +19,7 @@ from .._validate import check_choice, check_float
 from ..pattern.archimedean import ArchimedeanPacking
 from ..pattern.packing import Packing
 from ..pattern.star import Star
-from .stroke import JOINS, segment_graph, stroke_cross_section, to_cross_section, to_shapely
+from .stroke import JOINS, clip_segments, stroke_cross_section, to_cross_section, to_shapely
 
 OUTLINES = ("square", "rectangle", "hexagon", "circle")
 """Valid tile outlines. ``hexagon`` is pointy-top, its size is the width across flats."""
@@ -321,22 +321,6 @@ class Tile:
         if self._centrelines is None:
             self._centrelines = clip_segments(self.segments(), self.outline_shape())
         return self._centrelines.copy()
-
-
-def clip_segments(seg: np.ndarray, outline) -> np.ndarray:
-    """Segments ``(k, 2, 2)`` clipped to a convex ``outline``, merged as :meth:`Tile.centrelines` says."""
-    lines = shapely.linestrings(seg)
-    shapely.prepare(outline)
-    clipped = shapely.intersection(lines, outline)
-    keep = shapely.get_type_id(clipped) == 1  # LineString
-    coords, idx = shapely.get_coordinates(clipped[keep], return_index=True)
-    if not len(coords):
-        return np.empty((0, 2, 2))
-    first = np.r_[0, np.flatnonzero(np.diff(idx)) + 1]
-    last = np.r_[first[1:] - 1, len(idx) - 1]
-    out = np.stack([coords[first], coords[last]], axis=1)
-    verts, edges = segment_graph(out)
-    return verts[edges]
 
 
 def _check_bool(name: str, value) -> bool:
