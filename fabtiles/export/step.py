@@ -22,7 +22,7 @@ from .._errors import FabricationError
 from .._io import atomic_write
 from ._mesh_build import QUANTUM, Stack, coverage
 from .brep import planar_brep
-from .layers import body_layers
+from .layers import body_layers, dip_z, split_region
 from .mesh import checked_parts, prepare_print
 from .step_file import step_text
 
@@ -40,26 +40,28 @@ SINGLE_CELL = 1 << 40
 
 
 def _layers(kind, r, o, stack, dips):
-    """The body's layers: the region and the rest of the outline from ONE snap-rounded noding.
+    """The body's layers: region, dips and the rest of the outline from ONE snap-rounded noding.
 
-    The meshes cut them with two overlays (:func:`body_layers`), which may leave
-    cracks and pinholes a quantum wide where the region meets a slanted side:
-    harmless in a mesh, an invalid face in a B-rep. Here the boundaries of both are
-    noded together on the 2**-10 mm grid and polygonized: the faces share every
-    vertex, and slivers under a quantum wide collapse.
+    The meshes cut them with separate overlays (:func:`body_layers`), which may
+    leave cracks and pinholes a quantum wide where the region meets a slanted side:
+    harmless in a mesh, an invalid face in a B-rep. Here the boundaries of all of
+    them are noded together on the 2**-10 mm grid and polygonized: the faces share
+    every vertex, and slivers under a quantum wide collapse.
     """
     import shapely
 
-    if kind not in ("relief", "plate") or (dips is not None and not dips.is_empty):
-        return body_layers(kind, r, o, stack, dips)
-    lines = shapely.union_all([shapely.boundary(r), shapely.boundary(o)], grid_size=QUANTUM)
+    if kind not in ("relief", "plate"):
+        return body_layers(kind, r, o, stack)
+    d = split_region(r, dips)[1] if kind == "relief" else shapely.Polygon()
+    lines = shapely.union_all([shapely.boundary(g) for g in (r, o, d) if not g.is_empty], grid_size=QUANTUM)
     faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(lines)))
     faces = faces[shapely.area(faces) > 0]
     probe = shapely.point_on_surface(faces)
     in_o, in_r = shapely.contains(o, probe), shapely.contains(r, probe)
+    in_d = shapely.contains(d, probe) if not d.is_empty else np.zeros(len(faces), bool)
     top = stack.base + stack.relief if kind == "relief" else stack.base - stack.deboss
-    return [(shapely.MultiPolygon(list(faces[in_o & in_r])), top),
-            (shapely.MultiPolygon(list(faces[in_o & ~in_r])), stack.base)], 0.0
+    layers = [(faces[in_o & in_r & ~in_d], top), (faces[in_o & ~in_r], stack.base), (faces[in_o & in_d], dip_z(stack))]
+    return [(shapely.MultiPolygon(list(g)), z) for g, z in layers if len(g)], 0.0
 
 
 def _sides(outline):

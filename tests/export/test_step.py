@@ -182,6 +182,26 @@ def test_cad_fillets_the_corners_and_drills_a_hole(tmp_path):
     assert drilled.volume == pytest.approx(filleted.volume - math.pi * 1.5**2 * (B + H), rel=1e-3)
 
 
+def test_interlaced_relief_dips_in_the_step_too(tmp_path):
+    """A woven relief on a seamless hexagon: valid, planar, the dips' level present, the mesh's volume."""
+    from fabtiles.export.layers import dip_z
+    from fabtiles.geometry.stack import resolve_stack
+
+    import fabtiles as ft
+
+    tile = ft.Tile("hexagon", 50, HexPacking(12, Star.preset("table3-3")), frame=0.0, stroke=1.5, interlace=True)
+    path = tmp_path / "t.step"
+    report = tile.export(path, profile="fdm-0.4mm")
+    back = step.read_step(path)
+    planes = _planes(back)
+    assert_no_coplanar_neighbours(back)
+    dip = dip_z(resolve_stack("fdm-0.4mm"))
+    assert any(n[2] > 0.999 and abs(p[2] - dip) < 1e-9 for n, p, _ in planes)
+    assert occt_volume(back) == pytest.approx(report.stats["volume_mm3"], rel=0.0005)
+    stl = tile.export(tmp_path / "t.stl", profile="fdm-0.4mm")
+    assert report.stats["volume_mm3"] == pytest.approx(stl.stats["volume_mm3"], rel=1e-6)
+
+
 def test_pierced_in_pieces_gives_one_solid_each(tmp_path):
     region = shapely.MultiPolygon([box(1, 1, 4, 4), box(6, 6, 9, 9)])
     path = tmp_path / "t.step"
