@@ -2,8 +2,11 @@
 
     python samples/render.py
 
-The files are reproducible byte for byte; tests/cli/test_build.py checks that
-rendering each sample gives exactly the committed file.
+The samples go to ``samples/renders/``, the 11 Archimedean tiling samples
+(``samples/tilings/``) to ``samples/renders/tilings/`` (the README's gallery). The files
+are reproducible byte for byte; tests/cli/test_build.py and
+tests/export/test_tiling_samples.py check that rendering a sample gives exactly the
+committed file.
 """
 
 from __future__ import annotations
@@ -26,10 +29,11 @@ def render(design_path, out_dir) -> Path:
 
 
 def main() -> None:
-    out = HERE / "renders"
-    for path in sorted(HERE.glob("*.toml")):
-        written = render(path, out)
-        print(f"wrote {written.relative_to(HERE.parent)}")
+    for designs, out in ((HERE, HERE / "renders"), (HERE / "tilings", HERE / "renders" / "tilings")):
+        out.mkdir(parents=True, exist_ok=True)
+        for path in sorted(designs.glob("*.toml")):
+            written = render(path, out)
+            print(f"wrote {written.relative_to(HERE.parent)}")
 
 
 if __name__ == "__main__":

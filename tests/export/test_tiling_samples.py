@@ -55,7 +55,7 @@ def test_sample_stl_is_watertight(tiling, tmp_path):
 def test_gallery_renders_are_reproducible(tmp_path):
     import importlib.util
 
-    spec = importlib.util.spec_from_file_location("render_tilings", SAMPLES.parent / "render_tilings.py")
+    spec = importlib.util.spec_from_file_location("render_samples", SAMPLES.parent / "render.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     for tiling in ("3.3.4.3.4", "4.6.12"):
