@@ -216,17 +216,49 @@ def _big_face_valid(face) -> bool:
     return bool(shapely.is_valid(shapely.Polygon(outer_ring, rings)))
 
 
+def _edge_uses(shell):
+    """How often OCCT's shell uses each of its edges, and the sum of their senses (+1, -1).
+
+    A shell is closed when every edge bounds exactly two faces, and consistently
+    oriented when they run it in opposite senses (the sum is 0). Read from OCCT's
+    own topology of the file. ``BRepCheck_Shell.Orientation`` answers the same but
+    grows with the square of the faces: 230 s for the 600 x 400 mm sheet's 74,932
+    faces, where this takes 1.9 s (0.3 s for the 200 x 200 mm tile).
+    """
+    from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED
+    from OCP.TopExp import TopExp, TopExp_Explorer
+
+    edges = ShapeMap()
+    TopExp.MapShapes_s(shell, TopAbs_EDGE, edges)
+    index, sense = [], []
+    sign = {TopAbs_FORWARD: 1, TopAbs_REVERSED: -1}
+    faces = TopExp_Explorer(shell, TopAbs_FACE)
+    while faces.More():
+        walk = TopExp_Explorer(faces.Current(), TopAbs_EDGE)  # senses composed with the face's
+        while walk.More():
+            edge = walk.Current()
+            index.append(edges.FindIndex(edge))
+            sense.append(sign.get(edge.Orientation(), 0))
+            walk.Next()
+        faces.Next()
+    n = edges.Extent() + 1
+    count = np.bincount(np.asarray(index, np.int64), minlength=n)[1:]
+    turn = np.bincount(np.asarray(index, np.int64), weights=np.asarray(sense, float), minlength=n)[1:]
+    return count, turn
+
+
 def check_solids(solids, *, volume: float, parts: int, name: str = "STEP file read back"):
     """Check solids read back from STEP: valid, closed, as many as expected, the mesh's volume.
 
     Each face is checked with ``BRepCheck_Analyzer`` (faces with more than
     ``BIG_FACE_WIRES`` wires wire by wire, see :func:`_big_face_valid`), each
-    shell with ``BRepCheck_Shell`` (closed, consistently oriented), and OCCT's
+    shell must be closed and consistently oriented (:func:`_edge_uses`), and OCCT's
     own volume of all solids (``BRepGProp``, as CAD programs report it) must be
     within ``STEP_VOLUME_TOLERANCE`` of ``volume``.
     Raises :class:`~fabtiles.FabricationError`.
     """
-    from OCP.BRepCheck import BRepCheck_Analyzer, BRepCheck_NoError, BRepCheck_Shell
+    from OCP.BRepCheck import BRepCheck_Analyzer
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
     from OCP.TopAbs import TopAbs_FACE, TopAbs_SHELL
@@ -246,10 +278,10 @@ def check_solids(solids, *, volume: float, parts: int, name: str = "STEP file re
         n_shells = 0
         while shells.More():
             n_shells += 1
-            check = BRepCheck_Shell(TopoDS.Shell(shells.Current()))
-            if check.Closed(False) != BRepCheck_NoError:
+            count, turn = _edge_uses(shells.Current())
+            if np.any(count != 2):
                 fail(f"has an open shell (solid {k})")
-            if check.Orientation(False) != BRepCheck_NoError:
+            if np.any(turn != 0):
                 fail(f"has a shell with faces oriented both ways (solid {k})")
             shells.Next()
         if n_shells != 1:

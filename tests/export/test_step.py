@@ -260,6 +260,21 @@ def test_check_solids_refuses_an_open_shell(tmp_path):
         step.check_solids(step.read_step_solids(bad), volume=report.stats["volume_mm3"], parts=1)
 
 
+def test_check_solids_refuses_a_face_turned_inside_out(tmp_path):
+    """One face's loop reversed by hand in a good file: its edges run the wrong way round."""
+    import re
+
+    tile = _tile(size=30)
+    path, report = _write(tmp_path, tile)
+    text = path.read_text()
+    bound = re.search(r"ADVANCED_FACE\('',\(#(\d+)\),#\d+,\.T\.\)", text).group(1)  # a face of one loop
+    line = re.search(rf"^#{bound}=FACE_OUTER_BOUND\('',#\d+,\.T\.\);$", text, re.M).group(0)
+    bad = tmp_path / "bad.step"
+    bad.write_text(text.replace(line, line.replace(".T.)", ".F.)"), 1))
+    with pytest.raises(FabricationError, match="oriented both ways"):
+        step.check_solids(step.read_step_solids(bad), volume=report.stats["volume_mm3"], parts=1)
+
+
 def test_big_faces_are_checked_wire_by_wire(tmp_path, monkeypatch):
     """The per-wire check of faces with many holes agrees with BRepCheck on a valid and a broken face."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
