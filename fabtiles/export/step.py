@@ -75,7 +75,7 @@ def _sides(outline):
     return np.vstack(rows) if rows else np.empty((0, 4))
 
 
-def build_breps(*, region, outline, stack: Stack, dips=None):
+def build_brep(*, region, outline, stack: Stack, dips=None):
     """The planar B-rep of a printed tile, beside its checked mesh.
 
     Returns ``(brep, mesh_volume, n_solids)``. The mesh goes first: it is
@@ -327,7 +327,7 @@ def write_step(path, *, region, outline, profile, style=None, stroke=None, base_
 
     heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
     _, stack, report = prepare_print(region, outline, profile, style, heights, stroke, path=path, fmt="step")
-    brep, volume, parts = build_breps(region=region, outline=outline, stack=stack, dips=dips)
+    brep, volume, parts = build_brep(region=region, outline=outline, stack=stack, dips=dips)
     text = step_text([brep], name=name or Path(path).stem)
 
     def write(tmp):

@@ -275,6 +275,29 @@ def test_check_solids_refuses_a_face_turned_inside_out(tmp_path):
         step.check_solids(step.read_step_solids(bad), volume=report.stats["volume_mm3"], parts=1)
 
 
+def test_check_solids_refuses_a_face_whose_loop_disagrees_with_its_plane(tmp_path):
+    """A face's same_sense flipped by hand: OCCT builds it on the reversed plane, and BRepCheck refuses it."""
+    import re
+
+    tile = _tile(size=30)
+    path, report = _write(tmp_path, tile)
+    text = path.read_text()
+    face = re.search(r"ADVANCED_FACE\('',\(#\d+\),#\d+,\.T\.\)", text).group(0)
+    bad = tmp_path / "bad.step"
+    bad.write_text(text.replace(face, face[:-4] + ".F.)", 1))
+    with pytest.raises(FabricationError, match=r"has an invalid face \(solid 1, BRepCheck_Analyzer\)"):
+        step.check_solids(step.read_step_solids(bad), volume=report.stats["volume_mm3"], parts=1)
+
+
+def test_a_file_that_is_not_step_cannot_be_read_back(tmp_path):
+    junk = tmp_path / "junk.step"
+    junk.write_text("this is not a STEP file\n")
+    with pytest.raises(FabricationError, match="cannot read back the STEP file"):
+        step.read_step_solids(junk)
+    with pytest.raises(FabricationError, match="cannot read back the STEP file"):
+        step.read_step(junk)
+
+
 def test_big_faces_are_checked_wire_by_wire(tmp_path, monkeypatch):
     """The per-wire check of faces with many holes agrees with BRepCheck on a valid and a broken face."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
