@@ -15,7 +15,8 @@ stack directly, without mesh booleans:
    600 x 400 mm sheet); cells of a few hundred vertices keep it linear. Rings are
    first noded at the cell lines (crossing points inserted, snapped), so the
    pieces of neighbouring cells share their seam vertices exactly.
-3. Triangulate each piece (manifold3d's triangulator), put its top at its level,
+3. Triangulate each piece (ear clipping by mapbox_earcut, checked exactly, else
+   manifold3d's triangulator), put its top at its level,
    its bottom at the common bottom, and raise a wall on every piece edge whose
    neighbour across it is lower (no neighbour: the bottom). Walls are split at
    every level so vertical edges always pair up.
@@ -97,7 +98,7 @@ def snap(geom):
             poly_off2 = np.concatenate([[0], np.cumsum(np.add.reduceat(alive, poly_off[:-1]))])
             del new_index
             polys = shapely.from_ragged_array(shapely.GeometryType.POLYGON, pts, (ring_off2, poly_off2))
-            rounded = polys[0] if len(polys) == 1 else shapely.MultiPolygon(list(polys))
+            rounded = polys[0] if len(polys) == 1 else shapely.multipolygons(polys)
             if shapely.is_valid(rounded):
                 return rounded
     return shapely.set_precision(geom, QUANTUM)
@@ -150,7 +151,13 @@ def _node_rings(coords: np.ndarray, ring_off: np.ndarray, xs: np.ndarray, ys: np
         k = np.arange(total) - np.repeat(np.cumsum(cnt) - cnt, cnt) + np.repeat(lo, cnt)
         value = lines[k]
         t = (value - p[seg, axis]) / (q[seg, axis] - p[seg, axis])
-        pts = p[seg] + t[:, None] * (q[seg] - p[seg])
+        # the point from the segment's lower end, whichever way the ring runs: a ring and
+        # the same ring reversed (a dip and the hole it leaves) get the same points
+        swap = (p[seg, 0] > q[seg, 0]) | ((p[seg, 0] == q[seg, 0]) & (p[seg, 1] > q[seg, 1]))
+        lo_pt = np.where(swap[:, None], q[seg], p[seg])
+        hi_pt = np.where(swap[:, None], p[seg], q[seg])
+        s = (value - lo_pt[:, axis]) / (hi_pt[:, axis] - lo_pt[:, axis])
+        pts = lo_pt + s[:, None] * (hi_pt - lo_pt)
         pts[:, axis] = value
         cut_seg.append(seg_ids[seg])
         cut_t.append(t)
@@ -238,16 +245,19 @@ def split_cells(geom, xs, ys, box):
 
 def polygons_of(geom):
     """The non-empty polygons in a geometry (dropping lines and points)."""
+    import shapely
     from shapely.geometry import Polygon
 
     if geom.is_empty:
         return []
     if isinstance(geom, Polygon):
         return [geom]
-    res = []
-    for g in getattr(geom, "geoms", []):
-        res.extend(polygons_of(g))
-    return [p for p in res if p.area > 0]
+    parts = shapely.get_parts(geom)
+    nested = shapely.get_type_id(parts) >= 4  # multi-part geometries and collections
+    while nested.any():
+        parts = np.concatenate([parts[~nested], shapely.get_parts(parts[nested])])
+        nested = shapely.get_type_id(parts) >= 4
+    return list(parts[(shapely.get_type_id(parts) == 3) & (shapely.area(parts) > 0)])
 
 
 # --------------------------------------------------------------------------- coverage
@@ -300,8 +310,88 @@ def coverage_from_cells(cell_layers, levels, xs=None, ys=None) -> Coverage:
     for geom, lvl in cell_layers:
         polys = polygons_of(geom)
         if polys:
-            pieces.append((shapely.orient_polygons(shapely.MultiPolygon(polys)), lvl))
+            pieces.append((shapely.orient_polygons(shapely.multipolygons(polys)), lvl))
     return Coverage(pieces, np.asarray(levels, float), xs, ys)
+
+
+def _earcut(ij, starts, part_rings, nxt):
+    """Ear-clipping triangles of one piece (mapbox_earcut, polygon by polygon), or None.
+
+    ``ij`` are the piece's ring points on the grid (integers), ``starts`` the
+    global ring starts, ``part_rings`` the ring index bounds of the piece's
+    polygons, ``nxt`` each point's successor along its ring (piece numbering).
+    The triangles are accepted only if they tile the piece: none is clockwise,
+    in exact integer arithmetic they add up to the piece's area, and their edges
+    with the rings' edges reversed pair up (each ring edge is one triangle's,
+    every other edge is two triangles' in opposite directions; this refuses a
+    triangle edge running through a ring point, which earcut makes where a ring
+    touches a straight line at several points). Otherwise None: the caller uses
+    manifold3d's triangulator. Earcut is 4x faster here: 0.07 s against 0.29 s
+    for the 600 x 400 mm sheet's pieces, 0.18 s against 0.59 s interlaced, where
+    every dip is a hole (manifold3d's cost grows with holes times vertices).
+    """
+    import mapbox_earcut
+
+    first = starts[part_rings[0]]
+    n = len(ij)
+    # polygons without holes whose every corner turns left: a fan from their first point
+    # (the interlaced sheet's 10,000 dips; one earcut call each cost 0.1 s)
+    ring_start = starts[part_rings[0]:part_rings[-1] + 1] - first
+    prev = np.empty(n, np.int64)
+    prev[nxt] = np.arange(n)
+    turn = _cross(ij[prev], ij, ij[nxt])
+    bent = np.add.reduceat((turn <= 0).astype(np.int64), ring_start[:-1]) > 0
+    head = part_rings[:-1] - part_rings[0]  # each polygon's first ring (its exterior)
+    fan = (np.diff(part_rings) == 1) & ~bent[head]
+    s, m = ring_start[head[fan]], np.diff(ring_start)[head[fan]]
+    cnt = m - 2
+    rep = np.repeat(s, cnt)
+    k = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt) + 1
+    out = [np.stack([rep, rep + k, rep + k + 1], axis=1)]
+    xy = ij.astype(np.float64)  # integers below 2**26: exact in earcut's arithmetic
+    for p in np.flatnonzero(~fan).tolist():
+        a, b = starts[part_rings[p]] - first, starts[part_rings[p + 1]] - first
+        ends = (starts[part_rings[p] + 1:part_rings[p + 1] + 1] - first - a).astype(np.uint32)
+        t = mapbox_earcut.triangulate_float64(xy[a:b], ends)
+        out.append(np.asarray(t, np.int64).reshape(-1, 3) + a)
+    tris = np.concatenate(out)
+    cross = _cross2(ij, tris)
+    twice_area = int((ij[:, 0] * ij[nxt, 1] - ij[nxt, 0] * ij[:, 1]).sum())
+    if len(tris) == 0 or (cross < 0).any() or int(cross.sum()) != twice_area:
+        return None
+    u = np.concatenate([tris.ravel(), nxt])
+    v = np.concatenate([tris[:, [1, 2, 0]].ravel(), np.arange(n)])
+    return tris if edges_pair_up(u, v, n) else None
+
+
+def edges_pair_up(u, v, n: int) -> bool:
+    """Whether every directed edge ``u -> v`` (vertices below ``n``) occurs once and its reverse once.
+
+    One sort: each edge is keyed by its two ends, smaller first, and a last bit
+    for its direction; sorted, the keys must come in pairs of one edge, bit 0
+    then bit 1, and no edge may come twice.
+
+    >>> edges_pair_up(np.array([0, 1, 2, 1, 0, 2]), np.array([1, 2, 0, 0, 2, 1]), 3)
+    True
+    >>> edges_pair_up(np.array([0, 1, 2]), np.array([1, 2, 0]), 3)
+    False
+    """
+    if len(u) % 2:
+        return False
+    key = np.sort((np.minimum(u, v) * n + np.maximum(u, v)) * 2 + (u > v))
+    edge = key >> 1
+    return bool(np.all(key[0::2] & 1 == 0) and np.all(key[1::2] & 1 == 1)
+                and np.array_equal(edge[0::2], edge[1::2]) and np.all(edge[2::2] != edge[1:-1:2]))
+
+
+def _cross2(ij, tris):
+    """Twice the signed area of each triangle, exact (integer grid points)."""
+    return _cross(ij[tris[:, 0]], ij[tris[:, 1]], ij[tris[:, 2]])
+
+
+def _cross(a, b, c):
+    """Twice the signed area of triangles ``a, b, c`` ((k, 2) integer points each)."""
+    return (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
 
 
 def _flat(tris, ij):
@@ -431,9 +521,11 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
         raise FabricationError("nothing to mesh: the material region is empty")
     polys = np.array([p for p, _ in cov.pieces], dtype=object)
     plevel = np.array([lvl for _, lvl in cov.pieces])
-    _, coords, (ring_off, poly_off, multi_off) = shapely.to_ragged_array(polys)
+    _, coords, (ring_off, part_off, multi_off) = shapely.to_ragged_array(polys)
     ring_off = np.asarray(ring_off)
-    poly_off = np.asarray(poly_off)[np.asarray(multi_off)]  # rings of each piece
+    part_off = np.asarray(part_off)  # rings of each polygon
+    multi_off = np.asarray(multi_off)  # polygons of each piece
+    poly_off = part_off[multi_off]  # rings of each piece
     # drop each ring's closing point
     keep = np.ones(len(coords), bool)
     keep[ring_off[1:] - 1] = False
@@ -447,15 +539,23 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
     edge_lvl = np.repeat(ring_level, ring_len)
     tri_idx, tri_lvl = [], []
     if triangulate:
+        grid = np.round(pts / QUANTUM).astype(np.int64)
         for k in range(len(polys)):
             r0, r1 = poly_off[k], poly_off[k + 1]
-            rings = [pts[starts[r]:starts[r + 1]] for r in range(r0, r1) if ring_len[r] >= 3]
-            if not rings:
-                continue
-            tris = np.asarray(m3.triangulate(rings), dtype=np.int64).reshape(-1, 3)
-            # the triangulator numbers the points of the rings it was given, in order
-            base = np.concatenate([np.arange(starts[r], starts[r + 1]) for r in range(r0, r1) if ring_len[r] >= 3])
-            ij = np.round(pts[base] / QUANTUM).astype(np.int64)
+            tris = None
+            if ring_len[r0:r1].min() >= 3:
+                base = np.arange(starts[r0], starts[r1])
+                ij = grid[base]
+                tris = _earcut(ij, starts, part_off[multi_off[k]:multi_off[k + 1] + 1], nxt[base] - starts[r0])
+            if tris is None:
+                rings = [pts[starts[r]:starts[r + 1]] for r in range(r0, r1) if ring_len[r] >= 3]
+                if not rings:
+                    continue
+                tris = np.asarray(m3.triangulate(rings), dtype=np.int64).reshape(-1, 3)
+                # the triangulator numbers the points of the rings it was given, in order
+                base = np.concatenate([np.arange(starts[r], starts[r + 1]) for r in range(r0, r1)
+                                       if ring_len[r] >= 3])
+                ij = grid[base]
             tris = _flip_degenerate(tris, ij)
             if _flat(tris, ij).any():
                 tris = _cdt(polys[k], ij)
@@ -526,8 +626,12 @@ def mesh_coverage(cov: Coverage):
             walls.append(np.stack([a, b, c], axis=1))
             walls.append(np.stack([a, c, d], axis=1))
     faces = np.concatenate([top, bottom] + walls)
-    used, faces = np.unique(faces.ravel(), return_inverse=True)
-    faces = faces.reshape(-1, 3)
+    # number the used (vertex, level) ids in order: a mark and a cumulative sum, no sort
+    mark = np.zeros(len(topo.xy) * nl, bool)
+    mark[faces.ravel()] = True
+    used = np.flatnonzero(mark)
+    new_id = np.cumsum(mark) - 1
+    faces = new_id[faces]
     verts = np.empty((len(used), 3))
     verts[:, :2] = topo.xy[used // nl]
     verts[:, 2] = cov.levels[used % nl]
