@@ -127,7 +127,7 @@ def layout_tile_sheet(tile, design, *, copies=None, gap_mm=None, limits: _limits
     LimitError
         The sheet would hold more segments than ``limits`` allow.
     """
-    from .export.dispatch import DEFAULT_LASER_PROFILE
+    from .export.dispatch import DEFAULT_LASER_PROFILE, laser_geometry
     from .export.sheet import layout_sheet
 
     profile = design.output.laser_profile or DEFAULT_LASER_PROFILE
@@ -137,7 +137,9 @@ def layout_tile_sheet(tile, design, *, copies=None, gap_mm=None, limits: _limits
     placed = layout_sheet([(outline, outline)], profile, **options)
     _limits.check_segments(len(tile.segments()) * len(placed.offsets), limits,
                            what=f"the sheet of {len(placed.offsets)} tiles")
-    return layout_sheet([(tile.region(), outline)], profile, centrelines=[tile.centrelines()], **options)
+    # the tile as its own laser file holds it (an interlaced tile's score lines broken, its cuts made)
+    region, centrelines = laser_geometry(tile, profile=profile, mode=design.output.laser_mode)
+    return layout_sheet([(region, outline)], profile, centrelines=[centrelines], **options)
 
 
 def export_format(tile, fmt: str, path: Path, design) -> Report:

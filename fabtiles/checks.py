@@ -3,7 +3,8 @@
 :func:`check_tile` runs what the exporters would run on a tile: the laser checks
 of the laser profile (pierced mode; in the score mode only the outline is cut and
 there is nothing to check but the bed), on the region as the laser file would hold
-it (with ``fill_small_holes``, the small holes filled first), and the print checks
+it (an interlaced tile's ``interlace_cut`` gaps cut; with ``fill_small_holes``, the
+small holes filled first), and the print checks
 of the printer profile with the design's style and heights. Used by
 ``fabtiles check``, the web app's checks and the preview's findings overlay.
 
@@ -25,7 +26,7 @@ from dataclasses import dataclass
 from ._errors import FabricationError
 from ._profiles import load_profile
 from ._report import Finding, Report
-from .export.dispatch import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE
+from .export.dispatch import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE, laser_geometry
 
 
 @dataclass(frozen=True)
@@ -71,16 +72,18 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     laser = load_profile(laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
     printer = load_profile(printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")
     region, outline = tile.region(), tile.outline_shape()
+    # the laser file's material: with interlace_cut, the under gaps cut and their tabs
+    cut_region, _ = laser_geometry(tile, profile=laser, mode=laser_mode)
     laser_report = Report(path="", format="laser")
     try:
         check_fits_bed(outline, laser)
     except FabricationError as exc:
         laser_report.add("bed_size", str(exc))
     filled = 0
-    if (laser_mode or laser.mode) == "pierced" and not region.is_empty:
-        cut = region
+    if (laser_mode or laser.mode) == "pierced" and not cut_region.is_empty:
+        cut = cut_region
         if fill_small_holes:
-            cut, filled = fill(region, laser.min_hole_mm, tolerance_mm=laser.tolerance_mm)
+            cut, filled = fill(cut_region, laser.min_hole_mm, tolerance_mm=laser.tolerance_mm)
         check_laser(cut, outline, laser, stroke=tile.stroke, report=laser_report, validate=False)
     print_report = check_print(region, outline, printer, stroke=tile.stroke, style=print_style,
                                report=Report(path="", format="print"), **(heights or {}))

@@ -120,6 +120,38 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
     return writer(path, region=region, outline=outline, profile=profile, stroke=stroke, **options)
 
 
+def laser_geometry(tile, *, profile=None, mode=None):
+    """What a laser file of ``tile`` cuts and scores: ``(region, centrelines)``.
+
+    ``region`` is the material (with ``interlace_cut`` in pierced mode, the under
+    gaps cut, tabs ``min(min_feature_mm, stroke / 2)`` wide left across), and
+    ``centrelines`` the score lines (interlaced, broken where a strand passes
+    under). ``profile`` is the laser profile (default ``laser-3mm-plywood``),
+    ``mode`` ``"pierced"`` or ``"score"`` (default: the profile's). The tile's
+    files, its sheets and its checks all take their laser geometry from here.
+
+    >>> import numpy as np
+    >>> import fabtiles as ft
+    >>> pack = ft.HexPacking(radius=8, motif=ft.Star.preset("table3-3"))
+    >>> tile = ft.Tile("square", 30, pack, frame=3, interlace=True, interlace_cut=True)
+    >>> region, lines = laser_geometry(tile, mode="pierced")
+    >>> length = lambda s: float(np.linalg.norm(s[:, 1] - s[:, 0], axis=1).sum())
+    >>> region.area < tile.region().area, length(laser_geometry(tile, mode="score")[1]) < length(lines)
+    (True, True)
+    """
+    region, centrelines = tile.region(), tile.centrelines()
+    if getattr(tile, "interlace", False):
+        from ..geometry import interlace
+
+        laser = load_profile(profile if profile is not None else DEFAULT_LASER_PROFILE, kind="laser")
+        mode = mode or laser.mode
+        if mode == "score":
+            centrelines = interlace.tile_score_lines(tile)
+        elif tile.interlace_cut:
+            region = interlace.tile_cut_region(tile, min(laser.min_feature_mm, tile.stroke / 2))
+    return region, centrelines
+
+
 def export_tile(tile, path, *, profile=None, **options):
     """Write a :class:`~fabtiles.Tile` in the format of ``path``; see :func:`export_geometry`.
 
@@ -133,16 +165,7 @@ def export_tile(tile, path, *, profile=None, **options):
     region, centrelines, dips = tile.region(), None, None
     woven = getattr(tile, "interlace", False)
     if kind == "laser":
-        centrelines = tile.centrelines()
-        if woven:
-            from ..geometry import interlace
-
-            laser = load_profile(profile if profile is not None else DEFAULT_LASER_PROFILE, kind="laser")
-            mode = options.get("mode") or laser.mode
-            if mode == "score":
-                centrelines = interlace.tile_score_lines(tile)
-            elif tile.interlace_cut:
-                region = interlace.tile_cut_region(tile, min(laser.min_feature_mm, tile.stroke / 2))
+        region, centrelines = laser_geometry(tile, profile=profile, mode=options.get("mode"))
     elif woven and (options.get("style") or load_profile(
             profile if profile is not None else DEFAULT_PRINTER_PROFILE, kind="printer").style) == "relief":
         from ..geometry import interlace

@@ -159,3 +159,49 @@ def test_failing_sheet_format_keeps_existing_files(design, tmp_path, monkeypatch
     assert calls == [".dxf", ".svg"]
     assert [p.name for p in out.iterdir()] == ["small-sheet.dxf"]
     assert (out / "small-sheet.dxf").read_text() == "old"
+
+
+WOVEN = SMALL.replace("stroke = 1.0", "stroke = 1.0\ninterlace = true")
+assert WOVEN != SMALL
+
+
+def score_length(path):
+    """Total length of the score lines of a DXF read back."""
+    total = 0.0
+    for e in read_checked(path).modelspace():
+        if e.dxf.layer == SCORE:
+            pts = vertices(e)
+            total += float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+    return total
+
+
+def test_interlaced_score_sheet_holds_the_woven_score_lines(tmp_path):
+    path = tmp_path / "woven.toml"
+    path.write_text(WOVEN, encoding="utf-8")
+    out = tmp_path / "out"
+    for extra in ((), ("--copies", 2)):
+        result = run("build", path, "-o", out, "--format", "dxf", "--set", "output.laser_mode=score", *extra)
+        assert result.exit_code == 0, result.output
+    one, sheet = score_length(out / "woven.dxf"), score_length(out / "woven-sheet.dxf")
+    design = load_design(path)
+    tile = design.build_tile(tile_cls=fabtiles.Tile)
+    plain = float(np.linalg.norm(np.diff(tile.centrelines(), axis=1)[:, 0], axis=1).sum())
+    assert one < plain - 1.0  # the woven tile's lines are broken under its crossings
+    assert sheet == pytest.approx(2 * one, rel=1e-6)
+
+
+def test_interlace_cut_sheet_cuts_every_copy(tmp_path):
+    from fabtiles.export.dispatch import laser_geometry
+
+    path = tmp_path / "cut.toml"
+    path.write_text(WOVEN.replace("interlace = true", "interlace = true\ninterlace_cut = true"), encoding="utf-8")
+    design = load_design(path)
+    tile = design.build_tile(tile_cls=fabtiles.Tile)
+    cut, _ = laser_geometry(tile, profile=PLY, mode="pierced")
+    assert cut.area < tile.region().area - 1.0
+    sheet = layout_tile_sheet(tile, design, copies=3)
+    assert sheet.region.area == pytest.approx(3 * cut.area, rel=1e-9)
+    out = tmp_path / "out"
+    result = run("build", path, "-o", out, "--format", "dxf", "--copies", 3)
+    assert result.exit_code == 0, result.output
+    check_sheet_dxf(out / "cut-sheet.dxf", path, 3)

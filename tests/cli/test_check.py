@@ -78,3 +78,35 @@ def test_bad_input_exits_2_and_writes_nothing(designs, tmp_path, args, message):
     assert res.exit_code == 2, res.output
     assert message in res.output
     assert not list(tmp_path.glob("overlay*"))
+
+
+def test_check_judges_the_interlace_cut_region(tmp_path):
+    """With ``interlace_cut`` the laser file holds the cut gaps and their tabs: so does the check."""
+    from fabtiles.checks import check_design
+    from fabtiles.design import load_design
+    from fabtiles.export.dispatch import laser_geometry
+    from fabtiles.geometry.laser_checks import check_laser
+    from fabtiles._profiles import load_profile
+    from fabtiles._report import Report
+
+    woven = DESIGN.format(fill="false").replace("stroke = 1.0", "stroke = 1.0\ninterlace = true")
+    p = tmp_path / "woven.toml"
+    p.write_text(woven)
+    q = tmp_path / "cut.toml"
+    q.write_text(woven.replace("interlace = true", "interlace = true\ninterlace_cut = true"))
+    laser = load_profile("laser-3mm-plywood")
+    results = {}
+    for path in (p, q):
+        design = load_design(path)
+        tile = design.build_tile()
+        region, _ = laser_geometry(tile, profile=laser, mode="pierced")
+        expected = check_laser(region, tile.outline_shape(), laser, stroke=tile.stroke,
+                               report=Report(path="", format="laser"), validate=False)
+        got = check_design(design, tile).laser
+        assert [(f.code, f.count) for f in got.findings] == [(f.code, f.count) for f in expected.findings]
+        results[path.stem] = got
+    # the cut leaves tabs thinner than the plain bands: more (or worse) thin bridges than the woven drawing
+    assert [(f.code, f.count) for f in results["cut"].findings] != [(f.code, f.count) for f in results["woven"].findings]
+    # and the command reports them (exit 1 with findings)
+    result = run(q)
+    assert result.exit_code == 1, result.output
