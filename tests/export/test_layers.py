@@ -68,3 +68,22 @@ def test_unknown_kinds_are_refused():
         body_layers("lid", r, o, STACK)
     with pytest.raises(ValueError, match=r"'pierced' has no dips, must be one of: relief, pattern"):
         body_coverage("pierced", r, o, STACK, box(1.5, 1.5, 2, 2))
+
+
+def test_leveled_dips_give_the_same_coverage():
+    """The writers level the dips once (dip_level) and pass them on as such."""
+    from fabtiles.export.layers import THIN_MM, dip_level, dips_volume
+
+    r, o, d = woven()
+    x, y = r.representative_point().coords[0]
+    thin = shapely.box(x, y, x + 0.5, y + THIN_MM / 2)
+    assert thin.distance(d) > 0.01
+    plain = dip_level(d)
+    d = shapely.union(d, thin)  # a dip too thin to print stays at full height
+    leveled = dip_level(d)
+    assert leveled.area == pytest.approx(plain.area, abs=1e-9) and len(shapely.get_parts(leveled)) > 100
+    for kind in ("relief", "pattern"):
+        a = body_coverage(kind, r, o, STACK, d)
+        b = body_coverage(kind, r, o, STACK, leveled, leveled=True)
+        assert [(p.wkb, lvl) for p, lvl in a.pieces] == [(p.wkb, lvl) for p, lvl in b.pieces]
+    assert dips_volume(r, leveled, STACK, leveled=True) == pytest.approx(dips_volume(r, d, STACK))

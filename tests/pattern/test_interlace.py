@@ -186,3 +186,43 @@ def test_alternation_holds_for_random_motifs(star):
 def test_alternation_holds_for_random_packings(star, packing, r):
     # the motifs only: outline circles kiss each other and are not woven (see Tile.weave)
     check_alternation(weave(packing(radius=r, motif=star).motif_segments((-30, -30, 30, 30))))
+
+
+def test_straight_reach_runs_along_the_under_strand():
+    """Each under strand is straight over [-back, forward] from its crossing, by its own segments."""
+    tile = ft.Tile("square", 50, ft.HexPacking(radius=12, motif=ft.Star.preset("table3-1")), frame=2)
+    seg = tile.motif_segments()
+    w = weave(seg)
+    reach = w.straight_reach()
+    assert reach.shape == (len(w), 2) and (reach >= 0).all()
+    a, b = seg[:, 0], seg[:, 1]
+    d = (b - a) / np.linalg.norm(b - a, axis=1, keepdims=True)
+    checked = 0
+    for c in np.flatnonzero(reach.min(axis=1) > 0)[:200]:
+        p, du = w.points[c], w.under_dir[c]
+        along = np.abs(d[:, 0] * du[1] - d[:, 1] * du[0]) < 1e-9  # segments parallel to the strand
+        for t in np.linspace(-reach[c, 0], reach[c, 1], 7):
+            q = p + t * du
+            s = np.einsum("ij,ij->i", q - a, d)
+            off = np.abs((q - a)[:, 0] * d[:, 1] - (q - a)[:, 1] * d[:, 0])
+            on = along & (off < 1e-7) & (s > -1e-7) & (s < np.linalg.norm(b - a, axis=1) + 1e-7)
+            assert on.any(), f"crossing {c}: {t:+.3f} along the under strand is on no straight segment"
+        checked += 1
+    assert checked >= 50
+    # a strand bending at its crossing (a straight joint may bend by up to BEND_DEG) reaches nowhere
+    bent = weave(np.array([[[-2, 0], [0, 0]], [[0, 0], [2, 0.2]], [[0, -1], [0, 0]], [[0, 0], [0, 1]]], float))
+    assert len(bent) == 1 and (bent.straight_reach()[0] == 0).all() == (bent.under[0] in (0, 1))
+
+
+@settings(max_examples=examples(60), deadline=None)
+@given(st.lists(st.tuples(st.floats(-3e3, 3e3), st.floats(-3e3, 3e3)), min_size=1, max_size=12),
+       st.booleans())
+def test_point_keys_are_the_rounded_rows(points, huge):
+    from fabtiles.pattern.interlace import MERGE, _point_keys
+
+    pts = np.array(points + points[:3]) * (1e3 if huge else 0.1)  # repeats; huge: past the int64 packing
+    keys = _point_keys(pts)
+    rows = np.round(pts / MERGE).astype(np.int64)
+    same_key = keys[:, None] == keys[None, :]
+    same_row = (rows[:, None, :] == rows[None, :, :]).all(axis=2)
+    assert np.array_equal(same_key, same_row)

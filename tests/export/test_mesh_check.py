@@ -1,0 +1,155 @@
+"""The slicer-exact mesh check and the triangulation behind every 3D file, against slow references.
+
+``check_indexed`` merges a mesh from its vertices, ``check_triangles`` from an STL's
+corners: both must see the same mesh and refuse the same defects. ``edges_pair_up``
+and ``count_bodies`` are checked against plain Python and networkx, and the earcut
+triangulation against its own guard (a bad triangulation falls back to manifold3d).
+"""
+
+from __future__ import annotations
+
+import networkx as nx
+import numpy as np
+import pytest
+import shapely
+import trimesh
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis_scale import examples
+from shapely.geometry import box
+
+from fabtiles import FabricationError
+from fabtiles.export import _mesh_build as mb
+from fabtiles.export import mesh
+
+
+def corners32(v, f):
+    return np.asarray(v, float)[np.asarray(f)].astype(np.float32)
+
+
+@settings(max_examples=examples(60), deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(4, 40), st.integers(1, 60))
+def test_merging_the_vertices_is_merging_the_corners(seed, n, m):
+    rng = np.random.default_rng(seed)
+    v = rng.choice([0.0, 1.0, 600.0, 600.00001, -0.0, 2.0**-10], size=(n, 3))  # float32 ties and -0.0
+    v[: n // 2] += rng.integers(0, 3, size=(n // 2, 3))
+    f = rng.integers(0, n, size=(m, 3))
+    a = mesh.merge_indexed32(v, f)
+    b = mesh._merge_float32(corners32(v, f))
+    assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
+
+
+def defects():
+    cube = trimesh.creation.box()
+    two = trimesh.util.concatenate([cube, cube.copy().apply_translation((5, 0, 0))])
+    twice = np.concatenate([cube.faces, cube.faces[:1]])
+    return [
+        ("open", cube.vertices, cube.faces[:-1], {}, "not watertight as a slicer reads it.*3 open edges"),
+        ("twice", cube.vertices, twice, {}, "edges wound the same way twice or shared by more than two faces"),
+        ("inward", cube.vertices, cube.faces[:, ::-1], {}, "volume of -1 mm.3 .it must be positive"),
+        ("volume", cube.vertices, cube.faces, {"volume": 2.0}, "not the 2 mm.3 of area x height"),
+        ("bodies", two.vertices, two.faces, {"bodies": 1}, "2 separate bodies where 1 was expected"),
+        ("flat", np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 0, 1.0]]), np.array([[0, 1, 2], [0, 1, 3]]), {},
+         "zero-area faces in float32"),
+    ]
+
+
+@pytest.mark.parametrize("name,v,f,kw,match", defects(), ids=[d[0] for d in defects()])
+def test_both_checks_refuse_the_same_defects(name, v, f, kw, match):
+    with pytest.raises(FabricationError, match=match) as by_vertices:
+        mesh.check_indexed(v, f, **kw)
+    with pytest.raises(FabricationError, match=match) as by_corners:
+        mesh.check_triangles(corners32(v, f), **kw)
+    assert str(by_vertices.value) == str(by_corners.value)
+    merged = by_vertices.value.mesh
+    assert merged is not None and len(merged[1]) == len(f)  # the merged mesh, for the repairs
+
+
+def test_empty_and_non_finite_meshes_are_refused():
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
+    with pytest.raises(FabricationError, match="the mesh mesh is empty"):
+        mesh.check_indexed(v, np.zeros((0, 3), int))
+    with pytest.raises(FabricationError, match="the mesh mesh is empty"):
+        mesh.check_triangles(np.zeros((0, 3, 3), np.float32))
+    v[1, 0] = np.nan
+    with pytest.raises(FabricationError, match="has non-finite coordinates"):
+        mesh.check_indexed(v, [[0, 1, 2]])
+    with pytest.raises(FabricationError, match="has non-finite coordinates"):
+        mesh.check_triangles(corners32(v, [[0, 1, 2]]))
+
+
+def test_a_good_mesh_passes_both_checks_alike():
+    cube = trimesh.creation.box()
+    a = mesh.check_indexed(cube.vertices, cube.faces, volume=1.0, bodies=1)
+    b = mesh.check_triangles(corners32(cube.vertices, cube.faces), volume=1.0, bodies=1)
+    assert all(np.array_equal(x, y) for x, y in zip(a, b))
+
+
+@settings(max_examples=examples(80), deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 5), st.integers(0, 5)), max_size=14))
+def test_edges_pair_up_as_counted_one_by_one(edges):
+    edges = [(a, b) for a, b in edges if a != b]
+    u = np.array([a for a, _ in edges], dtype=np.int64)
+    v = np.array([b for _, b in edges], dtype=np.int64)
+    expected = all(edges.count(e) == 1 and edges.count(e[::-1]) == 1 for e in edges)
+    assert mb.edges_pair_up(u, v, 6) == expected
+
+
+@settings(max_examples=examples(60), deadline=None)
+@given(st.integers(2, 30), st.lists(st.tuples(st.integers(0, 29), st.integers(0, 29)), min_size=1, max_size=40))
+def test_count_bodies_as_networkx(n, edges):
+    edges = [(a % n, b % n) for a, b in edges]
+    graph = nx.Graph(edges)
+    assert mesh.count_bodies(n, np.array(edges)) == nx.number_connected_components(graph)
+
+
+def mesh_of(pieces):
+    cov = mb.coverage_from_cells([(p, lvl) for p, lvl in pieces], np.array([0.0, 1.0, 2.0]))
+    v, f = mb.mesh_coverage(cov)
+    return mesh.check_indexed(v, f)
+
+
+def test_convex_pieces_are_fanned_and_the_rest_ear_clipped(monkeypatch):
+    import mapbox_earcut
+
+    sizes = []
+    real = mapbox_earcut.triangulate_float64
+    monkeypatch.setattr(mapbox_earcut, "triangulate_float64", lambda xy, ends: sizes.append(len(xy)) or real(xy, ends))
+    ring = box(0, 0, 4, 4).difference(box(1, 1, 2, 2))  # one hole: ear clipped
+    quad = shapely.Polygon([(5, 0), (7, 0.5), (7.5, 2), (5.5, 1.5)])  # convex: fanned
+    v, f = mesh_of([(ring, 2), (quad, 1)])
+    z = v[f][:, :, 2]
+    flat_top = (z.min(axis=1) == z.max(axis=1)) & (z[:, 0] > 0)
+    assert flat_top.sum() == (8 + 2 * 1 - 2) + (4 - 2)  # n + 2h - 2 triangles each
+    assert sizes == [8]  # earcut saw the ring, not the quad
+
+
+def test_a_bad_ear_clipping_falls_back_to_manifold3d(monkeypatch):
+    """Earcut's answer is used only when it tiles the piece; here it is made to lie."""
+    import mapbox_earcut
+
+    calls = []
+
+    def fan(xy, ends):  # a fan over a non-convex ring: triangles outside the piece
+        calls.append(len(xy))
+        k = np.arange(1, int(ends[0]) - 1)
+        return np.stack([np.zeros_like(k), k, k + 1], axis=1).ravel().astype(np.uint32)
+
+    monkeypatch.setattr(mapbox_earcut, "triangulate_float64", fan)
+    notched = shapely.Polygon([(0, 0), (4, 0), (4, 4), (2, 1), (0, 4)])  # fanned from (0, 0): a triangle outside
+    ij = np.round(np.asarray(notched.exterior.coords)[:-1] / mb.QUANTUM).astype(np.int64)
+    nxt = np.r_[np.arange(1, len(ij)), 0]
+    assert mb._earcut(ij, np.array([0, len(ij)]), np.array([0, 1]), nxt) is None
+    v, f = mesh_of([(notched, 2)])  # meshed all the same, by manifold3d: watertight
+    assert calls and len(f) == 2 * (len(ij) - 2) + 2 * 2 * len(ij)  # top, bottom, walls over two levels
+
+
+def test_earcut_refuses_an_edge_through_a_ring_point():
+    """Two triangles of the right area and orientation whose shared edge passes a ring point."""
+    square = np.array([[0, 0], [4, 0], [4, 4], [2, 4], [0, 4]], np.int64)  # (2, 4) on the top edge
+    nxt = np.r_[np.arange(1, 5), 0]
+    tris = np.array([[0, 1, 2], [0, 2, 4]])  # the edge 2 -> 4 runs through point 3
+    u = np.concatenate([tris.ravel(), nxt])
+    v = np.concatenate([tris[:, [1, 2, 0]].ravel(), np.arange(5)])
+    assert int(mb._cross2(square, tris).sum()) == 2 * 16
+    assert not mb.edges_pair_up(u, v, 5)
