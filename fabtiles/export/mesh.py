@@ -541,8 +541,8 @@ def _check_merged(verts, faces, *, name, volume, bodies):
     collapsed = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])
     if collapsed.any():
         _fail(name, f"has {int(collapsed.sum())} faces that collapse when rounded to float32", merged)
-    t = verts[faces]
-    cross = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    p0 = verts[faces[:, 0]]
+    cross = _cross3(verts[faces[:, 1]] - p0, verts[faces[:, 2]] - p0)
     zero = ~np.any(cross != 0, axis=1)
     if zero.any():
         _fail(name, f"has {int(zero.sum())} zero-area faces in float32", merged)
@@ -563,7 +563,7 @@ def _check_merged(verts, faces, *, name, volume, bodies):
         if dup:
             problems.append(f"{dup} edges wound the same way twice or shared by more than two faces")
         _fail(name, "is not watertight as a slicer reads it (float32): " + ", ".join(problems), merged)
-    vol = float(np.einsum("ij,ij->i", t[:, 0], cross).sum() / 6.0)
+    vol = float(np.einsum("ij,ij->i", p0, cross).sum() / 6.0)
     if not vol > 0:
         _fail(name, f"has a volume of {vol:g} mm^3 (it must be positive: faces point inward)", merged)
     if volume is not None and abs(vol - volume) > VOLUME_TOLERANCE * abs(volume):
@@ -588,7 +588,7 @@ def stl_bytes(vertices, faces) -> bytes:
     284
     """
     tris = np.asarray(vertices).astype(np.float32)[np.asarray(faces)]  # = vertices[faces] in float32
-    normals = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]).astype(np.float64)
+    normals = _cross3(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]).astype(np.float64)
     lengths = np.linalg.norm(normals, axis=1, keepdims=True)
     normals = (normals / np.where(lengths > 0, lengths, 1)).astype(np.float32)
     rec = np.zeros(len(tris), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
@@ -596,6 +596,26 @@ def stl_bytes(vertices, faces) -> bytes:
     rec["v"] = tris
     header = b"fabtiles binary STL, units mm".ljust(80, b" ")
     return header + np.uint32(len(tris)).tobytes() + rec.tobytes()
+
+
+def _cross3(a, b):
+    """Row-wise cross products of (m, 3) arrays, as ``np.cross`` computes them (a third of its time)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape), dtype=np.result_type(a, b))
+    out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
+    out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
+    out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    return out
+
+
+def mesh_volume(vertices, faces) -> float:
+    """Enclosed volume of a closed, outward-wound mesh (mm^3).
+
+    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    >>> round(mesh_volume(v, np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])), 6)
+    0.166667
+    """
+    v, f = np.asarray(vertices, dtype=np.float64), np.asarray(faces)
+    return float(np.einsum("ij,ij->i", v[f[:, 0]], _cross3(v[f[:, 1]], v[f[:, 2]])).sum() / 6.0)
 
 
 def read_stl_triangles(data: bytes) -> np.ndarray:
@@ -627,9 +647,8 @@ def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_m
     # checked as a slicer will read it: the merged float32 mesh, written as it is
     mverts, mfaces, _ = _checked_body(kind, name, r, o, stack, dips)
     atomic_write(path, stl_bytes(mverts, mfaces))
-    tri = mverts[mfaces]
     report.stats.update(stack_stats(stack), bodies=[name], triangles=len(mfaces),
-                        volume_mm3=float(np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6),
+                        volume_mm3=mesh_volume(mverts, mfaces),
                         bounds_mm=[mverts.min(axis=0).tolist(), mverts.max(axis=0).tolist()])
     return report
 
