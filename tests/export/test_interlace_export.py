@@ -4,6 +4,7 @@ import itertools
 import math
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -254,3 +255,16 @@ def test_outline_circles_are_scored_whole_and_not_woven(tmp_path):
     lmid = lines.mean(axis=1)
     d = np.linalg.norm(mid[inside][:, None] - lmid[None], axis=2).min(axis=1)
     assert np.all(d < 1e-6)
+
+
+SAMPLE_FILES = sorted((Path(__file__).resolve().parents[2] / "samples").rglob("*.toml"))
+
+
+@pytest.mark.parametrize("path", SAMPLE_FILES, ids=[p.stem for p in SAMPLE_FILES])
+def test_every_sample_weaves_without_conflicts(path):
+    """docs/tile-operation.md says so: every sample alternates at every crossing, tiling samples too."""
+    from fabtiles.design import load_design
+
+    tile = load_design(path).build_tile(tile_cls=ft.Tile).replace(interlace=True)
+    w = tile.weave()
+    assert len(w) > 0 and w.conflicts == 0
