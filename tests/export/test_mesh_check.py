@@ -153,3 +153,39 @@ def test_earcut_refuses_an_edge_through_a_ring_point():
     v = np.concatenate([tris[:, [1, 2, 0]].ravel(), np.arange(5)])
     assert int(mb._cross2(square, tris).sum()) == 2 * 16
     assert not mb.edges_pair_up(u, v, 5)
+
+
+def bottom_faces(v, f):
+    z = v[f][:, :, 2]
+    return int(np.count_nonzero(z.max(axis=1) == 0))
+
+
+@pytest.mark.parametrize("style", ["relief", "deboss"])
+def test_the_bottom_of_a_relief_or_plate_is_its_outline_alone(tmp_path, style):
+    from fabtiles import HexPacking, Star, Tile
+
+    tile = Tile("hexagon", 60, HexPacking(radius=8, motif=Star.preset("table3-3")), frame=3)
+    tile.export(tmp_path / "t.stl", style=style)
+    tris = mesh.read_stl_triangles((tmp_path / "t.stl").read_bytes())
+    v, f = mesh.check_triangles(tris, bodies=1)
+    top = int(np.count_nonzero(v[f][:, :, 2].min(axis=1) == v[:, 2].max()))
+    # the hexagon's outline with the points where cell lines and walls meet it: a few dozen triangles
+    assert 4 <= bottom_faces(v, f) < 200 < top
+
+
+def test_a_pierced_bottom_is_the_top_turned_over(tmp_path):
+    from fabtiles import HexPacking, Star, Tile
+
+    tile = Tile("square", 40, HexPacking(radius=8, motif=Star.preset("table3-3")), frame=3)
+    tile.export(tmp_path / "t.stl", style="pierced")
+    v, f = mesh.check_triangles(mesh.read_stl_triangles((tmp_path / "t.stl").read_bytes()))
+    top = int(np.count_nonzero(v[f][:, :, 2].min(axis=1) == v[:, 2].max()))
+    assert bottom_faces(v, f) == top > 200
+
+
+def test_a_bottom_through_one_point_twice_takes_the_top_turned_over():
+    two = [(box(0, 0, 1, 1), 1), (box(1, 1, 2, 2), 1)]  # the outline passes (1, 1) twice
+    cov = mb.coverage_from_cells(two, np.array([0.0, 1.0]))
+    assert mb._bottom_triangles(mb.topology(cov)) is None
+    v, f = mb.mesh_coverage(cov)
+    assert bottom_faces(v, f) == 4  # each square's two top triangles, turned over
