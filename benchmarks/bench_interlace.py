@@ -6,8 +6,10 @@ tile (region, checks, contours or mesh, file), plain and interlaced, best of
 ``--repeat`` runs; the weave alone (strands and over/under) is timed too.
 Target: interlace adds at most 50 % to the DXF and the STL time.
 
-Run by hand: ``python benchmarks/bench_interlace.py [--repeat 2]``. Timings on a
-shared machine vary; run it when the machine is quiet.
+Run by hand: ``python benchmarks/bench_interlace.py [--repeat 2] [--stages]``. Timings
+on a shared machine vary; run it when the machine is quiet. ``--stages`` also times
+the STL's stages one by one (best of ``--repeat``), plain against interlaced: where
+the interlaced relief's extra time goes.
 """
 
 from __future__ import annotations
@@ -34,9 +36,49 @@ def best(fn, repeat: int) -> float:
     return min(times)
 
 
+def stl_stages(woven: bool) -> dict:
+    """Seconds of each stage of the relief STL of the sheet, as ``write_stl`` runs them."""
+    from fabtiles.export import _mesh_build as mb
+    from fabtiles.export import layers, mesh
+    from fabtiles.geometry import interlace
+
+    out, t = {}, time.perf_counter()
+
+    def lap(name):
+        nonlocal t
+        now = time.perf_counter()
+        out[name] = out.get(name, 0.0) + now - t
+        t = now
+
+    tile = sheet(woven)
+    region, outline = tile.region(), tile.outline_shape()
+    lap("tile and region")
+    dips = interlace.tile_dips(tile) if woven else None
+    lap("weave and dips")
+    _, stack, _ = mesh.prepare_print(region, outline, "fdm-0.4mm", None, {}, tile.stroke, path="t.stl", fmt="stl")
+    r, o = mesh._snapped(region, outline)
+    dips = mesh._leveled(dips)
+    lap("print checks, snapping")
+    if woven:
+        cov = layers.body_coverage("relief", r, o, stack, dips, leveled=True)
+    else:
+        cov = mb.coverage_pair(r, o, region_z=stack.base + stack.relief, rest_z=stack.base, bottom=0.0)
+    lap("cells (coverage)")
+    verts, faces = mb.mesh_coverage(cov)
+    lap("triangles and walls")
+    volume, bodies = mesh._expected("relief", r, o, stack, dips)
+    mverts, mfaces = mesh.check_indexed(verts, faces, volume=volume, bodies=bodies)
+    lap("slicer-exact check")
+    mesh.stl_bytes(mverts, mfaces)
+    lap("STL bytes")
+    out["triangles"] = len(mfaces)
+    return out
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--repeat", type=int, default=2)
+    ap.add_argument("--stages", action="store_true", help="also time the STL's stages")
     args = ap.parse_args(argv)
     from fabtiles.pattern.interlace import weave
 
@@ -56,6 +98,16 @@ def main(argv=None) -> None:
             print(f"| {label} | | {woven:.2f} | |")
         else:
             print(f"| {label} | {plain:.2f} | {woven:.2f} | {100 * (woven / plain - 1):+.0f} % |")
+    if args.stages:
+        runs = {w: [stl_stages(w) for _ in range(args.repeat)] for w in (False, True)}
+        best_of = {w: {k: min(r[k] for r in runs[w]) for k in runs[w][0]} for w in runs}
+        print()
+        print("| STL stage | plain (s) | interlaced (s) | added (s) |")
+        print("|---|---|---|---|")
+        for k in best_of[True]:
+            p, w = best_of[False][k], best_of[True][k]
+            fmt = "{:,.0f}" if k == "triangles" else "{:.2f}"
+            print(f"| {k} | {fmt.format(p)} | {fmt.format(w)} | {fmt.format(w - p)} |")
 
 
 if __name__ == "__main__":
