@@ -52,7 +52,7 @@ def _layers(kind, r, o, stack, dips):
 
     if kind not in ("relief", "plate"):
         return body_layers(kind, r, o, stack)
-    d = split_region(r, dips)[1] if kind == "relief" else shapely.Polygon()
+    d = split_region(r, dips, holes=False)[1] if kind == "relief" else shapely.Polygon()
     lines = shapely.union_all([shapely.boundary(g) for g in (r, o, d) if not g.is_empty], grid_size=QUANTUM)
     faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(lines)))
     faces = faces[shapely.area(faces) > 0]
