@@ -39,7 +39,7 @@ def best(fn, repeat: int) -> float:
 def stl_stages(woven: bool) -> dict:
     """Seconds of each stage of the relief STL of the sheet, as ``write_stl`` runs them."""
     from fabtiles.export import _mesh_build as mb
-    from fabtiles.export import layers, mesh
+    from fabtiles.export import _slicer_check, layers, mesh
     from fabtiles.geometry import interlace
 
     out, t = {}, time.perf_counter()
@@ -67,9 +67,9 @@ def stl_stages(woven: bool) -> dict:
     verts, faces = mb.mesh_coverage(cov)
     lap("triangles and walls")
     volume, bodies = mesh._expected("relief", r, o, stack, dips)
-    mverts, mfaces = mesh.check_indexed(verts, faces, volume=volume, bodies=bodies)
+    mverts, mfaces = _slicer_check.check_indexed(verts, faces, volume=volume, bodies=bodies)
     lap("slicer-exact check")
-    mesh.stl_bytes(mverts, mfaces)
+    _slicer_check.stl_bytes(mverts, mfaces)
     lap("STL bytes")
     out["triangles"] = len(mfaces)
     return out

@@ -15,9 +15,10 @@ stack directly, without mesh booleans:
    600 x 400 mm sheet); cells of a few hundred vertices keep it linear. Rings are
    first noded at the cell lines (crossing points inserted, snapped), so the
    pieces of neighbouring cells share their seam vertices exactly.
-3. Triangulate each piece (ear clipping by mapbox_earcut, checked exactly, else
-   manifold3d's triangulator), put its top at its level,
-   its bottom at the common bottom, and raise a wall on every piece edge whose
+3. Triangulate each piece (:mod:`fabtiles.export._triangulate`: fans, earcut
+   checked exactly, else manifold3d's triangulator), put its top at its level,
+   its bottom at the common bottom (an outline alone is triangulated on its own),
+   and raise a wall on every piece edge whose
    neighbour across it is lower (no neighbour: the bottom). Walls are split at
    every level so vertical edges always pair up.
 
@@ -35,6 +36,7 @@ import numpy as np
 
 from .._errors import FabricationError, ParameterError
 from ..geometry.stack import MAX_HEIGHT_MM, QUANTUM, Stack, resolve_stack  # noqa: F401  (the writers' names)
+from ._triangulate import bottom_triangles, cdt, ear_clip, flat, flip_degenerate
 
 CELL_VERTICES = 1500
 """Target number of region vertices per meshing cell."""
@@ -314,173 +316,6 @@ def coverage_from_cells(cell_layers, levels, xs=None, ys=None) -> Coverage:
     return Coverage(pieces, np.asarray(levels, float), xs, ys)
 
 
-def _earcut(ij, starts, part_rings, nxt):
-    """Ear-clipping triangles of one piece (mapbox_earcut, polygon by polygon), or None.
-
-    ``ij`` are the piece's ring points on the grid (integers), ``starts`` the
-    global ring starts, ``part_rings`` the ring index bounds of the piece's
-    polygons, ``nxt`` each point's successor along its ring (piece numbering).
-    The triangles are accepted only if they tile the piece: none is clockwise,
-    in exact integer arithmetic they add up to the piece's area, and their edges
-    with the rings' edges reversed pair up (each ring edge is one triangle's,
-    every other edge is two triangles' in opposite directions; this refuses a
-    triangle edge running through a ring point, which earcut makes where a ring
-    touches a straight line at several points). Otherwise None: the caller uses
-    manifold3d's triangulator. Earcut is 4x faster here: 0.07 s against 0.29 s
-    for the 600 x 400 mm sheet's pieces, 0.18 s against 0.59 s interlaced, where
-    every dip is a hole (manifold3d's cost grows with holes times vertices).
-    """
-    import mapbox_earcut
-
-    first = starts[part_rings[0]]
-    n = len(ij)
-    # polygons without holes whose every corner turns left: a fan from their first point
-    # (the interlaced sheet's 10,000 dips; one earcut call each cost 0.1 s)
-    ring_start = starts[part_rings[0]:part_rings[-1] + 1] - first
-    prev = np.empty(n, np.int64)
-    prev[nxt] = np.arange(n)
-    turn = _cross(ij[prev], ij, ij[nxt])
-    bent = np.add.reduceat((turn <= 0).astype(np.int64), ring_start[:-1]) > 0
-    head = part_rings[:-1] - part_rings[0]  # each polygon's first ring (its exterior)
-    fan = (np.diff(part_rings) == 1) & ~bent[head]
-    s, m = ring_start[head[fan]], np.diff(ring_start)[head[fan]]
-    cnt = m - 2
-    rep = np.repeat(s, cnt)
-    k = np.arange(int(cnt.sum())) - np.repeat(np.cumsum(cnt) - cnt, cnt) + 1
-    out = [np.stack([rep, rep + k, rep + k + 1], axis=1)]
-    xy = ij.astype(np.float64)  # integers below 2**26: exact in earcut's arithmetic
-    for p in np.flatnonzero(~fan).tolist():
-        a, b = starts[part_rings[p]] - first, starts[part_rings[p + 1]] - first
-        ends = (starts[part_rings[p] + 1:part_rings[p + 1] + 1] - first - a).astype(np.uint32)
-        t = mapbox_earcut.triangulate_float64(xy[a:b], ends)
-        out.append(np.asarray(t, np.int64).reshape(-1, 3) + a)
-    tris = np.concatenate(out)
-    cross = _cross2(ij, tris)
-    twice_area = int((ij[:, 0] * ij[nxt, 1] - ij[nxt, 0] * ij[:, 1]).sum())
-    if len(tris) == 0 or (cross < 0).any() or int(cross.sum()) != twice_area:
-        return None
-    u = np.concatenate([tris.ravel(), nxt])
-    v = np.concatenate([tris[:, [1, 2, 0]].ravel(), np.arange(n)])
-    return tris if edges_pair_up(u, v, n) else None
-
-
-def edges_pair_up(u, v, n: int) -> bool:
-    """Whether every directed edge ``u -> v`` (vertices below ``n``) occurs once and its reverse once.
-
-    One sort: each edge is keyed by its two ends, smaller first, and a last bit
-    for its direction; sorted, the keys must come in pairs of one edge, bit 0
-    then bit 1, and no edge may come twice.
-
-    >>> edges_pair_up(np.array([0, 1, 2, 1, 0, 2]), np.array([1, 2, 0, 0, 2, 1]), 3)
-    True
-    >>> edges_pair_up(np.array([0, 1, 2]), np.array([1, 2, 0]), 3)
-    False
-    """
-    if len(u) % 2:
-        return False
-    key = np.sort((np.minimum(u, v) * n + np.maximum(u, v)) * 2 + (u > v))
-    edge = key >> 1
-    return bool(np.all(key[0::2] & 1 == 0) and np.all(key[1::2] & 1 == 1)
-                and np.array_equal(edge[0::2], edge[1::2]) and np.all(edge[2::2] != edge[1:-1:2]))
-
-
-def _cross2(ij, tris):
-    """Twice the signed area of each triangle, exact (integer grid points)."""
-    return _cross(ij[tris[:, 0]], ij[tris[:, 1]], ij[tris[:, 2]])
-
-
-def _cross(a, b, c):
-    """Twice the signed area of triangles ``a, b, c`` ((k, 2) integer points each)."""
-    return (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
-
-
-def _flat(tris, ij):
-    a, b, c = ij[tris[:, 0]], ij[tris[:, 1]], ij[tris[:, 2]]
-    return (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]) == 0
-
-
-def _cdt(piece, ij):
-    """Constrained Delaunay triangulation of a piece (GEOS): never flat, slower.
-
-    Returns triangles as indices into ``ij`` (the piece's ring points, on the grid).
-    """
-    import shapely
-
-    tri = shapely.get_parts(shapely.constrained_delaunay_triangles(piece))
-    coords = shapely.get_coordinates(shapely.get_exterior_ring(tri)).reshape(len(tri), 4, 2)[:, :3]
-    cij = np.round(coords / QUANTUM).astype(np.int64)
-    lookup = {(int(x), int(y)): i for i, (x, y) in enumerate(ij.tolist())}
-    try:
-        out = np.array([[lookup[(int(x), int(y))] for x, y in t] for t in cij.tolist()], dtype=np.int64)
-    except KeyError:
-        raise FabricationError("cannot triangulate the region: a point not on the grid appeared") from None
-    # GEOS triangles may come either way round: make them counter-clockwise
-    a, b, c = ij[out[:, 0]], ij[out[:, 1]], ij[out[:, 2]]
-    cw = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]) < 0
-    out[cw] = out[cw][:, ::-1]
-    return out
-
-
-def _flip_degenerate(tris: np.ndarray, ij: np.ndarray) -> np.ndarray:
-    """Remove zero-area triangles (three collinear grid points) by edge flips.
-
-    A flat triangle (x, m, y) with m between x and y is dropped and its neighbour
-    across x-y, (x, y, d), split at m into (x, m, d) and (m, y, d): same edges
-    outside, same area, no flat face. Exact: the points are integers.
-    """
-    def cross(t):
-        a, b, c = ij[t[:, 0]], ij[t[:, 1]], ij[t[:, 2]]
-        return (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
-
-    flat = np.flatnonzero(cross(tris) == 0)
-    if not len(flat):
-        return tris
-    tris = tris.copy()
-    for _ in range(12):
-        owner = {}
-        for k, (a, b, c) in enumerate(tris.tolist()):
-            owner[(a, b)] = k
-            owner[(b, c)] = k
-            owner[(c, a)] = k
-        alive = np.ones(len(tris), bool)
-        extra = []
-        touched = set()
-        for k in flat.tolist():
-            if k in touched:
-                continue
-            t = tris[k].tolist()
-
-            # the middle point lies within the bounding box of the other two
-            mid = None
-            for r in range(3):
-                x, m, y = t[r], t[(r + 1) % 3], t[(r + 2) % 3]
-                px, pm, py = ij[x], ij[m], ij[y]
-                if np.all(np.minimum(px, py) <= pm) and np.all(pm <= np.maximum(px, py)):
-                    mid = (x, m, y)
-                    break
-            if mid is None or len(set(t)) < 3:
-                continue
-            x, m, y = mid
-            nb = owner.get((x, y))
-            if nb is None or nb in touched:
-                continue
-            n = tris[nb].tolist()
-            d = [v for v in n if v not in (x, y)]
-            if len(d) != 1:
-                continue
-            d = d[0]
-            alive[k] = alive[nb] = False
-            touched.update((k, nb))
-            extra.append((x, m, d))
-            extra.append((m, y, d))
-
-        tris = np.concatenate([tris[alive], np.asarray(extra, dtype=np.int64).reshape(-1, 3)])
-        flat = np.flatnonzero(cross(tris) == 0)
-        if not len(flat):
-            break
-    return tris
-
-
 @dataclass
 class Topology:
     """The planar structure of a coverage: shared vertices, piece rings, neighbours.
@@ -546,7 +381,7 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
             if ring_len[r0:r1].min() >= 3:
                 base = np.arange(starts[r0], starts[r1])
                 ij = grid[base]
-                tris = _earcut(ij, starts, part_off[multi_off[k]:multi_off[k + 1] + 1], nxt[base] - starts[r0])
+                tris = ear_clip(ij, starts, part_off[multi_off[k]:multi_off[k + 1] + 1], nxt[base] - starts[r0])
             if tris is None:
                 rings = [pts[starts[r]:starts[r + 1]] for r in range(r0, r1) if ring_len[r] >= 3]
                 if not rings:
@@ -556,9 +391,9 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
                 base = np.concatenate([np.arange(starts[r], starts[r + 1]) for r in range(r0, r1)
                                        if ring_len[r] >= 3])
                 ij = grid[base]
-            tris = _flip_degenerate(tris, ij)
-            if _flat(tris, ij).any():
-                tris = _cdt(polys[k], ij)
+            tris = flip_degenerate(tris, ij)
+            if flat(tris, ij).any():
+                tris = cdt(polys[k], ij)
             tri_idx.append(base[tris])
             tri_lvl.append(np.full(len(tris), plevel[k]))
         if not tri_idx:
@@ -612,9 +447,9 @@ def mesh_coverage(cov: Coverage):
     nl = len(cov.levels)
     tris = topo.vid[topo.tris]
     top = tris * nl + topo.tri_level[:, None]
-    flat = _bottom_triangles(topo)
-    bottom = ((tris if flat is None else flat) * nl)[:, ::-1]
     u, v = topo.vid, topo.vid[topo.nxt]
+    own = bottom_triangles(u, v, topo.out_level, topo.xy)
+    bottom = ((tris if own is None else own) * nl)[:, ::-1]
     walls = []
     if nl >= 4:
         walls = [_ladder_walls(u, v, topo.out_level, topo.level, nl, len(topo.xy))]
@@ -637,64 +472,6 @@ def mesh_coverage(cov: Coverage):
     verts[:, :2] = topo.xy[used // nl]
     verts[:, 2] = cov.levels[used % nl]
     return verts, faces
-
-
-BOTTOM_RINGS = 64
-BOTTOM_POINTS = 20_000
-"""A bottom outlined by at most ``BOTTOM_RINGS`` rings of ``BOTTOM_POINTS`` points in all is
-triangulated on its own (a 600 x 416 mm seamless relief's: 734 points, 5 ms); a bigger one (a
-pierced tile's bottom is its whole pattern) takes the top's triangles, turned over."""
-
-
-def _bottom_triangles(topo: Topology):
-    """Triangles (vertex ids, counter-clockwise seen from above) of the bottom on its own, or None.
-
-    The bottom of a relief, a plate or a base is its outline: triangulated from
-    the vertices on the outline's edges (every one, so that the walls meet it
-    edge to edge), it takes a few hundred triangles where the top's, turned over,
-    took a third of the mesh (154,000 of the 600 x 400 mm relief sheet's 463,000).
-    None when the outline has more than :data:`BOTTOM_RINGS` rings, a ring
-    passes a vertex twice, or the triangles do not tile it exactly (then the
-    caller turns the top's over).
-    """
-    import manifold3d as m3
-
-    u, v = topo.vid, topo.vid[topo.nxt]
-    sel = (topo.out_level == 0) & (u != v)  # edges with nothing beside them: the bottom's outline
-    bu, bv = u[sel], v[sel]
-    if not len(bu) or len(bu) > BOTTOM_POINTS:
-        return None
-    if len(np.unique(bu)) != len(bu) or not np.array_equal(np.sort(bu), np.sort(bv)):
-        return None
-    succ = dict(zip(bu.tolist(), bv.tolist()))
-    rings, seen = [], set()
-    for start in bu.tolist():
-        if start in seen:
-            continue
-        ring, k = [], start
-        while k not in seen:
-            seen.add(k)
-            ring.append(k)
-            k = succ[k]
-        rings.append(ring)
-        if len(rings) > BOTTOM_RINGS:
-            return None
-    ids = np.concatenate([np.asarray(r, np.int64) for r in rings])
-    ij = np.round(topo.xy[ids] / QUANTUM).astype(np.int64)
-    starts = np.concatenate([[0], np.cumsum([len(r) for r in rings])])
-    tris = np.asarray(m3.triangulate([topo.xy[np.asarray(r)] for r in rings]), dtype=np.int64).reshape(-1, 3)
-    tris = _flip_degenerate(tris, ij)
-    nxt = np.arange(len(ids)) + 1
-    nxt[starts[1:] - 1] = starts[:-1]
-    cross = _cross2(ij, tris)
-    twice_area = int((ij[:, 0] * ij[nxt, 1] - ij[nxt, 0] * ij[:, 1]).sum())
-    if (cross <= 0).any() or int(cross.sum()) != twice_area:
-        return None
-    n = len(ids)
-    if not edges_pair_up(np.concatenate([tris.ravel(), nxt]),
-                         np.concatenate([tris[:, [1, 2, 0]].ravel(), np.arange(n)]), n):
-        return None
-    return ids[tris]
 
 
 def _ladder_walls(u, v, out_level, level, nl: int, n_vertices: int) -> np.ndarray:

@@ -53,7 +53,8 @@ import numpy as np
 
 from .._errors import FabricationError
 from .._io import atomic_write
-from .mesh import check_inlay, check_triangles, checked_parts, prepare_print, stack_stats
+from ._slicer_check import check_triangles
+from .mesh import check_inlay, checked_parts, prepare_print, stack_stats
 
 MODEL_PATH = "3D/3dmodel.model"
 PRUSA_CONFIG_PATH = "Metadata/Slic3r_PE_model.config"

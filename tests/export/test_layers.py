@@ -6,6 +6,7 @@ import shapely
 from shapely.geometry import box
 
 import fabtiles as ft
+from fabtiles.export import _slicer_check as sc
 from fabtiles.export import mesh
 from fabtiles.export._mesh_build import Stack, coverage, mesh_coverage
 from fabtiles.export.layers import body_coverage, body_layers, dip_z, split_region
@@ -41,7 +42,7 @@ def test_fast_coverage_has_the_layers_of_body_layers(kind):
     # both mesh into the same watertight body
     for c in (cov, coverage(layers, bottom=bottom)):
         v, f = mesh_coverage(c)
-        mesh.check_mesh(v, f, bodies=1 if kind == "relief" else None)
+        sc.check_mesh(v, f, bodies=1 if kind == "relief" else None)
 
 
 def test_dips_are_holes_of_the_full_level():

@@ -12,6 +12,8 @@ from mesh_helpers import (B, H, STYLES, T, assert_solid, assert_touch_without_ov
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star
+from fabtiles.export import _slicer_check as sc
+from fabtiles.export import _slicer_check as sc
 from fabtiles.export import mesh, threemf
 from fabtiles.geometry.tile import Tile
 from fabtiles.pattern.packing import HexPacking
@@ -116,18 +118,18 @@ def test_check_catches_float32_collapse():
     v = np.array([[600, 0, 0], [601, 0, 0], [600, 1, 0], [600, 0, 1], [600.00001, 0, 0]], float)
     f = np.array([[0, 2, 1], [4, 1, 3], [0, 3, 2], [1, 2, 3], [0, 4, 3]])
     with pytest.raises(FabricationError, match="collapse when rounded to float32"):
-        mesh.check_mesh(v, f)
+        sc.check_mesh(v, f)
 
 
 def test_check_catches_open_and_inward_meshes():
     box_mesh = trimesh.creation.box()
     with pytest.raises(FabricationError, match="not watertight"):
-        mesh.check_mesh(box_mesh.vertices, box_mesh.faces[:-1])
+        sc.check_mesh(box_mesh.vertices, box_mesh.faces[:-1])
     with pytest.raises(FabricationError, match="volume"):
-        mesh.check_mesh(box_mesh.vertices, box_mesh.faces[:, ::-1])
+        sc.check_mesh(box_mesh.vertices, box_mesh.faces[:, ::-1])
     with pytest.raises(FabricationError, match="2 separate bodies"):
         two = trimesh.util.concatenate([box_mesh, box_mesh.copy().apply_translation((5, 0, 0))])
-        mesh.check_mesh(two.vertices, two.faces, bodies=1)
+        sc.check_mesh(two.vertices, two.faces, bodies=1)
 
 
 def test_pinched_region_is_bridged(tmp_path):
@@ -210,8 +212,8 @@ def test_sheet_600x400_relief_stl(tmp_path):
     region, outline = tile.region(), tile.outline_shape()
     path = tmp_path / "sheet.stl"
     mesh.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
-    tris = mesh.read_stl_triangles(path.read_bytes())
-    verts, faces = mesh.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
+    tris = sc.read_stl_triangles(path.read_bytes())
+    verts, faces = sc.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
     m = trimesh.Trimesh(verts, faces, process=False)
     assert m.is_watertight and m.is_winding_consistent
     assert m.bounds.ravel().tolist() == pytest.approx([0, 0, 0, 600, 400, B + H], abs=1e-5)
@@ -243,8 +245,8 @@ def test_defect_on_a_cell_line_is_meshed_again_with_moved_lines(tmp_path, monkey
     path = tmp_path / "sheet.stl"
     mesh.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
     assert shifts[:2] == [0, 1], f"this sheet no longer exercises the moved-lines retry: {shifts}"
-    tris = mesh.read_stl_triangles(path.read_bytes())
-    verts, faces = mesh.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
+    tris = sc.read_stl_triangles(path.read_bytes())
+    verts, faces = sc.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
     assert np.ptp(verts, axis=0) == pytest.approx([1200, 600, B + H], abs=1e-5)
 
 

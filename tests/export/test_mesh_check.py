@@ -1,4 +1,5 @@
-"""The slicer-exact mesh check and the triangulation behind every 3D file, against slow references.
+"""The slicer-exact mesh check and the triangulation behind every 3D file (export/_slicer_check.py,
+export/_triangulate.py), against slow references.
 
 ``check_indexed`` merges a mesh from its vertices, ``check_triangles`` from an STL's
 corners: both must see the same mesh and refuse the same defects. ``edges_pair_up``
@@ -20,6 +21,8 @@ from shapely.geometry import box
 
 from fabtiles import FabricationError
 from fabtiles.export import _mesh_build as mb
+from fabtiles.export import _triangulate as tr
+from fabtiles.export import _slicer_check as sc
 from fabtiles.export import mesh
 
 
@@ -34,8 +37,8 @@ def test_merging_the_vertices_is_merging_the_corners(seed, n, m):
     v = rng.choice([0.0, 1.0, 600.0, 600.00001, -0.0, 2.0**-10], size=(n, 3))  # float32 ties and -0.0
     v[: n // 2] += rng.integers(0, 3, size=(n // 2, 3))
     f = rng.integers(0, n, size=(m, 3))
-    a = mesh.merge_indexed32(v, f)
-    b = mesh._merge_float32(corners32(v, f))
+    a = sc.merge_indexed32(v, f)
+    b = sc._merge_float32(corners32(v, f))
     assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1])
 
 
@@ -57,9 +60,9 @@ def defects():
 @pytest.mark.parametrize("name,v,f,kw,match", defects(), ids=[d[0] for d in defects()])
 def test_both_checks_refuse_the_same_defects(name, v, f, kw, match):
     with pytest.raises(FabricationError, match=match) as by_vertices:
-        mesh.check_indexed(v, f, **kw)
+        sc.check_indexed(v, f, **kw)
     with pytest.raises(FabricationError, match=match) as by_corners:
-        mesh.check_triangles(corners32(v, f), **kw)
+        sc.check_triangles(corners32(v, f), **kw)
     assert str(by_vertices.value) == str(by_corners.value)
     merged = by_vertices.value.mesh
     assert merged is not None and len(merged[1]) == len(f)  # the merged mesh, for the repairs
@@ -68,20 +71,20 @@ def test_both_checks_refuse_the_same_defects(name, v, f, kw, match):
 def test_empty_and_non_finite_meshes_are_refused():
     v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
     with pytest.raises(FabricationError, match="the mesh mesh is empty"):
-        mesh.check_indexed(v, np.zeros((0, 3), int))
+        sc.check_indexed(v, np.zeros((0, 3), int))
     with pytest.raises(FabricationError, match="the mesh mesh is empty"):
-        mesh.check_triangles(np.zeros((0, 3, 3), np.float32))
+        sc.check_triangles(np.zeros((0, 3, 3), np.float32))
     v[1, 0] = np.nan
     with pytest.raises(FabricationError, match="has non-finite coordinates"):
-        mesh.check_indexed(v, [[0, 1, 2]])
+        sc.check_indexed(v, [[0, 1, 2]])
     with pytest.raises(FabricationError, match="has non-finite coordinates"):
-        mesh.check_triangles(corners32(v, [[0, 1, 2]]))
+        sc.check_triangles(corners32(v, [[0, 1, 2]]))
 
 
 def test_a_good_mesh_passes_both_checks_alike():
     cube = trimesh.creation.box()
-    a = mesh.check_indexed(cube.vertices, cube.faces, volume=1.0, bodies=1)
-    b = mesh.check_triangles(corners32(cube.vertices, cube.faces), volume=1.0, bodies=1)
+    a = sc.check_indexed(cube.vertices, cube.faces, volume=1.0, bodies=1)
+    b = sc.check_triangles(corners32(cube.vertices, cube.faces), volume=1.0, bodies=1)
     assert all(np.array_equal(x, y) for x, y in zip(a, b))
 
 
@@ -92,7 +95,7 @@ def test_edges_pair_up_as_counted_one_by_one(edges):
     u = np.array([a for a, _ in edges], dtype=np.int64)
     v = np.array([b for _, b in edges], dtype=np.int64)
     expected = all(edges.count(e) == 1 and edges.count(e[::-1]) == 1 for e in edges)
-    assert mb.edges_pair_up(u, v, 6) == expected
+    assert tr.edges_pair_up(u, v, 6) == expected
 
 
 @settings(max_examples=examples(60), deadline=None)
@@ -100,13 +103,13 @@ def test_edges_pair_up_as_counted_one_by_one(edges):
 def test_count_bodies_as_networkx(n, edges):
     edges = [(a % n, b % n) for a, b in edges]
     graph = nx.Graph(edges)
-    assert mesh.count_bodies(n, np.array(edges)) == nx.number_connected_components(graph)
+    assert sc.count_bodies(n, np.array(edges)) == nx.number_connected_components(graph)
 
 
 def mesh_of(pieces):
     cov = mb.coverage_from_cells([(p, lvl) for p, lvl in pieces], np.array([0.0, 1.0, 2.0]))
     v, f = mb.mesh_coverage(cov)
-    return mesh.check_indexed(v, f)
+    return sc.check_indexed(v, f)
 
 
 def test_convex_pieces_are_fanned_and_the_rest_ear_clipped(monkeypatch):
@@ -139,7 +142,7 @@ def test_a_bad_ear_clipping_falls_back_to_manifold3d(monkeypatch):
     notched = shapely.Polygon([(0, 0), (4, 0), (4, 4), (2, 1), (0, 4)])  # fanned from (0, 0): a triangle outside
     ij = np.round(np.asarray(notched.exterior.coords)[:-1] / mb.QUANTUM).astype(np.int64)
     nxt = np.r_[np.arange(1, len(ij)), 0]
-    assert mb._earcut(ij, np.array([0, len(ij)]), np.array([0, 1]), nxt) is None
+    assert tr.ear_clip(ij, np.array([0, len(ij)]), np.array([0, 1]), nxt) is None
     v, f = mesh_of([(notched, 2)])  # meshed all the same, by manifold3d: watertight
     assert calls and len(f) == 2 * (len(ij) - 2) + 2 * 2 * len(ij)  # top, bottom, walls over two levels
 
@@ -151,8 +154,8 @@ def test_earcut_refuses_an_edge_through_a_ring_point():
     tris = np.array([[0, 1, 2], [0, 2, 4]])  # the edge 2 -> 4 runs through point 3
     u = np.concatenate([tris.ravel(), nxt])
     v = np.concatenate([tris[:, [1, 2, 0]].ravel(), np.arange(5)])
-    assert int(mb._cross2(square, tris).sum()) == 2 * 16
-    assert not mb.edges_pair_up(u, v, 5)
+    assert int(tr.twice_areas(square, tris).sum()) == 2 * 16
+    assert not tr.edges_pair_up(u, v, 5)
 
 
 def bottom_faces(v, f):
@@ -166,8 +169,8 @@ def test_the_bottom_of_a_relief_or_plate_is_its_outline_alone(tmp_path, style):
 
     tile = Tile("hexagon", 60, HexPacking(radius=8, motif=Star.preset("table3-3")), frame=3)
     tile.export(tmp_path / "t.stl", style=style)
-    tris = mesh.read_stl_triangles((tmp_path / "t.stl").read_bytes())
-    v, f = mesh.check_triangles(tris, bodies=1)
+    tris = sc.read_stl_triangles((tmp_path / "t.stl").read_bytes())
+    v, f = sc.check_triangles(tris, bodies=1)
     top = int(np.count_nonzero(v[f][:, :, 2].min(axis=1) == v[:, 2].max()))
     # the hexagon's outline with the points where cell lines and walls meet it: a few dozen triangles
     assert 4 <= bottom_faces(v, f) < 200 < top
@@ -178,7 +181,7 @@ def test_a_pierced_bottom_is_the_top_turned_over(tmp_path):
 
     tile = Tile("square", 40, HexPacking(radius=8, motif=Star.preset("table3-3")), frame=3)
     tile.export(tmp_path / "t.stl", style="pierced")
-    v, f = mesh.check_triangles(mesh.read_stl_triangles((tmp_path / "t.stl").read_bytes()))
+    v, f = sc.check_triangles(sc.read_stl_triangles((tmp_path / "t.stl").read_bytes()))
     top = int(np.count_nonzero(v[f][:, :, 2].min(axis=1) == v[:, 2].max()))
     assert bottom_faces(v, f) == top > 200
 
@@ -186,6 +189,7 @@ def test_a_pierced_bottom_is_the_top_turned_over(tmp_path):
 def test_a_bottom_through_one_point_twice_takes_the_top_turned_over():
     two = [(box(0, 0, 1, 1), 1), (box(1, 1, 2, 2), 1)]  # the outline passes (1, 1) twice
     cov = mb.coverage_from_cells(two, np.array([0.0, 1.0]))
-    assert mb._bottom_triangles(mb.topology(cov)) is None
+    topo = mb.topology(cov)
+    assert tr.bottom_triangles(topo.vid, topo.vid[topo.nxt], topo.out_level, topo.xy) is None
     v, f = mb.mesh_coverage(cov)
     assert bottom_faces(v, f) == 4  # each square's two top triangles, turned over
