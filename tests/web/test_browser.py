@@ -163,3 +163,31 @@ def test_findings_marks_fill_and_heights_controls(page, server):
     page.uncheck("#show_findings")
     _wait_new_preview(page, v)
     assert "findings" not in page.get_attribute("#preview", "src")
+
+
+def test_gap_motif_controls_reach_the_url_and_the_design(page, server):
+    """The gap circles' motif: rotation, and as a rosette (special circle 2) with its alpha and spr."""
+    page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3")
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    assert "gap_special" not in page.url and "gap_rotation" not in page.url  # the default gap motif
+    v = _preview_version(page)
+    page.check("#gap_rosette")
+    _wait_new_preview(page, v)
+    assert "gap_special=2" in page.url and "gap_alpha=20" in page.url and "gap_spr=0.2" in page.url
+    v = _preview_version(page)
+    page.fill("#gap_rotation", "30")
+    page.dispatch_event("#gap_rotation", "change")
+    _wait_new_preview(page, v)
+    assert "gap_rotation=30" in page.url
+    design = page.get_attribute("#download-design", "href")
+    assert "gap_special=2" in design and "gap_rotation=30" in design
+    import tomllib
+    import urllib.request
+
+    with urllib.request.urlopen(server + design if design.startswith("/") else design) as resp:
+        gap = tomllib.loads(resp.read().decode())["packing"]["gap_motif"]
+    assert gap["special"] == 2 and gap["alpha"] == 20 and gap["spr"] == 0.2 and gap["rotation"] == 30
+    # the URL alone brings the controls back
+    page.goto(page.url)
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    assert page.is_checked("#gap_rosette") and page.input_value("#gap_rotation") == "30"

@@ -13,6 +13,9 @@ const SLIDERS = {
     ["edge", "edge a (mm)", 3, 100, 0.5],
     ["gap_n", "gap n", 3, 24, 1],
     ["gap_inner", "gap inner r", 0.05, 1.5, 0.05],
+    ["gap_rotation", "gap rotation (deg)", -180, 180, 0.5],
+    ["gap_alpha", "gap alpha (deg)", -90, 90, 0.5],
+    ["gap_spr", "gap spr", -2, 2, 0.01],
   ],
   "tile-sliders": [
     ["width", "width (mm)", 20, 600, 1],
@@ -27,6 +30,8 @@ const SLIDERS = {
 const state = {
   preset: "table3-3", n: 12, radii: [123, 85, 178], alpha: 23, spr: -7, special: 2, rotation: 0,
   packing: "hex", radius: 15, gap_n: 6, gap_inner: 0.5, outline_circles: false,
+  gap_rotation: 0, gap_rosette: false, gap_alpha: 20, gap_spr: 0.2,  // the gap motif (radii inner, 1): a rosette
+  // when gap_rosette (special circle 2), sent only then; its rotation only when not 0
   tiling: "4.8.8", edge: 20, motifs: {},  // packing=archimedean: motifs[sides] = preset ("" = the motif above)
   outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
   laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
@@ -37,7 +42,7 @@ const state = {
 };
 // Options sent only when set (text boxes and checkboxes of the design's [output] and [packing]).
 const TEXT_KEYS = ["name", "base_mm", "relief_mm", "pierced_mm", "deboss_mm", "interlace_gap_mm"];
-const FLAG_KEYS = ["seamless", "fill_small_holes", "interlace", "interlace_cut", "inlay"];
+const FLAG_KEYS = ["seamless", "fill_small_holes", "interlace", "interlace_cut", "inlay", "gap_rosette"];
 let showFindings = true, chosen = null;  // the findings overlay; the finding chosen in the list
 let presets = {}, tilings = {};
 
@@ -112,6 +117,12 @@ function query() {
     } else q.set("radius", state.radius);
     q.set("gap_n", state.gap_n);
     q.set("gap_radii", `${state.gap_inner},1`);
+    if (state.gap_rotation) q.set("gap_rotation", state.gap_rotation);
+    if (state.gap_rosette) {
+      q.set("gap_special", 2);
+      q.set("gap_alpha", state.gap_alpha);
+      q.set("gap_spr", state.gap_spr);
+    }
     q.set("outline_circles", state.outline_circles ? "true" : "false");
     if (state.seamless) q.set("seamless", "true");
   }
@@ -135,6 +146,7 @@ function fromUrl() {
   for (const [k, v] of q) {
     if (k === "radii") state.radii = v.split(",").map(Number);
     else if (k === "gap_radii") state.gap_inner = Number(v.split(",")[0]);
+    else if (k === "gap_special") state.gap_rosette = v !== "none" && v !== "";
     else if (k === "special") state.special = v === "none" || v === "" ? 0 : Number(v);
     else if (k.startsWith("motif_")) state.motifs[k.slice(6)] = v;
     else if (k === "outline_circles" || FLAG_KEYS.includes(k)) state[k] = v === "true";
