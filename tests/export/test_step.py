@@ -378,3 +378,19 @@ def test_a_file_occt_rejects_is_never_written(tmp_path, monkeypatch):
         step.write_step(path, region=tile.region(), outline=tile.outline_shape(), profile="fdm-0.4mm")
     assert path.read_bytes() == good
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.step"]
+
+
+def test_check_solids_refuses_an_empty_solid_a_hollow_one_and_one_inside_out():
+    """The guards only a broken writer could trip, on solids made by hand in OCCT."""
+    from build123d import Box, Pos
+    from OCP.TopoDS import TopoDS, TopoDS_Solid
+
+    with pytest.raises(FabricationError, match=r"has an empty solid \(1\); nothing was written"):
+        step.check_solids([TopoDS_Solid()], volume=1.0, parts=1)
+    hollow = (Box(10, 10, 10) - Pos(0, 0, 0) * Box(4, 4, 4)).solids()[0].wrapped  # a void inside: 2 shells
+    with pytest.raises(FabricationError, match="has 2 shells in solid 1, not 1; nothing was written"):
+        step.check_solids([hollow], volume=1000 - 64, parts=1)
+    cube = Box(10, 10, 10).solids()[0].wrapped
+    assert step.check_solids([cube], volume=1000, parts=1) == pytest.approx(1000)
+    with pytest.raises(FabricationError, match=r"has a solid of volume -1000 mm\^3 \(solid 1\): inside out"):
+        step.check_solids([TopoDS.Solid(cube.Reversed())], volume=1000, parts=1)
