@@ -73,7 +73,7 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     printer = load_profile(printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")
     region, outline = tile.region(), tile.outline_shape()
     # the laser file's material: with interlace_cut, the under gaps cut and their tabs
-    cut_region, _ = laser_geometry(tile, profile=laser, mode=laser_mode)
+    cut_region, _ = laser_geometry(tile, profile=laser, mode=laser_mode, lines=False)
     laser_report = Report(path="", format="laser")
     try:
         check_fits_bed(outline, laser)

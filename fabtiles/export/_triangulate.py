@@ -84,7 +84,9 @@ def tiles_exactly(ij, tris, nxt, *, flat_ok: bool = True) -> bool:
     if int(area.sum()) != int((ij[:, 0] * ij[nxt, 1] - ij[nxt, 0] * ij[:, 1]).sum()):
         return False
     n = len(ij)
-    return edges_pair_up(np.concatenate([tris.ravel(), nxt]), np.concatenate([tris[:, [1, 2, 0]].ravel(), np.arange(n)]), n)
+    u = np.concatenate([tris.ravel(), nxt])
+    v = np.concatenate([tris[:, [1, 2, 0]].ravel(), np.arange(n)])
+    return edges_pair_up(u, v, n)
 
 
 def edges_pair_up(u, v, n: int) -> bool:
@@ -118,8 +120,8 @@ def turns(a, b, c):
 
 
 def flat(tris, ij):
-    a, b, c = ij[tris[:, 0]], ij[tris[:, 1]], ij[tris[:, 2]]
-    return (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]) == 0
+    """Which triangles are flat (three collinear grid points)."""
+    return twice_areas(ij, tris) == 0
 
 
 def cdt(piece, ij):
@@ -138,8 +140,7 @@ def cdt(piece, ij):
     except KeyError:
         raise FabricationError("cannot triangulate the region: a point not on the grid appeared") from None
     # GEOS triangles may come either way round: make them counter-clockwise
-    a, b, c = ij[out[:, 0]], ij[out[:, 1]], ij[out[:, 2]]
-    cw = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]) < 0
+    cw = twice_areas(ij, out) < 0
     out[cw] = out[cw][:, ::-1]
     return out
 
@@ -151,11 +152,7 @@ def flip_degenerate(tris: np.ndarray, ij: np.ndarray) -> np.ndarray:
     across x-y, (x, y, d), split at m into (x, m, d) and (m, y, d): same edges
     outside, same area, no flat face. Exact: the points are integers.
     """
-    def cross(t):
-        a, b, c = ij[t[:, 0]], ij[t[:, 1]], ij[t[:, 2]]
-        return (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
-
-    flat = np.flatnonzero(cross(tris) == 0)
+    flat = np.flatnonzero(twice_areas(ij, tris) == 0)
     if not len(flat):
         return tris
     tris = tris.copy()
@@ -198,7 +195,7 @@ def flip_degenerate(tris: np.ndarray, ij: np.ndarray) -> np.ndarray:
             extra.append((m, y, d))
 
         tris = np.concatenate([tris[alive], np.asarray(extra, dtype=np.int64).reshape(-1, 3)])
-        flat = np.flatnonzero(cross(tris) == 0)
+        flat = np.flatnonzero(twice_areas(ij, tris) == 0)
         if not len(flat):
             break
     return tris

@@ -120,7 +120,7 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
     return writer(path, region=region, outline=outline, profile=profile, stroke=stroke, **options)
 
 
-def laser_geometry(tile, *, profile=None, mode=None):
+def laser_geometry(tile, *, profile=None, mode=None, lines: bool = True):
     """What a laser file of ``tile`` cuts and scores: ``(region, centrelines)``.
 
     ``region`` is the material (with ``interlace_cut`` in pierced mode, the under
@@ -128,7 +128,8 @@ def laser_geometry(tile, *, profile=None, mode=None):
     ``centrelines`` the score lines (interlaced, broken where a strand passes
     under). ``profile`` is the laser profile (default ``laser-3mm-plywood``),
     ``mode`` ``"pierced"`` or ``"score"`` (default: the profile's). The tile's
-    files, its sheets and its checks all take their laser geometry from here.
+    files, its sheets and its checks all take their laser geometry from here;
+    ``lines=False`` (the checks) skips the score lines and gives None for them.
 
     >>> import numpy as np
     >>> import fabtiles as ft
@@ -139,14 +140,14 @@ def laser_geometry(tile, *, profile=None, mode=None):
     >>> region.area < tile.region().area, length(laser_geometry(tile, mode="score")[1]) < length(lines)
     (True, True)
     """
-    region, centrelines = tile.region(), tile.centrelines()
+    region, centrelines = tile.region(), tile.centrelines() if lines else None
     if getattr(tile, "interlace", False):
         from ..geometry import interlace
 
         laser = load_profile(profile if profile is not None else DEFAULT_LASER_PROFILE, kind="laser")
         mode = mode or laser.mode
         if mode == "score":
-            centrelines = interlace.tile_score_lines(tile)
+            centrelines = interlace.tile_score_lines(tile) if lines else None
         elif tile.interlace_cut:
             region = interlace.tile_cut_region(tile, min(laser.min_feature_mm, tile.stroke / 2))
     return region, centrelines

@@ -85,7 +85,7 @@ def split_region(r, dips, *, holes: bool = True, leveled: bool = False):
     d_coords, d_ring = shapely.get_coordinates(shapely.get_exterior_ring(parts), return_index=True)
     src = np.concatenate([np.asarray(coords, float), d_coords])
     length = np.concatenate([np.diff(ring_off), np.bincount(d_ring, minlength=len(parts))])
-    start = np.concatenate([ring_off[:-1], len(coords) + np.concatenate([[0], np.cumsum(length[len(ring_off) - 1:])[:-1]])])
+    start = np.cumsum(length) - length  # each ring's first point in src
     owner = np.concatenate([np.repeat(np.arange(len(owners)), np.diff(part_off)), owner_of])
     order = np.argsort(owner, kind="stable")  # each owner's own rings first, then its dips
     length, start = length[order], start[order]

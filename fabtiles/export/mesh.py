@@ -362,7 +362,8 @@ def build_meshes(*, region, outline, profile, style=None, base_mm=None, relief_m
     -------
     dict of str to trimesh.Trimesh
         relief: ``{"base", "pattern"}``; pierced: ``{"pattern"}``; deboss: ``{"plate"}``
-        (and ``"inlay"``). Vertices are float32-exact; every body passed :func:`~fabtiles.export._slicer_check.check_mesh`.
+        (and ``"inlay"``). Vertices are float32-exact; every body passed
+        :func:`~fabtiles.export._slicer_check.check_mesh`.
     """
     profile = load_profile(profile, kind="printer")
     stack = resolve_stack(profile, style, base_mm, relief_mm, pierced_mm, deboss_mm)

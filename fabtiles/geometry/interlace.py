@@ -147,18 +147,19 @@ def dips(region, w: Weave, half: float, gap: float, within=None):
 
 def _straight(w: Weave, half: float, gap: float) -> np.ndarray:
     """Which slivers (the forward ones, then the backward ones, as :func:`dips` makes them)
-    lie along a straight run of their under strand, both ways from the crossing.
+    lie along a straight run of their under strand from the crossing.
 
     Along the under strand, measured from the crossing, the forward sliver's
-    corners lie between ``(half - half |cos|) / sin`` and ``(half + gap + half
-    |cos|) / sin`` (``sin``, ``cos`` of the angle between the strands; the inset
-    only shrinks it), the backward one's mirrored.
+    corners lie between ``(half - half |cos|) / sin >= 0`` and ``(half + gap +
+    half |cos|) / sin`` (``sin``, ``cos`` of the angle between the strands; the
+    inset only shrinks it), the backward one's mirrored: the run must reach that
+    far on its side (:meth:`Weave.straight_reach` is 0 both ways where the strand
+    bends at the crossing).
     """
     cos = np.abs(np.sum(w.over_dir * w.under_dir, axis=1))
     far = (half + gap + half * cos) / w.sin
-    near = np.maximum(-(half - half * cos) / w.sin, 0.0)  # behind the crossing (0: never, |cos| <= 1)
     back, fwd = w.straight_reach().T
-    return np.concatenate([(fwd >= far) & (back >= near), (back >= far) & (fwd >= near)])
+    return np.concatenate([fwd >= far, back >= far])
 
 
 def polygonal(geom):
