@@ -275,7 +275,8 @@ class Coverage:
     ys: np.ndarray = None
 
 
-def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES, shift: int = 0) -> Coverage:
+def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES, shift: int = 0,
+             cells=None) -> Coverage:
     """Cut a stack into small pieces for meshing.
 
     Parameters
@@ -289,9 +290,12 @@ def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES, shift
         About this many region vertices per cell.
     shift : int
         Moves the cell lines (see :func:`_grid_lines`).
+    cells : tuple, optional
+        The cell lines and box ``(xs, ys, box)`` to use, as :func:`cells_for` gives
+        them (then ``cell_vertices`` and ``shift`` are not used).
     """
     geoms = [g for g, _ in layers if not g.is_empty]
-    xs, ys, box = cells_for(geoms, cell_vertices, shift)
+    xs, ys, box = cells if cells is not None else cells_for(geoms, cell_vertices, shift)
     levels = np.array(sorted({bottom, *[z for _, z in layers]}))
     pieces = []
     for geom, z in layers:
@@ -521,17 +525,18 @@ def _ladder_walls(u, v, out_level, level, nl: int, n_vertices: int) -> np.ndarra
 
 
 def coverage_pair(region, outline, *, region_z: float, rest_z: float, bottom: float,
-                  cell_vertices: int = CELL_VERTICES, shift: int = 0) -> Coverage:
+                  cell_vertices: int = CELL_VERTICES, shift: int = 0, cells=None) -> Coverage:
     """Cut an outline into the region (top at ``region_z``) and the rest (``rest_z``).
 
     Both inputs must be on the quantum grid. Cells fully inside the outline are
     split by a plain overlay (which keeps every input vertex); cells on the
     outline's edge use one snap-rounded overlay for both parts, so the two parts
-    share their vertices exactly there too. ``shift`` moves the cell lines.
+    share their vertices exactly there too. ``shift`` moves the cell lines;
+    ``cells`` gives them instead (as :func:`coverage`).
     """
     import shapely
 
-    xs, ys, box = cells_for([region, outline], cell_vertices, shift)
+    xs, ys, box = cells if cells is not None else cells_for([region, outline], cell_vertices, shift)
     levels = np.array(sorted({bottom, region_z, rest_z}))
     lr = int(np.searchsorted(levels, region_z))
     lo = int(np.searchsorted(levels, rest_z))
