@@ -296,9 +296,15 @@ def _candidate_pairs(seg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     n_after = group_end - pos - 1
     a = np.repeat(pos, n_after)
     b = a + 1 + (np.arange(n_after.sum()) - np.repeat(np.cumsum(n_after) - n_after, n_after))
-    i, j = sid[a], sid[b]
-    pair = np.unique(np.minimum(i, j) * k + np.maximum(i, j))
-    return pair // k, pair % k
+    i, j = sid[a], sid[b]  # i < j: sorted by segment within a cell
+    # each pair once, in the first cell both boxes share (no np.unique of the 180,000
+    # pairs of the 600 x 400 mm sheet: 0.045 s), and only if the boxes themselves overlap
+    c = key[a]
+    first = (c // (int(i1[:, 1].max()) + 2) == np.maximum(i0[i, 0], i0[j, 0])) & \
+        (c % (int(i1[:, 1].max()) + 2) == np.maximum(i0[i, 1], i0[j, 1]))
+    i, j = i[first], j[first]
+    meet = np.all((lo[i] <= hi[j]) & (lo[j] <= hi[i]), axis=1)
+    return i[meet], j[meet]
 
 
 def _point_keys(pts) -> np.ndarray:
@@ -422,25 +428,45 @@ def _pair_ends(verts, piece_v):
     # knots: pair straight continuations, straightest first; the rest end here
     knot_starts = start[(deg == 3) | (deg > 4)]
     knot_starts = np.concatenate([knot_starts, s4[~straight]])
-    dl = d.tolist()
-    order_l = order.tolist()
-    deg_at = dict(zip(start.tolist(), deg.tolist()))
-    for s0 in knot_starts.tolist():
-        dg = deg_at[s0]
-        ends = order_l[s0:s0 + dg]
-        cand = []
-        for x in range(dg):
-            for y in range(x + 1, dg):
-                (ax, ay), (bx, by) = dl[ends[x]], dl[ends[y]]
-                dot = ax * bx + ay * by
-                if dot < -_COS_BEND:
-                    cand.append((dot, ends[x], ends[y]))
-        cand.sort()
-        for _, ea, eb in cand:
-            if partner[ea] < 0 and partner[eb] < 0:
-                partner[ea], partner[eb] = eb, ea
+    for g in np.unique(deg[np.searchsorted(start, knot_starts)]).tolist():
+        at = knot_starts[deg[np.searchsorted(start, knot_starts)] == g]
+        _pair_knots(partner, order[at[:, None] + np.arange(g)], d)
     knots = vs[knot_starts] if len(knot_starts) else np.empty(0, np.int64)
     return partner, crossings, knots
+
+
+def _pair_knots(partner, ends, d) -> None:
+    """Pair the ends ``(m, g)`` at knots of ``g`` ends (directions ``d``) in ``partner``:
+    greedily, the straightest pair first (ties by end number), only pairs within
+    :data:`BEND_DEG` of straight, each end at most once.
+
+    Three or four ends (every knot of the samples: 5,475 on the 600 x 400 mm
+    sheet, a Python loop over them took 0.04 s) hold at most the best pair and its
+    complement: numpy; more, a loop.
+    """
+    g = ends.shape[1]
+    xs, ys = np.triu_indices(g, 1)
+    ea, eb = ends[:, xs], ends[:, ys]
+    dot = np.sum(d[ea] * d[eb], axis=2)
+    if g > 4:
+        for row in range(len(ends)):
+            for k in np.lexsort((eb[row], ea[row], dot[row])).tolist():
+                a, b = ea[row, k], eb[row, k]
+                if dot[row, k] < -_COS_BEND and partner[a] < 0 and partner[b] < 0:
+                    partner[a], partner[b] = b, a
+        return
+    m = len(ends)
+    rows = np.repeat(np.arange(m), len(xs))
+    best = np.lexsort((eb.ravel(), ea.ravel(), dot.ravel(), rows)).reshape(m, -1)[:, 0] - np.arange(m) * len(xs)
+    picks = [best]
+    if g == 4:  # the one pair left disjoint from the best: the other two ends
+        picks.append(len(xs) - 1 - best)  # (0,1)-(2,3), (0,2)-(1,3), (0,3)-(1,2) in triu order
+    ok = np.ones(m, bool)
+    for k in picks:
+        r = np.arange(m)
+        ok = ok & (dot[r, k] < -_COS_BEND)
+        a, b = ea[r[ok], k[ok]], eb[r[ok], k[ok]]
+        partner[a], partner[b] = b, a
 
 
 def weave(segments) -> Weave:

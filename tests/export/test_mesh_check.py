@@ -157,6 +157,32 @@ def test_earcut_refuses_an_edge_through_a_ring_point():
     assert int(tr.twice_areas(square, tris).sum()) == 2 * 16
     assert not tr.edges_pair_up(u, v, 5)
 
+    fixed = tr.restore_collinear(square, tris, nxt)  # the edge split at the point it runs through
+    assert tr.tiles_exactly(square, fixed, nxt) and len(fixed) == 3
+
+
+@settings(max_examples=examples(40), deadline=None)
+@given(st.integers(0, 2**31 - 1))
+def test_holes_along_one_line_are_ear_clipped_exactly(seed):
+    """Holes with edges on one straight line (as cells cut the region): earcut runs a
+    triangle edge along the line from hole to hole; split at the holes' corners, its
+    triangles tile the piece with no fallback."""
+    rng = np.random.default_rng(seed)
+    k = int(rng.integers(2, 7))
+    xs = np.sort(rng.choice(np.arange(2, 98), size=2 * k, replace=False))
+    rings = [np.array([[0, 0], [100, 0], [100, 100], [0, 100]])]
+    for i in range(k):
+        h = int(rng.integers(2, 20))
+        y0 = 50 if rng.random() < 0.8 else 50 - h  # above or below the line y = 50
+        x0, x1 = xs[2 * i], xs[2 * i + 1]
+        rings.append(np.array([[x0, y0], [x0, y0 + h], [x1, y0 + h], [x1, y0]]))  # clockwise: a hole
+    ij = np.concatenate(rings).astype(np.int64)
+    starts = np.cumsum([0] + [len(r) for r in rings])
+    nxt = np.arange(len(ij)) + 1
+    nxt[starts[1:] - 1] = starts[:-1]
+    tris = tr.ear_clip(ij, starts, np.array([0, len(rings)]), nxt)
+    assert tris is not None and tr.tiles_exactly(ij, tris, nxt)
+
 
 def bottom_faces(v, f):
     z = v[f][:, :, 2]

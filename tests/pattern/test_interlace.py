@@ -226,3 +226,45 @@ def test_point_keys_are_the_rounded_rows(points, huge):
     same_key = keys[:, None] == keys[None, :]
     same_row = (rows[:, None, :] == rows[None, :, :]).all(axis=2)
     assert np.array_equal(same_key, same_row)
+
+
+def greedy_pairs(ends, d, cos_bend):
+    """The knot rule written plainly: all pairs within the bend, straightest first (ties by
+    end number), each end used once."""
+    cand = sorted((float(d[a] @ d[b]), a, b) for a, b in itertools.combinations(ends, 2))
+    partner = {}
+    for dot, a, b in cand:
+        if dot < -cos_bend and a not in partner and b not in partner:
+            partner[a], partner[b] = b, a
+    return partner
+
+
+@settings(max_examples=examples(60), deadline=None)
+@given(st.integers(3, 6), st.integers(0, 2**31 - 1), st.booleans())
+def test_knot_pairing_is_the_greedy_rule(g, seed, snap_angles):
+    """The vectorised knot pairing (3 or 4 ends) and the loop (more) pick the pairs the rule does,
+    ties included (angles on a 45 degree grid tie often)."""
+    from fabtiles.pattern import interlace as pi
+
+    rng = np.random.default_rng(seed)
+    m = 7
+    ang = rng.uniform(0, 2 * np.pi, (m, g))
+    if snap_angles:
+        ang = np.round(ang / (np.pi / 4)) * (np.pi / 4)
+    d = np.stack([np.cos(ang), np.sin(ang)], axis=-1).reshape(-1, 2)
+    ends = np.array([rng.permutation(g) + g * r for r in range(m)])
+    partner = np.full(m * g, -1)
+    pi._pair_knots(partner, ends, d)
+    want = {}
+    for row in ends.tolist():
+        want.update(greedy_pairs(row, d, pi._COS_BEND))
+    assert {e: int(p) for e, p in enumerate(partner) if p >= 0} == want
+
+
+def test_a_t_junction_ends_the_stem():
+    """Three ends at a T: the bar goes straight on, the stem ends there (a knot)."""
+    seg = np.array([[[-2, 0], [0, 0]], [[0, 0], [2, 0]], [[0, 0], [0, 2]], [[-1, -1], [-1, 1]]], float)
+    w = weave(seg)
+    assert sorted_points(w.knots) == [(0.0, 0.0)]
+    assert w.strand[0] == w.strand[1] != w.strand[2]
+    assert (0.0, 2.0) in sorted_points(w.ends) and (0.0, 0.0) in sorted_points(w.ends)
