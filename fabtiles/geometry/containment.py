@@ -1,0 +1,142 @@
+"""Which small convex quadrilaterals lie inside a polygon: exact, in numpy, for thousands at once.
+
+An interlaced relief asks this of every sliver beside a crossing (10,000 and more
+on a 600 x 400 mm sheet) against a region with 85,000 boundary vertices. A
+convex quad lies in the interior of a polygon exactly when no edge of the
+polygon's boundary meets it (closed) and one of its points is inside. The first
+half is a join of the boundary edges and the quads on a uniform grid of about a
+quad's size, then a separating-axis test per candidate pair; the second is
+GEOS's point in polygon (:func:`shapely.contains_xy`) for one point of each quad
+no edge meets. Probing the quads' four corners with GEOS instead, and every
+boundary vertex against them, took 0.15 s on that sheet; GEOS's containment test
+of each quad, 0.6 s.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+
+def quads_inside(region, quads) -> np.ndarray:
+    """Which convex quadrilaterals ``(k, 4, 2)`` lie in the interior of ``region``.
+
+    A quad touching the boundary is not inside (as
+    :func:`shapely.contains_properly`). Either orientation.
+
+    >>> from shapely.geometry import box
+    >>> square = box(0, 0, 10, 10).difference(box(4, 4, 6, 6))
+    >>> q = np.array([[[1, 1], [2, 1], [2, 2], [1, 2]],  # inside
+    ...               [[3, 3], [5, 3], [5, 5], [3, 5]],  # over the hole's corner
+    ...               [[4.5, 4.5], [5.5, 4.5], [5.5, 5.5], [4.5, 5.5]],  # in the hole
+    ...               [[0, 1], [1, 1], [1, 2], [0, 2]]], float)  # on the edge
+    >>> quads_inside(square, q).tolist()
+    [True, False, False, False]
+    """
+    quads = np.asarray(quads, float).reshape(-1, 4, 2)
+    inside = np.zeros(len(quads), bool)
+    if not len(quads) or region.is_empty:
+        return inside
+    a, b = boundary_edges(region)
+    free = ~edges_meet_quads(a, b, quads)
+    if free.any():
+        c = quads[free].mean(axis=1)  # a convex quad holds its centroid
+        shapely.prepare(region)
+        inside[free] = shapely.contains_xy(region, c[:, 0], c[:, 1])
+    return inside
+
+
+def boundary_edges(geom):
+    """The edges ``(a, b)`` (two ``(m, 2)`` arrays) of every ring of a (Multi)Polygon."""
+    rings = shapely.get_rings(shapely.get_parts(geom))
+    pts, ring = shapely.get_coordinates(rings, return_index=True)
+    same = ring[1:] == ring[:-1]
+    return pts[:-1][same], pts[1:][same]
+
+
+def edges_meet_quads(a, b, quads) -> np.ndarray:
+    """For each convex quad ``(k, 4, 2)``, whether some segment ``a[i] -> b[i]`` meets it (closed).
+
+    Edges and quads are joined on a grid of cells about a quad's size (an edge
+    longer than a cell is cut into cell-long pieces first, so each piece touches
+    at most four cells); each pair sharing a cell and overlapping boxes is
+    tested exactly (:func:`_segment_meets_quad`).
+
+    >>> sq = np.array([[[0, 0], [1, 0], [1, 1], [0, 1]]], float)
+    >>> edges_meet_quads(np.array([[2, -1.0], [-1, 0.5]]), np.array([[2, 3.0], [0.5, 0.5]]), sq).tolist()
+    [True]
+    """
+    k = len(quads)
+    meets = np.zeros(k, bool)
+    if not k or not len(a):
+        return meets
+    qlo, qhi = quads.min(axis=1), quads.max(axis=1)
+    # only the edges near some quad
+    lo_all, hi_all = qlo.min(axis=0), qhi.max(axis=0)
+    near = np.all((np.minimum(a, b) <= hi_all) & (np.maximum(a, b) >= lo_all), axis=1)
+    a, b = a[near], b[near]
+    if not len(a):
+        return meets
+    cell = max(float(np.median(np.max(qhi - qlo, axis=1))), 1e-9)
+    # edges cut into pieces no longer than a cell
+    n_cut = np.maximum(np.ceil(np.linalg.norm(b - a, axis=1) / cell).astype(np.int64), 1)
+    e = np.repeat(np.arange(len(a)), n_cut)
+    t0 = (np.arange(len(e)) - np.repeat(np.cumsum(n_cut) - n_cut, n_cut)) / n_cut[e]
+    t1 = t0 + 1.0 / n_cut[e]
+    pa = a[e] + t0[:, None] * (b[e] - a[e])
+    pb = np.where((t1 >= 1.0)[:, None], b[e], a[e] + t1[:, None] * (b[e] - a[e]))
+    plo, phi = np.minimum(pa, pb), np.maximum(pa, pb)
+    # grid cells of the quads and of the pieces
+    top = np.floor((hi_all - lo_all) / cell).astype(np.int64) + 1  # quads' cells: 0 .. top - 1
+    q_key, q_id = _cells(qlo, qhi, lo_all, cell, top)
+    p_key, p_id = _cells(plo, phi, lo_all, cell, top)
+    order = np.argsort(q_key, kind="stable")
+    q_key, q_id = q_key[order], q_id[order]
+    first = np.searchsorted(q_key, p_key, "left")
+    count = np.searchsorted(q_key, p_key, "right") - first
+    piece = np.repeat(p_id, count)
+    quad = q_id[np.repeat(first, count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)]
+    overlap = np.all((plo[piece] <= qhi[quad]) & (phi[piece] >= qlo[quad]), axis=1)
+    piece, quad = piece[overlap], quad[overlap]
+    hit = _segment_meets_quad(pa[piece], pb[piece], quads[quad])
+    meets[quad[hit]] = True
+    return meets
+
+
+def _cells(lo, hi, origin, cell, top):
+    """Keys of the grid cells each box ``lo``-``hi`` covers, and the box of each key.
+
+    Cells are counted from ``origin``; indices below 0 or from ``top`` on (x, y)
+    are clamped to -1 and ``top`` (no quad lies there).
+    """
+    i0 = np.clip(np.floor((lo - origin) / cell), -1, top).astype(np.int64)
+    i1 = np.clip(np.floor((hi - origin) / cell), -1, top).astype(np.int64)
+    nx, ny = i1[:, 0] - i0[:, 0] + 1, i1[:, 1] - i0[:, 1] + 1
+    cnt = nx * ny
+    box = np.repeat(np.arange(len(lo)), cnt)
+    r = np.arange(cnt.sum()) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+    cx, cy = i0[box, 0] + r % nx[box], i0[box, 1] + r // nx[box]
+    return (cx + 1) * (int(top[1]) + 2) + (cy + 1), box
+
+
+def _segment_meets_quad(a, b, q) -> np.ndarray:
+    """Whether segment ``a -> b`` meets convex quad ``q`` (closed), pair by pair.
+
+    Separating axes: the segment misses the quad exactly when it lies wholly
+    outside one of the quad's edges, or the quad wholly on one side of the
+    segment's line.
+    """
+    nxt = np.roll(q, -1, axis=1)
+    edge = nxt - q  # (m, 4, 2)
+    sign = np.sign(np.sum(q[:, :, 0] * nxt[:, :, 1] - nxt[:, :, 0] * q[:, :, 1], axis=1))[:, None]  # + ccw
+
+    def side(p):  # > 0 inside edge i's half-plane (for either orientation)
+        rel = p[:, None, :] - q
+        return sign * (edge[:, :, 0] * rel[:, :, 1] - edge[:, :, 1] * rel[:, :, 0])
+
+    outside_an_edge = np.any((side(a) < 0) & (side(b) < 0), axis=1)
+    d = b - a
+    rel = q - a[:, None, :]
+    o = d[:, None, 0] * rel[:, :, 1] - d[:, None, 1] * rel[:, :, 0]
+    one_side = np.all(o > 0, axis=1) | np.all(o < 0, axis=1)
+    return ~(outside_an_edge | one_side)
