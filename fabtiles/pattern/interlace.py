@@ -489,54 +489,8 @@ def weave(segments) -> Weave:
     is_cross[cross_v] = True
     plen = np.linalg.norm(verts[piece_v[:, 1]] - verts[piece_v[:, 0]], axis=1)
 
-    # walk every strand once
-    strand_of = np.full(n_piece, -1)
-    flip = np.zeros(n_piece, bool)  # piece walked from its second vertex to its first
-    start_pos = np.zeros(n_piece)
-    partner_l = partner.tolist()
-    pv = piece_v.tolist()
-    pl = plen.tolist()
-    isc = is_cross.tolist()
-    strand_len, strand_closed = [], []
-    v_strand, v_pos, v_vertex, v_piece = [], [], [], []
-    open_ends = np.flatnonzero(partner < 0).tolist()
-    sof = strand_of.tolist()
-    fl = [False] * n_piece
-    sp = [0.0] * n_piece
-    starts = [(e, False) for e in open_ends] + [(2 * p, True) for p in range(n_piece)]
-    for e0, closed in starts:
-        if sof[e0 >> 1] >= 0:
-            continue
-        sid = len(strand_len)
-        pos = 0.0
-        e = e0
-        while True:
-            p = e >> 1
-            if sof[p] >= 0:
-                break
-            sof[p] = sid
-            fl[p] = bool(e & 1)
-            sp[p] = pos
-            pos += pl[p]
-            out = e ^ 1
-            vtx = pv[p][out & 1]
-            if isc[vtx]:
-                v_strand.append(sid)
-                v_pos.append(pos)
-                v_vertex.append(vtx)
-                v_piece.append(p)
-            e = partner_l[out]
-            if e < 0:
-                break
-        strand_len.append(pos)
-        strand_closed.append(closed)
-    strand_of = np.array(sof, dtype=np.int64)
-    flip = np.array(fl, bool)
-    start_pos = np.array(sp)
-    v_strand = np.array(v_strand, dtype=np.int64)
-    v_pos = np.array(v_pos)
-    v_vertex = np.array(v_vertex, dtype=np.int64)
-    v_piece = np.array(v_piece, dtype=np.int64)
+    strand_of, flip, start_pos, strand_len, strand_closed, v_strand, v_pos, v_vertex, v_piece = \
+        _walk(partner, piece_v, plen, is_cross)
     # index of each visit along its strand (visits are in walk order)
     first_visit = np.r_[True, v_strand[1:] != v_strand[:-1]] if len(v_strand) else np.zeros(0, bool)
     idx = np.arange(len(v_strand)) - np.maximum.accumulate(np.where(first_visit, np.arange(len(v_strand)), 0))
@@ -572,6 +526,93 @@ def weave(segments) -> Weave:
         piece_start=start_pos, strand_length=np.array(strand_len), strand_closed=np.array(strand_closed, bool),
         visit_strand=v_strand, visit_pos=v_pos, visit_crossing=visit_crossing, visit_over=visit_over,
     )
+
+
+def _walk(partner, piece_v, plen, is_cross):
+    """Every strand walked once: the pieces in order along it, where it crosses.
+
+    A strand is walked from its lowest open end (a loop: from the first vertex of
+    its lowest piece); strands are numbered open ones first, by that end, then
+    loops, by that piece. Returns, per piece, its strand, whether it is walked from
+    its second vertex, and how far along the strand it starts; per strand, its
+    length and whether it is a loop; per visit of a crossing (in walk order), the
+    strand, how far along, the vertex and the piece arriving there.
+
+    In numpy (:func:`fabtiles._graph.chain_ranks`, 0.01 s for the 600 x 400 mm
+    sheet's 64,000 pieces; a Python walk took 0.05 s). Positions are summed along
+    each strand one piece after the other, as a walk would.
+    """
+    from .._graph import chain_ranks, components
+
+    n = len(piece_v)
+    m = 2 * n
+    linked = np.flatnonzero(partner >= 0)
+    label = components(n, linked >> 1, partner[linked] >> 1)  # each strand's lowest piece
+    # entry end e of a piece leads to the entry end partner[e ^ 1] of the next: so the
+    # entry before e is partner[e] ^ 1. Each strand is two chains, one each way.
+    pred = np.where(partner >= 0, partner ^ 1, -1)
+    open_end = np.flatnonzero(partner < 0)
+    lowest_open = np.full(n, m)
+    np.minimum.at(lowest_open, label[open_end >> 1], open_end)
+    roots = np.flatnonzero(label == np.arange(n))
+    loops = roots[lowest_open[roots] == m]
+    pred[2 * loops] = -1  # a loop is cut before its lowest piece, both ways
+    pred[partner[2 * loops]] = -1
+    head, rank = chain_ranks(pred)
+    start = np.where(lowest_open[roots] < m, lowest_open[roots], 2 * roots)  # each strand's first end
+    is_open = lowest_open[roots] < m
+    order = np.lexsort((np.where(is_open, start, roots), ~is_open))  # open strands by end, then loops
+    sid_of_start = np.full(m, -1)
+    sid_of_start[start[order]] = np.arange(len(order))
+    entry = np.flatnonzero(sid_of_start[head] >= 0)  # the ends a piece is entered by, walking forward
+    piece = entry >> 1
+    sid = sid_of_start[head[entry]]
+    walk = np.lexsort((rank[entry], sid))
+    piece, sid, entry = piece[walk], sid[walk], entry[walk]
+    n_strand = len(order)
+    count = np.bincount(sid, minlength=n_strand)
+    reach = _cumulative(plen[piece], count)  # along its strand, where each piece ends
+    begin = np.empty(n)
+    begin[1:] = reach[:-1]
+    first = np.cumsum(count) - count
+    begin[first[count > 0]] = 0.0
+    strand_of = np.empty(n, np.int64)
+    strand_of[piece] = sid
+    flip = np.empty(n, bool)
+    flip[piece] = (entry & 1).astype(bool)
+    start_pos = np.empty(n)
+    start_pos[piece] = begin
+    strand_len = np.zeros(n_strand)
+    ends = count > 0
+    strand_len[ends] = reach[(first + count - 1)[ends]]
+    vertex = piece_v[piece, 1 - (entry & 1)]  # where each piece is left
+    visit = np.flatnonzero(is_cross[vertex])
+    return (strand_of, flip, start_pos, strand_len, ~is_open[order], sid[visit], reach[visit],
+            vertex[visit], piece[visit])
+
+
+def _cumulative(values, count) -> np.ndarray:
+    """Running sums of ``values`` restarting every ``count[i]`` values, each one added
+    after the other (``np.cumsum`` row by row: the same floats as a loop).
+
+    >>> _cumulative(np.array([1.0, 2, 3, 4, 5]), np.array([2, 0, 3])).tolist()
+    [1.0, 3.0, 3.0, 7.0, 12.0]
+    """
+    out = np.empty(len(values))
+    first = np.cumsum(count) - count
+    # rows of similar length together: padded no more than twice over
+    size = np.maximum(count, 1)
+    bucket = np.floor(np.log2(size)).astype(np.int64)
+    for b in np.unique(bucket[count > 0]).tolist():
+        rows = np.flatnonzero((bucket == b) & (count > 0))
+        width = int(count[rows].max())
+        col = np.arange(width)
+        mask = col < count[rows, None]
+        idx = first[rows, None] + col
+        grid = np.zeros((len(rows), width))
+        grid[mask] = values[idx[mask]]
+        out[idx[mask]] = np.cumsum(grid, axis=1)[mask]
+    return out
 
 
 def _assign(n_strand, sa, sb, ia, ib) -> np.ndarray:

@@ -268,3 +268,21 @@ def test_a_t_junction_ends_the_stem():
     assert sorted_points(w.knots) == [(0.0, 0.0)]
     assert w.strand[0] == w.strand[1] != w.strand[2]
     assert (0.0, 2.0) in sorted_points(w.ends) and (0.0, 0.0) in sorted_points(w.ends)
+
+
+@settings(max_examples=examples(40), deadline=None)
+@given(st.lists(st.integers(0, 70), max_size=15), st.integers(0, 2**31 - 1))
+def test_running_sums_along_strands_are_a_loops_floats(count, seed):
+    """Positions along strands are summed piece after piece: bit for bit what a walk adds up."""
+    from fabtiles.pattern.interlace import _cumulative
+
+    rng = np.random.default_rng(seed)
+    values = rng.uniform(0, 10, sum(count)) ** 3  # magnitudes apart, so the order of additions shows
+    want, at = [], 0
+    for c in count:
+        pos = 0.0
+        for x in values[at:at + c].tolist():
+            pos += x
+            want.append(pos)
+        at += c
+    assert _cumulative(values, np.array(count, np.int64)).tolist() == want
