@@ -18,11 +18,17 @@ import numpy as np
 import shapely
 
 
-def quads_inside(region, quads) -> np.ndarray:
+MAX_CELLS = 4_000_000
+"""At most this many grid cells (a few quads spread over a huge area get larger cells)."""
+
+
+def quads_inside(region, quads, *, centre_inside=None) -> np.ndarray:
     """Which convex quadrilaterals ``(k, 4, 2)`` lie in the interior of ``region``.
 
     A quad touching the boundary is not inside (as
-    :func:`shapely.contains_properly`). Either orientation.
+    :func:`shapely.contains_properly`). Either orientation. ``centre_inside``
+    (optional, a mask) marks the quads whose centroid the caller knows lies in
+    ``region``: they skip the point in polygon test.
 
     >>> from shapely.geometry import box
     >>> square = box(0, 0, 10, 10).difference(box(4, 4, 6, 6))
@@ -39,6 +45,9 @@ def quads_inside(region, quads) -> np.ndarray:
         return inside
     a, b = boundary_edges(region)
     free = ~edges_meet_quads(a, b, quads)
+    if centre_inside is not None:
+        inside[free & centre_inside] = True
+        free &= ~centre_inside
     if free.any():
         c = quads[free].mean(axis=1)  # a convex quad holds its centroid
         shapely.prepare(region)
@@ -77,28 +86,47 @@ def edges_meet_quads(a, b, quads) -> np.ndarray:
     a, b = a[near], b[near]
     if not len(a):
         return meets
-    cell = max(float(np.median(np.max(qhi - qlo, axis=1))), 1e-9)
-    # edges cut into pieces no longer than a cell
-    n_cut = np.maximum(np.ceil(np.linalg.norm(b - a, axis=1) / cell).astype(np.int64), 1)
+    span = np.maximum(hi_all - lo_all, 1e-9)
+    # cells about a quad's size, at most MAX_CELLS of them (a dense grid: no sort of the pieces)
+    cell = max(float(np.median(np.max(qhi - qlo, axis=1))), float(np.sqrt(span[0] * span[1] / MAX_CELLS)), 1e-9)
+    # edges cut into pieces shorter than a cell: each in at most 2 x 2 cells
+    n_cut = np.maximum(np.ceil(np.linalg.norm(b - a, axis=1) / (0.99 * cell)).astype(np.int64), 1)
     e = np.repeat(np.arange(len(a)), n_cut)
     t0 = (np.arange(len(e)) - np.repeat(np.cumsum(n_cut) - n_cut, n_cut)) / n_cut[e]
     t1 = t0 + 1.0 / n_cut[e]
     pa = a[e] + t0[:, None] * (b[e] - a[e])
     pb = np.where((t1 >= 1.0)[:, None], b[e], a[e] + t1[:, None] * (b[e] - a[e]))
     plo, phi = np.minimum(pa, pb), np.maximum(pa, pb)
-    # grid cells of the quads and of the pieces
-    top = np.floor((hi_all - lo_all) / cell).astype(np.int64) + 1  # quads' cells: 0 .. top - 1
+    # the quads listed cell by cell (cells -1 .. top on each axis, numbered from 0)
+    top = np.floor(span / cell).astype(np.int64) + 1
+    stride = int(top[1]) + 2
     q_key, q_id = _cells(qlo, qhi, lo_all, cell, top)
-    p_key, p_id = _cells(plo, phi, lo_all, cell, top)
     order = np.argsort(q_key, kind="stable")
-    q_key, q_id = q_key[order], q_id[order]
-    first = np.searchsorted(q_key, p_key, "left")
-    count = np.searchsorted(q_key, p_key, "right") - first
+    q_id = q_id[order]
+    in_cell = np.bincount(q_key, minlength=(int(top[0]) + 2) * stride)
+    cell_start = np.cumsum(in_cell) - in_cell
+    # each piece's (up to four) cells, those holding quads
+    i0 = np.clip(np.floor((plo - lo_all) / cell), -1, top).astype(np.int64)
+    i1 = np.clip(np.floor((phi - lo_all) / cell), -1, top).astype(np.int64)
+    keys, ids = [], []
+    for dx, dy in ((0, 0), (1, 0), (0, 1), (1, 1)):
+        cx, cy = i0[:, 0] + dx, i0[:, 1] + dy
+        key = (cx + 1) * stride + (cy + 1)
+        ok = (cx <= i1[:, 0]) & (cy <= i1[:, 1])
+        ok[ok] = in_cell[key[ok]] > 0
+        keys.append(key[ok])
+        ids.append(np.flatnonzero(ok))
+    p_key, p_id = np.concatenate(keys), np.concatenate(ids)
+    count = in_cell[p_key]
     piece = np.repeat(p_id, count)
-    quad = q_id[np.repeat(first, count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)]
+    quad = q_id[np.repeat(cell_start[p_key], count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)]
     overlap = np.all((plo[piece] <= qhi[quad]) & (phi[piece] >= qlo[quad]), axis=1)
     piece, quad = piece[overlap], quad[overlap]
-    hit = _segment_meets_quad(pa[piece], pb[piece], quads[quad])
+    ccw = quads.copy()  # every quad counter-clockwise, once
+    cw = np.sum(quads[:, :, 0] * np.roll(quads[:, :, 1], -1, axis=1)
+                - np.roll(quads[:, :, 0], -1, axis=1) * quads[:, :, 1], axis=1) < 0
+    ccw[cw] = quads[cw, ::-1]
+    hit = _segment_meets_quad(pa[piece], pb[piece], ccw[quad], np.roll(ccw, -1, axis=1)[quad] - ccw[quad])
     meets[quad[hit]] = True
     return meets
 
@@ -119,20 +147,17 @@ def _cells(lo, hi, origin, cell, top):
     return (cx + 1) * (int(top[1]) + 2) + (cy + 1), box
 
 
-def _segment_meets_quad(a, b, q) -> np.ndarray:
-    """Whether segment ``a -> b`` meets convex quad ``q`` (closed), pair by pair.
+def _segment_meets_quad(a, b, q, edge) -> np.ndarray:
+    """Whether segment ``a -> b`` meets the counter-clockwise convex quad ``q`` (closed), pair
+    by pair (``edge``: the quad's edge vectors, ``q[i + 1] - q[i]``).
 
     Separating axes: the segment misses the quad exactly when it lies wholly
     outside one of the quad's edges, or the quad wholly on one side of the
     segment's line.
     """
-    nxt = np.roll(q, -1, axis=1)
-    edge = nxt - q  # (m, 4, 2)
-    sign = np.sign(np.sum(q[:, :, 0] * nxt[:, :, 1] - nxt[:, :, 0] * q[:, :, 1], axis=1))[:, None]  # + ccw
-
-    def side(p):  # > 0 inside edge i's half-plane (for either orientation)
+    def side(p):  # > 0 inside edge i's half-plane
         rel = p[:, None, :] - q
-        return sign * (edge[:, :, 0] * rel[:, :, 1] - edge[:, :, 1] * rel[:, :, 0])
+        return edge[:, :, 0] * rel[:, :, 1] - edge[:, :, 1] * rel[:, :, 0]
 
     outside_an_edge = np.any((side(a) < 0) & (side(b) < 0), axis=1)
     d = b - a

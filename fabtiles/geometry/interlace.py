@@ -124,10 +124,12 @@ def dips(region, w: Weave, half: float, gap: float, within=None):
     # A sliver along a straight run of its under strand lies in that strand's band,
     # so in the material (inside ``within``, which the region fills but for the
     # bands' gaps): only the others are tested (12,696 of the sheet's 14,736).
-    straight = _straight(w, half, gap) if within is not None else np.zeros(len(parts), bool)
+    no = np.zeros(len(parts), bool)
+    straight, centre = _straight(w, half, gap) if within is not None else (no, no)
     probe = keep & ~straight
     if probe.any():
-        keep[probe] = quads_inside(region, probes[probe])
+        # the centre lies on the under centre-line: in its band where the run reaches it
+        keep[probe] = quads_inside(region, probes[probe], centre_inside=centre[probe])
     parts = parts[keep]
     if not len(parts):
         return shapely.Polygon()
@@ -138,21 +140,24 @@ def dips(region, w: Weave, half: float, gap: float, within=None):
     return polygonal(shapely.multipolygons(np.concatenate([parts[~touching], merged])))
 
 
-def _straight(w: Weave, half: float, gap: float) -> np.ndarray:
+def _straight(w: Weave, half: float, gap: float):
     """Which slivers (the forward ones, then the backward ones, as :func:`dips` makes them)
-    lie along a straight run of their under strand from the crossing.
+    lie along a straight run of their under strand from the crossing, and which
+    have their centre on one: two masks.
 
     Along the under strand, measured from the crossing, the forward sliver's
     corners lie between ``(half - half |cos|) / sin >= 0`` and ``(half + gap +
     half |cos|) / sin`` (``sin``, ``cos`` of the angle between the strands; the
-    inset only shrinks it), the backward one's mirrored: the run must reach that
-    far on its side (:meth:`Weave.straight_reach` is 0 both ways where the strand
-    bends at the crossing).
+    inset only shrinks it), its centre at ``(half + gap / 2) / sin``, the backward
+    one's mirrored: the run must reach that far on its side
+    (:meth:`Weave.straight_reach` is 0 both ways where the strand bends at the
+    crossing).
     """
     cos = np.abs(np.sum(w.over_dir * w.under_dir, axis=1))
-    far = (half + gap + half * cos) / w.sin
     back, fwd = w.straight_reach().T
-    return np.concatenate([fwd >= far, back >= far])
+    far = (half + gap + half * cos) / w.sin
+    mid = (half + gap / 2) / w.sin
+    return np.concatenate([fwd >= far, back >= far]), np.concatenate([fwd >= mid, back >= mid])
 
 
 def polygonal(geom):
