@@ -36,11 +36,15 @@ def dip_level(dips):
     """
     import shapely
 
-    from ._mesh_build import snap
+    from ._mesh_build import QUANTUM, snap
 
     if dips is None or dips.is_empty:
         return shapely.Polygon()
-    parts = shapely.get_parts(snap(dips))
+    # :func:`fabtiles.geometry.interlace.dips` makes them on the grid already (snapping
+    # them again, validity check included, took 0.035 s for the 600 x 400 mm sheet)
+    coords = shapely.get_coordinates(dips)
+    on_grid = np.array_equal(np.round(coords / QUANTUM) * QUANTUM, coords)
+    parts = shapely.get_parts(dips if on_grid else snap(dips))
     parts = parts[~_thin(parts)] if len(parts) else parts
     return shapely.multipolygons(parts) if len(parts) else shapely.Polygon()
 

@@ -25,6 +25,7 @@ import shapely
 
 from ..pattern.interlace import Weave
 from .containment import quads_inside
+from .stack import QUANTUM
 
 
 INSET_MM = 0.02
@@ -43,10 +44,25 @@ def _parallelograms(w: Weave, a0, a1, b0, b1) -> np.ndarray:
     ``a`` is the distance from the over centre-line, ``b`` from the under one
     (both measured square to those lines); one polygon per crossing.
     """
+    q = _corners(w, a0, a1, b0, b1)
+    return shapely.polygons(np.concatenate([q, q[:, :1]], axis=1))
+
+
+def _corners(w: Weave, a0, a1, b0, b1) -> np.ndarray:
+    """The corners ``(k, 4, 2)`` of :func:`_parallelograms`."""
     p, du, do, s = w.points, w.under_dir, w.over_dir, w.sin[:, None]
-    corners = [p + (a * du + b * do) / s for a, b in ((a0, b0), (a1, b0), (a1, b1), (a0, b1))]
-    ring = np.stack(corners + corners[:1], axis=1)
-    return shapely.polygons(ring)
+    return np.stack([p + (a * du + b * do) / s for a, b in ((a0, b0), (a1, b0), (a1, b1), (a0, b1))], axis=1)
+
+
+def dip_quads(w: Weave, half: float, gap: float) -> np.ndarray:
+    """Every candidate dip ``(2k, 4, 2)``: each crossing's forward sliver, then each one's
+    backward sliver, inset by :data:`INSET_MM`, corners on the meshes' 2**-10 mm grid
+    (the dips are meshed as they are tested).
+    """
+    e = INSET_MM
+    band = (-half + e, half - e)  # across the under band, off its edges
+    q = np.concatenate([_corners(w, half + e, half + gap - e, *band), _corners(w, -half - gap + e, -half - e, *band)])
+    return np.round(q / QUANTUM) * QUANTUM
 
 
 def slivers(w: Weave, half: float, gap: float, *, tab: float = 0.0, reach=None) -> np.ndarray:
@@ -113,31 +129,32 @@ def dips(region, w: Weave, half: float, gap: float, within=None):
     e = INSET_MM
     if not len(w) or gap <= 2 * e or half <= e:
         return shapely.Polygon()
-    band = (-half + e, half - e)  # across the under band, off its edges
-    parts = np.concatenate([_parallelograms(w, half + e, half + gap - e, *band),
-                            _parallelograms(w, -half - gap + e, -half - e, *band)])
-    probes = shapely.get_coordinates(shapely.get_exterior_ring(parts)).reshape(len(parts), 5, 2)[:, :4]
-    keep = np.ones(len(parts), bool)
+    probes = dip_quads(w, half, gap)
+    keep = np.ones(len(probes), bool)
     if within is not None:
         shapely.prepare(within)
         keep &= shapely.contains_xy(within, probes[..., 0], probes[..., 1]).all(axis=1)
     # A sliver along a straight run of its under strand lies in that strand's band,
     # so in the material (inside ``within``, which the region fills but for the
     # bands' gaps): only the others are tested (12,696 of the sheet's 14,736).
-    no = np.zeros(len(parts), bool)
+    no = np.zeros(len(probes), bool)
     straight, centre = _straight(w, half, gap) if within is not None else (no, no)
     probe = keep & ~straight
     if probe.any():
         # the centre lies on the under centre-line: in its band where the run reaches it
         keep[probe] = quads_inside(region, probes[probe], centre_inside=centre[probe])
-    parts = parts[keep]
-    if not len(parts):
+    q = probes[keep]
+    if not len(q):
         return shapely.Polygon()
+    parts = shapely.polygons(np.concatenate([q, q[:, :1]], axis=1))
     a, b = shapely.STRtree(parts).query(parts, predicate="intersects")
     touching = np.zeros(len(parts), bool)
     touching[a[a != b]] = True
-    merged = shapely.get_parts(shapely.union_all(parts[touching])) if touching.any() else parts[:0]
-    return polygonal(shapely.multipolygons(np.concatenate([parts[~touching], merged])))
+    if not touching.any():
+        return shapely.multipolygons(parts)
+    # overlapping slivers merged, back on the grid
+    merged = polygonal(shapely.set_precision(shapely.union_all(parts[touching]), QUANTUM))
+    return shapely.multipolygons(np.concatenate([parts[~touching], shapely.get_parts(merged)]))
 
 
 def _straight(w: Weave, half: float, gap: float):
