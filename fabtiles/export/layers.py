@@ -27,8 +27,8 @@ def dip_z(stack) -> float:
 
 def dip_level(dips):
     """The dips as the meshes and the STEP file build them: on the grid, parts thinner
-    than :data:`THIN_MM` dropped (those stay at full height). A MultiPolygon, or an
-    empty Polygon.
+    than :data:`THIN_MM` dropped (those stay at full height), no holes. A
+    MultiPolygon, or an empty Polygon.
 
     >>> from shapely.geometry import box
     >>> dip_level(box(0, 0, 1, 2 ** -12)).is_empty, round(dip_level(box(0, 0, 1, 0.5)).area, 3)
@@ -46,6 +46,9 @@ def dip_level(dips):
     on_grid = np.array_equal(np.round(coords / QUANTUM) * QUANTUM, coords)
     parts = shapely.get_parts(dips if on_grid else snap(dips))
     parts = parts[~_thin(parts)] if len(parts) else parts
+    holed = shapely.get_num_interior_rings(parts) > 0
+    if holed.any():  # an island ringed by overlapping slivers: far too small to stand up, it dips too
+        parts[holed] = shapely.polygons(shapely.get_exterior_ring(parts[holed]))
     return shapely.multipolygons(parts) if len(parts) else shapely.Polygon()
 
 
@@ -80,10 +83,12 @@ def split_region(r, dips, *, holes: bool = True, leveled: bool = False):
 
 
 def _owner_of(polys, points) -> np.ndarray:
-    """Index of the polygon of ``polys`` holding each point strictly inside (-1: none).
+    """Index of the polygon of ``polys`` holding each point strictly inside (-1: none), for
+    points each known to lie inside one of them (a dip's corner, inside the region).
 
-    Point in polygon, polygon by polygon, each prepared once: a bounding-box
-    query first, so a polygon is tested only on the points in its box.
+    A point in the box of one polygon alone lies in that one (most of the 600 x 400 mm
+    sheet's 10,000 dips: a cell's part of the region is mostly one polygon); the others
+    are tested, polygon by polygon, each prepared once.
     """
     import shapely
 
@@ -91,6 +96,9 @@ def _owner_of(polys, points) -> np.ndarray:
     if not len(points) or not len(polys):
         return owner
     pt, poly = shapely.STRtree(polys).query(shapely.points(points))
+    alone = np.bincount(pt, minlength=len(points))[pt] == 1
+    owner[pt[alone]] = poly[alone]
+    pt, poly = pt[~alone], poly[~alone]
     for k in np.unique(poly).tolist():
         sel = pt[poly == k]
         shapely.prepare(polys[k])
@@ -241,10 +249,14 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
     cells = cells_for([r, o] if kind == "relief" else [r], CELL_VERTICES, shift)
     xs, ys, box = cells
     parts = shapely.get_parts(dip) if not dip.is_empty else np.empty(0, object)
+    # each dip's ring (dip_level leaves them no holes) as arrays, and its box
+    _, coords, (ring_off, _) = shapely.to_ragged_array(parts) if len(parts) else (0, np.empty((0, 2)), ([0], [0]))
+    coords, ring_off = np.asarray(coords, float), np.asarray(ring_off)
+    lo = np.minimum.reduceat(coords, ring_off[:-1]) if len(parts) else np.empty((0, 2))
+    hi = np.maximum.reduceat(coords, ring_off[:-1]) if len(parts) else np.empty((0, 2))
     # a dip inside one cell: no cell line between its bounds (cell i lies between xs[i - 1] and xs[i])
-    lo_x, lo_y, hi_x, hi_y = shapely.bounds(parts).T if len(parts) else np.empty((4, 0))
-    ci, cj = np.searchsorted(xs, lo_x, "left"), np.searchsorted(ys, lo_y, "left")
-    inner = (ci == np.searchsorted(xs, hi_x, "right")) & (cj == np.searchsorted(ys, hi_y, "right"))
+    ci, cj = np.searchsorted(xs, lo[:, 0], "left"), np.searchsorted(ys, lo[:, 1], "left")
+    inner = (ci == np.searchsorted(xs, hi[:, 0], "right")) & (cj == np.searchsorted(ys, hi[:, 1], "right"))
     crossed = parts[~inner]
     rr = split_region(r, shapely.multipolygons(crossed), leveled=True)[0] if len(crossed) else r
     if kind == "relief":
@@ -264,9 +276,10 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
     elif len(crossed):
         cut, _, _ = split_cells(node_polygons(shapely.multipolygons(crossed), xs, ys), xs, ys, box)
         extra = coverage_from_cells([(g, low) for _, _, g in cut], levels).pieces
-    inner_parts = parts[inner]
-    if len(inner_parts):
-        pieces = _inner_dips(pieces, top, low, inner_parts, ci[inner], cj[inner])
+    if inner.any():
+        lengths = np.diff(ring_off)
+        ring = np.repeat(inner, lengths)
+        pieces = _inner_dips(pieces, top, low, coords[ring], lengths[inner], ci[inner], cj[inner])
     return Coverage(pieces + extra, levels, cov.xs, cov.ys)
 
 
@@ -309,34 +322,45 @@ def _relevel_crossed(pieces, rest, low, dips):
     return out
 
 
-def _inner_dips(pieces, top, low, dips, ci, cj):
+def _inner_dips(pieces, top, low, coords, lengths, ci, cj):
     """``pieces`` with every dip that lies inside one cell made a hole of the ``top``
     polygon holding it, and the dips themselves added at level ``low``, a piece a cell.
 
-    ``ci``, ``cj`` are the cell of each dip (as :func:`~fabtiles.export._mesh_build.split_cells`
-    numbers them). Pieces are oriented (exteriors counter-clockwise), so the holes are
-    added clockwise and the dip pieces counter-clockwise.
+    The dips are closed rings, ``coords`` one after another, ``lengths`` points
+    each; ``ci``, ``cj`` their cells (as
+    :func:`~fabtiles.export._mesh_build.split_cells` numbers them). Pieces are
+    oriented (exteriors counter-clockwise), so the holes are added clockwise and
+    the dip pieces counter-clockwise.
     """
     import shapely
 
     is_top = np.array([lvl == top for _, lvl in pieces])
     top_idx = np.flatnonzero(is_top)
     polys, piece_of = shapely.get_parts([pieces[k][0] for k in top_idx.tolist()], return_index=True)
-    rings = shapely.get_exterior_ring(dips)
-    owner = _owner_of(polys, shapely.get_coordinates(shapely.get_point(rings, 0)))
+    start = np.cumsum(lengths) - lengths
+    owner = _owner_of(polys, coords[start])
     ok = owner >= 0  # always (a dip lies strictly inside the region's piece of its cell)
-    if not ok.any():
+    if not ok.all():
+        keep = np.repeat(ok, lengths)
+        coords, lengths, owner, ci, cj = coords[keep], lengths[ok], owner[ok], ci[ok], cj[ok]
+        start = np.cumsum(lengths) - lengths
+    if not len(lengths):
         return pieces
-    rings, owner, ci, cj = rings[ok], owner[ok], ci[ok], cj[ok]
-    ccw = shapely.is_ccw(rings)
-    coords, lengths = _ragged_rings(rings)
+    x, y = coords[:, 0], coords[:, 1]
+    twice = x[:-1] * y[1:] - x[1:] * y[:-1]
+    twice = np.append(twice, 0.0)
+    twice[start[1:] - 1] = 0.0  # no term from one ring's last point to the next ring's first
+    ccw = np.add.reduceat(twice, start) > 0
     holed = add_holes(polys, owner, _reversed(coords, lengths, ccw), lengths)  # holes clockwise
     out = [p for k, p in enumerate(pieces) if not is_top[k]]
     out += [(g, top) for g in shapely.multipolygons(holed, indices=piece_of)]
-    ring_of = np.repeat(np.arange(len(lengths)), lengths)
-    dip_polys = shapely.polygons(shapely.linearrings(_reversed(coords, lengths, ~ccw), indices=ring_of))
+    # the dips, a piece a cell
     cell = ci * (int(cj.max()) + 1) + cj
     _, group = np.unique(cell, return_inverse=True)
     order = np.argsort(group.ravel(), kind="stable")
-    out += [(g, low) for g in shapely.multipolygons(dip_polys[order], indices=group.ravel()[order])]
+    ring_pts = np.concatenate([[0], np.cumsum(lengths[order])])
+    gather = np.repeat(start[order] - ring_pts[:-1], lengths[order]) + np.arange(ring_pts[-1])
+    dip_coords = _reversed(coords, lengths, ~ccw)[gather]
+    dip_polys = shapely.from_ragged_array(shapely.GeometryType.POLYGON, dip_coords, (ring_pts, np.arange(len(order) + 1)))
+    out += [(g, low) for g in shapely.multipolygons(dip_polys, indices=group.ravel()[order])]
     return out
