@@ -306,19 +306,14 @@ def _relevel_crossed(pieces, rest, low, dips):
     """
     import shapely
 
-    tree = shapely.STRtree(dips)
-    out = []
-    for p, lvl in pieces:
-        if lvl == rest:
-            polys = shapely.get_parts(p)
-            hit = np.zeros(len(polys), bool)
-            hit[tree.query(polys, predicate="intersects")[0]] = True
-            if hit.any():
-                out.append((shapely.multipolygons(polys[hit]), low))
-                if hit.all():
-                    continue
-                p = shapely.multipolygons(polys[~hit])
-        out.append((p, lvl))
+    at = [k for k, (_, lvl) in enumerate(pieces) if lvl == rest]
+    polys, piece = shapely.get_parts([pieces[k][0] for k in at], return_index=True)
+    hit = np.zeros(len(polys), bool)
+    hit[shapely.STRtree(polys).query(dips, predicate="intersects")[1]] = True  # few dips, many polygons
+    out = [pc for k, pc in enumerate(pieces) if pieces[k][1] != rest]
+    for sel, lvl in ((~hit, rest), (hit, low)):
+        if sel.any():  # a piece a cell still (indices sorted: get_parts keeps the order)
+            out += [(g, lvl) for g in shapely.multipolygons(polys[sel], indices=piece[sel]) if not g.is_empty]
     return out
 
 
