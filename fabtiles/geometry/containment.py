@@ -91,11 +91,16 @@ def edges_meet_quads(a, b, quads) -> np.ndarray:
     cell = max(float(np.median(np.max(qhi - qlo, axis=1))), float(np.sqrt(span[0] * span[1] / MAX_CELLS)), 1e-9)
     # edges cut into pieces shorter than a cell: each in at most 2 x 2 cells
     n_cut = np.maximum(np.ceil(np.linalg.norm(b - a, axis=1) / (0.99 * cell)).astype(np.int64), 1)
-    e = np.repeat(np.arange(len(a)), n_cut)
-    t0 = (np.arange(len(e)) - np.repeat(np.cumsum(n_cut) - n_cut, n_cut)) / n_cut[e]
-    t1 = t0 + 1.0 / n_cut[e]
-    pa = a[e] + t0[:, None] * (b[e] - a[e])
-    pb = np.where((t1 >= 1.0)[:, None], b[e], a[e] + t1[:, None] * (b[e] - a[e]))
+    long = np.flatnonzero(n_cut > 1)  # most edges are shorter than a cell: kept whole
+    if len(long):
+        e = np.repeat(long, n_cut[long])
+        t0 = (np.arange(len(e)) - np.repeat(np.cumsum(n_cut[long]) - n_cut[long], n_cut[long])) / n_cut[e]
+        t1 = t0 + 1.0 / n_cut[e]
+        short = n_cut == 1
+        pa = np.concatenate([a[short], a[e] + t0[:, None] * (b[e] - a[e])])
+        pb = np.concatenate([b[short], np.where((t1 >= 1.0)[:, None], b[e], a[e] + t1[:, None] * (b[e] - a[e]))])
+    else:
+        pa, pb = a, b
     plo, phi = np.minimum(pa, pb), np.maximum(pa, pb)
     # the quads listed cell by cell (cells -1 .. top on each axis, numbered from 0)
     top = np.floor(span / cell).astype(np.int64) + 1
@@ -120,13 +125,17 @@ def edges_meet_quads(a, b, quads) -> np.ndarray:
     count = in_cell[p_key]
     piece = np.repeat(p_id, count)
     quad = q_id[np.repeat(cell_start[p_key], count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)]
-    overlap = np.all((plo[piece] <= qhi[quad]) & (phi[piece] >= qlo[quad]), axis=1)
-    piece, quad = piece[overlap], quad[overlap]
-    ccw = quads.copy()  # every quad counter-clockwise, once
+    # boxes overlapping, x then y (each test on fewer pairs)
+    keep = (plo[piece, 0] <= qhi[quad, 0]) & (phi[piece, 0] >= qlo[quad, 0])
+    piece, quad = piece[keep], quad[keep]
+    keep = (plo[piece, 1] <= qhi[quad, 1]) & (phi[piece, 1] >= qlo[quad, 1])
+    piece, quad = piece[keep], quad[keep]
+    ccw = quads.copy()  # every quad counter-clockwise, its edge vectors: once
     cw = np.sum(quads[:, :, 0] * np.roll(quads[:, :, 1], -1, axis=1)
                 - np.roll(quads[:, :, 0], -1, axis=1) * quads[:, :, 1], axis=1) < 0
     ccw[cw] = quads[cw, ::-1]
-    hit = _segment_meets_quad(pa[piece], pb[piece], ccw[quad], np.roll(ccw, -1, axis=1)[quad] - ccw[quad])
+    edge = np.roll(ccw, -1, axis=1) - ccw
+    hit = _segment_meets_quad(pa[piece], pb[piece], ccw[quad], edge[quad])
     meets[quad[hit]] = True
     return meets
 
@@ -155,13 +164,14 @@ def _segment_meets_quad(a, b, q, edge) -> np.ndarray:
     outside one of the quad's edges, or the quad wholly on one side of the
     segment's line.
     """
-    def side(p):  # > 0 inside edge i's half-plane
-        rel = p[:, None, :] - q
-        return edge[:, :, 0] * rel[:, :, 1] - edge[:, :, 1] * rel[:, :, 0]
-
-    outside_an_edge = np.any((side(a) < 0) & (side(b) < 0), axis=1)
     d = b - a
     rel = q - a[:, None, :]
     o = d[:, None, 0] * rel[:, :, 1] - d[:, None, 1] * rel[:, :, 0]
-    one_side = np.all(o > 0, axis=1) | np.all(o < 0, axis=1)
-    return ~(outside_an_edge | one_side)
+    meets = ~(np.all(o > 0, axis=1) | np.all(o < 0, axis=1))  # the quad across the segment's line
+    k = np.flatnonzero(meets)  # then only those: the segment wholly outside one of the quad's edges?
+    q, e = q[k], edge[k]
+    ra, rb = a[k, None, :] - q, b[k, None, :] - q
+    out_a = e[:, :, 0] * ra[:, :, 1] - e[:, :, 1] * ra[:, :, 0] < 0
+    out_b = e[:, :, 0] * rb[:, :, 1] - e[:, :, 1] * rb[:, :, 0] < 0
+    meets[k] = ~np.any(out_a & out_b, axis=1)
+    return meets
