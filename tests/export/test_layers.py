@@ -45,6 +45,35 @@ def test_fast_coverage_has_the_layers_of_body_layers(kind):
         sc.check_mesh(v, f, bodies=1 if kind == "relief" else None)
 
 
+@pytest.mark.parametrize("kind", ["relief", "pattern"])
+def test_dips_crossed_by_cell_lines_are_cut_with_the_region(kind, monkeypatch):
+    """Small cells, so that cell lines cross many dips: those are holes of the region before it is
+    cut, their pieces at the dip level (the relief's from the rest of the cell, the pattern's
+    noded alike); the levels and the watertight mesh are those of the plain layer list."""
+    from fabtiles.export import _mesh_build as mb
+
+    monkeypatch.setattr(mb, "CELL_VERTICES", 60)
+    r, o, d = woven()
+    xs, ys, _ = mb.cells_for([r, o], 60)
+    parts = shapely.get_parts(d)
+    crossed = [p for p in parts if any(p.bounds[0] <= x <= p.bounds[2] for x in xs)
+               or any(p.bounds[1] <= y <= p.bounds[3] for y in ys)]
+    assert len(crossed) > 10 and len(crossed) < len(parts)
+    cov = body_coverage(kind, r, o, STACK, d)
+    plain = body_coverage(kind, r, o, STACK, shapely.Polygon())  # the same cells, no dips
+    fast = areas_by_level([(p, cov.levels[lvl]) for p, lvl in cov.pieces])
+    without = areas_by_level([(p, plain.levels[lvl]) for p, lvl in plain.pieces])
+    top, low = STACK.base + STACK.relief, dip_z(STACK)
+    # the dips come out of the full level, all of them; their points noded at the cell lines
+    # are rounded to the grid (a little area each, far less than one dip's 0.28 mm^2)
+    assert fast[top] + fast[low] == pytest.approx(without[top], abs=1e-6)
+    assert fast[low] == pytest.approx(d.area, abs=1e-4 * len(crossed))
+    assert {z: a for z, a in fast.items() if z not in (top, low)} == pytest.approx(
+        {z: a for z, a in without.items() if z != top}, abs=1e-6)
+    v, f = mesh_coverage(cov)
+    sc.check_mesh(v, f, bodies=1 if kind == "relief" else None)
+
+
 def test_dips_are_holes_of_the_full_level():
     r, o, d = woven()
     full, dip = split_region(r, d)
