@@ -139,21 +139,25 @@ def check_triangles(tris32, *, name="mesh", volume=None, bodies=None):
         _fail(name, "has non-finite coordinates", None)
     if not len(tris32):
         _fail(name, "is empty", None)
-    return _check_merged(*_merge_float32(tris32), name=name, volume=volume, bodies=bodies)
+    return _check_merged(*_merge_float32(tris32), name=name, volume=volume, bodies=bodies)[:2]
 
 
-def check_indexed(vertices, faces, *, name="mesh", volume=None, bodies=None):
+def check_indexed(vertices, faces, *, name="mesh", volume=None, bodies=None, with_volume=False):
     """Check the mesh that the STL of ``(vertices, faces)`` holds, as a slicer reads it; see :func:`check_mesh`.
 
     The same check as :func:`check_triangles` on the file's triangles, merged from
-    the vertices (:func:`merge_indexed32`). Returns the merged ``(vertices, faces)``.
+    the vertices (:func:`merge_indexed32`). Returns the merged ``(vertices, faces)``,
+    and with ``with_volume`` its volume (mm^3) as the check found it (as
+    :func:`mesh_volume` gives it: 0.05 s for the interlaced 600 x 400 mm sheet not
+    spent twice).
     """
     faces = np.asarray(faces)
     if not len(faces):
         _fail(name, "is empty", None)
     if not np.isfinite(np.asarray(vertices, dtype=np.float64)).all():
         _fail(name, "has non-finite coordinates", None)
-    return _check_merged(*merge_indexed32(vertices, faces), name=name, volume=volume, bodies=bodies)
+    verts, faces, vol = _check_merged(*merge_indexed32(vertices, faces), name=name, volume=volume, bodies=bodies)
+    return (verts, faces, vol) if with_volume else (verts, faces)
 
 
 def _fail(name, why, merged):
@@ -163,7 +167,7 @@ def _fail(name, why, merged):
 
 
 def _check_merged(verts, faces, *, name, volume, bodies):
-    """The checks of :func:`check_mesh` on a mesh merged by float32 position."""
+    """The checks of :func:`check_mesh` on a mesh merged by float32 position: ``(vertices, faces, volume)``."""
     merged = (verts, faces)
     collapsed = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])
     if collapsed.any():
@@ -201,7 +205,7 @@ def _check_merged(verts, faces, *, name, volume, bodies):
         if found != bodies:
             _fail(name, f"has {found} separate bodies where {bodies} {'was' if bodies == 1 else 'were'} expected",
                   merged)
-    return verts, faces
+    return verts, faces, vol
 
 
 # --------------------------------------------------------------------------- STL

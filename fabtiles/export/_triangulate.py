@@ -85,8 +85,10 @@ def restore_collinear(ij, tris, nxt, *, rounds: int = 8):
     split = False
     for _ in range(rounds):
         u, v = tris.ravel(), tris[:, [1, 2, 0]].ravel()
-        have = np.concatenate([u * n + v, ring_rev])
-        bad = np.flatnonzero(~np.isin(v * n + u, have)).tolist()
+        have = np.sort(np.concatenate([u * n + v, ring_rev]))
+        want = v * n + u  # each triangle edge's reverse: another triangle's, or a ring edge's
+        at = np.minimum(np.searchsorted(have, want), len(have) - 1)
+        bad = np.flatnonzero(have[at] != want).tolist()
         if not bad:
             break
         edges = np.stack([u, v], axis=1)

@@ -45,7 +45,7 @@ from ._mesh_build import (
     resolve_stack,
     snap,
 )
-from ._slicer_check import check_indexed, mesh_volume, stl_bytes
+from ._slicer_check import check_indexed, stl_bytes
 
 
 
@@ -225,9 +225,9 @@ def _on_cell_lines(points, lines) -> bool:
 def _checked_body(kind, name, r, o, stack, dips=None):
     """One body, checked as a slicer reads its STL (float32 corners merged by position).
 
-    Returns ``(vertices, faces, region)``: the merged float32 mesh, which is what
-    the writers write (its STL is the same triangles, bit for bit), and the region
-    actually used. Two kinds of defect are repaired:
+    Returns ``(vertices, faces, region, volume)``: the merged float32 mesh, which is
+    what the writers write (its STL is the same triangles, bit for bit), the region
+    actually used and the mesh's volume (mm^3). Two kinds of defect are repaired:
 
     - a defect on a meshing cell line (a ring noded at the line and snapped onto
       a neighbouring ring's edge): the region is fine, the cut was unlucky, so the
@@ -255,13 +255,14 @@ def _checked_body(kind, name, r, o, stack, dips=None):
             try:
                 volume, bodies = _expected(kind, g, o, stack, dips)
                 # an STL of these holds verts[faces] in float32: checked merged from the vertices
-                mverts, mfaces = check_indexed(verts, faces, name=name, volume=volume, bodies=bodies)
+                mverts, mfaces, vol = check_indexed(verts, faces, name=name, volume=volume, bodies=bodies,
+                                                    with_volume=True)
             except FabricationError as exc:
                 mesh = getattr(exc, "mesh", None)
                 if mesh is not None and shift + 1 < GRID_SHIFTS and _on_cell_lines(_nonmanifold_points(*mesh), lines):
                     continue
                 raise
-            return mverts, mfaces, g
+            return mverts, mfaces, g, vol
 
     error = None
     for repair in (lambda g: g, _bridge_pinches, _close_round):
@@ -326,7 +327,7 @@ def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay:
     dips = _leveled(dips)
     out = {}
     for name, kind in _kinds(stack.style, single, inlay).items():
-        verts, faces, used = _checked_body(kind, name, r, o, stack, dips)
+        verts, faces, used, _ = _checked_body(kind, name, r, o, stack, dips)
         volume, bodies = _expected(kind, used, o, stack, dips)
         out[name] = CheckedPart(verts, faces, float(volume), int(bodies), used, o)
     return out
@@ -404,10 +405,10 @@ def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_m
     dips = _leveled(dips)
     ((name, kind),) = _kinds(stack.style, single=True).items()
     # checked as a slicer will read it: the merged float32 mesh, written as it is
-    mverts, mfaces, _ = _checked_body(kind, name, r, o, stack, dips)
+    mverts, mfaces, _, volume = _checked_body(kind, name, r, o, stack, dips)
     atomic_write(path, stl_bytes(mverts, mfaces))
     report.stats.update(stack_stats(stack), bodies=[name], triangles=len(mfaces),
-                        volume_mm3=mesh_volume(mverts, mfaces),
+                        volume_mm3=volume,
                         bounds_mm=[mverts.min(axis=0).tolist(), mverts.max(axis=0).tolist()])
     return report
 

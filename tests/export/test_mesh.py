@@ -44,7 +44,9 @@ def test_stl_every_preset_and_style(tmp_path, preset, style):
     data = path.read_bytes()
     assert len(data) == 84 + 50 * int(np.frombuffer(data, "<u4", 1, 80)[0])  # binary STL
     nparts = len(shapely.get_parts(region)) if style == "pierced" else 1
-    assert_solid(load_stl(path), expected_volume(style, region, outline), outline.bounds, top(style), nparts)
+    back = load_stl(path)
+    assert_solid(back, expected_volume(style, region, outline), outline.bounds, top(style), nparts)
+    assert report.stats["volume_mm3"] == pytest.approx(back.volume, rel=1e-9)  # the file's own volume
 
 
 @pytest.mark.parametrize("outline", ["hexagon", "circle"])
