@@ -251,8 +251,8 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
     xs, ys, box = cells
     parts = shapely.get_parts(dip) if not dip.is_empty else np.empty(0, object)
     # each dip's ring (dip_level leaves them no holes) as arrays, and its box
-    _, coords, (ring_off, _) = shapely.to_ragged_array(parts) if len(parts) else (0, np.empty((0, 2)), ([0], [0]))
-    coords, ring_off = np.asarray(coords, float), np.asarray(ring_off)
+    coords, which = shapely.get_coordinates(parts, return_index=True)
+    ring_off = np.concatenate([[0], np.cumsum(np.bincount(which, minlength=len(parts)))])
     lo = np.minimum.reduceat(coords, ring_off[:-1]) if len(parts) else np.empty((0, 2))
     hi = np.maximum.reduceat(coords, ring_off[:-1]) if len(parts) else np.empty((0, 2))
     # a dip inside one cell: no cell line between its bounds (cell i lies between xs[i - 1] and xs[i])
@@ -280,7 +280,7 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
     if inner.any():
         lengths = np.diff(ring_off)
         ring = np.repeat(inner, lengths)
-        pieces = _inner_dips(pieces, top, low, coords[ring], lengths[inner], ci[inner], cj[inner])
+        pieces = _inner_dips(pieces, top, low, coords[ring], lengths[inner])
     return Coverage(pieces + extra, levels, cov.xs, cov.ys)
 
 
@@ -318,15 +318,13 @@ def _relevel_crossed(pieces, rest, low, dips):
     return out
 
 
-def _inner_dips(pieces, top, low, coords, lengths, ci, cj):
+def _inner_dips(pieces, top, low, coords, lengths):
     """``pieces`` with every dip that lies inside one cell made a hole of the ``top``
-    polygon holding it, and the dips themselves added at level ``low``, a piece a cell.
+    polygon holding it, and the dips themselves added at level ``low``, one piece.
 
     The dips are closed rings, ``coords`` one after another, ``lengths`` points
-    each; ``ci``, ``cj`` their cells (as
-    :func:`~fabtiles.export._mesh_build.split_cells` numbers them). Pieces are
-    oriented (exteriors counter-clockwise), so the holes are added clockwise and
-    the dip pieces counter-clockwise.
+    each. Pieces are oriented (exteriors counter-clockwise), so the holes are added
+    clockwise and the dips counter-clockwise.
     """
     import shapely
 
@@ -338,7 +336,7 @@ def _inner_dips(pieces, top, low, coords, lengths, ci, cj):
     ok = owner >= 0  # always (a dip lies strictly inside the region's piece of its cell)
     if not ok.all():
         keep = np.repeat(ok, lengths)
-        coords, lengths, owner, ci, cj = coords[keep], lengths[ok], owner[ok], ci[ok], cj[ok]
+        coords, lengths, owner = coords[keep], lengths[ok], owner[ok]
         start = np.cumsum(lengths) - lengths
     if not len(lengths):
         return pieces
@@ -350,13 +348,9 @@ def _inner_dips(pieces, top, low, coords, lengths, ci, cj):
     holed = add_holes(polys, owner, _reversed(coords, lengths, ccw), lengths)  # holes clockwise
     out = [p for k, p in enumerate(pieces) if not is_top[k]]
     out += [(g, top) for g in shapely.multipolygons(holed, indices=piece_of)]
-    # the dips, a piece a cell
-    cell = ci * (int(cj.max()) + 1) + cj
-    _, group = np.unique(cell, return_inverse=True)
-    order = np.argsort(group.ravel(), kind="stable")
-    ring_pts = np.concatenate([[0], np.cumsum(lengths[order])])
-    gather = np.repeat(start[order] - ring_pts[:-1], lengths[order]) + np.arange(ring_pts[-1])
-    dip_coords = _reversed(coords, lengths, ~ccw)[gather]
-    dip_polys = shapely.from_ragged_array(shapely.GeometryType.POLYGON, dip_coords, (ring_pts, np.arange(len(order) + 1)))
-    out += [(g, low) for g in shapely.multipolygons(dip_polys, indices=group.ravel()[order])]
+    # the dips themselves, all one piece: the piece's polygons are meshed one by one anyway
+    # (fanned, these quads), and one piece instead of one a cell saved 0.018 s on the sheet
+    dip_polys = shapely.from_ragged_array(shapely.GeometryType.POLYGON, _reversed(coords, lengths, ~ccw),
+                                          (np.concatenate([[0], np.cumsum(lengths)]), np.arange(len(lengths) + 1)))
+    out.append((shapely.multipolygons(dip_polys), low))
     return out
