@@ -1,15 +1,16 @@
-"""Which small convex quadrilaterals lie inside a polygon: exact, in numpy, for thousands at once.
+"""Which small convex quadrilaterals lie inside a polygon: in numpy, for thousands at once.
 
-An interlaced relief asks this of every sliver beside a crossing (10,000 and more
-on a 600 x 400 mm sheet) against a region with 85,000 boundary vertices. A
-convex quad lies in the interior of a polygon exactly when no edge of the
-polygon's boundary meets it (closed) and one of its points is inside. The first
-half is a join of the boundary edges and the quads on a uniform grid of about a
-quad's size, then a separating-axis test per candidate pair; the second is
-GEOS's point in polygon (:func:`shapely.contains_xy`) for one point of each quad
-no edge meets. Probing the quads' four corners with GEOS instead, and every
-boundary vertex against them, took 0.15 s on that sheet; GEOS's containment test
-of each quad, 0.6 s.
+An interlaced relief asks this of every sliver beside a crossing (12,700 tested
+on a 600 x 400 mm sheet) against a region with 75,000 boundary edges. A convex
+quad lies in the interior of a polygon exactly when no edge of the polygon's
+boundary meets it (closed) and one of its points is inside. The first half is a
+join of the boundary edges and the quads on a uniform grid of about a quad's
+size, then a separating-axis test per candidate pair (in floating point: only a
+touch closer than about 1e-12 mm could be judged otherwise than GEOS judges it);
+the second is GEOS's point in polygon (:func:`shapely.contains_xy`) for one point
+of each quad no edge meets. 0.07 s on that sheet; probing the quads' four corners
+with GEOS instead, and every boundary vertex against them, took 0.15 s, GEOS's
+containment test of each quad 0.6 s.
 """
 
 from __future__ import annotations
