@@ -313,6 +313,8 @@ class CheckedPart(NamedTuple):
     """The region actually meshed: snapped to the grid, point contacts bridged (shapely)."""
     outline: object
     """The outline, snapped to the grid (shapely)."""
+    mesh_volume_mm3: float
+    """The mesh's own volume, as the check found it."""
 
 
 def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay: bool = False, dips=None):
@@ -327,9 +329,9 @@ def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay:
     dips = _leveled(dips)
     out = {}
     for name, kind in _kinds(stack.style, single, inlay).items():
-        verts, faces, used, _ = _checked_body(kind, name, r, o, stack, dips)
+        verts, faces, used, found = _checked_body(kind, name, r, o, stack, dips)
         volume, bodies = _expected(kind, used, o, stack, dips)
-        out[name] = CheckedPart(verts, faces, float(volume), int(bodies), used, o)
+        out[name] = CheckedPart(verts, faces, float(volume), int(bodies), used, o, float(found))
     return out
 
 

@@ -21,7 +21,6 @@ import numpy as np
 from .._errors import FabricationError
 from .._io import atomic_write
 from ._mesh_build import QUANTUM, Stack, coverage
-from ._slicer_check import mesh_volume
 from .brep import planar_brep
 from .layers import body_layers, dip_z, split_region
 from .mesh import checked_parts, prepare_print
@@ -88,7 +87,7 @@ def build_brep(*, region, outline, stack: Stack, dips=None):
     kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate"}[stack.style]
     layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
     brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), sides=_sides(part.outline))
-    return brep, mesh_volume(part.vertices, part.faces), len(brep.solids)
+    return brep, part.mesh_volume_mm3, len(brep.solids)
 
 
 # --------------------------------------------------------------------------- reading back

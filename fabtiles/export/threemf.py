@@ -53,7 +53,7 @@ import numpy as np
 
 from .._errors import FabricationError
 from .._io import atomic_write
-from ._slicer_check import check_triangles, mesh_volume
+from ._slicer_check import check_triangles
 from .mesh import check_inlay, checked_parts, prepare_print, stack_stats
 
 MODEL_PATH = "3D/3dmodel.model"
@@ -304,7 +304,7 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
         bodies=list(checked),
         parts={n: {"extruder": p.extruder, "triangles": int(len(p.faces))} for n, p in zip(checked, parts)},
         triangles=int(sum(len(p.faces) for p in checked.values())),
-        volume_mm3=float(sum(mesh_volume(p.vertices, p.faces) for p in checked.values())),
+        volume_mm3=float(sum(p.mesh_volume_mm3 for p in checked.values())),
         bounds_mm=[allv.min(axis=0).tolist(), allv.max(axis=0).tolist()],
     )
     return report

@@ -155,6 +155,7 @@ def test_deboss_inlay_fills_the_grooves_flush(tmp_path, shapes, prusa):
     # flush: the inlay's top is the plate's top; together they are the full plate, without overlap
     assert inlay.bounds[1][2] == plate.bounds[1][2] == np.float32(B)
     assert plate.volume + inlay.volume == pytest.approx(outline.area * B, rel=1e-4)
+    assert report.stats["volume_mm3"] == pytest.approx(plate.volume + inlay.volume, rel=1e-9)  # the file's parts
     assert_touch_without_overlap(plate, inlay)
     (info,) = prusa_info(tmp_path, path)
     assert int(info["number_of_parts"]) == 1 + len(shapely.get_parts(region))
