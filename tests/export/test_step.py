@@ -245,48 +245,47 @@ def test_check_solids_refuses_a_wrong_volume_or_count(tmp_path):
         step.check_solids(solids, volume=v, parts=2)
 
 
+def _refused_when_edited(tmp_path, edit, match):
+    """A good file of a 30 mm tile, ``edit`` applied to its text by hand: check_solids refuses it."""
+    path, report = _write(tmp_path, _tile(size=30))
+    bad = tmp_path / "bad.step"
+    bad.write_text(edit(path.read_text()))
+    with pytest.raises(FabricationError, match=match):
+        step.check_solids(step.read_step_solids(bad), volume=report.stats["volume_mm3"], parts=1)
+
+
 def test_check_solids_refuses_an_open_shell(tmp_path):
     """A file with a face missing is refused (written by hand from a good one)."""
     import re
 
-    tile = _tile(size=30)
-    path, report = _write(tmp_path, tile)
-    text = path.read_text()
-    shell = re.search(r"CLOSED_SHELL\('',\((#\d+),", text)
-    broken = text.replace(shell.group(0), "CLOSED_SHELL('',(", 1)
-    bad = tmp_path / "bad.step"
-    bad.write_text(broken)
-    with pytest.raises(FabricationError, match="open shell"):
-        step.check_solids(step.read_step_solids(bad), volume=report.stats["volume_mm3"], parts=1)
+    def drop_a_face(text):
+        shell = re.search(r"CLOSED_SHELL\('',\((#\d+),", text)
+        return text.replace(shell.group(0), "CLOSED_SHELL('',(", 1)
+
+    _refused_when_edited(tmp_path, drop_a_face, "open shell")
 
 
 def test_check_solids_refuses_a_face_turned_inside_out(tmp_path):
     """One face's loop reversed by hand in a good file: its edges run the wrong way round."""
     import re
 
-    tile = _tile(size=30)
-    path, report = _write(tmp_path, tile)
-    text = path.read_text()
-    bound = re.search(r"ADVANCED_FACE\('',\(#(\d+)\),#\d+,\.T\.\)", text).group(1)  # a face of one loop
-    line = re.search(rf"^#{bound}=FACE_OUTER_BOUND\('',#\d+,\.T\.\);$", text, re.M).group(0)
-    bad = tmp_path / "bad.step"
-    bad.write_text(text.replace(line, line.replace(".T.)", ".F.)"), 1))
-    with pytest.raises(FabricationError, match="oriented both ways"):
-        step.check_solids(step.read_step_solids(bad), volume=report.stats["volume_mm3"], parts=1)
+    def reverse_a_loop(text):
+        bound = re.search(r"ADVANCED_FACE\('',\(#(\d+)\),#\d+,\.T\.\)", text).group(1)  # a face of one loop
+        line = re.search(rf"^#{bound}=FACE_OUTER_BOUND\('',#\d+,\.T\.\);$", text, re.M).group(0)
+        return text.replace(line, line.replace(".T.)", ".F.)"), 1)
+
+    _refused_when_edited(tmp_path, reverse_a_loop, "oriented both ways")
 
 
 def test_check_solids_refuses_a_face_whose_loop_disagrees_with_its_plane(tmp_path):
     """A face's same_sense flipped by hand: OCCT builds it on the reversed plane, and BRepCheck refuses it."""
     import re
 
-    tile = _tile(size=30)
-    path, report = _write(tmp_path, tile)
-    text = path.read_text()
-    face = re.search(r"ADVANCED_FACE\('',\(#\d+\),#\d+,\.T\.\)", text).group(0)
-    bad = tmp_path / "bad.step"
-    bad.write_text(text.replace(face, face[:-4] + ".F.)", 1))
-    with pytest.raises(FabricationError, match=r"has an invalid face \(solid 1, BRepCheck_Analyzer\)"):
-        step.check_solids(step.read_step_solids(bad), volume=report.stats["volume_mm3"], parts=1)
+    def flip_a_face(text):
+        face = re.search(r"ADVANCED_FACE\('',\(#\d+\),#\d+,\.T\.\)", text).group(0)
+        return text.replace(face, face[:-4] + ".F.)", 1)
+
+    _refused_when_edited(tmp_path, flip_a_face, r"has an invalid face \(solid 1, BRepCheck_Analyzer\)")
 
 
 def test_a_file_that_is_not_step_cannot_be_read_back(tmp_path):
