@@ -7,7 +7,7 @@ a bad value is a :class:`~fabtiles.ProfileError` that names the file and the key
 
 >>> p = load_profile("laser-3mm-plywood")
 >>> p.kerf_mm, p.layers.outer_cut.name
-(0.15, 'CUT_OUTER')
+(0.15, 'OUTER')
 >>> load_profile("fdm-0.4mm").min_wall_mm
 0.8
 """
@@ -42,11 +42,21 @@ class Layer:
 
 @dataclass(frozen=True)
 class LaserLayers:
-    """Layer of each laser operation."""
+    """Layer of each laser operation.
 
-    inner_cut: Layer = Layer("CUT_INNER", 1)
-    outer_cut: Layer = Layer("CUT_OUTER", 5)
-    score: Layer = Layer("SCORE", 3)
+    Both cuts are red (ACI 1, #FF0000), the only colour that MeerK40t's colour
+    classification sends to a Cut operation (it sent our earlier blue outline to
+    Engrave), and LightBurn's palette layer 02 exactly; they stay apart by name.
+    The names hold neither ``CUT`` nor ``ENGRAVE``: MeerK40t's DXF loader (0.9.7900
+    and later) puts such a layer into an operation by its name and then classifies
+    it by colour as well, so every contour was cut twice. The score is blue (ACI 5),
+    MeerK40t's first Engrave colour and LightBurn's layer 01. See
+    ``docs/laser-programs.md``.
+    """
+
+    inner_cut: Layer = Layer("INNER", 1)
+    outer_cut: Layer = Layer("OUTER", 1)
+    score: Layer = Layer("SCORE", 5)
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,9 @@ class Tile(_GeometryTile):
         ``.stl``, ``.3mf`` and ``.step`` a printer profile (default ``fdm-0.4mm``).
         Options: laser ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``;
         print ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``, and for
-        ``.3mf`` ``inlay`` (deboss: the grooves filled flush as a second part).
+        ``.3mf`` ``inlay`` (deboss: the grooves filled flush as a second part) and
+        ``layout`` (``"volumes"``, default, one object of parts in PrusaSlicer, Bambu
+        Studio and OrcaSlicer; ``"components"``, for UltiMaker Cura).
         The file is written atomically: on any error nothing is left behind.
 
         Returns

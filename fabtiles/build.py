@@ -150,7 +150,10 @@ def export_format(tile, fmt: str, path: Path, design) -> Report:
     if dispatch.profile_kind(fmt) == "laser":
         return dispatch.export_tile(tile, path, profile=out.laser_profile, mode=out.laser_mode,
                                     fill_small_holes=out.fill_small_holes)
-    extra = {"inlay": True} if out.inlay and fmt == "3mf" else {}  # the inlay is a 3MF part
+    extra = {}
+    if fmt == "3mf":  # the inlay is a 3MF part; the layout picks the slicers the parts are for
+        extra = {"inlay": True} if out.inlay else {}
+        extra["layout"] = out.threemf_layout
     return dispatch.export_tile(tile, path, profile=out.printer_profile, style=out.print_style, **out.heights(),
                                 **extra)
 

@@ -25,7 +25,9 @@ error naming the key, its section and the valid keys (with a "did you mean").
     file's stem), ``fill_small_holes`` (laser: fill holes too small to cut),
     ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm`` (print heights
     overriding the printer profile's), ``inlay`` (a deboss tile's 3MF gets a second
-    part filling the grooves flush, for a two-colour inlay print).
+    part filling the grooves flush, for a two-colour inlay print), ``threemf_layout``
+    ("volumes", default, for PrusaSlicer, Bambu Studio and OrcaSlicer; "components"
+    for UltiMaker Cura).
 
 >>> d = design_from_text('''
 ... [motif]
@@ -65,6 +67,9 @@ from .pattern.star import Star
 FORMATS = ("dxf", "svg", "stl", "3mf", "step")
 """Output formats a design may ask for."""
 
+THREEMF_LAYOUTS = ("volumes", "components")
+"""``[output] threemf_layout``: PrusaSlicer's volumes (PrusaSlicer, Bambu Studio, OrcaSlicer) or components (Cura)."""
+
 SECTIONS = ("motif", "packing", "tile", "output")
 MOTIF_KEYS = ("preset", "n", "radii", "alpha", "spr", "special", "rotation")
 PACKING_KEYS = ("kind", "radius", "outline_circles", "fill", "gap_motif", "seamless", "tiling", "edge",
@@ -77,7 +82,7 @@ HEIGHT_KEYS = ("base_mm", "relief_mm", "pierced_mm", "deboss_mm")
 """The ``[output]`` keys overriding the printer profile's heights (mm)."""
 
 OUTPUT_KEYS = ("formats", "laser_profile", "printer_profile", "laser_mode", "print_style", "name",
-               "fill_small_holes", "inlay") + HEIGHT_KEYS
+               "fill_small_holes", "inlay", "threemf_layout") + HEIGHT_KEYS
 """The valid keys of ``[output]`` (the exporters read the mode/style/profile keys)."""
 
 _KEYS = {"motif": MOTIF_KEYS, "packing": PACKING_KEYS, "tile": TILE_KEYS, "output": OUTPUT_KEYS}
@@ -141,6 +146,7 @@ class OutputSpec:
     name: str | None = None
     fill_small_holes: bool = False
     inlay: bool = False
+    threemf_layout: str = "volumes"
     base_mm: float | None = None
     relief_mm: float | None = None
     pierced_mm: float | None = None
@@ -527,6 +533,7 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
         name=name,
         fill_small_holes=_typed(table, "fill_small_holes", (bool,), source, where, "true or false", False),
         inlay=_typed(table, "inlay", (bool,), source, where, "true or false", False),
+        threemf_layout=_choice(table, "threemf_layout", THREEMF_LAYOUTS, source, where, "volumes"),
         **{key: _height(table, key, source, where) for key in HEIGHT_KEYS},
     )
 

@@ -34,7 +34,7 @@ def test_profile_from_path_with_defaults(tmp_path):
     p = load_profile(write(tmp_path, GOOD_LASER))
     assert p.name == "p" and p.kerf_mm == 0.1 and p.bed_mm == (300.0, 200.0)
     assert p.layers.score.name == "ENGRAVE" and p.layers.score.color == 2
-    assert p.layers.outer_cut.name == "CUT_OUTER"  # default kept
+    assert p.layers.outer_cut.name == "OUTER"  # default kept
     assert load_profile(p) is p
 
 
@@ -65,7 +65,7 @@ def test_profiles_are_frozen():
         ('kind = "laser"\n[layers]\nscore = { name = "A/B" }\n', r"layers.score.name must be a non-empty DXF layer name"),
         ('kind = "laser"\n[layers]\nscore = "S"\n', r"layers.score must be a table"),
         ('kind = "laser"\n[layers]\nstencil = { name = "S" }\n', r"unknown key layers.'stencil'"),
-        ('kind = "laser"\n[layers]\nscore = { name = "CUT_OUTER" }\n', r"layers need three different names"),
+        ('kind = "laser"\n[layers]\nscore = { name = "OUTER" }\n', r"layers need three different names"),
         ('kind = "laser"\nlayers = 3\n', r"\[layers\] must be a table"),
         ('kind = "laser"\nlaser = 3\n', r"\[laser\] must be a table"),
         ('kind = "printer"\n[laser]\nkerf_mm = 1\n', r"a printer profile cannot have a \[laser\] section"),

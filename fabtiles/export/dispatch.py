@@ -19,8 +19,9 @@ FORMATS = ("dxf", "svg", "stl", "3mf", "step")
 
 LASER_OPTIONS = ("mode", "dxf_version", "kerf_mm", "fill_small_holes")
 PRINT_OPTIONS = ("style", "base_mm", "relief_mm", "pierced_mm", "deboss_mm")
-THREEMF_OPTIONS = PRINT_OPTIONS + ("inlay",)
-"""The 3MF writer's options: the print options and ``inlay`` (deboss grooves filled as a second part)."""
+THREEMF_OPTIONS = PRINT_OPTIONS + ("inlay", "layout")
+"""The 3MF writer's options: the print options, ``inlay`` (deboss grooves filled as a second part) and
+``layout`` (``"volumes"`` or ``"components"``, see :mod:`fabtiles.export.threemf`)."""
 
 DEFAULT_LASER_PROFILE = "laser-3mm-plywood"
 DEFAULT_PRINTER_PROFILE = "fdm-0.4mm"
@@ -82,7 +83,7 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
     **options
         Laser: ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``.
         Print: ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``;
-        ``.3mf`` also ``inlay``.
+        ``.3mf`` also ``inlay`` and ``layout``.
 
     Returns
     -------

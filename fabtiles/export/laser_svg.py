@@ -2,7 +2,7 @@
 
 For laser software that prefers SVG. One ``<g id="LAYER">`` per operation (score,
 inner cuts, outer cut, in cut order), its stroke the RGB of the layer's ACI colour
-(1 red ``#FF0000``, 3 green ``#00FF00``, 5 blue ``#0000FF``, ...), no fill, hairline
+(1 red ``#FF0000``, 5 blue ``#0000FF``, 6 magenta ``#FF00FF``, ...), no fill, hairline
 stroke width. ``width``/``height`` are in mm and the viewBox is in mm, so one user
 unit is one millimetre; the y axis is flipped so the picture looks like the DXF.
 Coordinates are printed with 4 decimals (0.1 um), so the file is reproducible

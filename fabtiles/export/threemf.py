@@ -6,37 +6,71 @@ one object of ``"plate"`` and ``"inlay"`` (the grooves filled flush). Every othe
 print is one object of one part. Parts touch without overlapping (see
 :mod:`fabtiles.export.mesh`).
 
-How the package is laid out, and why (read in PrusaSlicer's
-``src/libslic3r/Format/3mf.cpp``, versions 2.5 and 2.9, and Bambu Studio's
-``src/libslic3r/Format/bbs_3mf.cpp``, which OrcaSlicer shares; checked with
-``prusa-slicer`` 2.5):
+How the package is laid out, and why. Two layouts, because the slicers' readers
+disagree on what a part is; each is read by the programs named, as their source
+states (PrusaSlicer 2.9 at 69c8e569 and Debian's 2.5, run here; Bambu Studio and
+OrcaSlicer read only, no command line here; Cura's ``plugins/3MFReader`` 4.13 and
+libSavitar, run here through Debian's ``python3-savitar``):
 
-- PrusaSlicer makes every mesh object that a build item reaches its own object,
-  also through ``<components>``: the core spec's assembly (one object whose
-  components are the base and pattern meshes) loads in ``prusa-slicer --info`` as
-  two objects (z 0..2 and 2..3.2 mm), and each is dropped to the bed, the pattern
-  into the plate. It builds a multi-part object only from ONE mesh object whose
-  triangles ``Metadata/Slic3r_PE_model.config`` splits into volumes by
-  ``firstid``/``lastid`` (as it saves its own), each volume taking the contiguous
-  range of vertices its triangles use. So the model holds one ``<object>`` with one
-  ``<mesh>``: the first part's vertices and triangles, then the next part's, each
-  part a closed shell of its own (no vertex shared between parts). That is plain
-  core 3MF: a mesh of closed shells that touch.
-- Bambu Studio and OrcaSlicer read ``Metadata/model_settings.config`` (written
-  too, with the same parts) for the object's name and filament, but cut an object
-  into parts only along ``<components>``; by their source they load this file as
-  one object at full height with one part holding both shells (not run here). No
-  one file serves both: they read the same build item, and the layout that makes
-  parts for one makes separate objects for the other.
+``layout="volumes"`` (default): PrusaSlicer, Bambu Studio, OrcaSlicer.
+  One ``<object>`` with one ``<mesh>``: the first part's vertices and triangles,
+  then the next part's, each part a closed shell of its own (no vertex shared
+  between parts), plain core 3MF.
 
-The package is three small XML texts and one mesh, written with the standard
+  - PrusaSlicer (``src/libslic3r/Format/3mf.cpp``, ``_load_model_from_file`` and
+    ``_generate_volumes``) builds a multi-part object only from ONE mesh object whose
+    triangles ``Metadata/Slic3r_PE_model.config`` splits into volumes by
+    ``firstid``/``lastid``, each volume taking the contiguous range of vertices its
+    triangles use and its ``name``, ``volume_type`` and ``extruder``. Every mesh
+    object a build item reaches through ``<components>`` becomes an object of its
+    own instead. Its ``_handle_end_metadata`` parses a version from an
+    ``Application`` value that starts with ``PrusaSlicer-`` (its own files); any
+    other value is ignored.
+  - Bambu Studio and OrcaSlicer: ``Model::read_from_archive``
+    (``src/libslic3r/Model.cpp``) sends a ``.3mf`` to their copy of PrusaSlicer's
+    importer (``load_3mf``) when ``PrusaFileParser::check_3mf_from_prusa``
+    (``src/libslic3r/Format/3mf.cpp``) is true: the package has no
+    ``3D/_rels/3dmodel.model.rels`` and the text of a ``metadata`` whose name holds
+    ``Application`` contains ``PrusaSlicer`` (case-sensitive substring). Otherwise
+    their own importer (``load_bbs_3mf``, ``bbs_3mf.cpp``) reads it, which makes
+    parts only of ``<components>``: a file called ``fabtiles-0.1.0`` stayed one
+    part. So ``Application`` is ``fabtiles <version> (PrusaSlicer 3MF)``
+    (:func:`application_name`, :func:`takes_prusa_path`): honest, and not
+    ``PrusaSlicer-...``, from which PrusaSlicer would parse a version. Their copy
+    reads ``Slic3r_PE_model.config`` alone (not ``Slic3r_PE.config``), keeps the
+    volume keys ``name``, ``volume_type``, ``extruder`` (a whitelist), and adds
+    filaments up to the largest ``extruder`` (OrcaSlicer's ``Plater::priv::load_files``,
+    which says it loads "geometry data only"). The build item has no transform: with
+    no ``slic3rpe:Version3mf`` both importers give a lone instance's transform to
+    the first volume only.
+
+``layout="components"``: UltiMaker Cura; Bambu Studio, OrcaSlicer.
+  Each part its own mesh object (ids 1..k, ``cura:extruder_nr`` 0, 1, ... in its
+  ``<metadatagroup>``), one object k+1 of ``<components>`` (no ``p:path``, no
+  transform), one build item; no PrusaSlicer config.
+
+  - Cura's ``ThreeMFReader._read`` hands ``3D/3dmodel.model`` alone to libSavitar,
+    whose ``ThreeMFParser`` makes one scene node per build item with one child per
+    component, its settings from the object's metadata (the ``cura:`` prefix
+    stripped); ``_convertSavitarNodeToUMNode`` makes a mesh-less node with children
+    a group and gives each child the extruder of its ``extruder_nr``. One mesh of
+    several shells would be one single-extruder object.
+  - Bambu Studio and OrcaSlicer's own importer resolves components within the model
+    file and makes one object of one part per component; ``Metadata/model_settings.config``
+    names them: ``<object id>`` the build item's object, ``<part id>`` the
+    component's ``objectid``, with ``name`` and ``extruder`` (a ``<part>`` carrying
+    ``lastid`` would no longer match its mesh, so none is written).
+  - PrusaSlicer opens it as one object per part (its GUI asks whether to make them
+    one multi-part object).
+
+The package is a few small XML texts and the meshes, written with the standard
 library: trimesh writes neither the slicers' metadata nor several volumes in one
-mesh, and lib3mf (a native library) would add a dependency for what one ``%``
+mesh, and lib3mf (a native library, which the tests use as the strict reader) would add a dependency for what one ``%``
 over the whole vertex array does in 0.3 to 0.7 s on the 600 x 400 mm sheet
 (154,000 vertices, 349,000 triangles, zip included; measured on a shared machine). Coordinates get 9 significant digits,
 which read back as exactly the float32 values the mesh was checked with. Before
-anything is written, the package is read back the way PrusaSlicer reads it
-(volume ranges, float32 vertices) and each part must be the checked mesh, bit for
+anything is written, the package is read back the way the slicers read it
+(volume ranges or components, float32 vertices) and each part must be the checked mesh, bit for
 bit, or pass the checks again (watertight, consistently wound, of the expected
 volume and body count).
 """
@@ -44,6 +78,7 @@ volume and body count).
 from __future__ import annotations
 
 import io
+import re
 import warnings
 import zipfile
 from typing import NamedTuple
@@ -51,10 +86,13 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from .._errors import FabricationError
+from .._errors import FabricationError, ParameterError
 from .._io import atomic_write
 from ._slicer_check import check_triangles
 from .mesh import check_inlay, checked_parts, prepare_print, stack_stats
+
+LAYOUTS = ("volumes", "components")
+"""The 3MF layouts: PrusaSlicer's volumes (default) or the core spec's components (Cura)."""
 
 MODEL_PATH = "3D/3dmodel.model"
 PRUSA_CONFIG_PATH = "Metadata/Slic3r_PE_model.config"
@@ -64,6 +102,7 @@ EXTRUDERS = {"base": 1, "pattern": 2, "plate": 1, "inlay": 2}
 """The filament (1-based extruder) each part is given; the user can change it in the slicer."""
 
 _CORE_NS = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
+_CURA_NS = "http://software.ultimaker.com/xml/cura/3mf/2015/10"
 _CONTENT_TYPES = """<?xml version="1.0" encoding="UTF-8"?>
 <Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">
  <Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/>
@@ -87,6 +126,42 @@ class Part(NamedTuple):
     faces: np.ndarray
 
 
+def application_name(layout: str, version: str) -> str:
+    """The model's ``Application`` metadata for ``layout``.
+
+    The volumes layout must contain ``PrusaSlicer`` (so that Bambu Studio and
+    OrcaSlicer read it with their PrusaSlicer importer, the only one of theirs that
+    reads volumes) and must not start with ``PrusaSlicer-`` (PrusaSlicer would parse
+    a version of its own from what follows). The components layout names fabtiles
+    alone, so that they read it with their own importer, which reads components.
+
+    >>> application_name("volumes", "0.2.0")
+    'fabtiles 0.2.0 (PrusaSlicer 3MF)'
+    >>> application_name("components", "0.2.0")
+    'fabtiles 0.2.0'
+    """
+    return f"fabtiles {version} (PrusaSlicer 3MF)" if layout == "volumes" else f"fabtiles {version}"
+
+
+def takes_prusa_path(files: dict) -> bool:
+    """Whether Bambu Studio and OrcaSlicer read a package with their PrusaSlicer importer.
+
+    ``files`` maps the package's names to their bytes. The rule their
+    ``PrusaFileParser::check_3mf_from_prusa`` (src/libslic3r/Format/3mf.cpp) applies,
+    as that source states it: no ``3D/_rels/3dmodel.model.rels`` in the package, and
+    the model's ``Application`` metadata containing ``PrusaSlicer``.
+
+    >>> takes_prusa_path({MODEL_PATH: b'<metadata name="Application">fabtiles 1 (PrusaSlicer 3MF)</metadata>'})
+    True
+    >>> takes_prusa_path({MODEL_PATH: b'<metadata name="Application">fabtiles 1</metadata>'})
+    False
+    """
+    if "3D/_rels/3dmodel.model.rels" in files:
+        return False
+    m = re.search(rb'<metadata name="Application">([^<]*)</metadata>', files.get(MODEL_PATH, b""))
+    return bool(m) and b"PrusaSlicer" in m.group(1)
+
+
 def _numbers(fmt: str, values: np.ndarray) -> str:
     """``fmt`` (one record) applied to every row of ``values`` in one ``%`` call."""
     if not len(values):
@@ -94,7 +169,21 @@ def _numbers(fmt: str, values: np.ndarray) -> str:
     return (fmt * len(values)) % tuple(values.ravel().tolist())
 
 
-def package_3mf(parts, *, name: str, application: str = "fabtiles") -> bytes:
+def _mesh_xml(vertices: np.ndarray, faces: np.ndarray, indent: str) -> list:
+    """A ``<mesh>`` element's text: float32-exact vertices with 9 significant digits, then triangles."""
+    return [f'{indent}<mesh>\n{indent} <vertices>\n',
+            _numbers(f'{indent}  <vertex x="%.9g" y="%.9g" z="%.9g"/>\n', vertices),
+            f'{indent} </vertices>\n{indent} <triangles>\n',
+            _numbers(f'{indent}  <triangle v1="%d" v2="%d" v3="%d"/>\n', faces),
+            f'{indent} </triangles>\n{indent}</mesh>\n']
+
+
+def _exact(vertices) -> np.ndarray:
+    """Float32 values as float64, ``-0.0`` made ``0.0`` (what the file's text reads back as)."""
+    return np.asarray(vertices, np.float64).astype(np.float32).astype(np.float64) + 0.0
+
+
+def package_3mf(parts, *, name: str, application: str = "fabtiles", layout: str = "volumes") -> bytes:
     """The 3MF package (zip bytes) of one object made of ``parts``.
 
     Parameters
@@ -104,14 +193,50 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles") -> bytes:
     name : str
         The object's name, as the slicer lists it.
     application : str
-        The ``Application`` metadata of the model.
+        The ``Application`` metadata of the model (see :func:`application_name`).
+    layout : {"volumes", "components"}
+        ``"volumes"``: one mesh object, cut into parts by the triangle ranges of
+        ``Metadata/Slic3r_PE_model.config`` (PrusaSlicer, and Bambu Studio and
+        OrcaSlicer through their PrusaSlicer importer). ``"components"``: each part
+        its own mesh object with ``cura:extruder_nr`` metadata, one object of
+        ``<components>`` (UltiMaker Cura; Bambu Studio and OrcaSlicer).
 
     >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
     >>> f = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
-    >>> data = package_3mf([Part("a", 1, v, f), Part("b", 2, v + 1, f)], name="demo")
-    >>> {k: (len(p.vertices), len(p.faces)) for k, p in read_3mf(data).items()}
-    {'a': (4, 4), 'b': (4, 4)}
+    >>> for layout in LAYOUTS:
+    ...     data = package_3mf([Part("a", 1, v, f), Part("b", 2, v + 1, f)], name="demo", layout=layout)
+    ...     print(layout, {k: (p.extruder, len(p.vertices), len(p.faces)) for k, p in read_3mf(data).items()})
+    volumes {'a': (1, 4, 4), 'b': (2, 4, 4)}
+    components {'a': (1, 4, 4), 'b': (2, 4, 4)}
     """
+    if layout not in LAYOUTS:
+        raise ParameterError(f"layout={layout!r} is not a valid 3MF layout, must be one of: {', '.join(LAYOUTS)}",
+                             param="layout")
+    head = ['<?xml version="1.0" encoding="UTF-8"?>\n',
+            f'<model unit="millimeter" xml:lang="en-US" xmlns="{_CORE_NS}"'
+            + (f' xmlns:cura="{_CURA_NS}"' if layout == "components" else "") + '>\n',
+            f' <metadata name="Application">{_text(application)}</metadata>\n',
+            f' <metadata name="Title">{_text(name)}</metadata>\n',
+            ' <resources>\n']
+    if layout == "volumes":
+        body, files = _volumes(parts, name)
+    else:
+        body, files = _components(parts, name)
+    model = "".join(head + body)
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as zf:
+        for arcname, text in (("[Content_Types].xml", _CONTENT_TYPES), ("_rels/.rels", _RELS),
+                              (MODEL_PATH, model), *files):
+            info = zipfile.ZipInfo(arcname, date_time=(1980, 1, 1, 0, 0, 0))  # same bytes every run
+            info.compress_type = zipfile.ZIP_DEFLATED
+            # level 1: the 600 x 400 mm sheet's model packs to 5.7 MB in 0.3 s; the default
+            # level 6 gives 4.7 MB in 0.9 s (measured)
+            zf.writestr(info, text.encode("utf-8"), compresslevel=1)
+    return buf.getvalue()
+
+
+def _volumes(parts, name):
+    """One mesh object of every part's shells in turn; the two configs' triangle ranges name the parts."""
     verts, faces, ranges = [], [], []
     nv = nt = 0
     for p in parts:
@@ -120,32 +245,32 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles") -> bytes:
         ranges.append((nt, nt + len(p.faces) - 1))
         nv += len(p.vertices)
         nt += len(p.faces)
-    v = np.concatenate(verts).astype(np.float32).astype(np.float64) + 0.0  # -0.0 -> 0.0
-    t = np.concatenate(faces)
-    title = quoteattr(name)
-    model = "".join([
-        '<?xml version="1.0" encoding="UTF-8"?>\n',
-        f'<model unit="millimeter" xml:lang="en-US" xmlns="{_CORE_NS}">\n',
-        f' <metadata name="Application">{_text(application)}</metadata>\n',
-        f' <metadata name="Title">{_text(name)}</metadata>\n',
-        f' <resources>\n  <object id="1" type="model" name={title}>\n   <mesh>\n    <vertices>\n',
-        _numbers('     <vertex x="%.9g" y="%.9g" z="%.9g"/>\n', v),
-        '    </vertices>\n    <triangles>\n',
-        _numbers('     <triangle v1="%d" v2="%d" v3="%d"/>\n', t),
-        '    </triangles>\n   </mesh>\n  </object>\n </resources>\n',
-        ' <build>\n  <item objectid="1"/>\n </build>\n</model>\n',
-    ])
-    buf = io.BytesIO()
-    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as zf:
-        for arcname, text in (("[Content_Types].xml", _CONTENT_TYPES), ("_rels/.rels", _RELS),
-                              (MODEL_PATH, model), (PRUSA_CONFIG_PATH, _prusa_config(parts, ranges, name)),
-                              (BAMBU_CONFIG_PATH, _bambu_config(parts, ranges, name))):
-            info = zipfile.ZipInfo(arcname, date_time=(1980, 1, 1, 0, 0, 0))  # same bytes every run
-            info.compress_type = zipfile.ZIP_DEFLATED
-            # level 1: the 600 x 400 mm sheet's model packs to 5.7 MB in 0.3 s; the default
-            # level 6 gives 4.7 MB in 0.9 s (measured)
-            zf.writestr(info, text.encode("utf-8"), compresslevel=1)
-    return buf.getvalue()
+    body = [f'  <object id="1" type="model" name={quoteattr(name)}>\n',
+            *_mesh_xml(_exact(np.concatenate(verts)), np.concatenate(faces), "   "),
+            '  </object>\n </resources>\n',
+            # no transform: their importers give a lone instance's transform to the first volume only
+            ' <build>\n  <item objectid="1"/>\n </build>\n</model>\n']
+    return body, ((PRUSA_CONFIG_PATH, _prusa_config(parts, ranges, name)),
+                  (BAMBU_CONFIG_PATH, _bambu_config(parts, ranges, name)))
+
+
+def _components(parts, name):
+    """Each part its own mesh object (ids 1..k, Cura's extruder on each), then object k+1 of components."""
+    body = []
+    for i, p in enumerate(parts, start=1):
+        body += [f'  <object id="{i}" type="model" name={quoteattr(p.name)}>\n',
+                 '   <metadatagroup>\n',
+                 # Cura's extruders count from 0, the slicers' filaments from 1
+                 f'    <metadata name="cura:extruder_nr" preserve="1" type="xs:string">{p.extruder - 1}</metadata>\n',
+                 '   </metadatagroup>\n',
+                 *_mesh_xml(_exact(p.vertices), np.asarray(p.faces, np.int64), "   "),
+                 '  </object>\n']
+    k = len(parts) + 1
+    body += [f'  <object id="{k}" type="model" name={quoteattr(name)}>\n   <components>\n',
+             *(f'    <component objectid="{i}"/>\n' for i in range(1, k)),
+             '   </components>\n  </object>\n </resources>\n',
+             f' <build>\n  <item objectid="{k}"/>\n </build>\n</model>\n']
+    return body, ((BAMBU_CONFIG_PATH, _bambu_components_config(parts, name)),)
 
 
 def _text(s: str) -> str:
@@ -169,19 +294,34 @@ def _prusa_config(parts, ranges, name) -> str:
     return "".join(out)
 
 
+def _bambu_part(part_id, p, extra: str = "") -> list:
+    return [f'  <part id="{part_id}" subtype="normal_part"{extra}>\n',
+            f'   <metadata key="name" value={quoteattr(p.name)}/>\n',
+            '   <metadata key="matrix" value="1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"/>\n',
+            f'   <metadata key="extruder" value="{p.extruder}"/>\n',
+            '   <mesh_stat edges_fixed="0" degenerate_facets="0" facets_removed="0" facets_reversed="0" '
+            'backwards_edges="0"/>\n',
+            '  </part>\n']
+
+
 def _bambu_config(parts, ranges, name) -> str:
     """Bambu Studio / OrcaSlicer's model settings: the object and its parts, names and filaments."""
     out = ['<?xml version="1.0" encoding="UTF-8"?>\n<config>\n <object id="1">\n',
            f'  <metadata key="name" value={quoteattr(name)}/>\n',
            '  <metadata key="extruder" value="1"/>\n']
     for i, (p, (first, last)) in enumerate(zip(parts, ranges), start=1):
-        out += [f'  <part id="{i}" subtype="normal_part" firstid="{first}" lastid="{last}">\n',
-                f'   <metadata key="name" value={quoteattr(p.name)}/>\n',
-                '   <metadata key="matrix" value="1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"/>\n',
-                f'   <metadata key="extruder" value="{p.extruder}"/>\n',
-                '   <mesh_stat edges_fixed="0" degenerate_facets="0" facets_removed="0" facets_reversed="0" '
-                'backwards_edges="0"/>\n',
-                '  </part>\n']
+        out += _bambu_part(i, p, f' firstid="{first}" lastid="{last}"')
+    out.append(' </object>\n</config>\n')
+    return "".join(out)
+
+
+def _bambu_components_config(parts, name) -> str:
+    """The model settings of the components layout: the assembly (id k+1), each part by its object's id."""
+    out = ['<?xml version="1.0" encoding="UTF-8"?>\n<config>\n', f' <object id="{len(parts) + 1}">\n',
+           f'  <metadata key="name" value={quoteattr(name)}/>\n',
+           '  <metadata key="extruder" value="1"/>\n']
+    for i, p in enumerate(parts, start=1):
+        out += _bambu_part(i, p)
     out.append(' </object>\n</config>\n')
     return "".join(out)
 
@@ -218,13 +358,15 @@ def _block(model: bytes, block: bytes, tag: bytes, fields: tuple, dtype) -> np.n
 
 
 def read_3mf(source) -> dict:
-    """The parts of a fabtiles 3MF, split as PrusaSlicer splits them.
+    """The parts of a fabtiles 3MF, split as the slicers split them.
 
-    ``source`` is a path or the package bytes. The object's mesh is read with
-    float32 coordinates (what slicers read); ``Metadata/Slic3r_PE_model.config``
-    cuts its triangles into named volumes, each taking the contiguous range of
-    vertices its triangles use. Returns a dict of name to :class:`Part` (faces
-    indexing the part's own vertices). Reads the layout :func:`package_3mf`
+    ``source`` is a path or the package bytes. Vertices are read as float32 (what
+    slicers read). In the volumes layout ``Metadata/Slic3r_PE_model.config`` cuts
+    the one object's triangles into named volumes, each taking the contiguous range
+    of vertices its triangles use (as PrusaSlicer does); in the components layout
+    each component of the build item's object is a part, its extruder the object's
+    ``cura:extruder_nr`` plus one. Returns a dict of name to :class:`Part` (faces
+    indexing the part's own vertices). Reads the layouts :func:`package_3mf`
     writes (attributes in its order), not every 3MF.
     """
     import xml.etree.ElementTree as ET
@@ -233,9 +375,12 @@ def read_3mf(source) -> dict:
     try:
         with zipfile.ZipFile(io.BytesIO(data)) as zf:
             model = zf.read(MODEL_PATH)
-            config = ET.fromstring(zf.read(PRUSA_CONFIG_PATH))
+            names = set(zf.namelist())
+            config = ET.fromstring(zf.read(PRUSA_CONFIG_PATH)) if PRUSA_CONFIG_PATH in names else None
     except (zipfile.BadZipFile, KeyError, ET.ParseError) as exc:
         raise FabricationError(f"not a fabtiles 3MF package ({exc})") from None
+    if config is None:
+        return _read_components(model)
     verts = _block(model, b"vertices", b"vertex", (b"x", b"y", b"z"), np.float32)
     tris = _block(model, b"triangles", b"triangle", (b"v1", b"v2", b"v3"), np.int64)
     parts = {}
@@ -252,11 +397,45 @@ def read_3mf(source) -> dict:
     return parts
 
 
+_OBJECT = re.compile(rb'<object id="(\d+)" type="model" name=("[^"]*"|\'[^\']*\')>')
+_EXTRUDER = re.compile(rb'<metadata name="cura:extruder_nr"[^>]*>(\d+)</metadata>')
+
+
+def _read_components(model: bytes) -> dict:
+    """The components layout's parts: the mesh objects that the build item's object is made of."""
+    from xml.sax.saxutils import unescape
+
+    heads = list(_OBJECT.finditer(model))
+    bodies = {}
+    for m in heads:
+        end = model.find(b"</object>", m.end())
+        bodies[int(m.group(1))] = (unescape(m.group(2)[1:-1].decode("utf-8"), {"&quot;": '"'}),
+                                   model[m.end():end])
+    item = re.search(rb'<item objectid="(\d+)"', model)
+    if item is None or int(item.group(1)) not in bodies:
+        raise FabricationError("the 3MF model has no build item naming one of its objects")
+    ids = [int(i) for i in re.findall(rb'<component objectid="(\d+)"', bodies[int(item.group(1))][1])]
+    if not ids or any(i not in bodies for i in ids):
+        raise FabricationError(f"the 3MF build object's components {ids} are not objects of the model "
+                               f"(objects {sorted(bodies)})")
+    parts = {}
+    for i in ids:
+        name, text = bodies[i]
+        nr = _EXTRUDER.search(text)
+        verts = _block(text, b"vertices", b"vertex", (b"x", b"y", b"z"), np.float32)
+        faces = _block(text, b"triangles", b"triangle", (b"v1", b"v2", b"v3"), np.int64)
+        if len(faces) and (faces.min() < 0 or faces.max() >= len(verts)):
+            raise FabricationError(f"the 3MF object {name!r} has triangles indexing past its "
+                                   f"{len(verts)} vertices")
+        parts[name] = Part(name, int(nr.group(1)) + 1 if nr else 0, verts, faces)
+    return parts
+
+
 # --------------------------------------------------------------------------- writer
 
 
 def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
-              pierced_mm=None, deboss_mm=None, inlay=False, name=None, dips=None):
+              pierced_mm=None, deboss_mm=None, inlay=False, layout="volumes", name=None, dips=None):
     """Write a 3MF (unit millimetre) of the tile: one object of named parts, one filament each.
 
     Parameters as :func:`~fabtiles.export.mesh.write_stl`, plus:
@@ -264,6 +443,11 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
     inlay : bool, optional
         Deboss only: a second part ``"inlay"`` filling the grooves flush with the
         plate's top (filament 2), for a two-colour inlay print.
+    layout : {"volumes", "components"}
+        ``"volumes"`` (default): one mesh object cut into parts by PrusaSlicer's
+        config (PrusaSlicer, Bambu Studio, OrcaSlicer); ``"components"``: one object
+        of components, each part its own mesh object (UltiMaker Cura; Bambu Studio,
+        OrcaSlicer; PrusaSlicer makes each part its own object). See the module.
     name : str, optional
         The object's name in the slicer (default: the file name without suffix).
     dips : shapely geometry, optional
@@ -278,6 +462,9 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
     -------
     Report
     """
+    if layout not in LAYOUTS:
+        raise ParameterError(f"layout={layout!r} is not a valid 3MF layout, must be one of: {', '.join(LAYOUTS)}",
+                             param="layout")
     heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
     profile, stack, report = prepare_print(region, outline, profile, style, heights, stroke, path=path, fmt="3mf")
     check_inlay(stack, inlay)
@@ -287,7 +474,7 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
     from .. import __version__
 
     title = name if name is not None else _stem(path)
-    data = package_3mf(parts, name=title, application=f"fabtiles-{__version__}")
+    data = package_3mf(parts, name=title, application=application_name(layout, __version__), layout=layout)
     back = read_3mf(data)
     if list(back) != list(checked):
         raise FabricationError(f"the 3MF package lost its part names (read back {list(back)}, wrote "
@@ -303,6 +490,7 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
         stack_stats(stack),
         bodies=list(checked),
         parts={n: {"extruder": p.extruder, "triangles": int(len(p.faces))} for n, p in zip(checked, parts)},
+        layout=layout,
         triangles=int(sum(len(p.faces) for p in checked.values())),
         volume_mm3=float(sum(p.mesh_volume_mm3 for p in checked.values())),
         bounds_mm=[allv.min(axis=0).tolist(), allv.max(axis=0).tolist()],

@@ -113,6 +113,7 @@ FIELDS = {
     "print_style": ("output", "print_style", _text),
     "fill_small_holes": ("output", "fill_small_holes", _flag),
     "inlay": ("output", "inlay", _flag),
+    "threemf_layout": ("output", "threemf_layout", _text),
     "base_mm": ("output", "base_mm", _number),
     "relief_mm": ("output", "relief_mm", _number),
     "pierced_mm": ("output", "pierced_mm", _number),

@@ -50,7 +50,7 @@ def test_build_writes_the_svg(design, tmp_path):
     svg = (out / "small.svg").read_text()
     # The laser SVG: true mm size, grown by the plywood profile's kerf (0.15 mm).
     assert 'width="60.15mm" height="60.15mm"' in svg and 'viewBox="' in svg
-    assert 'id="CUT_INNER"' in svg and 'id="CUT_OUTER"' in svg
+    assert 'id="INNER"' in svg and 'id="OUTER"' in svg
     assert sorted(p.name for p in out.iterdir()) == ["small.svg"]  # no staging left over
     assert f"wrote {out / 'small.svg'}" in result.output
 

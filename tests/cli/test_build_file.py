@@ -39,7 +39,7 @@ def test_sheet_to_one_file(design, tmp_path):
     out = tmp_path / "sheet.dxf"
     result = run("build", design, "-o", out, "--copies", 3)
     assert result.exit_code == 0, result.output
-    assert sum(e.dxf.layer == "CUT_OUTER" for e in ezdxf.readfile(out).modelspace()) == 3
+    assert sum(e.dxf.layer == "OUTER" for e in ezdxf.readfile(out).modelspace()) == 3
 
 
 @pytest.mark.parametrize("formats, match", [

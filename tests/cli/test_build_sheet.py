@@ -61,7 +61,7 @@ def test_copies_writes_a_sheet_of_n_tiles(design, tmp_path):
     assert result.stderr == ""
     check_sheet_dxf(out / "small-sheet.dxf", design, 7)
     svg = (out / "small-sheet.svg").read_text()
-    assert 'id="CUT_INNER"' in svg and 'id="CUT_OUTER"' in svg
+    assert 'id="INNER"' in svg and 'id="OUTER"' in svg
     width, height = (float(v) for v in re.search(r'width="([\d.]+)mm" height="([\d.]+)mm"', svg).groups())
     assert width <= PLY.bed_mm[0] and height <= PLY.bed_mm[1]
 

@@ -98,7 +98,7 @@ def test_card_svg_reads_back_with_measured_features(tmp_path):
     ns = {"s": "http://www.w3.org/2000/svg"}
     assert root.get("width").endswith("mm")
     groups = {g.get("id"): g for g in root.findall("s:g", ns)}
-    assert list(groups) == ["SCORE", "CUT_INNER", "CUT_OUTER"]  # cut order
+    assert list(groups) == ["SCORE", "INNER", "OUTER"]  # cut order
 
     def rings(gid):
         out = []
@@ -109,7 +109,7 @@ def test_card_svg_reads_back_with_measured_features(tmp_path):
             out.append((nums, d.endswith("Z")))
         return out
 
-    inner = rings("CUT_INNER")
+    inner = rings("INNER")
     assert all(closed for _, closed in inner) and not any(closed for _, closed in rings("SCORE"))
     measure([r for r, _ in inner], profile.kerf_mm, card)
     labels_present([r for r, _ in rings("SCORE")], card)

@@ -168,7 +168,7 @@ BAD = [
     (dict(stroke=0.5), ParameterError, r"stroke must be >= min_feature_mm = 1 mm .*, got 0.5"),
     (dict(profile="laser-9mm-unobtainium"), ProfileError, r"profile 'laser-9mm-unobtainium' does not exist"),
     (dict(profile="fdm-0.4mm"), ProfileError, r"printer profile, but a laser profile is needed"),
-    (dict(profile=replace(PLY, layers=LaserLayers(inner_cut=Layer("CUT_INNER", 300)))), ProfileError,
+    (dict(profile=replace(PLY, layers=LaserLayers(inner_cut=Layer("INNER", 300)))), ProfileError,
      r"layers.inner_cut.color must be an AutoCAD Color Index 1..255, got 300"),
     (dict(mode="engrave"), ParameterError, r"'engrave' is not a valid mode, must be one of: pierced, score"),
     (dict(dxf_version="R14"), ParameterError, r"'R14' is not a valid dxf_version"),

@@ -14,17 +14,23 @@ import re
 import shutil
 import subprocess
 import zlib
+from dataclasses import replace
 
 import numpy as np
 import pytest
 from dxf_helpers import motif_tile, star_plate, vertices
 
-from fabtiles._profiles import load_profile
+from fabtiles._profiles import LaserLayers, Layer, load_profile
 from fabtiles.export.dxf import write_dxf
 
 LIBRECAD = shutil.which("librecad")
-PLY = load_profile("laser-3mm-plywood")
-# ACI colours of the plywood profile's layers as LibreCAD prints them (RGB 0..1)
+DEFAULT = load_profile("laser-3mm-plywood")
+# The bundled profiles draw both cuts red (docs/laser-programs.md); these tests tell the layers
+# apart by colour, so they give each layer its own: inner red, outer blue, score green.
+PLY = replace(DEFAULT, layers=LaserLayers(inner_cut=Layer(DEFAULT.layers.inner_cut.name, 1),
+                                          outer_cut=Layer(DEFAULT.layers.outer_cut.name, 5),
+                                          score=Layer(DEFAULT.layers.score.name, 3)))
+# ACI colours as LibreCAD prints them (RGB 0..1)
 RGB = {1: (1.0, 0.0, 0.0), 3: (0.0, 1.0, 0.0), 5: (0.0, 0.0, 1.0)}
 
 
@@ -99,6 +105,19 @@ def test_librecad_draws_the_cut_contours(librecad, tmp_path, version):
     doc = ezdxf.readfile(dxf)
     stars = np.vstack([vertices(e) for e in doc.modelspace() if e.dxf.layer == PLY.layers.inner_cut.name])
     assert _extent(inner) / scale == pytest.approx(_extent(stars), rel=2e-3)
+
+
+def test_librecad_draws_the_bundled_profiles_cuts_red_and_score_blue(librecad, tmp_path):
+    region, outline, lines = motif_tile()
+    for mode in ("pierced", "score"):
+        dxf = tmp_path / f"{mode}.dxf"
+        write_dxf(dxf, region=region, outline=outline, centrelines=lines, profile=DEFAULT, mode=mode, stroke=1.2)
+        drawn = {c: len(s) for c, s in _segments_by_colour(_print_pdf(librecad, dxf, tmp_path)).items()}
+        cuts = _dxf_edges(dxf, DEFAULT.layers.inner_cut) + _dxf_edges(dxf, DEFAULT.layers.outer_cut)
+        want = {RGB[1]: cuts}
+        if mode == "score":
+            want[RGB[5]] = _dxf_edges(dxf, DEFAULT.layers.score)
+        assert drawn == want
 
 
 def test_librecad_draws_the_score_paths(librecad, tmp_path):

@@ -36,8 +36,8 @@ def test_same_contours_as_dxf(tmp_path):
     assert root.get("width") == f"{60 + 2 * k:g}mm" and root.get("height") == f"{60 + 2 * k:g}mm"
     assert [float(v) for v in root.get("viewBox").split()] == pytest.approx([-k, -60 - k, 60 + 2 * k, 60 + 2 * k])
     groups = root.findall("s:g", NS)
-    assert [g.get("id") for g in groups] == ["CUT_INNER", "CUT_OUTER"]
-    assert [g.get("stroke") for g in groups] == ["#FF0000", "#0000FF"]
+    assert [g.get("id") for g in groups] == ["INNER", "OUTER"]
+    assert [g.get("stroke") for g in groups] == ["#FF0000", "#FF0000"]  # both cuts red (docs/laser-programs.md)
     assert all(g.get("fill") == "none" for g in groups)
     paths = [(g.get("id"), p.get("d")) for g in groups for p in g.findall("s:path", NS)]
     ents = dxf_entities(dxf)
@@ -55,8 +55,8 @@ def test_score_mode_and_colours(tmp_path):
     write_laser_svg(svg, region=region, outline=outline, centrelines=seg, profile=PLY, mode="score", kerf_mm=0)
     root = ET.parse(svg).getroot()
     groups = {g.get("id"): g for g in root.findall("s:g", NS)}
-    assert list(groups) == ["SCORE", "CUT_OUTER"]
-    assert groups["SCORE"].get("stroke") == "#00FF00"
+    assert list(groups) == ["SCORE", "OUTER"]
+    assert groups["SCORE"].get("stroke") == "#0000FF"
     assert all(not p.get("d").endswith("Z") for p in groups["SCORE"].findall("s:path", NS))
     assert root.get("width") == "100mm"
 

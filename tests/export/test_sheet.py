@@ -58,4 +58,4 @@ def test_sheet_dxf_has_no_loose_part_findings(tmp_path):
     assert report.ok, report.summary()
     assert report.stats["outer_contours"] == 6 and report.stats["inner_contours"] == 54
     layers = [e.dxf.layer for e in read_checked(path).modelspace()]
-    assert layers == ["CUT_INNER"] * 54 + ["CUT_OUTER"] * 6
+    assert layers == ["INNER"] * 54 + ["OUTER"] * 6

@@ -35,6 +35,7 @@ const state = {
   tiling: "4.8.8", edge: 20, motifs: {},  // packing=archimedean: motifs[sides] = preset ("" = the motif above)
   outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
   laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
+  threemf_layout: "volumes",  // 3MF parts for PrusaSlicer, Bambu Studio, OrcaSlicer; "components" for Cura
   miter_limit: 4, seamless: false, fill_small_holes: true, name: "",
   base_mm: "", relief_mm: "", pierced_mm: "", deboss_mm: "",  // "": the printer profile's
   interlace: false, interlace_gap_mm: "", interlace_cut: false,  // woven strands; "": a third of the stroke
@@ -135,6 +136,7 @@ function query() {
   if (state.interlace) q.set("interlace", "true");
   if (state.interlace_cut) q.set("interlace_cut", "true");
   if (state.inlay) q.set("inlay", "true");
+  if (state.threemf_layout !== "volumes") q.set("threemf_layout", state.threemf_layout);
   q.set("fill_small_holes", state.fill_small_holes ? "true" : "false");
   for (const k of TEXT_KEYS) if (String(state[k]).trim() !== "") q.set(k, String(state[k]).trim());
   return q;
@@ -169,7 +171,8 @@ function syncControls() {
   for (const group of Object.values(SLIDERS)) for (const [key] of group) {
     $(key).value = state[key]; $(`${key}-range`).value = state[key];
   }
-  for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style"])
+  for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style",
+                     "threemf_layout"])
     $(key).value = state[key];
   $("preset").value = state.preset;
   $("tiling").value = state.tiling;
@@ -325,7 +328,8 @@ async function init() {
   for (const k of TEXT_KEYS) $(k).addEventListener("change", () => { state[k] = $(k).value; update(); });
   $("show_findings").checked = showFindings;
   $("show_findings").addEventListener("change", () => { showFindings = $("show_findings").checked; update(); });
-  for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style"])
+  for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style",
+                     "threemf_layout"])
     $(key).addEventListener("change", () => { state[key] = $(key).value; update(); });
   for (const key of ["packing", "tiling"])
     $(key).addEventListener("change", () => { state[key] = $(key).value; tilingControls(); if (key === "tiling") update(); });

@@ -1,0 +1,172 @@
+"""The laser files in the programs laser users open them with (issue 21).
+
+- MeerK40t (PyPI, in the "test" extra), a laser control program, run headless: it
+  loads the file, classifies the elements into operations by colour, plans the job
+  and writes GRBL G-code. Each run gets its own HOME: MeerK40t keeps the operations
+  of earlier runs in its settings.
+- Inkscape: ``--query-all`` measures the SVG; its DXF import is the Python extension
+  ``dxf_input.py``, run with Debian's python3 as Inkscape runs it (Inkscape's own
+  command line needs a display to import DXF).
+
+What they do with each of our layers is tabled in ``docs/laser-programs.md``.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+import pytest
+from real_programs import INKSCAPE_EXTENSIONS, SYSTEM_PYTHON, program, require, run
+
+from fabtiles import HexPacking, Star, Tile
+from fabtiles._profiles import load_profile
+
+PLY = load_profile("laser-3mm-plywood")
+SIZE = 60.0  # inside MeerK40t's default 235 mm bed, which it would otherwise scale the job to
+GRBL_STEP = 0.0254  # MeerK40t works in 1/1000 inch
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    out = tmp_path_factory.mktemp("laser")
+    tile = Tile("square", SIZE, HexPacking(10, Star.preset("table3-3")), frame=3, stroke=1.0)
+    paths = {}
+    for mode in ("pierced", "score"):
+        for fmt in ("dxf", "svg"):
+            paths[mode, fmt] = out / f"{mode}.{fmt}"
+            tile.export(paths[mode, fmt], mode=mode, fill_small_holes=True)
+    return paths
+
+
+def dxf_layers(path) -> dict:
+    """Layer name -> [closed flag of each entity], from the file itself."""
+    layers = {}
+    for e in ezdxf.readfile(path).modelspace():
+        layers.setdefault(e.dxf.layer, []).append(bool(e.closed))
+    return layers
+
+
+# --------------------------------------------------------------------------- MeerK40t
+
+
+def meerk40t(path, tmp_path) -> dict:
+    """Load ``path`` into MeerK40t (a GRBL diode laser), classify, plan, save the G-code."""
+    exe = shutil.which("meerk40t") or str(Path(sys.executable).with_name("meerk40t"))
+    require(os.path.exists(exe) and exe, "meerk40t", 'pip install "meerk40t[dxf]" (in the "test" extra)')
+    home = tmp_path / "meerk40t-home"
+    home.mkdir(exist_ok=True)
+    gcode = tmp_path / f"{Path(path).stem}.gcode"
+    env = {**os.environ, "HOME": str(home), "XDG_CONFIG_HOME": str(home / ".config")}
+    done = run([exe, "-Z", "-X", "-A", "-e", "device add grbl-diode", "-e", f"load {path}", "-e", "tree list",
+                "-e", "plan copy preprocess validate blob preopt optimize", "-e", f"plan save_job {gcode}",
+                "-e", "quit"], env=env, timeout=180)
+    out = re.sub(r"\x1b\[[0-9;]*m", "", done.stdout + done.stderr)
+    added = int(re.search(r"Elements before: 0, after: \d+, added: (\d+)", out).group(1))
+    tree = out[out.index("Tree:"):]
+    ops = []  # (kind, references) of each operation, in the tree's order
+    for line in tree.splitlines():
+        m = re.search(r"\s(\d+)\.(\d+)(\.\d+)?\s+: (op (\w+)|reference)", line)
+        if m and m.group(1) == "0":
+            if m.group(5):
+                ops.append([m.group(5), 0])
+            elif m.group(3):
+                ops[-1][1] += 1
+    return dict(added=added, ops=[tuple(op) for op in ops], gcode=gcode.read_text())
+
+
+def burns(gcode: str) -> list[np.ndarray]:
+    """The paths the laser burns: each G0 travel's end, then the G1 moves with power that follow."""
+    paths, x, y, power, current = [], None, None, 0.0, None
+    for line in gcode.splitlines():
+        words = dict(re.findall(r"([GXYSF])(-?[0-9.]+)", line))
+        if "S" in words:
+            power = float(words["S"])
+        start = (x, y)
+        x, y = float(words.get("X", x or 0)), float(words.get("Y", y or 0))
+        if words.get("G") == "0":
+            current = None
+        elif words.get("G") == "1" and power > 0:
+            if current is None:
+                current = [start]
+                paths.append(current)
+            current.append((x, y))
+    return [np.array(p) for p in paths]
+
+
+@pytest.mark.parametrize("fmt", ["dxf", "svg"])
+def test_meerk40t_cuts_every_contour_once_at_the_tile_size(files, tmp_path, fmt):
+    job = meerk40t(files["pierced", fmt], tmp_path)
+    layers = dxf_layers(files["pierced", "dxf"])
+    contours = sum(len(v) for v in layers.values())
+    assert all(all(closed) for closed in layers.values())
+    assert job["added"] == contours
+    # both cut layers (red) land in cut operations, each contour in exactly one: nothing engraved,
+    # nothing cut twice (a layer named with "CUT" would be put in a second operation by its name)
+    assert {kind for kind, _ in job["ops"]} == {"cut"}
+    assert sum(refs for _, refs in job["ops"]) == contours
+    paths = burns(job["gcode"])
+    assert len(paths) == contours
+    assert all(np.allclose(p[0], p[-1], atol=GRBL_STEP) for p in paths)  # every burn closes on itself
+    allp = np.concatenate(paths)
+    extent = allp.max(axis=0) - allp.min(axis=0)
+    assert extent == pytest.approx([SIZE + PLY.kerf_mm] * 2, abs=0.05)
+
+
+def test_meerk40t_engraves_the_score_lines_and_cuts_the_outline(files, tmp_path):
+    job = meerk40t(files["score", "dxf"], tmp_path)
+    layers = dxf_layers(files["score", "dxf"])
+    assert layers.keys() == {PLY.layers.score.name, PLY.layers.outer_cut.name}
+    assert job["added"] == len(layers[PLY.layers.score.name]) + 1
+    kinds = {}
+    for kind, refs in job["ops"]:
+        kinds[kind] = kinds.get(kind, 0) + refs
+    assert kinds == {"engrave": len(layers[PLY.layers.score.name]), "cut": 1}
+
+
+# --------------------------------------------------------------------------- Inkscape
+
+
+def test_inkscape_measures_the_svg_in_true_millimetres(files):
+    inkscape = program("inkscape", "apt-get install inkscape")
+    svg = files["pierced", "svg"]
+    rows = [line.split(",") for line in run([inkscape, "--query-all", svg]).stdout.splitlines()]
+    boxes = {r[0]: np.array([float(v) for v in r[1:]]) * 25.4 / 96 for r in rows}  # px at 96 per inch -> mm
+    root = ET.parse(svg).getroot()
+    stroke = float(root.find("{http://www.w3.org/2000/svg}g").get("stroke-width"))
+    # the visual box: the kerf-compensated outline plus half the hairline stroke on each side
+    (_, _, w, h) = boxes[rows[0][0]]
+    assert (w, h) == pytest.approx((SIZE + PLY.kerf_mm + stroke,) * 2, abs=0.005)
+    assert {PLY.layers.inner_cut.name, PLY.layers.outer_cut.name} <= boxes.keys()
+
+
+@pytest.mark.parametrize("mode", ["pierced", "score"])
+def test_inkscape_imports_the_dxf_with_every_layer_and_contour(files, tmp_path, mode):
+    python = require(os.path.exists(SYSTEM_PYTHON) and SYSTEM_PYTHON, SYSTEM_PYTHON, "apt-get install python3")
+    extension = require((INKSCAPE_EXTENSIONS / "dxf_input.py").exists() and INKSCAPE_EXTENSIONS / "dxf_input.py",
+                        "Inkscape's dxf_input.py", "apt-get install inkscape")
+    dxf = files[mode, "dxf"]
+    svg = run([python, extension, dxf], cwd=INKSCAPE_EXTENSIONS).stdout
+    root = ET.fromstring(svg)
+    ns = {"s": "http://www.w3.org/2000/svg", "i": "http://www.inkscape.org/namespaces/inkscape"}
+    label = "{%s}label" % ns["i"]
+    imported = {g.get(label): g.findall("s:path", ns) for g in root.iter("{%s}g" % ns["s"])
+                if g.get("{%s}groupmode" % ns["i"]) == "layer" and g.findall("s:path", ns)}
+    layers = dxf_layers(dxf)
+    assert {k: len(v) for k, v in imported.items()} == {k: len(v) for k, v in layers.items()}
+    colours = {PLY.layers.inner_cut.name: "#FF0000", PLY.layers.outer_cut.name: "#FF0000",
+               PLY.layers.score.name: "#0000FF"}
+    for name, paths in imported.items():
+        for p, closed in zip(paths, layers[name]):
+            assert p.get("d").strip().lower().endswith("z") == closed
+            assert f"stroke:{colours[name]}" in p.get("style")
+    # millimetres: Inkscape's default import scale reads one DXF unit as 1 mm (96 px per inch)
+    xs = np.array([float(v) for p in imported[PLY.layers.outer_cut.name]
+                   for v in re.findall(r"-?\d+\.?\d*", p.get("d"))[0::2]])
+    assert (xs.max() - xs.min()) * 25.4 / 96 == pytest.approx(SIZE + PLY.kerf_mm, abs=0.002)
