@@ -3,7 +3,7 @@
 Issue 4 budget: the DXF of this sheet (about 10,000 holes after the kerf,
 70,000 vertices) is written in under 2 s end to end (checks, kerf contours,
 DXF) on a 2-core machine. The material region is the input: by default
-``Tile("rectangle", (600, 400), HexPacking(15, Star.preset("table3-3")), frame=5,
+``TileGeometry("rectangle", (600, 400), HexPacking(15, Star.preset("table3-3")), frame=5,
 stroke=1.0).region()``; ``--synthetic`` uses a stand-alone union of stroked
 motifs instead (no dependence on the tile module). Either is built once and
 cached as WKB in the temporary folder.
@@ -81,10 +81,10 @@ def tile_region(*, cache=TILE_CACHE):
     if cache is not None and cache.exists():
         return shapely.from_wkb(cache.read_bytes())
     from fabtiles import Star
-    from fabtiles.geometry.tile import Tile
+    from fabtiles.geometry.tile import TileGeometry
     from fabtiles.pattern.packing import HexPacking
 
-    region = Tile("rectangle", SIZE, HexPacking(RADIUS, Star.preset("table3-3")), frame=FRAME,
+    region = TileGeometry("rectangle", SIZE, HexPacking(RADIUS, Star.preset("table3-3")), frame=FRAME,
                   stroke=STROKE).region()
     if cache is not None:
         cache.write_bytes(shapely.to_wkb(region))

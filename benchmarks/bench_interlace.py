@@ -38,9 +38,10 @@ def best(fn, repeat: int) -> float:
 
 def stl_stages(woven: bool) -> dict:
     """Seconds of each stage of the relief STL of the sheet, as ``write_stl`` runs them."""
-    from fabtiles.export import _mesh_build as mb
-    from fabtiles.export import _slicer_check, layers, mesh
+    from fabtiles.export import stl
     from fabtiles.geometry import interlace
+    from fabtiles.solid import _mesh_build as mb
+    from fabtiles.solid import levels, mesh_check, parts
 
     out, t = {}, time.perf_counter()
 
@@ -55,21 +56,21 @@ def stl_stages(woven: bool) -> dict:
     lap("tile and region")
     dips = interlace.tile_dips(tile) if woven else None
     lap("weave and dips")
-    _, stack, _ = mesh.prepare_print(region, outline, "fdm-0.4mm", None, {}, tile.stroke, path="t.stl", fmt="stl")
-    r, o = mesh._snapped(region, outline)
-    dips = mesh._leveled(dips)
+    _, stack, _ = parts.prepare_print(region, outline, "fdm-0.4mm", None, {}, tile.stroke, path="t.stl", fmt="stl")
+    r, o = parts._snapped(region, outline)
+    dips = parts._leveled(dips)
     lap("print checks, snapping")
     if woven:
-        cov = layers.body_coverage("relief", r, o, stack, dips, leveled=True)
+        cov = levels.body_coverage("relief", r, o, stack, dips, leveled=True)
     else:
         cov = mb.coverage_pair(r, o, region_z=stack.base + stack.relief, rest_z=stack.base, bottom=0.0)
     lap("cells (coverage)")
     verts, faces = mb.mesh_coverage(cov)
     lap("triangles and walls")
-    volume, bodies = mesh._expected("relief", r, o, stack, dips)
-    mverts, mfaces = _slicer_check.check_indexed(verts, faces, volume=volume, bodies=bodies)
+    volume, bodies = parts._expected("relief", r, o, stack, dips)
+    mverts, mfaces = mesh_check.check_indexed(verts, faces, volume=volume, bodies=bodies)
     lap("slicer-exact check")
-    _slicer_check.stl_bytes(mverts, mfaces)
+    stl.stl_bytes(mverts, mfaces)
     lap("STL bytes")
     out["triangles"] = len(mfaces)
     return out

@@ -15,10 +15,10 @@ from pathlib import Path
 
 def sheet_tile(width=600.0, height=400.0, radius=15.0, preset="table3-3"):
     from fabtiles import Star
-    from fabtiles.geometry.tile import Tile
+    from fabtiles.geometry.tile import TileGeometry
     from fabtiles.pattern.packing import HexPacking
 
-    return Tile("rectangle", (width, height), HexPacking(radius, Star.preset(preset)), frame=5.0, stroke=1.0)
+    return TileGeometry("rectangle", (width, height), HexPacking(radius, Star.preset(preset)), frame=5.0, stroke=1.0)
 
 
 def main(argv=None):
@@ -28,13 +28,13 @@ def main(argv=None):
     ap.add_argument("--out", default=None)
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
-    from fabtiles.export import mesh, threemf
+    from fabtiles.export import stl, threemf
 
     tile = sheet_tile()
     region, outline = tile.region(), tile.outline_shape()
     t1 = time.perf_counter()
     out = Path(args.out or tempfile.mkdtemp()) / f"sheet.{args.format}"
-    writer = mesh.write_stl if args.format == "stl" else threemf.write_3mf
+    writer = stl.write_stl if args.format == "stl" else threemf.write_3mf
     report = writer(out, region=region, outline=outline, profile="fdm-0.4mm", style=args.style, stroke=tile.stroke)
     t2 = time.perf_counter()
     print(f"region {t1 - t0:.2f} s, {args.format} {t2 - t1:.2f} s, total {t2 - t0:.2f} s; "

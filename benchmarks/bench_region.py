@@ -15,14 +15,14 @@ import time
 
 import shapely
 
-from fabtiles.geometry.tile import Tile
+from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 from fabtiles.pattern.star import Star
 
 
-def sheet(join: str = "miter") -> Tile:
+def sheet(join: str = "miter") -> TileGeometry:
     pack = HexPacking(radius=15, motif=Star.preset("table3-3"))
-    return Tile("rectangle", (600, 400), pack, frame=5.0, stroke=1.0, join=join)
+    return TileGeometry("rectangle", (600, 400), pack, frame=5.0, stroke=1.0, join=join)
 
 
 def best_of(fn, repeat: int) -> tuple[float, object]:

@@ -20,11 +20,11 @@ def main(argv=None):
     args = ap.parse_args(argv)
     from fabtiles import Star
     from fabtiles.export import step
-    from fabtiles.geometry.tile import Tile
+    from fabtiles.geometry.tile import TileGeometry
     from fabtiles.pattern.packing import HexPacking
 
     t0 = time.perf_counter()
-    tile = Tile("square", args.size, HexPacking(15.0, Star.preset("table3-3")), frame=5.0, stroke=1.0)
+    tile = TileGeometry("square", args.size, HexPacking(15.0, Star.preset("table3-3")), frame=5.0, stroke=1.0)
     region, outline = tile.region(), tile.outline_shape()
     t1 = time.perf_counter()
     out = Path(args.out or tempfile.mkdtemp()) / "tile.step"

@@ -5,7 +5,7 @@ Run by hand from a checkout (never in CI: these machines are shared and noisy)::
     python benchmarks/run.py                 # all scenarios, writes benchmarks/results.md
     python benchmarks/run.py --quick         # skip the 1,200 x 600 mm sheet and the scaling table
     python benchmarks/run.py --baselines     # also time the straightforward pipelines
-    python benchmarks/run.py --baselines --readme   # and put the tables into README.md
+    python benchmarks/run.py --baselines --readme   # and put the tables into docs/speed.md
 
 Each scenario runs in a fresh Python process, so the figures include the
 imports each stage pays for, and the memory of one scenario does not leak into
@@ -286,7 +286,7 @@ def main(argv=None) -> int:
     ap.add_argument("--only", nargs="*", choices=list(SCENARIOS), help="run only these scenarios")
     ap.add_argument("-o", "--output", default=str(HERE / "results.md"), help="markdown report to write")
     ap.add_argument("--readme", action="store_true",
-                    help="also replace the README's section between the bench markers with the report")
+                    help="also replace the section of docs/speed.md between the bench markers with the report")
     args = ap.parse_args(argv)
     names = args.only or [n for n in SCENARIOS if not (args.quick and n == "sheet-1200x600")]
     results = {"startup_s": startup_seconds(), "scenarios": []}
@@ -314,7 +314,7 @@ def main(argv=None) -> int:
     text = report(results)
     Path(args.output).write_text(text)
     if args.readme:
-        update_readme(HERE.parent / "README.md", text)
+        update_readme(HERE.parent / "docs" / "speed.md", text)
     (Path(args.output).with_suffix(".json")).write_text(json.dumps(results, indent=1))
     print(text)
     return 0

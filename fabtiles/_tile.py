@@ -1,15 +1,24 @@
-"""The public :class:`Tile`: the geometry tile plus export and work limits."""
+"""The public :class:`Tile`: a tile's geometry, plus the work limits and ``export()``.
+
+One class is called ``Tile``: this one, the class users hold. Its geometry is
+:class:`fabtiles.geometry.tile.TileGeometry` (stroking, clipping, checks), which the
+lower layers take and the build pipeline builds (it checks the limits of its own front
+end: the web app's are tighter). ``export()`` cannot live on the geometry class: the
+geometry layer may not import the writers (``.importlinter``), and a method's lazy
+import counts as one. So the public class adds the writers and the command-line
+limits, and nothing else.
+"""
 
 from __future__ import annotations
 
 from . import _limits
-from .geometry.tile import Tile as _GeometryTile
+from .geometry.tile import TileGeometry
 
 
-class Tile(_GeometryTile):
+class Tile(TileGeometry):
     """A tile to fabricate: an outline of a size, a frame, and a stroked pattern.
 
-    See :class:`fabtiles.geometry.tile.Tile` for the geometry. Construction also
+    See :class:`fabtiles.geometry.tile.TileGeometry` for the geometry. Construction also
     checks the work limits (:data:`fabtiles._limits.CLI_LIMITS`) from the
     parameters alone, before any geometry is built.
 

@@ -84,11 +84,11 @@ def prepare_tile(design, *, limits: _limits.Limits = _limits.CLI_LIMITS):
 
     No geometry is built before the limits pass.
     """
-    from .geometry.tile import Tile
+    from .geometry.tile import TileGeometry
 
     width, height = design.tile_spec.size
     _limits.check_size(width, height, limits)
-    tile = design.build_tile(tile_cls=Tile)
+    tile = design.build_tile(tile_cls=TileGeometry)
     _limits.check_tile(tile.pattern, tile.width_mm, tile.height_mm, limits)
     return tile
 
@@ -104,7 +104,7 @@ def layout_tile_sheet(tile, design, *, copies=None, gap_mm=None, limits: _limits
 
     Parameters
     ----------
-    tile : Tile
+    tile : TileGeometry
         The design's tile.
     design : Design
         Gives the laser profile (its bed size and kerf).
@@ -118,7 +118,7 @@ def layout_tile_sheet(tile, design, *, copies=None, gap_mm=None, limits: _limits
     Returns
     -------
     Sheet
-        See :func:`~fabtiles.export.sheet.layout_sheet`.
+        See :func:`~fabtiles.geometry.sheet.layout_sheet`.
 
     Raises
     ------
@@ -128,7 +128,7 @@ def layout_tile_sheet(tile, design, *, copies=None, gap_mm=None, limits: _limits
         The sheet would hold more segments than ``limits`` allow.
     """
     from .export.dispatch import DEFAULT_LASER_PROFILE, laser_geometry
-    from .export.sheet import layout_sheet
+    from .geometry.sheet import layout_sheet
 
     profile = design.output.laser_profile or DEFAULT_LASER_PROFILE
     options = dict(copies=1 if copies is None else copies, gap_mm=gap_mm, fill=copies is None)

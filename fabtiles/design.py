@@ -169,7 +169,7 @@ class Design:
     source: str = "<design>"
 
     def build_tile(self, tile_cls=None):
-        """The :class:`~fabtiles.geometry.tile.Tile` of this design (see :func:`build_tile`)."""
+        """The :class:`~fabtiles.geometry.tile.TileGeometry` of this design (see :func:`build_tile`)."""
         return build_tile(self, tile_cls=tile_cls)
 
 
@@ -312,11 +312,11 @@ def build_tile(design: Design, *, tile_cls=None):
     """Build the tile a design describes.
 
     ``tile_cls`` is the class to instantiate (default
-    :class:`fabtiles.geometry.tile.Tile`; pass a subclass, e.g. one that can export).
+    :class:`fabtiles.geometry.tile.TileGeometry`; pass a subclass, e.g. one that can export).
     """
-    from .geometry.tile import Tile
+    from .geometry.tile import TileGeometry
 
-    tile_cls = tile_cls or Tile
+    tile_cls = tile_cls or TileGeometry
     star = design.motif.star() if design.motif is not None else None
     pattern = star if design.packing is None else _build_packing(design.packing, star)
     t = design.tile_spec

@@ -12,9 +12,9 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from fabtiles import Tile
 from fabtiles.export.preview_svg import write_tile_svg
 from fabtiles.geometry.seamless import seamless_fit
-from fabtiles.geometry.tile import Tile
 from fabtiles.pattern.packing import HexPacking
 from fabtiles.pattern.star import Star
 

@@ -47,7 +47,7 @@ def relief_bodies(design_path=DESIGN):
     import fabtiles
     from fabtiles.design import load_design
     from fabtiles.export.dispatch import DEFAULT_PRINTER_PROFILE
-    from fabtiles.export.mesh import build_meshes
+    from fabtiles.solid.parts import build_meshes
 
     design = load_design(design_path)
     tile = design.build_tile(tile_cls=fabtiles.Tile)

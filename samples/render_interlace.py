@@ -31,7 +31,7 @@ def relief_parts(tile):
     """The checked ``base`` and ``pattern`` parts of the interlaced relief, as trimesh meshes."""
     import trimesh
 
-    from fabtiles.export.mesh import checked_parts
+    from fabtiles.solid.parts import checked_parts
     from fabtiles.geometry.interlace import tile_dips
     from fabtiles.geometry.stack import resolve_stack
 

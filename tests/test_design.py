@@ -12,7 +12,7 @@ from fabtiles.design import (
     load_design,
     parse_override,
 )
-from fabtiles.geometry.tile import Tile
+from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking, SquarePacking
 
 SAMPLES = sorted((Path(__file__).resolve().parents[1] / "samples").glob("*.toml"))
@@ -44,7 +44,7 @@ def test_samples_load_and_build(path):
     design = load_design(path)
     assert design.name == path.stem
     tile = build_tile(design)
-    assert isinstance(tile, Tile)
+    assert isinstance(tile, TileGeometry)
 
 
 def test_spec_example_design(tmp_path):
@@ -221,7 +221,7 @@ def test_missing_sections():
 
 
 def test_build_tile_with_a_subclass():
-    class MyTile(Tile):
+    class MyTile(TileGeometry):
         pass
 
     d = design_from_text(BASE)

@@ -12,12 +12,12 @@ PACKAGE = ROOT / "fabtiles"
 
 
 def test_import_contracts_are_kept():
-    """pattern -> geometry -> export -> build -> front ends, with no import going up (lazy ones too)."""
+    """pattern -> geometry -> solid -> export -> build -> front ends, no import going up (lazy ones too)."""
     lint = Path(sys.executable).with_name("lint-imports")
     proc = subprocess.run([str(lint), str(ROOT / ".importlinter")], cwd=ROOT, capture_output=True, text=True,
                           timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
-    assert "Contracts: 3 kept, 0 broken." in proc.stdout
+    assert "Contracts: 4 kept, 0 broken." in proc.stdout
 
 
 def test_the_layer_contract_catches_an_import_going_up(tmp_path):
@@ -33,6 +33,21 @@ def test_the_layer_contract_catches_an_import_going_up(tmp_path):
     assert proc.returncode == 1, proc.stdout + proc.stderr
     assert "fabtiles.geometry is not allowed to import fabtiles.export" in proc.stdout
     assert "fabtiles.geometry.upward -> fabtiles.export.dispatch" in proc.stdout
+
+
+def test_the_solid_layer_writes_no_file(tmp_path):
+    """solid builds bodies; a module of it reaching for a writer or the atomic file writer breaks a contract."""
+    import shutil
+
+    copy = tmp_path / "fabtiles"
+    shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__", "static", "*.toml"))
+    (copy / "solid" / "writes.py").write_text("from .._io import atomic_write\nfrom ..export import stl\n")
+    lint = Path(sys.executable).with_name("lint-imports")
+    proc = subprocess.run([str(lint), str(ROOT / ".importlinter")], cwd=tmp_path, capture_output=True, text=True,
+                          timeout=300, env={"PYTHONPATH": str(tmp_path), "PATH": ""})
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    assert "fabtiles.solid is not allowed to import fabtiles.export" in proc.stdout
+    assert "fabtiles.solid.writes -> fabtiles._io" in proc.stdout
 
 
 def _module_name(path: Path, root: Path) -> str:

@@ -33,7 +33,7 @@ def test_laser_options():
 
 def test_export_and_sheet_options():
     from fabtiles.export.dispatch import export_geometry, format_of
-    from fabtiles.export.sheet import layout_sheet
+    from fabtiles.geometry.sheet import layout_sheet
     from fabtiles.geometry.stack import resolve_stack
 
     plate = box(0, 0, 40, 40)

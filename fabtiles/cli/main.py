@@ -81,7 +81,7 @@ def star(preset, n, radii, alpha, spr, special, rotation, size_mm, output):
     fabtiles star --preset table1-part1 -o star.svg
     fabtiles star --n 8 --radii 51,70,172 -o star.svg
     """
-    from ..export.svg import write_motif_svg
+    from ..export.motif_svg import write_motif_svg
     from ..pattern.star import Star
 
     given = {k: v for k, v in dict(n=n, alpha=alpha, spr=spr, special=special,

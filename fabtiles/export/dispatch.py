@@ -30,7 +30,7 @@ DEFAULT_PRINTER_PROFILE = "fdm-0.4mm"
 _WRITERS = {
     "dxf": ("dxf", "write_dxf", "laser"),
     "svg": ("laser_svg", "write_laser_svg", "laser"),
-    "stl": ("mesh", "write_stl", "printer"),
+    "stl": ("stl", "write_stl", "printer"),
     "3mf": ("threemf", "write_3mf", "printer"),
     "step": ("step", "write_step", "printer"),
 }
@@ -76,7 +76,7 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
         Stroke width, for the fabrication checks.
     dips : shapely geometry, optional
         Print: where an interlaced relief's under strands dip (see
-        :mod:`fabtiles.export.layers`).
+        :mod:`fabtiles.solid.levels`).
     profile : str, Path or profile, optional
         Laser profile for dxf/svg (default ``laser-3mm-plywood``), printer profile for
         stl/3mf/step (default ``fdm-0.4mm``).

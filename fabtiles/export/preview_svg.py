@@ -95,7 +95,7 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
 
     Parameters
     ----------
-    tile : Tile
+    tile : TileGeometry
     fill, outline_color, background : str
         SVG colours.
     title : str, optional
@@ -105,9 +105,9 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
 
     Examples
     --------
-    >>> from fabtiles.geometry.tile import Tile
+    >>> from fabtiles.geometry.tile import TileGeometry
     >>> from fabtiles.pattern.star import Star
-    >>> svg = tile_svg(Tile("circle", 40, Star.preset("table1-part1"), frame=2))
+    >>> svg = tile_svg(TileGeometry("circle", 40, Star.preset("table1-part1"), frame=2))
     >>> 'width="40mm"' in svg and 'fill-rule="evenodd"' in svg
     True
     """

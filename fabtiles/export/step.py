@@ -1,6 +1,6 @@
 """STEP output: the printed tile as a solid a CAD user would have modelled, checked by OCCT.
 
-The solid (:mod:`fabtiles.export.brep`) has planar faces and straight edges only:
+The solid (:func:`fabtiles.solid.brep.build_brep`) has planar faces and straight edges only:
 the bottom is one face, each connected flat region on top is one face with its
 holes, each straight side of the outline is one wall face, and vertical edges stand
 at the outline's corners. So OCCT-based CAD (FreeCAD, CadQuery, build123d) fillets
@@ -20,10 +20,9 @@ import numpy as np
 
 from .._errors import FabricationError
 from .._io import atomic_write
-from ._mesh_build import QUANTUM, Stack, coverage
-from .brep import planar_brep
-from .layers import body_layers, dip_z, split_region
-from .mesh import checked_parts, prepare_print
+from ..geometry.stack import QUANTUM
+from ..solid.brep import build_brep
+from ..solid.parts import prepare_print
 from .step_file import step_text
 
 STEP_VOLUME_TOLERANCE = 0.0005
@@ -31,64 +30,6 @@ STEP_VOLUME_TOLERANCE = 0.0005
 
 BIG_FACE_WIRES = 64
 """Faces with more wires than this are checked wire by wire (see :func:`check_solids`)."""
-
-SINGLE_CELL = 1 << 40
-"""``cell_vertices`` that keeps a coverage in one cell: one face per flat region."""
-
-
-# --------------------------------------------------------------------------- building
-
-
-def _layers(kind, r, o, stack, dips):
-    """The body's layers: region, dips and the rest of the outline from ONE snap-rounded noding.
-
-    The meshes cut them with separate overlays (:func:`body_layers`), which may
-    leave cracks and pinholes a quantum wide where the region meets a slanted side:
-    harmless in a mesh, an invalid face in a B-rep. Here the boundaries of all of
-    them are noded together on the 2**-10 mm grid and polygonized: the faces share
-    every vertex, and slivers under a quantum wide collapse.
-    """
-    import shapely
-
-    if kind not in ("relief", "plate"):
-        return body_layers(kind, r, o, stack)
-    d = split_region(r, dips, holes=False)[1] if kind == "relief" else shapely.Polygon()
-    lines = shapely.union_all([shapely.boundary(g) for g in (r, o, d) if not g.is_empty], grid_size=QUANTUM)
-    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(lines)))
-    faces = faces[shapely.area(faces) > 0]
-    probe = shapely.point_on_surface(faces)
-    in_o, in_r = shapely.contains(o, probe), shapely.contains(r, probe)
-    in_d = shapely.contains(d, probe) if not d.is_empty else np.zeros(len(faces), bool)
-    top = stack.base + stack.relief if kind == "relief" else stack.base - stack.deboss
-    layers = [(faces[in_o & in_r & ~in_d], top), (faces[in_o & ~in_r], stack.base), (faces[in_o & in_d], dip_z(stack))]
-    return [(shapely.MultiPolygon(list(g)), z) for g, z in layers if len(g)], 0.0
-
-
-def _sides(outline):
-    """The straight sides of the outline's exterior rings, counter-clockwise: (k, 4)."""
-    import shapely
-
-    rows = []
-    for poly in shapely.get_parts(shapely.orient_polygons(outline)):
-        ring = shapely.get_coordinates(poly.exterior)
-        rows.append(np.hstack([ring[:-1], ring[1:]]))
-    return np.vstack(rows) if rows else np.empty((0, 4))
-
-
-def build_brep(*, region, outline, stack: Stack, dips=None):
-    """The planar B-rep of a printed tile, beside its checked mesh.
-
-    Returns ``(brep, mesh_volume, n_solids)``. The mesh goes first: it is
-    checked, bridges point contacts of the region (the B-rep is built from the
-    region it used) and gives the volume the solid must have. A pierced tile in
-    several pieces is one solid per piece.
-    """
-    (part,) = checked_parts(region, outline, stack, single=True, dips=dips).values()
-    kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate"}[stack.style]
-    layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
-    brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), sides=_sides(part.outline))
-    return brep, part.mesh_volume_mm3, len(brep.solids)
-
 
 # --------------------------------------------------------------------------- reading back
 
@@ -313,8 +254,8 @@ def write_step(path, *, region, outline, profile, style=None, stroke=None, base_
     The file is written to a temporary name, read back with OCCT and checked
     (:func:`check_solids`) before it takes its name. A pierced tile in several
     pieces gives one solid per piece (and a ``loose_part`` finding).
-    Parameters as :func:`fabtiles.export.mesh.write_stl`; ``dips`` lowers an
-    interlaced relief's under strands (:mod:`fabtiles.export.layers`); ``name``
+    Parameters as :func:`fabtiles.export.stl.write_stl`; ``dips`` lowers an
+    interlaced relief's under strands (:mod:`fabtiles.solid.levels`); ``name``
     labels the product and its solids (default: the file's stem).
 
     Returns

@@ -13,8 +13,8 @@ Each solid is a ``MANIFOLD_SOLID_BREP`` of one ``CLOSED_SHELL`` of
 for the same input (no time stamp).
 
 >>> import shapely
->>> from fabtiles.export._mesh_build import coverage
->>> from fabtiles.export.brep import planar_brep
+>>> from fabtiles.solid._mesh_build import coverage
+>>> from fabtiles.solid.brep import planar_brep
 >>> text = step_text([planar_brep(coverage([(shapely.box(0, 0, 10, 10), 2.0)], bottom=0.0))], name="plate")
 >>> text.count("ADVANCED_FACE("), text.count("MANIFOLD_SOLID_BREP(")
 (6, 1)
@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .brep import Brep
+from ..solid.brep import Brep
 
 
 def _real(x: float) -> str:

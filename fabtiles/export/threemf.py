@@ -4,7 +4,7 @@ A relief is one object of two parts, ``"base"`` and ``"pattern"`` (the pattern
 standing on the base at ``z = base_mm``); a deboss tile with ``inlay=True`` is
 one object of ``"plate"`` and ``"inlay"`` (the grooves filled flush). Every other
 print is one object of one part. Parts touch without overlapping (see
-:mod:`fabtiles.export.mesh`).
+:mod:`fabtiles.solid.parts`).
 
 How the package is laid out, and why. Two layouts, because the slicers' readers
 disagree on what a part is; each is read by the programs named, as their source
@@ -88,8 +88,8 @@ import numpy as np
 
 from .._errors import FabricationError, ParameterError
 from .._io import atomic_write
-from ._slicer_check import check_triangles
-from .mesh import check_inlay, checked_parts, prepare_print, stack_stats
+from ..solid.mesh_check import check_triangles
+from ..solid.parts import check_inlay, checked_parts, prepare_print, stack_stats
 
 LAYOUTS = ("volumes", "components")
 """The 3MF layouts: PrusaSlicer's volumes (default) or the core spec's components (Cura)."""
@@ -438,7 +438,7 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
               pierced_mm=None, deboss_mm=None, inlay=False, layout="volumes", name=None, dips=None):
     """Write a 3MF (unit millimetre) of the tile: one object of named parts, one filament each.
 
-    Parameters as :func:`~fabtiles.export.mesh.write_stl`, plus:
+    Parameters as :func:`~fabtiles.export.stl.write_stl`, plus:
 
     inlay : bool, optional
         Deboss only: a second part ``"inlay"`` filling the grooves flush with the
@@ -451,7 +451,7 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
     name : str, optional
         The object's name in the slicer (default: the file name without suffix).
     dips : shapely geometry, optional
-        An interlaced relief's dipping under strands (see :mod:`fabtiles.export.layers`).
+        An interlaced relief's dipping under strands (see :mod:`fabtiles.solid.levels`).
 
     A relief is parts ``"base"`` (filament 1) and ``"pattern"`` (filament 2);
     pierced is ``"pattern"``, deboss ``"plate"``. The package is read back as

@@ -67,7 +67,7 @@ def seamless_fit(outline, size, radius, *, packing="hex") -> SeamlessFit:
     ----------
     outline : {"square", "rectangle", "hexagon"}
     size : float or (float, float)
-        As for :class:`~fabtiles.geometry.tile.Tile`, mm.
+        As for :class:`~fabtiles.geometry.tile.TileGeometry`, mm.
     radius : float
         The packing radius wanted, mm (> 0); for a tiling, the edge wanted.
     packing : {"hex", "square"} or str

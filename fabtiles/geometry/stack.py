@@ -19,7 +19,7 @@ from .._validate import check_choice, check_float
 QUANTUM = 2.0**-10
 """Grid of every x, y coordinate of a printed part (mm): about 1 micron, exact in float32 up to
 16 m, so a binary STL stores the very vertices the mesh was checked with (see
-:mod:`fabtiles.export._mesh_build`); the STEP writer's vertices sit on the same grid."""
+:mod:`fabtiles.solid._mesh_build`); the STEP writer's vertices sit on the same grid."""
 
 MAX_HEIGHT_MM = 1000.0
 """Largest base, relief, pierced or deboss height accepted (mm)."""

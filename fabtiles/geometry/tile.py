@@ -67,7 +67,7 @@ def outline_polygon(outline: str, width: float, height: float, corner_radius: fl
     return shapely.geometry.polygon.orient(poly, 1.0)
 
 
-class Tile:
+class TileGeometry:
     """A tile of material: pattern centre-lines stroked, framed and clipped to an outline.
 
     Parameters
@@ -106,12 +106,12 @@ class Tile:
     --------
     >>> from fabtiles.pattern.packing import HexPacking
     >>> pack = HexPacking(radius=12.5, motif=Star.preset("table3-3"))
-    >>> tile = Tile("square", 60, pack, frame=3, stroke=0.8)
+    >>> tile = TileGeometry("square", 60, pack, frame=3, stroke=0.8)
     >>> tile.width_mm, tile.height_mm
     (60.0, 60.0)
     >>> tile.region().is_valid, tile.outline_shape().bounds
     (True, (0.0, 0.0, 60.0, 60.0))
-    >>> Tile("square", 60, pack, join="zigzag")
+    >>> TileGeometry("square", 60, pack, join="zigzag")
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: 'zigzag' is not a valid join, must be one of: miter, round, bevel
@@ -175,7 +175,7 @@ class Tile:
     height_mm = property(lambda self: self._height, doc="Height of the outline's bounding box, mm.")
 
     def params(self) -> dict:
-        """The constructor arguments, so ``Tile(**tile.params())`` rebuilds the tile."""
+        """The constructor arguments, so ``TileGeometry(**tile.params())`` rebuilds the tile."""
         return dict(outline=self._outline, size=self._size, pattern=self._pattern, frame=self._frame,
                     stroke=self._stroke, join=self._join, miter_limit=self._miter_limit,
                     corner_radius=self._corner_radius, interlace=self._interlace,
@@ -203,10 +203,10 @@ class Tile:
             self._weave = checked_weave(self)
         return self._weave
 
-    def replace(self, **changes) -> "Tile":
+    def replace(self, **changes) -> "TileGeometry":
         """A copy (of the same class) with some parameters changed, validated again.
 
-        >>> t = Tile("circle", 50, Star.preset("table2-left"), frame=2)
+        >>> t = TileGeometry("circle", 50, Star.preset("table2-left"), frame=2)
         >>> t.replace(size=80).width_mm
         80.0
         """
@@ -264,7 +264,7 @@ class Tile:
         """The motifs' centre-lines alone (without a packing's outline circles), file coordinates.
 
         >>> from fabtiles.pattern.packing import HexPacking
-        >>> t = Tile("square", 40, HexPacking(10, Star.preset("table3-3"), outline_circles=True))
+        >>> t = TileGeometry("square", 40, HexPacking(10, Star.preset("table3-3"), outline_circles=True))
         >>> len(t.motif_segments()) < len(t.segments())
         True
         """

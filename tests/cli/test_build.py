@@ -162,7 +162,7 @@ def test_build_prints_findings_and_fills_small_holes_on_request(tmp_path):
 def test_design_heights_reach_the_mesh(design, tmp_path):
     import numpy as np
 
-    from fabtiles.export._slicer_check import read_stl_triangles
+    from fabtiles.export.stl import read_stl_triangles
 
     res = run("build", design, "-o", tmp_path, "--format", "stl",
               "--set", "output.base_mm=3", "--set", "output.relief_mm=0.6")

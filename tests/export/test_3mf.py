@@ -21,8 +21,9 @@ from mesh_helpers import B, D, H, T, assert_solid, assert_touch_without_overlap,
 
 from fabtiles import FabricationError, ParameterError, Star
 from fabtiles import Tile as PublicTile
-from fabtiles.export import mesh, threemf
-from fabtiles.geometry.tile import Tile
+from fabtiles.export import stl, threemf
+from fabtiles.solid import parts
+from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 
 trimesh = pytest.importorskip("trimesh")
@@ -45,7 +46,7 @@ first_layer_height = 0.2
 
 
 def small_tile(size=40, preset="table3-3"):
-    return Tile("square", size, HexPacking(10, Star.preset(preset)), frame=3, stroke=1.0)
+    return TileGeometry("square", size, HexPacking(10, Star.preset(preset)), frame=3, stroke=1.0)
 
 
 @pytest.fixture(scope="module")
@@ -125,7 +126,7 @@ def test_relief_slices_like_its_stl_with_the_pattern_on_the_second_filament(tmp_
     ini = tmp_path / "two-extruders.ini"
     ini.write_text(TWO_EXTRUDERS)
     threemf.write_3mf(tmp_path / "tile.3mf", region=region, outline=outline, profile="fdm-0.4mm")
-    mesh.write_stl(tmp_path / "tile.stl", region=region, outline=outline, profile="fdm-0.4mm")
+    stl.write_stl(tmp_path / "tile.stl", region=region, outline=outline, profile="fdm-0.4mm")
     got = {}
     for fmt in ("3mf", "stl"):
         run_prusa(tmp_path, "--load", ini, "--export-gcode", "--dont-arrange", "--center", "100,100",
@@ -234,8 +235,8 @@ def test_trimesh_reads_the_object(tmp_path, shapes):
 
 def test_vertices_read_back_are_the_checked_float32_values(shapes):
     region, outline = shapes
-    stack = mesh.resolve_stack("fdm-0.4mm", "relief")
-    checked = mesh.checked_parts(region, outline, stack)
+    stack = parts.resolve_stack("fdm-0.4mm", "relief")
+    checked = parts.checked_parts(region, outline, stack)
     data = threemf.package_3mf([threemf.Part(n, 1, p.vertices, p.faces) for n, p in checked.items()], name="t")
     back = threemf.read_3mf(data)
     for n, p in checked.items():
@@ -256,7 +257,7 @@ def test_bad_inlay_no_file(tmp_path, shapes, kwargs, msg):
     with pytest.raises(ParameterError, match=msg):
         threemf.write_3mf(tmp_path / "t.3mf", region=region, outline=outline, profile="fdm-0.4mm", **kwargs)
     with pytest.raises(ParameterError, match=msg):
-        mesh.build_meshes(region=region, outline=outline, profile="fdm-0.4mm", **kwargs)
+        parts.build_meshes(region=region, outline=outline, profile="fdm-0.4mm", **kwargs)
     assert list(tmp_path.iterdir()) == []
 
 

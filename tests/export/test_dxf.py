@@ -286,7 +286,7 @@ def test_sheet_header_extents(tmp_path):
     """A sheet's extents span all of its tiles."""
     import ezdxf
 
-    from fabtiles.export.sheet import layout_sheet
+    from fabtiles.geometry.sheet import layout_sheet
 
     sheet = layout_sheet([star_plate(size=100)], PLY, copies=5)
     path = tmp_path / "sheet.dxf"

@@ -6,7 +6,7 @@ from shapely.geometry import Polygon
 
 from fabtiles import Star
 from fabtiles.export.preview_svg import region_path_data, tile_svg, write_tile_svg
-from fabtiles.geometry.tile import Tile
+from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 
 
@@ -18,11 +18,11 @@ def test_holes_are_subpaths_and_y_is_flipped():
 
 
 def test_tile_svg_true_size_and_reproducible(tmp_path):
-    tile = Tile("rectangle", (50, 30), HexPacking(radius=6, motif=Star.preset("table3-2")), frame=2)
+    tile = TileGeometry("rectangle", (50, 30), HexPacking(radius=6, motif=Star.preset("table3-2")), frame=2)
     svg = tile_svg(tile, title="t")
     assert re.search(r'width="50mm" height="30mm" viewBox="0 0 50 30"', svg)
     assert "<title>t</title>" in svg and 'fill-rule="evenodd"' in svg
-    again = tile_svg(Tile("rectangle", (50, 30), HexPacking(radius=6, motif=Star.preset("table3-2")),
+    again = tile_svg(TileGeometry("rectangle", (50, 30), HexPacking(radius=6, motif=Star.preset("table3-2")),
                           frame=2), title="t")
     assert svg == again
     write_tile_svg(tmp_path / "t.svg", tile, title="t")

@@ -17,7 +17,7 @@ from mesh_helpers import B, D, H, T, occt_volume, solids_of, step_bounds
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError, ProfileError, Star
-from fabtiles.geometry.tile import Tile
+from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 
 pytest.importorskip("OCP")
@@ -103,7 +103,7 @@ def _write(tmp_path, tile, style="relief", **kw):
 
 
 def _tile(outline="square", size=40, frame=5.0, radius=10, preset="table3-3"):
-    return Tile(outline, size, HexPacking(radius, Star.preset(preset)), frame=frame, stroke=1.0)
+    return TileGeometry(outline, size, HexPacking(radius, Star.preset(preset)), frame=frame, stroke=1.0)
 
 
 @pytest.mark.parametrize("outline,sides", [("square", 4), ("hexagon", 6)])
@@ -184,7 +184,7 @@ def test_cad_fillets_the_corners_and_drills_a_hole(tmp_path):
 
 def test_interlaced_relief_dips_in_the_step_too(tmp_path):
     """A woven relief on a seamless hexagon: valid, planar, the dips' level present, the mesh's volume."""
-    from fabtiles.export.layers import dip_z
+    from fabtiles.solid.levels import dip_z
     from fabtiles.geometry.stack import resolve_stack
 
     import fabtiles as ft
@@ -216,7 +216,7 @@ def test_pierced_in_pieces_gives_one_solid_each(tmp_path):
 
 @pytest.mark.parametrize("preset", Star.presets())
 def test_every_preset_relief(tmp_path, preset):
-    tile = Tile("square", 24, HexPacking(8, Star.preset(preset)), frame=2, stroke=1.0)
+    tile = TileGeometry("square", 24, HexPacking(8, Star.preset(preset)), frame=2, stroke=1.0)
     path, report = _write(tmp_path, tile)
     back = step.read_step(path)
     assert solids_of(back) == 1
@@ -333,7 +333,7 @@ def test_big_faces_are_checked_wire_by_wire(tmp_path, monkeypatch):
        style=st.sampled_from(["relief", "pierced", "deboss"]), outline=st.sampled_from(["square", "hexagon", "circle"]),
        frame=st.sampled_from([0.0, 2.0]))
 def test_any_design_step_volume_is_occts(tmp_path, size, radius, preset, style, outline, frame):
-    tile = Tile(outline, size, HexPacking(radius, Star.preset(preset), outline_circles=True), frame=frame, stroke=1.0)
+    tile = TileGeometry(outline, size, HexPacking(radius, Star.preset(preset), outline_circles=True), frame=frame, stroke=1.0)
     path, report = _write(tmp_path, tile, style)
     back = step.read_step(path)
     assert solids_of(back) == report.stats["solids"]
@@ -348,7 +348,7 @@ def test_any_design_step_volume_is_occts(tmp_path, size, radius, preset, style, 
     (dict(profile="no-such-printer"), ProfileError, "does not exist"),
 ])
 def test_step_bad_input_no_file(tmp_path, kwargs, exc, msg):
-    tile = Tile("square", 24, HexPacking(8, Star.preset("table3-3")), frame=2, stroke=1.0)
+    tile = TileGeometry("square", 24, HexPacking(8, Star.preset("table3-3")), frame=2, stroke=1.0)
     kwargs = {"profile": "fdm-0.4mm", **kwargs}
     with pytest.raises(exc, match=msg):
         step.write_step(tmp_path / "t.step", region=tile.region(), outline=tile.outline_shape(), **kwargs)

@@ -11,7 +11,7 @@ from shapely import affinity
 
 from fabtiles import ParameterError, Star
 from fabtiles.geometry.seamless import SeamlessFit, seamless_fit, seamless_radius
-from fabtiles.geometry.tile import Tile
+from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking, SquarePacking
 
 S3 = math.sqrt(3)
@@ -84,7 +84,7 @@ def _neighbours_continue(tile, steps):
 def test_seamless_rectangle_neighbours_continue_the_pattern():
     fit = seamless_fit("rectangle", (60, 50), 7)
     pack = HexPacking(radius=fit.radius, motif=Star.preset("table3-2"))
-    tile = Tile("rectangle", fit.size, pack, stroke=0.8)
+    tile = TileGeometry("rectangle", fit.size, pack, stroke=0.8)
     w, h = fit.size
     steps = [(0, 0), (w, 0), (-w, 0), (0, h), (w, h), (-w, -h)]
     assert _neighbours_continue(tile, steps) < 1e-4
@@ -93,7 +93,7 @@ def test_seamless_rectangle_neighbours_continue_the_pattern():
 def test_seamless_hexagon_neighbours_continue_the_pattern():
     fit = seamless_fit("hexagon", 60, 7)
     pack = HexPacking(radius=fit.radius, motif=Star.preset("table3-3"), outline_circles=True)
-    tile = Tile("hexagon", fit.size, pack, stroke=0.8)
+    tile = TileGeometry("hexagon", fit.size, pack, stroke=0.8)
     w = fit.size[0]
     steps = [(w, 0), (w / 2, S3 / 2 * w), (-w / 2, S3 / 2 * w), (-w, 0)]
     assert _neighbours_continue(tile, steps) < 1e-4
@@ -101,7 +101,7 @@ def test_seamless_hexagon_neighbours_continue_the_pattern():
 
 def test_seamless_square_with_square_packing():
     fit = seamless_fit("square", 50, 6, packing="square")
-    tile = Tile("square", fit.size, SquarePacking(radius=fit.radius, motif=Star.preset("table1-part1")),
+    tile = TileGeometry("square", fit.size, SquarePacking(radius=fit.radius, motif=Star.preset("table1-part1")),
                 stroke=0.8)
     assert _neighbours_continue(tile, [(50, 0), (0, 50), (50, 50)]) < 1e-4
 
@@ -109,7 +109,7 @@ def test_seamless_square_with_square_packing():
 def test_double_width_tile_is_two_tiles_side_by_side():
     # m even: the wide tile's centre is a lattice point of both halves.
     pack = HexPacking(radius=5, motif=Star.preset("table3-1"))
-    narrow = Tile("rectangle", (40, 2 * S3 * 5 * 3), pack, stroke=0.6)  # m = 4, k = 3
+    narrow = TileGeometry("rectangle", (40, 2 * S3 * 5 * 3), pack, stroke=0.6)  # m = 4, k = 3
     wide = narrow.replace(size=(80, narrow.height_mm))
     both = narrow.region().union(affinity.translate(narrow.region(), 40, 0))
     assert wide.region().symmetric_difference(both).area < 1e-4
@@ -117,5 +117,5 @@ def test_double_width_tile_is_two_tiles_side_by_side():
 
 def test_a_radius_that_does_not_fit_is_not_seamless():
     pack = HexPacking(radius=7.3, motif=Star.preset("table3-2"))
-    tile = Tile("rectangle", (60, 50), pack, stroke=0.8)
+    tile = TileGeometry("rectangle", (60, 50), pack, stroke=0.8)
     assert _neighbours_continue(tile, [(60, 0)]) > 1.0

@@ -11,7 +11,7 @@ from shapely import affinity
 
 from fabtiles import ArchimedeanPacking, ParameterError
 from fabtiles.geometry.seamless import seamless_fit
-from fabtiles.geometry.tile import Tile
+from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.archimedean import rectangular_period
 from fabtiles.pattern.tilings import TILINGS
 
@@ -43,7 +43,7 @@ def test_rectangle_fit_of_every_tiling(tiling):
     assert fit.size[1] == pytest.approx(py * fit.edge * k)
     assert abs(60 / (px * 6) - m) <= 0.5 + 1e-9 or m == 1
     pack = ArchimedeanPacking(tiling, fit.edge)
-    tile = Tile("rectangle", fit.size, pack, stroke=0.5)
+    tile = TileGeometry("rectangle", fit.size, pack, stroke=0.5)
     w, h = fit.size
     assert neighbours_continue(tile, [(w, 0), (0, h), (-w, h)]) < 1e-4
 
@@ -52,7 +52,7 @@ def test_rectangle_fit_of_every_tiling(tiling):
 def test_square_fit(tiling):
     fit = seamless_fit("square", 50, 7, packing=tiling)
     assert fit.size == (50.0, 50.0) and fit.repeats[0] == fit.repeats[1]
-    tile = Tile("square", 50, ArchimedeanPacking(tiling, fit.edge), stroke=0.5)
+    tile = TileGeometry("square", 50, ArchimedeanPacking(tiling, fit.edge), stroke=0.5)
     assert neighbours_continue(tile, [(50, 0), (0, 50), (50, 50)]) < 1e-4
 
 
@@ -61,7 +61,7 @@ def test_hexagon_fit(tiling):
     fit = seamless_fit("hexagon", 60, 5, packing=tiling)
     w = fit.size[0]
     assert w == 60 and rectangular_period(tiling)[0] * fit.edge * fit.repeats[0] == pytest.approx(60)
-    tile = Tile("hexagon", 60, ArchimedeanPacking(tiling, fit.edge, outline_circles=True), stroke=0.5)
+    tile = TileGeometry("hexagon", 60, ArchimedeanPacking(tiling, fit.edge, outline_circles=True), stroke=0.5)
     s3 = math.sqrt(3)
     assert neighbours_continue(tile, [(w, 0), (w / 2, s3 / 2 * w), (-w / 2, s3 / 2 * w)]) < 1e-4
 

@@ -11,7 +11,7 @@ from hypothesis_scale import examples
 from shapely.geometry import Point
 
 from fabtiles import ParameterError, Star
-from fabtiles.geometry.tile import Tile, outline_polygon
+from fabtiles.geometry.tile import TileGeometry, outline_polygon
 from fabtiles.pattern.packing import HexPacking, SquarePacking
 
 S3 = math.sqrt(3)
@@ -20,7 +20,7 @@ PACK = HexPacking(radius=12.5, motif=Star.preset("table3-3"))
 
 @pytest.fixture(scope="module")
 def square_tile():
-    return Tile("square", (80, 80), PACK, frame=4, stroke=1.0)
+    return TileGeometry("square", (80, 80), PACK, frame=4, stroke=1.0)
 
 
 # -- outlines and sizes -----------------------------------------------------------
@@ -35,14 +35,14 @@ def square_tile():
     ],
 )
 def test_outline_bbox_lower_left_at_origin(outline, size, wh):
-    t = Tile(outline, size, PACK, frame=2)
+    t = TileGeometry(outline, size, PACK, frame=2)
     assert (t.width_mm, t.height_mm) == pytest.approx(wh)
     np.testing.assert_allclose(t.outline_shape().bounds, (0, 0, *wh), atol=1e-9)
     assert t.centre == pytest.approx((wh[0] / 2, wh[1] / 2))
 
 
 def test_hexagon_is_pointy_top_with_size_across_flats():
-    t = Tile("hexagon", 60, PACK)
+    t = TileGeometry("hexagon", 60, PACK)
     coords = np.asarray(t.outline_shape().exterior.coords)[:-1]
     assert len(coords) == 6
     top = coords[np.argmax(coords[:, 1])]
@@ -59,7 +59,7 @@ def test_circle_outline_chord_error():
 
 
 def test_corner_radius_rounds_the_outline():
-    t = Tile("rectangle", (100, 60), PACK, frame=3, corner_radius=10)
+    t = TileGeometry("rectangle", (100, 60), PACK, frame=3, corner_radius=10)
     shape = t.outline_shape()
     assert shape.is_valid
     # arcs are flattened with chords of sagitta <= 0.005 mm: a little area is lost
@@ -94,14 +94,14 @@ def test_corner_radius_rounds_the_outline():
 )
 def test_bad_tiles(args, kwargs, match):
     with pytest.raises(ParameterError, match=match):
-        Tile(*args, PACK, **kwargs)
+        TileGeometry(*args, PACK, **kwargs)
 
 
 def test_bad_pattern_and_single_star_stroke():
     with pytest.raises(ParameterError, match=r"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking or Star, got str"):
-        Tile("square", 100, "table3-3")
+        TileGeometry("square", 100, "table3-3")
     with pytest.raises(ParameterError, match=r"stroke must be > 0 and <= 5 mm \(the motif circle's radius\), got 6"):
-        Tile("square", 20, Star.preset("table1-part1"), frame=5, stroke=6)
+        TileGeometry("square", 20, Star.preset("table1-part1"), frame=5, stroke=6)
 
 
 # -- segments -------------------------------------------------------------------------
@@ -123,7 +123,7 @@ def test_segments_cover_the_outline(square_tile):
     ("square", 100, 5, 45), ("rectangle", (100, 60), 2, 28), ("hexagon", 80, 0, 40), ("circle", 50, 1, 24)])
 def test_single_star_fills_the_circle_inside_the_frame(outline, size, frame, radius):
     star = Star.preset("table2-left")
-    t = Tile(outline, size, star, frame=frame)
+    t = TileGeometry(outline, size, star, frame=frame)
     pts = t.segments().reshape(-1, 2) - t.centre
     assert np.hypot(*pts.T).max() == pytest.approx(radius)
     np.testing.assert_allclose(t.segments() - t.centre, star.segments() * (radius / star.extent), atol=1e-9)
@@ -164,7 +164,7 @@ def test_frame_is_kept(square_tile):
 def test_round_join_equals_the_geos_round_buffer():
     # Round joins and round caps make the region the Minkowski sum of the segments
     # and a disc: exactly what a GEOS round buffer gives (up to arc flattening).
-    t = Tile("square", 50, SquarePacking(radius=8, motif=Star.preset("table1-part1")), stroke=1.2,
+    t = TileGeometry("square", 50, SquarePacking(radius=8, motif=Star.preset("table1-part1")), stroke=1.2,
              join="round")
     ref = shapely.union_all(shapely.buffer(shapely.linestrings(t.segments()), 0.6, quad_segs=32))
     ref = ref.intersection(t.outline_shape())
@@ -177,7 +177,7 @@ def test_round_join_equals_the_geos_round_buffer():
 
 
 def test_joins_nest_bevel_in_round_in_miter():
-    base = Tile("square", 60, HexPacking(radius=10, motif=Star.preset("table3-1")), stroke=1.0)
+    base = TileGeometry("square", 60, HexPacking(radius=10, motif=Star.preset("table3-1")), stroke=1.0)
     bevel, rnd, miter = (base.replace(join=j).region() for j in ("bevel", "round", "miter"))
     assert bevel.difference(rnd.buffer(1e-6)).area < 1e-9
     assert rnd.difference(miter.buffer(1e-3)).area < 1e-6
@@ -196,7 +196,7 @@ def _tips(tile):
 def test_miter_keeps_star_tips_sharp(miter_limit, reach):
     # Rotated 22.5 degrees so no tip touches the square's sides; frame 0.
     star = Star.preset("table1-part1", rotation=22.5)
-    tile = Tile("square", 100, star, stroke=1.0, miter_limit=miter_limit)
+    tile = TileGeometry("square", 100, star, stroke=1.0, miter_limit=miter_limit)
     h = tile.stroke / 2
     tips, rays = _tips(tile)
     assert len(tips) == 8
@@ -214,7 +214,7 @@ def test_miter_keeps_star_tips_sharp(miter_limit, reach):
 
 
 def test_centrelines_are_clipped_to_the_outline():
-    t = Tile("hexagon", 70, PACK, frame=3, stroke=0.8)
+    t = TileGeometry("hexagon", 70, PACK, frame=3, stroke=0.8)
     cl = t.centrelines()
     assert cl.ndim == 3 and cl.shape[1:] == (2, 2)
     assert (np.linalg.norm(cl[:, 1] - cl[:, 0], axis=1) > 0).all()
@@ -230,7 +230,7 @@ def test_centrelines_are_clipped_to_the_outline():
        motif=st.sampled_from(Star.presets()))
 @settings(max_examples=examples(12), deadline=None)
 def test_region_is_always_valid_and_contained(outline, size, frame, stroke, join, motif):
-    t = Tile(outline, size, HexPacking(radius=9, motif=Star.preset(motif)), frame=frame, stroke=stroke,
+    t = TileGeometry(outline, size, HexPacking(radius=9, motif=Star.preset(motif)), frame=frame, stroke=stroke,
              join=join)
     region = t.region()
     assert region.is_valid
@@ -242,7 +242,7 @@ def test_region_is_always_valid_and_contained(outline, size, frame, stroke, join
 
 
 def test_subclass_friendly():
-    class ExportingTile(Tile):
+    class ExportingTile(TileGeometry):
         def export(self, path):
             return path
 
@@ -260,7 +260,7 @@ def test_sheet_region_is_one_valid_piece():
     came back from Clipper2 as hundreds of loose specks.
     """
     pack = HexPacking(radius=15, motif=Star.preset("table3-3"))
-    t = Tile("rectangle", (600, 400), pack, frame=5, stroke=1.0)
+    t = TileGeometry("rectangle", (600, 400), pack, frame=5, stroke=1.0)
     region = t.region()
     assert region.is_valid
     assert region.geom_type == "Polygon"

@@ -1,5 +1,5 @@
-"""The slicer-exact mesh check and the triangulation behind every 3D file (export/_slicer_check.py,
-export/_triangulate.py), against slow references.
+"""The slicer-exact mesh check and the triangulation behind every 3D file (solid/mesh_check.py,
+solid/_triangulate.py), against slow references.
 
 ``check_indexed`` merges a mesh from its vertices, ``check_triangles`` from an STL's
 corners: both must see the same mesh and refuse the same defects. ``edges_pair_up``
@@ -20,10 +20,10 @@ from hypothesis_scale import examples
 from shapely.geometry import box
 
 from fabtiles import FabricationError
-from fabtiles.export import _mesh_build as mb
-from fabtiles.export import _triangulate as tr
-from fabtiles.export import _slicer_check as sc
-from fabtiles.export import mesh
+from fabtiles.solid import _mesh_build as mb
+from fabtiles.solid import _triangulate as tr
+from fabtiles.solid import mesh_check as sc
+from fabtiles.export import stl
 
 
 def corners32(v, f):
@@ -195,7 +195,7 @@ def test_the_bottom_of_a_relief_or_plate_is_its_outline_alone(tmp_path, style):
 
     tile = Tile("hexagon", 60, HexPacking(radius=8, motif=Star.preset("table3-3")), frame=3)
     tile.export(tmp_path / "t.stl", style=style)
-    tris = sc.read_stl_triangles((tmp_path / "t.stl").read_bytes())
+    tris = stl.read_stl_triangles((tmp_path / "t.stl").read_bytes())
     v, f = sc.check_triangles(tris, bodies=1)
     top = int(np.count_nonzero(v[f][:, :, 2].min(axis=1) == v[:, 2].max()))
     # the hexagon's outline with the points where cell lines and walls meet it: a few dozen triangles
@@ -207,7 +207,7 @@ def test_a_pierced_bottom_is_the_top_turned_over(tmp_path):
 
     tile = Tile("square", 40, HexPacking(radius=8, motif=Star.preset("table3-3")), frame=3)
     tile.export(tmp_path / "t.stl", style="pierced")
-    v, f = sc.check_triangles(sc.read_stl_triangles((tmp_path / "t.stl").read_bytes()))
+    v, f = sc.check_triangles(stl.read_stl_triangles((tmp_path / "t.stl").read_bytes()))
     top = int(np.count_nonzero(v[f][:, :, 2].min(axis=1) == v[:, 2].max()))
     assert bottom_faces(v, f) == top > 200
 

@@ -1,6 +1,6 @@
 """The planar boundary representation of a stacked part, as a CAD modeller would draw it.
 
-A printed tile is a stack (see :mod:`fabtiles.export._mesh_build`): polygons raised to
+A printed tile is a stack (see :mod:`fabtiles.solid._mesh_build`): polygons raised to
 a few levels above a flat bottom. Its B-rep here has planar faces and straight edges
 only, and one face per flat region:
 
@@ -20,7 +20,7 @@ writes it as STEP entities, :mod:`fabtiles.export.step` checks it with OCCT.
 Example: a 10 x 10 mm plate 2 mm thick is 6 faces, 12 edges and 8 vertices.
 
 >>> import shapely
->>> from fabtiles.export._mesh_build import coverage
+>>> from fabtiles.solid._mesh_build import coverage
 >>> b = planar_brep(coverage([(shapely.box(0, 0, 10, 10), 2.0)], bottom=0.0))
 >>> len(b.faces), len(b.edges), len(b.points)
 (6, 12, 8)
@@ -34,7 +34,9 @@ from math import gcd
 import numpy as np
 
 from .._errors import FabricationError
-from ._mesh_build import QUANTUM, Coverage, topology
+from ._mesh_build import QUANTUM, Coverage, Stack, coverage, topology
+from .levels import body_layers, dip_z, split_region
+from .parts import checked_parts
 
 
 @dataclass(frozen=True)
@@ -471,3 +473,63 @@ def _solids(faces, n_edges):
                 else:
                     pairs.append((int(owner[e]), f))
     return tuple(tuple(g) for g in _groups(len(faces), pairs))
+
+
+# --------------------------------------------------------------------------- a printed tile
+
+SINGLE_CELL = 1 << 40
+"""``cell_vertices`` that keeps a coverage in one cell: one face per flat region."""
+
+
+# --------------------------------------------------------------------------- building
+
+
+def _layers(kind, r, o, stack, dips):
+    """The body's layers: region, dips and the rest of the outline from ONE snap-rounded noding.
+
+    The meshes cut them with separate overlays (:func:`body_layers`), which may
+    leave cracks and pinholes a quantum wide where the region meets a slanted side:
+    harmless in a mesh, an invalid face in a B-rep. Here the boundaries of all of
+    them are noded together on the 2**-10 mm grid and polygonized: the faces share
+    every vertex, and slivers under a quantum wide collapse.
+    """
+    import shapely
+
+    if kind not in ("relief", "plate"):
+        return body_layers(kind, r, o, stack)
+    d = split_region(r, dips, holes=False)[1] if kind == "relief" else shapely.Polygon()
+    lines = shapely.union_all([shapely.boundary(g) for g in (r, o, d) if not g.is_empty], grid_size=QUANTUM)
+    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(lines)))
+    faces = faces[shapely.area(faces) > 0]
+    probe = shapely.point_on_surface(faces)
+    in_o, in_r = shapely.contains(o, probe), shapely.contains(r, probe)
+    in_d = shapely.contains(d, probe) if not d.is_empty else np.zeros(len(faces), bool)
+    top = stack.base + stack.relief if kind == "relief" else stack.base - stack.deboss
+    layers = [(faces[in_o & in_r & ~in_d], top), (faces[in_o & ~in_r], stack.base), (faces[in_o & in_d], dip_z(stack))]
+    return [(shapely.MultiPolygon(list(g)), z) for g, z in layers if len(g)], 0.0
+
+
+def _sides(outline):
+    """The straight sides of the outline's exterior rings, counter-clockwise: (k, 4)."""
+    import shapely
+
+    rows = []
+    for poly in shapely.get_parts(shapely.orient_polygons(outline)):
+        ring = shapely.get_coordinates(poly.exterior)
+        rows.append(np.hstack([ring[:-1], ring[1:]]))
+    return np.vstack(rows) if rows else np.empty((0, 4))
+
+
+def build_brep(*, region, outline, stack: Stack, dips=None):
+    """The planar B-rep of a printed tile, beside its checked mesh.
+
+    Returns ``(brep, mesh_volume, n_solids)``. The mesh goes first: it is
+    checked, bridges point contacts of the region (the B-rep is built from the
+    region it used) and gives the volume the solid must have. A pierced tile in
+    several pieces is one solid per piece.
+    """
+    (part,) = checked_parts(region, outline, stack, single=True, dips=dips).values()
+    kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate"}[stack.style]
+    layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
+    brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), sides=_sides(part.outline))
+    return brep, part.mesh_volume_mm3, len(brep.solids)

@@ -1,7 +1,7 @@
 """The levels of a printed body: which area stands at which height (one place for every 3D writer).
 
 A body is a stack of disjoint (polygons, top z) layers over a common bottom (see
-:mod:`fabtiles.export._mesh_build`). An interlaced relief has a third level: where
+:mod:`fabtiles.solid._mesh_build`). An interlaced relief has a third level: where
 an under strand passes under another it dips to ``DIP_FRACTION`` of the relief
 height, across the over band's clearance (see :mod:`fabtiles.geometry.interlace`).
 The STL/3MF meshers and the STEP writer all take their layers from
@@ -180,7 +180,7 @@ def body_layers(kind: str, r, o, stack, dips=None):
     Examples
     --------
     >>> from shapely.geometry import box
-    >>> from fabtiles.export._mesh_build import Stack
+    >>> from fabtiles.solid._mesh_build import Stack
     >>> stack = Stack("relief", base=2.0, relief=1.0, pierced=3.0, deboss=0.5)
     >>> dips = box(1.5, 1.5, 2, 2.5)  # strictly inside the region
     >>> layers, bottom = body_layers("relief", box(1, 1, 3, 3), box(0, 0, 4, 4), stack, dips=dips)
@@ -232,7 +232,7 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
     already is :func:`dip_level`'s.
 
     >>> from shapely.geometry import box
-    >>> from fabtiles.export._mesh_build import Stack
+    >>> from fabtiles.solid._mesh_build import Stack
     >>> stack = Stack("relief", base=2.0, relief=1.0, pierced=3.0, deboss=0.5)
     >>> cov = body_coverage("relief", box(1, 1, 3, 3), box(0, 0, 4, 4), stack, box(1.5, 1.5, 2, 2.5))
     >>> cov.levels.tolist(), sorted(round(p.area, 3) for p, _ in cov.pieces)

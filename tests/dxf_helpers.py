@@ -20,7 +20,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon, box
 
-GOLDEN = Path(__file__).parent / "golden"
+GOLDEN = Path(__file__).parent / "export" / "golden"
 CUT_TYPES = ("LWPOLYLINE", "POLYLINE")
 
 

@@ -14,10 +14,10 @@ Styles (heights from the printer profile, overridable per call):
     (body ``"plate"``); optionally a second part ``"inlay"`` filling the grooves
     flush with the plate's top, for a two-colour inlay print.
 
-Meshes are built directly as stacked prisms (see :mod:`fabtiles.export._mesh_build`),
+Meshes are built directly as stacked prisms (see :mod:`fabtiles.solid._mesh_build`),
 with every x, y on a 2**-10 mm grid that float32 stores exactly. Before anything is
 written, each body is checked the way a slicer reads the file
-(:mod:`fabtiles.export._slicer_check`): the float32 triangles merged by position
+(:mod:`fabtiles.solid.mesh_check`): the float32 triangles merged by position
 must be watertight, wound consistently, of positive volume, one body per part and
 free of degenerate faces. A mesh failing any of this is a
 :class:`~fabtiles.FabricationError`, never a file.
@@ -31,7 +31,6 @@ from typing import NamedTuple
 import numpy as np
 
 from .._errors import FabricationError, ParameterError
-from .._io import atomic_write
 from .._profiles import load_profile
 from .._report import Report
 from ._mesh_build import (
@@ -45,7 +44,7 @@ from ._mesh_build import (
     resolve_stack,
     snap,
 )
-from ._slicer_check import check_indexed, stl_bytes
+from .mesh_check import check_indexed
 
 
 
@@ -83,17 +82,17 @@ def _snapped(region, outline):
 
 
 def _leveled(dips):
-    """An interlaced relief's dips as meshed (:func:`fabtiles.export.layers.dip_level`), or None."""
+    """An interlaced relief's dips as meshed (:func:`fabtiles.solid.levels.dip_level`), or None."""
     if dips is None:
         return None
-    from .layers import dip_level
+    from .levels import dip_level
 
     return dip_level(dips)
 
 
 def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0, dips=None):
     """Vertices, faces and cell lines of one body (``dips``: an interlaced relief's, as
-    :func:`_leveled` makes them; see :func:`fabtiles.export.layers.body_layers`).
+    :func:`_leveled` makes them; see :func:`fabtiles.solid.levels.body_layers`).
 
     ``kind`` is ``"relief"``, ``"base"``, ``"pattern"``, ``"pierced"``, ``"plate"`` or
     ``"inlay"`` (the plate's grooves filled flush);
@@ -101,7 +100,7 @@ def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0, dips=None):
     """
     b, h, t, d = stack.base, stack.relief, stack.pierced, stack.deboss
     if dips is not None and not dips.is_empty and kind in ("relief", "pattern"):
-        from .layers import body_coverage
+        from .levels import body_coverage
 
         cov = body_coverage(kind, r, o, stack, dips, shift=shift, leveled=True)
     elif kind == "relief":
@@ -127,7 +126,7 @@ def _expected(kind, r, o, stack, dips=None):
     nr = len(polygons_of(r))
     no = len(polygons_of(o))
     if dips is not None and kind in ("relief", "pattern"):
-        from .layers import dips_volume
+        from .levels import dips_volume
 
         full = {"relief": o.area * b + r.area * h, "pattern": r.area * h}[kind]
         return full - dips_volume(r, dips, stack, leveled=True), {"relief": no, "pattern": nr}[kind]
@@ -181,7 +180,7 @@ def _nonmanifold_points(verts, faces):
     """The x, y of every vertex on an edge that does not pair up with exactly one reverse edge.
 
     ``verts, faces`` is a mesh merged by float32 position (what
-    :func:`~fabtiles.export._slicer_check.check_triangles` attaches to its error as ``mesh``). One sort of the
+    :func:`~fabtiles.solid.mesh_check.check_triangles` attaches to its error as ``mesh``). One sort of the
     undirected edge keys: a good edge's key occurs twice, in opposite directions.
 
     >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
@@ -322,7 +321,7 @@ def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay:
 
     ``single`` fuses a relief into one body (STL); ``inlay`` adds the deboss
     grooves' filling as a second part; ``dips`` lowers an interlaced relief's under
-    strands (see :mod:`fabtiles.export.layers`). Every part passed :func:`check_indexed`.
+    strands (see :mod:`fabtiles.solid.levels`). Every part passed :func:`check_indexed`.
     Returns a dict of name to :class:`CheckedPart`.
     """
     r, o = _snapped(region, outline)
@@ -366,7 +365,7 @@ def build_meshes(*, region, outline, profile, style=None, base_mm=None, relief_m
     dict of str to trimesh.Trimesh
         relief: ``{"base", "pattern"}``; pierced: ``{"pattern"}``; deboss: ``{"plate"}``
         (and ``"inlay"``). Vertices are float32-exact; every body passed
-        :func:`~fabtiles.export._slicer_check.check_mesh`.
+        :func:`~fabtiles.solid.mesh_check.check_mesh`.
     """
     profile = load_profile(profile, kind="printer")
     stack = resolve_stack(profile, style, base_mm, relief_mm, pierced_mm, deboss_mm)
@@ -378,7 +377,7 @@ def build_meshes(*, region, outline, profile, style=None, base_mm=None, relief_m
 def check_inlay(stack: Stack, inlay) -> None:
     """Refuse ``inlay`` unless it is a bool, and true only for the deboss style.
 
-    >>> from fabtiles.export._mesh_build import resolve_stack
+    >>> from fabtiles.solid._mesh_build import resolve_stack
     >>> check_inlay(resolve_stack("fdm-0.4mm", "relief"), True)
     Traceback (most recent call last):
     ...
@@ -391,28 +390,17 @@ def check_inlay(stack: Stack, inlay) -> None:
                              f"got style={stack.style!r}; pass style='deboss' or drop inlay")
 
 
-def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
-              pierced_mm=None, deboss_mm=None, dips=None) -> Report:
-    """Write a binary STL (mm) of the tile, one watertight body (a relief's plate and pattern fused).
+def fused_body(region, outline, stack: Stack, *, dips=None):
+    """The print as one checked body (a relief's plate and pattern fused), for an STL.
 
-    The mesh is checked as a slicer reads the file (float32 corners merged by
-    position) and that merged mesh is what is written, atomically. Parameters as :func:`build_meshes`, plus ``stroke``
-    (mm, for the thin-wall check) and ``dips`` (an interlaced relief's, see
-    :mod:`fabtiles.export.layers`). Strict profile with findings, or a bad mesh:
-    :class:`~fabtiles.FabricationError` and no file.
+    Returns ``(name, vertices, faces, mesh_volume_mm3)``: the mesh merged as a slicer
+    merges the float32 corners, which is what is to be written.
     """
-    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    profile, stack, report = prepare_print(region, outline, profile, style, heights, stroke, path=path, fmt="stl")
     r, o = _snapped(region, outline)
     dips = _leveled(dips)
     ((name, kind),) = _kinds(stack.style, single=True).items()
-    # checked as a slicer will read it: the merged float32 mesh, written as it is
     mverts, mfaces, _, volume = _checked_body(kind, name, r, o, stack, dips)
-    atomic_write(path, stl_bytes(mverts, mfaces))
-    report.stats.update(stack_stats(stack), bodies=[name], triangles=len(mfaces),
-                        volume_mm3=volume,
-                        bounds_mm=[mverts.min(axis=0).tolist(), mverts.max(axis=0).tolist()])
-    return report
+    return name, mverts, mfaces, volume
 
 
 def stack_stats(stack):

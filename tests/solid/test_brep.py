@@ -11,8 +11,8 @@ from hypothesis_scale import examples
 from shapely.geometry import box
 
 from fabtiles import FabricationError
-from fabtiles.export._mesh_build import coverage, snap
-from fabtiles.export.brep import _chain, planar_brep
+from fabtiles.solid._mesh_build import coverage, snap
+from fabtiles.solid.brep import _chain, planar_brep
 
 
 def _edge_uses(brep):

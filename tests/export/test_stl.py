@@ -12,18 +12,18 @@ from mesh_helpers import (B, H, STYLES, T, assert_solid, assert_touch_without_ov
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star
-from fabtiles.export import _slicer_check as sc
-from fabtiles.export import _slicer_check as sc
-from fabtiles.export import mesh, threemf
-from fabtiles.geometry.tile import Tile
+from fabtiles.export import stl, threemf
+from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
+from fabtiles.solid import mesh_check as sc
+from fabtiles.solid import parts
 
 trimesh = pytest.importorskip("trimesh")
 pytest.importorskip("manifold3d")
 
 
 def small_tile(preset="table3-3", outline="square", size=40):
-    return Tile(outline, size, HexPacking(10, Star.preset(preset)), frame=3, stroke=1.0)
+    return TileGeometry(outline, size, HexPacking(10, Star.preset(preset)), frame=3, stroke=1.0)
 
 
 @pytest.fixture(scope="module")
@@ -38,7 +38,7 @@ def test_stl_every_preset_and_style(tmp_path, preset, style):
     tile = small_tile(preset)
     region, outline = tile.region(), tile.outline_shape()
     path = tmp_path / "t.stl"
-    report = mesh.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", style=style,
+    report = stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", style=style,
                             stroke=tile.stroke)
     assert report.format == "stl" and report.stats["style"] == style
     data = path.read_bytes()
@@ -54,7 +54,7 @@ def test_stl_every_preset_and_style(tmp_path, preset, style):
 def test_stl_other_outlines(tmp_path, outline, style):
     tile = small_tile(outline=outline, preset="table2-right")
     region, shape = tile.region(), tile.outline_shape()
-    mesh.write_stl(tmp_path / "t.stl", region=region, outline=shape, profile="fdm-0.4mm", style=style)
+    stl.write_stl(tmp_path / "t.stl", region=region, outline=shape, profile="fdm-0.4mm", style=style)
     m = load_stl(tmp_path / "t.stl")
     assert m.is_watertight and m.is_winding_consistent
     assert m.volume == pytest.approx(expected_volume(style, region, shape), rel=0.005)
@@ -90,17 +90,17 @@ def test_3mf_other_styles(tmp_path, shapes, style, names):
 
 def test_build_meshes_bodies(shapes):
     region, outline = shapes
-    got = mesh.build_meshes(region=region, outline=outline, profile="fdm-0.4mm")
+    got = parts.build_meshes(region=region, outline=outline, profile="fdm-0.4mm")
     assert sorted(got) == ["base", "pattern"]
     assert got["base"].volume == pytest.approx(outline.area * B, rel=1e-6)
-    got = mesh.build_meshes(region=region, outline=outline, profile="fdm-0.6mm", style="deboss", deboss_mm=0.6)
+    got = parts.build_meshes(region=region, outline=outline, profile="fdm-0.6mm", style="deboss", deboss_mm=0.6)
     assert list(got) == ["plate"]
     assert got["plate"].volume == pytest.approx(outline.area * 2.4 - region.area * 0.6, rel=0.005)
 
 
 def test_heights_override_profile(tmp_path, shapes):
     region, outline = shapes
-    report = mesh.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm",
+    report = stl.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm",
                             base_mm=3, relief_mm=2.5)
     m = load_stl(tmp_path / "t.stl")
     assert m.bounds[1][2] == pytest.approx(5.5)
@@ -110,7 +110,7 @@ def test_heights_override_profile(tmp_path, shapes):
 
 def test_vertices_are_float32_exact(shapes):
     region, outline = shapes
-    for m in mesh.build_meshes(region=region, outline=outline, profile="fdm-0.4mm").values():
+    for m in parts.build_meshes(region=region, outline=outline, profile="fdm-0.4mm").values():
         v = np.asarray(m.vertices)
         assert np.array_equal(v.astype(np.float32).astype(np.float64), v)
 
@@ -138,7 +138,7 @@ def test_pinched_region_is_bridged(tmp_path):
     # two squares touching at one corner: four faces would share the corner's edge
     region = box(1, 1, 5, 5).union(box(5, 5, 9, 9))
     outline = box(0, 0, 10, 10)
-    mesh.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm", style="pierced")
+    stl.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm", style="pierced")
     m = load_stl(tmp_path / "t.stl")
     assert m.is_watertight and m.volume == pytest.approx(32 * T, rel=1e-3)
 
@@ -165,7 +165,7 @@ def test_bad_input_no_file(tmp_path, shapes, writer, kwargs, exc, msg):
     kwargs = {"profile": "fdm-0.4mm", **kwargs}
     path = tmp_path / "t.out"
     with pytest.raises(exc, match=msg):
-        getattr(threemf if writer == "write_3mf" else mesh, writer)(path, region=region, outline=outline, **kwargs)
+        getattr(threemf if writer == "write_3mf" else stl, writer)(path, region=region, outline=outline, **kwargs)
     assert list(tmp_path.iterdir()) == []
     assert issubclass(exc, FabtilesError)
 
@@ -173,9 +173,9 @@ def test_bad_input_no_file(tmp_path, shapes, writer, kwargs, exc, msg):
 def test_bad_geometry(tmp_path, shapes):
     region, outline = shapes
     with pytest.raises(ParameterError, match="region must be a shapely Polygon"):
-        mesh.write_stl(tmp_path / "t.stl", region="square", outline=outline, profile="fdm-0.4mm")
+        stl.write_stl(tmp_path / "t.stl", region="square", outline=outline, profile="fdm-0.4mm")
     with pytest.raises(ParameterError, match="region must have an area > 0"):
-        mesh.write_stl(tmp_path / "t.stl", region=shapely.Polygon(), outline=outline, profile="fdm-0.4mm")
+        stl.write_stl(tmp_path / "t.stl", region=shapely.Polygon(), outline=outline, profile="fdm-0.4mm")
     assert list(tmp_path.iterdir()) == []
 
 
@@ -186,13 +186,13 @@ def test_strict_profile_with_findings_writes_nothing(tmp_path, shapes):
     good = tmp_path / "t.stl"
     good.write_bytes(b"keep me")
     with pytest.raises(FabricationError, match="thin_wall"):
-        mesh.write_stl(good, region=region, outline=outline, profile=strict, stroke=1.0)
+        stl.write_stl(good, region=region, outline=outline, profile=strict, stroke=1.0)
     assert good.read_bytes() == b"keep me"
 
 
 def test_findings_are_reported(tmp_path, shapes):
     region, outline = shapes
-    report = mesh.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm",
+    report = stl.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm",
                             stroke=0.5, relief_mm=0.3)
     assert [f.code for f in report.findings] == ["thin_wall", "thin_layer"]
     assert (tmp_path / "t.stl").exists()
@@ -202,7 +202,7 @@ def test_no_heavy_imports_at_import_time():
     import subprocess
     import sys
 
-    code = ("import sys, fabtiles.export.mesh, fabtiles.export.step, fabtiles.geometry.print_checks; "
+    code = ("import sys, fabtiles.export.stl, fabtiles.export.threemf, fabtiles.export.step, fabtiles.geometry.print_checks; "
             "print([m for m in ('trimesh', 'manifold3d', 'OCP', 'build123d') if m in sys.modules])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
@@ -210,11 +210,11 @@ def test_no_heavy_imports_at_import_time():
 
 @pytest.mark.slow
 def test_sheet_600x400_relief_stl(tmp_path):
-    tile = Tile("rectangle", (600, 400), HexPacking(15, Star.preset("table3-3")), frame=5, stroke=1.0)
+    tile = TileGeometry("rectangle", (600, 400), HexPacking(15, Star.preset("table3-3")), frame=5, stroke=1.0)
     region, outline = tile.region(), tile.outline_shape()
     path = tmp_path / "sheet.stl"
-    mesh.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
-    tris = sc.read_stl_triangles(path.read_bytes())
+    stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
+    tris = stl.read_stl_triangles(path.read_bytes())
     verts, faces = sc.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
     m = trimesh.Trimesh(verts, faces, process=False)
     assert m.is_watertight and m.is_winding_consistent
@@ -223,10 +223,10 @@ def test_sheet_600x400_relief_stl(tmp_path):
 
 def test_on_cell_lines():
     lines = (np.array([10.0, 20.0]), np.array([5.0]))
-    assert mesh._on_cell_lines(np.array([[10.0, 7.3]]), lines)
-    assert mesh._on_cell_lines(np.array([[1.0, 7.3], [3.0, 5.0]]), lines)
-    assert not mesh._on_cell_lines(np.array([[10.5, 5.5]]), lines)
-    assert not mesh._on_cell_lines(np.empty((0, 2)), lines)
+    assert parts._on_cell_lines(np.array([[10.0, 7.3]]), lines)
+    assert parts._on_cell_lines(np.array([[1.0, 7.3], [3.0, 5.0]]), lines)
+    assert not parts._on_cell_lines(np.array([[10.5, 5.5]]), lines)
+    assert not parts._on_cell_lines(np.empty((0, 2)), lines)
 
 
 @pytest.mark.slow
@@ -234,20 +234,20 @@ def test_defect_on_a_cell_line_is_meshed_again_with_moved_lines(tmp_path, monkey
     # On this sheet a ring noded at the cell line y = 60.3515625 and snapped lands on a
     # neighbouring ring's edge (seen at x = 694.89): the first mesh has two edges shared
     # three ways. The region is fine; the retry with moved cell lines must mesh it.
-    tile = Tile("rectangle", (1200, 600), HexPacking(15, Star.preset("table3-3")), frame=5, stroke=1.0)
+    tile = TileGeometry("rectangle", (1200, 600), HexPacking(15, Star.preset("table3-3")), frame=5, stroke=1.0)
     region, outline = tile.region(), tile.outline_shape()
     shifts = []
-    body_arrays = mesh._body_arrays
+    body_arrays = parts._body_arrays
 
     def spy(kind, r, o, stack, shift=0):
         shifts.append(shift)
         return body_arrays(kind, r, o, stack, shift)
 
-    monkeypatch.setattr(mesh, "_body_arrays", spy)
+    monkeypatch.setattr(parts, "_body_arrays", spy)
     path = tmp_path / "sheet.stl"
-    mesh.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
+    stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
     assert shifts[:2] == [0, 1], f"this sheet no longer exercises the moved-lines retry: {shifts}"
-    tris = sc.read_stl_triangles(path.read_bytes())
+    tris = stl.read_stl_triangles(path.read_bytes())
     verts, faces = sc.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
     assert np.ptp(verts, axis=0) == pytest.approx([1200, 600, B + H], abs=1e-5)
 
@@ -258,8 +258,8 @@ def test_geos_failure_while_cutting_cells_is_a_fabrication_error(tmp_path, shape
     def broken(*args, **kwargs):
         raise shapely.errors.GEOSException("TopologyException: side location conflict at 1 2")
 
-    monkeypatch.setattr(mesh, "coverage_pair", broken)
+    monkeypatch.setattr(parts, "coverage_pair", broken)
     path = tmp_path / "t.stl"
     with pytest.raises(FabricationError, match=r"the body mesh could not be cut into cells \(TopologyException"):
-        mesh.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm")
+        stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm")
     assert not path.exists()

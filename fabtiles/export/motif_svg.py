@@ -1,4 +1,4 @@
-"""SVG output: motif previews and (later) laser SVG with layers as stroke colours.
+"""SVG pictures of one motif (``fabtiles star``); the laser SVG is :mod:`fabtiles.export.laser_svg`.
 
 Written by hand with string formatting: SVG is plain XML and a dependency
 would add nothing here; coordinates are printed with fixed precision so files

@@ -15,7 +15,7 @@ stack directly, without mesh booleans:
    600 x 400 mm sheet); cells of a few hundred vertices keep it linear. Rings are
    first noded at the cell lines (crossing points inserted, snapped), so the
    pieces of neighbouring cells share their seam vertices exactly.
-3. Triangulate each piece (:mod:`fabtiles.export._triangulate`: fans, earcut
+3. Triangulate each piece (:mod:`fabtiles.solid._triangulate`: fans, earcut
    checked exactly, else manifold3d's triangulator), put its top at its level,
    its bottom at the common bottom (an outline alone is triangulated on its own),
    and raise a wall on every piece edge whose
@@ -23,7 +23,7 @@ stack directly, without mesh booleans:
    every level so vertical edges always pair up.
 
 The result is watertight by construction whenever the pieces form a proper
-coverage; the caller checks it anyway (see :mod:`fabtiles.export.mesh`) and falls
+coverage; the caller checks it anyway (see :mod:`fabtiles.solid.parts`) and falls
 back to manifold3d booleans if it is not.
 """
 

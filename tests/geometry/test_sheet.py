@@ -11,7 +11,7 @@ from shapely.geometry import box
 from fabtiles import FabricationError, ParameterError
 from fabtiles._profiles import load_profile
 from fabtiles.export.dxf import write_dxf
-from fabtiles.export.sheet import layout_sheet
+from fabtiles.geometry.sheet import layout_sheet
 
 PLY = load_profile("laser-3mm-plywood")
 

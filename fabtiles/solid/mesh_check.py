@@ -59,7 +59,7 @@ def merge_indexed32(vertices, faces):
     """The merged mesh a slicer reads from the STL of ``(vertices, faces)``, from the vertices.
 
     The STL holds ``vertices`` rounded to float32, gathered by ``faces``
-    (:func:`stl_bytes`); every corner of one vertex has the same bits, so merging
+    (:func:`fabtiles.export.stl.stl_bytes`); every corner of one vertex has the same bits, so merging
     the used vertices by float32 position gives exactly what merging the file's
     3m corners gives (:func:`_merge_float32`), array for array, from about a
     sixth of the points (0.5 s to 0.06 s for the 716,000 triangles of the
@@ -172,7 +172,7 @@ def _check_merged(verts, faces, *, name, volume, bodies):
     if collapsed.any():
         _fail(name, f"has {int(collapsed.sum())} faces that collapse when rounded to float32", merged)
     p0 = verts[faces[:, 0]]
-    cross = _cross3(verts[faces[:, 1]] - p0, verts[faces[:, 2]] - p0)
+    cross = cross_rows(verts[faces[:, 1]] - p0, verts[faces[:, 2]] - p0)
     zero = ~np.any(cross != 0, axis=1)
     if zero.any():
         _fail(name, f"has {int(zero.sum())} zero-area faces in float32", merged)
@@ -207,42 +207,10 @@ def _check_merged(verts, faces, *, name, volume, bodies):
     return verts, faces, vol
 
 
-# --------------------------------------------------------------------------- STL
-
-
-def stl_bytes(vertices, faces) -> bytes:
-    """Binary STL (float32, normals from the float32 corners) of a mesh.
-
-    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
-    >>> len(stl_bytes(v, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]))
-    284
-    """
-    tris = np.asarray(vertices).astype(np.float32)[np.asarray(faces)]  # = vertices[faces] in float32
-    normals = _cross3(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]).astype(np.float64)
-    lengths = np.linalg.norm(normals, axis=1, keepdims=True)
-    normals = (normals / np.where(lengths > 0, lengths, 1)).astype(np.float32)
-    rec = np.zeros(len(tris), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
-    rec["n"] = normals
-    rec["v"] = tris
-    header = b"fabtiles binary STL, units mm".ljust(80, b" ")
-    return header + np.uint32(len(tris)).tobytes() + rec.tobytes()
-
-
-def _cross3(a, b):
+def cross_rows(a, b):
     """Row-wise cross products of (m, 3) arrays, as ``np.cross`` computes them (a third of its time)."""
     out = np.empty(np.broadcast_shapes(a.shape, b.shape), dtype=np.result_type(a, b))
     out[:, 0] = a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1]
     out[:, 1] = a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2]
     out[:, 2] = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
     return out
-
-
-def read_stl_triangles(data: bytes) -> np.ndarray:
-    """The float32 triangles (m, 3, 3) of binary STL bytes, as a slicer reads them."""
-    if len(data) < 84:
-        raise FabricationError("not a binary STL: shorter than its header")
-    n = int(np.frombuffer(data, "<u4", 1, 80)[0])
-    if len(data) != 84 + 50 * n:
-        raise FabricationError(f"not a binary STL: {len(data)} bytes for {n} triangles")
-    rec = np.frombuffer(data, dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")], count=n, offset=84)
-    return rec["v"].copy()

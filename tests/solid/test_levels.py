@@ -1,4 +1,4 @@
-"""The levels of a printed body (export/layers.py): the layer list and the fast coverage agree."""
+"""The levels of a printed body (solid/levels.py): the layer list and the fast coverage agree."""
 
 import numpy as np
 import pytest
@@ -6,10 +6,10 @@ import shapely
 from shapely.geometry import box
 
 import fabtiles as ft
-from fabtiles.export import _slicer_check as sc
-from fabtiles.export import mesh
-from fabtiles.export._mesh_build import Stack, coverage, mesh_coverage
-from fabtiles.export.layers import body_coverage, body_layers, dip_z, split_region
+from fabtiles.solid import mesh_check as sc
+from fabtiles.solid import parts
+from fabtiles.solid._mesh_build import Stack, coverage, mesh_coverage
+from fabtiles.solid.levels import body_coverage, body_layers, dip_z, split_region
 from fabtiles.geometry.interlace import tile_dips
 
 STACK = Stack("relief", base=2.0, relief=1.2, pierced=3.0, deboss=0.8)
@@ -18,7 +18,7 @@ STACK = Stack("relief", base=2.0, relief=1.2, pierced=3.0, deboss=0.8)
 def woven():
     tile = ft.Tile("square", 40, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")), frame=2,
                    stroke=1.0, interlace=True)
-    r, o = mesh._snapped(tile.region(), tile.outline_shape())
+    r, o = parts._snapped(tile.region(), tile.outline_shape())
     return r, o, tile_dips(tile)
 
 
@@ -50,7 +50,7 @@ def test_dips_crossed_by_cell_lines_are_cut_with_the_region(kind, monkeypatch):
     """Small cells, so that cell lines cross many dips: those are holes of the region before it is
     cut, their pieces at the dip level (the relief's from the rest of the cell, the pattern's
     noded alike); the levels and the watertight mesh are those of the plain layer list."""
-    from fabtiles.export import _mesh_build as mb
+    from fabtiles.solid import _mesh_build as mb
 
     monkeypatch.setattr(mb, "CELL_VERTICES", 60)
     r, o, d = woven()
@@ -102,7 +102,7 @@ def test_unknown_kinds_are_refused():
 
 def test_leveled_dips_give_the_same_coverage():
     """The writers level the dips once (dip_level) and pass them on as such."""
-    from fabtiles.export.layers import THIN_MM, dip_level, dips_volume
+    from fabtiles.solid.levels import THIN_MM, dip_level, dips_volume
 
     r, o, d = woven()
     x, y = r.representative_point().coords[0]
@@ -122,7 +122,7 @@ def test_leveled_dips_give_the_same_coverage():
 def test_an_island_ringed_by_dips_dips_too():
     """Slivers overlapping all round a point leave a hole in the merged dip: too small to print
     standing, it is filled, in every writer's layers alike."""
-    from fabtiles.export.layers import dip_level
+    from fabtiles.solid.levels import dip_level
 
     ring = box(1.25, 1.25, 2.75, 2.75).difference(box(1.75, 1.75, 2.25, 2.25))
     leveled = dip_level(ring)

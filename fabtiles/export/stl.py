@@ -1,0 +1,67 @@
+"""Binary STL (mm): one watertight body, written as the mesh check merged it.
+
+The body is built and checked by :mod:`fabtiles.solid.parts` (a relief's plate and
+pattern fused into one); this module writes its float32 triangles and reads them
+back as a slicer does.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._errors import FabricationError
+from .._io import atomic_write
+from .._report import Report
+from ..solid.mesh_check import cross_rows
+from ..solid.parts import fused_body, prepare_print, stack_stats
+
+
+def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
+              pierced_mm=None, deboss_mm=None, dips=None) -> Report:
+    """Write a binary STL (mm) of the tile, one watertight body (a relief's plate and pattern fused).
+
+    The mesh is checked as a slicer reads the file (float32 corners merged by
+    position) and that merged mesh is what is written, atomically. Parameters as :func:`~fabtiles.solid.parts.build_meshes`, plus ``stroke``
+    (mm, for the thin-wall check) and ``dips`` (an interlaced relief's, see
+    :mod:`fabtiles.solid.levels`). Strict profile with findings, or a bad mesh:
+    :class:`~fabtiles.FabricationError` and no file.
+    """
+    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
+    profile, stack, report = prepare_print(region, outline, profile, style, heights, stroke, path=path, fmt="stl")
+    # checked as a slicer will read it: the merged float32 mesh, written as it is
+    name, mverts, mfaces, volume = fused_body(region, outline, stack, dips=dips)
+    atomic_write(path, stl_bytes(mverts, mfaces))
+    report.stats.update(stack_stats(stack), bodies=[name], triangles=len(mfaces),
+                        volume_mm3=volume,
+                        bounds_mm=[mverts.min(axis=0).tolist(), mverts.max(axis=0).tolist()])
+    return report
+
+
+def stl_bytes(vertices, faces) -> bytes:
+    """Binary STL (float32, normals from the float32 corners) of a mesh.
+
+    >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    >>> len(stl_bytes(v, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]))
+    284
+    """
+    tris = np.asarray(vertices).astype(np.float32)[np.asarray(faces)]  # = vertices[faces] in float32
+    normals = cross_rows(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]).astype(np.float64)
+    lengths = np.linalg.norm(normals, axis=1, keepdims=True)
+    normals = (normals / np.where(lengths > 0, lengths, 1)).astype(np.float32)
+    rec = np.zeros(len(tris), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
+    rec["n"] = normals
+    rec["v"] = tris
+    header = b"fabtiles binary STL, units mm".ljust(80, b" ")
+    return header + np.uint32(len(tris)).tobytes() + rec.tobytes()
+
+
+
+def read_stl_triangles(data: bytes) -> np.ndarray:
+    """The float32 triangles (m, 3, 3) of binary STL bytes, as a slicer reads them."""
+    if len(data) < 84:
+        raise FabricationError("not a binary STL: shorter than its header")
+    n = int(np.frombuffer(data, "<u4", 1, 80)[0])
+    if len(data) != 84 + 50 * n:
+        raise FabricationError(f"not a binary STL: {len(data)} bytes for {n} triangles")
+    rec = np.frombuffer(data, dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")], count=n, offset=84)
+    return rec["v"].copy()

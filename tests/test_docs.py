@@ -1,0 +1,94 @@
+"""The manual cannot drift from the code: every key, command and option documented, every link alive."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import fields
+from pathlib import Path
+
+import click
+import pytest
+
+from fabtiles import _profiles, design
+from fabtiles.cli.main import cli
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = sorted((ROOT / "docs").glob("*.md"))
+PAGES = [ROOT / "README.md", *DOCS]
+
+
+def text_of(*names) -> str:
+    return "\n".join((ROOT / "docs" / n).read_text(encoding="utf-8") for n in names)
+
+
+def documented(key: str, text: str) -> bool:
+    """``key`` appears as code (`key`) or as a TOML key (``key =``) in ``text``."""
+    k = re.escape(key)
+    return bool(re.search(rf"`{k}`|^\s*{k}\s*=|[{{,]\s*{k}\s*=|^\[{k}\]", text, re.M))
+
+
+@pytest.mark.parametrize("section,keys", [
+    ("motif", design.MOTIF_KEYS), ("packing", design.PACKING_KEYS), ("tile", design.TILE_KEYS),
+    ("output", design.OUTPUT_KEYS)])
+def test_every_design_key_is_in_design_files_md(section, keys):
+    text = text_of("design-files.md")
+    assert f"[{section}]" in text
+    assert [k for k in keys if not documented(k, text)] == []
+
+
+def profile_keys() -> list[str]:
+    keys = ["kind", "description", "laser", "printer", "layers", "name", "color"]
+    for cls in (_profiles.LaserProfile, _profiles.PrinterProfile, _profiles.LaserLayers):
+        keys += [f.name for f in fields(cls) if f.name not in ("name", "description", "layers")]
+    return list(dict.fromkeys(keys))
+
+
+def test_every_profile_key_is_in_profiles_md():
+    text = text_of("profiles.md")
+    assert [k for k in profile_keys() if not documented(k, text)] == []
+
+
+def commands(group, prefix=()):
+    for name, cmd in sorted(group.commands.items()):
+        yield (*prefix, name), cmd
+        if hasattr(cmd, "commands"):
+            yield from commands(cmd, (*prefix, name))
+
+
+def test_every_cli_command_and_option_is_in_cli_md():
+    text = text_of("cli.md")
+    sections = dict(re.findall(r"^## `fabtiles ([a-z ]+)`\n(.*?)(?=^## |\Z)", text, re.M | re.S))
+    missing = []
+    for path, cmd in commands(cli):
+        name = " ".join(path)
+        if name not in sections:
+            missing.append(name)
+            continue
+        for param in cmd.params:
+            for opt in param.opts if isinstance(param, click.Option) else ():
+                if opt != "--help" and f"`{opt}`" not in sections[name]:
+                    missing.append(f"{name} {opt}")
+    assert missing == []
+
+
+LINK = re.compile(r"\]\(([^)\s]+)\)")
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_every_relative_link_points_to_a_file(page):
+    broken = []
+    for target in LINK.findall(page.read_text(encoding="utf-8")):
+        if re.match(r"[a-z]+:", target) or target.startswith("#"):
+            continue
+        if not (page.parent / target.split("#")[0]).exists():
+            broken.append(target)
+    assert broken == []
+
+
+def test_the_readme_is_a_landing_page():
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert len(readme.encode()) <= 15_000
+    ci = (ROOT / ".ci" / "run").read_text()
+    test_command = ci.split("# --- the README's test command (keep the two in step) ---\n", 1)[1].strip()
+    assert test_command in readme  # the README's test command is CI's
+    assert "fabtiles build samples/table3-3.toml -o out" in readme
