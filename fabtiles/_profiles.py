@@ -27,17 +27,26 @@ try:  # Python 3.11+
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-LASER_MODES = ("pierced", "score")
+LASER_MODES = ("pierced", "score", "engrave")
 PRINT_STYLES = ("relief", "pierced", "deboss")
 DXF_VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
 
 
 @dataclass(frozen=True)
 class Layer:
-    """A DXF layer: its name and AutoCAD Color Index (1..255)."""
+    """A laser layer: its name, AutoCAD Color Index (1..255), and how the laser runs it.
+
+    ``speed_mm_s`` (> 0), ``power_pct`` (0, 100] and ``passes`` (>= 1) are the
+    operation's settings, written into LightBurn projects and used for the job time;
+    ``line_interval_mm`` (> 0) is an engrave layer's distance between fill lines.
+    """
 
     name: str
     color: int
+    speed_mm_s: float = 10.0
+    power_pct: float = 60.0
+    passes: int = 1
+    line_interval_mm: float | None = None
 
 
 @dataclass(frozen=True)
@@ -56,7 +65,9 @@ class LaserLayers:
 
     inner_cut: Layer = Layer("INNER", 1)
     outer_cut: Layer = Layer("OUTER", 1)
-    score: Layer = Layer("SCORE", 5)
+    score: Layer = Layer("SCORE", 5, speed_mm_s=100.0, power_pct=15.0)
+    engrave: Layer | None = None
+    """The fill layer of the engrave mode (and of pocket inlays); a profile without it cannot engrave."""
 
 
 @dataclass(frozen=True)
@@ -66,6 +77,8 @@ class LaserProfile:
     name: str
     description: str = ""
     kerf_mm: float = 0.15
+    kerf_x_mm: float | None = None
+    kerf_y_mm: float | None = None
     min_feature_mm: float = 1.0
     min_hole_mm: float = 1.2
     tolerance_mm: float = 0.01
@@ -73,8 +86,16 @@ class LaserProfile:
     mode: str = "pierced"
     strict: bool = False
     dxf_version: str = "R2000"
+    pierce_s: float = 0.1
+    travel_mm_s: float = 200.0
     layers: LaserLayers = LaserLayers()
     kind = "laser"
+
+    @property
+    def kerf_xy_mm(self) -> tuple[float, float]:
+        """The kerf along X and along Y (mm): ``kerf_x_mm`` and ``kerf_y_mm``, each ``kerf_mm`` unless given."""
+        return (self.kerf_mm if self.kerf_x_mm is None else self.kerf_x_mm,
+                self.kerf_mm if self.kerf_y_mm is None else self.kerf_y_mm)
 
 
 @dataclass(frozen=True)
@@ -214,7 +235,8 @@ def _parse(data: dict, source: str, name: str):
                 raise ProfileError(f"{source}: {full} = {value!r} is not valid, must be one of: {', '.join(choices)}")
             values[key] = value
         else:
-            values[key] = _positive(source, full, value, allow_zero=(key == "kerf_mm"))
+            values[key] = _positive(source, full, value, allow_zero=key in ("kerf_mm", "kerf_x_mm", "kerf_y_mm",
+                                                                              "pierce_s"))
     if kind == "laser":
         values["layers"] = _parse_layers(data.get("layers", {}), source)
     return cls(name=name, description=description, **values)
@@ -230,17 +252,39 @@ def _parse_layers(section, source) -> LaserLayers:
         full = f"layers.{key}"
         if not isinstance(value, dict):
             raise ProfileError(f"{source}: {full} must be a table like {{ name = \"CUT\", color = 1 }}")
-        _unknown(source, f"{full}.", value, ("name", "color"))
-        default = getattr(LaserLayers(), key)
+        _unknown(source, f"{full}.", value, LAYER_KEYS)
+        default = getattr(LaserLayers(), key) or Layer("FILL", 6, speed_mm_s=200.0, power_pct=20.0,
+                                                        line_interval_mm=0.1)
         lname = value.get("name", default.name)
         color = value.get("color", default.color)
         if not isinstance(lname, str) or not lname or any(c in lname for c in '<>/\\":;?*|=\''):
             raise ProfileError(f"{source}: {full}.name must be a non-empty DXF layer name without <>/\\\":;?*|=', got {lname!r}")
         if isinstance(color, bool) or not isinstance(color, int) or not 1 <= color <= 255:
             raise ProfileError(f"{source}: {full}.color must be an AutoCAD Color Index 1..255, got {color!r}")
-        layers[key] = Layer(lname, color)
+        layers[key] = Layer(lname, color, **_layer_settings(value, default, source, full))
     result = LaserLayers(**layers)
     names = [result.inner_cut.name, result.outer_cut.name, result.score.name]
-    if len(set(names)) != 3:
-        raise ProfileError(f"{source}: layers need three different names, got {', '.join(names)}")
+    names += [result.engrave.name] if result.engrave is not None else []
+    if len(set(names)) != len(names):
+        count = {3: "three", 4: "four"}[len(names)]
+        raise ProfileError(f"{source}: layers need {count} different names, got {', '.join(names)}")
     return result
+
+
+LAYER_KEYS = ("name", "color", "speed_mm_s", "power_pct", "passes", "line_interval_mm")
+"""The keys of a ``[layers]`` entry."""
+
+
+def _layer_settings(value: dict, default: Layer, source: str, full: str) -> dict:
+    """A layer's laser settings, checked: speed > 0, power in (0, 100], passes >= 1, interval > 0."""
+    speed = _positive(source, f"{full}.speed_mm_s", value.get("speed_mm_s", default.speed_mm_s))
+    power = value.get("power_pct", default.power_pct)
+    if isinstance(power, bool) or not isinstance(power, (int, float)) or not 0 < power <= 100:
+        raise ProfileError(f"{source}: {full}.power_pct must be a percentage > 0 and <= 100, got {power!r}")
+    passes = value.get("passes", default.passes)
+    if isinstance(passes, bool) or not isinstance(passes, int) or passes < 1:
+        raise ProfileError(f"{source}: {full}.passes must be a whole number >= 1, got {passes!r}")
+    interval = value.get("line_interval_mm", default.line_interval_mm)
+    if interval is not None:
+        interval = _positive(source, f"{full}.line_interval_mm", interval)
+    return dict(speed_mm_s=speed, power_pct=float(power), passes=passes, line_interval_mm=interval)

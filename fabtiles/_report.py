@@ -82,7 +82,14 @@ class Report:
             )
 
     def summary(self) -> str:
-        """A few lines for people: the file, then one line per finding."""
+        """A few lines for people: the file, a laser job's length and time, then one line per finding.
+
+        >>> r = Report(path="t.dxf", format="dxf", stats={"job": {"line": "1.2 m of cut, 3 pierces, about 2 min"}})
+        >>> print(r.summary())
+        t.dxf (dxf): ok
+          laser job: 1.2 m of cut, 3 pierces, about 2 min
+        """
         n = len(self.findings)
         head = f"{self.path} ({self.format}): " + ("ok" if n == 0 else f"{n} warning{'s' if n > 1 else ''}")
-        return "\n".join([head] + [f"  - {f.code}: {f.message}" for f in self.findings])
+        job = [f"  laser job: {self.stats['job']['line']}"] if "job" in self.stats else []
+        return "\n".join([head] + job + [f"  - {f.code}: {f.message}" for f in self.findings])

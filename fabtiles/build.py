@@ -339,6 +339,8 @@ class Outcome:
     """One line per fabrication finding, ``"<file name>: <code>: <message>"``."""
     preview: str | None = None
     """The tile's picture, when asked for."""
+    job: dict = field(default_factory=dict)
+    """The laser job of its first laser file (``Report.stats["job"]``), empty without one."""
 
 
 def outcome_of(key: str, result: BuildResult) -> Outcome:
@@ -348,7 +350,8 @@ def outcome_of(key: str, result: BuildResult) -> Outcome:
     if result.findings:
         message += f", {result.findings} fabrication warning{'s' if result.findings != 1 else ''}"
     lines = [f"{Path(r.path).name}: {f.code}: {f.message}" for r in result.reports for f in r.findings]
-    return Outcome(key, True, message, result.paths, lines, result.preview)
+    job = next((r.stats["job"] for r in result.reports if "job" in r.stats), {})
+    return Outcome(key, True, message, result.paths, lines, result.preview, job)
 
 
 def run_job(key: str, make_design, outdir, formats=None, *, preview: bool = False) -> Outcome:

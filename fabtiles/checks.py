@@ -21,7 +21,7 @@ the profile allows shows up as thin bridges.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ._errors import FabricationError
 from ._profiles import load_profile
@@ -36,6 +36,8 @@ class CheckResult:
     laser: Report
     print: Report
     filled_holes: int = 0
+    job: object = None
+    """The laser job's length and time (:class:`~fabtiles.geometry.job_time.JobEstimate`), when asked for."""
 
     def findings(self) -> list[tuple[str, Finding]]:
         """Every finding with where it comes from (``"laser"`` or ``"print"``)."""
@@ -48,7 +50,7 @@ class CheckResult:
 
 
 def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=None, fill_small_holes=False,
-               print_style=None, heights=None) -> CheckResult:
+               print_style=None, heights=None, job: bool = False) -> CheckResult:
     """Run the laser and print checks of ``tile`` (see the module text).
 
     Parameters
@@ -64,8 +66,12 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         Default: the printer profile's.
     heights : dict, optional
         ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm`` overrides.
+    job : bool
+        Also estimate the laser job's length and time (its contours are built, as
+        for the laser files): ``CheckResult.job``. None when the tile cannot be cut
+        (larger than the bed).
     """
-    from .geometry.laser_checks import check_fits_bed, check_laser
+    from .geometry.laser_checks import check_engrave, check_fits_bed, check_laser
     from .geometry.laser_checks import fill_small_holes as fill
     from .geometry.print_checks import check_print
 
@@ -85,15 +91,30 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         if fill_small_holes:
             cut, filled = fill(cut_region, laser.min_hole_mm, tolerance_mm=laser.tolerance_mm)
         check_laser(cut, outline, laser, stroke=tile.stroke, report=laser_report, validate=False)
+    elif (laser_mode or laser.mode) == "engrave" and not cut_region.is_empty:
+        check_engrave(cut_region, laser, laser_report)
     print_report = check_print(region, outline, printer, stroke=tile.stroke, style=print_style,
                                report=Report(path="", format="print"), **(heights or {}))
-    return CheckResult(laser_report, print_report, filled)
+    estimate = _job(tile, laser, laser_mode, fill_small_holes) if job and "bed_size" not in {
+        f.code for f in laser_report.findings} else None
+    return CheckResult(laser_report, print_report, filled, estimate)
 
 
-def check_design(design, tile=None) -> CheckResult:
+def _job(tile, laser, mode, fill_small_holes):
+    """The laser job of the tile's laser files (their contours, kerf and order)."""
+    from .geometry.laser_checks import prepare_laser
+
+    region, lines = laser_geometry(tile, profile=laser, mode=mode)
+    job, _ = prepare_laser("", "check", region=region, outline=tile.outline_shape(), centrelines=lines,
+                           profile=replace(laser, strict=False), mode=mode,
+                           fill_small_holes=fill_small_holes)
+    return job.estimate
+
+
+def check_design(design, tile=None, *, job: bool = False) -> CheckResult:
     """:func:`check_tile` with the profiles, modes and options of a :class:`~fabtiles.design.Design`."""
     out = design.output
     tile = tile if tile is not None else design.build_tile()
     return check_tile(tile, laser_profile=out.laser_profile, printer_profile=out.printer_profile,
                       laser_mode=out.laser_mode, fill_small_holes=out.fill_small_holes,
-                      print_style=out.print_style, heights=out.heights())
+                      print_style=out.print_style, heights=out.heights(), job=job)

@@ -64,7 +64,7 @@ from ._profiles import LASER_MODES, PRINT_STYLES
 from .pattern.packing import PACKINGS
 from .pattern.star import Star
 
-FORMATS = ("dxf", "svg", "stl", "3mf", "step")
+FORMATS = ("dxf", "svg", "lbrn2", "stl", "3mf", "step")
 """Output formats a design may ask for."""
 
 THREEMF_LAYOUTS = ("volumes", "components")

@@ -214,6 +214,11 @@ def explain(outcome, variant: Variant) -> str:
     return message
 
 
+JOB_COLUMNS = {"cut_length_mm": "cut_total_mm", "pierces": "pierces", "engrave_area_mm2": "engrave_area_mm2",
+               "travel_mm": "travel_mm", "laser_time_s": "seconds"}
+"""``index.csv``'s laser job columns (empty for a variant without a laser file) and the report keys they hold."""
+
+
 def write_index(outdir, varies, variants_, outcomes) -> tuple[Path, Path]:
     """Write ``index.csv`` and the contact sheet ``index.html`` into ``outdir`` (atomically)."""
     from ._io import atomic_write
@@ -225,13 +230,15 @@ def write_index(outdir, varies, variants_, outcomes) -> tuple[Path, Path]:
     for v in variants_:
         o = by_name[v.name]
         files = [Path(p).name for p in o.paths]
+        job = getattr(o, "job", None) or {}
         rows.append(dict(variant=v.name, status="ok" if o.ok else "failed",
                          **{k: _text(val) for k, val in v.values},
                          files=" ".join(files), findings=len(o.findings),
+                         **{c: job.get(k, "") for c, k in JOB_COLUMNS.items()},
                          details=" | ".join(o.findings) if o.ok else explain(o, v)))
     buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=["variant", "status", *keys, "files", "findings", "details"],
-                            lineterminator="\n")
+    writer = csv.DictWriter(buf, fieldnames=["variant", "status", *keys, "files", "findings", *JOB_COLUMNS,
+                                             "details"], lineterminator="\n")
     writer.writeheader()
     writer.writerows(rows)
     csv_path = atomic_write(outdir / "index.csv", buf.getvalue())

@@ -26,7 +26,7 @@ def test_laser_options():
     assert _param(laser(stroke=1.5, kerf_mm=2)) == "kerf_mm"
     assert _param(laser(fill_small_holes=1)) == "fill_small_holes"
     assert _param(laser(mode="score")) == "centrelines"
-    assert _param(laser(mode="engrave")) == "mode"
+    assert _param(laser(mode="etch")) == "mode"
     assert _param(lambda: prepare_laser("x.dxf", "dxf", region="plate", outline=plate,
                                         profile="laser-3mm-plywood")) == "region"
 

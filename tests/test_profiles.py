@@ -56,7 +56,7 @@ def test_profiles_are_frozen():
         ('kind = "laser"\n[laser]\ntolerance_mm = nan\n', r"p.toml: laser.tolerance_mm must be a finite number, got nan"),
         ('kind = "laser"\n[laser]\nbed_mm = [600]\n', r"p.toml: laser.bed_mm must be \[width, height\] in mm"),
         ('kind = "laser"\n[laser]\nstrict = "yes"\n', r"p.toml: laser.strict must be true or false"),
-        ('kind = "laser"\n[laser]\nmode = "engrave"\n', r"p.toml: laser.mode = 'engrave' is not valid, must be one of: pierced, score"),
+        ('kind = "laser"\n[laser]\nmode = "etch"\n', r"p.toml: laser.mode = 'etch' is not valid, must be one of: pierced, score, engrave"),
         ('kind = "laser"\n[laser]\ndxf_version = "R14"\n', r"laser.dxf_version = 'R14' is not valid, must be one of: R12, R2000"),
         ('kind = "printer"\n[printer]\nstyle = "emboss"\n', r"printer.style = 'emboss' is not valid, must be one of: relief, pierced, deboss"),
         ('kind = "printer"\n[printer]\nbase_mm = -2\n', r"printer.base_mm must be > 0, got -2"),

@@ -67,12 +67,14 @@ def command(design_file, output, overrides):
         raise ParameterError(f"the overlay (-o) must be an .svg file, got {output!r}")
     design = load_design(design_file, overrides=overrides)
     tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
-    result = check_design(design, tile)
+    result = check_design(design, tile, job=True)
     out = design.output
     laser = f"laser profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
     if result.filled_holes:
         laser += f" ({result.filled_holes:,} small holes filled)"
     click.echo(f"{design_file}: {laser}, printer profile {out.printer_profile or DEFAULT_PRINTER_PROFILE}")
+    if result.job is not None:
+        click.echo(f"  laser job: {result.job.line()}")
     findings = result.findings()
     for where, f in findings:
         click.echo("  " + finding_line(where, f))

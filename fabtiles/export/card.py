@@ -36,8 +36,9 @@ def card_job(profile, *, dxf_version=None):
     version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
                            DXF_VERSIONS)
     card = calibration_card(profile)
-    job = LaserJob(profile, "pierced", version, profile.kerf_mm)
-    job.inner, job.outer = laser_contours(card.region, card.outline, kerf_mm=profile.kerf_mm,
+    kx, ky = profile.kerf_xy_mm
+    job = LaserJob(profile, "pierced", version, kx)
+    job.inner, job.outer = laser_contours(card.region, card.outline, kerf_mm=kx, kerf_y_mm=ky,
                                           tolerance_mm=profile.tolerance_mm)
     job.score = [np.asarray(p, dtype=float) for p in card.labels]
     flat = np.concatenate(job.inner + job.outer + job.score)

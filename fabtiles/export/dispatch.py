@@ -14,7 +14,7 @@ from pathlib import Path
 from .._errors import FabricationError, ParameterError
 from .._profiles import load_profile
 
-FORMATS = ("dxf", "svg", "stl", "3mf", "step")
+FORMATS = ("dxf", "svg", "lbrn2", "stl", "3mf", "step")
 """Output formats, by file suffix."""
 
 LASER_OPTIONS = ("mode", "dxf_version", "kerf_mm", "fill_small_holes")
@@ -30,6 +30,7 @@ DEFAULT_PRINTER_PROFILE = "fdm-0.4mm"
 _WRITERS = {
     "dxf": ("dxf", "write_dxf", "laser"),
     "svg": ("laser_svg", "write_laser_svg", "laser"),
+    "lbrn2": ("lbrn2", "write_lbrn2", "laser"),
     "stl": ("stl", "write_stl", "printer"),
     "3mf": ("threemf", "write_3mf", "printer"),
     "step": ("step", "write_step", "printer"),
@@ -44,7 +45,7 @@ def format_of(path) -> str:
     >>> format_of("tile.png")
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: 'png' is not a valid output format (from the suffix of 'tile.png'), must be one of: dxf, svg, stl, 3mf, step
+    fabtiles._errors.ParameterError: 'png' is not a valid output format (from the suffix of 'tile.png'), must be one of: dxf, svg, lbrn2, stl, 3mf, step
     """
     suffix = Path(path).suffix.lower().lstrip(".")
     if suffix not in FORMATS:

@@ -91,7 +91,7 @@ def build_document(job: LaserJob, *, entities: bool = True):
         msp.dxf.set(key, value)
         doc.header[f"${key.upper()}"] = value
     layers = job.profile.layers
-    for layer in (layers.inner_cut, layers.outer_cut, layers.score):
+    for layer in (layers.inner_cut, layers.outer_cut, layers.score) + ((layers.engrave,) if job.engrave else ()):
         doc.layers.add(layer.name, color=layer.color)
     if not entities:
         return doc
@@ -126,9 +126,11 @@ class _DropUnitsWarning:
 
 
 def _groups(job: LaserJob):
+    """``(rings, layer, closed)`` in cut order: engrave fills (outlines and holes), score, inner, outer."""
     layers = job.profile.layers
-    return ((job.score, layers.score, False), (job.inner, layers.inner_cut, True),
-            (job.outer, layers.outer_cut, True))
+    engrave = ((job.engrave, layers.engrave, True),) if job.engrave else ()
+    return engrave + ((job.score, layers.score, False), (job.inner, layers.inner_cut, True),
+                      (job.outer, layers.outer_cut, True))
 
 
 def entities_text(job: LaserJob, first_handle: int, owner: str) -> tuple[str, int]:

@@ -54,6 +54,14 @@ def svg_text(job: LaserJob) -> str:
         "</title>\n"
     )
     out = [head]
+    if job.engrave:  # the fill: each polygon one path, its holes as subpaths, filled even-odd
+        colour = aci_to_hex(layers.engrave.color)
+        out.append(f'<g id="{_escape(layers.engrave.name)}" fill="{colour}" fill-rule="evenodd" stroke="none">\n')
+        polys: dict = {}
+        for r, p in zip(job.engrave, job.engrave_parts):
+            polys.setdefault(p, []).append(_path_data(r, 0.0, True))
+        out.extend(f'<path d="{"".join(d)}"/>\n' for d in polys.values())
+        out.append("</g>\n")
     for rings, layer, closed in ((job.score, layers.score, False), (job.inner, layers.inner_cut, True),
                                  (job.outer, layers.outer_cut, True)):
         if not rings:

@@ -13,10 +13,11 @@ score layer):
     hole that comes out open and clean is ``min_hole_mm``.
 ``K`` kerf
     A 20 mm square part (cut free inside a window) and a 20 mm square hole, both
-    kerf-compensated with the profile's ``kerf_mm`` (printed on the right). With the
-    right kerf both measure 20.00 mm and the part fits the hole without play. If the
-    part measures ``P`` and the hole ``H`` (calipers), the real kerf is
-    ``kerf_mm + (H - P) / 2``.
+    kerf-compensated with the profile's ``kerf_mm`` (printed on the right; with
+    ``kerf_x_mm`` and ``kerf_y_mm`` that differ, the X kerf above the Y kerf). With the
+    right kerf both measure 20.00 mm and the part fits the hole without play. Measured
+    along X, a part ``P_x`` and a hole ``H_x`` (calipers) give the real kerf along X,
+    ``kerf_x_mm + (H_x - P_x) / 2``; along Y likewise ``kerf_y_mm + (H_y - P_y) / 2``.
 
 The card is geometry like a tile's: the material region (the part is a second
 piece inside the window), the outline, and the labels as open polylines.
@@ -127,11 +128,16 @@ def calibration_card(profile) -> Card:
     labels.extend(text_paths(_label(s), height_mm=LETTER_MM, x=x0 + c + s / 2, y=mid - LETTER_MM / 2, centre=True))
     labels.extend(text_paths(_label(s), height_mm=LABEL_MM, x=hole_x + s / 2, y=y + c - LABEL_MM - 1.0,
                              centre=True))
-    labels.extend(text_paths(_label(kerf), height_mm=LABEL_MM, x=hole_x + s + 4.0, y=mid - LABEL_MM / 2))
+    kx, ky = profile.kerf_xy_mm
+    if kx == ky:
+        labels.extend(text_paths(_label(kerf), height_mm=LABEL_MM, x=hole_x + s + 4.0, y=mid - LABEL_MM / 2))
+    else:  # the kerf along X above the one along Y
+        labels.extend(text_paths(_label(kx), height_mm=LABEL_MM, x=hole_x + s + 4.0, y=mid + 1.0))
+        labels.extend(text_paths(_label(ky), height_mm=LABEL_MM, x=hole_x + s + 4.0, y=mid - LABEL_MM - 1.0))
     features += [Feature("kerf_part", s, _label(s), (x0 + c + s / 2, mid)),
                  Feature("kerf_hole", s, _label(s), (hole_x + s / 2, mid))]
     letter("K", mid)
-    right = hole_x + s + 4.0 + text_width(_label(kerf), height_mm=LABEL_MM)
+    right = hole_x + s + 4.0 + max(text_width(_label(k), height_mm=LABEL_MM) for k in (kerf, kx, ky))
     y += s + 2 * c + 3.0
 
     # H: holes stepping around min_hole_mm

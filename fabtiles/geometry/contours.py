@@ -237,8 +237,35 @@ def _order(rings: list, depth: np.ndarray | None = None) -> list:
     return [rings[i] for i in order]
 
 
-def laser_contours(region, outline=None, *, kerf_mm: float, tolerance_mm: float = 0.01,
-                   validate: bool = True):
+def _anisotropic(kerf_mm: float, kerf_y_mm):
+    """``(y scale, kerf)`` that turn an offset by an ellipse into a round one (1.0: round already).
+
+    A laser whose spot is wider along Y than along X cuts a kerf ``kerf_y`` across
+    horizontal edges and ``kerf_x`` across vertical ones: the cut edge is the material
+    grown by the ellipse of semi-axes ``kerf_x / 2``, ``kerf_y / 2`` (its support
+    distance along each edge's normal). Scaling y by ``kerf_x / kerf_y`` makes that
+    ellipse a circle of radius ``kerf_x / 2``; the round (mitred) offset there, scaled
+    back, is the elliptical one, corners and all, since an affine map keeps lines and
+    mitres. Tested against GEOS's buffer of the scaled geometry and against the
+    ellipse's support distance on every edge.
+    """
+    if kerf_y_mm is None or abs(float(kerf_y_mm) - float(kerf_mm)) < 1e-12:
+        return 1.0, float(kerf_mm)
+    kx, ky = float(kerf_mm), float(kerf_y_mm)
+    if kx < 1e-9 or ky < 1e-9:
+        raise ParameterError(f"kerf_x_mm and kerf_y_mm must both be > 0 or both equal, got {kx:g} and {ky:g}",
+                             param="kerf_y_mm")
+    return kx / ky, kx
+
+
+def _scaled(geoms, sy: float):
+    return geoms if sy == 1.0 else shapely.transform(geoms, lambda c: c * [1.0, sy])
+
+
+
+
+def laser_contours(region, outline=None, *, kerf_mm: float, kerf_y_mm: float | None = None,
+                   tolerance_mm: float = 0.01, validate: bool = True):
     """Kerf-offset closed contours of ``region`` in cut order: ``(inner, outer)``.
 
     Parameters
@@ -249,6 +276,9 @@ def laser_contours(region, outline=None, *, kerf_mm: float, tolerance_mm: float 
         The tile outline (unused in the pierced mode; accepted for a uniform call).
     kerf_mm : float
         Width of the cut, >= 0; contours move ``kerf_mm / 2`` away from the material.
+    kerf_y_mm : float, optional
+        The kerf along Y when it differs from ``kerf_mm`` (then the kerf along X): the
+        contours move by the ellipse of those widths (see :func:`_anisotropic`).
     tolerance_mm : float
         Rings with area below ``tolerance_mm ** 2`` are numerical noise and dropped.
     validate : bool
@@ -265,7 +295,9 @@ def laser_contours(region, outline=None, *, kerf_mm: float, tolerance_mm: float 
     ([], [[2.0, 0.0], [2.0, 1.0], [0.0, 1.0], [0.0, 0.0]])
     """
     parts = polygon_parts(region) if validate else shapely.get_parts(region)
-    d = float(kerf_mm) / 2
+    sy, kerf = _anisotropic(kerf_mm, kerf_y_mm)
+    parts = _scaled(parts, sy)
+    d = kerf / 2
     polys, poly_depth = _kerf_polygons(parts, d if d >= 1e-9 else 0.0)  # below a nanometre is no kerf
     polys, poly_depth = polys[~shapely.is_empty(polys)], poly_depth[~shapely.is_empty(polys)]
     rings, part, first = _rings_of(polys)
@@ -273,7 +305,7 @@ def laser_contours(region, outline=None, *, kerf_mm: float, tolerance_mm: float 
     # outer rings counter-clockwise, hole rings clockwise: even depths are material's outer rings
     first = depth % 2 == 0
     min_area = float(tolerance_mm) ** 2
-    cleaned, kept = clean_rings(rings, min_area=min_area, ccw=first)
+    cleaned, kept = clean_rings(_scaled(rings, 1.0 / sy), min_area=min_area, ccw=first)
     depth = depth[kept]
     is_outer = depth == 0
     inner = _order([r for r, o in zip(cleaned, is_outer) if not o], depth[~is_outer])
@@ -281,7 +313,8 @@ def laser_contours(region, outline=None, *, kerf_mm: float, tolerance_mm: float 
     return inner, outer
 
 
-def outline_contours(outline, *, kerf_mm: float, tolerance_mm: float = 0.01) -> list:
+def outline_contours(outline, *, kerf_mm: float, kerf_y_mm: float | None = None,
+                     tolerance_mm: float = 0.01) -> list:
     """The outer rings of ``outline`` grown by ``kerf_mm / 2``: the cut of the score mode.
 
     >>> from shapely.geometry import box
@@ -289,10 +322,11 @@ def outline_contours(outline, *, kerf_mm: float, tolerance_mm: float = 0.01) -> 
     [-0.1, -0.1]
     """
     parts = polygon_parts(outline, "outline")
-    filled = shapely.polygons(shapely.get_exterior_ring(parts))
-    grown = shapely.get_parts(shapely.buffer(filled, float(kerf_mm) / 2, join_style="mitre",
+    sy, kerf = _anisotropic(kerf_mm, kerf_y_mm)
+    filled = _scaled(shapely.polygons(shapely.get_exterior_ring(parts)), sy)
+    grown = shapely.get_parts(shapely.buffer(filled, kerf / 2, join_style="mitre",
                                              mitre_limit=MITRE_LIMIT))
-    rings = shapely.get_exterior_ring(grown)
+    rings = _scaled(shapely.get_exterior_ring(grown), 1.0 / sy)
     cleaned, _ = clean_rings(rings, min_area=float(tolerance_mm) ** 2, ccw=np.ones(len(rings), bool))
     return _order(cleaned)
 

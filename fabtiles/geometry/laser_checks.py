@@ -41,7 +41,8 @@ from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, load_profile
 from .narrow import MAX_LOCATIONS, locations, narrow_places
 from .._report import Report
 from .._validate import check_choice, check_float
-from .contours import laser_contours, outline_contours, polygon_parts, score_paths
+from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
+from .job_time import estimate
 
 
 
@@ -237,7 +238,14 @@ class LaserJob:
     inner: list = field(default_factory=list)
     outer: list = field(default_factory=list)
     score: list = field(default_factory=list)
+    engrave: list = field(default_factory=list)
+    """Engrave mode: the rings of the filled bands (exteriors counter-clockwise, holes clockwise)."""
+    engrave_parts: list = field(default_factory=list)
+    """The polygon (0, 1, ...) each engrave ring belongs to: a fill's outline and its holes."""
+    engrave_area_mm2: float = 0.0
     bounds: tuple = (0.0, 0.0, 0.0, 0.0)
+    estimate: object = None
+    """The job's length and time (:class:`~fabtiles.geometry.job_time.JobEstimate`)."""
 
 
 def _check_profile(profile: LaserProfile) -> None:
@@ -267,6 +275,52 @@ def _length(rings, closed: bool) -> float:
     return total
 
 
+def engrave_layer(profile: LaserProfile):
+    """The profile's engrave layer, or a :class:`~fabtiles.ProfileError` saying what to add."""
+    if profile.layers.engrave is None:
+        raise ProfileError(
+            f"laser profile {profile.name!r} has no engrave layer, which the engrave mode fills: add "
+            'engrave = { name = "FILL", color = 6, speed_mm_s = 250, power_pct = 20, line_interval_mm = 0.1 } '
+            "to its [layers]")
+    return profile.layers.engrave
+
+
+def check_engrave(region, profile: LaserProfile, report: Report) -> Report:
+    """The engrave mode's check: bands narrower than two fill lines (``thin_fill``).
+
+    Nothing is cut free in this mode, so holes, bridges and loose parts do not matter;
+    a band narrower than two lines of the fill comes out as one line or none.
+    """
+    layer = engrave_layer(profile)
+    width = 2 * layer.line_interval_mm
+    count, worst, mids, widths = narrow_places(region, width, tolerance=profile.tolerance_mm)
+    if count:
+        report.add("thin_fill",
+                   f"{count} band{'s' if count > 1 else ''} of the engraving narrower than two fill lines "
+                   f"({width:g} mm at line_interval_mm = {layer.line_interval_mm:g}; narrowest {worst:.3g} mm): "
+                   "they engrave as one line or vanish",
+                   count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
+                   worst=round(worst, 3))
+    return report
+
+
+def _engrave(job: LaserJob, region, outline, report: Report, kerf_y: float) -> None:
+    """Engrave mode: the outline cut, the material's bands filled on the engrave layer."""
+    profile = job.profile
+    check_engrave(region, profile, report)
+    report.raise_if_strict(profile.strict)
+    job.outer = outline_contours(outline, kerf_mm=job.kerf_mm, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
+    parts = shapely.get_parts(region)
+    rings, part = shapely.get_rings(parts, return_index=True)
+    exterior = np.zeros(len(rings), dtype=bool)
+    starts = np.concatenate([[0], np.cumsum(shapely.get_num_interior_rings(parts) + 1)[:-1]])
+    exterior[starts] = True
+    cleaned, kept = clean_rings(rings, min_area=profile.tolerance_mm ** 2, ccw=exterior)
+    job.engrave, job.engrave_parts = cleaned, part[kept].tolist()
+    job.engrave_area_mm2 = float(shapely.area(parts).sum())
+    report.stats.update(area_mm2=round(job.engrave_area_mm2, 3), engrave_rings=len(cleaned))
+
+
 def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode=None, dxf_version=None,
                   kerf_mm=None, fill_small_holes: bool = False, stroke=None):
     """Validate the options, run the checks and build the contours: ``(LaserJob, Report)``.
@@ -281,14 +335,17 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
     mode = check_choice("mode", profile.mode if mode is None else mode, LASER_MODES)
     dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
                                DXF_VERSIONS)
-    kerf = check_float("kerf_mm", profile.kerf_mm if kerf_mm is None else kerf_mm, low=0)
+    if kerf_mm is None:  # the profile's kerf, along X and along Y
+        kerf, kerf_y = profile.kerf_xy_mm
+    else:
+        kerf = kerf_y = check_float("kerf_mm", kerf_mm, low=0)
     if stroke is not None:
         stroke = check_float("stroke", stroke, low=0, low_open=True)
         if stroke < profile.min_feature_mm:
             raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of laser "
                                  f"profile {profile.name!r}, got {stroke:g}", param="stroke")
-        if kerf > stroke:
-            raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {kerf:g}",
+        if max(kerf, kerf_y) > stroke:
+            raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {max(kerf, kerf_y):g}",
                                  param="kerf_mm")
     if not isinstance(fill_small_holes, bool):
         raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}",
@@ -300,6 +357,8 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
     report = Report(path=str(path), format=fmt)
     job = LaserJob(profile, mode, dxf_version, kerf)
     report.stats.update(profile=profile.name, mode=mode, kerf_mm=kerf)
+    if kerf_y != kerf:
+        report.stats["kerf_y_mm"] = kerf_y
     if fmt == "dxf":
         report.stats["dxf_version"] = dxf_version
     if mode == "pierced":
@@ -310,22 +369,27 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
             parts = shapely.get_parts(region)
         check_laser(region, outline, profile, stroke=stroke, report=report, validate=False)
         report.raise_if_strict(profile.strict)
-        job.inner, job.outer = laser_contours(region, outline, kerf_mm=kerf, tolerance_mm=profile.tolerance_mm,
-                                              validate=False)
+        job.inner, job.outer = laser_contours(region, outline, kerf_mm=kerf, kerf_y_mm=kerf_y,
+                                              tolerance_mm=profile.tolerance_mm, validate=False)
         report.stats["area_mm2"] = round(float(shapely.area(parts).sum()), 3)
+    elif mode == "engrave":
+        _engrave(job, region, outline, report, kerf_y)
     else:
         if centrelines is None or len(np.asarray(centrelines)) == 0:
             raise ParameterError("the score mode needs centrelines (an array of shape (k, 2, 2)), got none",
                                  param="centrelines")
-        job.outer = outline_contours(outline, kerf_mm=kerf, tolerance_mm=profile.tolerance_mm)
+        job.outer = outline_contours(outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
         job.score = score_paths(centrelines, outline, tolerance_mm=profile.tolerance_mm)
         report.stats["area_mm2"] = round(float(shapely.area(outline_parts).sum()), 3)
         report.stats["score_paths"] = len(job.score)
         report.stats["score_length_mm"] = round(_length(job.score, False), 3)
-    allr = job.inner + job.outer + job.score
+    allr = job.inner + job.outer + job.score + job.engrave
     flat = np.concatenate(allr) if allr else np.zeros((1, 2))
     job.bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
     report.stats.update(inner_contours=len(job.inner), outer_contours=len(job.outer),
                         vertices=int(sum(len(r) for r in allr)),
                         cut_length_mm=round(_length(job.inner + job.outer, True), 3))
+    job.estimate = estimate(profile, inner=job.inner, outer=job.outer, score=job.score, engrave=job.engrave,
+                            engrave_area_mm2=job.engrave_area_mm2)
+    report.stats["job"] = job.estimate.as_stats()
     return job, report

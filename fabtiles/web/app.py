@@ -28,6 +28,7 @@ STATIC = Path(__file__).with_name("static")
 MEDIA_TYPES = {
     "dxf": "image/vnd.dxf",
     "svg": "image/svg+xml",
+    "lbrn2": "application/xml",
     "stl": "model/stl",
     "3mf": "model/3mf",
     "step": "model/step",
@@ -74,7 +75,7 @@ def fabrication_checks(tile, spec) -> dict:
     """Laser and print checks of a tile with the design's profiles and options, as JSON."""
     from ..checks import check_design
 
-    result = check_design(spec, tile)
+    result = check_design(spec, tile, job=True)
     findings = [{"where": where, "code": f.code, "message": f.message, "count": f.count, "worst": f.worst,
                  "unit": f.unit} for where, f in result.findings()]
     region = tile.region()
@@ -82,7 +83,8 @@ def fabrication_checks(tile, spec) -> dict:
     filled = f" ({result.filled_holes:,} too small to cut, filled)" if result.filled_holes else ""
     summary = (f"{len(tile.segments()):,} segments, material {region.area:,.0f} mm², {holes:,} holes{filled}; "
                f"{len(findings)} finding{'s' if len(findings) != 1 else ''}")
-    return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes}
+    job = result.job.as_stats() if result.job is not None else None
+    return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes, "job": job}
 
 
 def field_of_param(param: str | None) -> str | None:

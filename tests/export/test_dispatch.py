@@ -20,7 +20,7 @@ def test_a_tile_without_material_is_an_error_not_a_file(tmp_path, fmt):
 
 def test_unknown_suffix_and_option(tmp_path):
     tile = ft.Tile("square", 30, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")), frame=2)
-    with pytest.raises(ft.ParameterError, match=r"'png' is not a valid output format .* must be one of: dxf, svg, stl, 3mf, step"):
+    with pytest.raises(ft.ParameterError, match=r"'png' is not a valid output format .* must be one of: dxf, svg, lbrn2, stl, 3mf, step"):
         tile.export(tmp_path / "t.png")
     with pytest.raises(ft.ParameterError, match=r"'style' is not a valid option for .dxf files, must be one of: mode, dxf_version"):
         tile.export(tmp_path / "t.dxf", style="relief")

@@ -56,15 +56,20 @@ def dxf_layers(path) -> dict:
 # --------------------------------------------------------------------------- MeerK40t
 
 
-def meerk40t(path, tmp_path) -> dict:
-    """Load ``path`` into MeerK40t (a GRBL diode laser), classify, plan, save the G-code."""
+def meerk40t(path, tmp_path, listing: str = "tree list") -> dict:
+    """Load ``path`` into MeerK40t (a GRBL diode laser), classify, plan, save the G-code.
+
+    Returns the elements added, the operations of ``tree list`` with their references,
+    what the ``listing`` command printed, and the G-code.
+    """
     exe = shutil.which("meerk40t") or str(Path(sys.executable).with_name("meerk40t"))
     require(os.path.exists(exe) and exe, "meerk40t", 'pip install "meerk40t[dxf]" (in the "test" extra)')
     home = tmp_path / "meerk40t-home"
-    home.mkdir(exist_ok=True)
+    home.mkdir(parents=True, exist_ok=True)
     gcode = tmp_path / f"{Path(path).stem}.gcode"
     env = {**os.environ, "HOME": str(home), "XDG_CONFIG_HOME": str(home / ".config")}
-    done = run([exe, "-Z", "-X", "-A", "-e", "device add grbl-diode", "-e", f"load {path}", "-e", "tree list",
+    extra = ["-e", listing] if listing != "tree list" else []
+    done = run([exe, "-Z", "-X", "-A", "-e", "device add grbl-diode", "-e", f"load {path}", "-e", "tree list", *extra,
                 "-e", "plan copy preprocess validate blob preopt optimize", "-e", f"plan save_job {gcode}",
                 "-e", "quit"], env=env, timeout=180)
     out = re.sub(r"\x1b\[[0-9;]*m", "", done.stdout + done.stderr)
@@ -78,7 +83,7 @@ def meerk40t(path, tmp_path) -> dict:
                 ops.append([m.group(5), 0])
             elif m.group(3):
                 ops[-1][1] += 1
-    return dict(added=added, ops=[tuple(op) for op in ops], gcode=gcode.read_text())
+    return dict(added=added, ops=[tuple(op) for op in ops], listing=out, gcode=gcode.read_text())
 
 
 def burns(gcode: str) -> list[np.ndarray]:

@@ -2,6 +2,7 @@
 
 import io
 import json
+import re
 
 import pytest
 
@@ -54,6 +55,16 @@ def test_checks_json(client):
     assert all({"where", "code", "message", "count"} <= set(f) for f in data["findings"])
     thin = client.get(f"/api/checks?{SMALL}&stroke=0.5&laser_profile=laser-3mm-acrylic").json()
     assert any(f["code"] == "thin_wall" and f["where"] == "print" for f in thin["findings"]) or thin["findings"]
+
+
+def test_checks_give_the_laser_job(client):
+    data = client.get(f"/api/checks?{SMALL}").json()
+    job = data["job"]
+    assert job["line"] == f"{job['line']}" and re.fullmatch(r"[0-9.]+ m of cut, [0-9,]+ pierces?, about [0-9,]+ min",
+                                                             job["line"])
+    assert job["cut_total_mm"] > 0 and job["seconds"] > 0
+    engraved = client.get(f"/api/checks?{SMALL}&laser_mode=engrave").json()["job"]
+    assert engraved["engrave_area_mm2"] > 0 and engraved["pierces"] == 1
 
 
 def test_design_toml_round_trips_through_build(client, tmp_path):
@@ -134,7 +145,7 @@ BAD = [
     ("corner_radius=-2", "corner_radius", "corner_radius"),
     ("laser_profile=../../etc/passwd", "laser_profile", "is not a bundled profile"),
     ("printer_profile=/tmp/x.toml", "printer_profile", "is not a bundled profile, must be one of: fdm-0.4mm"),
-    ("laser_mode=engrave", "laser_mode", "engrave"),
+    ("laser_mode=etch", "laser_mode", "etch"),
     ("print_style=emboss", "print_style", "emboss"),
     ("bogus=1", "bogus", "'bogus' is not a valid parameter"),
 ]
@@ -153,7 +164,7 @@ def test_bad_input_is_422_with_field(client, endpoint, query, field, message):
 def test_unknown_format_is_422(client):
     r = client.get("/api/export/png")
     assert r.status_code == 422 and r.json() == {
-        "error": "'png' is not a valid format, must be one of: dxf, svg, stl, 3mf, step", "field": "format"}
+        "error": "'png' is not a valid format, must be one of: dxf, svg, lbrn2, stl, 3mf, step", "field": "format"}
 
 
 def test_work_limits_refuse_before_work():

@@ -121,6 +121,15 @@ def test_page_slider_preset_and_download(page, server, tmp_path):
     assert not doc.audit().has_errors
     assert len(doc.modelspace()) > 0
 
+    # The laser job shows beside the checks; the LightBurn button downloads a project.
+    page.wait_for_function("() => document.querySelector('#job').textContent.includes(' m of cut, ')")
+    assert "about" in page.text_content("#job")
+    with page.expect_download() as info:
+        page.click("#downloads a[data-format=lbrn2]")
+    project = tmp_path / "tile.lbrn2"
+    info.value.save_as(project)
+    assert project.read_text().startswith('<?xml version="1.0" encoding="UTF-8"?>\n<LightBurnProject ')
+
 
 def test_findings_marks_fill_and_heights_controls(page, server):
     page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3&fill_small_holes=false")

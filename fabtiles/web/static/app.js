@@ -242,6 +242,7 @@ async function refresh() {
   const again = chosen && list.querySelector(`li[data-code="${chosen.code}"][data-where="${chosen.where}"]`);
   if (again) choose(again, true); else chosen = null;
   $("status").textContent = data.summary || "";
+  $("job").textContent = data.job ? `Laser job (estimate from the profile): ${data.job.line}` : "";
 }
 
 // The marks of the preview's findings, copied into #marks (an SVG laid over the

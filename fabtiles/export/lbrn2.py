@@ -1,0 +1,125 @@
+"""LightBurn project (``.lbrn2``): the laser file with the profile's settings on every layer.
+
+The same contours, kerf and cut order as the DXF (:func:`~fabtiles.geometry.laser_checks.prepare_laser`),
+in LightBurn's own XML, so a job opens with its speeds, powers and passes set:
+
+- ``<LightBurnProject FormatVersion="1">`` (the ``.lbrn2`` layout), millimetres, y up,
+  the file's coordinates as they are (LightBurn places the job where the file says).
+- One ``<CutSetting>`` per layer used, in cut order: ``type`` ``"Cut"`` (LightBurn's
+  *Line* mode) or ``"Scan"`` (*Fill*, for the engrave layer, with its ``interval``);
+  ``index`` (the layer's palette colour), ``name``, ``minPower`` and ``maxPower``
+  (percent), ``speed`` (mm/s), ``numPasses`` and ``priority`` (lower runs first:
+  engrave, score, inner cuts, then the outline).
+- Every contour one ``<Shape Type="Path">``: its vertices once each (the first not
+  repeated) and a primitive list of straight lines ``L0 1 ... L(n-1) 0`` that closes it;
+  a score line the same with no closing line. No ``VertID``/``PrimID`` (shared
+  geometry) and an identity ``XForm``.
+
+What the readers in the open read, and why these choices (``docs/laser-programs.md``):
+LightBurn's shorthand ``LineClosed`` is read by MeerK40t as one line too many, so the
+first edge would be cut twice; the ``type`` attribute is lowercase (MeerK40t and lbrnts
+read no other); every ``CutIndex`` a shape names has its ``CutSetting`` (MeerK40t fails
+to load a file without). Numbers are fixed-point with 4 decimals (0.1 um): lbrnts reads
+no exponents, and the file is the same bytes on every run. Written with the standard
+library: the project is plain XML.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._io import atomic_write
+from .._report import Report
+from ..geometry.laser_checks import LaserJob, prepare_laser
+
+APP_VERSION = "1.7.03"
+"""The LightBurn version the project says it is for (a recent one: older LightBurn opens newer files too)."""
+
+# LightBurn's palette (its layers 00-29), RGB: 00 black, 01 blue, 02 red, 03 green, ...
+PALETTE = ("000000 0000FF FF0000 00E000 D0D000 FF8000 00E0E0 FF00FF B4B4B4 0000A0 A00000 00A000 A0A000 "
+           "C08000 00A0FF A000A0 808080 7D87B9 BB7784 4A6FE3 D33F6A 8CD78C F0B98D F6C4E1 FA9ED4 500A78 "
+           "B45A00 004754 86FA88 FFDB66").split()
+
+
+def write_lbrn2(path, *, region, outline, centrelines=None, profile, mode=None, kerf_mm=None,
+                fill_small_holes: bool = False, stroke=None, dxf_version=None) -> Report:
+    """Write the LightBurn project of a tile's material ``region`` to ``path``.
+
+    Parameters as :func:`~fabtiles.export.dxf.write_dxf` (``dxf_version`` is accepted
+    and ignored, as by the laser SVG).
+
+    >>> import tempfile, pathlib
+    >>> from shapely.geometry import box
+    >>> plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "plate.lbrn2"
+    >>> r = write_lbrn2(out, region=plate, outline=box(0, 0, 40, 40), profile="laser-3mm-plywood")
+    >>> out.read_text().count('<Shape Type="Path"'), r.stats["inner_contours"], r.stats["outer_contours"]
+    (2, 1, 1)
+    """
+    job, report = prepare_laser(path, "lbrn2", region=region, outline=outline, centrelines=centrelines,
+                                profile=profile, mode=mode, kerf_mm=kerf_mm,
+                                fill_small_holes=fill_small_holes, stroke=stroke)
+    atomic_write(path, lbrn2_text(job))
+    return report
+
+
+def palette_index(color_rgb: str, taken) -> int:
+    """The LightBurn layer for a colour ``RRGGBB``: its nearest palette colour not ``taken``.
+
+    >>> palette_index("FF0000", set()), palette_index("FF0000", {2}), palette_index("0000FF", set())
+    (2, 10, 1)
+    """
+    target = np.array([int(color_rgb[i:i + 2], 16) for i in (0, 2, 4)], float)
+    rgb = np.array([[int(c[i:i + 2], 16) for i in (0, 2, 4)] for c in PALETTE], float)
+    order = np.argsort(np.linalg.norm(rgb - target, axis=1), kind="stable")
+    return int(next(i for i in order if int(i) not in taken))
+
+
+def _num(x: float) -> str:
+    s = f"{x:.4f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def _path(ring: np.ndarray, index: int, closed: bool) -> str:
+    n = len(ring)
+    verts = "".join(f"V{_num(x)} {_num(y)}c0x1c1x1" for x, y in ring.tolist())
+    prims = "".join(f"L{i} {i + 1}" for i in range(n - 1)) + (f"L{n - 1} 0" if closed else "")
+    return (f'    <Shape Type="Path" CutIndex="{index}">\n        <XForm>1 0 0 1 0 0</XForm>\n'
+            f'        <VertList>{verts}</VertList>\n        <PrimList>{prims}</PrimList>\n    </Shape>\n')
+
+
+def _cut_setting(layer, index: int, priority: int, kind: str) -> str:
+    from xml.sax.saxutils import quoteattr
+
+    rows = [("index", index), ("name", layer.name), ("minPower", _num(layer.power_pct)),
+            ("maxPower", _num(layer.power_pct)), ("speed", _num(layer.speed_mm_s)),
+            ("numPasses", layer.passes), ("priority", priority)]
+    if kind == "Scan":
+        rows.append(("interval", _num(layer.line_interval_mm)))
+    body = "".join(f"        <{k} Value={quoteattr(str(v))}/>\n" for k, v in rows)
+    return f'    <CutSetting type="{kind}">\n{body}    </CutSetting>\n'
+
+
+def layer_groups(job: LaserJob):
+    """``(profile key, layer, rings, closed, CutSetting type)`` of each layer with contours, in cut order."""
+    layers = job.profile.layers
+    groups = [("engrave", layers.engrave, job.engrave, True, "Scan"), ("score", layers.score, job.score, False, "Cut"),
+              ("inner_cut", layers.inner_cut, job.inner, True, "Cut"),
+              ("outer_cut", layers.outer_cut, job.outer, True, "Cut")]
+    return [g for g in groups if g[1] is not None and len(g[2])]
+
+
+def lbrn2_text(job: LaserJob) -> str:
+    """The ``.lbrn2`` XML of a prepared laser job."""
+    from .laser_svg import aci_to_hex
+
+    head = ['<?xml version="1.0" encoding="UTF-8"?>\n',
+            f'<LightBurnProject AppVersion="{APP_VERSION}" FormatVersion="1" MaterialHeight="0" '
+            'MirrorX="False" MirrorY="False">\n']
+    settings, shapes, taken = [], [], set()
+    for priority, (_, layer, rings, closed, kind) in enumerate(layer_groups(job)):
+        index = palette_index(aci_to_hex(layer.color)[1:], taken)
+        taken.add(index)
+        settings.append(_cut_setting(layer, index, priority, kind))
+        shapes.extend(_path(np.asarray(r), index, closed) for r in rings)
+    return "".join(head + settings + shapes + ["</LightBurnProject>\n"])

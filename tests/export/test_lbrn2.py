@@ -1,0 +1,224 @@
+"""LightBurn projects (issue 23): the DXF's contours with the profile's settings on every layer.
+
+No LightBurn runs here. The ``.lbrn2`` is read by two independent readers: MeerK40t
+(its LightBurn loader, headless) and lbrnts (npm, run by Node), and by our own
+reader below, contour for contour against the DXF. What only LightBurn could show
+(its own layer list, its preview) is said in ``docs/laser-programs.md``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import xml.etree.ElementTree as ET
+from dataclasses import replace
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+import pytest
+from real_programs import program, require, run
+from test_laser_programs import burns, meerk40t
+
+from fabtiles import HexPacking, ProfileError, Star, Tile
+from fabtiles._profiles import load_profile
+from fabtiles.export import lbrn2
+from fabtiles.geometry.job_time import path_lengths
+
+PLY = load_profile("laser-3mm-plywood")
+HERE = Path(__file__).parent
+
+
+def tile(size=60):
+    return Tile("square", size, HexPacking(10, Star.preset("table3-3")), frame=3, stroke=1.0)
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    out = tmp_path_factory.mktemp("lbrn2")
+    t, paths, reports = tile(), {}, {}
+    for mode in ("pierced", "score"):
+        for fmt in ("dxf", "lbrn2"):
+            paths[mode, fmt] = out / f"{mode}.{fmt}"
+            reports[mode, fmt] = t.export(paths[mode, fmt], mode=mode, fill_small_holes=True)
+    return paths, reports
+
+
+def read_lbrn2(path) -> dict:
+    """Our own reader: the CutSettings by index, and each Path's layer, vertices and closure."""
+    root = ET.parse(path).getroot()
+    assert root.tag == "LightBurnProject" and root.get("FormatVersion") == "1"
+    cuts = {}
+    for c in root.findall("CutSetting"):
+        values = {child.tag: child.get("Value") for child in c}
+        cuts[int(values["index"])] = dict(type=c.get("type"), **values)
+    shapes = []
+    for s in root.findall("Shape"):
+        assert s.get("Type") == "Path" and s.find("XForm").text == "1 0 0 1 0 0"
+        verts = np.array([[float(x), float(y)] for x, y in
+                          re.findall(r"V(-?[0-9.]+) (-?[0-9.]+)c0x1c1x1", s.find("VertList").text)])
+        prims = [tuple(map(int, p)) for p in re.findall(r"L(\d+) (\d+)", s.find("PrimList").text)]
+        n = len(verts)
+        closed = prims == [(i, (i + 1) % n) for i in range(n)]
+        assert closed or prims == [(i, i + 1) for i in range(n - 1)], "straight lines, each vertex once, in order"
+        shapes.append(dict(index=int(s.get("CutIndex")), vertices=verts, closed=closed))
+    return dict(cuts=cuts, shapes=shapes)
+
+
+def dxf_paths(path) -> list:
+    """``(layer, closed, vertices)`` of every DXF polyline, in file order."""
+    return [(e.dxf.layer, bool(e.closed), np.array([p[:2] for p in e.get_points("xy")]))
+            for e in ezdxf.readfile(path).modelspace()]
+
+
+# --------------------------------------------------------------------------- our own reader
+
+
+@pytest.mark.parametrize("mode", ["pierced", "score"])
+def test_the_project_is_the_dxf_contour_for_contour(files, mode):
+    paths, _ = files
+    got, want = read_lbrn2(paths[mode, "lbrn2"]), dxf_paths(paths[mode, "dxf"])
+    names = {int(i): c["name"] for i, c in got["cuts"].items()}
+    assert len(got["shapes"]) == len(want)
+    for shape, (layer, closed, verts) in zip(got["shapes"], want):
+        assert names[shape["index"]] == layer and shape["closed"] == closed
+        assert shape["vertices"] == pytest.approx(verts, abs=1e-4)  # 4 decimals
+        if closed:  # the first vertex not doubled (a score path may run round a loop back to its start)
+            assert not np.allclose(shape["vertices"][0], shape["vertices"][-1])
+
+
+def test_every_layer_carries_the_profiles_settings_and_runs_inner_before_outer(files):
+    paths, _ = files
+    for mode, keys in (("pierced", ["inner_cut", "outer_cut"]), ("score", ["score", "outer_cut"])):
+        cuts = read_lbrn2(paths[mode, "lbrn2"])["cuts"]
+        by_priority = sorted(cuts.values(), key=lambda c: int(c["priority"]))
+        for c, key in zip(by_priority, keys):
+            layer = getattr(PLY.layers, key)
+            assert (c["type"], c["name"], float(c["speed"]), float(c["maxPower"]), int(c["numPasses"])) == (
+                "Cut", layer.name, layer.speed_mm_s, layer.power_pct, layer.passes)
+        assert [c["name"] for c in by_priority] == [getattr(PLY.layers, k).name for k in keys]
+        assert len({int(i) for i in cuts}) == len(cuts)  # one LightBurn layer each
+
+
+def test_the_same_bytes_every_run(tmp_path):
+    for name in ("a", "b"):
+        tile().export(tmp_path / f"{name}.lbrn2")
+    assert (tmp_path / "a.lbrn2").read_bytes() == (tmp_path / "b.lbrn2").read_bytes()
+
+
+def test_cut_length_is_the_dxf_paths_read_back(files):
+    paths, reports = files
+    for mode in ("pierced", "score"):
+        want = sum(float(path_lengths([v], closed).sum()) for _, closed, v in dxf_paths(paths[mode, "dxf"]))
+        for fmt in ("dxf", "lbrn2"):
+            assert reports[mode, fmt].stats["job"]["cut_total_mm"] == pytest.approx(want, rel=1e-3)
+
+
+# --------------------------------------------------------------------------- MeerK40t
+
+
+@pytest.mark.parametrize("mode", ["pierced", "score"])
+def test_meerk40t_loads_the_project_with_its_speeds_and_powers(files, tmp_path, mode):
+    paths, _ = files
+    project = meerk40t(paths[mode, "lbrn2"], tmp_path, listing="operations")
+    want = dxf_paths(paths[mode, "dxf"])
+    assert project["added"] == len(want)  # one element per contour and score path
+    keys = ["inner_cut", "outer_cut"] if mode == "pierced" else ["score", "outer_cut"]
+    ops = re.findall(r"\d+: Cut ([0-9.]+)mm/s @([0-9.]+)", project["listing"])
+    assert [(float(s), float(p)) for s, p in ops] == [
+        (getattr(PLY.layers, k).speed_mm_s, getattr(PLY.layers, k).power_pct * 10) for k in keys]
+    # the G-code burns what the DXF's G-code burns, to the same extent
+    dxf_job = meerk40t(paths[mode, "dxf"], tmp_path / "dxf")
+
+    def extent(gcode):
+        pts = np.concatenate(burns(gcode))
+        return pts.max(axis=0) - pts.min(axis=0)
+
+    assert extent(project["gcode"]) == pytest.approx(extent(dxf_job["gcode"]), abs=0.03)
+
+
+def test_the_time_estimate_against_a_simulation_of_the_same_job(files, tmp_path):
+    """Our estimate against gcode-simulator (GRBL's planner, acceleration included) on MeerK40t's G-code.
+
+    MeerK40t's G-code has no pierce dwell and moves between paths at its own rate, so
+    the comparison uses a profile without pierce time and the simulator's rapid rate.
+    """
+    import importlib.util
+
+    require(importlib.util.find_spec("gcode_simulator"), "gcode-simulator", 'pip install gcode-simulator (the "test" extra)')
+    import gcode_simulator as sim
+
+    rapid = 200.0
+    profile = replace(PLY, pierce_s=0.0, travel_mm_s=rapid)
+    path = tmp_path / "t.lbrn2"
+    report = tile().export(path, profile=profile, fill_small_holes=True)
+    gcode = meerk40t(path, tmp_path)["gcode"].replace("\r", "\n")
+    settings = sim.GrblSettings(max_rate_x=rapid * 60, max_rate_y=rapid * 60, max_accel_x=1500, max_accel_y=1500)
+    seconds, _ = sim.GCodeSimulator(settings).estimate_time(gcode)
+    print(f"estimate {report.stats['job']['seconds']} s, simulated {seconds:.1f} s")
+    assert report.stats["job"]["seconds"] == pytest.approx(seconds, rel=0.25)
+
+
+# --------------------------------------------------------------------------- lbrnts
+
+
+def lbrnts(path) -> dict:
+    folder = os.environ.get("FABTILES_LBRNTS_DIR", "")
+    node = program("node", "apt-get install nodejs")
+    found = folder and (Path(folder) / "node_modules" / "lbrnts").exists()
+    require(found, "lbrnts", "npm install lbrnts svgson transformation-matrix in a folder, then "
+                             "FABTILES_LBRNTS_DIR=that folder")
+    return json.loads(run([node, HERE / "lbrnts_read.mjs", path], cwd=folder).stdout)
+
+
+def test_lbrnts_reads_every_cut_setting_and_shape(files):
+    paths, _ = files
+    for mode in ("pierced", "score"):
+        got = lbrnts(paths[mode, "lbrn2"])
+        ours = read_lbrn2(paths[mode, "lbrn2"])
+        assert got["formatVersion"] == "1"
+        assert [(c["index"], c["name"], c["type"], c["speed"], c["maxPower"], c["numPasses"]) for c in got["cuts"]] == [
+            (i, c["name"], c["type"], float(c["speed"]), float(c["maxPower"]), int(c["numPasses"]))
+            for i, c in ours["cuts"].items()]
+        assert [(s["cutIndex"], s["vertices"]) for s in got["shapes"]] == [
+            (s["index"], len(s["vertices"])) for s in ours["shapes"]]
+        # lbrnts 0.0.17 calls a path open only when its primitives are LightBurn's shorthand
+        # "LineOpen" (MeerK40t then burns nothing of it): the closed contours it reads right
+        assert all(s["closed"] for s, o in zip(got["shapes"], ours["shapes"]) if o["closed"])
+
+
+# --------------------------------------------------------------------------- settings
+
+
+@pytest.mark.parametrize("entry,msg", [
+    ("speed_mm_s = 0", r"layers.inner_cut.speed_mm_s must be > 0, got 0"),
+    ("power_pct = 0", r"layers.inner_cut.power_pct must be a percentage > 0 and <= 100, got 0"),
+    ("power_pct = 120", r"layers.inner_cut.power_pct must be a percentage > 0 and <= 100, got 120"),
+    ("passes = 0", r"layers.inner_cut.passes must be a whole number >= 1, got 0"),
+    ("passes = 1.5", r"layers.inner_cut.passes must be a whole number >= 1, got 1.5"),
+])
+def test_bad_layer_settings_name_the_profile_key_and_value(tmp_path, entry, msg):
+    p = tmp_path / "bad.toml"
+    p.write_text(f'kind = "laser"\n[layers]\ninner_cut = {{ name = "IN", color = 1, {entry} }}\n')
+    with pytest.raises(ProfileError, match=rf"{re.escape(str(p))}: {msg}"):
+        load_profile(p)
+
+
+@pytest.mark.parametrize("text,msg", [
+    ('[layers]\nengrave = { name = "F", color = 6, line_interval_mm = 0 }', r"layers.engrave.line_interval_mm must be > 0"),
+    ('[laser]\nkerf_x_mm = -0.1', r"laser.kerf_x_mm must be >= 0, got -0.1"),
+    ('[laser]\npierce_s = -1', r"laser.pierce_s must be >= 0, got -1"),
+    ('[laser]\ntravel_mm_s = 0', r"laser.travel_mm_s must be > 0, got 0"),
+])
+def test_bad_machine_settings(tmp_path, text, msg):
+    p = tmp_path / "bad.toml"
+    p.write_text(f'kind = "laser"\n{text}\n')
+    with pytest.raises(ProfileError, match=msg):
+        load_profile(p)
+
+
+def test_the_palette_index_of_each_layer():
+    assert lbrn2.palette_index("FF0000", set()) == 2 and lbrn2.palette_index("0000FF", set()) == 1
+    assert lbrn2.palette_index("FF00FF", set()) == 7
+    assert lbrn2.palette_index("FF0000", {2}) != 2
