@@ -27,7 +27,7 @@ try:  # Python 3.11+
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-LASER_MODES = ("pierced", "score", "engrave")
+LASER_MODES = ("pierced", "score", "engrave", "inlay")
 PRINT_STYLES = ("relief", "pierced", "deboss")
 DXF_VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
 
@@ -88,8 +88,15 @@ class LaserProfile:
     dxf_version: str = "R2000"
     pierce_s: float = 0.1
     travel_mm_s: float = 200.0
+    inlay_fit_mm: float = 0.15
+    min_piece_mm: float | None = None
     layers: LaserLayers = LaserLayers()
     kind = "laser"
+
+    @property
+    def min_piece_or_default_mm(self) -> float:
+        """The smallest hole an inlay kit makes a piece of: ``min_piece_mm``, else twice ``min_hole_mm``."""
+        return 2 * self.min_hole_mm if self.min_piece_mm is None else self.min_piece_mm
 
     @property
     def kerf_xy_mm(self) -> tuple[float, float]:
@@ -229,6 +236,10 @@ def _parse(data: dict, source: str, name: str):
             if not isinstance(value, bool):
                 raise ProfileError(f"{source}: {full} must be true or false, got {value!r}")
             values[key] = value
+        elif key == "inlay_fit_mm":
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not -0.5 <= value <= 0.5:
+                raise ProfileError(f"{source}: {full} must be a number of mm from -0.5 to 0.5, got {value!r}")
+            values[key] = float(value)
         elif key in ("mode", "style", "dxf_version"):
             choices = {"mode": LASER_MODES, "style": PRINT_STYLES, "dxf_version": DXF_VERSIONS}[key]
             if value not in choices:

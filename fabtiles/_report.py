@@ -92,4 +92,5 @@ class Report:
         n = len(self.findings)
         head = f"{self.path} ({self.format}): " + ("ok" if n == 0 else f"{n} warning{'s' if n > 1 else ''}")
         job = [f"  laser job: {self.stats['job']['line']}"] if "job" in self.stats else []
-        return "\n".join([head] + job + [f"  - {f.code}: {f.message}" for f in self.findings])
+        notes = [f"  {n}" for n in self.stats.get("notes", [])]
+        return "\n".join([head] + job + notes + [f"  - {f.code}: {f.message}" for f in self.findings])

@@ -60,7 +60,7 @@ class BuildResult:
 
     @property
     def paths(self) -> list[str]:
-        return [r.path for r in self.reports]
+        return [p for r in self.reports for p in r.stats.get("kit_files", [r.path])]
 
     @property
     def findings(self) -> int:
@@ -142,14 +142,24 @@ def layout_tile_sheet(tile, design, *, copies=None, gap_mm=None, limits: _limits
     return layout_sheet([(region, outline)], profile, centrelines=[centrelines], **options)
 
 
+def _inlay(design) -> bool:
+    """Whether the design's laser files are an inlay kit (its mode, or its laser profile's)."""
+    from ._profiles import load_profile
+    from .export.dispatch import DEFAULT_LASER_PROFILE
+
+    mode = design.output.laser_mode
+    return (mode or load_profile(design.output.laser_profile or DEFAULT_LASER_PROFILE, kind="laser").mode) == "inlay"
+
+
 def export_format(tile, fmt: str, path: Path, design) -> Report:
     """Write one format of the tile with the design's profiles and options; return its report."""
     from .export import dispatch
 
     out = design.output
     if dispatch.profile_kind(fmt) == "laser":
+        kit = dict(inlay_fit_mm=out.inlay_fit_mm, inlay_base=out.inlay_base) if _inlay(design) else {}
         return dispatch.export_tile(tile, path, profile=out.laser_profile, mode=out.laser_mode,
-                                    fill_small_holes=out.fill_small_holes)
+                                    fill_small_holes=out.fill_small_holes, **kit)
     extra = {}
     if fmt == "3mf":  # the inlay is a 3MF part; the layout picks the slicers the parts are for
         extra = {"inlay": True} if out.inlay else {}
@@ -243,7 +253,11 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
 
             picture = atomic_write(staging / f"{design.name}{PREVIEW_SUFFIX}", tile_svg(tile, title=design.name))
         for path, report in staged:
-            report.path = str(final(path))
+            if "kit_files" in report.stats:  # an inlay kit: the lattice and the pieces
+                report.stats["kit_files"] = [str(final(Path(p))) for p in report.stats["kit_files"]]
+                report.path = report.stats["kit_files"][0]
+            else:
+                report.path = str(final(path))
         picture = str(final(picture)) if picture is not None else None
     return BuildResult([report for _, report in staged], skipped, picture)
 
@@ -319,11 +333,25 @@ def _alive(pid: int) -> bool:
 
 
 def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | None = None) -> tuple[bytes, Report]:
-    """Build one format of ``design`` and return the file's bytes and report (the web app's downloads)."""
+    """Build one format of ``design`` and return the file's bytes and report (the web app's downloads).
+
+    An inlay kit's two files come as one zip archive (``report.stats["kit_files"]`` names them).
+    """
     with tempfile.TemporaryDirectory(prefix="fabtiles-") as tmp:
         result = build_design(design, tmp, (fmt,), file_name=file_name, limits=limits)
         report = result.reports[0]
-        data = Path(report.path).read_bytes()
+        if "kit_files" in report.stats:
+            import io
+            import zipfile
+
+            buf = io.BytesIO()
+            with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as zf:
+                for p in report.stats["kit_files"]:
+                    zf.writestr(zipfile.ZipInfo(Path(p).name, date_time=(1980, 1, 1, 0, 0, 0)),
+                                Path(p).read_bytes(), compress_type=zipfile.ZIP_DEFLATED)
+            data = buf.getvalue()
+        else:
+            data = Path(report.path).read_bytes()
     return data, report
 
 

@@ -82,7 +82,7 @@ HEIGHT_KEYS = ("base_mm", "relief_mm", "pierced_mm", "deboss_mm")
 """The ``[output]`` keys overriding the printer profile's heights (mm)."""
 
 OUTPUT_KEYS = ("formats", "laser_profile", "printer_profile", "laser_mode", "print_style", "name",
-               "fill_small_holes", "inlay", "threemf_layout") + HEIGHT_KEYS
+               "fill_small_holes", "inlay", "threemf_layout", "inlay_fit_mm", "inlay_base") + HEIGHT_KEYS
 """The valid keys of ``[output]`` (the exporters read the mode/style/profile keys)."""
 
 _KEYS = {"motif": MOTIF_KEYS, "packing": PACKING_KEYS, "tile": TILE_KEYS, "output": OUTPUT_KEYS}
@@ -147,6 +147,8 @@ class OutputSpec:
     fill_small_holes: bool = False
     inlay: bool = False
     threemf_layout: str = "volumes"
+    inlay_fit_mm: float | None = None
+    inlay_base: str = "pierced"
     base_mm: float | None = None
     relief_mm: float | None = None
     pierced_mm: float | None = None
@@ -534,8 +536,20 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
         fill_small_holes=_typed(table, "fill_small_holes", (bool,), source, where, "true or false", False),
         inlay=_typed(table, "inlay", (bool,), source, where, "true or false", False),
         threemf_layout=_choice(table, "threemf_layout", THREEMF_LAYOUTS, source, where, "volumes"),
+        inlay_fit_mm=_fit(table, source, where),
+        inlay_base=_choice(table, "inlay_base", ("pierced", "pocket"), source, where, "pierced"),
         **{key: _height(table, key, source, where) for key in HEIGHT_KEYS},
     )
+
+
+def _fit(table, source, where):
+    """``[output] inlay_fit_mm``: the kit's fit overriding the laser profile's (mm, -0.5 to 0.5), or None."""
+    text = "a number of mm from -0.5 to 0.5 (positive: a press fit, negative: play)"
+    value = _typed(table, "inlay_fit_mm", (int, float), source, where, text, None)
+    if value is not None and not -0.5 <= value <= 0.5:
+        raise DesignError(f"{source}: {where} inlay_fit_mm must be {text}, got {value!r}",
+                          param=_key(where, key="inlay_fit_mm"))
+    return None if value is None else float(value)
 
 
 def _height(table, key, source, where):

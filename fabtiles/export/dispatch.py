@@ -17,7 +17,7 @@ from .._profiles import load_profile
 FORMATS = ("dxf", "svg", "lbrn2", "stl", "3mf", "step")
 """Output formats, by file suffix."""
 
-LASER_OPTIONS = ("mode", "dxf_version", "kerf_mm", "fill_small_holes")
+LASER_OPTIONS = ("mode", "dxf_version", "kerf_mm", "fill_small_holes", "inlay_fit_mm", "inlay_base")
 PRINT_OPTIONS = ("style", "base_mm", "relief_mm", "pierced_mm", "deboss_mm")
 THREEMF_OPTIONS = PRINT_OPTIONS + ("inlay", "layout")
 """The 3MF writer's options: the print options, ``inlay`` (deboss grooves filled as a second part) and
@@ -82,7 +82,9 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
         Laser profile for dxf/svg (default ``laser-3mm-plywood``), printer profile for
         stl/3mf/step (default ``fdm-0.4mm``).
     **options
-        Laser: ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``.
+        Laser: ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``; with
+        ``mode="inlay"`` also ``inlay_fit_mm`` and ``inlay_base`` (the kit: two files,
+        see :mod:`fabtiles.export.kit`).
         Print: ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``;
         ``.3mf`` also ``inlay`` and ``layout``.
 
@@ -110,6 +112,16 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
     profile = load_profile(profile if profile is not None else default, kind=kind)
     writer = getattr(importlib.import_module(f"{__package__}.{module}"), func)
     if kind == "laser":
+        kit = options.pop("inlay_fit_mm", None), options.pop("inlay_base", None)
+        if (options.get("mode") or profile.mode) == "inlay":  # two files: the lattice and the pieces
+            from .kit import write_kit
+
+            options.pop("mode", None)
+            return write_kit(path, region=region, outline=outline, centrelines=centrelines, profile=profile,
+                             stroke=stroke, inlay_fit_mm=kit[0], inlay_base=kit[1] or "pierced", **options)
+        if kit != (None, None):
+            raise ParameterError("inlay_fit_mm and inlay_base are options of the inlay mode; pass mode='inlay'",
+                                 param="inlay_fit_mm" if kit[0] is not None else "inlay_base")
         return writer(path, region=region, outline=outline, centrelines=centrelines,
                       profile=profile, stroke=stroke, **options)
     if dips is not None and not dips.is_empty:

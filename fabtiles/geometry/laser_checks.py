@@ -332,7 +332,12 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
     """
     profile = load_profile(profile, kind="laser")
     _check_profile(profile)
-    mode = check_choice("mode", profile.mode if mode is None else mode, LASER_MODES)
+    mode = profile.mode if mode is None else mode
+    if mode == "inlay":
+        raise ParameterError("the inlay mode writes a kit of two files (lattice and pieces): export it with "
+                             "fabtiles.export.kit.write_kit, Tile.export(..., mode='inlay') or fabtiles build",
+                             param="mode")
+    mode = check_choice("mode", mode, LASER_MODES)
     dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
                                DXF_VERSIONS)
     if kerf_mm is None:  # the profile's kerf, along X and along Y

@@ -212,7 +212,10 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
 
         _, spec, _ = build(request)
         # The build pipeline, as `fabtiles build`: the design's profiles and options, the limits.
-        data, _ = build_bytes(spec, fmt, limits=limits, file_name=f"{spec.name}.{fmt}")
+        data, report = build_bytes(spec, fmt, limits=limits, file_name=f"{spec.name}.{fmt}")
+        if "kit_files" in report.stats:  # an inlay kit: the lattice and the pieces in one archive
+            return Response(data, media_type="application/zip",
+                            headers={"Content-Disposition": f'attachment; filename="{spec.name}-kit-{fmt}.zip"'})
         return Response(data, media_type=MEDIA_TYPES[fmt],
                         headers={"Content-Disposition": f'attachment; filename="{spec.name}.{fmt}"'})
 

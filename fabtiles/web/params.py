@@ -114,6 +114,8 @@ FIELDS = {
     "fill_small_holes": ("output", "fill_small_holes", _flag),
     "inlay": ("output", "inlay", _flag),
     "threemf_layout": ("output", "threemf_layout", _text),
+    "inlay_fit_mm": ("output", "inlay_fit_mm", _number),
+    "inlay_base": ("output", "inlay_base", _text),
     "base_mm": ("output", "base_mm", _number),
     "relief_mm": ("output", "relief_mm", _number),
     "pierced_mm": ("output", "pierced_mm", _number),
