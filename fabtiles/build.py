@@ -142,6 +142,20 @@ def layout_tile_sheet(tile, design, *, copies=None, gap_mm=None, limits: _limits
     return layout_sheet([(region, outline)], profile, centrelines=[centrelines], **options)
 
 
+def inlay_kit_of(tile, design):
+    """The inlay kit of a tile with the design's laser profile and fit (the pictures' kit; see :mod:`fabtiles.export.kit`)."""
+    from ._profiles import load_profile
+    from .export.dispatch import DEFAULT_LASER_PROFILE, laser_geometry
+    from .geometry.inlay import inlay_kit
+
+    out = design.output
+    profile = load_profile(out.laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
+    region, _ = laser_geometry(tile, profile=profile, mode="pierced", lines=False)
+    fit = profile.inlay_fit_mm if out.inlay_fit_mm is None else out.inlay_fit_mm
+    return inlay_kit(region, tile.outline_shape(), fit_mm=fit, min_piece_mm=profile.min_piece_or_default_mm,
+                     kerf_mm=max(profile.kerf_xy_mm), tolerance_mm=profile.tolerance_mm)
+
+
 def _inlay(design) -> bool:
     """Whether the design's laser files are an inlay kit (its mode, or its laser profile's)."""
     from ._profiles import load_profile

@@ -11,7 +11,7 @@ smallest features are under the limits on purpose.
 >>> out = pathlib.Path(tempfile.mkdtemp()) / "card.svg"
 >>> report = write_card(out, "laser-3mm-plywood")
 >>> report.stats["features"], report.stats["inner_contours"]
-(14, 16)
+(24, 31)
 """
 
 from __future__ import annotations

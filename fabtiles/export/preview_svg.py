@@ -155,3 +155,55 @@ def _escape(text: str) -> str:
 
 def _attr(text: str) -> str:
     return _escape(text).replace('"', "&quot;")
+
+
+KIT_COLOURS = ("#e9c58f", "#6b3e1f")
+"""The kit pictures' two materials: a light wood (the lattice) and a dark one (the pieces)."""
+
+
+def kit_svg(kit, outline, *, title: str = "inlay kit", colours=KIT_COLOURS) -> str:
+    """A picture of an inlay kit: the lattice, the pieces, the tile assembled, and the reverse tile.
+
+    ``kit`` is a :class:`~fabtiles.geometry.inlay.InlayKit`; the four panels are at
+    true size, a tenth of the tile's width apart. The assembled tile lays the pieces
+    over the lattice in the second colour; the reverse tile is the same two files cut
+    from the materials swapped.
+
+    >>> import shapely
+    >>> from fabtiles.geometry.inlay import inlay_kit
+    >>> plate = shapely.box(0, 0, 30, 30).difference(shapely.box(5, 5, 25, 25))
+    >>> svg = kit_svg(inlay_kit(plate, shapely.box(0, 0, 30, 30), fit_mm=0.1, min_piece_mm=2, kerf_mm=0.1),
+    ...               shapely.box(0, 0, 30, 30))
+    >>> svg.count('class="lattice"'), svg.count('class="pieces"')
+    (3, 3)
+    """
+    import shapely
+
+    xmin, ymin, xmax, ymax = outline.bounds
+    w, h = xmax - xmin, ymax - ymin
+    gap = w / 10
+    pieces = shapely.union_all(kit.pieces) if len(kit.pieces) else shapely.Polygon()
+    light, dark = colours
+
+    def panel(k, body):
+        dx = k * (w + gap) - xmin
+        return f'<g transform="translate({_num(dx)} 0)">{body}</g>'
+
+    def fill(region, cls, colour):
+        d = region_path_data(region, ymax + ymin)
+        return f'<path class="{cls}" d="{d}" fill="{colour}" fill-rule="evenodd" stroke="#333" stroke-width="0.1"/>'
+
+    rim = region_path_data(outline, ymax + ymin)
+    frame = f'<path d="{rim}" fill="none" stroke="#999" stroke-width="0.2" stroke-dasharray="1 1"/>'
+    total = 4 * w + 3 * gap
+    body = "".join([
+        panel(0, fill(kit.lattice, "lattice", light)),
+        panel(1, frame + fill(pieces, "pieces", dark)),
+        panel(2, fill(kit.lattice, "lattice", light) + fill(pieces, "pieces", dark)),
+        panel(3, fill(kit.lattice, "lattice", dark) + fill(pieces, "pieces", light)),  # the materials swapped
+    ])
+    return ('<?xml version="1.0" encoding="UTF-8"?>\n'
+            f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(total)}mm" height="{_num(h)}mm" '
+            f'viewBox="0 0 {_num(total)} {_num(h)}">\n<title>{_escape(title)}: lattice, pieces, assembled, reverse</title>\n'
+            f"{body}\n</svg>\n")
+

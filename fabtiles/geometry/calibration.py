@@ -1,6 +1,6 @@
-"""A laser test card: measure a profile's ``min_feature_mm``, ``min_hole_mm`` and ``kerf_mm``.
+"""A laser test card: measure a profile's ``min_feature_mm``, ``min_hole_mm``, ``kerf_mm`` and inlay fit.
 
-Three rows on a card of at most 120 x 120 mm, each feature labelled with its
+Four rows on a card of at most 120 x 120 mm, each feature labelled with its
 nominal size in single-stroke text (:mod:`fabtiles.geometry.stroke_font`, for the
 score layer):
 
@@ -18,6 +18,12 @@ score layer):
     right kerf both measure 20.00 mm and the part fits the hole without play. Measured
     along X, a part ``P_x`` and a hole ``H_x`` (calipers) give the real kerf along X,
     ``kerf_x_mm + (H_x - P_x) / 2``; along Y likewise ``kerf_y_mm + (H_y - P_y) / 2``.
+
+``I`` inlay fit
+    The same 6 mm square hole in every column and, under it, a piece cut free in a
+    window: the square grown by the fit written below it, stepping around the
+    profile's ``inlay_fit_mm`` (-0.1 to +0.1 mm). The piece that presses into a hole
+    snugly, without dishing the surface, is the material's ``inlay_fit_mm``.
 
 The card is geometry like a tile's: the material region (the part is a second
 piece inside the window), the outline, and the labels as open polylines.
@@ -54,13 +60,27 @@ SLOT_MM = (8.0, 12.0)
 """Width and height of the slots either side of a bridge."""
 CLEARANCE_MM = 3.0
 """Space around the kerf gauge's part inside its window."""
+INLAY_MM = 6.0
+"""Side of the inlay gauge's square hole; its pieces are that square grown by each fit."""
+INLAY_STEPS_MM = (-0.1, -0.05, 0.0, 0.05, 0.1)
+"""The inlay gauge's fits, added to the profile's ``inlay_fit_mm`` (and kept within -0.5 to 0.5 mm)."""
+
+
+def inlay_fits(profile) -> tuple[float, ...]:
+    """The fits the card's inlay gauge steps through, around the profile's ``inlay_fit_mm``.
+
+    >>> inlay_fits(load_profile("laser-3mm-plywood"))
+    (0.05, 0.1, 0.15, 0.2, 0.25)
+    """
+    fits = (round(min(0.5, max(-0.5, profile.inlay_fit_mm + d)), 3) for d in INLAY_STEPS_MM)
+    return tuple(dict.fromkeys(fits))
 
 
 @dataclass(frozen=True)
 class Feature:
     """One measured feature of the card: its kind, nominal size (mm), label and centre."""
 
-    kind: str  # "bridge", "hole", "kerf_part", "kerf_hole"
+    kind: str  # "bridge", "hole", "kerf_part", "kerf_hole", "inlay_piece", "inlay_hole"
     size_mm: float
     label: str
     at: tuple[float, float]
@@ -168,6 +188,27 @@ def calibration_card(profile) -> Card:
     letter("B", sy + sh / 2)
     right = max(right, x)
     top = sy + sh
+
+    # I: inlay fits around inlay_fit_mm: the same square hole in every column, under it its piece
+    # (the square grown by the fit written below) cut free in a window
+    c2 = 2.0
+    window = INLAY_MM + 2 * c2
+    pitch = max(window + 3.0, text_width("-0.05", height_mm=LABEL_MM) + 3.0)
+    y = top + 3.0
+    wy = y + LABEL_MM + 1.5
+    hy = wy + window + 2.5
+    for k, fit in enumerate(inlay_fits(profile)):
+        cx = x0 + pitch / 2 + k * pitch
+        cut.append(box(cx - window / 2, wy, cx + window / 2, wy + window))
+        piece = box(cx - INLAY_MM / 2, wy + c2, cx + INLAY_MM / 2, wy + c2 + INLAY_MM)
+        parts.append(piece.buffer(fit, join_style="mitre") if fit else piece)
+        cut.append(box(cx - INLAY_MM / 2, hy, cx + INLAY_MM / 2, hy + INLAY_MM))
+        labels.extend(text_paths(_label(fit), height_mm=LABEL_MM, x=cx, y=y, centre=True))
+        features += [Feature("inlay_piece", fit, _label(fit), (cx, wy + window / 2)),
+                     Feature("inlay_hole", INLAY_MM, "", (cx, hy + INLAY_MM / 2))]  # not labelled
+    letter("I", (wy + hy + INLAY_MM) / 2)
+    right = max(right, x0 + len(inlay_fits(profile)) * pitch)
+    top = hy + INLAY_MM
 
     width, height = right + MARGIN_MM, top + MARGIN_MM
     if width > MAX_CARD_MM or height > MAX_CARD_MM:

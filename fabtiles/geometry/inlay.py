@@ -23,7 +23,7 @@ narrowest.
 >>> kit = inlay_kit(plate, shapely.box(0, 0, 30, 30), fit_mm=0.1, min_piece_mm=2.4, kerf_mm=0.15)
 >>> len(kit.pieces), kit.filled_holes, kit.kinds
 (2, 0, 2)
->>> round(shapely.area(kit.pieces[0]), 2)  # the 7 mm hole grown by 0.1 mm each way
+>>> round(float(shapely.area(kit.pieces[0])), 2)  # the 7 mm hole grown by 0.1 mm each way
 51.84
 """
 

@@ -188,6 +188,16 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
             findings = check_design(spec, tile).findings()
         return Response(tile_svg(tile, findings=findings), media_type="image/svg+xml")
 
+    @app.get("/api/kit.svg")
+    def kit_picture(request: Request):
+        """The design's inlay kit: the lattice, the pieces and the tile assembled, in two materials."""
+        from ..build import inlay_kit_of
+        from ..export.preview_svg import kit_svg
+
+        _, spec, tile = build(request)
+        return Response(kit_svg(inlay_kit_of(tile, spec), tile.outline_shape(), title=spec.name),
+                        media_type="image/svg+xml")
+
     @app.get("/api/checks")
     def checks(request: Request):
         _, spec, tile = build(request)

@@ -11,7 +11,7 @@ from fabtiles import ParameterError
 from fabtiles._profiles import load_profile
 from fabtiles.cli.main import cli
 from fabtiles.export.card import write_card
-from fabtiles.geometry.calibration import MAX_CARD_MM, calibration_card
+from fabtiles.geometry.calibration import INLAY_MM, MAX_CARD_MM, calibration_card, inlay_fits
 from fabtiles.geometry.stroke_font import text_paths
 
 PROFILES = ["laser-3mm-plywood", "laser-3mm-acrylic"]
@@ -34,6 +34,9 @@ def measure(inner, kerf, card):
         elif f.kind == "bridge":  # two slot contours either side, kerf/2 away from the bridge each
             left, right = at(x - 2, y), at(x + 2, y)
             assert right[0] - left[2] - kerf == pytest.approx(f.size_mm, abs=1e-6), f
+        elif f.kind == "inlay_piece":  # the 6 mm square grown by the fit, its contour kerf/2 outside it
+            b = at(x, y)
+            assert (b[2] - b[0] - kerf, b[3] - b[1] - kerf) == pytest.approx((INLAY_MM + 2 * f.size_mm,) * 2, abs=1e-6)
         elif f.kind == "kerf_part":  # the part's contour is kerf/2 outside it
             b = min((b for b in boxes if b[0] < x < b[2] and b[1] < y < b[3]), key=lambda b: b[2] - b[0])
             assert b[2] - b[0] - kerf == pytest.approx(f.size_mm, abs=1e-6)
@@ -47,6 +50,8 @@ def labels_present(score, card):
     drawn = {tuple(np.round(p, 3).ravel()) for p in score}
     assert len(drawn) == len(card.labels)
     for f in card.features:
+        if not f.label:  # the inlay gauge's holes: the fit is written under the piece
+            continue
         height = 3.0 if f.kind == "kerf_part" else 2.0
         want = text_paths(f.label, height_mm=height, x=f.at[0], y=0, centre=True)
         # the label's baseline: any drawn path shaped like its first stroke, at the same x
@@ -81,6 +86,8 @@ def test_card_dxf_reads_back_with_measured_features(tmp_path, name):
     assert w == pytest.approx(card.width_mm + profile.kerf_mm) and w <= MAX_CARD_MM + 1 and h <= MAX_CARD_MM + 1
     kinds = [f.kind for f in card.features]
     assert kinds.count("bridge") == 6 and kinds.count("hole") == 6
+    fits = [f.size_mm for f in card.features if f.kind == "inlay_piece"]
+    assert fits == list(inlay_fits(profile)) and profile.inlay_fit_mm in fits and min(fits) < profile.inlay_fit_mm
     bridges = [f.size_mm for f in card.features if f.kind == "bridge"]
     holes = [f.size_mm for f in card.features if f.kind == "hole"]
     assert min(bridges) < profile.min_feature_mm < max(bridges) and profile.min_feature_mm in bridges

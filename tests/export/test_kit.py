@@ -254,3 +254,29 @@ def test_the_web_app_downloads_a_kit_as_one_archive():
     assert names == ["fabtiles-tile-lattice.dxf", "fabtiles-tile-pieces.dxf"]
     bad = client.get("/api/export/dxf?preset=table3-3&width=60&radius=10&frame=3&laser_mode=inlay&inlay_fit_mm=0.9")
     assert bad.status_code == 422 and bad.json()["field"] == "inlay_fit_mm"
+
+
+def test_the_kit_picture_of_the_sample_is_up_to_date(tmp_path):
+    import importlib.util
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    spec = importlib.util.spec_from_file_location("render_kit", root / "samples" / "render_kit.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    out = module.render(root / "samples" / "table3-3.toml", tmp_path / "kit.svg")
+    assert out.read_bytes() == (root / "samples" / "pictures" / "kit-table3-3.svg").read_bytes(), (
+        "run python samples/render_kit.py")
+    assert out.read_text().count('class="pieces"') == 3
+
+
+def test_the_web_app_draws_the_kit():
+    from fastapi.testclient import TestClient
+
+    from fabtiles.web.app import create_app
+
+    client = TestClient(create_app())
+    r = client.get("/api/kit.svg?preset=table3-3&width=60&radius=10&frame=3&inlay_fit_mm=0.1")
+    assert r.status_code == 200 and r.headers["content-type"].startswith("image/svg+xml")
+    assert r.text.count('class="lattice"') == 3 and r.text.count('class="pieces"') == 3
+    assert client.get("/api/kit.svg?preset=table3-3&width=60&inlay_fit_mm=2").status_code == 422

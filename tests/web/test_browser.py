@@ -200,3 +200,17 @@ def test_gap_motif_controls_reach_the_url_and_the_design(page, server):
     page.goto(page.url)
     page.wait_for_function("() => document.querySelector('#preview').dataset.version")
     assert page.is_checked("#gap_rosette") and page.input_value("#gap_rotation") == "30"
+
+
+def test_the_inlay_kit_mode_shows_the_kit(page, server):
+    page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3")
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    assert page.is_hidden("#kit-box")
+    v = _preview_version(page)
+    page.select_option("#laser_mode", "inlay")
+    _wait_new_preview(page, v)
+    page.wait_for_function("() => document.querySelector('#kit').complete && document.querySelector('#kit').naturalWidth > 0")
+    assert page.is_visible("#kit-box") and "laser_mode=inlay" in page.url
+    with page.expect_download() as info:
+        page.click("#downloads a[data-format=dxf]")
+    assert info.value.suggested_filename == "fabtiles-tile-kit-dxf.zip"

@@ -36,13 +36,14 @@ const state = {
   outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
   laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
   threemf_layout: "volumes",  // 3MF parts for PrusaSlicer, Bambu Studio, OrcaSlicer; "components" for Cura
+  inlay_base: "pierced", inlay_fit_mm: "",  // laser_mode=inlay: the kit's lattice and fit ("": the profile's)
   miter_limit: 4, seamless: false, fill_small_holes: true, name: "",
   base_mm: "", relief_mm: "", pierced_mm: "", deboss_mm: "",  // "": the printer profile's
   interlace: false, interlace_gap_mm: "", interlace_cut: false,  // woven strands; "": a third of the stroke
   inlay: false,  // deboss: the 3MF gets a second part filling the grooves
 };
 // Options sent only when set (text boxes and checkboxes of the design's [output] and [packing]).
-const TEXT_KEYS = ["name", "base_mm", "relief_mm", "pierced_mm", "deboss_mm", "interlace_gap_mm"];
+const TEXT_KEYS = ["name", "base_mm", "relief_mm", "pierced_mm", "deboss_mm", "interlace_gap_mm", "inlay_fit_mm"];
 const FLAG_KEYS = ["seamless", "fill_small_holes", "interlace", "interlace_cut", "inlay", "gap_rosette"];
 let showFindings = true, chosen = null;  // the findings overlay; the finding chosen in the list
 let presets = {}, tilings = {};
@@ -137,6 +138,7 @@ function query() {
   if (state.interlace_cut) q.set("interlace_cut", "true");
   if (state.inlay) q.set("inlay", "true");
   if (state.threemf_layout !== "volumes") q.set("threemf_layout", state.threemf_layout);
+  if (state.laser_mode === "inlay" && state.inlay_base !== "pierced") q.set("inlay_base", state.inlay_base);
   q.set("fill_small_holes", state.fill_small_holes ? "true" : "false");
   for (const k of TEXT_KEYS) if (String(state[k]).trim() !== "") q.set(k, String(state[k]).trim());
   return q;
@@ -172,7 +174,7 @@ function syncControls() {
     $(key).value = state[key]; $(`${key}-range`).value = state[key];
   }
   for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style",
-                     "threemf_layout"])
+                     "threemf_layout", "inlay_base"])
     $(key).value = state[key];
   $("preset").value = state.preset;
   $("tiling").value = state.tiling;
@@ -221,6 +223,9 @@ async function refresh() {
   showMarks(svg);
   $("preview").dataset.version = String(mine);
   showError(null, "");
+  const kit = state.laser_mode === "inlay";
+  $("kit-box").hidden = !kit;
+  if (kit) $("kit").src = `/api/kit.svg?${q}`;
   const checks = await fetch(`/api/checks?${q}`);
   if (mine !== seq || !checks.ok) return;
   const data = await checks.json();
@@ -330,7 +335,7 @@ async function init() {
   $("show_findings").checked = showFindings;
   $("show_findings").addEventListener("change", () => { showFindings = $("show_findings").checked; update(); });
   for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style",
-                     "threemf_layout"])
+                     "threemf_layout", "inlay_base"])
     $(key).addEventListener("change", () => { state[key] = $(key).value; update(); });
   for (const key of ["packing", "tiling"])
     $(key).addEventListener("change", () => { state[key] = $(key).value; tilingControls(); if (key === "tiling") update(); });
