@@ -20,32 +20,30 @@ def test_import_contracts_are_kept():
     assert "Contracts: 4 kept, 0 broken." in proc.stdout
 
 
-def test_the_layer_contract_catches_an_import_going_up(tmp_path):
-    """The contract is live: a geometry module importing export breaks it."""
+def lint_with(tmp_path, module: str, text: str) -> subprocess.CompletedProcess:
+    """``lint-imports`` on a copy of the package with one module added (``geometry/upward.py``)."""
     import shutil
 
     copy = tmp_path / "fabtiles"
     shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__", "static", "*.toml"))
-    (copy / "geometry" / "upward.py").write_text("from ..export import dispatch\n")
+    (copy / module).write_text(text)
     lint = Path(sys.executable).with_name("lint-imports")
     proc = subprocess.run([str(lint), str(ROOT / ".importlinter")], cwd=tmp_path, capture_output=True, text=True,
                           timeout=300, env={"PYTHONPATH": str(tmp_path), "PATH": ""})
     assert proc.returncode == 1, proc.stdout + proc.stderr
+    return proc
+
+
+def test_the_layer_contract_catches_an_import_going_up(tmp_path):
+    """The contract is live: a geometry module importing export breaks it."""
+    proc = lint_with(tmp_path, "geometry/upward.py", "from ..export import dispatch\n")
     assert "fabtiles.geometry is not allowed to import fabtiles.export" in proc.stdout
     assert "fabtiles.geometry.upward -> fabtiles.export.dispatch" in proc.stdout
 
 
 def test_the_solid_layer_writes_no_file(tmp_path):
     """solid builds bodies; a module of it reaching for a writer or the atomic file writer breaks a contract."""
-    import shutil
-
-    copy = tmp_path / "fabtiles"
-    shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__", "static", "*.toml"))
-    (copy / "solid" / "writes.py").write_text("from .._io import atomic_write\nfrom ..export import stl\n")
-    lint = Path(sys.executable).with_name("lint-imports")
-    proc = subprocess.run([str(lint), str(ROOT / ".importlinter")], cwd=tmp_path, capture_output=True, text=True,
-                          timeout=300, env={"PYTHONPATH": str(tmp_path), "PATH": ""})
-    assert proc.returncode == 1, proc.stdout + proc.stderr
+    proc = lint_with(tmp_path, "solid/writes.py", "from .._io import atomic_write\nfrom ..export import stl\n")
     assert "fabtiles.solid is not allowed to import fabtiles.export" in proc.stdout
     assert "fabtiles.solid.writes -> fabtiles._io" in proc.stdout
 
