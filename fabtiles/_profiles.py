@@ -90,6 +90,7 @@ class LaserProfile:
     travel_mm_s: float = 200.0
     inlay_fit_mm: float = 0.15
     min_piece_mm: float | None = None
+    price_per_m2: float | None = None
     layers: LaserLayers = LaserLayers()
     kind = "laser"
 
@@ -121,6 +122,9 @@ class PrinterProfile:
     style: str = "relief"
     bed_mm: tuple[float, float] = (256.0, 256.0)
     strict: bool = False
+    filament_density_g_cm3: float = 1.24
+    filament_diameter_mm: float = 1.75
+    price_per_kg: float | None = None
     kind = "printer"
 
 
@@ -247,7 +251,8 @@ def _parse(data: dict, source: str, name: str):
             values[key] = value
         else:
             values[key] = _positive(source, full, value, allow_zero=key in ("kerf_mm", "kerf_x_mm", "kerf_y_mm",
-                                                                              "pierce_s"))
+                                                                              "pierce_s", "price_per_kg",
+                                                                              "price_per_m2"))
     if kind == "laser":
         values["layers"] = _parse_layers(data.get("layers", {}), source)
     return cls(name=name, description=description, **values)

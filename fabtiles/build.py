@@ -382,7 +382,8 @@ class Outcome:
     preview: str | None = None
     """The tile's picture, when asked for."""
     job: dict = field(default_factory=dict)
-    """The laser job of its first laser file (``Report.stats["job"]``), empty without one."""
+    """The laser job of its first laser file (``Report.stats["job"]``), its sheet, and the filament of
+    its first print file (``filament_mass_g``, ...): empty without them."""
 
 
 def outcome_of(key: str, result: BuildResult) -> Outcome:
@@ -393,7 +394,11 @@ def outcome_of(key: str, result: BuildResult) -> Outcome:
         message += f", {result.findings} fabrication warning{'s' if result.findings != 1 else ''}"
     lines = [f"{Path(r.path).name}: {f.code}: {f.message}" for r in result.reports for f in r.findings]
     job = next((r.stats["job"] for r in result.reports if "job" in r.stats), {})
-    return Outcome(key, True, message, result.paths, lines, result.preview, job)
+    sheet = next((r.stats["sheet"] for r in result.reports if "sheet" in r.stats), {})
+    material = next((r.stats["material"] for r in result.reports if "material" in r.stats), {})
+    return Outcome(key, True, message, result.paths, lines, result.preview,
+                   {**job, **{f"sheet_{k}" if k == "cost" else k: v for k, v in sheet.items()},
+                    **{f"filament_{k}": material.get(k) for k in ("mass_g", "length_m", "cost") if material}})
 
 
 def run_job(key: str, make_design, outdir, formats=None, *, preview: bool = False) -> Outcome:

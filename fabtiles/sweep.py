@@ -215,8 +215,10 @@ def explain(outcome, variant: Variant) -> str:
 
 
 JOB_COLUMNS = {"cut_length_mm": "cut_total_mm", "pierces": "pierces", "engrave_area_mm2": "engrave_area_mm2",
-               "travel_mm": "travel_mm", "laser_time_s": "seconds"}
-"""``index.csv``'s laser job columns (empty for a variant without a laser file) and the report keys they hold."""
+               "travel_mm": "travel_mm", "laser_time_s": "seconds", "sheet_m2": "sheet_m2", "sheet_cost": "sheet_cost",
+               "filament_g": "filament_mass_g", "filament_m": "filament_length_m", "filament_cost": "filament_cost"}
+"""``index.csv``'s laser job, sheet and filament columns (empty where a variant has no such file, or no price)
+and the keys they hold."""
 
 
 def write_index(outdir, varies, variants_, outcomes) -> tuple[Path, Path]:

@@ -75,6 +75,8 @@ def command(design_file, output, overrides):
     click.echo(f"{design_file}: {laser}, printer profile {out.printer_profile or DEFAULT_PRINTER_PROFILE}")
     if result.job is not None:
         click.echo(f"  laser job: {result.job.line()}")
+    if result.filament is not None:
+        click.echo(f"  print material: {result.filament.line()} (print time: ask the slicer)")
     findings = result.findings()
     for where, f in findings:
         click.echo("  " + finding_line(where, f))

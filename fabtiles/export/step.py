@@ -20,6 +20,7 @@ import numpy as np
 
 from .._errors import FabricationError
 from .._io import atomic_write
+from ..geometry.material import filament
 from ..geometry.stack import QUANTUM
 from ..solid.brep import build_brep
 from ..solid.parts import prepare_print
@@ -265,7 +266,7 @@ def write_step(path, *, region, outline, profile, style=None, stroke=None, base_
     from pathlib import Path
 
     heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    _, stack, report = prepare_print(region, outline, profile, style, heights, stroke, path=path, fmt="step")
+    profile, stack, report = prepare_print(region, outline, profile, style, heights, stroke, path=path, fmt="step")
     brep, volume, parts = build_brep(region=region, outline=outline, stack=stack, dips=dips)
     text = step_text([brep], name=name or Path(path).stem)
 
@@ -274,6 +275,7 @@ def write_step(path, *, region, outline, profile, style=None, stroke=None, base_
         check_solids(read_step_solids(tmp), volume=volume, parts=parts)
 
     atomic_write(path, write)
+    report.stats.update(material=filament({"solid": volume}, profile).as_stats())
     report.stats.update(style=stack.style, solids=parts, volume_mm3=volume, grid_mm=QUANTUM,
                         faces=len(brep.faces), edges=len(brep.edges))
     return report

@@ -12,6 +12,7 @@ import numpy as np
 from .._errors import FabricationError
 from .._io import atomic_write
 from .._report import Report
+from ..geometry.material import filament
 from ..solid.mesh_check import cross_rows
 from ..solid.parts import fused_body, prepare_print, stack_stats
 
@@ -32,7 +33,7 @@ def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_m
     name, mverts, mfaces, volume = fused_body(region, outline, stack, dips=dips)
     atomic_write(path, stl_bytes(mverts, mfaces))
     report.stats.update(stack_stats(stack), bodies=[name], triangles=len(mfaces),
-                        volume_mm3=volume,
+                        volume_mm3=volume, material=filament({name: volume}, profile).as_stats(),
                         bounds_mm=[mverts.min(axis=0).tolist(), mverts.max(axis=0).tolist()])
     return report
 

@@ -88,6 +88,7 @@ import numpy as np
 
 from .._errors import FabricationError, ParameterError
 from .._io import atomic_write
+from ..geometry.material import filament
 from ..solid.mesh_check import check_triangles
 from ..solid.parts import check_inlay, checked_parts, prepare_print, stack_stats
 
@@ -493,6 +494,7 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
         layout=layout,
         triangles=int(sum(len(p.faces) for p in checked.values())),
         volume_mm3=float(sum(p.mesh_volume_mm3 for p in checked.values())),
+        material=filament({n: p.mesh_volume_mm3 for n, p in checked.items()}, profile).as_stats(),
         bounds_mm=[allv.min(axis=0).tolist(), allv.max(axis=0).tolist()],
     )
     return report

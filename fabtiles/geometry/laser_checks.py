@@ -43,6 +43,7 @@ from .._report import Report
 from .._validate import check_choice, check_float
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate
+from .material import sheet
 
 
 
@@ -397,4 +398,5 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
     job.estimate = estimate(profile, inner=job.inner, outer=job.outer, score=job.score, engrave=job.engrave,
                             engrave_area_mm2=job.engrave_area_mm2)
     report.stats["job"] = job.estimate.as_stats()
+    report.stats["sheet"] = sheet(outline, profile)
     return job, report

@@ -84,7 +84,9 @@ def fabrication_checks(tile, spec) -> dict:
     summary = (f"{len(tile.segments()):,} segments, material {region.area:,.0f} mm², {holes:,} holes{filled}; "
                f"{len(findings)} finding{'s' if len(findings) != 1 else ''}")
     job = result.job.as_stats() if result.job is not None else None
-    return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes, "job": job}
+    material = result.filament.as_stats() if result.filament is not None else None
+    return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes, "job": job,
+            "material": material}
 
 
 def field_of_param(param: str | None) -> str | None:

@@ -248,6 +248,8 @@ async function refresh() {
   if (again) choose(again, true); else chosen = null;
   $("status").textContent = data.summary || "";
   $("job").textContent = data.job ? `Laser job (estimate from the profile): ${data.job.line}` : "";
+  $("material").textContent = data.material
+    ? `Print material: ${data.material.line} (the print time is the slicer's to tell)` : "";
 }
 
 // The marks of the preview's findings, copied into #marks (an SVG laid over the
