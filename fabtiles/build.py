@@ -381,9 +381,9 @@ class Outcome:
     """One line per fabrication finding, ``"<file name>: <code>: <message>"``."""
     preview: str | None = None
     """The tile's picture, when asked for."""
-    job: dict = field(default_factory=dict)
-    """The laser job of its first laser file (``Report.stats["job"]``), its sheet, and the filament of
-    its first print file (``filament_mass_g``, ...): empty without them."""
+    figures: dict = field(default_factory=dict)
+    """The laser job of its first laser file (``Report.stats["job"]``), its sheet (``sheet_m2``,
+    ``sheet_cost``) and the filament of its first print file (``filament_mass_g``, ...): empty without them."""
 
 
 def outcome_of(key: str, result: BuildResult) -> Outcome:
@@ -393,12 +393,22 @@ def outcome_of(key: str, result: BuildResult) -> Outcome:
     if result.findings:
         message += f", {result.findings} fabrication warning{'s' if result.findings != 1 else ''}"
     lines = [f"{Path(r.path).name}: {f.code}: {f.message}" for r in result.reports for f in r.findings]
-    job = next((r.stats["job"] for r in result.reports if "job" in r.stats), {})
-    sheet = next((r.stats["sheet"] for r in result.reports if "sheet" in r.stats), {})
-    material = next((r.stats["material"] for r in result.reports if "material" in r.stats), {})
-    return Outcome(key, True, message, result.paths, lines, result.preview,
-                   {**job, **{f"sheet_{k}" if k == "cost" else k: v for k, v in sheet.items()},
-                    **{f"filament_{k}": material.get(k) for k in ("mass_g", "length_m", "cost") if material}})
+    return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports))
+
+
+def _figures(reports) -> dict:
+    """The laser job, sheet and filament of a build's first laser and first print file, flat (sweep columns)."""
+    def first(key):
+        return next((r.stats[key] for r in reports if key in r.stats), {})
+
+    job, sheet, material = first("job"), first("sheet"), first("material")
+    figures = dict(job)
+    if sheet:
+        figures.update(sheet_m2=sheet["sheet_m2"], sheet_cost=sheet["cost"])
+    if material:
+        figures.update(filament_mass_g=material["mass_g"], filament_length_m=material["length_m"],
+                       filament_cost=material["cost"])
+    return figures
 
 
 def run_job(key: str, make_design, outdir, formats=None, *, preview: bool = False) -> Outcome:

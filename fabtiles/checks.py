@@ -97,7 +97,7 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         check_engrave(cut_region, laser, laser_report)
     print_report = check_print(region, outline, printer, stroke=tile.stroke, style=print_style,
                                report=Report(path="", format="print"), **(heights or {}))
-    estimate = _job(tile, laser, laser_mode, fill_small_holes) if job and "bed_size" not in {
+    estimate = _job(tile, cut_region, laser, laser_mode, fill_small_holes) if job and "bed_size" not in {
         f.code for f in laser_report.findings} else None
     return CheckResult(laser_report, print_report, filled, estimate, _filament(region, outline, printer, print_style,
                                                                               heights) if job else None)
@@ -112,11 +112,17 @@ def _filament(region, outline, printer, style, heights):
     return filament({"print": stack_volume(region.area, outline.area, stack)}, printer)
 
 
-def _job(tile, laser, mode, fill_small_holes):
-    """The laser job of the tile's laser files (their contours, kerf and order)."""
+def _job(tile, cut_region, laser, mode, fill_small_holes):
+    """The laser job of the tile's laser files (their contours, kerf and order).
+
+    ``cut_region`` is the laser files' material, already made by :func:`check_tile`; only
+    the score mode needs the score lines as well.
+    """
     from .geometry.laser_checks import prepare_laser
 
-    region, lines = laser_geometry(tile, profile=laser, mode=mode)
+    region, lines = cut_region, None
+    if (mode or laser.mode) == "score":
+        region, lines = laser_geometry(tile, profile=laser, mode=mode)
     job, _ = prepare_laser("", "check", region=region, outline=tile.outline_shape(), centrelines=lines,
                            profile=replace(laser, strict=False), mode=mode,
                            fill_small_holes=fill_small_holes)

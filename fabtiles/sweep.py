@@ -232,11 +232,11 @@ def write_index(outdir, varies, variants_, outcomes) -> tuple[Path, Path]:
     for v in variants_:
         o = by_name[v.name]
         files = [Path(p).name for p in o.paths]
-        job = getattr(o, "job", None) or {}
+        figures = o.figures if o.ok else {}
         rows.append(dict(variant=v.name, status="ok" if o.ok else "failed",
                          **{k: _text(val) for k, val in v.values},
                          files=" ".join(files), findings=len(o.findings),
-                         **{c: job.get(k, "") for c, k in JOB_COLUMNS.items()},
+                         **{c: "" if figures.get(k) is None else figures[k] for c, k in JOB_COLUMNS.items()},
                          details=" | ".join(o.findings) if o.ok else explain(o, v)))
     buf = io.StringIO()
     writer = csv.DictWriter(buf, fieldnames=["variant", "status", *keys, "files", "findings", *JOB_COLUMNS,

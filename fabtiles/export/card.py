@@ -57,16 +57,10 @@ def write_card(path, profile, *, dxf_version=None) -> Report:
     fmt = Path(path).suffix.lower().lstrip(".")
     if fmt not in CARD_FORMATS:
         raise ParameterError(f"the card must be a .dxf or .svg file, got {str(path)!r}")
+    from .laser_files import laser_bytes
+
     job, card = card_job(profile, dxf_version=dxf_version)
-    if fmt == "dxf":
-        from .dxf import dxf_text
-
-        text, encoding = dxf_text(job)
-        atomic_write(path, text.encode(encoding, errors="dxfreplace"))
-    else:
-        from .laser_svg import svg_text
-
-        atomic_write(path, svg_text(job))
+    atomic_write(path, laser_bytes(job, fmt))
     report = Report(path=str(path), format=fmt)
     report.stats.update(profile=job.profile.name, kerf_mm=job.kerf_mm, size_mm=[card.width_mm, card.height_mm],
                         features=len(card.features), inner_contours=len(job.inner),

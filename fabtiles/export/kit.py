@@ -29,11 +29,12 @@ from ..geometry.contours import laser_contours
 from ..geometry.inlay import check_fit, inlay_kit
 from ..geometry.job_time import estimate
 from ..geometry.laser_checks import LaserJob, prepare_laser
+from .laser_files import LASER_FILE_FORMATS, laser_bytes
 
 INLAY_BASES = ("pierced", "pocket")
 """How the lattice holds its pieces: holes cut through, or pockets engraved into a board."""
 
-KIT_FORMATS = ("dxf", "svg", "lbrn2")
+KIT_FORMATS = LASER_FILE_FORMATS
 
 
 def kit_paths(path) -> tuple[Path, Path]:
@@ -44,21 +45,6 @@ def kit_paths(path) -> tuple[Path, Path]:
     """
     path = Path(path)
     return path.with_name(f"{path.stem}-lattice{path.suffix}"), path.with_name(f"{path.stem}-pieces{path.suffix}")
-
-
-def _text(job: LaserJob, fmt: str) -> bytes:
-    if fmt == "dxf":
-        from .dxf import dxf_text
-
-        text, encoding = dxf_text(job)
-        return text.encode(encoding, errors="dxfreplace")
-    if fmt == "svg":
-        from .laser_svg import svg_text
-
-        return svg_text(job).encode("utf-8")
-    from .lbrn2 import lbrn2_text
-
-    return lbrn2_text(job).encode("utf-8")
 
 
 def write_kit(path, *, region, outline, profile, inlay_fit_mm=None, inlay_base: str = "pierced", kerf_mm=None,
@@ -92,7 +78,7 @@ def write_kit(path, *, region, outline, profile, inlay_fit_mm=None, inlay_base: 
         job, report = prepare_laser(lattice_path, fmt, region=shapely.union_all(kit.holes), outline=outline,
                                     profile=profile, mode="engrave", dxf_version=dxf_version, kerf_mm=kerf_mm)
     pieces_job = _pieces_job(kit, job, profile, kx, ky)
-    texts = (_text(job, fmt), _text(pieces_job, fmt))  # both made before either is written
+    texts = (laser_bytes(job, fmt), laser_bytes(pieces_job, fmt))  # both made before either is written
     atomic_write(lattice_path, texts[0])
     atomic_write(pieces_path, texts[1])
     report.stats.update(kit.stats(), inlay_fit_mm=fit, inlay_base=base, pieces_job=pieces_job.estimate.as_stats(),

@@ -275,7 +275,6 @@ def write_step(path, *, region, outline, profile, style=None, stroke=None, base_
         check_solids(read_step_solids(tmp), volume=volume, parts=parts)
 
     atomic_write(path, write)
-    report.stats.update(material=filament({"solid": volume}, profile).as_stats())
-    report.stats.update(style=stack.style, solids=parts, volume_mm3=volume, grid_mm=QUANTUM,
+    report.stats.update(material=filament({"solid": volume}, profile).as_stats(), style=stack.style, solids=parts, volume_mm3=volume, grid_mm=QUANTUM,
                         faces=len(brep.faces), edges=len(brep.edges))
     return report

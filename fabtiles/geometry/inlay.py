@@ -131,14 +131,13 @@ def shape_key(poly, decimals: int = 3) -> tuple:
     every start and in both directions; the smallest reading is the key. Holes are
     counted by number and area.
 
+    >>> import shapely.affinity
     >>> sq = shapely.box(0, 0, 2, 2)
     >>> shape_key(sq) == shape_key(shapely.affinity.rotate(shapely.affinity.translate(sq, 5, 1), 30))
     True
     >>> shape_key(sq) == shape_key(shapely.box(0, 0, 2, 3))
     False
     """
-    import shapely.affinity  # noqa: F401  (doctest)
-
     ring = shapely.get_coordinates(shapely.orient_polygons(poly).exterior)[:-1]
     readings = []
     for pts in (ring, ring[::-1] * [1, -1]):  # the mirror image, still counter-clockwise

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import re
 
+import pytest
 from click.testing import CliRunner
 
 from fabtiles.cli.main import cli
@@ -57,7 +58,7 @@ def test_a_sheet_is_the_sum_of_its_tiles(tmp_path):
     one = JOB.findall(run("build", design, "-o", tmp_path / "one").output)[0]
     four = JOB.findall(run("build", design, "-o", tmp_path / "four", "--copies", 4).output)[0]
     assert int(four[1].replace(",", "")) == 4 * int(one[1].replace(",", ""))
-    assert float(four[0]) == __import__("pytest").approx(4 * float(one[0]), rel=0.05)
+    assert float(four[0]) == pytest.approx(4 * float(one[0]), rel=0.05)
 
 
 def test_sweep_index_has_the_job_columns(tmp_path):
