@@ -346,6 +346,55 @@ def _alive(pid: int) -> bool:
     return True
 
 
+VIEW_SEGMENTS = 8_000
+"""Most centre-line segments the 3D view shows whole: twice the 150 mm default tile's 4,032
+(30,544 triangles, 530 KB of GLB, 0.23 s). A bigger tile's view is its centre window holding
+about this many segments, a lighter preview that says so: a 300 mm square shown whole was
+290,788 triangles, 5.1 MB and 2.9 s (benchmarks/bench_web.py), more than a view should carry."""
+
+
+def print_view(design, *, limits: _limits.Limits, max_segments: int = VIEW_SEGMENTS) -> tuple[bytes, Report]:
+    """The design's print as GLB, one mesh per part (the web app's 3D view), and its report.
+
+    The tile passes the same work limits as an STL or 3MF export, before any geometry is
+    built, and the parts are the 3MF's, after the same checks. A tile of more than
+    ``max_segments`` segments shows its centre: ``report.stats["window_mm"]`` is then
+    that window's ``[x0, y0, x1, y1]`` in file coordinates, and ``stats["view"]`` says so.
+    """
+    import numpy as np
+    import shapely
+
+    from .export.dispatch import DEFAULT_PRINTER_PROFILE, print_geometry
+    from .export.glb import print_glb
+
+    tile = prepare_tile(design, limits=limits)
+    check_format_limits(tile, ("3mf",), limits)
+    out = design.output
+    profile = out.printer_profile or DEFAULT_PRINTER_PROFILE
+    region, dips = print_geometry(tile, profile=profile, style=out.print_style)
+    outline = tile.outline_shape()
+    count = _limits.estimate_segments(tile.pattern, tile.width_mm, tile.height_mm)
+    window = None
+    if count > max_segments:
+        x0, y0, x1, y1 = outline.bounds
+        half = (np.sqrt(max_segments / count) / 2) * np.array([x1 - x0, y1 - y0])
+        cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+        window = [float(cx - half[0]), float(cy - half[1]), float(cx + half[0]), float(cy + half[1])]
+        box = shapely.box(*window)
+        region, outline = region.intersection(box), outline.intersection(box)
+        dips = dips.intersection(box) if dips is not None else None
+    data, report = print_glb(region=region, outline=outline, profile=profile, style=out.print_style,
+                             stroke=tile.stroke, inlay=bool(out.inlay), dips=dips, **out.heights())
+    size = f"{tile.width_mm:g} x {tile.height_mm:g} mm"
+    if window is not None:
+        report.stats["window_mm"] = window
+        report.stats["view"] = (f"the centre {window[2] - window[0]:.0f} x {window[3] - window[1]:.0f} mm of the "
+                                f"{size} tile, a lighter preview (the files hold all of it)")
+    else:
+        report.stats["view"] = f"the whole {size} tile"
+    return data, report
+
+
 def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | None = None) -> tuple[bytes, Report]:
     """Build one format of ``design`` and return the file's bytes and report (the web app's downloads).
 

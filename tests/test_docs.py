@@ -57,7 +57,7 @@ def commands(group, prefix=()):
 
 def test_every_cli_command_and_option_is_in_cli_md():
     text = text_of("cli.md")
-    sections = dict(re.findall(r"^## `fabtiles ([a-z ]+)`\n(.*?)(?=^## |\Z)", text, re.M | re.S))
+    sections = dict(re.findall(r"^## `fabtiles ([a-z -]+)`\n(.*?)(?=^## |\Z)", text, re.M | re.S))
     missing = []
     for path, cmd in commands(cli):
         name = " ".join(path)

@@ -113,6 +113,8 @@ def _register_optional_commands():
                 raise
             continue
         cli.add_command(mod.command)
+        for extra in getattr(mod, "EXTRA_COMMANDS", ()):
+            cli.add_command(getattr(mod, extra))
 
 
 _register_optional_commands()

@@ -167,6 +167,22 @@ def laser_geometry(tile, *, profile=None, mode=None, lines: bool = True):
     return region, centrelines
 
 
+def print_geometry(tile, *, profile=None, style=None):
+    """What a print of ``tile`` is made of: ``(region, dips)``.
+
+    ``dips`` is where an interlaced relief's under strands dip (None when the tile is
+    not interlaced or the style, the given one or the printer profile's, is not a relief).
+    The print files and the web app's 3D view take their geometry from here.
+    """
+    dips = None
+    if getattr(tile, "interlace", False) and (style or load_profile(
+            profile if profile is not None else DEFAULT_PRINTER_PROFILE, kind="printer").style) == "relief":
+        from ..geometry import interlace
+
+        dips = interlace.tile_dips(tile)
+    return tile.region(), dips
+
+
 def export_tile(tile, path, *, profile=None, **options):
     """Write a :class:`~fabtiles.Tile` in the format of ``path``; see :func:`export_geometry`.
 
@@ -176,16 +192,11 @@ def export_tile(tile, path, *, profile=None, **options):
     stroke / 2)`` wide), and dips its relief's under strands.
     """
     fmt = format_of(path)
-    kind = profile_kind(fmt)
-    region, centrelines, dips = tile.region(), None, None
-    woven = getattr(tile, "interlace", False)
-    if kind == "laser":
+    centrelines, dips = None, None
+    if profile_kind(fmt) == "laser":
         region, centrelines = laser_geometry(tile, profile=profile, mode=options.get("mode"))
-    elif woven and (options.get("style") or load_profile(
-            profile if profile is not None else DEFAULT_PRINTER_PROFILE, kind="printer").style) == "relief":
-        from ..geometry import interlace
-
-        dips = interlace.tile_dips(tile)
+    else:
+        region, dips = print_geometry(tile, profile=profile, style=options.get("style"))
     return export_geometry(
         path,
         region=region,

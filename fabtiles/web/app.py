@@ -120,6 +120,11 @@ def _error(exc: Exception) -> JSONResponse:
     return JSONResponse({"error": str(exc), "field": field}, status_code=422)
 
 
+def _media(name: str) -> str | None:
+    return ("text/javascript" if name.endswith(".js") else "text/css" if name.endswith(".css")
+            else "text/html" if name.endswith(".html") else "text/plain" if name.isupper() else None)
+
+
 def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
     """Build the FastAPI application (see ``fabtiles serve``)."""
     limits = limits or _limits.WEB_LIMITS
@@ -146,13 +151,39 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
     def index():
         return FileResponse(STATIC / "index.html", media_type="text/html")
 
+    @app.get("/favicon.ico", include_in_schema=False)
+    def favicon():
+        return Response(status_code=204)
+
+    @app.get("/gallery", include_in_schema=False)
+    def gallery_page():
+        return FileResponse(STATIC / "gallery.html", media_type="text/html")
+
     @app.get("/static/{name}", include_in_schema=False)
     def static(name: str):
         path = STATIC / name
-        if name not in {p.name for p in STATIC.iterdir()}:
+        if name not in {p.name for p in STATIC.iterdir() if p.is_file()}:
             return JSONResponse({"error": f"no static file {name!r}", "field": None}, status_code=404)
-        media = "text/javascript" if name.endswith(".js") else "text/css" if name.endswith(".css") else None
-        return FileResponse(path, media_type=media)
+        return FileResponse(path, media_type=_media(name))
+
+    @app.get("/static/vendor/three/{name:path}", include_in_schema=False)
+    def viewer_file(name: str):
+        """three.js, as ``fabtiles install-viewer`` put it in the package (only its listed modules)."""
+        from .viewer_files import MODULES, VENDOR
+
+        if name not in MODULES or not (VENDOR / name).is_file():
+            return JSONResponse({"error": f"no viewer file {name!r}: run `fabtiles install-viewer`",
+                                 "field": None}, status_code=404)
+        return FileResponse(VENDOR / name, media_type=_media(name),
+                            headers={"Cache-Control": "public, max-age=86400"})
+
+    @app.get("/api/viewer")
+    def viewer():
+        """Whether the 3D view's library is installed, and its version."""
+        from .viewer_files import VERSION, installed
+
+        return {"installed": installed(), "three": VERSION,
+                "install": "fabtiles install-viewer"}
 
     @app.get("/api/presets")
     def presets():
@@ -199,6 +230,40 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
         _, spec, tile = build(request)
         return Response(kit_svg(inlay_kit_of(tile, spec), tile.outline_shape(), title=spec.name),
                         media_type="image/svg+xml")
+
+    @app.get("/api/view.glb")
+    def view_glb(request: Request):
+        """The print in 3D: the 3MF's checked parts, one glTF mesh each in its colour.
+
+        The headers say what is shown (``X-Fabtiles-View``: the whole tile, or a big
+        tile's centre) and the parts (``X-Fabtiles-Parts``, JSON).
+        """
+        import json
+
+        from ..build import print_view
+
+        _, spec, _ = build(request)
+        data, report = print_view(spec, limits=limits)
+        parts = {n: {"triangles": p["triangles"], "volume_mm3": round(p["volume_mm3"], 3)}
+                 for n, p in report.stats["parts"].items()}
+        return Response(data, media_type="model/gltf-binary",
+                        headers={"X-Fabtiles-View": report.stats["view"], "X-Fabtiles-Parts": json.dumps(parts),
+                                 "Cache-Control": "no-store"})
+
+    @app.get("/api/gallery")
+    def gallery_list():
+        """The gallery: the paper's presets and the tilings' samples, each with its editor query."""
+        from .gallery import entries
+
+        return [{"key": e.key, "title": e.title, "note": e.note, "query": e.query} for e in entries()]
+
+    @app.get("/api/gallery/{key}.svg")
+    def gallery_thumbnail(key: str):
+        """One gallery entry drawn by the preview code (cached: drawn once per process)."""
+        from .gallery import thumbnail
+
+        return Response(thumbnail(key, limits=limits), media_type="image/svg+xml",
+                        headers={"Cache-Control": "public, max-age=3600"})
 
     @app.get("/api/checks")
     def checks(request: Request):

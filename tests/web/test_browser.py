@@ -1,71 +1,18 @@
 """The page in headless Chromium (Debian's package), driven by Playwright.
 
-Needs /usr/bin/chromium and the playwright package; `.ci/run` installs both and sets
-FABTILES_REQUIRE_BROWSER=1, so there a missing browser fails instead of skipping.
+Needs /usr/bin/chromium and the playwright package (see browser_helpers.py).
 """
 
-import os
-import shutil
-import socket
-import threading
-import time
-
 import pytest
-
-CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
-REQUIRED = os.environ.get("FABTILES_REQUIRE_BROWSER") == "1"
-
-
-def _need(ok, why):
-    if not ok:
-        if REQUIRED:
-            pytest.fail(f"browser test required but {why}")
-        pytest.skip(why)
-
+from browser_helpers import NO_GPU_ARGS, chromium_page, server  # noqa: F401 - server is a fixture
 
 pytestmark = pytest.mark.browser
 
 
 @pytest.fixture(scope="module")
-def server():
-    import uvicorn
-
-    from fabtiles.web.app import create_app
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    config = uvicorn.Config(create_app(), host="127.0.0.1", port=port, log_level="warning")
-    srv = uvicorn.Server(config)
-    thread = threading.Thread(target=srv.run, daemon=True)
-    thread.start()
-    for _ in range(200):
-        if srv.started:
-            break
-        time.sleep(0.05)
-    yield f"http://127.0.0.1:{port}"
-    srv.should_exit = True
-    thread.join(timeout=10)
-
-
-@pytest.fixture(scope="module")
 def page(server):
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        _need(False, "playwright is not installed")
-    _need(os.path.exists(CHROMIUM), f"{CHROMIUM} is not installed")
-    with sync_playwright() as pw:
-        browser = pw.chromium.launch(
-            executable_path=CHROMIUM,
-            args=["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                  "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-        )
-        context = browser.new_context(accept_downloads=True, viewport={"width": 1280, "height": 900})
-        pg = context.new_page()
-        pg.set_default_timeout(30_000)
+    with chromium_page(NO_GPU_ARGS) as pg:
         yield pg
-        browser.close()
 
 
 def _preview_version(page):

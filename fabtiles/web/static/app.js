@@ -223,6 +223,8 @@ async function refresh() {
   showMarks(svg);
   $("preview").dataset.version = String(mine);
   showError(null, "");
+  window.fabtilesDesign = String(q);  // the 3D view (view3d.js) follows every good design
+  document.dispatchEvent(new CustomEvent("fabtiles:design", { detail: String(q) }));
   const kit = state.laser_mode === "inlay";
   $("kit-box").hidden = !kit;
   if (kit) $("kit").src = `/api/kit.svg?${q}`;
@@ -250,6 +252,7 @@ async function refresh() {
   $("job").textContent = data.job ? `Laser job (estimate from the profile): ${data.job.line}` : "";
   $("material").textContent = data.material
     ? `Print material: ${data.material.line} (the print time is the slicer's to tell)` : "";
+  $("job").dataset.version = String(mine);
 }
 
 // The marks of the preview's findings, copied into #marks (an SVG laid over the

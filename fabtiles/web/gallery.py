@@ -1,0 +1,95 @@
+"""The gallery: places to start from, each a shareable editor query and a thumbnail.
+
+The paper's seven presets on the default hexagonal packing, and the eleven
+Archimedean tilings as their samples in ``samples/tilings/`` have them (a test
+builds each entry and its sample and compares the tiles, so the two cannot
+drift). The thumbnails are drawn by the preview code and kept for the life of
+the process: 18 of them take about 4 s once, then nothing.
+
+>>> [e.key for e in entries()][:3]
+['table1-part1', 'table1-part2', 'table2-left']
+>>> next(e for e in entries() if e.key == "4.8.8").query["motif_8"]
+'table1-part1'
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+from .._errors import ParameterError
+from ..pattern.presets import PRESET_NOTES, PRESETS
+from ..pattern.tilings import NAMES, TILINGS
+
+_GAP_STAR = {"n": 6, "radii": (0.5, 1)}  # a six-point star of radii 0.5 and 1, the tilings' small motif
+
+# tiling -> edge (mm), preset per polygon kind, the motif above (for the kinds with none), gap motif,
+# stroke (mm): the values of samples/tilings/<tiling>.toml
+_TILINGS = {
+    "3.12.12": (9, {12: "table3-1"}, _GAP_STAR, None, 1),
+    "3.3.3.3.3.3": (18, {}, _GAP_STAR, None, 1),
+    "3.3.3.3.6": (12, {6: "table3-3"}, _GAP_STAR, 3, 1),
+    "3.3.3.4.4": (16, {4: "table1-part1"}, _GAP_STAR, 4, 1),
+    "3.3.4.3.4": (20, {4: "table1-part1"}, _GAP_STAR, None, 1),
+    "3.4.6.4": (11, {6: "table3-3", 4: "table1-part1"}, _GAP_STAR, None, 1.2),
+    "3.6.3.6": (18, {6: "table3-3"}, _GAP_STAR, 3, 1.2),
+    "4.4.4.4": (18, {4: "table1-part1"}, None, 8, 1),
+    "4.6.12": (8, {12: "table3-1", 6: "table3-3", 4: "table1-part1"}, None, None, 1),
+    "4.8.8": (14, {8: "table1-part1"}, {"n": 8, "radii": (0.55, 1)}, None, 1),
+    "6.6.6": (14.4, {6: "table3-3"}, None, None, 1),
+}
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One place to start: ``query`` opens it in the editor (``/?`` + the query)."""
+
+    key: str
+    title: str
+    note: str
+    query: dict
+
+
+def _tile_query(stroke=1) -> dict:
+    return {"outline": "square", "width": "150", "frame": "5", "stroke": f"{stroke:g}", "fill_small_holes": "true"}
+
+
+@functools.cache
+def entries() -> tuple[Entry, ...]:
+    """The gallery's entries: the presets, then the tilings."""
+    out = [Entry(name, f"Preset {name}", PRESET_NOTES[name] or "the paper's parameters, as printed",
+                 {"preset": name, "packing": "hex", "radius": "15", **_tile_query()}) for name in PRESETS]
+    for tiling, (edge, motifs, main, gap_n, stroke) in _TILINGS.items():
+        query = {"packing": "archimedean", "tiling": tiling, "edge": f"{edge:g}"}
+        if main is None:
+            query["preset"] = "table3-3"  # not shown: every polygon kind has its own preset
+        else:
+            query.update(n=str(main["n"]), radii=",".join(f"{r:g}" for r in main["radii"]), alpha="0", spr="0",
+                         special="none", rotation="0")
+        query.update({f"motif_{p}": name for p, name in motifs.items()})
+        if gap_n is not None:
+            query.update(gap_n=str(gap_n), gap_radii="0.5,1")
+        out.append(Entry(tiling, f"Tiling {tiling}", f"the {NAMES[tiling]} tiling", {**query, **_tile_query(stroke)}))
+    assert set(_TILINGS) == set(TILINGS), "a tiling is missing from the gallery"
+    return tuple(out)
+
+
+def entry(key: str) -> Entry:
+    """The entry named ``key``; an unknown key lists the valid ones."""
+    for e in entries():
+        if e.key == key:
+            return e
+    raise ParameterError(f"{key!r} is not a gallery entry, must be one of: {', '.join(e.key for e in entries())}",
+                         param="key")
+
+
+@functools.lru_cache(maxsize=64)
+def thumbnail(key: str, *, limits) -> str:
+    """The entry's tile drawn as SVG by the preview code (kept once drawn)."""
+    from ..export.preview_svg import tile_svg
+    from .app import tile_from_dict
+    from .params import design_from_query
+
+    e = entry(key)
+    _, tile = tile_from_dict(design_from_query(e.query), limits=limits)
+    return tile_svg(tile, title=e.title)

@@ -1,0 +1,98 @@
+// The 3D view: the print's parts from /api/view.glb (the 3MF's parts, each in its colour),
+// turned with the mouse. three.js comes from the package (`fabtiles install-viewer`), never a CDN.
+// app.js sends "fabtiles:design" (the query) whenever the 2D preview of a good design is drawn;
+// a bad parameter sends nothing, so the last good model stays.
+const box = document.getElementById("view3d");
+const canvas = document.getElementById("view3d-canvas");
+const caption = document.getElementById("view3d-caption");
+
+async function start() {
+  let THREE, GLTFLoader, OrbitControls;
+  try {
+    THREE = await import("three");
+    ({ GLTFLoader } = await import("/static/vendor/three/examples/jsm/loaders/GLTFLoader.js"));
+    ({ OrbitControls } = await import("/static/vendor/three/examples/jsm/controls/OrbitControls.js"));
+  } catch (err) {
+    box.classList.add("missing");
+    caption.textContent = "The 3D view needs three.js in the package: run  fabtiles install-viewer  once, then reload.";
+    return;
+  }
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xeef1f5);
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 1.6));
+  const sun = new THREE.DirectionalLight(0xffffff, 1.8);
+  scene.add(sun);
+  const camera = new THREE.PerspectiveCamera(35, 1, 0.1, 20000);
+  camera.up.set(0, 0, 1);  // the print's Z is up (mm), as in the slicer
+  const controls = new OrbitControls(camera, canvas);
+  controls.enableDamping = false;
+  let model = null, fitted = null, seq = 0;
+
+  const render = () => {
+    sun.position.copy(camera.position).add(new THREE.Vector3(0, 0, camera.position.length()));
+    renderer.render(scene, camera);
+  };
+  const resize = () => {
+    const w = canvas.clientWidth || 480, h = canvas.clientHeight || 360;
+    renderer.setSize(w, h, false);
+    camera.aspect = w / h;
+    camera.updateProjectionMatrix();
+    render();
+  };
+  new ResizeObserver(resize).observe(canvas);
+  controls.addEventListener("change", render);
+
+  // The camera of a new tile size: from the front and above, the whole tile in view.
+  const fit = () => {
+    const bounds = new THREE.Box3().setFromObject(model), size = bounds.getSize(new THREE.Vector3());
+    const centre = bounds.getCenter(new THREE.Vector3()), span = Math.max(size.x, size.y);
+    controls.target.copy(centre);
+    camera.position.set(centre.x, centre.y - 1.25 * span, centre.z + 1.1 * span);
+    camera.near = span / 100; camera.far = span * 20;
+    camera.updateProjectionMatrix();
+    controls.update();
+    fitted = `${size.x.toFixed(1)}x${size.y.toFixed(1)}`;
+  };
+  document.getElementById("view3d-reset").addEventListener("click", () => { if (model) { fit(); render(); } });
+
+  const show = async (q) => {
+    const mine = ++seq;
+    box.classList.add("loading");
+    const res = await fetch(`/api/view.glb?${q}`);
+    if (mine !== seq) return;
+    box.classList.remove("loading");
+    if (!res.ok) {  // the design's error is the 2D preview's to show; the last good model stays
+      const body = await res.json().catch(() => ({ error: res.statusText }));
+      caption.textContent = `3D view not updated: ${body.error}`;
+      return;
+    }
+    const data = await res.arrayBuffer(), view = res.headers.get("X-Fabtiles-View") || "";
+    const parts = JSON.parse(res.headers.get("X-Fabtiles-Parts") || "{}");
+    new GLTFLoader().parse(data, "", (gltf) => {
+      if (mine !== seq) return;
+      if (model) {
+        scene.remove(model);
+        model.traverse((o) => { if (o.isMesh) { o.geometry.dispose(); o.material.dispose(); } });
+      }
+      model = gltf.scene;
+      model.traverse((o) => {
+        if (o.isMesh) { o.material.flatShading = true; o.material.needsUpdate = true; }
+      });
+      scene.add(model);
+      const size = new THREE.Box3().setFromObject(model).getSize(new THREE.Vector3());
+      if (fitted !== `${size.x.toFixed(1)}x${size.y.toFixed(1)}`) fit();  // keep the user's turn otherwise
+      render();
+      const names = Object.entries(parts).map(([n, p]) => `${n} (${p.triangles.toLocaleString("en")} triangles)`);
+      caption.textContent = `Showing ${view}: ${names.join(", ")}. Drag to turn, wheel to zoom, right-drag to move.`;
+      box.dataset.parts = Object.keys(parts).join(",");
+      canvas.dataset.version = String(mine);
+    }, (err) => { caption.textContent = `3D view: the model could not be read (${err.message || err})`; });
+  };
+  document.addEventListener("fabtiles:design", (e) => show(e.detail));
+  if (window.fabtilesDesign) show(window.fabtilesDesign);  // drawn before this module loaded
+  resize();
+}
+
+start();

@@ -1,0 +1,72 @@
+"""The browser tests' helpers: the app on a loopback port (fixture ``server``), headless Chromium pages.
+
+Chromium is Debian's package, driven by Playwright; `.ci/run` installs both and sets
+FABTILES_REQUIRE_BROWSER=1, so there a missing browser fails instead of skipping.
+"""
+
+import contextlib
+import os
+import shutil
+import socket
+import threading
+import time
+
+import pytest
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+REQUIRED = os.environ.get("FABTILES_REQUIRE_BROWSER") == "1"
+
+# WebGL in a headless browser with no GPU: ANGLE on SwiftShader, Chromium's CPU renderer.
+WEBGL_ARGS = ["--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
+NO_GPU_ARGS = ["--disable-gpu"]
+
+
+def need(ok, why):
+    """Skip when ``ok`` is false, or fail where the browser is required (CI)."""
+    if not ok:
+        if REQUIRED:
+            pytest.fail(f"browser test required but {why}")
+        pytest.skip(why)
+
+
+@pytest.fixture(scope="module")
+def server():
+    import uvicorn
+
+    from fabtiles.web.app import create_app
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    config = uvicorn.Config(create_app(), host="127.0.0.1", port=port, log_level="warning")
+    srv = uvicorn.Server(config)
+    thread = threading.Thread(target=srv.run, daemon=True)
+    thread.start()
+    for _ in range(200):
+        if srv.started:
+            break
+        time.sleep(0.05)
+    yield f"http://127.0.0.1:{port}"
+    srv.should_exit = True
+    thread.join(timeout=10)
+
+
+@contextlib.contextmanager
+def chromium_page(extra_args):
+    """A Playwright page in headless Chromium (1280 x 900, downloads accepted)."""
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        need(False, "playwright is not installed")
+    need(os.path.exists(CHROMIUM), f"{CHROMIUM} is not installed")
+    with sync_playwright() as pw:
+        browser = pw.chromium.launch(
+            executable_path=CHROMIUM,
+            args=["--no-sandbox", *extra_args, "--disable-quic", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+        )
+        context = browser.new_context(accept_downloads=True, viewport={"width": 1280, "height": 900})
+        pg = context.new_page()
+        pg.set_default_timeout(30_000)
+        yield pg
+        browser.close()

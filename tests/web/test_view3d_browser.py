@@ -1,0 +1,112 @@
+"""The 3D view and the gallery in headless Chromium, WebGL through SwiftShader (no GPU)."""
+
+import io
+
+import numpy as np
+import pytest
+from browser_helpers import WEBGL_ARGS, chromium_page, need, server  # noqa: F401 - server is a fixture
+
+pytestmark = pytest.mark.browser
+
+SMALL = "preset=table3-3&width=60&radius=10&frame=3&stroke=1.5"
+
+
+@pytest.fixture(scope="module")
+def page(server):
+    from fabtiles.web.viewer_files import installed
+
+    need(installed(), "three.js is not installed in the package: run `fabtiles install-viewer`")
+    with chromium_page(WEBGL_ARGS) as pg:
+        yield pg
+
+
+def _version(page):
+    return page.get_attribute("#view3d-canvas", "data-version")
+
+
+def _wait_model(page, old=None):
+    page.wait_for_function(
+        "old => { const v = document.querySelector('#view3d-canvas').dataset.version; return v && v !== old; }",
+        arg=old, timeout=60_000)
+
+
+def _pixels(page) -> np.ndarray:
+    from PIL import Image
+
+    png = page.locator("#view3d-canvas").screenshot()
+    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)
+
+
+def _colour_counts(rgb: np.ndarray) -> dict:
+    """Pixels of the background, the light base (warm: red over blue) and the dark blue pattern."""
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    background = (np.abs(rgb - [0xEE, 0xF1, 0xF5]).sum(axis=-1) < 12)
+    base = ~background & (r > 150) & (r > b + 12)
+    pattern = ~background & (b > r + 40) & (r < 120)
+    return {"background": int(background.sum()), "base": int(base.sum()), "pattern": int(pattern.sum())}
+
+
+def test_the_relief_turns_in_3d(page, server):
+    page.goto(f"{server}/?{SMALL}")
+    _wait_model(page)
+    rgb = _pixels(page)
+    counts = _colour_counts(rgb)
+    total = rgb.shape[0] * rgb.shape[1]
+    assert counts["background"] < 0.9 * total  # the model is drawn
+    assert counts["base"] > 0.02 * total and counts["pattern"] > 0.1 * total, counts  # both parts (8 %, 42 %)
+    assert page.get_attribute("#view3d", "data-parts") == "base,pattern"
+    assert "Showing the whole 60 x 60 mm tile" in page.text_content("#view3d-caption")
+
+    # Orbit: a drag turns the model, reset brings the first view back.
+    box = page.locator("#view3d-canvas").bounding_box()
+    cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(cx, cy)
+    page.mouse.down()
+    page.mouse.move(cx + 120, cy + 40, steps=6)
+    page.mouse.up()
+    turned = _pixels(page)
+    assert np.abs(turned - rgb).sum(axis=-1).astype(bool).mean() > 0.05
+    page.click("#view3d-reset")
+    back = _pixels(page)
+    assert np.abs(back - rgb).sum(axis=-1).astype(bool).mean() < 0.01
+
+    # A parameter change redraws it.
+    v = _version(page)
+    page.fill("#stroke", "3")
+    page.dispatch_event("#stroke", "change")
+    _wait_model(page, v)
+    assert np.abs(_pixels(page) - rgb).sum(axis=-1).astype(bool).mean() > 0.02
+
+    # A bad parameter shows the field's error and keeps the last good model.
+    good, v = _pixels(page), _version(page)
+    page.fill("#stroke", "0")
+    page.dispatch_event("#stroke", "change")
+    page.wait_for_function("() => document.querySelector('.err[data-for=stroke]').textContent.length > 0")
+    page.wait_for_timeout(800)
+    assert "stroke" in page.text_content(".err[data-for=stroke]")
+    assert _version(page) == v
+    assert np.abs(_pixels(page) - good).sum(axis=-1).astype(bool).mean() < 0.01
+    page.fill("#stroke", "1.5")
+    page.dispatch_event("#stroke", "change")
+    _wait_model(page, v)
+
+
+def test_a_deboss_inlay_shows_both_parts(page, server):
+    page.goto(f"{server}/?{SMALL}&print_style=deboss&inlay=true")
+    _wait_model(page)
+    assert page.get_attribute("#view3d", "data-parts") == "plate,inlay"
+
+
+def test_the_gallery_opens_a_tiling_in_the_editor(page, server):
+    page.goto(f"{server}/gallery")
+    page.wait_for_function("() => document.querySelectorAll('#gallery a').length === 18")
+    page.wait_for_function("() => { const i = document.querySelector('#gallery a[data-key=\"4.8.8\"] img');"
+                           " return i.complete && i.naturalWidth > 0; }", timeout=60_000)
+    page.click('#gallery a[data-key="4.8.8"]')
+    page.wait_for_url("**/?*tiling=4.8.8*")
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    assert page.input_value("#packing") == "archimedean" and page.input_value("#tiling") == "4.8.8"
+    assert page.input_value("#motif_8") == "table1-part1" and page.input_value("#n") == "8"
+    assert "✗" not in page.text_content("#status")
+    _wait_model(page)
+    assert "packing=archimedean" in page.url and "edge=14" in page.url  # the editor's URL stays shareable
