@@ -115,6 +115,8 @@ def _opening(polys: np.ndarray, r: float, q: int) -> np.ndarray:
     fits = np.minimum(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1]) > 2 * r
     if fits.any():
         eroded = shapely.buffer(polys[fits], -r, quad_segs=q)
+        # (the eroded arcs' chords let the bit reach past a corner of material by at most the chord
+        # error, tolerance_mm / 2: clipping that off would leave notches of a few micrometres)
         out[fits] = shapely.buffer(eroded, r, quad_segs=q)
     return out
 
@@ -166,6 +168,8 @@ def open_region(region, *, radius_mm: float, tolerance_mm: float = 0.01) -> Open
         # a closing only adds material; the union keeps convex corners exactly where they were
         made_shells[concave] = shapely.union(shells[concave], closed)
     pieces, which = shapely.get_parts(opened, return_index=True)
+    real_piece = (shapely.get_type_id(pieces) == 3) & ~shapely.is_empty(pieces)
+    pieces, which = pieces[real_piece], which[real_piece]
     if len(pieces) and (shapely.get_num_interior_rings(pieces) > 0).any():
         return _open_general(region, parts, r, q, tolerance_mm)
     if concave.any() and _overlap(made_shells):  # closed outer rings that now meet: overlay
@@ -232,7 +236,8 @@ def _open_general(region, parts, r, q, tolerance_mm) -> OpenedRegion:
     frame = shapely.box(xmin - pad, ymin - pad, xmax + pad, ymax + pad)
     free = shapely.difference(frame, region)
     opened_free = shapely.buffer(shapely.buffer(free, -r, quad_segs=q), r, quad_segs=q)
-    made = shapely.make_valid(shapely.difference(frame, opened_free))
+    # what is left of the frame, inside the region's hull (the closing of an outer ring stays in it)
+    made = shapely.intersection(shapely.difference(frame, opened_free), shapely.convex_hull(region))
     made = shapely.union_all([g for g in shapely.get_parts(made) if g.geom_type == "Polygon"])
     holes, _ = _holes(parts)
     holes = holes[shapely.area(holes) > float(tolerance_mm) ** 2]
