@@ -287,6 +287,37 @@ def opened_reference(region, r: float, quad_segs: int = 64):
     return shapely.union_all(polys), opened_holes
 
 
+def tightest_arc_radius(ring: np.ndarray, *, interior_left: bool) -> float:
+    """The smallest circumradius of three consecutive vertices inside a run of convex turns (an arc).
+
+    On an arc flattened by chords every vertex is on the circle, so the circumradius of three
+    consecutive vertices is the arc's radius. Vertices next to a concave turn are left out: where
+    two of the tool's arcs meet (a concave junction) the junction is on the chords, not on the
+    circles, and a short last chord makes the three-point circle meaningless there.
+    """
+    p0, p1, p2 = np.roll(ring, 1, axis=0), ring, np.roll(ring, -1, axis=0)
+    a, b, c = p1 - p0, p2 - p1, p2 - p0
+    cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    convex = cross > 1e-12 if interior_left else cross < -1e-12
+    run = convex & np.roll(convex, 1) & np.roll(convex, -1)
+    la, lb, lc = np.hypot(*a.T), np.hypot(*b.T), np.hypot(*c.T)
+    radius = la * lb * lc / (2 * np.abs(cross) + 1e-300)
+    return float(radius[run].min()) if run.any() else math.inf
+
+
+def assert_no_corner_sharper_than(hole: Polygon, r: float, tol: float = 0.01) -> None:
+    """Every convex corner of ``hole`` has a radius of at least ``r`` (within ``tol``).
+
+    Two ways: the arcs' own radius (:func:`tightest_arc_radius`), and, for any corner at all
+    (a star tip left sharp between two long edges has a large three-point circle), that the hole
+    is its own opening by ``r - tol``: GEOS at 64 segments a quarter moves it by at most ``tol``.
+    """
+    ring = np.asarray(shapely.normalize(hole).exterior.coords)[:-1]  # clockwise: the inside on the right
+    assert tightest_arc_radius(ring, interior_left=False) >= r - tol
+    opened = hole.buffer(-(r - tol), quad_segs=64).buffer(r - tol, quad_segs=64)
+    assert shapely.hausdorff_distance(hole, opened, densify=0.1) <= tol
+
+
 def check_router_dxf(path, region, profile, *, rel_area: float = 0.001):
     """A router DXF as the issue asks; returns the ezdxf document.
 

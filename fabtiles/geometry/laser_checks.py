@@ -151,7 +151,7 @@ def check_fits_bed(outline, profile: LaserProfile) -> None:
     if (w <= bw + eps and h <= bh + eps) or (w <= bh + eps and h <= bw + eps):
         return
     raise FabricationError(
-        f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of laser profile "
+        f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of {profile.kind} profile "
         f"{profile.name!r} (either way round); make the tile smaller or use a profile with a larger bed_mm"
     )
 
