@@ -300,3 +300,15 @@ def test_openscad_imports_the_panel_with_its_area(panel_dxf, tmp_path):
     assert len(rings) == report.stats["inner_contours"] + report.stats["outer_contours"]
     # OpenSCAD writes 6 significant digits (0.01 mm here): the area within 0.1 %
     assert even_odd_area(rings) == pytest.approx(report.stats["area_mm2"], rel=0.001)
+
+
+def test_the_rounding_picture_is_up_to_date(tmp_path):
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("render_router", ROOT / "samples" / "render_router.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    out = module.render(tmp_path / "router.svg")
+    assert out.read_bytes() == (ROOT / "samples" / "pictures" / "router-rounding.svg").read_bytes(), (
+        "run python samples/render_router.py")
+    assert out.read_text().count('class="left"') == 1
