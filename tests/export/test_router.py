@@ -312,3 +312,11 @@ def test_the_rounding_picture_is_up_to_date(tmp_path):
     assert out.read_bytes() == (ROOT / "samples" / "pictures" / "router-rounding.svg").read_bytes(), (
         "run python samples/render_router.py")
     assert out.read_text().count('class="left"') == 1
+
+
+def test_the_calibration_card_is_for_lasers(tmp_path):
+    from fabtiles.export.card import write_card
+
+    with pytest.raises(ft.ParameterError, match=r"the test card is for lasers; router profile 'router-6mm-mdf'"):
+        write_card(tmp_path / "card.dxf", "router-6mm-mdf")
+    assert not (tmp_path / "card.dxf").exists()
