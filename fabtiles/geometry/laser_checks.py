@@ -359,7 +359,7 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
     if stroke is not None:
         stroke = check_float("stroke", stroke, low=0, low_open=True)
         if stroke < profile.min_feature_mm:
-            raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of laser "
+            raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of {profile.kind} "
                                  f"profile {profile.name!r}, got {stroke:g}", param="stroke")
         if max(kerf, kerf_y) > stroke:
             raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {max(kerf, kerf_y):g}",

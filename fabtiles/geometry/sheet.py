@@ -95,11 +95,11 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
                 break
             if fill:
                 raise FabricationError(
-                    f"not even one tile fits on the {bed_w:g} x {bed_h:g} mm bed of laser profile "
+                    f"not even one tile fits on the {bed_w:g} x {bed_h:g} mm bed of {profile.kind} profile "
                     f"{profile.name!r} (tile {i} is {w:g} x {h:g} mm); use smaller tiles or a profile "
                     f"with a larger bed_mm")
             raise FabricationError(
-                f"{len(order)} tiles do not fit on the {bed_w:g} x {bed_h:g} mm bed of laser profile "
+                f"{len(order)} tiles do not fit on the {bed_w:g} x {bed_h:g} mm bed of {profile.kind} profile "
                 f"{profile.name!r} with a gap of {gap:g} mm (tile {i} is {w:g} x {h:g} mm, "
                 f"{len(placed)} placed); use fewer copies, smaller tiles or a profile with a larger bed_mm"
             )

@@ -320,3 +320,19 @@ def test_the_calibration_card_is_for_lasers(tmp_path):
     with pytest.raises(ft.ParameterError, match=r"the test card is for lasers; router profile 'router-6mm-mdf'"):
         write_card(tmp_path / "card.dxf", "router-6mm-mdf")
     assert not (tmp_path / "card.dxf").exists()
+
+
+def test_a_stroke_thinner_than_the_routers_min_feature_is_refused(tmp_path):
+    region, outline = tile_region()
+    with pytest.raises(ft.ParameterError, match=r"stroke must be >= min_feature_mm = 4 mm of router profile "
+                                                r"'router-6mm-mdf', got 3"):
+        write_dxf(tmp_path / "x.dxf", region=region, outline=outline, profile="router-6mm-mdf", stroke=3.0)
+
+
+def test_a_router_sheet_leaves_room_for_the_bit_between_tiles(tmp_path):
+    design = tmp_path / "d.toml"
+    design.write_text(DESIGN)
+    [report] = build_design(load_design(design), tmp_path / "out", ["dxf"], copies=2).reports
+    doc = read_checked(report.path)
+    a, b = ring_polygons(doc, ("OUTSIDE",))
+    assert a.distance(b) == pytest.approx(ROUTER.tool_diameter_mm + 2.0)  # the default gap: the bit + 2 mm
