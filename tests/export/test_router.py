@@ -336,3 +336,12 @@ def test_a_router_sheet_leaves_room_for_the_bit_between_tiles(tmp_path):
     doc = read_checked(report.path)
     a, b = ring_polygons(doc, ("OUTSIDE",))
     assert a.distance(b) == pytest.approx(ROUTER.tool_diameter_mm + 2.0)  # the default gap: the bit + 2 mm
+
+
+def test_build_preview_draws_the_routers_part(tmp_path):
+    design = tmp_path / "d.toml"
+    design.write_text(DESIGN)
+    result = build_design(load_design(design), tmp_path / "out", ["dxf"], preview=True)
+    picture = Path(result.preview).read_text()
+    sharp = ft.export.preview_svg.tile_svg(load_design(design).build_tile(tile_cls=ft.Tile))
+    assert picture.count("L") > 2 * sharp.count("L")  # the rounded corners' arcs
