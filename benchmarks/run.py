@@ -3,7 +3,7 @@
 Run by hand from a checkout (never in CI: these machines are shared and noisy)::
 
     python benchmarks/run.py                 # all scenarios, writes benchmarks/results.md
-    python benchmarks/run.py --quick         # skip the 1,200 x 600 mm sheet and the scaling table
+    python benchmarks/run.py --quick         # skip the 1,200 x 600 mm sheet, the panel and the scaling table
     python benchmarks/run.py --baselines     # also time the straightforward pipelines
     python benchmarks/run.py --baselines --readme   # and put the tables into docs/speed.md
 
@@ -38,6 +38,12 @@ SCENARIOS = {
                            stages=["pattern", "region", "stl", "3mf", "step"]),
     "sheet-1200x600": dict(outline="rectangle", size=(1200, 600), pattern="hex", radius=15,
                            stages=["pattern", "region", "dxf", "svg", "stl"]),
+    # a full router sheet (samples/panel-2440x1220.toml): the 6 mm bit's DXF, and for comparison the
+    # same panel's pierced laser DXF on a laser profile with a bed that large
+    "panel-2440x1220": dict(outline="rectangle", size=(2440, 1220), pattern="hex", radius=60, stroke=12.0,
+                            frame=40.0, profile="router-6mm-mdf", stages=["pattern", "region", "dxf"]),
+    "panel-2440x1220-laser": dict(outline="rectangle", size=(2440, 1220), pattern="hex", radius=60, stroke=12.0,
+                                  frame=40.0, stages=["pattern", "region", "dxf"]),
 }
 
 SCALING_SIZES = [(150, 100), (300, 200), (600, 400), (1200, 800)]
@@ -47,6 +53,7 @@ TARGETS = {  # (scenario, what) -> seconds; from the issues
     ("sheet-600x400", "svg end to end"): 2.0,
     ("sheet-600x400", "stl end to end"): 6.0,
     ("relief-200x200", "step end to end"): 30.0,
+    ("panel-2440x1220", "dxf end to end"): 5.0,
 }
 
 
@@ -54,14 +61,16 @@ def _peak_mb() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
-def _profile(fmt: str):
-    """The bundled profiles, the laser's bed made large enough for the 1,200 mm sheets."""
+def _profile(fmt: str, name: str | None = None):
+    """The bundled profiles (``name``, if given), the laser's bed made large enough for the 2,440 mm panel."""
     import dataclasses
 
     from fabtiles import load_profile
 
+    if name is not None:
+        return load_profile(name)
     if fmt in ("dxf", "svg"):
-        return dataclasses.replace(load_profile("laser-3mm-plywood"), bed_mm=(1300.0, 900.0))
+        return dataclasses.replace(load_profile("laser-3mm-plywood"), bed_mm=(2500.0, 1300.0))
     return load_profile("fdm-0.4mm")
 
 
@@ -86,13 +95,13 @@ def run_scenario(name: str) -> dict:
         pattern = motif
     else:
         pattern = ft.HexPacking(radius=spec["radius"], motif=motif)
-    tile = ft.Tile(spec["outline"], spec["size"], pattern, frame=5.0, stroke=1.0)
+    tile = ft.Tile(spec["outline"], spec["size"], pattern, frame=spec.get("frame", 5.0), stroke=spec.get("stroke", 1.0))
     segments = stage("pattern", tile.segments)
     stage("region", tile.region)
     sizes = {}
     for fmt in spec["stages"][2:]:
         path = out / f"{name}.{fmt}"
-        stage(fmt, lambda: tile.export(path, profile=_profile(fmt)))
+        stage(fmt, lambda: tile.export(path, profile=_profile(fmt, spec.get("profile"))))
         sizes[fmt] = path.stat().st_size
     front = sum(r["seconds"] for r in rows if r["stage"] in ("pattern", "region"))
     end_to_end = {f"{r['stage']} end to end": front + r["seconds"] for r in rows if r["stage"] in sizes}
@@ -281,14 +290,15 @@ def update_readme(readme: Path, text: str) -> None:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--quick", action="store_true", help="skip the 1,200 x 600 mm sheet and the scaling table")
+    ap.add_argument("--quick", action="store_true",
+                    help="skip the 1,200 x 600 mm sheet, the 2,440 x 1,220 mm panel and the scaling table")
     ap.add_argument("--baselines", action="store_true", help="also time the straightforward pipelines (slow)")
     ap.add_argument("--only", nargs="*", choices=list(SCENARIOS), help="run only these scenarios")
     ap.add_argument("-o", "--output", default=str(HERE / "results.md"), help="markdown report to write")
     ap.add_argument("--readme", action="store_true",
                     help="also replace the section of docs/speed.md between the bench markers with the report")
     args = ap.parse_args(argv)
-    names = args.only or [n for n in SCENARIOS if not (args.quick and n == "sheet-1200x600")]
+    names = args.only or [n for n in SCENARIOS if not (args.quick and (n == "sheet-1200x600" or n.startswith("panel")))]
     results = {"startup_s": startup_seconds(), "scenarios": []}
     for name in names:
         print(f"running {name} ...", file=sys.stderr, flush=True)

@@ -28,6 +28,8 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 LASER_MODES = ("pierced", "score", "engrave", "inlay")
+CUTTER_KINDS = ("laser", "router", "waterjet")
+"""The kinds of 2D cutter a :class:`LaserProfile` describes (the DXF/SVG pipeline is the same)."""
 PRINT_STYLES = ("relief", "pierced", "deboss")
 DXF_VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
 
@@ -72,7 +74,21 @@ class LaserLayers:
 
 @dataclass(frozen=True)
 class LaserProfile:
-    """Settings of one laser cutter and sheet material (all lengths in mm)."""
+    """Settings of one 2D cutter (a laser, a CNC router or a waterjet) and sheet material (lengths in mm).
+
+    ``kind`` is ``"laser"``, ``"router"`` or ``"waterjet"``. A router cuts with a
+    bit of ``tool_diameter_mm``: its files hold the part as the bit makes it (every
+    hole opened by the bit's radius, see :mod:`fabtiles.geometry.tool_opening`) with
+    no kerf compensation (CAM offsets the tool). A waterjet's ``kerf_mm`` is the
+    jet's diameter: corners are rounded to the jet's radius, then the kerf is
+    compensated as a laser's.
+
+    >>> p = load_profile("router-6mm-mdf")
+    >>> p.kind, p.tool_diameter_mm, p.tool_radius_mm, p.kerf_mm
+    ('router', 6.0, 3.0, 0.0)
+    >>> load_profile("waterjet-1mm-aluminium").tool_radius_mm
+    0.5
+    """
 
     name: str
     description: str = ""
@@ -92,7 +108,18 @@ class LaserProfile:
     min_piece_mm: float | None = None
     price_per_m2: float | None = None
     layers: LaserLayers = LaserLayers()
-    kind = "laser"
+    kind: str = "laser"
+    tool_diameter_mm: float | None = None
+    """A router's bit diameter (mm); None for a laser or a waterjet."""
+
+    @property
+    def tool_radius_mm(self) -> float:
+        """The radius the cutter rounds a hole's corners to: a router's bit, a waterjet's jet; 0 for a laser."""
+        if self.kind == "router":
+            return float(self.tool_diameter_mm or 0.0) / 2
+        if self.kind == "waterjet":
+            return max(self.kerf_xy_mm) / 2
+        return 0.0
 
     @property
     def min_piece_or_default_mm(self) -> float:
@@ -147,7 +174,8 @@ def load_profile(profile, *, kind: str | None = None):
         A bundled name (see :func:`bundled_profiles`), a path to a TOML file, or
         an already loaded profile.
     kind : {"laser", "printer"}, optional
-        The kind the caller needs; a profile of the other kind is an error.
+        The kind the caller needs; a profile of the other kind is an error. ``"laser"``
+        means a 2D cutter: a laser, router or waterjet profile (all :class:`LaserProfile`).
     """
     if isinstance(profile, (LaserProfile, PrinterProfile)):
         result = profile
@@ -160,16 +188,28 @@ def load_profile(profile, *, kind: str | None = None):
         except tomllib.TOMLDecodeError as exc:
             raise ProfileError(f"{source}: not valid TOML: {exc}") from None
         result = _parse(data, source, name)
-    if kind is not None and result.kind != kind:
+    if kind is not None and _family(result.kind) != kind:
+        wanted = "a laser profile is needed here (or a router or waterjet one)" if kind == "laser" else \
+            f"a {kind} profile is needed here"
         raise ProfileError(
-            f"profile {result.name!r} is a {result.kind} profile, but a {kind} profile is needed here; "
-            f"bundled {kind} profiles: {', '.join(n for n in bundled_profiles() if _kind_of(n) == kind)}"
+            f"profile {result.name!r} is a {result.kind} profile, but {wanted}; "
+            f"bundled {kind} profiles: {', '.join(n for n in bundled_profiles() if _family(kind_of(n)) == kind)}"
         )
     return result
 
 
-def _kind_of(name: str) -> str:
-    return "laser" if name.startswith("laser") else "printer"
+def _family(kind: str) -> str:
+    """``"laser"`` for every 2D cutter kind (they share one pipeline), else the kind."""
+    return "laser" if kind in CUTTER_KINDS else kind
+
+
+def kind_of(name: str) -> str:
+    """The ``kind`` of a bundled profile: ``"laser"``, ``"router"``, ``"waterjet"`` or ``"printer"``.
+
+    >>> kind_of("router-6mm-mdf"), kind_of("fdm-0.4mm")
+    ('router', 'printer')
+    """
+    return load_profile(name).kind
 
 
 def _read(profile) -> tuple[str, str, str]:
@@ -211,24 +251,43 @@ def _positive(source, key, value, *, allow_zero=False):
     return float(value)
 
 
+ROUTER_KEYS = ("tool_diameter_mm", "min_feature_mm", "tolerance_mm", "bed_mm", "mode", "strict", "dxf_version",
+               "pierce_s", "travel_mm_s", "price_per_m2")
+"""The keys of a router's ``[router]`` section (no kerf: CAM offsets the tool; no ``min_hole_mm``: the bit decides)."""
+WATERJET_KEYS = ("kerf_mm", "min_feature_mm", "min_hole_mm", "tolerance_mm", "bed_mm", "mode", "strict",
+                 "dxf_version", "pierce_s", "travel_mm_s", "price_per_m2")
+"""The keys of a waterjet's ``[waterjet]`` section (``kerf_mm``, the jet's diameter, is required and > 0)."""
+
+
 def _parse(data: dict, source: str, name: str):
-    _unknown(source, "", data, ("kind", "description", "laser", "printer", "layers"))
+    kinds = CUTTER_KINDS + ("printer",)
+    _unknown(source, "", data, ("kind", "description") + kinds + ("layers",))
     kind = data.get("kind")
-    if kind not in ("laser", "printer"):
-        raise ProfileError(f"{source}: kind must be one of: laser, printer, got {kind!r}")
+    if kind not in kinds:
+        raise ProfileError(f"{source}: kind must be one of: {', '.join(kinds)}, got {kind!r}")
     description = data.get("description", "")
     if not isinstance(description, str):
         raise ProfileError(f"{source}: description must be text, got {description!r}")
-    other = "printer" if kind == "laser" else "laser"
-    if other in data or (kind == "printer" and "layers" in data):
-        bad = other if other in data else "layers"
-        raise ProfileError(f"{source}: a {kind} profile cannot have a [{bad}] section")
-    cls = LaserProfile if kind == "laser" else PrinterProfile
+    others = [k for k in kinds if k != kind and k in data] + (["layers"] if kind == "printer" and "layers" in data
+                                                               else [])
+    if others:
+        raise ProfileError(f"{source}: a {kind} profile cannot have a [{others[0]}] section")
+    cls = LaserProfile if kind in CUTTER_KINDS else PrinterProfile
     section = data.get(kind, {})
     if not isinstance(section, dict):
         raise ProfileError(f"{source}: [{kind}] must be a table")
-    allowed = [f.name for f in fields(cls) if f.name not in ("name", "description", "layers")]
+    if kind == "router":
+        allowed = list(ROUTER_KEYS)
+    elif kind == "waterjet":
+        allowed = list(WATERJET_KEYS)
+    else:
+        allowed = [f.name for f in fields(cls) if f.name not in ("name", "description", "layers", "kind",
+                                                                  "tool_diameter_mm")]
     _unknown(source, f"{kind}.", section, allowed)
+    for key in {"router": ("tool_diameter_mm",), "waterjet": ("kerf_mm",)}.get(kind, ()):
+        if key not in section:
+            raise ProfileError(f"{source}: a {kind} profile needs {kind}.{key} "
+                               f"({'the bit' if kind == 'router' else 'the jet'}'s diameter in mm, > 0)")
     values = {}
     for key, value in section.items():
         full = f"{kind}.{key}"
@@ -246,15 +305,20 @@ def _parse(data: dict, source: str, name: str):
             values[key] = float(value)
         elif key in ("mode", "style", "dxf_version"):
             choices = {"mode": LASER_MODES, "style": PRINT_STYLES, "dxf_version": DXF_VERSIONS}[key]
+            if kind in ("router", "waterjet") and key == "mode":
+                choices = ("pierced",)
             if value not in choices:
                 raise ProfileError(f"{source}: {full} = {value!r} is not valid, must be one of: {', '.join(choices)}")
             values[key] = value
         else:
-            values[key] = _positive(source, full, value, allow_zero=key in ("kerf_mm", "kerf_x_mm", "kerf_y_mm",
-                                                                              "pierce_s", "price_per_kg",
-                                                                              "price_per_m2"))
-    if kind == "laser":
+            zero_ok = kind == "laser" and key in ("kerf_mm", "kerf_x_mm", "kerf_y_mm")
+            values[key] = _positive(source, full, value, allow_zero=zero_ok or key in ("pierce_s", "price_per_kg",
+                                                                                         "price_per_m2"))
+    if kind in CUTTER_KINDS:
         values["layers"] = _parse_layers(data.get("layers", {}), source)
+        values["kind"] = kind
+    if kind == "router":  # the file holds the part contour: no kerf; the bit decides which holes are cut
+        values.update(kerf_mm=0.0, min_hole_mm=0.0)
     return cls(name=name, description=description, **values)
 
 

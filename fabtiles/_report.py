@@ -91,7 +91,8 @@ class Report:
         """
         n = len(self.findings)
         head = f"{self.path} ({self.format}): " + ("ok" if n == 0 else f"{n} warning{'s' if n > 1 else ''}")
-        job = [f"  laser job: {self.stats['job']['line']}"] if "job" in self.stats else []
+        cutter = self.stats.get("cutter", "laser")  # a router's or a waterjet's job
+        job = [f"  {cutter} job: {self.stats['job']['line']}"] if "job" in self.stats else []
         notes = [f"  {n}" for n in self.stats.get("notes", [])]
         if "material" in self.stats:
             notes.insert(0, f"  print material: {self.stats['material']['line']} (print time: ask the slicer)")

@@ -36,7 +36,8 @@ class Tile(TileGeometry):
     def export(self, path, *, profile=None, **options):
         """Write the tile to ``path``; the suffix picks the format.
 
-        ``.dxf`` and ``.svg`` take a laser profile (default ``laser-3mm-plywood``),
+        ``.dxf`` and ``.svg`` take a laser profile (default ``laser-3mm-plywood``), or a CNC router's
+        or waterjet's (``router-6mm-mdf``: the part as its bit makes it, see docs/cnc-and-waterjet.md),
         ``.stl``, ``.3mf`` and ``.step`` a printer profile (default ``fdm-0.4mm``).
         Options: laser ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``;
         print ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``, and for

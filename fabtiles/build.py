@@ -156,6 +156,25 @@ def inlay_kit_of(tile, design):
                      kerf_mm=max(profile.kerf_xy_mm), tolerance_mm=profile.tolerance_mm)
 
 
+def made_region(tile, design):
+    """The tile's part as a router's bit or a waterjet's jet makes it (the design's laser profile), else None.
+
+    What the pictures draw for such a profile (``build --preview``, ``check -o``): every
+    hole opened by the tool's radius, see :mod:`fabtiles.geometry.tool_opening`. None
+    for a laser profile (the picture draws the tile's own region).
+    """
+    from ._profiles import load_profile
+    from .export.dispatch import DEFAULT_LASER_PROFILE, laser_geometry
+    from .geometry.tool_opening import check_cutter, open_region
+
+    profile = load_profile(design.output.laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
+    if profile.kind == "laser":
+        return None
+    check_cutter(profile)
+    region, _ = laser_geometry(tile, profile=profile, mode="pierced", lines=False)
+    return open_region(region, radius_mm=profile.tool_radius_mm, tolerance_mm=profile.tolerance_mm).region
+
+
 def _inlay(design) -> bool:
     """Whether the design's laser files are an inlay kit (its mode, or its laser profile's)."""
     from ._profiles import load_profile
@@ -265,7 +284,8 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
             from ._io import atomic_write
             from .export.preview_svg import tile_svg
 
-            picture = atomic_write(staging / f"{design.name}{PREVIEW_SUFFIX}", tile_svg(tile, title=design.name))
+            picture = atomic_write(staging / f"{design.name}{PREVIEW_SUFFIX}",
+                                   tile_svg(tile, title=design.name, region=made_region(tile, design)))
         for path, report in staged:
             if "kit_files" in report.stats:  # an inlay kit: the lattice and the pieces
                 report.stats["kit_files"] = [str(final(Path(p))) for p in report.stats["kit_files"]]

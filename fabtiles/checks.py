@@ -40,6 +40,8 @@ class CheckResult:
     """The laser job's length and time (:class:`~fabtiles.geometry.job_time.JobEstimate`), when asked for."""
     filament: object = None
     """The print's filament (:class:`~fabtiles.geometry.material.Filament`), with the job."""
+    made: object = None
+    """A router's or waterjet's part as the tool makes it (holes opened by its radius), None for a laser."""
 
     def findings(self) -> list[tuple[str, Finding]]:
         """Every finding with where it comes from (``"laser"`` or ``"print"``)."""
@@ -88,10 +90,17 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     except FabricationError as exc:
         laser_report.add("bed_size", str(exc))
     filled = 0
+    made = None
     if (laser_mode or laser.mode) == "pierced" and not cut_region.is_empty:
         cut = cut_region
+        if laser.kind != "laser":  # a router's or waterjet's part: holes opened by the tool's radius
+            from .geometry.tool_opening import check_tool
+
+            cut, _, filled = check_tool(cut, laser, fill_small_holes=fill_small_holes, report=laser_report)
+            made = cut
         if fill_small_holes:
-            cut, filled = fill(cut_region, laser.min_hole_mm, tolerance_mm=laser.tolerance_mm)
+            cut, more = fill(cut, laser.min_hole_mm, tolerance_mm=laser.tolerance_mm)
+            filled += more
         check_laser(cut, outline, laser, stroke=tile.stroke, report=laser_report, validate=False)
     elif (laser_mode or laser.mode) == "engrave" and not cut_region.is_empty:
         check_engrave(cut_region, laser, laser_report)
@@ -100,7 +109,7 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     estimate = _job(tile, cut_region, laser, laser_mode, fill_small_holes) if job and "bed_size" not in {
         f.code for f in laser_report.findings} else None
     return CheckResult(laser_report, print_report, filled, estimate, _filament(region, outline, printer, print_style,
-                                                                              heights) if job else None)
+                                                                              heights) if job else None, made)
 
 
 def _filament(region, outline, printer, style, heights):

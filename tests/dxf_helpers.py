@@ -266,3 +266,85 @@ def thin_bridge_region(width=0.4):
     """Two holes separated by a ``width`` mm bridge: (region, outline)."""
     outline = box(0, 0, 40, 30)
     return outline.difference(box(5, 5, 20, 25)).difference(box(20 + width, 5, 35, 25)), outline
+
+
+# --- router and waterjet files --------------------------------------------------------------
+
+def opened_reference(region, r: float, quad_segs: int = 64):
+    """The part as a tool of radius ``r`` makes it, computed here on its own: every hole
+    ``buffer(-r).buffer(r)`` at ``quad_segs`` segments a quarter (GEOS), every outer ring
+    closed (``buffer(r).buffer(-r)``) unless it is convex. Returns (part, opened holes)."""
+    polys = []
+    opened_holes = []
+    for part in getattr(region, "geoms", [region]):
+        shell = Polygon(part.exterior)
+        if shell.convex_hull.area - shell.area > 1e-6:
+            shell = shell.union(shell.buffer(r, quad_segs=quad_segs).buffer(-r, quad_segs=quad_segs))
+        holes = [Polygon(h).buffer(-r, quad_segs=quad_segs).buffer(r, quad_segs=quad_segs) for h in part.interiors]
+        holes = [g for h in holes for g in getattr(h, "geoms", [h]) if not g.is_empty]
+        opened_holes += holes
+        polys.append(Polygon(shell.exterior, [h.exterior for h in holes]))
+    return shapely.union_all(polys), opened_holes
+
+
+def tightest_arc_radius(ring: np.ndarray, *, interior_left: bool) -> float:
+    """The smallest circumradius of three consecutive vertices inside a run of convex turns (an arc).
+
+    On an arc flattened by chords every vertex is on the circle, so the circumradius of three
+    consecutive vertices is the arc's radius. Vertices next to a concave turn are left out: where
+    two of the tool's arcs meet (a concave junction) the junction is on the chords, not on the
+    circles, and a short last chord makes the three-point circle meaningless there.
+    """
+    p0, p1, p2 = np.roll(ring, 1, axis=0), ring, np.roll(ring, -1, axis=0)
+    a, b, c = p1 - p0, p2 - p1, p2 - p0
+    cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+    convex = cross > 1e-12 if interior_left else cross < -1e-12
+    run = convex & np.roll(convex, 1) & np.roll(convex, -1)
+    la, lb, lc = np.hypot(*a.T), np.hypot(*b.T), np.hypot(*c.T)
+    radius = la * lb * lc / (2 * np.abs(cross) + 1e-300)
+    return float(radius[run].min()) if run.any() else math.inf
+
+
+def assert_no_corner_sharper_than(hole: Polygon, r: float, tol: float = 0.01) -> None:
+    """Every convex corner of ``hole`` has a radius of at least ``r`` (within ``tol``).
+
+    Two ways: the arcs' own radius (:func:`tightest_arc_radius`), and, for any corner at all
+    (a star tip left sharp between two long edges has a large three-point circle), that the hole
+    is its own opening by ``r - tol``: GEOS at 64 segments a quarter moves it by at most ``tol``.
+    """
+    ring = np.asarray(shapely.normalize(hole).exterior.coords)[:-1]  # clockwise: the inside on the right
+    assert tightest_arc_radius(ring, interior_left=False) >= r - tol
+    opened = hole.buffer(-(r - tol), quad_segs=64).buffer(r - tol, quad_segs=64)
+    assert shapely.hausdorff_distance(hole, opened, densify=0.1) <= tol
+
+
+def check_router_dxf(path, region, profile, *, rel_area: float = 0.001):
+    """A router DXF as the issue asks; returns the ezdxf document.
+
+    Audit clean, mm, the 999 comment saying there is no tool compensation, only the
+    profile's two layers (inside profiles first, the outline last), closed LWPOLYLINEs
+    without zero-length or repeated edges, and the even-odd area of the contours equal
+    to GEOS's own opening of ``region`` by the bit's radius within ``rel_area``.
+    """
+    import pytest
+
+    doc = read_checked(path)
+    assert doc.header["$INSUNITS"] == 4
+    head = Path(path).read_text(encoding="cp1252")[:600]
+    assert head.startswith("999\n") and "NO tool compensation: CAM offsets the tool" in head
+    layers = profile.layers
+    assert {layer.dxf.name for layer in doc.layers} - {"0", "Defpoints"} == {layers.inner_cut.name,
+                                                                           layers.outer_cut.name}
+    seen_outer = False
+    for e in doc.modelspace():
+        assert e.dxftype() == "LWPOLYLINE" and is_closed(e)
+        assert e.dxf.layer in (layers.inner_cut.name, layers.outer_cut.name)
+        assert edge_problems(vertices(e)) == (0, 0)
+        if e.dxf.layer == layers.outer_cut.name:
+            seen_outer = True
+        else:
+            assert not seen_outer, "an inside profile comes after the outline"
+    reference, _ = opened_reference(region, profile.tool_radius_mm)
+    area = even_odd_area(ring_polygons(doc, (layers.inner_cut.name, layers.outer_cut.name)))
+    assert area == pytest.approx(reference.area, rel=rel_area)
+    return doc

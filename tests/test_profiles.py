@@ -20,7 +20,8 @@ def write(tmp_path, text, name="p.toml"):
 
 
 def test_bundled_profiles_load_and_have_the_issue_beds():
-    assert set(bundled_profiles()) == {"laser-3mm-plywood", "laser-3mm-acrylic", "fdm-0.4mm", "fdm-0.6mm"}
+    assert set(bundled_profiles()) == {"laser-3mm-plywood", "laser-3mm-acrylic", "fdm-0.4mm", "fdm-0.6mm",
+                                       "router-6mm-mdf", "router-3.175mm-plywood", "waterjet-1mm-aluminium"}
     for name in ("laser-3mm-plywood", "laser-3mm-acrylic"):
         p = load_profile(name, kind="laser")
         assert isinstance(p, LaserProfile) and p.bed_mm[0] >= 600 and p.bed_mm[1] >= 400
@@ -49,7 +50,7 @@ def test_profiles_are_frozen():
     [
         ('kind = "laser"\n[laser]\nkerf = 0.1\n', r"p.toml: unknown key laser.'kerf' \(did you mean 'kerf_mm'\?\); valid keys: kerf_mm"),
         ('kind = "laser"\ncolour = 1\n', r"p.toml: unknown key 'colour'; valid keys: kind"),
-        ('kind = "plasma"\n', r"p.toml: kind must be one of: laser, printer, got 'plasma'"),
+        ('kind = "plasma"\n', r"p.toml: kind must be one of: laser, router, waterjet, printer, got 'plasma'"),
         ('kind = "laser"\n[laser]\nkerf_mm = -0.1\n', r"p.toml: laser.kerf_mm must be >= 0, got -0.1"),
         ('kind = "laser"\n[laser]\nmin_hole_mm = 0\n', r"p.toml: laser.min_hole_mm must be > 0, got 0"),
         ('kind = "laser"\n[laser]\ntolerance_mm = "fine"\n', r"p.toml: laser.tolerance_mm must be a finite number, got 'fine'"),
@@ -89,7 +90,7 @@ def test_unreadable_file(tmp_path):
 
 
 def test_wrong_kind_is_named():
-    with pytest.raises(ft.ProfileError, match=r"'fdm-0.4mm' is a printer profile, but a laser profile is needed here; bundled laser profiles: laser-3mm-acrylic, laser-3mm-plywood"):
+    with pytest.raises(ft.ProfileError, match=r"'fdm-0.4mm' is a printer profile, but a laser profile is needed here \(or a router or waterjet one\); bundled laser profiles: laser-3mm-acrylic, laser-3mm-plywood, router-3.175mm-plywood, router-6mm-mdf, waterjet-1mm-aluminium"):
         load_profile("fdm-0.4mm", kind="laser")
 
 

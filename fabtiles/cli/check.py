@@ -69,19 +69,22 @@ def command(design_file, output, overrides):
     tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
     result = check_design(design, tile, job=True)
     out = design.output
-    laser = f"laser profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
+    cutter = fabtiles.load_profile(out.laser_profile or DEFAULT_LASER_PROFILE, kind="laser").kind
+    laser = f"{cutter} profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
     if result.filled_holes:
         laser += f" ({result.filled_holes:,} small holes filled)"
     click.echo(f"{design_file}: {laser}, printer profile {out.printer_profile or DEFAULT_PRINTER_PROFILE}")
     if result.job is not None:
-        click.echo(f"  laser job: {result.job.line()}")
+        click.echo(f"  {cutter} job: {result.job.line()}")
     if result.filament is not None:
         click.echo(f"  print material: {result.filament.line()} (print time: ask the slicer)")
     findings = result.findings()
     for where, f in findings:
         click.echo("  " + finding_line(where, f))
     if output is not None:
-        write_tile_svg(output, tile, findings=findings, title=f"{design.name}: fabrication findings")
+        # a router's or waterjet's part is drawn as the tool makes it (the holes opened)
+        write_tile_svg(output, tile, findings=findings, title=f"{design.name}: fabrication findings",
+                       region=result.made)
         click.echo(f"wrote {output}")
     n = len(findings)
     click.echo(f"{n} finding{'s' if n != 1 else ''}" if n else "ok: nothing found")

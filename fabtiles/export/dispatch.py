@@ -111,6 +111,14 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
     default = DEFAULT_LASER_PROFILE if kind == "laser" else DEFAULT_PRINTER_PROFILE
     profile = load_profile(profile if profile is not None else default, kind=kind)
     writer = getattr(importlib.import_module(f"{__package__}.{module}"), func)
+    if kind == "laser" and profile.kind != "laser":
+        if fmt == "lbrn2":
+            raise ParameterError(f"a LightBurn project (.lbrn2) is for lasers; {profile.kind} profile "
+                                 f"{profile.name!r} writes .dxf or .svg for its CAM", param="formats")
+        if options.get("mode") not in (None, "pierced"):
+            raise ParameterError(f"mode must be 'pierced' for {profile.kind} profile {profile.name!r} (a "
+                                 f"{profile.kind} cuts through; score, engrave and inlay are laser modes), "
+                                 f"got {options['mode']!r}", param="mode")
     if kind == "laser":
         kit = options.pop("inlay_fit_mm", None), options.pop("inlay_base", None)
         if (options.get("mode") or profile.mode) == "inlay":  # two files: the lattice and the pieces

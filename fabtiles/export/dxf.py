@@ -91,7 +91,10 @@ def build_document(job: LaserJob, *, entities: bool = True):
         msp.dxf.set(key, value)
         doc.header[f"${key.upper()}"] = value
     layers = job.profile.layers
-    for layer in (layers.inner_cut, layers.outer_cut, layers.score) + ((layers.engrave,) if job.engrave else ()):
+    cuts = (layers.inner_cut, layers.outer_cut)
+    if job.profile.kind == "laser":  # a router or waterjet file has its two profiles' layers only
+        cuts += (layers.score,) + ((layers.engrave,) if job.engrave else ())
+    for layer in cuts:
         doc.layers.add(layer.name, color=layer.color)
     if not entities:
         return doc
@@ -188,7 +191,35 @@ def dxf_text(job: LaserJob) -> tuple[str, str]:
     at = text.index(_ENTITIES) + len(_ENTITIES)
     if not text.startswith("  0\nENDSEC\n", at):  # pragma: no cover - ezdxf layout changed
         raise RuntimeError("unexpected DXF layout from ezdxf: the ENTITIES section is not empty")
-    return text[:at] + body + text[at:], doc.output_encoding
+    return cutter_comment(job) + text[:at] + body + text[at:], doc.output_encoding
+
+
+def cutter_comment(job: LaserJob) -> str:
+    """DXF comments (group code 999) saying what a router's or waterjet's file holds; none for a laser.
+
+    CAM programs skip 999 groups, ezdxf's reader drops them, LibreCAD draws the file as
+    before (tests/export/test_router.py). A laser's file stays byte for byte as it was.
+
+    >>> from fabtiles._profiles import load_profile
+    >>> from fabtiles.geometry.laser_checks import LaserJob
+    >>> print(cutter_comment(LaserJob(load_profile("router-6mm-mdf"), "pierced", "R2000", 0.0)), end="")
+    999
+    fabtiles router profile router-6mm-mdf: the part as the 6 mm bit makes it (hole corners rounded to 3 mm), NO tool compensation: CAM offsets the tool
+    999
+    layers: INSIDE (inside profiles, cut first), OUTSIDE (outside profile, cut last); millimetres
+    """
+    p = job.profile
+    if p.kind == "laser":
+        return ""
+    if p.kind == "router":
+        what = (f"the part as the {p.tool_diameter_mm:g} mm bit makes it (hole corners rounded to "
+                f"{p.tool_radius_mm:g} mm), NO tool compensation: CAM offsets the tool")
+    else:
+        what = (f"the {2 * p.tool_radius_mm:g} mm jet's centre path (corners rounded to {p.tool_radius_mm:g} mm, "
+                f"kerf {job.kerf_mm:g} mm compensated: contours half a kerf off the part); no CAM offset")
+    layers = (f"layers: {p.layers.inner_cut.name} (inside profiles, cut first), {p.layers.outer_cut.name} "
+              "(outside profile, cut last); millimetres")
+    return f"999\nfabtiles {p.kind} profile {p.name}: {what}\n999\n{layers}\n"
 
 
 def _save(job: LaserJob, tmp: Path) -> None:

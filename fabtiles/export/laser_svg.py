@@ -50,8 +50,7 @@ def svg_text(job: LaserJob) -> str:
         '<?xml version="1.0" encoding="UTF-8"?>\n'
         f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(w)}mm" height="{_num(h)}mm" '
         f'viewBox="{_num(xmin)} {_num(-ymax)} {_num(w)} {_num(h)}">\n'
-        f"<title>fabtiles laser {job.mode}, profile {_escape(job.profile.name)}, kerf {_num(job.kerf_mm)} mm"
-        "</title>\n"
+        f"<title>{_title(job)}</title>\n"
     )
     out = [head]
     if job.engrave:  # the fill: each polygon one path, its holes as subpaths, filled even-odd
@@ -72,6 +71,18 @@ def svg_text(job: LaserJob) -> str:
         out.append("</g>\n")
     out.append("</svg>\n")
     return "".join(out)
+
+
+def _title(job: LaserJob) -> str:
+    """The picture's title: the laser's mode and kerf, or what a router's or waterjet's file holds."""
+    p = job.profile
+    if p.kind == "router":
+        return (f"fabtiles router, profile {_escape(p.name)}: the part as the {p.tool_diameter_mm:g} mm bit makes it, "
+                "no tool compensation (CAM offsets the tool)")
+    if p.kind == "waterjet":
+        return (f"fabtiles waterjet, profile {_escape(p.name)}: corners rounded to {_num(p.tool_radius_mm)} mm, "
+                f"kerf {_num(job.kerf_mm)} mm compensated")
+    return f"fabtiles laser {job.mode}, profile {_escape(p.name)}, kerf {_num(job.kerf_mm)} mm"
 
 
 def _escape(text: str) -> str:

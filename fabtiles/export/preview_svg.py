@@ -86,7 +86,7 @@ def findings_overlay(findings, height: float, *, mark_mm: float = 1.5) -> str:
 
 
 def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
-             background: str = "#ffffff", title: str | None = None, findings=None) -> str:
+             background: str = "#ffffff", title: str | None = None, findings=None, region=None) -> str:
     """An SVG picture of ``tile`` at true size: material filled, outline stroked.
 
     An interlaced tile is drawn woven: each band outlined, and stopped short
@@ -102,6 +102,9 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
         ``<title>`` of the picture; defaults to ``repr(tile)``.
     findings : iterable of (str, Finding), optional
         Fabrication findings to mark where they are (see :func:`findings_overlay`).
+    region : shapely geometry, optional
+        The material to draw instead of the tile's own: a router's or waterjet's part
+        as the tool makes it (:attr:`fabtiles.checks.CheckResult.made`, the holes opened).
 
     Examples
     --------
@@ -113,7 +116,9 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
     """
     w, h = tile.width_mm, tile.height_mm
     woven = getattr(tile, "interlace", False)
-    if woven:
+    if region is not None:
+        pass
+    elif woven:
         from ..geometry.interlace import tile_drawing
 
         region = tile_drawing(tile)

@@ -44,6 +44,7 @@ from .._validate import check_choice, check_float
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate
 from .material import sheet
+from .tool_opening import check_cutter, check_tool
 
 
 
@@ -150,7 +151,7 @@ def check_fits_bed(outline, profile: LaserProfile) -> None:
     if (w <= bw + eps and h <= bh + eps) or (w <= bh + eps and h <= bw + eps):
         return
     raise FabricationError(
-        f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of laser profile "
+        f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of {profile.kind} profile "
         f"{profile.name!r} (either way round); make the tile smaller or use a profile with a larger bed_mm"
     )
 
@@ -250,6 +251,7 @@ class LaserJob:
 
 
 def _check_profile(profile: LaserProfile) -> None:
+    check_cutter(profile)
     for key in ("inner_cut", "outer_cut", "score"):
         layer = getattr(profile.layers, key)
         if isinstance(layer.color, bool) or not isinstance(layer.color, int) or not 1 <= layer.color <= 255:
@@ -339,16 +341,25 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
                              "fabtiles.export.kit.write_kit, Tile.export(..., mode='inlay') or fabtiles build",
                              param="mode")
     mode = check_choice("mode", mode, LASER_MODES)
+    if profile.kind != "laser" and mode != "pierced":
+        raise ParameterError(f"mode must be 'pierced' for {profile.kind} profile {profile.name!r} (a {profile.kind} "
+                             f"cuts through; score and engrave are laser modes), got {mode!r}", param="mode")
     dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
                                DXF_VERSIONS)
     if kerf_mm is None:  # the profile's kerf, along X and along Y
         kerf, kerf_y = profile.kerf_xy_mm
     else:
         kerf = kerf_y = check_float("kerf_mm", kerf_mm, low=0)
+        if profile.kind == "router" and kerf != 0:
+            raise ParameterError(f"kerf_mm must be 0 for router profile {profile.name!r}, got {kerf:g}: a router "
+                                 "file holds the part contour and CAM offsets the tool", param="kerf_mm")
+        if profile.kind == "waterjet" and kerf <= 0:
+            raise ParameterError(f"kerf_mm must be > 0 for waterjet profile {profile.name!r} (the jet's diameter), "
+                                 f"got {kerf:g}", param="kerf_mm")
     if stroke is not None:
         stroke = check_float("stroke", stroke, low=0, low_open=True)
         if stroke < profile.min_feature_mm:
-            raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of laser "
+            raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of {profile.kind} "
                                  f"profile {profile.name!r}, got {stroke:g}", param="stroke")
         if max(kerf, kerf_y) > stroke:
             raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {max(kerf, kerf_y):g}",
@@ -367,11 +378,17 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
         report.stats["kerf_y_mm"] = kerf_y
     if fmt == "dxf":
         report.stats["dxf_version"] = dxf_version
+    if profile.kind != "laser":
+        report.stats["cutter"] = profile.kind
     if mode == "pierced":
+        tool_filled = 0
+        if profile.kind != "laser":  # the part as the bit or the jet makes it: holes opened by its radius
+            region, _, tool_filled = check_tool(region, profile, fill_small_holes=fill_small_holes, report=report)
+            parts = shapely.get_parts(region)
         if fill_small_holes:
             region, filled = _fill_small_holes(region, profile.min_hole_mm,
                                                 tolerance_mm=profile.tolerance_mm)
-            report.stats["filled_holes"] = filled
+            report.stats["filled_holes"] = filled + tool_filled
             parts = shapely.get_parts(region)
         check_laser(region, outline, profile, stroke=stroke, report=report, validate=False)
         report.raise_if_strict(profile.strict)

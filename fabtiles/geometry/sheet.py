@@ -54,7 +54,7 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
     copies : int
         How many of each tile (>= 1).
     gap_mm : float, optional
-        Space between tiles (> kerf); default: kerf + 2 mm.
+        Space between tiles (> kerf, > a router's tool diameter); default: that + 2 mm.
     centrelines : list of ndarray (k, 2, 2), optional
         Centre-lines of each tile (for the score mode), moved with their tiles.
     fill : bool
@@ -69,8 +69,9 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
     if not isinstance(tiles, (list, tuple)) or not tiles:
         raise ParameterError("tiles must be a non-empty list of (region, outline) pairs", param="tiles")
     copies = check_int("copies", copies, low=1, high=10_000)
-    gap = check_float("gap_mm", profile.kerf_mm + GAP_EXTRA_MM if gap_mm is None else gap_mm,
-                      low=profile.kerf_mm, low_open=True)
+    # a router's bit must pass between two tiles: the gap is wider than the cut (the kerf, or the bit)
+    cut = max(profile.kerf_mm, 2 * profile.tool_radius_mm)
+    gap = check_float("gap_mm", cut + GAP_EXTRA_MM if gap_mm is None else gap_mm, low=cut, low_open=True)
     if centrelines is not None and len(centrelines) != len(tiles):
         raise ParameterError(f"centrelines must hold one array per tile ({len(tiles)}), got {len(centrelines)}",
                              param="centrelines")
@@ -94,11 +95,11 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
                 break
             if fill:
                 raise FabricationError(
-                    f"not even one tile fits on the {bed_w:g} x {bed_h:g} mm bed of laser profile "
+                    f"not even one tile fits on the {bed_w:g} x {bed_h:g} mm bed of {profile.kind} profile "
                     f"{profile.name!r} (tile {i} is {w:g} x {h:g} mm); use smaller tiles or a profile "
                     f"with a larger bed_mm")
             raise FabricationError(
-                f"{len(order)} tiles do not fit on the {bed_w:g} x {bed_h:g} mm bed of laser profile "
+                f"{len(order)} tiles do not fit on the {bed_w:g} x {bed_h:g} mm bed of {profile.kind} profile "
                 f"{profile.name!r} with a gap of {gap:g} mm (tile {i} is {w:g} x {h:g} mm, "
                 f"{len(placed)} placed); use fewer copies, smaller tiles or a profile with a larger bed_mm"
             )

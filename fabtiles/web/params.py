@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 
 from .._errors import FabtilesError
-from .._profiles import bundled_profiles
+from .._profiles import bundled_profiles, kind_of
 
 
 class QueryError(FabtilesError, ValueError):
@@ -190,7 +190,7 @@ def design_from_query(query) -> dict:
         design["packing"]["gap_motif"] = gap
     for key in ("laser_profile", "printer_profile"):
         name = design["output"].get(key)
-        names = [n for n in bundled_profiles() if n.startswith("laser") == (key == "laser_profile")]
+        names = [n for n in bundled_profiles() if (kind_of(n) != "printer") == (key == "laser_profile")]
         if name is not None and name not in names:
             # Profiles are chosen by bundled name only: no file path ever comes from a request.
             raise QueryError(f"{key} {name!r} is not a bundled profile, must be one of: {', '.join(names)}", key)

@@ -36,7 +36,8 @@ def test_presets_and_profiles(client):
     assert presets["table3-3"] == {"n": 12, "radii": [123, 85, 178], "alpha": 23, "spr": -7,
                                    "special": 2, "note": ""}
     assert client.get("/api/profiles").json() == {
-        "laser": ["laser-3mm-acrylic", "laser-3mm-plywood"], "printer": ["fdm-0.4mm", "fdm-0.6mm"]}
+        "laser": ["laser-3mm-acrylic", "laser-3mm-plywood", "router-3.175mm-plywood", "router-6mm-mdf",
+                  "waterjet-1mm-aluminium"], "printer": ["fdm-0.4mm", "fdm-0.6mm"]}
 
 
 def test_preview_svg_default_and_changes(client):
