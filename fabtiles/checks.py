@@ -42,10 +42,13 @@ class CheckResult:
     """The print's filament (:class:`~fabtiles.geometry.material.Filament`), with the job."""
     made: object = None
     """A router's or waterjet's part as the tool makes it (holes opened by its radius), None for a laser."""
+    cutter: str = "laser"
+    """The 2D cutter's kind (the laser profile's ``kind``): ``"laser"``, ``"router"`` or ``"waterjet"``."""
 
     def findings(self) -> list[tuple[str, Finding]]:
-        """Every finding with where it comes from (``"laser"`` or ``"print"``)."""
-        return [("laser", f) for f in self.laser.findings] + [("print", f) for f in self.print.findings]
+        """Every finding with where it comes from: the cutter's kind (``"laser"``, ``"router"``,
+        ``"waterjet"``) or ``"print"``."""
+        return [(self.cutter, f) for f in self.laser.findings] + [("print", f) for f in self.print.findings]
 
     @property
     def ok(self) -> bool:
@@ -109,7 +112,8 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     estimate = _job(tile, cut_region, laser, laser_mode, fill_small_holes) if job and "bed_size" not in {
         f.code for f in laser_report.findings} else None
     return CheckResult(laser_report, print_report, filled, estimate, _filament(region, outline, printer, print_style,
-                                                                              heights) if job else None, made)
+                                                                              heights) if job else None, made,
+                       laser.kind)
 
 
 def _filament(region, outline, printer, style, heights):

@@ -86,7 +86,7 @@ def fabrication_checks(tile, spec) -> dict:
     job = result.job.as_stats() if result.job is not None else None
     material = result.filament.as_stats() if result.filament is not None else None
     return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes, "job": job,
-            "material": material}
+            "material": material, "cutter": result.cutter}
 
 
 def field_of_param(param: str | None) -> str | None:
@@ -220,8 +220,14 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
         if show:
             from ..checks import check_design
 
-            findings = check_design(spec, tile).findings()
-        return Response(tile_svg(tile, findings=findings), media_type="image/svg+xml")
+            result = check_design(spec, tile)
+            findings, made = result.findings(), result.made
+        else:
+            from ..build import made_region
+
+            made = made_region(tile, spec)
+        # a router's or waterjet's part is drawn as its tool makes it (None: a laser's, the tile's own)
+        return Response(tile_svg(tile, findings=findings, region=made), media_type="image/svg+xml")
 
     @app.get("/api/kit.svg")
     def kit_picture(request: Request):

@@ -180,3 +180,23 @@ def test_work_limits_refuse_before_work():
 def test_openapi_lists_the_api(client):
     paths = json.loads(client.get("/api/openapi.json").text)["paths"]
     assert {"/api/presets", "/api/preview.svg", "/api/export/{fmt}", "/api/checks"} <= set(paths)
+
+
+def test_router_preview_draws_the_part_its_bit_makes(client):
+    from fabtiles.export.preview_svg import tile_svg
+    from fabtiles.geometry.tool_opening import open_region
+    from fabtiles.web.app import tile_from_dict
+    from fabtiles.web.params import DEFAULTS, design_from_query
+    from fabtiles._limits import WEB_LIMITS
+
+    q = "width=80&frame=4&radius=15&stroke=2&fill_small_holes=false&laser_profile=router-3.175mm-plywood"
+    query = {**DEFAULTS, **dict(p.split("=") for p in q.split("&"))}
+    _, tile = tile_from_dict(design_from_query(query), limits=WEB_LIMITS)
+    made = open_region(tile.region(), radius_mm=3.175 / 2, tolerance_mm=0.01).region
+    assert client.get(f"/api/preview.svg?{q}").text == tile_svg(tile, region=made)
+    assert client.get(f"/api/preview.svg?{q}").text != tile_svg(tile)
+    checks = client.get(f"/api/checks?{q}").json()
+    assert checks["cutter"] == "router" and {f["where"] for f in checks["findings"]} == {"router"}
+    assert {"small_hole", "rounded_corner"} <= {f["code"] for f in checks["findings"]}
+    marked = client.get(f"/api/preview.svg?{q}&findings=true").text
+    assert 'data-where="router"' in marked and "rounded_corner" in marked

@@ -249,7 +249,8 @@ async function refresh() {
   const again = chosen && list.querySelector(`li[data-code="${chosen.code}"][data-where="${chosen.where}"]`);
   if (again) choose(again, true); else chosen = null;
   $("status").textContent = data.summary || "";
-  $("job").textContent = data.job ? `Laser job (estimate from the profile): ${data.job.line}` : "";
+  const cutter = (data.cutter || "laser").replace(/^./, (c) => c.toUpperCase());
+  $("job").textContent = data.job ? `${cutter} job (estimate from the profile): ${data.job.line}` : "";
   $("material").textContent = data.material
     ? `Print material: ${data.material.line} (the print time is the slicer's to tell)` : "";
   $("job").dataset.version = String(mine);
