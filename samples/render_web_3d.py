@@ -44,7 +44,7 @@ def main() -> None:
         page.mouse.down()
         page.mouse.move(x + 50, y - 40, steps=5)
         page.mouse.up()
-        page.mouse.wheel(0, -700)  # closer: the strands' dips and the two colours
+        page.mouse.wheel(0, -1000)  # closer: the strands' dips and the two colours
         page.wait_for_timeout(300)
         top = page.locator("#pictures").bounding_box()
         bottom = page.locator("#material").bounding_box()

@@ -77,9 +77,7 @@ async function start() {
         model.traverse((o) => { if (o.isMesh) { o.geometry.dispose(); o.material.dispose(); } });
       }
       model = gltf.scene;
-      model.traverse((o) => {
-        if (o.isMesh) { o.material.flatShading = true; o.material.needsUpdate = true; }
-      });
+      model.traverse((o) => { if (o.isMesh) shadeByHeight(o); });
       scene.add(model);
       const size = new THREE.Box3().setFromObject(model).getSize(new THREE.Vector3());
       if (fitted !== `${size.x.toFixed(1)}x${size.y.toFixed(1)}`) fit();  // keep the user's turn otherwise
@@ -89,6 +87,23 @@ async function start() {
       box.dataset.parts = Object.keys(parts).join(",");
       canvas.dataset.version = String(mine);
     }, (err) => { caption.textContent = `3D view: the model could not be read (${err.message || err})`; });
+  };
+  // Flat faces, darkened by how low they lie in their part: every horizontal face has the same
+  // normal, so without this an interlaced relief's dipped strands (0.6 mm under the top of its
+  // 1.2 mm pattern, in the default profile) would have the shade of the strands passing over them.
+  const shadeByHeight = (mesh) => {
+    const z = mesh.geometry.getAttribute("position"), colours = new Float32Array(z.count * 3);
+    let lo = Infinity, hi = -Infinity;
+    for (let i = 0; i < z.count; i++) { lo = Math.min(lo, z.getZ(i)); hi = Math.max(hi, z.getZ(i)); }
+    for (let i = 0; i < z.count; i++) {
+      // linear light: a face at half its part's height shows at 0.63 of a top face's sRGB value
+      const t = hi > lo ? (z.getZ(i) - lo) / (hi - lo) : 1, k = 0.15 + 0.85 * t * t;
+      colours.fill(k, 3 * i, 3 * i + 3);
+    }
+    mesh.geometry.setAttribute("color", new THREE.BufferAttribute(colours, 3));
+    mesh.material.vertexColors = true;
+    mesh.material.flatShading = true;
+    mesh.material.needsUpdate = true;
   };
   document.addEventListener("fabtiles:design", (e) => show(e.detail));
   if (window.fabtilesDesign) show(window.fabtilesDesign);  // drawn before this module loaded
