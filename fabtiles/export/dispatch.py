@@ -115,10 +115,9 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
         if fmt == "lbrn2":
             raise ParameterError(f"a LightBurn project (.lbrn2) is for lasers; {profile.kind} profile "
                                  f"{profile.name!r} writes .dxf or .svg for its CAM", param="formats")
-        if options.get("mode") not in (None, "pierced"):
-            raise ParameterError(f"mode must be 'pierced' for {profile.kind} profile {profile.name!r} (a "
-                                 f"{profile.kind} cuts through; score, engrave and inlay are laser modes), "
-                                 f"got {options['mode']!r}", param="mode")
+        from ..geometry.tool_opening import check_cutter_mode
+
+        check_cutter_mode(profile, options.get("mode"))  # before the inlay kit's route below
     if kind == "laser":
         kit = options.pop("inlay_fit_mm", None), options.pop("inlay_base", None)
         if (options.get("mode") or profile.mode) == "inlay":  # two files: the lattice and the pieces

@@ -116,13 +116,11 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
     """
     w, h = tile.width_mm, tile.height_mm
     woven = getattr(tile, "interlace", False)
-    if region is not None:
-        pass
-    elif woven:
+    if region is None and woven:
         from ..geometry.interlace import tile_drawing
 
         region = tile_drawing(tile)
-    else:
+    elif region is None:
         region = tile.region()
     d = region_path_data(region, h)
     # the bands' outlines: a tenth of the stroke

@@ -38,13 +38,13 @@ import shapely
 
 from .._errors import FabricationError, ParameterError, ProfileError
 from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, load_profile
-from .narrow import MAX_LOCATIONS, locations, narrow_places
+from .narrow import MAX_LOCATIONS, add_small_holes, locations, narrow_places
 from .._report import Report
 from .._validate import check_choice, check_float
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate
 from .material import sheet
-from .tool_opening import check_cutter, check_tool
+from .tool_opening import check_cutter, check_cutter_mode, check_tool
 
 
 
@@ -80,24 +80,6 @@ def small_hole_mask(holes: np.ndarray, min_hole_mm: float) -> np.ndarray:
     if len(todo):
         small[todo] = shapely.is_empty(shapely.buffer(holes[todo], -r, quad_segs=4))
     return small
-
-
-def hole_widths(holes: np.ndarray, *, tolerance_mm: float = 0.01):
-    """The widest point of each hole polygon and its width (the largest disc inside it).
-
-    Returns ``(centres, widths)``: shapely Points and their diameters (mm), from
-    GEOS's maximum inscribed circle within ``tolerance_mm``.
-
-    >>> from shapely.geometry import box
-    >>> centres, widths = hole_widths(np.array([box(0, 0, 2, 1)]))
-    >>> shapely.get_coordinates(centres).round(2).tolist(), widths.round(2).tolist()
-    ([[0.5, 0.5]], [1.0])
-    """
-    holes = np.asarray(holes, dtype=object)
-    # GEOS's maximum inscribed circle: about 20 us a hole at 0.01 mm (680 holes of the
-    # default web tile in 14 ms).
-    lines = shapely.maximum_inscribed_circle(holes, max(tolerance_mm, 1e-4))
-    return shapely.get_point(lines, 0), 2 * shapely.length(lines)
 
 
 def fill_small_holes(region, min_hole_mm: float, *, tolerance_mm: float = 0.0):
@@ -185,14 +167,10 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
     if len(holes):
         small = small_hole_mask(holes, profile.min_hole_mm)
         if small.any():
-            n = int(small.sum())
-            centres, widths = hole_widths(holes[small], tolerance_mm=profile.tolerance_mm)
-            report.add("small_hole",
-                       f"{n} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
-                       f"(narrowest {widths.min():.3g} mm; they burn away or char shut; fill them with "
-                       "fill_small_holes=True, or fill_small_holes = true in a design's [output])",
-                       count=n, locations=locations(centres), sizes=widths[:MAX_LOCATIONS].round(3),
-                       worst=round(float(widths.min()), 3))
+            add_small_holes(report, holes[small], tolerance_mm=profile.tolerance_mm, message=lambda n, w: (
+                f"{n} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
+                f"(narrowest {w:.3g} mm; they burn away or char shut; fill them with "
+                "fill_small_holes=True, or fill_small_holes = true in a design's [output])"))
 
     # thin bridges: two rings of the same part closer than the minimum feature (within the
     # profile's tolerance: a band exactly min_feature_mm wide is fine to cut)
@@ -341,9 +319,7 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
                              "fabtiles.export.kit.write_kit, Tile.export(..., mode='inlay') or fabtiles build",
                              param="mode")
     mode = check_choice("mode", mode, LASER_MODES)
-    if profile.kind != "laser" and mode != "pierced":
-        raise ParameterError(f"mode must be 'pierced' for {profile.kind} profile {profile.name!r} (a {profile.kind} "
-                             f"cuts through; score and engrave are laser modes), got {mode!r}", param="mode")
+    check_cutter_mode(profile, mode)
     dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
                                DXF_VERSIONS)
     if kerf_mm is None:  # the profile's kerf, along X and along Y

@@ -37,6 +37,36 @@ def locations(points, limit: int = MAX_LOCATIONS) -> list[tuple[float, float]]:
     return [(float(round(x, 3)), float(round(y, 3))) for x, y in pts]
 
 
+def hole_widths(holes: np.ndarray, *, tolerance_mm: float = 0.01):
+    """The widest point of each hole polygon and its width (the largest disc inside it).
+
+    Returns ``(centres, widths)``: shapely Points and their diameters (mm), from
+    GEOS's maximum inscribed circle within ``tolerance_mm``.
+
+    >>> from shapely.geometry import box
+    >>> centres, widths = hole_widths(np.array([box(0, 0, 2, 1)]))
+    >>> shapely.get_coordinates(centres).round(2).tolist(), widths.round(2).tolist()
+    ([[0.5, 0.5]], [1.0])
+    """
+    holes = np.asarray(holes, dtype=object)
+    # GEOS's maximum inscribed circle: about 20 us a hole at 0.01 mm (680 holes of the
+    # default web tile in 14 ms).
+    lines = shapely.maximum_inscribed_circle(holes, max(tolerance_mm, 1e-4))
+    return shapely.get_point(lines, 0), 2 * shapely.length(lines)
+
+
+def add_small_holes(report, holes: np.ndarray, *, tolerance_mm: float, message) -> None:
+    """Report ``holes`` as one ``small_hole`` finding, each at its widest point with its width.
+
+    ``message(count, narrowest_mm)`` says why they are too small and what to do (a laser
+    burns them away; a router's bit cannot enter them).
+    """
+    centres, widths = hole_widths(holes, tolerance_mm=tolerance_mm)
+    n = len(widths)
+    report.add("small_hole", message(n, float(widths.min())), count=n, locations=locations(centres),
+               sizes=widths[:MAX_LOCATIONS].round(3), worst=round(float(widths.min()), 3))
+
+
 def split_long_rings(rings: np.ndarray, max_points: int = 64, *, min_size: float = 0.0):
     """Rings with more than ``max_points`` points cut into 2-point segments (for a spatial index).
 

@@ -46,7 +46,7 @@ import shapely
 
 from .._errors import ParameterError, ProfileError
 from .._report import Report
-from .narrow import MAX_LOCATIONS, locations
+from .narrow import MAX_LOCATIONS, add_small_holes, hole_widths, locations
 
 VISIBLE_MM = 0.1
 """A corner that moves more than this (mm) is reported as ``rounded_corner``.
@@ -265,6 +265,20 @@ def check_cutter(profile) -> None:
                                f"mm), got {k!r}", param="kerf_mm")
 
 
+def check_cutter_mode(profile, mode) -> None:
+    """A router or waterjet cuts through: any ``mode`` but ``"pierced"`` (or None) is a ParameterError.
+
+    >>> from fabtiles._profiles import load_profile
+    >>> check_cutter_mode(load_profile("router-6mm-mdf"), "engrave")
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.ParameterError: mode must be 'pierced' for router profile 'router-6mm-mdf' (a router cuts through; score, engrave and inlay are laser modes), got 'engrave'
+    """
+    if profile.kind != "laser" and mode not in (None, "pierced"):
+        raise ParameterError(f"mode must be 'pierced' for {profile.kind} profile {profile.name!r} (a {profile.kind} "
+                             f"cuts through; score, engrave and inlay are laser modes), got {mode!r}", param="mode")
+
+
 def tool_name(profile) -> str:
     """How a message names the tool: ``the 6 mm bit (tool_diameter_mm of router profile 'x')``."""
     if profile.kind == "router":
@@ -282,8 +296,6 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
     of a design that has holes is a :class:`~fabtiles.ParameterError`: the file
     would be a blank.
     """
-    from .laser_checks import hole_widths
-
     check_cutter(profile)
     report = report if report is not None else Report(path="", format="laser")
     r = profile.tool_radius_mm
@@ -301,14 +313,10 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
         if fill_small_holes:
             filled = made.vanished
         else:
-            n = made.vanished
-            centres, widths = hole_widths(made.vanished_holes, tolerance_mm=profile.tolerance_mm)
-            report.add("small_hole",
-                       f"{n:,} hole{'s' if n > 1 else ''} narrower than {tool_name(profile)} (narrowest "
-                       f"{widths.min():.3g} mm): the tool cannot enter them, so they stay material; "
-                       "fill_small_holes = true counts them as filled",
-                       count=n, locations=locations(centres), sizes=widths[:MAX_LOCATIONS].round(3),
-                       worst=round(float(widths.min()), 3))
+            add_small_holes(report, made.vanished_holes, tolerance_mm=profile.tolerance_mm, message=lambda n, w: (
+                f"{n:,} hole{'s' if n > 1 else ''} narrower than {tool_name(profile)} (narrowest "
+                f"{w:.3g} mm): the tool cannot enter them, so they stay material; "
+                "fill_small_holes = true counts them as filled"))
     if len(made.corners):
         n = len(made.corners)
         report.add("rounded_corner",

@@ -148,6 +148,24 @@ def test_the_waterjet_rounds_to_the_jet_then_offsets_half_a_kerf(tmp_path):
     assert report.stats["cutter"] == "waterjet" and report.stats["kerf_mm"] == 1.0
 
 
+def test_inkscape_measures_the_router_svg_as_the_part(tmp_path):
+    """Inkscape reads the router SVG in true millimetres: the outline is the part's (no kerf), and the
+    inside profiles lie within it, each hole's box at least the bit wide."""
+    import xml.etree.ElementTree as ET
+
+    inkscape = program("inkscape", "apt-get install inkscape")
+    region, outline = tile_region()
+    write_laser_svg(tmp_path / "t.svg", region=region, outline=outline, profile=ROUTER)
+    rows = [line.split(",") for line in run([inkscape, "--query-all", tmp_path / "t.svg"]).stdout.splitlines()]
+    boxes = {r[0]: np.array([float(v) for v in r[1:]]) * 25.4 / 96 for r in rows}  # px at 96 per inch -> mm
+    stroke = float(ET.parse(tmp_path / "t.svg").getroot().find("{http://www.w3.org/2000/svg}g").get("stroke-width"))
+    assert boxes["OUTSIDE"][2:] == pytest.approx((150 + stroke,) * 2, abs=0.005)  # the part: no tool offset
+    x, y, w, h = boxes["INSIDE"]
+    assert x > boxes["OUTSIDE"][0] and w < boxes["OUTSIDE"][2]
+    holes = [b for k, b in boxes.items() if k not in ("INSIDE", "OUTSIDE") and k != rows[0][0]]
+    assert len(holes) > 50 and min(min(b[2], b[3]) for b in holes) >= ROUTER.tool_diameter_mm - 0.01
+
+
 def test_the_router_svg_holds_the_dxfs_contours_and_says_there_is_no_compensation(tmp_path):
     region, outline = tile_region()
     write_dxf(tmp_path / "t.dxf", region=region, outline=outline, profile=ROUTER)
