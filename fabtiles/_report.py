@@ -21,6 +21,22 @@ from dataclasses import dataclass, field
 from ._errors import FabricationError
 
 
+def distinct(value: float, limit: float, digits: int = 3) -> str:
+    """``value`` with the significant digits (``digits`` at least) that tell it from ``limit``.
+
+    A finding's narrowest width is below its limit, and a message must show it
+    (1.1996 mm is narrower than 1.2 mm; printed to three digits both read 1.2).
+
+    >>> distinct(1.1996, 1.2), distinct(0.0229574, 0.4), distinct(1.2, 1.2)
+    ('1.1996', '0.023', '1.2')
+    """
+    for d in range(digits, 10):
+        text = f"{value:.{d}g}"
+        if value == limit or text != f"{limit:.{d}g}":
+            return text
+    return repr(float(value))
+
+
 @dataclass(frozen=True)
 class Finding:
     """One fabrication problem: a short code, a sentence, how many places, and where.
@@ -66,6 +82,10 @@ class Report:
         """Record a finding (see :class:`Finding`)."""
         self.findings.append(Finding(code, message, count, tuple(tuple(map(float, p)) for p in locations),
                                      tuple(map(float, sizes)), None if worst is None else float(worst), unit))
+
+    def note(self, line: str) -> None:
+        """Add a line to the summary (``stats["notes"]``): what the export did, such as holes it filled."""
+        self.stats.setdefault("notes", []).append(line)
 
     @property
     def ok(self) -> bool:

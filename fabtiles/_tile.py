@@ -39,8 +39,9 @@ class Tile(TileGeometry):
         ``.dxf`` and ``.svg`` take a laser profile (default ``laser-3mm-plywood``), or a CNC router's
         or waterjet's (``router-6mm-mdf``: the part as its bit makes it, see docs/cnc-and-waterjet.md),
         ``.stl``, ``.3mf`` and ``.step`` a printer profile (default ``fdm-0.4mm``).
-        Options: laser ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``;
-        print ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``, and for
+        Options: laser ``mode``, ``dxf_version``, ``kerf_mm``; print ``style``, ``base_mm``,
+        ``relief_mm``, ``pierced_mm``, ``deboss_mm``; both ``fill_small_holes`` (fill what the
+        machine cannot make: holes narrower than the profile's ``min_hole_mm``); and for
         ``.3mf`` ``inlay`` (deboss: the grooves filled flush as a second part) and
         ``layout`` (``"volumes"``, default, one object of parts in PrusaSlicer, Bambu
         Studio and OrcaSlicer; ``"components"``, for UltiMaker Cura).

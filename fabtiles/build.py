@@ -198,7 +198,7 @@ def export_format(tile, fmt: str, path: Path, design) -> Report:
         extra = {"inlay": True} if out.inlay else {}
         extra["layout"] = out.threemf_layout
     return dispatch.export_tile(tile, path, profile=out.printer_profile, style=out.print_style, **out.heights(),
-                                **extra)
+                                fill_small_holes=out.fill_small_holes, **extra)
 
 
 def export_sheet(layout, tile, path: Path, design) -> Report:
@@ -404,7 +404,8 @@ def print_view(design, *, limits: _limits.Limits, max_segments: int = VIEW_SEGME
         region, outline = region.intersection(box), outline.intersection(box)
         dips = dips.intersection(box) if dips is not None else None
     data, report = print_glb(region=region, outline=outline, profile=profile, style=out.print_style,
-                             stroke=tile.stroke, inlay=bool(out.inlay), dips=dips, **out.heights())
+                             stroke=tile.stroke, inlay=bool(out.inlay), dips=dips,
+                             fill_small_holes=out.fill_small_holes, **out.heights())
     size = f"{tile.width_mm:g} x {tile.height_mm:g} mm"
     if window is not None:
         report.stats["window_mm"] = window

@@ -36,6 +36,7 @@ class CheckResult:
     laser: Report
     print: Report
     filled_holes: int = 0
+    """The cutter's holes filled (``fill_small_holes``): narrower than its ``min_hole_mm``, or than a router's bit."""
     job: object = None
     """The laser job's length and time (:class:`~fabtiles.geometry.job_time.JobEstimate`), when asked for."""
     filament: object = None
@@ -44,6 +45,8 @@ class CheckResult:
     """A router's or waterjet's part as the tool makes it (holes opened by its radius), None for a laser."""
     cutter: str = "laser"
     """The 2D cutter's kind (the laser profile's ``kind``): ``"laser"``, ``"router"`` or ``"waterjet"``."""
+    print_filled_holes: int = 0
+    """The print's openings filled (``fill_small_holes``): narrower than the printer profile's ``min_hole_mm``."""
 
     def findings(self) -> list[tuple[str, Finding]]:
         """Every finding with where it comes from: the cutter's kind (``"laser"``, ``"router"``,
@@ -68,7 +71,8 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     laser_mode : {"pierced", "score"}, optional
         Default: the laser profile's.
     fill_small_holes : bool
-        Check the laser region with its too-small holes filled (as the laser files would be).
+        Check the laser region with the holes too small for the cutter filled, and the
+        print's with the openings too small for the printer filled (as the files would be).
     print_style : {"relief", "pierced", "deboss"}, optional
         Default: the printer profile's.
     heights : dict, optional
@@ -79,8 +83,9 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         (larger than the bed).
     """
     from .geometry.laser_checks import check_engrave, check_fits_bed, check_laser
-    from .geometry.laser_checks import fill_small_holes as fill
+    from .geometry.narrow import fill_small_holes as fill
     from .geometry.print_checks import check_print
+    from .geometry.print_checks import print_region as made_print_region
 
     laser = load_profile(laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
     printer = load_profile(printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")
@@ -107,13 +112,15 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         check_laser(cut, outline, laser, stroke=tile.stroke, report=laser_report, validate=False)
     elif (laser_mode or laser.mode) == "engrave" and not cut_region.is_empty:
         check_engrave(cut_region, laser, laser_report)
-    print_report = check_print(region, outline, printer, stroke=tile.stroke, style=print_style,
+    style = print_style or printer.style  # the print's region as its files hold it (an interlaced relief unthinned)
+    print_region, print_filled = made_print_region(region, outline, printer, style, fill_small_holes=fill_small_holes,
+                                                   flatten=not (getattr(tile, "interlace", False) and style == "relief"))
+    print_report = check_print(print_region, outline, printer, stroke=tile.stroke, style=print_style,
                                report=Report(path="", format="print"), **(heights or {}))
     estimate = _job(tile, cut_region, laser, laser_mode, fill_small_holes) if job and "bed_size" not in {
         f.code for f in laser_report.findings} else None
-    return CheckResult(laser_report, print_report, filled, estimate, _filament(region, outline, printer, print_style,
-                                                                              heights) if job else None, made,
-                       laser.kind)
+    material = _filament(print_region, outline, printer, print_style, heights) if job else None
+    return CheckResult(laser_report, print_report, filled, estimate, material, made, laser.kind, print_filled)
 
 
 def _filament(region, outline, printer, style, heights):

@@ -22,8 +22,8 @@ error naming the key, its section and the valid keys (with a "did you mean").
 ``[output]`` (optional)
     ``formats`` (subset of dxf svg stl 3mf step; default ["svg"]), ``laser_profile``,
     ``printer_profile``, ``laser_mode``, ``print_style``, ``name`` (default: the
-    file's stem), ``fill_small_holes`` (laser: fill holes too small to cut),
-    ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm`` (print heights
+    file's stem), ``fill_small_holes`` (fill what each machine cannot make: the
+    cutter's and the print's small holes), ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm`` (print heights
     overriding the printer profile's), ``inlay`` (a deboss tile's 3MF gets a second
     part filling the grooves flush, for a two-colour inlay print), ``threemf_layout``
     ("volumes", default, for PrusaSlicer, Bambu Studio and OrcaSlicer; "components"

@@ -155,3 +155,31 @@ def load_3mf_parts(path):
 
     return {name: trimesh.Trimesh(vertices=p.vertices.astype(np.float64), faces=p.faces, process=True)
             for name, p in read_3mf(path).items()}
+
+
+def section_region(mesh, z):
+    """The cross-section of a trimesh body at height ``z`` as a shapely (Multi)Polygon (trimesh cuts,
+    GEOS assembles the rings by nesting: a ring inside an odd number of others is a hole)."""
+    import shapely
+
+    sec = mesh.section(plane_origin=[0, 0, z], plane_normal=[0, 0, 1])
+    if sec is None:
+        return shapely.Polygon()
+    rings = [shapely.linearrings(d[:, :2]) for d in sec.discrete if len(d) >= 4]
+    return shapely.build_area(shapely.geometrycollections(rings))
+
+
+def mid_heights(style, b=B, h=H, t=T, d=D):
+    """The height in the middle of the layers where a style's openings are (mm): a relief's raised
+    pattern, a pierced tile, a deboss's grooves."""
+    return {"relief": b + h / 2, "pierced": t / 2, "deboss": b - d / 2}[style]
+
+
+def widths(polygons):
+    """Each polygon's width: the diameter of the largest disc inside it (GEOS, within 0.1 micron)."""
+    import shapely
+
+    polygons = np.asarray(polygons, dtype=object)
+    if not len(polygons):
+        return np.zeros(0)
+    return 2 * shapely.length(shapely.maximum_inscribed_circle(polygons, 1e-4))

@@ -97,3 +97,21 @@ def test_wrong_kind_is_named():
 def test_bad_profile_argument_type():
     with pytest.raises(ft.ProfileError, match=r"profile must be a profile name or a path to a .toml file, got 3"):
         load_profile(3)
+
+
+@pytest.mark.parametrize("line,match", [
+    ("min_hole_mm = -0.2", r"p.toml: printer.min_hole_mm must be >= 0, got -0.2"),
+    ("min_hole_mm = nan", r"p.toml: printer.min_hole_mm must be a finite number, got nan"),
+    ("min_hole_mm = inf", r"p.toml: printer.min_hole_mm must be a finite number, got inf"),
+    ("min_hole_mm = true", r"p.toml: printer.min_hole_mm must be a finite number, got True"),
+])
+def test_bad_printer_min_hole(tmp_path, line, match):
+    with pytest.raises(ft.ProfileError, match=match):
+        load_profile(write(tmp_path, f'kind = "printer"\n[printer]\n{line}\n'))
+
+
+def test_printer_min_hole_given_default_and_off(tmp_path):
+    assert load_profile(write(tmp_path, 'kind = "printer"\n[printer]\nnozzle_mm = 0.25\n')).min_hole_mm == 0.5
+    given = load_profile(write(tmp_path, 'kind = "printer"\n[printer]\nnozzle_mm = 0.4\nmin_hole_mm = 0.6\n'))
+    assert given.min_hole_mm == 0.6
+    assert load_profile(write(tmp_path, 'kind = "printer"\n[printer]\nmin_hole_mm = 0\n')).min_hole_mm == 0.0

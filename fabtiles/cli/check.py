@@ -73,7 +73,10 @@ def command(design_file, output, overrides):
     laser = f"{cutter} profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
     if result.filled_holes:
         laser += f" ({result.filled_holes:,} small holes filled)"
-    click.echo(f"{design_file}: {laser}, printer profile {out.printer_profile or DEFAULT_PRINTER_PROFILE}")
+    printer = f"printer profile {out.printer_profile or DEFAULT_PRINTER_PROFILE}"
+    if result.print_filled_holes:
+        printer += f" ({result.print_filled_holes:,} small holes filled)"
+    click.echo(f"{design_file}: {laser}, {printer}")
     if result.job is not None:
         click.echo(f"  {cutter} job: {result.job.line()}")
     if result.filament is not None:

@@ -18,7 +18,7 @@ FORMATS = ("dxf", "svg", "lbrn2", "stl", "3mf", "step")
 """Output formats, by file suffix."""
 
 LASER_OPTIONS = ("mode", "dxf_version", "kerf_mm", "fill_small_holes", "inlay_fit_mm", "inlay_base")
-PRINT_OPTIONS = ("style", "base_mm", "relief_mm", "pierced_mm", "deboss_mm")
+PRINT_OPTIONS = ("style", "base_mm", "relief_mm", "pierced_mm", "deboss_mm", "fill_small_holes")
 THREEMF_OPTIONS = PRINT_OPTIONS + ("inlay", "layout")
 """The 3MF writer's options: the print options, ``inlay`` (deboss grooves filled as a second part) and
 ``layout`` (``"volumes"`` or ``"components"``, see :mod:`fabtiles.export.threemf`)."""
@@ -82,11 +82,13 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
         Laser profile for dxf/svg (default ``laser-3mm-plywood``), printer profile for
         stl/3mf/step (default ``fdm-0.4mm``).
     **options
-        Laser: ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``; with
+        Laser: ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes`` (by the
+        cutter profile's ``min_hole_mm``, and a router's bit); with
         ``mode="inlay"`` also ``inlay_fit_mm`` and ``inlay_base`` (the kit: two files,
         see :mod:`fabtiles.export.kit`).
-        Print: ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``;
-        ``.3mf`` also ``inlay`` and ``layout``.
+        Print: ``style``, ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm``,
+        ``fill_small_holes`` (by the printer profile's ``min_hole_mm``); ``.3mf`` also
+        ``inlay`` and ``layout``.
 
     Returns
     -------

@@ -47,7 +47,7 @@ def glb_bytes(parts: dict) -> bytes:
 
 
 def print_glb(*, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None, pierced_mm=None,
-              deboss_mm=None, inlay=False, dips=None):
+              deboss_mm=None, fill_small_holes=False, inlay=False, dips=None):
     """The print's checked parts as GLB bytes and their report (as :func:`~fabtiles.export.threemf.write_3mf`).
 
     Returns
@@ -56,7 +56,8 @@ def print_glb(*, region, outline, profile, style=None, stroke=None, base_mm=None
         The report's ``parts`` give each part's triangles, mesh volume (mm³) and colour.
     """
     heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    _, stack, report = prepare_print(region, outline, profile, style, heights, stroke, fmt="glb")
+    _, stack, report, region = prepare_print(region, outline, profile, style, heights, stroke, fmt="glb",
+                                              fill_small_holes=fill_small_holes, flatten=dips is None)
     check_inlay(stack, inlay)
     checked = checked_parts(region, outline, stack, inlay=bool(inlay), dips=dips)
     data = glb_bytes({n: (p.vertices, p.faces) for n, p in checked.items()})

@@ -249,7 +249,7 @@ def check_solids(solids, *, volume: float, parts: int, name: str = "STEP file re
 
 
 def write_step(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
-               pierced_mm=None, deboss_mm=None, dips=None, name=None):
+               pierced_mm=None, deboss_mm=None, fill_small_holes=False, dips=None, name=None):
     """Write a STEP file (AP214, mm) of the printed tile: planar faces, one solid per piece.
 
     The file is written to a temporary name, read back with OCCT and checked
@@ -266,7 +266,9 @@ def write_step(path, *, region, outline, profile, style=None, stroke=None, base_
     from pathlib import Path
 
     heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    profile, stack, report = prepare_print(region, outline, profile, style, heights, stroke, path=path, fmt="step")
+    profile, stack, report, region = prepare_print(region, outline, profile, style, heights, stroke,
+                                                   fill_small_holes=fill_small_holes, flatten=dips is None,
+                                                   path=path, fmt="step")
     brep, volume, parts = build_brep(region=region, outline=outline, stack=stack, dips=dips)
     text = step_text([brep], name=name or Path(path).stem)
 

@@ -18,17 +18,21 @@ from ..solid.parts import fused_body, prepare_print, stack_stats
 
 
 def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
-              pierced_mm=None, deboss_mm=None, dips=None) -> Report:
+              pierced_mm=None, deboss_mm=None, fill_small_holes=False, dips=None) -> Report:
     """Write a binary STL (mm) of the tile, one watertight body (a relief's plate and pattern fused).
 
     The mesh is checked as a slicer reads the file (float32 corners merged by
-    position) and that merged mesh is what is written, atomically. Parameters as :func:`~fabtiles.solid.parts.build_meshes`, plus ``stroke``
-    (mm, for the thin-wall check) and ``dips`` (an interlaced relief's, see
-    :mod:`fabtiles.solid.levels`). Strict profile with findings, or a bad mesh:
+    position) and that merged mesh is what is written, atomically. Parameters as
+    :func:`~fabtiles.solid.parts.build_meshes`, plus ``stroke`` (mm, named by the thin-wall
+    check), ``fill_small_holes`` (fill the openings no disc of the printer profile's
+    ``min_hole_mm`` fits in, see :func:`~fabtiles.geometry.print_checks.fill_print_holes`)
+    and ``dips`` (an interlaced relief's, see :mod:`fabtiles.solid.levels`). Strict profile with findings, or a bad mesh:
     :class:`~fabtiles.FabricationError` and no file.
     """
     heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    profile, stack, report = prepare_print(region, outline, profile, style, heights, stroke, path=path, fmt="stl")
+    profile, stack, report, region = prepare_print(region, outline, profile, style, heights, stroke,
+                                                   fill_small_holes=fill_small_holes, flatten=dips is None,
+                                                   path=path, fmt="stl")
     # checked as a slicer will read it: the merged float32 mesh, written as it is
     name, mverts, mfaces, volume = fused_body(region, outline, stack, dips=dips)
     atomic_write(path, stl_bytes(mverts, mfaces))

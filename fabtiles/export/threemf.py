@@ -436,7 +436,8 @@ def _read_components(model: bytes) -> dict:
 
 
 def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
-              pierced_mm=None, deboss_mm=None, inlay=False, layout="volumes", name=None, dips=None):
+              pierced_mm=None, deboss_mm=None, fill_small_holes=False, inlay=False, layout="volumes", name=None,
+              dips=None):
     """Write a 3MF (unit millimetre) of the tile: one object of named parts, one filament each.
 
     Parameters as :func:`~fabtiles.export.stl.write_stl`, plus:
@@ -467,7 +468,9 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
         raise ParameterError(f"layout={layout!r} is not a valid 3MF layout, must be one of: {', '.join(LAYOUTS)}",
                              param="layout")
     heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    profile, stack, report = prepare_print(region, outline, profile, style, heights, stroke, path=path, fmt="3mf")
+    profile, stack, report, region = prepare_print(region, outline, profile, style, heights, stroke,
+                                                   fill_small_holes=fill_small_holes, flatten=dips is None,
+                                                   path=path, fmt="3mf")
     check_inlay(stack, inlay)
     checked = checked_parts(region, outline, stack, inlay=bool(inlay), dips=dips)
     parts = [Part(n, EXTRUDERS.get(n, 1) if len(checked) > 1 else 1, p.vertices, p.faces)

@@ -84,7 +84,7 @@ def inlay_kit(region, outline, *, fit_mm: float, min_piece_mm: float, kerf_mm: f
     Raises :class:`~fabtiles.FabricationError` when two pieces' cut paths (grown by
     the fit and half the kerf) would touch on the pieces sheet, naming the narrowest band.
     """
-    from .laser_checks import fill_small_holes, small_hole_mask
+    from .narrow import fill_small_holes, small_hole_mask
 
     fit = check_fit(fit_mm)
     parts = polygon_parts(region)

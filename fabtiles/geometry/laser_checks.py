@@ -38,82 +38,18 @@ import shapely
 
 from .._errors import FabricationError, ParameterError, ProfileError
 from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, load_profile
-from .narrow import MAX_LOCATIONS, add_small_holes, locations, narrow_places
-from .._report import Report
+from .narrow import MAX_LOCATIONS, add_small_holes, fill_small_holes, hole_polygons, locations, narrow_places, \
+    small_hole_mask
+from .._report import Report, distinct
 from .._validate import check_choice, check_float
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate
 from .material import sheet
-from .tool_opening import check_cutter, check_cutter_mode, check_tool
+from .tool_opening import check_cutter, check_cutter_mode, check_tool, tool_name
 
 
 
-def _holes(parts: np.ndarray):
-    """Interior rings of ``parts`` as polygons, with the index of their part."""
-    nholes = shapely.get_num_interior_rings(parts)
-    owner = np.repeat(np.arange(len(parts)), nholes)
-    idx = np.concatenate([np.arange(k) for k in nholes]) if len(parts) else np.empty(0, int)
-    return shapely.polygons(shapely.get_interior_ring(parts[owner], idx)), owner
-
-
-def small_hole_mask(holes: np.ndarray, min_hole_mm: float) -> np.ndarray:
-    """True for each hole polygon that no disc of diameter ``min_hole_mm`` fits in.
-
-    Cheap tests first (bounding box, area, a disc at the centroid), a negative
-    buffer only for the undecided ones.
-
-    >>> from shapely.geometry import box
-    >>> small_hole_mask(np.array([box(0, 0, 1, 1), box(0, 0, 5, 5), box(0, 0, 1, 9)]), 1.2).tolist()
-    [True, False, True]
-    """
-    holes = np.asarray(holes, dtype=object)
-    r = min_hole_mm / 2
-    b = shapely.bounds(holes)
-    small = (np.minimum(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1]) < min_hole_mm) | (
-        shapely.area(holes) < math.pi * r * r)
-    todo = np.flatnonzero(~small)
-    if len(todo):
-        c = shapely.centroid(holes[todo])
-        roomy = shapely.contains_properly(holes[todo], c) & (
-            shapely.distance(c, shapely.get_exterior_ring(holes[todo])) >= r)
-        todo = todo[~roomy]
-    if len(todo):
-        small[todo] = shapely.is_empty(shapely.buffer(holes[todo], -r, quad_segs=4))
-    return small
-
-
-def fill_small_holes(region, min_hole_mm: float, *, tolerance_mm: float = 0.0):
-    """``region`` with its holes narrower than ``min_hole_mm`` filled: ``(region, count)``.
-
-    Degenerate holes (area <= ``tolerance_mm**2``) are filled too but not counted.
-
-    >>> from shapely.geometry import box
-    >>> plate = box(0, 0, 9, 9).difference(box(1, 1, 1.5, 1.5)).difference(box(4, 4, 8, 8))
-    >>> filled, n = fill_small_holes(plate, 1.2)
-    >>> n, len(filled.interiors)
-    (1, 1)
-    """
-    parts = polygon_parts(region)
-    holes, owner = _holes(parts)
-    if not len(holes):
-        return region, 0
-    small = small_hole_mask(holes, min_hole_mm)
-    degenerate = shapely.area(holes) <= tolerance_mm ** 2
-    drop = small | degenerate
-    if not drop.any():
-        return region, 0
-    keep = ~drop
-    rings = shapely.get_exterior_ring(holes[keep])
-    shells = shapely.get_exterior_ring(parts)
-    allr = np.concatenate([shells, rings])
-    index = np.concatenate([np.arange(len(parts)), owner[keep]])
-    order = np.argsort(index, kind="stable")  # each part's shell first, then its holes
-    new = shapely.polygons(allr[order], indices=index[order])
-    out = new[0] if len(new) == 1 and region.geom_type == "Polygon" else shapely.multipolygons(new)
-    return out, int((small & ~degenerate).sum())
-
-
-_fill_small_holes = fill_small_holes
+_fill_small_holes = fill_small_holes  # the option of prepare_laser has the same name
 
 
 def check_fits_bed(outline, profile: LaserProfile) -> None:
@@ -159,7 +95,7 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
     profile = load_profile(profile, kind="laser")
     report = report if report is not None else Report(path="", format="laser")
     parts = polygon_parts(region) if validate else shapely.get_parts(region)
-    holes, owner = _holes(parts)
+    holes, owner = hole_polygons(parts)
     tol2 = profile.tolerance_mm ** 2
     real = shapely.area(holes) > tol2
     holes, owner = holes[real], owner[real]
@@ -169,7 +105,7 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
         if small.any():
             add_small_holes(report, holes[small], tolerance_mm=profile.tolerance_mm, message=lambda n, w: (
                 f"{n} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
-                f"(narrowest {w:.3g} mm; they burn away or char shut; fill them with "
+                f"(narrowest {distinct(w, profile.min_hole_mm)} mm; they burn away or char shut; fill them with "
                 "fill_small_holes=True, or fill_small_holes = true in a design's [output])"))
 
     # thin bridges: two rings of the same part closer than the minimum feature (within the
@@ -180,7 +116,7 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
         extra = f"; the stroke is {stroke:g} mm" if stroke is not None else ""
         report.add("thin_bridge",
                    f"{count} bridge{'s' if count > 1 else ''} narrower than min_feature_mm = {f:g} mm "
-                   f"(narrowest {width:.3g} mm{extra}): they may burn through or break",
+                   f"(narrowest {distinct(width, f)} mm{extra}): they may burn through or break",
                    count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
                    worst=round(width, 3))
 
@@ -278,7 +214,7 @@ def check_engrave(region, profile: LaserProfile, report: Report) -> Report:
     if count:
         report.add("thin_fill",
                    f"{count} band{'s' if count > 1 else ''} of the engraving narrower than two fill lines "
-                   f"({width:g} mm at line_interval_mm = {layer.line_interval_mm:g}; narrowest {worst:.3g} mm): "
+                   f"({width:g} mm at line_interval_mm = {layer.line_interval_mm:g}; narrowest {distinct(worst, width)} mm): "
                    "they engrave as one line or vanish",
                    count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
                    worst=round(worst, 3))
@@ -366,6 +302,12 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
                                                 tolerance_mm=profile.tolerance_mm)
             report.stats["filled_holes"] = filled + tool_filled
             parts = shapely.get_parts(region)
+            if tool_filled:
+                report.note(f"filled {tool_filled:,} hole{'s' if tool_filled != 1 else ''} that "
+                            f"{tool_name(profile)} cannot enter")
+            if filled:
+                report.note(f"filled {filled:,} hole{'s' if filled != 1 else ''} narrower than min_hole_mm = "
+                            f"{profile.min_hole_mm:g} mm of {profile.kind} profile {profile.name!r}")
         check_laser(region, outline, profile, stroke=stroke, report=report, validate=False)
         report.raise_if_strict(profile.strict)
         job.inner, job.outer = laser_contours(region, outline, kerf_mm=kerf, kerf_y_mm=kerf_y,

@@ -1,16 +1,22 @@
-"""Where material is narrower than a width: two boundaries of one piece closer than it.
+"""Where material is narrower than a width, and holes too small for a machine.
 
-Shared by the laser checks (thin bridges) and the print checks (thin walls). A
-boundary is a ring (the outer ring of a piece or one of its holes); a thin dead-end
-spike, such as a star tip, belongs to one ring and is not reported.
+Shared by the laser checks (thin bridges, small holes) and the print checks (thin
+walls, small holes). A boundary is a ring (the outer ring of a piece or one of its
+holes); a thin dead-end spike, such as a star tip, belongs to one ring and is not
+reported. A hole is too small when no disc of the machine's ``min_hole_mm`` fits in
+it (:func:`small_hole_mask`); :func:`fill_small_holes` fills such holes.
 """
 
 from __future__ import annotations
 
 from typing import NamedTuple
 
+import math
+
 import numpy as np
 import shapely
+
+from .contours import polygon_parts
 
 MAX_LOCATIONS = 100_000
 """At most this many locations are listed per finding (a 1,200 x 600 mm sheet has about 20,000 holes)."""
@@ -65,6 +71,112 @@ def add_small_holes(report, holes: np.ndarray, *, tolerance_mm: float, message) 
     n = len(widths)
     report.add("small_hole", message(n, float(widths.min())), count=n, locations=locations(centres),
                sizes=widths[:MAX_LOCATIONS].round(3), worst=round(float(widths.min()), 3))
+
+
+def hole_polygons(parts: np.ndarray):
+    """Interior rings of ``parts`` as polygons, with the index of their part."""
+    nholes = shapely.get_num_interior_rings(parts)
+    owner = np.repeat(np.arange(len(parts)), nholes)
+    idx = np.concatenate([np.arange(k) for k in nholes]) if len(parts) else np.empty(0, int)
+    return shapely.polygons(shapely.get_interior_ring(parts[owner], idx)), owner
+
+
+def small_hole_mask(holes: np.ndarray, min_hole_mm: float) -> np.ndarray:
+    """True for each hole polygon that no disc of diameter ``min_hole_mm`` fits in.
+
+    Cheap tests first (bounding box, area, a disc at the centroid), a negative buffer
+    only for the undecided ones, by a little more than ``min_hole_mm / 2`` (with 4
+    segments a quarter and no margin, its polygonal arcs passed holes 0.391 mm wide for
+    0.4 mm).
+
+    >>> from shapely.geometry import box
+    >>> small_hole_mask(np.array([box(0, 0, 1, 1), box(0, 0, 5, 5), box(0, 0, 1, 9)]), 1.2).tolist()
+    [True, False, True]
+    """
+    holes = np.asarray(holes, dtype=object)
+    if min_hole_mm <= 0:  # a machine with no smallest hole (a printer profile's min_hole_mm = 0)
+        return np.zeros(len(holes), bool)
+    r = min_hole_mm / 2
+    b = shapely.bounds(holes)
+    small = (np.minimum(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1]) < min_hole_mm) | (
+        shapely.area(holes) < math.pi * r * r)
+    todo = np.flatnonzero(~small)
+    if len(todo):
+        c = shapely.centroid(holes[todo])
+        roomy = shapely.contains_properly(holes[todo], c) & (
+            shapely.distance(c, shapely.get_exterior_ring(holes[todo])) >= r)
+        todo = todo[~roomy]
+    if len(todo):
+        # eroded by 0.2 % more than r: the offset's arcs of 16 chords a quarter lie up to 0.12 %
+        # inside the true circle, so no hole narrower than the limit survives (a hole up to
+        # 0.2 % wider may count as small); 10 times faster than GEOS's largest inscribed
+        # circle (0.03 s against 0.29 s for the 600 x 400 mm sheet's 3,538 undecided holes)
+        small[todo] = shapely.is_empty(shapely.buffer(holes[todo], -r * 1.002, quad_segs=16))
+    return small
+
+
+def fill_small_holes(region, min_hole_mm: float, *, tolerance_mm: float = 0.0):
+    """``region`` with its holes narrower than ``min_hole_mm`` filled: ``(region, count)``.
+
+    Degenerate holes (area <= ``tolerance_mm**2``) are filled too but not counted.
+
+    >>> from shapely.geometry import box
+    >>> plate = box(0, 0, 9, 9).difference(box(1, 1, 1.5, 1.5)).difference(box(4, 4, 8, 8))
+    >>> filled, n = fill_small_holes(plate, 1.2)
+    >>> n, len(filled.interiors)
+    (1, 1)
+    """
+    parts = polygon_parts(region)
+    holes, owner = hole_polygons(parts)
+    if not len(holes):
+        return region, 0
+    small = small_hole_mask(holes, min_hole_mm)
+    degenerate = shapely.area(holes) <= tolerance_mm ** 2
+    drop = small | degenerate
+    if not drop.any():
+        return region, 0
+    return without_holes(region, parts, holes, owner, drop), int((small & ~degenerate).sum())
+
+
+def without_holes(region, parts, holes, owner, drop):
+    """``region`` (its polygons ``parts``) rebuilt without the holes marked in ``drop``.
+
+    ``holes, owner`` are :func:`hole_polygons` of ``parts``. Rebuilding the polygons
+    from their rings is exact and costs no overlay.
+    """
+    keep = ~drop
+    rings = shapely.get_exterior_ring(holes[keep])
+    shells = shapely.get_exterior_ring(parts)
+    allr = np.concatenate([shells, rings])
+    index = np.concatenate([np.arange(len(parts)), owner[keep]])
+    order = np.argsort(index, kind="stable")  # each part's shell first, then its holes
+    new = shapely.polygons(allr[order], indices=index[order])
+    return new[0] if len(new) == 1 and region.geom_type == "Polygon" else shapely.multipolygons(new)
+
+
+def neck_pieces(polygons: np.ndarray, neck_mm: float):
+    """Each polygon cut where it narrows below ``neck_mm`` or touches itself at a point: ``(pieces, owner)``.
+
+    A polygon without such a neck is its own one piece (the same object); the pieces
+    of one with necks are its parts once shrunk by ``neck_mm / 2``, grown back and
+    kept inside it (they overlap by a hair at the neck).
+
+    >>> from shapely.geometry import box
+    >>> neck = shapely.union_all([box(0, 0, 2, 2), box(2, 1, 2.5, 1.004), box(2.5, 0.5, 2.8, 1.5)])
+    >>> pieces, owner = neck_pieces(np.array([box(5, 5, 6, 6), neck]), 0.01)
+    >>> shapely.area(pieces).round(2).tolist(), owner.tolist()
+    ([1.0, 4.0, 0.3], [0, 1, 1])
+    """
+    polygons = np.asarray(polygons, dtype=object)
+    # an erosion by a hair splits at every neck; 0.15 s for the 600 x 400 mm sheet's 9,947 holes
+    inner = shapely.buffer(polygons, -neck_mm / 2, quad_segs=2)
+    split = np.flatnonzero(shapely.get_num_geometries(inner) > 1)
+    if not len(split):
+        return polygons, np.arange(len(polygons))
+    subs, idx = shapely.get_parts(inner[split], return_index=True)
+    subs = shapely.intersection(shapely.buffer(subs, neck_mm / 2, quad_segs=2), polygons[split[idx]])
+    whole = np.setdiff1d(np.arange(len(polygons)), split)
+    return np.concatenate([polygons[whole], subs]), np.concatenate([whole, split[idx]])
 
 
 def split_long_rings(rings: np.ndarray, max_points: int = 64, *, min_size: float = 0.0):

@@ -45,7 +45,7 @@ import numpy as np
 import shapely
 
 from .._errors import ParameterError, ProfileError
-from .._report import Report
+from .._report import Report, distinct
 from .narrow import MAX_LOCATIONS, add_small_holes, hole_widths, locations
 
 VISIBLE_MM = 0.1
@@ -315,7 +315,7 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
         else:
             add_small_holes(report, made.vanished_holes, tolerance_mm=profile.tolerance_mm, message=lambda n, w: (
                 f"{n:,} hole{'s' if n > 1 else ''} narrower than {tool_name(profile)} (narrowest "
-                f"{w:.3g} mm): the tool cannot enter them, so they stay material; "
+                f"{distinct(w, 2 * r)} mm): the tool cannot enter them, so they stay material; "
                 "fill_small_holes = true counts them as filled"))
     if len(made.corners):
         n = len(made.corners)

@@ -51,21 +51,36 @@ from .mesh_check import check_indexed
 # --------------------------------------------------------------------------- building
 
 
-def prepare_print(region, outline, profile, style, heights, stroke=None, *, path="", fmt=""):
-    """Validate everything and run the printability checks; nothing is built yet.
+def prepare_print(region, outline, profile, style, heights, stroke=None, *, fill_small_holes: bool = False,
+                  flatten: bool = True, path="", fmt=""):
+    """Validate everything, make the region to print and run the printability checks; nothing is built yet.
 
-    Returns ``(profile, stack, report)``; a strict profile with findings raises.
+    Returns ``(profile, stack, report, region)``: ``region`` is the material to build
+    (:func:`~fabtiles.geometry.print_checks.print_region`: its holes thinned within the
+    profile's ``tolerance_mm`` unless ``flatten=False``, its openings narrower than the
+    profile's ``min_hole_mm`` filled when ``fill_small_holes``; ``report.stats["filled_holes"]``
+    counts them). A strict profile with findings raises.
     """
-    from ..geometry.print_checks import check_print
+    from ..geometry.print_checks import check_print, print_region
 
     profile = load_profile(profile, kind="printer")
     stack = resolve_stack(profile, style, **heights)
+    if not isinstance(fill_small_holes, (bool, np.bool_)):
+        raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}",
+                             param="fill_small_holes")
     region, outline = check_shapes(region, outline)
     report = Report(path=str(path), format=fmt)
+    region, filled = print_region(region, outline, profile, stack.style, fill_small_holes=bool(fill_small_holes),
+                                  flatten=flatten)
+    if fill_small_holes:
+        report.stats["filled_holes"] = filled
+        if filled:
+            report.note(f"filled {filled:,} opening{'s' if filled != 1 else ''} narrower than min_hole_mm = "
+                        f"{profile.min_hole_mm:g} mm of printer profile {profile.name!r}")
     check_print(region, outline, profile, stroke=stroke, style=stack.style, base_mm=stack.base,
                 relief_mm=stack.relief, pierced_mm=stack.pierced, deboss_mm=stack.deboss, report=report)
     report.raise_if_strict(profile.strict)
-    return profile, stack, report
+    return profile, stack, report, region
 
 
 def _snapped(region, outline):

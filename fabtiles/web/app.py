@@ -80,13 +80,16 @@ def fabrication_checks(tile, spec) -> dict:
                  "unit": f.unit} for where, f in result.findings()]
     region = tile.region()
     holes = sum(len(p.interiors) for p in getattr(region, "geoms", [region]))
-    filled = f" ({result.filled_holes:,} too small to cut, filled)" if result.filled_holes else ""
+    too_small = [f"{result.filled_holes:,} too small to cut"] if result.filled_holes else []
+    too_small += [f"{result.print_filled_holes:,} too small to print"] if result.print_filled_holes else []
+    filled = f" ({' and '.join(too_small)}, filled)" if too_small else ""
     summary = (f"{len(tile.segments()):,} segments, material {region.area:,.0f} mm², {holes:,} holes{filled}; "
                f"{len(findings)} finding{'s' if len(findings) != 1 else ''}")
     job = result.job.as_stats() if result.job is not None else None
     material = result.filament.as_stats() if result.filament is not None else None
-    return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes, "job": job,
-            "material": material, "cutter": result.cutter}
+    return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes,
+            "print_filled_holes": result.print_filled_holes, "job": job, "material": material,
+            "cutter": result.cutter}
 
 
 def field_of_param(param: str | None) -> str | None:

@@ -135,10 +135,11 @@ DEFAULTS = {
 }
 """What the page starts with: the paper's third tiling result on a 150 mm square.
 
-Holes too small for the laser profile are filled by default, as the flagship sample
+Holes too small for the machines are filled by default, as the flagship sample
 ``samples/table3-3.toml`` does: the default tile has 680 holes under the plywood
 profile's 1.2 mm, and the bridges between them are as thin as 0.155 mm; filled, the
-DXF cuts cleanly. ``fill_small_holes=false`` cuts them (and reports them).
+DXF cuts cleanly, and the print's openings under the printer's ``min_hole_mm`` are
+filled likewise. ``fill_small_holes=false`` keeps them (and reports them).
 """
 
 NOT_WEB_PARAMS = {("output", "formats")}

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import zipfile
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -11,7 +12,7 @@ from mesh_helpers import (B, H, STYLES, T, assert_solid, assert_touch_without_ov
                           load_stl, top)
 from shapely.geometry import box
 
-from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star
+from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star, load_profile
 from fabtiles.export import stl, threemf
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
@@ -194,7 +195,7 @@ def test_findings_are_reported(tmp_path, shapes):
     region, outline = shapes
     report = stl.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm",
                             stroke=0.5, relief_mm=0.3)
-    assert [f.code for f in report.findings] == ["thin_wall", "thin_layer"]
+    assert [f.code for f in report.findings] == ["small_hole", "thin_wall", "thin_layer"]
     assert (tmp_path / "t.stl").exists()
 
 
@@ -245,7 +246,9 @@ def test_defect_on_a_cell_line_is_meshed_again_with_moved_lines(tmp_path, monkey
 
     monkeypatch.setattr(parts, "_body_arrays", spy)
     path = tmp_path / "sheet.stl"
-    stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
+    # the holes as drawn (tolerance_mm = 0): the defect is on their unthinned rings
+    drawn = replace(load_profile("fdm-0.4mm"), tolerance_mm=0.0)
+    stl.write_stl(path, region=region, outline=outline, profile=drawn, stroke=1.0)
     assert shifts[:2] == [0, 1], f"this sheet no longer exercises the moved-lines retry: {shifts}"
     tris = stl.read_stl_triangles(path.read_bytes())
     verts, faces = sc.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)

@@ -84,3 +84,119 @@ def test_thin_stroke_walls_are_located():
 def test_bad_heights_are_errors():
     with pytest.raises(ParameterError, match="relief_mm must be a finite number > 0"):
         check_print(box(0, 0, 1, 1), box(0, 0, 1, 1), "fdm-0.4mm", relief_mm=0)
+
+
+# --------------------------------------------------------------------------- small holes (issue 30)
+
+from dataclasses import replace  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from fabtiles import FabricationError, ProfileError, load_profile  # noqa: E402
+from fabtiles.geometry.print_checks import check_min_hole, fill_print_holes, small_openings  # noqa: E402
+
+FDM = load_profile("fdm-0.4mm")
+
+
+def _holed(*holes):
+    """A 30 mm plate with the given (x, y, w, h) holes."""
+    plate = box(0, 0, 30, 30)
+    for x, y, w, h in holes:
+        plate = plate.difference(box(x, y, x + w, y + h))
+    return plate
+
+
+def test_min_hole_defaults_to_two_nozzle_widths():
+    assert FDM.min_hole_mm == 2 * FDM.nozzle_mm == 0.8
+    assert load_profile("fdm-0.6mm").min_hole_mm == 1.2
+
+
+@pytest.mark.parametrize("style,what", [("pierced", "holes through the tile"),
+                                        ("relief", "gaps in the raised pattern")])
+def test_small_holes_are_found_counted_and_placed(style, what):
+    plate = _holed((5, 5, 0.3, 0.3), (10, 5, 0.35, 4), (15, 5, 0.9, 0.9), (20, 5, 3, 3))
+    r = check_print(plate, box(0, 0, 30, 30), FDM, stroke=1.0, style=style)
+    (f,) = [f for f in r.findings if f.code == "small_hole"]
+    assert f.count == 2 and what in f.message and "min_hole_mm = 0.8 mm" in f.message
+    assert "fill_small_holes" in f.message
+    assert sorted(f.sizes) == pytest.approx([0.3, 0.35], abs=0.01) and f.worst == pytest.approx(0.3, abs=0.01)
+    # each place is inside its hole
+    assert sorted(f.locations) == [pytest.approx((5.15, 5.15), abs=0.02), (pytest.approx(10.175, abs=0.02),
+                                                                          pytest.approx(7.0, abs=2.0))]
+
+
+def test_narrowest_is_shown_with_the_digits_that_tell_it_from_the_limit():
+    plate = _holed((5, 5, 0.7996, 3))
+    (f,) = check_print(plate, box(0, 0, 30, 30), FDM, stroke=1.0, style="pierced").findings
+    assert "narrowest 0.7996 mm" in f.message
+
+
+def test_deboss_small_grooves_and_islands():
+    # the region is the grooves: a groove 0.3 mm wide, an island of plate 0.25 mm across in a wide groove
+    grooves = box(2, 2, 12, 12).difference(box(6, 6, 6.25, 6.25)).union(box(20, 2, 20.3, 20))
+    found = small_openings(grooves, box(0, 0, 30, 30), FDM, "deboss")
+    assert len(found.holes) == 1 and len(found.islands) == 1
+    r = check_print(grooves, box(0, 0, 30, 30), FDM, style="deboss")
+    (f,) = [f for f in r.findings if f.code == "small_hole"]
+    assert f.count == 2
+    assert "1 groove too narrow to stay open and 1 island of the plate" in f.message
+    filled, n = fill_print_holes(grooves, box(0, 0, 30, 30), FDM, "deboss")
+    assert n == 2
+    assert filled.equals(box(2, 2, 12, 12))  # the island became groove, the narrow groove plate
+    assert small_openings(filled, box(0, 0, 30, 30), FDM, "deboss").count == 0
+
+
+def test_deboss_thin_walls_are_the_plate_between_grooves():
+    grooves = box(2, 2, 12, 12).difference(box(6, 6, 6.6, 6.6))  # an island 0.6 mm across: > 0.4, < wall
+    r = check_print(grooves, box(0, 0, 30, 30), replace(FDM, min_hole_mm=0.4), style="deboss")
+    (f,) = r.findings
+    assert f.code == "thin_wall" and "island" in f.message and f.worst == pytest.approx(0.6, abs=0.01)
+
+
+@pytest.mark.parametrize("style", ["pierced", "relief"])
+def test_fill_print_holes_fills_only_what_no_nozzle_disc_fits(style):
+    plate = _holed((5, 5, 0.3, 0.3), (10, 5, 0.35, 4), (15, 5, 0.9, 0.9), (20, 5, 3, 3), (25, 5, 1e-3, 1e-3))
+    filled, n = fill_print_holes(plate, box(0, 0, 30, 30), FDM, style)
+    assert n == 2  # the 1 micron sliver goes uncounted
+    assert len(filled.interiors) == 2
+    assert filled.area == pytest.approx(plate.area + 0.3 * 0.3 + 0.35 * 4 + 1e-6, rel=1e-9)
+    assert not [f for f in check_print(filled, box(0, 0, 30, 30), FDM, style=style).findings]
+
+
+def test_a_deboss_with_only_too_narrow_grooves_is_refused():
+    with pytest.raises(FabricationError, match="every groove of this deboss is narrower than min_hole_mm = 0.8"):
+        fill_print_holes(box(2, 2, 2.3, 20), box(0, 0, 30, 30), FDM, "deboss")
+
+
+def test_min_hole_zero_turns_the_check_off():
+    plate = _holed((5, 5, 0.01, 0.01), (10, 5, 0.3, 0.3))
+    off = replace(FDM, min_hole_mm=0.0)
+    assert small_openings(plate, box(0, 0, 30, 30), off, "pierced").count == 0
+    assert fill_print_holes(plate, box(0, 0, 30, 30), off, "pierced")[1] == 0
+
+
+def test_slivers_are_thin_walls_whatever_the_stroke():
+    # a 1.2 mm stroke cannot make a 0.3 mm wall, but an outline cutting a band lengthwise can
+    plate = box(0, 0, 20, 20).difference(box(1, 1, 19.7, 19))
+    r = check_print(plate, box(0, 0, 20, 20), FDM, stroke=1.2)
+    (f,) = r.findings
+    assert f.code == "thin_wall" and "the stroke is 1.2 mm, so they are slivers" in f.message
+    assert f.worst == pytest.approx(0.3)
+
+
+@pytest.mark.parametrize("value,match", [
+    (-0.1, r"printer profile 'fdm-0.4mm': min_hole_mm must be a finite number of mm >= 0, got -0.1"),
+    (float("nan"), r"min_hole_mm must be a finite number of mm >= 0, got nan"),
+    (31.0, r"min_hole_mm = 31 mm is larger than the tile \(30 x 30 mm\); give the narrowest hole"),
+])
+def test_bad_min_hole(value, match):
+    with pytest.raises(ProfileError, match=match):
+        check_min_hole(replace(FDM, min_hole_mm=value), box(0, 0, 30, 30))
+    with pytest.raises(ProfileError, match=match):
+        check_print(box(0, 0, 30, 30), box(0, 0, 30, 30), replace(FDM, min_hole_mm=value))
+
+
+def test_small_hole_mask_handles_no_limit():
+    from fabtiles.geometry.narrow import small_hole_mask
+
+    assert small_hole_mask(np.array([box(0, 0, 0.1, 0.1)]), 0.0).tolist() == [False]

@@ -196,7 +196,8 @@ def test_router_preview_draws_the_part_its_bit_makes(client):
     assert client.get(f"/api/preview.svg?{q}").text == tile_svg(tile, region=made)
     assert client.get(f"/api/preview.svg?{q}").text != tile_svg(tile)
     checks = client.get(f"/api/checks?{q}").json()
-    assert checks["cutter"] == "router" and {f["where"] for f in checks["findings"]} == {"router"}
+    # the cutter's findings are the router's; the print's (its unfilled small holes) the printer's
+    assert checks["cutter"] == "router" and {f["where"] for f in checks["findings"]} == {"router", "print"}
     assert {"small_hole", "rounded_corner"} <= {f["code"] for f in checks["findings"]}
     marked = client.get(f"/api/preview.svg?{q}&findings=true").text
     assert 'data-where="router"' in marked and "rounded_corner" in marked

@@ -83,7 +83,7 @@ def test_findings_marks_fill_and_heights_controls(page, server):
     page.wait_for_function("() => document.querySelector('#checks li[data-code]')")
     assert not page.is_checked("#fill_small_holes")  # the URL's state reaches the controls
     assert page.is_checked("#show_findings")
-    holes = page.locator("#marks circle.finding.small_hole").count()
+    holes = page.locator("#marks circle.finding.small_hole[data-where=laser]").count()
     assert holes > 0 and page.locator("#marks circle.finding.hl").count() == 0
     from urllib.parse import unquote
 
@@ -93,7 +93,7 @@ def test_findings_marks_fill_and_heights_controls(page, server):
     page.click("#checks li[data-code=small_hole][data-where=laser]")
     assert page.locator("#marks circle.finding.small_hole.hl").count() == holes
     assert page.locator("#marks circle.finding.hl").count() == holes
-    assert "chosen" in page.get_attribute("#checks li[data-code=small_hole]", "class")
+    assert "chosen" in page.get_attribute("#checks li[data-code=small_hole][data-where=laser]", "class")
     page.click("#checks li[data-code=small_hole][data-where=laser]")
     assert page.locator("#marks circle.finding.hl").count() == 0
 

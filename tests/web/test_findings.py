@@ -29,7 +29,9 @@ def test_defaults_fill_small_holes(client):
     assert "fill_small_holes = true" in toml
     checks = client.get("/api/checks").json()
     assert checks["findings"] == [] and checks["filled_holes"] == 680
-    assert "680 too small to cut, filled" in checks["summary"]
+    # the print fills its own: the openings under fdm-0.4mm's min_hole_mm (0.8 mm)
+    assert checks["print_filled_holes"] == 626
+    assert "(680 too small to cut and 626 too small to print, filled)" in checks["summary"]
 
 
 def test_default_dxf_has_no_hole_or_bridge_under_the_limits(client, tmp_path):
@@ -70,11 +72,15 @@ def test_overlay_marks_each_finding_with_its_size(client):
     text = client.get("/api/preview.svg?fill_small_holes=false&findings=true").text
     marks = MARK.findall(text)
     assert len(marks) == len(re.findall(r'class="finding ', text))  # every mark has the full form
-    by = {}
+    by, printed = {}, {}
     for code, where, x, y, title in marks:
-        by.setdefault(code, []).append((float(x), float(y), title))
-        assert where == "laser" and 0 <= float(x) <= 150 and 0 <= float(y) <= 150
+        assert where in ("laser", "print") and 0 <= float(x) <= 150 and 0 <= float(y) <= 150
+        (by if where == "laser" else printed).setdefault(code, []).append((float(x), float(y), title))
     assert len(by["small_hole"]) == 680 and len(by["thin_bridge"]) == 12
+    # the print's openings under its 0.8 mm are marked as the printer's
+    checks = client.get("/api/checks?fill_small_holes=false").json()
+    (hole,) = [f for f in checks["findings"] if (f["where"], f["code"]) == ("print", "small_hole")]
+    assert len(printed["small_hole"]) == hole["count"] == 626
     sizes = [float(re.search(r", ([\d.]+) mm", t)[1]) for *_, t in by["thin_bridge"]]
     assert min(sizes) == pytest.approx(0.155, abs=0.001) and max(sizes) < 1.0
     assert all(t.startswith("small hole, ") and t.endswith(" mm (laser)") for *_, t in by["small_hole"])
