@@ -39,3 +39,16 @@ def atomic_write(path, data: bytes | str | Callable[[Path], None]) -> Path:
         tmp_path.unlink(missing_ok=True)
         raise
     return path
+
+
+ZIP_TIME = (1980, 1, 1, 0, 0, 0)
+"""The date of every zip entry fabtiles writes (the earliest a zip can hold): the same bytes every run."""
+
+
+def zip_entry(name: str):
+    """A :class:`zipfile.ZipInfo` for ``name`` dated :data:`ZIP_TIME`, deflated."""
+    import zipfile
+
+    info = zipfile.ZipInfo(name, date_time=ZIP_TIME)
+    info.compress_type = zipfile.ZIP_DEFLATED
+    return info

@@ -186,6 +186,13 @@ def bundled_profiles() -> tuple[str, ...]:
     return tuple(sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml")))
 
 
+DEFAULT_CUTTER_PROFILE = "laser-3mm-plywood"
+"""The cutter profile of a design or call that names none."""
+DEFAULT_LASER_PROFILE = DEFAULT_CUTTER_PROFILE
+DEFAULT_PRINTER_PROFILE = "fdm-0.4mm"
+"""The printer profile of a design or call that names none."""
+
+
 def load_profile(profile, *, kind: str | None = None):
     """Load a profile by bundled name, or from a ``.toml`` path; pass profiles through.
 

@@ -101,16 +101,21 @@ class Report:
                 "fix the design or set strict = false in the profile"
             )
 
-    def summary(self) -> str:
-        """A few lines for people: the file, a laser job's length and time, then one line per finding.
+    def summary(self, label: str | None = None) -> str:
+        """A few lines for people: the file (or ``label``: a build's model), a laser job's length and
+        time, then one line per finding.
 
         >>> r = Report(path="t.dxf", format="dxf", stats={"job": {"line": "1.2 m of cut, 3 pierces, about 2 min"}})
         >>> print(r.summary())
         t.dxf (dxf): ok
           laser job: 1.2 m of cut, 3 pierces, about 2 min
+        >>> print(r.summary("laser laser-3mm-plywood"))
+        laser laser-3mm-plywood: ok
+          laser job: 1.2 m of cut, 3 pierces, about 2 min
         """
         n = len(self.findings)
-        head = f"{self.path} ({self.format}): " + ("ok" if n == 0 else f"{n} warning{'s' if n > 1 else ''}")
+        head = (label if label is not None else f"{self.path} ({self.format})") + ": " + (
+            "ok" if n == 0 else f"{n} warning{'s' if n > 1 else ''}")
         cutter = self.stats.get("cutter", "laser")  # a router's or a waterjet's job
         job = [f"  {cutter} job: {self.stats['job']['line']}"] if "job" in self.stats else []
         notes = [f"  {n}" for n in self.stats.get("notes", [])]

@@ -52,6 +52,6 @@ class Tile(TileGeometry):
         Report
             What was written and what the fabrication checks found.
         """
-        from .export.dispatch import export_tile
+        from .build import export_tile
 
         return export_tile(self, path, profile=profile, **options)

@@ -26,7 +26,8 @@ from dataclasses import dataclass, replace
 from ._errors import FabricationError
 from ._profiles import load_profile
 from ._report import Finding, Report
-from .export.dispatch import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE, laser_geometry
+from ._profiles import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE
+from .geometry.machine_geometry import cut_geometry as laser_geometry
 
 
 @dataclass(frozen=True)
@@ -82,6 +83,7 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         for the laser files): ``CheckResult.job``. None when the tile cannot be cut
         (larger than the bed).
     """
+    from ._cutters import cutter_kind
     from .geometry.laser_checks import check_engrave, check_fits_bed, check_laser
     from .geometry.narrow import fill_small_holes as fill
     from .geometry.print_checks import check_print
@@ -101,7 +103,7 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     made = None
     if (laser_mode or laser.mode) == "pierced" and not cut_region.is_empty:
         cut = cut_region
-        if laser.kind != "laser":  # a router's or waterjet's part: holes opened by the tool's radius
+        if cutter_kind(laser).opens_holes:  # a router's or waterjet's part: holes opened by the tool's radius
             from .geometry.tool_opening import check_tool
 
             cut, _, filled = check_tool(cut, laser, fill_small_holes=fill_small_holes, report=laser_report)
@@ -138,15 +140,14 @@ def _job(tile, cut_region, laser, mode, fill_small_holes):
     ``cut_region`` is the laser files' material, already made by :func:`check_tile`; only
     the score mode needs the score lines as well.
     """
-    from .geometry.laser_checks import prepare_laser
+    from .geometry.cut_plan import plan_cut
 
     region, lines = cut_region, None
     if (mode or laser.mode) == "score":
         region, lines = laser_geometry(tile, profile=laser, mode=mode)
-    job, _ = prepare_laser("", "check", region=region, outline=tile.outline_shape(), centrelines=lines,
-                           profile=replace(laser, strict=False), mode=mode,
-                           fill_small_holes=fill_small_holes)
-    return job.estimate
+    plan = plan_cut(region, tile.outline_shape(), centrelines=lines, profile=replace(laser, strict=False), mode=mode,
+                    fill_small_holes=fill_small_holes, fmt="check")
+    return plan.estimate
 
 
 def check_design(design, tile=None, *, job: bool = False) -> CheckResult:

@@ -15,30 +15,30 @@ def _param(make):
 
 
 def test_laser_options():
-    from fabtiles.geometry.laser_checks import prepare_laser
+    from fabtiles.geometry.cut_plan import plan_cut
 
     plate = box(0, 0, 40, 40)
 
     def laser(**kw):
-        return lambda: prepare_laser("x.dxf", "dxf", region=plate, outline=plate, profile="laser-3mm-plywood", **kw)
+        return lambda: plan_cut(region=plate, outline=plate, profile="laser-3mm-plywood", **kw)
 
     assert _param(laser(stroke=0.5)) == "stroke"
     assert _param(laser(stroke=1.5, kerf_mm=2)) == "kerf_mm"
     assert _param(laser(fill_small_holes=1)) == "fill_small_holes"
     assert _param(laser(mode="score")) == "centrelines"
     assert _param(laser(mode="etch")) == "mode"
-    assert _param(lambda: prepare_laser("x.dxf", "dxf", region="plate", outline=plate,
-                                        profile="laser-3mm-plywood")) == "region"
+    assert _param(lambda: plan_cut(region="plate", outline=plate, profile="laser-3mm-plywood")) == "region"
 
 
 def test_export_and_sheet_options():
-    from fabtiles.export.dispatch import export_geometry, format_of
+    from fabtiles.build import export_region
+    from fabtiles.export.formats import format_of
     from fabtiles.geometry.sheet import layout_sheet
     from fabtiles.geometry.stack import resolve_stack
 
     plate = box(0, 0, 40, 40)
     assert _param(lambda: format_of("t.png")) == "path"
-    assert _param(lambda: export_geometry("t.dxf", region=plate, outline=plate, style="relief")) == "style"
+    assert _param(lambda: export_region("t.dxf", region=plate, outline=plate, style="relief")) == "style"
     assert _param(lambda: layout_sheet([], "laser-3mm-plywood")) == "tiles"
     assert _param(lambda: layout_sheet([(plate, plate)], "laser-3mm-plywood", centrelines=[])) == "centrelines"
     assert _param(lambda: resolve_stack("fdm-0.4mm", style="deboss", deboss_mm=5)) == "deboss_mm"

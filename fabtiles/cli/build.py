@@ -95,8 +95,11 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
         outdir, formats, file_name = target[0].parent, (target[1],), target[0].name
     result = build_design(design, outdir, formats or None, sheet=sheet, copies=copies, gap_mm=gap_mm,
                           file_name=file_name)
-    for report in result.reports:
-        click.echo(f"wrote {report.summary()}")  # the file, then one line per fabrication finding
+    for report in result.reports:  # the files, then each model's figures and findings once
+        for path in report.stats.get("files", [report.path]):
+            click.echo(f"wrote {path} ({report.format})")
+    for label, report in result.models:
+        click.echo(report.summary(label))
     skipped = result.skipped
     if skipped:
         click.echo(f"fabtiles: note: skipped {', '.join(skipped)}: a sheet is laid out for the laser "

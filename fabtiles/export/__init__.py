@@ -1,11 +1,15 @@
-"""The writers, one module per format, each importing its heavy library only when used.
+"""The writers: pure functions from a model to a file's bytes, one module per format.
 
-:mod:`~fabtiles.export.dispatch` picks the writer for a file's suffix (the one place
-that does): ``.dxf`` :mod:`~fabtiles.export.dxf`, ``.svg``
-:mod:`~fabtiles.export.laser_svg`, ``.stl`` :mod:`~fabtiles.export.stl`, ``.3mf``
+:mod:`~fabtiles.export.formats` is the table of formats (the one place a format is
+named): ``.dxf`` :mod:`~fabtiles.export.dxf`, ``.svg`` :mod:`~fabtiles.export.laser_svg`,
+``.lbrn2`` :mod:`~fabtiles.export.lbrn2` (from a cut plan,
+:mod:`fabtiles.geometry.cut_plan`); ``.stl`` :mod:`~fabtiles.export.stl`, ``.3mf``
 :mod:`~fabtiles.export.threemf`, ``.step`` :mod:`~fabtiles.export.step` (its text
-:mod:`~fabtiles.export.step_file`). Pictures: :mod:`~fabtiles.export.motif_svg` (one
-motif), :mod:`~fabtiles.export.preview_svg` (a tile, its findings marked);
-:mod:`~fabtiles.export.card` writes the laser calibration card. The bodies they write
-are built and checked in :mod:`fabtiles.solid`.
+:mod:`~fabtiles.export.step_file`), ``.glb`` :mod:`~fabtiles.export.glb` (from a print
+model, :mod:`fabtiles.solid.print_model`). Each imports its heavy library only when
+used. Pictures: :mod:`~fabtiles.export.motif_svg` (one motif),
+:mod:`~fabtiles.export.preview_svg` (a tile, its findings marked);
+:mod:`~fabtiles.export.card` the laser calibration card; :mod:`~fabtiles.export.kit`
+an inlay kit's files. The ``write_*`` functions of the modules are conveniences for
+scripts; the build pipeline (:mod:`fabtiles.build`) writes every file of a build.
 """

@@ -25,13 +25,13 @@ from .._report import Report
 from .._validate import check_choice
 from ..geometry.calibration import calibration_card
 from ..geometry.contours import laser_contours
-from ..geometry.laser_checks import LaserJob
+from ..geometry.cut_plan import CutPlan, make_plan
 
 CARD_FORMATS = ("dxf", "svg")
 
 
 def card_job(profile, *, dxf_version=None):
-    """The card of ``profile`` as a :class:`~fabtiles.geometry.laser_checks.LaserJob`, and the card."""
+    """The card of ``profile`` as a :class:`~fabtiles.geometry.cut_plan.CutPlan`, and the card."""
     profile = load_profile(profile, kind="laser")
     if profile.kind != "laser":  # its rows measure a kerf, bridges and holes as a laser burns them
         raise ParameterError(f"the test card is for lasers; {profile.kind} profile {profile.name!r} has no kerf "
@@ -41,13 +41,10 @@ def card_job(profile, *, dxf_version=None):
                            DXF_VERSIONS)
     card = calibration_card(profile)
     kx, ky = profile.kerf_xy_mm
-    job = LaserJob(profile, "pierced", version, kx)
-    job.inner, job.outer = laser_contours(card.region, card.outline, kerf_mm=kx, kerf_y_mm=ky,
-                                          tolerance_mm=profile.tolerance_mm)
-    job.score = [np.asarray(p, dtype=float) for p in card.labels]
-    flat = np.concatenate(job.inner + job.outer + job.score)
-    job.bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
-    return job, card
+    inner, outer = laser_contours(card.region, card.outline, kerf_mm=kx, kerf_y_mm=ky,
+                                  tolerance_mm=profile.tolerance_mm)
+    score = [np.asarray(p, dtype=float) for p in card.labels]
+    return make_plan(profile, "pierced", version, kx, {"inner": inner, "outer": outer, "score": score}), card
 
 
 def write_card(path, profile, *, dxf_version=None) -> Report:
@@ -61,12 +58,12 @@ def write_card(path, profile, *, dxf_version=None) -> Report:
     fmt = Path(path).suffix.lower().lstrip(".")
     if fmt not in CARD_FORMATS:
         raise ParameterError(f"the card must be a .dxf or .svg file, got {str(path)!r}")
-    from .laser_files import laser_bytes
+    from .formats import FORMATS
 
     job, card = card_job(profile, dxf_version=dxf_version)
-    atomic_write(path, laser_bytes(job, fmt))
+    atomic_write(path, FORMATS[fmt].bytes_of(job))
     report = Report(path=str(path), format=fmt)
     report.stats.update(profile=job.profile.name, kerf_mm=job.kerf_mm, size_mm=[card.width_mm, card.height_mm],
-                        features=len(card.features), inner_contours=len(job.inner),
-                        outer_contours=len(job.outer), score_paths=len(job.score))
+                        features=len(card.features), inner_contours=len(job.paths("inner")),
+                        outer_contours=len(job.paths("outer")), score_paths=len(job.paths("score")))
     return report

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from .._io import atomic_write
 from .._report import Report
-from ..geometry.laser_checks import LaserJob, prepare_laser
+from ..geometry.cut_plan import CutPlan, plan_cut
 
 
 def write_dxf(path, *, region, outline, centrelines=None, profile, mode=None, dxf_version=None,
@@ -61,15 +61,26 @@ def write_dxf(path, *, region, outline, centrelines=None, profile, mode=None, dx
     >>> r.stats["inner_contours"], r.stats["outer_contours"], r.ok
     (1, 1, True)
     """
-    job, report = prepare_laser(path, "dxf", region=region, outline=outline, centrelines=centrelines,
-                                profile=profile, mode=mode, dxf_version=dxf_version, kerf_mm=kerf_mm,
-                                fill_small_holes=fill_small_holes, stroke=stroke)
-    atomic_write(path, lambda tmp: _save(job, tmp))
-    return report
+    plan = plan_cut(region, outline, centrelines=centrelines, profile=profile, mode=mode, dxf_version=dxf_version,
+                    kerf_mm=kerf_mm, fill_small_holes=fill_small_holes, stroke=stroke, path=str(path), fmt="dxf")
+    atomic_write(path, dxf_bytes(plan))
+    plan.report.stats.update(figures(plan))
+    return plan.report
 
 
-def build_document(job: LaserJob, *, entities: bool = True):
-    """The ezdxf document of a prepared :class:`~fabtiles.geometry.laser_checks.LaserJob`.
+def figures(plan: CutPlan) -> dict:
+    """What a DXF adds to its plan's report: its version."""
+    return {"dxf_version": plan.dxf_version}
+
+
+def dxf_bytes(plan: CutPlan) -> bytes:
+    """The DXF file of ``plan``, as bytes to write."""
+    text, encoding = dxf_text(plan)
+    return text.encode(encoding, errors="dxfreplace")
+
+
+def build_document(job: CutPlan, *, entities: bool = True):
+    """The ezdxf document of a :class:`~fabtiles.geometry.cut_plan.CutPlan`.
 
     With ``entities=False`` only the header, units, layers and empty model space:
     :func:`write_dxf` writes the (many) polylines itself, see :func:`entities_text`.
@@ -90,11 +101,7 @@ def build_document(job: LaserJob, *, entities: bool = True):
     for key, value in (("extmin", (xmin, ymin, 0.0)), ("extmax", (xmax, ymax, 0.0))):
         msp.dxf.set(key, value)
         doc.header[f"${key.upper()}"] = value
-    layers = job.profile.layers
-    cuts = (layers.inner_cut, layers.outer_cut)
-    if job.profile.kind == "laser":  # a router or waterjet file has its two profiles' layers only
-        cuts += (layers.score,) + ((layers.engrave,) if job.engrave else ())
-    for layer in cuts:
+    for layer in job.declared:
         doc.layers.add(layer.name, color=layer.color)
     if not entities:
         return doc
@@ -128,15 +135,12 @@ class _DropUnitsWarning:
         return "$INSUNITS" not in record.getMessage()
 
 
-def _groups(job: LaserJob):
-    """``(rings, layer, closed)`` in cut order: engrave fills (outlines and holes), score, inner, outer."""
-    layers = job.profile.layers
-    engrave = ((job.engrave, layers.engrave, True),) if job.engrave else ()
-    return engrave + ((job.score, layers.score, False), (job.inner, layers.inner_cut, True),
-                      (job.outer, layers.outer_cut, True))
+def _groups(job: CutPlan):
+    """``(rings, layer, closed)`` of each layer, in cut order."""
+    return [(layer.paths, layer.layer, layer.closed) for layer in job.layers]
 
 
-def entities_text(job: LaserJob, first_handle: int, owner: str) -> tuple[str, int]:
+def entities_text(job: CutPlan, first_handle: int, owner: str) -> tuple[str, int]:
     """The ENTITIES section body of ``job`` as DXF text, and the next free handle.
 
     Byte for byte what ezdxf writes for the same polylines (the tests compare the
@@ -172,7 +176,7 @@ def entities_text(job: LaserJob, first_handle: int, owner: str) -> tuple[str, in
 _ENTITIES = "  0\nSECTION\n  2\nENTITIES\n"
 
 
-def dxf_text(job: LaserJob) -> tuple[str, str]:
+def dxf_text(job: CutPlan) -> tuple[str, str]:
     """The DXF file of ``job`` as text, and its encoding.
 
     ezdxf writes the frame (header, tables, blocks, objects), :func:`entities_text` the polylines.
@@ -194,15 +198,15 @@ def dxf_text(job: LaserJob) -> tuple[str, str]:
     return cutter_comment(job) + text[:at] + body + text[at:], doc.output_encoding
 
 
-def cutter_comment(job: LaserJob) -> str:
+def cutter_comment(job: CutPlan) -> str:
     """DXF comments (group code 999) saying what a router's or waterjet's file holds; none for a laser.
 
     CAM programs skip 999 groups, ezdxf's reader drops them, LibreCAD draws the file as
     before (tests/export/test_router.py). A laser's file stays byte for byte as it was.
 
     >>> from fabtiles._profiles import load_profile
-    >>> from fabtiles.geometry.laser_checks import LaserJob
-    >>> print(cutter_comment(LaserJob(load_profile("router-6mm-mdf"), "pierced", "R2000", 0.0)), end="")
+    >>> from fabtiles.geometry.cut_plan import make_plan
+    >>> print(cutter_comment(make_plan(load_profile("router-6mm-mdf"), "pierced", "R2000", 0.0, {})), end="")
     999
     fabtiles router profile router-6mm-mdf: the part as the 6 mm bit makes it (hole corners rounded to 3 mm), NO tool compensation: CAM offsets the tool
     999
@@ -220,8 +224,3 @@ def cutter_comment(job: LaserJob) -> str:
     layers = (f"layers: {p.layers.inner_cut.name} (inside profiles, cut first), {p.layers.outer_cut.name} "
               "(outside profile, cut last); millimetres")
     return f"999\nfabtiles {p.kind} profile {p.name}: {what}\n999\n{layers}\n"
-
-
-def _save(job: LaserJob, tmp: Path) -> None:
-    text, encoding = dxf_text(job)
-    tmp.write_bytes(text.encode(encoding, errors="dxfreplace"))

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from .._io import atomic_write
 from .._report import Report
-from ..geometry.laser_checks import LaserJob, prepare_laser
+from ..geometry.cut_plan import CutPlan, plan_cut
 
 HAIRLINE_MM = 0.025
 """Stroke width of the paths (a 0.001 inch hairline: "cut, don't engrave" for most drivers)."""
@@ -41,11 +41,10 @@ def _path_data(ring, flip: float, closed: bool) -> str:
     return "M" + "L".join(pts) + ("Z" if closed else "")
 
 
-def svg_text(job: LaserJob) -> str:
-    """The laser SVG of a prepared job, as text."""
+def svg_text(job: CutPlan) -> str:
+    """The laser SVG of a cut plan, as text: one group per layer, in cut order."""
     xmin, ymin, xmax, ymax = job.bounds
     w, h = xmax - xmin, ymax - ymin
-    layers = job.profile.layers
     head = (
         '<?xml version="1.0" encoding="UTF-8"?>\n'
         f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(w)}mm" height="{_num(h)}mm" '
@@ -53,27 +52,30 @@ def svg_text(job: LaserJob) -> str:
         f"<title>{_title(job)}</title>\n"
     )
     out = [head]
-    if job.engrave:  # the fill: each polygon one path, its holes as subpaths, filled even-odd
-        colour = aci_to_hex(layers.engrave.color)
-        out.append(f'<g id="{_escape(layers.engrave.name)}" fill="{colour}" fill-rule="evenodd" stroke="none">\n')
-        polys: dict = {}
-        for r, p in zip(job.engrave, job.engrave_parts):
-            polys.setdefault(p, []).append(_path_data(r, 0.0, True))
-        out.extend(f'<path d="{"".join(d)}"/>\n' for d in polys.values())
-        out.append("</g>\n")
-    for rings, layer, closed in ((job.score, layers.score, False), (job.inner, layers.inner_cut, True),
-                                 (job.outer, layers.outer_cut, True)):
-        if not rings:
-            continue
-        out.append(f'<g id="{_escape(layer.name)}" fill="none" stroke="{aci_to_hex(layer.color)}" '
-                   f'stroke-width="{_num(HAIRLINE_MM)}">\n')
-        out.extend(f'<path d="{_path_data(r, 0.0, closed)}"/>\n' for r in rings)
+    for cut in job.layers:
+        layer = cut.layer
+        if cut.fill:  # an engraved fill: each polygon one path, its holes as subpaths, filled even-odd
+            out.append(f'<g id="{_escape(layer.name)}" fill="{aci_to_hex(layer.color)}" fill-rule="evenodd" '
+                       'stroke="none">\n')
+            polys: dict = {}
+            for r, p in zip(cut.paths, cut.groups):
+                polys.setdefault(p, []).append(_path_data(r, 0.0, True))
+            out.extend(f'<path d="{"".join(d)}"/>\n' for d in polys.values())
+        else:
+            out.append(f'<g id="{_escape(layer.name)}" fill="none" stroke="{aci_to_hex(layer.color)}" '
+                       f'stroke-width="{_num(HAIRLINE_MM)}">\n')
+            out.extend(f'<path d="{_path_data(r, 0.0, cut.closed)}"/>\n' for r in cut.paths)
         out.append("</g>\n")
     out.append("</svg>\n")
     return "".join(out)
 
 
-def _title(job: LaserJob) -> str:
+def svg_bytes(plan: CutPlan) -> bytes:
+    """The laser SVG of ``plan``, as bytes to write."""
+    return svg_text(plan).encode("utf-8")
+
+
+def _title(job: CutPlan) -> str:
     """The picture's title: the laser's mode and kerf, or what a router's or waterjet's file holds."""
     p = job.profile
     if p.kind == "router":
@@ -104,8 +106,7 @@ def write_laser_svg(path, *, region, outline, centrelines=None, profile, mode=No
     >>> 'width="40mm"' in out.read_text(), r.stats["inner_contours"]
     (True, 1)
     """
-    job, report = prepare_laser(path, "svg", region=region, outline=outline, centrelines=centrelines,
-                                profile=profile, mode=mode, dxf_version=dxf_version, kerf_mm=kerf_mm,
-                                fill_small_holes=fill_small_holes, stroke=stroke)
-    atomic_write(path, svg_text(job))
-    return report
+    plan = plan_cut(region, outline, centrelines=centrelines, profile=profile, mode=mode, dxf_version=dxf_version,
+                    kerf_mm=kerf_mm, fill_small_holes=fill_small_holes, stroke=stroke, path=str(path), fmt="svg")
+    atomic_write(path, svg_bytes(plan))
+    return plan.report

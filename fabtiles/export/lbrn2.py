@@ -33,7 +33,7 @@ import numpy as np
 
 from .._io import atomic_write
 from .._report import Report
-from ..geometry.laser_checks import LaserJob, prepare_laser
+from ..geometry.cut_plan import CutPlan, plan_cut
 
 APP_VERSION = "1.7.03"
 """The LightBurn version the project says it is for (a recent one: older LightBurn opens newer files too)."""
@@ -59,11 +59,10 @@ def write_lbrn2(path, *, region, outline, centrelines=None, profile, mode=None, 
     >>> out.read_text().count('<Shape Type="Path"'), r.stats["inner_contours"], r.stats["outer_contours"]
     (2, 1, 1)
     """
-    job, report = prepare_laser(path, "lbrn2", region=region, outline=outline, centrelines=centrelines,
-                                profile=profile, mode=mode, kerf_mm=kerf_mm,
-                                fill_small_holes=fill_small_holes, stroke=stroke)
-    atomic_write(path, lbrn2_text(job))
-    return report
+    plan = plan_cut(region, outline, centrelines=centrelines, profile=profile, mode=mode, kerf_mm=kerf_mm,
+                    fill_small_holes=fill_small_holes, stroke=stroke, path=str(path), fmt="lbrn2")
+    atomic_write(path, lbrn2_bytes(plan))
+    return plan.report
 
 
 def palette_index(color_rgb: str, taken) -> int:
@@ -124,17 +123,18 @@ def _cut_setting(layer, index: int, priority: int, kind: str) -> str:
     return f'    <CutSetting type="{kind}">\n{body}    </CutSetting>\n'
 
 
-def layer_groups(job: LaserJob):
-    """``(profile key, layer, rings, closed, CutSetting type)`` of each layer with contours, in cut order."""
-    layers = job.profile.layers
-    groups = [("engrave", layers.engrave, job.engrave, True, "Scan"), ("score", layers.score, job.score, False, "Cut"),
-              ("inner_cut", layers.inner_cut, job.inner, True, "Cut"),
-              ("outer_cut", layers.outer_cut, job.outer, True, "Cut")]
-    return [g for g in groups if g[1] is not None and len(g[2])]
+def layer_groups(job: CutPlan):
+    """``(profile key, layer, rings, closed, CutSetting type)`` of each layer, in cut order."""
+    return [(cut.key, cut.layer, list(cut.paths), cut.closed, "Scan" if cut.fill else "Cut") for cut in job.layers]
 
 
-def lbrn2_text(job: LaserJob) -> str:
-    """The ``.lbrn2`` XML of a prepared laser job."""
+def lbrn2_bytes(plan: CutPlan) -> bytes:
+    """The LightBurn project of ``plan``, as bytes to write."""
+    return lbrn2_text(plan).encode("utf-8")
+
+
+def lbrn2_text(job: CutPlan) -> str:
+    """The ``.lbrn2`` XML of a cut plan."""
     from .laser_svg import aci_to_hex
 
     head = ['<?xml version="1.0" encoding="UTF-8"?>\n',

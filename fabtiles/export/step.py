@@ -8,10 +8,11 @@ its corners, drills it and reports its true volume.
 
 It is written as STEP text (:mod:`fabtiles.export.step_file`): OCCT's own writer
 costs the square of a face's edges, and the 200 x 200 mm relief tile's top face
-has 1,573 holes. Before the file takes its name it is read back with OCCT and must
-be, solid by solid, a valid closed B-rep (see :func:`check_solids`) whose OCCT
-volume is within ``STEP_VOLUME_TOLERANCE`` of the checked mesh's. build123d's OCP
-is imported only inside these functions.
+has 1,573 holes. Before it is written the B-rep is checked in memory
+(:func:`~fabtiles.solid.brep.check_brep`: closed, oriented, valid faces, the
+checked mesh's volume); :func:`check_step_file` reads a written file back with OCCT
+and checks it solid by solid (:func:`check_solids`), for ``fabtiles check --deep``
+and the tests. build123d's OCP is imported only inside these functions.
 """
 
 from __future__ import annotations
@@ -22,8 +23,7 @@ from .._errors import FabricationError
 from .._io import atomic_write
 from ..geometry.material import filament
 from ..geometry.stack import QUANTUM
-from ..solid.brep import build_brep
-from ..solid.parts import prepare_print
+from ..solid.brep import check_brep
 from .step_file import step_text
 
 STEP_VOLUME_TOLERANCE = 0.0005
@@ -245,19 +245,43 @@ def check_solids(solids, *, volume: float, parts: int, name: str = "STEP file re
     return total
 
 
+def check_step_file(path, *, volume: float, parts: int) -> float:
+    """Read a written STEP file back with OCCT and check its solids (:func:`check_solids`); return OCCT's volume.
+
+    The writer checks the B-rep in memory (:func:`~fabtiles.solid.brep.check_brep`);
+    this is the independent check, for ``fabtiles check --deep`` and the tests.
+    """
+    return check_solids(read_step_solids(path), volume=volume, parts=parts, name=f"STEP file {str(path)!r}")
+
+
 # --------------------------------------------------------------------------- writing
+
+
+def step_bytes(model, *, name: str = "tile") -> bytes:
+    """The STEP file (AP214, mm) of a :class:`~fabtiles.solid.print_model.PrintModel`: planar faces, one
+    solid per piece, checked in memory (:func:`~fabtiles.solid.brep.check_brep`) before it is returned."""
+    brep, volume, parts = model.brep
+    check_brep(brep, volume=volume, parts=parts)
+    return step_text([brep], name=name).encode("ascii")
+
+
+def figures(model) -> dict:
+    """What a STEP file adds to its model's report."""
+    brep, volume, parts = model.brep
+    return dict(material=filament({"solid": volume}, model.profile).as_stats(), style=model.stack.style,
+                solids=parts, volume_mm3=volume, grid_mm=QUANTUM, faces=len(brep.faces), edges=len(brep.edges))
 
 
 def write_step(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
                pierced_mm=None, deboss_mm=None, fill_small_holes=False, dips=None, name=None):
     """Write a STEP file (AP214, mm) of the printed tile: planar faces, one solid per piece.
 
-    The file is written to a temporary name, read back with OCCT and checked
-    (:func:`check_solids`) before it takes its name. A pierced tile in several
-    pieces gives one solid per piece (and a ``loose_part`` finding).
-    Parameters as :func:`fabtiles.export.stl.write_stl`; ``dips`` lowers an
-    interlaced relief's under strands (:mod:`fabtiles.solid.levels`); ``name``
-    labels the product and its solids (default: the file's stem).
+    A convenience for scripts: the print model (:func:`~fabtiles.solid.print_model.print_model`)
+    and :func:`step_bytes`, written atomically. A pierced tile in several pieces gives
+    one solid per piece (and a ``loose_part`` finding). Parameters as
+    :func:`fabtiles.export.stl.write_stl`; ``dips`` lowers an interlaced relief's under
+    strands (:mod:`fabtiles.solid.levels`); ``name`` labels the product and its solids
+    (default: the file's stem).
 
     Returns
     -------
@@ -265,18 +289,11 @@ def write_step(path, *, region, outline, profile, style=None, stroke=None, base_
     """
     from pathlib import Path
 
-    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    profile, stack, report, region = prepare_print(region, outline, profile, style, heights, stroke,
-                                                   fill_small_holes=fill_small_holes, flatten=dips is None,
-                                                   path=path, fmt="step")
-    brep, volume, parts = build_brep(region=region, outline=outline, stack=stack, dips=dips)
-    text = step_text([brep], name=name or Path(path).stem)
+    from ..solid.print_model import print_model
 
-    def write(tmp):
-        Path(tmp).write_text(text, encoding="ascii")
-        check_solids(read_step_solids(tmp), volume=volume, parts=parts)
-
-    atomic_write(path, write)
-    report.stats.update(material=filament({"solid": volume}, profile).as_stats(), style=stack.style, solids=parts, volume_mm3=volume, grid_mm=QUANTUM,
-                        faces=len(brep.faces), edges=len(brep.edges))
-    return report
+    model = print_model(region, outline, profile=profile, style=style, stroke=stroke, base_mm=base_mm,
+                        relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm,
+                        fill_small_holes=fill_small_holes, dips=dips, path=str(path), fmt="step")
+    atomic_write(path, step_bytes(model, name=name or Path(path).stem))
+    model.report.stats.update(figures(model))
+    return model.report

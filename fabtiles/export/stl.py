@@ -14,32 +14,45 @@ from .._io import atomic_write
 from .._report import Report
 from ..geometry.material import filament
 from ..solid.mesh_check import cross_rows
-from ..solid.parts import fused_body, prepare_print, stack_stats
 
 
 def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
               pierced_mm=None, deboss_mm=None, fill_small_holes=False, dips=None) -> Report:
     """Write a binary STL (mm) of the tile, one watertight body (a relief's plate and pattern fused).
 
-    The mesh is checked as a slicer reads the file (float32 corners merged by
-    position) and that merged mesh is what is written, atomically. Parameters as
-    :func:`~fabtiles.solid.parts.build_meshes`, plus ``stroke`` (mm, named by the thin-wall
-    check), ``fill_small_holes`` (fill the openings no disc of the printer profile's
-    ``min_hole_mm`` fits in, see :func:`~fabtiles.geometry.print_checks.fill_print_holes`)
-    and ``dips`` (an interlaced relief's, see :mod:`fabtiles.solid.levels`). Strict profile with findings, or a bad mesh:
-    :class:`~fabtiles.FabricationError` and no file.
+    A convenience for scripts: the print model (:func:`~fabtiles.solid.print_model.print_model`)
+    and :func:`model_stl_bytes`, written atomically. The mesh is checked as a slicer
+    reads the file (float32 corners merged by position) and that merged mesh is what
+    is written. Parameters as :func:`~fabtiles.solid.parts.build_meshes`, plus
+    ``stroke`` (mm, named by the thin-wall check), ``fill_small_holes`` (fill the
+    openings no disc of the printer profile's ``min_hole_mm`` fits in, see
+    :func:`~fabtiles.geometry.print_checks.fill_print_holes`) and ``dips`` (an
+    interlaced relief's, see :mod:`fabtiles.solid.levels`). Strict profile with
+    findings, or a bad mesh: :class:`~fabtiles.FabricationError` and no file.
     """
-    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    profile, stack, report, region = prepare_print(region, outline, profile, style, heights, stroke,
-                                                   fill_small_holes=fill_small_holes, flatten=dips is None,
-                                                   path=path, fmt="stl")
-    # checked as a slicer will read it: the merged float32 mesh, written as it is
-    name, mverts, mfaces, volume = fused_body(region, outline, stack, dips=dips)
-    atomic_write(path, stl_bytes(mverts, mfaces))
-    report.stats.update(stack_stats(stack), bodies=[name], triangles=len(mfaces),
-                        volume_mm3=volume, material=filament({name: volume}, profile).as_stats(),
-                        bounds_mm=[mverts.min(axis=0).tolist(), mverts.max(axis=0).tolist()])
-    return report
+    from ..solid.print_model import print_model
+
+    model = print_model(region, outline, profile=profile, style=style, stroke=stroke, base_mm=base_mm,
+                        relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm,
+                        fill_small_holes=fill_small_holes, dips=dips, path=str(path), fmt="stl")
+    atomic_write(path, model_stl_bytes(model))
+    model.report.stats.update(figures(model))
+    return model.report
+
+
+def model_stl_bytes(model) -> bytes:
+    """The binary STL of a :class:`~fabtiles.solid.print_model.PrintModel`: its fused, checked body."""
+    fused = model.fused
+    return stl_bytes(fused.vertices, fused.faces)
+
+
+def figures(model) -> dict:
+    """What an STL adds to its model's report: its body, triangles, volume, filament and bounds."""
+    fused, name = model.fused, model.fused_name
+    volume = fused.mesh_volume_mm3
+    return dict(model.stats(), bodies=[name], triangles=len(fused.faces), volume_mm3=volume,
+                material=filament({name: volume}, model.profile).as_stats(),
+                bounds_mm=[fused.vertices.min(axis=0).tolist(), fused.vertices.max(axis=0).tolist()])
 
 
 def stl_bytes(vertices, faces) -> bytes:

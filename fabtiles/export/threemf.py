@@ -90,7 +90,6 @@ from .._errors import FabricationError, ParameterError
 from .._io import atomic_write
 from ..geometry.material import filament
 from ..solid.mesh_check import check_triangles
-from ..solid.parts import check_inlay, checked_parts, prepare_print, stack_stats
 
 LAYOUTS = ("volumes", "components")
 """The 3MF layouts: PrusaSlicer's volumes (default) or the core spec's components (Cura)."""
@@ -98,9 +97,6 @@ LAYOUTS = ("volumes", "components")
 MODEL_PATH = "3D/3dmodel.model"
 PRUSA_CONFIG_PATH = "Metadata/Slic3r_PE_model.config"
 BAMBU_CONFIG_PATH = "Metadata/model_settings.config"
-
-EXTRUDERS = {"base": 1, "pattern": 2, "plate": 1, "inlay": 2}
-"""The filament (1-based extruder) each part is given; the user can change it in the slicer."""
 
 _CORE_NS = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
 _CURA_NS = "http://software.ultimaker.com/xml/cura/3mf/2015/10"
@@ -210,9 +206,7 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles", layout: str 
     volumes {'a': (1, 4, 4), 'b': (2, 4, 4)}
     components {'a': (1, 4, 4), 'b': (2, 4, 4)}
     """
-    if layout not in LAYOUTS:
-        raise ParameterError(f"layout={layout!r} is not a valid 3MF layout, must be one of: {', '.join(LAYOUTS)}",
-                             param="layout")
+    check_layout(layout)
     head = ['<?xml version="1.0" encoding="UTF-8"?>\n',
             f'<model unit="millimeter" xml:lang="en-US" xmlns="{_CORE_NS}"'
             + (f' xmlns:cura="{_CURA_NS}"' if layout == "components" else "") + '>\n',
@@ -440,7 +434,9 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
               dips=None):
     """Write a 3MF (unit millimetre) of the tile: one object of named parts, one filament each.
 
-    Parameters as :func:`~fabtiles.export.stl.write_stl`, plus:
+    A convenience for scripts: the print model (:func:`~fabtiles.solid.print_model.print_model`)
+    and :func:`model_3mf_bytes`, written atomically. Parameters as
+    :func:`~fabtiles.export.stl.write_stl`, plus:
 
     inlay : bool, optional
         Deboss only: a second part ``"inlay"`` filling the grooves flush with the
@@ -456,51 +452,70 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
         An interlaced relief's dipping under strands (see :mod:`fabtiles.solid.levels`).
 
     A relief is parts ``"base"`` (filament 1) and ``"pattern"`` (filament 2);
-    pierced is ``"pattern"``, deboss ``"plate"``. The package is read back as
-    PrusaSlicer reads it and every part checked again before the file is written
-    atomically; a bad mesh is a :class:`~fabtiles.FabricationError` and no file.
+    pierced is ``"pattern"``, deboss ``"plate"`` (materials:
+    :data:`~fabtiles.solid.print_model.PART_MATERIALS`).
 
     Returns
     -------
     Report
     """
+    from ..solid.print_model import print_model
+
+    check_layout(layout)
+    model = print_model(region, outline, profile=profile, style=style, stroke=stroke, base_mm=base_mm,
+                        relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm,
+                        fill_small_holes=fill_small_holes, inlay=inlay, dips=dips, path=str(path), fmt="3mf")
+    atomic_write(path, model_3mf_bytes(model, name=name if name is not None else _stem(path), layout=layout))
+    model.report.stats.update(figures(model, layout=layout))
+    return model.report
+
+
+def check_layout(layout) -> str:
+    """``layout`` if it is one of :data:`LAYOUTS`, else a :class:`~fabtiles.ParameterError` listing them."""
     if layout not in LAYOUTS:
         raise ParameterError(f"layout={layout!r} is not a valid 3MF layout, must be one of: {', '.join(LAYOUTS)}",
                              param="layout")
-    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
-    profile, stack, report, region = prepare_print(region, outline, profile, style, heights, stroke,
-                                                   fill_small_holes=fill_small_holes, flatten=dips is None,
-                                                   path=path, fmt="3mf")
-    check_inlay(stack, inlay)
-    checked = checked_parts(region, outline, stack, inlay=bool(inlay), dips=dips)
-    parts = [Part(n, EXTRUDERS.get(n, 1) if len(checked) > 1 else 1, p.vertices, p.faces)
-             for n, p in checked.items()]
+    return layout
+
+
+def model_3mf_bytes(model, *, name: str = "tile", layout: str = "volumes") -> bytes:
+    """The 3MF package of a :class:`~fabtiles.solid.print_model.PrintModel`: one object of its parts.
+
+    The package is read back as the slicers read it and every part must be the
+    checked mesh, bit for bit, or pass the checks again (this raises on a bad mesh).
+    """
     from .. import __version__
 
-    title = name if name is not None else _stem(path)
-    data = package_3mf(parts, name=title, application=application_name(layout, __version__), layout=layout)
+    check_layout(layout)
+    checked = model.parts
+    parts = [Part(n, p.material, p.mesh.vertices, p.mesh.faces) for n, p in checked.items()]
+    data = package_3mf(parts, name=name, application=application_name(layout, __version__), layout=layout)
     back = read_3mf(data)
     if list(back) != list(checked):
         raise FabricationError(f"the 3MF package lost its part names (read back {list(back)}, wrote "
                                f"{list(checked)}); nothing was written")
     for n, p in back.items():
-        c = checked[n]
+        c = checked[n].mesh
         if not (np.array_equal(p.faces, c.faces) and np.array_equal(p.vertices, c.vertices.astype(np.float32))):
             # not the mesh that was checked: check what the slicer will read (this raises on a bad mesh)
             check_triangles(p.vertices[p.faces], name=n, volume=c.volume_mm3, bodies=c.bodies)
-    atomic_write(path, data)
-    allv = np.concatenate([p.vertices for p in checked.values()])
-    report.stats.update(
-        stack_stats(stack),
+    return data
+
+
+def figures(model, *, layout: str = "volumes") -> dict:
+    """What a 3MF adds to its model's report: its parts and their filaments, triangles, volume, bounds."""
+    checked = model.parts
+    allv = np.concatenate([p.mesh.vertices for p in checked.values()])
+    return dict(
+        model.stats(),
         bodies=list(checked),
-        parts={n: {"extruder": p.extruder, "triangles": int(len(p.faces))} for n, p in zip(checked, parts)},
+        parts={n: {"extruder": p.material, "triangles": int(len(p.mesh.faces))} for n, p in checked.items()},
         layout=layout,
-        triangles=int(sum(len(p.faces) for p in checked.values())),
-        volume_mm3=float(sum(p.mesh_volume_mm3 for p in checked.values())),
-        material=filament({n: p.mesh_volume_mm3 for n, p in checked.items()}, profile).as_stats(),
+        triangles=int(sum(len(p.mesh.faces) for p in checked.values())),
+        volume_mm3=float(sum(p.mesh.mesh_volume_mm3 for p in checked.values())),
+        material=filament({n: p.mesh.mesh_volume_mm3 for n, p in checked.items()}, model.profile).as_stats(),
         bounds_mm=[allv.min(axis=0).tolist(), allv.max(axis=0).tolist()],
     )
-    return report
 
 
 def _stem(path) -> str:

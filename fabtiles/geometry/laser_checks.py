@@ -1,4 +1,4 @@
-"""Laser fabrication checks, and the one preparation step shared by the laser writers.
+"""The 2D cutters' fabrication checks (the cut plan, :mod:`.cut_plan`, runs them once per plan).
 
 :func:`check_laser` reports, into a :class:`~fabtiles._report.Report`:
 
@@ -18,7 +18,7 @@ A tile larger than the profile's bed (either way round) is not a finding but a
 :class:`~fabtiles.FabricationError` (:func:`check_fits_bed`): the file could not be
 cut, so it is never written. Likewise a stroke thinner than ``min_feature_mm``, a
 kerf below 0 or wider than the stroke are :class:`~fabtiles.ParameterError` (see
-``docs/file-conventions.md``), raised by :func:`prepare_laser` before any work.
+``docs/file-conventions.md``), raised by :func:`~fabtiles.geometry.cut_plan.plan_cut` before any work.
 
 >>> from shapely.geometry import box
 >>> from fabtiles._profiles import load_profile
@@ -30,26 +30,14 @@ kerf below 0 or wider than the stroke are :class:`~fabtiles.ParameterError` (see
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field
-
 import numpy as np
 import shapely
 
-from .._errors import FabricationError, ParameterError, ProfileError
-from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, load_profile
-from .narrow import MAX_LOCATIONS, add_small_holes, fill_small_holes, hole_polygons, locations, narrow_places, \
-    small_hole_mask
+from .._errors import FabricationError, ProfileError
+from .._profiles import LaserProfile, load_profile
 from .._report import Report, distinct
-from .._validate import check_choice, check_float
-from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
-from .job_time import estimate
-from .material import sheet
-from .tool_opening import check_cutter, check_cutter_mode, check_tool, tool_name
-
-
-
-_fill_small_holes = fill_small_holes  # the option of prepare_laser has the same name
+from .contours import polygon_parts
+from .narrow import MAX_LOCATIONS, add_small_holes, hole_polygons, locations, narrow_places, small_hole_mask
 
 
 def check_fits_bed(outline, profile: LaserProfile) -> None:
@@ -143,29 +131,8 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
     return report
 
 
-@dataclass
-class LaserJob:
-    """Everything a laser writer needs: resolved options and the contours in cut order."""
-
-    profile: LaserProfile
-    mode: str
-    dxf_version: str
-    kerf_mm: float
-    inner: list = field(default_factory=list)
-    outer: list = field(default_factory=list)
-    score: list = field(default_factory=list)
-    engrave: list = field(default_factory=list)
-    """Engrave mode: the rings of the filled bands (exteriors counter-clockwise, holes clockwise)."""
-    engrave_parts: list = field(default_factory=list)
-    """The polygon (0, 1, ...) each engrave ring belongs to: a fill's outline and its holes."""
-    engrave_area_mm2: float = 0.0
-    bounds: tuple = (0.0, 0.0, 0.0, 0.0)
-    estimate: object = None
-    """The job's length and time (:class:`~fabtiles.geometry.job_time.JobEstimate`)."""
-
-
-def _check_profile(profile: LaserProfile) -> None:
-    check_cutter(profile)
+def check_layers(profile: LaserProfile) -> None:
+    """The profile's cut and score layers must have a DXF colour (ACI 1..255) and a valid DXF layer name."""
     for key in ("inner_cut", "outer_cut", "score"):
         layer = getattr(profile.layers, key)
         if isinstance(layer.color, bool) or not isinstance(layer.color, int) or not 1 <= layer.color <= 255:
@@ -174,22 +141,6 @@ def _check_profile(profile: LaserProfile) -> None:
         if not isinstance(layer.name, str) or not layer.name or any(c in layer.name for c in '<>/\\":;?*|=\''):
             raise ProfileError(f"profile {profile.name!r}: layers.{key}.name must be a non-empty DXF layer "
                                f"name without <>/\\\":;?*|=', got {layer.name!r}")
-
-
-def _length(rings, closed: bool) -> float:
-    """Total length of polylines (closed: with the closing edge)."""
-    if not rings:
-        return 0.0
-    flat = np.concatenate(rings)
-    total = float(np.hypot(*np.diff(flat, axis=0).T).sum())
-    starts = np.cumsum([0] + [len(r) for r in rings])
-    # remove the jumps between polylines, add the closing edges
-    jumps = flat[starts[1:-1]] - flat[starts[1:-1] - 1]
-    total -= float(np.hypot(*jumps.T).sum())
-    if closed:
-        close = flat[starts[:-1]] - flat[starts[1:] - 1]
-        total += float(np.hypot(*close.T).sum())
-    return total
 
 
 def engrave_layer(profile: LaserProfile):
@@ -221,117 +172,3 @@ def check_engrave(region, profile: LaserProfile, report: Report) -> Report:
     return report
 
 
-def _engrave(job: LaserJob, region, outline, report: Report, kerf_y: float) -> None:
-    """Engrave mode: the outline cut, the material's bands filled on the engrave layer."""
-    profile = job.profile
-    check_engrave(region, profile, report)
-    report.raise_if_strict(profile.strict)
-    job.outer = outline_contours(outline, kerf_mm=job.kerf_mm, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
-    parts = shapely.get_parts(region)
-    rings, part = shapely.get_rings(parts, return_index=True)
-    exterior = np.zeros(len(rings), dtype=bool)
-    starts = np.concatenate([[0], np.cumsum(shapely.get_num_interior_rings(parts) + 1)[:-1]])
-    exterior[starts] = True
-    cleaned, kept = clean_rings(rings, min_area=profile.tolerance_mm ** 2, ccw=exterior)
-    job.engrave, job.engrave_parts = cleaned, part[kept].tolist()
-    job.engrave_area_mm2 = float(shapely.area(parts).sum())
-    report.stats.update(area_mm2=round(job.engrave_area_mm2, 3), engrave_rings=len(cleaned))
-
-
-def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode=None, dxf_version=None,
-                  kerf_mm=None, fill_small_holes: bool = False, stroke=None):
-    """Validate the options, run the checks and build the contours: ``(LaserJob, Report)``.
-
-    Raises before anything is written: :class:`~fabtiles.ParameterError` for bad
-    options, :class:`~fabtiles.ProfileError` for a bad profile,
-    :class:`~fabtiles.FabricationError` for a tile larger than the bed or, with a
-    strict profile, any finding.
-    """
-    profile = load_profile(profile, kind="laser")
-    _check_profile(profile)
-    mode = profile.mode if mode is None else mode
-    if mode == "inlay":
-        raise ParameterError("the inlay mode writes a kit of two files (lattice and pieces): export it with "
-                             "fabtiles.export.kit.write_kit, Tile.export(..., mode='inlay') or fabtiles build",
-                             param="mode")
-    mode = check_choice("mode", mode, LASER_MODES)
-    check_cutter_mode(profile, mode)
-    dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
-                               DXF_VERSIONS)
-    if kerf_mm is None:  # the profile's kerf, along X and along Y
-        kerf, kerf_y = profile.kerf_xy_mm
-    else:
-        kerf = kerf_y = check_float("kerf_mm", kerf_mm, low=0)
-        if profile.kind == "router" and kerf != 0:
-            raise ParameterError(f"kerf_mm must be 0 for router profile {profile.name!r}, got {kerf:g}: a router "
-                                 "file holds the part contour and CAM offsets the tool", param="kerf_mm")
-        if profile.kind == "waterjet" and kerf <= 0:
-            raise ParameterError(f"kerf_mm must be > 0 for waterjet profile {profile.name!r} (the jet's diameter), "
-                                 f"got {kerf:g}", param="kerf_mm")
-    if stroke is not None:
-        stroke = check_float("stroke", stroke, low=0, low_open=True)
-        if stroke < profile.min_feature_mm:
-            raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of {profile.kind} "
-                                 f"profile {profile.name!r}, got {stroke:g}", param="stroke")
-        if max(kerf, kerf_y) > stroke:
-            raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {max(kerf, kerf_y):g}",
-                                 param="kerf_mm")
-    if not isinstance(fill_small_holes, bool):
-        raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}",
-                             param="fill_small_holes")
-    parts = polygon_parts(region)
-    outline_parts = polygon_parts(outline, "outline")
-    check_fits_bed(outline, profile)
-
-    report = Report(path=str(path), format=fmt)
-    job = LaserJob(profile, mode, dxf_version, kerf)
-    report.stats.update(profile=profile.name, mode=mode, kerf_mm=kerf)
-    if kerf_y != kerf:
-        report.stats["kerf_y_mm"] = kerf_y
-    if fmt == "dxf":
-        report.stats["dxf_version"] = dxf_version
-    if profile.kind != "laser":
-        report.stats["cutter"] = profile.kind
-    if mode == "pierced":
-        tool_filled = 0
-        if profile.kind != "laser":  # the part as the bit or the jet makes it: holes opened by its radius
-            region, _, tool_filled = check_tool(region, profile, fill_small_holes=fill_small_holes, report=report)
-            parts = shapely.get_parts(region)
-        if fill_small_holes:
-            region, filled = _fill_small_holes(region, profile.min_hole_mm,
-                                                tolerance_mm=profile.tolerance_mm)
-            report.stats["filled_holes"] = filled + tool_filled
-            parts = shapely.get_parts(region)
-            if tool_filled:
-                report.note(f"filled {tool_filled:,} hole{'s' if tool_filled != 1 else ''} that "
-                            f"{tool_name(profile)} cannot enter")
-            if filled:
-                report.note(f"filled {filled:,} hole{'s' if filled != 1 else ''} narrower than min_hole_mm = "
-                            f"{profile.min_hole_mm:g} mm of {profile.kind} profile {profile.name!r}")
-        check_laser(region, outline, profile, stroke=stroke, report=report, validate=False)
-        report.raise_if_strict(profile.strict)
-        job.inner, job.outer = laser_contours(region, outline, kerf_mm=kerf, kerf_y_mm=kerf_y,
-                                              tolerance_mm=profile.tolerance_mm, validate=False)
-        report.stats["area_mm2"] = round(float(shapely.area(parts).sum()), 3)
-    elif mode == "engrave":
-        _engrave(job, region, outline, report, kerf_y)
-    else:
-        if centrelines is None or len(np.asarray(centrelines)) == 0:
-            raise ParameterError("the score mode needs centrelines (an array of shape (k, 2, 2)), got none",
-                                 param="centrelines")
-        job.outer = outline_contours(outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
-        job.score = score_paths(centrelines, outline, tolerance_mm=profile.tolerance_mm)
-        report.stats["area_mm2"] = round(float(shapely.area(outline_parts).sum()), 3)
-        report.stats["score_paths"] = len(job.score)
-        report.stats["score_length_mm"] = round(_length(job.score, False), 3)
-    allr = job.inner + job.outer + job.score + job.engrave
-    flat = np.concatenate(allr) if allr else np.zeros((1, 2))
-    job.bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
-    report.stats.update(inner_contours=len(job.inner), outer_contours=len(job.outer),
-                        vertices=int(sum(len(r) for r in allr)),
-                        cut_length_mm=round(_length(job.inner + job.outer, True), 3))
-    job.estimate = estimate(profile, inner=job.inner, outer=job.outer, score=job.score, engrave=job.engrave,
-                            engrave_area_mm2=job.engrave_area_mm2)
-    report.stats["job"] = job.estimate.as_stats()
-    report.stats["sheet"] = sheet(outline, profile)
-    return job, report

@@ -19,21 +19,13 @@ from fastapi.responses import FileResponse, JSONResponse, Response
 from .. import _limits
 from .._errors import FabtilesError
 from .._profiles import bundled_profiles, kind_of
-from ..export.dispatch import FORMATS
+from ..export.formats import FILE_FORMATS as FORMATS
 from ..pattern.presets import PRESET_NOTES, PRESETS
 from .params import DEFAULTS, FIELDS, QueryError, design_from_query, parse_flag
 
 STATIC = Path(__file__).with_name("static")
 
-MEDIA_TYPES = {
-    "dxf": "image/vnd.dxf",
-    "svg": "image/svg+xml",
-    "lbrn2": "application/xml",
-    "stl": "model/stl",
-    "3mf": "model/3mf",
-    "step": "model/step",
-    "toml": "application/toml",
-}
+MEDIA_TYPES = {"toml": "application/toml"}
 
 
 def _field_of(message: str) -> str | None:
@@ -300,12 +292,9 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
 
         _, spec, _ = build(request)
         # The build pipeline, as `fabtiles build`: the design's profiles and options, the limits.
-        data, report = build_bytes(spec, fmt, limits=limits, file_name=f"{spec.name}.{fmt}")
-        if "kit_files" in report.stats:  # an inlay kit: the lattice and the pieces in one archive
-            return Response(data, media_type="application/zip",
-                            headers={"Content-Disposition": f'attachment; filename="{spec.name}-kit-{fmt}.zip"'})
-        return Response(data, media_type=MEDIA_TYPES[fmt],
-                        headers={"Content-Disposition": f'attachment; filename="{spec.name}.{fmt}"'})
+        download = build_bytes(spec, fmt, limits=limits)  # an inlay kit's two files come as one zip
+        return Response(download.data, media_type=download.media_type,
+                        headers={"Content-Disposition": f'attachment; filename="{download.file_name}"'})
 
     return app
 

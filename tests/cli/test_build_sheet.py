@@ -191,7 +191,7 @@ def test_interlaced_score_sheet_holds_the_woven_score_lines(tmp_path):
 
 
 def test_interlace_cut_sheet_cuts_every_copy(tmp_path):
-    from fabtiles.export.dispatch import laser_geometry
+    from fabtiles.geometry.machine_geometry import cut_geometry as laser_geometry
 
     path = tmp_path / "cut.toml"
     path.write_text(WOVEN.replace("interlace = true", "interlace = true\ninterlace_cut = true"), encoding="utf-8")

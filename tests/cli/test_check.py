@@ -84,7 +84,7 @@ def test_check_judges_the_interlace_cut_region(tmp_path):
     """With ``interlace_cut`` the laser file holds the cut gaps and their tabs: so does the check."""
     from fabtiles.checks import check_design
     from fabtiles.design import load_design
-    from fabtiles.export.dispatch import laser_geometry
+    from fabtiles.geometry.machine_geometry import cut_geometry as laser_geometry
     from fabtiles.geometry.laser_checks import check_laser
     from fabtiles._profiles import load_profile
     from fabtiles._report import Report

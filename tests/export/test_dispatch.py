@@ -1,7 +1,8 @@
 import pytest
 
 import fabtiles as ft
-from fabtiles.export.dispatch import export_geometry, format_of
+from fabtiles.build import export_region
+from fabtiles.export.formats import format_of
 
 
 def _empty_tile():
@@ -32,12 +33,12 @@ def test_unknown_suffix_and_option(tmp_path):
 
 
 def test_format_of_is_case_insensitive():
-    assert format_of("A.STEP") == "step" and format_of("x.3MF") == "3mf"
+    assert format_of("A.STEP").name == "step" and format_of("x.3MF").name == "3mf"
 
 
-def test_export_geometry_defaults_to_bundled_profiles(tmp_path):
+def test_export_region_defaults_to_bundled_profiles(tmp_path):
     from shapely.geometry import box
 
     plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
-    report = export_geometry(tmp_path / "p.dxf", region=plate, outline=box(0, 0, 40, 40), stroke=10)
+    report = export_region(tmp_path / "p.dxf", region=plate, outline=box(0, 0, 40, 40), stroke=10)
     assert report.format == "dxf" and (tmp_path / "p.dxf").exists()

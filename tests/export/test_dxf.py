@@ -30,7 +30,7 @@ from shapely.geometry import box
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError
 from fabtiles._profiles import Layer, LaserLayers, load_profile
 from fabtiles.export.dxf import build_document, dxf_text, write_dxf
-from fabtiles.geometry.laser_checks import prepare_laser
+from fabtiles.geometry.cut_plan import plan_cut
 
 PLY = load_profile("laser-3mm-plywood")
 INNER, OUTER, SCORE = PLY.layers.inner_cut, PLY.layers.outer_cut, PLY.layers.score
@@ -204,8 +204,7 @@ def test_bad_profile_colour_in_file(tmp_path):
 @pytest.mark.parametrize("mode", ["pierced", "score"])
 def test_fast_writer_matches_ezdxf(version, mode):
     region, outline, seg = motif_tile(size=60, stroke=1.5)
-    job, _ = prepare_laser("x.dxf", "dxf", region=region, outline=outline, centrelines=seg, profile=PLY,
-                           dxf_version=version, mode=mode)
+    job = plan_cut(region=region, outline=outline, centrelines=seg, profile=PLY, dxf_version=version, mode=mode)
     fast, _ = dxf_text(job)
     stream = io.StringIO()
     build_document(job).write(stream)
@@ -250,10 +249,10 @@ def test_importing_the_writer_does_not_load_ezdxf():
 
 
 def test_dispatch_passes_options(tmp_path):
-    from fabtiles.export.dispatch import export_geometry
+    from fabtiles.build import export_region
 
     region, outline = star_plate()
-    report = export_geometry(tmp_path / "d.dxf", region=region, outline=outline, stroke=1.0, kerf_mm=0.0)
+    report = export_region(tmp_path / "d.dxf", region=region, outline=outline, stroke=1.0, kerf_mm=0.0)
     assert report.stats["kerf_mm"] == 0.0 and report.format == "dxf"
     assert all(e[1] in CUT_TYPES for e in dxf_entities(tmp_path / "d.dxf"))
 

@@ -43,7 +43,7 @@ def kit(tmp_path_factory):
 
 def test_a_kit_is_two_files_in_registration(kit):
     t, report, lattice, pieces, _ = kit
-    assert report.stats["kit_files"] == [str(lattice), str(pieces)]
+    assert report.stats["files"] == [str(lattice), str(pieces)]
     assert not (lattice.parent / "t.dxf").exists()
     outer = rings(lattice, PLY.layers.outer_cut.name)
     assert len(outer) == 1 and np.ptp(outer[0], axis=0) == pytest.approx([60 + KERF] * 2, abs=1e-6)

@@ -36,7 +36,8 @@ import fabtiles
 from fabtiles._profiles import load_profile
 from fabtiles.build import build_design
 from fabtiles.design import load_design
-from fabtiles.export.dispatch import DEFAULT_LASER_PROFILE, export_tile
+from fabtiles._profiles import DEFAULT_LASER_PROFILE
+from fabtiles.build import export_tile
 from fabtiles.export.dxf import write_dxf
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -37,7 +37,7 @@ from mesh_helpers import (
 import fabtiles
 from fabtiles.design import load_design
 from fabtiles.geometry.stack import resolve_stack
-from fabtiles.export.dispatch import DEFAULT_PRINTER_PROFILE
+from fabtiles._profiles import DEFAULT_PRINTER_PROFILE
 
 trimesh = pytest.importorskip("trimesh")
 pytest.importorskip("manifold3d")

@@ -12,13 +12,9 @@ from shapely.geometry import Polygon, box
 
 from fabtiles import FabricationError, ParameterError
 from fabtiles._profiles import load_profile
-from fabtiles.geometry.laser_checks import (
-    check_fits_bed,
-    check_laser,
-    fill_small_holes,
-    prepare_laser,
-    small_hole_mask,
-)
+from fabtiles.geometry.cut_plan import plan_cut
+from fabtiles.geometry.laser_checks import check_fits_bed, check_laser
+from fabtiles.geometry.narrow import fill_small_holes, small_hole_mask
 
 PLY = load_profile("laser-3mm-plywood")
 
@@ -124,11 +120,12 @@ def test_prepare_validates_before_work():
     plate = box(0, 0, 10, 10).difference(box(2, 2, 8, 8))
     kw = dict(region=plate, outline=box(0, 0, 10, 10), profile=PLY)
     with pytest.raises(ParameterError, match="kerf_mm must be >= 0 and <= the stroke"):
-        prepare_laser("x", "dxf", kerf_mm=1.2, stroke=1.1, **kw)
+        plan_cut(kerf_mm=1.2, stroke=1.1, **kw)
     with pytest.raises(ParameterError, match="stroke must be >= min_feature_mm"):
-        prepare_laser("x", "dxf", stroke=0.9, **kw)
+        plan_cut(stroke=0.9, **kw)
     with pytest.raises(FabricationError, match="small_hole"):
-        prepare_laser("x", "dxf", **(kw | dict(region=plate.difference(box(0.5, 0.5, 1, 1)),
+        plan_cut(**(kw | dict(region=plate.difference(box(0.5, 0.5, 1, 1)),
                                                 profile=replace(PLY, strict=True))))
-    job, report = prepare_laser("x", "dxf", kerf_mm=0, **kw)
+    job = plan_cut(kerf_mm=0, **kw)
+    report = job.report
     assert job.bounds == (0, 0, 10, 10) and report.stats["cut_length_mm"] == pytest.approx(64)

@@ -53,9 +53,9 @@ def test_parts_watertight_and_as_the_stl(client, style, names):
 def test_each_part_has_its_colour(client):
     parts = _parts(client.get(f"/api/view.glb?{SMALL}").content)
     colours = {n: tuple(np.round(m.visual.material.baseColorFactor[:3] / 255, 2)) for n, m in parts.items()}
-    from fabtiles.export.glb import PART_COLOURS
+    from fabtiles.solid.print_model import PART_MATERIALS
 
-    assert colours == {n: tuple(round(c, 2) for c in PART_COLOURS[n]) for n in parts}
+    assert colours == {n: tuple(round(c, 2) for c in PART_MATERIALS[n].colour) for n in parts}
     assert colours["base"] != colours["pattern"]
 
 

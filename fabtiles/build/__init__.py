@@ -1,0 +1,37 @@
+"""The build: a design's models made once, its files written all or nothing, for every front end.
+
+- :mod:`.models`: :class:`BuildOptions` (the profiles, loaded once, and the options)
+  and :class:`Models` (the cut plan and the print model of one tile or sheet);
+- :mod:`.pipeline`: :func:`build_design` (files into a folder), :func:`build_bytes`
+  (one format as bytes, the web app's downloads), :func:`export_tile` and
+  :func:`export_region` (the API's one-file exports);
+- :mod:`.views`: the pictures' and the 3D view's geometry from the same models;
+- :mod:`.staging`: all-or-nothing writes; :mod:`.outcome`: batch and sweep results.
+"""
+
+from .models import BuildOptions, Models
+from .outcome import Outcome, outcome_of, run_job
+from .pipeline import (
+    PREVIEW_SUFFIX,
+    SHEET_SUFFIX,
+    BuildResult,
+    Download,
+    build_bytes,
+    build_design,
+    check_format_limits,
+    export_region,
+    export_tile,
+    layout_tile_sheet,
+    prepare_tile,
+    sheet_formats,
+    write_files,
+)
+from .staging import STAGING_PREFIX, StagingFolder, remove_stale_staging
+from .views import VIEW_SEGMENTS, inlay_kit_of, made_region, print_view
+
+__all__ = [
+    "BuildOptions", "Models", "Outcome", "outcome_of", "run_job", "PREVIEW_SUFFIX", "SHEET_SUFFIX", "BuildResult",
+    "Download", "build_bytes", "build_design", "check_format_limits", "export_region", "export_tile",
+    "layout_tile_sheet", "prepare_tile", "sheet_formats", "write_files", "STAGING_PREFIX", "StagingFolder",
+    "remove_stale_staging", "VIEW_SEGMENTS", "inlay_kit_of", "made_region", "print_view",
+]

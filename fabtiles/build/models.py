@@ -1,0 +1,168 @@
+"""The models of one build: the cut plan and the print model, each made once and shared by every file.
+
+:class:`BuildOptions` gathers what a design (or a call) says about its machines: the
+two profiles, loaded once, and the options of each. :class:`Models` makes, on
+first use and then keeps, the cut plan (or an inlay kit's two plans, or a sheet's
+plan) and the print model of one tile; every writer in the format table
+(:mod:`fabtiles.export.formats`) is a pure function of one of them. So a build of
+five formats runs the cutter's checks and contours once and the printer's checks
+once, and each finding is reported once (``tests/test_one_model.py`` counts).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+
+from .._errors import FabricationError, ParameterError
+from .._profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
+from .._report import Report
+
+KIT_MODE = "inlay"
+
+
+@dataclass(frozen=True)
+class BuildOptions:
+    """A build's machine settings: the profiles (loaded) and every option of the cut and the print.
+
+    ``None`` means the profile's own value. Make one from a design with :meth:`of_design`.
+    """
+
+    cutter: object
+    """The cutter profile (:class:`~fabtiles.CutterProfile`), loaded."""
+    printer: object
+    """The printer profile (:class:`~fabtiles.PrinterProfile`), loaded."""
+    laser_mode: str | None = None
+    fill_small_holes: bool = False
+    inlay_fit_mm: float | None = None
+    inlay_base: str | None = None
+    dxf_version: str | None = None
+    kerf_mm: float | None = None
+    print_style: str | None = None
+    heights: dict = field(default_factory=dict)
+    inlay: bool = False
+    """The deboss grooves filled as a second part of the print."""
+    threemf_layout: str = "volumes"
+
+    @classmethod
+    def of_design(cls, design) -> "BuildOptions":
+        """The options a validated design's ``[output]`` gives."""
+        out = design.output
+        return cls(cutter=load_profile(out.laser_profile or DEFAULT_CUTTER_PROFILE, kind="laser"),
+                   printer=load_profile(out.printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer"),
+                   laser_mode=out.laser_mode, fill_small_holes=bool(out.fill_small_holes),
+                   inlay_fit_mm=out.inlay_fit_mm, inlay_base=out.inlay_base, print_style=out.print_style,
+                   heights=dict(out.heights()), inlay=bool(out.inlay), threemf_layout=out.threemf_layout)
+
+    @property
+    def mode(self) -> str:
+        """The cutter's mode: the option's, else the profile's."""
+        return self.laser_mode or self.cutter.mode
+
+    @property
+    def kit(self) -> bool:
+        """Whether the cutter's files are an inlay kit (two files per format)."""
+        return self.mode == KIT_MODE
+
+
+class Models:
+    """The cut plan and print model of one tile (or one sheet), each made on first use, once.
+
+    Parameters
+    ----------
+    tile : TileGeometry
+        The tile (its region, outline, centre-lines, stroke).
+    options : BuildOptions
+    sheet : Sheet, optional
+        A laid-out sheet (:func:`~fabtiles.geometry.sheet.layout_sheet`): the cut plan
+        is the sheet's; a sheet has no print model.
+    checking : bool
+        Make the models for ``fabtiles check``: the inlay kit's plans are not made
+        (its lattice is checked as a pierced tile), nothing is meshed.
+    """
+
+    def __init__(self, tile, options: BuildOptions, *, sheet=None, checking: bool = False):
+        self.tile = tile
+        self.options = options
+        self.sheet = sheet
+        self.checking = checking
+
+    def _material(self, region):
+        """``region``, or a :class:`~fabtiles.FabricationError` when it is empty (no file of nothing)."""
+        if region is None or region.is_empty:
+            raise FabricationError(
+                "the tile holds no material: every stroke of its pattern falls outside the outline; "
+                "add a frame, make the tile larger, or make the packing radius smaller")
+        return region
+
+    # ------------------------------------------------------------------ the cutter
+
+    @cached_property
+    def cut_region(self):
+        """``(region, centrelines)`` the cutter's files are made from (see :func:`~fabtiles.geometry.machine_geometry.cut_geometry`)."""
+        from ..geometry.machine_geometry import cut_geometry
+
+        o = self.options
+        mode = "pierced" if o.kit else o.laser_mode
+        if self.sheet is not None:
+            return self.sheet.region, self.sheet.centrelines
+        return cut_geometry(self.tile, profile=o.cutter, mode=mode, lines=not o.kit)
+
+    @cached_property
+    def cut(self):
+        """The cut plan (:class:`~fabtiles.geometry.cut_plan.CutPlan`), or an inlay kit's two
+        (:class:`~fabtiles.geometry.cut_plan.KitPlans`)."""
+        from ..geometry.cut_plan import plan_cut, plan_kit
+
+        o = self.options
+        region, centrelines = self.cut_region
+        self._material(self.tile.region() if self.sheet is None else region)
+        outline = self.sheet.outline if self.sheet is not None else self.tile.outline_shape()
+        if o.kit and self.checking:  # the check looks at the lattice as a pierced tile
+            return plan_cut(region, outline, profile=o.cutter, mode="pierced", kerf_mm=o.kerf_mm,
+                            fill_small_holes=o.fill_small_holes, stroke=self.tile.stroke)
+        if o.kit and self.sheet is None:
+            return plan_kit(region, outline, profile=o.cutter, inlay_fit_mm=o.inlay_fit_mm,
+                            inlay_base=o.inlay_base or "pierced", kerf_mm=o.kerf_mm, dxf_version=o.dxf_version,
+                            stroke=self.tile.stroke)
+        if o.kit:
+            raise ParameterError("a sheet of inlay kits is not laid out; write the kit of one tile (drop --sheet "
+                                 "and --copies) or choose laser_mode = \"pierced\"", param="laser_mode")
+        return plan_cut(region, outline, profile=o.cutter, centrelines=centrelines, mode=o.laser_mode,
+                        dxf_version=o.dxf_version, kerf_mm=o.kerf_mm, fill_small_holes=o.fill_small_holes,
+                        stroke=self.tile.stroke)
+
+    # ------------------------------------------------------------------ the printer
+
+    @cached_property
+    def print_region(self):
+        """``(region, dips)`` the print is made from (see :func:`~fabtiles.geometry.machine_geometry.print_geometry`)."""
+        from ..geometry.machine_geometry import print_geometry
+
+        return print_geometry(self.tile, profile=self.options.printer, style=self.options.print_style)
+
+    @cached_property
+    def print(self):
+        """The print model (:class:`~fabtiles.solid.print_model.PrintModel`); its meshes are made on first use."""
+        from ..solid.print_model import print_model
+
+        o = self.options
+        region, dips = self.print_region
+        self._material(region)
+        return print_model(region, self.tile.outline_shape(), profile=o.printer, style=o.print_style,
+                           stroke=self.tile.stroke, fill_small_holes=o.fill_small_holes, inlay=o.inlay,
+                           dips=dips, **o.heights)
+
+    def model(self, family: str):
+        """The model a format family is written from: ``"cut"`` or ``"print"``."""
+        return self.cut if family == "cut" else self.print
+
+    def reports(self) -> list[tuple[str, Report]]:
+        """``(label, report)`` of each model made so far: one set of findings per model."""
+        out = []
+        if "cut" in self.__dict__:
+            label = f"{self.options.cutter.kind} {self.options.cutter.name}"
+            out.append((label + (" (inlay kit)" if hasattr(self.cut, "lattice") else ""), self.cut.report))
+        if "print" in self.__dict__:
+            out.append((f"printer {self.options.printer.name}", self.print.report))
+        return out

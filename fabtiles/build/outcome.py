@@ -1,0 +1,69 @@
+"""Outcomes: one job of a batch or sweep, as a picklable summary that crosses processes and machines."""
+
+from __future__ import annotations
+
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .._errors import FabtilesError
+
+
+@dataclass
+class Outcome:
+    """The result of one job of a batch or sweep (picklable: it crosses processes and machines)."""
+
+    key: str
+    ok: bool
+    message: str
+    paths: list[str] = field(default_factory=list)
+    findings: list[str] = field(default_factory=list)
+    """One line per fabrication finding, ``"<file name>: <code>: <message>"``."""
+    preview: str | None = None
+    """The tile's picture, when asked for."""
+    figures: dict = field(default_factory=dict)
+    """The laser job of its first laser file (``Report.stats["job"]``), its sheet (``sheet_m2``,
+    ``sheet_cost``) and the filament of its first print file (``filament_mass_g``, ...): empty without them."""
+
+
+def outcome_of(key: str, result: BuildResult) -> Outcome:
+    """An :class:`Outcome` for a successful build."""
+    n = len(result.paths)
+    message = f"{n} file{'s' if n != 1 else ''}"
+    if result.findings:
+        message += f", {result.findings} fabrication warning{'s' if result.findings != 1 else ''}"
+    # each finding once, by the model it was found on (not once per file of that model)
+    lines = [f"{label}: {f.code}: {f.message}" for label, r in result.models for f in r.findings]
+    return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports))
+
+
+def _figures(reports) -> dict:
+    """The laser job, sheet and filament of a build's first laser and first print file, flat (sweep columns)."""
+    def first(key):
+        return next((r.stats[key] for r in reports if key in r.stats), {})
+
+    job, sheet, material = first("job"), first("sheet"), first("material")
+    figures = dict(job)
+    if sheet:
+        figures.update(sheet_m2=sheet["sheet_m2"], sheet_cost=sheet["cost"])
+    if material:
+        figures.update(filament_mass_g=material["mass_g"], filament_length_m=material["length_m"],
+                       filament_cost=material["cost"])
+    return figures
+
+
+def run_job(key: str, make_design, outdir, formats=None, *, preview: bool = False) -> Outcome:
+    """Build one design for a batch or sweep, never raising: failures become an :class:`Outcome`.
+
+    ``make_design`` is a callable returning the validated design (so that loading
+    and validation errors are this job's failure too).
+    """
+    try:
+        from .pipeline import build_design
+
+        result = build_design(make_design(), outdir, formats or None, preview=preview)
+        return outcome_of(key, result)
+    except FabtilesError as exc:
+        return Outcome(key, False, str(exc))
+    except Exception:  # a bug: report it with its traceback, keep the batch going
+        return Outcome(key, False, "internal error (a bug, please report):\n" + traceback.format_exc())

@@ -1,0 +1,357 @@
+"""The cut plan: a 2D cutter's job as ordered layers of paths, made once and read by every writer.
+
+A :class:`CutPlan` is what the DXF, the laser SVG and the LightBurn project of a
+tile (or a sheet, or one file of an inlay kit) are made from: the layers in cut
+order, each with its role, the profile's layer settings (name, colour, speed,
+power, passes) and its paths (closed contours or open score lines), the plan's
+bounds, its fabrication findings, its job estimate and the part as the tool makes
+it. The writers (:mod:`fabtiles.export.formats`) are pure functions of a plan: a
+build makes the plan once, whatever formats it writes.
+
+:func:`plan_cut` validates the options, runs the checks (:mod:`.laser_checks`,
+:mod:`.tool_opening`) and builds the contours (:mod:`.contours`); :func:`plan_kit`
+makes an inlay kit's two plans, the lattice and the pieces.
+
+>>> from shapely.geometry import box
+>>> plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
+>>> plan = plan_cut(plate, box(0, 0, 40, 40), profile="laser-3mm-plywood")
+>>> [(layer.role, layer.layer.name, len(layer.paths)) for layer in plan.layers]
+[('inner', 'INNER', 1), ('outer', 'OUTER', 1)]
+>>> plan.report.ok, plan.estimate.pierces
+(True, 2)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+import shapely
+
+from .._cutters import cutter_kind
+from .._errors import ParameterError
+from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, Layer, load_profile
+from .._report import Report
+from .._validate import check_choice, check_float
+from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
+from .job_time import estimate as job_estimate
+from .laser_checks import check_engrave, check_fits_bed, check_laser, engrave_layer
+from .material import sheet
+from .narrow import fill_small_holes as _fill_small_holes
+
+ROLES = ("engrave", "score", "inner", "outer")
+"""The roles of a plan's layers, in cut order: engrave fills first, then score lines, inner
+contours, and the outer contours last (a part cut free must not move before its holes are cut)."""
+
+PROFILE_KEYS = {"engrave": "engrave", "score": "score", "inner": "inner_cut", "outer": "outer_cut"}
+"""The profile's ``[layers]`` key of each role."""
+
+
+@dataclass(frozen=True)
+class CutLayer:
+    """One layer of a cut plan: what it does, the profile's settings for it, its paths.
+
+    ``paths`` are (n, 2) arrays in mm, in cut order; ``closed`` says whether each
+    path returns to its start (contours) or not (score lines). ``fill`` layers are
+    engraved areas: ``groups[i]`` is the polygon path ``i`` bounds (an outline and
+    its holes share a group), and the writers fill each group even-odd.
+    """
+
+    role: str
+    layer: Layer
+    paths: tuple
+    closed: bool = True
+    fill: bool = False
+    groups: tuple = ()
+
+    @property
+    def key(self) -> str:
+        """The profile's ``[layers]`` key of this layer (``inner_cut``, ``outer_cut``, ``score``, ``engrave``)."""
+        return PROFILE_KEYS[self.role]
+
+
+@dataclass(frozen=True)
+class CutPlan:
+    """A 2D cutter's job: its layers in cut order and what the checks and the estimate found.
+
+    ``layers`` holds only the layers with paths; ``declared`` is every layer the
+    files declare (a DXF's layer table lists the profile's cut and score layers even
+    when empty, so a user finds them). ``report`` carries the plan's statistics and
+    findings (one set per plan, however many files are written from it);
+    ``estimate`` is the job's length and time; ``part`` the material as the tool
+    makes it (holes opened by a router's bit, small holes filled); ``bounds`` the
+    extents of every path (a kit's pieces keep the lattice's, so the two files register).
+    """
+
+    profile: LaserProfile
+    mode: str
+    dxf_version: str
+    kerf_mm: float
+    layers: tuple = ()
+    declared: tuple = ()
+    bounds: tuple = (0.0, 0.0, 0.0, 0.0)
+    estimate: object = None
+    report: Report = field(default_factory=lambda: Report(path="", format=""))
+    part: object = None
+    engrave_area_mm2: float = 0.0
+
+    def paths(self, role: str) -> list:
+        """The paths of the layer of ``role`` (empty when the plan has none)."""
+        return next((list(layer.paths) for layer in self.layers if layer.role == role), [])
+
+    @property
+    def kind(self):
+        """The cutter's rules (:class:`~fabtiles._cutters.CutterKind`)."""
+        return cutter_kind(self.profile)
+
+
+def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict, *, report: Report | None = None,
+              part=None, groups=(), engrave_area_mm2: float = 0.0, bounds=None) -> CutPlan:
+    """A :class:`CutPlan` of ``paths`` (role -> list of arrays), its layers, bounds and estimate.
+
+    For plans made without the tile pipeline too (the calibration card, a kit's pieces).
+    """
+    layers_of = profile.layers
+    kind = cutter_kind(profile)
+    layers = []
+    for role in ROLES:
+        rings = [np.asarray(r, dtype=float) for r in paths.get(role, ())]
+        if not rings:
+            continue
+        layer = getattr(layers_of, PROFILE_KEYS[role])
+        layers.append(CutLayer(role, layer, tuple(rings), closed=role != "score", fill=role == "engrave",
+                               groups=tuple(groups) if role == "engrave" else ()))
+    declared = [layers_of.inner_cut, layers_of.outer_cut]
+    if kind.all_layers:  # a router or waterjet file has its two profiles' layers only
+        declared.append(layers_of.score)
+        if paths.get("engrave"):
+            declared.append(layers_of.engrave)
+    if bounds is None:
+        allr = [r for layer in layers for r in layer.paths]
+        flat = np.concatenate(allr) if allr else np.zeros((1, 2))
+        bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
+    est = job_estimate(profile, **{("inner" if r == "inner" else "outer" if r == "outer" else r):
+                                   list(paths.get(r, ())) for r in ROLES}, engrave_area_mm2=engrave_area_mm2)
+    return CutPlan(profile, mode, dxf_version, kerf_mm, tuple(layers), tuple(declared), tuple(bounds), est,
+                   report if report is not None else Report(path="", format=""), part, engrave_area_mm2)
+
+
+def _length(rings, closed: bool) -> float:
+    """Total length of polylines (closed: with the closing edge)."""
+    if not rings:
+        return 0.0
+    flat = np.concatenate(rings)
+    total = float(np.hypot(*np.diff(flat, axis=0).T).sum())
+    starts = np.cumsum([0] + [len(r) for r in rings])
+    # remove the jumps between polylines, add the closing edges
+    jumps = flat[starts[1:-1]] - flat[starts[1:-1] - 1]
+    total -= float(np.hypot(*jumps.T).sum())
+    if closed:
+        close = flat[starts[:-1]] - flat[starts[1:] - 1]
+        total += float(np.hypot(*close.T).sum())
+    return total
+
+
+def _engrave_paths(region, profile, report: Report):
+    """Engrave mode: the material's bands as filled rings (exteriors counter-clockwise, holes clockwise)."""
+    check_engrave(region, profile, report)
+    report.raise_if_strict(profile.strict)
+    parts = shapely.get_parts(region)
+    rings, part = shapely.get_rings(parts, return_index=True)
+    exterior = np.zeros(len(rings), dtype=bool)
+    starts = np.concatenate([[0], np.cumsum(shapely.get_num_interior_rings(parts) + 1)[:-1]])
+    exterior[starts] = True
+    cleaned, kept = clean_rings(rings, min_area=profile.tolerance_mm ** 2, ccw=exterior)
+    area = float(shapely.area(parts).sum())
+    report.stats.update(area_mm2=round(area, 3), engrave_rings=len(cleaned))
+    return cleaned, part[kept].tolist(), area
+
+
+def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_version=None, kerf_mm=None,
+             fill_small_holes: bool = False, stroke=None, path: str = "", fmt: str = "") -> CutPlan:
+    """Validate the options, run the checks and build the contours: the tile's :class:`CutPlan`.
+
+    Parameters
+    ----------
+    region : shapely Polygon or MultiPolygon
+        The material in file coordinates (mm; the outline's lower-left at (0, 0)).
+    outline : shapely Polygon or MultiPolygon
+        The tile outline (one polygon per tile on a sheet).
+    profile : str, Path or CutterProfile
+        The cutter profile (kerf, limits, bed, layers, defaults of the options below).
+    centrelines : ndarray (k, 2, 2), optional
+        Centre-line segments in file coordinates; needed by the score mode.
+    mode : {"pierced", "score", "engrave"}, optional
+        Default: the profile's. The inlay mode is two plans: :func:`plan_kit`.
+    dxf_version : str, optional
+        Default: the profile's.
+    kerf_mm : float, optional
+        Width of the cut; default: the profile's (along X and along Y).
+    fill_small_holes : bool
+        Fill the holes narrower than the profile's ``min_hole_mm`` (or that a
+        router's bit cannot enter) instead of cutting them.
+    stroke : float, optional
+        The pattern's stroke width, to check kerf and ``min_feature_mm`` against.
+    path, fmt : str
+        What the report names (a strict profile's error names the file).
+
+    Raises before any contour is made: :class:`~fabtiles.ParameterError` for bad
+    options, :class:`~fabtiles.ProfileError` for a bad profile,
+    :class:`~fabtiles.FabricationError` for a tile larger than the bed or, with a
+    strict profile, any finding.
+    """
+    from .tool_opening import check_tool
+
+    profile = load_profile(profile, kind="laser")
+    kind = cutter_kind(profile)
+    kind.check_profile(profile)
+    mode = profile.mode if mode is None else mode
+    if mode == "inlay":
+        raise ParameterError("the inlay mode writes a kit of two files (lattice and pieces): export it with "
+                             "fabtiles.export.kit.write_kit, Tile.export(..., mode='inlay') or fabtiles build",
+                             param="mode")
+    mode = check_choice("mode", mode, LASER_MODES)
+    kind.check_mode(profile, mode)
+    dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
+                               DXF_VERSIONS)
+    if kerf_mm is None:  # the profile's kerf, along X and along Y
+        kerf, kerf_y = profile.kerf_xy_mm
+    else:
+        kerf = kerf_y = check_float("kerf_mm", kerf_mm, low=0)
+        kind.check_kerf(profile, kerf)
+    if stroke is not None:
+        stroke = check_float("stroke", stroke, low=0, low_open=True)
+        if stroke < profile.min_feature_mm:
+            raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of {profile.kind} "
+                                 f"profile {profile.name!r}, got {stroke:g}", param="stroke")
+        if max(kerf, kerf_y) > stroke:
+            raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {max(kerf, kerf_y):g}",
+                                 param="kerf_mm")
+    if not isinstance(fill_small_holes, bool):
+        raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}",
+                             param="fill_small_holes")
+    parts = polygon_parts(region)
+    outline_parts = polygon_parts(outline, "outline")
+    check_fits_bed(outline, profile)
+
+    report = Report(path=str(path), format=fmt)
+    report.stats.update(profile=profile.name, mode=mode, kerf_mm=kerf)
+    if kerf_y != kerf:
+        report.stats["kerf_y_mm"] = kerf_y
+    if kind.opens_holes:
+        report.stats["cutter"] = kind.name
+    paths: dict = {}
+    groups, engrave_area, part = (), 0.0, region
+    if mode == "pierced":
+        tool_filled = 0
+        if kind.opens_holes:  # the part as the bit or the jet makes it: holes opened by its radius
+            region, _, tool_filled = check_tool(region, profile, fill_small_holes=fill_small_holes, report=report)
+            parts = shapely.get_parts(region)
+        if fill_small_holes:
+            region, filled = _fill_small_holes(region, profile.min_hole_mm, tolerance_mm=profile.tolerance_mm)
+            report.stats["filled_holes"] = filled + tool_filled
+            parts = shapely.get_parts(region)
+            if tool_filled:
+                report.note(f"filled {tool_filled:,} hole{'s' if tool_filled != 1 else ''} that "
+                            f"{kind.tool_name(profile)} cannot enter")
+            if filled:
+                report.note(f"filled {filled:,} hole{'s' if filled != 1 else ''} narrower than min_hole_mm = "
+                            f"{profile.min_hole_mm:g} mm of {profile.kind} profile {profile.name!r}")
+        check_laser(region, outline, profile, stroke=stroke, report=report, validate=False)
+        report.raise_if_strict(profile.strict)
+        paths["inner"], paths["outer"] = laser_contours(region, outline, kerf_mm=kerf, kerf_y_mm=kerf_y,
+                                                        tolerance_mm=profile.tolerance_mm, validate=False)
+        report.stats["area_mm2"] = round(float(shapely.area(parts).sum()), 3)
+        part = region
+    elif mode == "engrave":
+        engrave_layer(profile)
+        paths["outer"] = outline_contours(outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
+        paths["engrave"], groups, engrave_area = _engrave_paths(region, profile, report)
+    else:
+        if centrelines is None or len(np.asarray(centrelines)) == 0:
+            raise ParameterError("the score mode needs centrelines (an array of shape (k, 2, 2)), got none",
+                                 param="centrelines")
+        paths["outer"] = outline_contours(outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
+        paths["score"] = score_paths(centrelines, outline, tolerance_mm=profile.tolerance_mm)
+        report.stats["area_mm2"] = round(float(shapely.area(outline_parts).sum()), 3)
+        report.stats["score_paths"] = len(paths["score"])
+        report.stats["score_length_mm"] = round(_length(paths["score"], False), 3)
+        part = outline
+    plan = make_plan(profile, mode, dxf_version, kerf, paths, report=report, part=part, groups=groups,
+                     engrave_area_mm2=engrave_area)
+    allr = [r for layer in plan.layers for r in layer.paths]
+    report.stats.update(inner_contours=len(plan.paths("inner")), outer_contours=len(plan.paths("outer")),
+                        vertices=int(sum(len(r) for r in allr)),
+                        cut_length_mm=round(_length(plan.paths("inner") + plan.paths("outer"), True), 3))
+    report.stats["job"] = plan.estimate.as_stats()
+    report.stats["sheet"] = sheet(outline, profile)
+    return plan
+
+
+INLAY_BASES = ("pierced", "pocket")
+"""How a kit's lattice holds its pieces: holes cut through, or pockets engraved into a board."""
+
+
+@dataclass(frozen=True)
+class KitPlans:
+    """An inlay kit's two plans, the lattice and the pieces (in registration), and the kit itself."""
+
+    lattice: CutPlan
+    pieces: CutPlan
+    kit: object
+    """The :class:`~fabtiles.geometry.inlay.InlayKit` (holes, pieces, figures)."""
+
+    @property
+    def report(self) -> Report:
+        """The lattice's report, with the kit's figures."""
+        return self.lattice.report
+
+
+def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "pierced", kerf_mm=None,
+             dxf_version=None, stroke=None, path: str = "", fmt: str = "") -> KitPlans:
+    """The inlay kit of a tile's material ``region`` as two cut plans: the lattice and the pieces.
+
+    The lattice is a pierced tile (holes cut with the kerf into them, the outline
+    last), or with ``inlay_base="pocket"`` its holes engraved as pockets (for veneer
+    pieces glued into a solid board) and the outline cut. The pieces are each grown
+    by half the kerf so they come out at their nominal size, at their holes' places,
+    on the outer-cut layer, with the lattice's bounds: cut from a sheet laid like the
+    lattice's, they drop out where they belong. ``inlay_fit_mm`` (default: the
+    profile's) grows each piece from its hole. The lattice's report carries the kit's
+    figures (``pieces``, ``filled_holes``, ``piece_kinds``, both areas, the pieces'
+    ``pieces_job``).
+    """
+    from .inlay import check_fit, inlay_kit
+
+    profile = load_profile(profile, kind="laser")
+    cutter_kind(profile).check_mode(profile, "inlay")
+    base = check_choice("inlay_base", inlay_base, INLAY_BASES)
+    fit = check_fit(profile.inlay_fit_mm if inlay_fit_mm is None else inlay_fit_mm)
+    kx, ky = profile.kerf_xy_mm if kerf_mm is None else (kerf_mm, kerf_mm)
+    kit = inlay_kit(region, outline, fit_mm=fit, min_piece_mm=profile.min_piece_or_default_mm,
+                    kerf_mm=max(kx, ky), tolerance_mm=profile.tolerance_mm)
+    if base == "pierced":
+        lattice = plan_cut(kit.lattice, outline, profile=profile, mode="pierced", dxf_version=dxf_version,
+                           kerf_mm=kerf_mm, stroke=stroke, path=path, fmt=fmt)
+    else:
+        if not len(kit.holes):
+            raise ParameterError("the tile has no hole large enough for a piece; nothing to pocket", param="region")
+        lattice = plan_cut(shapely.union_all(kit.holes), outline, profile=profile, mode="engrave",
+                           dxf_version=dxf_version, kerf_mm=kerf_mm, path=path, fmt=fmt)
+    paths = {}
+    if len(kit.pieces):
+        paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(kit.pieces))),
+                                                        kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
+    pieces = make_plan(profile, "pierced", lattice.dxf_version, kx, paths, bounds=lattice.bounds,
+                       part=kit.pieces)
+    report = lattice.report
+    stats = kit.stats()
+    report.stats.update(stats, inlay_fit_mm=fit, inlay_base=base, pieces_job=pieces.estimate.as_stats())
+    report.note(f"pieces: {stats['pieces']:,} pieces of {kit.kinds} shapes, fit {fit:+g} mm, "
+                f"{kit.filled_holes:,} holes too small filled; laser job {pieces.estimate.line()}")
+    return KitPlans(lattice, pieces, kit)
+
+
+def with_report(plan: CutPlan, report: Report) -> CutPlan:
+    """``plan`` with another report (a file's own copy)."""
+    return replace(plan, report=report)

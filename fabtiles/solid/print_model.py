@@ -1,0 +1,137 @@
+"""The print model: a tile's print as named parts, checked once, read by every print writer.
+
+A :class:`PrintModel` holds what the STL, 3MF, STEP and GLB writers need: the
+printer profile, the stack of heights, the region to print (thinned and filled as
+the profile says, :func:`~fabtiles.geometry.print_checks.print_region`), the
+findings of the printability checks, and, made on first use and then kept:
+
+- ``parts``: N named parts (a relief's ``base`` and ``pattern``, a deboss plate and
+  its ``inlay``, a pierced ``pattern``), each with its material (the slicer's
+  extruder, 1-based) and display colour and its checked mesh;
+- ``fused``: the print as one checked body (an STL holds one body);
+- ``brep``: the planar B-rep of the fused body, only for STEP.
+
+A pierced or deboss print without inlay is one part: its fused body *is* that
+part, meshed once. A build makes one model, whatever print formats it writes.
+
+>>> import shapely
+>>> plate = shapely.box(0, 0, 40, 40).difference(shapely.box(10, 10, 30, 30))
+>>> model = print_model(plate, shapely.box(0, 0, 40, 40), profile="fdm-0.4mm", style="relief")
+>>> [(p.name, p.material) for p in model.parts.values()]
+[('base', 1), ('pattern', 2)]
+>>> round(model.fused.mesh_volume_mm3)
+4000
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+from typing import NamedTuple
+
+from .._report import Report
+from .parts import CheckedPart, _kinds, check_inlay, checked_parts, prepare_print, stack_stats
+
+
+class Material(NamedTuple):
+    """A part's filament (the slicer's extruder, 1-based) and its colour in the 3D view (linear RGB)."""
+
+    extruder: int
+    colour: tuple
+
+
+PART_MATERIALS = {
+    "base": Material(1, (0.90, 0.84, 0.72)),  # a light first filament
+    "pattern": Material(2, (0.02, 0.07, 0.30)),  # a dark second filament: the preview's ink #1f3b73, linear
+    "plate": Material(1, (0.90, 0.84, 0.72)),
+    "inlay": Material(2, (0.85, 0.62, 0.12)),
+}
+"""Each part's material by name: one table for the 3MF's extruders and the 3D view's colours.
+A print of one part takes extruder 1 whatever its name; the user can change any of them in the slicer."""
+
+OTHER = Material(1, (0.6, 0.6, 0.6))
+
+
+class PrintPart(NamedTuple):
+    """One part of a print: its name, material and checked mesh."""
+
+    name: str
+    material: int
+    colour: tuple
+    mesh: CheckedPart
+
+
+class PrintModel:
+    """A tile's print: profile, stack, the region printed, findings, and its meshes made once.
+
+    Made by :func:`print_model`; see the module text.
+    """
+
+    def __init__(self, *, profile, stack, region, outline, report: Report, dips=None, inlay: bool = False):
+        self.profile = profile
+        self.stack = stack
+        self.region = region
+        self.outline = outline
+        self.report = report
+        self.dips = dips
+        self.inlay = bool(inlay)
+
+    @property
+    def single_part(self) -> bool:
+        """True when the print is one part: its fused body and its part are the same mesh."""
+        return _kinds(self.stack.style, True, False) == _kinds(self.stack.style, False, self.inlay)
+
+    @cached_property
+    def parts(self) -> dict:
+        """The checked parts by name, in print order (:class:`PrintPart`)."""
+        checked = checked_parts(self.region, self.outline, self.stack, inlay=self.inlay, dips=self.dips)
+        one = len(checked) == 1
+        out = {}
+        for name, mesh in checked.items():
+            material = PART_MATERIALS.get(name, OTHER)
+            out[name] = PrintPart(name, 1 if one else material.extruder, material.colour, mesh)
+        return out
+
+    @cached_property
+    def fused(self) -> CheckedPart:
+        """The print as one checked body (a relief's base and pattern fused): what an STL holds."""
+        if self.single_part:
+            (part,) = self.parts.values()
+            return part.mesh
+        (mesh,) = checked_parts(self.region, self.outline, self.stack, single=True, dips=self.dips).values()
+        return mesh
+
+    @property
+    def fused_name(self) -> str:
+        """The fused body's name (``"body"`` for a relief, else its one part's)."""
+        ((name, _),) = _kinds(self.stack.style, single=True).items()
+        return name
+
+    @cached_property
+    def brep(self):
+        """``(brep, mesh volume, solids)``: the planar B-rep of the fused body (:mod:`.brep`), for STEP."""
+        from .brep import brep_of_part
+
+        return brep_of_part(self.fused, self.stack, self.dips)
+
+    def stats(self) -> dict:
+        """The stack's style and heights, for a file's report."""
+        return stack_stats(self.stack)
+
+
+def print_model(region, outline, *, profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None,
+                deboss_mm=None, stroke=None, fill_small_holes: bool = False, inlay: bool = False, dips=None,
+                path: str = "", fmt: str = "") -> PrintModel:
+    """Validate, make the region to print and run the printability checks: the tile's :class:`PrintModel`.
+
+    Parameters as :func:`~fabtiles.export.stl.write_stl`; ``inlay`` (deboss only) adds
+    the grooves' filling as a second part; ``dips`` lowers an interlaced relief's
+    under strands (:mod:`fabtiles.solid.levels`). No mesh is built here: the model
+    makes each on first use. A strict profile with findings raises.
+    """
+    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
+    profile, stack, report, region = prepare_print(region, outline, profile, style, heights, stroke,
+                                                   fill_small_holes=fill_small_holes, flatten=dips is None,
+                                                   path=path, fmt=fmt)
+    check_inlay(stack, inlay)
+    return PrintModel(profile=profile, stack=stack, region=region, outline=outline, report=report, dips=dips,
+                      inlay=inlay)
