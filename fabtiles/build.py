@@ -165,12 +165,12 @@ def made_region(tile, design):
     """
     from ._profiles import load_profile
     from .export.dispatch import DEFAULT_LASER_PROFILE, laser_geometry
-    from .geometry.tool_opening import check_cutter, open_region
+    from .geometry.tool_opening import open_region
 
     profile = load_profile(design.output.laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
-    if profile.kind == "laser":
+    if not profile.cutter.opens_holes:
         return None
-    check_cutter(profile)
+    profile.cutter.check_profile(profile)
     region, _ = laser_geometry(tile, profile=profile, mode="pierced", lines=False)
     return open_region(region, radius_mm=profile.tool_radius_mm, tolerance_mm=profile.tolerance_mm).region
 

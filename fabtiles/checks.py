@@ -101,7 +101,7 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     made = None
     if (laser_mode or laser.mode) == "pierced" and not cut_region.is_empty:
         cut = cut_region
-        if laser.kind != "laser":  # a router's or waterjet's part: holes opened by the tool's radius
+        if laser.cutter.opens_holes:  # a router's or waterjet's part: holes opened by the tool's radius
             from .geometry.tool_opening import check_tool
 
             cut, _, filled = check_tool(cut, laser, fill_small_holes=fill_small_holes, report=laser_report)

@@ -96,8 +96,8 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
         What was written and what the fabrication checks found.
     """
     fmt = format_of(path)
-    module, func, kind = _WRITERS[fmt]
-    allowed = LASER_OPTIONS if kind == "laser" else THREEMF_OPTIONS if fmt == "3mf" else PRINT_OPTIONS
+    module, func, family = _WRITERS[fmt]
+    allowed = LASER_OPTIONS if family == "laser" else THREEMF_OPTIONS if fmt == "3mf" else PRINT_OPTIONS
     for key in options:
         if key not in allowed:
             raise ParameterError(
@@ -110,17 +110,12 @@ def export_geometry(path, *, region, outline, centrelines=None, stroke=None, pro
             "the tile holds no material: every stroke of its pattern falls outside the outline; "
             "add a frame, make the tile larger, or make the packing radius smaller"
         )
-    default = DEFAULT_LASER_PROFILE if kind == "laser" else DEFAULT_PRINTER_PROFILE
-    profile = load_profile(profile if profile is not None else default, kind=kind)
+    default = DEFAULT_LASER_PROFILE if family == "laser" else DEFAULT_PRINTER_PROFILE
+    profile = load_profile(profile if profile is not None else default, kind=family)
     writer = getattr(importlib.import_module(f"{__package__}.{module}"), func)
-    if kind == "laser" and profile.kind != "laser":
-        if fmt == "lbrn2":
-            raise ParameterError(f"a LightBurn project (.lbrn2) is for lasers; {profile.kind} profile "
-                                 f"{profile.name!r} writes .dxf or .svg for its CAM", param="formats")
-        from ..geometry.tool_opening import check_cutter_mode
-
-        check_cutter_mode(profile, options.get("mode"))  # before the inlay kit's route below
-    if kind == "laser":
+    if family == "laser":
+        profile.cutter.check_format(profile, fmt)
+        profile.cutter.check_mode(profile, options.get("mode"))  # before the inlay kit's route below
         kit = options.pop("inlay_fit_mm", None), options.pop("inlay_base", None)
         if (options.get("mode") or profile.mode) == "inlay":  # two files: the lattice and the pieces
             from .kit import write_kit

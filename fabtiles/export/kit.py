@@ -60,6 +60,7 @@ def write_kit(path, *, region, outline, profile, inlay_fit_mm=None, inlay_base: 
     accepted for a uniform call: holes too small for a piece are always filled.
     """
     profile = load_profile(profile, kind="laser")
+    profile.cutter.check_mode(profile, "inlay")  # a router or waterjet cuts no kit
     fmt = Path(path).suffix.lower().lstrip(".")
     if fmt not in KIT_FORMATS:
         raise ParameterError(f"an inlay kit is written as {', '.join(KIT_FORMATS)}, not .{fmt}", param="path")

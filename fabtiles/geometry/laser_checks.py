@@ -45,7 +45,7 @@ from .._validate import check_choice, check_float
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate
 from .material import sheet
-from .tool_opening import check_cutter, check_cutter_mode, check_tool, tool_name
+from .tool_opening import check_tool
 
 
 
@@ -165,7 +165,7 @@ class LaserJob:
 
 
 def _check_profile(profile: LaserProfile) -> None:
-    check_cutter(profile)
+    profile.cutter.check_profile(profile)
     for key in ("inner_cut", "outer_cut", "score"):
         layer = getattr(profile.layers, key)
         if isinstance(layer.color, bool) or not isinstance(layer.color, int) or not 1 <= layer.color <= 255:
@@ -255,19 +255,16 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
                              "fabtiles.export.kit.write_kit, Tile.export(..., mode='inlay') or fabtiles build",
                              param="mode")
     mode = check_choice("mode", mode, LASER_MODES)
-    check_cutter_mode(profile, mode)
+    cutter = profile.cutter
+    cutter.check_mode(profile, mode)
+    cutter.check_format(profile, fmt)
     dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
                                DXF_VERSIONS)
     if kerf_mm is None:  # the profile's kerf, along X and along Y
         kerf, kerf_y = profile.kerf_xy_mm
     else:
         kerf = kerf_y = check_float("kerf_mm", kerf_mm, low=0)
-        if profile.kind == "router" and kerf != 0:
-            raise ParameterError(f"kerf_mm must be 0 for router profile {profile.name!r}, got {kerf:g}: a router "
-                                 "file holds the part contour and CAM offsets the tool", param="kerf_mm")
-        if profile.kind == "waterjet" and kerf <= 0:
-            raise ParameterError(f"kerf_mm must be > 0 for waterjet profile {profile.name!r} (the jet's diameter), "
-                                 f"got {kerf:g}", param="kerf_mm")
+        cutter.check_kerf(profile, kerf)
     if stroke is not None:
         stroke = check_float("stroke", stroke, low=0, low_open=True)
         if stroke < profile.min_feature_mm:
@@ -290,11 +287,10 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
         report.stats["kerf_y_mm"] = kerf_y
     if fmt == "dxf":
         report.stats["dxf_version"] = dxf_version
-    if profile.kind != "laser":
-        report.stats["cutter"] = profile.kind
+    report.stats.update(cutter.report_stats())
     if mode == "pierced":
         tool_filled = 0
-        if profile.kind != "laser":  # the part as the bit or the jet makes it: holes opened by its radius
+        if cutter.opens_holes:  # the part as the bit or the jet makes it: holes opened by its radius
             region, _, tool_filled = check_tool(region, profile, fill_small_holes=fill_small_holes, report=report)
             parts = shapely.get_parts(region)
         if fill_small_holes:
@@ -304,7 +300,7 @@ def prepare_laser(path, fmt, *, region, outline, centrelines=None, profile, mode
             parts = shapely.get_parts(region)
             if tool_filled:
                 report.note(f"filled {tool_filled:,} hole{'s' if tool_filled != 1 else ''} that "
-                            f"{tool_name(profile)} cannot enter")
+                            f"{cutter.tool_name(profile)} cannot enter")
             if filled:
                 report.note(f"filled {filled:,} hole{'s' if filled != 1 else ''} narrower than min_hole_mm = "
                             f"{profile.min_hole_mm:g} mm of {profile.kind} profile {profile.name!r}")
