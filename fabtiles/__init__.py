@@ -15,7 +15,7 @@ from ._errors import (
     ParameterError,
     ProfileError,
 )
-from ._profiles import LaserProfile, PrinterProfile, load_profile
+from ._profiles import CutterProfile, LaserProfile, PrinterProfile, load_profile
 from ._report import Report
 from .design import load_design
 from .pattern.archimedean import ArchimedeanPacking
@@ -50,6 +50,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ArchimedeanPacking",
+    "CutterProfile",
     "DesignError",
     "FabricationError",
     "FabtilesError",

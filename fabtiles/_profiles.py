@@ -20,6 +20,7 @@ from dataclasses import dataclass, fields
 from importlib import resources
 from pathlib import Path
 
+from ._cutters import CUTTER_KINDS, KINDS, LASER_MODES, cutter_kind, family, members
 from ._errors import ProfileError
 
 try:  # Python 3.11+
@@ -27,10 +28,9 @@ try:  # Python 3.11+
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-LASER_MODES = ("pierced", "score", "engrave", "inlay")
-CUTTER_KINDS = ("laser", "router", "waterjet")
-"""The kinds of 2D cutter a :class:`LaserProfile` describes (the DXF/SVG pipeline is the same)."""
 PRINT_STYLES = ("relief", "pierced", "deboss")
+PRINTER = "printer"
+"""The kind of a 3D printer's profile (every other kind is a 2D cutter's, :data:`~fabtiles._cutters.KINDS`)."""
 DXF_VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
 
 
@@ -73,15 +73,17 @@ class LaserLayers:
 
 
 @dataclass(frozen=True)
-class LaserProfile:
+class CutterProfile:
     """Settings of one 2D cutter (a laser, a CNC router or a waterjet) and sheet material (lengths in mm).
 
-    ``kind`` is ``"laser"``, ``"router"`` or ``"waterjet"``. A router cuts with a
+    ``kind`` is ``"laser"``, ``"router"`` or ``"waterjet"``; each kind's rules are its
+    :attr:`cutter` (:mod:`fabtiles._cutters`). A router cuts with a
     bit of ``tool_diameter_mm``: its files hold the part as the bit makes it (every
     hole opened by the bit's radius, see :mod:`fabtiles.geometry.tool_opening`) with
     no kerf compensation (CAM offsets the tool). A waterjet's ``kerf_mm`` is the
     jet's diameter: corners are rounded to the jet's radius, then the kerf is
-    compensated as a laser's.
+    compensated as a laser's. :class:`LaserProfile` is the same class under its
+    former name, kept so scripts keep working.
 
     >>> p = load_profile("router-6mm-mdf")
     >>> p.kind, p.tool_diameter_mm, p.tool_radius_mm, p.kerf_mm
@@ -112,14 +114,18 @@ class LaserProfile:
     tool_diameter_mm: float | None = None
     """A router's bit diameter (mm); None for a laser or a waterjet."""
 
+    def __post_init__(self):
+        cutter_kind(self)  # a kind that is no cutter's is a ProfileError
+
+    @property
+    def cutter(self):
+        """The rules of the profile's kind of cutter (:class:`~fabtiles._cutters.CutterKind`)."""
+        return cutter_kind(self)
+
     @property
     def tool_radius_mm(self) -> float:
         """The radius the cutter rounds a hole's corners to: a router's bit, a waterjet's jet; 0 for a laser."""
-        if self.kind == "router":
-            return float(self.tool_diameter_mm or 0.0) / 2
-        if self.kind == "waterjet":
-            return max(self.kerf_xy_mm) / 2
-        return 0.0
+        return self.cutter.tool_radius(self)
 
     @property
     def min_piece_or_default_mm(self) -> float:
@@ -131,6 +137,10 @@ class LaserProfile:
         """The kerf along X and along Y (mm): ``kerf_x_mm`` and ``kerf_y_mm``, each ``kerf_mm`` unless given."""
         return (self.kerf_mm if self.kerf_x_mm is None else self.kerf_x_mm,
                 self.kerf_mm if self.kerf_y_mm is None else self.kerf_y_mm)
+
+
+LaserProfile = CutterProfile
+"""The former name of :class:`CutterProfile` (it covers routers and waterjets too), kept so scripts keep working."""
 
 
 @dataclass(frozen=True)
@@ -169,21 +179,22 @@ class PrinterProfile:
     filament_density_g_cm3: float = 1.24
     filament_diameter_mm: float = 1.75
     price_per_kg: float | None = None
-    kind = "printer"
+    kind = PRINTER
 
     def __post_init__(self):
         if self.min_hole_mm is None:  # two nozzle widths (see the class text)
             object.__setattr__(self, "min_hole_mm", 2 * self.nozzle_mm)
 
 
-def bundled_profiles() -> tuple[str, ...]:
-    """Names of the profiles shipped with fabtiles.
+def bundled_profiles(kind: str | None = None) -> tuple[str, ...]:
+    """Names of the profiles shipped with fabtiles; with ``kind``, those of that kind (as :func:`load_profile`'s).
 
-    >>> "fdm-0.4mm" in bundled_profiles()
-    True
+    >>> "fdm-0.4mm" in bundled_profiles(), bundled_profiles("printer")
+    (True, ('fdm-0.4mm', 'fdm-0.6mm'))
     """
     root = resources.files("fabtiles.profiles")
-    return tuple(sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml")))
+    names = tuple(sorted(p.name[:-5] for p in root.iterdir() if p.name.endswith(".toml")))
+    return names if kind is None else tuple(n for n in names if family(kind_of(n)) == kind)
 
 
 DEFAULT_CUTTER_PROFILE = "laser-3mm-plywood"
@@ -198,14 +209,14 @@ def load_profile(profile, *, kind: str | None = None):
 
     Parameters
     ----------
-    profile : str, Path, LaserProfile or PrinterProfile
+    profile : str, Path, CutterProfile or PrinterProfile
         A bundled name (see :func:`bundled_profiles`), a path to a TOML file, or
         an already loaded profile.
     kind : {"laser", "printer"}, optional
         The kind the caller needs; a profile of the other kind is an error. ``"laser"``
-        means a 2D cutter: a laser, router or waterjet profile (all :class:`LaserProfile`).
+        means a 2D cutter: a laser, router or waterjet profile (all :class:`CutterProfile`).
     """
-    if isinstance(profile, (LaserProfile, PrinterProfile)):
+    if isinstance(profile, (CutterProfile, PrinterProfile)):
         result = profile
     else:
         if not isinstance(profile, (str, Path)):
@@ -216,19 +227,14 @@ def load_profile(profile, *, kind: str | None = None):
         except tomllib.TOMLDecodeError as exc:
             raise ProfileError(f"{source}: not valid TOML: {exc}") from None
         result = _parse(data, source, name)
-    if kind is not None and _family(result.kind) != kind:
-        wanted = "a laser profile is needed here (or a router or waterjet one)" if kind == "laser" else \
-            f"a {kind} profile is needed here"
+    if kind is not None and family(result.kind) != kind:
+        also = [k for k in members(kind) if k != kind]
+        wanted = f"a {kind} profile is needed here" + (f" (or a {' or '.join(also)} one)" if also else "")
         raise ProfileError(
             f"profile {result.name!r} is a {result.kind} profile, but {wanted}; "
-            f"bundled {kind} profiles: {', '.join(n for n in bundled_profiles() if _family(kind_of(n)) == kind)}"
+            f"bundled {kind} profiles: {', '.join(bundled_profiles(kind))}"
         )
     return result
-
-
-def _family(kind: str) -> str:
-    """``"laser"`` for every 2D cutter kind (they share one pipeline), else the kind."""
-    return "laser" if kind in CUTTER_KINDS else kind
 
 
 def kind_of(name: str) -> str:
@@ -279,16 +285,12 @@ def _positive(source, key, value, *, allow_zero=False):
     return float(value)
 
 
-ROUTER_KEYS = ("tool_diameter_mm", "min_feature_mm", "tolerance_mm", "bed_mm", "mode", "strict", "dxf_version",
-               "pierce_s", "travel_mm_s", "price_per_m2")
-"""The keys of a router's ``[router]`` section (no kerf: CAM offsets the tool; no ``min_hole_mm``: the bit decides)."""
-WATERJET_KEYS = ("kerf_mm", "min_feature_mm", "min_hole_mm", "tolerance_mm", "bed_mm", "mode", "strict",
-                 "dxf_version", "pierce_s", "travel_mm_s", "price_per_m2")
-"""The keys of a waterjet's ``[waterjet]`` section (``kerf_mm``, the jet's diameter, is required and > 0)."""
+PRINTER_ZERO_KEYS = ("min_hole_mm", "tolerance_mm")
+"""A printer's keys that may be 0: no hole limit, no thinning."""
 
 
 def _parse(data: dict, source: str, name: str):
-    kinds = CUTTER_KINDS + ("printer",)
+    kinds = CUTTER_KINDS + (PRINTER,)
     _unknown(source, "", data, ("kind", "description") + kinds + ("layers",))
     kind = data.get("kind")
     if kind not in kinds:
@@ -296,26 +298,21 @@ def _parse(data: dict, source: str, name: str):
     description = data.get("description", "")
     if not isinstance(description, str):
         raise ProfileError(f"{source}: description must be text, got {description!r}")
-    others = [k for k in kinds if k != kind and k in data] + (["layers"] if kind == "printer" and "layers" in data
+    cutter = KINDS.get(kind)  # None for a printer
+    others = [k for k in kinds if k != kind and k in data] + (["layers"] if cutter is None and "layers" in data
                                                                else [])
     if others:
         raise ProfileError(f"{source}: a {kind} profile cannot have a [{others[0]}] section")
-    cls = LaserProfile if kind in CUTTER_KINDS else PrinterProfile
+    cls = CutterProfile if cutter else PrinterProfile
     section = data.get(kind, {})
     if not isinstance(section, dict):
         raise ProfileError(f"{source}: [{kind}] must be a table")
-    if kind == "router":
-        allowed = list(ROUTER_KEYS)
-    elif kind == "waterjet":
-        allowed = list(WATERJET_KEYS)
-    else:
-        allowed = [f.name for f in fields(cls) if f.name not in ("name", "description", "layers", "kind",
-                                                                  "tool_diameter_mm")]
+    allowed = list(cutter.keys) if cutter else [f.name for f in fields(cls) if f.name not in ("name", "description")]
     _unknown(source, f"{kind}.", section, allowed)
-    for key in {"router": ("tool_diameter_mm",), "waterjet": ("kerf_mm",)}.get(kind, ()):
+    for key in cutter.required if cutter else ():
         if key not in section:
             raise ProfileError(f"{source}: a {kind} profile needs {kind}.{key} "
-                               f"({'the bit' if kind == 'router' else 'the jet'}'s diameter in mm, > 0)")
+                               f"(the {cutter.tool}'s diameter in mm, > 0)")
     values = {}
     for key, value in section.items():
         full = f"{kind}.{key}"
@@ -332,22 +329,19 @@ def _parse(data: dict, source: str, name: str):
                 raise ProfileError(f"{source}: {full} must be a number of mm from -0.5 to 0.5, got {value!r}")
             values[key] = float(value)
         elif key in ("mode", "style", "dxf_version"):
-            choices = {"mode": LASER_MODES, "style": PRINT_STYLES, "dxf_version": DXF_VERSIONS}[key]
-            if kind in ("router", "waterjet") and key == "mode":
-                choices = ("pierced",)
+            choices = {"mode": cutter.modes if cutter else LASER_MODES, "style": PRINT_STYLES,
+                       "dxf_version": DXF_VERSIONS}[key]
             if value not in choices:
                 raise ProfileError(f"{source}: {full} = {value!r} is not valid, must be one of: {', '.join(choices)}")
             values[key] = value
         else:
-            zero_ok = (kind == "laser" and key in ("kerf_mm", "kerf_x_mm", "kerf_y_mm")) or (
-                kind == "printer" and key in ("min_hole_mm", "tolerance_mm"))  # 0: no limit, no thinning
+            zero_ok = key in (cutter.zero_keys if cutter else PRINTER_ZERO_KEYS)
             values[key] = _positive(source, full, value, allow_zero=zero_ok or key in ("pierce_s", "price_per_kg",
                                                                                          "price_per_m2"))
-    if kind in CUTTER_KINDS:
+    if cutter:
         values["layers"] = _parse_layers(data.get("layers", {}), source)
         values["kind"] = kind
-    if kind == "router":  # the file holds the part contour: no kerf; the bit decides which holes are cut
-        values.update(kerf_mm=0.0, min_hole_mm=0.0)
+        values.update(cutter.fixed)  # a router's file holds the part contour: no kerf; the bit decides the holes
     return cls(name=name, description=description, **values)
 
 

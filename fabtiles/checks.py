@@ -83,7 +83,6 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         for the laser files): ``CheckResult.job``. None when the tile cannot be cut
         (larger than the bed).
     """
-    from ._cutters import cutter_kind
     from .geometry.laser_checks import check_engrave, check_fits_bed, check_laser
     from .geometry.narrow import fill_small_holes as fill
     from .geometry.print_checks import check_print
@@ -103,7 +102,7 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     made = None
     if (laser_mode or laser.mode) == "pierced" and not cut_region.is_empty:
         cut = cut_region
-        if cutter_kind(laser).opens_holes:  # a router's or waterjet's part: holes opened by the tool's radius
+        if laser.cutter.opens_holes:  # a router's or waterjet's part: holes opened by the tool's radius
             from .geometry.tool_opening import check_tool
 
             cut, _, filled = check_tool(cut, laser, fill_small_holes=fill_small_holes, report=laser_report)

@@ -38,7 +38,7 @@ def test_every_design_key_is_in_design_files_md(section, keys):
 
 def profile_keys() -> list[str]:
     keys = ["kind", "description", "laser", "printer", "layers", "name", "color"]
-    for cls in (_profiles.LaserProfile, _profiles.PrinterProfile, _profiles.LaserLayers):
+    for cls in (_profiles.CutterProfile, _profiles.PrinterProfile, _profiles.LaserLayers):
         keys += [f.name for f in fields(cls) if f.name not in ("name", "description", "layers")]
     return list(dict.fromkeys(keys))
 

@@ -1,7 +1,7 @@
 import pytest
 
 import fabtiles as ft
-from fabtiles._profiles import LaserProfile, PrinterProfile, bundled_profiles, load_profile
+from fabtiles._profiles import CutterProfile, PrinterProfile, bundled_profiles, load_profile
 
 GOOD_LASER = """
 kind = "laser"
@@ -24,7 +24,7 @@ def test_bundled_profiles_load_and_have_the_issue_beds():
                                        "router-6mm-mdf", "router-3.175mm-plywood", "waterjet-1mm-aluminium"}
     for name in ("laser-3mm-plywood", "laser-3mm-acrylic"):
         p = load_profile(name, kind="laser")
-        assert isinstance(p, LaserProfile) and p.bed_mm[0] >= 600 and p.bed_mm[1] >= 400
+        assert isinstance(p, CutterProfile) and p.bed_mm[0] >= 600 and p.bed_mm[1] >= 400
     for name in ("fdm-0.4mm", "fdm-0.6mm"):
         p = load_profile(name, kind="printer")
         assert isinstance(p, PrinterProfile)

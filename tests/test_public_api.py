@@ -4,6 +4,7 @@ import fabtiles
 
 EXPECTED = {
     "ArchimedeanPacking",
+    "CutterProfile",
     "DesignError",
     "FabricationError",
     "FabtilesError",
@@ -11,7 +12,7 @@ EXPECTED = {
     "ParameterError",
     "ProfileError",
     "HexPacking",
-    "LaserProfile",
+    "LaserProfile",  # the former name of CutterProfile, kept so scripts keep working
     "PrinterProfile",
     "Report",
     "SeamlessFit",
@@ -40,3 +41,9 @@ def test_error_tree():
     for leaf in ("ParameterError", "ProfileError", "DesignError", "FabricationError", "LimitError"):
         cls = getattr(fabtiles, leaf)
         assert issubclass(cls, fabtiles.FabtilesError) and issubclass(cls, ValueError)
+
+
+def test_laser_profile_is_the_cutter_profile():
+    assert fabtiles.LaserProfile is fabtiles.CutterProfile
+    router = fabtiles.load_profile("router-6mm-mdf")
+    assert isinstance(router, fabtiles.LaserProfile) and isinstance(router, fabtiles.CutterProfile)

@@ -33,10 +33,7 @@ CARD_FORMATS = ("dxf", "svg")
 def card_job(profile, *, dxf_version=None):
     """The card of ``profile`` as a :class:`~fabtiles.geometry.cut_plan.CutPlan`, and the card."""
     profile = load_profile(profile, kind="laser")
-    if profile.kind != "laser":  # its rows measure a kerf, bridges and holes as a laser burns them
-        raise ParameterError(f"the test card is for lasers; {profile.kind} profile {profile.name!r} has no kerf "
-                             "or hole size to measure this way: cut a test piece from the panel's own DXF",
-                             param="profile")
+    profile.cutter.check_card(profile)  # its rows measure a kerf, bridges and holes as a laser burns them
     version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
                            DXF_VERSIONS)
     card = calibration_card(profile)

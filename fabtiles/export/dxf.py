@@ -34,7 +34,7 @@ def write_dxf(path, *, region, outline, centrelines=None, profile, mode=None, dx
         The tile outline (one polygon per tile on a sheet).
     centrelines : ndarray (k, 2, 2), optional
         Centre-line segments in file coordinates; needed by the score mode.
-    profile : str, Path or LaserProfile
+    profile : str, Path or CutterProfile
         Laser profile (kerf, limits, bed, layers, defaults of the options below).
     mode : {"pierced", "score"}, optional
         Pierced: cut every boundary of the material. Score: cut the outline, score
@@ -212,15 +212,4 @@ def cutter_comment(job: CutPlan) -> str:
     999
     layers: INSIDE (inside profiles, cut first), OUTSIDE (outside profile, cut last); millimetres
     """
-    p = job.profile
-    if p.kind == "laser":
-        return ""
-    if p.kind == "router":
-        what = (f"the part as the {p.tool_diameter_mm:g} mm bit makes it (hole corners rounded to "
-                f"{p.tool_radius_mm:g} mm), NO tool compensation: CAM offsets the tool")
-    else:
-        what = (f"the {2 * p.tool_radius_mm:g} mm jet's centre path (corners rounded to {p.tool_radius_mm:g} mm, "
-                f"kerf {job.kerf_mm:g} mm compensated: contours half a kerf off the part); no CAM offset")
-    layers = (f"layers: {p.layers.inner_cut.name} (inside profiles, cut first), {p.layers.outer_cut.name} "
-              "(outside profile, cut last); millimetres")
-    return f"999\nfabtiles {p.kind} profile {p.name}: {what}\n999\n{layers}\n"
+    return "".join(f"999\n{line}\n" for line in job.profile.cutter.dxf_comments(job.profile, job.kerf_mm))

@@ -78,13 +78,7 @@ def svg_bytes(plan: CutPlan) -> bytes:
 def _title(job: CutPlan) -> str:
     """The picture's title: the laser's mode and kerf, or what a router's or waterjet's file holds."""
     p = job.profile
-    if p.kind == "router":
-        return (f"fabtiles router, profile {_escape(p.name)}: the part as the {p.tool_diameter_mm:g} mm bit makes it, "
-                "no tool compensation (CAM offsets the tool)")
-    if p.kind == "waterjet":
-        return (f"fabtiles waterjet, profile {_escape(p.name)}: corners rounded to {_num(p.tool_radius_mm)} mm, "
-                f"kerf {_num(job.kerf_mm)} mm compensated")
-    return f"fabtiles laser {job.mode}, profile {_escape(p.name)}, kerf {_num(job.kerf_mm)} mm"
+    return p.cutter.title(p, job.mode, job.kerf_mm, num=_num, escape=_escape)
 
 
 def _escape(text: str) -> str:

@@ -35,7 +35,7 @@ from .._report import Report
 from .._validate import check_choice, check_float
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate as job_estimate
-from .laser_checks import check_engrave, check_fits_bed, check_laser, engrave_layer
+from .laser_checks import check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer
 from .material import sheet
 from .narrow import fill_small_holes as _fill_small_holes
 
@@ -121,11 +121,8 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
         layer = getattr(layers_of, PROFILE_KEYS[role])
         layers.append(CutLayer(role, layer, tuple(rings), closed=role != "score", fill=role == "engrave",
                                groups=tuple(groups) if role == "engrave" else ()))
-    declared = [layers_of.inner_cut, layers_of.outer_cut]
-    if kind.all_layers:  # a router or waterjet file has its two profiles' layers only
-        declared.append(layers_of.score)
-        if paths.get("engrave"):
-            declared.append(layers_of.engrave)
+    # a router or waterjet file has its two profiles' layers only; the engrave layer only when it engraves
+    declared = [getattr(layers_of, key) for key in kind.layers if key != "engrave" or paths.get("engrave")]
     if bounds is None:
         allr = [r for layer in layers for r in layer.paths]
         flat = np.concatenate(allr) if allr else np.zeros((1, 2))
@@ -205,6 +202,7 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
     profile = load_profile(profile, kind="laser")
     kind = cutter_kind(profile)
     kind.check_profile(profile)
+    check_layers(profile)
     mode = profile.mode if mode is None else mode
     if mode == "inlay":
         raise ParameterError("the inlay mode writes a kit of two files (lattice and pieces): export it with "
@@ -238,8 +236,7 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
     report.stats.update(profile=profile.name, mode=mode, kerf_mm=kerf)
     if kerf_y != kerf:
         report.stats["kerf_y_mm"] = kerf_y
-    if kind.opens_holes:
-        report.stats["cutter"] = kind.name
+    report.stats.update(kind.report_stats())
     paths: dict = {}
     groups, engrave_area, part = (), 0.0, region
     if mode == "pierced":

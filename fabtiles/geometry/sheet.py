@@ -49,7 +49,7 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
     ----------
     tiles : list of (region, outline)
         Shapely material region and outline of each tile, outline lower-left at (0, 0).
-    profile : str, Path or LaserProfile
+    profile : str, Path or CutterProfile
         Laser profile: the bed size (``bed_mm``) and, for the default gap, the kerf.
     copies : int
         How many of each tile (>= 1).

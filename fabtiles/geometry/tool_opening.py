@@ -44,7 +44,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
-from .._errors import ParameterError, ProfileError
+from .._errors import ParameterError
 from .._report import Report, distinct
 from .narrow import MAX_LOCATIONS, add_small_holes, hole_widths, locations
 
@@ -251,41 +251,6 @@ def _open_general(region, parts, r, q, tolerance_mm) -> OpenedRegion:
     return OpenedRegion(made, r, int(len(holes)), int(gone.sum()), holes[gone], corners, moved, 0)
 
 
-def check_cutter(profile) -> None:
-    """A router's bit and a waterjet's jet must be wider than 0: a :class:`~fabtiles.ProfileError` otherwise."""
-    if profile.kind == "router":
-        d = profile.tool_diameter_mm
-        if d is None or isinstance(d, bool) or not math.isfinite(d) or d <= 0:
-            raise ProfileError(f"router profile {profile.name!r}: tool_diameter_mm must be > 0 (the bit's "
-                               f"diameter in mm), got {d!r}", param="tool_diameter_mm")
-    elif profile.kind == "waterjet":
-        k = max(profile.kerf_xy_mm)
-        if not math.isfinite(k) or k <= 0:
-            raise ProfileError(f"waterjet profile {profile.name!r}: kerf_mm must be > 0 (the jet's diameter in "
-                               f"mm), got {k!r}", param="kerf_mm")
-
-
-def check_cutter_mode(profile, mode) -> None:
-    """A router or waterjet cuts through: any ``mode`` but ``"pierced"`` (or None) is a ParameterError.
-
-    >>> from fabtiles._profiles import load_profile
-    >>> check_cutter_mode(load_profile("router-6mm-mdf"), "engrave")
-    Traceback (most recent call last):
-    ...
-    fabtiles._errors.ParameterError: mode must be 'pierced' for router profile 'router-6mm-mdf' (a router cuts through; score, engrave and inlay are laser modes), got 'engrave'
-    """
-    if profile.kind != "laser" and mode not in (None, "pierced"):
-        raise ParameterError(f"mode must be 'pierced' for {profile.kind} profile {profile.name!r} (a {profile.kind} "
-                             f"cuts through; score, engrave and inlay are laser modes), got {mode!r}", param="mode")
-
-
-def tool_name(profile) -> str:
-    """How a message names the tool: ``the 6 mm bit (tool_diameter_mm of router profile 'x')``."""
-    if profile.kind == "router":
-        return f"the {profile.tool_diameter_mm:g} mm bit (tool_diameter_mm of router profile {profile.name!r})"
-    return f"the {2 * profile.tool_radius_mm:g} mm jet (kerf_mm of waterjet profile {profile.name!r})"
-
-
 def check_tool(region, profile, *, fill_small_holes: bool = False, report: Report | None = None):
     """Open ``region`` by the profile's tool and report where the design changes: ``(made region, report, filled)``.
 
@@ -296,11 +261,12 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
     of a design that has holes is a :class:`~fabtiles.ParameterError`: the file
     would be a blank.
     """
-    check_cutter(profile)
+    cutter = profile.cutter
+    cutter.check_profile(profile)
     report = report if report is not None else Report(path="", format="laser")
     r = profile.tool_radius_mm
     made = open_region(region, radius_mm=r, tolerance_mm=profile.tolerance_mm)
-    key = "tool_diameter_mm" if profile.kind == "router" else "kerf_mm"
+    key = cutter.tool_key
     if made.holes and made.vanished == made.holes:
         _, widths = hole_widths(made.vanished_holes, tolerance_mm=profile.tolerance_mm)
         raise ParameterError(
@@ -314,14 +280,14 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
             filled = made.vanished
         else:
             add_small_holes(report, made.vanished_holes, tolerance_mm=profile.tolerance_mm, message=lambda n, w: (
-                f"{n:,} hole{'s' if n > 1 else ''} narrower than {tool_name(profile)} (narrowest "
+                f"{n:,} hole{'s' if n > 1 else ''} narrower than {cutter.tool_name(profile)} (narrowest "
                 f"{distinct(w, 2 * r)} mm): the tool cannot enter them, so they stay material; "
                 "fill_small_holes = true counts them as filled"))
     if len(made.corners):
         n = len(made.corners)
         report.add("rounded_corner",
                    f"{n:,} corner{'s' if n > 1 else ''} rounded to the tool's radius r = {r:g} mm by "
-                   f"{tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm (up to {made.moved.max():.3g} "
+                   f"{cutter.tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm (up to {made.moved.max():.3g} "
                    "mm); the file holds the rounded part",
                    count=n, locations=locations(made.corners), sizes=made.moved[:MAX_LOCATIONS].round(3),
                    worst=round(float(made.moved.max()), 3))

@@ -18,7 +18,7 @@ from fastapi.responses import FileResponse, JSONResponse, Response
 
 from .. import _limits
 from .._errors import FabtilesError
-from .._profiles import bundled_profiles, kind_of
+from .._profiles import bundled_profiles
 from ..export.formats import FILE_FORMATS as FORMATS
 from ..pattern.presets import PRESET_NOTES, PRESETS
 from .params import DEFAULTS, FIELDS, QueryError, design_from_query, parse_flag
@@ -195,10 +195,7 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
     @app.get("/api/profiles")
     def profiles():
         # the 2D cutters (lasers, routers, waterjets) share the laser menu: one key, laser_profile, takes them all
-        names = bundled_profiles()
-        kinds = {n: kind_of(n) for n in names}
-        return {"laser": [n for n in names if kinds[n] != "printer"],
-                "printer": [n for n in names if kinds[n] == "printer"]}
+        return {"laser": list(bundled_profiles("laser")), "printer": list(bundled_profiles("printer"))}
 
     @app.get("/api/defaults")
     def defaults():

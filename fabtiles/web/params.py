@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 
 from .._errors import FabtilesError
-from .._profiles import bundled_profiles, kind_of
+from .._profiles import bundled_profiles
 
 
 class QueryError(FabtilesError, ValueError):
@@ -189,10 +189,9 @@ def design_from_query(query) -> dict:
         if "preset" not in gap:  # one of n / radii alone: the other from the default gap motif
             gap = {"n": 6, "radii": [0.5, 1.0], **gap}
         design["packing"]["gap_motif"] = gap
-    for key in ("laser_profile", "printer_profile"):
+    for key, family in (("laser_profile", "laser"), ("printer_profile", "printer")):
         name = design["output"].get(key)
-        names = [n for n in bundled_profiles() if (kind_of(n) != "printer") == (key == "laser_profile")]
-        if name is not None and name not in names:
+        if name is not None and name not in (names := bundled_profiles(family)):
             # Profiles are chosen by bundled name only: no file path ever comes from a request.
             raise QueryError(f"{key} {name!r} is not a bundled profile, must be one of: {', '.join(names)}", key)
     tile = design["tile"]

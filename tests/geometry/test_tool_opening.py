@@ -15,7 +15,7 @@ from shapely.geometry import Polygon, box
 
 from fabtiles import ParameterError, ProfileError
 from fabtiles._profiles import load_profile
-from fabtiles.geometry.tool_opening import VISIBLE_MM, check_cutter, check_tool, open_region, quad_segs_for
+from fabtiles.geometry.tool_opening import VISIBLE_MM, check_tool, open_region, quad_segs_for
 
 ROUTER = load_profile("router-3.175mm-plywood")
 R = ROUTER.tool_radius_mm
@@ -132,7 +132,7 @@ def test_a_tool_wider_than_every_hole_is_refused():
 ])
 def test_bad_tools_are_profile_errors(profile, match):
     with pytest.raises(ProfileError, match=match):
-        check_cutter(profile)
+        profile.cutter.check_profile(profile)
 
 
 def test_open_region_needs_a_positive_radius():
