@@ -60,10 +60,11 @@ def test_limits_are_the_callers(tmp_path):
 
 
 def test_build_bytes_is_the_file_build_design_writes(tmp_path):
-    data, report = pipeline.build_bytes(small(), "svg", limits=CLI_LIMITS)
+    download = pipeline.build_bytes(small(), "svg", limits=CLI_LIMITS)
     result = pipeline.build_design(small(), tmp_path, ["svg"])
-    assert Path(result.paths[0]).read_bytes() == data
-    assert report.stats == result.reports[0].stats
+    assert Path(result.paths[0]).read_bytes() == download.data
+    assert download.report.stats == result.reports[0].stats
+    assert (download.media_type, download.file_name) == ("image/svg+xml", "small.svg")
 
 
 def test_file_name_needs_one_format(tmp_path):
@@ -116,7 +117,7 @@ def test_outcome_lists_findings(tmp_path):
     design = load_design(ROOT / "samples" / "table3-3.toml", overrides=["output.fill_small_holes=false"])
     out = pipeline.run_job("t", lambda: design, str(tmp_path), ("dxf",))
     assert out.ok and out.message == "1 file, 1 fabrication warning"
-    assert len(out.findings) == 1 and out.findings[0].startswith("table3-3.dxf: small_hole: ")
+    assert len(out.findings) == 1 and out.findings[0].startswith("laser laser-3mm-plywood: small_hole: ")
 
 
 @pytest.mark.parametrize("overrides, match", [
@@ -139,10 +140,12 @@ def test_a_bad_file_is_still_named_with_overrides():
 def test_a_disk_error_is_a_fabtiles_error_and_leaves_nothing(tmp_path, monkeypatch):
     from fabtiles import FabtilesError
 
-    def full(tile, fmt, path, design):
+    import fabtiles._io
+
+    def full(path, data):
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr(pipeline, "export_format", full)
+    monkeypatch.setattr(fabtiles._io, "atomic_write", full)
     with pytest.raises(FabtilesError, match=r"cannot write into '.*out': No space left on device"):
         pipeline.build_design(small(), tmp_path / "out", ["svg"])
     assert list(tmp_path.iterdir()) == []

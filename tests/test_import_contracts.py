@@ -36,9 +36,9 @@ def lint_with(tmp_path, module: str, text: str) -> subprocess.CompletedProcess:
 
 def test_the_layer_contract_catches_an_import_going_up(tmp_path):
     """The contract is live: a geometry module importing export breaks it."""
-    proc = lint_with(tmp_path, "geometry/upward.py", "from ..export import dispatch\n")
+    proc = lint_with(tmp_path, "geometry/upward.py", "from ..export import formats\n")
     assert "fabtiles.geometry is not allowed to import fabtiles.export" in proc.stdout
-    assert "fabtiles.geometry.upward -> fabtiles.export.dispatch" in proc.stdout
+    assert "fabtiles.geometry.upward -> fabtiles.export.formats" in proc.stdout
 
 
 def test_the_solid_layer_writes_no_file(tmp_path):

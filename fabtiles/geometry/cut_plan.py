@@ -203,6 +203,8 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
     kind = cutter_kind(profile)
     kind.check_profile(profile)
     check_layers(profile)
+    if fmt:
+        kind.check_format(profile, fmt)
     mode = profile.mode if mode is None else mode
     if mode == "inlay":
         raise ParameterError("the inlay mode writes a kit of two files (lattice and pieces): export it with "

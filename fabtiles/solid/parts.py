@@ -155,7 +155,14 @@ def _expected(kind, r, o, stack, dips=None):
     }[kind]
 
 
-def _kinds(style: str, single: bool, inlay: bool = False):
+def part_kinds(style: str, single: bool, inlay: bool = False) -> dict:
+    """``{part name: mesh kind}`` of a print style: one body when ``single``, else its parts.
+
+    >>> part_kinds("relief", single=False)
+    {'base': 'base', 'pattern': 'pattern'}
+    >>> part_kinds("deboss", single=False, inlay=True)
+    {'plate': 'plate', 'inlay': 'inlay'}
+    """
     if style == "relief":
         return {"body": "relief"} if single else {"base": "base", "pattern": "pattern"}
     if style == "pierced":
@@ -342,7 +349,7 @@ def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay:
     r, o = _snapped(region, outline)
     dips = _leveled(dips)
     out = {}
-    for name, kind in _kinds(stack.style, single, inlay).items():
+    for name, kind in part_kinds(stack.style, single, inlay).items():
         verts, faces, used, found = _checked_body(kind, name, r, o, stack, dips)
         volume, bodies = _expected(kind, used, o, stack, dips)
         out[name] = CheckedPart(verts, faces, float(volume), int(bodies), used, o, float(found))
@@ -413,7 +420,7 @@ def fused_body(region, outline, stack: Stack, *, dips=None):
     """
     r, o = _snapped(region, outline)
     dips = _leveled(dips)
-    ((name, kind),) = _kinds(stack.style, single=True).items()
+    ((name, kind),) = part_kinds(stack.style, single=True).items()
     mverts, mfaces, _, volume = _checked_body(kind, name, r, o, stack, dips)
     return name, mverts, mfaces, volume
 

@@ -20,7 +20,7 @@ part, meshed once. A build makes one model, whatever print formats it writes.
 >>> [(p.name, p.material) for p in model.parts.values()]
 [('base', 1), ('pattern', 2)]
 >>> round(model.fused.mesh_volume_mm3)
-4000
+4640
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ from functools import cached_property
 from typing import NamedTuple
 
 from .._report import Report
-from .parts import CheckedPart, _kinds, check_inlay, checked_parts, prepare_print, stack_stats
+from .parts import CheckedPart, part_kinds, check_inlay, checked_parts, prepare_print, stack_stats
 
 
 class Material(NamedTuple):
@@ -78,7 +78,7 @@ class PrintModel:
     @property
     def single_part(self) -> bool:
         """True when the print is one part: its fused body and its part are the same mesh."""
-        return _kinds(self.stack.style, True, False) == _kinds(self.stack.style, False, self.inlay)
+        return part_kinds(self.stack.style, True, False) == part_kinds(self.stack.style, False, self.inlay)
 
     @cached_property
     def parts(self) -> dict:
@@ -103,7 +103,7 @@ class PrintModel:
     @property
     def fused_name(self) -> str:
         """The fused body's name (``"body"`` for a relief, else its one part's)."""
-        ((name, _),) = _kinds(self.stack.style, single=True).items()
+        ((name, _),) = part_kinds(self.stack.style, single=True).items()
         return name
 
     @cached_property

@@ -61,7 +61,7 @@ def test_batch_prints_each_designs_findings(tmp_path):
     lines = proc.stdout.splitlines()
     head = [k for k, line in enumerate(lines) if line.startswith(f"ok     {SAMPLES / 'table3-3.toml'}: 1 file, ")]
     assert head, proc.stdout
-    assert lines[head[0] + 1].startswith("         - table3-3.dxf: small_hole: ")
+    assert lines[head[0] + 1].startswith("         - laser laser-3mm-plywood: small_hole: ")
 
 
 def test_batch_bad_set_names_the_option(tmp_path):

@@ -1,13 +1,14 @@
 """``fabtiles build``: outputs, overrides, errors (exit 2, nothing written), golden renders."""
 
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
 
 from fabtiles import FabtilesError
-from fabtiles import build as build_mod
+from fabtiles.export.formats import FORMATS
 from fabtiles.cli.main import cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -109,12 +110,10 @@ def test_failing_format_keeps_existing_files(design, tmp_path, monkeypatch):
     out.mkdir()
     (out / "small.svg").write_text("old")
 
-    def boom(tile, fmt, path, design):
-        if fmt == "stl":
-            raise FabtilesError("mesh is not watertight")
-        path.write_text("new")
+    def boom(model, options):
+        raise FabtilesError("mesh is not watertight")
 
-    monkeypatch.setattr(build_mod, "export_format", boom)
+    monkeypatch.setitem(FORMATS, "stl", replace(FORMATS["stl"], write=boom))
     result = run("build", design, "-o", out, "--format", "svg", "--format", "stl")
     assert result.exit_code == 2 and "mesh is not watertight" in result.output
     assert (out / "small.svg").read_text() == "old"
@@ -145,11 +144,11 @@ def test_build_prints_findings_and_fills_small_holes_on_request(tmp_path):
     sample = ROOT / "samples" / "table3-3.toml"
     plain = run("build", sample, "-o", tmp_path / "a", "--format", "dxf", "--set", "output.fill_small_holes=false")
     assert plain.exit_code == 0, plain.output
-    assert "(dxf): 1 warning" in plain.output and "small_hole:" in plain.output
+    assert "laser laser-3mm-plywood: 1 warning" in plain.output and "small_hole:" in plain.output
     assert "fill_small_holes = true in a design's [output]" in plain.output
     filled = run("build", sample, "-o", tmp_path / "b", "--format", "dxf")  # the sample fills them
     assert filled.exit_code == 0, filled.output
-    assert "(dxf): ok" in filled.output
+    assert "laser laser-3mm-plywood: ok" in filled.output
     # Filling removes the holes from the cut: fewer inner contours.
     import ezdxf
 

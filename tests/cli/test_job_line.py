@@ -37,7 +37,7 @@ def test_build_and_check_print_the_same_job_line(tmp_path):
     built = run("build", design, "-o", tmp_path / "out")
     assert built.exit_code == 0, built.output
     lines = JOB.findall(built.output)
-    assert len(lines) == 2 and lines[0] == lines[1]  # the DXF and the LightBurn project: one job
+    assert len(lines) == 1  # the DXF and the LightBurn project: one job, one cut plan, printed once
     checked = run("check", design)
     assert JOB.findall(checked.output) == lines[:1]
     metres, pierces, _, minutes = lines[0]

@@ -65,7 +65,7 @@ def test_sweep_lists_findings_in_the_sheet(tmp_path):
     rows = list(csv.DictReader((out / "index.csv").open()))
     assert [r["findings"] for r in rows] == ["0", "1"] and "small_hole" in rows[1]["details"]
     page = (out / "index.html").read_text()
-    assert "table3-3-002.dxf: small_hole:" in page and "no findings" in page
+    assert "laser laser-3mm-plywood: small_hole:" in page and "no findings" in page
 
 
 @pytest.mark.parametrize("args, match", [

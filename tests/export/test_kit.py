@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import re
 from dataclasses import replace
 
 import ezdxf
@@ -236,7 +237,8 @@ def test_cli_builds_a_kit_in_every_laser_format(tmp_path):
     assert result.exit_code == 0, result.output
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == sorted(
         f"d-{part}.{fmt}" for part in ("lattice", "pieces") for fmt in ("dxf", "svg", "lbrn2"))
-    assert "pieces: d-pieces.dxf (" in result.output and "fit +0.1 mm" in result.output
+    assert "laser laser-3mm-plywood (inlay kit): ok\n" in result.output
+    assert re.search(r"^  pieces: \d+ pieces of \d+ shapes, fit \+0\.1 mm", result.output, re.M), result.output
 
 
 def test_the_web_app_downloads_a_kit_as_one_archive():

@@ -363,20 +363,32 @@ def test_step_strict_findings_no_file(tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["strict.toml"]
 
 
-def test_a_file_occt_rejects_is_never_written(tmp_path, monkeypatch):
-    """When the read-back check fails, nothing takes the file's name, and a good older file stays."""
+def test_a_brep_the_check_refuses_is_never_written(tmp_path, monkeypatch):
+    """When the in-memory B-rep check fails, nothing takes the file's name, and a good older file stays."""
     tile = _tile(size=30)
     path, _ = _write(tmp_path, tile)
     good = path.read_bytes()
 
     def refuse(*a, **k):
-        raise FabricationError("the STEP file read back has an open shell (solid 1); nothing was written")
+        raise FabricationError("the STEP solid has an open shell or an edge joining more than two faces; "
+                               "nothing was written")
 
-    monkeypatch.setattr(step, "check_solids", refuse)
+    monkeypatch.setattr(step, "check_brep", refuse)
     with pytest.raises(FabricationError, match="open shell"):
         step.write_step(path, region=tile.region(), outline=tile.outline_shape(), profile="fdm-0.4mm")
     assert path.read_bytes() == good
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.step"]
+
+
+def test_the_written_file_read_back_by_occt_has_the_checked_volume(tmp_path):
+    """The independent check (``check_step_file``, for ``fabtiles check --deep``): OCCT reads the file's
+    solids back with the volume the writer's in-memory check measured."""
+    tile = _tile(size=30)
+    path, report = _write(tmp_path, tile)
+    volume = report.stats["volume_mm3"]
+    assert step.check_step_file(path, volume=volume, parts=report.stats["solids"]) == pytest.approx(volume, rel=1e-6)
+    with pytest.raises(FabricationError, match=r"STEP file '.*t\.step' holds 1 solids, not 2"):
+        step.check_step_file(path, volume=volume, parts=2)
 
 
 def test_check_solids_refuses_an_empty_solid_a_hollow_one_and_one_inside_out():
