@@ -48,12 +48,16 @@ def finding_line(where: str, finding) -> str:
               help="Write an SVG picture of the tile with a mark at every finding.")
 @click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
               help="Override a design value, in TOML syntax: --set output.fill_small_holes=false (repeatable).")
-def command(design_file, output, overrides):
+@click.option("--deep", is_flag=True,
+              help="Also write the print files (the design's, else STL, 3MF and STEP) to a temporary folder and "
+                   "read each back: STEP by OCCT, STL and 3MF by trimesh (slower: the STEP's B-rep is built).")
+def command(design_file, output, overrides, deep):
     """Run the laser and print checks of a design; write no fabrication file.
 
     \b
     fabtiles check samples/table3-3.toml
     fabtiles check my-tile.toml -o overlay.svg --set output.fill_small_holes=false
+    fabtiles check samples/table3-3.toml --deep
 
     Exit status 0: clean; 1: findings; 2: bad input.
     """
@@ -89,6 +93,11 @@ def command(design_file, output, overrides):
         write_tile_svg(output, tile, findings=findings, title=f"{design.name}: fabrication findings",
                        region=result.made)
         click.echo(f"wrote {output}")
+    if deep:
+        from ..build.deep import read_back
+
+        for back in read_back(design):
+            click.echo("  " + back.line())
     n = len(findings)
     click.echo(f"{n} finding{'s' if n != 1 else ''}" if n else "ok: nothing found")
     if n:
