@@ -147,7 +147,8 @@ class Key:
     on other values (a stroke is at most the packing radius): the schema's
     ``range`` is then the static part of it, for the manual and the web form,
     and only the type is checked here. Without it the schema checks the range.
-    ``query`` is the web query parameter (None: the key has none).
+    ``query`` is the web query parameter (None: the key has none). ``requires`` is
+    the setting the key belongs to (``'kind = "archimedean"'``), if any.
     """
 
     section: str
@@ -164,6 +165,7 @@ class Key:
     query: str | None = ""
     option: BuildOption | None = None
     checked_by: str | None = None
+    requires: str = ""
 
     def __post_init__(self):
         if self.section not in SECTIONS:
@@ -209,8 +211,9 @@ class Key:
         """``value`` checked for its type (and its range, unless ``checked_by``), numbers as floats.
 
         The error (``error``, a :class:`~fabtiles.FabtilesError`) says
-        ``"{prefix}{name} must be {describe()}, got {value!r}"`` and carries ``param``
-        (default: the key's name). ``None`` passes: the key was not given.
+        ``"{prefix}{name} must be {describe()}, got {value!r}"`` (a choice not among its
+        values: ``"{prefix}{name} = {value!r} is not valid, must be one of: ..."``) and
+        carries ``param`` (default: the key's name). ``None`` passes: the key was not given.
         """
         if value is None:
             return None
@@ -226,7 +229,10 @@ class Key:
         elif self.type == "string":
             ok = isinstance(value, str)
         elif self.type == "choice":
-            ok = value in self.choice_values()
+            ok = isinstance(value, str) if self.checked_by else isinstance(value, (str, int, float))
+            if ok and self.checked_by is None and value not in self.choice_values():
+                raise error(f"{prefix}{name} = {value!r} is not valid, must be one of: "
+                            f"{', '.join(self.choice_values())}", param=param)
         else:
             raise ParameterError(f"{self.path} is a {self.type}: its value is checked where it is read, "
                                  f"not by Key.check", param=self.path)
@@ -264,6 +270,8 @@ def _motif_keys(section: str) -> tuple[Key, ...]:
 MOTIF = _motif_keys("motif")
 
 _TILE = "fabtiles.geometry.tile.TileGeometry"
+_ARCH = 'kind = "archimedean"'
+_INLAY = 'laser_mode = "inlay"'
 _PACKING = "fabtiles.pattern.packing"
 _HEIGHT_RANGE = Range(0, 1000, min_open=True)
 _PRINT = ("print",)
@@ -298,14 +306,15 @@ KEYS: tuple[Key, ...] = MOTIF + (
         help="fit the radius (and a rectangle's height) so the tile repeats seamlessly",
         widget=Widget(kind="checkbox", label="Seamless")),
     Key(section="packing", name="tiling", type="choice", choices="fabtiles.pattern.tilings:TILINGS",
-        help="`kind = \"archimedean\"`: the vertex configuration, e.g. `\"4.8.8\"`",
+        requires=_ARCH, checked_by="fabtiles.pattern.tilings.unit_cell",
+        help="the vertex configuration, e.g. `\"4.8.8\"`",
         widget=Widget(kind="select", label="Tiling")),
     Key(section="packing", name="edge", type="number", unit="mm", range=Range(0, None, min_open=True),
-        default=20.0, help="`kind = \"archimedean\"`: the polygons' edge length (instead of `radius`)",
+        default=20.0, requires=_ARCH, help="the polygons' edge length (instead of `radius`)",
         checked_by="fabtiles.pattern.archimedean.ArchimedeanPacking",
         widget=Widget(kind="slider", label="edge a (mm)", min=3, max=100, step=0.5, group="packing-sliders")),
-    Key(section="packing", name="motifs", type="motifs", query=None,
-        help="`kind = \"archimedean\"`: `[packing.motifs]`, a motif per polygon kind keyed by its sides "
+    Key(section="packing", name="motifs", type="motifs", query=None, requires=_ARCH,
+        help="`[packing.motifs]`, a motif per polygon kind keyed by its sides "
              "(`8 = \"table3-3\"`, `4 = { n = 8, radii = [1, 2] }`); `[motif]` fills the kinds not listed; "
              "on the web, `motif_<sides>`"),
     # [tile]
@@ -391,13 +400,13 @@ KEYS: tuple[Key, ...] = MOTIF + (
         widget=Widget(kind="select", label="3MF for"), option=BuildOption(name="layout", families=("3mf",))),
     Key(section="output", name="inlay_fit_mm", type="number", unit="mm", range=Range(-0.5, 0.5),
         note="positive: a press fit, negative: play", default_text="the laser profile's",
-        help="`laser_mode = \"inlay\"`: each piece is grown from its hole by this much; beyond half a "
+        requires=_INLAY, help="each piece is grown from its hole by this much; beyond half a "
              "millimetre a piece no longer fits its hole at all (see [inlay.md](inlay.md))",
         widget=Widget(kind="number", label="Inlay kit: fit (mm)", min=-0.5, max=0.5, step=0.05,
                       placeholder="profile"),
         option=BuildOption(name="inlay_fit_mm", families=("cut",))),
     Key(section="output", name="inlay_base", type="choice", default="pierced", choices=("pierced", "pocket"),
-        help="`laser_mode = \"inlay\"`: `\"pierced\"` (the lattice's holes cut through) or `\"pocket\"` "
+        requires=_INLAY, help="`\"pierced\"` (the lattice's holes cut through) or `\"pocket\"` "
              "(engraved as pockets on the engrave layer)",
         widget=Widget(kind="select", label="Inlay kit: lattice"),
         option=BuildOption(name="inlay_base", families=("cut",))),
@@ -496,6 +505,10 @@ def _doc_default(k: Key) -> str:
     return f"{k.default:g}"
 
 
+def _doc_help(k: Key) -> str:
+    return f"`{k.requires}`: {k.help}" if k.requires else k.help
+
+
 def markdown_table(section: str) -> str:
     """The manual's table of ``section``'s keys (``docs/design-files.md``).
 
@@ -503,7 +516,7 @@ def markdown_table(section: str) -> str:
     '| `preset` | string |  | a preset name (see construction.md) |'
     """
     rows = ["| key | type | default | meaning |", "|---|---|---|---|"]
-    rows += [f"| `{k.name}` | {_doc_type(k)} | {_doc_default(k)} | {k.help} |" for k in section_keys(section)]
+    rows += [f"| `{k.name}` | {_doc_type(k)} | {_doc_default(k)} | {_doc_help(k)} |" for k in section_keys(section)]
     return "\n".join(rows)
 
 
