@@ -207,18 +207,24 @@ class Key:
         return self.note or f"a {self.type}"
 
     def check(self, value, *, name: str | None = None, prefix: str = "", error=ParameterError,
-              param: str | None = None):
+              param: str | None = None, required: bool = False, note: bool = True):
         """``value`` checked for its type (and its range, unless ``checked_by``), numbers as floats.
 
         The error (``error``, a :class:`~fabtiles.FabtilesError`) says
         ``"{prefix}{name} must be {describe()}, got {value!r}"`` (a choice not among its
         values: ``"{prefix}{name} = {value!r} is not valid, must be one of: ..."``) and
-        carries ``param`` (default: the key's name). ``None`` passes: the key was not given.
+        carries ``param`` (default: the key's name). ``None`` passes (the key was not given)
+        unless ``required``; ``note=False`` leaves the key's note out of the message.
+
+        >>> key("output.inlay_fit_mm").check(0.6, note=False)
+        Traceback (most recent call last):
+        ...
+        fabtiles._errors.ParameterError: inlay_fit_mm must be a number of mm from -0.5 to 0.5, got 0.6
         """
-        if value is None:
-            return None
         name = name or self.name
         param = param or self.name
+        if value is None and not required:
+            return None
         if self.type == "boolean":
             ok = isinstance(value, bool)
         elif self.type in ("integer", "number"):
@@ -237,7 +243,7 @@ class Key:
             raise ParameterError(f"{self.path} is a {self.type}: its value is checked where it is read, "
                                  f"not by Key.check", param=self.path)
         if not ok:
-            raise error(f"{prefix}{name} must be {self.describe()}, got {value!r}", param=param)
+            raise error(f"{prefix}{name} must be {self.describe(note=note)}, got {value!r}", param=param)
         return float(value) if self.type == "number" else value
 
 
