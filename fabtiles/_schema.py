@@ -464,18 +464,28 @@ def build_options(family: str) -> tuple[str, ...]:
     >>> build_options("cut")
     ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'inlay_fit_mm', 'inlay_base')
     """
-    if family not in FAMILIES:
-        raise ParameterError(f"{family!r} is not a family of build options, must be one of: {', '.join(FAMILIES)}",
-                             param="family")
-    wanted = ("print", "3mf") if family == "3mf" else (family,)
+    wanted = _family(family)
     mine = [k.option.name for k in KEYS if k.option is not None and set(wanted) & set(k.option.families)]
     calls = [o.name for o in CALL_OPTIONS if set(wanted) & set(o.families)]
     return tuple(dict.fromkeys(mine[:1] + calls + mine[1:]))  # the mode (or style) first, as the API lists them
 
 
 def option_keys(family: str) -> tuple[Key, ...]:
-    """The design keys that are build options of ``family`` (the :class:`~fabtiles.build.BuildOptions` a design gives)."""
-    return tuple(k for k in KEYS if k.option is not None and family in k.option.families)
+    """The design keys that are build options of ``family`` (the :class:`~fabtiles.build.BuildOptions` a design gives).
+
+    >>> [k.name for k in option_keys("3mf")][-2:]
+    ['inlay', 'threemf_layout']
+    """
+    wanted = _family(family)
+    return tuple(k for k in KEYS if k.option is not None and set(wanted) & set(k.option.families))
+
+
+def _family(family: str) -> tuple[str, ...]:
+    """The option lists ``family`` takes: the 3MF takes the print's options and its own."""
+    if family not in FAMILIES:
+        raise ParameterError(f"{family!r} is not a family of build options, must be one of: {', '.join(FAMILIES)}",
+                             param="family")
+    return ("print", "3mf") if family == "3mf" else (family,)
 
 
 # -- the manual's tables -------------------------------------------------------------------------------------------
