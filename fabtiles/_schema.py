@@ -252,7 +252,7 @@ def _motif_keys(section: str) -> tuple[Key, ...]:
     star = "fabtiles.pattern.star.Star"
     angle = dict(type="number", unit="degrees", checked_by=star)
     return (
-        Key(section=section, name="preset", type="string", help="a preset name (see construction.md)",
+        Key(section=section, name="preset", type="string", help="a preset name (`fabtiles presets` lists them; see construction.md)",
             choices="fabtiles.pattern.presets:PRESETS", widget=Widget(kind="select", label="Preset")),
         Key(section=section, name="n", type="integer", range=Range(3, 120), help="points on each circle",
             checked_by=star, widget=Widget(kind="slider", label="n (points)", min=3, max=48, step=1,
@@ -529,7 +529,7 @@ def markdown_table(section: str) -> str:
     """The manual's table of ``section``'s keys (``docs/design-files.md``).
 
     >>> markdown_table("motif").splitlines()[2]
-    '| `preset` | string |  | a preset name (see construction.md) |'
+    '| `preset` | string |  | a preset name (`fabtiles presets` lists them; see construction.md) |'
     """
     rows = ["| key | type | default | meaning |", "|---|---|---|---|"]
     rows += [f"| `{k.name}` | {_doc_type(k)} | {_doc_default(k)} | {_doc_help(k)} |" for k in section_keys(section)]
