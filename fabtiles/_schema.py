@@ -116,6 +116,10 @@ class Widget:
     step: float | None = None
     group: str = ""
     placeholder: str = ""
+    labels: tuple[tuple[str, str], ...] = ()
+    """A select's captions of some of its values: ``(("inlay", "inlay kit"),)``."""
+    extra: tuple[tuple[str, str], ...] = ()
+    """A select's values the web adds to the key's own (``packing=none``), with their captions."""
 
     def __post_init__(self):
         if self.kind not in WIDGETS:
@@ -296,7 +300,9 @@ KEYS: tuple[Key, ...] = MOTIF + (
     # [packing]
     Key(section="packing", name="kind", type="choice", default="hex", query="packing",
         choices=("hex", "square", "archimedean"), help="`hex`, `square` or `archimedean`",
-        widget=Widget(kind="select", label="Kind")),
+        widget=Widget(kind="select", label="Kind", labels=(("hex", "hexagonal (tangent circles)"),
+                                                           ("archimedean", "Archimedean tiling (incircles)")),
+                      extra=(("none", "none: one motif"),))),
     Key(section="packing", name="radius", type="number", unit="mm", range=Range(0, None, min_open=True),
         default=12.5, help="radius of the big circles (hex, square)", checked_by=_PACKING,
         widget=Widget(kind="slider", label="radius R (mm)", min=3, max=100, step=0.5, group="packing-sliders")),
@@ -375,7 +381,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         help="`pierced` (cut every edge of the material), `score` (cut the outline, score the centre-lines), "
              "`engrave` (cut the outline, fill the bands on the profile's engrave layer) or `inlay` (a kit: "
              "`<name>-lattice` and `<name>-pieces` files, see [inlay.md](inlay.md))",
-        widget=Widget(kind="select", label="Laser mode"), option=BuildOption(name="mode", families=("cut",))),
+        widget=Widget(kind="select", label="Laser mode", labels=(("inlay", "inlay kit"),)), option=BuildOption(name="mode", families=("cut",))),
     Key(section="output", name="print_style", type="choice", choices="fabtiles._profiles:PRINT_STYLES",
         default_text="the profile's", help="`relief`, `pierced` or `deboss`",
         widget=Widget(kind="select", label="Print style"), option=BuildOption(name="style", families=_PRINT)),
@@ -403,7 +409,8 @@ KEYS: tuple[Key, ...] = MOTIF + (
              "Bambu Studio and OrcaSlicer; `\"components\"`, one object of components (each part its own mesh "
              "with its Cura extruder) for UltiMaker Cura, which Bambu Studio and OrcaSlicer also read as one "
              "object of parts and PrusaSlicer as separate objects",
-        widget=Widget(kind="select", label="3MF for"), option=BuildOption(name="layout", families=("3mf",))),
+        widget=Widget(kind="select", label="3MF for", labels=(("volumes", "PrusaSlicer, Bambu Studio, OrcaSlicer"),
+                                                             ("components", "UltiMaker Cura"))), option=BuildOption(name="layout", families=("3mf",))),
     Key(section="output", name="inlay_fit_mm", type="number", unit="mm", range=Range(-0.5, 0.5),
         note="positive: a press fit, negative: play", default_text="the laser profile's",
         requires=_INLAY, help="each piece is grown from its hole by this much; beyond half a "
@@ -414,10 +421,20 @@ KEYS: tuple[Key, ...] = MOTIF + (
     Key(section="output", name="inlay_base", type="choice", default="pierced", choices=("pierced", "pocket"),
         requires=_INLAY, help="`\"pierced\"` (the lattice's holes cut through) or `\"pocket\"` "
              "(engraved as pockets on the engrave layer)",
-        widget=Widget(kind="select", label="Inlay kit: lattice"),
+        widget=Widget(kind="select", label="Inlay kit: lattice", labels=(("pierced", "holes cut through"),
+                                                                        ("pocket", "pockets engraved"))),
         option=BuildOption(name="inlay_base", families=("cut",))),
 )
 """Every design key, section by section in the order of a design file."""
+
+GAP_WIDGETS = {
+    "n": Widget(kind="slider", label="gap n", min=3, max=24, step=1, group="packing-sliders"),
+    "rotation": Widget(kind="slider", label="gap rotation (deg)", min=-180, max=180, step=0.5, group="packing-sliders"),
+    "alpha": Widget(kind="slider", label="gap alpha (deg)", min=-90, max=90, step=0.5, group="packing-sliders"),
+    "spr": Widget(kind="slider", label="gap spr", min=-2, max=2, step=0.01, group="packing-sliders"),
+}
+"""The web form's controls of the gap motif's keys (``gap_n``, ...): its circles' radii are about 1, so its
+sliders travel less than the motif's."""
 
 CALL_OPTIONS = (BuildOption(name="dxf_version", families=("cut",)), BuildOption(name="kerf_mm", families=("cut",)))
 """Build options of the export API that no design key sets (the cutter profile's, overridden per call)."""

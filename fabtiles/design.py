@@ -231,12 +231,12 @@ def _blame_overrides(exc: DesignError, original: dict, overrides: tuple, *, name
         return exc  # the file itself is at fault (too): keep naming it
     message = str(exc).removeprefix(f"{source}: ")
     keys = {item: parse_override(item)[0] for item in overrides}
-    param = exc.param or ""
+    param = exc.key or ""
     # The error's key names the override; an error naming no key (or a bare parameter) is matched by its words.
     guilty = [item for item, parts in keys.items() if param == ".".join(parts) or param.startswith(".".join(parts) + ".")]
     guilty = guilty or [item for item, parts in keys.items()
                         if re.search(rf"(?<![\w]){re.escape(parts[-1])}(?![\w])", message)] or list(overrides)
-    return DesignError(f"{' '.join(f'--set {item}' for item in guilty)}: {message}", param=exc.param)
+    return DesignError(f"{' '.join(f'--set {item}' for item in guilty)}: {message}", param=exc.param, key=exc.key)
 
 
 def parse_override(item: str) -> tuple[list[str], Any]:
@@ -312,17 +312,17 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
     try:
         star = motif.star() if motif is not None else None
     except FabtilesError as exc:
-        raise DesignError(f"{source}: [motif] {exc}", param=_key("[motif]", exc)) from None
+        raise _wrapped(exc, source, "[motif]") from None
     if packing is not None:
         try:
             _build_packing(packing, star)
         except FabtilesError as exc:
-            raise DesignError(f"{source}: [packing] {exc}", param=_key("[packing]", exc)) from None
+            raise _wrapped(exc, source, "[packing]") from None
     try:
         design = _fit_seamless(design)
         build_tile(design)
     except FabtilesError as exc:
-        raise DesignError(f"{source}: [tile] {exc}", param=_key("[tile]", exc)) from None
+        raise _wrapped(exc, source, "[tile]") from None
     return design
 
 
@@ -405,8 +405,18 @@ def _motif_spec(table, source: str, where: str) -> MotifSpec:
     try:
         spec.star()
     except FabtilesError as exc:
-        raise DesignError(f"{source}: {where} {exc}", param=_key(where, exc)) from None
+        raise _wrapped(exc, source, where) from None
     return spec
+
+
+def _wrapped(exc: FabtilesError, source: str, where: str) -> DesignError:
+    """A library error raised while reading ``where`` as a :class:`DesignError` naming the file and the key.
+
+    ``param`` is the design key of the library's parameter; ``key`` the most precise key the
+    error names (a motif of ``[packing.motifs]``: ``packing.motifs.6``).
+    """
+    return DesignError(f"{source}: {where} {exc}", param=_key(where, exc),
+                       key=_key(where, key=getattr(exc, "key", None) or exc.param))
 
 
 def _key(where: str, exc=None, *, key=None) -> str | None:
@@ -489,7 +499,7 @@ def _tile_spec(table: dict, source: str) -> TileSpec:
     try:
         size = check_tile_size(outline, table["size"])
     except FabtilesError as exc:
-        raise DesignError(f"{source}: {where} {exc}", param=_key(where, exc)) from None
+        raise _wrapped(exc, source, where) from None
     return TileSpec(outline=outline, size=size, **_section(table, "tile", source, where, skip=("outline",)))
 
 
