@@ -251,6 +251,13 @@ class Key:
         return float(value) if self.type == "number" else value
 
 
+MOTIF_REQUIRED = ("n", "radii")
+"""The keys a motif without a preset needs."""
+
+GAP_MOTIF = {"n": 6, "radii": (0.5, 1.0)}
+"""The gap circles' motif when a packing names none (a table of motif keys)."""
+
+
 def _motif_keys(section: str) -> tuple[Key, ...]:
     """The keys of a motif table: ``[motif]``, and the ``gap_motif`` and ``[packing.motifs]`` tables' entries."""
     star = "fabtiles.pattern.star.Star"
@@ -287,11 +294,9 @@ _HEIGHT_RANGE = Range(0, 1000, min_open=True)
 _PRINT = ("print",)
 
 
-def _height(name: str, label: str) -> Key:
+def _height(name: str, label: str, what: str) -> Key:
     return Key(section="output", name=name, type="number", unit="mm", range=_HEIGHT_RANGE,
-               default_text="the profile's",
-               help="print height, overriding the printer profile's (`base_mm` the plate, `relief_mm` the "
-                    "bands above it, `pierced_mm` a pierced tile, `deboss_mm` the grooves' depth)",
+               default_text="the profile's", help=f"print height: {what}, overriding the printer profile's",
                widget=Widget(kind="number", label=label, min=0, step=0.1, placeholder="profile"),
                option=BuildOption(name=name, families=_PRINT))
 
@@ -310,7 +315,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         help="also stroke the packing circles", widget=Widget(kind="checkbox", label="Outline circles")),
     Key(section="packing", name="fill", type="number", range=Range(0, 1, min_open=True), default=1.0,
         help="motif extent / circle radius", checked_by=_PACKING, widget=Widget(kind="number", label="Fill")),
-    Key(section="packing", name="gap_motif", type="motif", default_text="`{ n = 6, radii = [0.5, 1.0] }`",
+    Key(section="packing", name="gap_motif", type="motif", default=GAP_MOTIF, default_text="`{ n = 6, radii = [0.5, 1.0] }`",
         note="a table like [motif] or a preset name", query=None,
         help="the gap circles' motif: a table like `[motif]`, or a preset name; its keys are the web's "
              "`gap_` parameters"),
@@ -385,10 +390,10 @@ KEYS: tuple[Key, ...] = MOTIF + (
     Key(section="output", name="print_style", type="choice", choices="fabtiles._profiles:PRINT_STYLES",
         default_text="the profile's", help="`relief`, `pierced` or `deboss`",
         widget=Widget(kind="select", label="Print style"), option=BuildOption(name="style", families=_PRINT)),
-    _height("base_mm", "Base (mm)"),
-    _height("relief_mm", "Relief (mm)"),
-    _height("pierced_mm", "Pierced (mm)"),
-    _height("deboss_mm", "Deboss (mm)"),
+    _height("base_mm", "Base (mm)", "the plate under the bands"),
+    _height("relief_mm", "Relief (mm)", "the bands above the plate (relief)"),
+    _height("pierced_mm", "Pierced (mm)", "a pierced tile's thickness"),
+    _height("deboss_mm", "Deboss (mm)", "the grooves' depth (deboss)"),
     Key(section="output", name="name", type="string", default_text="the file's stem",
         help="the output files' name (a plain file name: letters, digits, `. _ -` and spaces)",
         widget=Widget(kind="text", label="File name", placeholder="fabtiles-tile")),
@@ -521,6 +526,8 @@ def _doc_type(k: Key) -> str:
         words += f" ({k.unit})"
     elif k.unit:
         words += f", {k.unit}"
+    if k.type == "number" and k.note:
+        words += f"; {k.note}"
     return words
 
 

@@ -395,7 +395,7 @@ def _motif_spec(table, source: str, where: str) -> MotifSpec:
         raise DesignError(f"{source}: {where} preset must be a string, got {preset!r}")
     params = {k: v for k, v in table.items() if k != "preset"}
     if preset is None:
-        missing = [k for k in ("n", "radii") if k not in params]
+        missing = [k for k in _schema.MOTIF_REQUIRED if k not in params]
         if missing:
             raise DesignError(f"{source}: {where} needs preset = \"...\" or the parameters n and radii "
                               f"(missing: {', '.join(missing)})")

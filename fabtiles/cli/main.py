@@ -92,6 +92,7 @@ def star(preset, n, radii, alpha, spr, special, rotation, size_mm, output):
     fabtiles star --preset table1-part1 -o star.svg
     fabtiles star --n 8 --radii 51,70,172 -o star.svg
     """
+    from .._schema import MOTIF_REQUIRED
     from ..export.motif_svg import write_motif_svg
     from ..pattern.star import Star
 
@@ -102,7 +103,7 @@ def star(preset, n, radii, alpha, spr, special, rotation, size_mm, output):
     if preset is not None:
         motif = Star.preset(preset).replace(**given)
     else:
-        missing = [k for k in ("n", "radii") if k not in given]
+        missing = [k for k in MOTIF_REQUIRED if k not in given]
         if missing:
             raise click.UsageError(f"give --preset, or --n and --radii (missing: --{', --'.join(missing)})")
         motif = Star(**given)

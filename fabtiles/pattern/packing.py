@@ -13,6 +13,7 @@ Two packings share one base class and differ only in their lattice:
   radius ``(sqrt(2) - 1) R`` at every cell centre ``p + (R, R)``.
 """
 
+from .._schema import GAP_MOTIF
 from __future__ import annotations
 
 import math
@@ -33,7 +34,7 @@ def default_gap_motif() -> Star:
     >>> default_gap_motif()
     Star(n=6, radii=(0.5, 1))
     """
-    return Star(n=6, radii=(0.5, 1.0))
+    return Star(**GAP_MOTIF)  # the schema's default of [packing] gap_motif
 
 
 def chord_count(radius: float, *, tolerance: float = 0.005, multiple: int = 24) -> int:

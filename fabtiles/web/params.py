@@ -180,7 +180,7 @@ def design_from_query(query) -> dict:
         design["packing"]["motifs"] = motifs
     if "packing" in design and gap:
         if "preset" not in gap:  # one of n / radii alone: the other from the default gap motif
-            gap = {"n": 6, "radii": [0.5, 1.0], **gap}
+            gap = {**{k: list(v) if isinstance(v, tuple) else v for k, v in _schema.GAP_MOTIF.items()}, **gap}
         design["packing"]["gap_motif"] = gap
     for key, family in (("laser_profile", "laser"), ("printer_profile", "printer")):
         name = design["output"].get(key)
