@@ -13,7 +13,6 @@ Two packings share one base class and differ only in their lattice:
   radius ``(sqrt(2) - 1) R`` at every cell centre ``p + (R, R)``.
 """
 
-from .._schema import GAP_MOTIF
 from __future__ import annotations
 
 import math
@@ -21,6 +20,7 @@ import math
 import numpy as np
 
 from .._errors import LimitError, ParameterError
+from .._schema import GAP_MOTIF
 from .._validate import check_float
 from .star import Star
 
