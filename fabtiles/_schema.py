@@ -314,7 +314,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
     Key(section="packing", name="outline_circles", type="boolean", default=False,
         help="also stroke the packing circles", widget=Widget(kind="checkbox", label="Outline circles")),
     Key(section="packing", name="fill", type="number", range=Range(0, 1, min_open=True), default=1.0,
-        help="motif extent / circle radius", checked_by=_PACKING, widget=Widget(kind="number", label="Fill")),
+        help="motif extent / circle radius", checked_by=_PACKING),
     Key(section="packing", name="gap_motif", type="motif", default=GAP_MOTIF, default_text="`{ n = 6, radii = [0.5, 1.0] }`",
         note="a table like [motif] or a preset name", query=None,
         help="the gap circles' motif: a table like `[motif]`, or a preset name; its keys are the web's "
@@ -440,6 +440,12 @@ GAP_WIDGETS = {
 }
 """The web form's controls of the gap motif's keys (``gap_n``, ...): its circles' radii are about 1, so its
 sliders travel less than the motif's."""
+
+SIZE_WIDGETS = {
+    "width": Widget(kind="slider", label="width (mm)", min=20, max=600, step=1, group="tile-sliders"),
+    "height": Widget(kind="slider", label="height (mm)", min=20, max=400, step=1, group="tile-sliders"),
+}
+"""The web form's controls of ``[tile] size``: its ``width`` and ``height`` parameters."""
 
 CALL_OPTIONS = (BuildOption(name="dxf_version", families=("cut",)), BuildOption(name="kerf_mm", families=("cut",)))
 """Build options of the export API that no design key sets (the cutter profile's, overridden per call)."""

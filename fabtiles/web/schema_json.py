@@ -41,7 +41,7 @@ def schema_json() -> dict:
         elif section == "motifs":
             fields[query] = _key_json(_schema.key("packing.motifs"), None)
         elif section == "tile" and name in ("width", "height"):
-            fields[query] = _key_json(_schema.key("tile.size"), None)
+            fields[query] = _key_json(_schema.key("tile.size"), _schema.SIZE_WIDGETS[name])
         else:
             k = _schema.key(f"{section}.{name}")
             fields[query] = _key_json(k, k.widget)
