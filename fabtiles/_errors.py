@@ -15,18 +15,21 @@ class FabtilesError(Exception):
     ``param`` names what the error is about, when that is one parameter: a
     keyword argument (``"stroke"``) or, for a design, its key (``"tile.stroke"``).
     Front ends use it to point at the field to fix, instead of reading the message.
+    ``key`` is the most precise key the error is about (default: ``param``): a motif
+    of ``[packing.motifs]`` is ``"packing.motifs.6"`` where ``param`` is ``"packing.motifs"``.
 
     >>> err = ParameterError("stroke must be > 0, got -1", param="stroke")
-    >>> err.param, str(err)
-    ('stroke', 'stroke must be > 0, got -1')
+    >>> err.param, err.key, str(err)
+    ('stroke', 'stroke', 'stroke must be > 0, got -1')
     >>> import pickle
-    >>> pickle.loads(pickle.dumps(err)).param
-    'stroke'
+    >>> pickle.loads(pickle.dumps(err)).param, pickle.loads(pickle.dumps(err)).key
+    ('stroke', 'stroke')
     """
 
-    def __init__(self, *args, param: str | None = None):
+    def __init__(self, *args, param: str | None = None, key: str | None = None):
         super().__init__(*args)
         self.param = param
+        self.key = key if key is not None else param
 
     def __reduce__(self):
         # Keep ``param`` across processes (batch and cluster workers).

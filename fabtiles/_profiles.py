@@ -22,6 +22,7 @@ from pathlib import Path
 
 from ._cutters import CUTTER_KINDS, KINDS, LASER_MODES, cutter_kind, family, members
 from ._errors import ProfileError
+from ._schema import key as schema_key
 
 try:  # Python 3.11+
     import tomllib
@@ -325,9 +326,8 @@ def _parse(data: dict, source: str, name: str):
                 raise ProfileError(f"{source}: {full} must be true or false, got {value!r}")
             values[key] = value
         elif key == "inlay_fit_mm":
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not -0.5 <= value <= 0.5:
-                raise ProfileError(f"{source}: {full} must be a number of mm from -0.5 to 0.5, got {value!r}")
-            values[key] = float(value)
+            values[key] = schema_key("output.inlay_fit_mm").check(value, name=full, prefix=f"{source}: ",
+                                                                 error=ProfileError, param=full, note=False)
         elif key in ("mode", "style", "dxf_version"):
             choices = {"mode": cutter.modes if cutter else LASER_MODES, "style": PRINT_STYLES,
                        "dxf_version": DXF_VERSIONS}[key]

@@ -69,8 +69,8 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     tile : Tile
     laser_profile, printer_profile : str, Path or profile, optional
         Defaults: ``laser-3mm-plywood`` and ``fdm-0.4mm``.
-    laser_mode : {"pierced", "score"}, optional
-        Default: the laser profile's.
+    laser_mode : {"pierced", "score", "engrave", "inlay"}, optional
+        Default: the laser profile's. An inlay kit's lattice is checked as a pierced tile.
     fill_small_holes : bool
         Check the laser region with the holes too small for the cutter filled, and the
         print's with the openings too small for the printer filled (as the files would be).
@@ -90,6 +90,8 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
 
     laser = load_profile(laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
     printer = load_profile(printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")
+    if (laser_mode or laser.mode) == "inlay":  # an inlay kit's lattice is checked (and timed) as a pierced tile
+        laser_mode = "pierced"
     region, outline = tile.region(), tile.outline_shape()
     # the laser file's material: with interlace_cut, the under gaps cut and their tabs
     cut_region, _ = laser_geometry(tile, profile=laser, mode=laser_mode, lines=False)

@@ -59,33 +59,34 @@ try:  # Python 3.11+
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
+from . import _schema
 from ._errors import DesignError, FabtilesError
-from ._profiles import LASER_MODES, PRINT_STYLES
 from .pattern.packing import PACKINGS
 from .pattern.star import Star
 
-FORMATS = ("dxf", "svg", "lbrn2", "stl", "3mf", "step")
+FORMATS = _schema.key("output.formats").choice_values()
 """Output formats a design may ask for."""
 
-THREEMF_LAYOUTS = ("volumes", "components")
+THREEMF_LAYOUTS = _schema.key("output.threemf_layout").choice_values()
 """``[output] threemf_layout``: PrusaSlicer's volumes (PrusaSlicer, Bambu Studio, OrcaSlicer) or components (Cura)."""
 
-SECTIONS = ("motif", "packing", "tile", "output")
-MOTIF_KEYS = ("preset", "n", "radii", "alpha", "spr", "special", "rotation")
-PACKING_KEYS = ("kind", "radius", "outline_circles", "fill", "gap_motif", "seamless", "tiling", "edge",
-                "motifs")
-ARCHIMEDEAN_KEYS = ("tiling", "edge", "motifs")
+# The keys of each section, read from the schema (fabtiles/_schema.py), where each is declared.
+SECTIONS = _schema.SECTIONS
+MOTIF_KEYS = _schema.names("motif")
+PACKING_KEYS = _schema.names("packing")
+ARCHIMEDEAN_KEYS = tuple(k.name for k in _schema.section_keys("packing") if k.requires == 'kind = "archimedean"')
 """The ``[packing]`` keys of ``kind = "archimedean"`` alone (it has no ``radius``)."""
-TILE_KEYS = ("outline", "size", "frame", "stroke", "join", "miter_limit", "corner_radius", "interlace",
-             "interlace_gap_mm", "interlace_cut")
-HEIGHT_KEYS = ("base_mm", "relief_mm", "pierced_mm", "deboss_mm")
+TILE_KEYS = _schema.names("tile")
+HEIGHT_KEYS = tuple(k.name for k in _schema.section_keys("output")
+                    if k.option is not None and k.option.families == ("print",) and k.unit == "mm")
 """The ``[output]`` keys overriding the printer profile's heights (mm)."""
 
-OUTPUT_KEYS = ("formats", "laser_profile", "printer_profile", "laser_mode", "print_style", "name",
-               "fill_small_holes", "inlay", "threemf_layout", "inlay_fit_mm", "inlay_base") + HEIGHT_KEYS
+OUTPUT_KEYS = _schema.names("output")
 """The valid keys of ``[output]`` (the exporters read the mode/style/profile keys)."""
 
-_KEYS = {"motif": MOTIF_KEYS, "packing": PACKING_KEYS, "tile": TILE_KEYS, "output": OUTPUT_KEYS}
+
+def _default(path: str):
+    return _schema.key(path).default
 
 
 @dataclass(frozen=True)
@@ -105,16 +106,16 @@ class MotifSpec:
 
 @dataclass(frozen=True)
 class PackingSpec:
-    """The ``[packing]`` section."""
+    """The ``[packing]`` section (the defaults are the schema's, :mod:`fabtiles._schema`)."""
 
-    kind: str = "hex"
-    radius: float = 12.5
-    outline_circles: bool = False
-    fill: float = 1.0
+    kind: str = _default("packing.kind")
+    radius: float = _default("packing.radius")
+    outline_circles: bool = _default("packing.outline_circles")
+    fill: float = _default("packing.fill")
     gap_motif: MotifSpec | None = None
-    seamless: bool = False
-    tiling: str | None = None
-    edge: float = 20.0
+    seamless: bool = _default("packing.seamless")
+    tiling: str | None = _default("packing.tiling")
+    edge: float = _default("packing.edge")
     motifs: tuple[tuple[int, MotifSpec], ...] = ()
 
 
@@ -122,37 +123,37 @@ class PackingSpec:
 class TileSpec:
     """The ``[tile]`` section (``size`` normalised to a float pair)."""
 
-    outline: str = "square"
+    outline: str = _default("tile.outline")
     size: tuple[float, float] = (150.0, 150.0)
-    frame: float = 0.0
-    stroke: float = 1.0
-    join: str = "miter"
-    miter_limit: float = 4.0
-    corner_radius: float = 0.0
-    interlace: bool = False
-    interlace_gap_mm: float | None = None
-    interlace_cut: bool = False
+    frame: float = _default("tile.frame")
+    stroke: float = _default("tile.stroke")
+    join: str = _default("tile.join")
+    miter_limit: float = _default("tile.miter_limit")
+    corner_radius: float = _default("tile.corner_radius")
+    interlace: bool = _default("tile.interlace")
+    interlace_gap_mm: float | None = _default("tile.interlace_gap_mm")
+    interlace_cut: bool = _default("tile.interlace_cut")
 
 
 @dataclass(frozen=True)
 class OutputSpec:
     """The ``[output]`` section."""
 
-    formats: tuple[str, ...] = ("svg",)
-    laser_profile: str | None = None
-    printer_profile: str | None = None
-    laser_mode: str | None = None
-    print_style: str | None = None
-    name: str | None = None
-    fill_small_holes: bool = False
-    inlay: bool = False
-    threemf_layout: str = "volumes"
-    inlay_fit_mm: float | None = None
-    inlay_base: str = "pierced"
-    base_mm: float | None = None
-    relief_mm: float | None = None
-    pierced_mm: float | None = None
-    deboss_mm: float | None = None
+    formats: tuple[str, ...] = _default("output.formats")
+    laser_profile: str | None = _default("output.laser_profile")
+    printer_profile: str | None = _default("output.printer_profile")
+    laser_mode: str | None = _default("output.laser_mode")
+    print_style: str | None = _default("output.print_style")
+    name: str | None = _default("output.name")
+    fill_small_holes: bool = _default("output.fill_small_holes")
+    inlay: bool = _default("output.inlay")
+    threemf_layout: str = _default("output.threemf_layout")
+    inlay_fit_mm: float | None = _default("output.inlay_fit_mm")
+    inlay_base: str = _default("output.inlay_base")
+    base_mm: float | None = _default("output.base_mm")
+    relief_mm: float | None = _default("output.relief_mm")
+    pierced_mm: float | None = _default("output.pierced_mm")
+    deboss_mm: float | None = _default("output.deboss_mm")
 
     def heights(self) -> dict:
         """The height overrides given (mm), as keyword arguments of the print exporters."""
@@ -230,9 +231,12 @@ def _blame_overrides(exc: DesignError, original: dict, overrides: tuple, *, name
         return exc  # the file itself is at fault (too): keep naming it
     message = str(exc).removeprefix(f"{source}: ")
     keys = {item: parse_override(item)[0] for item in overrides}
-    guilty = [item for item, parts in keys.items()
-              if re.search(rf"(?<![\w]){re.escape(parts[-1])}(?![\w])", message)] or list(overrides)
-    return DesignError(f"{' '.join(f'--set {item}' for item in guilty)}: {message}")
+    param = exc.key or ""
+    # The error's key names the override; an error naming no key (or a bare parameter) is matched by its words.
+    guilty = [item for item, parts in keys.items() if param == ".".join(parts) or param.startswith(".".join(parts) + ".")]
+    guilty = guilty or [item for item, parts in keys.items()
+                        if re.search(rf"(?<![\w]){re.escape(parts[-1])}(?![\w])", message)] or list(overrides)
+    return DesignError(f"{' '.join(f'--set {item}' for item in guilty)}: {message}", param=exc.param, key=exc.key)
 
 
 def parse_override(item: str) -> tuple[list[str], Any]:
@@ -244,6 +248,8 @@ def parse_override(item: str) -> tuple[list[str], Any]:
     (['tile', 'outline'], 'hexagon')
     >>> parse_override("packing.tiling=3^4.6")  # a bare tiling name: a string too
     (['packing', 'tiling'], '3^4.6')
+    >>> parse_override("output.laser_profile=../my profiles/birch.toml")  # a text key takes any text
+    (['output', 'laser_profile'], '../my profiles/birch.toml')
     """
     if not isinstance(item, str) or "=" not in item:
         raise DesignError(f"--set expects section.key=value, got {item!r}")
@@ -254,11 +260,21 @@ def parse_override(item: str) -> tuple[list[str], Any]:
     try:
         parsed = tomllib.loads(f"v = {value}")["v"]
     except tomllib.TOMLDecodeError:
-        if re.fullmatch(r"[A-Za-z_][\w.+-]*|[0-9][0-9^.]*", value):
+        if _text_key(parts):
+            parsed = value  # the key takes text (a profile's path, a file name): the value as written
+        elif re.fullmatch(r"[A-Za-z_][\w.+-]*|[0-9][0-9^.]*", value):
             parsed = value  # a bare word or tiling (4.8.8, 3^6): a string
         else:
             raise DesignError(f"--set {key}: {value!r} is not a TOML value") from None
     return parts, parsed
+
+
+def _text_key(parts) -> bool:
+    """Whether the schema's key at ``parts`` takes text (a string or a choice)."""
+    try:
+        return _schema.key(".".join(parts)).type in ("string", "choice")
+    except FabtilesError:
+        return False  # not a key: the validation names it
 
 
 def apply_override(data: dict, item: str, *, source: str = "<design>") -> None:
@@ -296,17 +312,17 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
     try:
         star = motif.star() if motif is not None else None
     except FabtilesError as exc:
-        raise DesignError(f"{source}: [motif] {exc}", param=_key("[motif]", exc)) from None
+        raise _wrapped(exc, source, "[motif]") from None
     if packing is not None:
         try:
             _build_packing(packing, star)
         except FabtilesError as exc:
-            raise DesignError(f"{source}: [packing] {exc}", param=_key("[packing]", exc)) from None
+            raise _wrapped(exc, source, "[packing]") from None
     try:
         design = _fit_seamless(design)
         build_tile(design)
     except FabtilesError as exc:
-        raise DesignError(f"{source}: [tile] {exc}", param=_key("[tile]", exc)) from None
+        raise _wrapped(exc, source, "[tile]") from None
     return design
 
 
@@ -379,7 +395,7 @@ def _motif_spec(table, source: str, where: str) -> MotifSpec:
         raise DesignError(f"{source}: {where} preset must be a string, got {preset!r}")
     params = {k: v for k, v in table.items() if k != "preset"}
     if preset is None:
-        missing = [k for k in ("n", "radii") if k not in params]
+        missing = [k for k in _schema.MOTIF_REQUIRED if k not in params]
         if missing:
             raise DesignError(f"{source}: {where} needs preset = \"...\" or the parameters n and radii "
                               f"(missing: {', '.join(missing)})")
@@ -389,8 +405,18 @@ def _motif_spec(table, source: str, where: str) -> MotifSpec:
     try:
         spec.star()
     except FabtilesError as exc:
-        raise DesignError(f"{source}: {where} {exc}", param=_key(where, exc)) from None
+        raise _wrapped(exc, source, where) from None
     return spec
+
+
+def _wrapped(exc: FabtilesError, source: str, where: str) -> DesignError:
+    """A library error raised while reading ``where`` as a :class:`DesignError` naming the file and the key.
+
+    ``param`` is the design key of the library's parameter; ``key`` the most precise key the
+    error names (a motif of ``[packing.motifs]``: ``packing.motifs.6``).
+    """
+    return DesignError(f"{source}: {where} {exc}", param=_key(where, exc),
+                       key=_key(where, key=getattr(exc, "key", None) or exc.param))
 
 
 def _key(where: str, exc=None, *, key=None) -> str | None:
@@ -405,35 +431,26 @@ def _key(where: str, exc=None, *, key=None) -> str | None:
     return ".".join(where.replace("[", "").replace("]", "").split() + [name])
 
 
-def _typed(table, key, kinds, source, where, text, default):
-    if key not in table:
+def _value(table, section: str, name: str, source: str, where: str, default=None):
+    """``table[name]`` checked by its key in the schema (type, and range unless the library checks it), or ``default``."""
+    if name not in table:
         return default
-    value = table[key]
-    if isinstance(value, bool) and bool not in kinds:
-        ok = False
-    else:
-        ok = isinstance(value, kinds)
-    if not ok:
-        raise DesignError(f"{source}: {where} {key} must be {text}, got {value!r}", param=_key(where, key=key))
-    return value
+    return _schema.key(f"{section}.{name}").check(table[name], prefix=f"{source}: {where} ", error=DesignError,
+                                                   param=_key(where, key=name))
 
 
-def _choice(table, key, choices, source, where, default):
-    value = table.get(key, default)
-    if value is None and key not in table:
-        return None  # not given: the profile's default applies
-    if value not in choices:
-        raise DesignError(f"{source}: {where} {key} = {value!r} is not valid, must be one of: "
-                          f"{', '.join(choices)}", param=_key(where, key=key))
-    return value
+def _section(table, section: str, source: str, where: str, *, skip=()) -> dict:
+    """The scalar keys of ``section`` given in ``table``, checked, with the schema's defaults for the rest."""
+    scalar = ("string", "integer", "number", "boolean", "choice")
+    return {k.name: _value(table, section, k.name, source, where, k.default)
+            for k in _schema.section_keys(section) if k.type in scalar and k.name not in skip}
 
 
 def _packing_spec(table: dict, source: str) -> PackingSpec:
     where = "[packing]"
     _check_keys(table, PACKING_KEYS, where, source)
-    num = (int, float)
     gap = table.get("gap_motif")
-    kind = _choice(table, "kind", tuple(PACKINGS) + ("archimedean",), source, where, "hex")
+    kind = _value(table, "packing", "kind", source, where, "hex")
     extra = _archimedean_spec(table, source) if kind == "archimedean" else {}
     if kind != "archimedean":
         wrong = [k for k in ARCHIMEDEAN_KEYS if k in table]
@@ -441,15 +458,9 @@ def _packing_spec(table: dict, source: str) -> PackingSpec:
             raise DesignError(f"{source}: {where} {wrong[0]} is a key of kind = \"archimedean\", "
                               f"not of kind = {kind!r}; set kind = \"archimedean\" or remove it",
                               param=_key(where, key=wrong[0]))
-    return PackingSpec(
-        kind=kind,
-        **extra,
-        radius=float(_typed(table, "radius", num, source, where, "a number of mm > 0", 12.5)),
-        outline_circles=_typed(table, "outline_circles", (bool,), source, where, "true or false", False),
-        fill=float(_typed(table, "fill", num, source, where, "a number in (0, 1]", 1.0)),
-        gap_motif=None if gap is None else _motif_spec(gap, source, "[packing] gap_motif"),
-        seamless=_typed(table, "seamless", (bool,), source, where, "true or false", False),
-    )
+    values = _section(table, "packing", source, where, skip=("kind",) + ARCHIMEDEAN_KEYS)
+    return PackingSpec(kind=kind, **extra, **values,
+                       gap_motif=None if gap is None else _motif_spec(gap, source, "[packing] gap_motif"))
 
 
 def _archimedean_spec(table: dict, source: str) -> dict:
@@ -462,8 +473,8 @@ def _archimedean_spec(table: dict, source: str) -> dict:
     if "tiling" not in table:
         raise DesignError(f"{source}: {where} kind = \"archimedean\" needs tiling = one of: "
                           f"{', '.join(TILINGS)}", param=_key(where, key="tiling"))
-    tiling = _typed(table, "tiling", (str,), source, where, f"one of: {', '.join(TILINGS)}", None)
-    edge = float(_typed(table, "edge", (int, float), source, where, "a number of mm > 0", 20.0))
+    tiling = _value(table, "packing", "tiling", source, where)
+    edge = _value(table, "packing", "edge", source, where, _schema.key("packing.edge").default)
     raw = table.get("motifs", {})
     if not isinstance(raw, dict):
         raise DesignError(f"{source}: [packing.motifs] must be a table keyed by polygon sides "
@@ -478,36 +489,18 @@ def _archimedean_spec(table: dict, source: str) -> dict:
 
 
 def _tile_spec(table: dict, source: str) -> TileSpec:
-    from .geometry.stroke import JOINS
-    from .geometry.tile import OUTLINES, check_tile_size
+    from .geometry.tile import check_tile_size
 
     where = "[tile]"
     _check_keys(table, TILE_KEYS, where, source)
-    num = (int, float)
-    outline = _choice(table, "outline", OUTLINES, source, where, "square")
+    outline = _value(table, "tile", "outline", source, where, "square")
     if "size" not in table:
-        raise DesignError(f"{source}: {where} needs size (mm: a number, or [width, height])")
+        raise DesignError(f"{source}: {where} needs size (mm: a number, or [width, height])", param="tile.size")
     try:
         size = check_tile_size(outline, table["size"])
     except FabtilesError as exc:
-        raise DesignError(f"{source}: {where} {exc}", param=_key(where, exc)) from None
-    return TileSpec(
-        outline=outline,
-        size=size,
-        frame=float(_typed(table, "frame", num, source, where, "a number of mm >= 0", 0.0)),
-        stroke=float(_typed(table, "stroke", num, source, where, "a number of mm > 0", 1.0)),
-        join=_choice(table, "join", JOINS, source, where, "miter"),
-        miter_limit=float(_typed(table, "miter_limit", num, source, where, "a number >= 1", 4.0)),
-        corner_radius=float(_typed(table, "corner_radius", num, source, where, "a number of mm >= 0", 0.0)),
-        interlace=_typed(table, "interlace", (bool,), source, where, "true or false", False),
-        interlace_gap_mm=_optional_float(_typed(table, "interlace_gap_mm", num, source, where,
-                                                "a number of mm >= 0", None)),
-        interlace_cut=_typed(table, "interlace_cut", (bool,), source, where, "true or false", False),
-    )
-
-
-def _optional_float(value):
-    return None if value is None else float(value)
+        raise _wrapped(exc, source, where) from None
+    return TileSpec(outline=outline, size=size, **_section(table, "tile", source, where, skip=("outline",)))
 
 
 def _output_spec(table: dict, source: str) -> OutputSpec:
@@ -517,47 +510,14 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
     if isinstance(formats, str):
         formats = [formats]
     if not isinstance(formats, list) or not formats:
-        raise DesignError(f"{source}: {where} formats must be a non-empty list of: {', '.join(FORMATS)}")
+        raise DesignError(f"{source}: {where} formats must be a non-empty list of: {', '.join(FORMATS)}",
+                          param="output.formats")
     for f in formats:
         if f not in FORMATS:
             raise DesignError(f"{source}: {where} formats: {f!r} is not a valid format, must be one of: "
-                              f"{', '.join(FORMATS)}")
-    name = _typed(table, "name", (str,), source, where, "a string", None)
+                              f"{', '.join(FORMATS)}", param="output.formats")
+    name = _value(table, "output", "name", source, where)
     if name is not None and not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9._ -]*", name):
         raise DesignError(f"{source}: {where} name must be a plain file name (letters, digits, . _ - "
-                          f"and spaces, no folders), got {name!r}")
-    return OutputSpec(
-        formats=tuple(dict.fromkeys(formats)),
-        laser_profile=_typed(table, "laser_profile", (str,), source, where, "a profile name or path", None),
-        printer_profile=_typed(table, "printer_profile", (str,), source, where, "a profile name or path", None),
-        laser_mode=_choice(table, "laser_mode", LASER_MODES, source, where, None),
-        print_style=_choice(table, "print_style", PRINT_STYLES, source, where, None),
-        name=name,
-        fill_small_holes=_typed(table, "fill_small_holes", (bool,), source, where, "true or false", False),
-        inlay=_typed(table, "inlay", (bool,), source, where, "true or false", False),
-        threemf_layout=_choice(table, "threemf_layout", THREEMF_LAYOUTS, source, where, "volumes"),
-        inlay_fit_mm=_fit(table, source, where),
-        inlay_base=_choice(table, "inlay_base", ("pierced", "pocket"), source, where, "pierced"),
-        **{key: _height(table, key, source, where) for key in HEIGHT_KEYS},
-    )
-
-
-def _fit(table, source, where):
-    """``[output] inlay_fit_mm``: the kit's fit overriding the laser profile's (mm, -0.5 to 0.5), or None."""
-    text = "a number of mm from -0.5 to 0.5 (positive: a press fit, negative: play)"
-    value = _typed(table, "inlay_fit_mm", (int, float), source, where, text, None)
-    if value is not None and not -0.5 <= value <= 0.5:
-        raise DesignError(f"{source}: {where} inlay_fit_mm must be {text}, got {value!r}",
-                          param=_key(where, key="inlay_fit_mm"))
-    return None if value is None else float(value)
-
-
-def _height(table, key, source, where):
-    """A height override of ``[output]`` (mm, > 0 and at most MAX_HEIGHT_MM), or None."""
-    from .geometry.stack import MAX_HEIGHT_MM
-
-    text = f"a number of mm > 0 and <= {MAX_HEIGHT_MM:g}"
-    value = _typed(table, key, (int, float), source, where, text, None)
-    if value is not None and not (0 < value <= MAX_HEIGHT_MM):  # also refuses NaN
-        raise DesignError(f"{source}: {where} {key} must be {text}, got {value!r}")
-    return None if value is None else float(value)
+                          f"and spaces, no folders), got {name!r}", param="output.name")
+    return OutputSpec(formats=tuple(dict.fromkeys(formats)), **_section(table, "output", source, where))

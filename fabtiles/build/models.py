@@ -17,6 +17,10 @@ from functools import cached_property
 from .._errors import FabricationError, ParameterError
 from .._profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
 from .._report import Report
+from .._schema import CALL_OPTIONS, FAMILIES, option_keys
+
+HEIGHT_FIELDS = tuple(k.name for k in option_keys("print") if k.unit == "mm")
+"""The print heights, gathered in :attr:`BuildOptions.heights`."""
 
 KIT_MODE = "inlay"
 
@@ -48,11 +52,34 @@ class BuildOptions:
     def of_design(cls, design) -> "BuildOptions":
         """The options a validated design's ``[output]`` gives."""
         out = design.output
+        keys = {k.name: k for family in FAMILIES for k in option_keys(family)}  # the design keys that are options
+        values = {k.option.name: getattr(out, name) for name, k in keys.items()}
         return cls(cutter=load_profile(out.laser_profile or DEFAULT_CUTTER_PROFILE, kind="laser"),
                    printer=load_profile(out.printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer"),
-                   laser_mode=out.laser_mode, fill_small_holes=bool(out.fill_small_holes),
-                   inlay_fit_mm=out.inlay_fit_mm, inlay_base=out.inlay_base, print_style=out.print_style,
-                   heights=dict(out.heights()), inlay=bool(out.inlay), threemf_layout=out.threemf_layout)
+                   **cls.fields_of(values, *FAMILIES))
+
+    @staticmethod
+    def fields_of(options: dict, *families: str) -> dict:
+        """The fields given by build ``options`` (the export API's keywords: ``mode``, ``style``, ``base_mm``)
+        of ``families``, named as the design's keys (``laser_mode``, ``print_style``, in ``heights``).
+
+        >>> BuildOptions.fields_of({"mode": "inlay", "base_mm": 2.0, "layout": None}, "cut", "3mf")
+        {'laser_mode': 'inlay', 'heights': {'base_mm': 2.0}}
+        """
+        out: dict = {}
+        calls = {o.name for o in CALL_OPTIONS if set(o.families) & set(families)}
+        for name in calls & set(options):
+            out[name] = options[name]  # the call's own options (dxf_version, kerf_mm) keep their names
+        for family in families:
+            for k in option_keys(family):
+                value = options.get(k.option.name)
+                if value is None:
+                    continue  # not given: the field's default (the profile's)
+                if k.name in HEIGHT_FIELDS:
+                    out.setdefault("heights", {})[k.name] = value
+                else:
+                    out[k.name] = value
+        return out
 
     @property
     def mode(self) -> str:

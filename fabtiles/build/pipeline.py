@@ -36,6 +36,7 @@ from .. import _limits
 from .._errors import FabtilesError, ParameterError
 from .._profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
 from .._report import Report
+from .._schema import build_options, option_keys
 from .models import BuildOptions, Models
 from .staging import StagingFolder
 
@@ -312,9 +313,10 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
 # --------------------------------------------------------------------------- the API's exports
 
 
-_CUT_OPTIONS = ("mode", "dxf_version", "kerf_mm", "fill_small_holes", "inlay_fit_mm", "inlay_base")
-_PRINT_OPTIONS = ("style", "base_mm", "relief_mm", "pierced_mm", "deboss_mm", "fill_small_holes")
-_3MF_OPTIONS = _PRINT_OPTIONS + ("inlay", "layout")
+_CUT_OPTIONS = build_options("cut")
+_PRINT_OPTIONS = build_options("print")
+_3MF_OPTIONS = build_options("3mf")
+_INLAY_OPTIONS = tuple(k.option.name for k in option_keys("cut") if k.requires == 'laser_mode = "inlay"')
 
 
 def _options_for(fmt, profile, options: dict) -> BuildOptions:
@@ -331,22 +333,16 @@ def _options_for(fmt, profile, options: dict) -> BuildOptions:
                            kind="printer")
     if fmt.family == "cut":
         mode = o.get("mode")
-        if (mode or cutter.mode) != "inlay" and ("inlay_fit_mm" in o or "inlay_base" in o):
-            key = "inlay_fit_mm" if "inlay_fit_mm" in o else "inlay_base"
-            raise ParameterError("inlay_fit_mm and inlay_base are options of the inlay mode; pass mode='inlay'",
-                                 param=key)
+        given = [k for k in _INLAY_OPTIONS if k in o]
+        if (mode or cutter.mode) != "inlay" and given:
+            raise ParameterError(f"{' and '.join(_INLAY_OPTIONS)} are options of the inlay mode; pass mode='inlay'",
+                                 param=given[0])
         from .._cutters import cutter_kind
 
         kind = cutter_kind(cutter)
         kind.check_format(cutter, fmt.name)
         kind.check_mode(cutter, mode)
-        return BuildOptions(cutter, printer, laser_mode=mode, fill_small_holes=o.get("fill_small_holes", False),
-                            inlay_fit_mm=o.get("inlay_fit_mm"), inlay_base=o.get("inlay_base"),
-                            dxf_version=o.get("dxf_version"), kerf_mm=o.get("kerf_mm"))
-    heights = {k: o[k] for k in ("base_mm", "relief_mm", "pierced_mm", "deboss_mm") if k in o}
-    return BuildOptions(cutter, printer, print_style=o.get("style"), heights=heights,
-                        fill_small_holes=o.get("fill_small_holes", False), inlay=o.get("inlay", False),
-                        threemf_layout=o.get("layout", "volumes"))
+    return BuildOptions(cutter, printer, **BuildOptions.fields_of(o, "cut" if fmt.family == "cut" else "3mf"))
 
 
 class _Region:

@@ -42,6 +42,23 @@ def _float_list(text: str) -> tuple[float, ...]:
         raise click.BadParameter(f"expected comma-separated numbers like 51,70,172, got {text!r}")
 
 
+def motif_options(command):
+    """The ``[motif]`` keys of the schema as options (``--preset``, ``--n``, ``--radii``, ...), in the schema's order."""
+    from .. import _schema
+
+    types = {"integer": int, "number": float}
+    for k in reversed(_schema.section_keys("motif")):
+        words = [k.help[:1].upper() + k.help[1:].replace("`", "")]
+        if k.type == "numbers":
+            words.append("comma-separated, e.g. 51,70,172")
+        if k.range is not None and k.type == "integer":
+            words.append(k.note or k.range.text(integer=True))
+        if k.unit:
+            words.append(k.unit)
+        command = click.option(f"--{k.name}", k.name, type=types.get(k.type), help="; ".join(words) + ".")(command)
+    return command
+
+
 @cli.command()
 def presets():
     """List the presets (the rows of the paper's tables) with their parameters, and the tilings."""
@@ -63,13 +80,7 @@ def presets():
 
 
 @cli.command()
-@click.option("--preset", help="A preset name (see `fabtiles presets`).")
-@click.option("--n", "n", type=int, help="Points on each circle (3..120).")
-@click.option("--radii", help="Comma-separated radii, e.g. 51,70,172.")
-@click.option("--alpha", type=float, help="Angular offset of the special points, degrees.")
-@click.option("--spr", type=float, help="Special points lie at r(special) - spr.")
-@click.option("--special", type=int, help="1-based index of the special circle (2..S).")
-@click.option("--rotation", type=float, help="Degrees added to every angle.")
+@motif_options
 @click.option("--size", "size_mm", type=float, default=100.0, show_default=True,
               help="Width of the picture in mm.")
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False),
@@ -81,6 +92,7 @@ def star(preset, n, radii, alpha, spr, special, rotation, size_mm, output):
     fabtiles star --preset table1-part1 -o star.svg
     fabtiles star --n 8 --radii 51,70,172 -o star.svg
     """
+    from .._schema import MOTIF_REQUIRED
     from ..export.motif_svg import write_motif_svg
     from ..pattern.star import Star
 
@@ -91,7 +103,7 @@ def star(preset, n, radii, alpha, spr, special, rotation, size_mm, output):
     if preset is not None:
         motif = Star.preset(preset).replace(**given)
     else:
-        missing = [k for k in ("n", "radii") if k not in given]
+        missing = [k for k in MOTIF_REQUIRED if k not in given]
         if missing:
             raise click.UsageError(f"give --preset, or --n and --radii (missing: --{', --'.join(missing)})")
         motif = Star(**given)

@@ -44,6 +44,7 @@ from shapely.geometry import Point, box
 
 from .._errors import ParameterError
 from .._profiles import load_profile
+from .._schema import key
 from .stroke_font import text_paths, text_width
 
 STEPS = (0.5, 0.75, 1.0, 1.25, 1.5, 2.0)
@@ -63,7 +64,8 @@ CLEARANCE_MM = 3.0
 INLAY_MM = 6.0
 """Side of the inlay gauge's square hole; its pieces are that square grown by each fit."""
 INLAY_STEPS_MM = (-0.1, -0.05, 0.0, 0.05, 0.1)
-"""The inlay gauge's fits, added to the profile's ``inlay_fit_mm`` (and kept within -0.5 to 0.5 mm)."""
+"""The inlay gauge's fits, added to the profile's ``inlay_fit_mm`` (and kept within its range, -0.5 to 0.5 mm)."""
+FIT = key("output.inlay_fit_mm")
 
 
 def inlay_fits(profile) -> tuple[float, ...]:
@@ -72,7 +74,7 @@ def inlay_fits(profile) -> tuple[float, ...]:
     >>> inlay_fits(load_profile("laser-3mm-plywood"))
     (0.05, 0.1, 0.15, 0.2, 0.25)
     """
-    fits = (round(min(0.5, max(-0.5, profile.inlay_fit_mm + d)), 3) for d in INLAY_STEPS_MM)
+    fits = (round(FIT.range.clamp(profile.inlay_fit_mm + d), 3) for d in INLAY_STEPS_MM)
     return tuple(dict.fromkeys(fits))
 
 

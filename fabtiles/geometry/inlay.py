@@ -36,10 +36,12 @@ import numpy as np
 import shapely
 
 from .._errors import FabricationError, ParameterError
+from .._schema import key
 from .contours import MITRE_LIMIT, polygon_parts
 
-FIT_RANGE_MM = (-0.5, 0.5)
-"""The fits accepted: beyond half a millimetre a piece no longer fits its hole at all."""
+_FIT = key("output.inlay_fit_mm")
+FIT_RANGE_MM = (_FIT.range.min, _FIT.range.max)
+"""The fits accepted (the schema's range of ``inlay_fit_mm``): beyond half a millimetre a piece no longer fits."""
 
 
 @dataclass(frozen=True)
@@ -70,11 +72,7 @@ def check_fit(fit_mm) -> float:
     ...
     fabtiles._errors.ParameterError: inlay_fit_mm must be a number of mm from -0.5 to 0.5 (positive: a press fit, negative: play), got 0.6
     """
-    lo, hi = FIT_RANGE_MM
-    if isinstance(fit_mm, bool) or not isinstance(fit_mm, (int, float)) or not lo <= fit_mm <= hi:
-        raise ParameterError(f"inlay_fit_mm must be a number of mm from {lo:g} to {hi:g} (positive: a press fit, "
-                             f"negative: play), got {fit_mm!r}", param="inlay_fit_mm")
-    return float(fit_mm)
+    return _FIT.check(fit_mm, required=True)
 
 
 def inlay_kit(region, outline, *, fit_mm: float, min_piece_mm: float, kerf_mm: float,

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from .._errors import ParameterError
 from .._profiles import PRINT_STYLES, PrinterProfile, load_profile
+from .._schema import key
 from .._validate import check_choice, check_float
 
 QUANTUM = 2.0**-10
@@ -21,7 +22,7 @@ QUANTUM = 2.0**-10
 16 m, so a binary STL stores the very vertices the mesh was checked with (see
 :mod:`fabtiles.solid._mesh_build`); the STEP writer's vertices sit on the same grid."""
 
-MAX_HEIGHT_MM = 1000.0
+MAX_HEIGHT_MM = key("output.base_mm").range.max  # the schema's range of every print height
 """Largest base, relief, pierced or deboss height accepted (mm)."""
 
 

@@ -359,8 +359,9 @@ def _kind(key, kinds, tiling) -> int:
     if isinstance(key, str) and key.strip().isdigit():
         key = int(key)
     if isinstance(key, bool) or not isinstance(key, numbers.Integral) or int(key) not in kinds:
+        entry = f"motifs.{key}" if isinstance(key, numbers.Integral) and not isinstance(key, bool) else "motifs"
         raise ParameterError(f"motifs key {key!r} is not a polygon of the tiling {tiling}, "
-                             f"must be one of: {text}", param="motifs")
+                             f"must be one of: {text}", param="motifs", key=entry)
     return int(key)
 
 

@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from .._errors import LimitError, ParameterError
+from .._schema import GAP_MOTIF
 from .._validate import check_float
 from .star import Star
 
@@ -33,7 +34,7 @@ def default_gap_motif() -> Star:
     >>> default_gap_motif()
     Star(n=6, radii=(0.5, 1))
     """
-    return Star(n=6, radii=(0.5, 1.0))
+    return Star(**GAP_MOTIF)  # the schema's default of [packing] gap_motif
 
 
 def chord_count(radius: float, *, tolerance: float = 0.005, multiple: int = 24) -> int:

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 
+from .. import _schema
 from .._errors import FabtilesError
 from .._profiles import bundled_profiles
 
@@ -72,56 +73,48 @@ def _special(field, text):
     return None if str(text).lower() in ("", "none") else _number(field, text, integer=True)
 
 
-# query key -> (section, design key, parser)
-FIELDS = {
-    "preset": ("motif", "preset", _text),
-    "n": ("motif", "n", lambda f, t: _number(f, t, integer=True)),
-    "radii": ("motif", "radii", _numbers),
-    "alpha": ("motif", "alpha", _number),
-    "spr": ("motif", "spr", _number),
-    "special": ("motif", "special", _special),
-    "rotation": ("motif", "rotation", _number),
-    "packing": ("packing", "kind", _text),
-    "radius": ("packing", "radius", _number),
-    "fill": ("packing", "fill", _number),
-    "outline_circles": ("packing", "outline_circles", _flag),
-    "gap_n": ("gap_motif", "n", lambda f, t: _number(f, t, integer=True)),
-    "gap_radii": ("gap_motif", "radii", _numbers),
-    "gap_preset": ("gap_motif", "preset", _text),
-    "gap_alpha": ("gap_motif", "alpha", _number),
-    "gap_spr": ("gap_motif", "spr", _number),
-    "gap_special": ("gap_motif", "special", _special),
-    "gap_rotation": ("gap_motif", "rotation", _number),
-    "seamless": ("packing", "seamless", _flag),
-    "tiling": ("packing", "tiling", _text),
-    "edge": ("packing", "edge", _number),
-    **{f"motif_{p}": ("motifs", str(p), _text) for p in (3, 4, 6, 8, 12)},
-    "outline": ("tile", "outline", _text),
-    "width": ("tile", "width", _number),
-    "height": ("tile", "height", _number),
-    "frame": ("tile", "frame", _number),
-    "stroke": ("tile", "stroke", _number),
-    "join": ("tile", "join", _text),
-    "corner_radius": ("tile", "corner_radius", _number),
-    "miter_limit": ("tile", "miter_limit", _number),
-    "interlace": ("tile", "interlace", _flag),
-    "interlace_gap_mm": ("tile", "interlace_gap_mm", _number),
-    "interlace_cut": ("tile", "interlace_cut", _flag),
-    "laser_profile": ("output", "laser_profile", _text),
-    "printer_profile": ("output", "printer_profile", _text),
-    "laser_mode": ("output", "laser_mode", _text),
-    "print_style": ("output", "print_style", _text),
-    "fill_small_holes": ("output", "fill_small_holes", _flag),
-    "inlay": ("output", "inlay", _flag),
-    "threemf_layout": ("output", "threemf_layout", _text),
-    "inlay_fit_mm": ("output", "inlay_fit_mm", _number),
-    "inlay_base": ("output", "inlay_base", _text),
-    "base_mm": ("output", "base_mm", _number),
-    "relief_mm": ("output", "relief_mm", _number),
-    "pierced_mm": ("output", "pierced_mm", _number),
-    "deboss_mm": ("output", "deboss_mm", _number),
-    "name": ("output", "name", _text),
-}
+def _parser(k):
+    """The query parser of a schema key, by its type (a select of integers also takes ``none``)."""
+    if k.type == "integer":
+        if k.widget is not None and k.widget.kind == "select":
+            return _special
+        return lambda f, t: _number(f, t, integer=True)
+    return {"number": _number, "numbers": _numbers, "boolean": _flag}.get(k.type, _text)
+
+
+def _motif_sides() -> tuple[int, ...]:
+    from ..pattern.tilings import TILINGS, unit_cell
+
+    return tuple(sorted({int(s) for t in TILINGS for s in unit_cell(t).sides.tolist()}))
+
+
+MOTIF_SIDES = _motif_sides()
+"""The polygon kinds of the Archimedean tilings (3, 4, 6, 8, 12): packing=archimedean's ``motif_<sides>`` parameters."""
+
+
+def _fields() -> dict:
+    """Query parameter -> (section, design key, parser), from the schema (:mod:`fabtiles._schema`).
+
+    A key's parameter is its name, with these exceptions: ``[packing] kind`` is ``packing``;
+    the gap motif's keys are ``gap_<key>`` (section ``gap_motif``); ``[packing.motifs]`` is
+    ``motif_<sides>`` (section ``motifs``); ``[tile] size`` is ``width`` and ``height``.
+    """
+    fields = {}
+    for k in _schema.KEYS:
+        if k.type == "motif":  # the gap motif: a parameter per motif key
+            fields.update({f"gap_{m.name}": ("gap_motif", m.name, _parser(m)) for m in _schema.section_keys("motif")})
+        elif k.type == "motifs":
+            fields.update({f"motif_{p}": ("motifs", str(p), _text) for p in MOTIF_SIDES})
+        elif k.type == "size":
+            fields.update({"width": ("tile", "width", _number), "height": ("tile", "height", _number)})
+        elif k.query is not None:
+            fields[k.query] = (k.section, k.name, _parser(k))
+    return fields
+
+
+FIELDS = _fields()
+"""Query parameter -> (section, design key, parser)."""
+
 
 DEFAULTS = {
     "preset": "table3-3",
@@ -142,7 +135,7 @@ DXF cuts cleanly, and the print's openings under the printer's ``min_hole_mm`` a
 filled likewise. ``fill_small_holes=false`` keeps them (and reports them).
 """
 
-NOT_WEB_PARAMS = {("output", "formats")}
+NOT_WEB_PARAMS = {(k.section, k.name) for k in _schema.KEYS if k.query is None and k.type == "formats"}
 """Design keys with no query parameter, and why: each download is one format (the
 design TOML from the app lists them all)."""
 
@@ -187,7 +180,7 @@ def design_from_query(query) -> dict:
         design["packing"]["motifs"] = motifs
     if "packing" in design and gap:
         if "preset" not in gap:  # one of n / radii alone: the other from the default gap motif
-            gap = {"n": 6, "radii": [0.5, 1.0], **gap}
+            gap = {**{k: list(v) if isinstance(v, tuple) else v for k, v in _schema.GAP_MOTIF.items()}, **gap}
         design["packing"]["gap_motif"] = gap
     for key, family in (("laser_profile", "laser"), ("printer_profile", "printer")):
         name = design["output"].get(key)

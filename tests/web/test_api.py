@@ -67,6 +67,14 @@ def test_checks_give_the_laser_job(client):
     assert engraved["engrave_area_mm2"] > 0 and engraved["pierces"] == 1
 
 
+def test_checks_of_an_inlay_kit(client):
+    """The inlay mode's checks are its lattice's, as a pierced tile's (they answered 422 before)."""
+    kit = client.get(f"/api/checks?{SMALL}&laser_mode=inlay")
+    assert kit.status_code == 200, kit.text
+    pierced = client.get(f"/api/checks?{SMALL}&laser_mode=pierced").json()
+    assert kit.json()["job"] == pierced["job"] and kit.json()["findings"] == pierced["findings"]
+
+
 def test_design_toml_round_trips_through_build(client, tmp_path):
     from click.testing import CliRunner
 

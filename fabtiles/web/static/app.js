@@ -1,32 +1,9 @@
 // fabtiles web page: controls -> URL query -> /api/preview.svg, /api/checks, /api/export/*.
 "use strict";
 
-const SLIDERS = {
-  "motif-sliders": [
-    ["n", "n (points)", 3, 48, 1],
-    ["alpha", "alpha (deg)", -90, 90, 0.5],
-    ["spr", "spr", -300, 300, 1],
-    ["rotation", "rotation (deg)", -180, 180, 0.5],
-  ],
-  "packing-sliders": [
-    ["radius", "radius R (mm)", 3, 100, 0.5],
-    ["edge", "edge a (mm)", 3, 100, 0.5],
-    ["gap_n", "gap n", 3, 24, 1],
-    ["gap_inner", "gap inner r", 0.05, 1.5, 0.05],
-    ["gap_rotation", "gap rotation (deg)", -180, 180, 0.5],
-    ["gap_alpha", "gap alpha (deg)", -90, 90, 0.5],
-    ["gap_spr", "gap spr", -2, 2, 0.01],
-  ],
-  "tile-sliders": [
-    ["width", "width (mm)", 20, 600, 1],
-    ["height", "height (mm)", 20, 400, 1],
-    ["frame", "frame (mm)", 0, 30, 0.5],
-    ["stroke", "stroke (mm)", 0.2, 6, 0.1],
-    ["corner_radius", "corner r (mm)", 0, 30, 0.5],
-    ["miter_limit", "miter limit", 1, 20, 0.5],
-  ],
-};
-
+// The form's sliders, text boxes and check boxes, and the choices of its menus, come from the schema
+// of the design keys (/api/schema, fabtiles/_schema.py): filled in by applySchema() before the form is built.
+let SLIDERS = {};
 const state = {
   preset: "table3-3", n: 12, radii: [123, 85, 178], alpha: 23, spr: -7, special: 2, rotation: 0,
   packing: "hex", radius: 15, gap_n: 6, gap_inner: 0.5, outline_circles: false,
@@ -42,9 +19,11 @@ const state = {
   interlace: false, interlace_gap_mm: "", interlace_cut: false,  // woven strands; "": a third of the stroke
   inlay: false,  // deboss: the 3MF gets a second part filling the grooves
 };
-// Options sent only when set (text boxes and checkboxes of the design's [output] and [packing]).
-const TEXT_KEYS = ["name", "base_mm", "relief_mm", "pierced_mm", "deboss_mm", "interlace_gap_mm", "inlay_fit_mm"];
-const FLAG_KEYS = ["seamless", "fill_small_holes", "interlace", "interlace_cut", "inlay", "gap_rosette"];
+// Options sent only when set: the schema's text and number boxes, and its check boxes (gap_rosette is the
+// page's own: the gap motif as a rosette).
+// MENUS: the schema's menus but the motif's (preset, special circle) and the tiling's, which have their own code.
+let TEXT_KEYS = [], FLAG_KEYS = ["gap_rosette"], MENUS = [];
+const OWN_MENUS = new Set(["preset", "special", "tiling"]);
 let showFindings = true, chosen = null;  // the findings overlay; the finding chosen in the list
 let presets = {}, tilings = {};
 
@@ -67,7 +46,7 @@ function slider(container, key, label, min, max, step) {
   const changed = (v) => {
     state[key] = Number(v);
     set(v);
-    if (["n", "alpha", "spr", "rotation"].includes(key)) state.preset = "";
+    if (SLIDERS["motif-sliders"].some(([k]) => k === key)) state.preset = "";  // the motif's own now
     update();
   };
   range.addEventListener("input", () => changed(range.value));
@@ -173,9 +152,7 @@ function syncControls() {
   for (const group of Object.values(SLIDERS)) for (const [key] of group) {
     $(key).value = state[key]; $(`${key}-range`).value = state[key];
   }
-  for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style",
-                     "threemf_layout", "inlay_base"])
-    $(key).value = state[key];
+  for (const key of MENUS) $(key).value = state[key];
   $("preset").value = state.preset;
   $("tiling").value = state.tiling;
   tilingControls();
@@ -309,6 +286,29 @@ function tilingControls() {
   }
 }
 
+// The schema's widgets: sliders by group (the gap motif's inner radius after gap n), the text, number and
+// check boxes, each number box's range and step, and each empty menu's choices.
+function applySchema(schema) {
+  SLIDERS = {};
+  for (const [q, f] of Object.entries(schema.fields)) {
+    const w = f.widget;
+    if (!w) continue;
+    if (w.kind === "slider") {
+      (SLIDERS[w.group] = SLIDERS[w.group] || []).push([q, w.label, w.min, w.max, w.step]);
+      if (q === "gap_n") SLIDERS[w.group].push(["gap_inner", "gap inner r", 0.05, 1.5, 0.05]);
+    } else if (w.kind === "checkbox") FLAG_KEYS.push(q);
+    else if (w.kind === "number" || w.kind === "text") {
+      TEXT_KEYS.push(q);
+      const box = $(q);
+      if (box) for (const a of ["min", "max", "step", "placeholder"]) if (w[a] !== null && w[a] !== "") box.setAttribute(a, w[a]);
+    } else if (w.kind === "select") {
+      if (!OWN_MENUS.has(q)) MENUS.push(q);
+      if (f.choices && $(q) && !$(q).options.length)
+        for (const [value, label] of f.choices) $(q).add(new Option(label, value));
+    }
+  }
+}
+
 async function init() {
   presets = await (await fetch("/api/presets")).json();
   tilings = await (await fetch("/api/tilings")).json();
@@ -318,6 +318,7 @@ async function init() {
   const profiles = await (await fetch("/api/profiles")).json();
   for (const n of profiles.laser) $("laser_profile").add(new Option(n, n));
   for (const n of profiles.printer) $("printer_profile").add(new Option(n, n));
+  applySchema(await (await fetch("/api/schema")).json());
   fromUrl();
   for (const [box, list] of Object.entries(SLIDERS))
     for (const [key, label, min, max, step] of list) slider($(box), key, label, min, max, step);
@@ -340,8 +341,7 @@ async function init() {
   for (const k of TEXT_KEYS) $(k).addEventListener("change", () => { state[k] = $(k).value; update(); });
   $("show_findings").checked = showFindings;
   $("show_findings").addEventListener("change", () => { showFindings = $("show_findings").checked; update(); });
-  for (const key of ["packing", "outline", "join", "laser_profile", "laser_mode", "printer_profile", "print_style",
-                     "threemf_layout", "inlay_base"])
+  for (const key of MENUS)
     $(key).addEventListener("change", () => { state[key] = $(key).value; update(); });
   for (const key of ["packing", "tiling"])
     $(key).addEventListener("change", () => { state[key] = $(key).value; tilingControls(); if (key === "tiling") update(); });

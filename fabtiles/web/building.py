@@ -1,0 +1,92 @@
+"""A request's design: its query read into a design, validated, its tile prepared within the work limits.
+
+Shared by the routers (:mod:`fabtiles.web.routes`). Bad input raises a
+:class:`~fabtiles.FabtilesError` whose ``param`` names the design key (or a
+:class:`~fabtiles.web.params.QueryError` whose ``field`` names the parameter);
+:func:`error_response` turns it into the 422 answer ``{"error": ..., "field": ...}``.
+"""
+
+from __future__ import annotations
+
+from fastapi import Request
+from fastapi.responses import JSONResponse
+
+from .. import _limits
+from .params import DEFAULTS, FIELDS, design_from_query
+
+
+def tile_from_dict(design: dict, *, limits: _limits.Limits):
+    """Validate a design dictionary and build its tile (no geometry yet) within the work limits."""
+    from ..build import prepare_tile
+    from ..design import design_from_dict
+
+    spec = design_from_dict(design, name="fabtiles-tile", source="query")
+    return spec, prepare_tile(spec, limits=limits)
+
+
+def build(request: Request, *, limits: _limits.Limits, view=()):
+    """``(design dict, design, tile)`` of a request's query (``view``: parameters of the view, not the design)."""
+    query = dict(request.query_params)
+    for key in view:
+        query.pop(key, None)
+    base = dict(DEFAULTS)
+    if ("n" in query or "radii" in query) and "preset" not in query:
+        del base["preset"]  # the motif's own parameters replace the default preset
+    if query.get("packing") in ("none", "archimedean"):
+        del base["radius"]  # no packing radius (a tiling has an edge)
+    design = design_from_query({**base, **query})
+    spec, tile = tile_from_dict(design, limits=limits)
+    return design, spec, tile
+
+
+def fabrication_checks(tile, spec) -> dict:
+    """Laser and print checks of a tile with the design's profiles and options, as JSON."""
+    from ..checks import check_design
+
+    result = check_design(spec, tile, job=True)
+    findings = [{"where": where, "code": f.code, "message": f.message, "count": f.count, "worst": f.worst,
+                 "unit": f.unit} for where, f in result.findings()]
+    region = tile.region()
+    holes = sum(len(p.interiors) for p in getattr(region, "geoms", [region]))
+    too_small = [f"{result.filled_holes:,} too small to cut"] if result.filled_holes else []
+    too_small += [f"{result.print_filled_holes:,} too small to print"] if result.print_filled_holes else []
+    filled = f" ({' and '.join(too_small)}, filled)" if too_small else ""
+    summary = (f"{len(tile.segments()):,} segments, material {region.area:,.0f} mm², {holes:,} holes{filled}; "
+               f"{len(findings)} finding{'s' if len(findings) != 1 else ''}")
+    job = result.job.as_stats() if result.job is not None else None
+    material = result.filament.as_stats() if result.filament is not None else None
+    return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes,
+            "print_filled_holes": result.print_filled_holes, "job": job, "material": material,
+            "cutter": result.cutter}
+
+
+def field_of_param(param: str | None) -> str | None:
+    """The query field of the design key an error names (its ``param``).
+
+    A bare parameter name (an error raised after the design was read, while the tile
+    is built) is the field of that name when exactly one field has it.
+
+    >>> field_of_param("packing.gap_motif.n"), field_of_param("tile.size"), field_of_param("packing.kind")
+    ('gap_n', 'width', 'packing')
+    >>> field_of_param("interlace_gap_mm"), field_of_param("n"), field_of_param("packing.motifs.8.preset")
+    ('interlace_gap_mm', None, 'motif_8')
+    """
+    if param and "." not in param:
+        named = [key for key, (_, name, _) in FIELDS.items() if name == param]
+        return named[0] if len(named) == 1 else None
+    parts = (param or "").split(".")
+    if len(parts) >= 3 and parts[:2] == ["packing", "motifs"]:  # a motif of a polygon kind: its menu
+        return f"motif_{parts[2]}" if f"motif_{parts[2]}" in FIELDS else None
+    if len(parts) == 3 and parts[:2] == ["packing", "gap_motif"]:
+        parts = parts[1:]
+    if len(parts) != 2:
+        return None
+    if parts == ["tile", "size"]:
+        return "width"
+    return next((key for key, (section, name, _) in FIELDS.items() if [section, name] == parts), None)
+
+
+def error_response(exc: Exception) -> JSONResponse:
+    """The 422 answer of a bad input: the message, and the field from the error's ``field`` or design ``key``."""
+    field = getattr(exc, "field", None) or field_of_param(getattr(exc, "key", None))
+    return JSONResponse({"error": str(exc), "field": field}, status_code=422)

@@ -1,0 +1,97 @@
+"""The tile of a query: its preview, inlay kit, 3D view, checks, design file and downloads."""
+
+from __future__ import annotations
+
+from fastapi import APIRouter, Request
+from fastapi.responses import Response
+
+from ... import _limits
+from ...export.formats import FILE_FORMATS as FORMATS
+from ..building import build, fabrication_checks
+from ..params import QueryError, parse_flag
+
+MEDIA_TYPES = {"toml": "application/toml"}
+
+
+def router(*, limits: _limits.Limits) -> APIRouter:
+    """``/api/preview.svg``, ``/api/kit.svg``, ``/api/view.glb``, ``/api/checks``, ``/api/design.toml``, ``/api/export/{fmt}``."""
+    api = APIRouter()
+
+    @api.get("/api/preview.svg")
+    def preview(request: Request):
+        """The tile as SVG; ``findings=true`` marks each finding of the checks where it is."""
+        show = parse_flag("findings", request.query_params.get("findings", "false"))
+        _, spec, tile = build(request, limits=limits, view=("findings",))
+        from ...export.preview_svg import tile_svg
+
+        findings = None
+        if show:
+            from ...checks import check_design
+
+            result = check_design(spec, tile)
+            findings, made = result.findings(), result.made
+        else:
+            from ...build import made_region
+
+            made = made_region(tile, spec)
+        # a router's or waterjet's part is drawn as its tool makes it (None: a laser's, the tile's own)
+        return Response(tile_svg(tile, findings=findings, region=made), media_type="image/svg+xml")
+
+    @api.get("/api/kit.svg")
+    def kit_picture(request: Request):
+        """The design's inlay kit: the lattice, the pieces and the tile assembled, in two materials."""
+        from ...build import inlay_kit_of
+        from ...export.preview_svg import kit_svg
+
+        _, spec, tile = build(request, limits=limits)
+        return Response(kit_svg(inlay_kit_of(tile, spec), tile.outline_shape(), title=spec.name),
+                        media_type="image/svg+xml")
+
+    @api.get("/api/view.glb")
+    def view_glb(request: Request):
+        """The print in 3D: the 3MF's checked parts, one glTF mesh each in its colour.
+
+        The headers say what is shown (``X-Fabtiles-View``: the whole tile, or a big
+        tile's centre) and the parts (``X-Fabtiles-Parts``, JSON).
+        """
+        import json
+
+        from ...build import print_view
+
+        _, spec, _ = build(request, limits=limits)
+        data, report = print_view(spec, limits=limits)
+        parts = {n: {"triangles": p["triangles"], "volume_mm3": round(p["volume_mm3"], 3)}
+                 for n, p in report.stats["parts"].items()}
+        return Response(data, media_type="model/gltf-binary",
+                        headers={"X-Fabtiles-View": report.stats["view"], "X-Fabtiles-Parts": json.dumps(parts),
+                                 "Cache-Control": "no-store"})
+
+    @api.get("/api/checks")
+    def checks(request: Request):
+        _, spec, tile = build(request, limits=limits)
+        return fabrication_checks(tile, spec)
+
+    @api.get("/api/design.toml")
+    def design_toml(request: Request):
+        design, spec, _ = build(request, limits=limits)
+        import tomli_w
+
+        design = {**design, "output": {"formats": list(FORMATS), **design.get("output", {})}}
+        text = "# fabtiles design: build it with  fabtiles build fabtiles-design.toml -o out\n"
+        text += tomli_w.dumps(design)
+        return Response(text, media_type=MEDIA_TYPES["toml"],
+                        headers={"Content-Disposition": 'attachment; filename="fabtiles-design.toml"'})
+
+    @api.get("/api/export/{fmt}")
+    def export(fmt: str, request: Request):
+        if fmt not in FORMATS:
+            raise QueryError(f"{fmt!r} is not a valid format, must be one of: {', '.join(FORMATS)}", "format")
+        from ...build import build_bytes
+
+        _, spec, _ = build(request, limits=limits)
+        # The build pipeline, as `fabtiles build`: the design's profiles and options, the limits.
+        download = build_bytes(spec, fmt, limits=limits)  # an inlay kit's two files come as one zip
+        return Response(download.data, media_type=download.media_type,
+                        headers={"Content-Disposition": f'attachment; filename="{download.file_name}"'})
+
+    return api

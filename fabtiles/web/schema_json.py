@@ -1,0 +1,48 @@
+"""The schema of the design keys as the web form reads it (``/api/schema``): one entry per query parameter.
+
+>>> fields = schema_json()["fields"]
+>>> fields["stroke"]["widget"]["kind"], fields["stroke"]["key"], fields["stroke"]["range"]["min"]
+('slider', 'tile.stroke', 0)
+>>> [v for v, _ in fields["packing"]["choices"]]
+['hex', 'square', 'archimedean', 'none']
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict
+
+from .. import _schema
+from .params import FIELDS
+
+
+def _key_json(k: _schema.Key, widget: _schema.Widget | None) -> dict:
+    entry = {"key": k.path, "type": k.type, "unit": k.unit, "help": k.help, "default": k.default,
+             "range": asdict(k.range) if k.range is not None else None, "widget": None, "choices": None}
+    if widget is not None:
+        entry["widget"] = {n: v for n, v in asdict(widget).items() if n not in ("labels", "extra")}
+    if k.type == "choice" and k.choices is not None:
+        labels = dict(widget.labels) if widget is not None else {}
+        entry["choices"] = [[str(v), labels.get(str(v), str(v))] for v in k.choice_values()]
+        entry["choices"] += [list(e) for e in (widget.extra if widget is not None else ())]
+    return entry
+
+
+def schema_json() -> dict:
+    """``{"fields": {query parameter: {key, type, unit, help, default, range, widget, choices}}}``.
+
+    The gap motif's parameters (``gap_n``, ...) carry the motif key's entry with the gap's
+    widget; ``width``/``height`` and ``motif_<sides>`` carry ``tile.size`` and ``packing.motifs``.
+    """
+    fields = {}
+    for query, (section, name, _) in FIELDS.items():
+        if section == "gap_motif":
+            k = _schema.key(f"motif.{name}")
+            fields[query] = {**_key_json(k, _schema.GAP_WIDGETS.get(name)), "key": f"packing.gap_motif.{name}"}
+        elif section == "motifs":
+            fields[query] = _key_json(_schema.key("packing.motifs"), None)
+        elif section == "tile" and name in ("width", "height"):
+            fields[query] = _key_json(_schema.key("tile.size"), _schema.SIZE_WIDGETS[name])
+        else:
+            k = _schema.key(f"{section}.{name}")
+            fields[query] = _key_json(k, k.widget)
+    return {"fields": fields}
