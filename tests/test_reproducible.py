@@ -61,7 +61,7 @@ def run_twice(tmp_path, commands) -> tuple[Path, Path]:
     ``folder``; each round has its own string hash seed. Returns the two rounds' folders.
     """
     rounds = []
-    for seed in ("1", "2"):
+    for seed in ("1", "5"):  # under Python 3.11 these two took the CLASSES in different orders
         top = tmp_path / f"round-{seed}"
         env = dict(os.environ, PYTHONHASHSEED=seed)
         for argv, folder in commands:
