@@ -8,9 +8,10 @@ entity also carries its layer's colour explicitly, for programs that ignore laye
 Entity order is cut order: score paths, inner contours, outer contours (see
 :mod:`fabtiles.geometry.contours`).
 
-The same plan gives the same bytes, run after run: the header's dates are
-2000-01-01, its GUIDs are derived from the file's content, handles are numbered
-from the same seed (see :func:`dxf_text`).
+The same plan gives the same bytes, run after run and process after process: the
+header's dates are 2000-01-01, its GUIDs are derived from the file's content,
+handles are numbered from the same seed and the CLASSES come in a fixed order
+(see :func:`_fixed_metadata` and :func:`_register_classes`).
 
 ezdxf is imported when a file is written, not when fabtiles is imported.
 """
