@@ -8,11 +8,18 @@ entity also carries its layer's colour explicitly, for programs that ignore laye
 Entity order is cut order: score paths, inner contours, outer contours (see
 :mod:`fabtiles.geometry.contours`).
 
+The same plan gives the same bytes, run after run and process after process: the
+header's dates are 2000-01-01, its GUIDs are derived from the file's content,
+handles are numbered from the same seed and the CLASSES come in a fixed order
+(see :func:`_fixed_metadata` and :func:`_register_classes`).
+
 ezdxf is imported when a file is written, not when fabtiles is imported.
 """
 
 from __future__ import annotations
 
+import threading
+from contextlib import contextmanager
 from pathlib import Path
 
 from .._io import atomic_write
@@ -88,10 +95,12 @@ def build_document(job: CutPlan, *, entities: bool = True):
     import ezdxf
     from ezdxf import units
 
-    if job.dxf_version == "R12":  # R12 has no unit header; its coordinates are mm all the same
-        doc = _new_r12()
-    else:
-        doc = ezdxf.new(job.dxf_version, setup=False, units=units.MM)
+    with _fixed_metadata():  # ezdxf.new stamps its "created by" marker with the time
+        if job.dxf_version == "R12":  # R12 has no unit header; its coordinates are mm all the same
+            doc = _new_r12()
+        else:
+            doc = ezdxf.new(job.dxf_version, setup=False, units=units.MM)
+    if job.dxf_version != "R12":
         doc.header["$MEASUREMENT"] = 1
     # The drawing's extents (some laser programs zoom to them). ezdxf copies the model
     # space layout's extents over the header's when it writes, unless one of them is the
@@ -181,21 +190,107 @@ def dxf_text(job: CutPlan) -> tuple[str, str]:
 
     ezdxf writes the frame (header, tables, blocks, objects), :func:`entities_text` the polylines.
     """
-    import io
-
     doc = build_document(job, entities=False)
     owner = doc.modelspace().layout_key
     handles = doc.entitydb.handles
     first = int(handles.next(), 16)
     body, nxt = entities_text(job, first, owner)
     handles.reset(f"{nxt:X}")  # $HANDSEED above every handle used
-    stream = io.StringIO()
-    doc.write(stream)
-    text = stream.getvalue()
+    text = _fixed_frame(doc)
     at = text.index(_ENTITIES) + len(_ENTITIES)
     if not text.startswith("  0\nENDSEC\n", at):  # pragma: no cover - ezdxf layout changed
         raise RuntimeError("unexpected DXF layout from ezdxf: the ENTITIES section is not empty")
-    return cutter_comment(job) + text[:at] + body + text[at:], doc.output_encoding
+    return _content_guids(cutter_comment(job) + text[:at] + body + text[at:], job.dxf_version), doc.output_encoding
+
+
+_FIXED_META = threading.Lock()
+"""Held while ezdxf's process-wide fixed-metadata option is switched on (see :func:`_fixed_metadata`)."""
+
+
+def _fixed_frame(doc) -> str:
+    """``doc`` as ezdxf writes it with fixed metadata and classes in a fixed order: the same text every run."""
+    import io
+
+    if doc.dxfversion > "AC1009":  # R12 has no CLASSES section
+        _register_classes(doc)
+    stream = io.StringIO()
+    with _fixed_metadata():
+        doc.write(stream)
+    return stream.getvalue()
+
+
+def _register_classes(doc) -> None:
+    """Register the CLASSES of ``doc`` in ezdxf's order, then the classes of its entity types sorted by name.
+
+    On write ezdxf adds its required classes, then one for each entity type in use,
+    taken from a set: from DXF R2004 on the LAYOUT and ACDBPLACEHOLDER classes came
+    in either order, by the process's string hash seed. A class already registered
+    is kept where it is, so registering them here first fixes the order.
+    """
+    from ezdxf.sections.classes import REQ_R2004, REQUIRED_CLASSES
+
+    for name in [*REQUIRED_CLASSES.get(doc.dxfversion, REQ_R2004), *sorted(doc.entitydb.dxf_types_in_use())]:
+        doc.classes.add_class(name)
+
+
+@contextmanager
+def _fixed_metadata():
+    """ezdxf's fixed metadata switched on, for one new document or one write.
+
+    ezdxf stamps a new document's header with the time ($TDCREATE) and a random
+    $FINGERPRINTGUID, and each write with the time ($TDUPDATE), a random
+    $VERSIONGUID and its "created by" and "written by" markers with the time.
+    Its ``write_fixed_meta_data_for_testing`` option writes 2000-01-01, zero GUIDs
+    and a fixed marker instead. The option is global to the process, so it is
+    switched on only for the call, under a lock (web requests and Dask threads
+    write DXFs side by side), and put back. :func:`_content_guids` then replaces
+    the zero GUIDs.
+    """
+    import ezdxf
+
+    with _FIXED_META:
+        before = ezdxf.options.write_fixed_meta_data_for_testing
+        ezdxf.options.write_fixed_meta_data_for_testing = True
+        try:
+            yield
+        finally:
+            ezdxf.options.write_fixed_meta_data_for_testing = before
+
+
+_ZERO_GUID = "{00000000-0000-0000-0000-000000000000}"
+_GUIDS = ("$FINGERPRINTGUID", "$VERSIONGUID")
+"""The header's GUIDs (DXF R2000 and later): each a name-based UUID of the file's content."""
+
+
+def _content_guids(text: str, dxf_version: str) -> str:
+    r"""``text`` with its zero header GUIDs replaced by GUIDs derived from the whole file.
+
+    AutoCAD reads $FINGERPRINTGUID as the drawing's identity and $VERSIONGUID as
+    its revision's: different drawings get different GUIDs, the same drawing the
+    same ones, run after run (a UUID version 5 of the SHA-256 of the text).
+
+    >>> header = "".join(f"  9\n{name}\n  2\n{_ZERO_GUID}\n" for name in _GUIDS)
+    >>> print(_content_guids(header, "R2000"), end="")
+      9
+    $FINGERPRINTGUID
+      2
+    {CE072E9B-0A04-518B-BF0B-5DE30DC9B5F6}
+      9
+    $VERSIONGUID
+      2
+    {AB4AFD1A-73CE-53DE-A98D-CAAAD3C2D6FC}
+    """
+    import hashlib
+    import uuid
+
+    digest = hashlib.sha256(text.encode("utf-8", errors="surrogatepass")).hexdigest()
+    for name in () if dxf_version == "R12" else _GUIDS:  # R12 headers have no GUIDs
+        key = f"{name}\n  2\n"
+        if key + _ZERO_GUID not in text:  # ezdxf's fixed metadata changed
+            raise RuntimeError(f"unexpected DXF header from ezdxf: {name} is not the zero GUID")
+        guid = uuid.uuid5(uuid.NAMESPACE_URL, f"urn:fabtiles:dxf:{name}:{digest}")
+        text = text.replace(key + _ZERO_GUID, key + "{" + str(guid).upper() + "}", 1)
+    return text
 
 
 def cutter_comment(job: CutPlan) -> str:

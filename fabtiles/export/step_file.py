@@ -10,7 +10,8 @@ for the whole file. The file is then read back with OCCT and checked
 Each solid is a ``MANIFOLD_SOLID_BREP`` of one ``CLOSED_SHELL`` of
 ``ADVANCED_FACE``s on ``PLANE``s, bounded by ``EDGE_LOOP``s of ``EDGE_CURVE``s on
 ``LINE``s: the entities every STEP reader supports. The output is byte-identical
-for the same input (no time stamp).
+for the same input: entities numbered in the order they are written, the header's
+time stamp fixed (:data:`TIME_STAMP`).
 
 >>> import shapely
 >>> from fabtiles.solid._mesh_build import coverage
@@ -25,6 +26,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..solid.brep import Brep
+
+
+TIME_STAMP = "2000-01-01T00:00:00"
+"""The ``FILE_NAME`` time stamp of every STEP file (ISO 8601, as the standard asks): the same bytes every run."""
 
 
 def _real(x: float) -> str:
@@ -128,7 +133,7 @@ def step_text(breps, *, name: str = "tile") -> str:
     w.add(f"SHAPE_DEFINITION_REPRESENTATION(#{pshape},#{rep})")
     head = ("ISO-10303-21;\nHEADER;\n"
             f"FILE_DESCRIPTION(({_name('fabtiles tile')}),'2;1');\n"
-            f"FILE_NAME({_name(name + '.step')},'',(''),(''),'fabtiles','fabtiles','');\n"
+            f"FILE_NAME({_name(name + '.step')},{_name(TIME_STAMP)},(''),(''),'fabtiles','fabtiles','');\n"
             "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n")
     body = "\n".join(f"#{i}={line};" for i, line in enumerate(w.lines, 1))
     return head + body + "\nENDSEC;\nEND-ISO-10303-21;\n"

@@ -296,3 +296,104 @@ def test_sheet_header_extents(tmp_path):
     assert (xmax, ymax) == pytest.approx((sheet.size[0] + kerf / 2, sheet.size[1] + kerf / 2), abs=1e-6)
     assert tuple(doc.header["$EXTMIN"])[:2] == pytest.approx((xmin, ymin), abs=1e-9)
     assert tuple(doc.header["$EXTMAX"])[:2] == pytest.approx((xmax, ymax), abs=1e-9)
+
+
+# --------------------------------------------------------------------------- reproducible files (issue 31)
+
+
+def _header_value(text: str, name: str) -> str:
+    """The value of the header variable ``name`` in a DXF's text."""
+    lines = text.split("\n")
+    at = lines.index(name)
+    assert lines[at - 1].strip() == "9"
+    return lines[at + 2]
+
+
+def _plate_plan(version="R2000", size=60.0):
+    region, outline = star_plate(size=size)
+    return plan_cut(region=region, outline=outline, profile=PLY, dxf_version=version)
+
+
+@pytest.mark.parametrize("version", ["R12", "R2000", "R2018"])
+def test_the_header_holds_fixed_dates_not_todays(version):
+    import datetime
+
+    from ezdxf.tools.juliandate import juliandate
+
+    text, _ = dxf_text(_plate_plan(version))
+    fixed = juliandate(datetime.datetime(2000, 1, 1))
+    dates = ["$TDCREATE", "$TDUPDATE"] + ([] if version == "R12" else ["$TDUCREATE", "$TDUUPDATE"])
+    # read from the text: ezdxf's reader sets $TDCREATE of the document it loads to now
+    assert {name: float(_header_value(text, name)) for name in dates} == dict.fromkeys(dates, fixed)
+    now = datetime.datetime.now(datetime.timezone.utc)
+    for day in (now, now - datetime.timedelta(days=1)):  # a write just after midnight
+        assert day.strftime("%Y-%m-%d") not in text and f"{juliandate(day.replace(tzinfo=None)):.0f}" not in text
+    assert "CREATED_BY_EZDXF" in text and "WRITTEN_BY_EZDXF" in text  # ezdxf's markers, dated 2000-01-01
+    assert text.count("@ 2000-01-01T00:00:00") == 2
+
+
+def test_the_guids_come_from_the_content():
+    def guids(plan):
+        text = dxf_text(plan)[0]
+        return _header_value(text, "$FINGERPRINTGUID"), _header_value(text, "$VERSIONGUID")
+
+    one = guids(_plate_plan())
+    assert one == guids(_plate_plan())
+    assert one[0] != one[1] and "{00000000-0000-0000-0000-000000000000}" not in one
+    assert all(len(g) == 38 and g[0] + g[-1] == "{}" and g == g.upper() for g in one)
+    other = guids(_plate_plan(size=61.0))
+    assert not set(one) & set(other)
+    assert "$FINGERPRINTGUID" not in dxf_text(_plate_plan("R12"))[0]  # R12 headers have none
+
+
+def test_a_header_without_ezdxfs_zero_guid_is_an_error():
+    from fabtiles.export.dxf import _content_guids
+
+    with pytest.raises(RuntimeError, match=r"unexpected DXF header from ezdxf: \$FINGERPRINTGUID is not the zero GUID"):
+        _content_guids("  9\n$FINGERPRINTGUID\n  2\n{C4A1E0F2-0000-4000-8000-000000000000}\n", "R2000")
+    assert _content_guids("no header", "R12") == "no header"
+
+
+@pytest.mark.parametrize("before", [False, True])
+def test_ezdxfs_fixed_metadata_option_is_put_back(before):
+    import ezdxf
+
+    ezdxf.options.write_fixed_meta_data_for_testing = before
+    try:
+        dxf_text(_plate_plan())
+        assert ezdxf.options.write_fixed_meta_data_for_testing is before
+        doc = ezdxf.new("R2000")  # a document of someone else's, after ours: ezdxf's own metadata
+        stream = io.StringIO()
+        doc.write(stream)
+        assert ("{00000000-0000-0000-0000-000000000000}" in stream.getvalue()) is before
+    finally:
+        ezdxf.options.write_fixed_meta_data_for_testing = False
+
+
+def test_threads_writing_side_by_side_write_the_same_bytes():
+    from concurrent.futures import ThreadPoolExecutor
+
+    import ezdxf
+
+    plan = _plate_plan("R2018")
+    with ThreadPoolExecutor(4) as pool:
+        texts = list(pool.map(lambda _: dxf_text(plan)[0], range(8)))
+    assert len(set(texts)) == 1
+    assert ezdxf.options.write_fixed_meta_data_for_testing is False
+
+
+@pytest.mark.parametrize("version", ["R2000", "R2004", "R2018"])
+def test_the_classes_do_not_follow_the_order_of_a_set(monkeypatch, version):
+    """ezdxf adds a CLASS for each entity type in use, taken from a set (its order: the hash seed's)."""
+    from ezdxf.entitydb import EntityDB
+
+    in_use = EntityDB.dxf_types_in_use
+    texts = []
+    for reverse in (False, True):
+        monkeypatch.setattr(EntityDB, "dxf_types_in_use",
+                            lambda self, r=reverse: dict.fromkeys(sorted(in_use(self), reverse=r)).keys())
+        texts.append(dxf_text(_plate_plan(version))[0])
+    assert texts[0] == texts[1]
+    at = texts[0].index("\nCLASSES\n")
+    classes = texts[0][at:texts[0].index("\nENDSEC\n", at)].split("\n")
+    assert "LAYOUT" in classes and "ACDBPLACEHOLDER" in classes

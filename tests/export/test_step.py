@@ -231,6 +231,8 @@ def test_file_is_byte_identical_on_every_run(tmp_path):
     assert b.read_bytes() == first
     assert b"SI_UNIT(.MILLI.,.METRE.)" in first and b"AUTOMOTIVE_DESIGN" in first
     assert b"B_SPLINE" not in first and b"SURFACE_OF_LINEAR_EXTRUSION" not in first
+    # the header's time stamp is fixed, as ISO 8601 (the standard's form), not the time of writing
+    assert b"FILE_NAME('t.step','2000-01-01T00:00:00',(''),(''),'fabtiles','fabtiles','');" in first
 
 
 def test_check_solids_refuses_a_wrong_volume_or_count(tmp_path):
