@@ -52,12 +52,13 @@ def command(checkout: Path, design: Path, formats, out: Path):
     args = [sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(out)]
     for f in formats:
         args += ["--format", f]
-    return args, dict(os.environ, PYTHONPATH=str(checkout))
+    # run from the checkout: ``python -m`` puts the working folder ahead of PYTHONPATH
+    return args, dict(os.environ, PYTHONPATH=str(checkout)), checkout
 
 
-def timed(args, env) -> float:
+def timed(args, env, cwd) -> float:
     t0 = time.perf_counter()
-    proc = subprocess.run(args, env=env, capture_output=True, text=True)
+    proc = subprocess.run(args, env=env, cwd=cwd, capture_output=True, text=True)
     dt = time.perf_counter() - t0
     if proc.returncode != 0:
         raise SystemExit(f"{' '.join(args)} failed:\n{proc.stderr}")
