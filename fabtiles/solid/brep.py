@@ -448,15 +448,20 @@ def _node_xyz(ed: _Edges, xy, z):
 
 
 def _groups(n, pairs):
-    """The numbers 0..n-1 grouped by the pairs that join them (networkx's union-find)."""
-    from networkx.utils import UnionFind
+    """The numbers 0..n-1 grouped by the pairs that join them, each group in order, the groups in
+    the order of their smallest member (:func:`fabtiles._graph.components`; networkx's union-find
+    cost 0.22 s to import in every STEP export).
 
-    sets = UnionFind(range(n))
-    for a, b in pairs:
-        sets.union(a, b)
-    groups = {}
-    for i in range(n):
-        groups.setdefault(sets[i], []).append(i)
+    >>> _groups(5, [(3, 1), (4, 2)])
+    [[0], [1, 3], [2, 4]]
+    """
+    from .._graph import components
+
+    pairs = np.asarray(list(pairs), np.int64).reshape(-1, 2)
+    label = components(n, pairs[:, 0], pairs[:, 1])
+    groups: dict = {}
+    for i, g in enumerate(label.tolist()):
+        groups.setdefault(g, []).append(i)
     return list(groups.values())
 
 
