@@ -7,6 +7,7 @@ from dataclasses import fields
 from pathlib import Path
 
 import click
+import numpy as np
 import pytest
 
 from fabtiles import _profiles, design
@@ -92,3 +93,27 @@ def test_the_readme_is_a_landing_page():
     test_command = ci.split("# --- the README's test command (keep the two in step) ---\n", 1)[1].strip()
     assert test_command in readme  # the README's test command is CI's
     assert "fabtiles build samples/table3-3.toml -o out" in readme
+
+
+def test_the_card_size_in_laser_cutting_md_is_the_cards():
+    """The calibration card's size, as the docs state it, is the bundled laser profiles' cards' (to the mm)."""
+    from fabtiles.geometry.calibration import calibration_card
+
+    m = re.search(r"The card \(about (\d+) x (\d+) mm for the bundled profiles", text_of("laser-cutting.md"))
+    assert m, "laser-cutting.md no longer states the card's size"
+    stated = np.array([float(m.group(1)), float(m.group(2))])
+    for name in _profiles.bundled_profiles("laser"):
+        profile = _profiles.load_profile(name)
+        if profile.cutter.card:
+            card = calibration_card(profile)
+            assert np.abs(np.array([card.width_mm, card.height_mm]) - stated).max() <= 1.0, name
+
+
+def test_design_files_md_example_names_every_output_key():
+    """The example design of design-files.md shows every [output] key of the schema (the inlay ones too)."""
+    from fabtiles import _schema
+
+    text = text_of("design-files.md")
+    example = text[text.index("[output]"):text.index("```", text.index("[output]"))]
+    keys = [k.name for k in _schema.KEYS if k.section == "output"]
+    assert keys and [k for k in keys if not re.search(rf"^{k} = ", example, re.M)] == []
