@@ -16,10 +16,9 @@ import time
 from pathlib import Path
 
 import pytest
+from distributed import Client
 
-pytest.importorskip("distributed")
-
-from fabtiles.build import STAGING_PREFIX  # noqa: E402
+from fabtiles.build import STAGING_PREFIX
 
 ROOT = Path(__file__).resolve().parents[1]
 SAMPLES = ROOT / "samples"
@@ -57,8 +56,6 @@ class Cluster:
                                           "--local-directory", str(tmp / f"w{k}")],
                                          stdout=log, stderr=log, env=env, cwd=tmp)
                         for k in range(n)]
-        from distributed import Client
-
         with Client(self.address, timeout=60, set_as_default=False) as client:
             client.wait_for_workers(n, timeout=120)
 

@@ -17,6 +17,7 @@ import zipfile
 import numpy as np
 import pytest
 import shapely
+import trimesh
 from mesh_helpers import B, D, H, T, assert_solid, assert_touch_without_overlap, load_3mf_parts
 
 from fabtiles import FabricationError, ParameterError, Star
@@ -26,8 +27,6 @@ from fabtiles.solid import parts
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 
-trimesh = pytest.importorskip("trimesh")
-pytest.importorskip("manifold3d")
 
 PRUSA = shutil.which("prusa-slicer") or "/usr/bin/prusa-slicer"
 REQUIRED = bool(os.environ.get("CI")) or os.environ.get("FABTILES_REQUIRE_PRUSA") == "1"

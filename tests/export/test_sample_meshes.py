@@ -39,8 +39,6 @@ from fabtiles.design import load_design
 from fabtiles.geometry.stack import resolve_stack
 from fabtiles._profiles import DEFAULT_PRINTER_PROFILE
 
-trimesh = pytest.importorskip("trimesh")
-pytest.importorskip("manifold3d")
 
 ROOT = Path(__file__).resolve().parents[2]
 SKIP = {"sheet-600x400", "panel-2440x1220"}
@@ -117,7 +115,6 @@ def test_sample_3mf(tmp_path, sample, style):
 @pytest.mark.parametrize("style", STYLES)
 @pytest.mark.parametrize("sample", SAMPLES, ids=IDS)
 def test_sample_step(tmp_path, sample, style):
-    pytest.importorskip("OCP")
     from fabtiles.export import step
 
     tile, profile = sample_tile(sample, shrink=(sample.stem, style) != STEP_FULL)

@@ -8,6 +8,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 import shapely
+import trimesh
 from mesh_helpers import (B, H, STYLES, T, assert_solid, assert_touch_without_overlap, expected_volume, load_3mf_parts,
                           load_stl, top)
 from shapely.geometry import box
@@ -18,9 +19,6 @@ from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 from fabtiles.solid import mesh_check as sc
 from fabtiles.solid import parts
-
-trimesh = pytest.importorskip("trimesh")
-pytest.importorskip("manifold3d")
 
 
 def small_tile(preset="table3-3", outline="square", size=40):

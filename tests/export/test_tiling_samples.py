@@ -18,7 +18,6 @@ import fabtiles
 from fabtiles.design import load_design
 from fabtiles.pattern.tilings import TILINGS
 
-pytest.importorskip("trimesh")
 
 SAMPLES = Path(__file__).resolve().parents[2] / "samples" / "tilings"
 
