@@ -264,3 +264,13 @@ def test_geos_failure_while_cutting_cells_is_a_fabrication_error(tmp_path, shape
     with pytest.raises(FabricationError, match=r"the body mesh could not be cut into cells \(TopologyException"):
         stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm")
     assert not path.exists()
+
+
+def test_read_stl_triangles_refuses_what_is_not_a_binary_stl():
+    with pytest.raises(FabricationError, match="^not a binary STL: shorter than its header$"):
+        stl.read_stl_triangles(b"solid ascii\n")
+    header = b" " * 80
+    with pytest.raises(FabricationError, match="^not a binary STL: 134 bytes for 2 triangles$"):
+        stl.read_stl_triangles(header + np.uint32(2).tobytes() + bytes(50))  # one triangle's record, two announced
+    tri = np.array([[[0, 0, 0], [1, 0, 0], [0, 1, 0]]], np.float32)
+    assert stl.read_stl_triangles(stl.stl_bytes(tri[0], np.array([[0, 1, 2]]))).tolist() == tri.tolist()
