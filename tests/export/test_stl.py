@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 import shapely
 import trimesh
-from mesh_helpers import (B, H, STYLES, T, assert_solid, assert_touch_without_overlap, expected_volume, load_3mf_parts,
-                          load_stl, top)
+from mesh_helpers import (B, H, STYLES, T, VOLUME_REL, assert_section, assert_solid, assert_style_sections,
+                          assert_touch_without_overlap, expected_volume, load_3mf_parts, load_stl, top)
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star, load_profile
@@ -45,6 +45,7 @@ def test_stl_every_preset_and_style(tmp_path, preset, style):
     nparts = len(shapely.get_parts(region)) if style == "pierced" else 1
     back = load_stl(path)
     assert_solid(back, expected_volume(style, region, outline), outline.bounds, top(style), nparts)
+    assert_style_sections(back, style, region, outline)
     assert report.stats["volume_mm3"] == pytest.approx(back.volume, rel=1e-9)  # the file's own volume
 
 
@@ -56,7 +57,8 @@ def test_stl_other_outlines(tmp_path, outline, style):
     stl.write_stl(tmp_path / "t.stl", region=region, outline=shape, profile="fdm-0.4mm", style=style)
     m = load_stl(tmp_path / "t.stl")
     assert m.is_watertight and m.is_winding_consistent
-    assert m.volume == pytest.approx(expected_volume(style, region, shape), rel=0.005)
+    assert m.volume == pytest.approx(expected_volume(style, region, shape), rel=VOLUME_REL)
+    assert_style_sections(m, style, region, shape)
 
 
 @pytest.mark.parametrize("preset", ["table3-3", "table1-part1", "table2-left"])
@@ -73,6 +75,8 @@ def test_3mf_relief_two_named_bodies_that_touch_without_overlap(tmp_path, preset
     assert_solid(base, outline.area * B, outline.bounds, B)
     assert_solid(pattern, region.area * H, outline.bounds, B + H, zmin=B,
                  bodies=len(shapely.get_parts(region)))
+    assert_section(base, B / 2, outline)
+    assert_section(pattern, B + H / 2, region)
     # they touch at z = b and do not overlap
     assert_touch_without_overlap(base, pattern)
 
@@ -85,6 +89,7 @@ def test_3mf_other_styles(tmp_path, shapes, style, names):
     assert list(parts) == names
     m = parts[names[0]]
     assert_solid(m, expected_volume(style, region, outline), outline.bounds, top(style))
+    assert_style_sections(m, style, region, outline)
 
 
 def test_build_meshes_bodies(shapes):
@@ -94,7 +99,7 @@ def test_build_meshes_bodies(shapes):
     assert got["base"].volume == pytest.approx(outline.area * B, rel=1e-6)
     got = parts.build_meshes(region=region, outline=outline, profile="fdm-0.6mm", style="deboss", deboss_mm=0.6)
     assert list(got) == ["plate"]
-    assert got["plate"].volume == pytest.approx(outline.area * 2.4 - region.area * 0.6, rel=0.005)
+    assert got["plate"].volume == pytest.approx(outline.area * 2.4 - region.area * 0.6, rel=VOLUME_REL)
 
 
 def test_heights_override_profile(tmp_path, shapes):
@@ -103,7 +108,8 @@ def test_heights_override_profile(tmp_path, shapes):
                             base_mm=3, relief_mm=2.5)
     m = load_stl(tmp_path / "t.stl")
     assert m.bounds[1][2] == pytest.approx(5.5)
-    assert m.volume == pytest.approx(outline.area * 3 + region.area * 2.5, rel=0.005)
+    assert m.volume == pytest.approx(outline.area * 3 + region.area * 2.5, rel=VOLUME_REL)
+    assert_style_sections(m, "relief", region, outline, b=3, h=2.5)
     assert report.stats["heights_mm"] == {"base": 3.0, "relief": 2.5}
 
 
