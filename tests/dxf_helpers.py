@@ -14,6 +14,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +23,49 @@ from shapely.geometry import Polygon, box
 
 GOLDEN = Path(__file__).parent / "export" / "golden"
 CUT_TYPES = ("LWPOLYLINE", "POLYLINE")
+
+
+# --- comparing whole files ------------------------------------------------------------------
+
+VOLATILE_HEADER = frozenset({"$TDCREATE", "$TDUCREATE", "$TDUPDATE", "$TDUUPDATE", "$TDINDWG", "$TDUSRTIMER",
+                             "$FINGERPRINTGUID", "$VERSIONGUID"})
+"""Header variables that hold the time of writing or a fresh GUID: they differ between two runs
+unless the writer fixes them, so :func:`dxf_tags` leaves their values out."""
+
+_WRITTEN_AT = re.compile(r"^(.*\S) @ \d{4}-\d\d-\d\dT[0-9:.]+(?:[+-]\d\d:\d\d|Z)?$")
+"""ezdxf's ``CREATED_BY_EZDXF`` and ``WRITTEN_BY_EZDXF`` values: ``1.4.5 @ 2026-01-01T10:00:00.123+00:00``."""
+
+
+def dxf_tags(data: bytes) -> list[tuple[str, str]]:
+    """The (group code, value) pairs of an ASCII DXF, with the time and GUID of writing left out.
+
+    The values of :data:`VOLATILE_HEADER` become ``"*"`` and a value ``<version> @ <time>`` keeps
+    its version only, so two runs of the same build compare equal whether or not the writer makes
+    its headers reproducible; everything else (entities, handles, layers) must match exactly.
+    """
+    lines = data.decode("utf-8", errors="strict").splitlines()
+    assert len(lines) % 2 == 0, f"a DXF is pairs of lines (group code, value); got {len(lines)} lines"
+    pairs = [(lines[k].strip(), lines[k + 1]) for k in range(0, len(lines), 2)]
+    out, blank_next = [], False
+    for code, value in pairs:
+        if blank_next and code != "9":
+            value, blank_next = "*", False
+        elif code == "9":
+            blank_next = value in VOLATILE_HEADER
+        written = _WRITTEN_AT.match(value)
+        out.append((code, written[1] + " @ *" if written else value))
+    return out
+
+
+def assert_same_file(name: str, got: bytes, want: bytes) -> None:
+    """Assert that file ``name`` is ``want``: byte for byte, or for a DXF tag for tag up to :func:`dxf_tags`."""
+    if str(name).lower().endswith(".dxf"):
+        g, w = dxf_tags(got), dxf_tags(want)
+        assert len(g) == len(w), f"{name}: {len(g)} tags, expected {len(w)}"
+        diff = next((k for k, (a, b) in enumerate(zip(g, w)) if a != b), None)
+        assert diff is None, f"{name}: tag {diff} is {g[diff]}, expected {w[diff]}"
+    else:
+        assert got == want, f"{name}: {len(got)} bytes differ from the expected {len(want)}"
 
 
 # --- reading DXF back ------------------------------------------------------------------------

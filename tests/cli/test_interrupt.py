@@ -7,6 +7,7 @@ import sys
 import time
 
 import pytest
+from dxf_helpers import assert_same_file
 
 DESIGN = """
 [motif]
@@ -60,11 +61,10 @@ def test_interrupted_build_leaves_old_files_and_no_partial_ones(tmp_path, sig):
         assert names == sorted(old), names
         for name in names:
             data = (out / name).read_bytes()
-            if rc == 0:
-                assert len(data) > 100  # a complete new build replaced the old files
-            else:
-                # Interrupted: every file is either the earlier one or a complete new one.
-                assert data == old[name] or len(data) > 100, name
+            if rc == 0:  # a complete new build replaced the old files
+                assert_same_file(name, data, complete[name])
+            elif data != old[name]:  # interrupted: every file is either the earlier one or a complete new one
+                assert_same_file(name, data, complete[name])
         if rc == 0:  # restore the earlier files for the next round
             for name, data in old.items():
                 (out / name).write_bytes(data)

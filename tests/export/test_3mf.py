@@ -17,9 +17,10 @@ import zipfile
 import numpy as np
 import pytest
 import shapely
+import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from mesh_helpers import B, D, H, T, assert_solid, assert_touch_without_overlap, load_3mf_parts
+from mesh_helpers import B, D, H, T, VOLUME_REL, assert_section, assert_solid, assert_touch_without_overlap, load_3mf_parts
 
 from fabtiles import FabricationError, ParameterError, Star
 from fabtiles import Tile as PublicTile
@@ -28,8 +29,6 @@ from fabtiles.solid import parts
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 
-trimesh = pytest.importorskip("trimesh")
-pytest.importorskip("manifold3d")
 
 PRUSA = shutil.which("prusa-slicer") or "/usr/bin/prusa-slicer"
 REQUIRED = bool(os.environ.get("CI")) or os.environ.get("FABTILES_REQUIRE_PRUSA") == "1"
@@ -155,6 +154,9 @@ def test_deboss_inlay_fills_the_grooves_flush(tmp_path, shapes, prusa):
     plate, inlay = parts["plate"], parts["inlay"]
     assert_solid(plate, outline.area * B - region.area * D, outline.bounds, B)
     assert_solid(inlay, region.area * D, outline.bounds, B, zmin=B - D, bodies=len(shapely.get_parts(region)))
+    assert_section(plate, (B - D) / 2, outline)
+    assert_section(plate, B - D / 2, outline.difference(region))
+    assert_section(inlay, B - D / 2, region)
     # flush: the inlay's top is the plate's top; together they are the full plate, without overlap
     assert inlay.bounds[1][2] == plate.bounds[1][2] == np.float32(B)
     assert plate.volume + inlay.volume == pytest.approx(outline.area * B, rel=1e-4)
@@ -232,7 +234,7 @@ def test_trimesh_reads_the_object(tmp_path, shapes):
     threemf.write_3mf(path, region=region, outline=outline, profile="fdm-0.4mm")
     scene = trimesh.load(path, file_type="3mf")
     assert list(scene.geometry) == ["tile"]
-    assert scene.geometry["tile"].volume == pytest.approx(outline.area * B + region.area * H, rel=0.005)
+    assert scene.geometry["tile"].volume == pytest.approx(outline.area * B + region.area * H, rel=VOLUME_REL)
 
 
 def test_vertices_read_back_are_the_checked_float32_values(shapes):

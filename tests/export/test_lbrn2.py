@@ -157,7 +157,10 @@ def test_the_time_estimate_against_a_simulation_of_the_same_job(files, tmp_path)
     settings = sim.GrblSettings(max_rate_x=rapid * 60, max_rate_y=rapid * 60, max_accel_x=1500, max_accel_y=1500)
     seconds, _ = sim.GCodeSimulator(settings).estimate_time(gcode)
     print(f"estimate {report.stats['job']['seconds']} s, simulated {seconds:.1f} s")
-    assert report.stats["job"]["seconds"] == pytest.approx(seconds, rel=0.25)
+    # Measured: estimate 114.4 s, simulated 124.3 s (0.92). The estimate leaves out acceleration and
+    # corner slow-downs, so it is never above the simulation; it stays within 10 % of it (2 points
+    # of margin over what is measured).
+    assert 0.90 * seconds <= report.stats["job"]["seconds"] <= seconds
 
 
 # --------------------------------------------------------------------------- lbrnts

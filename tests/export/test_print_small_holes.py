@@ -20,7 +20,7 @@ import shapely
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
-from mesh_helpers import B, load_stl, mid_heights, section_region, widths
+from mesh_helpers import B, assert_section, load_stl, mid_heights, section_region, widths
 from real_programs import program
 
 import fabtiles as ft
@@ -117,7 +117,8 @@ def issue_builds(tmp_path_factory):
         d = design_from_text(ISSUE_DESIGN.format(fill=fill, size=150.8), name=f"issue30-{fill}")
         folder = tmp_path_factory.mktemp(f"fill-{fill}")
         out[fill] = build_design(d, folder, ["stl"]), folder / f"issue30-{fill}.stl"
-    out["outline"] = d.build_tile().outline_shape()
+    tile = d.build_tile()
+    out["outline"], out["region"] = tile.outline_shape(), tile.region()
     return out
 
 
@@ -141,6 +142,8 @@ def test_the_issue_design_unfilled_says_what_the_slicer_will_face(issue_builds):
     assert f.count == int((w < MIN_HOLE).sum()) == 2396
     assert f.worst == pytest.approx(w.min(), abs=SNAP)
     assert "2,396 holes through the tile narrower than min_hole_mm = 0.8 mm" in f.message
+    # unfilled, the print is the region itself: every one of its 3,017 holes, within the simplification
+    assert_section(load_stl(path), mid_heights("pierced"), issue_builds["region"])
 
 
 def test_prusaslicer_slices_the_issue_design_filled_within_two_minutes(tmp_path):

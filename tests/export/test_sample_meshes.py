@@ -25,8 +25,11 @@ import pytest
 import shapely
 from mesh_helpers import (
     STYLES,
+    VOLUME_REL,
+    assert_section,
     assert_solid,
     assert_step_solid,
+    assert_style_sections,
     assert_touch_without_overlap,
     expected_volume,
     load_3mf_parts,
@@ -39,8 +42,6 @@ from fabtiles.design import load_design
 from fabtiles.geometry.stack import resolve_stack
 from fabtiles._profiles import DEFAULT_PRINTER_PROFILE
 
-trimesh = pytest.importorskip("trimesh")
-pytest.importorskip("manifold3d")
 
 ROOT = Path(__file__).resolve().parents[2]
 SKIP = {"sheet-600x400", "panel-2440x1220"}
@@ -84,11 +85,13 @@ def test_samples_found():
 @pytest.mark.parametrize("sample", SAMPLES, ids=IDS)
 def test_sample_stl(tmp_path, sample, style):
     tile, profile = sample_tile(sample)
-    region, outline, _, volume, zmax, parts = expectations(tile, profile, style)
+    region, outline, s, volume, zmax, parts = expectations(tile, profile, style)
     path = tmp_path / "t.stl"
     report = tile.export(path, profile=profile, style=style)
     assert report.format == "stl" and report.stats["style"] == style
-    assert_solid(load_stl(path), volume, outline.bounds, zmax, bodies=parts)
+    mesh = load_stl(path)
+    assert_solid(mesh, volume, outline.bounds, zmax, bodies=parts)
+    assert_style_sections(mesh, style, region, outline, s.base, s.relief, s.pierced, s.deboss)
 
 
 @pytest.mark.parametrize("style", STYLES)
@@ -103,21 +106,24 @@ def test_sample_3mf(tmp_path, sample, style):
     got = load_3mf_parts(path)
     if style != "relief":
         assert list(got) == [{"pierced": "pattern", "deboss": "plate"}[style]]
-        assert_solid(next(iter(got.values())), volume, outline.bounds, zmax, bodies=parts)
+        (mesh,) = got.values()
+        assert_solid(mesh, volume, outline.bounds, zmax, bodies=parts)
+        assert_style_sections(mesh, style, region, outline, s.base, s.relief, s.pierced, s.deboss)
         return
     assert list(got) == ["base", "pattern"]
     base, pattern = got["base"], got["pattern"]
     assert_solid(base, outline.area * s.base, outline.bounds, s.base, bodies=parts)
     assert_solid(pattern, region.area * s.relief, outline.bounds, zmax, zmin=s.base,
                  bodies=len(shapely.get_parts(region)))
-    assert base.volume + pattern.volume == pytest.approx(volume, rel=0.005)
+    assert_section(base, s.base / 2, outline)
+    assert_section(pattern, s.base + s.relief / 2, region)
+    assert base.volume + pattern.volume == pytest.approx(volume, rel=VOLUME_REL)
     assert_touch_without_overlap(base, pattern)
 
 
 @pytest.mark.parametrize("style", STYLES)
 @pytest.mark.parametrize("sample", SAMPLES, ids=IDS)
 def test_sample_step(tmp_path, sample, style):
-    pytest.importorskip("OCP")
     from fabtiles.export import step
 
     tile, profile = sample_tile(sample, shrink=(sample.stem, style) != STEP_FULL)

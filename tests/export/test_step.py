@@ -17,11 +17,9 @@ from mesh_helpers import B, D, H, T, occt_volume, solids_of, step_bounds
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError, ProfileError, Star
+from fabtiles.export import step
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
-
-pytest.importorskip("OCP")
-step = pytest.importorskip("fabtiles.export.step")
 
 
 def _faces(shape):

@@ -8,8 +8,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 import shapely
-from mesh_helpers import (B, H, STYLES, T, assert_solid, assert_touch_without_overlap, expected_volume, load_3mf_parts,
-                          load_stl, top)
+import trimesh
+from mesh_helpers import (B, H, STYLES, T, VOLUME_REL, assert_section, assert_solid, assert_style_sections,
+                          assert_touch_without_overlap, expected_volume, load_3mf_parts, load_stl, top)
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star, load_profile
@@ -18,9 +19,6 @@ from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 from fabtiles.solid import mesh_check as sc
 from fabtiles.solid import parts
-
-trimesh = pytest.importorskip("trimesh")
-pytest.importorskip("manifold3d")
 
 
 def small_tile(preset="table3-3", outline="square", size=40):
@@ -47,6 +45,7 @@ def test_stl_every_preset_and_style(tmp_path, preset, style):
     nparts = len(shapely.get_parts(region)) if style == "pierced" else 1
     back = load_stl(path)
     assert_solid(back, expected_volume(style, region, outline), outline.bounds, top(style), nparts)
+    assert_style_sections(back, style, region, outline)
     assert report.stats["volume_mm3"] == pytest.approx(back.volume, rel=1e-9)  # the file's own volume
 
 
@@ -58,7 +57,8 @@ def test_stl_other_outlines(tmp_path, outline, style):
     stl.write_stl(tmp_path / "t.stl", region=region, outline=shape, profile="fdm-0.4mm", style=style)
     m = load_stl(tmp_path / "t.stl")
     assert m.is_watertight and m.is_winding_consistent
-    assert m.volume == pytest.approx(expected_volume(style, region, shape), rel=0.005)
+    assert m.volume == pytest.approx(expected_volume(style, region, shape), rel=VOLUME_REL)
+    assert_style_sections(m, style, region, shape)
 
 
 @pytest.mark.parametrize("preset", ["table3-3", "table1-part1", "table2-left"])
@@ -75,6 +75,8 @@ def test_3mf_relief_two_named_bodies_that_touch_without_overlap(tmp_path, preset
     assert_solid(base, outline.area * B, outline.bounds, B)
     assert_solid(pattern, region.area * H, outline.bounds, B + H, zmin=B,
                  bodies=len(shapely.get_parts(region)))
+    assert_section(base, B / 2, outline)
+    assert_section(pattern, B + H / 2, region)
     # they touch at z = b and do not overlap
     assert_touch_without_overlap(base, pattern)
 
@@ -87,6 +89,7 @@ def test_3mf_other_styles(tmp_path, shapes, style, names):
     assert list(parts) == names
     m = parts[names[0]]
     assert_solid(m, expected_volume(style, region, outline), outline.bounds, top(style))
+    assert_style_sections(m, style, region, outline)
 
 
 def test_build_meshes_bodies(shapes):
@@ -96,7 +99,7 @@ def test_build_meshes_bodies(shapes):
     assert got["base"].volume == pytest.approx(outline.area * B, rel=1e-6)
     got = parts.build_meshes(region=region, outline=outline, profile="fdm-0.6mm", style="deboss", deboss_mm=0.6)
     assert list(got) == ["plate"]
-    assert got["plate"].volume == pytest.approx(outline.area * 2.4 - region.area * 0.6, rel=0.005)
+    assert got["plate"].volume == pytest.approx(outline.area * 2.4 - region.area * 0.6, rel=VOLUME_REL)
 
 
 def test_heights_override_profile(tmp_path, shapes):
@@ -105,7 +108,8 @@ def test_heights_override_profile(tmp_path, shapes):
                             base_mm=3, relief_mm=2.5)
     m = load_stl(tmp_path / "t.stl")
     assert m.bounds[1][2] == pytest.approx(5.5)
-    assert m.volume == pytest.approx(outline.area * 3 + region.area * 2.5, rel=0.005)
+    assert m.volume == pytest.approx(outline.area * 3 + region.area * 2.5, rel=VOLUME_REL)
+    assert_style_sections(m, "relief", region, outline, b=3, h=2.5)
     assert report.stats["heights_mm"] == {"base": 3.0, "relief": 2.5}
 
 
@@ -266,3 +270,13 @@ def test_geos_failure_while_cutting_cells_is_a_fabrication_error(tmp_path, shape
     with pytest.raises(FabricationError, match=r"the body mesh could not be cut into cells \(TopologyException"):
         stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm")
     assert not path.exists()
+
+
+def test_read_stl_triangles_refuses_what_is_not_a_binary_stl():
+    with pytest.raises(FabricationError, match="^not a binary STL: shorter than its header$"):
+        stl.read_stl_triangles(b"solid ascii\n")
+    header = b" " * 80
+    with pytest.raises(FabricationError, match="^not a binary STL: 134 bytes for 2 triangles$"):
+        stl.read_stl_triangles(header + np.uint32(2).tobytes() + bytes(50))  # one triangle's record, two announced
+    tri = np.array([[[0, 0, 0], [1, 0, 0], [0, 1, 0]]], np.float32)
+    assert stl.read_stl_triangles(stl.stl_bytes(tri[0], np.array([[0, 1, 2]]))).tolist() == tri.tolist()

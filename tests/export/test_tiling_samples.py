@@ -12,13 +12,12 @@ from pathlib import Path
 
 import ezdxf
 import pytest
-from mesh_helpers import assert_solid, expected_volume, load_stl, top
+from mesh_helpers import assert_solid, assert_style_sections, expected_volume, load_stl, top
 
 import fabtiles
 from fabtiles.design import load_design
 from fabtiles.pattern.tilings import TILINGS
 
-pytest.importorskip("trimesh")
 
 SAMPLES = Path(__file__).resolve().parents[2] / "samples" / "tilings"
 
@@ -50,6 +49,7 @@ def test_sample_stl_is_watertight(tiling, tmp_path):
     mesh = load_stl(tmp_path / "t.stl")
     volume = expected_volume("relief", tile.region(), tile.outline_shape())
     assert_solid(mesh, volume, (0, 0, tile.width_mm, tile.height_mm), top("relief"))
+    assert_style_sections(mesh, "relief", tile.region(), tile.outline_shape())
 
 
 def test_gallery_renders_are_reproducible(tmp_path):

@@ -6,11 +6,10 @@ import re
 
 import pytest
 
-pytest.importorskip("fastapi")
-from fastapi.testclient import TestClient  # noqa: E402
+from fastapi.testclient import TestClient
 
-from fabtiles._limits import Limits  # noqa: E402
-from fabtiles.web.app import create_app  # noqa: E402
+from fabtiles._limits import Limits
+from fabtiles.web.app import create_app
 
 SMALL = "width=40&frame=3&radius=8"
 
@@ -55,7 +54,12 @@ def test_checks_json(client):
     assert "segments" in data["summary"]
     assert all({"where", "code", "message", "count"} <= set(f) for f in data["findings"])
     thin = client.get(f"/api/checks?{SMALL}&stroke=0.5&laser_profile=laser-3mm-acrylic").json()
-    assert any(f["code"] == "thin_wall" and f["where"] == "print" for f in thin["findings"]) or thin["findings"]
+    found = {(f["where"], f["code"]): f for f in thin["findings"]}
+    # A 0.5 mm stroke is under both the printer's min_wall_mm (0.8) and the laser's min_feature_mm (1.5).
+    assert set(found) == {("print", "thin_wall"), ("laser", "thin_bridge")}
+    assert found["print", "thin_wall"]["worst"] == pytest.approx(0.5) and found["print", "thin_wall"]["unit"] == "mm"
+    assert "min_wall_mm = 0.8 mm" in found["print", "thin_wall"]["message"]
+    assert found["laser", "thin_bridge"]["worst"] == pytest.approx(0.513, abs=0.01)
 
 
 def test_checks_give_the_laser_job(client):

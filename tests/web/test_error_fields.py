@@ -4,11 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-pytest.importorskip("fastapi")
-from fastapi.testclient import TestClient  # noqa: E402
-from test_api import BAD  # noqa: E402
+from fastapi.testclient import TestClient
+from test_api import BAD
 
-from fabtiles.web import app as app_mod  # noqa: E402
+from fabtiles.web import app as app_mod
 
 
 @pytest.fixture(scope="module")

@@ -7,11 +7,10 @@ import numpy as np
 import pytest
 import shapely
 
-pytest.importorskip("fastapi")
-from fastapi.testclient import TestClient  # noqa: E402
+from fastapi.testclient import TestClient
 
-from fabtiles._profiles import load_profile  # noqa: E402
-from fabtiles.web.app import create_app  # noqa: E402
+from fabtiles._profiles import load_profile
+from fabtiles.web.app import create_app
 
 SMALL = "width=60&frame=3&radius=10"
 MARK = re.compile(r'<circle class="finding (\w+)" data-where="(\w+)" cx="([-\d.]+)" cy="([-\d.]+)" r="[\d.]+" '

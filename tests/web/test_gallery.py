@@ -4,16 +4,15 @@ from pathlib import Path
 
 import pytest
 
-pytest.importorskip("fastapi")
-from fastapi.testclient import TestClient  # noqa: E402
+from fastapi.testclient import TestClient
 
-from fabtiles._limits import WEB_LIMITS  # noqa: E402
-from fabtiles.design import load_design  # noqa: E402
-from fabtiles.pattern.presets import PRESETS  # noqa: E402
-from fabtiles.pattern.tilings import TILINGS  # noqa: E402
-from fabtiles.web import gallery  # noqa: E402
-from fabtiles.web.app import create_app, tile_from_dict  # noqa: E402
-from fabtiles.web.params import design_from_query  # noqa: E402
+from fabtiles._limits import WEB_LIMITS
+from fabtiles.design import load_design
+from fabtiles.pattern.presets import PRESETS
+from fabtiles.pattern.tilings import TILINGS
+from fabtiles.web import gallery
+from fabtiles.web.app import create_app, tile_from_dict
+from fabtiles.web.params import design_from_query
 
 SAMPLES = Path(__file__).resolve().parents[2] / "samples"
 

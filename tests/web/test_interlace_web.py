@@ -2,11 +2,10 @@
 
 import pytest
 
-pytest.importorskip("fastapi")
-from fastapi.testclient import TestClient  # noqa: E402
+from fastapi.testclient import TestClient
 
-from fabtiles.web.app import create_app  # noqa: E402
-from fabtiles.web.params import design_from_query  # noqa: E402
+from fabtiles.web.app import create_app
+from fabtiles.web.params import design_from_query
 
 SMALL = {"preset": "table3-1", "radius": "12", "width": "50", "frame": "2"}
 

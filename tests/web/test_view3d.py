@@ -6,12 +6,11 @@ import json
 import numpy as np
 import pytest
 
-pytest.importorskip("fastapi")
-import trimesh  # noqa: E402
-from fastapi.testclient import TestClient  # noqa: E402
+import trimesh
+from fastapi.testclient import TestClient
 
-from fabtiles._limits import Limits  # noqa: E402
-from fabtiles.web.app import create_app  # noqa: E402
+from fabtiles._limits import Limits
+from fabtiles.web.app import create_app
 
 SMALL = "width=40&frame=3&radius=8"
 
