@@ -48,7 +48,6 @@ error naming the key, its section and the valid keys (with a "did you mean").
 
 from __future__ import annotations
 
-import difflib
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -60,7 +59,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 from . import _schema
-from ._errors import DesignError, FabtilesError
+from ._errors import DesignError, FabtilesError, did_you_mean
 from .pattern.packing import PACKINGS
 from .pattern.star import Star
 
@@ -174,6 +173,24 @@ class Design:
     def build_tile(self, tile_cls=None):
         """The :class:`~fabtiles.geometry.tile.TileGeometry` of this design (see :func:`build_tile`)."""
         return build_tile(self, tile_cls=tile_cls)
+
+
+def profile_of(design: Design, which: str):
+    """The design's cutter (``which="laser"``) or printer (``"printer"``) profile, loaded.
+
+    An unknown or unreadable profile, or one of the other kind, is a
+    :class:`~fabtiles.ProfileError` naming the design and its key, ``[output] laser_profile``.
+    """
+    from ._errors import ProfileError
+    from ._profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
+
+    key = f"{which}_profile"
+    name = getattr(design.output, key)
+    try:
+        return load_profile(name or (DEFAULT_CUTTER_PROFILE if which == "laser" else DEFAULT_PRINTER_PROFILE),
+                            kind=which)
+    except ProfileError as exc:
+        raise ProfileError(f"{design.source}: [output] {key}: {exc}", param=f"output.{key}") from None
 
 
 # -- loading ------------------------------------------------------------------
@@ -378,8 +395,8 @@ def _build_packing(p: PackingSpec, star: Star | None):
 def _check_keys(table: dict, valid, where: str, source: str, what: str = "key") -> None:
     for key in table:
         if key not in valid:
-            near = difflib.get_close_matches(str(key), valid, n=1)
-            hint = f"; did you mean {near[0]!r}?" if near else ""
+            hint = did_you_mean(key, valid)
+            hint = f"; {hint}" if hint else ""
             raise DesignError(f"{source}: unknown {what} {key!r} in {where}{hint} "
                               f"(valid {what}s: {', '.join(valid)})")
 
@@ -514,8 +531,9 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
                           param="output.formats")
     for f in formats:
         if f not in FORMATS:
-            raise DesignError(f"{source}: {where} formats: {f!r} is not a valid format, must be one of: "
-                              f"{', '.join(FORMATS)}", param="output.formats")
+            hint = did_you_mean(f, FORMATS)
+            raise DesignError(f"{source}: {where} formats: {f!r} is not a valid format{f' ({hint})' if hint else ''}, "
+                              f"must be one of: {', '.join(FORMATS)}", param="output.formats")
     name = _value(table, "output", "name", source, where)
     if name is not None and not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9._ -]*", name):
         raise DesignError(f"{source}: {where} name must be a plain file name (letters, digits, . _ - "

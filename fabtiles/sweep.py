@@ -23,7 +23,6 @@ Vary(key='packing.radius', values=(8, 10, 12, 14, 16))
 from __future__ import annotations
 
 import csv
-import difflib
 import functools
 import html
 import io
@@ -33,7 +32,7 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-from ._errors import ParameterError
+from ._errors import ParameterError, did_you_mean
 from .design import MOTIF_KEYS, OUTPUT_KEYS, PACKING_KEYS, TILE_KEYS, parse_override
 
 MAX_VARIANTS = 10_000
@@ -91,8 +90,8 @@ def parse_vary(text: str) -> Vary:
                              f"{', '.join(VARY_KEYS)}", param="vary")
     valid = VARY_KEYS[section]
     if name not in valid:
-        near = difflib.get_close_matches(name, valid, n=1)
-        hint = f"; did you mean {near[0]!r}?" if near else ""
+        hint = did_you_mean(name, valid)
+        hint = f"; {hint}" if hint else ""
         raise ParameterError(f"--vary {text}: unknown key {name!r} in [{section}]{hint} "
                              f"(keys that can vary: {', '.join(valid)})", param="vary")
     if not spec:
