@@ -93,10 +93,10 @@ class Star:
 
         >>> Star.preset("table1-part1").n
         8
-        >>> Star.preset("table9")
+        >>> Star.preset("table3-33")
         Traceback (most recent call last):
         ...
-        fabtiles._errors.ParameterError: preset 'table9' is unknown (presets: table1-part1, table1-part2, table2-left, table2-right, table3-1, table3-2, table3-3; `fabtiles presets` lists them)
+        fabtiles._errors.ParameterError: preset 'table3-33' is unknown; did you mean 'table3-3'? (presets: table1-part1, table1-part2, table2-left, table2-right, table3-1, table3-2, table3-3; `fabtiles presets` lists them)
         """
         if not isinstance(name, str) or name not in PRESETS:
             hint = did_you_mean(name, PRESETS)
