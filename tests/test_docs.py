@@ -92,3 +92,15 @@ def test_the_readme_is_a_landing_page():
     test_command = ci.split("# --- the README's test command (keep the two in step) ---\n", 1)[1].strip()
     assert test_command in readme  # the README's test command is CI's
     assert "fabtiles build samples/table3-3.toml -o out" in readme
+
+
+def test_a_copy_of_a_profile_comes_with_the_command_that_makes_it():
+    """Wherever the manual says to write values into a copy of a profile, it gives `fabtiles profile copy`."""
+    missing = []
+    for page in PAGES:
+        text = " ".join(page.read_text(encoding="utf-8").split())
+        for m in re.finditer(r"copy of (the|a|your) profile", text, re.I):
+            if "fabtiles profile copy" not in text[m.start():m.end() + 200]:
+                missing.append(f"{page.name}: {text[m.start():m.end() + 60]}")
+    assert missing == []
+    assert "fabtiles profile copy laser-3mm-plywood my-laser.toml" in text_of("profiles.md")
