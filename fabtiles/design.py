@@ -256,6 +256,61 @@ def _blame_overrides(exc: DesignError, original: dict, overrides: tuple, *, name
     return DesignError(f"{' '.join(f'--set {item}' for item in guilty)}: {message}", param=exc.param, key=exc.key)
 
 
+def override_notes(path, overrides) -> list[str]:
+    """What each ``--set`` changed in the design file at ``path``: one line per override, for people.
+
+    >>> import tempfile, os
+    >>> f = os.path.join(tempfile.mkdtemp(), "d.toml")
+    >>> _ = open(f, "w").write('[tile]\\nsize = 150\\nstroke = 1.0\\n')
+    >>> for line in override_notes(f, ["tile.size=[200,200]", "tile.stroke=1", "tile.frame=3"]):
+    ...     print(line)
+    --set tile.size=[200,200] (was 150)
+    --set tile.stroke=1 (as the file has it)
+    --set tile.frame=3 (not in the file: the default was 0)
+    """
+    try:
+        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        data = {}  # the design loaded already; a file that changed since says nothing here
+    notes = []
+    for item in overrides:
+        parts, value = parse_override(item)
+        node: Any = data
+        for p in parts:
+            node = node.get(p, _MISSING) if isinstance(node, dict) else _MISSING
+        if node is _MISSING:
+            try:
+                k = _schema.key(".".join(parts))
+                default = k.default_text.strip("`") or (_toml_text(k.default) if k.default is not None else "none")
+                was = f"not in the file: the default was {default}"
+            except FabtilesError:
+                was = "not in the file"
+        elif node == value:
+            was = "as the file has it"
+        else:
+            was = f"was {_toml_text(node)}"
+        notes.append(f"--set {item} ({was})")
+    return notes
+
+
+_MISSING = object()
+
+
+def _toml_text(value) -> str:
+    """A value as TOML writes it, short: ``150``, ``[150, 150]``, ``"square"``, ``true``."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_text(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{k} = {_toml_text(v)}" for k, v in value.items()) + " }"
+    return str(value)
+
+
 def parse_override(item: str) -> tuple[list[str], Any]:
     """Split ``"section.key=value"`` into the key path and the TOML value.
 
