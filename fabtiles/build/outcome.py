@@ -24,17 +24,31 @@ class Outcome:
     figures: dict = field(default_factory=dict)
     """The laser job of its first laser file (``Report.stats["job"]``), its sheet (``sheet_m2``,
     ``sheet_cost``) and the filament of its first print file (``filament_mass_g``, ...): empty without them."""
+    counts: list[tuple[str, int]] = field(default_factory=list)
+    """The findings of each machine the build made files for: ``[("laser", 0), ("printer", 1)]``."""
 
 
 def outcome_of(key: str, result: BuildResult) -> Outcome:
-    """An :class:`Outcome` for a successful build."""
+    """An :class:`Outcome` for a successful build: its one line (files, findings per machine) and the findings.
+
+    The line counts each machine's findings once, whatever the formats:
+    ``"5 files, laser 0, printer 1 warning"``.
+    """
     n = len(result.paths)
-    message = f"{n} file{'s' if n != 1 else ''}"
-    if result.findings:
-        message += f", {result.findings} fabrication warning{'s' if result.findings != 1 else ''}"
+    counts = [(label.split()[0], len(r.findings)) for label, r in result.models]
+    message = ", ".join([f"{n} file{'s' if n != 1 else ''}"] + [f"{machine} {_warnings(k)}" for machine, k in counts])
     # each finding once, by the model it was found on (not once per file of that model)
     lines = [f"{label}: {f.code}: {f.message}" for label, r in result.models for f in r.findings]
-    return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports))
+    return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports), counts)
+
+
+def _warnings(n: int) -> str:
+    """``"0"``, ``"1 warning"``, ``"3 warnings"``.
+
+    >>> _warnings(0), _warnings(1), _warnings(1200)
+    ('0', '1 warning', '1,200 warnings')
+    """
+    return "0" if n == 0 else f"{n:,} warning{'s' if n != 1 else ''}"
 
 
 def _figures(reports) -> dict:
