@@ -22,8 +22,9 @@ class Outcome:
     preview: str | None = None
     """The tile's picture, when asked for."""
     figures: dict = field(default_factory=dict)
-    """The laser job of its first laser file (``Report.stats["job"]``), its sheet (``sheet_m2``,
-    ``sheet_cost``) and the filament of its first print file (``filament_mass_g``, ...): empty without them."""
+    """The laser job of its first laser file (``Report.stats["job"]``, its ``line`` for people, and
+    ``cutter``, the machine), its sheet (``sheet_m2``, ``sheet_cost``) and the filament of its first
+    print file (``filament_mass_g``, ..., ``filament_line``): empty without them."""
     counts: list[tuple[str, int]] = field(default_factory=list)
     """The findings of each machine the build made files for: ``[("laser", 0), ("printer", 1)]``."""
 
@@ -58,11 +59,13 @@ def _figures(reports) -> dict:
 
     job, sheet, material = first("job"), first("sheet"), first("material")
     figures = dict(job)
+    if job:  # the job's machine, as its report names it ("router job: ...")
+        figures["cutter"] = next(r.stats.get("cutter", "laser") for r in reports if "job" in r.stats)
     if sheet:
         figures.update(sheet_m2=sheet["sheet_m2"], sheet_cost=sheet["cost"])
     if material:
         figures.update(filament_mass_g=material["mass_g"], filament_length_m=material["length_m"],
-                       filament_cost=material["cost"])
+                       filament_cost=material["cost"], filament_line=material["line"])
     return figures
 
 
