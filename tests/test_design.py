@@ -265,3 +265,16 @@ def test_print_heights_override_the_profile():
 def test_bad_print_heights(key, value):
     with pytest.raises(DesignError, match=rf"\[output\] {key} must be a number of mm > 0 and <= 1000, got"):
         design_from_text(BASE + f"[output]\n{key} = {value}\n")
+
+
+def test_a_value_over_its_limit_shows_the_digits_that_tell_them_apart():
+    """Rounding must not hide why a value is refused: 8.0004 mm is over the 8 mm radius, though both read 8."""
+    from fabtiles import LimitError
+    from fabtiles._limits import CLI_LIMITS, check_size
+
+    with pytest.raises(DesignError, match=r"stroke must be > 0 and <= 12\.5 mm \(the packing radius\), got 12\.50004$"):
+        design_from_text(BASE.replace("stroke = 1.0", "stroke = 12.50004"))
+    over = CLI_LIMITS.max_size_mm + 0.5
+    with pytest.raises(LimitError, match=rf"the tile is {over:g} x 100 mm, larger than the limit of "
+                                         rf"{CLI_LIMITS.max_size_mm:g} mm"):
+        check_size(over, 100, CLI_LIMITS)
