@@ -62,3 +62,19 @@ class FabricationError(FabtilesError, ValueError):
 
 class LimitError(FabtilesError, ValueError):
     """The job is larger than a set work limit; it is refused before work starts."""
+
+
+def did_you_mean(name, valid) -> str:
+    """``"did you mean 'x'?"`` for the valid name closest to a mistyped ``name``, or ``""`` when none is close.
+
+    Every message about an unknown name (a key, a preset, a tiling, a profile, a choice)
+    asks it this way.
+
+    >>> did_you_mean("table3-33", ["table3-1", "table3-3"]), did_you_mean("oval", ["square", "circle"])
+    ("did you mean 'table3-3'?", '')
+    """
+    import difflib
+
+    valid = [str(v) for v in valid]
+    near = difflib.get_close_matches(str(name), valid, n=1)
+    return f"did you mean {near[0]!r}?" if near else ""

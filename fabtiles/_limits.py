@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._errors import LimitError
+from ._report import distinct
 
 
 @dataclass(frozen=True)
@@ -39,7 +40,8 @@ def check_size(width_mm: float, height_mm: float, limits: Limits) -> None:
     """Refuse a tile larger than ``limits.max_size_mm`` on either side."""
     if max(width_mm, height_mm) > limits.max_size_mm:
         raise LimitError(
-            f"the tile is {width_mm:g} x {height_mm:g} mm, larger than the limit of "
+            f"the tile is {distinct(width_mm, limits.max_size_mm)} x {distinct(height_mm, limits.max_size_mm)} mm, "
+            "larger than the limit of "
             f"{limits.max_size_mm:g} mm on a side; make it smaller",
             param="tile.size",
         )

@@ -14,14 +14,13 @@ a bad value is a :class:`~fabtiles.ProfileError` that names the file and the key
 
 from __future__ import annotations
 
-import difflib
 import math
 from dataclasses import dataclass, fields
 from importlib import resources
 from pathlib import Path
 
 from ._cutters import CUTTER_KINDS, KINDS, LASER_MODES, cutter_kind, family, members
-from ._errors import ProfileError
+from ._errors import ProfileError, did_you_mean
 from ._schema import key as schema_key
 
 try:  # Python 3.11+
@@ -238,6 +237,24 @@ def load_profile(profile, *, kind: str | None = None):
     return result
 
 
+def profile_text(profile) -> tuple[str, object]:
+    """The TOML text of a bundled profile (by name) or a profile file (by path), and the profile it loads as.
+
+    The text is validated first (an unknown name or a bad file is the same
+    :class:`~fabtiles.ProfileError` as :func:`load_profile`'s), so a copy made of it loads.
+
+    >>> text, p = profile_text("fdm-0.4mm")
+    >>> text.splitlines()[1], p.kind
+    ('kind = "printer"', 'printer')
+    """
+    text, source, name = _read(profile)
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ProfileError(f"{source}: not valid TOML: {exc}") from None
+    return text, _parse(data, source, name)
+
+
 def kind_of(name: str) -> str:
     """The ``kind`` of a bundled profile: ``"laser"``, ``"router"``, ``"waterjet"`` or ``"printer"``.
 
@@ -258,8 +275,8 @@ def _read(profile) -> tuple[str, str, str]:
             raise ProfileError(f"cannot read profile file {str(path)!r}: {exc}") from None
     names = bundled_profiles()
     if text_form not in names:
-        hint = difflib.get_close_matches(text_form, names, n=1)
-        hint_text = f" (did you mean {hint[0]!r}?)" if hint else ""
+        hint = did_you_mean(text_form, names)
+        hint_text = f" ({hint})" if hint else ""
         raise ProfileError(
             f"profile {text_form!r} does not exist{hint_text}; bundled profiles: {', '.join(names)}; "
             "or give the path of a .toml file"
@@ -271,8 +288,8 @@ def _read(profile) -> tuple[str, str, str]:
 def _unknown(source, where, keys, allowed):
     for key in keys:
         if key not in allowed:
-            hint = difflib.get_close_matches(key, allowed, n=1)
-            hint_text = f" (did you mean {hint[0]!r}?)" if hint else ""
+            hint = did_you_mean(key, allowed)
+            hint_text = f" ({hint})" if hint else ""
             raise ProfileError(
                 f"{source}: unknown key {where}{key!r}{hint_text}; valid keys: {', '.join(allowed)}"
             )
@@ -332,7 +349,9 @@ def _parse(data: dict, source: str, name: str):
             choices = {"mode": cutter.modes if cutter else LASER_MODES, "style": PRINT_STYLES,
                        "dxf_version": DXF_VERSIONS}[key]
             if value not in choices:
-                raise ProfileError(f"{source}: {full} = {value!r} is not valid, must be one of: {', '.join(choices)}")
+                hint = did_you_mean(value, choices)
+                raise ProfileError(f"{source}: {full} = {value!r} is not valid{f' ({hint})' if hint else ''}, "
+                                   f"must be one of: {', '.join(choices)}")
             values[key] = value
         else:
             zero_ok = key in (cutter.zero_keys if cutter else PRINTER_ZERO_KEYS)

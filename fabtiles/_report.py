@@ -29,8 +29,11 @@ def distinct(value: float, limit: float, digits: int = 3) -> str:
 
     >>> distinct(1.1996, 1.2), distinct(0.0229574, 0.4), distinct(1.2, 1.2)
     ('1.1996', '0.023', '1.2')
+    >>> distinct(2440.0, 256.0), distinct(1200.5, 1200.0)
+    ('2440', '1200.5')
     """
-    for d in range(digits, 10):
+    whole = len(str(int(abs(value)))) if abs(value) >= 1 else 0  # a large value keeps its digits (no 2.44e+03)
+    for d in range(max(digits, whole), 17):
         text = f"{value:.{d}g}"
         if value == limit or text != f"{limit:.{d}g}":
             return text

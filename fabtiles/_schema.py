@@ -31,7 +31,7 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
-from ._errors import ParameterError
+from ._errors import ParameterError, did_you_mean
 
 SECTIONS = ("motif", "packing", "tile", "output")
 """The design's sections, in the order of a design file."""
@@ -241,7 +241,8 @@ class Key:
         elif self.type == "choice":
             ok = isinstance(value, str) if self.checked_by else isinstance(value, (str, int, float))
             if ok and self.checked_by is None and value not in self.choice_values():
-                raise error(f"{prefix}{name} = {value!r} is not valid, must be one of: "
+                hint = did_you_mean(value, self.choice_values())
+                raise error(f"{prefix}{name} = {value!r} is not valid{f' ({hint})' if hint else ''}, must be one of: "
                             f"{', '.join(self.choice_values())}", param=param)
         else:
             raise ParameterError(f"{self.path} is a {self.type}: its value is checked where it is read, "

@@ -155,6 +155,8 @@ def check_design(design, tile=None, *, job: bool = False) -> CheckResult:
     """:func:`check_tile` with the profiles, modes and options of a :class:`~fabtiles.design.Design`."""
     out = design.output
     tile = tile if tile is not None else design.build_tile()
-    return check_tile(tile, laser_profile=out.laser_profile, printer_profile=out.printer_profile,
+    from .design import profile_of
+
+    return check_tile(tile, laser_profile=profile_of(design, "laser"), printer_profile=profile_of(design, "printer"),
                       laser_mode=out.laser_mode, fill_small_holes=out.fill_small_holes,
                       print_style=out.print_style, heights=out.heights(), job=job)

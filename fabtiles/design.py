@@ -48,7 +48,6 @@ error naming the key, its section and the valid keys (with a "did you mean").
 
 from __future__ import annotations
 
-import difflib
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -60,7 +59,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 from . import _schema
-from ._errors import DesignError, FabtilesError
+from ._errors import DesignError, FabtilesError, did_you_mean
 from .pattern.packing import PACKINGS
 from .pattern.star import Star
 
@@ -176,6 +175,24 @@ class Design:
         return build_tile(self, tile_cls=tile_cls)
 
 
+def profile_of(design: Design, which: str):
+    """The design's cutter (``which="laser"``) or printer (``"printer"``) profile, loaded.
+
+    An unknown or unreadable profile, or one of the other kind, is a
+    :class:`~fabtiles.ProfileError` naming the design and its key, ``[output] laser_profile``.
+    """
+    from ._errors import ProfileError
+    from ._profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
+
+    key = f"{which}_profile"
+    name = getattr(design.output, key)
+    try:
+        return load_profile(name or (DEFAULT_CUTTER_PROFILE if which == "laser" else DEFAULT_PRINTER_PROFILE),
+                            kind=which)
+    except ProfileError as exc:
+        raise ProfileError(f"{design.source}: [output] {key}: {exc}", param=f"output.{key}") from None
+
+
 # -- loading ------------------------------------------------------------------
 def load_design(path, overrides=()) -> Design:
     """Read and validate a design file.
@@ -237,6 +254,61 @@ def _blame_overrides(exc: DesignError, original: dict, overrides: tuple, *, name
     guilty = guilty or [item for item, parts in keys.items()
                         if re.search(rf"(?<![\w]){re.escape(parts[-1])}(?![\w])", message)] or list(overrides)
     return DesignError(f"{' '.join(f'--set {item}' for item in guilty)}: {message}", param=exc.param, key=exc.key)
+
+
+def override_notes(path, overrides) -> list[str]:
+    """What each ``--set`` changed in the design file at ``path``: one line per override, for people.
+
+    >>> import tempfile, os
+    >>> f = os.path.join(tempfile.mkdtemp(), "d.toml")
+    >>> _ = open(f, "w").write('[tile]\\nsize = 150\\nstroke = 1.0\\n')
+    >>> for line in override_notes(f, ["tile.size=[200,200]", "tile.stroke=1", "tile.frame=3"]):
+    ...     print(line)
+    --set tile.size=[200,200] (was 150)
+    --set tile.stroke=1 (as the file has it)
+    --set tile.frame=3 (not in the file: the default was 0)
+    """
+    try:
+        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        data = {}  # the design loaded already; a file that changed since says nothing here
+    notes = []
+    for item in overrides:
+        parts, value = parse_override(item)
+        node: Any = data
+        for p in parts:
+            node = node.get(p, _MISSING) if isinstance(node, dict) else _MISSING
+        if node is _MISSING:
+            try:
+                k = _schema.key(".".join(parts))
+                default = k.default_text.strip("`") or (_toml_text(k.default) if k.default is not None else "none")
+                was = f"not in the file: the default was {default}"
+            except FabtilesError:
+                was = "not in the file"
+        elif node == value:
+            was = "as the file has it"
+        else:
+            was = f"was {_toml_text(node)}"
+        notes.append(f"--set {item} ({was})")
+    return notes
+
+
+_MISSING = object()
+
+
+def _toml_text(value) -> str:
+    """A value as TOML writes it, short: ``150``, ``[150, 150]``, ``"square"``, ``true``."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_text(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{k} = {_toml_text(v)}" for k, v in value.items()) + " }"
+    return str(value)
 
 
 def parse_override(item: str) -> tuple[list[str], Any]:
@@ -378,8 +450,8 @@ def _build_packing(p: PackingSpec, star: Star | None):
 def _check_keys(table: dict, valid, where: str, source: str, what: str = "key") -> None:
     for key in table:
         if key not in valid:
-            near = difflib.get_close_matches(str(key), valid, n=1)
-            hint = f"; did you mean {near[0]!r}?" if near else ""
+            hint = did_you_mean(key, valid)
+            hint = f"; {hint}" if hint else ""
             raise DesignError(f"{source}: unknown {what} {key!r} in {where}{hint} "
                               f"(valid {what}s: {', '.join(valid)})")
 
@@ -514,8 +586,9 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
                           param="output.formats")
     for f in formats:
         if f not in FORMATS:
-            raise DesignError(f"{source}: {where} formats: {f!r} is not a valid format, must be one of: "
-                              f"{', '.join(FORMATS)}", param="output.formats")
+            hint = did_you_mean(f, FORMATS)
+            raise DesignError(f"{source}: {where} formats: {f!r} is not a valid format{f' ({hint})' if hint else ''}, "
+                              f"must be one of: {', '.join(FORMATS)}", param="output.formats")
     name = _value(table, "output", "name", source, where)
     if name is not None and not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9._ -]*", name):
         raise DesignError(f"{source}: {where} name must be a plain file name (letters, digits, . _ - "

@@ -23,7 +23,6 @@ Vary(key='packing.radius', values=(8, 10, 12, 14, 16))
 from __future__ import annotations
 
 import csv
-import difflib
 import functools
 import html
 import io
@@ -33,7 +32,7 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-from ._errors import ParameterError
+from ._errors import ParameterError, did_you_mean
 from .design import MOTIF_KEYS, OUTPUT_KEYS, PACKING_KEYS, TILE_KEYS, parse_override
 
 MAX_VARIANTS = 10_000
@@ -91,8 +90,8 @@ def parse_vary(text: str) -> Vary:
                              f"{', '.join(VARY_KEYS)}", param="vary")
     valid = VARY_KEYS[section]
     if name not in valid:
-        near = difflib.get_close_matches(name, valid, n=1)
-        hint = f"; did you mean {near[0]!r}?" if near else ""
+        hint = did_you_mean(name, valid)
+        hint = f"; {hint}" if hint else ""
         raise ParameterError(f"--vary {text}: unknown key {name!r} in [{section}]{hint} "
                              f"(keys that can vary: {', '.join(valid)})", param="vary")
     if not spec:
@@ -261,8 +260,8 @@ def _contact_sheet(varies, variants_, by_name) -> str:
                        f'alt="{esc(v.name)}"></a>' if o.preview else "")
             links = " ".join(f'<a href="{esc(Path(p).name)}">{esc(Path(p).suffix[1:])}</a>' for p in o.paths)
             notes = ("".join(f"<li>{esc(f)}</li>" for f in o.findings) if o.findings else "<li>no findings</li>")
-            cards.append(f'<figure class="ok" id="{esc(v.name)}">{picture}<figcaption><div class="name">'
-                         f'{esc(v.name)}</div>{label}<div class="files">{links}</div>'
+            cards.append(f'<figure class="ok" id="{esc(v.name)}">{picture}<figcaption>{_figures_html(o.figures)}'
+                         f'<div class="name">{esc(v.name)}</div>{label}<div class="files">{links}</div>'
                          f'<ul class="findings">{notes}</ul></figcaption></figure>')
         else:
             cards.append(f'<figure class="failed" id="{esc(v.name)}"><div class="error">failed: '
@@ -281,6 +280,7 @@ figure.failed {{ border-color: #c0392b; background: #fdf0ee; }}
 img {{ width: 100%; height: auto; }}
 .name {{ font-weight: 600; }}
 .findings {{ margin: .3rem 0 0; padding-left: 1.1rem; color: #8a5300; }}
+.figures {{ margin-bottom: .3rem; color: #333; font-variant-numeric: tabular-nums; }}
 .error {{ color: #c0392b; }}
 </style>
 </head>
@@ -294,6 +294,25 @@ The table is in <a href="index.csv">index.csv</a>.</p>
 </body>
 </html>
 """
+
+
+def _figures_html(figures: dict) -> str:
+    """A variant's cut job and filament under its picture, as the build's summary words them.
+
+    >>> _figures_html({"cutter": "laser", "line": "2.0 m of cut, 65 pierces, about 2 min",
+    ...                "filament_line": "23.2 g of filament, 7.78 m"})
+    '<div class="figures"><div>laser job: 2.0 m of cut, 65 pierces, about 2 min</div><div>print: 23.2 g of filament, 7.78 m</div></div>'
+    >>> _figures_html({})
+    ''
+    """
+    lines = []
+    if "line" in figures:
+        lines.append(f"{figures.get('cutter', 'laser')} job: {figures['line']}")
+    if "filament_line" in figures:
+        lines.append(f"print: {figures['filament_line']}")
+    if not lines:
+        return ""
+    return '<div class="figures">' + "".join(f"<div>{html.escape(t)}</div>" for t in lines) + "</div>"
 
 
 def _toml(value) -> str:

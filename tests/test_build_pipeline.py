@@ -116,7 +116,7 @@ def test_run_job_turns_failures_into_outcomes(tmp_path):
 def test_outcome_lists_findings(tmp_path):
     design = load_design(ROOT / "samples" / "table3-3.toml", overrides=["output.fill_small_holes=false"])
     out = pipeline.run_job("t", lambda: design, str(tmp_path), ("dxf",))
-    assert out.ok and out.message == "1 file, 1 fabrication warning"
+    assert out.ok and out.message == "1 file, laser 1 warning" and out.counts == [("laser", 1)]
     assert len(out.findings) == 1 and out.findings[0].startswith("laser laser-3mm-plywood: small_hole: ")
 
 

@@ -176,7 +176,15 @@ def test_unreadable_and_invalid_files(tmp_path):
         (("radius = 12.5", "radius = 12.5\ngap_motif = { n = 6, radis = [1, 2] }"), r"unknown key 'radis' in \[packing\] gap_motif; did you mean 'radii'\?"),
         (("", "[output]\nformat = ['svg']"), r"unknown key 'format' in \[output\]; did you mean 'formats'\?"),
         (("", "[output]\nzzz = 1"), r"unknown key 'zzz' in \[output\] \(valid keys: formats, laser_profile"),
-        (('preset = "table3-3"', 'preset = "table9"'), r"\[motif\] 'table9' is not a valid preset"),
+        (('preset = "table3-3"', 'preset = "table9"'), r"\[motif\] preset 'table9' is unknown"),
+        (('preset = "table3-3"', 'preset = "table3-33"'),
+         r"\[motif\] preset 'table3-33' is unknown; did you mean 'table3-3'\? \(presets: table1-part1, "),
+        (("radius = 12.5", 'radius = 12.5\ngap_motif = "tabel1-part1"'),
+         r"\[packing\] gap_motif preset 'tabel1-part1' is unknown; did you mean 'table1-part1'\?"),
+        (('outline = "square"', 'outline = "sqare"'),
+         r"\[tile\] outline = 'sqare' is not valid \(did you mean 'square'\?\), must be one of: square, "),
+        (("", "[output]\nlaser_mode = 'pirced'"), r"\[output\] laser_mode = 'pirced' is not valid \(did you mean 'pierced'\?\)"),
+        (("", "[output]\nformats = ['dxff']"), r"\[output\] formats: 'dxff' is not a valid format \(did you mean 'dxf'\?\)"),
         (('preset = "table3-3"', "n = 2\nradii = [1, 2]"), r"\[motif\] n must be an integer >= 3 and <= 120, got 2"),
         (('preset = "table3-3"', "n = 6"), r"\[motif\] needs preset = \"...\" or the parameters n and radii \(missing: radii\)"),
         (('preset = "table3-3"', "preset = 3"), r"\[motif\] preset must be a string, got 3"),
@@ -213,6 +221,24 @@ def test_design_errors(tmp_path, change, match):
     assert str(info.value).startswith(str(path))
 
 
+@pytest.mark.parametrize("key, name, match", [
+    ("laser_profile", "laser-3mm-plywod", r"\[output\] laser_profile: profile 'laser-3mm-plywod' does not exist "
+                                          r"\(did you mean 'laser-3mm-plywood'\?\)"),
+    ("printer_profile", "fdm-0.4mn", r"\[output\] printer_profile: profile 'fdm-0.4mn' does not exist "
+                                     r"\(did you mean 'fdm-0.4mm'\?\)"),
+    ("printer_profile", "laser-3mm-plywood", r"\[output\] printer_profile: profile 'laser-3mm-plywood' is a laser "
+                                             r"profile, but a printer profile is needed"),
+])
+def test_an_unknown_profile_names_its_key(tmp_path, key, name, match):
+    from fabtiles import ProfileError
+    from fabtiles.design import profile_of
+
+    path = write(tmp_path, BASE + f"[output]\n{key} = {name!r}\n", "p.toml")
+    with pytest.raises(ProfileError, match=match) as info:
+        profile_of(load_design(path), key.split("_")[0])
+    assert str(info.value).startswith(str(path)) and info.value.param == f"output.{key}"
+
+
 def test_missing_sections():
     with pytest.raises(DesignError, match=r"the design needs a \[motif\] section"):
         design_from_text('[tile]\nsize = 10\n')
@@ -239,3 +265,16 @@ def test_print_heights_override_the_profile():
 def test_bad_print_heights(key, value):
     with pytest.raises(DesignError, match=rf"\[output\] {key} must be a number of mm > 0 and <= 1000, got"):
         design_from_text(BASE + f"[output]\n{key} = {value}\n")
+
+
+def test_a_value_over_its_limit_shows_the_digits_that_tell_them_apart():
+    """Rounding must not hide why a value is refused: 8.0004 mm is over the 8 mm radius, though both read 8."""
+    from fabtiles import LimitError
+    from fabtiles._limits import CLI_LIMITS, check_size
+
+    with pytest.raises(DesignError, match=r"stroke must be > 0 and <= 12\.5 mm \(the packing radius\), got 12\.50004$"):
+        design_from_text(BASE.replace("stroke = 1.0", "stroke = 12.50004"))
+    over = CLI_LIMITS.max_size_mm + 0.5
+    with pytest.raises(LimitError, match=rf"the tile is {over:g} x 100 mm, larger than the limit of "
+                                         rf"{CLI_LIMITS.max_size_mm:g} mm"):
+        check_size(over, 100, CLI_LIMITS)

@@ -42,7 +42,7 @@ def test_exponent_form_gap_motif_and_seamless():
 
 
 @pytest.mark.parametrize("change, match", [
-    (('tiling = "4.8.8"', 'tiling = "5.5.5"'), r"\[packing\] '5\.5\.5' is not a valid tiling, must be one of: 3\.3\.3\.3\.3\.3"),
+    (('tiling = "4.8.8"', 'tiling = "5.5.5"'), r"\[packing\] tiling '5\.5\.5' is unknown \(tilings: 3\.3\.3\.3\.3\.3"),
     (('tiling = "4.8.8"\n', ''), r"kind = \"archimedean\" needs tiling = one of: 3\.3\.3\.3\.3\.3, 4\.4\.4\.4"),
     (('tiling = "4.8.8"', 'tiling = 488'), r"\[packing\] tiling must be one of: 3\.3\.3\.3\.3\.3"),
     (("edge = 20", "edge = 0"), r"\[packing\] edge must be a finite number > 0, got 0"),
@@ -51,7 +51,7 @@ def test_exponent_form_gap_motif_and_seamless():
     (("edge = 20", "radius = 20"), r"has no radius: give the tiling's edge \(mm\) instead, like edge = 20"),
     (('8 = "table3-3"', '6 = "table3-3"'), r"\[packing\] motifs key 6 is not a polygon of the tiling 4\.8\.8, must be one of: 4, 8"),
     (('8 = "table3-3"', 'eight = "table3-3"'), r"\[packing\.motifs\] key 'eight' must be a polygon's number of sides"),
-    (('8 = "table3-3"', '8 = "nope"'), r"\[packing\.motifs\] 8 'nope' is not a valid preset"),
+    (('8 = "table3-3"', '8 = "nope"'), r"\[packing\.motifs\] 8 preset 'nope' is unknown"),
     (('8 = "table3-3"', '8 = { n = 2, radii = [1, 2] }'), r"\[packing\.motifs\] 8 n must be an integer >= 3"),
     (("[packing.motifs]", "motifs = 3\n[unused]"), r"unknown section 'unused'|\[packing\.motifs\] must be a table"),
 ])

@@ -117,3 +117,15 @@ def test_design_files_md_example_names_every_output_key():
     example = text[text.index("[output]"):text.index("```", text.index("[output]"))]
     keys = [k.name for k in _schema.KEYS if k.section == "output"]
     assert keys and [k for k in keys if not re.search(rf"^{k} = ", example, re.M)] == []
+
+
+def test_a_copy_of_a_profile_comes_with_the_command_that_makes_it():
+    """Wherever the manual says to write values into a copy of a profile, it gives `fabtiles profile copy`."""
+    missing = []
+    for page in PAGES:
+        text = " ".join(page.read_text(encoding="utf-8").split())
+        for m in re.finditer(r"copy of (the|a|your) profile", text, re.I):
+            if "fabtiles profile copy" not in text[m.start():m.end() + 200]:
+                missing.append(f"{page.name}: {text[m.start():m.end() + 60]}")
+    assert missing == []
+    assert "fabtiles profile copy laser-3mm-plywood my-laser.toml" in text_of("profiles.md")

@@ -15,7 +15,6 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 from .._errors import FabricationError, ParameterError
-from .._profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
 from .._report import Report
 from .._schema import CALL_OPTIONS, FAMILIES, option_keys
 
@@ -54,8 +53,9 @@ class BuildOptions:
         out = design.output
         keys = {k.name: k for family in FAMILIES for k in option_keys(family)}  # the design keys that are options
         values = {k.option.name: getattr(out, name) for name, k in keys.items()}
-        return cls(cutter=load_profile(out.laser_profile or DEFAULT_CUTTER_PROFILE, kind="laser"),
-                   printer=load_profile(out.printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer"),
+        from ..design import profile_of
+
+        return cls(cutter=profile_of(design, "laser"), printer=profile_of(design, "printer"),
                    **cls.fields_of(values, *FAMILIES))
 
     @staticmethod

@@ -22,19 +22,34 @@ class Outcome:
     preview: str | None = None
     """The tile's picture, when asked for."""
     figures: dict = field(default_factory=dict)
-    """The laser job of its first laser file (``Report.stats["job"]``), its sheet (``sheet_m2``,
-    ``sheet_cost``) and the filament of its first print file (``filament_mass_g``, ...): empty without them."""
+    """The laser job of its first laser file (``Report.stats["job"]``, its ``line`` for people, and
+    ``cutter``, the machine), its sheet (``sheet_m2``, ``sheet_cost``) and the filament of its first
+    print file (``filament_mass_g``, ..., ``filament_line``): empty without them."""
+    counts: list[tuple[str, int]] = field(default_factory=list)
+    """The findings of each machine the build made files for: ``[("laser", 0), ("printer", 1)]``."""
 
 
 def outcome_of(key: str, result: BuildResult) -> Outcome:
-    """An :class:`Outcome` for a successful build."""
+    """An :class:`Outcome` for a successful build: its one line (files, findings per machine) and the findings.
+
+    The line counts each machine's findings once, whatever the formats:
+    ``"5 files, laser 0, printer 1 warning"``.
+    """
     n = len(result.paths)
-    message = f"{n} file{'s' if n != 1 else ''}"
-    if result.findings:
-        message += f", {result.findings} fabrication warning{'s' if result.findings != 1 else ''}"
+    counts = [(label.split()[0], len(r.findings)) for label, r in result.models]
+    message = ", ".join([f"{n} file{'s' if n != 1 else ''}"] + [f"{machine} {_warnings(k)}" for machine, k in counts])
     # each finding once, by the model it was found on (not once per file of that model)
     lines = [f"{label}: {f.code}: {f.message}" for label, r in result.models for f in r.findings]
-    return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports))
+    return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports), counts)
+
+
+def _warnings(n: int) -> str:
+    """``"0"``, ``"1 warning"``, ``"3 warnings"``.
+
+    >>> _warnings(0), _warnings(1), _warnings(1200)
+    ('0', '1 warning', '1,200 warnings')
+    """
+    return "0" if n == 0 else f"{n:,} warning{'s' if n != 1 else ''}"
 
 
 def _figures(reports) -> dict:
@@ -44,11 +59,13 @@ def _figures(reports) -> dict:
 
     job, sheet, material = first("job"), first("sheet"), first("material")
     figures = dict(job)
+    if job:  # the job's machine, as its report names it ("router job: ...")
+        figures["cutter"] = next(r.stats.get("cutter", "laser") for r in reports if "job" in r.stats)
     if sheet:
         figures.update(sheet_m2=sheet["sheet_m2"], sheet_cost=sheet["cost"])
     if material:
         figures.update(filament_mass_g=material["mass_g"], filament_length_m=material["length_m"],
-                       filament_cost=material["cost"])
+                       filament_cost=material["cost"], filament_line=material["line"])
     return figures
 
 

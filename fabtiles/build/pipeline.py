@@ -62,6 +62,11 @@ class BuildResult:
     models: list[tuple[str, Report]] = field(default_factory=list)
     """``(label, report)`` of each model the build made (``"laser laser-3mm-plywood"``,
     ``"printer fdm-0.4mm"``): each finding is in exactly one of them."""
+    replaced: list[str] = field(default_factory=list)
+    """The paths of :attr:`paths` that replaced a file already there (the rest are new)."""
+    earlier: list[str] = field(default_factory=list)
+    """Files of the same name in formats this build did not write (``table3-3.stl`` beside a
+    build of ``table3-3.dxf``): left from an earlier build, not rewritten."""
 
     @property
     def findings(self) -> int:
@@ -178,6 +183,8 @@ def write_files(models: Models, formats, outdir, name: str, *, file_name: str | 
     with StagingFolder(outdir) as (staging, final):
         staged = [atomic_write(staging / fname, data) for fname, data in contents]
         picture = atomic_write(staging / f"{name}{PREVIEW_SUFFIX}", preview_svg) if preview_svg is not None else None
+        # asked just before the moves: which files of this build are already there
+        replaced = [str(Path(outdir) / p.name) for p in staged if (Path(outdir) / p.name).exists()]
         paths = [str(final(Path(p))) for p in staged]
         picture = str(final(picture)) if picture is not None else None
     material = next((r.stats["material"] for r in reports if "material" in r.stats), None)
@@ -188,7 +195,23 @@ def write_files(models: Models, formats, outdir, name: str, *, file_name: str | 
         report.path = str(folder / report.path)
         if "files" in report.stats:
             report.stats["files"] = [str(folder / n) for n in report.stats["files"]]
-    return BuildResult(reports, (), picture, paths, models.reports())
+    return BuildResult(reports, (), picture, paths, models.reports(), replaced)
+
+
+def earlier_files(outdir, name: str, written) -> list[str]:
+    """Files in ``outdir`` named as a build of ``name`` names its files, in formats (or kit files) not in ``written``.
+
+    A build writes only the formats asked for; a file of another format with the same
+    name stays from an earlier build, perhaps of other values (``table3-3.stl`` of a
+    150 mm tile beside a ``table3-3.dxf`` just built at 200 mm).
+    """
+    from ..export.formats import FILE_FORMATS
+    from ..export.kit import KIT_FILES
+
+    folder = Path(outdir)
+    written = {Path(p).name for p in written}
+    names = [f"{name}{suffix}.{fmt}" for fmt in FILE_FORMATS for suffix in ("", *(s for s, _ in KIT_FILES))]
+    return [str(folder / n) for n in names if n not in written and (folder / n).is_file()]
 
 
 def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: int | None = None,
@@ -260,6 +283,8 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
     name = f"{design.name}{SHEET_SUFFIX}" if layout is not None else design.name
     result = write_files(models, formats, outdir, name, file_name=file_name, preview_svg=picture)
     result.skipped = skipped
+    if file_name is None:  # -o FILE writes one file by its own name: no set of files to compare
+        result.earlier = earlier_files(outdir, name, result.paths)
     return result
 
 

@@ -17,11 +17,15 @@ import click
 from ..design import FORMATS
 
 
-def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, explain=None) -> list:
-    """Run ``jobs`` with a progress bar on a terminal; print each outcome and its findings, in order.
+def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, explain=None,
+                   verbose: bool = False) -> list:
+    """Run ``jobs`` with a progress bar on a terminal; print one line per outcome, in order.
 
-    ``labels`` adds a text to a job's key in the report (a sweep's varied values);
-    ``explain(outcome)`` words a failure (default: its message).
+    The line is the status, the key, the files and the findings per machine
+    (``ok     samples/table3-3.toml: 5 files, laser 0, printer 1 warning``); with
+    ``verbose``, each finding follows on a line of its own. ``labels`` adds a text to
+    a job's key in the report (a sweep's varied values); ``explain(outcome)`` words a
+    failure (default: its message).
     """
     from ..jobs import run_jobs
 
@@ -38,7 +42,7 @@ def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, e
         name = f"{o.key} ({labels[o.key]})" if o.key in labels else o.key
         if o.ok:
             click.echo(f"ok     {name}: {o.message}")
-            for line in o.findings:
+            for line in o.findings if verbose else ():
                 click.echo(f"         - {line}")
         else:
             click.echo(f"FAILED {name}: {explain(o) if explain else o.message}", err=True)
@@ -59,10 +63,13 @@ def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, e
               help="Override a value in every design, TOML syntax (repeatable).")
 @click.option("--format", "formats", multiple=True, type=click.Choice(FORMATS),
               help="Output format (repeatable); default: each design's [output] formats.")
-def command(design_files, outdir, jobs, scheduler, overrides, formats):
+@click.option("-v", "--verbose", is_flag=True, help="List each design's fabrication findings under its line.")
+def command(design_files, outdir, jobs, scheduler, overrides, formats, verbose):
     """Build many designs in parallel; a failing design is reported and skipped.
 
-    Each design's fabrication findings are listed under it.
+    One line per design: its status, files and the findings of each machine
+    (ok     samples/table3-3.toml: 5 files, laser 0, printer 1 warning); with -v,
+    each finding under it.
 
     \b
     fabtiles batch samples/*.toml -o out/ --jobs 2
@@ -83,7 +90,7 @@ def command(design_files, outdir, jobs, scheduler, overrides, formats):
     work = [Job(f, functools.partial(load_design, f, overrides=tuple(overrides)), str(outdir), tuple(formats))
             for f in design_files]
     outcomes = run_and_report(work, workers=jobs or os.cpu_count() or 1, scheduler=scheduler,
-                              label="building", keys=design_files)
+                              label="building", keys=design_files, verbose=verbose)
     failed = [o for o in outcomes if not o.ok]
     click.echo(f"{len(outcomes) - len(failed)} of {len(outcomes)} designs built"
                + (f", {len(failed)} failed" if failed else ""))

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import click
 
-from ..design import FORMATS, load_design
+from ..design import FORMATS, load_design, override_notes
 
 
 def single_file_target(output, formats):
@@ -65,7 +65,10 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
     """Build a design file into laser/print/CAD files.
 
     Writes OUTDIR/<design name>.<format> for each format, all or nothing: on an
-    error (exit status 2) no file is written or changed.
+    error (exit status 2) no file is written or changed. Each file is reported as
+    "wrote" (new) or "replaced" (it was there); each --set as what it changed; and
+    files of the design's name in formats this build did not write are named, as
+    left from an earlier build.
 
     With --sheet or --copies N, the laser formats (dxf, svg) are written as one
     sheet of the laser profile's bed size (e.g. 600 x 400 mm), copies of the tile
@@ -95,12 +98,23 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
         outdir, formats, file_name = target[0].parent, (target[1],), target[0].name
     result = build_design(design, outdir, formats or None, sheet=sheet, copies=copies, gap_mm=gap_mm,
                           file_name=file_name)
+    for line in override_notes(design_file, overrides):  # what this build changed from the file
+        click.echo(f"fabtiles: note: {line}", err=True)
+    replaced = set(result.replaced)
     for report in result.reports:  # the files, then each model's figures and findings once
         for path in report.stats.get("files", [report.path]):
-            click.echo(f"wrote {path} ({report.format})")
+            click.echo(f"{'replaced' if str(path) in replaced else 'wrote'} {path} ({report.format})")
     for label, report in result.models:
         click.echo(report.summary(label))
     skipped = result.skipped
     if skipped:
         click.echo(f"fabtiles: note: skipped {', '.join(skipped)}: a sheet is laid out for the laser "
                    f"formats (dxf, svg) only", err=True)
+    if result.earlier:
+        one = len(result.earlier) == 1
+        it = "it" if one else "them"
+        others = " ".join(f"--format {f}" for f in dict.fromkeys(Path(p).suffix[1:] for p in result.earlier))
+        click.echo(f"fabtiles: note: {', '.join(result.earlier)} {'is' if one else 'are'} from an earlier build and "
+                   f"{'was' if one else 'were'} not rewritten (this build wrote "
+                   f"{', '.join(r.format for r in result.reports)}); add {others} to rebuild {it}, or delete {it}",
+                   err=True)

@@ -70,10 +70,13 @@ def command(design_file, output, overrides, deep):
     if output is not None and Path(output).suffix.lower() != ".svg":
         raise ParameterError(f"the overlay (-o) must be an .svg file, got {output!r}")
     design = load_design(design_file, overrides=overrides)
+    from ..design import profile_of
+
+    cutter = profile_of(design, "laser").kind  # an unknown profile is refused before any geometry
+    profile_of(design, "printer")
     tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
     result = check_design(design, tile, job=True)
     out = design.output
-    cutter = fabtiles.load_profile(out.laser_profile or DEFAULT_LASER_PROFILE, kind="laser").kind
     laser = f"{cutter} profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
     if result.filled_holes:
         laser += f" ({result.filled_holes:,} small holes filled)"

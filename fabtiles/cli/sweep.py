@@ -30,7 +30,9 @@ from ..design import FORMATS
 @click.option("--scheduler", metavar="ADDRESS",
               help="Run every variant as a task on a Dask cluster (e.g. tcp://10.0.0.5:8786); needs the dask extra.")
 @click.option("--yes", is_flag=True, help="Build more than 10,000 variants.")
-def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, yes):
+@click.option("-v", "--verbose", is_flag=True,
+              help="List each variant's fabrication findings under its line (index.html and index.csv hold them).")
+def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, yes, verbose):
     """Build every combination of the varied values; a failing variant is reported and skipped.
 
     Writes OUTDIR/<design name>-001.<format>, ... for each variant, a picture of
@@ -57,7 +59,7 @@ def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, ye
     by_name = {v.name: v for v in todo}
     outcomes = run_and_report(work, workers=jobs or os.cpu_count() or 1, scheduler=scheduler,
                               label="sweeping", keys=[v.name for v in todo], labels={v.name: v.label() for v in todo},
-                              explain=lambda o: explain(o, by_name[o.key]))
+                              explain=lambda o: explain(o, by_name[o.key]), verbose=verbose)
     csv_path, html_path = write_index(outdir, parsed, todo, outcomes)
     failed = [o for o in outcomes if not o.ok]
     click.echo(f"{len(outcomes) - len(failed)} of {len(outcomes)} variants built"

@@ -31,7 +31,7 @@ import shapely
 from .._cutters import cutter_kind
 from .._errors import ParameterError
 from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, Layer, load_profile
-from .._report import Report
+from .._report import Report, distinct
 from .._validate import check_choice, check_float
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate as job_estimate
@@ -223,9 +223,9 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
         stroke = check_float("stroke", stroke, low=0, low_open=True)
         if stroke < profile.min_feature_mm:
             raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of {profile.kind} "
-                                 f"profile {profile.name!r}, got {stroke:g}", param="stroke")
+                                 f"profile {profile.name!r}, got {distinct(stroke, profile.min_feature_mm)}", param="stroke")
         if max(kerf, kerf_y) > stroke:
-            raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {max(kerf, kerf_y):g}",
+            raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {distinct(max(kerf, kerf_y), stroke)}",
                                  param="kerf_mm")
     if not isinstance(fill_small_holes, bool):
         raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}",

@@ -36,6 +36,7 @@ import numpy as np
 import shapely
 
 from .._errors import FabricationError, ParameterError
+from .._report import distinct
 from .._schema import key
 from .contours import MITRE_LIMIT, polygon_parts
 
@@ -118,8 +119,8 @@ def _check_apart(pieces, holes, fit: float, kerf: float) -> None:
         where = shapely.get_coordinates(shapely.shortest_line(holes[a[pair][k]], holes[b[pair][k]])).mean(axis=0)
         raise FabricationError(
             f"{int(pair.sum())} pairs of inlay pieces would touch on the pieces sheet: the narrowest band between "
-            f"two pieces is {gaps[k]:.3g} mm (at ({where[0]:.4g}, {where[1]:.4g})), and bands must be wider than "
-            f"kerf + 2 x fit = {kerf + 2 * fit:.3g} mm; make the stroke wider or inlay_fit_mm smaller")
+            f"two pieces is {distinct(gaps[k], kerf + 2 * fit)} mm (at ({where[0]:.4g}, {where[1]:.4g})), and bands "
+            f"must be wider than kerf + 2 x fit = {kerf + 2 * fit:g} mm; make the stroke wider or inlay_fit_mm smaller")
 
 
 def shape_key(poly, decimals: int = 3) -> tuple:

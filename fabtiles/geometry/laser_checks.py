@@ -92,7 +92,7 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
         small = small_hole_mask(holes, profile.min_hole_mm)
         if small.any():
             add_small_holes(report, holes[small], tolerance_mm=profile.tolerance_mm, message=lambda n, w: (
-                f"{n} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
+                f"{n:,} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
                 f"(narrowest {distinct(w, profile.min_hole_mm)} mm; they burn away or char shut; fill them with "
                 "fill_small_holes=True, or fill_small_holes = true in a design's [output])"))
 
@@ -103,7 +103,7 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
     if count:
         extra = f"; the stroke is {stroke:g} mm" if stroke is not None else ""
         report.add("thin_bridge",
-                   f"{count} bridge{'s' if count > 1 else ''} narrower than min_feature_mm = {f:g} mm "
+                   f"{count:,} bridge{'s' if count > 1 else ''} narrower than min_feature_mm = {f:g} mm "
                    f"(narrowest {distinct(width, f)} mm{extra}): they may burn through or break",
                    count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
                    worst=round(width, 3))

@@ -448,7 +448,7 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
         if stroke is not None and stroke < wall * (1 - 1e-9):
             # the whole pattern is thin; the places come from the geometry, for the overlay
             report.add("thin_wall",
-                       f"the stroke is {stroke:g} mm, narrower than min_wall_mm = {wall:g} mm "
+                       f"the stroke is {distinct(stroke, wall)} mm, narrower than min_wall_mm = {wall:g} mm "
                        f"(about two line widths of the {profile.nozzle_mm:g} mm nozzle): walls print thin or not at all",
                        count=max(count, 1), locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
                        worst=round(min(stroke, narrowest), 3))

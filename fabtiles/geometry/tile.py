@@ -15,6 +15,7 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from .._errors import ParameterError
+from .._report import distinct
 from .._validate import check_choice, check_float
 from ..pattern.archimedean import ArchimedeanPacking
 from ..pattern.packing import Packing
@@ -152,7 +153,7 @@ class TileGeometry:
                        else (pattern.radius, "the packing radius"))
         if self._stroke > limit:
             raise ParameterError(
-                f"stroke must be > 0 and <= {limit:g} mm ({what}), got {self._stroke:g}", param="stroke")
+                f"stroke must be > 0 and <= {limit:g} mm ({what}), got {distinct(self._stroke, limit)}", param="stroke")
         self._interlace = _check_bool("interlace", interlace)
         self._interlace_cut = _check_bool("interlace_cut", interlace_cut)
         self._interlace_gap = (None if interlace_gap_mm is None

@@ -271,8 +271,9 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
         _, widths = hole_widths(made.vanished_holes, tolerance_mm=profile.tolerance_mm)
         raise ParameterError(
             f"{key} = {2 * r:g} mm of {profile.kind} profile {profile.name!r} is wider than every hole of the "
-            f"design (the widest is {widths.max():.3g} mm): the tool can cut none of its {made.holes:,} holes; "
-            f"use a tool narrower than {widths.max():.3g} mm, or a larger packing radius or thinner stroke",
+            f"design (the widest is {distinct(widths.max(), 2 * r)} mm): the tool can cut none of its {made.holes:,} "
+            f"holes; use a tool narrower than {distinct(widths.max(), 2 * r)} mm, or a larger packing radius or "
+            "thinner stroke",
             param=key)
     filled = 0
     if made.vanished:
@@ -287,7 +288,7 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
         n = len(made.corners)
         report.add("rounded_corner",
                    f"{n:,} corner{'s' if n > 1 else ''} rounded to the tool's radius r = {r:g} mm by "
-                   f"{cutter.tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm (up to {made.moved.max():.3g} "
+                   f"{cutter.tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm (up to {distinct(made.moved.max(), VISIBLE_MM)} "
                    "mm); the file holds the rounded part",
                    count=n, locations=locations(made.corners), sizes=made.moved[:MAX_LOCATIONS].round(3),
                    worst=round(float(made.moved.max()), 3))

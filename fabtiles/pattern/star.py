@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._errors import ParameterError
+from .._errors import ParameterError, did_you_mean
 from .._validate import check_float, check_float_seq, check_int
 from .presets import PRESETS
 
@@ -93,14 +93,16 @@ class Star:
 
         >>> Star.preset("table1-part1").n
         8
-        >>> Star.preset("table9")
+        >>> Star.preset("table3-33")
         Traceback (most recent call last):
         ...
-        fabtiles._errors.ParameterError: 'table9' is not a valid preset, must be one of: table1-part1, table1-part2, table2-left, table2-right, table3-1, table3-2, table3-3
+        fabtiles._errors.ParameterError: preset 'table3-33' is unknown; did you mean 'table3-3'? (presets: table1-part1, table1-part2, table2-left, table2-right, table3-1, table3-2, table3-3; `fabtiles presets` lists them)
         """
         if not isinstance(name, str) or name not in PRESETS:
+            hint = did_you_mean(name, PRESETS)
             raise ParameterError(
-                f"{name!r} is not a valid preset, must be one of: {', '.join(PRESETS)}", param="preset"
+                f"preset {name!r} is unknown{'; ' + hint if hint else ''} (presets: {', '.join(PRESETS)}; "
+                "`fabtiles presets` lists them)", param="preset"
             )
         return cls(**PRESETS[name], rotation=rotation)
 

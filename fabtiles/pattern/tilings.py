@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._errors import ParameterError
+from .._errors import ParameterError, did_you_mean
 
 S3 = math.sqrt(3.0)
 
@@ -88,15 +88,16 @@ def canonical(tiling) -> str:
     >>> canonical("5.5.5")
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: '5.5.5' is not a valid tiling, must be one of: 3.3.3.3.3.3, 4.4.4.4, 6.6.6, 3.6.3.6, 3.12.12, 4.6.12, 4.8.8, 3.3.3.3.6, 3.3.3.4.4, 3.3.4.3.4, 3.4.6.4 (exponent forms such as 3^4.6 also work)
+    fabtiles._errors.ParameterError: tiling '5.5.5' is unknown (tilings: 3.3.3.3.3.3, 4.4.4.4, 6.6.6, 3.6.3.6, 3.12.12, 4.6.12, 4.8.8, 3.3.3.3.6, 3.3.3.4.4, 3.3.4.3.4, 3.4.6.4; exponent forms such as 3^4.6 also work)
     """
     try:
         name = _FORMS.get(_expand(tiling)) if isinstance(tiling, str) else None
     except ValueError:
         name = None
     if name is None:
-        raise ParameterError(f"{tiling!r} is not a valid tiling, must be one of: {', '.join(TILINGS)} "
-                             f"(exponent forms such as 3^4.6 also work)", param="tiling")
+        hint = did_you_mean(tiling, TILINGS)
+        raise ParameterError(f"tiling {tiling!r} is unknown{'; ' + hint if hint else ''} (tilings: "
+                             f"{', '.join(TILINGS)}; exponent forms such as 3^4.6 also work)", param="tiling")
     return name
 
 

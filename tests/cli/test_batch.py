@@ -54,14 +54,24 @@ def test_batch_refuses_clashing_names(tmp_path):
     assert not (tmp_path / "out").exists()
 
 
-def test_batch_prints_each_designs_findings(tmp_path):
-    proc = run_batch(SAMPLES / "table3-3.toml", SAMPLES / "rosette.toml", "-o", tmp_path, "--format", "dxf",
-                     "--set", "output.fill_small_holes=false", "--jobs", "1")
+def test_batch_prints_one_line_per_design_and_the_findings_with_verbose(tmp_path):
+    args = (SAMPLES / "table3-3.toml", SAMPLES / "rosette.toml", "-o", tmp_path, "--format", "dxf", "--format", "svg",
+            "--format", "stl", "--set", "output.fill_small_holes=false", "--jobs", "1")
+    proc = run_batch(*args)
+    assert proc.returncode == 0, proc.stderr
+    # one line per design: its files and each machine's findings, once whatever the formats
+    assert proc.stdout.splitlines() == [
+        f"ok     {SAMPLES / 'table3-3.toml'}: 3 files, laser 1 warning, printer 1 warning",
+        f"ok     {SAMPLES / 'rosette.toml'}: 3 files, laser 1 warning, printer 0",
+        "2 of 2 designs built"]
+    proc = run_batch(*args, "-v")
     assert proc.returncode == 0, proc.stderr
     lines = proc.stdout.splitlines()
-    head = [k for k, line in enumerate(lines) if line.startswith(f"ok     {SAMPLES / 'table3-3.toml'}: 1 file, ")]
-    assert head, proc.stdout
-    assert lines[head[0] + 1].startswith("         - laser laser-3mm-plywood: small_hole: ")
+    head = lines.index(f"ok     {SAMPLES / 'table3-3.toml'}: 3 files, laser 1 warning, printer 1 warning")
+    assert lines[head + 1].startswith("         - laser laser-3mm-plywood: small_hole: ")
+    assert lines[head + 2].startswith("         - printer fdm-0.4mm: small_hole: ")
+    assert lines[head + 3].startswith("ok     ")
+    assert sum("small_hole" in line for line in lines) == 3  # each finding once, not once per format
 
 
 def test_batch_bad_set_names_the_option(tmp_path):

@@ -174,3 +174,64 @@ def test_design_heights_reach_the_mesh(design, tmp_path):
     assert res.exit_code == 2
     assert "deboss_mm must be smaller than base_mm (the plate is 2 mm thick), got 2.5" in res.output
     assert not (tmp_path / "d").exists()
+
+
+def test_a_build_says_which_files_it_replaced(design, tmp_path):
+    out = tmp_path / "out"
+    first = run("build", design, "-o", out, "--format", "svg")
+    assert first.exit_code == 0, first.output
+    assert f"wrote {out / 'small.svg'} (svg)" in first.stdout and "replaced" not in first.stdout
+    second = run("build", design, "-o", out, "--format", "svg", "--format", "dxf")
+    assert second.exit_code == 0, second.output
+    lines = second.stdout.splitlines()
+    assert f"replaced {out / 'small.svg'} (svg)" in lines and f"wrote {out / 'small.dxf'} (dxf)" in lines
+
+
+def test_set_says_what_it_changed(design, tmp_path):
+    result = run("build", design, "-o", tmp_path / "out", "--set", "tile.size=[80,80]", "--set", "tile.stroke=1.0",
+                 "--set", "tile.join=round", "--set", "packing.radius=9")
+    assert result.exit_code == 0, result.output
+    notes = [line for line in result.stderr.splitlines() if line.startswith("fabtiles: note: --set ")]
+    assert notes == ["fabtiles: note: --set tile.size=[80,80] (was 60)",
+                     "fabtiles: note: --set tile.stroke=1.0 (as the file has it)",
+                     'fabtiles: note: --set tile.join=round (not in the file: the default was "miter")',
+                     "fabtiles: note: --set packing.radius=9 (was 8)"]
+    plain = run("build", design, "-o", tmp_path / "plain")
+    assert plain.exit_code == 0 and "--set" not in plain.stderr
+
+
+def test_files_of_other_formats_left_from_an_earlier_build_are_named(tmp_path):
+    """The issue's case: a 200 mm DXF built beside the 150 mm STL and 3MF of the same name."""
+    sample = ROOT / "samples" / "table3-3.toml"
+    out = tmp_path / "out"
+    out.mkdir()
+    for name in ("table3-3.stl", "table3-3.3mf", "table3-3-lattice.svg", "other.stl"):
+        (out / name).write_text("from an earlier build")
+    result = run("build", sample, "-o", out, "--set", "tile.size=[200,200]", "--format", "dxf")
+    assert result.exit_code == 0, result.output
+    assert "fabtiles: note: --set tile.size=[200,200] (was [150, 150])" in result.stderr
+    earlier = ", ".join(str(out / n) for n in ("table3-3-lattice.svg", "table3-3.stl", "table3-3.3mf"))
+    assert (f"fabtiles: note: {earlier} are from an earlier build and were not rewritten (this build wrote dxf); "
+            f"add --format svg --format stl --format 3mf to rebuild them, or delete them") in result.stderr
+    assert (out / "table3-3.stl").read_text() == "from an earlier build"
+    # one file left, and a build of every format it has: no note
+    (out / "table3-3.3mf").unlink()
+    (out / "table3-3-lattice.svg").unlink()
+    result = run("build", sample, "-o", out, "--format", "dxf")
+    assert "is from an earlier build and was not rewritten" in result.stderr and "add --format stl" in result.stderr
+    result = run("build", sample, "-o", out, "--format", "dxf", "--format", "stl")
+    assert "earlier build" not in result.stderr
+    assert f"replaced {out / 'table3-3.stl'} (stl)" in result.stdout
+
+
+def test_build_result_lists_replaced_and_earlier_files(tmp_path):
+    from fabtiles.build import build_design
+    from fabtiles.design import design_from_text
+
+    d = design_from_text(SMALL, name="small")
+    first = build_design(d, tmp_path, ["svg", "dxf"])
+    assert first.replaced == [] and first.earlier == []
+    again = build_design(d, tmp_path, ["svg"])
+    assert again.replaced == [str(tmp_path / "small.svg")] and again.earlier == [str(tmp_path / "small.dxf")]
+    one = build_design(d, tmp_path, ["svg"], file_name="small.svg")
+    assert one.replaced == [str(tmp_path / "small.svg")] and one.earlier == []

@@ -55,7 +55,7 @@ def test_presets_lists_every_preset():
         (["--n", "8", "--radii", "1,-2"], "radii[1] must be a finite number > 0, got -2"),
         (["--n", "8", "--radii", "1,nan"], "radii[1] must be a finite number > 0, got nan"),
         (["--n", "8", "--radii", "1,2", "--special", "3"], "special must be an integer >= 2 and <= 2, got 3"),
-        (["--preset", "nope"], "'nope' is not a valid preset, must be one of: table1-part1"),
+        (["--preset", "nope"], "preset 'nope' is unknown (presets: table1-part1"),
     ],
 )
 def test_bad_input_is_one_line_exit_2_no_file(tmp_path, args, message):

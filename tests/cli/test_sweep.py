@@ -68,6 +68,29 @@ def test_sweep_lists_findings_in_the_sheet(tmp_path):
     assert "laser laser-3mm-plywood: small_hole:" in page and "no findings" in page
 
 
+def test_the_contact_sheet_shows_each_variants_cut_job_and_filament(design, tmp_path):
+    out = tmp_path / "s"
+    res = run("sweep", design, "--vary", "packing.radius=6,8", "--format", "dxf", "--format", "stl", "-o", out,
+              "--jobs", "1")
+    assert res.exit_code == 0, res.output
+    rows = {r["variant"]: r for r in csv.DictReader((out / "index.csv").open())}
+    page = (out / "index.html").read_text()
+    for name, row in rows.items():
+        card = page[page.index(f'<figure class="ok" id="{name}">'):]
+        card = card[:card.index("</figure>")]
+        # under the picture: the laser job (its time) and the filament, as the CSV has them
+        job = re.search(r"<div>laser job: ([\d.]+) m of cut, ([\d,]+) pierces, about (\d+) min</div>", card)
+        assert job, card
+        assert float(job[1]) == pytest.approx(float(row["cut_length_mm"]) / 1000, abs=0.051)
+        assert int(job[2].replace(",", "")) == int(row["pierces"])
+        assert int(job[3]) == pytest.approx(float(row["laser_time_s"]) / 60, abs=1)
+        filament = re.search(r"<div>print: ([\d.]+) g of filament, ([\d.]+) m</div>", card)
+        assert filament, card
+        assert float(filament[1]) == pytest.approx(float(row["filament_g"]), rel=0.01)
+        assert float(filament[2]) == pytest.approx(float(row["filament_m"]), rel=0.01)
+        assert card.index('class="figures"') > card.index("<img")
+
+
 @pytest.mark.parametrize("args, match", [
     (["--vary", "tile.sise=1,2"], r"unknown key 'sise' in \[tile\]; did you mean 'size'\?"),
     (["--vary", "packing.radius=8:1:0"], r"n in a:b:n must be a whole number >= 1, got 0"),

@@ -44,7 +44,7 @@ def test_build_an_archimedean_design(tmp_path):
 
 
 @pytest.mark.parametrize("override, match", [
-    ('packing.tiling="3.3.3"', "'3.3.3' is not a valid tiling, must be one of: 3.3.3.3.3.3, 4.4.4.4"),
+    ('packing.tiling="3.3.3"', "[packing] tiling '3.3.3' is unknown; did you mean '3.3.4.3.4'? (tilings: 3.3.3.3.3.3, 4.4.4.4"),
     ("packing.edge=-1", "edge must be a finite number > 0, got -1"),
     ("packing.motifs.8=table3-3", "motifs key 8 is not a polygon of the tiling 3.4.6.4, must be one of: 3, 4, 6"),
     ("packing.edge=0.05", "stroke must be > 0 and <= 0.0144338 mm (the packing radius), got 1"),

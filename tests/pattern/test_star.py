@@ -256,7 +256,8 @@ def test_bad_parameters_name_the_parameter_and_range(kwargs, match):
 
 
 def test_unknown_preset_lists_the_valid_ones():
-    with pytest.raises(ft.ParameterError, match=r"'table4' is not a valid preset, must be one of: table1-part1, "):
+    with pytest.raises(ft.ParameterError, match=r"preset 'table4' is unknown; did you mean 'table3-3'\? "
+                                             r"\(presets: table1-part1, "):
         ft.Star.preset("table4")
 
 

@@ -139,7 +139,7 @@ BAD = [
     ("spr=inf", "spr", "spr must be a finite number"),
     ("special=9", "special", "special must be an integer >= 2 and <= 3"),
     ("rotation=x", "rotation", "rotation must be a number"),
-    ("preset=table9", "preset", "'table9' is not a valid preset"),
+    ("preset=table9", "preset", "preset 'table9' is unknown"),
     ("packing=triangle", "packing", "triangle"),
     ("radius=-1", "radius", "radius must be"),
     ("fill=0", "fill", "fill"),

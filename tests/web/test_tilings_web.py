@@ -45,9 +45,9 @@ def test_api_tilings_and_preview(client):
 
 
 @pytest.mark.parametrize("params, field, match", [
-    ({"tiling": "5.5.5"}, "tiling", "'5.5.5' is not a valid tiling"),
+    ({"tiling": "5.5.5"}, "tiling", "tiling '5.5.5' is unknown"),
     ({"motif_6": "table3-3"}, "motif_6", "motifs key 6 is not a polygon of the tiling 4.8.8"),
-    ({"motif_8": "nope"}, "motif_8", "'nope' is not a valid preset"),
+    ({"motif_8": "nope"}, "motif_8", "preset 'nope' is unknown"),
     ({"edge": "-2"}, "edge", "edge must be a finite number > 0"),
 ])
 def test_api_errors_name_the_field(client, params, field, match):
