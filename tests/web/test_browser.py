@@ -160,4 +160,4 @@ def test_the_inlay_kit_mode_shows_the_kit(page, server):
     assert page.is_visible("#kit-box") and "laser_mode=inlay" in page.url
     with page.expect_download() as info:
         page.click("#downloads a[data-format=dxf]")
-    assert info.value.suggested_filename == "fabtiles-tile-kit-dxf.zip"
+    assert info.value.suggested_filename == "table3-3-kit-dxf.zip"
