@@ -271,9 +271,9 @@ function downloads(valid) {
 }
 
 async function refresh() {
-  const q = query(), mine = ++seq, label = designLabel();
-  if (label !== EDITED && origin.gallery) q.set("gallery", label);  // a shared link still names the entry
-  history.replaceState(null, "", `?${q}`);
+  const q = query(), mine = ++seq, label = designLabel(), page = new URLSearchParams(q);
+  if (label !== EDITED && origin.gallery) page.set("gallery", label);  // a shared link still names the entry
+  history.replaceState(null, "", `?${page}`);
   downloads(false);  // until the server says the design is good
   const res = await fetch(`/api/preview.svg?${q}${showFindings ? "&findings=true" : ""}`);
   if (mine !== seq) return;
