@@ -105,8 +105,11 @@ class Widget:
     """The web form's control of a key.
 
     ``kind`` is one of :data:`WIDGETS`; a slider's ``min``/``max`` are the slider's
-    travel (the number box beside it takes the key's whole range); ``group`` is the
-    form's box that holds it; ``label`` its caption.
+    travel (the number box beside it takes the key's whole range; a list of numbers
+    gets a slider per number); ``group`` is the form's box that holds it; ``label`` its
+    caption. ``when`` says where the control applies: ``(("outline", ("rectangle",)),)``
+    shows it only while the form's ``outline`` is ``rectangle`` (every pair must hold;
+    booleans are ``"true"``/``"false"``); empty, always.
     """
 
     kind: str
@@ -120,6 +123,8 @@ class Widget:
     """A select's captions of some of its values: ``(("inlay", "inlay kit"),)``."""
     extra: tuple[tuple[str, str], ...] = ()
     """A select's values the web adds to the key's own (``packing=none``), with their captions."""
+    when: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    """The form's parameters and values under which the control applies (empty: always)."""
 
     def __post_init__(self):
         if self.kind not in WIDGETS:
@@ -127,6 +132,11 @@ class Widget:
                                  param="kind")
         if self.kind == "slider" and (self.min is None or self.max is None or self.step is None):
             raise ParameterError("a slider needs min, max and step", param="kind")
+        for pair in self.when:
+            if not (isinstance(pair, tuple) and len(pair) == 2 and isinstance(pair[0], str)
+                    and isinstance(pair[1], tuple) and pair[1] and all(isinstance(v, str) for v in pair[1])):
+                raise ParameterError(f"a widget's when must hold (parameter, (value, ...)) pairs, got {pair!r}",
+                                     param="when")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -259,6 +269,10 @@ GAP_MOTIF = {"n": 6, "radii": (0.5, 1.0)}
 """The gap circles' motif when a packing names none (a table of motif keys)."""
 
 
+PACKED = ("packing", ("hex", "square", "archimedean"))
+"""The form's condition of a packing's controls: a packing there is (not ``packing=none``)."""
+
+
 def _motif_keys(section: str) -> tuple[Key, ...]:
     """The keys of a motif table: ``[motif]``, and the ``gap_motif`` and ``[packing.motifs]`` tables' entries."""
     star = "fabtiles.pattern.star.Star"
@@ -270,7 +284,10 @@ def _motif_keys(section: str) -> tuple[Key, ...]:
             checked_by=star, widget=Widget(kind="slider", label="n (points)", min=3, max=48, step=1,
                                            group="motif-sliders")),
         Key(section=section, name="radii", type="numbers", range=Range(0, None, min_open=True),
-            note="2 to 24 numbers > 0", help="the circles' radii", checked_by=star),
+            note="2 to 24 numbers > 0", help="the circles' radii", checked_by=star,
+            # only the radii's ratios count (the motif is scaled to its circle): the gallery's tilings give
+            # 0.5 and 1, the presets up to 226, so the travel holds both
+            widget=Widget(kind="slider", label="r", min=0.05, max=400, step=0.05, group="radii-sliders")),
         Key(section=section, name="alpha", help="offset of the special points", **angle,
             widget=Widget(kind="slider", label="alpha (deg)", min=-90, max=90, step=0.5, group="motif-sliders")),
         Key(section=section, name="spr", type="number", help="the special points lie at `r(special) - spr`",
@@ -289,16 +306,20 @@ MOTIF = _motif_keys("motif")
 
 _TILE = "fabtiles.geometry.tile.TileGeometry"
 _ARCH = 'kind = "archimedean"'
-_INLAY = 'laser_mode = "inlay"'
+_INLAY_WHEN = (("laser_mode", ("inlay",)),)
+_INLAY = '{} = "{}"'.format(_INLAY_WHEN[0][0], _INLAY_WHEN[0][1][0])  # the manual's words for the same
+_HEX_SQUARE = (("packing", ("hex", "square")),)
 _PACKING = "fabtiles.pattern.packing"
 _HEIGHT_RANGE = Range(0, 1000, min_open=True)
 _PRINT = ("print",)
 
 
-def _height(name: str, label: str, what: str) -> Key:
+def _height(name: str, label: str, what: str, styles: tuple[str, ...]) -> Key:
+    """A print height, shown on the form for the print ``styles`` that have it."""
     return Key(section="output", name=name, type="number", unit="mm", range=_HEIGHT_RANGE,
                default_text="the profile's", help=f"print height: {what}, overriding the printer profile's",
-               widget=Widget(kind="number", label=label, min=0, step=0.1, placeholder="profile"),
+               widget=Widget(kind="number", label=label, min=0, step=0.1, placeholder="profile",
+                             when=(("print_style", styles),)),
                option=BuildOption(name=name, families=_PRINT))
 
 
@@ -311,9 +332,11 @@ KEYS: tuple[Key, ...] = MOTIF + (
                       extra=(("none", "none: one motif"),))),
     Key(section="packing", name="radius", type="number", unit="mm", range=Range(0, None, min_open=True),
         default=12.5, help="radius of the big circles (hex, square)", checked_by=_PACKING,
-        widget=Widget(kind="slider", label="radius R (mm)", min=3, max=100, step=0.5, group="packing-sliders")),
+        widget=Widget(kind="slider", label="radius R (mm)", min=3, max=100, step=0.5, group="packing-sliders",
+                      when=_HEX_SQUARE)),
     Key(section="packing", name="outline_circles", type="boolean", default=False,
-        help="also stroke the packing circles", widget=Widget(kind="checkbox", label="Outline circles")),
+        help="also stroke the packing circles", widget=Widget(kind="checkbox", label="Outline circles",
+                                                                when=(PACKED,))),
     Key(section="packing", name="fill", type="number", range=Range(0, 1, min_open=True), default=1.0,
         help="motif extent / circle radius", checked_by=_PACKING),
     Key(section="packing", name="gap_motif", type="motif", default=GAP_MOTIF, default_text="`{ n = 6, radii = [0.5, 1.0] }`",
@@ -322,7 +345,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
              "`gap_` parameters"),
     Key(section="packing", name="seamless", type="boolean", default=False,
         help="fit the radius (and a rectangle's height) so the tile repeats seamlessly",
-        widget=Widget(kind="checkbox", label="Seamless")),
+        widget=Widget(kind="checkbox", label="Seamless", when=(PACKED,))),
     Key(section="packing", name="tiling", type="choice", choices="fabtiles.pattern.tilings:TILINGS",
         requires=_ARCH, checked_by="fabtiles.pattern.tilings.unit_cell",
         help="the vertex configuration, e.g. `\"4.8.8\"`",
@@ -330,7 +353,8 @@ KEYS: tuple[Key, ...] = MOTIF + (
     Key(section="packing", name="edge", type="number", unit="mm", range=Range(0, None, min_open=True),
         default=20.0, requires=_ARCH, help="the polygons' edge length (instead of `radius`)",
         checked_by="fabtiles.pattern.archimedean.ArchimedeanPacking",
-        widget=Widget(kind="slider", label="edge a (mm)", min=3, max=100, step=0.5, group="packing-sliders")),
+        widget=Widget(kind="slider", label="edge a (mm)", min=3, max=100, step=0.5, group="packing-sliders",
+                      when=(("packing", ("archimedean",)),))),
     Key(section="packing", name="motifs", type="motifs", query=None, requires=_ARCH,
         help="`[packing.motifs]`, a motif per polygon kind keyed by its sides "
              "(`8 = \"table3-3\"`, `4 = { n = 8, radii = [1, 2] }`); `[motif]` fills the kinds not listed; "
@@ -352,20 +376,24 @@ KEYS: tuple[Key, ...] = MOTIF + (
         help="`miter`, `round` or `bevel`", widget=Widget(kind="select", label="Join")),
     Key(section="tile", name="miter_limit", type="number", range=Range(1, None), default=4.0,
         help="in half stroke widths", checked_by=_TILE,
-        widget=Widget(kind="slider", label="miter limit", min=1, max=20, step=0.5, group="tile-sliders")),
+        widget=Widget(kind="slider", label="miter limit", min=1, max=20, step=0.5, group="tile-sliders",
+                      when=(("join", ("miter",)),))),
     Key(section="tile", name="corner_radius", type="number", unit="mm", range=Range(0, None), default=0.0,
         help="rounds the outline's corners (not a circle's)", checked_by=_TILE,
-        widget=Widget(kind="slider", label="corner r (mm)", min=0, max=30, step=0.5, group="tile-sliders")),
+        widget=Widget(kind="slider", label="corner r (mm)", min=0, max=30, step=0.5, group="tile-sliders",
+                      when=(("outline", ("square", "rectangle", "hexagon")),))),
     Key(section="tile", name="interlace", type="boolean", default=False,
         help="weave the strands over and under at every crossing ([interlace.md](interlace.md))",
         widget=Widget(kind="checkbox", label="Interlace")),
     Key(section="tile", name="interlace_gap_mm", type="number", unit="mm", range=Range(0, None),
         default_text="a third of the stroke", checked_by=_TILE,
         help="gap on each side of an over strand where the under strand passes",
-        widget=Widget(kind="number", label="Interlace gap (mm)", min=0, step=0.05, placeholder="stroke / 3")),
+        widget=Widget(kind="number", label="Interlace gap (mm)", min=0, step=0.05, placeholder="stroke / 3",
+                      when=(("interlace", ("true",)),))),
     Key(section="tile", name="interlace_cut", type="boolean", default=False,
         help="laser, pierced: cut the under gaps through, leaving tabs; otherwise they are scored or dipped",
-        widget=Widget(kind="checkbox", label="Cut the gaps")),
+        widget=Widget(kind="checkbox", label="Cut the gaps",
+                      when=(("interlace", ("true",)), ("laser_mode", ("pierced",))))),
     # [output]
     Key(section="output", name="formats", type="formats", default=("svg",), choices=("dxf", "svg", "lbrn2", "stl",
                                                                                      "3mf", "step"),
@@ -391,13 +419,13 @@ KEYS: tuple[Key, ...] = MOTIF + (
     Key(section="output", name="print_style", type="choice", choices="fabtiles._profiles:PRINT_STYLES",
         default_text="the profile's", help="`relief`, `pierced` or `deboss`",
         widget=Widget(kind="select", label="Print style"), option=BuildOption(name="style", families=_PRINT)),
-    _height("base_mm", "Base (mm)", "the plate under the bands"),
-    _height("relief_mm", "Relief (mm)", "the bands above the plate (relief)"),
-    _height("pierced_mm", "Pierced (mm)", "a pierced tile's thickness"),
-    _height("deboss_mm", "Deboss (mm)", "the grooves' depth (deboss)"),
+    _height("base_mm", "Base (mm)", "the plate under the bands", ("relief", "deboss")),
+    _height("relief_mm", "Relief (mm)", "the bands above the plate (relief)", ("relief",)),
+    _height("pierced_mm", "Pierced (mm)", "a pierced tile's thickness", ("pierced",)),
+    _height("deboss_mm", "Deboss (mm)", "the grooves' depth (deboss)", ("deboss",)),
     Key(section="output", name="name", type="string", default_text="the file's stem",
         help="the output files' name (a plain file name: letters, digits, `. _ -` and spaces)",
-        widget=Widget(kind="text", label="File name", placeholder="fabtiles-tile")),
+        widget=Widget(kind="text", label="File name", placeholder="the design's")),
     Key(section="output", name="fill_small_holes", type="boolean", default=False,
         help="fill what each machine cannot make instead of reporting it: in the cutter files the holes narrower "
              "than the cutter profile's `min_hole_mm` (a router's: those its bit cannot enter), in the print files "
@@ -408,7 +436,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
     Key(section="output", name="inlay", type="boolean", default=False,
         help="a deboss tile's 3MF gets a second part, `inlay`, filling the grooves flush (two-colour inlay "
              "print); needs `print_style = \"deboss\"`",
-        widget=Widget(kind="checkbox", label="Inlay part (deboss 3MF)"),
+        widget=Widget(kind="checkbox", label="Inlay part (deboss 3MF)", when=(("print_style", ("deboss",)),)),
         option=BuildOption(name="inlay", families=("3mf",))),
     Key(section="output", name="threemf_layout", type="choice", default="volumes", choices=("volumes", "components"),
         help="how the 3MF holds its parts: `\"volumes\"`, one object cut into named parts for PrusaSlicer, "
@@ -422,29 +450,34 @@ KEYS: tuple[Key, ...] = MOTIF + (
         requires=_INLAY, help="each piece is grown from its hole by this much; beyond half a "
              "millimetre a piece no longer fits its hole at all (see [inlay.md](inlay.md))",
         widget=Widget(kind="number", label="Inlay kit: fit (mm)", min=-0.5, max=0.5, step=0.05,
-                      placeholder="profile"),
+                      placeholder="profile", when=_INLAY_WHEN),
         option=BuildOption(name="inlay_fit_mm", families=("cut",))),
     Key(section="output", name="inlay_base", type="choice", default="pierced", choices=("pierced", "pocket"),
         requires=_INLAY, help="`\"pierced\"` (the lattice's holes cut through) or `\"pocket\"` "
              "(engraved as pockets on the engrave layer)",
         widget=Widget(kind="select", label="Inlay kit: lattice", labels=(("pierced", "holes cut through"),
-                                                                        ("pocket", "pockets engraved"))),
+                                                                        ("pocket", "pockets engraved")),
+                      when=_INLAY_WHEN),
         option=BuildOption(name="inlay_base", families=("cut",))),
 )
 """Every design key, section by section in the order of a design file."""
 
+_ROSETTE = (PACKED, ("gap_rosette", ("true",)))  # the page's gap rosette box: special circle 2
 GAP_WIDGETS = {
-    "n": Widget(kind="slider", label="gap n", min=3, max=24, step=1, group="packing-sliders"),
-    "rotation": Widget(kind="slider", label="gap rotation (deg)", min=-180, max=180, step=0.5, group="packing-sliders"),
-    "alpha": Widget(kind="slider", label="gap alpha (deg)", min=-90, max=90, step=0.5, group="packing-sliders"),
-    "spr": Widget(kind="slider", label="gap spr", min=-2, max=2, step=0.01, group="packing-sliders"),
+    "n": Widget(kind="slider", label="gap n", min=3, max=24, step=1, group="packing-sliders", when=(PACKED,)),
+    "rotation": Widget(kind="slider", label="gap rotation (deg)", min=-180, max=180, step=0.5, group="packing-sliders",
+                       when=(PACKED,)),
+    "alpha": Widget(kind="slider", label="gap alpha (deg)", min=-90, max=90, step=0.5, group="packing-sliders",
+                    when=_ROSETTE),
+    "spr": Widget(kind="slider", label="gap spr", min=-2, max=2, step=0.01, group="packing-sliders", when=_ROSETTE),
 }
 """The web form's controls of the gap motif's keys (``gap_n``, ...): its circles' radii are about 1, so its
 sliders travel less than the motif's."""
 
 SIZE_WIDGETS = {
     "width": Widget(kind="slider", label="width (mm)", min=20, max=600, step=1, group="tile-sliders"),
-    "height": Widget(kind="slider", label="height (mm)", min=20, max=400, step=1, group="tile-sliders"),
+    "height": Widget(kind="slider", label="height (mm)", min=20, max=400, step=1, group="tile-sliders",
+                     when=(("outline", ("rectangle",)),)),
 }
 """The web form's controls of ``[tile] size``: its ``width`` and ``height`` parameters."""
 

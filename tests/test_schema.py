@@ -162,6 +162,27 @@ def test_widget_checks_its_kind():
         Widget(kind="knob")
     with pytest.raises(ParameterError, match=r"a slider needs min, max and step"):
         Widget(kind="slider", min=0, max=1)
+    with pytest.raises(ParameterError, match=r"a widget's when must hold \(parameter, \(value, \.\.\.\)\) pairs, "
+                                             r"got \('outline', 'rectangle'\)"):
+        Widget(kind="number", when=(("outline", "rectangle"),))
+
+
+def test_every_condition_of_a_control_names_a_form_parameter_and_its_values():
+    """A control shown only where it applies names a parameter of the form, and values that parameter takes."""
+    from fabtiles.web.params import FIELDS
+    from fabtiles.web.schema_json import schema_json
+
+    fields = schema_json()["fields"]
+    conditions = [(q, pair) for q, f in fields.items() if f["widget"] for pair in f["widget"]["when"]]
+    assert len(conditions) >= 15
+    for query, (param, values) in conditions:
+        if param == "gap_rosette":  # the page's own box: the gap motif as a rosette
+            assert list(values) == ["true"]
+            continue
+        assert param in FIELDS, (query, param)
+        f = fields[param]
+        valid = [v for v, _ in f["choices"]] if f["choices"] else ["true", "false"]
+        assert set(values) <= set(valid), (query, param, values)
 
 
 def test_build_option_checks_its_families():

@@ -30,7 +30,9 @@ __all__ = ["MEDIA_TYPES", "STATIC", "create_app", "fabrication_checks", "field_o
 def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
     """Build the FastAPI application (see ``fabtiles serve``) with ``limits`` (default: the web's)."""
     limits = limits or _limits.WEB_LIMITS
-    app = FastAPI(title="fabtiles", docs_url="/api/docs", openapi_url="/api/openapi.json")
+    # the API's pages under /api, and no others: no ReDoc copy, no OAuth (the app has no login)
+    app = FastAPI(title="fabtiles", docs_url="/api/docs", openapi_url="/api/openapi.json", redoc_url=None,
+                  swagger_ui_oauth2_redirect_url=None)
 
     @app.exception_handler(FabtilesError)
     async def fabtiles_error(request, exc):  # noqa: ARG001

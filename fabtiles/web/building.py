@@ -8,6 +8,8 @@ Shared by the routers (:mod:`fabtiles.web.routes`). Bad input raises a
 
 from __future__ import annotations
 
+import re
+
 from fastapi import Request
 from fastapi.responses import JSONResponse
 
@@ -15,12 +17,29 @@ from .. import _limits
 from .params import DEFAULTS, FIELDS, design_from_query
 
 
+SOURCE = "query"
+"""What a design error of the web names as its source; :func:`user_message` takes it out again."""
+
+EDITED = "custom"
+"""The files' name of a design that is not a preset as it stands (the page's Preset menu says so too)."""
+
+
+def design_name(design: dict) -> str:
+    """The files' name of a design with no ``[output] name``: its motif's preset, or :data:`EDITED`.
+
+    >>> design_name({"motif": {"preset": "table3-3"}}), design_name({"motif": {"n": 8, "radii": [1, 2]}})
+    ('table3-3', 'custom')
+    """
+    motif = design.get("motif", {})
+    return motif["preset"] if isinstance(motif.get("preset"), str) and len(motif) == 1 else EDITED
+
+
 def tile_from_dict(design: dict, *, limits: _limits.Limits):
     """Validate a design dictionary and build its tile (no geometry yet) within the work limits."""
     from ..build import prepare_tile
     from ..design import design_from_dict
 
-    spec = design_from_dict(design, name="fabtiles-tile", source="query")
+    spec = design_from_dict(design, name=design_name(design), source=SOURCE)
     return spec, prepare_tile(spec, limits=limits)
 
 
@@ -86,7 +105,42 @@ def field_of_param(param: str | None) -> str | None:
     return next((key for key, (section, name, _) in FIELDS.items() if [section, name] == parts), None)
 
 
+_WHERE = re.compile(r"\[[\w.]+\](?: (?P<sub>gap_motif|\d+))? ")
+_SIZE = {"size[0]": "width", "size[1]": "height"}
+
+
+def user_message(exc: Exception, field: str | None) -> str:
+    """The message of a bad input in the form's words: its parameters' names, no design file's section.
+
+    A design error names its source and the design file's section (``query: [tile] stroke
+    must be ...``); the page names neither: ``stroke must be ...``, and the gap motif's keys,
+    a polygon kind's motif and the tile's size by their parameters (``gap_n``, ``motif_8``,
+    ``width``).
+
+    >>> from fabtiles._errors import DesignError
+    >>> user_message(DesignError("query: [packing] gap_motif n must be >= 3, got 2"), "gap_n")
+    'gap_n must be >= 3, got 2'
+    >>> user_message(DesignError("query: [tile] size[1] must be > 0, got 0"), "width")
+    'height must be > 0, got 0'
+    >>> user_message(DesignError("query: [packing.motifs] 8 'x' is not a valid preset"), "motif_8")
+    "motif_8: 'x' is not a valid preset"
+    """
+    text = str(exc).removeprefix(f"{SOURCE}: ")
+    where = _WHERE.match(text)
+    if where:
+        text = text[where.end():]
+        if where["sub"] and field:  # the gap motif's or a polygon kind's: the parameter names the key
+            name = field.removeprefix("gap_")
+            text = (field + text[len(name):] if re.match(rf"{re.escape(name)}[ \[]", text)
+                    else f"{field}: {text}")
+    for size, name in _SIZE.items():
+        if text.startswith(size):
+            text = name + text[len(size):]
+    return text
+
+
 def error_response(exc: Exception) -> JSONResponse:
-    """The 422 answer of a bad input: the message, and the field from the error's ``field`` or design ``key``."""
+    """The 422 answer of a bad input: the message in the form's words, and the field from the error's
+    ``field`` or design ``key``."""
     field = getattr(exc, "field", None) or field_of_param(getattr(exc, "key", None))
-    return JSONResponse({"error": str(exc), "field": field}, status_code=422)
+    return JSONResponse({"error": user_message(exc, field), "field": field}, status_code=422)

@@ -253,7 +253,7 @@ def test_the_web_app_downloads_a_kit_as_one_archive():
     r = client.get("/api/export/dxf?preset=table3-3&width=60&radius=10&frame=3&laser_mode=inlay&inlay_fit_mm=0.1")
     assert r.status_code == 200 and r.headers["content-type"] == "application/zip"
     names = zipfile.ZipFile(io.BytesIO(r.content)).namelist()
-    assert names == ["fabtiles-tile-lattice.dxf", "fabtiles-tile-pieces.dxf"]
+    assert names == ["table3-3-lattice.dxf", "table3-3-pieces.dxf"]
     bad = client.get("/api/export/dxf?preset=table3-3&width=60&radius=10&frame=3&laser_mode=inlay&inlay_fit_mm=0.9")
     assert bad.status_code == 422 and bad.json()["field"] == "inlay_fit_mm"
 

@@ -97,7 +97,7 @@ def test_design_toml_round_trips_through_build(client, tmp_path):
 def test_every_export_format(client, fmt, tmp_path):
     r = client.get(f"/api/export/{fmt}?{SMALL}")
     assert r.status_code == 200, r.text
-    assert r.headers["content-disposition"] == f'attachment; filename="fabtiles-tile.{fmt}"'
+    assert r.headers["content-disposition"] == f'attachment; filename="table3-3.{fmt}"'
     path = tmp_path / f"t.{fmt}"
     path.write_bytes(r.content)
     if fmt == "dxf":
@@ -143,11 +143,14 @@ BAD = [
     ("packing=triangle", "packing", "triangle"),
     ("radius=-1", "radius", "radius must be"),
     ("fill=0", "fill", "fill"),
-    ("gap_n=2", "gap_n", "n must be an integer >= 3"),
-    ("gap_radii=0.5,-1", "gap_radii", "radii[1] must be a finite number > 0"),
+    ("gap_n=2", "gap_n", "gap_n must be an integer >= 3"),
+    ("gap_radii=0.5,-1", "gap_radii", "gap_radii[1] must be a finite number > 0"),
+    ("gap_preset=table9", "gap_preset", "gap_preset: 'table9' is not a valid preset"),
+    ("packing=archimedean&tiling=4.8.8&motif_8=table9", "motif_8", "motif_8: 'table9' is not a valid preset"),
     ("outline_circles=perhaps", "outline_circles", "outline_circles must be true or false"),
     ("outline=oval", "outline", "'oval' is not valid, must be one of: square, rectangle, hexagon, circle"),
-    ("width=0", "width", "size"),
+    ("width=0", "width", "width must be a finite number > 0"),
+    ("outline=rectangle&width=100&height=0", "width", "height must be a finite number > 0"),
     ("width=5000", "width", "larger than the limit of 1200 mm"),
     ("outline=rectangle&width=100&height=x", "height", "height must be a number"),
     ("frame=-1", "frame", "frame"),
@@ -171,6 +174,30 @@ def test_bad_input_is_422_with_field(client, endpoint, query, field, message):
     body = r.json()
     assert body["field"] == field, body
     assert message in body["error"], body
+
+
+@pytest.mark.parametrize("query, field, message", BAD)
+def test_bad_input_is_said_in_the_forms_words(client, query, field, message):
+    """No design file's words: not its source ("query:") nor its sections ("[tile]", "gap_motif")."""
+    error = client.get(f"/api/checks?{query}").json()["error"]
+    assert not error.startswith("query") and "[tile]" not in error and "[packing" not in error, error
+    assert "[motif]" not in error and "[output]" not in error and "gap_motif" not in error, error
+
+
+@pytest.mark.parametrize("query, name", [
+    ("preset=table1-part1", "table1-part1"),
+    ("preset=table3-3&stroke=2", "table3-3"),  # the motif is the preset's: the page names an edited design
+    ("n=8&radii=1,2", "custom"),
+    ("preset=table3-3&rotation=10", "custom"),
+    ("preset=table3-3&name=my tile", "my tile"),
+])
+def test_downloads_are_named_after_the_design(client, query, name):
+    for fmt in ("dxf", "stl"):
+        r = client.get(f"/api/export/{fmt}?{SMALL}&{query}")
+        assert r.headers["content-disposition"] == f'attachment; filename="{name}.{fmt}"'
+    r = client.get(f"/api/design.toml?{SMALL}&{query}")
+    assert r.headers["content-disposition"] == f'attachment; filename="{name}.toml"'
+    assert r.text.startswith(f"# fabtiles design: build it with  fabtiles build {name}.toml -o out\n")
 
 
 def test_unknown_format_is_422(client):

@@ -160,4 +160,99 @@ def test_the_inlay_kit_mode_shows_the_kit(page, server):
     assert page.is_visible("#kit-box") and "laser_mode=inlay" in page.url
     with page.expect_download() as info:
         page.click("#downloads a[data-format=dxf]")
-    assert info.value.suggested_filename == "fabtiles-tile-kit-dxf.zip"
+    assert info.value.suggested_filename == "custom-kit-dxf.zip"  # the laser mode changed: no preset's design
+
+
+def _label(page):
+    """The Preset menu's shown text."""
+    return page.evaluate("() => { const s = document.querySelector('#preset'); return s.options[s.selectedIndex].text; }")
+
+
+def _set(page, selector, value):
+    """Type a value and leave the box (its change event, once: no late one when focus moves on)."""
+    v = _preview_version(page)
+    page.fill(selector, value)
+    page.press(selector, "Tab")
+    _wait_new_preview(page, v)
+
+
+def test_the_preset_menu_says_custom_once_edited_and_downloads_are_named(page, server, tmp_path):
+    page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3")
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    assert _label(page) == "table3-3"
+    assert page.get_attribute("#downloads a[data-format=dxf]", "download") == "table3-3.dxf"
+    assert page.get_attribute("#download-design", "download") == "table3-3.toml"
+
+    # any edit, of the motif or not: "custom", and so are the files
+    _set(page, "#stroke", "2")
+    assert _label(page) == "custom" and page.input_value("#preset") == ""
+    assert page.get_attribute("#downloads a[data-format=stl]", "download") == "custom.stl"
+    assert "name=custom" in page.get_attribute("#downloads a[data-format=stl]", "href")
+    with page.expect_download() as info:
+        page.click("#downloads a[data-format=svg]")
+    assert info.value.suggested_filename == "custom.svg"
+    assert "name=" not in page.url  # the page's name for the files is no parameter of the design
+
+    # the values set back: the preset's name again
+    _set(page, "#stroke", "1")
+    assert _label(page) == "table3-3"
+    with page.expect_download() as info:
+        page.click("#downloads a[data-format=dxf]")
+    assert info.value.suggested_filename == "table3-3.dxf"
+
+    # a preset chosen in the menu names the design; the user's file name wins over it
+    v = _preview_version(page)
+    page.select_option("#preset", "table1-part1")
+    _wait_new_preview(page, v)
+    assert _label(page) == "table1-part1"
+    assert page.get_attribute("#downloads a[data-format=\"3mf\"]", "download") == "table1-part1.3mf"
+    _set(page, "#name", "my tile")
+    assert _label(page) == "table1-part1"  # a file name is no edit of the design
+    with page.expect_download() as info:
+        page.click("#download-design")
+    assert info.value.suggested_filename == "my tile.toml"
+
+
+def test_downloads_are_disabled_while_the_design_is_invalid(page, server):
+    page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3")
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    links = "#downloads a"
+    assert page.locator(f"{links}[href]").count() == page.locator(links).count() == 7
+    page.fill("#stroke", "0")
+    page.press("#stroke", "Tab")
+    page.wait_for_function("() => document.querySelector('.err[data-for=stroke]').textContent.length > 0")
+    # the error in the form's words, beside its field and above the buttons
+    error = page.text_content(".err[data-for=stroke]")
+    assert error.startswith("stroke must be a finite number > 0, got 0"), error
+    assert "query" not in page.text_content("#status") and "[tile]" not in page.text_content("#status")
+    assert page.locator(f"{links}[href]").count() == 0
+    assert page.locator(f"{links}[aria-disabled=true]").count() == 7
+    assert page.locator(f"{links}.disabled").first.evaluate("a => getComputedStyle(a).pointerEvents") == "none"
+    _set(page, "#stroke", "1")
+    assert page.locator(f"{links}[href]").count() == 7 and page.locator(f"{links}.disabled").count() == 0
+
+
+def test_controls_show_only_where_they_apply(page, server):
+    page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3")
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    hidden = lambda sel: page.locator(sel).is_hidden()  # noqa: E731
+    # a square: no height; pierced: no kit; a relief: its base and relief heights only; miter: the limit
+    assert hidden("#height-row") and hidden("#inlay_fit_mm") and hidden("#inlay_base")
+    assert not hidden("#base_mm") and not hidden("#relief_mm") and hidden("#pierced_mm") and hidden("#deboss_mm")
+    assert hidden("#interlace_gap_mm") and hidden("#inlay") and not hidden("#miter_limit-row")
+    assert hidden("#gap_alpha-row") and not hidden("#gap_n-row") and hidden("#edge-row")
+    page.select_option("#outline", "rectangle")
+    page.select_option("#laser_mode", "inlay")
+    page.select_option("#print_style", "deboss")
+    page.select_option("#join", "round")
+    page.check("#interlace")
+    page.check("#gap_rosette")
+    assert not hidden("#height-row") and not hidden("#inlay_fit_mm") and not hidden("#inlay_base")
+    assert not hidden("#base_mm") and hidden("#relief_mm") and not hidden("#deboss_mm") and not hidden("#inlay")
+    assert not hidden("#interlace_gap_mm") and hidden("#interlace_cut") and hidden("#miter_limit-row")
+    assert not hidden("#gap_alpha-row") and not hidden("#gap_spr-row")
+    page.select_option("#packing", "none")
+    assert hidden("#gap_n-row") and hidden("#gap_inner-row") and hidden("#gap_rosette") and hidden("#radius-row")
+    assert hidden("#seamless") and hidden("#outline_circles") and hidden("#gap_alpha-row")
+    page.select_option("#packing", "archimedean")
+    assert not hidden("#edge-row") and hidden("#radius-row") and not hidden("#gap_n-row")

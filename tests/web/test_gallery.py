@@ -64,3 +64,49 @@ def test_api_and_thumbnails_cached(client):
     assert gallery.thumbnail.cache_info().hits == hits + 1  # drawn once
     page = client.get("/gallery")
     assert page.status_code == 200 and '<script src="/static/gallery.js">' in page.text
+
+
+def _slider_values(query: dict) -> list[tuple[str, float]]:
+    """The values of ``query`` that a slider of the form shows: (parameter, value), a radius each."""
+    from fabtiles.web.schema_json import schema_json
+
+    fields = schema_json()["fields"]
+    out = []
+    for param, raw in query.items():
+        widget = fields.get(param, {}).get("widget") or {}
+        if widget.get("kind") == "slider":
+            out += [(param, float(v)) for v in str(raw).split(",")]
+    return out
+
+
+def _travel(param: str) -> tuple[float, float]:
+    from fabtiles.web.schema_json import schema_json
+
+    widget = schema_json()["fields"][param]["widget"]
+    return widget["min"], widget["max"]
+
+
+@pytest.mark.parametrize("key", [e.key for e in gallery.entries()])
+def test_every_gallery_value_is_inside_its_slider(key):
+    """A gallery entry opens with every slider inside its travel (the 4.8.8 tiling's r1 = 0.55 once pinned
+    a slider of 1 to 400 at its end)."""
+    query = gallery.entry(key).query
+    values = _slider_values(query)
+    assert {p for p, _ in values} >= {"width", "frame", "stroke"}
+    if "radii" in query:
+        assert "radii" in {p for p, _ in values}
+    for param, value in values:
+        low, high = _travel(param)
+        assert low <= value <= high, (key, param, value, (low, high))
+
+
+@pytest.mark.parametrize("name", list(PRESETS))
+def test_every_preset_value_is_inside_its_slider(name):
+    preset = PRESETS[name]
+    query = {k: ",".join(f"{r:g}" for r in v) if k == "radii" else v for k, v in preset.items()
+             if k in ("n", "radii", "alpha", "spr")}
+    values = _slider_values(query)
+    assert len(values) == 3 + len(preset["radii"])
+    for param, value in values:
+        low, high = _travel(param)
+        assert low <= value <= high, (name, param, value, (low, high))

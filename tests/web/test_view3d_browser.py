@@ -91,6 +91,50 @@ def test_the_relief_turns_in_3d(page, server):
     _wait_model(page, v)
 
 
+def _background(rgb: np.ndarray) -> np.ndarray:
+    return np.abs(rgb - [0xEE, 0xF1, 0xF5]).sum(axis=-1) < 12
+
+
+def test_the_camera_frames_the_whole_tile(page, server):
+    """The default 150 mm tile: no part of it touches the canvas's edge, and it fills most of the canvas."""
+    page.goto(f"{server}/")
+    _wait_model(page)
+    assert "Showing the whole 150 x 150 mm tile" in page.text_content("#view3d-caption")
+    rgb = _pixels(page)
+    ground = _background(rgb)
+    inner = ground[:, 6:-6]  # not the rounded corners (border-radius 4 px: the figure's white shows there)
+    edge = np.concatenate([inner[:3].ravel(), inner[-3:].ravel(), ground[6:-6, :3].ravel(), ground[6:-6, -3:].ravel()])
+    assert edge.all(), f"{(~edge).sum()} pixels of the model on the canvas's edge"
+    rows, cols = np.nonzero(~ground)
+    height, width = ground.shape
+    # the model spans most of the canvas one way (the fit's 10 % margin, the view's perspective)
+    assert max((cols.max() - cols.min()) / width, (rows.max() - rows.min()) / height) > 0.7
+
+
+def test_the_camera_stays_above_the_plate(page, server):
+    """A drag towards the horizon stops at 80 degrees from straight down: never under the plate."""
+    page.goto(f"{server}/?{SMALL}")
+    _wait_model(page)
+    assert 40 < float(page.get_attribute("#view3d-canvas", "data-polar")) < 60  # the first view, from above
+    box = page.locator("#view3d-canvas").bounding_box()
+    cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    for _ in range(3):  # upwards: the camera goes down towards the plate's plane, and would pass under it
+        page.mouse.move(cx, cy + box["height"] / 3)
+        page.mouse.down()
+        page.mouse.move(cx, cy - box["height"] / 3, steps=8)
+        page.mouse.up()
+    polar = float(page.get_attribute("#view3d-canvas", "data-polar"))
+    assert 79.5 < polar <= 80.01, polar
+    # a right-drag moves the view over the plate's plane: the camera keeps its angle and its height
+    page.mouse.move(cx, cy)
+    page.mouse.down(button="right")
+    page.mouse.move(cx, cy + 150, steps=6)
+    page.mouse.up(button="right")
+    assert float(page.get_attribute("#view3d-canvas", "data-polar")) <= 80.01
+    page.click("#view3d-reset")
+    assert 40 < float(page.get_attribute("#view3d-canvas", "data-polar")) < 60
+
+
 def test_a_deboss_inlay_shows_both_parts(page, server):
     page.goto(f"{server}/?{SMALL}&print_style=deboss&inlay=true")
     _wait_model(page)
@@ -108,5 +152,13 @@ def test_the_gallery_opens_a_tiling_in_the_editor(page, server):
     assert page.input_value("#packing") == "archimedean" and page.input_value("#tiling") == "4.8.8"
     assert page.input_value("#motif_8") == "table1-part1" and page.input_value("#n") == "8"
     assert "✗" not in page.text_content("#status")
+    # the sliders hold the entry's values (r1 = 0.55 was once pinned at a slider's minimum of 1)
+    assert float(page.input_value("#r1-range")) == 0.55 and float(page.input_value("#r2-range")) == 1
+    assert float(page.get_attribute("#r1-range", "min")) < 0.55
+    # the design is named after the entry: the Preset menu, the downloads, the shared link
+    label = page.evaluate("() => { const s = document.querySelector('#preset'); return s.options[s.selectedIndex].text; }")
+    assert label == "4.8.8 (gallery)"
+    assert page.get_attribute("#downloads a[data-format=dxf]", "download") == "4.8.8.dxf"
+    assert "gallery=4.8.8" in page.url
     _wait_model(page)
     assert "packing=archimedean" in page.url and "edge=14" in page.url  # the editor's URL stays shareable

@@ -77,10 +77,11 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         import tomli_w
 
         design = {**design, "output": {"formats": list(FORMATS), **design.get("output", {})}}
-        text = "# fabtiles design: build it with  fabtiles build fabtiles-design.toml -o out\n"
+        # named after the design, as its files are: the file's stem is their name when [output] name is unset
+        text = f"# fabtiles design: build it with  fabtiles build {spec.name}.toml -o out\n"
         text += tomli_w.dumps(design)
         return Response(text, media_type=MEDIA_TYPES["toml"],
-                        headers={"Content-Disposition": 'attachment; filename="fabtiles-design.toml"'})
+                        headers={"Content-Disposition": f'attachment; filename="{spec.name}.toml"'})
 
     @api.get("/api/export/{fmt}")
     def export(fmt: str, request: Request):

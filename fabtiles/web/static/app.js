@@ -24,8 +24,16 @@ const state = {
 // MENUS: the schema's menus but the motif's (preset, special circle) and the tiling's, which have their own code.
 let TEXT_KEYS = [], FLAG_KEYS = ["gap_rosette"], MENUS = [];
 const OWN_MENUS = new Set(["preset", "special", "tiling"]);
+// WHEN: each control's condition (the schema's widget.when: [parameter, values] pairs, all to hold);
+// RADII: the slider of each radius (the schema's widget of the radii list).
+let WHEN = {}, RADII = { min: 0.05, max: 400, step: 0.05 };
 let showFindings = true, chosen = null;  // the findings overlay; the finding chosen in the list
 let presets = {}, tilings = {};
+// The design as loaded or last chosen in the Preset menu, and its name (a preset, or a gallery entry's):
+// the menu shows that name and the downloads are named after it while the design is as it was; any edit
+// makes it "custom", and setting the values back brings the name back.
+const EDITED = "custom";
+let origin = { label: "table3-3", q: "", gallery: false };
 
 function $(id) { return document.getElementById(id); }
 
@@ -41,7 +49,7 @@ function slider(container, key, label, min, max, step) {
   err.dataset.for = key === "gap_inner" ? "gap_radii" : key;
   container.appendChild(err);
   const range = row.querySelector("input[type=range]"), box = row.querySelector("input[type=number]");
-  const set = (v) => { range.value = v; box.value = v; };
+  const set = (v) => { travel(range, v); range.value = v; box.value = v; };
   set(state[key]);
   const changed = (v) => {
     state[key] = Number(v);
@@ -53,18 +61,29 @@ function slider(container, key, label, min, max, step) {
   box.addEventListener("change", () => changed(box.value));
 }
 
+// A value outside a slider's travel (typed in its box, or from a link) widens the travel instead of
+// pinning the slider at an end.
+function travel(range, v) {
+  const x = Number(v);
+  if (!Number.isFinite(x)) return;
+  if (x < Number(range.min)) range.min = x;
+  if (x > Number(range.max)) range.max = x;
+}
+
 function radiiSliders() {
   const box = $("radii-sliders");
   box.innerHTML = "";
   state.radii.forEach((r, k) => {
     const row = document.createElement("label");
     row.className = "row";
-    row.innerHTML = `<span>r${k + 1}</span><input type="range" min="1" max="400" step="1" id="r${k + 1}-range">
-       <input type="number" step="any" min="0" id="r${k + 1}">`;
+    row.innerHTML = `<span>r${k + 1}</span><input type="range" min="${RADII.min}" max="${RADII.max}"
+       step="${RADII.step}" id="r${k + 1}-range"><input type="number" step="any" min="0" id="r${k + 1}">`;
     box.appendChild(row);
     const range = row.querySelector("input[type=range]"), num = row.querySelector("input[type=number]");
-    range.value = r; num.value = r;
-    const changed = (v) => { state.radii[k] = Number(v); range.value = v; num.value = v; state.preset = ""; update(); };
+    travel(range, r); range.value = r; num.value = r;
+    const changed = (v) => {
+      state.radii[k] = Number(v); travel(range, v); range.value = v; num.value = v; state.preset = ""; update();
+    };
     range.addEventListener("input", () => changed(range.value));
     num.addEventListener("change", () => changed(num.value));
   });
@@ -127,7 +146,8 @@ function fromUrl() {
   const q = new URLSearchParams(location.search);
   if (![...q.keys()].length) return;
   for (const [k, v] of q) {
-    if (k === "radii") state.radii = v.split(",").map(Number);
+    if (k === "gallery") origin = { label: v, q: "", gallery: true };  // the page's own: opened from the gallery
+    else if (k === "radii") state.radii = v.split(",").map(Number);
     else if (k === "gap_radii") state.gap_inner = Number(v.split(",")[0]);
     else if (k === "gap_special") state.gap_rosette = v !== "none" && v !== "";
     else if (k === "special") state.special = v === "none" || v === "" ? 0 : Number(v);
@@ -138,6 +158,43 @@ function fromUrl() {
   }
   if (!q.has("preset")) state.preset = "";
   if (q.has("preset")) applyPreset(state.preset, false);
+  if (!origin.gallery) origin.label = state.preset && !q.has("n") && !q.has("radii") ? state.preset : EDITED;
+}
+
+// The design's query without its file name (a name is no edit of the design).
+function designKey() {
+  const q = query();
+  q.delete("name");
+  return String(q);
+}
+
+// The design's name: the preset or gallery entry it was opened as, while it is as it was; else "custom".
+function designLabel() { return designKey() === origin.q ? origin.label : EDITED; }
+
+function remember(label, gallery = false) { origin = { label, q: designKey(), gallery }; }
+
+// The Preset menu: the design's name while unedited (a gallery entry's too), "custom" once edited.
+function showLabel() {
+  const label = designLabel(), sel = $("preset");
+  let own = sel.querySelector("option[data-gallery]");
+  if (origin.gallery && !own) {
+    own = new Option(`${origin.label} (gallery)`, `gallery:${origin.label}`);
+    own.dataset.gallery = "1";
+    own.disabled = true;  // shown, not chosen: the gallery page opens its entries
+    sel.add(own, 1);
+  }
+  sel.value = label === EDITED ? "" : origin.gallery ? `gallery:${label}` : label;
+  sel.dataset.label = label;
+}
+
+// Each control shown only where it applies (the schema's conditions): a rectangle's height, the kit's fit...
+function applyWhen() {
+  for (const [key, pairs] of Object.entries(WHEN)) {
+    const on = pairs.every(([param, values]) => values.includes(String(state[param])));
+    const control = $(`${key}-row`) || ($(key) && $(key).closest(".row"));
+    if (control) control.hidden = !on;
+    for (const err of document.querySelectorAll(`.err[data-for="${key}"]`)) err.hidden = !on;
+  }
 }
 
 function applyPreset(name, redraw = true) {
@@ -160,10 +217,13 @@ function syncControls() {
   for (const k of FLAG_KEYS) $(k).checked = state[k];
   for (const k of TEXT_KEYS) $(k).value = state[k];
   radiiSliders();
+  applyWhen();
 }
 
 let timer = null, seq = 0;
 function update() {
+  applyWhen();
+  showLabel();
   clearTimeout(timer);
   timer = setTimeout(refresh, 120);
 }
@@ -174,20 +234,47 @@ function showError(field, message) {
   const status = $("status");
   status.className = message ? "error" : "";
   status.textContent = message ? `✗ ${message}` : "";
+  downloads(!message);
   if (!message) return;
   let target = document.querySelector(`.err[data-for="${field}"]`);
-  if (!target && field === "radii") target = document.querySelector('.err[data-for="radii"]');
-  if (target) target.textContent = message;
+  const row = $(field) && $(field).closest(".row");
+  if (!target && row) {  // a control with no place for its error yet: one under its row
+    target = document.createElement("div");
+    target.className = "err";
+    target.dataset.for = field;
+    row.after(target);
+  }
+  if (target) { target.hidden = false; target.textContent = message; }
   const control = $(field) || $(`${field}-range`) || (field === "radii" ? $("radii-sliders") : null);
   if (control) control.classList.add("bad");
 }
 
+// The download links of the design: named after it (its File name, else its preset or gallery entry, else
+// "custom"), and disabled (no link) while the design is invalid, so no button fetches an error.
+function downloads(valid) {
+  const q = query(), label = designLabel(), name = String(state.name).trim() || label;
+  if (!String(state.name).trim()) q.set("name", label);
+  const kit = state.laser_mode === "inlay";
+  for (const a of document.querySelectorAll("#downloads a")) {
+    const fmt = a.dataset.format;
+    if (valid) {
+      a.href = fmt ? `/api/export/${fmt}?${q}` : `/api/design.toml?${q}`;
+      a.download = !fmt ? `${name}.toml` : kit && a.dataset.family === "cut" ? `${name}-kit-${fmt}.zip` : `${name}.${fmt}`;
+    } else {
+      a.removeAttribute("href");
+      a.removeAttribute("download");
+    }
+    a.setAttribute("aria-disabled", valid ? "false" : "true");
+    a.classList.toggle("disabled", !valid);
+    a.title = valid ? "" : "fix the design first (see the message above)";
+  }
+}
+
 async function refresh() {
-  const q = query(), mine = ++seq;
-  history.replaceState(null, "", `?${q}`);
-  for (const a of document.querySelectorAll("#downloads a[data-format]"))
-    a.href = `/api/export/${a.dataset.format}?${q}`;
-  $("download-design").href = `/api/design.toml?${q}`;
+  const q = query(), mine = ++seq, label = designLabel(), page = new URLSearchParams(q);
+  if (label !== EDITED && origin.gallery) page.set("gallery", label);  // a shared link still names the entry
+  history.replaceState(null, "", `?${page}`);
+  downloads(false);  // until the server says the design is good
   const res = await fetch(`/api/preview.svg?${q}${showFindings ? "&findings=true" : ""}`);
   if (mine !== seq) return;
   if (!res.ok) {
@@ -265,8 +352,6 @@ function choose(li, keep = false) {
 function tilingControls() {
   const arch = state.packing === "archimedean";
   $("tiling-controls").hidden = !arch;
-  $("edge-row").hidden = !arch;
-  $("radius-row").hidden = arch;
   const box = $("kind-motifs");
   box.innerHTML = "";
   for (const p of arch && tilings[state.tiling] ? tilings[state.tiling].kinds : []) {
@@ -293,9 +378,14 @@ function applySchema(schema) {
   for (const [q, f] of Object.entries(schema.fields)) {
     const w = f.widget;
     if (!w) continue;
-    if (w.kind === "slider") {
+    if (w.when && w.when.length) WHEN[q] = w.when;
+    if (w.kind === "slider" && f.type === "numbers") RADII = w;  // a slider per radius (radiiSliders)
+    else if (w.kind === "slider") {
       (SLIDERS[w.group] = SLIDERS[w.group] || []).push([q, w.label, w.min, w.max, w.step]);
-      if (q === "gap_n") SLIDERS[w.group].push(["gap_inner", "gap inner r", 0.05, 1.5, 0.05]);
+      if (q === "gap_n") {  // the gap motif's inner radius and its rosette box apply where its n does
+        SLIDERS[w.group].push(["gap_inner", "gap inner r", 0.05, 1.5, 0.05]);
+        WHEN.gap_inner = WHEN.gap_rosette = w.when;
+      }
     } else if (w.kind === "checkbox") FLAG_KEYS.push(q);
     else if (w.kind === "number" || w.kind === "text") {
       TEXT_KEYS.push(q);
@@ -324,7 +414,7 @@ async function init() {
     for (const [key, label, min, max, step] of list) slider($(box), key, label, min, max, step);
   syncControls();
   sel.addEventListener("change", () => {
-    if (sel.value) applyPreset(sel.value); else state.preset = "";
+    if (sel.value) { applyPreset(sel.value); remember(sel.value); } else state.preset = "";
     update();
   });
   $("circles").addEventListener("change", () => {
@@ -345,6 +435,8 @@ async function init() {
     $(key).addEventListener("change", () => { state[key] = $(key).value; update(); });
   for (const key of ["packing", "tiling"])
     $(key).addEventListener("change", () => { state[key] = $(key).value; tilingControls(); if (key === "tiling") update(); });
+  origin.q = designKey();
+  showLabel();
   refresh();
 }
 

@@ -6,7 +6,7 @@ async function gallery() {
   const items = await (await fetch("/api/gallery")).json();
   for (const e of items) {
     const a = document.createElement("a");
-    a.href = `/?${new URLSearchParams(e.query)}`;
+    a.href = `/?${new URLSearchParams({ gallery: e.key, ...e.query })}`;  // the editor names the design after it
     a.dataset.key = e.key;
     const fig = document.createElement("figure");
     const img = document.createElement("img"), cap = document.createElement("figcaption");

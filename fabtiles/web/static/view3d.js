@@ -28,32 +28,52 @@ async function start() {
   camera.up.set(0, 0, 1);  // the print's Z is up (mm), as in the slicer
   const controls = new OrbitControls(camera, canvas);
   controls.enableDamping = false;
-  let model = null, fitted = null, seq = 0;
+  // The camera stays above the plate: at most 80 degrees from straight down (the horizon is 90, under it
+  // the plate's grey underside), and a right-drag moves it over the plate's plane, never down through it.
+  controls.maxPolarAngle = THREE.MathUtils.degToRad(80);
+  controls.screenSpacePanning = false;
+  let model = null, fitted = null, seq = 0, turned = false;
+  controls.addEventListener("start", () => { turned = true; });
 
   const render = () => {
     sun.position.copy(camera.position).add(new THREE.Vector3(0, 0, camera.position.length()));
     renderer.render(scene, camera);
+    canvas.dataset.polar = THREE.MathUtils.radToDeg(controls.getPolarAngle()).toFixed(2);  // for the tests
   };
   const resize = () => {
     const w = canvas.clientWidth || 480, h = canvas.clientHeight || 360;
     renderer.setSize(w, h, false);
     camera.aspect = w / h;
     camera.updateProjectionMatrix();
+    if (model && !turned) fit();  // a new shape of the canvas: the whole tile again, unless turned by hand
     render();
   };
   new ResizeObserver(resize).observe(canvas);
   controls.addEventListener("change", render);
 
-  // The camera of a new tile size: from the front and above, the whole tile in view.
+  // The camera of a new tile size: from the front and above, the whole tile in view. The distance is the
+  // least that keeps every corner of the model's box inside MARGIN of the view's half-width and
+  // half-height: a corner at lateral offset x and depth d - p.dir needs x <= (d - p.dir) tan(half angle).
+  const MARGIN = 0.9, VIEW = new THREE.Vector3(0, -1.25, 1.1).normalize();
   const fit = () => {
     const bounds = new THREE.Box3().setFromObject(model), size = bounds.getSize(new THREE.Vector3());
-    const centre = bounds.getCenter(new THREE.Vector3()), span = Math.max(size.x, size.y);
+    const centre = bounds.getCenter(new THREE.Vector3()), span = Math.max(size.x, size.y, size.z);
+    const right = new THREE.Vector3().crossVectors(VIEW.clone().negate(), camera.up).normalize();
+    const up = new THREE.Vector3().crossVectors(right, VIEW.clone().negate()).normalize();
+    const tanY = Math.tan(THREE.MathUtils.degToRad(camera.fov / 2)) * MARGIN, tanX = tanY * camera.aspect;
+    let distance = 0;
+    for (const x of [bounds.min.x, bounds.max.x]) for (const y of [bounds.min.y, bounds.max.y])
+      for (const z of [bounds.min.z, bounds.max.z]) {
+        const p = new THREE.Vector3(x, y, z).sub(centre), depth = p.dot(VIEW);
+        distance = Math.max(distance, depth + Math.abs(p.dot(right)) / tanX, depth + Math.abs(p.dot(up)) / tanY);
+      }
     controls.target.copy(centre);
-    camera.position.set(centre.x, centre.y - 1.25 * span, centre.z + 1.1 * span);
-    camera.near = span / 100; camera.far = span * 20;
+    camera.position.copy(centre).addScaledVector(VIEW, distance);
+    camera.near = distance / 100; camera.far = distance + 20 * span;
     camera.updateProjectionMatrix();
     controls.update();
     fitted = `${size.x.toFixed(1)}x${size.y.toFixed(1)}`;
+    turned = false;
   };
   document.getElementById("view3d-reset").addEventListener("click", () => { if (model) { fit(); render(); } });
 

@@ -1,0 +1,64 @@
+"""docs/web-app.md cannot drift from the app: every route in its table, the formats, the default radius."""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("fastapi")
+
+from fabtiles.export.formats import FILE_FORMATS  # noqa: E402
+from fabtiles.web.app import create_app  # noqa: E402
+from fabtiles.web.params import DEFAULTS  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+PAGE = (ROOT / "docs" / "web-app.md").read_text(encoding="utf-8")
+
+
+def _routes(routes):
+    """``(method, path)`` of every route, included routers' too (``{name:path}`` written ``{name}``)."""
+    for r in routes:
+        if hasattr(r, "path"):
+            for method in sorted(set(getattr(r, "methods", None) or ()) - {"HEAD"}):
+                yield method, re.sub(r"\{(\w+):\w+\}", r"{\1}", r.path)
+        else:  # an included router, kept whole by newer FastAPI versions
+            yield from _routes(getattr(r, "original_router", r).routes)
+
+
+ROUTES = sorted(set(_routes(create_app().routes)))
+
+
+def _table() -> list[str]:
+    """The routes of the page's table, as written: ``GET /api/checks``."""
+    return [re.sub(r"\?…$", "", m) for m in re.findall(r"^\| `(\w+ [^`]+)` \|", PAGE, re.M)]
+
+
+def test_the_app_has_routes():
+    assert len(ROUTES) >= 20 and ("GET", "/api/export/{fmt}") in ROUTES
+
+
+@pytest.mark.parametrize("method, path", ROUTES)
+def test_every_route_is_in_the_manual(method, path):
+    assert f"{method} {path}" in _table()
+
+
+def test_the_manual_lists_no_route_the_app_lacks():
+    assert sorted(set(_table()) - {f"{m} {p}" for m, p in ROUTES}) == []
+
+
+def test_every_download_format_is_in_the_manual():
+    line = next(row for row in PAGE.splitlines() if row.startswith("| `GET /api/export/{fmt}"))
+    assert [f for f in FILE_FORMATS if f"`{f}`" not in line] == []
+    assert "LightBurn" in line
+
+
+def test_the_default_radii_stated_are_the_apps_and_the_samples():
+    sample = tomllib.loads((ROOT / "samples" / "table3-3.toml").read_text(encoding="utf-8"))
+    web, ours = float(DEFAULTS["radius"]), float(sample["packing"]["radius"])
+    assert web != ours  # else the paragraph explaining the difference is to go
+    assert f"with\nR = {web:g} mm" in PAGE or f"with R = {web:g} mm" in PAGE
+    assert f"has R = {ours:g} mm" in PAGE
+    assert f"`?radius={ours:g}`" in PAGE
