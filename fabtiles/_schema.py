@@ -145,6 +145,8 @@ class BuildOption:
 
     name: str
     families: tuple[str, ...]
+    help: str = ""
+    """What an option no design key sets means (a key's own help says it otherwise)."""
 
     def __post_init__(self):
         bad = [f for f in self.families if f not in FAMILIES]
@@ -481,7 +483,14 @@ SIZE_WIDGETS = {
 }
 """The web form's controls of ``[tile] size``: its ``width`` and ``height`` parameters."""
 
-CALL_OPTIONS = (BuildOption(name="dxf_version", families=("cut",)), BuildOption(name="kerf_mm", families=("cut",)))
+CALL_OPTIONS = (
+    BuildOption(name="dxf_version", families=("cut",),
+                help="string, `R12`, `R2000`, `R2004`, `R2007`, `R2010`, `R2013` or `R2018` (default: the cutter "
+                     "profile's): the DXF version"),
+    BuildOption(name="kerf_mm", families=("cut",),
+                help="number >= 0 (mm; default: the cutter profile's): the cut's width, each contour offset by half "
+                     "of it"),
+)
 """Build options of the export API that no design key sets (the cutter profile's, overridden per call)."""
 
 _BY_PATH = {k.path: k for k in KEYS}
@@ -540,6 +549,34 @@ def option_keys(family: str) -> tuple[Key, ...]:
     """
     wanted = _family(family)
     return tuple(k for k in KEYS if k.option is not None and set(wanted) & set(k.option.families))
+
+
+def api_options_doc() -> str:
+    """The export API's keyword options, each with its files, type, default and meaning (``help(Tile.export)``).
+
+    >>> print(api_options_doc().splitlines()[0])
+    Options for cutter files (.dxf, .svg, .lbrn2):
+    """
+    def plain(text: str) -> str:
+        return re.sub(r"\[([^\]]+)\]\([^)]+\)", r"\1", text).replace("`", "")
+
+    out = []
+    for family, files in (("cut", "cutter files (.dxf, .svg, .lbrn2)"), ("print", "print files (.stl, .3mf, .step)"),
+                          ("3mf", ".3mf files only")):
+        out.append(f"Options for {files}:")
+        calls = {o.name: o for o in CALL_OPTIONS if family in o.families}
+        keys = {k.option.name: k for k in KEYS if k.option is not None and family in k.option.families}
+        for name in build_options(family):
+            if name not in calls and name not in keys:
+                continue  # the 3MF's list repeats the print's options
+            if name in calls:
+                line = f"{name} : {plain(calls[name].help)}"
+            else:
+                k = keys[name]
+                default = plain(_doc_default(k)) or "the profile's"
+                line = f"{name} : {plain(_doc_type(k))}; default {default}. {plain(_doc_help(k))}"
+            out.append("    " + line)
+    return "\n".join(out)
 
 
 def _family(family: str) -> tuple[str, ...]:

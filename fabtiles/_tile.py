@@ -11,7 +11,7 @@ limits, and nothing else.
 
 from __future__ import annotations
 
-from . import _limits
+from . import _limits, _schema
 from .geometry.tile import TileGeometry
 
 
@@ -36,22 +36,25 @@ class Tile(TileGeometry):
     def export(self, path, *, profile=None, **options):
         """Write the tile to ``path``; the suffix picks the format.
 
-        ``.dxf`` and ``.svg`` take a laser profile (default ``laser-3mm-plywood``), or a CNC router's
-        or waterjet's (``router-6mm-mdf``: the part as its bit makes it, see docs/cnc-and-waterjet.md),
-        ``.stl``, ``.3mf`` and ``.step`` a printer profile (default ``fdm-0.4mm``).
-        Options: laser ``mode``, ``dxf_version``, ``kerf_mm``; print ``style``, ``base_mm``,
-        ``relief_mm``, ``pierced_mm``, ``deboss_mm``; both ``fill_small_holes`` (fill what the
-        machine cannot make: holes narrower than the profile's ``min_hole_mm``); and for
-        ``.3mf`` ``inlay`` (deboss: the grooves filled flush as a second part) and
-        ``layout`` (``"volumes"``, default, one object of parts in PrusaSlicer, Bambu
-        Studio and OrcaSlicer; ``"components"``, for UltiMaker Cura).
-        The file is written atomically: on any error nothing is left behind.
+        ``.dxf``, ``.svg`` and ``.lbrn2`` take a cutter profile (default ``laser-3mm-plywood``;
+        a CNC router's or waterjet's, ``router-6mm-mdf``, writes the part as its bit makes it,
+        see docs/cnc-and-waterjet.md), ``.stl``, ``.3mf`` and ``.step`` a printer profile
+        (default ``fdm-0.4mm``). The keyword options, below, are those of design files'
+        ``[output]`` section under the API's names; an option a format does not take is an
+        error that lists the ones it does. The file is written atomically: on any error
+        nothing is left behind.
 
         Returns
         -------
         Report
             What was written and what the fabrication checks found.
+
         """
         from .build import export_tile
 
         return export_tile(self, path, profile=profile, **options)
+
+
+# help(Tile.export) lists every option from the schema of design keys, so it cannot drift
+Tile.export.__doc__ = (Tile.export.__doc__.rstrip() + "\n\n"
+                       + "\n".join("        " + line for line in _schema.api_options_doc().splitlines()) + "\n")

@@ -47,3 +47,16 @@ def test_laser_profile_is_the_cutter_profile():
     assert fabtiles.LaserProfile is fabtiles.CutterProfile
     router = fabtiles.load_profile("router-6mm-mdf")
     assert isinstance(router, fabtiles.LaserProfile) and isinstance(router, fabtiles.CutterProfile)
+
+
+def test_help_of_tile_export_lists_every_option_the_call_takes():
+    """help(Tile.export) names each keyword option the export API accepts (from the schema), so it cannot drift."""
+    import pydoc
+
+    from fabtiles import _schema
+
+    text = pydoc.render_doc(fabtiles.Tile.export, renderer=pydoc.plaintext)
+    for family in ("cut", "print", "3mf"):
+        for name in _schema.build_options(family):
+            assert f"    {name} : " in text, name
+    assert "Options for cutter files (.dxf, .svg, .lbrn2):" in text and "Options for .3mf files only:" in text
