@@ -108,3 +108,21 @@ def test_first_print_names_each_style_and_slicer():
     for word in ("fabtiles profile copy fdm-0.4mm", "`relief`", "`pierced`", "`deboss`",
                  "PrusaSlicer", "Bambu Studio", "OrcaSlicer", "Cura", "slicers.md"):
         assert word in text, word
+
+
+def slug(heading: str) -> str:
+    """A heading's anchor as GitHub makes it: lower case, punctuation dropped, spaces to hyphens."""
+    return re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-")
+
+
+@pytest.mark.parametrize("page", PAGES)
+def test_the_pages_anchors_name_headings(page):
+    """A link to a section (``page.md#section``) names a heading of that page."""
+    text = (ROOT / "docs" / page).read_text(encoding="utf-8")
+    broken = []
+    for target, anchor in re.findall(r"\]\(([^)#\s]*)#([^)\s]+)\)", text):
+        linked = (ROOT / "docs" / target) if target else ROOT / "docs" / page
+        headings = re.findall(r"^#+ (.+)$", BLOCK.sub("", linked.read_text(encoding="utf-8")), re.M)
+        if anchor not in {slug(h) for h in headings}:
+            broken.append(f"{target}#{anchor}")
+    assert broken == []
