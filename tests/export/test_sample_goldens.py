@@ -58,9 +58,11 @@ def build(sample: Path, out: Path, mode: str = "pierced"):
     return path, tile, load_profile(design.output.laser_profile or DEFAULT_LASER_PROFILE)
 
 
-def laser_region(tile, profile):
+def laser_region(tile, profile, fill=True):
     """The region a laser DXF of a design cuts: the tile's, its holes too small for the laser filled
     (``fill_small_holes``, the default)."""
+    if not fill:
+        return tile.region()
     region, _ = fill_small_holes(tile.region(), profile.min_hole_mm, tolerance_mm=profile.tolerance_mm)
     return region
 
@@ -72,7 +74,8 @@ def test_sample_dxf_is_golden(sample, tmp_path):
     if profile.kind == "router":  # the part as the bit makes it, no kerf (see tests/export/test_router.py)
         check_router_dxf(path, tile.region(), profile)
     else:
-        check_laser_dxf(path, laser_region(tile, profile), kerf=profile.kerf_mm, version=profile.dxf_version,
+        fill = load_design(sample).output.fill_small_holes
+        check_laser_dxf(path, laser_region(tile, profile, fill), kerf=profile.kerf_mm, version=profile.dxf_version,
                         profile=profile)
     if sample.stem in LARGE:  # the panel's entities are long (rounded corners): fewer of them sampled
         assert_golden_summary(path, f"sample-{sample.stem}", samples=10 if profile.kind == "router" else 40)
