@@ -428,7 +428,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
     Key(section="output", name="name", type="string", default_text="the file's stem",
         help="the output files' name (a plain file name: letters, digits, `. _ -` and spaces)",
         widget=Widget(kind="text", label="File name", placeholder="the design's")),
-    Key(section="output", name="fill_small_holes", type="boolean", default=False,
+    Key(section="output", name="fill_small_holes", type="boolean", default=True,
         help="fill what each machine cannot make instead of reporting it: in the cutter files the holes narrower "
              "than the cutter profile's `min_hole_mm` (a router's: those its bit cannot enter), in the print files "
              "the openings narrower than the printer profile's `min_hole_mm` (default its nozzle); every summary "

@@ -129,3 +129,20 @@ def test_a_copy_of_a_profile_comes_with_the_command_that_makes_it():
                 missing.append(f"{page.name}: {text[m.start():m.end() + 60]}")
     assert missing == []
     assert "fabtiles profile copy laser-3mm-plywood my-laser.toml" in text_of("profiles.md")
+
+
+def test_the_readme_tour_prints_the_figures_it_quotes(tmp_path, monkeypatch, capsys):
+    """The README's Python tour runs as shown (in an empty folder), and what its ``print`` lines print
+    holds the figures their comments quote (the laser job of the default export, its small holes
+    filled)."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    tour = readme[readme.index("## A tour"):]
+    block = tour[tour.index("```python\n") + len("```python\n"):]
+    block = block[:block.index("```")]
+    quoted = [q for line in block.splitlines() if line.lstrip().startswith("print(") and "#" in line
+              for q in re.findall(r'"([^"]+)"', line.split("#", 1)[1])]
+    assert quoted, "the tour's print lines quote no figures"
+    monkeypatch.chdir(tmp_path)
+    exec(compile(block, "README.md", "exec"), {})
+    printed = capsys.readouterr().out
+    assert [q for q in quoted if q not in printed] == [], printed

@@ -36,7 +36,7 @@ class BuildOptions:
     printer: object
     """The printer profile (:class:`~fabtiles.PrinterProfile`), loaded."""
     laser_mode: str | None = None
-    fill_small_holes: bool = False
+    fill_small_holes: bool = True
     inlay_fit_mm: float | None = None
     inlay_base: str | None = None
     dxf_version: str | None = None

@@ -21,6 +21,7 @@ from fabtiles._profiles import load_profile  # noqa: E402
 from fabtiles.build import BuildOptions, layout_tile_sheet  # noqa: E402
 from fabtiles.export.formats import FORMATS  # noqa: E402
 from fabtiles.design import load_design  # noqa: E402
+from fabtiles.geometry.narrow import fill_small_holes  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 PLY = load_profile("laser-3mm-plywood")
@@ -41,8 +42,12 @@ def check_sheet_dxf(path, design_path, copies, kerf=PLY.kerf_mm):
     """The sheet DXF: the laser checks, ``copies`` outer contours, every one inside the bed."""
     design = load_design(design_path)
     tile = design.build_tile(tile_cls=fabtiles.Tile)
-    sheet = layout_tile_sheet(tile, BuildOptions.of_design(design), copies=copies)
-    doc = check_laser_dxf(path, sheet.region, kerf=kerf, profile=PLY)  # layers, order, closed, area
+    options = BuildOptions.of_design(design)
+    sheet = layout_tile_sheet(tile, options, copies=copies)
+    region = sheet.region
+    if options.fill_small_holes:  # the design's default: the cut fills the holes the laser cannot cut
+        region, _ = fill_small_holes(region, PLY.min_hole_mm, tolerance_mm=PLY.tolerance_mm)
+    doc = check_laser_dxf(path, region, kerf=kerf, profile=PLY)  # layers, order, closed, area
     outer = [vertices(e) for e in doc.modelspace() if e.dxf.layer == OUTER]
     assert len(outer) == copies
     pts = np.vstack([vertices(e) for e in doc.modelspace()])

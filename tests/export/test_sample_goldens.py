@@ -39,6 +39,7 @@ from fabtiles.design import load_design
 from fabtiles._profiles import DEFAULT_LASER_PROFILE
 from fabtiles.build import export_tile
 from fabtiles.export.dxf import write_dxf
+from fabtiles.geometry.narrow import fill_small_holes
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
@@ -57,6 +58,15 @@ def build(sample: Path, out: Path, mode: str = "pierced"):
     return path, tile, load_profile(design.output.laser_profile or DEFAULT_LASER_PROFILE)
 
 
+def laser_region(tile, profile, fill=True):
+    """The region a laser DXF of a design cuts: the tile's, its holes too small for the laser filled
+    (``fill_small_holes``, the default)."""
+    if not fill:
+        return tile.region()
+    region, _ = fill_small_holes(tile.region(), profile.min_hole_mm, tolerance_mm=profile.tolerance_mm)
+    return region
+
+
 @pytest.mark.parametrize("sample", SAMPLES, ids=[p.stem for p in SAMPLES])
 def test_sample_dxf_is_golden(sample, tmp_path):
     path, tile, profile = build(sample, tmp_path)
@@ -64,7 +74,9 @@ def test_sample_dxf_is_golden(sample, tmp_path):
     if profile.kind == "router":  # the part as the bit makes it, no kerf (see tests/export/test_router.py)
         check_router_dxf(path, tile.region(), profile)
     else:
-        check_laser_dxf(path, tile.region(), kerf=profile.kerf_mm, version=profile.dxf_version, profile=profile)
+        fill = load_design(sample).output.fill_small_holes
+        check_laser_dxf(path, laser_region(tile, profile, fill), kerf=profile.kerf_mm, version=profile.dxf_version,
+                        profile=profile)
     if sample.stem in LARGE:  # the panel's entities are long (rounded corners): fewer of them sampled
         assert_golden_summary(path, f"sample-{sample.stem}", samples=10 if profile.kind == "router" else 40)
     else:
@@ -98,7 +110,7 @@ def test_sample_r12_dxf_is_golden(tmp_path):
     path = tmp_path / f"{ONE.stem}-r12.dxf"
     report = export_tile(tile, path, profile=profile, mode="pierced", dxf_version="R12")
     assert report.stats["dxf_version"] == "R12"
-    check_laser_dxf(path, tile.region(), kerf=profile.kerf_mm, version="R12", profile=profile)
+    check_laser_dxf(path, laser_region(tile, profile), kerf=profile.kerf_mm, version="R12", profile=profile)
     assert_golden(path, f"sample-{ONE.stem}-r12")
 
 

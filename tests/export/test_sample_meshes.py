@@ -69,7 +69,11 @@ def sample_tile(path: Path, shrink: bool = False):
 
 
 def expectations(tile, profile, style):
-    """Region, outline, stack heights and the expected volume, top and body count."""
+    """Region, outline, stack heights and the expected volume, top and body count.
+
+    The files are written with ``fill_small_holes=False``: they are compared with the
+    drawn ``tile.region()``, openings and all.
+    """
     region, outline = tile.region(), tile.outline_shape()
     s = resolve_stack(profile, style)
     volume = expected_volume(style, region, outline, s.base, s.relief, s.pierced, s.deboss)
@@ -87,7 +91,7 @@ def test_sample_stl(tmp_path, sample, style):
     tile, profile = sample_tile(sample)
     region, outline, s, volume, zmax, parts = expectations(tile, profile, style)
     path = tmp_path / "t.stl"
-    report = tile.export(path, profile=profile, style=style)
+    report = tile.export(path, profile=profile, style=style, fill_small_holes=False)
     assert report.format == "stl" and report.stats["style"] == style
     mesh = load_stl(path)
     assert_solid(mesh, volume, outline.bounds, zmax, bodies=parts)
@@ -100,7 +104,7 @@ def test_sample_3mf(tmp_path, sample, style):
     tile, profile = sample_tile(sample)
     region, outline, s, volume, zmax, parts = expectations(tile, profile, style)
     path = tmp_path / "t.3mf"
-    report = tile.export(path, profile=profile, style=style)
+    report = tile.export(path, profile=profile, style=style, fill_small_holes=False)
     assert report.format == "3mf"
     assert 'unit="millimeter"' in zipfile.ZipFile(path).read("3D/3dmodel.model").decode()
     got = load_3mf_parts(path)
@@ -129,6 +133,6 @@ def test_sample_step(tmp_path, sample, style):
     tile, profile = sample_tile(sample, shrink=(sample.stem, style) != STEP_FULL)
     region, outline, _, volume, zmax, parts = expectations(tile, profile, style)
     path = tmp_path / "t.step"
-    report = tile.export(path, profile=profile, style=style)
+    report = tile.export(path, profile=profile, style=style, fill_small_holes=False)
     assert report.format == "step" and report.stats["solids"] == parts
     assert_step_solid(step.read_step(path), volume, outline.bounds, zmax, solids=parts)
