@@ -29,9 +29,7 @@ stroke = 1.0
 formats = ["dxf", "stl", "3mf", "step"]
 fill_small_holes = false
 """
-# fill_small_holes = false: with the holes filled, the relief pattern's outer ring is the outline's four
-# corners, so its bottom edges coincide with the base's top edges; trimesh reads the 3MF's one object
-# (both parts) as one mesh and calls those edges, each of four faces, not watertight (issue 32, open)
+# fill_small_holes = false: the holes kept (the filled case is its own test below)
 
 
 def test_check_deep_reads_every_print_file_back(tmp_path):
@@ -83,3 +81,12 @@ def test_a_step_file_occt_cannot_read_is_a_bug_reported(monkeypatch):
 
 def test_a_read_back_line_says_what_was_read():
     assert ReadBack("3mf", "trimesh", 2, 1000.0).line() == "3mf read back by trimesh: 2 meshes, 1,000.0 mm^3, as written"
+
+
+def test_a_relief_whose_pattern_meets_the_outline_reads_back_part_by_part():
+    """Filled, the pattern's outer ring is the outline's: the 3MF's plate and pattern meet along it in
+    edges of four faces, and each part must be checked on its own."""
+    design = design_from_text(SMALL.replace('"stl", "3mf", "step"', '"3mf"').replace("fill_small_holes = false", "")
+                              + "fill_small_holes = true\nprint_style = \"relief\"\n", name="s")
+    (back,) = read_back(design)
+    assert back.fmt == "3mf" and back.bodies == 2

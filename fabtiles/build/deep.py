@@ -9,8 +9,9 @@ written into a temporary folder through the same pipeline, then
 - a STEP file is read back by OCCT (the kernel of FreeCAD and build123d), without
   healing, and its solids checked: valid, closed, as many as the report says, of the
   report's volume (:func:`fabtiles.export.step.check_step_file`);
-- an STL or 3MF is read back by trimesh: every body watertight and wound outwards,
-  the volumes summing to the report's.
+- an STL is read back by trimesh, a 3MF split into its parts as PrusaSlicer splits it and
+  each part checked by trimesh: every body watertight and wound outwards, the volumes
+  summing to the report's.
 """
 
 from __future__ import annotations
@@ -54,8 +55,17 @@ def _mesh_read_back(path, fmt: str, report) -> ReadBack:
     import numpy as np
     import trimesh
 
-    loaded = trimesh.load(str(path), file_type=fmt, force="scene", process=False)
-    meshes = list(loaded.dump()) if hasattr(loaded, "dump") else [loaded]
+    if fmt == "3mf":
+        # one object of parts: split it as PrusaSlicer does (its volumes' triangle ranges), then check each
+        # part with trimesh; trimesh's own loader joins the parts into one mesh, where a relief's plate
+        # and pattern meet along the outline in edges of four faces (the file is right, the check not)
+        from ..export.threemf import read_3mf
+
+        meshes = [trimesh.Trimesh(p.vertices.astype(np.float64), p.faces, process=False)
+                  for p in read_3mf(str(path)).values()]
+    else:
+        loaded = trimesh.load(str(path), file_type=fmt, force="scene", process=False)
+        meshes = list(loaded.dump()) if hasattr(loaded, "dump") else [loaded]
     volume = 0.0
     for mesh in meshes:
         mesh.merge_vertices()
