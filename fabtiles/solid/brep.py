@@ -505,13 +505,45 @@ def _layers(kind, r, o, stack, dips):
     d = split_region(r, dips, holes=False)[1] if kind == "relief" else shapely.Polygon()
     lines = shapely.union_all([shapely.boundary(g) for g in (r, o, d) if not g.is_empty], grid_size=QUANTUM)
     faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(lines)))
-    faces = faces[shapely.area(faces) > 0]
+    faces = _merge_slivers(faces[shapely.area(faces) > 0])
     probe = shapely.point_on_surface(faces)
     in_o, in_r = shapely.contains(o, probe), shapely.contains(r, probe)
     in_d = shapely.contains(d, probe) if not d.is_empty else np.zeros(len(faces), bool)
     top = stack.base + stack.relief if kind == "relief" else stack.base - stack.deboss
     layers = [(faces[in_o & in_r & ~in_d], top), (faces[in_o & ~in_r], stack.base), (faces[in_o & in_d], dip_z(stack))]
     return [(shapely.MultiPolygon(list(g)), z) for g, z in layers if len(g)], 0.0
+
+
+def _merge_slivers(faces):
+    """``faces`` with every sliver under a quantum wide merged into the neighbour it shares most edge with.
+
+    Where a filled region's boundary runs within a quantum of a slanted side of the
+    outline, the noding leaves triangles 0.0004 mm wide between them (measured on
+    the seamless hexagon sample): each a face of its own that the B-rep's grid then
+    flattens to three collinear points, a face of no area. Merged into their
+    neighbour they change the volume by under 0.001 mm^3.
+    """
+    import shapely
+
+    faces = list(faces)
+    width = [2 * f.area / f.length for f in faces]
+    thin = [i for i, w in enumerate(width) if w < QUANTUM]
+    if not thin:
+        return np.asarray(faces, dtype=object)
+    tree = shapely.STRtree(faces)
+    gone = set()
+    for i in thin:
+        best, shared = None, 0.0
+        for j in tree.query(faces[i]).tolist():
+            if j == i or j in gone or width[j] < QUANTUM:
+                continue
+            length = shapely.intersection(faces[i].boundary, faces[j].boundary, grid_size=QUANTUM).length
+            if length > shared:
+                best, shared = j, length
+        if best is not None:
+            faces[best] = shapely.union(faces[best], faces[i], grid_size=QUANTUM)
+            gone.add(i)
+    return np.asarray([f for k, f in enumerate(faces) if k not in gone], dtype=object)
 
 
 def _sides(outline):

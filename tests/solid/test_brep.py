@@ -149,3 +149,22 @@ def test_a_region_touching_itself_at_a_point_is_refused():
 def test_chain_refuses_an_open_loop():
     with pytest.raises(FabricationError, match="has an open loop; nothing was written"):
         _chain([(0, 1, 0), (1, 2, 1)], "test solid")
+
+
+def test_a_sliver_under_a_quantum_wide_joins_its_neighbour():
+    """The noding of a filled region against a slanted outline side leaves triangles 0.0004 mm wide
+    (the seamless hexagon sample): merged into the face they share most edge with, no face of no area
+    is left for the B-rep."""
+    import shapely
+
+    from fabtiles.geometry.stack import QUANTUM
+    from fabtiles.solid.brep import _merge_slivers
+
+    big = shapely.Polygon([(0, 0), (10, 0), (10, 5), (0, 5)])
+    sliver = shapely.Polygon([(0, 5), (10, 5), (10, 5 + QUANTUM)])  # on the grid, half a quantum wide on average
+    other = shapely.Polygon([(20, 0), (30, 0), (30, 5)])
+    merged = _merge_slivers([big, sliver, other])
+    assert len(merged) == 2
+    assert merged[0].area == pytest.approx(big.area + sliver.area, rel=1e-12) and merged[0].is_valid
+    assert merged[1].equals(other)
+    assert len(_merge_slivers([big, other])) == 2
