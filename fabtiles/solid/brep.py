@@ -525,11 +525,12 @@ def _merge_slivers(faces):
     """
     import shapely
 
-    faces = list(faces)
-    width = [2 * f.area / f.length for f in faces]
-    thin = [i for i, w in enumerate(width) if w < QUANTUM]
+    faces = np.asarray(faces, dtype=object)
+    width = 2 * shapely.area(faces) / shapely.length(faces)  # the mean width of each face, in one pass
+    thin = np.flatnonzero(width < QUANTUM).tolist()
     if not thin:
-        return np.asarray(faces, dtype=object)
+        return faces
+    faces = list(faces)
     tree = shapely.STRtree(faces)
     gone = set()
     for i in thin:
