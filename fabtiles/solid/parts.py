@@ -338,6 +338,49 @@ class CheckedPart(NamedTuple):
     """The mesh's own volume, as the check found it."""
 
 
+def relief_parts(fused: CheckedPart, stack: Stack) -> dict:
+    """A plain relief's ``base`` and ``pattern`` parts, the pattern cut from its checked fused body.
+
+    The pattern is the fused body's triangles at or over the base's top (the
+    pattern's top and walls), closed underneath by its top triangulation lowered
+    to the base's top and turned over: one meshing of the region serves the STL and
+    the 3MF (meshing the pattern again cost 0.2 s of the 600 x 400 mm sheet's 1.6 s
+    STL build). The base is the outline's slab, meshed on its own: its top taken
+    from the fused body would hold the pattern's every triangle again (the sheet's
+    3MF grew from 1.8 to 2.6 MB). Each part is checked as a slicer reads it. Only
+    for a relief of three heights (0, base, base + relief), which every plain
+    relief is.
+    """
+    b32, t32 = np.float32(stack.base), np.float32(stack.base + stack.relief)
+    verts = np.asarray(fused.vertices, np.float64)
+    faces = np.asarray(fused.faces, np.int64)
+    z = verts[:, 2].astype(np.float32)[faces]
+    top = (z == t32).all(axis=1)
+    over = (z >= b32).all(axis=1) & ~(z == b32).all(axis=1)
+    # the pattern's top, lowered: new vertices after the old ones (merged by the check)
+    low_ids = np.unique(faces[top])
+    lowered = verts[low_ids].copy()
+    lowered[:, 2] = stack.base
+    remap = np.zeros(len(verts), np.int64)
+    remap[low_ids] = len(verts) + np.arange(len(low_ids))
+    tris = np.concatenate([faces[over], remap[faces[top]][:, ::-1]])
+    r, o = fused.region, fused.outline
+    base_verts, base_faces, used, base_found = _checked_body("base", "base", r, o, stack)
+    volume, bodies = _expected("base", used, o, stack)
+    out = {"base": CheckedPart(base_verts, base_faces, float(volume), int(bodies), used, o, float(base_found))}
+    volume, bodies = _expected("pattern", r, o, stack)
+    mverts, mfaces, found = check_indexed(np.concatenate([verts, lowered]), tris, name="pattern", volume=volume,
+                                          bodies=bodies, with_volume=True)
+    out["pattern"] = CheckedPart(mverts, mfaces, float(volume), int(bodies), r, o, float(found))
+    return out
+
+
+def splits_fused(stack: Stack, single: bool, inlay: bool, dips) -> bool:
+    """True when the parts are cut from the fused body (:func:`relief_parts`): a plain relief's parts."""
+    return stack.style == "relief" and not single and not inlay and dips is None and stack.base > 0 \
+        and stack.relief > 0
+
+
 def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay: bool = False, dips=None):
     """The checked parts of a print by name, in print order (see :func:`build_meshes`).
 
@@ -348,12 +391,21 @@ def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay:
     """
     r, o = _snapped(region, outline)
     dips = _leveled(dips)
+    if splits_fused(stack, single, inlay, dips):
+        return relief_parts(_fused_part(r, o, stack), stack)
     out = {}
     for name, kind in part_kinds(stack.style, single, inlay).items():
         verts, faces, used, found = _checked_body(kind, name, r, o, stack, dips)
         volume, bodies = _expected(kind, used, o, stack, dips)
         out[name] = CheckedPart(verts, faces, float(volume), int(bodies), used, o, float(found))
     return out
+
+
+def _fused_part(r, o, stack: Stack) -> CheckedPart:
+    """A plain relief's fused body from the snapped region and outline, checked."""
+    verts, faces, used, found = _checked_body("relief", "body", r, o, stack)
+    volume, bodies = _expected("relief", used, o, stack)
+    return CheckedPart(verts, faces, float(volume), int(bodies), used, o, float(found))
 
 
 def _build(region, outline, stack: Stack, *, single: bool, inlay: bool = False):

@@ -29,7 +29,8 @@ from functools import cached_property
 from typing import NamedTuple
 
 from .._report import Report
-from .parts import CheckedPart, part_kinds, check_inlay, checked_parts, prepare_print, stack_stats
+from .parts import (CheckedPart, check_inlay, checked_parts, part_kinds, prepare_print, relief_parts,
+                    splits_fused, stack_stats)
 
 
 class Material(NamedTuple):
@@ -83,7 +84,10 @@ class PrintModel:
     @cached_property
     def parts(self) -> dict:
         """The checked parts by name, in print order (:class:`PrintPart`)."""
-        checked = checked_parts(self.region, self.outline, self.stack, inlay=self.inlay, dips=self.dips)
+        if splits_fused(self.stack, False, self.inlay, self.dips):
+            checked = relief_parts(self.fused, self.stack)  # one meshing for the STL and the 3MF
+        else:
+            checked = checked_parts(self.region, self.outline, self.stack, inlay=self.inlay, dips=self.dips)
         one = len(checked) == 1
         out = {}
         for name, mesh in checked.items():
