@@ -28,7 +28,7 @@ try:  # Python 3.11+
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-PRINT_STYLES = ("relief", "pierced", "deboss")
+PRINT_STYLES = ("relief", "pierced", "deboss", "mosaic")
 PRINTER = "printer"
 """The kind of a 3D printer's profile (every other kind is a 2D cutter's, :data:`~fabtiles._cutters.KINDS`)."""
 DXF_VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")

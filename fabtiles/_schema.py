@@ -18,8 +18,8 @@ tilings) are named as ``"module:NAME"`` and looked up when asked for.
 0.2
 >>> key("tile.outline").choice_values()
 ('square', 'rectangle', 'hexagon', 'circle')
->>> build_options("3mf")
-('style', 'base_mm', 'relief_mm', 'pierced_mm', 'deboss_mm', 'fill_small_holes', 'inlay', 'layout')
+>>> build_options("3mf")[:2], build_options("3mf")[-3:]
+(('style', 'base_mm'), ('fill_small_holes', 'inlay', 'layout'))
 """
 
 from __future__ import annotations
@@ -33,13 +33,15 @@ from typing import Any
 
 from ._errors import ParameterError, did_you_mean
 
-SECTIONS = ("motif", "packing", "tile", "output")
+SECTIONS = ("motif", "packing", "tile", "output", "colour")
 """The design's sections, in the order of a design file."""
 
-TYPES = ("string", "integer", "number", "numbers", "boolean", "choice", "size", "motif", "motifs", "formats")
+TYPES = ("string", "integer", "number", "numbers", "boolean", "choice", "size", "motif", "motifs", "formats",
+         "colour", "colours")
 """A key's value type. ``numbers`` is a list of numbers, ``size`` a number or a [width, height]
 pair, ``motif`` a motif table or a preset name, ``motifs`` a table of motifs keyed by polygon sides,
-``formats`` a list of output formats."""
+``formats`` a list of output formats, ``colour`` a ``#rrggbb`` or CSS colour name, ``colours`` a table of
+face class letters to colours."""
 
 WIDGETS = ("slider", "number", "select", "checkbox", "text")
 """How the web form shows a key."""
@@ -256,6 +258,14 @@ class Key:
                 hint = did_you_mean(value, self.choice_values())
                 raise error(f"{prefix}{name} = {value!r} is not valid{f' ({hint})' if hint else ''}, must be one of: "
                             f"{', '.join(self.choice_values())}", param=param)
+        elif self.type == "colour":
+            from ._colour import parse_colour
+
+            try:
+                parse_colour(value, param=name)
+            except ParameterError as exc:
+                raise error(f"{prefix}{exc}", param=param) from None
+            return value
         else:
             raise ParameterError(f"{self.path} is a {self.type}: its value is checked where it is read, "
                                  f"not by Key.check", param=self.path)
@@ -419,12 +429,19 @@ KEYS: tuple[Key, ...] = MOTIF + (
              "`<name>-lattice` and `<name>-pieces` files, see [inlay.md](inlay.md))",
         widget=Widget(kind="select", label="Laser mode", labels=(("inlay", "inlay kit"),)), option=BuildOption(name="mode", families=("cut",))),
     Key(section="output", name="print_style", type="choice", choices="fabtiles._profiles:PRINT_STYLES",
-        default_text="the profile's", help="`relief`, `pierced` or `deboss`",
+        default_text="the profile's", help="`relief`, `pierced`, `deboss` or `mosaic` (a plate with the bands and "
+        "every face on it, a part per colour: see [colours.md](colours.md))",
         widget=Widget(kind="select", label="Print style"), option=BuildOption(name="style", families=_PRINT)),
     _height("base_mm", "Base (mm)", "the plate under the bands", ("relief", "deboss")),
     _height("relief_mm", "Relief (mm)", "the bands above the plate (relief)", ("relief",)),
     _height("pierced_mm", "Pierced (mm)", "a pierced tile's thickness", ("pierced",)),
     _height("deboss_mm", "Deboss (mm)", "the grooves' depth (deboss)", ("deboss",)),
+    Key(section="output", name="mosaic_inset_mm", type="number", unit="mm", range=Range(0, 1000), default_text="0",
+        checked_by="fabtiles.solid._mesh_build.resolve_stack", note="below relief_mm",
+        help="`print_style = \"mosaic\"`: how far the faces' tops sit below the bands' (0: flush; more: the bands "
+             "stand proud, cloisonne style); less than the relief height",
+        widget=Widget(kind="number", label="Mosaic inset (mm)", min=0, step=0.1, when=(("print_style", ("mosaic",)),)),
+        option=BuildOption(name="mosaic_inset_mm", families=_PRINT)),
     Key(section="output", name="name", type="string", default_text="the file's stem",
         help="the output files' name (a plain file name: letters, digits, `. _ -` and spaces)",
         widget=Widget(kind="text", label="File name", placeholder="the design's")),
@@ -461,6 +478,24 @@ KEYS: tuple[Key, ...] = MOTIF + (
                                                                         ("pocket", "pockets engraved")),
                       when=_INLAY_WHEN),
         option=BuildOption(name="inlay_base", families=("cut",))),
+    # [colour]
+    Key(section="colour", name="by", type="choice", default="none", choices=("none", "shape"), query="colour_by",
+        help="`\"shape\"`: the faces of the pattern (the openings between the bands) grouped into classes of "
+             "congruent shapes, lettered A, B, ... by total area, each class its own colour; `\"none\"`: every "
+             "face one class, A (the two colours of band and face)",
+        widget=Widget(kind="select", label="Colour faces by", labels=(("none", "one colour"), ("shape", "shape")))),
+    Key(section="colour", name="palette", type="choice", default="zellige", choices="fabtiles._colour:PALETTE_NAMES",
+        help="the named palette giving the band's, the base's and the classes' colours unless set below "
+             "([colours.md](colours.md) says where each comes from)",
+        widget=Widget(kind="select", label="Palette")),
+    Key(section="colour", name="band_colour", type="colour", default_text="the palette's",
+        note="#rrggbb or a CSS colour name", help="the bands' colour (the strapwork): a print's bands, a kit's lattice"),
+    Key(section="colour", name="base_colour", type="colour", default_text="the palette's",
+        note="#rrggbb or a CSS colour name", help="the base plate's colour (relief, mosaic and deboss prints)"),
+    Key(section="colour", name="faces", type="colours", default_text="the palette's, in class order",
+        note="a table of class letters to colours", query=None,
+        help="`[colour.faces]` `A = \"navy\"`, `B = \"#c8553d\"`: a colour per face class; classes given one "
+             "colour share a material (a filament, a wood), so six classes fit a four-slot AMS as four colours"),
 )
 """Every design key, section by section in the order of a design file."""
 
@@ -590,7 +625,8 @@ def _family(family: str) -> tuple[str, ...]:
 # -- the manual's tables -------------------------------------------------------------------------------------------
 _TYPE_WORDS = {"string": "string", "integer": "integer", "number": "number", "numbers": "list of numbers",
                "boolean": "true or false", "choice": "string", "size": "number or [width, height]",
-               "motif": "table or preset name", "motifs": "table", "formats": "list of strings"}
+               "motif": "table or preset name", "motifs": "table", "formats": "list of strings",
+               "colour": "string, #rrggbb or a CSS colour name", "colours": "table of class letters to colours"}
 
 
 def _doc_type(k: Key) -> str:

@@ -81,6 +81,8 @@ HEIGHT_KEYS = tuple(k.name for k in _schema.section_keys("output")
 """The ``[output]`` keys overriding the printer profile's heights (mm)."""
 
 OUTPUT_KEYS = _schema.names("output")
+COLOUR_KEYS = _schema.names("colour")
+"""The valid keys of ``[colour]`` (``faces`` is the ``[colour.faces]`` table)."""
 """The valid keys of ``[output]`` (the exporters read the mode/style/profile keys)."""
 
 
@@ -153,10 +155,34 @@ class OutputSpec:
     relief_mm: float | None = _default("output.relief_mm")
     pierced_mm: float | None = _default("output.pierced_mm")
     deboss_mm: float | None = _default("output.deboss_mm")
+    mosaic_inset_mm: float | None = _default("output.mosaic_inset_mm")
 
     def heights(self) -> dict:
         """The height overrides given (mm), as keyword arguments of the print exporters."""
         return {k: getattr(self, k) for k in HEIGHT_KEYS if getattr(self, k) is not None}
+
+
+@dataclass(frozen=True)
+class ColourSpec:
+    """The ``[colour]`` section (``docs/colours.md``): how faces are classed and the colours given.
+
+    ``given`` is whether the design has the section: without it a relief's and a
+    deboss's parts keep their plain display colours and nothing is classed by shape.
+    """
+
+    by: str = _default("colour.by")
+    palette: str = _default("colour.palette")
+    band_colour: str | None = None
+    base_colour: str | None = None
+    faces: tuple[tuple[str, str], ...] = ()
+    given: bool = False
+
+    def colouring(self, classes=("A",)):
+        """The colours of a design whose face classes are ``classes`` (:func:`fabtiles._colour.colouring`)."""
+        from ._colour import colouring
+
+        return colouring(palette_name=self.palette, band=self.band_colour, base=self.base_colour, faces=dict(self.faces),
+                         classes=classes)
 
 
 @dataclass(frozen=True)
@@ -169,6 +195,7 @@ class Design:
     packing: PackingSpec | None = None
     output: OutputSpec = field(default_factory=OutputSpec)
     source: str = "<design>"
+    colour: ColourSpec = field(default_factory=ColourSpec)
 
     def build_tile(self, tile_cls=None):
         """The :class:`~fabtiles.geometry.tile.TileGeometry` of this design (see :func:`build_tile`)."""
@@ -377,9 +404,10 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
     motif = _motif_spec(data["motif"], source, "[motif]") if "motif" in data else None
     tile_spec = _tile_spec(data["tile"], source)
     output = _output_spec(data.get("output", {}), source)
+    colour = _colour_spec(data["colour"], source) if "colour" in data else ColourSpec()
     name = output.name or name
     design = Design(name=name, motif=motif, tile_spec=tile_spec, packing=packing, output=output,
-                    source=source)
+                    source=source, colour=colour)
     # Values: build the pieces, turning their ParameterError into a DesignError naming the key.
     try:
         star = motif.star() if motif is not None else None
@@ -573,6 +601,29 @@ def _tile_spec(table: dict, source: str) -> TileSpec:
     except FabtilesError as exc:
         raise _wrapped(exc, source, where) from None
     return TileSpec(outline=outline, size=size, **_section(table, "tile", source, where, skip=("outline",)))
+
+
+def _colour_spec(table: dict, source: str) -> ColourSpec:
+    """The ``[colour]`` section: its keys checked (colours parsed); the class letters are checked by the build,
+    which knows the design's classes."""
+    where = "[colour]"
+    _check_keys(table, COLOUR_KEYS, where, source)
+    values = _section(table, "colour", source, where)
+    values.update({k.name: _value(table, "colour", k.name, source, where)
+                   for k in _schema.section_keys("colour") if k.type == "colour"})
+    faces = table.get("faces", {})
+    if not isinstance(faces, dict):
+        raise DesignError(f"{source}: [colour.faces] must be a table of class letters to colours "
+                          f"(A = \"navy\"), got {faces!r}", param="colour.faces")
+    checked = []
+    for letter, value in faces.items():
+        if not re.fullmatch(r"[A-Z]{1,2}", str(letter)):
+            raise DesignError(f"{source}: [colour.faces] key {letter!r} must be a class letter (A, B, ... as "
+                              f"fabtiles check lists them)", param="colour.faces")
+        _schema.key("colour.band_colour").check(value, name=f"[colour.faces] {letter}", prefix=f"{source}: ",
+                                         error=DesignError, param="colour.faces")
+        checked.append((letter, value))
+    return ColourSpec(**values, faces=tuple(sorted(checked)), given=True)
 
 
 def _output_spec(table: dict, source: str) -> OutputSpec:

@@ -141,6 +141,7 @@ def test_build_options_are_the_schemas():
     assert pipeline._CUT_OPTIONS == ("mode", "dxf_version", "kerf_mm", "fill_small_holes", "inlay_fit_mm",
                                      "inlay_base")
     assert pipeline._3MF_OPTIONS == pipeline._PRINT_OPTIONS + ("inlay", "layout")
+    assert "mosaic_inset_mm" in pipeline._PRINT_OPTIONS
 
 
 # -- every raise of the module ----------------------------------------------------------------------------------------
@@ -195,8 +196,8 @@ def test_build_option_checks_its_families():
 
 def test_key_checks_its_section_and_type():
     with pytest.raises(ParameterError, match=r"a key's section must be one of: motif, packing, tile, output, "
-                                             r"got 'colour'"):
-        Key(section="colour", name="x", type="string", help="")
+                                             r"colour, got 'finish'"):
+        Key(section="finish", name="x", type="string", help="")
     with pytest.raises(ParameterError, match=r"a key's type must be one of: string, integer, .*, got 'date'"):
         Key(section="tile", name="x", type="date", help="")
 
@@ -232,9 +233,9 @@ def test_key_lookup():
     assert _schema.key("packing.motifs.alpha") is _schema.key("motif.alpha")
     with pytest.raises(ParameterError, match=r"'tile\.colour' is not a design key, must be one of: motif\.preset"):
         _schema.key("tile.colour")
-    with pytest.raises(ParameterError, match=r"'colour' is not a section, must be one of: motif, packing, tile, "
-                                             r"output"):
-        _schema.section_keys("colour")
+    with pytest.raises(ParameterError, match=r"'finish' is not a section, must be one of: motif, packing, tile, "
+                                             r"output, colour"):
+        _schema.section_keys("finish")
     with pytest.raises(ParameterError, match=r"'plot' is not a family of build options, must be one of: cut, print, "
                                              r"3mf"):
         _schema.build_options("plot")

@@ -14,6 +14,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 
+import numpy as np
+
 from .._errors import FabricationError, ParameterError
 from .._report import Report
 from .._schema import CALL_OPTIONS, FAMILIES, option_keys
@@ -46,6 +48,8 @@ class BuildOptions:
     inlay: bool = False
     """The deboss grooves filled as a second part of the print."""
     threemf_layout: str = "volumes"
+    colour: object = None
+    """The design's ``[colour]`` (:class:`~fabtiles.design.ColourSpec`), or None: no colours given."""
 
     @classmethod
     def of_design(cls, design) -> "BuildOptions":
@@ -56,7 +60,7 @@ class BuildOptions:
         from ..design import profile_of
 
         return cls(cutter=profile_of(design, "laser"), printer=profile_of(design, "printer"),
-                   **cls.fields_of(values, *FAMILIES))
+                   colour=design.colour, **cls.fields_of(values, *FAMILIES))
 
     @staticmethod
     def fields_of(options: dict, *families: str) -> dict:
@@ -159,6 +163,46 @@ class Models:
                         dxf_version=o.dxf_version, kerf_mm=o.kerf_mm, fill_small_holes=o.fill_small_holes,
                         stroke=self.tile.stroke)
 
+    # ------------------------------------------------------------------ the colours
+
+    @cached_property
+    def face_classes(self):
+        """The tile's faces grouped into classes (:func:`~fabtiles.geometry.faces.face_classes`), by the
+        design's ``[colour] by`` (one class when no colours are given)."""
+        from ..geometry.faces import face_classes
+
+        spec = self.options.colour
+        return face_classes(self.tile, by=spec.by if spec is not None else "none")
+
+    @cached_property
+    def colouring(self):
+        """The colours of the band, the base and each face class (:class:`~fabtiles._colour.Colouring`)."""
+        from ..design import ColourSpec
+
+        spec = self.options.colour if self.options.colour is not None else ColourSpec()
+        try:
+            return spec.colouring(tuple(c.letter for c in self.face_classes.classes) or ("A",))
+        except ParameterError as exc:
+            raise ParameterError(f"[colour] {exc}", param=f"colour.{exc.param}") from None
+
+    def mosaic_specs(self) -> tuple:
+        """A mosaic's parts, one per distinct colour (base, bands, then the classes'), in material order."""
+        from .._colour import check_materials
+        from ..solid.parts import MosaicPart
+
+        colours, classes = self.colouring, self.face_classes
+        materials = colours.materials()
+        check_materials(materials)
+        specs = []
+        for c in materials:
+            letters = [k for k, v in colours.faces if v.hex == c.hex]
+            holds = (["base"] if colours.base.hex == c.hex else []) + (["bands"] if colours.band.hex == c.hex else [])
+            index = [i for i, fc in enumerate(classes.classes) if fc.letter in letters]
+            faces = tuple(classes.faces[np.isin(classes.labels, index)]) if index else ()
+            specs.append(MosaicPart(f"{c.name} ({', '.join(holds + letters)})", "base" in holds, "bands" in holds,
+                                    faces, c))
+        return tuple(specs)
+
     # ------------------------------------------------------------------ the printer
 
     @cached_property
@@ -176,9 +220,15 @@ class Models:
         o = self.options
         region, dips = self.print_region
         self._material(region)
-        return print_model(region, self.tile.outline_shape(), profile=o.printer, style=o.print_style,
-                           stroke=self.tile.stroke, fill_small_holes=o.fill_small_holes, inlay=o.inlay,
-                           dips=dips, **o.heights)
+        style = o.print_style or o.printer.style
+        given = o.colour is not None and o.colour.given
+        model = print_model(region, self.tile.outline_shape(), profile=o.printer, style=o.print_style,
+                            stroke=self.tile.stroke, fill_small_holes=o.fill_small_holes, inlay=o.inlay,
+                            dips=dips, colours=self.colouring if given or style == "mosaic" else None,
+                            mosaic=self.mosaic_specs() if style == "mosaic" else (), **o.heights)
+        if style == "mosaic" or given:
+            model.report.stats["face_classes"] = self.face_classes.stats()
+        return model
 
     def model(self, family: str):
         """The model a format family is written from: ``"cut"`` or ``"print"``."""

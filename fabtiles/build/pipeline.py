@@ -151,6 +151,8 @@ def _planned_files(models: Models, formats, name: str, *, layout: str):
         model = models.model(f.family)
         if f.family == "cut" and hasattr(model, "lattice"):  # an inlay kit: two files per format
             files = [(f"{name}{suffix}.{fmt}", getattr(model, which)) for suffix, which in KIT_FILES]
+        elif hasattr(model, "files_of"):  # a model that writes several files of a format (a mosaic's STLs)
+            files = [(f"{name}{suffix}.{fmt}", m) for suffix, m in model.files_of(fmt)]
         else:
             files = [(f"{name}.{fmt}", model)]
         planned.append((f, files, FileOptions(name=Path(name).stem, layout=layout)))
@@ -176,7 +178,9 @@ def write_files(models: Models, formats, outdir, name: str, *, file_name: str | 
                 [(f"{stem}{n[len(name):]}", m) for n, m in files]
             options = replace(options, name=stem)
         contents.extend((fname, f.write(model, options)) for fname, model in files)
-        report = _file_report(models.model(f.family).report, files[0][0], f.name, f.figures(files[0][1], options))
+        # a print's figures are its model's (a mosaic's STLs: every colour's), a kit's its first file's
+        measured = files[0][1] if f.family == "cut" else models.model(f.family)
+        report = _file_report(models.model(f.family).report, files[0][0], f.name, f.figures(measured, options))
         if len(files) > 1:
             report.stats["files"] = [n for n, _ in files]
         reports.append(report)

@@ -47,7 +47,18 @@ def model_stl_bytes(model) -> bytes:
 
 
 def figures(model) -> dict:
-    """What an STL adds to its model's report: its body, triangles, volume, filament and bounds."""
+    """What an STL adds to its model's report: its body, triangles, volume, filament and bounds.
+
+    A mosaic of several colours is one STL per colour: its figures are every part's.
+    """
+    split = model.files_of("stl") if hasattr(model, "files_of") else [("", model)]
+    if len(split) > 1:
+        parts = {m.fused_name: m.fused for _, m in split}
+        allv = np.concatenate([p.vertices for p in parts.values()])
+        return dict(model.stats(), bodies=list(parts), triangles=int(sum(len(p.faces) for p in parts.values())),
+                    volume_mm3=float(sum(p.mesh_volume_mm3 for p in parts.values())),
+                    material=filament({n: p.mesh_volume_mm3 for n, p in parts.items()}, model.profile).as_stats(),
+                    bounds_mm=[allv.min(axis=0).tolist(), allv.max(axis=0).tolist()])
     fused, name = model.fused, model.fused_name
     volume = fused.mesh_volume_mm3
     return dict(model.stats(), bodies=[name], triangles=len(fused.faces), volume_mm3=volume,

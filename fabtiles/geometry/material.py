@@ -70,6 +70,8 @@ def stack_volume(region_area: float, outline_area: float, stack) -> float:
         return outline_area * stack.base + region_area * stack.relief
     if stack.style == "pierced":
         return region_area * stack.pierced
+    if stack.style == "mosaic":
+        return outline_area * (stack.base + stack.relief) - (outline_area - region_area) * stack.inset
     return outline_area * stack.base - region_area * stack.deboss
 
 

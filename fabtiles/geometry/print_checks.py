@@ -66,6 +66,7 @@ filled with the rest but not counted (the laser profiles' ``tolerance_mm`` does 
 OPENINGS = {
     "pierced": ("hole through the tile", "holes through the tile"),
     "relief": ("gap in the raised pattern", "gaps in the raised pattern"),
+    "mosaic": ("face narrower than the nozzle's lines", "faces narrower than the nozzle's lines"),
 }
 """What a print's small openings are, by style (a deboss has two kinds, see :func:`small_openings`)."""
 
@@ -392,7 +393,7 @@ def _report_small_openings(report: Report, found: SmallOpenings, profile: Printe
 
 
 def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=None, relief_mm=None,
-                pierced_mm=None, deboss_mm=None, report: Report | None = None) -> Report:
+                pierced_mm=None, deboss_mm=None, mosaic_inset_mm=None, report: Report | None = None) -> Report:
     """Run the printability checks; findings go into ``report`` (see the module text).
 
     Parameters
@@ -412,7 +413,7 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
     from .stack import resolve_stack
 
     profile = load_profile(profile, kind="printer")
-    stack = resolve_stack(profile, style, base_mm, relief_mm, pierced_mm, deboss_mm)
+    stack = resolve_stack(profile, style, base_mm, relief_mm, pierced_mm, deboss_mm, mosaic_inset_mm)
     check_min_hole(profile, outline)
     report = report if report is not None else Report(path="", format="print")
     wall = profile.min_wall_mm
@@ -465,6 +466,8 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
     heights = {
         "relief": (("base_mm", stack.base, "the plate"), ("relief_mm", stack.relief, "the relief")),
         "pierced": (("pierced_mm", stack.pierced, "the tile"),),
+        "mosaic": (("base_mm", stack.base, "the plate"),
+                   ("relief_mm - mosaic_inset_mm", stack.relief - stack.inset, "the faces over the plate")),
         "deboss": (("deboss_mm", stack.deboss, "the groove depth"),
                    ("base_mm - deboss_mm", stack.base - stack.deboss, "the floor under the grooves")),
     }[stack.style]

@@ -3,7 +3,8 @@
 Every 3D part fabtiles makes is a stack: the material region and the rest of the
 outline raised to their own levels above a common bottom (relief: the pattern at
 ``b + h`` on a plate of ``b``; pierced: the pattern alone, ``t`` thick; deboss: a
-plate of ``b`` with the pattern sunk ``d`` deep). The printability checks
+plate of ``b`` with the pattern sunk ``d`` deep; mosaic: a plate of ``b`` with the bands and
+every face of the pattern on it up to ``b + h``, the faces ``i`` lower). The printability checks
 (:mod:`fabtiles.geometry.print_checks`), the design files and the mesh and STEP
 writers all resolve a part's heights here.
 """
@@ -32,7 +33,8 @@ class Stack:
 
     ``base`` is the plate thickness b (relief, deboss), ``relief`` the pattern
     height h above the plate (relief), ``pierced`` the thickness t (pierced),
-    ``deboss`` the groove depth d (deboss).
+    ``deboss`` the groove depth d (deboss), ``inset`` how far a mosaic's faces sit below
+    its bands (mosaic; 0: flush).
     """
 
     style: str
@@ -40,11 +42,13 @@ class Stack:
     relief: float
     pierced: float
     deboss: float
+    inset: float = 0.0
 
     @property
     def top(self) -> float:
         """Height of the highest point of the part."""
-        return {"relief": self.base + self.relief, "pierced": self.pierced, "deboss": self.base}[self.style]
+        return {"relief": self.base + self.relief, "pierced": self.pierced, "deboss": self.base,
+                "mosaic": self.base + self.relief}[self.style]
 
     def expected_volume(self, region_area: float, outline_area: float) -> float:
         """Volume of the part from the areas of the material region and the outline."""
@@ -52,20 +56,25 @@ class Stack:
             return outline_area * self.base + region_area * self.relief
         if self.style == "pierced":
             return region_area * self.pierced
+        if self.style == "mosaic":  # the bands to the top, the faces (the rest of the outline) inset
+            return outline_area * (self.base + self.relief) - (outline_area - region_area) * self.inset
         return outline_area * self.base - region_area * self.deboss
 
 
-def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None, deboss_mm=None) -> Stack:
+def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None, deboss_mm=None,
+                  mosaic_inset_mm=None) -> Stack:
     """The style and heights of a part: the call's values, else the profile's.
 
     Parameters
     ----------
     profile : str, Path or PrinterProfile
         Printer profile giving the defaults.
-    style : {"relief", "pierced", "deboss"}, optional
+    style : {"relief", "pierced", "deboss", "mosaic"}, optional
     base_mm, relief_mm, pierced_mm, deboss_mm : float, optional
         Heights in mm, each > 0 and at most ``MAX_HEIGHT_MM``; a deboss must be
         shallower than the plate.
+    mosaic_inset_mm : float, optional
+        A mosaic's faces below its bands (mm, >= 0 and below ``relief_mm``; default 0).
 
     Examples
     --------
@@ -75,6 +84,10 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: deboss_mm must be smaller than base_mm (the plate is 2 mm thick), got 2.5
+    >>> resolve_stack("fdm-0.4mm", style="mosaic", mosaic_inset_mm=2)
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.ParameterError: mosaic_inset_mm must be smaller than relief_mm (the bands stand 1.2 mm above the plate), got 2
     """
     profile = load_profile(profile, kind="printer")
     assert isinstance(profile, PrinterProfile)
@@ -90,4 +103,11 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
             f"got {values['deboss_mm']:g}",
             param="deboss_mm",
         )
-    return Stack(style, values["base_mm"], values["relief_mm"], values["pierced_mm"], values["deboss_mm"])
+    inset = check_float("mosaic_inset_mm", 0.0 if mosaic_inset_mm is None else mosaic_inset_mm, low=0,
+                        high=MAX_HEIGHT_MM)
+    if style == "mosaic" and inset >= values["relief_mm"]:
+        raise ParameterError(
+            f"mosaic_inset_mm must be smaller than relief_mm (the bands stand {values['relief_mm']:g} mm above the "
+            f"plate), got {inset:g}", param="mosaic_inset_mm")
+    return Stack(style, values["base_mm"], values["relief_mm"], values["pierced_mm"], values["deboss_mm"],
+                 inset if style == "mosaic" else 0.0)

@@ -500,7 +500,7 @@ def _layers(kind, r, o, stack, dips):
     """
     import shapely
 
-    if kind not in ("relief", "plate"):
+    if kind not in ("relief", "plate", "mosaic"):
         return body_layers(kind, r, o, stack)
     d = split_region(r, dips, holes=False)[1] if kind == "relief" else shapely.Polygon()
     lines = shapely.union_all([shapely.boundary(g) for g in (r, o, d) if not g.is_empty], grid_size=QUANTUM)
@@ -509,8 +509,9 @@ def _layers(kind, r, o, stack, dips):
     probe = shapely.point_on_surface(faces)
     in_o, in_r = shapely.contains(o, probe), shapely.contains(r, probe)
     in_d = shapely.contains(d, probe) if not d.is_empty else np.zeros(len(faces), bool)
-    top = stack.base + stack.relief if kind == "relief" else stack.base - stack.deboss
-    layers = [(faces[in_o & in_r & ~in_d], top), (faces[in_o & ~in_r], stack.base), (faces[in_o & in_d], dip_z(stack))]
+    top = stack.base + stack.relief if kind in ("relief", "mosaic") else stack.base - stack.deboss
+    rest = top - stack.inset if kind == "mosaic" else stack.base  # a mosaic: its faces, to the top less the inset
+    layers = [(faces[in_o & in_r & ~in_d], top), (faces[in_o & ~in_r], rest), (faces[in_o & in_d], dip_z(stack))]
     return [(shapely.MultiPolygon(list(g)), z) for g, z in layers if len(g)], 0.0
 
 
@@ -572,7 +573,7 @@ def build_brep(*, region, outline, stack: Stack, dips=None):
 
 def brep_of_part(part, stack: Stack, dips=None):
     """The planar B-rep of a checked fused body (see :func:`build_brep`): ``(brep, mesh_volume, n_solids)``."""
-    kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate"}[stack.style]
+    kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
     layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
     brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), sides=_sides(part.outline))
     return brep, part.mesh_volume_mm3, len(brep.solids)

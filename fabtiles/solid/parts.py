@@ -78,7 +78,8 @@ def prepare_print(region, outline, profile, style, heights, stroke=None, *, fill
             report.note(f"filled {filled:,} opening{'s' if filled != 1 else ''} narrower than min_hole_mm = "
                         f"{profile.min_hole_mm:g} mm of printer profile {profile.name!r}")
     check_print(region, outline, profile, stroke=stroke, style=stack.style, base_mm=stack.base,
-                relief_mm=stack.relief, pierced_mm=stack.pierced, deboss_mm=stack.deboss, report=report)
+                relief_mm=stack.relief, pierced_mm=stack.pierced, deboss_mm=stack.deboss,
+                mosaic_inset_mm=stack.inset, report=report)
     report.raise_if_strict(profile.strict)
     return profile, stack, report, region
 
@@ -120,6 +121,8 @@ def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0, dips=None):
         cov = body_coverage(kind, r, o, stack, dips, shift=shift, leveled=True)
     elif kind == "relief":
         cov = coverage_pair(r, o, region_z=b + h, rest_z=b, bottom=0.0, shift=shift)
+    elif kind == "mosaic":  # the whole mosaic as one body: the faces' tops inset below the bands'
+        cov = coverage_pair(r, o, region_z=b + h, rest_z=b + h - stack.inset, bottom=0.0, shift=shift)
     elif kind == "base":
         cov = coverage([(o, b)], bottom=0.0, shift=shift)
     elif kind == "pattern":
@@ -147,6 +150,7 @@ def _expected(kind, r, o, stack, dips=None):
         return full - dips_volume(r, dips, stack, leveled=True), {"relief": no, "pattern": nr}[kind]
     return {
         "relief": (o.area * b + r.area * h, no),
+        "mosaic": (o.area * (b + h) - (o.area - r.area) * stack.inset, no),
         "base": (o.area * b, no),
         "pattern": (r.area * h, nr),
         "pierced": (r.area * stack.pierced, nr),
@@ -167,6 +171,8 @@ def part_kinds(style: str, single: bool, inlay: bool = False) -> dict:
         return {"body": "relief"} if single else {"base": "base", "pattern": "pattern"}
     if style == "pierced":
         return {"pattern": "pierced"}
+    if style == "mosaic":  # its parts, one per colour, are made by :func:`mosaic_parts`
+        return {"body": "mosaic"}
     return {"plate": "plate", "inlay": "inlay"} if inlay and not single else {"plate": "plate"}
 
 
@@ -477,8 +483,107 @@ def fused_body(region, outline, stack: Stack, *, dips=None):
     return name, mverts, mfaces, volume
 
 
+class MosaicPart(NamedTuple):
+    """What one part (one colour) of a mosaic print holds: the plate, the bands, some faces."""
+
+    name: str
+    """The part's name: its colour and what it holds (``"cobalt (A, C)"``)."""
+    base: bool
+    """The plate under everything (``0 .. base``)."""
+    bands: bool
+    """The bands (the region), up to the top."""
+    faces: tuple
+    """The faces of this colour (shapely polygons, file coordinates), up to the top less the inset."""
+    colour: object = None
+    """Its :class:`~fabtiles._colour.Colour`: the display colour and the STL file's name."""
+
+
+def mosaic_parts(region, outline, stack: Stack, specs) -> dict:
+    """The checked parts of a mosaic print, one per :class:`MosaicPart` of ``specs``, in that order.
+
+    The faces are the outline less the region, cut on the 2**-10 mm grid so that each
+    touches its bands exactly; each takes the part of the spec face holding its
+    representative point (a face a spec does not name goes with the part holding the
+    bands). A part with the plate is meshed as a relief of its top footprint
+    (``coverage_pair``: the footprint up to its top, the rest of the outline to the
+    plate's top); one without it stands on the plate (``base`` up). Each part is checked
+    as a slicer reads it, alone; the parts touch without overlapping.
+    """
+    import shapely
+
+    r, o = _snapped(region, outline)
+    faces = np.asarray(polygons_of(shapely.difference(o, r, grid_size=QUANTUM)), dtype=object)
+    owner = np.full(len(faces), -1)
+    spec_faces = [(np.asarray(s.faces, dtype=object), k) for k, s in enumerate(specs) if len(s.faces)]
+    if len(faces) and spec_faces:
+        polys = np.concatenate([f for f, _ in spec_faces])
+        which = np.concatenate([np.full(len(f), k) for f, k in spec_faces])
+        probe = shapely.point_on_surface(faces)
+        a, b = shapely.STRtree(polys).query(probe, predicate="within")
+        owner[a] = which[b]
+        lost = np.flatnonzero(owner < 0)
+        if len(lost):  # snapped faces whose point fell on a spec face's edge: the nearest spec face
+            near = shapely.STRtree(polys).query_nearest(probe[lost], return_distance=False)
+            owner[lost[near[0]]] = which[near[1]]
+    band_part = next((k for k, s in enumerate(specs) if s.bands), 0)
+    owner[owner < 0] = band_part
+    b, h, i = stack.base, stack.relief, stack.inset
+    out = {}
+    for k, spec in enumerate(specs):
+        mine = faces[owner == k]
+        face_geom = shapely.union_all(mine, grid_size=QUANTUM) if len(mine) else shapely.Polygon()
+        layers = []
+        if spec.bands:
+            layers.append((r, b + h))
+        if not face_geom.is_empty:
+            layers.append((face_geom, b + h - i))
+        if not layers and not spec.base:
+            continue  # a colour no face of this print took (all its faces were filled)
+        out[spec.name] = _mosaic_body(spec, layers, o, stack)
+    return out
+
+
+def _mosaic_body(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
+    """One mosaic part meshed and checked (see :func:`mosaic_parts`), trying moved cell lines on a defect."""
+    import shapely
+
+    b = stack.base
+    one_level = len({z for _, z in layers}) <= 1
+    top = shapely.union_all([g for g, _ in layers], grid_size=QUANTUM) if layers else shapely.Polygon()
+    if spec.base:
+        volume = o.area * b + sum(g.area * (z - b) for g, z in layers)
+        bodies = len(polygons_of(o))
+    else:
+        volume = sum(g.area * (z - b) for g, z in layers)
+        bodies = len(polygons_of(top))
+    error = None
+    for shift in range(GRID_SHIFTS):
+        if spec.base and not layers:
+            cov = coverage([(o, b)], bottom=0.0, shift=shift)
+        elif spec.base and one_level:
+            cov = coverage_pair(top, o, region_z=layers[0][1], rest_z=b, bottom=0.0, shift=shift)
+        elif spec.base:
+            rest = shapely.difference(o, top, grid_size=QUANTUM)
+            cov = coverage(layers + ([(rest, b)] if not rest.is_empty else []), bottom=0.0, shift=shift)
+        elif one_level:
+            cov = coverage([(top, layers[0][1])], bottom=b, shift=shift)
+        else:
+            cov = coverage(layers, bottom=b, shift=shift)
+        verts, faces = mesh_coverage(cov)
+        try:
+            mverts, mfaces, found = check_indexed(verts, faces, name=f"part {spec.name!r}", volume=volume,
+                                                  bodies=bodies, with_volume=True)
+        except FabricationError as exc:
+            error = error or exc
+            continue
+        return CheckedPart(mverts, mfaces, float(volume), int(bodies), top, o, float(found))
+    raise error
+
+
 def stack_stats(stack):
     """The report statistics naming a stack's style and its heights (mm)."""
+    if stack.style == "mosaic":
+        return dict(style="mosaic", heights_mm={"base": stack.base, "relief": stack.relief, "inset": stack.inset})
     return dict(style=stack.style,
                 heights_mm={"relief": {"base": stack.base, "relief": stack.relief},
                             "pierced": {"pierced": stack.pierced},

@@ -29,8 +29,9 @@ from functools import cached_property
 from typing import NamedTuple
 
 from .._report import Report
-from .parts import (CheckedPart, check_inlay, checked_parts, part_kinds, prepare_print, relief_parts,
-                    splits_fused, stack_stats)
+from .._errors import ParameterError
+from .parts import (CheckedPart, MosaicPart, check_inlay, checked_parts, mosaic_parts, part_kinds, prepare_print,
+                    relief_parts, splits_fused, stack_stats)
 
 
 class Material(NamedTuple):
@@ -67,7 +68,8 @@ class PrintModel:
     Made by :func:`print_model`; see the module text.
     """
 
-    def __init__(self, *, profile, stack, region, outline, report: Report, dips=None, inlay: bool = False):
+    def __init__(self, *, profile, stack, region, outline, report: Report, dips=None, inlay: bool = False,
+                 colours=None, mosaic=()):
         self.profile = profile
         self.stack = stack
         self.region = region
@@ -75,15 +77,27 @@ class PrintModel:
         self.report = report
         self.dips = dips
         self.inlay = bool(inlay)
+        self.colours = colours
+        """The design's :class:`~fabtiles._colour.Colouring`, or None (the parts' own colours)."""
+        self.mosaic = tuple(mosaic)
+        """A mosaic's parts, one per colour (:class:`~fabtiles.solid.parts.MosaicPart`)."""
 
     @property
     def single_part(self) -> bool:
         """True when the print is one part: its fused body and its part are the same mesh."""
+        if self.stack.style == "mosaic":
+            return False
         return part_kinds(self.stack.style, True, False) == part_kinds(self.stack.style, False, self.inlay)
 
     @cached_property
     def parts(self) -> dict:
         """The checked parts by name, in print order (:class:`PrintPart`)."""
+        if self.stack.style == "mosaic":
+            specs = self.mosaic or (MosaicPart("body", True, True, ()),)
+            checked = mosaic_parts(self.region, self.outline, self.stack, specs)
+            colour = {s.name: s.colour for s in specs}
+            return {name: PrintPart(name, k + 1, colour[name].linear if colour[name] is not None else OTHER.colour,
+                                    mesh) for k, (name, mesh) in enumerate(checked.items())}
         if splits_fused(self.stack, False, self.inlay, self.dips):
             checked = relief_parts(self.fused, self.stack)  # one meshing for the STL and the 3MF
         else:
@@ -92,7 +106,10 @@ class PrintModel:
         out = {}
         for name, mesh in checked.items():
             material = PART_MATERIALS.get(name, OTHER)
-            out[name] = PrintPart(name, 1 if one else material.extruder, material.colour, mesh)
+            colour = material.colour
+            if self.colours is not None:  # the design's colours: a relief's plate and bands, a deboss and its inlay
+                colour = (self.colours.band if name in ("pattern", "inlay") else self.colours.base).linear
+            out[name] = PrintPart(name, 1 if one else material.extruder, colour, mesh)
         return out
 
     @cached_property
@@ -110,6 +127,17 @@ class PrintModel:
         ((name, _),) = part_kinds(self.stack.style, single=True).items()
         return name
 
+    def files_of(self, fmt: str) -> list:
+        """``[(suffix, model), ...]``: the files a format writes of this print.
+
+        An STL holds one body: a mosaic of several colours is one STL per colour,
+        ``-<colour>`` (all in the same frame, for slicers without 3MF), each a
+        :class:`PartPrint` of one part; everything else is one file, this model.
+        """
+        if fmt == "stl" and self.stack.style == "mosaic" and len(self.parts) > 1:
+            return [(f"-{_slug(name)}", PartPrint(self, part)) for name, part in self.parts.items()]
+        return [("", self)]
+
     @cached_property
     def brep(self):
         """``(brep, mesh volume, solids)``: the planar B-rep of the fused body (:mod:`.brep`), for STEP."""
@@ -123,19 +151,51 @@ class PrintModel:
 
 
 def print_model(region, outline, *, profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None,
-                deboss_mm=None, stroke=None, fill_small_holes: bool = False, inlay: bool = False, dips=None,
-                path: str = "", fmt: str = "") -> PrintModel:
+                deboss_mm=None, mosaic_inset_mm=None, stroke=None, fill_small_holes: bool = False,
+                inlay: bool = False, dips=None, colours=None, mosaic=(), path: str = "", fmt: str = "") -> PrintModel:
     """Validate, make the region to print and run the printability checks: the tile's :class:`PrintModel`.
 
     Parameters as :func:`~fabtiles.export.stl.write_stl`; ``inlay`` (deboss only) adds
     the grooves' filling as a second part; ``dips`` lowers an interlaced relief's
-    under strands (:mod:`fabtiles.solid.levels`). No mesh is built here: the model
+    under strands (:mod:`fabtiles.solid.levels`); ``colours`` (a
+    :class:`~fabtiles._colour.Colouring`) colours the parts, and a mosaic's ``mosaic``
+    (:class:`~fabtiles.solid.parts.MosaicPart`, one per colour) says which part holds
+    the plate, the bands and which faces. No mesh is built here: the model
     makes each on first use. A strict profile with findings raises.
     """
-    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm)
+    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm,
+                   mosaic_inset_mm=mosaic_inset_mm)
     profile, stack, report, region = prepare_print(region, outline, profile, style, heights, stroke,
                                                    fill_small_holes=fill_small_holes, flatten=dips is None,
                                                    path=path, fmt=fmt)
     check_inlay(stack, inlay)
+    if mosaic and stack.style != "mosaic":
+        raise ParameterError(f"mosaic parts need style='mosaic', got style={stack.style!r}", param="style")
     return PrintModel(profile=profile, stack=stack, region=region, outline=outline, report=report, dips=dips,
-                      inlay=inlay)
+                      inlay=inlay, colours=colours, mosaic=mosaic)
+
+
+def _slug(name: str) -> str:
+    """A part's name as a file name's tail: its colour (``"cobalt (A, C)"`` -> ``"cobalt"``)."""
+    return name.split(" (")[0].replace(" ", "-")
+
+
+class PartPrint:
+    """One part of a print as a print of its own (an STL of one colour of a mosaic): its mesh is the fused body."""
+
+    def __init__(self, model: PrintModel, part: PrintPart):
+        self.profile = model.profile
+        self.stack = model.stack
+        self.report = model.report
+        self.part = part
+
+    @property
+    def fused(self) -> CheckedPart:
+        return self.part.mesh
+
+    @property
+    def fused_name(self) -> str:
+        return self.part.name
+
+    def stats(self) -> dict:
+        return stack_stats(self.stack)
