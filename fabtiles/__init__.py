@@ -7,6 +7,7 @@ The public API, fixed for scripts (``docs/file-conventions.md``), is exactly ``_
 (32, 2, 2)
 """
 
+from ._colour import Colours
 from ._errors import (
     DesignError,
     FabricationError,
@@ -50,6 +51,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ArchimedeanPacking",
+    "Colours",
     "CutterProfile",
     "DesignError",
     "FabricationError",

@@ -23,7 +23,7 @@ fabtiles._errors.ParameterError: colour must be #rrggbb or a CSS colour name (li
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from ._errors import ParameterError, did_you_mean
 
@@ -218,3 +218,51 @@ def check_materials(colours, *, what: str = "print") -> None:
         raise ParameterError(f"the {what} has {len(colours)} distinct colours, more than the {MAX_MATERIALS} "
                              f"filaments a slicer takes; give some face classes the same colour in [colour.faces] "
                              f"(classes of one colour share a filament)", param="faces")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Colours:
+    """How a tile is coloured: a design's ``[colour]`` section, and the export API's ``colours=`` option.
+
+    ``by`` (``"none"`` or ``"shape"``) groups the faces into classes; ``palette`` names
+    the palette; ``band_colour`` and ``base_colour`` (``#rrggbb`` or a CSS name)
+    override the palette's; ``faces`` maps class letters to colours (a dict or pairs).
+    ``given`` says that colours were asked for (a design with a ``[colour]`` section:
+    a relief's and a deboss's parts then take the base and band colours). Every value
+    is checked here; the letters against the design's classes when the build knows them.
+
+    >>> Colours(by="shape", palette="iznik", faces={"B": "navy"}).faces
+    (('B', 'navy'),)
+    >>> Colours(by="size")
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.ParameterError: by = 'size' is not valid, must be one of: none, shape
+    """
+
+    by: str = "none"
+    palette: str = PALETTE_NAMES[0]
+    band_colour: str | None = None
+    base_colour: str | None = None
+    faces: tuple = field(default=())
+    given: bool = True
+
+    def __post_init__(self):
+        from ._schema import section_keys
+
+        for k in section_keys("colour"):
+            if k.name != "faces":
+                k.check(getattr(self, k.name))
+        faces = self.faces.items() if isinstance(self.faces, dict) else self.faces
+        pairs = []
+        for letter, value in faces:
+            if not (isinstance(letter, str) and re.fullmatch(r"[A-Z]{1,2}", letter)):
+                raise ParameterError(f"key {letter!r} must be a class letter (A, B, ... as fabtiles check "
+                                     f"lists them)", param="faces")
+            parse_colour(value, param=letter)
+            pairs.append((letter, value))
+        object.__setattr__(self, "faces", tuple(sorted(pairs)))
+
+    def colouring(self, classes=("A",)) -> Colouring:
+        """The colours of a tile whose face classes are ``classes`` (:func:`colouring`)."""
+        return colouring(palette_name=self.palette, band=self.band_colour, base=self.base_colour,
+                         faces=dict(self.faces), classes=classes)

@@ -19,7 +19,7 @@ tilings) are named as ``"module:NAME"`` and looked up when asked for.
 >>> key("tile.outline").choice_values()
 ('square', 'rectangle', 'hexagon', 'circle')
 >>> build_options("3mf")[:2], build_options("3mf")[-3:]
-(('style', 'base_mm'), ('fill_small_holes', 'inlay', 'layout'))
+(('style', 'base_mm'), ('inlay', 'layout', 'colours'))
 """
 
 from __future__ import annotations
@@ -525,6 +525,10 @@ CALL_OPTIONS = (
     BuildOption(name="kerf_mm", families=("cut",),
                 help="number >= 0 (mm; default: the cutter profile's): the cut's width, each contour offset by half "
                      "of it"),
+    BuildOption(name="colours", families=("cut", "print"),
+                help="a `fabtiles.Colours` (the `[colour]` section's keys: `by`, `palette`, `band_colour`, "
+                     "`base_colour`, `faces`): the faces classed and coloured, for `style=\"mosaic\"`, the "
+                     "parts' colours and an inlay kit's pieces by colour (see docs/colours.md)"),
 )
 """Build options of the export API that no design key sets (the cutter profile's, overridden per call)."""
 
@@ -568,12 +572,14 @@ def build_options(family: str) -> tuple[str, ...]:
     The 3MF takes the print's options and its own.
 
     >>> build_options("cut")
-    ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'inlay_fit_mm', 'inlay_base')
+    ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'inlay_fit_mm', 'inlay_base', 'colours')
     """
     wanted = _family(family)
     mine = [k.option.name for k in KEYS if k.option is not None and set(wanted) & set(k.option.families)]
     calls = [o.name for o in CALL_OPTIONS if set(wanted) & set(o.families)]
-    return tuple(dict.fromkeys(mine[:1] + calls + mine[1:]))  # the mode (or style) first, as the API lists them
+    last = [c for c in calls if c == "colours"]  # how the tile is coloured: after the machine's options
+    calls = [c for c in calls if c != "colours"]
+    return tuple(dict.fromkeys(mine[:1] + calls + mine[1:] + last))  # the mode (or style) first, as the API lists them
 
 
 def option_keys(family: str) -> tuple[Key, ...]:

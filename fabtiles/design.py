@@ -59,6 +59,7 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 from . import _schema
+from ._colour import Colours
 from ._errors import DesignError, FabtilesError, did_you_mean
 from .pattern.packing import PACKINGS
 from .pattern.star import Star
@@ -163,29 +164,6 @@ class OutputSpec:
 
 
 @dataclass(frozen=True)
-class ColourSpec:
-    """The ``[colour]`` section (``docs/colours.md``): how faces are classed and the colours given.
-
-    ``given`` is whether the design has the section: without it a relief's and a
-    deboss's parts keep their plain display colours and nothing is classed by shape.
-    """
-
-    by: str = _default("colour.by")
-    palette: str = _default("colour.palette")
-    band_colour: str | None = None
-    base_colour: str | None = None
-    faces: tuple[tuple[str, str], ...] = ()
-    given: bool = False
-
-    def colouring(self, classes=("A",)):
-        """The colours of a design whose face classes are ``classes`` (:func:`fabtiles._colour.colouring`)."""
-        from ._colour import colouring
-
-        return colouring(palette_name=self.palette, band=self.band_colour, base=self.base_colour, faces=dict(self.faces),
-                         classes=classes)
-
-
-@dataclass(frozen=True)
 class Design:
     """A validated design. ``name`` is ``[output] name`` or the file's stem."""
 
@@ -195,7 +173,7 @@ class Design:
     packing: PackingSpec | None = None
     output: OutputSpec = field(default_factory=OutputSpec)
     source: str = "<design>"
-    colour: ColourSpec = field(default_factory=ColourSpec)
+    colour: Colours = field(default_factory=Colours)
 
     def build_tile(self, tile_cls=None):
         """The :class:`~fabtiles.geometry.tile.TileGeometry` of this design (see :func:`build_tile`)."""
@@ -404,7 +382,7 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
     motif = _motif_spec(data["motif"], source, "[motif]") if "motif" in data else None
     tile_spec = _tile_spec(data["tile"], source)
     output = _output_spec(data.get("output", {}), source)
-    colour = _colour_spec(data["colour"], source) if "colour" in data else ColourSpec()
+    colour = _colour_spec(data["colour"], source) if "colour" in data else Colours(given=False)
     name = output.name or name
     design = Design(name=name, motif=motif, tile_spec=tile_spec, packing=packing, output=output,
                     source=source, colour=colour)
@@ -603,7 +581,7 @@ def _tile_spec(table: dict, source: str) -> TileSpec:
     return TileSpec(outline=outline, size=size, **_section(table, "tile", source, where, skip=("outline",)))
 
 
-def _colour_spec(table: dict, source: str) -> ColourSpec:
+def _colour_spec(table: dict, source: str) -> Colours:
     """The ``[colour]`` section: its keys checked (colours parsed); the class letters are checked by the build,
     which knows the design's classes."""
     where = "[colour]"
@@ -615,15 +593,10 @@ def _colour_spec(table: dict, source: str) -> ColourSpec:
     if not isinstance(faces, dict):
         raise DesignError(f"{source}: [colour.faces] must be a table of class letters to colours "
                           f"(A = \"navy\"), got {faces!r}", param="colour.faces")
-    checked = []
-    for letter, value in faces.items():
-        if not re.fullmatch(r"[A-Z]{1,2}", str(letter)):
-            raise DesignError(f"{source}: [colour.faces] key {letter!r} must be a class letter (A, B, ... as "
-                              f"fabtiles check lists them)", param="colour.faces")
-        _schema.key("colour.band_colour").check(value, name=f"[colour.faces] {letter}", prefix=f"{source}: ",
-                                         error=DesignError, param="colour.faces")
-        checked.append((letter, value))
-    return ColourSpec(**values, faces=tuple(sorted(checked)), given=True)
+    try:
+        return Colours(**values, faces=faces, given=True)
+    except FabtilesError as exc:
+        raise DesignError(f"{source}: [colour.faces] {exc}", param="colour.faces") from None
 
 
 def _output_spec(table: dict, source: str) -> OutputSpec:

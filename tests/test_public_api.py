@@ -4,6 +4,7 @@ import fabtiles
 
 EXPECTED = {
     "ArchimedeanPacking",
+    "Colours",
     "CutterProfile",
     "DesignError",
     "FabricationError",

@@ -139,8 +139,8 @@ def test_build_options_are_the_schemas():
     from fabtiles.build import pipeline
 
     assert pipeline._CUT_OPTIONS == ("mode", "dxf_version", "kerf_mm", "fill_small_holes", "inlay_fit_mm",
-                                     "inlay_base")
-    assert pipeline._3MF_OPTIONS == pipeline._PRINT_OPTIONS + ("inlay", "layout")
+                                     "inlay_base", "colours")
+    assert pipeline._3MF_OPTIONS == pipeline._PRINT_OPTIONS[:-1] + ("inlay", "layout", "colours")
     assert "mosaic_inset_mm" in pipeline._PRINT_OPTIONS
 
 

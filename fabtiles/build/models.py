@@ -48,8 +48,8 @@ class BuildOptions:
     inlay: bool = False
     """The deboss grooves filled as a second part of the print."""
     threemf_layout: str = "volumes"
-    colour: object = None
-    """The design's ``[colour]`` (:class:`~fabtiles.design.ColourSpec`), or None: no colours given."""
+    colours: object = None
+    """The design's ``[colour]`` or the call's ``colours`` (:class:`~fabtiles.Colours`), or None: none given."""
 
     @classmethod
     def of_design(cls, design) -> "BuildOptions":
@@ -60,7 +60,7 @@ class BuildOptions:
         from ..design import profile_of
 
         return cls(cutter=profile_of(design, "laser"), printer=profile_of(design, "printer"),
-                   colour=design.colour, **cls.fields_of(values, *FAMILIES))
+                   colours=design.colour, **cls.fields_of(values, *FAMILIES))
 
     @staticmethod
     def fields_of(options: dict, *families: str) -> dict:
@@ -171,15 +171,15 @@ class Models:
         design's ``[colour] by`` (one class when no colours are given)."""
         from ..geometry.faces import face_classes
 
-        spec = self.options.colour
+        spec = self.options.colours
         return face_classes(self.tile, by=spec.by if spec is not None else "none")
 
     @cached_property
     def colouring(self):
         """The colours of the band, the base and each face class (:class:`~fabtiles._colour.Colouring`)."""
-        from ..design import ColourSpec
+        from .._colour import Colours
 
-        spec = self.options.colour if self.options.colour is not None else ColourSpec()
+        spec = self.options.colours if self.options.colours is not None else Colours(given=False)
         try:
             return spec.colouring(tuple(c.letter for c in self.face_classes.classes) or ("A",))
         except ParameterError as exc:
@@ -221,7 +221,7 @@ class Models:
         region, dips = self.print_region
         self._material(region)
         style = o.print_style or o.printer.style
-        given = o.colour is not None and o.colour.given
+        given = o.colours is not None and o.colours.given
         model = print_model(region, self.tile.outline_shape(), profile=o.printer, style=o.print_style,
                             stroke=self.tile.stroke, fill_small_holes=o.fill_small_holes, inlay=o.inlay,
                             dips=dips, colours=self.colouring if given or style == "mosaic" else None,
