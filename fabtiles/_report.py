@@ -124,4 +124,20 @@ class Report:
         notes = [f"  {n}" for n in self.stats.get("notes", [])]
         if "material" in self.stats:
             notes.insert(0, f"  print material: {self.stats['material']['line']} (print time: ask the slicer)")
+        notes += ["  " + line for line in face_class_lines(self.stats.get("face_classes", ()))]
         return "\n".join([head] + job + notes + [f"  - {f.code}: {f.message}" for f in self.findings])
+
+
+def face_class_lines(classes) -> list[str]:
+    """One line per face class (``FaceClasses.stats()``, with a ``colour`` where the build knows it).
+
+    >>> face_class_lines([{"letter": "A", "count": 12, "description": "8-point star", "area_mm2": 1234.5,
+    ...                    "colour": "cobalt"}])
+    ['face class A: 12 x 8-point star, 1,234.5 mm^2, cobalt']
+    """
+    out = []
+    for c in classes:
+        what = c.get("description") or "face"
+        line = f"face class {c['letter']}: {c['count']:,} x {what}, {c['area_mm2']:,.1f} mm^2"
+        out.append(line + (f", {c['colour']}" if c.get("colour") else ""))
+    return out

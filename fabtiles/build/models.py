@@ -185,6 +185,24 @@ class Models:
         except ParameterError as exc:
             raise ParameterError(f"[colour] {exc}", param=f"colour.{exc.param}") from None
 
+    @property
+    def coloured(self) -> bool:
+        """Whether colours were asked for (a ``[colour]`` section, the API's ``colours=``)."""
+        return self.options.colours is not None and self.options.colours.given
+
+    def picture_colours(self) -> dict:
+        """:func:`~fabtiles.export.preview_svg.tile_svg`'s colours: the bands', and each class's faces
+        (nothing when no colours were asked for)."""
+        if not self.coloured:
+            return {}
+        classes, colours = self.face_classes, self.colouring
+        return dict(fill=colours.band.hex,
+                    faces=tuple((c.letter, classes.of(c.letter), colours.face(c.letter).hex) for c in classes.classes))
+
+    def face_class_stats(self) -> list:
+        """The face classes for a report: letter, count, description, area and colour name."""
+        return [dict(c, colour=self.colouring.face(c["letter"]).name) for c in self.face_classes.stats()]
+
     def mosaic_specs(self) -> tuple:
         """A mosaic's parts, one per distinct colour (base, bands, then the classes'), in material order."""
         from .._colour import check_materials
@@ -221,13 +239,13 @@ class Models:
         region, dips = self.print_region
         self._material(region)
         style = o.print_style or o.printer.style
-        given = o.colours is not None and o.colours.given
+        given = self.coloured
         model = print_model(region, self.tile.outline_shape(), profile=o.printer, style=o.print_style,
                             stroke=self.tile.stroke, fill_small_holes=o.fill_small_holes, inlay=o.inlay,
                             dips=dips, colours=self.colouring if given or style == "mosaic" else None,
                             mosaic=self.mosaic_specs() if style == "mosaic" else (), **o.heights)
         if style == "mosaic" or given:
-            model.report.stats["face_classes"] = self.face_classes.stats()
+            model.report.stats["face_classes"] = self.face_class_stats()
         return model
 
     def model(self, family: str):

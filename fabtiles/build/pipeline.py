@@ -283,7 +283,8 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
         from ..export.preview_svg import tile_svg
         from .views import made_region
 
-        picture = tile_svg(tile, title=design.name, region=made_region(tile, design, models=models))
+        picture = tile_svg(tile, title=design.name, region=made_region(tile, design, models=models),
+                           **models.picture_colours())
     name = f"{design.name}{SHEET_SUFFIX}" if layout is not None else design.name
     result = write_files(models, formats, outdir, name, file_name=file_name, preview_svg=picture)
     result.skipped = skipped

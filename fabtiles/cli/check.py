@@ -88,6 +88,17 @@ def command(design_file, output, overrides, deep):
         click.echo(f"  {cutter} job: {result.job.line()}")
     if result.filament is not None:
         click.echo(f"  print material: {result.filament.line()} (print time: ask the slicer)")
+    if design.colour.given or (out.print_style or profile_of(design, "printer").style) == "mosaic":
+        from .._report import face_class_lines
+        from ..geometry.faces import face_classes
+
+        classes = face_classes(tile, by=design.colour.by)
+        try:
+            colouring = design.colour.colouring(tuple(c.letter for c in classes.classes))
+        except ParameterError as exc:
+            raise ParameterError(f"{design_file}: [colour] {exc}", param=f"colour.{exc.param}") from None
+        for c in classes.stats():
+            click.echo("  " + face_class_lines([dict(c, colour=colouring.face(c["letter"]).name)])[0])
     findings = result.findings()
     for where, f in findings:
         click.echo("  " + finding_line(where, f))

@@ -86,7 +86,7 @@ def findings_overlay(findings, height: float, *, mark_mm: float = 1.5) -> str:
 
 
 def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
-             background: str = "#ffffff", title: str | None = None, findings=None, region=None) -> str:
+             background: str = "#ffffff", title: str | None = None, findings=None, region=None, faces=()) -> str:
     """An SVG picture of ``tile`` at true size: material filled, outline stroked.
 
     An interlaced tile is drawn woven: each band outlined, and stopped short
@@ -105,6 +105,9 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
     region : shapely geometry, optional
         The material to draw instead of the tile's own: a router's or waterjet's part
         as the tool makes it (:attr:`fabtiles.checks.CheckResult.made`, the holes opened).
+    faces : sequence of (str, shapely geometry, str), optional
+        The pattern's faces in colour, drawn under the material: ``(class letter, faces,
+        colour)`` each (a coloured design, ``docs/colours.md``), as ``<path class="face-A">``.
 
     Examples
     --------
@@ -127,6 +130,8 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
     band_edge = f'stroke="{_BAND_EDGE}" stroke-width="{_num(tile.stroke / 10)}"' if woven else 'stroke="none"'
 
     outline = region_path_data(tile.outline_shape(), h)
+    coloured = "".join(f'<path class="face-{_attr(letter)}" d="{region_path_data(g, h)}" fill="{_attr(colour)}" '
+                       f'fill-rule="evenodd"/>\n' for letter, g, colour in faces if not g.is_empty)
     title = repr(tile) if title is None else title
     line = max(0.1, min(w, h) / 500)
     # marks 1 % of the tile's smaller side (1.5 mm on 150 mm), never under 0.5 mm
@@ -137,6 +142,7 @@ def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
         f'viewBox="0 0 {_num(w)} {_num(h)}">\n'
         f"<title>{_escape(title)}</title>\n"
         f'<rect width="100%" height="100%" fill="{background}"/>\n'
+        f"{coloured}"
         f'<path d="{d}" fill="{fill}" fill-rule="evenodd" {band_edge}/>\n'
         f'<path d="{outline}" fill="none" stroke="{outline_color}" stroke-width="{_num(line)}"/>\n'
         f"{marks}</svg>\n"

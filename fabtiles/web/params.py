@@ -145,7 +145,7 @@ def design_from_query(query) -> dict:
 
     Unknown parameters are an error naming the parameter and the valid ones.
     """
-    design: dict = {"motif": {}, "packing": {}, "tile": {}, "output": {}}
+    design: dict = {"motif": {}, "packing": {}, "tile": {}, "output": {}, "colour": {}}
     gap: dict = {}
     motifs: dict = {}  # packing=archimedean: a preset per polygon kind (motif_8=table3-3)
     for key, raw in query.items():
