@@ -15,7 +15,8 @@ from pathlib import Path
 
 import fabtiles
 from fabtiles.design import load_design
-from fabtiles.export.preview_svg import write_tile_svg
+from fabtiles._io import atomic_write
+from fabtiles.build.views import tile_picture
 
 HERE = Path(__file__).resolve().parent
 
@@ -24,7 +25,7 @@ def render(design_path, out_dir) -> Path:
     """Write the preview SVG of one design into ``out_dir``; return its path."""
     design = load_design(design_path)
     path = Path(out_dir) / f"{design.name}.svg"
-    write_tile_svg(path, design.build_tile(tile_cls=fabtiles.Tile), title=design.name)
+    atomic_write(path, tile_picture(design.build_tile(tile_cls=fabtiles.Tile), design, made=None))
     return path
 
 

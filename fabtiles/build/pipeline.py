@@ -280,11 +280,9 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
     models = Models(tile, options, sheet=layout)
     picture = None
     if preview:
-        from ..export.preview_svg import tile_svg
-        from .views import made_region
+        from .views import tile_picture
 
-        picture = tile_svg(tile, title=design.name, region=made_region(tile, design, models=models),
-                           **models.picture_colours())
+        picture = tile_picture(tile, design, models=models)
     name = f"{design.name}{SHEET_SUFFIX}" if layout is not None else design.name
     result = write_files(models, formats, outdir, name, file_name=file_name, preview_svg=picture)
     result.skipped = skipped

@@ -43,6 +43,22 @@ def made_region(tile, design, *, models: Models | None = None):
     return open_region(region, radius_mm=profile.tool_radius_mm, tolerance_mm=profile.tolerance_mm).region
 
 
+def tile_picture(tile, design, *, models: Models | None = None, title: str | None = None, findings=None,
+                 made=False) -> str:
+    """The tile's picture (SVG, true size): a router's part as its tool makes it, and with the design's
+    colours its faces filled in their classes' colours and its bands in the band colour.
+
+    ``made`` is the part to draw when the caller has it already (``fabtiles check``'s); by
+    default it is :func:`made_region`'s.
+    """
+    from ..export.preview_svg import tile_svg
+
+    models = models if models is not None else Models(tile, BuildOptions.of_design(design))
+    region = made_region(tile, design, models=models) if made is False else made
+    return tile_svg(tile, title=design.name if title is None else title, findings=findings, region=region,
+                    **models.picture_colours())
+
+
 def inlay_kit_of(tile, design):
     """The inlay kit of a tile with the design's cutter profile and fit (the kit picture)."""
     from ..geometry.inlay import inlay_kit

@@ -65,7 +65,6 @@ def command(design_file, output, overrides, deep):
 
     from ..checks import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE, check_design
     from ..design import load_design
-    from ..export.preview_svg import write_tile_svg
 
     if output is not None and Path(output).suffix.lower() != ".svg":
         raise ParameterError(f"the overlay (-o) must be an .svg file, got {output!r}")
@@ -104,8 +103,11 @@ def command(design_file, output, overrides, deep):
         click.echo("  " + finding_line(where, f))
     if output is not None:
         # a router's or waterjet's part is drawn as the tool makes it (the holes opened)
-        write_tile_svg(output, tile, findings=findings, title=f"{design.name}: fabrication findings",
-                       region=result.made)
+        from .._io import atomic_write
+        from ..build.views import tile_picture
+
+        atomic_write(output, tile_picture(tile, design, title=f"{design.name}: fabrication findings",
+                                          findings=findings, made=result.made))
         click.echo(f"wrote {output}")
     if deep:
         from ..build.deep import read_back

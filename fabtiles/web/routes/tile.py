@@ -22,20 +22,18 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         """The tile as SVG; ``findings=true`` marks each finding of the checks where it is."""
         show = parse_flag("findings", request.query_params.get("findings", "false"))
         _, spec, tile = build(request, limits=limits, view=("findings",))
-        from ...export.preview_svg import tile_svg
+        from ...build.views import tile_picture
 
-        findings = None
+        findings, made = None, False
         if show:
             from ...checks import check_design
 
             result = check_design(spec, tile)
             findings, made = result.findings(), result.made
-        else:
-            from ...build import made_region
-
-            made = made_region(tile, spec)
-        # a router's or waterjet's part is drawn as its tool makes it (None: a laser's, the tile's own)
-        return Response(tile_svg(tile, findings=findings, region=made), media_type="image/svg+xml")
+        # a router's or waterjet's part is drawn as its tool makes it (None: a laser's, the tile's own);
+        # a coloured design's faces in their colours
+        return Response(tile_picture(tile, spec, title=repr(tile), findings=findings, made=made),
+                        media_type="image/svg+xml")
 
     @api.get("/api/kit.svg")
     def kit_picture(request: Request):
