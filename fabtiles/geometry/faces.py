@@ -56,6 +56,9 @@ samples' regions (manifold's fixed-point union) match within 2e-6 mm and their a
 AREA_TOLERANCE = 1e-5
 """Relative difference of area beyond which two faces are not compared (the run split)."""
 
+SLIVER_MM = 1e-6
+"""Half the width of the slivers cut off the faces open to the tile's edge (see ``_faces``)."""
+
 MIN_FACE_AREA_MM2 = 1e-9
 """Faces smaller than this are overlay slivers along the outline, not faces (none in the samples)."""
 
@@ -174,16 +177,20 @@ def face_classes(tile, *, by: str = "shape", region=None) -> FaceClasses:
     if by == "none":
         return FaceClasses(faces, np.zeros(len(faces), int), (FaceClass("A", len(faces), "faces", float(areas.sum())),))
 
-    whole = _whole_faces(tile, faces, areas)  # (whole face polygons, index of each tile face's whole face or -1)
-    items, item_of = whole
-    own = np.flatnonzero(item_of < 0)  # tile faces with no whole face: classified by their own shape
-    shapes = np.concatenate([items, faces[own]])
-    item_of = item_of.copy()
-    item_of[own] = len(items) + np.arange(len(own))
+    wholes, index, unbounded = _whole_faces(tile, faces)
+    own = np.flatnonzero(index < 0)  # tile faces with no whole face: classified by their own shape
+    shapes = np.concatenate([wholes, faces[own]])
+    free = np.concatenate([unbounded, np.zeros(len(own), bool)])
+    item_of = index.copy()
+    item_of[own] = len(wholes) + np.arange(len(own))
     used, item_of = np.unique(item_of, return_inverse=True)  # the shapes some tile face needs
-    shapes = shapes[used]
+    shapes, free = shapes[used], free[used]
     rings = [_ring(p) for p in shapes]
-    group = _congruence_groups(shapes, rings)
+    group = np.empty(len(shapes), int)
+    bounded = np.flatnonzero(~free)
+    group[bounded] = _congruence_groups(shapes[bounded], [rings[i] for i in bounded]) if len(bounded) else []
+    # an unbounded face (the background of stars that never close it) is a class of its own
+    group[free] = len(set(group[bounded].tolist())) + np.arange(int(free.sum()))
     label = group[item_of]
 
     # one entry per group: its first shape describes it; letters by decreasing total area
@@ -191,7 +198,7 @@ def face_classes(tile, *, by: str = "shape", region=None) -> FaceClasses:
     first = np.array([np.flatnonzero(group == g)[0] for g in range(ngroups)])
     total = np.bincount(label, weights=areas, minlength=ngroups)
     count = np.bincount(label, minlength=ngroups)
-    desc = [_describe(rings[i], len(shapes[i].interiors)) for i in first]
+    desc = ["" if free[i] else _describe(rings[i], len(shapes[i].interiors)) for i in first]
     # ties (equal total areas within 1e-9 relative) broken by description, then the shape's
     # own area and vertex count, then its vertices: the same design always gets the same letters
     order = sorted(range(ngroups), key=lambda g: (-_rounded(total[g]), desc[g], -_rounded(shapes[first[g]].area),
@@ -232,7 +239,14 @@ def _faces(region, outline) -> np.ndarray:
     faces = [shapely.get_parts(holes)] if len(holes) else []
     top = shells[~island]
     if outline.area - shapely.area(top).sum() > MIN_FACE_AREA_MM2:  # open faces (frame 0)
-        faces.append(shapely.get_parts(shapely.difference(outline, shapely.union_all(top))))
+        open_ = shapely.get_parts(shapely.difference(outline, shapely.union_all(top)))
+        # Where a band's edge runs along the outline (the seamless hexagon sample's slanted
+        # sides) the two differ by a rounding, and the difference joined up to nine pieces of
+        # faces along the edge by slivers 2e-9 mm wide into one "face" of 76 mm^2. An opening
+        # by SLIVER_MM cuts the slivers and moves no other edge (mitred corners stay put).
+        opened = shapely.buffer(shapely.buffer(open_, -SLIVER_MM, join_style="mitre", mitre_limit=1e6),
+                                SLIVER_MM, join_style="mitre", mitre_limit=1e6)
+        faces.append(shapely.get_parts(opened))
     if not faces:
         return np.empty(0, object)
     faces = np.concatenate(faces)
@@ -240,9 +254,10 @@ def _faces(region, outline) -> np.ndarray:
     return shapely.orient_polygons(faces)
 
 
-def _whole_faces(tile, faces, areas):
-    """The whole faces the tile's faces are pieces of: ``(wholes, index)``, ``index[i]`` the
-    whole face of tile face ``i`` (moved by a period of the packing) or -1 when it has none.
+def _whole_faces(tile, faces):
+    """The whole faces the tile's faces are pieces of: ``(wholes, index, unbounded)``,
+    ``index[i]`` the whole face of tile face ``i`` (moved by a period of the packing) or -1
+    when it has none, ``unbounded[k]`` whether whole face ``k`` runs on without end.
 
     For a single motif every face is whole already (the motif lies inside its circle) but
     the ring round it, which has no whole face: all -1, each classified by its own shape.
@@ -250,15 +265,18 @@ def _whole_faces(tile, faces, areas):
     none = np.full(len(faces), -1)
     pattern = tile.pattern
     if isinstance(pattern, Star):
-        return np.empty(0, object), none
+        return np.empty(0, object), none, np.zeros(0, bool)
     px, py = pattern.period
     cx, cy = tile.centre
+    areas = shapely.area(faces)
     # the representative point of each face, moved into the period [-px/2, px/2] x [-py/2, py/2]
     pts = _inner_points(faces) - (cx, cy)
-    shift = np.round(pts / (px, py)) * (px, py)
-    pts = pts - shift
-    # a margin of half a period holds every whole face of the samples (the hex packing's
-    # largest face spans 1.8 R); a face reaching the window's edge doubles it, up to 4 periods
+    pts = pts - np.round(pts / (px, py)) * (px, py)
+    moves = np.array([(px, 0.0), (-px, 0.0), (0.0, py), (0.0, -py)])
+    # A margin of half a period holds every whole face of the samples (the hex packing's
+    # largest face spans 1.8 R). A face reaching the window's edge grows it once to two periods
+    # unless the face holds its own point moved by a period: then it runs on without end (the
+    # background of stars whose tips never meet), and no window would hold it.
     margin = max(px, py) / 2
     while True:
         window = tile.replace(outline="rectangle", size=(px + 2 * margin, py + 2 * margin), frame=0.0,
@@ -268,16 +286,22 @@ def _whole_faces(tile, faces, areas):
         b = shapely.bounds(wholes)
         eps = 1e-6 * (wx + wy)
         open_ = (b[:, 0] < eps) | (b[:, 1] < eps) | (b[:, 2] > 2 * wx - eps) | (b[:, 3] > 2 * wy - eps)
-        i, k = shapely.STRtree(wholes).query(shapely.points(pts + (wx, wy)), predicate="within")
-        if not open_[k].any() or margin >= 4 * max(px, py):
+        tree = shapely.STRtree(wholes)
+        i, k = tree.query(shapely.points(pts + (wx, wy)), predicate="within")
+        reached = np.unique(k[open_[k]])
+        if not len(reached) or margin >= 2 * max(px, py):
             break
-        margin *= 2
+        own = _inner_points(wholes[reached])
+        a, c = tree.query(shapely.points((own[:, None, :] + moves[None]).reshape(-1, 2)), predicate="within")
+        if (np.bincount(a[reached[a // len(moves)] == c] // len(moves), minlength=len(reached)) > 0).all():
+            break
+        margin *= 4
     index = none.copy()
-    # a whole face: not reaching the window's edge, and no smaller than the piece of it
-    # in the tile (a region passed in may merge faces the pattern keeps apart)
-    ok = ~open_[k] & (areas[i] <= shapely.area(wholes[k]) * (1 + AREA_TOLERANCE))
+    # a bounded whole face is no smaller than its piece in the tile (a region passed in may
+    # merge faces the pattern keeps apart: then the tile's face is classified by its own shape)
+    ok = open_[k] | (areas[i] <= shapely.area(wholes[k]) * (1 + AREA_TOLERANCE))
     index[i[ok]] = k[ok]
-    return wholes, index
+    return wholes, index, open_
 
 
 def _inner_points(faces) -> np.ndarray:
@@ -434,7 +458,7 @@ def _describe(ring: np.ndarray, islands: int = 0) -> str:
     if convex.all():
         interior = math.pi - turn  # interior angle at each vertex
         same_angle = bool(np.ptp(interior) <= 1e-4)
-        if same_len and same_angle:
+        if same_len and same_angle and n <= MAX_SIDES:
             return {3: "equilateral triangle", 4: "square"}.get(n, f"regular {_NAMES.get(n, f'{n}-gon')}")
         if n == 3:
             return "triangle"
