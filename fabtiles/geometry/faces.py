@@ -296,12 +296,41 @@ def _whole_faces(tile, faces):
         if (np.bincount(a[reached[a // len(moves)] == c] // len(moves), minlength=len(reached)) > 0).all():
             break
         margin *= 4
+    # the open faces the tile's faces reach, joined where a lattice move takes one into another:
+    # pieces of one background (split by the window into two faces in a hex packing of 20-gons
+    # that never touch) are one class
+    root = np.arange(len(wholes))
+    reached = np.unique(k[open_[k]])
+    if len(reached):
+        lat = _lattice(pattern)
+        steps = np.concatenate([moves, lat, -lat, [lat[0] - lat[1], lat[1] - lat[0]]])[:, None, :]
+        own = _inner_points(wholes[reached])
+        a, c = tree.query(shapely.points((own[None, :, :] + steps).reshape(-1, 2)), predicate="within")
+        a = reached[a % len(reached)]
+        for x, y in sorted(zip(a[open_[c]].tolist(), c[open_[c]].tolist())):
+            rx, ry = _find(root, x), _find(root, y)
+            root[max(rx, ry)] = min(rx, ry)
+        k = np.array([_find(root, j) for j in k.tolist()], dtype=int)
     index = none.copy()
     # a bounded whole face is no smaller than its piece in the tile (a region passed in may
     # merge faces the pattern keeps apart: then the tile's face is classified by its own shape)
     ok = open_[k] | (areas[i] <= shapely.area(wholes[k]) * (1 + AREA_TOLERANCE))
     index[i[ok]] = k[ok]
     return wholes, index, open_
+
+
+def _lattice(pattern) -> np.ndarray:
+    """The two lattice vectors of a packing (rows, mm)."""
+    lattice = getattr(pattern, "lattice", None)
+    return np.asarray(lattice if lattice is not None else pattern._basis() * pattern.radius, dtype=float)
+
+
+def _find(root: np.ndarray, x: int) -> int:
+    """The root of ``x`` in the union-find array ``root``."""
+    while root[x] != x:
+        root[x] = root[root[x]]
+        x = int(root[x])
+    return x
 
 
 def _inner_points(faces) -> np.ndarray:

@@ -87,7 +87,7 @@ def test_counts_areas_and_letters(classed):
     cls = fc.classes
     assert [c.letter for c in cls] == [chr(ord("A") + k) for k in range(len(cls))]
     areas = [c.area_mm2 for c in cls]
-    assert areas == sorted(areas, reverse=True)
+    assert all(a >= b * (1 - 1e-9) for a, b in zip(areas, areas[1:]))  # ties within float noise
     assert sum(c.count for c in cls) == len(fc.faces) == len(fc.labels)
     np.testing.assert_allclose(np.bincount(fc.labels, weights=shapely.area(fc.faces)), areas, rtol=1e-12)
     for c in cls:
@@ -279,18 +279,21 @@ def test_a_face_round_an_island():
     assert {c.description for c in fc.classes} == {"square", ""}
 
 
-# -- property: random motifs on a hex packing ------------------------------------------
+# -- property: random motifs on a packing ------------------------------------------------
 @given(n=st.integers(5, 12), r1=st.floats(0.3, 0.9), r2=st.floats(0.3, 1.0), stroke=st.floats(0.4, 1.2),
-       frame=st.sampled_from([0.0, 3.0]), join=st.sampled_from(["miter", "bevel"]))
+       frame=st.sampled_from([0.0, 3.0]), join=st.sampled_from(["miter", "bevel", "round"]),
+       outline=st.sampled_from(["square", "hexagon", "circle"]), packing=st.sampled_from([HexPacking, SquarePacking]),
+       circles=st.booleans())
 @settings(max_examples=examples(8), deadline=None)
-def test_random_motifs_on_a_hex_packing(n, r1, r2, stroke, frame, join):
-    tile = TileGeometry("square", 70, HexPacking(radius=10, motif=Star(n=n, radii=(r1, r2, 1.0))),
+def test_random_motifs_on_a_packing(n, r1, r2, stroke, frame, join, outline, packing, circles):
+    tile = TileGeometry(outline, 70, packing(radius=10, motif=Star(n=n, radii=(r1, r2, 1.0)), outline_circles=circles),
                         frame=frame, stroke=stroke, join=join)
     fc = face_classes(tile)
     outline, region = tile.outline_shape(), tile.region()
     total = shapely.area(fc.faces).sum()
     assert total + region.area == pytest.approx(outline.area, rel=1e-4)
-    assert [c.area_mm2 for c in fc.classes] == sorted((c.area_mm2 for c in fc.classes), reverse=True)
+    areas = [c.area_mm2 for c in fc.classes]
+    assert all(a >= b * (1 - 1e-9) for a, b in zip(areas, areas[1:]))
     cut = _cut(tile, fc.faces)
     areas = shapely.area(fc.faces)
     for k in range(len(fc.classes)):
