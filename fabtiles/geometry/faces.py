@@ -170,7 +170,9 @@ def face_classes(tile, *, by: str = "shape", region=None) -> FaceClasses:
         raise ParameterError(f"tile must be a TileGeometry (e.g. design.build_tile()), got {type(tile).__name__}",
                              param="tile")
     outline = tile.outline_shape()
-    faces = _faces(tile.region() if region is None else region, outline)
+    # a region passed in is checked; the tile's own is valid by construction (the check, GEOS's
+    # is_valid, took 0.057 s of the sheet's 0.12 s)
+    faces = _faces(tile.region(), outline) if region is None else _faces(polygon_parts(region), outline)
     areas = shapely.area(faces)
     if not len(faces):
         return FaceClasses(faces, np.empty(0, int), ())
@@ -218,11 +220,13 @@ def _rounded(x: float) -> float:
 def _faces(region, outline) -> np.ndarray:
     """``outline - region`` as an array of Polygons: the region's holes (less the material
     lying in them) and the parts of the outline outside every piece of material.
+    ``region``: a valid Polygon or MultiPolygon, or its parts (an array of Polygons).
 
     Read from the region's rings rather than by one GEOS difference: 0.03 s against
     0.12 s for the 600 x 400 mm sheet's 9,947 faces.
     """
-    parts = polygon_parts(region)
+    parts = region if isinstance(region, np.ndarray) else shapely.get_parts(region)
+    parts = parts[~shapely.is_empty(parts)]
     nholes = shapely.get_num_interior_rings(parts)
     owner = np.repeat(np.arange(len(parts)), nholes)
     index = np.concatenate([np.arange(k) for k in nholes])
