@@ -130,7 +130,10 @@ def test_faces_of_different_classes_differ(classed):
                 assert _point_match(p, q) > 1e-3
 
 
-@pytest.mark.parametrize("name", DESIGNS)
+TILINGS = sorted(f"tilings/{p.name}" for p in (SAMPLES / "tilings").glob("*.toml"))
+
+
+@pytest.mark.parametrize("name", sorted(set(DESIGNS + TILINGS)))
 def test_translates_share_a_class(name):
     """A face moved by a period of the packing onto another face (its whole or a piece of it
     cut by the frame) is in that face's class."""
