@@ -49,12 +49,14 @@ BY = ("shape", "none")
 
 TOLERANCE_MM = 1e-3
 """Largest distance between matched vertices of two faces called congruent (mm), and the
-least change along a ring that counts as a vertex. Measured: congruent faces of the
-samples' regions (manifold's fixed-point union) match within 2e-6 mm and their areas within
-2e-8 relative, so 1 micron leaves a margin of 500 and still parts shapes a laser could tell."""
+least change along a ring that counts as a vertex (a tenth of it). Measured: the uncut faces of
+a class in the table3-3, 3.12.12 and seamless hexagon samples match their first within 4e-7 mm
+(areas within 8e-7 relative), so 1 micron leaves a margin of 2,500 and still parts shapes a
+laser could tell; no real vertex of the samples turns its ring by less than a tenth of it."""
 
 AREA_TOLERANCE = 1e-5
-"""Relative difference of area beyond which two faces are not compared (the run split)."""
+"""Relative difference of area beyond which two faces are not compared (the run split);
+13 times the largest spread of a class's areas measured (8e-7, the seamless hexagon)."""
 
 SLIVER_MM = 1e-6
 """Half the width of the slivers cut off the faces open to the tile's edge (see ``_faces``)."""
