@@ -227,15 +227,20 @@ def test_prusaslicer_with_n_extruders_prints_each_part_with_its_own_tool(tmp_pat
     assert max(layers) == pytest.approx(height(n - 1), abs=1e-6)
 
 
-def test_prusaslicer_with_one_extruder_prints_every_part_in_one_filament(tmp_path):
-    """A one-extruder printer slices the N parts without a word and without a tool change: one colour."""
-    gcode = slice_gcode(tmp_path, write(tmp_path, 4, "volumes"), 1)
-    assert re.findall(r"^T\d+", gcode, flags=re.M) == []
-    xs = extrusions_by_tool(gcode)
+@pytest.mark.parametrize("extruders", [1, 2])
+def test_prusaslicer_with_fewer_extruders_prints_the_other_parts_with_the_first(tmp_path, extruders):
+    """A printer of fewer extruders than parts slices without a word: a part on a missing extruder takes the first.
+
+    One extruder: no tool change at all, the whole print in one filament.
+    """
+    gcode = slice_gcode(tmp_path, write(tmp_path, 4, "volumes"), extruders)
     shift = CENTRE[0] - (10 * 4 - 2) / 2
-    # all four boxes printed, all by the one extruder
-    assert list(xs) == [None]
-    assert {int((x - shift) // 10) for x in xs[None]} == {0, 1, 2, 3}
+    boxes_by_tool = {tool: {int((x - shift) // 10) for x in xs} for tool, xs in extrusions_by_tool(gcode).items()}
+    if extruders == 1:
+        assert re.findall(r"^T\d+", gcode, flags=re.M) == []
+        assert boxes_by_tool == {None: {0, 1, 2, 3}}
+    else:
+        assert boxes_by_tool == {0: {0, 2, 3}, 1: {1}}  # boxes 3 and 4 (extruders 3, 4) on the first
 
 
 @pytest.mark.parametrize("n", [4, 6])
