@@ -102,7 +102,7 @@ from ..geometry.material import filament
 
 MAX_EXTRUDERS = 16
 """The most extruders a package may name: Bambu Studio and OrcaSlicer add filaments up to a file's
-highest extruder but stop at 16 (``Plater::priv::load_files``), and reset a part on a higher one to 1."""
+highest extruder but stop at 16 (``Plater::priv::load_files``), so a part on a higher one has none."""
 
 LAYOUTS = ("volumes", "components")
 """The 3MF layouts: PrusaSlicer's volumes (default) or the core spec's components (Cura)."""
@@ -252,8 +252,8 @@ def _check_parts(parts) -> None:
         e = p.extruder
         if isinstance(e, bool) or not isinstance(e, (int, np.integer)) or not 1 <= e <= MAX_EXTRUDERS:
             raise ParameterError(f"part {p.name!r} has extruder={e!r}, must be an integer from 1 to "
-                                 f"{MAX_EXTRUDERS} (Bambu Studio and OrcaSlicer add filaments up to 16 "
-                                 "and put a part on a higher one on filament 1): merge colours so that "
+                                 f"{MAX_EXTRUDERS} (Bambu Studio and OrcaSlicer add filaments up to 16 only): "
+                                 "merge colours so that "
                                  f"at most {MAX_EXTRUDERS} remain", param="extruder")
 
 

@@ -152,7 +152,8 @@ def test_a_part_off_the_extruders_is_refused(extruder):
     parts = boxes(2)
     parts[1] = parts[1]._replace(extruder=extruder)
     with pytest.raises(ParameterError, match=r"part 'B #e6d6b8' has extruder=.*, must be an integer from 1 to 16 "
-                                             r"\(Bambu Studio and OrcaSlicer add filaments up to 16.*merge colours"):
+                                             r"\(Bambu Studio and OrcaSlicer add filaments up to 16 only\): merge colours so "
+                                             r"that at most 16 remain"):
         threemf.package_3mf(parts, name="t")
 
 
