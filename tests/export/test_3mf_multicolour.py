@@ -5,8 +5,9 @@ The model is synthetic: N boxes side by side on the plate, box k (0-based) at
 tool's extrusions show which part it printed. The readers:
 
 - PrusaSlicer slices it with an N-extruder printer (tool changes T0..T(N-1), each
-  tool inside its own box) and with a one-extruder printer (no tool change: one
-  filament, silently); ``--info`` and ``--export-3mf`` keep N volumes;
+  tool inside its own box) and with fewer extruders (silently: a part on a missing
+  extruder takes the first; one extruder, no tool change at all); ``--info`` and
+  ``--export-3mf`` keep N volumes;
 - Cura's parser libSavitar sees the components layout as one group of N children
   with ``extruder_nr`` 0..N-1;
 - lib3mf reads both layouts strictly, without a warning.
