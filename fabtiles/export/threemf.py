@@ -4,7 +4,16 @@ A relief is one object of two parts, ``"base"`` and ``"pattern"`` (the pattern
 standing on the base at ``z = base_mm``); a deboss tile with ``inlay=True`` is
 one object of ``"plate"`` and ``"inlay"`` (the grooves filled flush). Every other
 print is one object of one part. Parts touch without overlapping (see
-:mod:`fabtiles.solid.parts`).
+:mod:`fabtiles.solid.parts`). The package holds any number of parts, 1 to
+:data:`MAX_EXTRUDERS`, each on its own extruder (a print of N colours: N parts on
+extruders 1..N); names are free text, escaped.
+
+No display colours are written (no ``<basematerials>``, no ``m:colorgroup``): Bambu
+Studio's and OrcaSlicer's own importer (``bbs_3mf.cpp``, the components layout's
+reader) numbers the distinct colours of ``m:colorgroup`` 1, 2, ... and sets each
+object's extruder from its ``pid``, and adds a filament per new colour, so colours
+would decide the extruders there instead of the file's; with no command line to
+measure that here, the file keeps one source of extruders (docs/slicers.md, "N colours").
 
 How the package is laid out, and why. Two layouts, because the slicers' readers
 disagree on what a part is; each is read by the programs named, as their source
@@ -90,6 +99,10 @@ import numpy as np
 from .._errors import FabricationError, ParameterError
 from .._io import atomic_write, zip_entry
 from ..geometry.material import filament
+
+MAX_EXTRUDERS = 16
+"""The most extruders a package may name: Bambu Studio and OrcaSlicer add filaments up to a file's
+highest extruder but stop at 16 (``Plater::priv::load_files``), so a part on a higher one has none."""
 
 LAYOUTS = ("volumes", "components")
 """The 3MF layouts: PrusaSlicer's volumes (default) or the core spec's components (Cura)."""
@@ -207,6 +220,7 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles", layout: str 
     components {'a': (1, 4, 4), 'b': (2, 4, 4)}
     """
     check_layout(layout)
+    _check_parts(parts)
     head = ['<?xml version="1.0" encoding="UTF-8"?>\n',
             f'<model unit="millimeter" xml:lang="en-US" xmlns="{_CORE_NS}"'
             + (f' xmlns:cura="{_CURA_NS}"' if layout == "components" else "") + '>\n',
@@ -227,6 +241,20 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles", layout: str 
             # level 6 gives 4.7 MB in 0.9 s (measured)
             zf.writestr(info, text.encode("utf-8"), compresslevel=1)
     return buf.getvalue()
+
+
+def _check_parts(parts) -> None:
+    """A :class:`~fabtiles.ParameterError` unless there are parts, each on an extruder 1..MAX_EXTRUDERS."""
+    if not len(parts):
+        raise ParameterError("a 3MF needs at least one part, got none: give the print model's parts",
+                             param="parts")
+    for p in parts:
+        e = p.extruder
+        if isinstance(e, bool) or not isinstance(e, (int, np.integer)) or not 1 <= e <= MAX_EXTRUDERS:
+            raise ParameterError(f"part {p.name!r} has extruder={e!r}, must be an integer from 1 to "
+                                 f"{MAX_EXTRUDERS} (Bambu Studio and OrcaSlicer add filaments up to 16 only): "
+                                 "merge colours so that "
+                                 f"at most {MAX_EXTRUDERS} remain", param="extruder")
 
 
 def _volumes(parts, name):
