@@ -88,6 +88,9 @@ def _motif_sides() -> tuple[int, ...]:
     return tuple(sorted({int(s) for t in TILINGS for s in unit_cell(t).sides.tolist()}))
 
 
+FACE_LETTERS = tuple(chr(ord("A") + i) for i in range(26))
+"""The face classes the web app colours by letter (``face_A`` ... ``face_Z``); a design file takes more."""
+
 MOTIF_SIDES = _motif_sides()
 """The polygon kinds of the Archimedean tilings (3, 4, 6, 8, 12): packing=archimedean's ``motif_<sides>`` parameters."""
 
@@ -96,6 +99,7 @@ def _fields() -> dict:
     """Query parameter -> (section, design key, parser), from the schema (:mod:`fabtiles._schema`).
 
     A key's parameter is its name, with these exceptions: ``[packing] kind`` is ``packing``;
+    ``[colour.faces]`` is ``face_<letter>`` (section ``faces``);
     the gap motif's keys are ``gap_<key>`` (section ``gap_motif``); ``[packing.motifs]`` is
     ``motif_<sides>`` (section ``motifs``); ``[tile] size`` is ``width`` and ``height``.
     """
@@ -105,6 +109,8 @@ def _fields() -> dict:
             fields.update({f"gap_{m.name}": ("gap_motif", m.name, _parser(m)) for m in _schema.section_keys("motif")})
         elif k.type == "motifs":
             fields.update({f"motif_{p}": ("motifs", str(p), _text) for p in MOTIF_SIDES})
+        elif k.type == "colours":  # [colour.faces]: a colour per class letter, face_A=navy
+            fields.update({f"face_{letter}": ("faces", letter, _text) for letter in FACE_LETTERS})
         elif k.type == "size":
             fields.update({"width": ("tile", "width", _number), "height": ("tile", "height", _number)})
         elif k.query is not None:
@@ -159,6 +165,10 @@ def design_from_query(query) -> dict:
             if value not in ("", "default"):
                 motifs[name] = value
             continue
+        if section == "faces":
+            if value != "":
+                design["colour"].setdefault("faces", {})[name] = value
+            continue
         (gap if section == "gap_motif" else design[section])[name] = value
     motif = design["motif"]
     if "preset" in motif and motif["preset"] == "":
@@ -187,6 +197,9 @@ def design_from_query(query) -> dict:
         if name is not None and name not in (names := bundled_profiles(family)):
             # Profiles are chosen by bundled name only: no file path ever comes from a request.
             raise QueryError(f"{key} {name!r} is not a bundled profile, must be one of: {', '.join(names)}", key)
+    # colours are asked for when a [colour] key differs from its default (the page always sends its menus)
+    colour = {k: v for k, v in design["colour"].items() if k == "faces" or v != _schema.key(f"colour.{k}").default}
+    design["colour"] = colour
     tile = design["tile"]
     width, height = tile.pop("width", None), tile.pop("height", None)
     if width is not None or height is not None:

@@ -31,7 +31,8 @@ def schema_json() -> dict:
     """``{"fields": {query parameter: {key, type, unit, help, default, range, widget, choices}}}``.
 
     The gap motif's parameters (``gap_n``, ...) carry the motif key's entry with the gap's
-    widget; ``width``/``height`` and ``motif_<sides>`` carry ``tile.size`` and ``packing.motifs``.
+    widget; ``width``/``height`` and ``motif_<sides>`` carry ``tile.size`` and ``packing.motifs``,
+    ``face_<letter>`` ``colour.faces``.
     """
     fields = {}
     for query, (section, name, _) in FIELDS.items():
@@ -40,6 +41,8 @@ def schema_json() -> dict:
             fields[query] = {**_key_json(k, _schema.GAP_WIDGETS.get(name)), "key": f"packing.gap_motif.{name}"}
         elif section == "motifs":
             fields[query] = _key_json(_schema.key("packing.motifs"), None)
+        elif section == "faces":
+            fields[query] = {**_key_json(_schema.key("colour.faces"), None), "key": f"colour.faces.{name}"}
         elif section == "tile" and name in ("width", "height"):
             fields[query] = _key_json(_schema.key("tile.size"), _schema.SIZE_WIDGETS[name])
         else:

@@ -60,7 +60,8 @@ def test_bad_query_names_the_field(query, field, match):
 
 # Query parameters that carry a design key under another name (or two).
 QUERY_NAMES = {("tile", "width"): ("tile", "size"), ("tile", "height"): ("tile", "size"),
-               **{("motifs", str(p)): ("packing", "motifs") for p in (3, 4, 6, 8, 12)}}  # motif_<sides>
+               **{("motifs", str(p)): ("packing", "motifs") for p in (3, 4, 6, 8, 12)},  # motif_<sides>
+               **{("faces", chr(ord("A") + i)): ("colour", "faces") for i in range(26)}}  # face_<letter>
 
 
 def test_every_design_key_is_a_query_parameter():
@@ -72,6 +73,7 @@ def test_every_design_key_is_a_query_parameter():
     keys |= {("packing", k) for k in design.PACKING_KEYS if k != "gap_motif"}
     keys |= {("gap_motif", k) for k in design.MOTIF_KEYS}  # [packing] gap_motif = { ... }
     keys |= {("tile", k) for k in design.TILE_KEYS} | {("output", k) for k in design.OUTPUT_KEYS}
+    keys |= {("colour", k) for k in design.COLOUR_KEYS}
     web = {QUERY_NAMES.get((section, name), (section, name)) for section, name, _ in FIELDS.values()}
     assert NOT_WEB_PARAMS <= keys
     assert web == keys - NOT_WEB_PARAMS, (keys - NOT_WEB_PARAMS - web, web - keys)

@@ -18,6 +18,8 @@ const state = {
   base_mm: "", relief_mm: "", pierced_mm: "", deboss_mm: "",  // "": the printer profile's
   interlace: false, interlace_gap_mm: "", interlace_cut: false,  // woven strands; "": a third of the stroke
   inlay: false,  // deboss: the 3MF gets a second part filling the grooves
+  mosaic_inset_mm: "",  // mosaic: the faces below the bands ("": flush)
+  colour_by: "none", palette: "zellige",  // the [colour] section: faces classed by shape, the palette
 };
 // Options sent only when set: the schema's text and number boxes, and its check boxes (gap_rosette is the
 // page's own: the gap motif as a rosette).
