@@ -1,0 +1,116 @@
+"""A mosaic print's files (issue 33), opened by the programs users load them into.
+
+``samples/mosaic-iznik.toml``: table3-3 on the hex packing, faces classed by shape in the
+Iznik palette, printed as a mosaic of four colours (the base, the bands, classes A and B;
+classes C and D are under the printer's 0.8 mm and filled with the bands). The 3MF's N
+parts are read back and sliced by PrusaSlicer with an N-extruder printer, read by Cura's
+parser and lib3mf's strict reader; the STL per colour by trimesh; the STEP by OCCT.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+import trimesh
+from test_3mf_multicolour import extrusions_by_tool, prusa_cmd, slice_gcode
+from test_3mf_readers import lib3mf_read, savitar
+
+from fabtiles.build import build_design
+from fabtiles.build.models import BuildOptions, Models
+from fabtiles.design import load_design
+from fabtiles.export import threemf
+from fabtiles.export.step import check_step_file
+
+SAMPLE = Path(__file__).resolve().parents[2] / "samples" / "mosaic-iznik.toml"
+PARTS = ["navy (base)", "white (bands)", "cobalt (A)", "turquoise (B)"]
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    out = tmp_path_factory.mktemp("mosaic")
+    design = load_design(SAMPLE)
+    result = build_design(design, out, formats=("3mf", "stl", "step"))
+    models = Models(design.build_tile(), BuildOptions.of_design(design))
+    components = tmp_path_factory.mktemp("components")
+    build_design(load_design(SAMPLE, overrides=("output.threemf_layout=\"components\"",)), components,
+                 formats=("3mf",))
+    return out, result, models, components / "mosaic-iznik.3mf"
+
+
+def test_the_3mf_holds_a_part_per_colour_on_extruders_1_to_n(built):
+    out, _, models, _ = built
+    parts = threemf.read_3mf(out / "mosaic-iznik.3mf")
+    assert list(parts) == PARTS
+    assert [p.material for p in parts.values()] == [1, 2, 3, 4]
+    # each part's volume, read back, is its footprint's area times its height (GEOS areas)
+    model = models.print
+    s = model.stack
+    region = shapely.intersection(model.region, model.outline)
+    faces = model.outline.difference(region)
+    volumes = {n: trimesh.Trimesh(p.vertices, p.faces).volume for n, p in parts.items()}
+    assert volumes["navy (base)"] == pytest.approx(model.outline.area * s.base, rel=1e-3)
+    assert volumes["white (bands)"] == pytest.approx(region.area * s.relief, rel=1e-3)
+    assert volumes["cobalt (A)"] + volumes["turquoise (B)"] == pytest.approx(faces.area * (s.relief - s.inset),
+                                                                             rel=1e-3)
+    classes = models.face_classes
+    for name, letter in (("cobalt (A)", "A"), ("turquoise (B)", "B")):
+        # the class's faces, as printed (a face the fill closed is no longer one)
+        printed = shapely.intersection(classes.of(letter), faces).area
+        assert volumes[name] == pytest.approx(printed * (s.relief - s.inset), rel=2e-3)
+
+
+def test_prusaslicer_with_four_extruders_changes_tool_for_each_colour(built, tmp_path):
+    out, *_ = built
+    gcode = slice_gcode(tmp_path, out / "mosaic-iznik.3mf", 4)
+    tools = sorted({int(t) for t in re.findall(r"^T(\d+)\s*$", gcode, flags=re.M)})
+    assert tools == [0, 1, 2, 3]
+    assert sorted(k for k in extrusions_by_tool(gcode) if k is not None) == [0, 1, 2, 3]
+
+
+def test_prusaslicer_with_one_extruder_prints_one_filament_silently(built, tmp_path):
+    """What docs/slicers.md warns of: choose a printer of N extruders (or an MMU) in the slicer."""
+    out, *_ = built
+    gcode = slice_gcode(tmp_path, out / "mosaic-iznik.3mf", 1)
+    assert re.findall(r"^T\d+", gcode, flags=re.M) == []
+    assert list(extrusions_by_tool(gcode)) == [None]
+
+
+def test_cura_and_lib3mf_read_the_four_parts(built):
+    *_, components = built
+    (group,) = savitar(components)["nodes"]
+    assert [(c["name"], c["settings"]) for c in group["children"]] == [
+        (n, {"extruder_nr": str(k)}) for k, n in enumerate(PARTS)]
+    got = lib3mf_read(components)
+    assert got["warnings"] == [] and len(got["components"]) == 1
+    assert all(manifold for _, _, manifold, _ in got["meshes"].values())
+
+
+def test_an_stl_per_colour_in_one_frame(built):
+    out, result, models, _ = built
+    names = ["navy", "white", "cobalt", "turquoise"]
+    files = [out / f"mosaic-iznik-{n}.stl" for n in names]
+    assert all(f.exists() for f in files) and not (out / "mosaic-iznik.stl").exists()
+    meshes = [trimesh.load(f) for f in files]
+    assert all(m.is_watertight and m.is_winding_consistent for m in meshes)
+    parts = threemf.read_3mf(out / "mosaic-iznik.3mf")
+    for mesh, part in zip(meshes, parts.values()):
+        # the same body as the 3MF's part, in the same frame
+        np.testing.assert_allclose(mesh.bounds, [part.vertices.min(axis=0), part.vertices.max(axis=0)], atol=1e-5)
+        assert mesh.volume == pytest.approx(trimesh.Trimesh(part.vertices, part.faces).volume, rel=1e-9)
+    report = next(r for r in result.reports if r.format == "stl")
+    assert report.stats["files"] == [str(f) for f in files]
+    assert list(report.stats["material"]["parts"]) == PARTS
+
+
+def test_the_step_is_the_whole_mosaic_as_one_solid(built):
+    out, _, models, _ = built
+    model = models.print
+    s = model.stack
+    faces = model.outline.difference(shapely.intersection(model.region, model.outline))
+    expected = model.outline.area * (s.base + s.relief) - faces.area * s.inset
+    volume = check_step_file(out / "mosaic-iznik.step", volume=model.fused.mesh_volume_mm3, parts=1)
+    assert volume == pytest.approx(expected, rel=1e-3)
