@@ -352,9 +352,10 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
                     f"kerf (narrowest {min(widths):.3g} mm) so each hole is cut as one opening for its piece")
     if kit.split:
         n = len(kit.split)
+        where = ", ".join(f"({x:.4g}, {y:.4g})" for x, y in kit.split[:3]) + (f" and {n - 3:,} more" if n > 3 else "")
         report.add("uncut_slit", f"{n:,} part{'s' if n != 1 else ''} of holes beyond a slit narrower than the kerf "
                    f"(no straight cut inside the hole reaches {'them' if n != 1 else 'it'}) left as lattice and "
-                   f"cut off {'their pieces' if n != 1 else 'its piece'}; make the stroke narrower or the kerf "
+                   f"cut off {'their pieces' if n != 1 else 'its piece'} (at {where}); make the stroke narrower or the kerf "
                    f"smaller to keep {'them' if n != 1 else 'it'}", count=n, locations=kit.split)
     report.note(f"pieces: {stats['pieces']:,} pieces of {kit.kinds} shapes, fit {fit:+g} mm, "
                 f"{kit.filled_holes:,} holes too small filled; laser job {pieces.estimate.line()}")
