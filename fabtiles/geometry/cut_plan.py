@@ -355,8 +355,8 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
         where = ", ".join(f"({x:.4g}, {y:.4g})" for x, y in kit.split[:3]) + (f" and {n - 3:,} more" if n > 3 else "")
         report.add("uncut_slit", f"{n:,} part{'s' if n != 1 else ''} of holes beyond a slit narrower than the kerf "
                    f"(no straight cut inside the hole reaches {'them' if n != 1 else 'it'}) left as lattice and "
-                   f"cut off {'their pieces' if n != 1 else 'its piece'} (at {where}); make the stroke narrower or the kerf "
-                   f"smaller to keep {'them' if n != 1 else 'it'}", count=n, locations=kit.split)
+                   f"cut off {'their pieces' if n != 1 else 'its piece'} (at {where}); make the stroke narrower "
+                   f"or the kerf smaller to keep {'them' if n != 1 else 'it'}", count=n, locations=kit.split)
     report.note(f"pieces: {stats['pieces']:,} pieces of {kit.kinds} shapes, fit {fit:+g} mm, "
                 f"{kit.filled_holes:,} holes too small filled; laser job {pieces.estimate.line()}")
     return KitPlans(lattice, pieces, kit)

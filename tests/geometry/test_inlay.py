@@ -156,7 +156,7 @@ def test_the_five_point_stars_tips_reach_no_more_than_the_fit_past_their_holes()
 def test_a_fit_past_the_band_names_the_pieces_gap_and_the_band():
     # bands of 0.8 mm: a fit of 0.42 mm leaves under the 0.15 mm kerf between the pieces
     with pytest.raises(FabricationError, match=r"the narrowest gap between two pieces is 0\.\d+ mm \(at \(.*\), "
-                                               r"where the band of lattice between their holes is 0\.8 mm\), and pieces "
-                                               r"must stand more than the kerf = 0\.15 mm apart, so bands must be wider "
-                                               r"than kerf \+ 2 x fit = 0\.99 mm"):
+                                               r"where the band of lattice between their holes is 0\.8 mm\), and "
+                                               r"pieces must stand more than the kerf = 0\.15 mm apart, so bands must "
+                                               r"be wider than kerf \+ 2 x fit = 0\.99 mm"):
         _kit(STARS, 0.42)
