@@ -346,6 +346,17 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
     report = lattice.report
     stats = kit.stats()
     report.stats.update(stats, inlay_fit_mm=fit, inlay_base=base, pieces_job=pieces.estimate.as_stats())
+    if kit.necks:
+        widths = [w for _, _, w in kit.necks]
+        report.note(f"widened {len(kit.necks):,} neck{'s' if len(kit.necks) != 1 else ''} of holes narrower than the "
+                    f"kerf (narrowest {min(widths):.3g} mm) so each hole is cut as one opening for its piece")
+    if kit.split:
+        n = len(kit.split)
+        where = ", ".join(f"({x:.4g}, {y:.4g})" for x, y in kit.split[:3]) + (f" and {n - 3:,} more" if n > 3 else "")
+        report.add("uncut_slit", f"{n:,} part{'s' if n != 1 else ''} of holes beyond a slit narrower than the kerf "
+                   f"(no straight cut inside the hole reaches {'them' if n != 1 else 'it'}) left as lattice and "
+                   f"cut off {'their pieces' if n != 1 else 'its piece'} (at {where}); make the stroke narrower "
+                   f"or the kerf smaller to keep {'them' if n != 1 else 'it'}", count=n, locations=kit.split)
     report.note(f"pieces: {stats['pieces']:,} pieces of {kit.kinds} shapes, fit {fit:+g} mm, "
                 f"{kit.filled_holes:,} holes too small filled; laser job {pieces.estimate.line()}")
     return KitPlans(lattice, pieces, kit)

@@ -13,18 +13,22 @@ material into the two sheets of such a kit:
   its hole's place (the same origin), so the pieces drop out of the second sheet
   where they belong.
 
+Where a hole has a neck narrower than the kerf, the lattice's cut of it (the hole
+shrunk by half the kerf) would fall into several holes under one piece: the neck is
+widened so the hole is cut as one opening (:func:`_cut_whole`).
+
 Cut the same two files from the two materials swapped and they make the reverse
 tile. A piece grown by the fit and by half the kerf must not touch its neighbour on
-the pieces sheet: bands narrower than ``kerf + 2 x fit`` are an error naming the
-narrowest.
+the pieces sheet: pieces no more than the kerf apart (bands narrower than
+``kerf + 2 x fit``) are an error naming the narrowest gap.
 
 >>> import shapely
 >>> plate = shapely.box(0, 0, 30, 30).difference(shapely.box(5, 5, 12, 12)).difference(shapely.box(15, 15, 25, 25))
 >>> kit = inlay_kit(plate, shapely.box(0, 0, 30, 30), fit_mm=0.1, min_piece_mm=2.4, kerf_mm=0.15)
 >>> len(kit.pieces), kit.filled_holes, kit.kinds
 (2, 0, 2)
->>> round(float(shapely.area(kit.pieces[0])), 2)  # the 7 mm hole grown by 0.1 mm each way
-51.84
+>>> round(float(shapely.area(kit.pieces[0])), 2)  # the 7 mm hole grown by 0.1 mm, corners rounded by 0.175 mm
+51.81
 """
 
 from __future__ import annotations
@@ -58,6 +62,10 @@ class InlayKit:
     filled_holes: int
     kinds: int
     """Distinct piece shapes: pieces congruent under rotation and reflection count once."""
+    necks: tuple = ()
+    """``(x, y, width)`` of each neck narrower than the kerf widened so its hole is cut whole."""
+    split: tuple = ()
+    """``(x, y)`` of each neck left uncut: its hole is cut as several openings (see :func:`_cut_whole`)."""
 
     def stats(self) -> dict:
         area = float(shapely.area(self.pieces).sum()) if len(self.pieces) else 0.0
@@ -80,8 +88,9 @@ def inlay_kit(region, outline, *, fit_mm: float, min_piece_mm: float, kerf_mm: f
               tolerance_mm: float = 0.01) -> InlayKit:
     """Split ``region`` (the tile's material) into an inlay kit; see the module text.
 
-    Raises :class:`~fabtiles.FabricationError` when two pieces' cut paths (grown by
-    the fit and half the kerf) would touch on the pieces sheet, naming the narrowest band.
+    Raises :class:`~fabtiles.FabricationError` when two pieces stand no more than the
+    kerf apart (their cut paths, each half a kerf outside its piece, would touch on the
+    pieces sheet), naming the narrowest gap and where it is.
     """
     from .narrow import fill_small_holes, small_hole_mask
 
@@ -95,32 +104,119 @@ def inlay_kit(region, outline, *, fit_mm: float, min_piece_mm: float, kerf_mm: f
     keep = holes[~small_hole_mask(holes, min_piece_mm)] if len(holes) else holes
     # the lattice: the material with the holes too small for a piece filled
     lattice, filled = fill_small_holes(region, min_piece_mm, tolerance_mm=tolerance_mm)
-    # a piece goes round the material lying in its hole (an island of the lattice)
-    nominal = keep.copy()
+    d = kerf_mm / 2
+    keep, corridors, fills, necks, split = _cut_whole(keep, d, tolerance_mm)
+    if len(fills):
+        lattice = shapely.union_all([lattice, *fills])
+    if len(corridors):
+        lattice = shapely.difference(lattice, shapely.union_all(corridors))
+    # the material lying in a hole (an island of the lattice) is cut out of the hole's cut path
+    islands = np.full(len(keep), None, dtype=object)
     if len(keep) and len(parts) > 1:
         a, b = shapely.STRtree(keep).query(shapely.point_on_surface(parts), predicate="within")
         for k in np.unique(b).tolist():
-            nominal[k] = shapely.difference(keep[k], shapely.union_all(parts[a[b == k]]))
-    pieces = shapely.buffer(nominal, fit, join_style="mitre", mitre_limit=MITRE_LIMIT) if fit else nominal
+            islands[k] = shapely.union_all(parts[a[b == k]])
+    # Each piece is its hole as the lattice's cut opens it, grown by the fit: the cut path
+    # (the hole shrunk by half the kerf, mitred, as laser_contours cuts it) swept by the
+    # round beam. The beam rounds every tip of a hole (radius kerf/2), so a piece grown
+    # from the designed hole overhung its opening: the 5-point star tile of issue 33 had
+    # tips of about 32 degrees whose mitred fit reached 0.55 mm past the hole (0.15 mm
+    # fit) into a lattice cut 0.2 mm short of the tip, and the pieces' cuts met 0.002 mm
+    # apart; pieces of the interlaced 4.6.12 tile lay up to 0.42 mm over uncut lattice at
+    # its 17-degree tips. Grown round from the opening, a piece reaches the fit past its
+    # opening everywhere (never more than the fit past its hole) and its tips are rounded
+    # with radius kerf/2 + fit (0.225 mm on the plywood profile) like the hole's.
+    cut = shapely.buffer(keep, -d, join_style="mitre", mitre_limit=MITRE_LIMIT) if d else keep.copy()
+    for k in np.flatnonzero(islands != None).tolist():  # noqa: E711  (an object array)
+        grown = shapely.buffer(islands[k], d, join_style="mitre", mitre_limit=MITRE_LIMIT) if d else islands[k]
+        cut[k] = shapely.difference(cut[k], grown)
+    opening = shapely.buffer(cut, d) if d else cut
+    pieces = shapely.buffer(opening, fit) if fit else opening
     _check_apart(pieces, keep, fit, kerf_mm)
-    return InlayKit(lattice, np.asarray(pieces, dtype=object), keep, int(filled), distinct_shapes(pieces))
+    return InlayKit(lattice, np.asarray(pieces, dtype=object), keep, int(filled), distinct_shapes(pieces),
+                    tuple(necks), tuple(split))
+
+
+def _cut_whole(holes, d: float, tolerance_mm: float):
+    """The holes the lattice's cut makes whole: each neck narrower than the kerf widened.
+
+    The lattice's cut path of a hole is the hole shrunk by ``d`` (half the kerf); where
+    the hole has a neck narrower than the kerf the shrunk hole falls into several parts,
+    the laser cuts several holes and leaves a sliver of lattice at the neck under the
+    one piece (issue 33: 0.45 x 0.35 mm slivers; 8 pieces over 24 openings on a 4.6.12
+    tile). Each neck is widened instead: the parts are joined by the shortest lines
+    between them (a spanning tree, each line through its neck), and the hole grows by
+    the corridor the beam sweeps along each line (``d`` plus ``tolerance_mm`` each side,
+    so the shrunk hole keeps a corridor of twice ``tolerance_mm`` and stays whole). The
+    lattice loses at most ``d + tolerance_mm`` beside each neck (0.085 mm on the
+    plywood profile); a piece still fills its hole with the fit. Filling the necks
+    instead (a piece per part) left parts of one hole closer than the kerf on the
+    pieces sheet. A part no straight line inside the hole reaches (beyond a curved slit,
+    as at the horns of the 4.6.12 tile's 12-gon motif) is filled with the slit leading to
+    it: the lattice keeps that material, the piece loses it, and its place is returned
+    in ``split`` for a finding.
+
+    Returns ``(holes, corridors, fills, necks, split)``: the holes (widened or filled
+    where needed), the corridors cut out of the lattice, the regions filled in it,
+    ``(x, y, width)`` of each neck widened, and ``(x, y)`` of each part filled.
+    """
+    corridors, fills, necks, split = [], [], [], []
+    if not d or not len(holes):
+        return holes, np.empty(0, dtype=object), np.empty(0, dtype=object), necks, split
+    shrunk = shapely.buffer(holes, -d, join_style="mitre", mitre_limit=MITRE_LIMIT)
+    holes = holes.copy()
+    for k in np.flatnonzero(shapely.get_num_geometries(shrunk) > 1).tolist():
+        parts = [p for p in shapely.get_parts(shrunk[k]) if p.area > tolerance_mm ** 2]
+        parts.sort(key=lambda p: -p.area)
+        joined, rest, mine = parts[0] if parts else None, parts[1:], []
+        inside = shapely.buffer(holes[k], tolerance_mm)
+        while rest:  # Prim's spanning tree: the nearest part whose shortest line stays in the hole
+            lines = shapely.shortest_line(joined, rest)
+            ok = np.flatnonzero(shapely.within(lines, inside))
+            if not len(ok):
+                break
+            j = int(ok[np.argmin(shapely.length(lines[ok]))])
+            mid = shapely.line_interpolate_point(lines[j], 0.5, normalized=True)
+            mine.append(shapely.buffer(lines[j], d + tolerance_mm))
+            necks.append((mid.x, mid.y, 2 * shapely.distance(mid, holes[k].exterior)))
+            joined = shapely.union_all([joined, rest.pop(j), mine[-1]])
+        if rest:
+            # parts no straight line reaches (past a curved neck): left as lattice, with the
+            # slit leading to them, so the lattice cuts one opening and the piece follows it
+            reach = shapely.difference(holes[k], shapely.buffer(joined, d + tolerance_mm))
+            lost = [z for z in shapely.get_parts(reach) if shapely.intersects(z, shapely.union_all(rest))]
+            fills.extend(lost)
+            split.extend((p.x, p.y) for p in shapely.point_on_surface(rest))
+            holes[k] = shapely.difference(holes[k], shapely.union_all(lost))
+        if mine:
+            corridors.extend(mine)
+            holes[k] = shapely.union_all([holes[k], *mine])
+    return holes, np.asarray(corridors, dtype=object), np.asarray(fills, dtype=object), necks, split
 
 
 def _check_apart(pieces, holes, fit: float, kerf: float) -> None:
-    """Refuse a kit whose pieces' cut paths touch on the pieces sheet (see the module text)."""
+    """Refuse a kit whose pieces stand no more than the kerf apart (see the module text).
+
+    The pieces' own distance decides: each piece is cut half a kerf outside it, so two
+    cuts touch where two pieces stand ``kerf`` apart; the message gives that distance,
+    and the band of lattice between the two holes there for the design's side of it.
+    """
     if len(pieces) < 2:
         return
-    cut = shapely.buffer(pieces, kerf / 2, join_style="mitre", mitre_limit=MITRE_LIMIT) if kerf else pieces
-    a, b = shapely.STRtree(cut).query(cut, predicate="intersects")
+    a, b = shapely.STRtree(pieces).query(pieces, predicate="dwithin", distance=kerf)
     pair = a < b
     if pair.any():
-        gaps = shapely.distance(holes[a[pair]], holes[b[pair]])
+        a, b = a[pair], b[pair]
+        gaps = shapely.distance(pieces[a], pieces[b])
         k = int(np.argmin(gaps))
-        where = shapely.get_coordinates(shapely.shortest_line(holes[a[pair][k]], holes[b[pair][k]])).mean(axis=0)
+        where = shapely.get_coordinates(shapely.shortest_line(pieces[a[k]], pieces[b[k]])).mean(axis=0)
+        band = float(shapely.distance(holes[a[k]], holes[b[k]]))
         raise FabricationError(
-            f"{int(pair.sum())} pairs of inlay pieces would touch on the pieces sheet: the narrowest band between "
-            f"two pieces is {distinct(gaps[k], kerf + 2 * fit)} mm (at ({where[0]:.4g}, {where[1]:.4g})), and bands "
-            f"must be wider than kerf + 2 x fit = {kerf + 2 * fit:g} mm; make the stroke wider or inlay_fit_mm smaller")
+            f"{len(a)} pairs of inlay pieces would touch on the pieces sheet: the narrowest gap between two "
+            f"pieces is {distinct(gaps[k], kerf)} mm (at ({where[0]:.4g}, {where[1]:.4g}), where the band of "
+            f"lattice between their holes is {band:.3g} mm), and pieces must stand more than the kerf = "
+            f"{kerf:g} mm apart, so bands must be wider than kerf + 2 x fit = {kerf + 2 * fit:g} mm; make the "
+            f"stroke wider or inlay_fit_mm smaller")
 
 
 def shape_key(poly, decimals: int = 3) -> tuple:

@@ -184,7 +184,9 @@ def test_librecad_and_meerk40t_open_both_files_at_true_size(kit, tmp_path):
 def test_a_fit_that_makes_pieces_touch_names_the_narrowest_band(tmp_path):
     t = tile(stroke=0.9)
     with pytest.raises(FabricationError, match=r"pairs of inlay pieces would touch on the pieces sheet: the narrowest "
-                                               r"band between two pieces is 0\.\d+ mm .* bands must be wider than "
+                                               r"gap between two pieces is 0 mm \(at .*, where the band of lattice "
+                                               r"between their holes is 0\.9\d+ mm\), and pieces must stand more than "
+                                               r"the kerf = 0\.15 mm apart, so bands must be wider than "
                                                r"kerf \+ 2 x fit = 1\.15 mm"):
         t.export(tmp_path / "t.dxf", mode="inlay", inlay_fit_mm=0.5)
     assert list(tmp_path.iterdir()) == []
