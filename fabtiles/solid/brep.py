@@ -276,6 +276,8 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid") -> Brep:
     pieces = []
     for lvl, geoms in sorted(by_level.items()):
         merged = geoms[0] if len(geoms) == 1 else shapely.coverage_union_all(geoms)
+        if merged.geom_type == "Polygon":  # one polygon (a flush mosaic's whole top): as the others, a multi
+            merged = shapely.MultiPolygon([merged])
         pieces.append((shapely.orient_polygons(merged), lvl))
     cov = Coverage(pieces, cov.levels)
     topo = topology(cov, triangulate=False, exact=True)

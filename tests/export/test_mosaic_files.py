@@ -45,7 +45,7 @@ def test_the_3mf_holds_a_part_per_colour_on_extruders_1_to_n(built):
     out, _, models, _ = built
     parts = threemf.read_3mf(out / "mosaic-iznik.3mf")
     assert list(parts) == PARTS
-    assert [p.material for p in parts.values()] == [1, 2, 3, 4]
+    assert [p.extruder for p in parts.values()] == [1, 2, 3, 4]
     # each part's volume, read back, is its footprint's area times its height (GEOS areas)
     model = models.print
     s = model.stack
