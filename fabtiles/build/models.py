@@ -153,9 +153,13 @@ class Models:
             return plan_cut(region, outline, profile=o.cutter, mode="pierced", kerf_mm=o.kerf_mm,
                             fill_small_holes=o.fill_small_holes, stroke=self.tile.stroke)
         if o.kit and self.sheet is None:
-            return plan_kit(region, outline, profile=o.cutter, inlay_fit_mm=o.inlay_fit_mm,
+            kit = plan_kit(region, outline, profile=o.cutter, inlay_fit_mm=o.inlay_fit_mm,
                             inlay_base=o.inlay_base or "pierced", kerf_mm=o.kerf_mm, dxf_version=o.dxf_version,
-                            stroke=self.tile.stroke)
+                            stroke=self.tile.stroke, colours=self.kit_colours() if self.coloured else ())
+            if self.coloured:
+                kit.report.stats["face_classes"] = self.face_class_stats()
+                kit.report.note(f"lattice in {self.colouring.band.name} (the band colour)")
+            return kit
         if o.kit:
             raise ParameterError("a sheet of inlay kits is not laid out; write the kit of one tile (drop --sheet "
                                  "and --copies) or choose laser_mode = \"pierced\"", param="laser_mode")
@@ -202,6 +206,17 @@ class Models:
     def face_class_stats(self) -> list:
         """The face classes for a report: letter, count, description, area and colour name."""
         return [dict(c, colour=self.colouring.face(c["letter"]).name) for c in self.face_classes.stats()]
+
+    def kit_colours(self) -> tuple:
+        """A coloured kit's woods: ``((colour name, faces), ...)``, one per distinct face colour, in class order."""
+        colours, classes = self.colouring, self.face_classes
+        out = {}
+        for c in classes.classes:
+            colour = colours.face(c.letter)
+            name, faces = out.get(colour.hex, (colour.name, []))
+            faces.extend(classes.faces[classes.labels == classes.classes.index(c)])
+            out[colour.hex] = (name, faces)
+        return tuple((name, tuple(faces)) for name, faces in out.values())
 
     def mosaic_specs(self) -> tuple:
         """A mosaic's parts, one per distinct colour (base, bands, then the classes'), in material order."""

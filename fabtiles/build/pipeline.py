@@ -143,15 +143,12 @@ def _planned_files(models: Models, formats, name: str, *, layout: str):
     Every model is made here (and its checks run), before anything is written.
     """
     from ..export.formats import FORMATS, FileOptions
-    from ..export.kit import KIT_FILES
 
     planned = []
     for fmt in formats:
         f = FORMATS[fmt]
         model = models.model(f.family)
-        if f.family == "cut" and hasattr(model, "lattice"):  # an inlay kit: two files per format
-            files = [(f"{name}{suffix}.{fmt}", getattr(model, which)) for suffix, which in KIT_FILES]
-        elif hasattr(model, "files_of"):  # a model that writes several files of a format (a mosaic's STLs)
+        if hasattr(model, "files_of"):  # several files of a format: a kit's sheets, a mosaic's STLs
             files = [(f"{name}{suffix}.{fmt}", m) for suffix, m in model.files_of(fmt)]
         else:
             files = [(f"{name}.{fmt}", model)]
@@ -215,6 +212,8 @@ def earlier_files(outdir, name: str, written) -> list[str]:
     folder = Path(outdir)
     written = {Path(p).name for p in written}
     names = [f"{name}{suffix}.{fmt}" for fmt in FILE_FORMATS for suffix in ("", *(s for s, _ in KIT_FILES))]
+    # a coloured kit's pieces files, one per wood
+    names += sorted(p.name for fmt in FILE_FORMATS for p in folder.glob(f"{name}-pieces-*.{fmt}"))
     return [str(folder / n) for n in names if n not in written and (folder / n).is_file()]
 
 

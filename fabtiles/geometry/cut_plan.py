@@ -299,6 +299,15 @@ class KitPlans:
     pieces: CutPlan
     kit: object
     """The :class:`~fabtiles.geometry.inlay.InlayKit` (holes, pieces, figures)."""
+    by_colour: tuple = ()
+    """A coloured kit's pieces, one plan per face colour: ``((colour name, CutPlan), ...)``."""
+
+    def files_of(self, fmt: str) -> list:
+        """``[(suffix, plan), ...]``: ``-lattice`` and ``-pieces``, or a pieces file per colour
+        (``-pieces-<colour>``) when the kit is coloured."""
+        if self.by_colour:
+            return [("-lattice", self.lattice)] + [(f"-pieces-{name}", plan) for name, plan in self.by_colour]
+        return [("-lattice", self.lattice), ("-pieces", self.pieces)]
 
     @property
     def report(self) -> Report:
@@ -307,7 +316,7 @@ class KitPlans:
 
 
 def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "pierced", kerf_mm=None,
-             dxf_version=None, stroke=None, path: str = "", fmt: str = "") -> KitPlans:
+             dxf_version=None, stroke=None, colours=(), path: str = "", fmt: str = "") -> KitPlans:
     """The inlay kit of a tile's material ``region`` as two cut plans: the lattice and the pieces.
 
     The lattice is a pierced tile (holes cut with the kerf into them, the outline
@@ -318,7 +327,10 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
     lattice's, they drop out where they belong. ``inlay_fit_mm`` (default: the
     profile's) grows each piece from its hole. The lattice's report carries the kit's
     figures (``pieces``, ``filled_holes``, ``piece_kinds``, both areas, the pieces'
-    ``pieces_job``).
+    ``pieces_job``). ``colours``, ``((colour name, faces), ...)``, splits the pieces
+    into a plan per colour: each piece goes with the colour of the face holding its
+    hole (a piece no face names goes with the first colour), each plan with the
+    lattice's bounds, so every wood's sheet is laid like the lattice's.
     """
     from .inlay import check_fit, inlay_kit
 
@@ -359,7 +371,45 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
                    f"or the kerf smaller to keep {'them' if n != 1 else 'it'}", count=n, locations=kit.split)
     report.note(f"pieces: {stats['pieces']:,} pieces of {kit.kinds} shapes, fit {fit:+g} mm, "
                 f"{kit.filled_holes:,} holes too small filled; laser job {pieces.estimate.line()}")
-    return KitPlans(lattice, pieces, kit)
+    by_colour = _pieces_by_colour(kit, colours, profile, lattice, kx, ky) if colours else ()
+    if by_colour:
+        report.stats["pieces_by_colour"] = {}
+        for name, plan in by_colour:
+            part = plan.part
+            n = len(shapely.get_parts(part)) if part is not None and not part.is_empty else 0
+            area = float(part.area) if n else 0.0
+            x0, y0, x1, y1 = part.bounds if n else (0.0, 0.0, 0.0, 0.0)
+            report.stats["pieces_by_colour"][name] = {"pieces": n, "area_mm2": round(area, 3),
+                                                      "sheet_mm": [round(x1 - x0, 3), round(y1 - y0, 3)]}
+            report.note(f"pieces in {name}: {n:,} piece{'s' if n != 1 else ''}, {area:,.1f} mm^2, on a sheet of at least "
+                        f"{x1 - x0:.1f} x {y1 - y0:.1f} mm (laid like the lattice); laser job {plan.estimate.line()}")
+    return KitPlans(lattice, pieces, kit, by_colour)
+
+
+def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: float) -> tuple:
+    """The kit's pieces as one plan per colour (see :func:`plan_kit`)."""
+    pieces = np.asarray(kit.pieces, dtype=object)
+    owner = np.zeros(len(pieces), int)
+    faces = [(np.asarray(list(f), dtype=object), k) for k, (_, f) in enumerate(colours) if len(f)]
+    if len(pieces) and faces:
+        polys = np.concatenate([f for f, _ in faces])
+        which = np.concatenate([np.full(len(f), k) for f, k in faces])
+        probe = shapely.point_on_surface(np.asarray(kit.holes, dtype=object))
+        near = shapely.STRtree(polys).query_nearest(probe, return_distance=False)
+        owner[near[0]] = which[near[1]]
+    out = []
+    for k, (name, _) in enumerate(colours):
+        mine = pieces[owner == k]
+        if not len(mine):
+            continue  # a colour whose faces were all too small for a piece (filled): no sheet, no file
+        paths = {}
+        if len(mine):
+            paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(mine))),
+                                                            kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
+        part = shapely.union_all(mine) if len(mine) else shapely.Polygon()
+        out.append((name, make_plan(profile, "pierced", lattice.dxf_version, kx, paths, bounds=lattice.bounds,
+                                    part=part)))
+    return tuple(out)
 
 
 def with_report(plan: CutPlan, report: Report) -> CutPlan:
