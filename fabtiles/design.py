@@ -348,8 +348,10 @@ def parse_override(item: str) -> tuple[list[str], Any]:
 
 def _text_key(parts) -> bool:
     """Whether the schema's key at ``parts`` takes text (a string or a choice)."""
+    if list(parts[:2]) == ["colour", "faces"]:  # --set colour.faces.A=navy
+        return True
     try:
-        return _schema.key(".".join(parts)).type in ("string", "choice")
+        return _schema.key(".".join(parts)).type in ("string", "choice", "colour")
     except FabtilesError:
         return False  # not a key: the validation names it
 

@@ -74,8 +74,19 @@ def command(design_file, output, overrides, deep):
     cutter = profile_of(design, "laser").kind  # an unknown profile is refused before any geometry
     profile_of(design, "printer")
     tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
-    result = check_design(design, tile, job=True)
     out = design.output
+    class_lines = []
+    if design.colour.given or (out.print_style or profile_of(design, "printer").style) == "mosaic":
+        from .._report import face_class_lines
+        from ..geometry.faces import face_classes
+
+        classes = face_classes(tile, by=design.colour.by)
+        try:  # a letter the design lacks is refused before anything is printed
+            colouring = design.colour.colouring(tuple(c.letter for c in classes.classes))
+        except ParameterError as exc:
+            raise ParameterError(f"{design_file}: [colour] {exc}", param=f"colour.{exc.param}") from None
+        class_lines = face_class_lines([dict(c, colour=colouring.face(c["letter"]).name) for c in classes.stats()])
+    result = check_design(design, tile, job=True)
     laser = f"{cutter} profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
     if result.filled_holes:
         laser += f" ({result.filled_holes:,} small holes filled)"
@@ -87,17 +98,8 @@ def command(design_file, output, overrides, deep):
         click.echo(f"  {cutter} job: {result.job.line()}")
     if result.filament is not None:
         click.echo(f"  print material: {result.filament.line()} (print time: ask the slicer)")
-    if design.colour.given or (out.print_style or profile_of(design, "printer").style) == "mosaic":
-        from .._report import face_class_lines
-        from ..geometry.faces import face_classes
-
-        classes = face_classes(tile, by=design.colour.by)
-        try:
-            colouring = design.colour.colouring(tuple(c.letter for c in classes.classes))
-        except ParameterError as exc:
-            raise ParameterError(f"{design_file}: [colour] {exc}", param=f"colour.{exc.param}") from None
-        for c in classes.stats():
-            click.echo("  " + face_class_lines([dict(c, colour=colouring.face(c["letter"]).name)])[0])
+    for line in class_lines:
+        click.echo("  " + line)
     findings = result.findings()
     for where, f in findings:
         click.echo("  " + finding_line(where, f))

@@ -1,0 +1,99 @@
+"""The colours from the command line (issue 33): classes listed, --set of colours, bad input exit 2."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from click.testing import CliRunner
+
+from fabtiles.cli.main import cli
+
+SAMPLE = Path(__file__).resolve().parents[2] / "samples" / "mosaic-iznik.toml"
+
+SMALL = """
+[motif]
+preset = "table3-3"
+[packing]
+radius = 12.5
+[tile]
+outline = "square"
+size = 60
+frame = 3
+stroke = 1.2
+[output]
+formats = ["3mf", "stl"]
+print_style = "mosaic"
+[colour]
+by = "shape"
+palette = "zellige"
+"""
+
+
+def run(*args):
+    return CliRunner().invoke(cli, [*map(str, args)], catch_exceptions=False)
+
+
+def test_check_lists_the_face_classes_with_their_colours():
+    result = run("check", SAMPLE)
+    assert result.exit_code == 0, result.output
+    lines = [line.strip() for line in result.output.splitlines() if "face class" in line]
+    assert lines == ["face class A: 108 x 8-sided polygon, 3,035.9 mm^2, cobalt",
+                     "face class B: 23 x 24-sided polygon, 1,606.0 mm^2, turquoise",
+                     "face class C: 28 x 6-point star, 8.4 mm^2, bole",
+                     "face class D: 212 x kite, 4.5 mm^2, green"]
+
+
+def test_set_gives_a_class_its_colour_and_a_palette():
+    result = run("check", SAMPLE, "--set", "colour.faces.B=navy", "--set", "colour.palette=mamluk")
+    assert result.exit_code == 0, result.output
+    assert "face class A: 108 x 8-sided polygon, 3,035.9 mm^2, lapis" in result.output
+    assert "face class B: 23 x 24-sided polygon, 1,606.0 mm^2, navy" in result.output
+
+
+def test_a_mosaic_build_writes_a_part_per_colour(tmp_path):
+    design = tmp_path / "m.toml"
+    design.write_text(SMALL + '[colour.faces]\nB = "#1d4e89"\n')  # B in A's cobalt: one filament for both
+    result = run("build", design, "-o", tmp_path / "out")
+    assert result.exit_code == 0, result.output
+    names = sorted(p.name for p in (tmp_path / "out").iterdir())
+    assert names == ["m-black.stl", "m-cobalt.stl", "m-white.stl", "m.3mf"]
+    material = re.search(r"print material: (.*)", result.output).group(1)
+    # zellige's fourth colour is its base's black: class D shares the base's filament
+    assert re.search(r"\(black \(base, D\) [0-9.]+ g, white \(bands\) [0-9.]+ g, cobalt \(A, B\) [0-9.]+ g\)",
+                     material)
+
+
+def test_a_letter_the_design_lacks_is_one_line_exit_2(tmp_path):
+    design = tmp_path / "bad.toml"
+    design.write_text(SMALL + '[colour.faces]\nZ = "red"\n')
+    for command in (("build", design, "-o", tmp_path / "out"), ("check", design)):
+        result = CliRunner().invoke(cli, list(map(str, command)))
+        assert result.exit_code == 2
+        assert result.output.count("\n") == 1
+        assert re.search(r"face class 'Z' is not one of this design's: A, B, C, D$", result.output.strip())
+    assert not (tmp_path / "out").exists()
+
+
+def test_more_than_sixteen_colours_is_refused(tmp_path):
+    """A design of 17 classes, each its own colour, is more filaments than a slicer takes: exit 2, no file."""
+    import numpy as np
+    import pytest
+    import shapely
+
+    from fabtiles import ParameterError
+    from fabtiles._colour import Colours, letters
+    from fabtiles.build.models import BuildOptions, Models
+    from fabtiles.design import design_from_text
+    from fabtiles.geometry.faces import FaceClass, FaceClasses
+
+    design = design_from_text(SMALL)
+    faces = np.array([shapely.box(3 * k, 0, 3 * k + 2, 2) for k in range(17)], dtype=object)
+    classes = FaceClasses(faces, np.arange(17), tuple(FaceClass(c, 1, "square", 4.0) for c in letters(17)))
+    colours = Colours(by="shape", faces={c: f"#0000{k:02x}" for k, c in enumerate(letters(17))})
+    models = Models(design.build_tile(), BuildOptions(**{**BuildOptions.of_design(design).__dict__,
+                                                         "colours": colours}))
+    models.__dict__["face_classes"] = classes
+    with pytest.raises(ParameterError, match=r"the print has 19 distinct colours, more than the 16 filaments a "
+                                             r"slicer takes; give some face classes the same colour"):
+        models.mosaic_specs()
