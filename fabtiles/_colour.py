@@ -194,8 +194,8 @@ def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, fac
     is a :class:`ParameterError` naming the classes.
 
     >>> c = colouring(palette_name="iznik", faces={"B": "navy"}, classes=("A", "B"))
-    >>> [(k, v.name) for k, v in c.faces], c.band.name
-    ([('A', 'cobalt'), ('B', 'navy')], 'white')
+    >>> [(k, v.name) for k, v in c.faces], c.band.name  # CSS navy is not Iznik's navy base: a name of its own
+    ([('A', 'cobalt'), ('B', 'navy-000080')], 'white')
     """
     pal = palette(palette_name)
     faces = dict(faces or {})
@@ -206,9 +206,15 @@ def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, fac
                              f"{', '.join(classes)}", param="faces")
     chosen = tuple((k, parse_colour(faces[k], param=f"faces.{k}") if k in faces
                     else pal.faces[i % len(pal.faces)]) for i, k in enumerate(classes))
-    return Colouring(band=pal.band if band is None else parse_colour(band, param="band"),
-                     base=pal.base if base is None else parse_colour(base, param="base"),
-                     faces=chosen)
+    base = pal.base if base is None else parse_colour(base, param="base")
+    band = pal.band if band is None else parse_colour(band, param="band")
+    # one name per colour (it names a part and an STL file): a second colour of a name takes its hex digits
+    owner = {}
+    def named(c):
+        first = owner.setdefault(c.name, c.hex)
+        return c if first == c.hex else Colour(c.hex, f"{c.name}-{c.hex[1:]}")
+    base, band = named(base), named(band)
+    return Colouring(band=band, base=base, faces=tuple((k, named(c)) for k, c in chosen))
 
 
 def check_materials(colours, *, what: str = "print") -> None:

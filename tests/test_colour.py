@@ -146,3 +146,38 @@ def test_the_mosaic_inset_stays_under_the_relief(inset, match):
 def test_the_inset_is_a_mosaics_alone():
     assert resolve_stack("fdm-0.4mm", style="mosaic", mosaic_inset_mm=0.4).inset == 0.4
     assert resolve_stack("fdm-0.4mm", style="relief", mosaic_inset_mm=0.4).inset == 0.0
+
+
+def test_a_coloured_relief_takes_the_base_and_band_colours():
+    """Face colours are the mosaic's alone; a relief's plate and bands take the base and band colours."""
+    from fabtiles.build.models import BuildOptions, Models
+
+    plain = design_from_text(BASE)
+    coloured = design_from_text(BASE + '[colour]\npalette = "mamluk"\n')
+    parts = {}
+    for name, d in (("plain", plain), ("coloured", coloured)):
+        model = Models(d.build_tile(), BuildOptions.of_design(d)).print
+        parts[name] = {n: p.colour for n, p in model.parts.items()}
+    pal = PALETTES["mamluk"]
+    assert parts["coloured"] == {"base": pal.base.linear, "pattern": pal.band.linear}
+    assert parts["plain"]["pattern"] != pal.band.linear  # no [colour]: the parts' own display colours
+
+
+def test_the_export_api_takes_colours(tmp_path):
+    import fabtiles as ft
+    from fabtiles.export.threemf import read_3mf
+
+    tile = ft.Tile("square", 60, ft.HexPacking(radius=12.5, motif=ft.Star.preset("table3-3")), frame=3, stroke=1.2)
+    tile.export(tmp_path / "a.3mf", style="mosaic", colours=ft.Colours(by="shape", palette="iznik", faces={"A": "navy"}))
+    # CSS navy for A beside Iznik's own navy base: two colours, two names, two parts
+    assert list(read_3mf(tmp_path / "a.3mf")) == ["navy (base)", "white (bands)", "navy-000080 (A)", "turquoise (B)"]
+    tile.export(tmp_path / "b.3mf", style="mosaic", colours={"by": "shape", "palette": "mamluk"})
+    assert list(read_3mf(tmp_path / "b.3mf"))[1] == "gold (bands)"
+    report = tile.export(tmp_path / "k.dxf", mode="inlay", colours=ft.Colours(by="shape", palette="iznik"))
+    assert [Path(p).name for p in report.stats["files"]] == ["k-lattice.dxf", "k-pieces-cobalt.dxf",
+                                                             "k-pieces-turquoise.dxf"]
+    with pytest.raises(ParameterError, match=r"colours must be a fabtiles.Colours \(or a dict of its keys: by, "
+                                             r"palette, band_colour, base_colour, faces\), got \{'pallete': 'x'\}"):
+        tile.export(tmp_path / "c.3mf", colours={"pallete": "x"})
+    with pytest.raises(ParameterError, match=r"key 'a' must be a class letter"):
+        ft.Colours(faces={"a": "red"})

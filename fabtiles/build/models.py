@@ -71,9 +71,12 @@ class BuildOptions:
         {'laser_mode': 'inlay', 'heights': {'base_mm': 2.0}}
         """
         out: dict = {}
-        calls = {o.name for o in CALL_OPTIONS if set(o.families) & set(families)}
+        wanted = {f for family in families for f in (("print", "3mf") if family == "3mf" else (family,))}
+        calls = {o.name for o in CALL_OPTIONS if set(o.families) & wanted}
         for name in calls & set(options):
             out[name] = options[name]  # the call's own options (dxf_version, kerf_mm) keep their names
+        if out.get("colours") is not None:
+            out["colours"] = _colours(out["colours"])
         for family in families:
             for k in option_keys(family):
                 value = options.get(k.option.name)
@@ -94,6 +97,27 @@ class BuildOptions:
     def kit(self) -> bool:
         """Whether the cutter's files are an inlay kit (two files per format)."""
         return self.mode == KIT_MODE
+
+
+def _colours(value):
+    """The API's ``colours=``: a :class:`~fabtiles.Colours`, or a dict of its keys made into one.
+
+    >>> _colours({"by": "shape"}).by
+    'shape'
+    >>> _colours("iznik")
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.ParameterError: colours must be a fabtiles.Colours (or a dict of its keys: by, palette, band_colour, base_colour, faces), got 'iznik'
+    """
+    from .._colour import Colours
+
+    if isinstance(value, Colours):
+        return value
+    keys = ("by", "palette", "band_colour", "base_colour", "faces")
+    if isinstance(value, dict) and set(value) <= set(keys):
+        return Colours(**value)
+    raise ParameterError(f"colours must be a fabtiles.Colours (or a dict of its keys: {', '.join(keys)}), "
+                         f"got {value!r}", param="colours")
 
 
 class Models:
