@@ -146,3 +146,19 @@ def test_the_mosaic_inset_stays_under_the_relief(inset, match):
 def test_the_inset_is_a_mosaics_alone():
     assert resolve_stack("fdm-0.4mm", style="mosaic", mosaic_inset_mm=0.4).inset == 0.4
     assert resolve_stack("fdm-0.4mm", style="relief", mosaic_inset_mm=0.4).inset == 0.0
+
+
+def test_a_bad_face_colour_names_its_class():
+    """A bad class colour names its key, ``colour.faces.<letter>`` (the web app's ``face_<letter>``)."""
+    with pytest.raises(DesignError, match=r"\[colour.faces\] B 'reddish' is not a CSS colour name") as info:
+        design_from_text(BASE + '[colour.faces]\nB = "reddish"\n')
+    assert info.value.key == "colour.faces.B"
+    with pytest.raises(DesignError, match=r"\[colour.faces\] key 'star' must be a class letter") as info:
+        design_from_text(BASE + '[colour.faces]\nstar = "red"\n')
+    assert info.value.key == "colour.faces"
+
+
+def test_an_unknown_class_names_its_letter():
+    with pytest.raises(ParameterError, match=r"face class 'E' is not one of this design's: A, B") as info:
+        colouring(faces={"E": "red"}, classes=("A", "B"))
+    assert info.value.param == "faces.E"
