@@ -40,7 +40,7 @@ def router(*, limits: _limits.Limits) -> APIRouter:
     def faces(request: Request):
         """The design's face classes in their colours, and the bands' and the base's colour.
 
-        ``{"by", "palette", "band": {colour, name}, "base": {colour, name}, "classes": [{letter,
+        ``{"band": {colour, name}, "base": {colour, name}, "classes": [{letter,
         count, description, area_mm2, colour, name}]}``: the classes as ``fabtiles check`` lists
         them, each colour as ``#rrggbb`` and its name (the palette's unless the query gives it).
         """
@@ -54,8 +54,7 @@ def router(*, limits: _limits.Limits) -> APIRouter:
             return {"colour": c.hex, "name": c.name}
 
         classes = [{**c, **named(colours.face(c["letter"]))} for c in models.face_classes.stats()]
-        return {"by": spec.colour.by, "palette": spec.colour.palette, "band": named(colours.band), "base": named(colours.base),
-                "classes": classes}
+        return {"band": named(colours.band), "base": named(colours.base), "classes": classes}
 
     @api.get("/api/kit.svg")
     def kit_picture(request: Request):
