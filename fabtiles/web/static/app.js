@@ -418,7 +418,8 @@ function showColours() {
     letter.className = "letter";
     letter.textContent = c.letter;
     what.className = "what";
-    what.textContent = `${c.count.toLocaleString("en")} × ${c.description}`;
+    const count = c.count.toLocaleString("en");  // a shape with no plain name: its count alone
+    what.textContent = c.description ? `${count} × ${c.description}` : `${count} faces`;
     what.title = `${Math.round(c.area_mm2).toLocaleString("en")} mm² in all; the palette's colour: ${c.name}`;
     row.append(swatch, letter, what);
     if (/^[A-Z]$/.test(c.letter)) {  // the page's parameters are face_A ... face_Z; a design file takes more
