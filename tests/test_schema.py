@@ -65,7 +65,7 @@ def test_the_javascript_lists_no_key():
              if len(set(re.findall(r'"(\w+)"', m.group(0))) & NAMES) >= 2]
     # the menus with code of their own; the parameters the page always sends (the others only when set)
     assert lists == ['["preset", "special", "tiling"]', '["frame", "stroke", "corner_radius", "join", "laser_profile", "laser_mode",\n'
-                     '                   "printer_profile", "print_style"]']
+                     '                   "printer_profile", "print_style", "colour_by", "palette"]']
 
 
 def test_the_validated_sections_hold_the_schemas_keys():
