@@ -203,7 +203,7 @@ def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, fac
     if unknown:
         hint = did_you_mean(unknown[0], classes)
         raise ParameterError(f"face class {unknown[0]!r} is not one of this design's{f' ({hint})' if hint else ''}: "
-                             f"{', '.join(classes)}", param="faces")
+                             f"{', '.join(classes)}", param=f"faces.{unknown[0]}")
     chosen = tuple((k, parse_colour(faces[k], param=f"faces.{k}") if k in faces
                     else pal.faces[i % len(pal.faces)]) for i, k in enumerate(classes))
     base = pal.base if base is None else parse_colour(base, param="base")

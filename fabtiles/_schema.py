@@ -43,7 +43,7 @@ pair, ``motif`` a motif table or a preset name, ``motifs`` a table of motifs key
 ``formats`` a list of output formats, ``colour`` a ``#rrggbb`` or CSS colour name, ``colours`` a table of
 face class letters to colours."""
 
-WIDGETS = ("slider", "number", "select", "checkbox", "text")
+WIDGETS = ("slider", "number", "select", "checkbox", "text", "colour")
 """How the web form shows a key."""
 
 FAMILIES = ("cut", "print", "3mf")
@@ -489,9 +489,11 @@ KEYS: tuple[Key, ...] = MOTIF + (
              "([colours.md](colours.md) says where each comes from)",
         widget=Widget(kind="select", label="Palette")),
     Key(section="colour", name="band_colour", type="colour", default_text="the palette's",
-        note="#rrggbb or a CSS colour name", help="the bands' colour (the strapwork): a print's bands, a kit's lattice"),
+        note="#rrggbb or a CSS colour name", help="the bands' colour (the strapwork): a print's bands, a kit's lattice",
+        widget=Widget(kind="colour", label="Band colour")),
     Key(section="colour", name="base_colour", type="colour", default_text="the palette's",
-        note="#rrggbb or a CSS colour name", help="the base plate's colour (relief, mosaic and deboss prints)"),
+        note="#rrggbb or a CSS colour name", help="the base plate's colour (relief, mosaic and deboss prints)",
+        widget=Widget(kind="colour", label="Base colour")),
     Key(section="colour", name="faces", type="colours", default_text="the palette's, in class order",
         note="a table of class letters to colours", query=None,
         help="`[colour.faces]` `A = \"navy\"`, `B = \"#c8553d\"`: a colour per face class; classes given one "

@@ -598,7 +598,10 @@ def _colour_spec(table: dict, source: str) -> Colours:
     try:
         return Colours(**values, faces=faces, given=True)
     except FabtilesError as exc:
-        raise DesignError(f"{source}: [colour.faces] {exc}", param="colour.faces") from None
+        # a bad colour names its class (the web app's face_<letter> parameter): colour.faces.A
+        letter = exc.param if re.fullmatch(r"[A-Z]{1,2}", str(getattr(exc, "param", None))) else None
+        raise DesignError(f"{source}: [colour.faces] {exc}",
+                          param=f"colour.faces.{letter}" if letter else "colour.faces") from None
 
 
 def _output_spec(table: dict, source: str) -> OutputSpec:

@@ -181,3 +181,19 @@ def test_the_export_api_takes_colours(tmp_path):
         tile.export(tmp_path / "c.3mf", colours={"pallete": "x"})
     with pytest.raises(ParameterError, match=r"key 'a' must be a class letter"):
         ft.Colours(faces={"a": "red"})
+
+
+def test_a_bad_face_colour_names_its_class():
+    """A bad class colour names its key, ``colour.faces.<letter>`` (the web app's ``face_<letter>``)."""
+    with pytest.raises(DesignError, match=r"\[colour.faces\] B 'reddish' is not a CSS colour name") as info:
+        design_from_text(BASE + '[colour.faces]\nB = "reddish"\n')
+    assert info.value.key == "colour.faces.B"
+    with pytest.raises(DesignError, match=r"\[colour.faces\] key 'star' must be a class letter") as info:
+        design_from_text(BASE + '[colour.faces]\nstar = "red"\n')
+    assert info.value.key == "colour.faces"
+
+
+def test_an_unknown_class_names_its_letter():
+    with pytest.raises(ParameterError, match=r"face class 'E' is not one of this design's: A, B") as info:
+        colouring(faces={"E": "red"}, classes=("A", "B"))
+    assert info.value.param == "faces.E"

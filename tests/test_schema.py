@@ -65,7 +65,7 @@ def test_the_javascript_lists_no_key():
              if len(set(re.findall(r'"(\w+)"', m.group(0))) & NAMES) >= 2]
     # the menus with code of their own; the parameters the page always sends (the others only when set)
     assert lists == ['["preset", "special", "tiling"]', '["frame", "stroke", "corner_radius", "join", "laser_profile", "laser_mode",\n'
-                     '                   "printer_profile", "print_style"]']
+                     '                   "printer_profile", "print_style", "colour_by", "palette"]']
 
 
 def test_the_validated_sections_hold_the_schemas_keys():
@@ -159,13 +159,20 @@ def test_range_checks_its_ends():
 
 def test_widget_checks_its_kind():
     with pytest.raises(ParameterError, match=r"a widget's kind must be one of: slider, number, select, checkbox, "
-                                             r"text, got 'knob'"):
+                                             r"text, colour, got 'knob'"):
         Widget(kind="knob")
     with pytest.raises(ParameterError, match=r"a slider needs min, max and step"):
         Widget(kind="slider", min=0, max=1)
     with pytest.raises(ParameterError, match=r"a widget's when must hold \(parameter, \(value, \.\.\.\)\) pairs, "
                                              r"got \('outline', 'rectangle'\)"):
         Widget(kind="number", when=(("outline", "rectangle"),))
+
+
+def test_a_colour_picker_is_a_colour_keys():
+    """The page's colour pickers (``<input type="color">``) are the colour keys' and only theirs."""
+    pickers = {k.path for k in _schema.KEYS if k.widget is not None and k.widget.kind == "colour"}
+    assert pickers == {"colour.band_colour", "colour.base_colour"}
+    assert all(_schema.key(p).type == "colour" for p in pickers)
 
 
 def test_every_condition_of_a_control_names_a_form_parameter_and_its_values():

@@ -89,11 +89,15 @@ def field_of_param(param: str | None) -> str | None:
     ('gap_n', 'width', 'packing')
     >>> field_of_param("interlace_gap_mm"), field_of_param("n"), field_of_param("packing.motifs.8.preset")
     ('interlace_gap_mm', None, 'motif_8')
+    >>> field_of_param("colour.faces.B"), field_of_param("colour.faces"), field_of_param("colour.band_colour")
+    ('face_B', None, 'band_colour')
     """
     if param and "." not in param:
         named = [key for key, (_, name, _) in FIELDS.items() if name == param]
         return named[0] if len(named) == 1 else None
     parts = (param or "").split(".")
+    if len(parts) == 3 and parts[:2] == ["colour", "faces"]:  # a face class's colour: face_<letter>
+        return f"face_{parts[2]}" if f"face_{parts[2]}" in FIELDS else None
     if len(parts) >= 3 and parts[:2] == ["packing", "motifs"]:  # a motif of a polygon kind: its menu
         return f"motif_{parts[2]}" if f"motif_{parts[2]}" in FIELDS else None
     if len(parts) == 3 and parts[:2] == ["packing", "gap_motif"]:
@@ -115,7 +119,7 @@ def user_message(exc: Exception, field: str | None) -> str:
     A design error names its source and the design file's section (``query: [tile] stroke
     must be ...``); the page names neither: ``stroke must be ...``, and the gap motif's keys,
     a polygon kind's motif and the tile's size by their parameters (``gap_n``, ``motif_8``,
-    ``width``).
+    ``width``), a face class's colour by its ``face_<letter>``.
 
     >>> from fabtiles._errors import DesignError
     >>> user_message(DesignError("query: [packing] gap_motif n must be >= 3, got 2"), "gap_n")
@@ -124,6 +128,8 @@ def user_message(exc: Exception, field: str | None) -> str:
     'height must be > 0, got 0'
     >>> user_message(DesignError("query: [packing.motifs] 8 'x' is not a valid preset"), "motif_8")
     "motif_8: 'x' is not a valid preset"
+    >>> user_message(DesignError("query: [colour.faces] A 'x' is not a CSS colour name"), "face_A")
+    "face_A 'x' is not a CSS colour name"
     """
     text = str(exc).removeprefix(f"{SOURCE}: ")
     where = _WHERE.match(text)
@@ -133,6 +139,9 @@ def user_message(exc: Exception, field: str | None) -> str:
             name = field.removeprefix("gap_")
             text = (field + text[len(name):] if re.match(rf"{re.escape(name)}[ \[]", text)
                     else f"{field}: {text}")
+    letter = field.removeprefix("face_") if field and field.startswith("face_") else None
+    if letter and text.startswith(f"{letter} "):  # a face class's colour: its parameter names it
+        text = field + text[len(letter):]
     for size, name in _SIZE.items():
         if text.startswith(size):
             text = name + text[len(size):]

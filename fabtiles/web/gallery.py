@@ -1,15 +1,19 @@
 """The gallery: places to start from, each a shareable editor query and a thumbnail.
 
-The paper's seven presets on the default hexagonal packing, and the eleven
-Archimedean tilings as their samples in ``samples/tilings/`` have them (a test
-builds each entry and its sample and compares the tiles, so the two cannot
-drift). The thumbnails are drawn by the preview code and kept for the life of
-the process: 18 of them take about 4 s once, then nothing.
+The paper's seven presets on the default hexagonal packing, their faces coloured
+by shape in the palettes (``docs/colours.md``), and the eleven Archimedean
+tilings as their samples in ``samples/tilings/`` have them (a test builds each
+entry and its sample and compares the tiles, so the two cannot drift; the
+samples have no colours, so neither have these entries). The thumbnails are
+drawn by the preview code (:func:`~fabtiles.build.views.tile_picture`, the
+coloured faces too) and kept for the life of the process.
 
 >>> [e.key for e in entries()][:3]
 ['table1-part1', 'table1-part2', 'table2-left']
 >>> next(e for e in entries() if e.key == "4.8.8").query["motif_8"]
 'table1-part1'
+>>> entry("table1-part2").query["palette"]
+'iznik'
 """
 
 from __future__ import annotations
@@ -20,6 +24,10 @@ from dataclasses import dataclass
 from .._errors import ParameterError
 from ..pattern.presets import PRESET_NOTES, PRESETS
 from ..pattern.tilings import NAMES, TILINGS
+
+# preset -> the palette its gallery entry is coloured in (by shape): each palette shown at least once
+_PRESET_PALETTES = {"table1-part1": "zellige", "table1-part2": "iznik", "table2-left": "mamluk",
+                    "table2-right": "alhambra", "table3-1": "haft-rangi", "table3-2": "iznik", "table3-3": "zellige"}
 
 _GAP_STAR = {"n": 6, "radii": (0.5, 1)}  # a six-point star of radii 0.5 and 1, the tilings' small motif
 
@@ -58,7 +66,8 @@ def _tile_query(stroke=1) -> dict:
 def entries() -> tuple[Entry, ...]:
     """The gallery's entries: the presets, then the tilings."""
     out = [Entry(name, f"Preset {name}", PRESET_NOTES[name] or "the paper's parameters, as printed",
-                 {"preset": name, "packing": "hex", "radius": "15", **_tile_query()}) for name in PRESETS]
+                 {"preset": name, "packing": "hex", "radius": "15", **_tile_query(),
+                  "colour_by": "shape", "palette": _PRESET_PALETTES[name]}) for name in PRESETS]
     for tiling, (edge, motifs, main, gap_n, stroke) in _TILINGS.items():
         query = {"packing": "archimedean", "tiling": tiling, "edge": f"{edge:g}"}
         if main is None:
@@ -71,6 +80,7 @@ def entries() -> tuple[Entry, ...]:
             query.update(gap_n=str(gap_n), gap_radii="0.5,1")
         out.append(Entry(tiling, f"Tiling {tiling}", f"the {NAMES[tiling]} tiling", {**query, **_tile_query(stroke)}))
     assert set(_TILINGS) == set(TILINGS), "a tiling is missing from the gallery"
+    assert set(_PRESET_PALETTES) == set(PRESETS), "a preset has no palette in the gallery"
     return tuple(out)
 
 
@@ -85,11 +95,11 @@ def entry(key: str) -> Entry:
 
 @functools.lru_cache(maxsize=64)
 def thumbnail(key: str, *, limits) -> str:
-    """The entry's tile drawn as SVG by the preview code (kept once drawn)."""
-    from ..export.preview_svg import tile_svg
+    """The entry's tile drawn as SVG by the preview code, in its colours (kept once drawn)."""
+    from ..build.views import tile_picture
     from .app import tile_from_dict
     from .params import design_from_query
 
     e = entry(key)
-    _, tile = tile_from_dict(design_from_query(e.query), limits=limits)
-    return tile_svg(tile, title=e.title)
+    spec, tile = tile_from_dict(design_from_query(e.query), limits=limits)
+    return tile_picture(tile, spec, title=e.title)

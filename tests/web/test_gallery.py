@@ -37,11 +37,26 @@ def test_tiling_entry_is_its_sample(tiling):
     assert tile.stroke == sample.stroke and tile.width_mm == sample.width_mm
 
 
-def test_preset_entry_is_the_editor_default_with_that_preset():
+def test_preset_entry_is_the_editor_default_with_that_preset_in_a_palette():
+    from fabtiles._colour import PALETTE_NAMES
     from fabtiles.web.params import DEFAULTS
 
+    palettes = set()
     for name in PRESETS:
-        assert gallery.entry(name).query == {**DEFAULTS, "preset": name}
+        query = gallery.entry(name).query
+        palettes.add(query["palette"])
+        assert query == {**DEFAULTS, "preset": name, "colour_by": "shape", "palette": query["palette"]}
+    assert palettes == set(PALETTE_NAMES)  # every palette shown
+
+
+def test_thumbnails_show_the_colours(client):
+    """A preset's thumbnail fills its faces in its palette's colours; a tiling's (no colours) does not."""
+    from fabtiles._colour import PALETTES
+
+    svg = client.get("/api/gallery/table1-part2.svg").text
+    iznik = PALETTES["iznik"]
+    assert 'class="face-A"' in svg and f'fill="{iznik.faces[0].hex}"' in svg and f'fill="{iznik.band.hex}"' in svg
+    assert 'class="face-' not in client.get("/api/gallery/3.6.3.6.svg").text
 
 
 def test_unknown_entry_lists_the_valid_ones(client):

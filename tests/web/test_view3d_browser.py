@@ -141,6 +141,34 @@ def test_a_deboss_inlay_shows_both_parts(page, server):
     assert page.get_attribute("#view3d", "data-parts") == "plate,inlay"
 
 
+def _close(a: str, b: str, tol: int = 2) -> bool:
+    return all(abs(int(a[i:i + 2], 16) - int(b[i:i + 2], 16)) <= tol for i in (1, 3, 5))
+
+
+def test_a_mosaic_shows_its_parts_in_their_colours(page, server):
+    """A mosaic print: a part per colour (base, bands, each class), each drawn in its colour."""
+    import json
+    import urllib.request
+
+    from fabtiles._colour import PALETTES
+
+    query = f"{SMALL}&colour_by=shape&palette=iznik&print_style=mosaic"
+
+    with urllib.request.urlopen(f"{server}/api/view.glb?{query}") as r:
+        parts = list(json.loads(r.headers["X-Fabtiles-Parts"]))
+    iznik = PALETTES["iznik"]
+    by_name = {c.name: c.hex for c in (iznik.base, iznik.band, *iznik.faces)}
+    expected = [by_name[p.split(" (")[0]] for p in parts]
+    assert len(parts) >= 4 and parts[:2] == ["navy (base)", "white (bands)"]
+    page.goto(f"{server}/?{query}")
+    _wait_model(page)
+    assert page.get_attribute("#view3d", "data-parts") == ",".join(parts)
+    shown = page.get_attribute("#view3d", "data-colours").split(",")
+    assert len(shown) == len(parts) and all(_close(a, b) for a, b in zip(shown, expected)), (shown, expected)
+    caption = page.text_content("#view3d-caption")
+    assert all(p in caption for p in parts)
+
+
 def test_the_gallery_opens_a_tiling_in_the_editor(page, server):
     page.goto(f"{server}/gallery")
     page.wait_for_function("() => document.querySelectorAll('#gallery a').length === 18")

@@ -14,7 +14,8 @@ MEDIA_TYPES = {"toml": "application/toml"}
 
 
 def router(*, limits: _limits.Limits) -> APIRouter:
-    """``/api/preview.svg``, ``/api/kit.svg``, ``/api/view.glb``, ``/api/checks``, ``/api/design.toml``, ``/api/export/{fmt}``."""
+    """``/api/preview.svg``, ``/api/faces``, ``/api/kit.svg``, ``/api/view.glb``, ``/api/checks``,
+    ``/api/design.toml``, ``/api/export/{fmt}``."""
     api = APIRouter()
 
     @api.get("/api/preview.svg")
@@ -34,6 +35,26 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         # a coloured design's faces in their colours
         return Response(tile_picture(tile, spec, title=repr(tile), findings=findings, made=made),
                         media_type="image/svg+xml")
+
+    @api.get("/api/faces")
+    def faces(request: Request):
+        """The design's face classes in their colours, and the bands' and the base's colour.
+
+        ``{"band": {colour, name}, "base": {colour, name}, "classes": [{letter,
+        count, description, area_mm2, colour, name}]}``: the classes as ``fabtiles check`` lists
+        them, each colour as ``#rrggbb`` and its name (the palette's unless the query gives it).
+        """
+        from ...build import BuildOptions, Models
+
+        _, spec, tile = build(request, limits=limits)
+        models = Models(tile, BuildOptions.of_design(spec))
+        colours = models.colouring
+
+        def named(c):
+            return {"colour": c.hex, "name": c.name}
+
+        classes = [{**c, **named(colours.face(c["letter"]))} for c in models.face_classes.stats()]
+        return {"band": named(colours.band), "base": named(colours.base), "classes": classes}
 
     @api.get("/api/kit.svg")
     def kit_picture(request: Request):

@@ -20,11 +20,15 @@ const state = {
   inlay: false,  // deboss: the 3MF gets a second part filling the grooves
   mosaic_inset_mm: "",  // mosaic: the faces below the bands ("": flush)
   colour_by: "none", palette: "zellige",  // the [colour] section: faces classed by shape, the palette
+  band_colour: "", base_colour: "",  // "": the palette's
+  faces: {},  // [colour.faces]: faces[letter] = colour (face_<letter>), the others the palette's
 };
 // Options sent only when set: the schema's text and number boxes, and its check boxes (gap_rosette is the
 // page's own: the gap motif as a rosette).
 // MENUS: the schema's menus but the motif's (preset, special circle) and the tiling's, which have their own code.
 let TEXT_KEYS = [], FLAG_KEYS = ["gap_rosette"], MENUS = [];
+// COLOUR_KEYS: the schema's colour pickers (the band's and the base's); sent only when chosen.
+let COLOUR_KEYS = [];
 const OWN_MENUS = new Set(["preset", "special", "tiling"]);
 // WHEN: each control's condition (the schema's widget.when: [parameter, values] pairs, all to hold);
 // RADII: the slider of each radius (the schema's widget of the radii list).
@@ -132,7 +136,9 @@ function query() {
   q.set("width", state.width);
   if (state.outline === "rectangle") q.set("height", state.height);
   for (const k of ["frame", "stroke", "corner_radius", "join", "laser_profile", "laser_mode",
-                   "printer_profile", "print_style"]) q.set(k, state[k]);
+                   "printer_profile", "print_style", "colour_by", "palette"]) q.set(k, state[k]);
+  for (const k of COLOUR_KEYS) if (state[k]) q.set(k, state[k]);
+  for (const [letter, colour] of Object.entries(state.faces)) if (colour) q.set(`face_${letter}`, colour);
   if (state.miter_limit !== 4) q.set("miter_limit", state.miter_limit);
   if (state.interlace) q.set("interlace", "true");
   if (state.interlace_cut) q.set("interlace_cut", "true");
@@ -154,6 +160,7 @@ function fromUrl() {
     else if (k === "gap_special") state.gap_rosette = v !== "none" && v !== "";
     else if (k === "special") state.special = v === "none" || v === "" ? 0 : Number(v);
     else if (k.startsWith("motif_")) state.motifs[k.slice(6)] = v;
+    else if (k.startsWith("face_")) state.faces[k.slice(5)] = v;
     else if (k === "outline_circles" || FLAG_KEYS.includes(k)) state[k] = v === "true";
     else if (TEXT_KEYS.includes(k)) state[k] = v;
     else if (k in state) state[k] = typeof state[k] === "number" ? Number(v) : v;
@@ -219,6 +226,7 @@ function syncControls() {
   for (const k of FLAG_KEYS) $(k).checked = state[k];
   for (const k of TEXT_KEYS) $(k).value = state[k];
   radiiSliders();
+  showColours();
   applyWhen();
 }
 
@@ -277,6 +285,10 @@ async function refresh() {
   if (label !== EDITED && origin.gallery) page.set("gallery", label);  // a shared link still names the entry
   history.replaceState(null, "", `?${page}`);
   downloads(false);  // until the server says the design is good
+  // The face classes' list: awaited only when a class colour is chosen that the new design may lack
+  // (it is dropped then, and the preview asked for without it).
+  const faces = refreshFaces();
+  if (Object.keys(state.faces).some((k) => k !== "A") && await faces && mine === seq) { refresh(); return; }
   const res = await fetch(`/api/preview.svg?${q}${showFindings ? "&findings=true" : ""}`);
   if (mine !== seq) return;
   if (!res.ok) {
@@ -350,6 +362,90 @@ function choose(li, keep = false) {
   highlight();
 }
 
+// The colours: the face classes of the design (/api/faces) and the pickers of the band, the base and each
+// class. The classes and the palette's colours do not depend on the colours chosen, so the list is asked
+// for without them, and again only when something else changes.
+let facesInfo = null, facesKey = null, facesSeq = 0;
+
+function classesQuery() {
+  const q = query();
+  for (const k of [...q.keys()]) if (k === "name" || COLOUR_KEYS.includes(k) || k.startsWith("face_")) q.delete(k);
+  return q;
+}
+
+// Fetch the classes if the design changed; true when a chosen class colour was dropped (its class is gone).
+async function refreshFaces() {
+  const q = classesQuery(), key = String(q);
+  if (key === facesKey) return false;
+  const mine = ++facesSeq, res = await fetch(`/api/faces?${q}`);
+  if (mine !== facesSeq || !res.ok) return false;  // a newer design's list is coming; a bad design is the preview's to show
+  facesInfo = await res.json();
+  facesKey = key;
+  const letters = new Set(facesInfo.classes.map((c) => c.letter));
+  const gone = Object.keys(state.faces).filter((k) => !letters.has(k));
+  for (const k of gone) delete state.faces[k];
+  showColours();
+  return gone.length > 0;
+}
+
+// A colour as #rrggbb, what a colour picker takes (a link may give a CSS name: "navy").
+function hexOf(colour) {
+  const ctx = document.createElement("canvas").getContext("2d");
+  ctx.fillStyle = "#000000";
+  ctx.fillStyle = colour;
+  return ctx.fillStyle;
+}
+
+// The pickers show the colour chosen, else the palette's; each "palette's" button is enabled once a colour is chosen.
+function showColours() {
+  const palettes = facesInfo || { band: { colour: "#ffffff" }, base: { colour: "#000000" }, classes: [] };
+  for (const k of COLOUR_KEYS) {
+    const own = palettes[k.replace("_colour", "")];
+    $(k).value = state[k] ? hexOf(state[k]) : own ? own.colour : "#000000";
+    document.querySelector(`.reset[data-reset="${k}"]`).disabled = !state[k];
+  }
+  const box = $("face-classes");
+  box.innerHTML = "";
+  for (const c of palettes.classes) {
+    const chosen = state.faces[c.letter], colour = chosen ? hexOf(chosen) : c.colour;
+    const row = document.createElement("div");
+    row.className = "face-row";
+    row.dataset.letter = c.letter;
+    const swatch = document.createElement("span"), letter = document.createElement("span");
+    const what = document.createElement("span");
+    swatch.className = "swatch";
+    swatch.style.background = colour;
+    letter.className = "letter";
+    letter.textContent = c.letter;
+    what.className = "what";
+    const count = c.count.toLocaleString("en");  // a shape with no plain name: its count alone
+    what.textContent = c.description ? `${count} × ${c.description}` : `${count} faces`;
+    what.title = `${Math.round(c.area_mm2).toLocaleString("en")} mm² in all; the palette's colour: ${c.name}`;
+    row.append(swatch, letter, what);
+    if (/^[A-Z]$/.test(c.letter)) {  // the page's parameters are face_A ... face_Z; a design file takes more
+      const picker = document.createElement("input"), reset = document.createElement("button");
+      picker.type = "color";
+      picker.id = `face_${c.letter}`;
+      picker.value = colour;
+      picker.title = `the colour of class ${c.letter}`;
+      picker.addEventListener("input", () => {
+        state.faces[c.letter] = picker.value;
+        swatch.style.background = picker.value;
+        reset.disabled = false;
+        update();
+      });
+      reset.type = "button";
+      reset.className = "reset";
+      reset.textContent = "palette's";
+      reset.title = "back to the palette's colour";
+      reset.disabled = !chosen;
+      reset.addEventListener("click", () => { delete state.faces[c.letter]; showColours(); update(); });
+      row.append(picker, reset);
+    }
+    box.appendChild(row);
+  }
+}
+
 // packing=archimedean: the tiling menu, a motif menu per polygon kind, edge instead of radius.
 function tilingControls() {
   const arch = state.packing === "archimedean";
@@ -389,6 +485,7 @@ function applySchema(schema) {
         WHEN.gap_inner = WHEN.gap_rosette = w.when;
       }
     } else if (w.kind === "checkbox") FLAG_KEYS.push(q);
+    else if (w.kind === "colour") COLOUR_KEYS.push(q);
     else if (w.kind === "number" || w.kind === "text") {
       TEXT_KEYS.push(q);
       const box = $(q);
@@ -431,6 +528,18 @@ async function init() {
   $("outline_circles").addEventListener("change", () => { state.outline_circles = $("outline_circles").checked; update(); });
   for (const k of FLAG_KEYS) $(k).addEventListener("change", () => { state[k] = $(k).checked; update(); });
   for (const k of TEXT_KEYS) $(k).addEventListener("change", () => { state[k] = $(k).value; update(); });
+  for (const k of COLOUR_KEYS) {
+    $(k).addEventListener("input", () => {
+      state[k] = $(k).value;
+      document.querySelector(`.reset[data-reset="${k}"]`).disabled = false;
+      update();
+    });
+    document.querySelector(`.reset[data-reset="${k}"]`).addEventListener("click", () => {
+      state[k] = "";
+      showColours();
+      update();
+    });
+  }
   $("show_findings").checked = showFindings;
   $("show_findings").addEventListener("change", () => { showFindings = $("show_findings").checked; update(); });
   for (const key of MENUS)

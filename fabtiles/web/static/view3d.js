@@ -105,6 +105,9 @@ async function start() {
       const names = Object.entries(parts).map(([n, p]) => `${n} (${p.triangles.toLocaleString("en")} triangles)`);
       caption.textContent = `Showing ${view}: ${names.join(", ")}. Drag to turn, wheel to zoom, right-drag to move.`;
       box.dataset.parts = Object.keys(parts).join(",");
+      const colours = [];  // each part's colour as drawn (sRGB), in the parts' order: a mosaic's N colours
+      model.traverse((o) => { if (o.isMesh) colours.push(`#${o.material.color.getHexString()}`); });
+      box.dataset.colours = colours.join(",");
       canvas.dataset.version = String(mine);
     }, (err) => { caption.textContent = `3D view: the model could not be read (${err.message || err})`; });
   };
