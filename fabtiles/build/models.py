@@ -110,10 +110,11 @@ def _colours(value):
     fabtiles._errors.ParameterError: colours must be a fabtiles.Colours (or a dict of its keys: by, palette, band_colour, base_colour, faces), got 'iznik'
     """
     from .._colour import Colours
+    from .._schema import names
 
     if isinstance(value, Colours):
         return value
-    keys = ("by", "palette", "band_colour", "base_colour", "faces")
+    keys = names("colour")
     if isinstance(value, dict) and set(value) <= set(keys):
         return Colours(**value)
     raise ParameterError(f"colours must be a fabtiles.Colours (or a dict of its keys: {', '.join(keys)}), "
