@@ -531,7 +531,9 @@ def mosaic_parts(region, outline, stack: Stack, specs) -> dict:
     out = {}
     for k, spec in enumerate(specs):
         mine = faces[owner == k]
-        face_geom = shapely.union_all(mine, grid_size=QUANTUM) if len(mine) else shapely.Polygon()
+        # the faces are disjoint parts of one overlay: a MultiPolygon of them is their union (a GEOS
+        # union of the sheet's 10,000 faces took 2 s)
+        face_geom = shapely.MultiPolygon(list(mine)) if len(mine) else shapely.Polygon()
         layers = []
         if spec.bands:
             layers.append((r, b + h))
@@ -549,7 +551,11 @@ def _mosaic_body(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
 
     b = stack.base
     one_level = len({z for _, z in layers}) <= 1
-    top = shapely.union_all([g for g, _ in layers], grid_size=QUANTUM) if layers else shapely.Polygon()
+    # the bands and the faces share their edges exactly (the faces are the outline less the bands, on the
+    # grid): a coverage union joins them without an overlay
+    geoms = [g for g, _ in layers]
+    top = shapely.Polygon() if not geoms else geoms[0] if len(geoms) == 1 else \
+        shapely.coverage_union_all(np.concatenate([shapely.get_parts(g) for g in geoms]))
     if spec.base:
         volume = o.area * b + sum(g.area * (z - b) for g, z in layers)
         bodies = len(polygons_of(o))
