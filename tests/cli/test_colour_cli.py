@@ -97,3 +97,17 @@ def test_more_than_sixteen_colours_is_refused(tmp_path):
     with pytest.raises(ParameterError, match=r"the print has 19 distinct colours, more than the 16 filaments a "
                                              r"slicer takes; give some face classes the same colour"):
         models.mosaic_specs()
+
+
+def test_an_inset_not_below_the_relief_is_one_line_exit_2(tmp_path):
+    design = tmp_path / "m.toml"
+    design.write_text(SMALL.replace('print_style = "mosaic"', 'print_style = "mosaic"\nrelief_mm = 1.0\n'
+                                    'mosaic_inset_mm = 1.0'))
+    result = CliRunner().invoke(cli, ["build", str(design), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2 and result.output.count("\n") == 1
+    assert "mosaic_inset_mm must be smaller than relief_mm (the bands stand 1 mm above the plate), got 1" in \
+        result.output
+    assert not (tmp_path / "out").exists()
+    design.write_text(SMALL.replace('print_style = "mosaic"', 'print_style = "mosaic"\nmosaic_inset_mm = -0.5'))
+    result = CliRunner().invoke(cli, ["build", str(design), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2 and "mosaic_inset_mm must be a finite number >= 0" in result.output
