@@ -112,7 +112,14 @@ def test_any_valid_tile_writes_a_watertight_mesh(tmp_path, tile, style, fmt):
             tile.export(path, style=style)
         assert not path.exists()
         return
-    tile.export(path, style=style)
+    try:
+        tile.export(path, style=style)
+    except ft.FabricationError as exc:
+        # a deboss whose every groove is too narrow to print (filled by default) would be a blank plate:
+        # refused by design, with no file (seen on a 6 mm tile of 0.5 mm strokes)
+        assert style == "deboss" and "every groove of this deboss is narrower than min_hole_mm" in str(exc)
+        assert not path.exists()
+        return
     if fmt == "3mf":  # one object; its parts as a slicer splits them
         from fabtiles.export.threemf import read_3mf
 
@@ -204,3 +211,11 @@ def test_export_options_accept_or_raise_fabtiles_error(tmp_path, kerf, mode, ver
             assert path.stat().st_size > 0
         path.unlink(missing_ok=True)
         assert list(tmp_path.iterdir()) == []
+
+
+def test_a_deboss_of_only_unprintable_grooves_is_refused_with_no_file(tmp_path):
+    """The case the property above found: every groove under the nozzle, filled, would leave a blank plate."""
+    tile = ft.Tile("square", (6, 6), ft.Star(n=3, radii=(1, 1)), frame=0, stroke=0.5, join="miter")
+    with pytest.raises(ft.FabricationError, match=r"every groove of this deboss is narrower than min_hole_mm = 0.8 mm"):
+        tile.export(tmp_path / "t.stl", style="deboss")
+    assert not (tmp_path / "t.stl").exists()
