@@ -45,6 +45,7 @@ from shapely.geometry import Point, box
 from .._errors import ParameterError
 from .._profiles import load_profile
 from .._schema import key
+from .inlay import piece_of_hole
 from .stroke_font import text_paths, text_width
 
 STEPS = (0.5, 0.75, 1.0, 1.25, 1.5, 2.0)
@@ -203,7 +204,7 @@ def calibration_card(profile) -> Card:
         cx = x0 + pitch / 2 + k * pitch
         cut.append(box(cx - window / 2, wy, cx + window / 2, wy + window))
         piece = box(cx - INLAY_MM / 2, wy + c2, cx + INLAY_MM / 2, wy + c2 + INLAY_MM)
-        parts.append(piece.buffer(fit, join_style="mitre") if fit else piece)
+        parts.append(piece_of_hole(piece, fit_mm=fit, kerf_mm=max(profile.kerf_xy_mm)))  # as a kit's pieces
         cut.append(box(cx - INLAY_MM / 2, hy, cx + INLAY_MM / 2, hy + INLAY_MM))
         labels.extend(text_paths(_label(fit), height_mm=LABEL_MM, x=cx, y=y, centre=True))
         features += [Feature("inlay_piece", fit, _label(fit), (cx, wy + window / 2)),

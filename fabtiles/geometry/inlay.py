@@ -137,6 +137,23 @@ def inlay_kit(region, outline, *, fit_mm: float, min_piece_mm: float, kerf_mm: f
                     tuple(necks), tuple(split))
 
 
+def piece_of_hole(hole, *, fit_mm: float, kerf_mm: float):
+    """The piece of one simple ``hole``, as :func:`inlay_kit` grows it: the opening the lattice's cut
+    leaves (the hole shrunk by half the kerf, mitred, swept by the round beam), grown round by the fit.
+
+    The calibration card's inlay gauge cuts its pieces this way, so a fit measured on
+    the card is the fit the kits get (corners rounded by half the kerf plus the fit).
+
+    >>> from shapely.geometry import box
+    >>> p = piece_of_hole(box(0, 0, 6, 6), fit_mm=0.1, kerf_mm=0.15)
+    >>> [round(v, 6) for v in p.bounds], round(p.area, 3)  # its box 6.2 mm; its corners rounded by 0.175 mm
+    ([-0.1, -0.1, 6.1, 6.1], 38.413)
+    """
+    d = kerf_mm / 2
+    opening = shapely.buffer(shapely.buffer(hole, -d, join_style="mitre", mitre_limit=MITRE_LIMIT), d) if d else hole
+    return shapely.buffer(opening, fit_mm) if fit_mm else opening
+
+
 def _cut_whole(holes, d: float, tolerance_mm: float):
     """The holes the lattice's cut makes whole: each neck narrower than the kerf widened.
 

@@ -160,3 +160,17 @@ def test_a_fit_past_the_band_names_the_pieces_gap_and_the_band():
                                                r"pieces must stand more than the kerf = 0\.15 mm apart, so bands must "
                                                r"be wider than kerf \+ 2 x fit = 0\.99 mm"):
         _kit(STARS, 0.42)
+
+
+def test_the_calibration_cards_pieces_are_grown_as_a_kits():
+    """The card's inlay gauge measures the fit the kits get: a kit's piece of a square hole is piece_of_hole's."""
+    import shapely as _shapely
+
+    from fabtiles.geometry.inlay import inlay_kit, piece_of_hole
+
+    hole = _shapely.box(10, 10, 16, 16)
+    plate = _shapely.box(0, 0, 30, 30).difference(hole)
+    kit = inlay_kit(plate, _shapely.box(0, 0, 30, 30), fit_mm=0.1, min_piece_mm=2.4, kerf_mm=0.15)
+    (piece,) = kit.pieces
+    card = piece_of_hole(hole, fit_mm=0.1, kerf_mm=0.15)
+    assert piece.symmetric_difference(card).area < 1e-9
