@@ -44,7 +44,7 @@ def region_path_data(region, height: float) -> str:
 
 
 MARK_COLOURS = {"small_hole": "#ff8c00", "thin_bridge": "#e6007e", "thin_wall": "#e6007e",
-                "loose_part": "#00a651"}
+                "loose_part": "#00a651", "uncut_slit": "#00b7eb"}
 """Stroke colour of each finding's marks (others: :data:`MARK_COLOUR`)."""
 MARK_COLOUR = "#ffd400"
 
