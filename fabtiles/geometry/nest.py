@@ -22,7 +22,8 @@ bounding-box packing can; on rectangles alone the two agree, so a hand-written s
 packer would add code without a sheet saved.
 
 >>> from shapely.geometry import box
->>> n = nest([("a", box(0, 0, 50, 30)), ("b", box(0, 0, 50, 30))], sheet_mm=(60, 70), gap_mm=2, time_s=1)
+>>> n = nest([("a", box(0, 0, 50, 30)), ("b", box(0, 0, 50, 30))], sheet_mm=(60, 70), gap_mm=2, time_s=1,
+...          rotations="none")
 >>> n.sheets, [p.sheet for p in n.placements]
 (1, [0, 0])
 >>> all(0 <= v <= 70 for o in n.outlines for v in o.bounds)
@@ -268,10 +269,13 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
         left = max(0.0, budget - (time.monotonic() - start))
         need = max(1, math.ceil(sum(shapes[i].area for i in remaining) / (sheet_area * _DENSITY_GUESS)))
         seconds = max(1, round(left / need))
-        placed = _solve(shapes, remaining, h - 2 * MARGIN_MM, gap + MARGIN_MM, angles, seconds, tick)
+        # spyrrow keeps the separation from the strip's edges too: the strip is taller by it on both
+        # sides, and the placements move back by it, so parts may reach the sheet's edges
+        sep = gap + MARGIN_MM
+        placed = _solve(shapes, remaining, h - 2 * MARGIN_MM + 2 * sep, sep, angles, seconds, tick)
         kept, outlines = [], []
         for i, rot, (dx, dy) in sorted(placed, key=lambda p: p[2][0]):
-            p = Placement(ids[i], sheet, rot, (dx + MARGIN_MM, dy + MARGIN_MM))
+            p = Placement(ids[i], sheet, rot, (dx - sep + MARGIN_MM, dy - sep + MARGIN_MM))
             outline = p.place(shapes[i])
             x0, y0, x1, y1 = outline.bounds
             if x0 < 0 or y0 < 0 or x1 > w or y1 > h:
