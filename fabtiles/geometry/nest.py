@@ -12,14 +12,14 @@ strip of fixed height and minimal width. Sheets are filled one after another: th
 remaining parts are packed in a strip of the sheet's height, the parts that fall
 within the sheet's width make the sheet, the rest are packed again.
 
-Why Sparrow and not a bounding-box packing (``benchmarks/bench_nest.py``, 30 tiles of
-100 mm, ten each of a square, a hexagon and a circle, 600 x 400 mm sheets, gap 1.15 mm):
-Sparrow packs them on 2 sheets (material use 0.78 and 0.33) in the 5 s default budget
-where a max-rects packing of the bounding boxes (``rectpack``, rotation allowed)
-needs 2 sheets at 0.59 and 0.52, and ``--sheet``'s grid of one design 3 sheets (one per
-design). Sparrow fits the circles and the hexagons into each other's gaps, which no
-bounding-box packing can; on rectangles alone the two agree, so a hand-written shelf
-packer would add code without a sheet saved.
+Why Sparrow and not a bounding-box packing (``benchmarks/bench_nest.py``: 30 tiles of 100 mm,
+ten each of table3-1 in a square, table3-2 in a hexagon and table3-3 in a circle, 0.266 m^2 of
+parts, 600 x 400 mm sheets, gap 1.15 mm): Sparrow puts them on 2 sheets (material use 0.73 and
+0.37) in 4.6 s of the 5 s default budget, the fewest their area allows; a max-rects packing of
+their bounding boxes (``rectpack``, turns allowed) needs 3 (0.53, 0.54, 0.04) and ``--sheet``'s
+grid of one design per sheet 3 (0.42, 0.36, 0.33). Sparrow fits the circles and hexagons into
+each other's corners, which no packing of boxes can; on rectangles alone the two would tie, so a
+shelf packer of our own would add code and save no sheet.
 
 >>> from shapely.geometry import box
 >>> n = nest([("a", box(0, 0, 50, 30)), ("b", box(0, 0, 50, 30))], sheet_mm=(60, 70), gap_mm=2, time_s=1,
@@ -268,7 +268,7 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
     while remaining:
         left = max(0.0, budget - (time.monotonic() - start))
         need = max(1, math.ceil(sum(shapes[i].area for i in remaining) / (sheet_area * _DENSITY_GUESS)))
-        seconds = max(1, round(left / need))
+        seconds = max(1, int(left / need))  # whole seconds, rounded down: spyrrow overruns by ~0.3 s a solve
         # spyrrow keeps the separation from the strip's edges too: the strip is taller by it on both
         # sides, and the placements move back by it, so parts may reach the sheet's edges
         sep = gap + MARGIN_MM
