@@ -161,7 +161,8 @@ def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None,
         a part larger than the sheet, a job over the limits.
     """
     from ..geometry.nest import DEFAULT_TIME_S, nest
-    from .pipeline import _check_cutter_formats, prepare_tile, sheet_formats, write_files
+    from .._cutters import cutter_kind
+    from .pipeline import prepare_tile, sheet_formats, write_files
 
     if not designs:
         raise ParameterError("give at least one design to nest", param="designs")
@@ -181,7 +182,8 @@ def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None,
         if o.kit:
             raise ParameterError(f"{d.name} is an inlay kit (laser_mode = \"inlay\"), which is not nested; "
                                  f"choose laser_mode = \"pierced\", \"score\" or \"engrave\"", param="laser_mode")
-        _check_cutter_formats(o, cut)
+        for fmt in cut:  # the cutter's kind allows the format (a LightBurn project is for lasers)
+            cutter_kind(o.cutter).check_format(o.cutter, fmt)
     bed_w, bed_h = profile.bed_mm
     if sheet_mm is None:
         sheet_mm = (bed_w, bed_h)
