@@ -128,3 +128,24 @@ def test_librecad_draws_the_score_paths(librecad, tmp_path):
     assert len(drawn[RGB[PLY.layers.score.color]]) == _dxf_edges(dxf, PLY.layers.score)
     assert len(drawn[RGB[PLY.layers.outer_cut.color]]) == 4
     assert RGB[PLY.layers.inner_cut.color] not in drawn
+
+
+def test_librecad_draws_a_nested_sheet(librecad, tmp_path):
+    # issue 34: a sheet of two designs nested, turned copies and all, drawn whole and in proportion
+    import ezdxf
+
+    from fabtiles.build.nesting import nest_designs
+    from fabtiles.design import design_from_text
+
+    designs = [(design_from_text(f'[motif]\npreset = "table3-{k}"\n[packing]\nradius = 8\n[tile]\noutline = '
+                                 f'"{outline}"\nsize = 40\nframe = 3\nstroke = 1.0\n', name=outline), 3)
+               for k, outline in ((1, "hexagon"), (3, "circle"))]
+    nest_designs(designs, tmp_path, ("dxf",), sheet_mm=(150, 100), time_s=1)
+    dxf = tmp_path / "hexagon-sheet-1.dxf"
+    drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
+    red = drawn[RGB[1]]  # the bundled profile cuts both layers red
+    edges = sum(len(vertices(e)) for e in ezdxf.readfile(dxf).modelspace())  # closed: as many edges as vertices
+    assert len(red) == edges
+    points = np.vstack([vertices(e) for e in ezdxf.readfile(dxf).modelspace()])
+    scale = _extent(red)[0] / _extent(points)[0]
+    assert _extent(red)[1] / scale == pytest.approx(_extent(points)[1], rel=1e-3)

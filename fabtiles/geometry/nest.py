@@ -1,0 +1,299 @@
+"""Nesting: parts packed onto as few sheets as they fit, each moved rigidly, a gap apart.
+
+:func:`nest` places parts (shapely polygons, each with an id) on sheets of a given
+size: each part is rotated about the origin by one of the allowed angles, then
+translated, so that every placed outline lies inside ``[0, w] x [0, h]`` and no two
+come closer than ``gap_mm``. A part is its **outer boundary**: its holes are not
+used (nothing is nested inside a hole), so a part with holes takes the area its
+outer ring encloses.
+
+The packer is Sparrow (arXiv 2509.13329) through ``spyrrow``, a strip packer: a
+strip of fixed height and minimal width. Sheets are filled one after another: the
+remaining parts are packed in a strip of the sheet's height, the parts that fall
+within the sheet's width make the sheet, the rest are packed again.
+
+Why Sparrow and not a bounding-box packing (``benchmarks/bench_nest.py``: 30 tiles of 100 mm,
+ten each of table3-1 in a square, table3-2 in a hexagon and table3-3 in a circle, 0.266 m^2 of
+parts, 600 x 400 mm sheets, gap 1.15 mm): Sparrow puts them on 2 sheets (material use 0.73 and
+0.37) in 4.6 s of the 5 s default budget, the fewest their area allows; a max-rects packing of
+their bounding boxes (``rectpack``, turns allowed) needs 3 (0.53, 0.54, 0.04) and ``--sheet``'s
+grid of one design per sheet 3 (0.42, 0.36, 0.33). Sparrow fits the circles and hexagons into
+each other's corners, which no packing of boxes can; on rectangles alone the two would tie, so a
+shelf packer of our own would add code and save no sheet.
+
+>>> from shapely.geometry import box
+>>> n = nest([("a", box(0, 0, 50, 30)), ("b", box(0, 0, 50, 30))], sheet_mm=(60, 70), gap_mm=2, time_s=1,
+...          rotations="none")
+>>> n.sheets, [p.sheet for p in n.placements]
+(1, [0, 0])
+>>> all(0 <= v <= 70 for o in n.outlines for v in o.bounds)
+True
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from shapely.geometry import Polygon
+
+from .._errors import FabricationError, ParameterError
+from .._validate import check_float
+
+ROTATIONS = {"none": (0.0,), "180": (0.0, 180.0), "90": (0.0, 90.0, 180.0, 270.0), "free": None}
+"""The rotation modes and their angles in degrees (``free``: any angle)."""
+
+DEFAULT_TIME_S = 5.0
+"""The default time budget of :func:`nest`, seconds."""
+
+MARGIN_MM = 0.01
+"""Slack added to the gap and kept from the sheet's edges: spyrrow computes in 32-bit floats
+(about 3e-5 mm at 600 mm), so its placements, redone here in 64 bits, may miss by that much."""
+
+_DENSITY_GUESS = 0.75
+"""Sheets a strip will need, estimated from the parts' area at this density, to share the time budget."""
+
+
+@dataclass(frozen=True)
+class Placement:
+    """Where one part goes: sheet ``sheet`` (0-based), rotated by ``rotation`` degrees
+    (counter-clockwise about the origin of the part's coordinates), then moved by ``translation``."""
+
+    id: object
+    sheet: int
+    rotation: float
+    translation: tuple[float, float]
+
+    def move(self, xy) -> np.ndarray:
+        """Points ``(n, 2)`` of the part, placed on its sheet.
+
+        >>> Placement("a", 0, 90.0, (10.0, 0.0)).move([[1.0, 0.0]]).round(9).tolist()
+        [[10.0, 1.0]]
+        """
+        a = math.radians(self.rotation)
+        c, s = math.cos(a), math.sin(a)
+        xy = np.asarray(xy, dtype=float)
+        return xy @ np.array([[c, s], [-s, c]]) + self.translation
+
+    def place(self, geometry):
+        """A shapely geometry of the part, placed on its sheet."""
+        return shapely.transform(geometry, self.move)
+
+
+@dataclass(frozen=True)
+class NestProgress:
+    """What :func:`nest` reports while it packs: seconds spent of the budget, parts placed, sheets filled."""
+
+    elapsed_s: float
+    budget_s: float
+    placed: int
+    parts: int
+    sheets: int
+
+
+@dataclass(frozen=True)
+class Nesting:
+    """The result of :func:`nest`: one placement and one placed outline per part, in input order."""
+
+    placements: tuple
+    outlines: tuple
+    sheet_mm: tuple[float, float]
+    gap_mm: float
+    rotations: str
+
+    @property
+    def sheets(self) -> int:
+        """How many sheets the parts take."""
+        return 1 + max(p.sheet for p in self.placements)
+
+    def on_sheet(self, k: int) -> list[int]:
+        """The indices (into :attr:`placements`) of the parts on sheet ``k``."""
+        return [i for i, p in enumerate(self.placements) if p.sheet == k]
+
+    def material_use(self) -> tuple[float, ...]:
+        """Per sheet, the area its parts' outer boundaries enclose over the sheet's area."""
+        w, h = self.sheet_mm
+        return tuple(round(sum(self.outlines[i].area for i in self.on_sheet(k)) / (w * h), 4)
+                     for k in range(self.sheets))
+
+
+def _check_parts(parts) -> tuple[list, list]:
+    """``(ids, polygons)``: the outer boundaries of ``parts``, a non-empty sequence of (id, Polygon)."""
+    if isinstance(parts, dict):
+        parts = list(parts.items())
+    if not isinstance(parts, (list, tuple)) or not parts:
+        raise ParameterError(f"parts must be a non-empty list of (id, shapely Polygon) pairs, got {parts!r:.60}",
+                             param="parts")
+    ids, shapes = [], []
+    for k, pair in enumerate(parts):
+        if not isinstance(pair, (list, tuple)) or len(pair) != 2 or not isinstance(pair[1], Polygon) \
+                or pair[1].is_empty or pair[1].area <= 0:
+            raise ParameterError(f"parts[{k}] must be an (id, shapely Polygon of area > 0) pair, got {pair!r:.80}",
+                                 param="parts")
+        ids.append(pair[0])
+        shapes.append(shapely.geometry.polygon.orient(Polygon(pair[1].exterior), 1.0))  # holes not used
+    seen = set()
+    for i in ids:
+        if i in seen:
+            raise ParameterError(f"parts' ids must be distinct, got {i!r} twice", param="parts")
+        seen.add(i)
+    return ids, shapes
+
+
+def _fits(shape, w: float, h: float, angles) -> bool:
+    """Whether ``shape`` fits a ``w`` x ``h`` sheet at one of ``angles`` (``None``: free, tried at the quarter turns)."""
+    for a in (0.0, 90.0) if angles is None else angles:
+        x0, y0, x1, y1 = Placement(None, 0, a, (0.0, 0.0)).place(shape).bounds
+        if x1 - x0 <= w - 2 * MARGIN_MM and y1 - y0 <= h - 2 * MARGIN_MM:
+            return True
+    return False
+
+
+def _fallback(shape, w: float, h: float, angles) -> tuple[float, tuple[float, float]]:
+    """A part alone at the sheet's lower-left corner, at the first angle it fits."""
+    for a in (0.0, 90.0) if angles is None else angles:
+        x0, y0, x1, y1 = Placement(None, 0, a, (0.0, 0.0)).place(shape).bounds
+        if x1 - x0 <= w - 2 * MARGIN_MM and y1 - y0 <= h - 2 * MARGIN_MM:
+            return a, (MARGIN_MM - x0, MARGIN_MM - y0)
+    raise AssertionError("checked by _fits")  # pragma: no cover
+
+
+def _solve(shapes, idx, height, gap, angles, seconds, on_tick):
+    """spyrrow's strip packing of ``shapes[idx]``: ``[(index, rotation, (dx, dy)), ...]``.
+
+    Identical shapes (same outline) are one spyrrow item with a demand, which it packs faster.
+    The solver runs in a thread (it releases the GIL) so ``on_tick`` can report while it works.
+    """
+    import spyrrow
+
+    groups: dict = {}
+    for i in idx:
+        groups.setdefault(shapely.to_wkb(shapes[i]), []).append(i)
+    items = [spyrrow.Item(str(g), [tuple(map(float, p)) for p in shapes[members[0]].exterior.coords[:-1]],
+                          demand=len(members), allowed_orientations=None if angles is None else list(angles))
+             for g, members in enumerate(groups.values())]
+    instance = spyrrow.StripPackingInstance("fabtiles", float(height), items)
+    config = spyrrow.StripPackingConfig(early_termination=True, total_computation_time=int(seconds),
+                                        min_items_separation=gap, num_workers=2, seed=0)
+    out: dict = {}
+
+    def run():
+        try:
+            out["solution"] = instance.solve(config)
+        except BaseException as exc:  # noqa: BLE001 - re-raised in the caller's thread
+            out["error"] = exc
+
+    worker = threading.Thread(target=run, daemon=True)
+    worker.start()
+    while worker.is_alive():
+        worker.join(0.2)
+        on_tick()
+    if "error" in out:
+        raise out["error"]
+    members = [list(m) for m in groups.values()]
+    placed = []
+    for item in out["solution"].placed_items:
+        placed.append((members[int(item.id)].pop(0), float(item.rotation), tuple(map(float, item.translation))))
+    return placed
+
+
+def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float = DEFAULT_TIME_S,
+         progress=None) -> Nesting:
+    """Place ``parts`` on as few ``sheet_mm`` sheets as the packer finds, ``gap_mm`` apart.
+
+    Parameters
+    ----------
+    parts : sequence of (id, shapely Polygon), or dict id -> Polygon
+        The parts; only each polygon's outer boundary is packed (holes are not used).
+        Ids are distinct; identical outlines are packed faster.
+    sheet_mm : (float, float)
+        The sheet's width and height, mm.
+    gap_mm : float
+        Least distance between two placed outlines, mm (>= 0). Parts may touch the sheet's edges.
+    rotations : {"90", "180", "free", "none"}
+        Allowed turns: quarter turns, half turns (wood grain), any angle, or none.
+    time_s : float
+        The time budget, seconds (> 0); the packer counts whole seconds and takes at least
+        one per sheet, so a job of several sheets may take a little longer.
+    progress : callable, optional
+        Called with a :class:`NestProgress` about five times a second while packing.
+
+    Returns
+    -------
+    Nesting
+        One :class:`Placement` and placed outline per part, in input order.
+
+    Raises
+    ------
+    ParameterError
+        For a bad sheet, gap, rotation mode or time budget, or bad parts.
+    FabricationError
+        For a part larger than the sheet either way round (in the allowed rotations).
+    """
+    if not isinstance(sheet_mm, (list, tuple)) or len(sheet_mm) != 2:
+        raise ParameterError(f"sheet_mm must be (width, height) in mm, got {sheet_mm!r}", param="sheet_mm")
+    w = check_float("sheet_mm[0]", sheet_mm[0], low=0, low_open=True)
+    h = check_float("sheet_mm[1]", sheet_mm[1], low=0, low_open=True)
+    gap = check_float("gap_mm", gap_mm, low=0)
+    if not isinstance(rotations, str) or rotations not in ROTATIONS:
+        raise ParameterError(f"rotations must be one of: {', '.join(ROTATIONS)}, got {rotations!r}",
+                             param="rotations")
+    budget = check_float("time_s", time_s, low=0, low_open=True)
+    ids, shapes = _check_parts(parts)
+    angles = ROTATIONS[rotations]
+    for i, shape in zip(ids, shapes):
+        if not _fits(shape, w, h, angles):
+            x0, y0, x1, y1 = shape.bounds
+            turn = "either way round" if angles is None or 90.0 in angles else "unturned (rotations " \
+                f"{rotations!r})"
+            raise FabricationError(
+                f"part {i!r} ({x1 - x0:.4g} x {y1 - y0:.4g} mm) does not fit on the {w:g} x {h:g} mm sheet "
+                f"{turn}; use a larger sheet, a smaller part{'' if angles is None or 90.0 in angles else ' or --rotate 90'}",
+                param="sheet_mm")
+
+    start = time.monotonic()
+    placements: dict = {}
+    remaining = list(range(len(shapes)))
+    sheet = 0
+    sheet_area = w * h
+
+    def tick():
+        if progress is not None:
+            progress(NestProgress(time.monotonic() - start, budget, len(placements), len(shapes), sheet))
+
+    while remaining:
+        left = max(0.0, budget - (time.monotonic() - start))
+        need = max(1, math.ceil(sum(shapes[i].area for i in remaining) / (sheet_area * _DENSITY_GUESS)))
+        seconds = max(1, int(left / need))  # whole seconds, rounded down: spyrrow overruns by ~0.3 s a solve
+        # spyrrow keeps the separation from the strip's edges too: the strip is taller by it on both
+        # sides, and the placements move back by it, so parts may reach the sheet's edges
+        sep = gap + MARGIN_MM
+        placed = _solve(shapes, remaining, h - 2 * MARGIN_MM + 2 * sep, sep, angles, seconds, tick)
+        kept, outlines = [], []
+        for i, rot, (dx, dy) in sorted(placed, key=lambda p: p[2][0]):
+            p = Placement(ids[i], sheet, rot, (dx - sep + MARGIN_MM, dy - sep + MARGIN_MM))
+            outline = p.place(shapes[i])
+            x0, y0, x1, y1 = outline.bounds
+            if x0 < 0 or y0 < 0 or x1 > w or y1 > h:
+                continue  # beyond this sheet's width: packed again for the next
+            # spyrrow's separation, checked in 64 bits (it never failed in the tests; a part too close waits)
+            if any(shapely.distance(outline, o) < gap for o in outlines):
+                continue
+            kept.append((i, p))
+            outlines.append(outline)
+        if not kept:  # nothing within the sheet (a free turn made the first part too wide): one part alone
+            i = remaining[0]
+            rot, shift = _fallback(shapes[i], w, h, angles)
+            kept = [(i, Placement(ids[i], sheet, rot, shift))]
+        for i, p in kept:
+            placements[i] = p
+        done = {i for i, _ in kept}
+        remaining = [i for i in remaining if i not in done]
+        sheet += 1
+        tick()
+    ordered = tuple(placements[i] for i in range(len(shapes)))
+    return Nesting(ordered, tuple(p.place(s) for p, s in zip(ordered, shapes)), (w, h), gap, rotations)

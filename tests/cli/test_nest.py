@@ -1,0 +1,188 @@
+"""``fabtiles nest``: tiles of several designs nested onto sheets (issue 34), checked on the files read back."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+import pytest
+import shapely
+from click.testing import CliRunner
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "export"))
+from test_laser_programs import burns, meerk40t  # noqa: E402
+
+from fabtiles import FabtilesError, ParameterError  # noqa: E402
+from fabtiles._profiles import load_profile  # noqa: E402
+from fabtiles.build import BuildOptions, Models, prepare_tile  # noqa: E402
+from fabtiles.build.nesting import nest_designs, part_outline  # noqa: E402
+from fabtiles.cli.main import cli  # noqa: E402
+from fabtiles.design import load_design  # noqa: E402
+
+PLY = load_profile("laser-3mm-plywood")
+OUTER = PLY.layers.outer_cut.name
+
+DESIGN = """
+[motif]
+preset = "{preset}"
+[packing]
+radius = 8
+[tile]
+outline = "{outline}"
+size = 40
+frame = 3
+stroke = 1.0
+[output]
+formats = ["dxf"]
+laser_profile = "laser-3mm-plywood"
+"""
+
+
+def run(*args):
+    return CliRunner().invoke(cli, list(map(str, args)), catch_exceptions=False)
+
+
+@pytest.fixture
+def designs(tmp_path):
+    paths = []
+    for preset, outline in (("table3-1", "square"), ("table3-3", "circle")):
+        path = tmp_path / f"{outline}.toml"
+        path.write_text(DESIGN.format(preset=preset, outline=outline), encoding="utf-8")
+        paths.append(path)
+    return paths
+
+
+def rings(path, layer=None):
+    """Every polyline of the DXF (of ``layer``), as (n, 2) arrays."""
+    return [np.array([(x, y) for x, y, *_ in e.get_points()]) for e in ezdxf.readfile(path).modelspace()
+            if layer is None or e.dxf.layer == layer]
+
+
+def test_nested_files_hold_every_part_once_moved_rigidly_inside_and_apart(designs, tmp_path):
+    out = tmp_path / "out"
+    gap = 1.15
+    result = nest_designs([(load_design(designs[0]), 5), (load_design(designs[1]), None)], out, ("dxf", "svg"),
+                          count=4, sheet_mm=(150, 100), gap_mm=gap, time_s=1)
+    n = result.nesting
+    assert len(n.placements) == 9 and len({p.id for p in n.placements}) == 9
+    assert n.sheets >= 2  # 9 tiles of 40 mm do not go on one 150 x 100 mm sheet
+    plans = {}
+    for path in designs:
+        d = load_design(path)
+        plans[d.name] = Models(prepare_tile(d), BuildOptions.of_design(d)).cut
+    for k in range(n.sheets):
+        dxf = out / f"square-sheet-{k + 1}.dxf"
+        assert (out / f"square-sheet-{k + 1}.svg").is_file()
+        outer = [shapely.Polygon(r) for r in rings(dxf, OUTER)]
+        every = np.concatenate(rings(dxf))
+        assert every.min() >= 0 and (every <= (150, 100)).all()  # every cut inside the sheet, kerf included
+        on = n.on_sheet(k)
+        assert len(outer) == len(on)
+        for i, a in enumerate(outer):  # no two parts' cut paths closer than the gap (nor overlapping)
+            for b in outer[i + 1:]:
+                assert shapely.distance(a, b) >= gap - 1e-6
+        # each placed part is its source tile's cut moved rigidly: its outer path in the file, turned and
+        # moved back, is the tile's own (Hausdorff under 1 um); every path of the file belongs to one part
+        for i in on:
+            p = n.placements[i]
+            source = plans[p.id.split("#")[0]].paths("outer")[0]
+            placed = shapely.Polygon(p.move(source))
+            match = min(outer, key=lambda o: shapely.hausdorff_distance(o, placed))
+            a = np.radians(p.rotation)
+            back = (shapely.get_coordinates(match.exterior) - p.translation) @ np.array(
+                [[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+            assert shapely.hausdorff_distance(shapely.Polygon(back), shapely.Polygon(source)) < 1e-3
+        assert shapely.covers(shapely.union_all(outer).buffer(1e-6), shapely.points(every)).all()
+    assert [s["parts"] for s in result.sheets] == [len(n.on_sheet(k)) for k in range(n.sheets)]
+    assert sum(s["designs"].get("square", 0) for s in result.sheets) == 5
+    assert sum(s["designs"].get("circle", 0) for s in result.sheets) == 4
+
+
+def test_the_command_writes_a_file_per_sheet_and_reports_each(designs, tmp_path):
+    out = tmp_path / "out"
+    result = run("nest", f"{designs[0]}:3", designs[1], "--count", "2", "-o", out, "--sheet", "100x100",
+                 "--time", "1", "--format", "lbrn2", "--format", "dxf", "--name", "kit", "--rotate", "180")
+    assert result.exit_code == 0, result.output
+    files = sorted(p.name for p in out.iterdir())
+    sheets = len(files) // 2
+    assert files == sorted(f"kit-sheet-{k}.{f}" for k in range(1, sheets + 1) for f in ("dxf", "lbrn2"))
+    assert f"5 parts on {sheets} sheet" in result.output and "100 x 100 mm, gap 1.15 mm, rotate 180" in result.output
+    assert "sheet 1: " in result.output and "material use " in result.output and " of cut" in result.output
+
+
+@pytest.mark.parametrize("args, match", [
+    (["--count", "0"], r"count must be an integer >= 1 and <= 10000, got 0"),
+    (["--gap", "0.1"], r"gap_mm must be >= the cut's width \(0.15 mm.*got 0.1; use --gap 1.15"),
+    (["--time", "0"], r"time_s must be .*> 0, got 0"),
+    (["--sheet", "700x400"], r"the sheet 700 x 400 mm is larger than the 600 x 400 mm bed.*--sheet 600x400"),
+    (["--sheet", "30x30"], r"part 'square#0:1' \(40.15 x 40.15 mm\) does not fit on the 30 x 30 mm sheet"),
+    (["--sheet", "big"], r"expected WIDTHxHEIGHT in mm like 600x400, got 'big'"),
+    (["--rotate", "45"], r"'45' is not one of '90', '180', 'free', 'none'|Invalid value for '--rotate'"),
+])
+def test_bad_input_is_one_line_exit_2_and_no_file(designs, tmp_path, args, match):
+    import re
+
+    out = tmp_path / "out"
+    result = CliRunner().invoke(cli, ["nest", str(designs[0]), "-o", str(out), "--time", "1", *args])
+    assert result.exit_code == 2
+    assert re.search(match, result.output), result.output
+    assert not out.exists()
+
+
+def test_a_count_below_one_in_the_per_design_form_and_the_api_errors(designs, tmp_path):
+    result = run("nest", f"{designs[0]}:0", "-o", tmp_path / "out")
+    assert result.exit_code == 2 and "count of square must be an integer >= 1 and <= 10000, got 0" in result.output
+    with pytest.raises(ParameterError, match="give at least one design to nest"):
+        nest_designs([], tmp_path / "out")
+    d = load_design(designs[0])
+    with pytest.raises(ParameterError, match=r"cutter formats \(dxf, svg, lbrn2\) only, got stl"):
+        nest_designs([(d, 1)], tmp_path / "out", ("stl",))
+    with pytest.raises(ParameterError, match=r"sheet_mm must be \(width, height\) in mm, got 600"):
+        nest_designs([(d, 1)], tmp_path / "out", sheet_mm=600)
+    assert not (tmp_path / "out").exists()
+
+
+def test_designs_of_two_profiles_or_an_inlay_kit_are_refused(designs, tmp_path):
+    d = load_design(designs[0])
+    router = load_design(designs[1], overrides=['output.laser_profile="router-6mm-mdf"'])
+    with pytest.raises(FabtilesError, match=r"one cutter profile.*square uses 'laser-3mm-plywood', circle uses"):
+        nest_designs([(d, 1), (router, 1)], tmp_path / "out")
+    kit = load_design(designs[0], overrides=['output.laser_mode="inlay"'])
+    with pytest.raises(ParameterError, match=r"square is an inlay kit .*not nested"):
+        nest_designs([(kit, 1)], tmp_path / "out")
+
+
+def test_a_quarter_turn_is_refused_when_the_kerf_differs_along_x_and_y(designs, tmp_path):
+    text = (Path(__file__).resolve().parents[2] / "profiles" / "laser-3mm-plywood.toml").read_text()
+    profile = tmp_path / "aniso.toml"
+    profile.write_text(text.replace("kerf_mm = 0.15 ", "kerf_mm = 0.15\nkerf_y_mm = 0.2 "), encoding="utf-8")
+    d = load_design(designs[0], overrides=[f'output.laser_profile="{profile}"'])
+    with pytest.raises(ParameterError, match=r"kerf along Y unlike along X.*use --rotate 180 or --rotate none, got '90'"):
+        nest_designs([(d, 1)], tmp_path / "out")
+    nest_designs([(d, 2)], tmp_path / "out", rotations="180", time_s=1)
+    assert (tmp_path / "out" / "square-sheet-1.dxf").is_file()
+
+
+def test_part_outline_of_loose_parts_is_their_convex_hull():
+    from shapely.geometry import box
+
+    from fabtiles.geometry.cut_plan import plan_cut
+
+    two = shapely.union_all([box(0, 0, 10, 10), box(20, 0, 30, 10)])
+    plan = plan_cut(two, box(0, 0, 30, 10), profile=PLY)
+    assert part_outline(plan).area == pytest.approx(30.15 * 10.15, rel=1e-3)
+
+
+def test_meerk40t_loads_a_nested_sheet_where_it_lies(designs, tmp_path):
+    out = tmp_path / "out"
+    result = nest_designs([(load_design(p), 2) for p in designs], out, ("dxf",), sheet_mm=(200, 150), time_s=1)
+    assert result.nesting.sheets == 1
+    dxf = out / "square-sheet-1.dxf"
+    job = meerk40t(dxf, tmp_path)
+    every = np.concatenate(rings(dxf))
+    assert job["added"] == len(rings(dxf))
+    allp = np.concatenate(burns(job["gcode"]))
+    # the burns span the file's paths at their own size (not scaled to MeerK40t's 235 mm bed)
+    assert allp.max(axis=0) - allp.min(axis=0) == pytest.approx(every.max(axis=0) - every.min(axis=0), abs=0.05)
