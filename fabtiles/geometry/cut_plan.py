@@ -242,6 +242,8 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
     else:
         kerf = kerf_y = check_float("kerf_mm", kerf_mm, low=0)
         kind.check_kerf(profile, kerf)
+    tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kerf, kerf_y))
+    kind.check_tabs(profile, tabs[0])
     if stroke is not None:
         stroke = check_float("stroke", stroke, low=0, low_open=True)
         if stroke < profile.min_feature_mm:
@@ -253,8 +255,6 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
     if not isinstance(fill_small_holes, bool):
         raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}",
                              param="fill_small_holes")
-    tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kerf, kerf_y))
-    kind.check_tabs(profile, tabs[0])
     parts = polygon_parts(region)
     outline_parts = polygon_parts(outline, "outline")
     check_fits_bed(outline, profile)
