@@ -93,7 +93,7 @@ class Tabs:
 
     def as_stats(self) -> dict:
         """The report's ``tabs`` entry."""
-        return {"tab_mm": self.tab_mm, "tabs_per_part": self.tabs_per_part, "tabs": self.count,
+        return {"length_mm": self.tab_mm, "per_part": self.tabs_per_part, "tabs": self.count,
                 "outer_pieces": len(self.pieces), "short_parts": len(self.short),
                 "midpoints": np.round(self.midpoints[:20], 3).tolist()}
 
