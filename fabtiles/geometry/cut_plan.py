@@ -242,8 +242,7 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
     else:
         kerf = kerf_y = check_float("kerf_mm", kerf_mm, low=0)
         kind.check_kerf(profile, kerf)
-    tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kerf, kerf_y))
-    kind.check_tabs(profile, tabs[0])
+    tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kerf, kerf_y), profile=profile)
     if stroke is not None:
         stroke = check_float("stroke", stroke, low=0, low_open=True)
         if stroke < profile.min_feature_mm:
@@ -370,8 +369,7 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
     base = check_choice("inlay_base", inlay_base, INLAY_BASES)
     fit = check_fit(profile.inlay_fit_mm if inlay_fit_mm is None else inlay_fit_mm)
     kx, ky = profile.kerf_xy_mm if kerf_mm is None else (kerf_mm, kerf_mm)
-    tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kx, ky))
-    cutter_kind(profile).check_tabs(profile, tabs[0])
+    tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kx, ky))  # only a laser cuts kits, and leaves tabs
     kit = inlay_kit(region, outline, fit_mm=fit, min_piece_mm=profile.min_piece_or_default_mm,
                     kerf_mm=max(kx, ky), tolerance_mm=profile.tolerance_mm)
     if base == "pierced":

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._cutters import cutter_kind
 from .._errors import ParameterError
 from .._schema import key
 from .contours import ROUND_DECIMALS
@@ -98,12 +99,13 @@ class Tabs:
                 "midpoints": np.round(self.midpoints[:20], 3).tolist()}
 
 
-def check_tabs(tab_mm, tabs_per_part, *, kerf_mm: float = 0.0) -> tuple[float, int]:
-    """``(tab_mm, tabs_per_part)`` checked: the schema's ranges, and a tab wider than the kerf.
+def check_tabs(tab_mm, tabs_per_part, *, kerf_mm: float = 0.0, profile=None) -> tuple[float, int]:
+    """``(tab_mm, tabs_per_part)`` checked: the schema's ranges, a cutter that leaves tabs, a tab wider than the kerf.
 
-    None is the default (no tabs; 4 per part). The beam eats half a kerf at each end of
-    a gap, so the bridge left is ``tab_mm - kerf_mm`` wide: a tab no wider than the kerf
-    leaves nothing.
+    None is the default (no tabs; 4 per part). ``profile``: the cutter's, whose kind
+    may leave tabs to CAM (:meth:`~fabtiles._cutters.CutterKind.check_tabs`). The beam
+    eats half a kerf at each end of a gap, so the bridge left is ``tab_mm - kerf_mm``
+    wide: a tab no wider than the kerf leaves nothing.
 
     >>> check_tabs(None, None)
     (0.0, 4)
@@ -114,6 +116,8 @@ def check_tabs(tab_mm, tabs_per_part, *, kerf_mm: float = 0.0) -> tuple[float, i
     """
     tab = TAB.check(TAB.default if tab_mm is None else tab_mm)
     per = TABS_PER_PART.check(TABS_PER_PART.default if tabs_per_part is None else tabs_per_part)
+    if profile is not None:
+        cutter_kind(profile).check_tabs(profile, tab)
     if 0 < tab <= kerf_mm:
         raise ParameterError(f"tab_mm must be 0 (no tabs) or more than the kerf ({kerf_mm:g} mm), got {tab:g}: "
                              "the beam eats half a kerf at each end of a gap, so the bridge left is tab_mm - "
