@@ -32,7 +32,8 @@ def dxf_paths(path) -> list:
         if e.dxftype() == "LWPOLYLINE":
             out.append((e.dxf.layer, bool(e.closed), np.array([p[:2] for p in e.get_points("xy")])))
         else:
-            out.append((e.dxf.layer, bool(e.is_closed), np.array([(v.dxf.location.x, v.dxf.location.y) for v in e.vertices])))
+            xy = np.array([(v.dxf.location.x, v.dxf.location.y) for v in e.vertices])
+            out.append((e.dxf.layer, bool(e.is_closed), xy))
     return out
 
 
