@@ -71,6 +71,9 @@ class CutterKind:
     Filled with ``{d}`` (the tool's diameter), ``{r}`` (its radius) and ``{kerf}`` (mm)."""
     svg_title: str = ""
     """Its SVG's title, filled with ``{name}``, ``{mode}``, ``{d}``, ``{r}`` and ``{kerf}``."""
+    tabs: bool = False
+    """Whether fabtiles leaves holding tabs in its outer cut (``tab_mm``); a router's and a waterjet's file
+    holds the part whole, and their CAM adds the tabs (with its lead-ins and its own tab heights)."""
 
     @property
     def opens_holes(self) -> bool:
@@ -157,6 +160,22 @@ class CutterKind:
             raise ParameterError(f"kerf_mm must be > 0 for {self.name} profile {profile.name!r} (the {self.tool}'s "
                                  f"diameter), got {kerf:g}", param="kerf_mm")
 
+    def check_tabs(self, profile, tab_mm: float) -> None:
+        """Holding tabs (``tab_mm`` > 0) asked of a cutter whose CAM adds them: a ParameterError.
+
+        >>> from fabtiles._profiles import load_profile
+        >>> p = load_profile("router-6mm-mdf")
+        >>> p.cutter.check_tabs(p, 0.0)
+        >>> p.cutter.check_tabs(p, 0.5)
+        Traceback (most recent call last):
+        ...
+        fabtiles._errors.ParameterError: tab_mm must be 0 for router profile 'router-6mm-mdf', got 0.5: a router file holds the part whole and CAM adds the holding tabs (with its lead-ins); set tab_mm = 0 and add tabs in CAM
+        """
+        if tab_mm and not self.tabs:
+            raise ParameterError(f"tab_mm must be 0 for {self.name} profile {profile.name!r}, got {tab_mm:g}: a "
+                                 f"{self.name} file holds the part whole and CAM adds the holding tabs (with its "
+                                 "lead-ins); set tab_mm = 0 and add tabs in CAM", param="tab_mm")
+
     def check_format(self, profile, fmt: str) -> None:
         """A file format it does not write (a LightBurn project for a router) is a ParameterError."""
         if fmt == "lbrn2" and not self.lightburn:
@@ -214,7 +233,7 @@ LASER = CutterKind(
     keys=("kerf_mm", "kerf_x_mm", "kerf_y_mm", "min_feature_mm", "min_hole_mm", "tolerance_mm", "bed_mm", "mode",
           "strict", "dxf_version", "pierce_s", "travel_mm_s", "inlay_fit_mm", "min_piece_mm", "price_per_m2"),
     modes=LASER_MODES, kerf="offset", zero_keys=("kerf_mm", "kerf_x_mm", "kerf_y_mm"),
-    lightburn=True, card=True, named_in_reports=False,
+    lightburn=True, card=True, named_in_reports=False, tabs=True,
     layers=("inner_cut", "outer_cut", "score", "engrave"),
     svg_title="fabtiles laser {mode}, profile {name}, kerf {kerf} mm",
 )

@@ -478,6 +478,20 @@ KEYS: tuple[Key, ...] = MOTIF + (
                                                                         ("pocket", "pockets engraved")),
                       when=_INLAY_WHEN),
         option=BuildOption(name="inlay_base", families=("cut",))),
+    Key(section="output", name="tab_mm", type="number", unit="mm", range=Range(0, 5), default=0.0,
+        note="0: no tabs; else more than the kerf",
+        help="holding tabs (laser only): each part's outer cut leaves `tabs_per_part` uncut gaps this long, "
+             "measured along the cut, so the part stays in the sheet on a honeycomb bed; the bridge left is "
+             "`tab_mm` less the kerf wide; holes get none; a router's or waterjet's CAM adds its own "
+             "([laser-cutting.md](laser-cutting.md#holding-tabs))",
+        widget=Widget(kind="number", label="Holding tabs (mm)", min=0, max=5, step=0.1, placeholder="none"),
+        option=BuildOption(name="tab_mm", families=("cut",))),
+    Key(section="output", name="tabs_per_part", type="integer", range=Range(1, 64), default=4,
+        help="how many holding tabs each part's outer cut gets when `tab_mm` > 0, spread evenly round it and "
+             "slid onto straight stretches away from corners; a part shorter round than three tab lengths per "
+             "tab gets fewer",
+        widget=Widget(kind="number", label="Tabs per part", min=1, max=64, step=1, placeholder="4"),
+        option=BuildOption(name="tabs_per_part", families=("cut",))),
     # [colour]
     Key(section="colour", name="by", type="choice", default="none", choices=("none", "shape"), query="colour_by",
         help="`\"shape\"`: the faces of the pattern (the openings between the bands) grouped into classes of "
@@ -574,7 +588,7 @@ def build_options(family: str) -> tuple[str, ...]:
     The 3MF takes the print's options and its own.
 
     >>> build_options("cut")
-    ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'inlay_fit_mm', 'inlay_base', 'colours')
+    ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'inlay_fit_mm', 'inlay_base', 'tab_mm', 'tabs_per_part', 'colours')
     """
     wanted = _family(family)
     mine = [k.option.name for k in KEYS if k.option is not None and set(wanted) & set(k.option.families)]

@@ -152,6 +152,8 @@ class OutputSpec:
     threemf_layout: str = _default("output.threemf_layout")
     inlay_fit_mm: float | None = _default("output.inlay_fit_mm")
     inlay_base: str = _default("output.inlay_base")
+    tab_mm: float = _default("output.tab_mm")
+    tabs_per_part: int = _default("output.tabs_per_part")
     base_mm: float | None = _default("output.base_mm")
     relief_mm: float | None = _default("output.relief_mm")
     pierced_mm: float | None = _default("output.pierced_mm")

@@ -41,6 +41,9 @@ class BuildOptions:
     fill_small_holes: bool = True
     inlay_fit_mm: float | None = None
     inlay_base: str | None = None
+    tab_mm: float | None = None
+    """Holding tabs' length along the outer cut (mm; None or 0: none)."""
+    tabs_per_part: int | None = None
     dxf_version: str | None = None
     kerf_mm: float | None = None
     print_style: str | None = None
@@ -176,11 +179,13 @@ class Models:
         outline = self.sheet.outline if self.sheet is not None else self.tile.outline_shape()
         if o.kit and self.checking:  # the check looks at the lattice as a pierced tile
             return plan_cut(region, outline, profile=o.cutter, mode="pierced", kerf_mm=o.kerf_mm,
-                            fill_small_holes=o.fill_small_holes, stroke=self.tile.stroke)
+                            fill_small_holes=o.fill_small_holes, stroke=self.tile.stroke, tab_mm=o.tab_mm,
+                            tabs_per_part=o.tabs_per_part)
         if o.kit and self.sheet is None:
             kit = plan_kit(region, outline, profile=o.cutter, inlay_fit_mm=o.inlay_fit_mm,
                             inlay_base=o.inlay_base or "pierced", kerf_mm=o.kerf_mm, dxf_version=o.dxf_version,
-                            stroke=self.tile.stroke, colours=self.kit_colours() if self.coloured else ())
+                            stroke=self.tile.stroke, colours=self.kit_colours() if self.coloured else (),
+                            tab_mm=o.tab_mm, tabs_per_part=o.tabs_per_part)
             if self.coloured:
                 kit.report.stats["face_classes"] = self.face_class_stats()
                 kit.report.note(f"lattice in {self.colouring.band.name} (the band colour)")
@@ -190,7 +195,7 @@ class Models:
                                  "and --copies) or choose laser_mode = \"pierced\"", param="laser_mode")
         return plan_cut(region, outline, profile=o.cutter, centrelines=centrelines, mode=o.laser_mode,
                         dxf_version=o.dxf_version, kerf_mm=o.kerf_mm, fill_small_holes=o.fill_small_holes,
-                        stroke=self.tile.stroke)
+                        stroke=self.tile.stroke, tab_mm=o.tab_mm, tabs_per_part=o.tabs_per_part)
 
     # ------------------------------------------------------------------ the colours
 

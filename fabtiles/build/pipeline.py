@@ -405,7 +405,8 @@ def export_tile(tile, path, *, profile=None, **options) -> Report:
 
     ``profile``: the cutter profile for dxf/svg/lbrn2 (default ``laser-3mm-plywood``),
     the printer profile for stl/3mf/step (default ``fdm-0.4mm``). Options:
-    cutter formats ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``, and
+    cutter formats ``mode``, ``dxf_version``, ``kerf_mm``, ``fill_small_holes``,
+    ``tab_mm`` and ``tabs_per_part`` (holding tabs in each part's outer cut), and
     with ``mode="inlay"`` ``inlay_fit_mm``, ``inlay_base`` (two files,
     ``<stem>-lattice`` and ``<stem>-pieces``); print formats ``style``, ``base_mm``,
     ``relief_mm``, ``pierced_mm``, ``deboss_mm``, ``fill_small_holes``, and for .3mf

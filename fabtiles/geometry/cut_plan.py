@@ -38,6 +38,7 @@ from .job_time import estimate as job_estimate
 from .laser_checks import check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer
 from .material import sheet
 from .narrow import fill_small_holes as _fill_small_holes
+from .tabs import check_tabs, tab_paths
 
 ROLES = ("engrave", "score", "inner", "outer")
 """The roles of a plan's layers, in cut order: engrave fills first, then score lines, inner
@@ -106,10 +107,11 @@ class CutPlan:
 
 
 def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict, *, report: Report | None = None,
-              part=None, groups=(), engrave_area_mm2: float = 0.0, bounds=None) -> CutPlan:
+              part=None, groups=(), engrave_area_mm2: float = 0.0, bounds=None, outer_closed: bool = True) -> CutPlan:
     """A :class:`CutPlan` of ``paths`` (role -> list of arrays), its layers, bounds and estimate.
 
     For plans made without the tile pipeline too (the calibration card, a kit's pieces).
+    ``outer_closed=False``: the outer paths are open pieces between holding tabs (:func:`_tabbed`).
     """
     layers_of = profile.layers
     kind = cutter_kind(profile)
@@ -119,7 +121,8 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
         if not rings:
             continue
         layer = getattr(layers_of, PROFILE_KEYS[role])
-        layers.append(CutLayer(role, layer, tuple(rings), closed=role != "score", fill=role == "engrave",
+        closed = outer_closed if role == "outer" else role != "score"
+        layers.append(CutLayer(role, layer, tuple(rings), closed=closed, fill=role == "engrave",
                                groups=tuple(groups) if role == "engrave" else ()))
     # a router or waterjet file has its two profiles' layers only; the engrave layer only when it engraves
     declared = [getattr(layers_of, key) for key in kind.layers if key != "engrave" or paths.get("engrave")]
@@ -128,7 +131,8 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
         flat = np.concatenate(allr) if allr else np.zeros((1, 2))
         bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
     est = job_estimate(profile, **{("inner" if r == "inner" else "outer" if r == "outer" else r):
-                                   list(paths.get(r, ())) for r in ROLES}, engrave_area_mm2=engrave_area_mm2)
+                                   list(paths.get(r, ())) for r in ROLES}, engrave_area_mm2=engrave_area_mm2,
+                       outer_closed=outer_closed)
     return CutPlan(profile, mode, dxf_version, kerf_mm, tuple(layers), tuple(declared), tuple(bounds), est,
                    report if report is not None else Report(path="", format=""), part, engrave_area_mm2)
 
@@ -164,8 +168,22 @@ def _engrave_paths(region, profile, report: Report):
     return cleaned, part[kept].tolist(), area
 
 
+def _tabbed(paths: dict, tab_mm: float, tabs_per_part: int, report: Report | None) -> bool:
+    """``paths["outer"]`` split at holding tabs when ``tab_mm`` > 0 (:func:`.tabs.tab_paths`), the report
+    told how many and where; whether the outer paths are still closed."""
+    if not tab_mm or not paths.get("outer"):
+        return True
+    tabs = tab_paths(paths["outer"], tab_mm=tab_mm, tabs_per_part=tabs_per_part)
+    paths["outer"] = tabs.pieces
+    if report is not None:
+        report.stats["tabs"] = tabs.as_stats()
+        report.note(tabs.note())
+    return False
+
+
 def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_version=None, kerf_mm=None,
-             fill_small_holes: bool = False, stroke=None, path: str = "", fmt: str = "") -> CutPlan:
+             fill_small_holes: bool = False, stroke=None, tab_mm=None, tabs_per_part=None, path: str = "",
+             fmt: str = "") -> CutPlan:
     """Validate the options, run the checks and build the contours: the tile's :class:`CutPlan`.
 
     Parameters
@@ -189,6 +207,11 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
         router's bit cannot enter) instead of cutting them.
     stroke : float, optional
         The pattern's stroke width, to check kerf and ``min_feature_mm`` against.
+    tab_mm : float, optional
+        Holding tabs: each outer cut is left open at ``tabs_per_part`` gaps this long
+        (mm along the cut; default 0, none; a laser's only). See :mod:`.tabs`.
+    tabs_per_part : int, optional
+        Gaps per part when ``tab_mm`` > 0 (default 4).
     path, fmt : str
         What the report names (a strict profile's error names the file).
 
@@ -219,6 +242,7 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
     else:
         kerf = kerf_y = check_float("kerf_mm", kerf_mm, low=0)
         kind.check_kerf(profile, kerf)
+    tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kerf, kerf_y), profile=profile)
     if stroke is not None:
         stroke = check_float("stroke", stroke, low=0, low_open=True)
         if stroke < profile.min_feature_mm:
@@ -276,12 +300,15 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
         report.stats["score_paths"] = len(paths["score"])
         report.stats["score_length_mm"] = round(_length(paths["score"], False), 3)
         part = outline
+    outer_rings = len(paths["outer"])
+    closed = _tabbed(paths, *tabs, report)
     plan = make_plan(profile, mode, dxf_version, kerf, paths, report=report, part=part, groups=groups,
-                     engrave_area_mm2=engrave_area)
+                     engrave_area_mm2=engrave_area, outer_closed=closed)
     allr = [r for layer in plan.layers for r in layer.paths]
-    report.stats.update(inner_contours=len(plan.paths("inner")), outer_contours=len(plan.paths("outer")),
+    report.stats.update(inner_contours=len(plan.paths("inner")), outer_contours=outer_rings,
                         vertices=int(sum(len(r) for r in allr)),
-                        cut_length_mm=round(_length(plan.paths("inner") + plan.paths("outer"), True), 3))
+                        cut_length_mm=round(_length(plan.paths("inner"), True)
+                                            + _length(plan.paths("outer"), closed), 3))
     report.stats["job"] = plan.estimate.as_stats()
     report.stats["sheet"] = sheet(outline, profile)
     return plan
@@ -316,7 +343,8 @@ class KitPlans:
 
 
 def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "pierced", kerf_mm=None,
-             dxf_version=None, stroke=None, colours=(), path: str = "", fmt: str = "") -> KitPlans:
+             dxf_version=None, stroke=None, colours=(), tab_mm=None, tabs_per_part=None, path: str = "",
+             fmt: str = "") -> KitPlans:
     """The inlay kit of a tile's material ``region`` as two cut plans: the lattice and the pieces.
 
     The lattice is a pierced tile (holes cut with the kerf into them, the outline
@@ -330,7 +358,9 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
     ``pieces_job``). ``colours``, ``((colour name, faces), ...)``, splits the pieces
     into a plan per colour: each piece goes with the colour of the face holding its
     hole (a piece no face names goes with the first colour), each plan with the
-    lattice's bounds, so every wood's sheet is laid like the lattice's.
+    lattice's bounds, so every wood's sheet is laid like the lattice's. ``tab_mm`` and
+    ``tabs_per_part`` leave holding tabs in the lattice's outer cut and in every piece's
+    (the pieces' report: the ``pieces_tabs`` entry).
     """
     from .inlay import check_fit, inlay_kit
 
@@ -339,25 +369,32 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
     base = check_choice("inlay_base", inlay_base, INLAY_BASES)
     fit = check_fit(profile.inlay_fit_mm if inlay_fit_mm is None else inlay_fit_mm)
     kx, ky = profile.kerf_xy_mm if kerf_mm is None else (kerf_mm, kerf_mm)
+    tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kx, ky))  # only a laser cuts kits, and leaves tabs
     kit = inlay_kit(region, outline, fit_mm=fit, min_piece_mm=profile.min_piece_or_default_mm,
                     kerf_mm=max(kx, ky), tolerance_mm=profile.tolerance_mm)
     if base == "pierced":
         lattice = plan_cut(kit.lattice, outline, profile=profile, mode="pierced", dxf_version=dxf_version,
-                           kerf_mm=kerf_mm, stroke=stroke, path=path, fmt=fmt)
+                           kerf_mm=kerf_mm, stroke=stroke, tab_mm=tabs[0], tabs_per_part=tabs[1], path=path, fmt=fmt)
     else:
         if not len(kit.holes):
             raise ParameterError("the tile has no hole large enough for a piece; nothing to pocket", param="region")
         lattice = plan_cut(shapely.union_all(kit.holes), outline, profile=profile, mode="engrave",
-                           dxf_version=dxf_version, kerf_mm=kerf_mm, path=path, fmt=fmt)
+                           dxf_version=dxf_version, kerf_mm=kerf_mm, tab_mm=tabs[0], tabs_per_part=tabs[1],
+                           path=path, fmt=fmt)
     paths = {}
     if len(kit.pieces):
         paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(kit.pieces))),
                                                         kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
+    pieces_report = Report(path="", format="")
+    closed = _tabbed(paths, *tabs, pieces_report)
     pieces = make_plan(profile, "pierced", lattice.dxf_version, kx, paths, bounds=lattice.bounds,
-                       part=kit.pieces)
+                       part=kit.pieces, outer_closed=closed, report=pieces_report)
     report = lattice.report
     stats = kit.stats()
     report.stats.update(stats, inlay_fit_mm=fit, inlay_base=base, pieces_job=pieces.estimate.as_stats())
+    if "tabs" in pieces_report.stats:
+        report.stats["pieces_tabs"] = pieces_report.stats["tabs"]
+        report.note("pieces' " + pieces_report.stats["notes"][0])
     if kit.necks:
         widths = [w for _, _, w in kit.necks]
         report.note(f"widened {len(kit.necks):,} neck{'s' if len(kit.necks) != 1 else ''} of holes narrower than the "
@@ -371,7 +408,7 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
                    f"or the kerf smaller to keep {'them' if n != 1 else 'it'}", count=n, locations=kit.split)
     report.note(f"pieces: {stats['pieces']:,} pieces of {kit.kinds} shapes, fit {fit:+g} mm, "
                 f"{kit.filled_holes:,} holes too small filled; laser job {pieces.estimate.line()}")
-    by_colour = _pieces_by_colour(kit, colours, profile, lattice, kx, ky) if colours else ()
+    by_colour = _pieces_by_colour(kit, colours, profile, lattice, kx, ky, tabs) if colours else ()
     if by_colour:
         report.stats["pieces_by_colour"] = {}
         for name, plan in by_colour:
@@ -386,7 +423,7 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
     return KitPlans(lattice, pieces, kit, by_colour)
 
 
-def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: float) -> tuple:
+def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: float, tabs=(0.0, 1)) -> tuple:
     """The kit's pieces as one plan per colour (see :func:`plan_kit`)."""
     pieces = np.asarray(kit.pieces, dtype=object)
     owner = np.zeros(len(pieces), int)
@@ -407,8 +444,9 @@ def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: fl
             paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(mine))),
                                                             kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
         part = shapely.union_all(mine) if len(mine) else shapely.Polygon()
+        closed = _tabbed(paths, *tabs, None)
         out.append((name, make_plan(profile, "pierced", lattice.dxf_version, kx, paths, bounds=lattice.bounds,
-                                    part=part)))
+                                    part=part, outer_closed=closed)))
     return tuple(out)
 
 

@@ -110,16 +110,25 @@ def _travel(groups) -> float:
     return total
 
 
-def estimate(profile, *, inner=(), outer=(), score=(), engrave=(), engrave_area_mm2: float = 0.0) -> JobEstimate:
+def estimate(profile, *, inner=(), outer=(), score=(), engrave=(), engrave_area_mm2: float = 0.0,
+             outer_closed: bool = True) -> JobEstimate:
     """The :class:`JobEstimate` of a laser job: its paths by layer, in cut order.
 
     ``inner``, ``outer`` and ``engrave`` are closed rings, ``score`` open paths
     ((n, 2) arrays, mm); ``engrave_area_mm2`` is the area the engrave layer fills.
-    The order is the files' cut order: engrave, score, inner cuts, outer cuts.
+    ``outer_closed=False``: the outer cuts are open pieces between holding tabs
+    (:mod:`.tabs`), each a pierce of its own. The order is the files' cut order:
+    engrave, score, inner cuts, outer cuts.
+
+    >>> from fabtiles._profiles import load_profile
+    >>> piece = np.array([[0, 0], [10, 0], [10, 9]], float)
+    >>> job = estimate(load_profile("laser-3mm-plywood"), outer=[piece, piece + 20], outer_closed=False)
+    >>> job.cut_mm["outer_cut"], job.pierces
+    (38.0, 2)
     """
     layers = profile.layers
     groups = [("engrave", layers.engrave, engrave, True), ("score", layers.score, score, False),
-              ("inner_cut", layers.inner_cut, inner, True), ("outer_cut", layers.outer_cut, outer, True)]
+              ("inner_cut", layers.inner_cut, inner, True), ("outer_cut", layers.outer_cut, outer, outer_closed)]
     cut, seconds, pierces, travel_groups = {}, 0.0, 0, []
     for key, layer, rings, closed in groups:
         if not len(rings) or layer is None:

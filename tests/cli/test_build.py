@@ -72,6 +72,13 @@ def test_set_overrides_and_output_name(design, tmp_path):
         (["--set", "tile.frame=40"], r"too small for frame 40 mm"),
         (["--set", "motif.n=2"], r"\[motif\] n must be an integer >= 3"),
         (["--set", "oops"], r"--set expects section.key=value, got 'oops'"),
+        (["--set", "output.tab_mm=-0.5"], r"\[output\] tab_mm must be a number of mm from 0 to 5 "),
+        (["--set", "output.tabs_per_part=0"], r"\[output\] tabs_per_part must be an integer >= 1 and <= 64, got 0"),
+        (["--set", "output.tab_mm=0.1"], r"tab_mm must be 0 \(no tabs\) or more than the kerf \(0\.15 mm\), got 0\.1"),
+        (["--set", "output.tab_mm=0.5", "--set", 'output.laser_profile="router-6mm-mdf"', "--set", "tile.stroke=5",
+          "--set", "packing.radius=12"],
+         r"tab_mm must be 0 for router profile 'router-6mm-mdf', got 0\.5: a router file holds the part whole and "
+         r"CAM adds the holding tabs"),
     ],
 )
 def test_bad_input_exits_2_and_writes_nothing(design, tmp_path, extra, match):
@@ -83,6 +90,19 @@ def test_bad_input_exits_2_and_writes_nothing(design, tmp_path, extra, match):
     assert re.search(match, result.output), result.output
     assert result.output.startswith("fabtiles: error: ") and result.output.count("\n") == 1
     assert not out.exists()
+
+
+def test_holding_tabs_are_reported(design, tmp_path):
+    result = run("build", design, "-o", tmp_path / "out", "--set", "output.tab_mm=0.5", "--set",
+                 "output.tabs_per_part=3")
+    assert result.exit_code == 0, result.output
+    assert "holding tabs: 3 tabs of 0.5 mm in 1 part (3 per part) at (" in result.output
+    import xml.etree.ElementTree as ET
+
+    ns = "{http://www.w3.org/2000/svg}"
+    root = ET.parse(tmp_path / "out" / "small.svg").getroot()
+    outer = next(g for g in root.iter(f"{ns}g") if g.get("id") == "OUTER")
+    assert [p.get("d").endswith("Z") for p in outer.iter(f"{ns}path")] == [False] * 3
 
 
 def test_unreadable_design_exits_2(tmp_path):

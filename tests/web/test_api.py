@@ -240,3 +240,16 @@ def test_router_preview_draws_the_part_its_bit_makes(client):
     assert {"small_hole", "rounded_corner"} <= {f["code"] for f in checks["findings"]}
     marked = client.get(f"/api/preview.svg?{q}&findings=true").text
     assert 'data-where="router"' in marked and "rounded_corner" in marked
+
+
+def test_holding_tabs_from_the_query(client):
+    import ezdxf
+
+    r = client.get(f"/api/export/dxf?{SMALL}&tab_mm=0.5&tabs_per_part=3")
+    assert r.status_code == 200, r.text
+    doc = ezdxf.read(io.StringIO(r.content.decode()))
+    outer = [e for e in doc.modelspace() if e.dxf.layer == "OUTER"]
+    assert len(outer) == 3 and not any(e.closed for e in outer)
+    r = client.get(f"/api/export/dxf?{SMALL}&tab_mm=0.5&laser_profile=router-6mm-mdf&stroke=5")
+    assert r.status_code == 422 and r.json()["field"] == "tab_mm"
+    assert re.search(r"tab_mm must be 0 for router profile 'router-6mm-mdf', got 0\.5", r.json()["error"])

@@ -14,6 +14,7 @@ const state = {
   laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
   threemf_layout: "volumes",  // 3MF parts for PrusaSlicer, Bambu Studio, OrcaSlicer; "components" for Cura
   inlay_base: "pierced", inlay_fit_mm: "",  // laser_mode=inlay: the kit's lattice and fit ("": the profile's)
+  tab_mm: "", tabs_per_part: "",  // holding tabs in each part's outer cut ("": none; 4 per part)
   miter_limit: 4, seamless: false, fill_small_holes: true, name: "",
   base_mm: "", relief_mm: "", pierced_mm: "", deboss_mm: "",  // "": the printer profile's
   interlace: false, interlace_gap_mm: "", interlace_cut: false,  // woven strands; "": a third of the stroke
