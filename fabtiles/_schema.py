@@ -471,6 +471,15 @@ KEYS: tuple[Key, ...] = MOTIF + (
         widget=Widget(kind="number", label="Inlay kit: fit (mm)", min=-0.5, max=0.5, step=0.05,
                       placeholder="profile", when=_INLAY_WHEN),
         option=BuildOption(name="inlay_fit_mm", families=("cut",))),
+    Key(section="output", name="inlay_pieces", type="choice", default="registration",
+        choices=("registration", "nested"), requires=_INLAY,
+        help="`\"registration\"` (each piece at its hole's place: the pieces' sheet as big as the tile) or "
+             "`\"nested\"` (the pieces packed tight, half turns only for the grain, each with its face class's "
+             "letter scored on it and in its lattice hole; see [inlay.md](inlay.md))",
+        widget=Widget(kind="select", label="Inlay kit: pieces", labels=(("registration", "in registration"),
+                                                                       ("nested", "nested, lettered")),
+                      when=_INLAY_WHEN),
+        option=BuildOption(name="inlay_pieces", families=("cut",))),
     Key(section="output", name="inlay_base", type="choice", default="pierced", choices=("pierced", "pocket"),
         requires=_INLAY, help="`\"pierced\"` (the lattice's holes cut through) or `\"pocket\"` "
              "(engraved as pockets on the engrave layer)",
@@ -588,7 +597,7 @@ def build_options(family: str) -> tuple[str, ...]:
     The 3MF takes the print's options and its own.
 
     >>> build_options("cut")
-    ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'inlay_fit_mm', 'inlay_base', 'tab_mm', 'tabs_per_part', 'colours')
+    ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'inlay_fit_mm', 'inlay_pieces', 'inlay_base', 'tab_mm', 'tabs_per_part', 'colours')
     """
     wanted = _family(family)
     mine = [k.option.name for k in KEYS if k.option is not None and set(wanted) & set(k.option.families)]

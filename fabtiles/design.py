@@ -151,6 +151,7 @@ class OutputSpec:
     inlay: bool = _default("output.inlay")
     threemf_layout: str = _default("output.threemf_layout")
     inlay_fit_mm: float | None = _default("output.inlay_fit_mm")
+    inlay_pieces: str = _default("output.inlay_pieces")
     inlay_base: str = _default("output.inlay_base")
     tab_mm: float = _default("output.tab_mm")
     tabs_per_part: int = _default("output.tabs_per_part")

@@ -139,7 +139,7 @@ def test_build_options_are_the_schemas():
     from fabtiles.build import pipeline
 
     assert pipeline._CUT_OPTIONS == ("mode", "dxf_version", "kerf_mm", "fill_small_holes", "inlay_fit_mm",
-                                     "inlay_base", "tab_mm", "tabs_per_part", "colours")
+                                     "inlay_pieces", "inlay_base", "tab_mm", "tabs_per_part", "colours")
     assert pipeline._3MF_OPTIONS == pipeline._PRINT_OPTIONS[:-1] + ("inlay", "layout", "colours")
     assert "mosaic_inset_mm" in pipeline._PRINT_OPTIONS
 

@@ -40,6 +40,7 @@ class BuildOptions:
     laser_mode: str | None = None
     fill_small_holes: bool = True
     inlay_fit_mm: float | None = None
+    inlay_pieces: str | None = None
     inlay_base: str | None = None
     tab_mm: float | None = None
     """Holding tabs' length along the outer cut (mm; None or 0: none)."""
@@ -189,6 +190,14 @@ class Models:
             if self.coloured:
                 kit.report.stats["face_classes"] = self.face_class_stats()
                 kit.report.note(f"lattice in {self.colouring.band.name} (the band colour)")
+            if (o.inlay_pieces or "registration") == "nested":
+                from ..geometry.kit_nesting import class_letters, nest_kit
+
+                classes = self.face_classes if self.options.colours is not None and \
+                    self.options.colours.by == "shape" else self._shape_classes
+                letters = class_letters(kit.kit.holes, classes.faces, classes.labels,
+                                        [c.letter for c in classes.classes])
+                kit = nest_kit(kit, letters_of_holes=letters, tabs=(o.tab_mm, o.tabs_per_part))
             return kit
         if o.kit:
             raise ParameterError("a sheet of inlay kits is not laid out; write the kit of one tile (drop --sheet "
@@ -207,6 +216,13 @@ class Models:
 
         spec = self.options.colours
         return face_classes(self.tile, by=spec.by if spec is not None else "none")
+
+    @cached_property
+    def _shape_classes(self):
+        """The faces classed by shape whatever the colours say: a nested kit's letters."""
+        from ..geometry.faces import face_classes
+
+        return face_classes(self.tile, by="shape")
 
     @cached_property
     def colouring(self):

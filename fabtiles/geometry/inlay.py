@@ -133,7 +133,10 @@ def inlay_kit(region, outline, *, fit_mm: float, min_piece_mm: float, kerf_mm: f
     opening = shapely.buffer(cut, d) if d else cut
     pieces = shapely.buffer(opening, fit) if fit else opening
     _check_apart(pieces, keep, fit, kerf_mm)
-    return InlayKit(lattice, np.asarray(pieces, dtype=object), keep, int(filled), distinct_shapes(pieces),
+    # the kinds counted on the holes: each piece is made from its hole alone, so congruent holes give
+    # congruent pieces, and a hole's few vertices compare fast (the round-grown pieces' hundreds took 7.2 s
+    # for the sample's 247 pieces)
+    return InlayKit(lattice, np.asarray(pieces, dtype=object), keep, int(filled), distinct_shapes(cut),
                     tuple(necks), tuple(split))
 
 

@@ -1,11 +1,12 @@
-"""A tiny single-stroke font for laser labels: digits, the decimal point and a few capitals.
+"""A tiny single-stroke font for laser labels: digits, the decimal point and the capitals.
 
 Laser software reads polylines reliably everywhere, while DXF TEXT entities depend
 on the program's fonts (many laser programs skip them or fill outline fonts), so
 labels are drawn as open polylines for the score layer. Each glyph is a few strokes
 on a 4 x 6 grid (the cap height is 6 units). fabtiles' own glyphs: the card needs
-fourteen characters, and the Hershey fonts on PyPI (``hershey-fonts``, last released
-2021) would add an unmaintained dependency for them.
+fourteen characters and a nested kit the capitals (its pieces' class letters), and the
+Hershey fonts on PyPI (``hershey-fonts``, last released 2021) would add an unmaintained
+dependency for them. The 5 and the S are told apart by the S's serif at the top right.
 
 >>> paths = text_paths("1.5", height_mm=3.0)
 >>> len(paths), round(text_width("1.5", height_mm=3.0), 2)
@@ -34,6 +35,29 @@ _GLYPHS: dict[str, tuple[tuple[tuple[float, float], ...], ...]] = {
     "H": (((0, 0), (0, 6)), ((4, 0), (4, 6)), ((0, 3), (4, 3))),
     "K": (((0, 0), (0, 6)), ((4, 6), (0, 2)), ((1.3, 3.3), (4, 0))),
     "I": (((2, 0), (2, 6)), ((1, 0), (3, 0)), ((1, 6), (3, 6))),
+    # the other capitals: a nested kit's class letters (A, B, ... AA, AB)
+    "A": (((0, 0), (2, 6), (4, 0)), ((0.8, 2.4), (3.2, 2.4))),
+    "C": (((4, 6), (0, 6), (0, 0), (4, 0)),),
+    "D": (((0, 0), (0, 6), (2.5, 6), (4, 4.5), (4, 1.5), (2.5, 0), (0, 0)),),
+    "E": (((4, 6), (0, 6), (0, 0), (4, 0)), ((0, 3), (3, 3))),
+    "F": (((4, 6), (0, 6), (0, 0)), ((0, 3), (3, 3))),
+    "G": (((4, 6), (0, 6), (0, 0), (4, 0), (4, 3), (2, 3)),),
+    "J": (((4, 6), (4, 0), (0, 0), (0, 2)),),
+    "L": (((0, 6), (0, 0), (4, 0)),),
+    "M": (((0, 0), (0, 6), (2, 3), (4, 6), (4, 0)),),
+    "N": (((0, 0), (0, 6), (4, 0), (4, 6)),),
+    "O": (((0, 0), (4, 0), (4, 6), (0, 6), (0, 0)),),
+    "P": (((0, 0), (0, 6), (4, 6), (4, 3), (0, 3)),),
+    "Q": (((0, 0), (4, 0), (4, 6), (0, 6), (0, 0)), ((2.5, 1.5), (4, 0))),
+    "R": (((0, 0), (0, 6), (4, 6), (4, 3), (0, 3)), ((1.5, 3), (4, 0))),
+    "S": (((4, 6), (0, 6), (0, 3), (4, 3), (4, 0), (0, 0)), ((4, 6), (4, 5))),
+    "T": (((0, 6), (4, 6)), ((2, 6), (2, 0))),
+    "U": (((0, 6), (0, 0), (4, 0), (4, 6)),),
+    "V": (((0, 6), (2, 0), (4, 6)),),
+    "W": (((0, 6), (1, 0), (2, 3), (3, 0), (4, 6)),),
+    "X": (((0, 0), (4, 6)), ((0, 6), (4, 0))),
+    "Y": (((0, 6), (2, 3), (4, 6)), ((2, 3), (2, 0))),
+    "Z": (((0, 6), (4, 6), (0, 0), (4, 0)),),
     "-": (((0.5, 3), (3.5, 3)),),
     "+": (((0.5, 3), (3.5, 3)), ((2, 1.5), (2, 4.5))),
 }

@@ -13,7 +13,7 @@ const state = {
   outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
   laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
   threemf_layout: "volumes",  // 3MF parts for PrusaSlicer, Bambu Studio, OrcaSlicer; "components" for Cura
-  inlay_base: "pierced", inlay_fit_mm: "",  // laser_mode=inlay: the kit's lattice and fit ("": the profile's)
+  inlay_base: "pierced", inlay_fit_mm: "", inlay_pieces: "registration",  // laser_mode=inlay: the kit's lattice and fit ("": the profile's)
   tab_mm: "", tabs_per_part: "",  // holding tabs in each part's outer cut ("": none; 4 per part)
   miter_limit: 4, seamless: false, fill_small_holes: true, name: "",
   base_mm: "", relief_mm: "", pierced_mm: "", deboss_mm: "",  // "": the printer profile's
@@ -146,6 +146,7 @@ function query() {
   if (state.inlay) q.set("inlay", "true");
   if (state.threemf_layout !== "volumes") q.set("threemf_layout", state.threemf_layout);
   if (state.laser_mode === "inlay" && state.inlay_base !== "pierced") q.set("inlay_base", state.inlay_base);
+  if (state.laser_mode === "inlay" && state.inlay_pieces !== "registration") q.set("inlay_pieces", state.inlay_pieces);
   q.set("fill_small_holes", state.fill_small_holes ? "true" : "false");
   for (const k of TEXT_KEYS) if (String(state[k]).trim() !== "") q.set(k, String(state[k]).trim());
   return q;
