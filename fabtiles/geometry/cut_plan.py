@@ -124,8 +124,8 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
     >>> from fabtiles._profiles import load_profile
     >>> ring = np.array([[-0.075, -0.075], [40.075, -0.075], [40.075, 40.075], [-0.075, 40.075]])
     >>> plan = make_plan(load_profile("laser-3mm-plywood"), "pierced", "R2000", 0.15, {"outer": [ring]})
-    >>> plan.offset, plan.bounds, plan.paths("outer")[0].min(axis=0).tolist()
-    ((0.075, 0.075), (0.0, 0.0, 40.15, 40.15), [0.0, 0.0])
+    >>> plan.offset, np.round(plan.bounds, 9).tolist(), plan.paths("outer")[0].min(axis=0).tolist()
+    ((0.075, 0.075), [0.0, 0.0, 40.15, 40.15], [0.0, 0.0])
     """
     layers_of = profile.layers
     kind = cutter_kind(profile)
