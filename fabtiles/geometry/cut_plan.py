@@ -147,8 +147,8 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
         moved = {role: [r + shift for r in rings] for role, rings in moved.items()}
         allr = [r for rings in moved.values() for r in rings]
     if like is None:
-        ends = [r for r in allr] + ([np.asarray(bounds, dtype=float).reshape(2, 2) + shift] if bounds is not None else [])
-        flat = np.concatenate(ends) if ends else np.zeros((1, 2))
+        frame = [np.asarray(bounds, dtype=float).reshape(2, 2) + shift] if bounds is not None else []
+        flat = np.concatenate(allr + frame) if allr or frame else np.zeros((1, 2))
         bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
     layers = []
     for role in ROLES:

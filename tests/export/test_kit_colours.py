@@ -64,8 +64,8 @@ def test_each_pieces_file_holds_exactly_its_colours_faces(kit, colour, letter):
     doc = read_checked(out / f"kit-pieces-{colour}.dxf")
     # every file of the kit is the tile moved by the lattice outline's half kerf: moved back to the faces
     shift = np.array(profile.kerf_xy_mm) / 2
-    cuts = [shapely.transform(p, lambda c: c - shift) for p in ring_polygons(doc, {layer.dxf.name for layer in doc.layers})
-            if p.area > 0]
+    layers = {layer.dxf.name for layer in doc.layers}
+    cuts = [shapely.transform(p, lambda c: c - shift) for p in ring_polygons(doc, layers) if p.area > 0]
     faces = shapely.get_parts(models.face_classes.of(letter))
     faces = faces[shapely.area(faces) > 1.0]  # the faces large enough for a piece
     assert len(cuts) == len(faces)
