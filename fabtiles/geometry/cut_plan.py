@@ -80,8 +80,10 @@ class CutPlan:
     when empty, so a user finds them). ``report`` carries the plan's statistics and
     findings (one set per plan, however many files are written from it);
     ``estimate`` is the job's length and time; ``part`` the material as the tool
-    makes it (holes opened by a router's bit, small holes filled); ``bounds`` the
-    extents of every path (a kit's pieces keep the lattice's, so the two files register).
+    makes it (holes opened by a router's bit, small holes filled), in the tile's
+    coordinates; ``bounds`` the extents of every path, from (0, 0) (a kit's pieces keep
+    the lattice's, so the two files register); ``offset`` the vector the paths were
+    moved by from the tile's coordinates to the file's (see :func:`make_plan`).
     """
 
     profile: LaserProfile
@@ -95,6 +97,7 @@ class CutPlan:
     report: Report = field(default_factory=lambda: Report(path="", format=""))
     part: object = None
     engrave_area_mm2: float = 0.0
+    offset: tuple = (0.0, 0.0)
 
     def paths(self, role: str) -> list:
         """The paths of the layer of ``role`` (empty when the plan has none)."""
@@ -107,17 +110,52 @@ class CutPlan:
 
 
 def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict, *, report: Report | None = None,
-              part=None, groups=(), engrave_area_mm2: float = 0.0, bounds=None, outer_closed: bool = True) -> CutPlan:
+              part=None, groups=(), engrave_area_mm2: float = 0.0, bounds=None, like: CutPlan | None = None,
+              outer_closed: bool = True) -> CutPlan:
     """A :class:`CutPlan` of ``paths`` (role -> list of arrays), its layers, bounds and estimate.
 
     For plans made without the tile pipeline too (the calibration card, a kit's pieces).
     ``outer_closed=False``: the outer paths are open pieces between holding tabs (:func:`_tabbed`).
+
+    Every cutter file lies in the positive quadrant: the paths are moved so that the
+    lower-left of their bounding box (``bounds``, when given, the frame the file must
+    cover, in the paths' coordinates) is at (0, 0); the plan's ``offset`` is that move.
+    ``like`` gives the paths another plan's offset and bounds instead (a kit's pieces
+    files share the lattice's, so each piece lies in its hole when the sheets are laid
+    alike).
+
+    >>> from fabtiles._profiles import load_profile
+    >>> ring = np.array([[-0.075, -0.075], [40.075, -0.075], [40.075, 40.075], [-0.075, 40.075]])
+    >>> plan = make_plan(load_profile("laser-3mm-plywood"), "pierced", "R2000", 0.15, {"outer": [ring]})
+    >>> plan.offset, np.round(plan.bounds, 9).tolist(), plan.paths("outer")[0].min(axis=0).tolist()
+    ((0.075, 0.075), [0.0, 0.0, 40.15, 40.15], [0.0, 0.0])
     """
     layers_of = profile.layers
     kind = cutter_kind(profile)
+    moved = {role: [np.asarray(r, dtype=float) for r in paths.get(role, ())] for role in ROLES}
+    allr = [r for rings in moved.values() for r in rings]
+    if like is not None:
+        offset, bounds = like.offset, like.bounds
+    else:
+        # The shift is the paths' true lower-left, not a fixed half kerf: a square's kerf
+        # reaches exactly -kerf/2 (-0.075 mm at the 0.15 mm kerf), but a circle's flattened
+        # offset reaches -0.075004 mm, a pointy-top hexagon's mitred tip -0.086603 mm
+        # (kerf/2 / sin 60 deg) and a kerf_y_mm of 0.25 mm -0.125 mm in y: a half-kerf shift
+        # would leave those below 0, and MeerK40t moves such a file to the bed's centre.
+        box = [r.min(axis=0) for r in allr] + ([np.asarray(bounds[:2], dtype=float)] if bounds is not None else [])
+        low = np.min(box, axis=0) if box else np.zeros(2)
+        offset = tuple((0.0 - low).tolist())
+    shift = np.asarray(offset, dtype=float)
+    if shift.any():
+        moved = {role: [r + shift for r in rings] for role, rings in moved.items()}
+        allr = [r for rings in moved.values() for r in rings]
+    if like is None:
+        frame = [np.asarray(bounds, dtype=float).reshape(2, 2) + shift] if bounds is not None else []
+        flat = np.concatenate(allr + frame) if allr or frame else np.zeros((1, 2))
+        bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
     layers = []
     for role in ROLES:
-        rings = [np.asarray(r, dtype=float) for r in paths.get(role, ())]
+        rings = moved[role]
         if not rings:
             continue
         layer = getattr(layers_of, PROFILE_KEYS[role])
@@ -126,15 +164,11 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
                                groups=tuple(groups) if role == "engrave" else ()))
     # a router or waterjet file has its two profiles' layers only; the engrave layer only when it engraves
     declared = [getattr(layers_of, key) for key in kind.layers if key != "engrave" or paths.get("engrave")]
-    if bounds is None:
-        allr = [r for layer in layers for r in layer.paths]
-        flat = np.concatenate(allr) if allr else np.zeros((1, 2))
-        bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
-    est = job_estimate(profile, **{("inner" if r == "inner" else "outer" if r == "outer" else r):
-                                   list(paths.get(r, ())) for r in ROLES}, engrave_area_mm2=engrave_area_mm2,
+    est = job_estimate(profile, **{role: moved[role] for role in ROLES}, engrave_area_mm2=engrave_area_mm2,
                        outer_closed=outer_closed)
     return CutPlan(profile, mode, dxf_version, kerf_mm, tuple(layers), tuple(declared), tuple(bounds), est,
-                   report if report is not None else Report(path="", format=""), part, engrave_area_mm2)
+                   report if report is not None else Report(path="", format=""), part, engrave_area_mm2,
+                   tuple(float(v) for v in offset))
 
 
 def _length(rings, closed: bool) -> float:
@@ -311,6 +345,8 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
                                             + _length(plan.paths("outer"), closed), 3))
     report.stats["job"] = plan.estimate.as_stats()
     report.stats["sheet"] = sheet(outline, profile)
+    # the findings' locations are the tile's coordinates; the files' are these plus the offset
+    report.stats["file_offset_mm"] = [round(v, 6) + 0.0 for v in plan.offset]
     return plan
 
 
@@ -387,8 +423,8 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
                                                         kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
     pieces_report = Report(path="", format="")
     closed = _tabbed(paths, *tabs, pieces_report)
-    pieces = make_plan(profile, "pierced", lattice.dxf_version, kx, paths, bounds=lattice.bounds,
-                       part=kit.pieces, outer_closed=closed, report=pieces_report)
+    pieces = make_plan(profile, "pierced", lattice.dxf_version, kx, paths, like=lattice, part=kit.pieces,
+                       outer_closed=closed, report=pieces_report)
     report = lattice.report
     stats = kit.stats()
     report.stats.update(stats, inlay_fit_mm=fit, inlay_base=base, pieces_job=pieces.estimate.as_stats())
@@ -445,8 +481,8 @@ def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: fl
                                                             kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
         part = shapely.union_all(mine) if len(mine) else shapely.Polygon()
         closed = _tabbed(paths, *tabs, None)
-        out.append((name, make_plan(profile, "pierced", lattice.dxf_version, kx, paths, bounds=lattice.bounds,
-                                    part=part, outer_closed=closed)))
+        out.append((name, make_plan(profile, "pierced", lattice.dxf_version, kx, paths, like=lattice, part=part,
+                                    outer_closed=closed)))
     return tuple(out)
 
 

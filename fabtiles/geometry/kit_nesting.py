@@ -143,13 +143,15 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
             "bbox_of_tile": round(width * height / (tile[0] * tile[1]), 4)}
     # the lattice: each hole's letter scored inside it (on the slug, cut after the scoring)
     hole_score, _ = _letter_paths(letters, np.asarray(kit.holes, dtype=object))
-    lattice_paths = {layer.role: list(layer.paths) for layer in lattice.layers}
+    # the lattice's paths back in the tile's coordinates (the holes' letters are), then moved as before
+    back = np.asarray(lattice.offset, dtype=float)
+    lattice_paths = {layer.role: [p - back for p in layer.paths] for layer in lattice.layers}
     lattice_paths["score"] = lattice_paths.get("score", []) + hole_score
     groups_of = next((layer.groups for layer in lattice.layers if layer.fill), ())
     outer_closed = next((layer.closed for layer in lattice.layers if layer.role == "outer"), True)
     new_lattice = make_plan(profile, lattice.mode, lattice.dxf_version, lattice.kerf_mm, lattice_paths,
                             report=lattice.report, part=lattice.part, groups=groups_of,
-                            engrave_area_mm2=lattice.engrave_area_mm2, bounds=lattice.bounds,
+                            engrave_area_mm2=lattice.engrave_area_mm2, like=lattice,
                             outer_closed=outer_closed)
     if plans.by_colour:
         return replace(plans, lattice=new_lattice, by_colour=tuple(nested))

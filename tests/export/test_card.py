@@ -79,9 +79,12 @@ def test_card_dxf_reads_back_with_measured_features(tmp_path, name):
     assert layers.count(lay.outer_cut.name) == 1
     assert all(e.closed for e in ents if e.dxf.layer != lay.score.name)
     assert not any(e.closed for e in ents if e.dxf.layer == lay.score.name)
-    rings = {k: [np.array(e.get_points("xy")) for e in ents if e.dxf.layer == k]
+    # the file is the card moved by its outline's half kerf into the positive quadrant: moved back
+    shift = np.array(profile.kerf_xy_mm) / 2
+    rings = {k: [np.array(e.get_points("xy"))[:, :2] - shift for e in ents if e.dxf.layer == k]
              for k in (lay.inner_cut.name, lay.outer_cut.name, lay.score.name)}
     outer = rings[lay.outer_cut.name][0]
+    assert (outer + shift).min(axis=0).tolist() == [0.0, 0.0]
     w, h = np.ptp(outer, axis=0)
     assert w == pytest.approx(card.width_mm + profile.kerf_mm) and w <= MAX_CARD_MM + 1 and h <= MAX_CARD_MM + 1
     kinds = [f.kind for f in card.features]
@@ -116,10 +119,12 @@ def test_card_svg_reads_back_with_measured_features(tmp_path):
             out.append((nums, d.endswith("Z")))
         return out
 
-    inner = rings("INNER")
+    shift = np.array(profile.kerf_xy_mm) / 2  # the file is the card moved by its outline's half kerf
+    assert np.concatenate([r for r, _ in rings("OUTER")]).min(axis=0) == pytest.approx([0, 0], abs=1e-9)
+    inner = [(r - shift, closed) for r, closed in rings("INNER")]
     assert all(closed for _, closed in inner) and not any(closed for _, closed in rings("SCORE"))
     measure([r for r, _ in inner], profile.kerf_mm, card)
-    labels_present([r for r, _ in rings("SCORE")], card)
+    labels_present([r - shift for r, _ in rings("SCORE")], card)
 
 
 def test_calibrate_command(tmp_path):

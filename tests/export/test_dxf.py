@@ -48,7 +48,9 @@ def test_star_plate_round_trip(tmp_path, version, kerf):
     assert report.stats["dxf_version"] == version
     xmin, ymin, xmax, ymax = (np.vstack([vertices(e) for e in doc.modelspace()]).min(0).tolist()
                               + np.vstack([vertices(e) for e in doc.modelspace()]).max(0).tolist())
-    assert (xmin, ymin, xmax, ymax) == pytest.approx((-kerf / 2, -kerf / 2, 60 + kerf / 2, 60 + kerf / 2))
+    # the plate grown by half the kerf, moved by half the kerf into the positive quadrant
+    assert (xmin, ymin) == (0.0, 0.0) and (xmax, ymax) == pytest.approx((60 + kerf, 60 + kerf))
+    assert report.stats["file_offset_mm"] == pytest.approx([kerf / 2, kerf / 2], abs=1e-9)
 
 
 @pytest.mark.parametrize("kerf", [0.0, 0.2])
@@ -124,8 +126,12 @@ def test_island_and_loose_parts(tmp_path):
     ents = [(e.dxf.layer, vertices(e)) for e in doc.modelspace()]
     # island outline (inside the hole) is cut before the hole around it, the plate's outline last
     assert [layer for layer, _ in ents] == [INNER.name, INNER.name, OUTER.name]
-    assert ents[0][1][:, 0].min() == pytest.approx(20 - PLY.kerf_mm / 2)
-    assert ents[1][1][:, 0].min() == pytest.approx(10 + PLY.kerf_mm / 2)
+    # the finding is where the tile has it; the file is the tile moved by half the kerf (its outline's
+    # kerf reaches -kerf/2), so the island's contour lies at 20 - kerf/2 + kerf/2, the hole's at 10 + kerf
+    shift = PLY.kerf_mm / 2
+    assert report.stats["file_offset_mm"] == pytest.approx([shift, shift], abs=1e-9)
+    assert ents[0][1][:, 0].min() == pytest.approx(20 - PLY.kerf_mm / 2 + shift)
+    assert ents[1][1][:, 0].min() == pytest.approx(10 + PLY.kerf_mm / 2 + shift)
 
 
 def test_fill_small_holes(tmp_path):
@@ -277,8 +283,11 @@ def test_header_extents_are_the_entities_bounding_box(tmp_path, version, kerf, m
     xmin, ymin, xmax, ymax = _entity_extents(doc)
     assert tuple(doc.header["$EXTMIN"]) == pytest.approx((xmin, ymin, 0.0), abs=1e-9)
     assert tuple(doc.header["$EXTMAX"]) == pytest.approx((xmax, ymax, 0.0), abs=1e-9)
-    # the kerf offset is part of the extents: the outer contour lies kerf/2 outside the outline
-    assert (xmin, ymin) == pytest.approx((-kerf / 2, -kerf / 2), abs=1e-6)
+    # the kerf offset is part of the extents: the outer contour lies kerf/2 outside the outline,
+    # and the file is moved into the positive quadrant, its extents from (0, 0)
+    x0, y0, x1, y1 = outline.bounds
+    assert (xmin, ymin) == (0.0, 0.0)
+    assert (xmax, ymax) == pytest.approx((x1 - x0 + kerf, y1 - y0 + kerf), abs=1e-6)
 
 
 def test_sheet_header_extents(tmp_path):
@@ -293,7 +302,8 @@ def test_sheet_header_extents(tmp_path):
     doc = ezdxf.readfile(path)
     xmin, ymin, xmax, ymax = _entity_extents(doc)
     kerf = PLY.kerf_mm
-    assert (xmax, ymax) == pytest.approx((sheet.size[0] + kerf / 2, sheet.size[1] + kerf / 2), abs=1e-6)
+    assert (xmin, ymin) == (0.0, 0.0)  # moved by half the kerf: every tile's kerf inside the file
+    assert (xmax, ymax) == pytest.approx((sheet.size[0] + kerf, sheet.size[1] + kerf), abs=1e-6)
     assert tuple(doc.header["$EXTMIN"])[:2] == pytest.approx((xmin, ymin), abs=1e-9)
     assert tuple(doc.header["$EXTMAX"])[:2] == pytest.approx((xmax, ymax), abs=1e-9)
 

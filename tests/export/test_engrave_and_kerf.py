@@ -44,8 +44,10 @@ def test_engrave_fills_the_bands_and_cuts_the_outline(tmp_path):
     fill, outer = PLY.layers.engrave.name, PLY.layers.outer_cut.name
     assert set(layers) == {fill, outer} and len(layers[outer]) == 1
     assert all(closed for closed, _ in layers[fill])
-    # the fill's rings, read back and filled even-odd by GEOS, are the tile's material
-    rings = [shapely.LinearRing(v) for _, v in layers[fill]]
+    # the fill's rings, read back, moved back by the file's offset (half the outline's kerf: the file
+    # lies in the positive quadrant) and filled even-odd by GEOS, are the tile's material
+    assert report.stats["file_offset_mm"] == pytest.approx([PLY.kerf_mm / 2] * 2, abs=1e-9)
+    rings = [shapely.LinearRing(v - PLY.kerf_mm / 2) for _, v in layers[fill]]
     filled = shapely.symmetric_difference_all([shapely.Polygon(r) for r in rings])
     region = t.region()
     assert filled.symmetric_difference(region).area < 1e-6 * region.area

@@ -67,8 +67,10 @@ def covered(segs, p, d, half_len):
 def test_score_dxf_shows_the_weave(tmp_path):
     tile = small_tile()
     out = tmp_path / "woven.dxf"
-    tile.export(out, profile="laser-3mm-plywood", mode="score")
-    segs = score_segments(out)
+    report = tile.export(out, profile="laser-3mm-plywood", mode="score")
+    # the file is the tile moved into the positive quadrant (by its outline's half kerf): moved back
+    assert report.stats["file_offset_mm"] == pytest.approx([0.075, 0.075], abs=1e-9)
+    segs = score_segments(out) - report.stats["file_offset_mm"]
     seg = tile.segments()
     inner = tile.inner_shape()
     # the hidden length is at most (stroke + 2 gap) / sin: stay that far inside

@@ -21,6 +21,8 @@ from fabtiles.geometry.inlay import inlay_kit, shape_key
 
 PLY = load_profile("laser-3mm-plywood")
 KERF, FIT = PLY.kerf_mm, PLY.inlay_fit_mm
+OFFSET = KERF / 2
+"""Both files of a kit are the tile moved by half the kerf: the lattice outline's kerf, into the positive quadrant."""
 
 
 def tile(size=60, radius=10, stroke=1.0):
@@ -46,6 +48,7 @@ def test_a_kit_is_two_files_in_registration(kit):
     t, report, lattice, pieces, _ = kit
     assert report.stats["files"] == [str(lattice), str(pieces)]
     assert not (lattice.parent / "t.dxf").exists()
+    assert report.stats["file_offset_mm"] == pytest.approx([OFFSET, OFFSET], abs=1e-9)
     outer = rings(lattice, PLY.layers.outer_cut.name)
     assert len(outer) == 1 and np.ptp(outer[0], axis=0) == pytest.approx([60 + KERF] * 2, abs=1e-6)
     cut = [shapely.Polygon(r) for r in rings(pieces, PLY.layers.outer_cut.name)]
@@ -61,7 +64,7 @@ def test_a_kit_is_two_files_in_registration(kit):
 def test_each_hole_comes_out_at_the_designs_hole(kit):
     """The lattice file's holes, grown back by the half kerf they carry (GEOS), are the design's holes."""
     _, _, lattice, _, expected = kit
-    holes = [shapely.Polygon(r) for r in rings(lattice, PLY.layers.inner_cut.name)]
+    holes = [shapely.Polygon(r - OFFSET) for r in rings(lattice, PLY.layers.inner_cut.name)]  # the tile's place
     assert len(holes) == len(expected.holes)
     tree = shapely.STRtree(expected.holes)
     for h in holes:
@@ -78,7 +81,7 @@ def test_each_piece_is_its_hole_grown_by_the_fit(kit):
     _, _, _, pieces, expected = kit
     tree = shapely.STRtree(expected.holes)
     for r in rings(pieces, PLY.layers.outer_cut.name):
-        cut = shapely.Polygon(r)
+        cut = shapely.Polygon(r - OFFSET)  # moved back to the tile's place
         (k,) = tree.query(shapely.point_on_surface(cut), predicate="within")
         hole = expected.holes[k]
         pts = shapely.get_coordinates(hole.exterior)
@@ -171,10 +174,13 @@ def test_librecad_and_meerk40t_open_both_files_at_true_size(kit, tmp_path):
     drawn = np.concatenate(rings(pieces, PLY.layers.outer_cut.name))
     assert np.ptp(pcs, axis=0) == pytest.approx(np.ptp(drawn, axis=0), abs=0.05)
     assert jobs[pieces.name]["added"] == len(rings(pieces, PLY.layers.outer_cut.name))
-    # MeerK40t moves a file reaching past the bed's origin (the lattice's kerf at -0.075 mm) to
-    # the bed's centre, and leaves one inside it where it is: placed by hand, they register
-    shift = lat.min(axis=0) - (-KERF / 2)
-    assert shift == pytest.approx([87.5, 87.5], abs=0.1)
+    # MeerK40t moved a file reaching past the bed's origin (the lattice's kerf at -0.075 mm, before
+    # every file was moved into the positive quadrant) 87.5 mm to the bed's centre and left the pieces
+    # where they lay; now it leaves both where they lie, the lattice's corner at (0, 0): they register
+    lattice_drawn = np.concatenate([r for e in (PLY.layers.inner_cut.name, PLY.layers.outer_cut.name)
+                                    for r in rings(lattice, e)])
+    assert lattice_drawn.min(axis=0).tolist() == [0.0, 0.0]
+    assert lat.min(axis=0) == pytest.approx(lattice_drawn.min(axis=0), abs=0.05)
     assert pcs.min(axis=0) == pytest.approx(drawn.min(axis=0), abs=0.05)
 
 

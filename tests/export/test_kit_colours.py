@@ -7,6 +7,7 @@ piece its face grown by the fit and half the kerf.
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 import shapely
 from dxf_helpers import read_checked, ring_polygons
@@ -61,7 +62,10 @@ def test_each_pieces_file_holds_exactly_its_colours_faces(kit, colour, letter):
     profile = load_profile("laser-3mm-plywood")
     kerf, fit = max(profile.kerf_xy_mm), profile.inlay_fit_mm
     doc = read_checked(out / f"kit-pieces-{colour}.dxf")
-    cuts = [p for p in ring_polygons(doc, {layer.dxf.name for layer in doc.layers}) if p.area > 0]
+    # every file of the kit is the tile moved by the lattice outline's half kerf: moved back to the faces
+    shift = np.array(profile.kerf_xy_mm) / 2
+    layers = {layer.dxf.name for layer in doc.layers}
+    cuts = [shapely.transform(p, lambda c: c - shift) for p in ring_polygons(doc, layers) if p.area > 0]
     faces = shapely.get_parts(models.face_classes.of(letter))
     faces = faces[shapely.area(faces) > 1.0]  # the faces large enough for a piece
     assert len(cuts) == len(faces)

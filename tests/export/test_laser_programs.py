@@ -122,6 +122,14 @@ def test_meerk40t_cuts_every_contour_once_at_the_tile_size(files, tmp_path, fmt)
     allp = np.concatenate(paths)
     extent = allp.max(axis=0) - allp.min(axis=0)
     assert extent == pytest.approx([SIZE + PLY.kerf_mm] * 2, abs=0.05)
+    # burnt where the file lies, the outline's kerf included. A DXF from (0, 0): one reaching below 0
+    # (the kerf at -0.075 mm, before every file was moved into the positive quadrant) MeerK40t moved
+    # to the centre of its bed, burnt from (87.427, 87.427). An SVG is placed by its page, the top-left
+    # corner at the bed's (y down): x from 0 as the file's, y up to the 235 mm bed's top
+    if fmt == "dxf":
+        assert allp.min(axis=0) == pytest.approx([0, 0], abs=GRBL_STEP)
+    else:
+        assert allp.min(axis=0)[0] == pytest.approx(0, abs=GRBL_STEP)
 
 
 def test_meerk40t_engraves_the_score_lines_and_cuts_the_outline(files, tmp_path):

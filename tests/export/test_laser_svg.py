@@ -34,7 +34,8 @@ def test_same_contours_as_dxf(tmp_path):
     root = ET.parse(svg).getroot()
     k = PLY.kerf_mm / 2
     assert root.get("width") == f"{60 + 2 * k:g}mm" and root.get("height") == f"{60 + 2 * k:g}mm"
-    assert [float(v) for v in root.get("viewBox").split()] == pytest.approx([-k, -60 - k, 60 + 2 * k, 60 + 2 * k])
+    # the plate grown by half the kerf and moved into the positive quadrant: the view from (0, 0)
+    assert [float(v) for v in root.get("viewBox").split()] == pytest.approx([0, -60 - 2 * k, 60 + 2 * k, 60 + 2 * k])
     groups = root.findall("s:g", NS)
     assert [g.get("id") for g in groups] == ["INNER", "OUTER"]
     assert [g.get("stroke") for g in groups] == ["#FF0000", "#FF0000"]  # both cuts red (docs/laser-programs.md)

@@ -144,7 +144,9 @@ def test_the_waterjet_rounds_to_the_jet_then_offsets_half_a_kerf(tmp_path):
     area = even_odd_area(ring_polygons(doc, ("INSIDE", "OUTSIDE")))
     assert area == pytest.approx(grown.area, rel=0.001)
     [outer] = ring_polygons(doc, ("OUTSIDE",))
-    assert outer.bounds == pytest.approx((-0.5, -0.5, 150.5, 150.5), abs=1e-6)
+    # the outline grown by half the 1 mm kerf, moved by it into the positive quadrant
+    assert outer.bounds == pytest.approx((0, 0, 151, 151), abs=1e-6)
+    assert report.stats["file_offset_mm"] == [0.5, 0.5]
     assert report.stats["cutter"] == "waterjet" and report.stats["kerf_mm"] == 1.0
 
 
@@ -180,7 +182,8 @@ def test_the_laser_files_are_unchanged_by_the_kind_field(tmp_path):
     region, outline = tile_region()
     write_dxf(tmp_path / "l.dxf", region=region, outline=outline, profile="laser-3mm-plywood")
     text = (tmp_path / "l.dxf").read_text()
-    assert text.startswith("  0\nSECTION\n") and "999" not in text.split("ENTITIES")[0]
+    codes = [line.strip() for line in text.split("ENTITIES")[0].splitlines()[::2]]  # the group codes
+    assert text.startswith("  0\nSECTION\n") and "999" not in codes
 
 
 @pytest.mark.parametrize("options, error, match", [

@@ -97,9 +97,10 @@ def test_sample_score_dxf_is_golden(tmp_path):
     assert score and all(e.dxftype() == "LWPOLYLINE" and not is_closed(e) for e in score)
     assert all(edge_problems(vertices(e), closed=False)[0] == 0 for e in score)
     outline = vertices(cut[0])
-    half = profile.kerf_mm / 2
-    assert outline.min(0) == pytest.approx([-half, -half], abs=profile.tolerance_mm)
-    assert outline.max(0) == pytest.approx([tile.width_mm + half, tile.height_mm + half], abs=profile.tolerance_mm)
+    # the outline grown by half the kerf, moved into the positive quadrant: its corner at (0, 0)
+    kerf = profile.kerf_mm
+    assert outline.min(0).tolist() == [0.0, 0.0]
+    assert outline.max(0) == pytest.approx([tile.width_mm + kerf, tile.height_mm + kerf], abs=profile.tolerance_mm)
     assert_golden(path, f"sample-{ONE.stem}-score")
 
 

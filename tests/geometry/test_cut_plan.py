@@ -1,13 +1,17 @@
-"""The cut plan's refusals (fabtiles.geometry.cut_plan): modes it cannot plan on their own or without their input."""
+"""The cut plan (fabtiles.geometry.cut_plan): the modes it refuses, and its paths moved into the positive quadrant."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
+import numpy as np
 import pytest
 import shapely
 from shapely.geometry import box
 
 from fabtiles import ParameterError
-from fabtiles.geometry.cut_plan import plan_cut, plan_kit
+from fabtiles._profiles import load_profile
+from fabtiles.geometry.cut_plan import make_plan, plan_cut, plan_kit
 
 PLATE = box(0, 0, 40, 40)
 
@@ -34,3 +38,48 @@ def test_a_pocket_kit_needs_a_hole_large_enough_for_a_piece():
     with pytest.raises(ParameterError, match="^the tile has no hole large enough for a piece; nothing to pocket$") as err:
         plan_kit(region, PLATE, profile="laser-3mm-plywood", inlay_base="pocket")
     assert err.value.param == "region"
+
+
+# --------------------------------------------------------------------------- the positive quadrant
+
+
+def _low(plan):
+    return np.concatenate([r for layer in plan.layers for r in layer.paths]).min(axis=0)
+
+
+@pytest.mark.parametrize("outline, kerf_y, want", [
+    (PLATE, None, (0.075, 0.075)),                     # a square's kerf: exactly half the 0.15 mm kerf
+    (PLATE, 0.25, (0.075, 0.125)),                     # kerf_y_mm: half of it in y
+    (shapely.Point(20, 20).buffer(20, quad_segs=64).normalize(), None, (0.075, 0.075)),  # a circle: a little more
+])
+def test_the_paths_are_moved_by_their_own_lower_left(outline, kerf_y, want):
+    outline = shapely.transform(outline, lambda c: c - shapely.bounds(outline)[:2])
+    region = outline.difference(box(15, 15, 25, 25))
+    plan = plan_cut(region, outline, profile=replace(load_profile("laser-3mm-plywood"), kerf_y_mm=kerf_y))
+    assert _low(plan).tolist() == [0.0, 0.0] and plan.bounds[:2] == (0.0, 0.0)
+    assert plan.offset == pytest.approx(want, abs=1e-5) and min(np.subtract(plan.offset, want)) >= 0
+    assert plan.report.stats["file_offset_mm"] == pytest.approx(list(plan.offset), abs=1e-6)
+    assert plan.part.equals(region)  # the part stays in the tile's coordinates (the pictures, the findings)
+
+
+def test_a_kits_plans_share_the_lattices_offset_and_bounds():
+    plate = PLATE.difference(box(10, 10, 30, 30))
+    kit = plan_kit(plate, PLATE, profile="laser-3mm-plywood")
+    assert kit.lattice.offset == kit.pieces.offset == pytest.approx((0.075, 0.075))
+    assert kit.pieces.bounds == kit.lattice.bounds
+    # the piece (the 20 mm hole grown by the fit and half the kerf) at its hole's place, moved alike
+    fit = load_profile("laser-3mm-plywood").inlay_fit_mm
+    [piece] = kit.pieces.paths("outer")
+    assert piece.min(axis=0) == pytest.approx([10 - fit - 0.075 + 0.075] * 2, abs=1e-6)
+
+
+def test_bounds_given_frame_the_file_and_an_empty_plan_is_not_moved():
+    ply = load_profile("laser-3mm-plywood")
+    ring = np.array([[5.0, 5.0], [15.0, 5.0], [15.0, 15.0]])
+    framed = make_plan(ply, "pierced", "R2000", 0.15, {"outer": [ring]}, bounds=(0, 0, 100, 50))
+    assert framed.offset == (0.0, 0.0) and framed.bounds == (0.0, 0.0, 100.0, 50.0)
+    assert framed.paths("outer")[0].tolist() == ring.tolist()
+    moved = make_plan(ply, "pierced", "R2000", 0.15, {"outer": [ring - 10]}, bounds=(0, 0, 100, 50))
+    assert moved.offset == (5.0, 5.0) and moved.bounds == (0.0, 0.0, 105.0, 55.0)
+    empty = make_plan(ply, "pierced", "R2000", 0.15, {})
+    assert empty.offset == (0.0, 0.0) and empty.bounds == (0.0, 0.0, 0.0, 0.0)
