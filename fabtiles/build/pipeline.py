@@ -362,7 +362,8 @@ def _options_for(fmt, profile, options: dict) -> BuildOptions:
         mode = o.get("mode")
         given = [k for k in _INLAY_OPTIONS if k in o]
         if (mode or cutter.mode) != "inlay" and given:
-            raise ParameterError(f"{' and '.join(_INLAY_OPTIONS)} are options of the inlay mode; pass mode='inlay'",
+            raise ParameterError(f"{', '.join(_INLAY_OPTIONS[:-1])} and {_INLAY_OPTIONS[-1]} are options of the inlay "
+                                 f"mode; pass mode='inlay'",
                                  param=given[0])
         from .._cutters import cutter_kind
 

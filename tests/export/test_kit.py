@@ -205,7 +205,7 @@ def test_a_fit_that_makes_pieces_touch_names_the_narrowest_band(tmp_path):
 def test_bad_kit_options(tmp_path, options, error, msg):
     with pytest.raises(error, match=msg):
         tile().export(tmp_path / "t.dxf", mode="inlay", **options)
-    with pytest.raises(ParameterError, match=r"inlay_fit_mm and inlay_base are options of the inlay mode"):
+    with pytest.raises(ParameterError, match=r"inlay_fit_mm, inlay_pieces and inlay_base are options of the inlay mode"):
         tile().export(tmp_path / "t.dxf", inlay_fit_mm=0.1)
     assert list(tmp_path.iterdir()) == []
 
