@@ -12,7 +12,10 @@ from pathlib import Path
 
 import click
 
-from ..geometry.nest import DEFAULT_TIME_S, ROTATIONS
+# the nesting's rotation modes and default time, as fabtiles.geometry.nest has them (a test keeps the two
+# alike): importing it here would import shapely for `fabtiles --help`
+ROTATIONS = ("none", "180", "90", "free")
+DEFAULT_TIME_S = 5.0
 
 _COUNTED = re.compile(r"^(?P<path>.+):(?P<count>\d+)$")
 _SHEET = re.compile(r"^\s*(?P<w>[0-9.]+)\s*[xX]\s*(?P<h>[0-9.]+)\s*$")

@@ -115,7 +115,7 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
     """A :class:`CutPlan` of ``paths`` (role -> list of arrays), its layers, bounds and estimate.
 
     For plans made without the tile pipeline too (the calibration card, a kit's pieces).
-    ``outer_closed=False``: the outer paths are open pieces between holding tabs (:func:`_tabbed`).
+    ``outer_closed=False``: the outer paths are open pieces between holding tabs (:func:`split_at_tabs`).
 
     Every cutter file lies in the positive quadrant: the paths are moved so that the
     lower-left of their bounding box (``bounds``, when given, the frame the file must
@@ -202,7 +202,7 @@ def _engrave_paths(region, profile, report: Report):
     return cleaned, part[kept].tolist(), area
 
 
-def _tabbed(paths: dict, tab_mm: float, tabs_per_part: int, report: Report | None) -> bool:
+def split_at_tabs(paths: dict, tab_mm: float, tabs_per_part: int, report: Report | None) -> bool:
     """``paths["outer"]`` split at holding tabs when ``tab_mm`` > 0 (:func:`.tabs.tab_paths`), the report
     told how many and where; whether the outer paths are still closed."""
     if not tab_mm or not paths.get("outer"):
@@ -335,7 +335,7 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
         report.stats["score_length_mm"] = round(_length(paths["score"], False), 3)
         part = outline
     outer_rings = len(paths["outer"])
-    closed = _tabbed(paths, *tabs, report)
+    closed = split_at_tabs(paths, *tabs, report)
     plan = make_plan(profile, mode, dxf_version, kerf, paths, report=report, part=part, groups=groups,
                      engrave_area_mm2=engrave_area, outer_closed=closed)
     allr = [r for layer in plan.layers for r in layer.paths]
@@ -422,7 +422,7 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
         paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(kit.pieces))),
                                                         kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
     pieces_report = Report(path="", format="")
-    closed = _tabbed(paths, *tabs, pieces_report)
+    closed = split_at_tabs(paths, *tabs, pieces_report)
     pieces = make_plan(profile, "pierced", lattice.dxf_version, kx, paths, like=lattice, part=kit.pieces,
                        outer_closed=closed, report=pieces_report)
     report = lattice.report
@@ -480,7 +480,7 @@ def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: fl
             paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(mine))),
                                                             kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
         part = shapely.union_all(mine) if len(mine) else shapely.Polygon()
-        closed = _tabbed(paths, *tabs, None)
+        closed = split_at_tabs(paths, *tabs, None)
         out.append((name, make_plan(profile, "pierced", lattice.dxf_version, kx, paths, like=lattice, part=part,
                                     outer_closed=closed)))
     return tuple(out)

@@ -85,7 +85,7 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
     was planned with (the nested pieces keep their holding tabs). Returns new
     :class:`KitPlans`; the report says how the pieces were packed.
     """
-    from .cut_plan import _tabbed
+    from .cut_plan import split_at_tabs
     from .tabs import check_tabs
 
     kit, lattice = plans.kit, plans.lattice
@@ -124,7 +124,7 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
         score, small = _letter_paths([letters[i] for i in ids], placed)
         if score:
             paths["score"] = score
-        closed = _tabbed(paths, *tabs, None)
+        closed = split_at_tabs(paths, *tabs, None)
         box = shapely.union_all(placed).bounds
         sheet = (box[2] + d, sheet[1])  # the sheet the pieces take: up to the last one's cut
         new = make_plan(profile, "pierced", lattice.dxf_version, kx, paths, bounds=(0.0, 0.0, *sheet),

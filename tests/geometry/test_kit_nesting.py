@@ -98,7 +98,7 @@ def test_nested_pieces_keep_the_gap_and_the_sheet(built):
     x0, y0, x1, y1 = shapely.union_all(outer).bounds
     assert x0 >= -1e-9 and y0 >= -1e-9
     stats = result.reports[0].stats["nested_pieces"]["pieces"]
-    assert y1 <= stats["sheet_mm"][1] + 1e-6 and x1 <= stats["sheet_mm"][0] + 1e-6
+    assert y1 <= stats["sheet_mm"][1] + 1e-3 and x1 <= stats["sheet_mm"][0] + 1e-3  # the stats are rounded
     assert stats["bbox_of_tile"] < 1.0  # the nested pieces take less than the tile
 
 

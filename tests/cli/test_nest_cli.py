@@ -186,3 +186,10 @@ def test_meerk40t_loads_a_nested_sheet_where_it_lies(designs, tmp_path):
     allp = np.concatenate(burns(job["gcode"]))
     # the burns span the file's paths at their own size (not scaled to MeerK40t's 235 mm bed)
     assert allp.max(axis=0) - allp.min(axis=0) == pytest.approx(every.max(axis=0) - every.min(axis=0), abs=0.05)
+
+
+def test_the_commands_choices_are_the_nestings():
+    from fabtiles.cli import nest as cli_nest
+    from fabtiles.geometry import nest
+
+    assert cli_nest.ROTATIONS == tuple(nest.ROTATIONS) and cli_nest.DEFAULT_TIME_S == nest.DEFAULT_TIME_S
