@@ -50,15 +50,13 @@ class NestError(FabtilesError, ValueError):
         self.field = field
 
 
-def _number(body: dict, field: str, *, default=None, integer=False):
+def _number(body: dict, field: str, *, default=None):
     value = body.get(field, default)
     if value is None:
         return None
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise NestError(f"{field} must be a finite number, got {value!r}", field)
-    if integer and not float(value).is_integer():
-        raise NestError(f"{field} must be a whole number, got {value!r}", field)
-    return int(value) if integer else float(value)
+    return float(value)
 
 
 def read_body(body, *, limits: _limits.Limits) -> dict:
