@@ -169,7 +169,7 @@ class NestJob:
         on = nesting.on_sheet(k)
         parts = [(self.designs[self.shapes[i]][0].name, nesting.outlines[i]) for i in on]
         return nested_sheet_svg(self.model.plans[k], parts, nesting.sheet_mm,
-                                title=f"sheet {k + 1}: {len(on)} parts, material use {nesting.material_use()[k]:.0%}")
+                                title=f"sheet {k + 1}: {len(on)} part{'s' if len(on) != 1 else ''}, material use {nesting.material_use()[k]:.0%}")
 
 
 def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=None, gap_mm: float | None = None,
