@@ -22,17 +22,21 @@ from ._report import distinct
 
 @dataclass(frozen=True)
 class Limits:
-    """Largest job accepted: segments before clipping, tile side in mm, and the same for STEP."""
+    """Largest job accepted: segments before clipping, tile side in mm, the same for STEP, and a nest's
+    parts and packing time (seconds)."""
 
     max_segments: int = 400_000
     max_size_mm: float = 3000.0
     max_step_segments: int = 60_000
+    max_nest_parts: int = 5_000
+    max_nest_time_s: float = 3600.0
 
 
 CLI_LIMITS = Limits()
 """Limits of ``fabtiles build``: a 1,200 x 600 mm sheet fits with room to spare."""
 
-WEB_LIMITS = Limits(max_segments=200_000, max_size_mm=1200.0, max_step_segments=30_000)
+WEB_LIMITS = Limits(max_segments=200_000, max_size_mm=1200.0, max_step_segments=30_000, max_nest_parts=60,
+                    max_nest_time_s=10.0)
 """Limits of the web app: every request answers in seconds."""
 
 
@@ -99,3 +103,19 @@ def check_export(tile, fmt: str, limits: Limits) -> None:
                 f"STEP export of about {count:,} segments is over the limit of "
                 f"{limits.max_step_segments:,}; export STL or 3MF, or a smaller tile"
             )
+
+
+def check_nest(parts: int, time_s: float, limits: Limits) -> None:
+    """Refuse a nest of more than ``limits.max_nest_parts`` parts or a packing time over ``limits.max_nest_time_s``.
+
+    >>> check_nest(61, 5, WEB_LIMITS)
+    Traceback (most recent call last):
+    ...
+    fabtiles._errors.LimitError: the nest has 61 parts, more than the limit of 60; nest fewer copies
+    """
+    if parts > limits.max_nest_parts:
+        raise LimitError(f"the nest has {parts:,} parts, more than the limit of {limits.max_nest_parts:,}; "
+                         "nest fewer copies", param="count")
+    if time_s > limits.max_nest_time_s:
+        raise LimitError(f"time_s must be at most {limits.max_nest_time_s:g} s here, got {time_s:g}; "
+                         f"give a time of at most {limits.max_nest_time_s:g}", param="time_s")

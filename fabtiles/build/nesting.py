@@ -128,45 +128,66 @@ def _sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf):
     return sheet
 
 
-def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None, sheet_mm=None,
-                 gap_mm: float | None = None, rotations: str = "90", time_s: float | None = None,
-                 name: str | None = None, progress=None, limits: _limits.Limits = _limits.CLI_LIMITS) -> NestResult:
-    """Nest tiles of ``designs`` onto sheets and write ``OUTDIR/<name>-sheet-<k>.<format>``, all or nothing.
+@dataclass(frozen=True)
+class NestJob:
+    """A nest planned and checked, nothing written: the sheets' cut plans and what is on each.
 
-    Parameters
-    ----------
-    designs : list of (Design, int or None)
-        Each design and its copies (``None``: ``count``).
-    outdir : str or Path
-        Output folder.
-    formats : iterable of str
-        Cutter formats (``dxf``, ``svg``, ``lbrn2``).
-    count : int, optional
-        Copies of each design whose own count is ``None`` (>= 1; default 1).
-    sheet_mm : (float, float), optional
-        The sheet; default the cutter profile's bed; larger than the bed is an error.
-    gap_mm : float, optional
-        Least distance between two parts' cut paths (>= the kerf, or a router's bit);
-        default that + 1 mm.
-    rotations, time_s, progress
-        As :func:`~fabtiles.geometry.nest.nest` (``time_s`` default 5 s).
-    name : str, optional
-        The files' stem; default the first design's name.
+    Made by :func:`plan_nest`; :func:`nest_designs` writes it into a folder,
+    :func:`nest_bytes` as bytes (the web app's downloads).
+    """
 
-    Raises
-    ------
-    FabtilesError
-        With nothing written: a count < 1, designs of different cutter profiles, an
-        inlay kit, a print format, a gap below the kerf, a sheet larger than the bed,
-        a part larger than the sheet, a job over the limits.
+    model: NestedSheets
+    options: BuildOptions
+    labels: list
+    """``(label, report)`` of each design's cut plan (its findings)."""
+    designs: list
+    """``[(design, copies), ...]``."""
+    shapes: list
+    """Per part (in the nesting's order), the index of its design."""
+    formats: tuple
+    stem: str
+
+    @property
+    def nesting(self):
+        return self.model.nesting
+
+    def sheets(self) -> list[dict]:
+        """Per sheet: its number, parts, each design's copies, material use, job and files."""
+        nesting, out = self.model.nesting, []
+        for k, plan in enumerate(self.model.plans):
+            names = [self.designs[self.shapes[i]][0].name for i in nesting.on_sheet(k)]
+            out.append(dict(sheet=k + 1, parts=len(names), designs={n: names.count(n) for n in dict.fromkeys(names)},
+                            material_use=nesting.material_use()[k], job=plan.estimate.as_stats(),
+                            files=[f"{self.stem}{NEST_SUFFIX}{k + 1}.{fmt}" for fmt in self.formats]))
+        return out
+
+    def picture(self, k: int) -> str:
+        """Sheet ``k`` (0-based) drawn: the sheet, each part's outline named, every cut path."""
+        from ..export.preview_svg import nested_sheet_svg
+
+        nesting = self.model.nesting
+        on = nesting.on_sheet(k)
+        parts = [(self.designs[self.shapes[i]][0].name, nesting.outlines[i]) for i in on]
+        return nested_sheet_svg(self.model.plans[k], parts, nesting.sheet_mm,
+                                title=f"sheet {k + 1}: {len(on)} part{'s' if len(on) != 1 else ''}, material use {nesting.material_use()[k]:.0%}")
+
+
+def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=None, gap_mm: float | None = None,
+              rotations: str = "90", time_s: float | None = None, name: str | None = None, progress=None,
+              limits: _limits.Limits = _limits.CLI_LIMITS) -> NestJob:
+    """Nest tiles of ``designs`` onto sheets: each sheet's cut plan, checked, nothing written.
+
+    The parameters and errors are :func:`nest_designs`'s (which writes the job).
     """
     from ..geometry.nest import DEFAULT_TIME_S, nest
     from .._cutters import cutter_kind
-    from .pipeline import prepare_tile, sheet_formats, write_files
+    from .pipeline import prepare_tile, sheet_formats
 
     if not designs:
         raise ParameterError("give at least one design to nest", param="designs")
     designs = parse_counts(designs, count)
+    time_s = DEFAULT_TIME_S if time_s is None else check_float("time_s", time_s, low=0, low_open=True)
+    _limits.check_nest(sum(n for _, n in designs), time_s, limits)
     formats = tuple(dict.fromkeys(formats))
     cut, printed = sheet_formats(formats)
     if printed or not cut:
@@ -219,23 +240,91 @@ def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None,
         for c in range(n):
             parts.append((f"{d.name}#{k}:{c + 1}", outline))
             shapes.append(k)
-    nesting = nest(parts, sheet_mm=(w, h), gap_mm=gap, rotations=rotations,
-                   time_s=DEFAULT_TIME_S if time_s is None else time_s, progress=progress)
-    o = options[0]
+    nesting = nest(parts, sheet_mm=(w, h), gap_mm=gap, rotations=rotations, time_s=time_s, progress=progress)
     mode, dxf_version = plans[0].mode, plans[0].dxf_version
     sheets = tuple(_sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf)
                    for k in range(nesting.sheets))
     report = Report(path="", format="")
     report.stats.update(profile=profile.name, sheets=nesting.sheets, sheet_mm=[w, h], gap_mm=gap,
                         rotations=rotations, parts=len(parts), material_use=list(nesting.material_use()))
-    model = NestedSheets(sheets, nesting, report)
     labels = [(f"{profile.kind} {profile.name}: {d.name}", p.report) for (d, _), p in zip(designs, plans)]
     stem = name if name is not None else designs[0][0].name
-    result = write_files(_NestModels(o, model, labels), cut, outdir, stem)
-    per_sheet = []
-    for k, plan in enumerate(sheets):
-        names = [designs[shapes[i]][0].name for i in nesting.on_sheet(k)]
-        per_sheet.append(dict(sheet=k + 1, parts=len(names), designs={n: names.count(n) for n in dict.fromkeys(names)},
-                              material_use=nesting.material_use()[k], job=plan.estimate.as_stats(),
-                              files=[f"{stem}{NEST_SUFFIX}{k + 1}.{fmt}" for fmt in cut]))
-    return NestResult(result, nesting, per_sheet)
+    return NestJob(NestedSheets(sheets, nesting, report), options[0], labels, designs, shapes, cut, stem)
+
+
+def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None, sheet_mm=None,
+                 gap_mm: float | None = None, rotations: str = "90", time_s: float | None = None,
+                 name: str | None = None, progress=None, limits: _limits.Limits = _limits.CLI_LIMITS) -> NestResult:
+    """Nest tiles of ``designs`` onto sheets and write ``OUTDIR/<name>-sheet-<k>.<format>``, all or nothing.
+
+    Parameters
+    ----------
+    designs : list of (Design, int or None)
+        Each design and its copies (``None``: ``count``).
+    outdir : str or Path
+        Output folder.
+    formats : iterable of str
+        Cutter formats (``dxf``, ``svg``, ``lbrn2``).
+    count : int, optional
+        Copies of each design whose own count is ``None`` (>= 1; default 1).
+    sheet_mm : (float, float), optional
+        The sheet; default the cutter profile's bed; larger than the bed is an error.
+    gap_mm : float, optional
+        Least distance between two parts' cut paths (>= the kerf, or a router's bit);
+        default that + 1 mm.
+    rotations, time_s, progress
+        As :func:`~fabtiles.geometry.nest.nest` (``time_s`` default 5 s).
+    name : str, optional
+        The files' stem; default the first design's name.
+    limits : Limits
+        The work limits (segments, parts, time).
+
+    Raises
+    ------
+    FabtilesError
+        With nothing written: a count < 1, designs of different cutter profiles, an
+        inlay kit, a print format, a gap below the kerf, a sheet larger than the bed,
+        a part larger than the sheet, a job over the limits.
+    """
+    from .pipeline import write_files
+
+    job = plan_nest(designs, formats, count=count, sheet_mm=sheet_mm, gap_mm=gap_mm, rotations=rotations,
+                    time_s=time_s, name=name, progress=progress, limits=limits)
+    result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)
+    return NestResult(result, job.nesting, job.sheets())
+
+
+@dataclass(frozen=True)
+class NestedFiles:
+    """A nest's files as bytes (:func:`nest_bytes`): ``files`` is ``[(file name, bytes), ...]``."""
+
+    job: NestJob
+    files: list
+
+    def zip_bytes(self) -> bytes:
+        """Every file in one zip archive, in sheet order."""
+        import io
+        import zipfile
+
+        from .._io import zip_entry
+
+        buf = io.BytesIO()
+        with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as zf:
+            for fname, data in self.files:
+                zf.writestr(zip_entry(fname), data, compress_type=zipfile.ZIP_DEFLATED)
+        return buf.getvalue()
+
+
+def nest_bytes(designs, formats=("dxf",), **options) -> NestedFiles:
+    """Nest tiles of ``designs`` as :func:`nest_designs` does, and make the files as bytes (no folder).
+
+    Takes :func:`nest_designs`'s keyword ``options`` but ``outdir``; the files are
+    the same writers' (``<name>-sheet-<k>.<format>``), for the web app's downloads.
+    """
+    from ..export.formats import FORMATS, FileOptions
+
+    job = plan_nest(designs, formats, **options)
+    opts = FileOptions(name=job.stem, layout=job.options.threemf_layout)
+    files = [(f"{job.stem}{suffix}.{fmt}", FORMATS[fmt].write(plan, opts))
+             for fmt in job.formats for suffix, plan in job.model.files_of(fmt)]
+    return NestedFiles(job, files)

@@ -216,3 +216,60 @@ def kit_svg(kit, outline, *, title: str = "inlay kit", colours=KIT_COLOURS) -> s
             f'viewBox="0 0 {_num(total)} {_num(h)}">\n<title>{_escape(title)}: lattice, pieces, assembled, reverse</title>\n'
             f"{body}\n</svg>\n")
 
+
+
+NEST_COLOURS = {"sheet": "#f3ead8", "part": "#d8b98a", "outer": "#b03a2e", "inner": "#1f3b73", "score": "#2e7d32",
+                "engrave": "#555555"}
+"""The nested sheet's picture: the sheet, each part's outline, and its cut paths by role."""
+
+
+def nested_sheet_svg(plan, parts, sheet_mm, *, title: str = "nested sheet") -> str:
+    """A picture of one nested sheet, for a screen: the sheet, each part's outline, every cut path.
+
+    The cut paths are drawn a pixel wide whatever the scale (``vector-effect``), since the
+    sheet is shown much smaller than true size; an engraved layer is filled.
+
+    Parameters
+    ----------
+    plan : CutPlan
+        The sheet's cut plan (its layers, already placed).
+    parts : list of (str, shapely Polygon)
+        Each placed part's name and outline, drawn as ``<path class="part" data-part=name>``.
+    sheet_mm : (float, float)
+        The sheet's width and height, mm.
+    title : str
+        The picture's title.
+
+    >>> import shapely
+    >>> from fabtiles.geometry.cut_plan import plan_cut
+    >>> plan = plan_cut(shapely.box(0, 0, 40, 40), shapely.box(0, 0, 40, 40), profile="laser-3mm-plywood")
+    >>> svg = nested_sheet_svg(plan, [("a", shapely.box(0, 0, 40, 40))], (100, 50))
+    >>> svg.count('class="part"'), 'viewBox="0 0 100 50"' in svg
+    (1, True)
+    """
+    w, h = (float(v) for v in sheet_mm)
+    out = ['<?xml version="1.0" encoding="UTF-8"?>\n'
+           f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(w)}mm" height="{_num(h)}mm" '
+           f'viewBox="0 0 {_num(w)} {_num(h)}">\n<title>{_escape(title)}</title>\n',
+           f'<rect class="sheet" x="0" y="0" width="{_num(w)}" height="{_num(h)}" fill="{NEST_COLOURS["sheet"]}" '
+           'stroke="#888" stroke-width="1" vector-effect="non-scaling-stroke"/>\n']
+    for name, outline in parts:
+        out.append(f'<path class="part" data-part="{_attr(name)}" d="{region_path_data(outline, h)}" '
+                   f'fill="{NEST_COLOURS["part"]}" stroke="none"><title>{_escape(name)}</title></path>\n')
+    for layer in plan.layers:
+        colour = NEST_COLOURS.get(layer.role, NEST_COLOURS["inner"])
+        if layer.fill:
+            paint = f'fill="{NEST_COLOURS["engrave"]}" fill-rule="evenodd" stroke="none"'
+        else:
+            paint = f'fill="none" stroke="{colour}" stroke-width="1" vector-effect="non-scaling-stroke"'
+        rings = []
+        for r in layer.paths:
+            pts = np.asarray(r, dtype=float)
+            if len(pts) < 2:
+                continue
+            d = "M" + "L".join(f"{_num(x)} {_num(h - y)}" for x, y in pts)
+            rings.append(d + ("Z" if layer.closed or layer.fill else ""))
+        if rings:
+            out.append(f'<path class="cut {_attr(layer.role)}" d="{"".join(rings)}" {paint}/>\n')
+    out.append("</svg>\n")
+    return "".join(out)

@@ -1,10 +1,10 @@
 """The local web app: change the parameters, watch the tile, download it.
 
-A FastAPI application made of three routers (:mod:`fabtiles.web.routes`): the
+A FastAPI application made of four routers (:mod:`fabtiles.web.routes`): the
 pages and static files, the catalogue the form is made from (the schema of the
-design keys, presets, tilings, profiles, the gallery), and the tile's answers
-(preview, checks, downloads). Every request's query is turned into a design
-dictionary (:mod:`fabtiles.web.params`), checked against the work limits before
+design keys, presets, tilings, profiles, the gallery), the tile's answers
+(preview, checks, downloads), and the nest (several designs on the cutter's
+sheets). Every request's query is turned into a design dictionary (:mod:`fabtiles.web.params`), checked against the work limits before
 anything is built, and built through the same code as ``fabtiles build``. Bad
 input answers 422 with ``{"error": ..., "field": ...}``, never 500; the field
 comes from the error's key. No file path ever comes from a request: profiles are
@@ -20,7 +20,7 @@ from fastapi import FastAPI
 from .. import _limits
 from .._errors import FabtilesError
 from .building import error_response, fabrication_checks, field_of_param, tile_from_dict
-from .routes import catalogue, pages, tile
+from .routes import catalogue, nest, pages, tile
 from .routes.pages import STATIC
 from .routes.tile import MEDIA_TYPES
 
@@ -41,6 +41,7 @@ def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
     app.include_router(pages.router())
     app.include_router(catalogue.router(limits=limits))
     app.include_router(tile.router(limits=limits))
+    app.include_router(nest.router(limits=limits))
     return app
 
 

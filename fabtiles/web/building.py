@@ -48,6 +48,11 @@ def build(request: Request, *, limits: _limits.Limits, view=()):
     query = dict(request.query_params)
     for key in view:
         query.pop(key, None)
+    return design_of_query(query, limits=limits)
+
+
+def design_of_query(query: dict, *, limits: _limits.Limits):
+    """``(design dict, design, tile)`` of a query's parameters, over the page's defaults (as the editor sends them)."""
     base = dict(DEFAULTS)
     if ("n" in query or "radii" in query) and "preset" not in query:
         del base["preset"]  # the motif's own parameters replace the default preset

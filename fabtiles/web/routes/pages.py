@@ -17,7 +17,7 @@ def media_type(name: str) -> str | None:
 
 
 def router() -> APIRouter:
-    """``/``, ``/gallery``, ``/favicon.ico``, ``/static/...`` and ``/api/viewer``."""
+    """``/``, ``/gallery``, ``/nest``, ``/favicon.ico``, ``/static/...`` and ``/api/viewer``."""
     api = APIRouter()
 
     @api.get("/", include_in_schema=False)
@@ -31,6 +31,10 @@ def router() -> APIRouter:
     @api.get("/gallery", include_in_schema=False)
     def gallery_page():
         return FileResponse(STATIC / "gallery.html", media_type="text/html")
+
+    @api.get("/nest", include_in_schema=False)
+    def nest_page():
+        return FileResponse(STATIC / "nest.html", media_type="text/html")
 
     @api.get("/static/{name}", include_in_schema=False)
     def static(name: str):

@@ -286,6 +286,7 @@ async function refresh() {
   const q = query(), mine = ++seq, label = designLabel(), page = new URLSearchParams(q);
   if (label !== EDITED && origin.gallery) page.set("gallery", label);  // a shared link still names the entry
   history.replaceState(null, "", `?${page}`);
+  $("nest-link").href = `/nest?${page}`;  // the nest page starts from this design
   downloads(false);  // until the server says the design is good
   // The face classes' list: awaited only when a class colour is chosen that the new design may lack
   // (it is dropped then, and the preview asked for without it).
