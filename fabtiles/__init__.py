@@ -28,6 +28,7 @@ from .pattern.star import Star
 # `import fabtiles` (and `fabtiles --help`) stays light.
 _LAZY = {
     "Tile": "._tile",
+    "nest": "._nesting",
     "SeamlessFit": ".geometry.seamless",
     "seamless_fit": ".geometry.seamless",
     "seamless_radius": ".geometry.seamless",
@@ -69,6 +70,7 @@ __all__ = [
     "Tile",
     "load_design",
     "load_profile",
+    "nest",
     "seamless_fit",
     "seamless_radius",
     "straight_radii",

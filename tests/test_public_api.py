@@ -22,6 +22,7 @@ EXPECTED = {
     "Tile",
     "load_design",
     "load_profile",
+    "nest",
     "seamless_fit",
     "seamless_radius",
     "straight_radii",

@@ -8,6 +8,7 @@ status 2 and no file).
 from __future__ import annotations
 
 import re
+import sys
 from pathlib import Path
 
 import click
@@ -90,7 +91,7 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
     def progress(p):
         # opened at the packer's first report, so an error before it is still one line on stderr
         if state["bar"] is None:
-            state["bar"] = click.progressbar(length=1000, label="nesting", file=click.get_text_stream("stderr"),
+            state["bar"] = click.progressbar(length=1000, label="nesting", file=sys.stderr,
                                              show_eta=False, show_percent=True).__enter__()
         # the budget's fraction spent, and all of it once every part is placed
         done = 1000 if p.placed == p.parts else min(999, int(1000 * p.elapsed_s / p.budget_s))

@@ -193,3 +193,17 @@ def test_the_commands_choices_are_the_nestings():
     from fabtiles.geometry import nest
 
     assert cli_nest.ROTATIONS == tuple(nest.ROTATIONS) and cli_nest.DEFAULT_TIME_S == nest.DEFAULT_TIME_S
+
+
+def test_the_public_nest_takes_files_and_designs(tmp_path):
+    import fabtiles as ft
+    from fabtiles.design import design_from_text
+
+    small = tmp_path / "a.toml"
+    small.write_text('[motif]\npreset = "table3-3"\n[tile]\noutline = "circle"\nsize = 40\nframe = 3\n')
+    other = design_from_text('[motif]\npreset = "table3-1"\n[tile]\noutline = "square"\nsize = 40\nframe = 3\n',
+                             name="b")
+    result = ft.nest([small, (other, 2)], tmp_path / "out", sheet_mm=(200, 150), time_s=1)
+    files = sorted(p.name for p in (tmp_path / "out").iterdir())
+    assert files == ["a-sheet-1.dxf"]
+    assert len(result.nesting.placements) == 3  # one of a, two of b
