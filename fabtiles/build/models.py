@@ -233,7 +233,7 @@ class Models:
         try:
             return spec.colouring(tuple(c.letter for c in self.face_classes.classes) or ("A",))
         except ParameterError as exc:
-            raise ParameterError(f"[colour.faces] {exc}" if exc.param == "faces" else f"[colour] {exc}",
+            raise ParameterError(f"[colour.faces] {exc}" if exc.param.startswith("faces") else f"[colour] {exc}",
                                  param=f"colour.{exc.param}") from None
 
     @property

@@ -78,14 +78,12 @@ def command(design_file, output, overrides, deep):
     class_lines = []
     if design.colour.given or (out.print_style or profile_of(design, "printer").style) == "mosaic":
         from .._report import face_class_lines
-        from ..geometry.faces import face_classes
+        from ..build.models import BuildOptions, Models
 
-        classes = face_classes(tile, by=design.colour.by)
-        try:  # a letter the design lacks is refused before anything is printed
-            colouring = design.colour.colouring(tuple(c.letter for c in classes.classes))
+        try:  # the build's classes and colours; a letter the design lacks is refused before anything is printed
+            class_lines = face_class_lines(Models(tile, BuildOptions.of_design(design)).face_class_stats())
         except ParameterError as exc:
-            raise ParameterError(f"{design_file}: [colour] {exc}", param=f"colour.{exc.param}") from None
-        class_lines = face_class_lines([dict(c, colour=colouring.face(c["letter"]).name) for c in classes.stats()])
+            raise ParameterError(f"{design_file}: {exc}", param=exc.param) from None
     result = check_design(design, tile, job=True)
     laser = f"{cutter} profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
     if result.filled_holes:
