@@ -16,17 +16,10 @@ import argparse
 import time
 from pathlib import Path
 
+from bench_region import best_of  # the same best-of-N timer (run as a script: benchmarks/ is on the path)
+
 SAMPLE = Path(__file__).resolve().parents[1] / "samples" / "sheet-600x400.toml"
 TARGET_S = 1.0
-
-
-def best_of(fn, repeat: int):
-    best, out = float("inf"), None
-    for _ in range(repeat):
-        t = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t)
-    return best, out
 
 
 def main() -> None:
