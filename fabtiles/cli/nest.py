@@ -109,8 +109,9 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
         click.echo(f"{'replaced' if path in result.build.replaced else 'wrote'} {path}")
     n = result.nesting
     w, h = n.sheet_mm
-    click.echo(f"{len(n.placements)} parts on {n.sheets} sheet{'s' if n.sheets != 1 else ''} of {w:g} x {h:g} mm, "
-               f"gap {n.gap_mm:g} mm, rotate {n.rotations}")
+    parts = len(n.placements)
+    click.echo(f"{parts} part{'s' if parts != 1 else ''} on {n.sheets} sheet{'s' if n.sheets != 1 else ''} of "
+               f"{w:g} x {h:g} mm, gap {n.gap_mm:g} mm, rotate {n.rotations}")
     for s in result.sheets:
         parts = ", ".join(f"{k} x{v}" for k, v in s["designs"].items())
         click.echo(f"sheet {s['sheet']}: {s['parts']} parts ({parts}), material use {s['material_use']:.0%}, "

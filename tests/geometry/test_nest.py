@@ -70,6 +70,8 @@ def test_half_turns_only_and_no_turns():
     for mode in ("180", "none"):
         n = nest(parts, sheet_mm=(100, 100), gap_mm=2, rotations=mode, time_s=1)
         check_nesting(n, parts, 2)
+        allowed = {0.0, 180.0} if mode == "180" else {0.0}
+        assert {round(p.rotation % 360, 6) for p in n.placements} <= allowed
 
 
 def test_progress_is_reported_until_every_part_is_placed():

@@ -123,7 +123,7 @@ function drawSheets(answer) {
     box.appendChild(fig);
   }
   const [w, h] = answer.sheet_mm;
-  $("summary").textContent = `${answer.parts} parts on ${answer.sheets.length} sheet${answer.sheets.length === 1 ? "" : "s"} ` +
+  $("summary").textContent = `${answer.parts} part${answer.parts === 1 ? "" : "s"} on ${answer.sheets.length} sheet${answer.sheets.length === 1 ? "" : "s"} ` +
     `of ${w} × ${h} mm (${answer.profile}), gap ${answer.gap_mm} mm, rotate ${answer.rotate}`;
   $("sheet-w").placeholder = w;
   $("sheet-h").placeholder = h;
