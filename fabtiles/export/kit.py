@@ -45,7 +45,8 @@ def kit_files(plans: KitPlans, path) -> list:
 
 
 def write_kit(path, *, region, outline, profile, inlay_fit_mm=None, inlay_base: str = "pierced", kerf_mm=None,
-              dxf_version=None, stroke=None, centrelines=None, fill_small_holes=None) -> Report:
+              dxf_version=None, stroke=None, centrelines=None, fill_small_holes=None, tab_mm=None,
+              tabs_per_part=None) -> Report:
     """Write the inlay kit of a tile's material ``region``: the lattice and the pieces files.
 
     A convenience for scripts (:func:`~fabtiles.geometry.cut_plan.plan_kit`, then both
@@ -53,12 +54,14 @@ def write_kit(path, *, region, outline, profile, inlay_fit_mm=None, inlay_base: 
     (``tile.dxf`` writes ``tile-lattice.dxf`` and ``tile-pieces.dxf``); its suffix
     picks the format. The report is the lattice's, with the kit's figures and both
     paths in ``files``. ``centrelines`` and ``fill_small_holes`` are accepted for a
-    uniform call: holes too small for a piece are always filled.
+    uniform call: holes too small for a piece are always filled. ``tab_mm`` and
+    ``tabs_per_part`` leave holding tabs in the lattice's outline and the pieces' cuts,
+    as the design keys of the same names do.
     """
     fmt = format_of(path, allowed=KIT_FORMATS)
     plans = plan_kit(region, outline, profile=profile, inlay_fit_mm=inlay_fit_mm, inlay_base=inlay_base,
                      kerf_mm=kerf_mm, dxf_version=dxf_version, stroke=stroke, path=str(kit_paths(path)[0]),
-                     fmt=fmt.name)
+                     fmt=fmt.name, tab_mm=tab_mm, tabs_per_part=tabs_per_part)
     files = [(p, fmt.bytes_of(plan)) for p, plan in kit_files(plans, path)]  # both made before either is written
     for p, data in files:
         atomic_write(p, data)

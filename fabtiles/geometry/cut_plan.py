@@ -345,9 +345,37 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
                                             + _length(plan.paths("outer"), closed), 3))
     report.stats["job"] = plan.estimate.as_stats()
     report.stats["sheet"] = sheet(outline, profile)
+    _note_bed_edge(plan, profile, report)
     # the findings' locations are the tile's coordinates; the files' are these plus the offset
     report.stats["file_offset_mm"] = [round(v, 6) + 0.0 for v in plan.offset]
     return plan
+
+
+def _note_bed_edge(plan: CutPlan, profile, report: Report) -> None:
+    """Say so when the cut paths reach beyond the bed although the tile fits it.
+
+    A tile of exactly the bed's size (the 600 x 400 mm sheet sample) fits
+    (:func:`check_fits_bed` measures the tile), but its outline's cut path runs outside the
+    tile by half the kerf on every side (a router's by the bit's radius): 600.15 x 400.15 mm.
+    Most machines travel a few mm beyond their nominal bed, so this is a note, not a finding.
+
+    >>> from fabtiles._profiles import load_profile
+    >>> ring = np.array([[-0.075, -0.075], [600.075, -0.075], [600.075, 400.075], [-0.075, 400.075]])
+    >>> r = Report(path="", format="")
+    >>> _note_bed_edge(make_plan(load_profile("laser-3mm-plywood"), "pierced", "R2000", 0.15, {"outer": [ring]}),
+    ...                load_profile("laser-3mm-plywood"), r)
+    >>> print(r.stats["notes"][0])
+    the cut paths span 600.15 x 400.15 mm, beyond the 600 x 400 mm bed by the cut's width outside the tile: the outline is cut at the sheet's edges (most machines travel a little beyond the nominal bed; if yours does not, make the tile smaller)
+    """
+    x0, y0, x1, y1 = plan.bounds
+    w, h = x1 - x0, y1 - y0
+    bw, bh = profile.bed_mm
+    eps = 1e-6
+    if (w <= bw + eps and h <= bh + eps) or (w <= bh + eps and h <= bw + eps):
+        return
+    report.note(f"the cut paths span {w:.2f} x {h:.2f} mm, beyond the {bw:g} x {bh:g} mm bed by the cut's width "
+                f"outside the tile: the outline is cut at the sheet's edges (most machines travel a little beyond "
+                f"the nominal bed; if yours does not, make the tile smaller)")
 
 
 INLAY_BASES = ("pierced", "pocket")

@@ -290,3 +290,18 @@ def test_the_web_app_draws_the_kit():
     assert r.status_code == 200 and r.headers["content-type"].startswith("image/svg+xml")
     assert r.text.count('class="lattice"') == 3 and r.text.count('class="pieces"') == 3
     assert client.get("/api/kit.svg?preset=table3-3&width=60&inlay_fit_mm=2").status_code == 422
+
+
+def test_write_kit_leaves_holding_tabs_as_the_design_keys_do(tmp_path):
+    from fabtiles.export.kit import write_kit
+
+    t = tile()
+    report = write_kit(tmp_path / "t.dxf", region=t.region(), outline=t.outline_shape(), profile=PLY,
+                       tab_mm=1.0, tabs_per_part=2)
+    # the lattice's outline: two open pieces around two 1 mm gaps, not one closed ring
+    doc = ezdxf.readfile(tmp_path / "t-lattice.dxf")
+    outer = [e for e in doc.modelspace() if e.dxf.layer == PLY.layers.outer_cut.name]
+    assert len(outer) == 2 and not any(e.closed for e in outer)
+    length = sum(shapely.LineString(np.array([p[:2] for p in e.get_points("xy")])).length for e in outer)
+    assert length == pytest.approx(4 * (60 + KERF) - 2 * 1.0, abs=0.05)
+    assert any(n.startswith("holding tabs") for n in report.stats["notes"])

@@ -83,3 +83,14 @@ def test_bounds_given_frame_the_file_and_an_empty_plan_is_not_moved():
     assert moved.offset == (5.0, 5.0) and moved.bounds == (0.0, 0.0, 105.0, 55.0)
     empty = make_plan(ply, "pierced", "R2000", 0.15, {})
     assert empty.offset == (0.0, 0.0) and empty.bounds == (0.0, 0.0, 0.0, 0.0)
+
+
+@pytest.mark.parametrize("size, noted", [((600, 400), True), ((400, 600), True), ((599.8, 399.8), False)])
+def test_a_tile_of_the_beds_size_is_noted_where_its_cut_runs_past_the_bed(size, noted):
+    # the cut path lies half the 0.15 mm kerf outside the tile: 600.15 x 400.15 mm for a 600 x 400 tile
+    tile = box(0, 0, *size)
+    plan = plan_cut(tile.difference(box(100, 100, 200, 200)), tile, profile=load_profile("laser-3mm-plywood"))
+    notes = [n for n in plan.report.stats.get("notes", []) if "beyond the 600 x 400 mm bed" in n]
+    assert bool(notes) is noted
+    if noted:
+        assert f"span {size[0] + 0.15:.2f} x {size[1] + 0.15:.2f} mm" in notes[0]
