@@ -7,22 +7,14 @@ import sys
 from pathlib import Path
 
 import pytest
+from designs import design_toml
 
 from fabtiles import DesignError, LimitError, ParameterError
 from fabtiles import build as pipeline
 from fabtiles._limits import CLI_LIMITS, Limits, estimate_segments
 from fabtiles.design import design_from_text, load_design
 
-SMALL = """
-[motif]
-preset = "table3-1"
-[packing]
-radius = 8
-[tile]
-size = 60
-frame = 3
-stroke = 1.0
-"""
+SMALL = design_toml(preset="table3-1", radius=8, outline=None)
 ROOT = Path(__file__).resolve().parents[1]
 
 

@@ -6,6 +6,7 @@ import re
 from pathlib import Path
 
 import pytest
+from designs import design_toml
 
 from fabtiles import DesignError, ParameterError
 from fabtiles._colour import MAX_MATERIALS, PALETTES, Colour, check_materials, colouring, letters, parse_colour
@@ -14,16 +15,7 @@ from fabtiles.geometry.stack import resolve_stack
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
 
-BASE = """
-[motif]
-preset = "table3-3"
-[packing]
-radius = 12.5
-[tile]
-outline = "square"
-size = 60
-frame = 3
-"""
+BASE = design_toml(radius=12.5, stroke=None)
 
 
 def test_colours_parse_by_hex_and_css_name():

@@ -7,6 +7,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from designs import design_toml
 
 from fabtiles import FabricationError
 from fabtiles.build.deep import ReadBack, read_back
@@ -15,20 +16,7 @@ from fabtiles.design import design_from_text
 from fabtiles.export.formats import FORMATS
 from fabtiles.export.stl import stl_bytes
 
-SMALL = """
-[motif]
-preset = "table3-1"
-[packing]
-radius = 8
-[tile]
-outline = "square"
-size = 40
-frame = 3
-stroke = 1.0
-[output]
-formats = ["dxf", "stl", "3mf", "step"]
-fill_small_holes = false
-"""
+SMALL = design_toml(preset="table3-1", radius=8, size=40, output={"formats": ["dxf", "stl", "3mf", "step"], "fill_small_holes": False})
 # fill_small_holes = false: the holes kept (the filled case is its own test below)
 
 

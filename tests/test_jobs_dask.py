@@ -16,6 +16,7 @@ import time
 from pathlib import Path
 
 import pytest
+from designs import design_toml
 from distributed import Client
 from dxf_helpers import assert_same_file
 
@@ -24,16 +25,7 @@ from fabtiles.build import STAGING_PREFIX
 ROOT = Path(__file__).resolve().parents[1]
 SAMPLES = ROOT / "samples"
 DASK = str(Path(sys.executable).with_name("dask"))
-SMALL = """
-[motif]
-preset = "table3-3"
-[packing]
-radius = 8
-[tile]
-size = 60
-frame = 3
-stroke = 1.0
-"""
+SMALL = design_toml(radius=8, outline=None)
 
 
 def _free_port() -> int:

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from designs import design_toml
 
 import fabtiles
 from fabtiles.build import build_design
@@ -22,25 +23,11 @@ from fabtiles.design import design_from_text
 
 PACKAGE = Path(fabtiles.__file__).resolve().parent
 
-LASER = """
-[motif]
-preset = "table3-3"
-[packing]
-radius = 10
-[tile]
-outline = "square"
-size = 60
-frame = 3
-stroke = 1.0
-[output]
-laser_profile = "laser-3mm-plywood"
-printer_profile = "fdm-0.4mm"
-fill_small_holes = false
-"""
+LASER = design_toml(output={"laser_profile": "laser-3mm-plywood", "printer_profile": "fdm-0.4mm",
+                            "fill_small_holes": False})
 
-ROUTER = LASER.replace('"laser-3mm-plywood"', '"router-6mm-mdf"').replace("size = 60", "size = 200").replace(
-    "radius = 10", "radius = 40").replace("stroke = 1.0", "stroke = 8.0").replace("frame = 3", "frame = 12")
-assert ROUTER != LASER
+ROUTER = design_toml(radius=40, size=200, frame=12, stroke=8.0,
+                     output={"laser_profile": "router-6mm-mdf", "printer_profile": "fdm-0.4mm", "fill_small_holes": False})
 
 
 def calls(run) -> dict[str, int]:

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from designs import design_toml
 
 from fabtiles import FabtilesError
 from fabtiles.export.formats import FORMATS
@@ -15,22 +16,7 @@ ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
 RENDERS = ROOT / "samples" / "renders"
 
-SMALL = """
-[motif]
-preset = "table3-1"
-
-[packing]
-radius = 8
-
-[tile]
-outline = "square"
-size = 60
-frame = 3
-stroke = 1.0
-
-[output]
-formats = ["svg"]
-"""
+SMALL = design_toml(preset="table3-1", radius=8, output={"formats": ["svg"]})
 
 
 def run(*args):

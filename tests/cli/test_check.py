@@ -4,26 +4,13 @@ import re
 
 import pytest
 from click.testing import CliRunner
+from designs import design_toml
 
 from fabtiles.cli.main import cli
 
-DESIGN = """
-[motif]
-preset = "table3-3"
 
-[packing]
-radius = 10
-
-[tile]
-outline = "square"
-size = 60
-frame = 3
-stroke = 1.0
-
-[output]
-laser_profile = "laser-3mm-plywood"
-fill_small_holes = {fill}
-"""
+def design_text(fill: bool) -> str:
+    return design_toml(output={"laser_profile": "laser-3mm-plywood", "fill_small_holes": fill})
 
 
 def run(*args):
@@ -35,7 +22,7 @@ def designs(tmp_path):
     paths = {}
     for fill in ("true", "false"):
         p = tmp_path / f"fill-{fill}.toml"
-        p.write_text(DESIGN.format(fill=fill))
+        p.write_text(design_text(fill == "true"))
         paths[fill] = p
     return paths
 
@@ -72,7 +59,7 @@ def test_findings_are_printed_and_marked(designs, tmp_path):
 ])
 def test_bad_input_exits_2_and_writes_nothing(designs, tmp_path, args, message):
     bad = tmp_path / "bad.toml"
-    bad.write_text(DESIGN.format(fill="true").replace("stroke", "strok"))
+    bad.write_text(design_text(True).replace("stroke", "strok"))
     args = [a.format(false=designs["false"], bad=bad, tmp=tmp_path) for a in args]
     res = CliRunner().invoke(cli, ["check", *args])
     assert res.exit_code == 2, res.output
@@ -89,7 +76,7 @@ def test_check_judges_the_interlace_cut_region(tmp_path):
     from fabtiles._profiles import load_profile
     from fabtiles._report import Report
 
-    woven = DESIGN.format(fill="false").replace("stroke = 1.0", "stroke = 1.0\ninterlace = true")
+    woven = design_text(False).replace("stroke = 1.0", "stroke = 1.0\ninterlace = true")
     p = tmp_path / "woven.toml"
     p.write_text(woven)
     q = tmp_path / "cut.toml"

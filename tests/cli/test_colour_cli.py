@@ -6,28 +6,13 @@ import re
 from pathlib import Path
 
 from click.testing import CliRunner
+from designs import design_toml
 
 from fabtiles.cli.main import cli
 
 SAMPLE = Path(__file__).resolve().parents[2] / "samples" / "mosaic-iznik.toml"
 
-SMALL = """
-[motif]
-preset = "table3-3"
-[packing]
-radius = 12.5
-[tile]
-outline = "square"
-size = 60
-frame = 3
-stroke = 1.2
-[output]
-formats = ["3mf", "stl"]
-print_style = "mosaic"
-[colour]
-by = "shape"
-palette = "zellige"
-"""
+SMALL = design_toml(radius=12.5, stroke=1.2, output={"formats": ["3mf", "stl"], "print_style": "mosaic"}, colour={"by": "shape", "palette": "zellige"})
 
 
 def run(*args):

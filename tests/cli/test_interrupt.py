@@ -8,20 +8,9 @@ import time
 
 import pytest
 from dxf_helpers import assert_same_file
+from designs import design_toml
 
-DESIGN = """
-[motif]
-preset = "table3-3"
-[packing]
-radius = 10
-[tile]
-outline = "rectangle"
-size = [300, 200]
-frame = 5
-stroke = 1.0
-[output]
-formats = ["dxf", "svg", "stl"]
-"""
+DESIGN = design_toml(outline="rectangle", size=[300, 200], frame=5, output={"formats": ["dxf", "svg", "stl"]})
 
 
 def _start(design, out):

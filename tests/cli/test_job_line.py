@@ -7,22 +7,11 @@ import re
 
 import pytest
 from click.testing import CliRunner
+from designs import design_toml
 
 from fabtiles.cli.main import cli
 
-DESIGN = """
-[motif]
-preset = "table3-3"
-[packing]
-radius = 10
-[tile]
-outline = "square"
-size = 60
-frame = 3
-[output]
-formats = ["dxf", "lbrn2"]
-fill_small_holes = true
-"""
+DESIGN = design_toml(stroke=None, output={"formats": ["dxf", "lbrn2"], "fill_small_holes": True})
 JOB = re.compile(r"^  laser job: ([0-9.]+) m of cut, ([0-9,]+) pierces?, (?:([0-9.]+) cm\^2 engraved, )?about ([0-9,]+) min$",
                  re.M)
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import shapely
+from designs import design_toml
 from dxf_helpers import read_checked, ring_polygons
 
 from fabtiles._profiles import load_profile
@@ -17,23 +18,7 @@ from fabtiles.build import build_design
 from fabtiles.build.models import BuildOptions, Models
 from fabtiles.design import design_from_text
 
-DESIGN = """
-[motif]
-preset = "table3-3"
-[packing]
-radius = 12.5
-[tile]
-outline = "square"
-size = 80
-frame = 3
-stroke = 1.5
-[output]
-formats = ["dxf"]
-laser_mode = "inlay"
-[colour]
-by = "shape"
-palette = "alhambra"
-"""
+DESIGN = design_toml(radius=12.5, size=80, stroke=1.5, output={"formats": ["dxf"], "laser_mode": "inlay"}, colour={"by": "shape", "palette": "alhambra"})
 
 
 @pytest.fixture(scope="module")

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import shapely
+from designs import design_toml
 from dxf_helpers import read_checked, vertices
 
 from fabtiles.build import build_design
@@ -19,21 +20,8 @@ from fabtiles.geometry.faces import face_classes
 from fabtiles.geometry.kit_nesting import GAP_MM
 from fabtiles.geometry.stroke_font import text_paths
 
-DESIGN = """
-[motif]
-preset = "table3-3"
-[packing]
-radius = 12.5
-[tile]
-outline = "square"
-size = 60
-frame = 3
-stroke = 1.5
-[output]
-formats = ["dxf"]
-laser_mode = "inlay"
-inlay_pieces = "{pieces}"
-"""
+def design_text(pieces: str) -> str:
+    return design_toml(radius=12.5, stroke=1.5, output={"formats": ["dxf"], "laser_mode": "inlay", "inlay_pieces": pieces})
 
 
 @pytest.fixture(scope="module")
@@ -41,7 +29,7 @@ def built(tmp_path_factory):
     out = {}
     for pieces in ("registration", "nested"):
         folder = tmp_path_factory.mktemp(pieces)
-        design = design_from_text(DESIGN.format(pieces=pieces), name="kit")
+        design = design_from_text(design_text(pieces), name="kit")
         result = build_design(design, folder)
         out[pieces] = (folder, result, design)
     return out

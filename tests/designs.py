@@ -1,0 +1,48 @@
+"""Small designs the tests build, as design-file text: one function instead of the same lines in every module.
+
+>>> print(design_toml(preset="table3-1", radius=8, output={"formats": ["svg"]}))
+<BLANKLINE>
+[motif]
+preset = "table3-1"
+[packing]
+radius = 8
+[tile]
+outline = "square"
+size = 60
+frame = 3
+stroke = 1.0
+[output]
+formats = ["svg"]
+<BLANKLINE>
+"""
+
+from __future__ import annotations
+
+import json
+
+
+def _value(v) -> str:
+    """A TOML value: JSON's spelling of strings, numbers, booleans and lists is TOML's too."""
+    return repr(v) if isinstance(v, float) else json.dumps(v)
+
+
+def _table(name: str, keys: dict) -> list[str]:
+    return [f"[{name}]"] + [f"{k} = {_value(v)}" for k, v in keys.items() if v is not None]
+
+
+def design_toml(*, preset: str = "table3-3", radius: float = 10, outline: str | None = "square", size=60,
+                frame: float | None = 3, stroke: float | None = 1.0, packing: dict | None = None,
+                tile: dict | None = None, output: dict | None = None, colour: dict | None = None) -> str:
+    """A design file's text: the preset motif in a hex packing of ``radius`` on a tile.
+
+    ``None`` leaves a key out (the design's default); ``packing``, ``tile``, ``output`` and
+    ``colour`` add keys to those tables (an empty ``output``/``colour`` writes no table).
+    """
+    lines = [""] + _table("motif", {"preset": preset})
+    lines += _table("packing", {"radius": radius, **(packing or {})})
+    lines += _table("tile", {"outline": outline, "size": size, "frame": frame, "stroke": stroke, **(tile or {})})
+    if output:
+        lines += _table("output", output)
+    if colour:
+        lines += _table("colour", colour)
+    return "\n".join(lines) + "\n"
