@@ -70,3 +70,10 @@ def chromium_page(extra_args):
         pg.set_default_timeout(30_000)
         yield pg
         browser.close()
+
+
+@pytest.fixture(scope="module")
+def page(server):
+    """A page in headless Chromium without a GPU, one per test module (import it with ``server``)."""
+    with chromium_page(NO_GPU_ARGS) as pg:
+        yield pg

@@ -4,15 +4,9 @@ Needs /usr/bin/chromium and the playwright package (see browser_helpers.py).
 """
 
 import pytest
-from browser_helpers import NO_GPU_ARGS, chromium_page, server  # noqa: F401 - server is a fixture
+from browser_helpers import page, server  # noqa: F401 - page and server are fixtures
 
 pytestmark = pytest.mark.browser
-
-
-@pytest.fixture(scope="module")
-def page(server):
-    with chromium_page(NO_GPU_ARGS) as pg:
-        yield pg
 
 
 def _preview_version(page):

@@ -5,19 +5,13 @@ import re
 from urllib.parse import unquote
 
 import pytest
-from browser_helpers import NO_GPU_ARGS, chromium_page, server  # noqa: F401 - server is a fixture
+from browser_helpers import page, server  # noqa: F401 - page and server are fixtures
 
 from fabtiles._colour import PALETTES
 
 pytestmark = pytest.mark.browser
 
 SMALL = "preset=table3-3&width=60&radius=10&frame=3"
-
-
-@pytest.fixture(scope="module")
-def page(server):
-    with chromium_page(NO_GPU_ARGS) as pg:
-        yield pg
 
 
 def _wait_new_preview(page, old):

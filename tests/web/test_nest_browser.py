@@ -8,17 +8,11 @@ import re
 import zipfile
 
 import pytest
-from browser_helpers import NO_GPU_ARGS, chromium_page, server  # noqa: F401 - server is a fixture
+from browser_helpers import page, server  # noqa: F401 - page and server are fixtures
 
 pytestmark = pytest.mark.browser
 
 SMALL = "preset=table3-1&width=40&radius=8&frame=3"
-
-
-@pytest.fixture(scope="module")
-def page(server):
-    with chromium_page(NO_GPU_ARGS) as pg:
-        yield pg
 
 
 def test_the_editor_links_its_design_to_the_nest_page(page, server):
