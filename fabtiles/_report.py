@@ -49,7 +49,9 @@ class Finding:
     representative point); ``sizes`` the measured size at each of them, in ``unit``
     (a width in mm; a loose part's area in mm^2); ``worst`` the worst size of all
     ``count`` places (the narrowest width, the largest loose part), or None when the
-    finding has no size (a height, a bed size).
+    finding has no size (a height, a bed size); ``limit`` the profile's limit the sizes
+    are measured against (``min_feature_mm`` for a thin bridge), or None when there is none
+    (a loose part).
     """
 
     code: str
@@ -59,6 +61,7 @@ class Finding:
     sizes: tuple[float, ...] = ()
     worst: float | None = None
     unit: str = "mm"
+    limit: float | None = None
 
     def where(self, limit: int = 3) -> str:
         """The first ``limit`` locations as text, for people.
@@ -81,10 +84,11 @@ class Report:
     findings: list[Finding] = field(default_factory=list)
 
     def add(self, code: str, message: str, *, count: int = 1, locations=(), sizes=(), worst=None,
-            unit: str = "mm") -> None:
+            unit: str = "mm", limit=None) -> None:
         """Record a finding (see :class:`Finding`)."""
         self.findings.append(Finding(code, message, count, tuple(tuple(map(float, p)) for p in locations),
-                                     tuple(map(float, sizes)), None if worst is None else float(worst), unit))
+                                     tuple(map(float, sizes)), None if worst is None else float(worst), unit,
+                                     None if limit is None else float(limit)))
 
     def note(self, line: str) -> None:
         """Add a line to the summary (``stats["notes"]``): what the export did, such as holes it filled."""

@@ -30,11 +30,14 @@ def finding_line(where: str, finding) -> str:
     >>> f = Finding("thin_bridge", "...", 12, ((1.0, 2.0),), (0.155,), 0.155)
     >>> finding_line("laser", f)
     'laser thin_bridge: 12, worst 0.155 mm, at (1, 2) and 11 more'
+    >>> finding_line("laser", Finding("thin_bridge", "...", 1, ((1.0, 2.0),), (0.155,), 0.155, limit=0.3))
+    'laser thin_bridge: 1, worst 0.155 mm (limit 0.3 mm), at (1, 2)'
     """
     parts = [f"{where} {finding.code}: {finding.count:,}"]
     if finding.worst is not None:
         unit = "mm²" if finding.unit == "mm^2" else finding.unit
-        parts.append(f"worst {finding.worst:g} {unit}")
+        limit = f" (limit {finding.limit:g} {unit})" if finding.limit is not None else ""
+        parts.append(f"worst {finding.worst:g} {unit}{limit}")
     if finding.locations:
         parts.append(f"at {finding.where(SHOWN_PLACES)}")
     else:

@@ -94,7 +94,8 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
             add_small_holes(report, holes[small], tolerance_mm=profile.tolerance_mm, message=lambda n, w: (
                 f"{n:,} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
                 f"(narrowest {distinct(w, profile.min_hole_mm)} mm; they burn away or char shut; fill them with "
-                "fill_small_holes=True, or fill_small_holes = true in a design's [output])"))
+                "fill_small_holes=True, or fill_small_holes = true in a design's [output])"),
+                limit_mm=profile.min_hole_mm)
 
     # thin bridges: two rings of the same part closer than the minimum feature (within the
     # profile's tolerance: a band exactly min_feature_mm wide is fine to cut)
@@ -106,7 +107,7 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
                    f"{count:,} bridge{'s' if count > 1 else ''} narrower than min_feature_mm = {f:g} mm "
                    f"(narrowest {distinct(width, f)} mm{extra}): they may burn through or break",
                    count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
-                   worst=round(width, 3))
+                   worst=round(width, 3), limit=f)
 
     # loose parts: all but the largest piece inside each outline polygon
     if len(parts) > 1:
@@ -168,7 +169,7 @@ def check_engrave(region, profile: LaserProfile, report: Report) -> Report:
                    f"({width:g} mm at line_interval_mm = {layer.line_interval_mm:g}; narrowest {distinct(worst, width)} mm): "
                    "they engrave as one line or vanish",
                    count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
-                   worst=round(worst, 3))
+                   worst=round(worst, 3), limit=width)
     return report
 
 

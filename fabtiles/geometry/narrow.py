@@ -61,16 +61,16 @@ def hole_widths(holes: np.ndarray, *, tolerance_mm: float = 0.01):
     return shapely.get_point(lines, 0), 2 * shapely.length(lines)
 
 
-def add_small_holes(report, holes: np.ndarray, *, tolerance_mm: float, message) -> None:
+def add_small_holes(report, holes: np.ndarray, *, tolerance_mm: float, message, limit_mm: float) -> None:
     """Report ``holes`` as one ``small_hole`` finding, each at its widest point with its width.
 
     ``message(count, narrowest_mm)`` says why they are too small and what to do (a laser
-    burns them away; a router's bit cannot enter them).
+    burns them away; a router's bit cannot enter them); ``limit_mm`` the width they are under.
     """
     centres, widths = hole_widths(holes, tolerance_mm=tolerance_mm)
     n = len(widths)
     report.add("small_hole", message(n, float(widths.min())), count=n, locations=locations(centres),
-               sizes=widths[:MAX_LOCATIONS].round(3), worst=round(float(widths.min()), 3))
+               sizes=widths[:MAX_LOCATIONS].round(3), worst=round(float(widths.min()), 3), limit=limit_mm)
 
 
 def hole_polygons(parts: np.ndarray):

@@ -389,7 +389,7 @@ def _report_small_openings(report: Report, found: SmallOpenings, profile: Printe
                 "fill_small_holes fills them")
 
     add_small_holes(report, np.concatenate([found.holes, found.islands]), tolerance_mm=WALL_TOLERANCE_MM,
-                    message=message)
+                    message=message, limit_mm=m)
 
 
 def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=None, relief_mm=None,
@@ -434,7 +434,7 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
                        f"min_wall_mm = {wall:g} mm (narrowest {distinct(float(widths.min()), wall)} mm): they "
                        "print thin or not at all",
                        count=n, locations=locations(centres), sizes=widths[:MAX_LOCATIONS].round(3),
-                       worst=round(float(widths.min()), 3))
+                       worst=round(float(widths.min()), 3), limit=wall)
     else:
         count, narrowest, mids, widths = narrow_places(region, wall, tolerance=WALL_TOLERANCE_MM)
         # pieces no wall fits in anywhere: one ring each, so no pair of rings finds them
@@ -452,7 +452,7 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
                        f"the stroke is {distinct(stroke, wall)} mm, narrower than min_wall_mm = {wall:g} mm "
                        f"(about two line widths of the {profile.nozzle_mm:g} mm nozzle): walls print thin or not at all",
                        count=max(count, 1), locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
-                       worst=round(min(stroke, narrowest), 3))
+                       worst=round(min(stroke, narrowest), 3), limit=wall)
         elif count:
             extra = f"; the stroke is {stroke:g} mm, so they are slivers the outline or a join cut" \
                 if stroke is not None else ""
@@ -460,7 +460,7 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
                        f"{count:,} wall{'s' if count > 1 else ''} narrower than min_wall_mm = {wall:g} mm "
                        f"(narrowest {distinct(narrowest, wall)} mm{extra}): they print thin or not at all",
                        count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
-                       worst=round(narrowest, 3))
+                       worst=round(narrowest, 3), limit=wall)
 
     layers = 2 * profile.layer_height_mm
     heights = {

@@ -283,7 +283,7 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
             add_small_holes(report, made.vanished_holes, tolerance_mm=profile.tolerance_mm, message=lambda n, w: (
                 f"{n:,} hole{'s' if n > 1 else ''} narrower than {cutter.tool_name(profile)} (narrowest "
                 f"{distinct(w, 2 * r)} mm): the tool cannot enter them, so they stay material; "
-                "fill_small_holes = true counts them as filled"))
+                "fill_small_holes = true counts them as filled"), limit_mm=2 * r)
     if len(made.corners):
         n = len(made.corners)
         report.add("rounded_corner",
@@ -291,7 +291,7 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
                    f"{cutter.tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm (up to {distinct(made.moved.max(), VISIBLE_MM)} "
                    "mm); the file holds the rounded part",
                    count=n, locations=locations(made.corners), sizes=made.moved[:MAX_LOCATIONS].round(3),
-                   worst=round(float(made.moved.max()), 3))
+                   worst=round(float(made.moved.max()), 3), limit=VISIBLE_MM)
     report.stats["tool_radius_mm"] = r
     report.stats["tool_removed_holes"] = made.vanished
     return made.region, report, filled

@@ -69,7 +69,7 @@ def fabrication_checks(tile, spec) -> dict:
 
     result = check_design(spec, tile, job=True)
     findings = [{"where": where, "code": f.code, "message": f.message, "count": f.count, "worst": f.worst,
-                 "unit": f.unit} for where, f in result.findings()]
+                 "limit": f.limit, "unit": f.unit} for where, f in result.findings()]
     region = tile.region()
     holes = sum(len(p.interiors) for p in getattr(region, "geoms", [region]))
     too_small = [f"{result.filled_holes:,} too small to cut"] if result.filled_holes else []

@@ -41,7 +41,7 @@ def test_findings_are_printed_and_marked(designs, tmp_path):
     res = run(designs["false"], "-o", out)
     assert res.exit_code == 1, res.output
     line = next(x for x in res.output.splitlines() if "small_hole" in x)
-    m = re.fullmatch(r"\s+laser small_hole: ([\d,]+), worst ([\d.]+) mm, at \([\d., -]+\).* and ([\d,]+) more", line)
+    m = re.fullmatch(r"\s+laser small_hole: ([\d,]+), worst ([\d.]+) mm \(limit 1\.2 mm\), at \([\d., -]+\).* and ([\d,]+) more", line)
     assert m, line
     count = int(m[1].replace(",", ""))
     assert 0 < float(m[2]) < 1.2
