@@ -259,7 +259,7 @@ def test_fabtiles_check_lists_and_draws_the_rounded_part(tmp_path):
     result = cli_run("check", design, "-o", tmp_path / "f.svg")
     assert result.exit_code == 1
     assert "router profile router-3.175mm-plywood" in result.output and "router job:" in result.output
-    assert re.search(r"router rounded_corner: [\d,]+, worst [\d.]+ mm, at \(", result.output)
+    assert re.search(r"router rounded_corner: [\d,]+, worst [\d.]+ mm \(limit 0\.1 mm\), at \(", result.output)
     svg = (tmp_path / "f.svg").read_text()
     assert 'class="finding rounded_corner"' in svg
     # the picture draws the part as the bit makes it: more vertices than the sharp tile (the arcs)
