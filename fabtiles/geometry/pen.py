@@ -124,14 +124,14 @@ def strokes(segments) -> list:
     return [verts[np.array([node_l[e] for e in chain])] for chain in out]
 
 
-def pen_drawing(layers, *, bounds, pen_mm: float, stats=None) -> PenDrawing:
+def pen_drawing(layers, *, bounds, pen_mm: float, stats=None, order: bool = True) -> PenDrawing:
     """A :class:`PenDrawing` of ``layers`` (``(name, colour, paths)``), each layer's strokes ordered
-    for the shortest pen-up travel from the origin."""
+    for the shortest pen-up travel from the origin (``order=False``: kept in the order given)."""
     out = []
     for name, colour, paths in layers:
         paths = [np.asarray(p, float) for p in paths if len(p) >= 2]
         if not paths:
             continue
-        ordered = order_paths({"score": paths})["score"]
+        ordered = order_paths({"score": paths})["score"] if order else paths
         out.append(PenLayer(name, colour, tuple(ordered)))
     return PenDrawing(tuple(out), tuple(float(v) for v in bounds), float(pen_mm), dict(stats or {}))
