@@ -28,7 +28,8 @@ def install(dest, python: str = sys.executable) -> list:
     dest.mkdir(parents=True, exist_ok=True)
     written = []
     for name in FILES:
-        text = files("fabtiles.inkscape").joinpath(name).read_text()
+        # the script is kept as a template (.py.in): inkex is Inkscape's, so no test or linter imports it here
+        text = files("fabtiles.inkscape").joinpath(name + ".in" if name.endswith(".py") else name).read_text()
         if name.endswith(".py"):  # Inkscape's python3 is not this one: the script calls back into this one
             text = text.replace("FABTILES_PYTHON = sys.executable", f"FABTILES_PYTHON = {python!r}", 1)
         written.append(atomic_write(dest / name, text))
