@@ -97,6 +97,7 @@ def command(design_file, output, overrides, deep):
     click.echo(f"{design_file}: {laser}, {printer}")
     if result.job is not None:
         click.echo(f"  {cutter} job: {result.job.line()}")
+        click.echo(f"  {cutter} {result.job.travel_line()}")
     if result.filament is not None:
         click.echo(f"  print material: {result.filament.line()} (print time: ask the slicer)")
     for line in class_lines:

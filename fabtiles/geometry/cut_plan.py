@@ -33,6 +33,7 @@ from .._errors import ParameterError
 from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, Layer, load_profile
 from .._report import Report, distinct
 from .._validate import check_choice, check_float
+from .cut_order import order_paths
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate as job_estimate
 from .laser_checks import check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer
@@ -153,6 +154,8 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
         frame = [np.asarray(bounds, dtype=float).reshape(2, 2) + shift] if bounds is not None else []
         flat = np.concatenate(allr + frame) if allr or frame else np.zeros((1, 2))
         bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
+    travel_before = job_estimate(profile, **moved, outer_closed=outer_closed).travel_mm
+    moved = order_paths(moved, outer_closed=outer_closed)  # the head's travel made short (.cut_order)
     layers = []
     for role in ROLES:
         rings = moved[role]
@@ -166,6 +169,7 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
     declared = [getattr(layers_of, key) for key in kind.layers if key != "engrave" or paths.get("engrave")]
     est = job_estimate(profile, **{role: moved[role] for role in ROLES}, engrave_area_mm2=engrave_area_mm2,
                        outer_closed=outer_closed)
+    est = replace(est, travel_before_mm=travel_before)
     return CutPlan(profile, mode, dxf_version, kerf_mm, tuple(layers), tuple(declared), tuple(bounds), est,
                    report if report is not None else Report(path="", format=""), part, engrave_area_mm2,
                    tuple(float(v) for v in offset))

@@ -43,6 +43,8 @@ class JobEstimate:
     engrave_area_mm2: float = 0.0
     travel_mm: float = 0.0
     seconds: float = 0.0
+    travel_before_mm: float | None = None
+    """The travel in the order the contours were made in, before :mod:`.cut_order` (None: not reordered)."""
 
     @property
     def cut_total_mm(self) -> float:
@@ -69,7 +71,20 @@ class JobEstimate:
         return {"cut_mm": {k: round(v, 3) for k, v in self.cut_mm.items()},
                 "cut_total_mm": round(self.cut_total_mm, 3), "pierces": self.pierces,
                 "engrave_area_mm2": round(self.engrave_area_mm2, 3), "travel_mm": round(self.travel_mm, 3),
-                "seconds": round(self.seconds, 1), "line": self.line()}
+                "seconds": round(self.seconds, 1), "line": self.line()} | (
+            {} if self.travel_before_mm is None else {"travel_before_mm": round(self.travel_before_mm, 3)})
+
+    def travel_line(self) -> str:
+        """The head's travel, and before the cut order shortened it.
+
+        >>> JobEstimate(travel_mm=20_300.0, travel_before_mm=26_285.0).travel_line()
+        'head travel 20.3 m (26.3 m in the order the contours were made, -23 %)'
+        """
+        line = f"head travel {self.travel_mm / 1000:.3g} m"
+        if self.travel_before_mm:
+            cut = 100 * (self.travel_mm / self.travel_before_mm - 1)
+            line += f" ({self.travel_before_mm / 1000:.3g} m in the order the contours were made, {cut:+.0f} %)"
+        return line
 
 
 def _flat(rings):
@@ -152,12 +167,14 @@ def total(estimates) -> JobEstimate:
     """The sum of several jobs (a sheet's tiles, a batch).
 
     >>> total([JobEstimate({"inner_cut": 1.0}, 2, seconds=3), JobEstimate({"inner_cut": 2.0}, 1, seconds=4)])
-    JobEstimate(cut_mm={'inner_cut': 3.0}, pierces=3, engrave_area_mm2=0.0, travel_mm=0.0, seconds=7.0)
+    JobEstimate(cut_mm={'inner_cut': 3.0}, pierces=3, engrave_area_mm2=0.0, travel_mm=0.0, seconds=7.0, travel_before_mm=None)
     """
     cut: dict = {}
     estimates = list(estimates)
     for e in estimates:
         for k, v in e.cut_mm.items():
             cut[k] = cut.get(k, 0.0) + v
+    before = [e.travel_before_mm for e in estimates]
     return JobEstimate(cut, sum(e.pierces for e in estimates), float(sum(e.engrave_area_mm2 for e in estimates)),
-                       float(sum(e.travel_mm for e in estimates)), float(sum(e.seconds for e in estimates)))
+                       float(sum(e.travel_mm for e in estimates)), float(sum(e.seconds for e in estimates)),
+                       None if None in before else float(sum(before)))

@@ -47,15 +47,16 @@ def measure(inner, kerf, card):
 
 def labels_present(score, card):
     """Each feature's size is written on the score layer in the stroke font, centred on it."""
-    drawn = {tuple(np.round(p, 3).ravel()) for p in score}
-    assert len(drawn) == len(card.labels)
+    # either way round: the cut order may draw a score line backwards (geometry/cut_order.py)
+    drawn = {tuple(np.round(q, 3).ravel()) for p in score for q in (p, p[::-1])}
+    assert len({min(tuple(np.round(q, 3).ravel()) for q in (p, p[::-1])) for p in score}) == len(card.labels)
     for f in card.features:
         if not f.label:  # the inlay gauge's holes: the fit is written under the piece
             continue
         height = 3.0 if f.kind == "kerf_part" else 2.0
         want = text_paths(f.label, height_mm=height, x=f.at[0], y=0, centre=True)
         # the label's baseline: any drawn path shaped like its first stroke, at the same x
-        dys = {round(q[0, 1] - want[0][0, 1], 3) for q in score
+        dys = {round(q[0, 1] - want[0][0, 1], 3) for p in score for q in (p, p[::-1])
                if q.shape == want[0].shape and np.allclose(q[:, 0], want[0][:, 0], atol=1e-3)}
         assert any(all(tuple(np.round(w + [0, dy], 3).ravel()) in drawn for w in want) for dy in dys), f
 

@@ -1,0 +1,53 @@
+"""``fabtiles plot``: a design as a pen plotter draws it (SVG; HPGL through vpype).
+
+The command parses its arguments and prints; the drawing is
+:func:`fabtiles.build.plot.plot_drawing`'s, the files :mod:`fabtiles.export.plot_svg`'s.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from ..build.plot import WHATS
+
+PLOT_SUFFIXES = (".svg", ".hpgl")
+"""The files ``fabtiles plot`` writes, by the output's suffix."""
+
+
+@click.command("plot")
+@click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False),
+              help="The file to write: .svg, or .hpgl (needs vpype: pip install 'fabtiles[vpype]').")
+@click.option("--what", type=click.Choice(WHATS), default="centrelines", show_default=True,
+              help="centrelines: the strands as single strokes, for a pen; cut: the cutter's contours.")
+@click.option("--pen", "pen_mm", type=float, default=None, help="The pen's width in mm, the strokes' width (default 0.3).")
+@click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
+              help="Override a design key for this run (repeatable), as in `fabtiles build`.")
+def command(design_file, output, what, pen_mm, overrides):
+    """Write a design for a pen plotter: merged single strokes, ordered for the least pen-up travel.
+
+    \b
+    fabtiles plot samples/table3-3.toml -o table.svg --pen 0.5
+    fabtiles plot samples/mosaic-iznik.toml -o mosaic.hpgl
+
+    One layer per pen: the strands, the outline, each face colour (with [colour]).
+    """
+    from .._errors import ParameterError
+    from .._io import atomic_write
+    from ..build.plot import plot_drawing
+    from ..design import load_design
+    from ..export import plot_svg
+
+    suffix = Path(output).suffix.lower()
+    if suffix not in PLOT_SUFFIXES:
+        raise ParameterError(f"the plot's output (-o) must end in {' or '.join(PLOT_SUFFIXES)}, got {output!r}",
+                             param="output")
+    if suffix == ".hpgl":
+        plot_svg.need_vpype("HPGL")  # before any geometry
+    drawing = plot_drawing(load_design(design_file, overrides=overrides), what=what, pen_mm=pen_mm)
+    data = plot_svg.svg_bytes(drawing) if suffix == ".svg" else plot_svg.hpgl_bytes(drawing)
+    atomic_write(output, data)
+    layers = ", ".join(f"{layer.name} {len(layer.paths):,} strokes" for layer in drawing.layers)
+    click.echo(f"{output}: {layers}; pen down {drawing.length_mm / 1000:.3g} m, pen up {drawing.travel_mm / 1000:.3g} m")
