@@ -18,9 +18,17 @@ traceback.
 from __future__ import annotations
 
 import click
-import vpype_cli
 
 from ..build.plot import WHATS
+
+try:
+    import vpype_cli
+except ImportError:  # only vpype loads this module (its entry point), so vpype is there then; a doctest
+    vpype_cli = None  # run without the extra imports it too, and must not fail
+
+
+def _global_processor(f):
+    return vpype_cli.global_processor(f) if vpype_cli is not None else f
 
 
 @click.command("fabtiles")
@@ -30,7 +38,7 @@ from ..build.plot import WHATS
 @click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
               help="Override a design key, as in `fabtiles build --set` (repeatable).")
 @click.option("--pen", "pen_mm", type=float, default=None, help="The pen's width in mm (default 0.3).")
-@vpype_cli.global_processor
+@_global_processor
 def fabtiles_command(document, design, what, overrides, pen_mm):
     """Draw a fabtiles design (a TOML file): one layer per pen, named and coloured."""
     return add_design(document, design, what=what, overrides=overrides, pen_mm=pen_mm)
