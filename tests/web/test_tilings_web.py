@@ -100,6 +100,25 @@ def test_design_toml_download_builds_the_same_packing(client):
     assert pack.tiling == "4.6.12" and pack.edge == 12 and pack.motifs[4].n == 8
 
 
+def test_hankin_design_toml_download_builds_the_same_packing(client):
+    from fabtiles.design import design_from_text
+
+    params = {"packing": "archimedean", "tiling": "6.6.6", "edge": "14", "method": "hankin",
+              "contact_angle": "60", "contact_gap": "1.5", "width": "150"}
+    text = client.get("/api/design.toml", params=params).text
+    assert 'method = "hankin"' in text and "contact_gap = 1.5" in text
+    pack = design_from_text(text).build_tile().pattern
+    assert pack == load_design_pattern("hankin/6.6.6.toml")
+
+
+def load_design_pattern(name):
+    from pathlib import Path
+
+    from fabtiles.design import load_design
+
+    return load_design(Path(__file__).resolve().parents[2] / "samples" / name).build_tile().pattern
+
+
 def test_hankin_query_to_design_and_preview(client):
     d = design_from_query({"preset": "table3-3", "packing": "archimedean", "tiling": "4.8.8", "edge": "14",
                            "method": "hankin", "contact_angle": "67.5", "contact_gap": "0.5", "motif_8": "table3-3",
