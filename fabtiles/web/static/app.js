@@ -556,9 +556,10 @@ async function init() {
   $("show_findings").addEventListener("change", () => { showFindings = $("show_findings").checked; update(); });
   for (const key of MENUS)
     $(key).addEventListener("change", () => { state[key] = $(key).value; update(); });
-  // (packing and method are schema menus too: their own listener above redraws)
-  for (const key of ["packing", "tiling", "method"])
+  for (const key of ["packing", "tiling"])
     $(key).addEventListener("change", () => { state[key] = $(key).value; tilingControls(); if (key === "tiling") update(); });
+  // the method is a schema menu (its listener above sets it and redraws): the per-kind menus' captions follow it
+  $("method").addEventListener("change", tilingControls);
   origin.q = designKey();
   showLabel();
   refresh();
