@@ -106,3 +106,9 @@ def test_cli_builds_a_hankin_design(tmp_path):
     result = CliRunner().invoke(cli, ["build", str(path), "-o", str(tmp_path / "out")], catch_exceptions=False)
     assert result.exit_code == 0, result.output
     assert 'width="100.15mm"' in (tmp_path / "out" / "h.svg").read_text()
+
+
+def test_seamless_keeps_the_method():
+    d = design_from_text(BASE.replace("edge = 20", "edge = 20\nseamless = true"))
+    pack = build_tile(d).pattern
+    assert d.packing.edge != 20 and pack.method == "hankin" and pack.edge == d.packing.edge
