@@ -85,8 +85,8 @@ class ArchimedeanPacking:
         ``method="hankin"``: the rays' angle to their edge, degrees, in (0, 90).
     contact_gap : float, keyword-only
         ``method="hankin"``: the distance along the edge between the two rays' starts, mm,
-        >= 0 and < ``edge``. With no gap a ray and its straight continuation across the edge
-        (the neighbour's ray) are one segment.
+        >= 0 and < ``edge``. With no gap (or one under 1e-9 of the edge) a ray and its straight
+        continuation across the edge (the neighbour's ray) are one segment.
 
     Examples
     --------
@@ -365,7 +365,9 @@ class ArchimedeanPacking:
             for k in range(p):
                 phi = cell.angles[e] + 2 * math.pi * k / p
                 o = np.array([math.cos(phi), math.sin(phi)])
-                if gap == 0:
+                # a gap under 1e-9 of the edge puts both starts on one point to float precision:
+                # the rays continue each other across the edge as with none
+                if gap <= 1e-9 * a:
                     mid = centres[e] + inradius(p, a) * o
                     miss = np.hypot(*(near - mid - radii[:, None] * o).T)
                     j = int(np.argmin(miss))

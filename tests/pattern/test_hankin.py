@@ -12,6 +12,9 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis_scale import examples
 
 from fabtiles import ArchimedeanPacking, ParameterError
 from fabtiles.pattern.hankin import max_contact_angle
@@ -252,3 +255,32 @@ def test_an_angle_with_no_pattern_names_the_tilings_valid_range():
 def test_an_unknown_method_is_refused():
     with pytest.raises(ParameterError, match=r"method = 'kaplan' is not valid, must be one of: motifs, hankin"):
         ArchimedeanPacking("4.8.8", EDGE, method="kaplan")
+
+
+@settings(max_examples=examples(25), deadline=None)
+@given(tiling=st.sampled_from(TILINGS), angle=st.floats(1, 89), gap_fraction=st.floats(0, 0.9),
+       edge=st.floats(2, 30))
+def test_any_valid_angle_and_gap_closes_every_strand(tiling, angle, gap_fraction, edge):
+    """Property: every valid (angle, gap) gives closed strands, each segment once; an invalid one is refused."""
+    kinds = set(unit_cell(tiling).sides.tolist())
+    gap = gap_fraction * edge
+    if any(angle > max_contact_angle(p, edge, gap) for p in kinds):
+        with pytest.raises(ParameterError, match=r"has no pattern on the tiling"):
+            ArchimedeanPacking(tiling, edge, method="hankin", contact_angle=angle, contact_gap=gap)
+        return
+    pack = ArchimedeanPacking(tiling, edge, method="hankin", contact_angle=angle, contact_gap=gap)
+    half = 4 * edge
+    segs = pack.segments((-half, -half, half, half))
+    assert (np.hypot(*(segs[:, 1] - segs[:, 0]).T) > 0).all()
+    ends = segs.reshape(-1, 2)
+    middle = (np.abs(ends) <= half - 2.5 * edge).all(axis=1)
+    assert (near_count(ends[middle], ends) == 2).all()
+    flat = canonical(segs).reshape(len(segs), -1)
+    assert (near_count(flat, flat) == 1).all()  # each segment once
+
+
+def near_count(points, among, tol=1e-7):
+    """How many of ``among`` lie within ``tol`` of each of ``points`` (no rounding: a tie at the 6th
+    decimal splits two equal points that rounding would)."""
+    return np.concatenate([(np.abs(chunk[:, None] - among[None]).max(axis=2) < tol).sum(axis=1)
+                           for chunk in np.array_split(points, max(1, len(points) // 256))])
