@@ -22,7 +22,7 @@ from .._validate import check_float
 from .hankin import check_contact, check_method, polygon_rays
 from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, default_gap_motif
 from .star import Star
-from .tilings import NAMES, TILINGS, circumradius, inradius, unit_cell
+from .tilings import NAMES, TILINGS, inradius, unit_cell
 
 DEFAULT_MOTIFS = MappingProxyType({
     3: dict(n=6, radii=(0.5, 1.0)),
