@@ -318,6 +318,8 @@ MOTIF = _motif_keys("motif")
 
 _TILE = "fabtiles.geometry.tile.TileGeometry"
 _ARCH = 'kind = "archimedean"'
+_HANKIN = 'method = "hankin"'
+_HANKIN_WHEN = (("packing", ("archimedean",)), ("method", ("hankin",)))
 _INLAY_WHEN = (("laser_mode", ("inlay",)),)
 _INLAY = '{} = "{}"'.format(_INLAY_WHEN[0][0], _INLAY_WHEN[0][1][0])  # the manual's words for the same
 _HEX_SQUARE = (("packing", ("hex", "square")),)
@@ -369,8 +371,25 @@ KEYS: tuple[Key, ...] = MOTIF + (
                       when=(("packing", ("archimedean",)),))),
     Key(section="packing", name="motifs", type="motifs", query=None, requires=_ARCH,
         help="`[packing.motifs]`, a motif per polygon kind keyed by its sides "
-             "(`8 = \"table3-3\"`, `4 = { n = 8, radii = [1, 2] }`); `[motif]` fills the kinds not listed; "
-             "on the web, `motif_<sides>`"),
+             "(`8 = \"table3-3\"`, `4 = { n = 8, radii = [1, 2] }`); `[motif]` fills the kinds not listed "
+             "(with `method = \"hankin\"` the kinds not listed take Hankin's rays); on the web, `motif_<sides>`"),
+    Key(section="packing", name="method", type="choice", default="motifs", requires=_ARCH,
+        choices="fabtiles.pattern.hankin:METHODS", checked_by="fabtiles.pattern.hankin.check_method",
+        help="`\"motifs\"`: the paper's motifs in the incircles and gap circles; `\"hankin\"`: Hankin's "
+             "polygons in contact, two rays from each edge at `contact_angle` (see hankin.md)",
+        widget=Widget(kind="select", label="Method", labels=(("motifs", "the paper's motifs (incircles)"),
+                                                             ("hankin", "Hankin's polygons in contact")),
+                      when=(("packing", ("archimedean",)),))),
+    Key(section="packing", name="contact_angle", type="number", unit="degrees", range=Range(0, 90, min_open=True, max_open=True),
+        default=60.0, requires=_HANKIN, checked_by="fabtiles.pattern.hankin.check_contact",
+        help="the rays' angle to their edge; with a gap, at most the tiling's limit (hankin.md)",
+        widget=Widget(kind="slider", label="contact angle (deg)", min=1, max=89, step=0.5, group="packing-sliders",
+                      when=_HANKIN_WHEN)),
+    Key(section="packing", name="contact_gap", type="number", unit="mm", range=Range(0, None), default=0.0,
+        requires=_HANKIN, checked_by="fabtiles.pattern.hankin.check_contact",
+        help="the distance along the edge between the two rays' starts (less than the edge)",
+        widget=Widget(kind="slider", label="contact gap (mm)", min=0, max=20, step=0.1, group="packing-sliders",
+                      when=_HANKIN_WHEN)),
     # [tile]
     Key(section="tile", name="outline", type="choice", default="square", choices="fabtiles.geometry.tile:OUTLINES",
         help="`square`, `rectangle`, `hexagon` (pointy-top) or `circle`", widget=Widget(kind="select", label="Outline")),

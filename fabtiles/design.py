@@ -14,7 +14,9 @@ error naming the key, its section and the valid keys (with a "did you mean").
     takes ``tiling`` ("4.8.8", see :class:`~fabtiles.ArchimedeanPacking`) and ``edge``
     (mm) instead of ``radius``, and ``[packing.motifs]``: a motif per polygon kind keyed
     by its sides (``8 = "table3-3"``, ``4 = { n = 8, radii = [1, 2] }``); ``[motif]``
-    is then optional and fills the kinds not listed.
+    is then optional and fills the kinds not listed. ``method = "hankin"`` draws Hankin's
+    polygons in contact instead (``contact_angle`` degrees, ``contact_gap`` mm): the kinds
+    ``[packing.motifs]`` lists keep their motif, ``[motif]`` fills none.
 ``[tile]`` (required)
     ``outline``, ``size``, ``frame``, ``stroke``, ``join``, ``miter_limit``, ``corner_radius``,
     ``interlace``, ``interlace_gap_mm``, ``interlace_cut`` (woven strands, see
@@ -74,7 +76,10 @@ THREEMF_LAYOUTS = _schema.key("output.threemf_layout").choice_values()
 SECTIONS = _schema.SECTIONS
 MOTIF_KEYS = _schema.names("motif")
 PACKING_KEYS = _schema.names("packing")
-ARCHIMEDEAN_KEYS = tuple(k.name for k in _schema.section_keys("packing") if k.requires == 'kind = "archimedean"')
+HANKIN_KEYS = tuple(k.name for k in _schema.section_keys("packing") if k.requires == 'method = "hankin"')
+"""The ``[packing]`` keys of ``method = "hankin"`` alone (the contact angle and gap)."""
+ARCHIMEDEAN_KEYS = tuple(k.name for k in _schema.section_keys("packing")
+                         if k.requires == 'kind = "archimedean"') + HANKIN_KEYS
 """The ``[packing]`` keys of ``kind = "archimedean"`` alone (it has no ``radius``)."""
 TILE_KEYS = _schema.names("tile")
 HEIGHT_KEYS = tuple(k.name for k in _schema.section_keys("output")
@@ -118,6 +123,9 @@ class PackingSpec:
     seamless: bool = _default("packing.seamless")
     tiling: str | None = _default("packing.tiling")
     edge: float = _default("packing.edge")
+    method: str = _default("packing.method")
+    contact_angle: float = _default("packing.contact_angle")
+    contact_gap: float = _default("packing.contact_gap")
     motifs: tuple[tuple[int, MotifSpec], ...] = ()
 
 
@@ -449,6 +457,10 @@ def _build_packing(p: PackingSpec, star: Star | None):
         from .pattern.tilings import unit_cell
 
         motifs = {sides: spec.star() for sides, spec in p.motifs}
+        if p.method == "hankin":  # the kinds [packing.motifs] leaves out take Hankin's rays
+            return ArchimedeanPacking(p.tiling, p.edge, motifs, gap, outline_circles=p.outline_circles,
+                                      fill=p.fill, method="hankin", contact_angle=p.contact_angle,
+                                      contact_gap=p.contact_gap)
         if star is not None:  # [motif] fills the kinds [packing.motifs] leaves out
             kinds = set(unit_cell(p.tiling).sides.tolist())
             motifs = {**{k: star for k in kinds - set(motifs)}, **motifs}
@@ -537,6 +549,12 @@ def _packing_spec(table: dict, source: str) -> PackingSpec:
     extra = _archimedean_spec(table, source) if kind == "archimedean" else {}
     if kind != "archimedean":
         wrong = [k for k in ARCHIMEDEAN_KEYS if k in table]
+        if wrong and wrong[0] == "method":
+            raise DesignError(f"{source}: {where} method = {table['method']!r} is not valid with kind = {kind!r}: "
+                              f"method (one of: {', '.join(_schema.key('packing.method').choice_values())}) is a key "
+                              f"of kind = \"archimedean\", whose polygons may take Hankin's rays, while a {kind} "
+                              f"packing holds motifs in circles; set kind = \"archimedean\" and a tiling, or remove "
+                              f"method", param=_key(where, key="method"))
         if wrong:
             raise DesignError(f"{source}: {where} {wrong[0]} is a key of kind = \"archimedean\", "
                               f"not of kind = {kind!r}; set kind = \"archimedean\" or remove it",
@@ -562,13 +580,25 @@ def _archimedean_spec(table: dict, source: str) -> dict:
     if not isinstance(raw, dict):
         raise DesignError(f"{source}: [packing.motifs] must be a table keyed by polygon sides "
                           f"(8 = \"table3-3\"), got {raw!r}", param=_key(where, key="motifs"))
+    method = _value(table, "packing", "method", source, where, _schema.key("packing.method").default)
+    if method not in _schema.key("packing.method").choice_values():
+        valid = _schema.key("packing.method").choice_values()
+        hint = did_you_mean(method, valid)
+        raise DesignError(f"{source}: {where} method = {method!r} is not valid{f' ({hint})' if hint else ''}, "
+                          f"must be one of: {', '.join(valid)}", param=_key(where, key="method"))
+    contact = {k: _value(table, "packing", k, source, where, _schema.key(f"packing.{k}").default)
+               for k in HANKIN_KEYS}
+    if method != "hankin" and any(k in table for k in HANKIN_KEYS):
+        first = next(k for k in HANKIN_KEYS if k in table)
+        raise DesignError(f"{source}: {where} {first} is a key of method = \"hankin\", not of method = "
+                          f"{method!r}; set method = \"hankin\" or remove it", param=_key(where, key=first))
     motifs = []
     for key, value in raw.items():
         if not str(key).isdigit():
             raise DesignError(f"{source}: [packing.motifs] key {key!r} must be a polygon's number of "
                               f"sides, like 8 = \"table3-3\"", param=_key(where, key="motifs"))
         motifs.append((int(key), _motif_spec(value, source, f"[packing.motifs] {key}")))
-    return dict(tiling=tiling, edge=edge, motifs=tuple(sorted(motifs)))
+    return dict(tiling=tiling, edge=edge, motifs=tuple(sorted(motifs)), method=method, **contact)
 
 
 def _tile_spec(table: dict, source: str) -> TileSpec:

@@ -3,7 +3,8 @@
     python samples/render.py
 
 The samples go to ``samples/renders/``, the 11 Archimedean tiling samples
-(``samples/tilings/``) to ``samples/renders/tilings/`` (the README's gallery). The files
+(``samples/tilings/``) to ``samples/renders/tilings/`` (the README's gallery), their Hankin
+counterparts (``samples/hankin/``) to ``samples/renders/hankin/``. The files
 are reproducible byte for byte; tests/cli/test_build.py and
 tests/export/test_tiling_samples.py check that rendering a sample gives exactly the
 committed file.
@@ -30,7 +31,8 @@ def render(design_path, out_dir) -> Path:
 
 
 def main() -> None:
-    for designs, out in ((HERE, HERE / "renders"), (HERE / "tilings", HERE / "renders" / "tilings")):
+    for designs, out in ((HERE, HERE / "renders"), (HERE / "tilings", HERE / "renders" / "tilings"),
+                         (HERE / "hankin", HERE / "renders" / "hankin")):
         out.mkdir(parents=True, exist_ok=True)
         for path in sorted(designs.glob("*.toml")):
             written = render(path, out)

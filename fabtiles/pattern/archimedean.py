@@ -19,6 +19,7 @@ import numpy as np
 
 from .._errors import LimitError, ParameterError
 from .._validate import check_float
+from .hankin import check_contact, check_method, polygon_rays
 from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, default_gap_motif
 from .star import Star
 from .tilings import NAMES, TILINGS, inradius, unit_cell
@@ -74,6 +75,18 @@ class ArchimedeanPacking:
         Also stroke the circles themselves.
     fill : float, keyword-only
         Motif extent as a fraction of its circle's radius, in (0, 1].
+    method : str, keyword-only
+        ``"motifs"`` (default): the paper's motifs in the incircles and gap circles, as above.
+        ``"hankin"``: Hankin's polygons in contact (:mod:`fabtiles.pattern.hankin`): two rays
+        leave each edge at ``contact_angle`` and meet their neighbours' on the corners'
+        bisectors; the kinds named in ``motifs`` keep their motif in the incircle (the others
+        take the rays, and ``DEFAULT_MOTIFS`` fills none); there are no gap circles.
+    contact_angle : float, keyword-only
+        ``method="hankin"``: the rays' angle to their edge, degrees, in (0, 90).
+    contact_gap : float, keyword-only
+        ``method="hankin"``: the distance along the edge between the two rays' starts, mm,
+        >= 0 and < ``edge``. With no gap (or one under 1e-9 of the edge) a ray and its straight
+        continuation across the edge (the neighbour's ray) are one segment.
 
     Examples
     --------
@@ -87,12 +100,16 @@ class ArchimedeanPacking:
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: motifs key 6 is not a polygon of the tiling 4.8.8, must be one of: 4, 8
+    >>> h = ArchimedeanPacking("4.8.8", edge=20, method="hankin", contact_angle=67.5)
+    >>> h.motifs, h.segments((-1, -1, 1, 1)).shape  # the octagon's: 2 per edge it keeps (4 of 8)
+    (mappingproxy({}), (8, 2, 2))
     """
 
     __slots__ = ("_tiling", "_edge", "_motifs", "_gap_motif", "_outline_circles", "_fill", "_cell",
-                 "_units")
+                 "_units", "_kinds", "_method", "_contact")
 
-    def __init__(self, tiling, edge, motifs=None, gap_motif=None, *, outline_circles=False, fill=1.0):
+    def __init__(self, tiling, edge, motifs=None, gap_motif=None, *, outline_circles=False, fill=1.0,
+                 method="motifs", contact_angle=60.0, contact_gap=0.0):
         cell = unit_cell(tiling)
         kinds = tuple(sorted(set(cell.sides.tolist())))
         given = {}
@@ -102,7 +119,11 @@ class ArchimedeanPacking:
                                      f"name, like {{8: 'table3-3'}}, got {motifs!r}", param="motifs")
             for key, star in motifs.items():
                 given[_kind(key, kinds, cell.name)] = _motif(f"motifs[{key!r}]", star)
-        full = tuple((p, given.get(p) or Star(**DEFAULT_MOTIFS[p])) for p in kinds)
+        method = check_method(method)
+        if method == "hankin":  # only the kinds named keep a motif; the rest take Hankin's rays
+            full = tuple((p, given[p]) for p in kinds if p in given)
+        else:
+            full = tuple((p, given.get(p) or Star(**DEFAULT_MOTIFS[p])) for p in kinds)
         gap = default_gap_motif() if gap_motif is None else _motif("gap_motif", gap_motif)
         if not isinstance(outline_circles, bool):
             raise ParameterError(f"outline_circles must be true or false, got {outline_circles!r}",
@@ -110,6 +131,15 @@ class ArchimedeanPacking:
         init = object.__setattr__
         init(self, "_tiling", cell.name)
         init(self, "_edge", check_float("edge", edge, low=0, low_open=True))
+        if method == "hankin":
+            rays = [p for p in kinds if p not in given]
+            contact = check_contact(contact_angle, contact_gap, self._edge, rays, cell.name)
+        else:  # unused, but kept (and checked) so replace(method="hankin") takes them
+            contact = (check_float("contact_angle", contact_angle, low=0, high=90, low_open=True, high_open=True),
+                       check_float("contact_gap", contact_gap, low=0))
+        init(self, "_kinds", kinds)
+        init(self, "_method", method)
+        init(self, "_contact", contact)
         init(self, "_motifs", full)
         init(self, "_gap_motif", gap)
         init(self, "_outline_circles", outline_circles)
@@ -133,16 +163,20 @@ class ArchimedeanPacking:
     gap_motif = property(lambda self: self._gap_motif, doc="Motif of the gap circles.")
     outline_circles = property(lambda self: self._outline_circles, doc="Whether the circles are stroked.")
     fill = property(lambda self: self._fill, doc="Motif extent / circle radius.")
+    method = property(lambda self: self._method, doc='"motifs" (the paper\'s) or "hankin" (polygons in contact).')
+    contact_angle = property(lambda self: self._contact[0], doc="Hankin's rays' angle to their edge, degrees.")
+    contact_gap = property(lambda self: self._contact[1], doc="Between the two rays' starts on an edge, mm.")
 
     @property
     def motifs(self):
-        """Polygon sides -> motif, for every kind of the tiling (read-only mapping)."""
+        """Polygon sides -> motif, for every kind of the tiling (``method="hankin"``: the kinds
+        that keep a motif) (read-only mapping)."""
         return MappingProxyType(dict(self._motifs))
 
     @property
     def kinds(self) -> tuple[int, ...]:
         """The polygon kinds of the tiling (numbers of sides), ascending."""
-        return tuple(p for p, _ in self._motifs)
+        return self._kinds
 
     @property
     def radius(self) -> float:
@@ -185,7 +219,8 @@ class ArchimedeanPacking:
     def params(self) -> dict:
         """The constructor arguments."""
         return dict(tiling=self._tiling, edge=self._edge, motifs=self.motifs, gap_motif=self._gap_motif,
-                    outline_circles=self._outline_circles, fill=self._fill)
+                    outline_circles=self._outline_circles, fill=self._fill, method=self._method,
+                    contact_angle=self._contact[0], contact_gap=self._contact[1])
 
     def replace(self, **changes) -> "ArchimedeanPacking":
         """A copy with some parameters changed (validated again).
@@ -196,7 +231,8 @@ class ArchimedeanPacking:
         return type(self)(**{**self.params(), **changes})
 
     def _key(self):
-        return (self._tiling, self._edge, self._motifs, self._gap_motif, self._outline_circles, self._fill)
+        return (self._tiling, self._edge, self._motifs, self._gap_motif, self._outline_circles, self._fill,
+                self._method, self._contact)
 
     def __eq__(self, other) -> bool:
         return type(other) is type(self) and self._key() == other._key()
@@ -208,13 +244,18 @@ class ArchimedeanPacking:
         motifs = ", ".join(f"{p}: {s!r}" for p, s in self._motifs)
         extra = ", outline_circles=True" if self._outline_circles else ""
         extra += f", fill={self._fill:g}" if self._fill != 1.0 else ""
+        if self._method == "hankin":
+            extra += (f", method='hankin', contact_angle={self._contact[0]:g}, "
+                      f"contact_gap={self._contact[1]:g}")
         return (f"ArchimedeanPacking({self._tiling!r}, edge={self._edge:g}, motifs={{{motifs}}}, "
                 f"gap_motif={self._gap_motif!r}{extra})")
 
     # -- circles --------------------------------------------------------------
     def _entries(self):
-        """Per unit-cell circle: offset (mm), radius (mm), sides (0: gap)."""
+        """Per unit-cell circle: offset (mm), radius (mm), sides (0: gap); Hankin's method has no gap circles."""
         cell, a = self._cell, self._edge
+        if self._method == "hankin":
+            return cell.centres * a, cell.radii() * a, np.asarray(cell.sides)
         offsets = np.concatenate([cell.centres, cell.gap_centres]) * a
         radii = np.concatenate([cell.radii(), cell.gap_radii]) * a
         sides = np.concatenate([cell.sides, np.zeros(len(cell.gap_radii), dtype=int)])
@@ -229,7 +270,7 @@ class ArchimedeanPacking:
         inv = np.linalg.inv(basis.T)
         pts, idx = [], []
         lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
-        margins = radii * (1 + 1e-9)
+        margins = self._reach(radii) * (1 + 1e-9)
         for off, m in zip(offsets, margins):
             corners = np.array([[x0 - m, y0 - m], [x1 + m, y0 - m], [x0 - m, y1 + m], [x1 + m, y1 + m]])
             ij = (corners - off) @ inv.T
@@ -288,8 +329,77 @@ class ArchimedeanPacking:
         return count
 
     # -- motifs ---------------------------------------------------------------
+    def _reach(self, radii) -> np.ndarray:
+        """Per unit-cell entry: how far its segments reach from its centre, mm (its circle's radius,
+        a Hankin polygon's farthest ray end: rays merged across an edge reach into the neighbour)."""
+        if self._method != "hankin":
+            return radii
+        units = self._unit_motifs()
+        return np.array([max(r, float(np.hypot(*u.reshape(-1, 2).T).max()) if len(u) else 0.0)
+                         for r, u in zip(radii, units)])
+
+    def _hankin_units(self) -> list:
+        """Per polygon of the unit cell: its Hankin rays (None for a kind that keeps a motif), centred at 0.
+
+        Without a gap, a ray and the neighbour's ray continuing it across a shared edge are one
+        segment, kept by the polygon the edge's outward normal points right (or up) from, so
+        each is listed once in the tiling."""
+        cell, a = self._cell, self._edge
+        angle, gap = self._contact
+        stars = dict(self._motifs)
+        centres = cell.centres * a
+        hankin = [int(p) not in stars for p in cell.sides]
+        rays = [polygon_rays(int(p), a, angle, gap, t) if h else None
+                for p, t, h in zip(cell.sides, cell.angles, hankin)]
+        # the snub hexagonal cell's polygons lie up to 2.5 lattice steps from its origin
+        shifts = np.array([(i, j) for i in range(-4, 5) for j in range(-4, 5)], dtype=float) @ self.lattice
+        near = (centres[None] + shifts[:, None]).reshape(-1, 2)  # every polygon near the cell
+        entry = np.tile(np.arange(len(centres)), len(shifts))
+        radii = cell.radii()[entry] * a
+        out = []
+        for e, p in enumerate(cell.sides.tolist()):
+            if not hankin[e]:
+                out.append(None)
+                continue
+            segs = []
+            for k in range(p):
+                phi = cell.angles[e] + 2 * math.pi * k / p
+                o = np.array([math.cos(phi), math.sin(phi)])
+                # a gap under 1e-9 of the edge puts both starts on one point to float precision:
+                # the rays continue each other across the edge as with none
+                if gap <= 1e-9 * a:
+                    mid = centres[e] + inradius(p, a) * o
+                    miss = np.hypot(*(near - mid - radii[:, None] * o).T)
+                    j = int(np.argmin(miss))
+                    assert miss[j] < 1e-6 * a, "every edge has a neighbour"
+                    if hankin[entry[j]]:
+                        if not (o[0] > 1e-9 or (abs(o[0]) <= 1e-9 and o[1] > 0)):
+                            continue  # the neighbour lists the edge's two segments
+                        q = int(cell.sides[entry[j]])
+                        turn = math.atan2(*(mid - near[j])[::-1]) - cell.angles[entry[j]]
+                        kb = round(turn / (2 * math.pi / q)) % q
+                        other = rays[entry[j]][kb, :, 1] + near[j] - centres[e]
+                        segs += [[other[r], rays[e][k, r, 1]] for r in (0, 1)]
+                        continue
+                segs += [rays[e][k, 0], rays[e][k, 1]]
+            out.append(np.array(segs, dtype=float).reshape(-1, 2, 2))
+        return out
+
     def _unit_motifs(self) -> list:
-        """Per unit-cell circle: its motif's segments scaled to the circle, turned, centred at 0."""
+        """Per unit-cell circle: its motif's segments scaled to the circle, turned, centred at 0
+        (``method="hankin"``: a polygon's rays, or its motif)."""
+        if "all" not in self._units and self._method == "hankin":
+            cell = self._cell
+            stars = dict(self._motifs)
+            radii = cell.radii() * self._edge
+            out = self._hankin_units()
+            for e, (p, angle, r) in enumerate(zip(cell.sides.tolist(), cell.angles, radii)):
+                if out[e] is None:
+                    star = stars[p]
+                    seg = star.segments() * (r * self._fill / star.extent)
+                    out[e] = _rotated(seg, angle - _turn(star), 2 * math.pi / star.n)
+                out[e].setflags(write=False)
+            self._units["all"] = out
         if "all" not in self._units:
             cell = self._cell
             _, radii, _ = self._entries()

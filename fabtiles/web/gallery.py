@@ -4,7 +4,8 @@ The paper's seven presets on the default hexagonal packing, their faces coloured
 by shape in the palettes (``docs/colours.md``), and the eleven Archimedean
 tilings as their samples in ``samples/tilings/`` have them (a test builds each
 entry and its sample and compares the tiles, so the two cannot drift; the
-samples have no colours, so neither have these entries). The thumbnails are
+samples have no colours, so neither have these entries), then four tilings by
+Hankin's polygons in contact as ``samples/hankin/`` has them (compared likewise). The thumbnails are
 drawn by the preview code (:func:`~fabtiles.build.views.tile_picture`, the
 coloured faces too) and kept for the life of the process.
 
@@ -14,6 +15,8 @@ coloured faces too) and kept for the life of the process.
 'table1-part1'
 >>> entry("table1-part2").query["palette"]
 'iznik'
+>>> entry("hankin-4.8.8").query["contact_angle"]
+'67.5'
 """
 
 from __future__ import annotations
@@ -47,6 +50,15 @@ _TILINGS = {
     "6.6.6": (14.4, {6: "table3-3"}, None, None, 1),
 }
 
+# tiling -> contact angle (degrees), contact gap (mm): the values of samples/hankin/<tiling>.toml (edge 14,
+# stroke 1); a contact gap of 0 is not sent
+_HANKIN = {
+    "4.8.8": (67.5, 0),
+    "6.6.6": (60, 1.5),
+    "3.12.12": (70, 0),
+    "4.6.12": (60, 1),
+}
+
 
 @dataclass(frozen=True)
 class Entry:
@@ -64,7 +76,7 @@ def _tile_query(stroke=1) -> dict:
 
 @functools.cache
 def entries() -> tuple[Entry, ...]:
-    """The gallery's entries: the presets, then the tilings."""
+    """The gallery's entries: the presets, then the tilings, then the tilings by Hankin's method."""
     out = [Entry(name, f"Preset {name}", PRESET_NOTES[name] or "the paper's parameters, as printed",
                  {"preset": name, "packing": "hex", "radius": "15", **_tile_query(),
                   "colour_by": "shape", "palette": _PRESET_PALETTES[name]}) for name in PRESETS]
@@ -79,6 +91,15 @@ def entries() -> tuple[Entry, ...]:
         if gap_n is not None:
             query.update(gap_n=str(gap_n), gap_radii="0.5,1")
         out.append(Entry(tiling, f"Tiling {tiling}", f"the {NAMES[tiling]} tiling", {**query, **_tile_query(stroke)}))
+    for tiling, (angle, gap) in _HANKIN.items():
+        query = {"preset": "table3-3", "packing": "archimedean", "tiling": tiling, "edge": "14", "method": "hankin",
+                 "contact_angle": f"{angle:g}"}
+        if gap:
+            query["contact_gap"] = f"{gap:g}"
+        gap_words = f", {gap:g} mm apart" if gap else ""
+        out.append(Entry(f"hankin-{tiling}", f"Hankin {tiling}",
+                         f"the {NAMES[tiling]} tiling by Hankin's polygons in contact, rays at {angle:g} degrees"
+                         f"{gap_words}", {**query, **_tile_query(1)}))
     assert set(_TILINGS) == set(TILINGS), "a tiling is missing from the gallery"
     assert set(_PRESET_PALETTES) == set(PRESETS), "a preset has no palette in the gallery"
     return tuple(out)

@@ -25,7 +25,7 @@ import numpy as np
 import pytest
 from real_programs import INKSCAPE_EXTENSIONS, SYSTEM_PYTHON, program, require, run
 
-from fabtiles import HexPacking, Star, Tile
+from fabtiles import ArchimedeanPacking, HexPacking, Star, Tile
 from fabtiles._profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
@@ -33,10 +33,15 @@ SIZE = 60.0  # inside MeerK40t's default 235 mm bed, which it would otherwise sc
 GRBL_STEP = 0.0254  # MeerK40t works in 1/1000 inch
 
 
-@pytest.fixture(scope="module")
-def files(tmp_path_factory):
-    out = tmp_path_factory.mktemp("laser")
-    tile = Tile("square", SIZE, HexPacking(10, Star.preset("table3-3")), frame=3, stroke=1.0)
+PATTERNS = {"hex": lambda: HexPacking(10, Star.preset("table3-3")),
+            # issue 36: Hankin's polygons in contact go through the programs as the paper's motifs do
+            "hankin": lambda: ArchimedeanPacking("4.8.8", 8, method="hankin", contact_angle=67.5)}
+
+
+@pytest.fixture(scope="module", params=sorted(PATTERNS))
+def files(tmp_path_factory, request):
+    out = tmp_path_factory.mktemp(f"laser-{request.param}")
+    tile = Tile("square", SIZE, PATTERNS[request.param](), frame=3, stroke=1.0)
     paths = {}
     for mode in ("pierced", "score"):
         for fmt in ("dxf", "svg"):

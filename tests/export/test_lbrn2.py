@@ -21,7 +21,7 @@ import pytest
 from real_programs import program, require, run
 from test_laser_programs import burns, meerk40t
 
-from fabtiles import HexPacking, ProfileError, Star, Tile
+from fabtiles import ArchimedeanPacking, HexPacking, ProfileError, Star, Tile
 from fabtiles._profiles import load_profile
 from fabtiles.export import lbrn2
 from fabtiles.geometry.job_time import path_lengths
@@ -34,10 +34,16 @@ def tile(size=60):
     return Tile("square", size, HexPacking(10, Star.preset("table3-3")), frame=3, stroke=1.0)
 
 
-@pytest.fixture(scope="module")
-def files(tmp_path_factory):
-    out = tmp_path_factory.mktemp("lbrn2")
-    t, paths, reports = tile(), {}, {}
+def hankin_tile(size=60):
+    """Issue 36: Hankin's polygons in contact, through LightBurn's project as the paper's motifs."""
+    return Tile("square", size, ArchimedeanPacking("4.8.8", 8, method="hankin", contact_angle=67.5), frame=3,
+                stroke=1.0)
+
+
+@pytest.fixture(scope="module", params=["hex", "hankin"])
+def files(tmp_path_factory, request):
+    out = tmp_path_factory.mktemp(f"lbrn2-{request.param}")
+    t, paths, reports = (tile() if request.param == "hex" else hankin_tile()), {}, {}
     for mode in ("pierced", "score"):
         for fmt in ("dxf", "lbrn2"):
             paths[mode, fmt] = out / f"{mode}.{fmt}"

@@ -48,6 +48,16 @@ def test_rectangle_fit_of_every_tiling(tiling):
     assert neighbours_continue(tile, [(w, 0), (0, h), (-w, h)]) < 1e-4
 
 
+@pytest.mark.parametrize(("tiling", "gap"), [("4.8.8", 0.0), ("3.4.6.4", 0.8), ("3.3.3.3.6", 0.0)])
+def test_hankin_seamless_rectangle_continues(tiling, gap):
+    """Hankin's rays (method "hankin") repeat with the tiling as the motifs do."""
+    fit = seamless_fit("rectangle", (60, 45), 6, packing=tiling)
+    pack = ArchimedeanPacking(tiling, fit.edge, method="hankin", contact_angle=55, contact_gap=gap)
+    tile = TileGeometry("rectangle", fit.size, pack, stroke=0.5)
+    w, h = fit.size
+    assert neighbours_continue(tile, [(w, 0), (0, h), (-w, h)]) < 1e-4
+
+
 @pytest.mark.parametrize("tiling", SQUARE)
 def test_square_fit(tiling):
     fit = seamless_fit("square", 50, 7, packing=tiling)

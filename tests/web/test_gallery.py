@@ -22,10 +22,21 @@ def client():
     return TestClient(create_app())
 
 
-def test_presets_then_tilings():
+def test_presets_then_tilings_then_hankin():
     keys = [e.key for e in gallery.entries()]
-    assert keys == [*PRESETS, *gallery._TILINGS] and set(keys[len(PRESETS):]) == set(TILINGS)
-    assert len(keys) == 18
+    hankin = [f"hankin-{t}" for t in gallery._HANKIN]
+    assert keys == [*PRESETS, *gallery._TILINGS, *hankin] and set(keys[len(PRESETS):-len(hankin)]) == set(TILINGS)
+    assert len(keys) == 22
+
+
+@pytest.mark.parametrize("tiling", sorted(gallery._HANKIN))
+def test_hankin_entry_is_its_sample(tiling):
+    _, tile = tile_from_dict(design_from_query(gallery.entry(f"hankin-{tiling}").query), limits=WEB_LIMITS)
+    sample = load_design(SAMPLES / "hankin" / f"{tiling}.toml").build_tile()
+    assert tile.pattern == sample.pattern and tile.pattern.method == "hankin"
+    a, b = tile.region(), sample.region()
+    assert a.symmetric_difference(b).area <= 1e-6 * b.area
+    assert tile.stroke == sample.stroke and tile.width_mm == sample.width_mm
 
 
 @pytest.mark.parametrize("tiling", sorted(TILINGS))

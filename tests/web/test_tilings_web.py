@@ -98,3 +98,87 @@ def test_design_toml_download_builds_the_same_packing(client):
     assert "[packing.motifs]" in text and '4 = "table1-part1"' in text
     pack = design_from_text(text).build_tile().pattern
     assert pack.tiling == "4.6.12" and pack.edge == 12 and pack.motifs[4].n == 8
+
+
+def test_hankin_design_toml_download_builds_the_same_packing(client):
+    from fabtiles.design import design_from_text
+
+    params = {"packing": "archimedean", "tiling": "6.6.6", "edge": "14", "method": "hankin",
+              "contact_angle": "60", "contact_gap": "1.5", "width": "150"}
+    text = client.get("/api/design.toml", params=params).text
+    assert 'method = "hankin"' in text and "contact_gap = 1.5" in text
+    pack = design_from_text(text).build_tile().pattern
+    assert pack == load_design_pattern("hankin/6.6.6.toml")
+
+
+def load_design_pattern(name):
+    from pathlib import Path
+
+    from fabtiles.design import load_design
+
+    return load_design(Path(__file__).resolve().parents[2] / "samples" / name).build_tile().pattern
+
+
+def test_hankin_query_to_design_and_preview(client):
+    d = design_from_query({"preset": "table3-3", "packing": "archimedean", "tiling": "4.8.8", "edge": "14",
+                           "method": "hankin", "contact_angle": "67.5", "contact_gap": "0.5", "motif_8": "table3-3",
+                           "width": "80"})
+    assert d["packing"]["method"] == "hankin" and d["packing"]["contact_angle"] == 67.5
+    pack = design_from_dict(d, source="query").build_tile().pattern
+    assert pack.method == "hankin" and pack.contact_gap == 0.5 and dict(pack.motifs).keys() == {8}
+    r = client.get("/api/preview.svg", params={"preset": "table3-3", "packing": "archimedean", "tiling": "3.12.12",
+                                                "edge": "15", "method": "hankin", "contact_angle": "70", "width": "80"})
+    assert r.status_code == 200 and r.text.startswith("<?xml")
+
+
+@pytest.mark.parametrize("params, field, match", [
+    ({"method": "kaplan"}, "method", "method = 'kaplan' is not valid, must be one of: motifs, hankin"),
+    ({"method": "hankin", "contact_angle": "95"}, "contact_angle", "contact_angle must be a finite number > 0 and < 90"),
+    ({"method": "hankin", "contact_gap": "-1"}, "contact_gap", "contact_gap must be a finite number >= 0"),
+    ({"method": "hankin", "contact_gap": "15"}, "contact_gap", "contact_gap must be >= 0 and < the edge (15 mm)"),
+    ({"method": "hankin", "contact_angle": "85", "contact_gap": "6"}, "contact_angle",
+     "contact_angle 85 has no pattern on the tiling 4.8.8"),
+    ({"contact_angle": "50"}, "contact_angle", "contact_angle is a key of method = \"hankin\""),
+    ({"packing": "hex", "radius": "10", "tiling": None, "edge": None, "method": "hankin"}, "method",
+     "is a key of kind = \"archimedean\""),
+])
+def test_api_hankin_errors_name_the_field(client, params, field, match):
+    base = {"preset": "table3-3", "packing": "archimedean", "tiling": "4.8.8", "edge": "15", "width": "80"}
+    query = {k: v for k, v in {**base, **params}.items() if v is not None}
+    r = client.get("/api/preview.svg", params=query)
+    assert r.status_code == 422, r.text
+    body = r.json()
+    assert body["field"] == field and match in body["error"]
+
+
+def test_page_hankin_method_and_its_sliders(page, server):  # noqa: F811 - fixture
+    page.goto(f"{server}/?preset=table3-3&width=60&frame=3&packing=archimedean&tiling=4.8.8&edge=14")
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    assert page.is_visible("#method") and page.input_value("#method") == "motifs"
+    assert page.is_hidden("#contact_angle-row") and page.is_hidden("#contact_gap-row")
+    assert "method=" not in page.url  # the paper's method: the query as before
+    old = _preview_version(page)
+    page.select_option("#method", "hankin")
+    _wait_new_preview(page, old)
+    assert page.is_visible("#contact_angle-row") and page.is_visible("#contact_gap-row")
+    assert "method=hankin" in page.url and "contact_angle=60" in page.url and "contact_gap" not in page.url
+    assert page.locator("#motif_8 option").first.inner_text() == "Hankin's rays"
+    old = _preview_version(page)
+    page.fill("#contact_angle", "67.5")
+    page.dispatch_event("#contact_angle", "change")
+    _wait_new_preview(page, old)
+    assert "contact_angle=67.5" in page.url
+    assert page.locator(".err[data-for='contact_angle']").inner_text() == ""
+    # a gap too long: the error under its slider, and the link opens the same state
+    old = _preview_version(page)
+    page.fill("#contact_gap", "14")
+    page.dispatch_event("#contact_gap", "change")
+    page.wait_for_function("() => document.querySelector(\".err[data-for='contact_gap']\").textContent.length > 0")
+    assert "< the edge" in page.locator(".err[data-for='contact_gap']").inner_text()
+    page.fill("#contact_gap", "1")
+    page.dispatch_event("#contact_gap", "change")
+    page.wait_for_function("() => !document.querySelector(\".err[data-for='contact_gap']\").textContent")
+    page.goto(page.url)
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    assert page.input_value("#method") == "hankin" and page.input_value("#contact_angle") == "67.5"
+    assert page.input_value("#contact_gap") == "1"

@@ -10,6 +10,7 @@ const state = {
   gap_rotation: 0, gap_rosette: false, gap_alpha: 20, gap_spr: 0.2,  // the gap motif (radii inner, 1): a rosette
   // when gap_rosette (special circle 2), sent only then; its rotation only when not 0
   tiling: "4.8.8", edge: 20, motifs: {},  // packing=archimedean: motifs[sides] = preset ("" = the motif above)
+  method: "motifs", contact_angle: 60, contact_gap: 0,  // method=hankin: Hankin's rays ("" motif: the rays)
   outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
   laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
   threemf_layout: "volumes",  // 3MF parts for PrusaSlicer, Bambu Studio, OrcaSlicer; "components" for Cura
@@ -119,6 +120,11 @@ function query() {
     if (state.packing === "archimedean") {
       q.set("tiling", state.tiling);
       q.set("edge", state.edge);
+      if (state.method === "hankin") {  // the paper's method is the default: its queries stay as they were
+        q.set("method", state.method);
+        q.set("contact_angle", state.contact_angle);
+        if (Number(state.contact_gap)) q.set("contact_gap", state.contact_gap);
+      }
       for (const p of (tilings[state.tiling] || { kinds: [] }).kinds)
         if (state.motifs[p]) q.set(`motif_${p}`, state.motifs[p]);
     } else q.set("radius", state.radius);
@@ -451,8 +457,11 @@ function showColours() {
 
 // packing=archimedean: the tiling menu, a motif menu per polygon kind, edge instead of radius.
 function tilingControls() {
-  const arch = state.packing === "archimedean";
+  const arch = state.packing === "archimedean", hankin = state.method === "hankin";
   $("tiling-controls").hidden = !arch;
+  $("kind-motifs-note").textContent = hankin
+    ? "Each polygon takes Hankin's rays, or a preset per polygon kind in its incircle."
+    : "Each polygon's incircle holds a motif: the one above, or a preset per polygon kind.";
   const box = $("kind-motifs");
   box.innerHTML = "";
   for (const p of arch && tilings[state.tiling] ? tilings[state.tiling].kinds : []) {
@@ -465,7 +474,7 @@ function tilingControls() {
     err.dataset.for = `motif_${p}`;
     box.appendChild(err);
     const sel = row.querySelector("select");
-    sel.add(new Option("the motif above", ""));
+    sel.add(new Option(hankin ? "Hankin's rays" : "the motif above", ""));
     for (const name of Object.keys(presets)) sel.add(new Option(name, name));
     sel.value = state.motifs[p] || "";
     sel.addEventListener("change", () => { state.motifs[p] = sel.value; update(); });
@@ -549,6 +558,8 @@ async function init() {
     $(key).addEventListener("change", () => { state[key] = $(key).value; update(); });
   for (const key of ["packing", "tiling"])
     $(key).addEventListener("change", () => { state[key] = $(key).value; tilingControls(); if (key === "tiling") update(); });
+  // the method is a schema menu (its listener above sets it and redraws): the per-kind menus' captions follow it
+  $("method").addEventListener("change", tilingControls);
   origin.q = designKey();
   showLabel();
   refresh();
