@@ -143,7 +143,7 @@ class PrintModel:
         """``(brep, mesh volume, solids)``: the planar B-rep of the fused body (:mod:`.brep`), for STEP."""
         from .brep import brep_of_part
 
-        return brep_of_part(self.fused, self.stack, self.dips)
+        return brep_of_part(self.fused, self.stack, self.dips, tolerance_mm=self.profile.tolerance_mm)
 
     def stats(self) -> dict:
         """The stack's style and heights, for a file's report."""
