@@ -1,0 +1,150 @@
+"""Arcs recovered from flattened rings (fabtiles.geometry.arcs)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+from shapely.geometry import LineString, Point, Polygon, box
+
+from fabtiles.geometry.arcs import arc_runs, fit_distance
+from hypothesis_scale import examples
+
+
+def _ring(geom) -> np.ndarray:
+    return np.asarray(geom.exterior.coords)[:-1]
+
+
+def _run_vertices(ring, first, last):
+    n = len(ring)
+    idx = np.arange(first, last + (n if last < first else 0) + 1) % n
+    return ring[idx]
+
+
+@settings(max_examples=examples(40), deadline=None)
+@given(st.floats(-300, 300), st.floats(-300, 300), st.floats(0.05, 200), st.integers(2, 64))
+def test_a_flattened_circle_is_one_full_arc_with_its_centre_and_radius(x, y, r, quad_segs):
+    ring = _ring(Point(x, y).buffer(r, quad_segs=quad_segs))
+    sag = r * (1 - np.cos(np.pi / (4 * quad_segs)))
+    runs = arc_runs(ring, tolerance_mm=max(sag, 1e-4) * 1.01)
+    assert runs.full
+    assert len(runs.first) == 1
+    assert np.allclose(runs.centre[0], [x, y], atol=1e-6)
+    assert runs.radius[0] == pytest.approx(r, abs=1e-6)
+    assert abs(runs.sweep[0]) == pytest.approx(2 * np.pi)
+
+
+@settings(max_examples=examples(40), deadline=None)
+@given(st.floats(0.5, 50), st.floats(-np.pi, np.pi), st.floats(0.3, 2.9), st.integers(3, 32), st.booleans())
+def test_an_arc_between_straight_edges_is_found_exactly(r, start, sweep, pieces, ccw):
+    # an arc of `pieces` chords, then two long straight edges closing the ring
+    ang = start + np.linspace(0, sweep, pieces + 1) * (1 if ccw else -1)
+    arc = np.column_stack([10 + r * np.cos(ang), 20 + r * np.sin(ang)])
+    far = 10 + np.array([np.cos(start + sweep / 2 * (1 if ccw else -1)), np.sin(start + sweep / 2 * (1 if ccw else -1))]) * -5 * r
+    far[1] += 10
+    ring = np.vstack([arc, far])
+    tol = r * (1 - np.cos(sweep / pieces / 2)) * 1.01 + 1e-9
+    runs = arc_runs(ring, tolerance_mm=tol)
+    assert not runs.full
+    assert runs.first.tolist() == [0] and runs.last.tolist() == [pieces]
+    assert np.allclose(runs.centre[0], [10, 20], atol=1e-6)
+    assert runs.radius[0] == pytest.approx(r, abs=1e-6)
+    assert runs.sweep[0] == pytest.approx(sweep * (1 if ccw else -1), abs=1e-9)
+
+
+@pytest.mark.parametrize("sides", [3, 4, 5, 6, 8, 12])
+def test_regular_polygons_with_few_sides_have_no_arcs(sides):
+    ang = np.linspace(0, 2 * np.pi, sides, endpoint=False)
+    ring = np.column_stack([50 * np.cos(ang), 50 * np.sin(ang)])
+    assert len(arc_runs(ring, tolerance_mm=0.01).first) == 0
+
+
+def test_a_square_and_a_subdivided_straight_edge_have_no_arcs():
+    # collinear vertices on a straight edge fit a circle of huge radius within the sagitta: no arc
+    ring = np.array([[0, 0], [1, 0], [2, 0], [3, 0], [4, 0], [4, 4], [0, 4]], dtype=float)
+    assert len(arc_runs(ring, tolerance_mm=0.01).first) == 0
+    assert len(arc_runs(_ring(box(0, 0, 10, 10)), tolerance_mm=0.01).first) == 0
+
+
+@settings(max_examples=examples(30), deadline=None)
+@given(st.lists(st.tuples(st.floats(-50, 50), st.floats(-50, 50)), min_size=3, max_size=6, unique=True),
+       st.floats(0.2, 3), st.integers(3, 16))
+def test_round_joins_of_a_stroked_path_are_arcs_exactly_at_the_joins(points, r, quad_segs):
+    pts = np.asarray(points)
+    seg = np.diff(pts, axis=0)
+    cosines = (seg[:-1] * seg[1:]).sum(axis=1) / np.hypot(*seg[:-1].T) / np.hypot(*seg[1:].T)
+    # joins as a pattern's strokes have them: edges longer than the stroke, no turn back
+    assume(np.hypot(*seg.T).min() > 4 * r and (cosines > -0.8).all() and LineString(points).is_simple)
+    path = LineString(points)
+    shape = path.buffer(r, quad_segs=quad_segs, join_style="round", cap_style="round")
+    if shape.geom_type != "Polygon" or len(shape.interiors):
+        return
+    ring = _ring(shape)
+    # GEOS divides a join into round(angle / step) chords, so a chord may span 1.5 steps
+    tol = r * (1 - np.cos(1.5 * np.pi / (4 * quad_segs))) * 1.01
+    runs = arc_runs(ring, tolerance_mm=tol)
+    eps = fit_distance(tol)
+    for first, last, c, rad in zip(runs.first, runs.last, runs.centre, runs.radius):
+        # every arc is a join or a cap: its centre is a vertex of the path, its radius the stroke's
+        assert np.hypot(*(np.asarray(points) - c).T).min() == pytest.approx(0, abs=1e-6)
+        assert rad == pytest.approx(r, abs=1e-6)
+        pts = _run_vertices(ring, first, last)
+        assert np.abs(np.hypot(*(pts - c).T) - rad).max() <= eps
+        # the fitted circle passes exactly through the run's end vertices
+        assert np.hypot(*(pts[[0, -1]] - c).T) == pytest.approx([rad, rad], abs=1e-9)
+    # arcs exactly at the joins: each maximal stretch of >= 4 ring vertices on the circle of one
+    # path vertex (a join or a cap of >= 3 chords) is covered by arcs, and nothing else is
+    n = len(ring)
+    covered = np.zeros(n, dtype=bool)
+    for first, last in zip(runs.first, runs.last):
+        covered[np.arange(first, last + (n if last < first else 0) + 1) % n] = True
+    dist = np.hypot(*(ring[:, None, :] - np.asarray(points)[None, :, :]).transpose(2, 0, 1))
+    on = np.abs(dist - r) <= 1e-6
+    label = np.where(on.any(axis=1), on.argmax(axis=1), -1)
+    start = int(np.flatnonzero(np.r_[label, label[0]][1:] != label)[0]) + 1 if len(set(label)) > 1 else 0
+    rolled, cov = np.roll(label, -start), np.roll(covered, -start)
+    bounds = np.flatnonzero(np.diff(np.r_[-2, rolled, -2]) != 0)
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        if rolled[a] >= 0 and b - a >= 4:
+            assert cov[a:b].all()
+    assert not cov[rolled < 0].any()
+
+
+def test_two_caps_and_a_join_give_three_arcs_of_the_stroke_radius():
+    ring = _ring(LineString([(0, 0), (10, 0), (10, 10)]).buffer(1.0, quad_segs=8))
+    runs = arc_runs(ring, tolerance_mm=0.1)
+    assert sorted(np.round(runs.radius, 9).tolist()) == [1.0, 1.0, 1.0]
+    assert sorted(np.round(np.abs(runs.sweep), 9).tolist()) == pytest.approx([np.pi / 2, np.pi, np.pi])
+
+
+def test_an_arc_whose_chords_stand_off_more_than_the_tolerance_is_no_arc():
+    ring = _ring(Point(0, 0).buffer(10.0, quad_segs=4))
+    sag = 10 * (1 - np.cos(np.pi / 16))
+    assert arc_runs(ring, tolerance_mm=sag * 1.01).full
+    assert len(arc_runs(ring, tolerance_mm=sag * 0.99).first) == 0
+
+
+def test_an_ellipse_is_split_into_arcs_that_fit():
+    t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
+    ring = np.column_stack([10 * np.cos(t), 6 * np.sin(t)])
+    runs = arc_runs(ring, tolerance_mm=0.01)
+    assert not runs.full and len(runs.first) > 4
+    for first, last, c, rad in zip(runs.first, runs.last, runs.centre, runs.radius):
+        pts = _run_vertices(ring, first, last)
+        assert len(pts) >= 4
+        assert np.abs(np.hypot(*(pts - c).T) - rad).max() <= fit_distance(0.01)
+
+
+def test_an_open_path_keeps_its_ends_and_holes_stay_clockwise():
+    ang = np.linspace(0, np.pi, 17)
+    path = np.column_stack([np.cos(ang), np.sin(ang)]) * 5
+    runs = arc_runs(path, tolerance_mm=0.1, closed=False)
+    assert runs.first.tolist() == [0] and runs.last.tolist() == [16] and not runs.full
+    hole = _ring(Polygon(Point(0, 0).buffer(5.0, quad_segs=8).exterior.coords[::-1]))
+    assert arc_runs(hole, tolerance_mm=0.1).sweep[0] == pytest.approx(-2 * np.pi)
+
+
+def test_short_rings_and_a_tolerance_of_zero_give_no_arcs():
+    assert len(arc_runs(np.zeros((3, 2)), tolerance_mm=0.01).first) == 0
+    assert len(arc_runs(_ring(Point(0, 0).buffer(1.0)), tolerance_mm=0.0).first) == 0
