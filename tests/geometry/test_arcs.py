@@ -141,8 +141,18 @@ def test_an_open_path_keeps_its_ends_and_holes_stay_clockwise():
     path = np.column_stack([np.cos(ang), np.sin(ang)]) * 5
     runs = arc_runs(path, tolerance_mm=0.1, closed=False)
     assert runs.first.tolist() == [0] and runs.last.tolist() == [16] and not runs.full
-    hole = _ring(Polygon(Point(0, 0).buffer(5.0, quad_segs=8).exterior.coords[::-1]))
+    hole = _ring(Point(0, 0).buffer(5.0, quad_segs=8))  # GEOS's buffer: clockwise
     assert arc_runs(hole, tolerance_mm=0.1).sweep[0] == pytest.approx(-2 * np.pi)
+    assert arc_runs(hole[::-1], tolerance_mm=0.1).sweep[0] == pytest.approx(2 * np.pi)
+
+
+def test_a_circle_on_a_coarse_grid_is_one_circle():
+    """Three points' circle is unsure where the chords are short against the points' noise: a 100 mm
+    circle of 1.3 mm chords (0.0043 mm sagitta) rounded to the print's 2**-10 mm grid is still one circle."""
+    t = np.linspace(0, 2 * np.pi, 240, endpoint=False)
+    ring = np.round(np.column_stack([50 * np.cos(t), 50 * np.sin(t)]) * 1024) / 1024
+    runs = arc_runs(ring, tolerance_mm=0.02)
+    assert runs.full and runs.radius[0] == pytest.approx(50, abs=1e-3)
 
 
 def test_short_rings_and_a_tolerance_of_zero_give_no_arcs():
