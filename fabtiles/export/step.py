@@ -23,7 +23,7 @@ from .._errors import FabricationError
 from .._io import atomic_write
 from ..geometry.material import filament
 from ..geometry.stack import QUANTUM
-from ..solid.brep import check_brep
+from ..solid.brep import brep_volume, check_brep
 from .step_file import step_text
 
 STEP_VOLUME_TOLERANCE = 0.0005
@@ -269,7 +269,8 @@ def figures(model) -> dict:
     """What a STEP file adds to its model's report."""
     brep, volume, parts = model.brep
     return dict(material=filament({"solid": volume}, model.profile).as_stats(), style=model.stack.style,
-                solids=parts, volume_mm3=volume, grid_mm=QUANTUM, faces=len(brep.faces), edges=len(brep.edges))
+                solids=parts, volume_mm3=brep_volume(brep), grid_mm=QUANTUM, faces=len(brep.faces),
+                cylinders=sum(f.radius > 0 for f in brep.faces), edges=len(brep.edges))
 
 
 def write_step(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,

@@ -560,8 +560,8 @@ def _seam(start, sweep: float) -> np.ndarray:
     instead of 0, and the face or edge is invalid (measured: every cylinder face
     invalid that way).
 
-    >>> np.round(_seam(np.array([2.0, 0.0]), np.pi), 12).tolist()
-    [0.0, -1.0]
+    >>> np.round(_seam(np.array([2.0, 0.0]), np.pi), 12).tolist() == [0.0, -1.0]
+    True
     """
     t = np.arctan2(start[1], start[0]) + sweep / 2 + np.pi
     return np.array([np.cos(t), np.sin(t)])
@@ -814,6 +814,37 @@ def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0):
     brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), sides=_sides(part.outline),
                        tolerance_mm=tolerance_mm)
     return brep, part.mesh_volume_mm3, len(brep.solids)
+
+
+def brep_volume(brep: Brep) -> float:
+    """The volume of a B-rep's solids, its arcs as arcs: what OCCT and CAD programs report of the STEP.
+
+    By the divergence theorem with the field (0, 0, z), only the horizontal faces
+    count: each its height times its signed area, an arc adding the segment between
+    it and its chord, ``r**2 / 2 * (sweep - sin(sweep))``. The checked mesh's volume
+    differs by those segments (:func:`check_brep`).
+
+    >>> import shapely
+    >>> from fabtiles.solid._mesh_build import coverage
+    >>> disc = shapely.Point(0, 0).buffer(10.0, quad_segs=16)
+    >>> b = planar_brep(coverage([(disc, 2.0)], bottom=0.0, cell_vertices=SINGLE_CELL), tolerance_mm=0.02)
+    >>> round(brep_volume(b) / (np.pi * 100 * 2.0), 6), round(disc.area * 2.0 / brep_volume(b), 4)
+    (1.0, 0.9984)
+    """
+    pts, edges, arcs = np.asarray(brep.points, float), np.asarray(brep.edges, np.int64), brep.arc_rows()
+    total = 0.0
+    for face in brep.faces:
+        if face.radius > 0 or face.normal[0] or face.normal[1]:
+            continue
+        loop = np.concatenate([np.asarray(lp, np.int64) for lp in face.loops])
+        e = np.where(loop >= 0, loop, ~loop)
+        a = pts[np.where(loop >= 0, edges[e, 0], edges[e, 1])]
+        b = pts[np.where(loop >= 0, edges[e, 1], edges[e, 0])]
+        row = arcs[e]
+        area = 0.5 * float(np.sum(a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]))
+        area += float(np.sum(np.where(loop >= 0, 1.0, -1.0) * row[:, 2] ** 2 / 2 * (row[:, 3] - np.sin(row[:, 3]))))
+        total += face.origin[2] * area
+    return total
 
 
 BREP_VOLUME_TOLERANCE = 0.0005
