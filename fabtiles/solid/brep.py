@@ -637,7 +637,16 @@ def _wall_arcs(topo, xy, tolerance_mm: float, on_side=None) -> list:
         n = len(positions)
         if runs.full:  # a whole circle: two halves (see above), its sense the ring's
             turn = np.copysign(1.0, _loop_area(xy[verts[at]]))
-            for a, b in ((at[0], at[len(at) // 2]), (at[len(at) // 2], at[0] + n)):
+            # the halves' ends: the vertices nearest the circle, one in each half of the ring
+            d = xy[verts[at]] - runs.centre[0]
+            off = np.abs(np.hypot(d[:, 0], d[:, 1]) - runs.radius[0])
+            m = len(at) // 2
+            i = int(np.argmin(off[:m]))
+            lo = i + m // 2  # at least a quarter of the ring away on either side
+            j = lo + int(np.argmin(off[lo:min(i + m + m // 2 + 1, len(at) - m // 2 + i + 1, len(at))]))
+            if max(off[i], off[j]) > ON_LINE_MM:
+                return  # moved onto the circle they would change the faces: the ring stays planar
+            for a, b in ((at[i], at[j]), (at[j], at[i] + n)):
                 part = positions[np.arange(a, b) % n]
                 ends = xy[[verts[a % n], verts[b % n]]] - runs.centre[0]
                 t = np.arctan2(ends[:, 1], ends[:, 0])
