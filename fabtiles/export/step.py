@@ -1,10 +1,12 @@
 """STEP output: the printed tile as a solid a CAD user would have modelled, checked by OCCT.
 
-The solid (:func:`fabtiles.solid.brep.build_brep`) has planar faces and straight edges only:
+The solid (:func:`fabtiles.solid.brep.build_brep`) has planar faces and vertical cylinders:
 the bottom is one face, each connected flat region on top is one face with its
-holes, each straight side of the outline is one wall face, and vertical edges stand
-at the outline's corners. So OCCT-based CAD (FreeCAD, CadQuery, build123d) fillets
-its corners, drills it and reports its true volume.
+holes, each straight side of the outline is one wall face, each round wall (arcs
+recovered within the printer profile's ``tolerance_mm``) a cylinder bounded by circle
+edges, and vertical edges stand at the outline's corners. So OCCT-based CAD (FreeCAD,
+CadQuery, build123d) shows a hole's diameter, fillets its rim and its corners, drills
+it and reports its true volume.
 
 It is written as STEP text (:mod:`fabtiles.export.step_file`): OCCT's own writer
 costs the square of a face's edges, and the 200 x 200 mm relief tile's top face
@@ -293,7 +295,7 @@ def figures(model) -> dict:
 
 def write_step(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
                pierced_mm=None, deboss_mm=None, fill_small_holes=False, dips=None, name=None):
-    """Write a STEP file (AP214, mm) of the printed tile: planar faces, one solid per piece.
+    """Write a STEP file (AP214, mm) of the printed tile: planes and cylinders, one solid per piece.
 
     A convenience for scripts: the print model (:func:`~fabtiles.solid.print_model.print_model`)
     and :func:`step_bytes`, written atomically. A pierced tile in several pieces gives

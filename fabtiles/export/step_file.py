@@ -8,8 +8,11 @@ for the whole file. The file is then read back with OCCT and checked
 (:mod:`fabtiles.export.step`), so OCCT still has the last word on it.
 
 Each solid is a ``MANIFOLD_SOLID_BREP`` of one ``CLOSED_SHELL`` of
-``ADVANCED_FACE``s on ``PLANE``s, bounded by ``EDGE_LOOP``s of ``EDGE_CURVE``s on
-``LINE``s: the entities every STEP reader supports. The output is byte-identical
+``ADVANCED_FACE``s on ``PLANE``s and ``CYLINDRICAL_SURFACE``s, bounded by
+``EDGE_LOOP``s of ``EDGE_CURVE``s on ``LINE``s and ``CIRCLE``s: the entities every
+STEP reader supports. An edge of a cylinder carries its curve in the cylinder's
+parameters too (``SURFACE_CURVE`` with a ``PCURVE`` for each cylinder it bounds), as
+OCCT's own writer does: its reader makes those curves for planes, not for cylinders. The output is byte-identical
 for the same input: entities numbered in the order they are written, the header's
 time stamp fixed (:data:`TIME_STAMP`).
 

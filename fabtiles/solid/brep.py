@@ -1,8 +1,8 @@
-"""The planar boundary representation of a stacked part, as a CAD modeller would draw it.
+"""The boundary representation of a stacked part, as a CAD modeller would draw it.
 
 A printed tile is a stack (see :mod:`fabtiles.solid._mesh_build`): polygons raised to
-a few levels above a flat bottom. Its B-rep here has planar faces and straight edges
-only, and one face per flat region:
+a few levels above a flat bottom. Its B-rep here has planar faces, vertical
+cylinders and straight or circular edges, and one face per flat region:
 
 - each connected region at a level is ONE horizontal face with all its holes, and
   the bottom of each solid is one face;
@@ -11,7 +11,11 @@ only, and one face per flat region:
   one face (a straight side of the outline is one face, even where the top of the
   wall steps between levels);
 - vertical edges wherever walls of two planes meet (the outline's corners among
-  them), split only at the levels where a horizontal face meets them.
+  them), split only at the levels where a horizontal face meets them;
+- with a ``tolerance_mm``, the walls over each arc of the boundary (arcs found by
+  :func:`fabtiles.geometry.arcs.arc_runs`, see :func:`_wall_arcs`) are ONE cylinder
+  face, its top and bottom circle edges shared with the flat faces; a whole circle is
+  two halves.
 
 Every edge is shared by exactly two faces, in opposite directions, by construction.
 The result is plain numpy data (:class:`Brep`); :mod:`fabtiles.export.step_file`
@@ -534,8 +538,15 @@ def _loop_points(loop, edges, arcs, pts) -> np.ndarray:
     straight). The arcs are drawn by chords within :data:`ARC_SAGITTA_MM`, for GEOS:
     the loop's side and the faces' validity.
     """
+    loop = np.asarray(loop, np.int64)
+    index = np.where(loop >= 0, loop, ~loop)
+    is_arc = (np.fromiter((e in arcs for e in index.tolist()), bool, len(index)) if isinstance(arcs, dict)
+              else np.asarray(arcs)[index, 2] > 0)
+    if not is_arc.any():  # straight edges only (most loops): their starts
+        ends = np.asarray(edges)[index] if not isinstance(edges, list) else np.array([edges[e] for e in index])
+        return pts[np.where(loop >= 0, ends[:, 0], ends[:, 1]), :2]
     out = []
-    for s in loop:
+    for s in loop.tolist():
         e = s if s >= 0 else ~s
         a, b = edges[e]
         out.append(pts[a if s >= 0 else b, :2])
@@ -584,7 +595,7 @@ ON_LINE_MM = 2 * QUANTUM
 (see :func:`_wall_arcs`)."""
 
 
-def _wall_arcs(topo, xy, tolerance_mm: float, on_side=None) -> list:
+def _wall_arcs(topo, xy, tolerance_mm: float) -> list:
     """The arcs of the walls: ``[(ring positions, centre, radius, sweep, onto), ...]``.
 
     A ring's edges with a wall beside them (the piece on their left higher than the one on
@@ -598,8 +609,8 @@ def _wall_arcs(topo, xy, tolerance_mm: float, on_side=None) -> list:
     circle outline's chords hold such points wherever the region's noding met them, up
     to the chords' sagitta off the circle, and each would cut the circle there
     (measured: the 100 mm circle outline in 28 arcs of radii 49.68 to 50.13 mm instead
-    of one circle); the arc found passes by them within that sagitta. ``on_side`` (per
-    vertex, -1: none) leaves out more points (unused).
+    of one circle); the arc found passes by them within that sagitta. All the stretches
+    are searched in one pass (:func:`~fabtiles.geometry.arcs.arc_runs_many`).
 
     A whole circle is two arcs, each from one of two opposite vertices to the other,
     and ``onto`` is True: those vertices are to be moved onto the circle (by at most
@@ -612,28 +623,17 @@ def _wall_arcs(topo, xy, tolerance_mm: float, on_side=None) -> list:
     """
     import shapely
 
-    from ..geometry.arcs import arc_runs
+    from ..geometry.arcs import arc_runs_many
 
     u, v = topo.vid, topo.vid[topo.nxt]
     real = u != v
     pairs = np.unique(np.column_stack([np.minimum(u, v), np.maximum(u, v)])[real], axis=0)
     degree = np.bincount(pairs.ravel(), minlength=len(xy))
     walled = real & (topo.level > topo.out_level)
-    skip = np.zeros(len(xy), bool) if on_side is None else np.asarray(on_side) >= 0
     out = []
 
-    def runs_of(positions, verts, keep, closed):
-        """Arcs over ``positions`` (their vertices ``verts``, those searched ``keep``)."""
-        p = xy[verts]
-        line = shapely.linearrings(p) if closed else shapely.linestrings(p)
-        kept = {tuple(c) for c in shapely.get_coordinates(shapely.simplify(line, ON_LINE_MM)).tolist()}
-        keep = keep & np.fromiter((tuple(c) in kept for c in p.tolist()), bool, len(p))
-        if not closed:
-            keep[[0, -1]] = True
-        at = np.flatnonzero(keep)
-        if len(at) < 4:
-            return
-        runs = arc_runs(xy[verts[at]], tolerance_mm=tolerance_mm, closed=closed)
+    def collect(positions, verts, at, runs):
+        """The arcs ``runs`` found among the vertices ``at`` of ``verts`` (the ends of ``positions``)."""
         n = len(positions)
         if runs.full:  # a whole circle: two halves (see above), its sense the ring's
             turn = np.copysign(1.0, _loop_area(xy[verts[at]]))
@@ -660,25 +660,43 @@ def _wall_arcs(topo, xy, tolerance_mm: float, on_side=None) -> list:
                 b += n
             out.append((positions[np.arange(a, b) % n], c, rad, sw, False))
 
+    jobs = []  # (ring positions, their vertices, closed)
     for r in range(len(topo.ring_start) - 1):
         idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
         idx = idx[real[idx]]
-        if len(idx) < 3 or not walled[idx].any():
+        if len(idx) < 4 or not walled[idx].any():
             continue
         before = np.roll(idx, 1)
         cut = (degree[u[idx]] != 2) | ~walled[idx] | ~walled[before] | (topo.out_level[idx] != topo.out_level[before])
         if not cut.any():
-            runs_of(idx, u[idx], ~skip[u[idx]], closed=True)
+            jobs.append((idx, u[idx], True))
             continue
         starts = np.flatnonzero(cut)
         for s0, s1 in zip(starts.tolist(), np.roll(starts, -1).tolist()):
             seg = idx[(s0 + np.arange((s1 - s0) % len(idx) or len(idx))) % len(idx)]
-            if not walled[seg[0]] or len(seg) < 3:
-                continue
-            verts = np.append(u[seg], v[seg[-1]])
-            keep = ~skip[verts]
+            if walled[seg[0]] and len(seg) >= 3:
+                jobs.append((seg, np.append(u[seg], v[seg[-1]]), False))
+    if not jobs:
+        return out
+    # the vertices searched: those Douglas-Peucker keeps within ON_LINE_MM, all rings in one GEOS call
+    lines = np.array([shapely.linearrings(xy[verts]) if closed else shapely.linestrings(xy[verts])
+                      for _, verts, closed in jobs], dtype=object)
+    kept_xy, kept_of = shapely.get_coordinates(shapely.simplify(lines, ON_LINE_MM), return_index=True)
+    bounds = np.searchsorted(kept_of, np.arange(len(jobs) + 1))
+    kept_c = kept_xy[:, 0] + 1j * kept_xy[:, 1]
+    searched = []
+    for k, (_, verts, closed) in enumerate(jobs):
+        p = xy[verts]
+        keep = np.isin(p[:, 0] + 1j * p[:, 1], kept_c[bounds[k]:bounds[k + 1]])
+        if not closed:
             keep[[0, -1]] = True
-            runs_of(seg, verts, keep, closed=False)
+        searched.append(np.flatnonzero(keep))
+    for closed in (True, False):
+        ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
+        found = arc_runs_many([xy[jobs[k][1][searched[k]]] for k in ks], tolerance_mm=tolerance_mm, closed=closed)
+        for k, runs in zip(ks, found):
+            if len(runs.first):
+                collect(jobs[k][0], jobs[k][1], searched[k], runs)
     return out
 
 
