@@ -156,3 +156,27 @@ def test_a_tolerance_too_coarse_for_the_arcs_is_refused_with_no_file(tmp_path):
     with pytest.raises(ProfileError, match=r"tolerance_mm = 5 mm is too coarse .* set printer.tolerance_mm"):
         _write(tmp_path, plate.difference(shapely.union_all(hexagons)), plate, profile=profile)
     assert not (tmp_path / "t.step").exists()
+
+
+def test_gmsh_reads_the_cylinders_and_meshes_the_solid(tmp_path):
+    """gmsh (its own OCCT build, as FEM users open a part): one volume, the hole's two cylinder faces,
+    the file's volume, and a surface mesh of it."""
+    import gmsh
+
+    plate, hole = box(0, 0, 30, 20), Point(15, 10).buffer(4.0, quad_segs=64)
+    path, report = _write(tmp_path, plate.difference(hole), plate)
+    gmsh.initialize(["-noenv"])
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        volumes = gmsh.model.occ.importShapes(str(path))
+        gmsh.model.occ.synchronize()
+        assert [dim for dim, _ in volumes] == [3]
+        kinds = sorted(gmsh.model.getType(2, tag) for _, tag in gmsh.model.getEntities(2))
+        assert kinds == ["Cylinder"] * 2 + ["Plane"] * 6
+        assert gmsh.model.occ.getMass(3, volumes[0][1]) == pytest.approx(report.stats["volume_mm3"], rel=1e-6)
+        gmsh.option.setNumber("Mesh.MeshSizeMax", 2.0)
+        gmsh.model.mesh.generate(2)
+        _, nodes, _ = gmsh.model.mesh.getNodes()
+        assert len(nodes) > 100
+    finally:
+        gmsh.finalize()
