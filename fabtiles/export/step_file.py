@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..solid.brep import Brep, _seam
+from ..solid.brep import Brep, seam_direction
 
 
 TIME_STAMP = "2000-01-01T00:00:00"
@@ -82,7 +82,7 @@ def _pcurve(w: _Writer, surface: int, face, start, arc) -> int:
     An edge's curve on each curved face it bounds is part of the B-rep: OCCT's STEP
     reader makes it for planes, not for cylinders (measured: without it every
     cylinder face read back without shape healing is invalid). A circle's angle
-    starts where its cylinder's does (:func:`~fabtiles.solid.brep._seam`), so its
+    starts where its cylinder's does (:func:`~fabtiles.solid.brep.seam_direction`), so its
     curve is ``(t, height)``; a vertical line's is ``(angle, height + t)``, both
     parametrised as their edge.
     """
@@ -126,7 +126,7 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
         if arc[2] > 0:  # a counter-clockwise arc of a horizontal circle, its angle starting opposite its middle
             cx, cy, r = (float(v) for v in arc[:3])
             centre = w.add(f"CARTESIAN_POINT('',{_triple((cx, cy, pts[a, 2]))})")
-            ref = (*_seam(pts[a, :2] - (cx, cy), float(arc[3])).tolist(), 0.0)
+            ref = (*seam_direction(pts[a, :2] - (cx, cy), float(arc[3])).tolist(), 0.0)
             place = w.add(f"AXIS2_PLACEMENT_3D('',#{centre},#{w.direction((0.0, 0.0, 1.0))},#{w.direction(ref)})")
             curve = w.add(f"CIRCLE('',#{place},{_real(r)})")
         else:

@@ -388,7 +388,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
         # the chain runs with the material on its left, as a wall's bottom edge does
         loop = [signed[lo]] + [e for _, _, e in side(chain[-1], lo, hi, up=True)]
         loop += [~signed[hi]] + [e for _, _, e in side(chain[0], lo, hi, up=False)]
-        ref = _seam(vxy[a_vid] - centre, abs(sweep))
+        ref = seam_direction(vxy[a_vid] - centre, abs(sweep))
         faces.append(Face((float(centre[0]), float(centre[1]), float(z[lo])), (0.0, 0.0, 1.0),
                           (float(ref[0]), float(ref[1]), 0.0), (tuple(loop),), radius=float(radius), inward=not ccw))
     if arcs:  # the other walls stay planar
@@ -563,7 +563,7 @@ def _loop_points(loop, edges, arcs, pts) -> np.ndarray:
     return np.asarray(out, float).reshape(-1, 2)
 
 
-def _seam(start, sweep: float) -> np.ndarray:
+def seam_direction(start, sweep: float) -> np.ndarray:
     """The direction, from a circle's centre, opposite the middle of its arc from ``start`` (counter-clockwise,
     ``sweep`` radians): where a circle's or a cylinder's angle starts, away from the arc's ends.
 
@@ -571,7 +571,7 @@ def _seam(start, sweep: float) -> np.ndarray:
     instead of 0, and the face or edge is invalid (measured: every cylinder face
     invalid that way).
 
-    >>> np.round(_seam(np.array([2.0, 0.0]), np.pi), 12).tolist() == [0.0, -1.0]
+    >>> np.round(seam_direction(np.array([2.0, 0.0]), np.pi), 12).tolist() == [0.0, -1.0]
     True
     """
     t = np.arctan2(start[1], start[0]) + sweep / 2 + np.pi
