@@ -666,7 +666,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float) -> list:
         idx = idx[real[idx]]
         if len(idx) < 4 or not walled[idx].any():
             continue
-        before = np.roll(idx, 1)
+        before = idx[np.arange(-1, len(idx) - 1)]
         cut = (degree[u[idx]] != 2) | ~walled[idx] | ~walled[before] | (topo.out_level[idx] != topo.out_level[before])
         if not cut.any():
             jobs.append((idx, u[idx], True))
@@ -682,12 +682,18 @@ def _wall_arcs(topo, xy, tolerance_mm: float) -> list:
     lines = np.array([shapely.linearrings(xy[verts]) if closed else shapely.linestrings(xy[verts])
                       for _, verts, closed in jobs], dtype=object)
     kept_xy, kept_of = shapely.get_coordinates(shapely.simplify(lines, ON_LINE_MM), return_index=True)
-    bounds = np.searchsorted(kept_of, np.arange(len(jobs) + 1))
-    kept_c = kept_xy[:, 0] + 1j * kept_xy[:, 1]
+    # a vertex is kept when its job and point are among the kept ones: one exact key each (grid points,
+    # each job's x shifted by a whole multiple of the extent)
+    lengths = np.array([len(verts) for _, verts, _ in jobs])
+    verts_all = np.concatenate([verts for _, verts, _ in jobs])
+    job_of = np.repeat(np.arange(len(jobs)), lengths)
+    x0, shift = xy[:, 0].min(), np.ceil(np.ptp(xy[:, 0]) + 1.0)
+    keys = (xy[verts_all, 0] - x0 + shift * job_of) + 1j * xy[verts_all, 1]
+    keep_all = np.isin(keys, (kept_xy[:, 0] - x0 + shift * kept_of) + 1j * kept_xy[:, 1])
+    offsets = np.concatenate([[0], np.cumsum(lengths)])
     searched = []
     for k, (_, verts, closed) in enumerate(jobs):
-        p = xy[verts]
-        keep = np.isin(p[:, 0] + 1j * p[:, 1], kept_c[bounds[k]:bounds[k + 1]])
+        keep = keep_all[offsets[k]:offsets[k + 1]]
         if not closed:
             keep[[0, -1]] = True
         searched.append(np.flatnonzero(keep))
