@@ -225,19 +225,23 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True) -> list:
     ring_of = rid[lo]
     v0 = lo - 1 - start[ring_of]
     v1 = hi + 2 - start[ring_of]
-    # two runs one triple apart would share a chord: it stays with the first
+    # two runs one triple apart share a chord (triples on two circles meet there, or a straight
+    # edge's three-chord ghost run): the shorter run gives it up, so the runs share a vertex only
     same = np.zeros(len(lo), dtype=bool)
     same[1:] = ring_of[1:] == ring_of[:-1]
-    v0[same] = np.maximum(v0[same], v1[np.flatnonzero(same) - 1])
+    pairs = [(i - 1, i) for i in np.flatnonzero(same & (np.r_[0, v1[:-1]] > v0)).tolist()]
     if closed and len(lo):
         # the last run of a ring may reach round to the first's start
-        last_of = np.r_[ring_of[1:] != ring_of[:-1], True]
-        first_of = np.r_[True, ring_of[1:] != ring_of[:-1]]
-        fi = np.flatnonzero(first_of)
-        li = np.flatnonzero(last_of)
-        lim = v0[fi] + cnt[ring_of[fi]]
-        clash = (li != fi) & (v1[li] > lim)
-        v1[li[clash]] = lim[clash]
+        first_of = np.flatnonzero(np.r_[True, ring_of[1:] != ring_of[:-1]])
+        last_of = np.r_[first_of[1:], len(lo)] - 1
+        wraps = (last_of != first_of) & (v1[last_of] > v0[first_of] + cnt[ring_of[first_of]])
+        pairs += list(zip(last_of[wraps].tolist(), first_of[wraps].tolist()))
+    for a, b in pairs:
+        nb = cnt[ring_of[b]] if b < a else 0  # the first run, seen from the last one, is a ring further on
+        if v1[a] - v0[a] < v1[b] - v0[b]:
+            v1[a] = v0[b] + nb
+        else:
+            v0[b] = v1[a] - nb
     keep = (v1 - v0 >= 3) & ~np.isin(ring_of, list(results))
     ring_of, v0, v1 = ring_of[keep], v0[keep], v1[keep]
     runs = _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps)
@@ -322,3 +326,113 @@ def _verified(pts_ring, v0: int, v1: int, eps: float) -> list:
         return [(v0, v1, c, r, _sweep(pts, c))]
     k = int(np.argmax(res[1:-1])) + 1
     return _verified(pts_ring, v0, v0 + k, eps) + _verified(pts_ring, v0 + k, v1, eps)
+
+
+class Curve(NamedTuple):
+    """A path with arcs: vertices (m, 2) and the bulge of the piece leaving each vertex.
+
+    ``bulge[i]`` is ``tan(sweep / 4)`` of the piece from ``xy[i]`` to ``xy[i + 1]``
+    (for a closed path, the last one back to ``xy[0]``), positive counter-clockwise,
+    0 for a straight piece: DXF's LWPOLYLINE bulge (group code 42).
+    """
+
+    xy: np.ndarray
+    bulge: np.ndarray
+
+
+def bulge_path(ring: np.ndarray, runs: ArcRuns, *, closed: bool = True, max_sweep: float = np.pi) -> Curve:
+    """``ring`` with each arc of ``runs`` as one bulged piece (or several of at most ``max_sweep``).
+
+    The arcs' interior vertices are dropped; the ring keeps its first vertex (an arc round
+    it is cut there in two), so a path starts where its flattened one did. A piece longer
+    than ``max_sweep`` is cut at points on the arc's circle: ``pi`` keeps every bulge
+    within [-1, 1] (some CAM reads no more), ``pi / 2`` gives the quarter arcs a cubic
+    Bezier draws within 0.03 % of the radius (LightBurn's curves, :mod:`fabtiles.export.lbrn2`).
+
+    >>> from shapely.geometry import Point
+    >>> ring = np.asarray(Point(0, 0).buffer(2.0, quad_segs=16).exterior.coords)[:-1]
+    >>> curve = bulge_path(ring, arc_runs(ring, tolerance_mm=0.01))
+    >>> np.round(curve.xy, 9).tolist(), np.round(curve.bulge, 9).tolist()
+    ([[2.0, 0.0], [-2.0, 0.0]], [1.0, 1.0])
+    """
+    p = np.asarray(ring, dtype=float)
+    n = len(p)
+    k = len(runs.first)
+    if k == 0:
+        return Curve(p, np.zeros(n))
+    if runs.full:
+        c, r, sweep = runs.centre[0], float(runs.radius[0]), float(runs.sweep[0])
+        m = max(2, int(np.ceil(abs(sweep) / max_sweep - 1e-9)))
+        a0 = np.arctan2(*(p[0] - c)[::-1])
+        ang = a0 + sweep * np.arange(1, m) / m
+        xy = np.vstack([p[:1], c + r * np.column_stack([np.cos(ang), np.sin(ang)])])
+        return Curve(xy, np.full(m, np.tan(sweep / m / 4)))
+    first, last = runs.first.astype(np.int64), runs.last.astype(np.int64)
+    centre, radius, sweep = runs.centre, runs.radius, runs.sweep
+    wrap = last < first
+    if closed and wrap.any():
+        # an arc round the ring's first vertex: cut in two there, the ring starts where it did
+        w = np.flatnonzero(wrap)
+        v = p[0] - centre[w]
+        u = p[first[w]] - centre[w]
+        turn = np.arctan2(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0], (u * v).sum(axis=1))
+        turn = np.where(np.sign(turn) != np.sign(sweep[w]), turn + 2 * np.pi * np.sign(sweep[w]), turn)
+        turn = np.where(last[w] == 0, sweep[w], turn)  # ends at vertex 0: no second piece
+        at_zero = first[w] == 0
+        turn = np.where(at_zero, 0.0, turn)
+        first = np.r_[first[~wrap], first[w], np.zeros(len(w), dtype=np.int64)]
+        last = np.r_[last[~wrap], np.full(len(w), n, dtype=np.int64), last[w]]
+        centre = np.vstack([centre[~wrap], centre[w], centre[w]])
+        radius = np.r_[radius[~wrap], radius[w], radius[w]]
+        sweep = np.r_[sweep[~wrap], turn, sweep[w] - turn]
+        good = (last - first >= 1) & (sweep != 0)
+        first, last, centre, radius, sweep = first[good], last[good], centre[good], radius[good], sweep[good]
+        order = np.argsort(first, kind="stable")
+        first, last, centre, radius, sweep = first[order], last[order], centre[order], radius[order], sweep[order]
+    drop = np.zeros(n + 2, dtype=np.int64)
+    np.add.at(drop, first + 1, 1)
+    np.add.at(drop, last, -1)
+    keep = np.cumsum(drop)[:n] == 0
+    pieces = np.maximum(1, np.ceil(np.abs(sweep) / max_sweep - 1e-9)).astype(np.int64)
+    bulge = np.zeros(n)
+    bulge[first] = np.tan(sweep / pieces / 4)
+    xy, b = p[keep], bulge[keep]
+    split = np.flatnonzero(pieces > 1)
+    if len(split):
+        # the points that cut a long arc, on its circle, after its first vertex
+        reps = pieces[split] - 1
+        which = np.repeat(split, reps)
+        j = np.arange(reps.sum()) - np.repeat(np.cumsum(reps) - reps, reps) + 1
+        a0 = np.arctan2(*(p[first[which]] - centre[which]).T[::-1])
+        ang = a0 + sweep[which] * j / pieces[which]
+        pts = centre[which] + radius[which][:, None] * np.column_stack([np.cos(ang), np.sin(ang)])
+        at = np.cumsum(keep)[first[which]]  # the position after the arc's first vertex among the kept ones
+        xy = np.insert(xy, at, pts, axis=0)
+        b = np.insert(b, at, np.tan(sweep[which] / pieces[which] / 4))
+    return Curve(xy, b)
+
+
+def curves(rings, *, tolerance_mm: float, closed: bool = True, max_sweep: float = np.pi) -> list:
+    """The :class:`Curve` of each of ``rings``: :func:`arc_runs_many` then :func:`bulge_path`.
+
+    >>> from shapely.geometry import box
+    >>> [len(c.xy) for c in curves([np.asarray(box(0, 0, 1, 1).buffer(0.5).exterior.coords)[:-1]], tolerance_mm=0.01)]
+    [8]
+    """
+    return [bulge_path(r, runs, closed=closed, max_sweep=max_sweep)
+            for r, runs in zip(rings, arc_runs_many(rings, tolerance_mm=tolerance_mm, closed=closed))]
+
+
+def piece_lengths(curve: Curve, closed: bool = True) -> np.ndarray:
+    """The length of each piece of ``curve``: its chord, or its arc's ``r * sweep``.
+
+    >>> piece_lengths(Curve(np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([1.0, 1.0]))).round(9).tolist()
+    [3.141592654, 3.141592654]
+    """
+    xy = np.asarray(curve.xy, dtype=float)
+    nxt = np.roll(xy, -1, axis=0) if closed else xy[1:]
+    b = np.asarray(curve.bulge, dtype=float)[:len(nxt)]
+    chord = np.hypot(*(nxt - xy[:len(nxt)]).T)
+    half = 2 * np.arctan(np.abs(b))  # half the sweep
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(b != 0, chord * half / np.sin(half), chord)
