@@ -436,3 +436,77 @@ def piece_lengths(curve: Curve, closed: bool = True) -> np.ndarray:
     half = 2 * np.arctan(np.abs(b))  # half the sweep
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(b != 0, chord * half / np.sin(half), chord)
+
+
+def _pieces(curves_, closed: bool):
+    """All pieces of ``curves_`` at once: start points, end points, bulges and the curve of each."""
+    curves_ = list(curves_)
+    sizes = np.array([len(c.xy) for c in curves_], dtype=np.int64)
+    if not len(curves_) or not sizes.sum():
+        z = np.zeros((0, 2))
+        return z, z, np.zeros(0), np.zeros(0, dtype=np.int64), sizes
+    xy = np.concatenate([np.asarray(c.xy, dtype=float).reshape(-1, 2) for c in curves_])
+    b = np.concatenate([np.asarray(c.bulge, dtype=float) for c in curves_])
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    which = np.repeat(np.arange(len(curves_)), sizes)
+    nxt = np.arange(len(xy)) + 1
+    last = starts + sizes - 1
+    if closed:
+        nxt[last] = starts
+        keep = np.ones(len(xy), dtype=bool)
+    else:
+        keep = np.ones(len(xy), dtype=bool)
+        keep[last] = False
+        nxt[last] = last
+    return xy[keep], xy[nxt[keep]], b[keep], which[keep], sizes
+
+
+def curve_lengths(curves_, *, closed: bool = True) -> np.ndarray:
+    """The length of each of ``curves_`` (:class:`Curve`), arcs as arcs, in one pass.
+
+    >>> half = Curve(np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([1.0, 0.0]))
+    >>> curve_lengths([half], closed=True).round(9).tolist(), curve_lengths([half], closed=False).round(9).tolist()
+    ([5.141592654], [3.141592654])
+    """
+    a, z, b, which, sizes = _pieces(curves_, closed)
+    chord = np.hypot(*(z - a).T)
+    half = 2 * np.arctan(np.abs(b))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        length = np.where(b != 0, chord * half / np.sin(half), chord)
+    return np.bincount(which, weights=length, minlength=len(sizes))
+
+
+def arc_geometry(a: np.ndarray, z: np.ndarray, b: np.ndarray):
+    """Centre, radius, start angle and signed sweep of bulged pieces from ``a`` to ``z`` (bulge ``b`` != 0).
+
+    >>> c, r, a0, sweep = arc_geometry(np.array([[1.0, 0.0]]), np.array([[0.0, 1.0]]), np.array([np.tan(np.pi / 8)]))
+    >>> np.round(c, 9).tolist(), np.round(r, 9).tolist(), np.round(a0, 9).tolist(), np.round(sweep, 9).tolist()
+    ([[0.0, 0.0]], [1.0], [0.0], [1.570796327])
+    """
+    d = z - a
+    perp = np.column_stack([-d[:, 1], d[:, 0]])
+    c = (a + z) / 2 + perp * ((1 - b * b) / (4 * b))[:, None]
+    r = np.hypot(*d.T) * (1 + b * b) / (4 * np.abs(b))
+    a0 = np.arctan2(a[:, 1] - c[:, 1], a[:, 0] - c[:, 0])
+    return c, r, a0, 4 * np.arctan(b)
+
+
+def curve_bounds(curves_, *, closed: bool = True):
+    """``(xmin, ymin, xmax, ymax)`` of ``curves_``, arcs as arcs (an arc may reach past its end vertices).
+
+    >>> curve_bounds([Curve(np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([1.0, 1.0]))])
+    (-1.0, -1.0, 1.0, 1.0)
+    """
+    a, z, b, _, _ = _pieces(curves_, closed)
+    pts = [a, z]
+    arc = b != 0
+    if arc.any():
+        c, r, a0, sweep = arc_geometry(a[arc], z[arc], b[arc])
+        for k, (dx, dy) in enumerate(((1, 0), (0, 1), (-1, 0), (0, -1))):
+            # the arc passes the axis direction k * 90 degrees when it sweeps that far from its start
+            ahead = np.mod((k * np.pi / 2 - a0) * np.sign(sweep), 2 * np.pi)
+            hit = ahead <= np.abs(sweep)
+            pts.append(c[hit] + r[hit][:, None] * np.array([dx, dy]))
+    allp = np.concatenate(pts)
+    lo, hi = allp.min(axis=0), allp.max(axis=0)
+    return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
