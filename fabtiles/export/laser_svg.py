@@ -6,10 +6,13 @@ inner cuts, outer cut, in cut order), its stroke the RGB of the layer's ACI colo
 stroke width. ``width``/``height`` are in mm and the viewBox is in mm, so one user
 unit is one millimetre; the y axis is flipped so the picture looks like the DXF.
 Coordinates are printed with 4 decimals (0.1 um), so the file is reproducible
-byte for byte.
+byte for byte. Curves are SVG arcs (``A``), at most a half turn each, from the cut plan's
+arcs (:mod:`fabtiles.geometry.arcs`).
 """
 
 from __future__ import annotations
+
+import numpy as np
 
 from .._io import atomic_write
 from .._report import Report
@@ -36,9 +39,38 @@ def _num(x: float) -> str:
     return "0" if s in ("-0", "") else s
 
 
-def _path_data(ring, flip: float, closed: bool) -> str:
-    pts = [f"{_num(x)} {_num(flip - y)}" for x, y in ring.tolist()]
-    return "M" + "L".join(pts) + ("Z" if closed else "")
+def _path_data(curve, flip: float, closed: bool) -> str:
+    """SVG path data of a :class:`~fabtiles.geometry.arcs.Curve`: lines, and its arcs as ``A`` commands.
+
+    y is flipped (``flip - y``), which turns a counter-clockwise arc (bulge > 0) into
+    SVG's negative-angle direction: sweep-flag 0. No piece turns more than a half turn,
+    so the large-arc flag is 0.
+
+    >>> import numpy as np
+    >>> from fabtiles.geometry.arcs import Curve
+    >>> _path_data(Curve(np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([1.0, 0.0])), 0.0, True)
+    'M1 0A1 1 0 0 0 -1 0Z'
+    """
+    xy, bulge = curve
+    pts = [f"{_num(x)} {_num(flip - y)}" for x, y in xy.tolist()]
+    if not bulge.any():
+        return "M" + "L".join(pts) + ("Z" if closed else "")
+    n = len(pts)
+    nxt = np.roll(xy, -1, axis=0)
+    chord = np.hypot(*(nxt - xy).T)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        radius = chord * (1 + bulge * bulge) / (4 * np.abs(bulge))
+    out = ["M", pts[0]]
+    for k in range(1, n + (1 if closed else 0)):
+        b = bulge[k - 1]
+        to = pts[k % n]
+        if b:
+            out.append(f"A{_num(radius[k - 1])} {_num(radius[k - 1])} 0 0 {0 if b > 0 else 1} {to}")
+        elif k < n:  # a straight closing edge: Z draws it
+            out.append("L" + to)
+    if closed:
+        out.append("Z")
+    return "".join(out)
 
 
 def svg_text(job: CutPlan) -> str:
@@ -58,13 +90,13 @@ def svg_text(job: CutPlan) -> str:
             out.append(f'<g id="{_escape(layer.name)}" fill="{aci_to_hex(layer.color)}" fill-rule="evenodd" '
                        'stroke="none">\n')
             polys: dict = {}
-            for r, p in zip(cut.paths, cut.groups):
+            for r, p in zip(cut.curves_or_paths(), cut.groups):
                 polys.setdefault(p, []).append(_path_data(r, 0.0, True))
             out.extend(f'<path d="{"".join(d)}"/>\n' for d in polys.values())
         else:
             out.append(f'<g id="{_escape(layer.name)}" fill="none" stroke="{aci_to_hex(layer.color)}" '
                        f'stroke-width="{_num(HAIRLINE_MM)}">\n')
-            out.extend(f'<path d="{_path_data(r, 0.0, cut.closed)}"/>\n' for r in cut.paths)
+            out.extend(f'<path d="{_path_data(r, 0.0, cut.closed)}"/>\n' for r in cut.curves_or_paths())
         out.append("</g>\n")
     out.append("</svg>\n")
     return "".join(out)
