@@ -510,3 +510,73 @@ def curve_bounds(curves_, *, closed: bool = True):
     allp = np.concatenate(pts)
     lo, hi = allp.min(axis=0), allp.max(axis=0)
     return (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+
+
+BEZIER_QUARTER_ERROR = 2.7e-4
+"""How far a cubic Bezier with handles ``4/3 tan(sweep/4) r`` strays from a quarter circle, as a
+fraction of its radius (2.725e-4); the error goes with the sixth power of the sweep."""
+
+
+class Beziers(NamedTuple):
+    """A path of straight lines and cubic Beziers: vertices, and per piece leaving vertex ``i``
+    whether it is a Bezier, its outgoing handle ``c0[i]`` and the incoming handle ``c1[i]`` of its
+    end vertex (NaN where a piece is straight)."""
+
+    xy: np.ndarray
+    bezier: np.ndarray
+    c0: np.ndarray
+    c1: np.ndarray
+
+
+def beziers(curve: Curve, *, tolerance_mm: float, closed: bool = True) -> Beziers:
+    """``curve``'s arcs as cubic Beziers within a tenth of ``tolerance_mm`` of them.
+
+    Each arc is cut into equal pieces of at most a quarter turn, fewer degrees on a large
+    radius (a quarter circle of 75 mm as one Bezier strays 0.02 mm: cut in two, 3e-4 mm).
+
+    >>> half = Curve(np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([1.0, 0.0]))
+    >>> b = beziers(half, tolerance_mm=0.01)
+    >>> np.round(b.xy, 9).tolist(), b.bezier.tolist()
+    ([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]], [True, True, False])
+    >>> np.round(b.c0[0], 6).tolist(), np.round(b.c1[0], 6).tolist()
+    ([1.0, 0.552285], [0.552285, 1.0])
+    """
+    xy = np.asarray(curve.xy, dtype=float)
+    bulge = np.asarray(curve.bulge, dtype=float)
+    n = len(xy)
+    nan = np.full((n, 2), np.nan)
+    m_pieces = n if closed else n - 1
+    arc = np.flatnonzero(bulge[:m_pieces] != 0)
+    if not len(arc):
+        return Beziers(xy, np.zeros(n, dtype=bool), nan, nan)
+    a, z = xy[arc], xy[(arc + 1) % n]
+    c, r, a0, sweep = arc_geometry(a, z, bulge[arc])
+    limit = np.pi / 2 * np.minimum(1.0, (0.1 * tolerance_mm / (BEZIER_QUARTER_ERROR * r)) ** (1 / 6))
+    m = np.maximum(1, np.ceil(np.abs(sweep) / limit - 1e-9)).astype(np.int64)
+    count = np.ones(n, dtype=np.int64)
+    count[arc] = m
+    at = np.concatenate([[0], np.cumsum(count)[:-1]])  # where each old vertex lands
+    total = int(count.sum())
+    out = np.empty((total, 2))
+    out[at] = xy
+    bez = np.zeros(total, dtype=bool)
+    c0 = np.full((total, 2), np.nan)
+    c1 = np.full((total, 2), np.nan)
+    # the pieces of each arc: angles a0 + sweep * k / m, k = 0..m
+    which = np.repeat(np.arange(len(arc)), m)
+    k = np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m)
+    step = sweep[which] / m[which]
+    alpha0 = a0[which] + step * k
+    alpha1 = alpha0 + step
+    idx = at[arc][which] + k  # the piece's start vertex in the output
+    inner = k > 0
+    out[idx[inner]] = c[which][inner] + r[which][inner, None] * np.column_stack(
+        [np.cos(alpha0[inner]), np.sin(alpha0[inner])])
+    h = (4 / 3) * np.tan(step / 4) * r[which]
+    bez[idx] = True
+    c0[idx] = out[idx] + h[:, None] * np.column_stack([-np.sin(alpha0), np.cos(alpha0)])
+    end = (idx + 1) % total
+    end_pt = np.where((k == m[which] - 1)[:, None], out[end], c[which] + r[which][:, None] *
+                      np.column_stack([np.cos(alpha1), np.sin(alpha1)]))
+    c1[idx] = end_pt - h[:, None] * np.column_stack([-np.sin(alpha1), np.cos(alpha1)])
+    return Beziers(out, bez, c0, c1)

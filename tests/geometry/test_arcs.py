@@ -8,7 +8,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, Polygon, box
 
-from fabtiles.geometry.arcs import arc_runs, bulge_path, curves, fit_distance, piece_lengths
+from fabtiles.geometry.arcs import Curve, arc_runs, beziers, bulge_path, curves, fit_distance, piece_lengths
 from hypothesis_scale import examples
 
 
@@ -213,3 +213,22 @@ def test_an_open_arc_keeps_its_ends_and_a_full_circle_is_two_half_turns():
     assert len(quarter.xy) == 3 and quarter.xy[1] == pytest.approx([0, 5])
     circle = curves([_ring(Point(1, 1).buffer(3.0, quad_segs=32))], tolerance_mm=0.01)[0]
     assert len(circle.xy) == 2 and circle.bulge == pytest.approx([1, 1])
+
+
+@settings(max_examples=examples(30), deadline=None)
+@given(st.floats(0.1, 500), st.floats(-np.pi, np.pi), st.floats(0.05, np.pi), st.booleans(),
+       st.sampled_from([0.001, 0.01, 0.1]))
+def test_beziers_stay_within_a_tenth_of_the_tolerance_of_the_arc(r, start, sweep, ccw, tol):
+    s = sweep if ccw else -sweep
+    ends = np.array([[np.cos(start), np.sin(start)], [np.cos(start + s), np.sin(start + s)]]) * r
+    curve = Curve(ends, np.array([np.tan(s / 4), 0.0]))
+    b = beziers(curve, tolerance_mm=tol, closed=False)
+    assert np.array_equal(b.xy[0], ends[0]) and np.array_equal(b.xy[-1], ends[1])
+    t = np.linspace(0, 1, 41)[:, None]
+    for i in np.flatnonzero(b.bezier):
+        p0, p1, p2, p3 = b.xy[i], b.c0[i], b.c1[i], b.xy[i + 1]
+        pts = (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t ** 2 * p2 + t ** 3 * p3
+        assert np.abs(np.hypot(*pts.T) - r).max() <= 0.1 * tol + 1e-9 * r
+        # turning the arc's way
+        cross = (p3 - p0)[0] * (p1 - p0)[1] - (p3 - p0)[1] * (p1 - p0)[0]
+        assert (cross < 0) == ccw
