@@ -171,7 +171,9 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
         frame = [np.asarray(bounds, dtype=float).reshape(2, 2) + shift] if bounds is not None else []
         frame += [np.array(_extent(allr, arcs, closed_of))] if allr else []
         flat = np.concatenate(frame) if frame else np.zeros((1, 2))
-        bounds = (*flat.min(axis=0).tolist(), *flat.max(axis=0).tolist())
+        # an arc's extreme, moved to 0, comes back as -7e-15 or so: the file's corner is (0, 0)
+        low = np.where(np.abs(flat.min(axis=0)) < 1e-9, 0.0, flat.min(axis=0))
+        bounds = (*low.tolist(), *flat.max(axis=0).tolist())
     layers = []
     for role in ROLES:
         rings = moved[role]
