@@ -8,7 +8,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, Polygon, box
 
-from fabtiles.geometry.arcs import arc_runs, fit_distance
+from fabtiles.geometry.arcs import Curve, arc_runs, beziers, bulge_path, curves, fit_distance, piece_lengths
 from hypothesis_scale import examples
 
 
@@ -158,3 +158,87 @@ def test_a_circle_on_a_coarse_grid_is_one_circle():
 def test_short_rings_and_a_tolerance_of_zero_give_no_arcs():
     assert len(arc_runs(np.zeros((3, 2)), tolerance_mm=0.01).first) == 0
     assert len(arc_runs(_ring(Point(0, 0).buffer(1.0)), tolerance_mm=0.0).first) == 0
+
+
+def _flatten(curve, closed=True, step=0.01):
+    """The curve's points, its arcs flattened finely (for the tests: an independent reading of the bulges)."""
+    xy, b = curve.xy, curve.bulge
+    out = []
+    m = len(xy) if closed else len(xy) - 1
+    for i in range(m):
+        a, z = xy[i], xy[(i + 1) % len(xy)]
+        out.append(a)
+        if b[i] == 0:
+            continue
+        sweep = 4 * np.arctan(b[i])
+        chord = np.hypot(*(z - a))
+        r = chord / (2 * np.sin(abs(sweep) / 2))
+        mid = (a + z) / 2
+        normal = np.array([-(z - a)[1], (z - a)[0]]) / chord
+        # the centre is to the left of the chord for a counter-clockwise arc of less than a half turn
+        c = mid + normal * np.sign(sweep) * r * np.cos(abs(sweep) / 2)
+        a0 = np.arctan2(*(a - c)[::-1])
+        k = max(2, int(abs(sweep) * r / step))
+        t = a0 + sweep * np.arange(1, k) / k
+        out.extend(c + r * np.column_stack([np.cos(t), np.sin(t)]))
+    if not closed:
+        out.append(xy[-1])
+    return np.array(out)
+
+
+@settings(max_examples=examples(25), deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 80).map(lambda v: v / 2), st.integers(0, 80).map(lambda v: v / 2)),
+                min_size=2, max_size=6, unique=True),
+       st.floats(0.3, 4), st.sampled_from([np.pi, np.pi / 2]), st.integers(0, 50))
+def test_a_bulge_path_draws_the_ring_within_the_tolerance(points, r, max_sweep, roll):
+    from shapely.geometry import Polygon as P
+
+    shape = LineString(points).buffer(r, quad_segs=8)
+    if shape.geom_type != "Polygon" or shape.area < 1 or len(shape.interiors):
+        return
+    ring = np.roll(_ring(shape), roll, axis=0)
+    tol = 0.05
+    curve = bulge_path(ring, arc_runs(ring, tolerance_mm=tol), max_sweep=max_sweep)
+    assert np.array_equal(curve.xy[0], ring[0])  # starts where the ring did
+    assert np.abs(4 * np.arctan(curve.bulge)).max() <= max_sweep + 1e-9
+    drawn = P(_flatten(curve))
+    assert drawn.is_valid
+    assert drawn.hausdorff_distance(P(ring)) <= tol
+    # the arcs are the true curves: the area of the stroke drawn at a high resolution, within 0.01 %
+    # (or as close as the flattened ring, where joins of one or two chords stay chords)
+    true = LineString(points).buffer(r, quad_segs=512).area
+    assert abs(drawn.area - true) <= max(1e-4 * true, abs(shape.area - true))
+    lengths = piece_lengths(curve)
+    assert lengths.sum() == pytest.approx(drawn.length, rel=1e-4)
+
+
+def test_an_open_arc_keeps_its_ends_and_a_full_circle_is_two_half_turns():
+    ang = np.linspace(0, np.pi, 17)
+    path = np.column_stack([np.cos(ang), np.sin(ang)]) * 5
+    curve = bulge_path(path, arc_runs(path, tolerance_mm=0.1, closed=False), closed=False)
+    assert curve.xy.tolist() == [path[0].tolist(), path[-1].tolist()]
+    assert curve.bulge[0] == pytest.approx(1.0)
+    assert piece_lengths(curve, closed=False).tolist() == pytest.approx([5 * np.pi])
+    quarter = bulge_path(path, arc_runs(path, tolerance_mm=0.1, closed=False), closed=False, max_sweep=np.pi / 2)
+    assert len(quarter.xy) == 3 and quarter.xy[1] == pytest.approx([0, 5])
+    circle = curves([_ring(Point(1, 1).buffer(3.0, quad_segs=32))], tolerance_mm=0.01)[0]
+    assert len(circle.xy) == 2 and circle.bulge == pytest.approx([1, 1])
+
+
+@settings(max_examples=examples(30), deadline=None)
+@given(st.floats(0.1, 500), st.floats(-np.pi, np.pi), st.floats(0.05, np.pi), st.booleans(),
+       st.sampled_from([0.001, 0.01, 0.1]))
+def test_beziers_stay_within_a_tenth_of_the_tolerance_of_the_arc(r, start, sweep, ccw, tol):
+    s = sweep if ccw else -sweep
+    ends = np.array([[np.cos(start), np.sin(start)], [np.cos(start + s), np.sin(start + s)]]) * r
+    curve = Curve(ends, np.array([np.tan(s / 4), 0.0]))
+    b = beziers(curve, tolerance_mm=tol, closed=False)
+    assert np.array_equal(b.xy[0], ends[0]) and np.array_equal(b.xy[-1], ends[1])
+    t = np.linspace(0, 1, 41)[:, None]
+    for i in np.flatnonzero(b.bezier):
+        p0, p1, p2, p3 = b.xy[i], b.c0[i], b.c1[i], b.xy[i + 1]
+        pts = (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t ** 2 * p2 + t ** 3 * p3
+        assert np.abs(np.hypot(*pts.T) - r).max() <= 0.1 * tol + 1e-9 * r
+        # turning the arc's way
+        cross = (p3 - p0)[0] * (p1 - p0)[1] - (p3 - p0)[1] * (p1 - p0)[0]
+        assert (cross < 0) == ccw
