@@ -46,12 +46,10 @@ Not less: the kerf offset (mitred) of a round join puts the join's two end verti
 kerf); at 0.05 those ends were left out of 634 arcs of the 100 mm circle tile, whose
 DXF then kept 3,268 of its 6,184 vertices instead of 2,612."""
 
-LINK_SLACK = 4.0
-"""How much farther than :func:`fit_distance` the vertex after a triple may lie off the triple's circle and
-still link it to the run (each run is then fitted by least squares within :func:`fit_distance`, and split
-where it does not fit). Three points' circle extrapolates their noise about three times over one chord:
-on the print's 2**-10 mm grid (0.0007 mm of rounding) the quarter circles of a 4 mm corner were cut in
-five arcs of radii 3.96 to 4.03 mm."""
+GRID_LINK_SLACK = 4.0
+"""``link_slack`` for points rounded to a grid near the fit's distance (the print's B-rep, 2**-10 mm):
+three points' circle extrapolates their noise about three times over one chord, and at 1 the quarter
+circles of a 4 mm corner were cut in five arcs of radii 3.96 to 4.03 mm."""
 
 MIN_FIT_MM = 1e-5
 """Floor of the fit's distance: ten times the contours' rounding, so a ring rounded to
@@ -138,7 +136,7 @@ def _sweep(pts: np.ndarray, centre: np.ndarray) -> float:
     return float(ang.sum())
 
 
-def arc_runs(ring: np.ndarray, *, tolerance_mm: float, closed: bool = True) -> ArcRuns:
+def arc_runs(ring: np.ndarray, *, tolerance_mm: float, closed: bool = True, link_slack: float = 1.0) -> ArcRuns:
     """The arcs of a flattened ``ring``: runs of >= 3 chords on one circle.
 
     ``ring`` is (n, 2), as the cut plan keeps its paths: a closed ring WITHOUT its
@@ -155,11 +153,15 @@ def arc_runs(ring: np.ndarray, *, tolerance_mm: float, closed: bool = True) -> A
     >>> sorted(np.round(runs.radius, 9).tolist()), runs.full
     ([1.0, 1.0, 1.0], False)
     """
-    return arc_runs_many([ring], tolerance_mm=tolerance_mm, closed=closed)[0]
+    return arc_runs_many([ring], tolerance_mm=tolerance_mm, closed=closed, link_slack=link_slack)[0]
 
 
-def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True) -> list:
+def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack: float = 1.0) -> list:
     """:func:`arc_runs` of each of ``rings`` (a list of (n, 2) arrays), in one vectorised pass.
+
+    ``link_slack``: how much farther than :func:`fit_distance` the vertex after three may lie off
+    their circle and still continue their run (each run is then fitted by least squares within
+    :func:`fit_distance`, and split where it does not fit); see :data:`GRID_LINK_SLACK`.
 
     The sheets' and panels' cut plans hold thousands of rings: one pass over all their
     vertices instead of a pass per ring (the 2440 x 1220 mm panel's 2,812 rings and
@@ -205,7 +207,7 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True) -> list:
             ok &= (local > 0) & (local < n_of - 1)
         # link i: triples i and i + 1 on one circle (the vertex after triple i's on its circle, turning alike)
         n2 = nxt[nxt]
-        link = ok & ok[nxt] & (np.abs(np.hypot(*(p[n2] - centre).T) - radius) <= LINK_SLACK * eps) & \
+        link = ok & ok[nxt] & (np.abs(np.hypot(*(p[n2] - centre).T) - radius) <= link_slack * eps) & \
             (np.sign(cross) == np.sign(cross[nxt]))
     if not closed:
         link &= local < n_of - 2
@@ -223,7 +225,7 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True) -> list:
         pts = p[start[j]:start[j] + cnt[j]]
         c, r = _full_fit(pts)
         if np.abs(np.hypot(*(pts - c).T) - r).max() <= eps:
-            sweep = -2 * np.pi * np.sign(cross[start[j]])  # cross < 0 where a ring turns left
+            sweep = 2 * np.pi * np.sign(cross[start[j]])
             results[j] = ArcRuns(np.array([0]), np.array([0]), c[None, :], np.array([r]), True, np.array([sweep]))
     shift = np.where(unbroken, 0, first_break + 1)
     order = base + (local + shift[rid]) % n_of

@@ -623,7 +623,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float) -> list:
     """
     import shapely
 
-    from ..geometry.arcs import arc_runs_many
+    from ..geometry.arcs import GRID_LINK_SLACK, arc_runs_many
 
     u, v = topo.vid, topo.vid[topo.nxt]
     real = u != v
@@ -699,7 +699,8 @@ def _wall_arcs(topo, xy, tolerance_mm: float) -> list:
         searched.append(np.flatnonzero(keep))
     for closed in (True, False):
         ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
-        found = arc_runs_many([xy[jobs[k][1][searched[k]]] for k in ks], tolerance_mm=tolerance_mm, closed=closed)
+        found = arc_runs_many([xy[jobs[k][1][searched[k]]] for k in ks], tolerance_mm=tolerance_mm, closed=closed,
+                              link_slack=GRID_LINK_SLACK)
         for k, runs in zip(ks, found):
             if len(runs.first):
                 collect(jobs[k][0], jobs[k][1], searched[k], runs)

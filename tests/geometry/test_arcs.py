@@ -141,9 +141,8 @@ def test_an_open_path_keeps_its_ends_and_holes_stay_clockwise():
     path = np.column_stack([np.cos(ang), np.sin(ang)]) * 5
     runs = arc_runs(path, tolerance_mm=0.1, closed=False)
     assert runs.first.tolist() == [0] and runs.last.tolist() == [16] and not runs.full
-    hole = _ring(Point(0, 0).buffer(5.0, quad_segs=8))  # GEOS's buffer: clockwise
+    hole = _ring(Polygon(Point(0, 0).buffer(5.0, quad_segs=8).exterior.coords[::-1]))
     assert arc_runs(hole, tolerance_mm=0.1).sweep[0] == pytest.approx(-2 * np.pi)
-    assert arc_runs(hole[::-1], tolerance_mm=0.1).sweep[0] == pytest.approx(2 * np.pi)
 
 
 def test_a_circle_on_a_coarse_grid_is_one_circle():
