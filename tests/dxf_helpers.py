@@ -82,11 +82,38 @@ def read_checked(path, *, allow_fixes: bool = False):
     return doc
 
 
-def vertices(entity) -> np.ndarray:
-    """(m, 2) vertices of an LWPOLYLINE or 2D POLYLINE."""
+def raw_vertices(entity) -> np.ndarray:
+    """(m, 2) vertices of an LWPOLYLINE or 2D POLYLINE, as written (an arc's ends only)."""
     if entity.dxftype() == "LWPOLYLINE":
         return np.array(entity.get_points("xy"), dtype=float).reshape(-1, 2)
     return np.array([(v.dxf.location.x, v.dxf.location.y) for v in entity.vertices], dtype=float).reshape(-1, 2)
+
+
+def bulges(entity) -> np.ndarray:
+    """(m,) bulge of each vertex of an LWPOLYLINE or 2D POLYLINE (0: a straight edge leaves it)."""
+    if entity.dxftype() == "LWPOLYLINE":
+        return np.array([p[2] for p in entity.get_points("xyb")], dtype=float)
+    return np.array([v.dxf.get("bulge", 0.0) for v in entity.vertices], dtype=float)
+
+
+FLATTEN_MM = 0.001
+"""How finely :func:`vertices` flattens a polyline's arcs (ezdxf's own flattening)."""
+
+
+def vertices(entity) -> np.ndarray:
+    """(m, 2) points of the curve an LWPOLYLINE or 2D POLYLINE draws: its vertices, and its arcs
+    (bulges) flattened within :data:`FLATTEN_MM` by ezdxf itself (``ezdxf.path``; 16 Bezier pieces
+    a circle at least: ezdxf's default quarter-circle Beziers stand 2.7e-4 of the radius off it).
+    A closed polyline's first point is not repeated at its end."""
+    raw = raw_vertices(entity)
+    if not bulges(entity).any():
+        return raw
+    from ezdxf import path
+
+    pts = np.array([(v.x, v.y) for v in path.make_path(entity, segments=16).flattening(FLATTEN_MM)], dtype=float)
+    if is_closed(entity) and len(pts) > 1 and np.allclose(pts[0], pts[-1], atol=1e-12, rtol=0):
+        pts = pts[:-1]
+    return pts
 
 
 def is_closed(entity) -> bool:
@@ -100,10 +127,14 @@ def dxf_entities(path, decimals: int = 4) -> list[tuple]:
     doc = ezdxf.readfile(path)
     out = []
     for e in doc.modelspace():
-        pts = vertices(e) if e.dxftype() in CUT_TYPES else np.empty((0, 2))
+        pts = raw_vertices(e) if e.dxftype() in CUT_TYPES else np.empty((0, 2))
         rounded = tuple(tuple(float(round(c, decimals)) + 0.0 for c in p) for p in pts)
-        out.append((e.dxf.layer, e.dxftype(), is_closed(e) if e.dxftype() in CUT_TYPES else False,
-                    e.dxf.get("color", 256), rounded))
+        entity = (e.dxf.layer, e.dxftype(), is_closed(e) if e.dxftype() in CUT_TYPES else False,
+                  e.dxf.get("color", 256), rounded)
+        b = bulges(e) if e.dxftype() in CUT_TYPES else np.zeros(0)
+        if b.any():  # arcs: the bulges too (a file without arcs compares as before)
+            entity += (tuple(float(round(v, decimals)) + 0.0 for v in b),)
+        out.append(entity)
     return out
 
 
@@ -128,15 +159,19 @@ def _update_golden(golden: Path) -> bool:
 
 def _entity(e) -> tuple:
     """A golden entity read back from JSON, as :func:`dxf_entities` gives it."""
-    return (e[0], e[1], e[2], e[3], tuple(tuple(p) for p in e[4]))
+    return (e[0], e[1], e[2], e[3], tuple(tuple(p) for p in e[4])) + ((tuple(e[5]),) if len(e) > 5 else ())
 
 
 def assert_same_entity(got, want, k, decimals: int = 4) -> None:
-    """Entity ``k``: same layer, type, closed flag, colour and vertex count; vertices within rounding."""
+    """Entity ``k``: same layer, type, closed flag, colour and vertex count; vertices and bulges within rounding."""
     assert got[:4] == want[:4], f"entity {k}: {got[:4]} != golden {want[:4]}"
     assert len(got[4]) == len(want[4]), f"entity {k}: {len(got[4])} vertices, golden has {len(want[4])}"
     diff = np.abs(np.array(got[4]) - np.array(want[4])).max() if got[4] else 0.0
     assert diff <= 2 * 10.0 ** -decimals, f"entity {k}: vertices differ by {diff}"
+    assert len(got) == len(want), f"entity {k}: {'arcs' if len(got) > 5 else 'no arc'}, golden the other"
+    if len(got) > 5:
+        bdiff = np.abs(np.array(got[5]) - np.array(want[5])).max()
+        assert bdiff <= 2 * 10.0 ** -decimals, f"entity {k}: bulges differ by {bdiff}"
 
 
 def assert_golden(path, name: str, decimals: int = 4) -> None:

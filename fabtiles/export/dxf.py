@@ -3,7 +3,9 @@
 The file imports into LightBurn, RDWorks, LaserGRBL or a CAM package as is:
 ``$INSUNITS`` = 4 (mm), closed LWPOLYLINEs (DXF R2000 and later) or closed R12
 POLYLINEs (``dxf_version="R12"``, for old laser software), no SPLINEs, no loose
-LINEs, no repeated points. Layers and ACI colours come from the profile; each
+LINEs, no repeated points. Curves are arcs: a polyline's arc is a bulge on the vertex
+it leaves from (group code 42, ``tan(sweep / 4)``, at most a half turn each), as AutoCAD
+writes them; CAM turns each into one G2/G3 move (:mod:`fabtiles.geometry.arcs` finds them). Layers and ACI colours come from the profile; each
 entity also carries its layer's colour explicitly, for programs that ignore layers.
 Entity order is cut order: score paths, inner contours, outer contours (see
 :mod:`fabtiles.geometry.contours`).
@@ -114,13 +116,15 @@ def build_document(job: CutPlan, *, entities: bool = True):
         doc.layers.add(layer.name, color=layer.color)
     if not entities:
         return doc
-    for rings, layer, closed in _groups(job):
+    for curves, layer, closed in _groups(job):
         attribs = {"layer": layer.name, "color": layer.color}
-        for ring in rings:
+        for xy, bulge in curves:
             if job.dxf_version == "R12":
-                msp.add_polyline2d(ring.tolist(), close=closed, dxfattribs=attribs)
+                points = [(x, y, 0.0, 0.0, b) for (x, y), b in zip(xy.tolist(), bulge.tolist())]
+                msp.add_polyline2d(points, format="xyseb", close=closed, dxfattribs=attribs)
             else:
-                msp.add_lwpolyline(ring.tolist(), format="xy", close=closed, dxfattribs=attribs)
+                points = [(x, y, b) for (x, y), b in zip(xy.tolist(), bulge.tolist())]
+                msp.add_lwpolyline(points, format="xyb", close=closed, dxfattribs=attribs)
     return doc
 
 
@@ -145,8 +149,8 @@ class _DropUnitsWarning:
 
 
 def _groups(job: CutPlan):
-    """``(rings, layer, closed)`` of each layer, in cut order."""
-    return [(layer.paths, layer.layer, layer.closed) for layer in job.layers]
+    """``(curves, layer, closed)`` of each layer, in cut order: its paths with their arcs as bulges."""
+    return [(layer.curves_or_paths(), layer.layer, layer.closed) for layer in job.layers]
 
 
 def entities_text(job: CutPlan, first_handle: int, owner: str) -> tuple[str, int]:
@@ -160,24 +164,33 @@ def entities_text(job: CutPlan, first_handle: int, owner: str) -> tuple[str, int
     out = []
     h = first_handle
     r12 = job.dxf_version == "R12"
-    for rings, layer, closed in _groups(job):
+    for curves, layer, closed in _groups(job):
         flag = 1 if closed else 0
         common = f"  8\n{layer.name}\n 62\n{layer.color}\n"
-        for ring in rings:
+        for ring, bulge in curves:
             xy = ring.ravel().tolist()
             n = len(ring)
+            # an arc: the bulge (group code 42, tan(sweep / 4)) of the vertex it leaves from
+            bulges = [f" 42\n{b!r}\n" if b else "" for b in bulge.tolist()] if bulge.any() else None
             if r12:
                 out.append(f"  0\nPOLYLINE\n  5\n{h:X}\n{common} 66\n1\n 10\n0.0\n 20\n0.0\n 30\n0.0\n"
                            f" 70\n{flag}\n")
-                vtx = "".join(f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{layer.name}\n 10\n%r\n 20\n%r\n"
-                              " 30\n0.0\n 70\n0\n" for k in range(n))
-                out.append(vtx % tuple(xy))
+                if bulges is None:
+                    vtx = "".join(f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{layer.name}\n 10\n%r\n 20\n%r\n"
+                                  " 30\n0.0\n 70\n0\n" for k in range(n))
+                    out.append(vtx % tuple(xy))
+                else:
+                    out.append("".join(f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{layer.name}\n 10\n{xy[2 * k]!r}\n"
+                                       f" 20\n{xy[2 * k + 1]!r}\n 30\n0.0\n{bulges[k]} 70\n0\n" for k in range(n)))
                 out.append(f"  0\nSEQEND\n  5\n{h + 1:X}\n  8\n{layer.name}\n")
                 h += n + 2
             else:
                 out.append(f"  0\nLWPOLYLINE\n  5\n{h:X}\n330\n{owner}\n100\nAcDbEntity\n{common}"
                            f"100\nAcDbPolyline\n 90\n{n}\n 70\n{flag}\n")
-                out.append((" 10\n%r\n 20\n%r\n" * n) % tuple(xy))
+                if bulges is None:
+                    out.append((" 10\n%r\n 20\n%r\n" * n) % tuple(xy))
+                else:
+                    out.append("".join(f" 10\n{xy[2 * k]!r}\n 20\n{xy[2 * k + 1]!r}\n{bulges[k]}" for k in range(n)))
                 h += 1
     return "".join(out), h
 

@@ -143,7 +143,7 @@ FORMATS = {f.name: f for f in (
     Format("lbrn2", "cut", "application/xml", "LightBurn project with the profile's cut settings", _lbrn2, _none),
     Format("stl", "print", "model/stl", "binary STL, one watertight body", _stl, _stl_figures),
     Format("3mf", "print", "model/3mf", "3MF, one object of named parts, one filament each", _3mf, _3mf_figures),
-    Format("step", "print", "model/step", "STEP AP214, planar faces, one solid per piece", _step, _step_figures),
+    Format("step", "print", "model/step", "STEP AP214, planes and cylinders, one solid per piece", _step, _step_figures),
     Format("glb", "print", "model/gltf-binary", "binary glTF of the print's parts in colour (the 3D view)",
            _glb, _glb_figures),
 )}

@@ -12,7 +12,8 @@ in LightBurn's own XML, so a job opens with its speeds, powers and passes set:
   engrave, score, inner cuts, then the outline).
 - Every contour one ``<Shape Type="Path">``: its vertices once each (the first not
   repeated) and a primitive list of straight lines ``L0 1 ... L(n-1) 0`` that closes it;
-  a score line the same with no closing line. No ``VertID``/``PrimID`` (shared
+  a score line the same with no closing line. Its arcs are cubic Beziers (``B i j``, the
+  handles on the vertices as ``c0x``/``c0y``, ``c1x``/``c1y``), at most a quarter turn each. No ``VertID``/``PrimID`` (shared
   geometry) and an identity ``XForm``.
 
 What the readers in the open read, and why these choices (``docs/laser-programs.md``):
@@ -33,6 +34,7 @@ import numpy as np
 
 from .._io import atomic_write
 from .._report import Report
+from ..geometry.arcs import Beziers, beziers
 from ..geometry.cut_plan import CutPlan, plan_cut
 
 APP_VERSION = "1.7.03"
@@ -91,6 +93,7 @@ def _prims(n: int, closed: bool) -> str:
 def _paths(rings, index: int, closed: bool) -> list:
     """The ``<Shape Type="Path">`` elements of ``rings`` on layer ``index``.
 
+    ``rings`` are (n, 2) arrays (straight lines) or :class:`~fabtiles.geometry.arcs.Beziers`.
     Every coordinate of every ring formatted by one ``%`` with 4 decimals (trailing
     zeros kept: cutting them by regular expression cost more than the rest of the
     file): the 600 x 400 mm sheet's 67,800 vertices in about 0.06 s, where a number
@@ -98,17 +101,45 @@ def _paths(rings, index: int, closed: bool) -> list:
     """
     if not len(rings):
         return []
-    flat = np.concatenate(rings).ravel().tolist()
+    straight = [r for r in rings if not isinstance(r, Beziers)]
+    flat = np.concatenate(straight).ravel().tolist() if straight else []
     text = ("V%.4f %.4fc0x1c1x1" * (len(flat) // 2)) % tuple(flat)
     records = text.split("V")[1:]  # one "x yc0x1c1x1" per vertex
     out, at = [], 0
     for r in rings:
-        n = len(r)
+        if isinstance(r, Beziers):
+            verts, prims = _bezier_path(r, closed)
+        else:
+            n = len(r)
+            verts, prims = "V".join(records[at:at + n]), _prims(n, closed)
+            at += n
         out.append(f'    <Shape Type="Path" CutIndex="{index}">\n        <XForm>1 0 0 1 0 0</XForm>\n'
-                   f'        <VertList>V{"V".join(records[at:at + n])}</VertList>\n'
-                   f'        <PrimList>{_prims(n, closed)}</PrimList>\n    </Shape>\n')
-        at += n
+                   f'        <VertList>V{verts}</VertList>\n'
+                   f'        <PrimList>{prims}</PrimList>\n    </Shape>\n')
     return out
+
+
+def _bezier_path(path: Beziers, closed: bool) -> tuple[str, str]:
+    """The vertex list (without its first ``V``) and the primitive list of a path with Beziers.
+
+    A vertex is ``x y``, then its outgoing handle ``c0x X c0y Y`` when a Bezier (``B``)
+    leaves it (``c0x1``, LightBurn's "no handle", else), then its incoming handle
+    ``c1x X c1y Y`` when a Bezier ends there (``c1x1`` else): LightBurn's own layout, read
+    by lbrnts and MeerK40t (a ``B i j`` primitive takes vertex i's ``c0`` and j's ``c1``).
+    """
+    xy, bez = path.xy, path.bezier
+    n = len(xy)
+    pieces = n if closed else n - 1
+    incoming = np.roll(bez, 1) if closed else np.r_[False, bez[:-1]]
+    c1_in = np.roll(path.c1, 1, axis=0)
+    verts = []
+    for i, (x, y) in enumerate(xy.tolist()):
+        v = f"{x:.4f} {y:.4f}"
+        v += f"c0x{path.c0[i, 0]:.4f}c0y{path.c0[i, 1]:.4f}" if bez[i] and i < pieces else "c0x1"
+        v += f"c1x{c1_in[i, 0]:.4f}c1y{c1_in[i, 1]:.4f}" if incoming[i] else "c1x1"
+        verts.append(v)
+    prims = "".join(f"{'B' if bez[i] else 'L'}{i} {(i + 1) % n}" for i in range(pieces))
+    return "V".join(verts), prims
 
 
 def _cut_setting(layer, index: int, priority: int, kind: str) -> str:
@@ -124,8 +155,17 @@ def _cut_setting(layer, index: int, priority: int, kind: str) -> str:
 
 
 def layer_groups(job: CutPlan):
-    """``(profile key, layer, rings, closed, CutSetting type)`` of each layer, in cut order."""
-    return [(cut.key, cut.layer, list(cut.paths), cut.closed, "Scan" if cut.fill else "Cut") for cut in job.layers]
+    """``(profile key, layer, paths, closed, CutSetting type)`` of each layer, in cut order.
+
+    A path is its (n, 2) vertices, or :class:`~fabtiles.geometry.arcs.Beziers` where it has
+    arcs: LightBurn's curves are cubic Beziers (a ``Path``'s ``B`` primitives), so each arc is
+    written as Beziers of at most a quarter turn, within a tenth of the profile's tolerance.
+    """
+    tol = job.profile.tolerance_mm
+    return [(cut.key, cut.layer,
+             [beziers(c, tolerance_mm=tol, closed=cut.closed) if c.bulge.any() else c.xy
+              for c in cut.curves_or_paths()],
+             cut.closed, "Scan" if cut.fill else "Cut") for cut in job.layers]
 
 
 def lbrn2_bytes(plan: CutPlan) -> bytes:

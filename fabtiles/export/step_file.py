@@ -8,8 +8,11 @@ for the whole file. The file is then read back with OCCT and checked
 (:mod:`fabtiles.export.step`), so OCCT still has the last word on it.
 
 Each solid is a ``MANIFOLD_SOLID_BREP`` of one ``CLOSED_SHELL`` of
-``ADVANCED_FACE``s on ``PLANE``s, bounded by ``EDGE_LOOP``s of ``EDGE_CURVE``s on
-``LINE``s: the entities every STEP reader supports. The output is byte-identical
+``ADVANCED_FACE``s on ``PLANE``s and ``CYLINDRICAL_SURFACE``s, bounded by
+``EDGE_LOOP``s of ``EDGE_CURVE``s on ``LINE``s and ``CIRCLE``s: the entities every
+STEP reader supports. An edge of a cylinder carries its curve in the cylinder's
+parameters too (``SURFACE_CURVE`` with a ``PCURVE`` for each cylinder it bounds), as
+OCCT's own writer does: its reader makes those curves for planes, not for cylinders. The output is byte-identical
 for the same input: entities numbered in the order they are written, the header's
 time stamp fixed (:data:`TIME_STAMP`).
 
@@ -25,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..solid.brep import Brep
+from ..solid.brep import Brep, seam_direction
 
 
 TIME_STAMP = "2000-01-01T00:00:00"
@@ -58,6 +61,8 @@ class _Writer:
         self.lines = []
         self.directions = {}
 
+        self.context_2d = None
+
     def add(self, entity: str) -> int:
         self.lines.append(entity)
         return len(self.lines)
@@ -66,8 +71,37 @@ class _Writer:
         key = tuple(float(c) for c in v)
         ref = self.directions.get(key)
         if ref is None:
-            ref = self.directions[key] = self.add(f"DIRECTION('',{_triple(key)})")
+            text = _triple(key) if len(key) == 3 else f"({_real(key[0])},{_real(key[1])})"
+            ref = self.directions[key] = self.add(f"DIRECTION('',{text})")
         return ref
+
+
+def _pcurve(w: _Writer, surface: int, face, start, arc) -> int:
+    """The ``PCURVE`` of an edge of a cylinder face: a line in the cylinder's (angle, height).
+
+    An edge's curve on each curved face it bounds is part of the B-rep: OCCT's STEP
+    reader makes it for planes, not for cylinders (measured: without it every
+    cylinder face read back without shape healing is invalid). A circle's angle
+    starts where its cylinder's does (:func:`~fabtiles.solid.brep.seam_direction`), so its
+    curve is ``(t, height)``; a vertical line's is ``(angle, height + t)``, both
+    parametrised as their edge.
+    """
+    if w.context_2d is None:
+        w.context_2d = w.add("( GEOMETRIC_REPRESENTATION_CONTEXT(2) PARAMETRIC_REPRESENTATION_CONTEXT() "
+                             "REPRESENTATION_CONTEXT('2D SPACE','') )")
+    ref = np.asarray(face.ref[:2], float)
+    height = float(start[2] - face.origin[2])
+    if arc[2] > 0:
+        point, along = (0.0, height), (1.0, 0.0)
+    else:
+        d = np.asarray(start[:2], float) - face.origin[:2]
+        angle = float(np.arctan2(ref[0] * d[1] - ref[1] * d[0], ref @ d)) % (2 * np.pi)
+        point, along = (angle, height), (0.0, 1.0)
+    p = w.add(f"CARTESIAN_POINT('',({_real(point[0])},{_real(point[1])}))")
+    vec = w.add(f"VECTOR('',#{w.direction(along)},1.)")
+    line = w.add(f"LINE('',#{p},#{vec})")
+    rep = w.add(f"DEFINITIONAL_REPRESENTATION('',(#{line}),#{w.context_2d})")
+    return w.add(f"PCURVE('',#{surface},#{rep})")
 
 
 def _brep_entities(w: _Writer, brep: Brep, name: str):
@@ -75,19 +109,42 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
     pts = brep.points
     cart = [w.add(f"CARTESIAN_POINT('',{_triple(p)})") for p in pts]
     vert = [w.add(f"VERTEX_POINT('',#{c})") for c in cart]
+    # the cylinders first: their edges carry curves in their parameters (see _pcurves)
+    surfaces, on_cylinders = {}, {}
+    for f, face in enumerate(brep.faces):
+        if face.radius > 0:
+            origin = w.add(f"CARTESIAN_POINT('',{_triple(face.origin)})")
+            place = w.add(f"AXIS2_PLACEMENT_3D('',#{origin},#{w.direction(face.normal)},#{w.direction(face.ref)})")
+            surfaces[f] = w.add(f"CYLINDRICAL_SURFACE('',#{place},{_real(face.radius)})")
+            for e in face.loops[0]:
+                on_cylinders.setdefault(e if e >= 0 else ~e, []).append(f)
     edges = []
     d = pts[brep.edges[:, 1]] - pts[brep.edges[:, 0]]
     length = np.sqrt(np.einsum("ij,ij->i", d, d))
-    for (a, b), dv, ln in zip(brep.edges.tolist(), d, length):
-        # direction ratios are the edge's own grid vector: exact, no rounding of a unit vector
-        vec = w.add(f"VECTOR('',#{w.direction(dv)},{_real(ln)})")
-        line = w.add(f"LINE('',#{cart[a]},#{vec})")
-        edges.append(w.add(f"EDGE_CURVE('',#{vert[a]},#{vert[b]},#{line},.T.)"))
+    arcs = brep.arc_rows()
+    for i, ((a, b), dv, ln, arc) in enumerate(zip(brep.edges.tolist(), d, length, arcs)):
+        if arc[2] > 0:  # a counter-clockwise arc of a horizontal circle, its angle starting opposite its middle
+            cx, cy, r = (float(v) for v in arc[:3])
+            centre = w.add(f"CARTESIAN_POINT('',{_triple((cx, cy, pts[a, 2]))})")
+            ref = (*seam_direction(pts[a, :2] - (cx, cy), float(arc[3])).tolist(), 0.0)
+            place = w.add(f"AXIS2_PLACEMENT_3D('',#{centre},#{w.direction((0.0, 0.0, 1.0))},#{w.direction(ref)})")
+            curve = w.add(f"CIRCLE('',#{place},{_real(r)})")
+        else:
+            # direction ratios are the edge's own grid vector: exact, no rounding of a unit vector
+            vec = w.add(f"VECTOR('',#{w.direction(dv)},{_real(ln)})")
+            curve = w.add(f"LINE('',#{cart[a]},#{vec})")
+        if i in on_cylinders:
+            pcurves = [_pcurve(w, surfaces[f], brep.faces[f], pts[a], arc) for f in on_cylinders[i]]
+            curve = w.add(f"SURFACE_CURVE('',#{curve},(" + ",".join(f"#{p}" for p in pcurves) + "),.CURVE_3D.)")
+        edges.append(w.add(f"EDGE_CURVE('',#{vert[a]},#{vert[b]},#{curve},.T.)"))
     faces = []
-    for face in brep.faces:
-        origin = w.add(f"CARTESIAN_POINT('',{_triple(face.origin)})")
-        place = w.add(f"AXIS2_PLACEMENT_3D('',#{origin},#{w.direction(face.normal)},#{w.direction(face.ref)})")
-        plane = w.add(f"PLANE('',#{place})")
+    for f, face in enumerate(brep.faces):
+        if face.radius > 0:
+            surface = surfaces[f]
+        else:
+            origin = w.add(f"CARTESIAN_POINT('',{_triple(face.origin)})")
+            place = w.add(f"AXIS2_PLACEMENT_3D('',#{origin},#{w.direction(face.normal)},#{w.direction(face.ref)})")
+            surface = w.add(f"PLANE('',#{place})")
         bounds = []
         for i, loop in enumerate(face.loops):
             oes = [w.add(f"ORIENTED_EDGE('',*,*,#{edges[e]},.T.)") if e >= 0
@@ -95,7 +152,8 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
             el = w.add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oes) + "))")
             kind = "FACE_OUTER_BOUND" if i == 0 else "FACE_BOUND"
             bounds.append(w.add(f"{kind}('',#{el},.T.)"))
-        faces.append(w.add("ADVANCED_FACE('',(" + ",".join(f"#{b}" for b in bounds) + f"),#{plane},.T.)"))
+        sense = ".F." if face.inward else ".T."  # a hole's wall faces its axis
+        faces.append(w.add("ADVANCED_FACE('',(" + ",".join(f"#{b}" for b in bounds) + f"),#{surface},{sense})"))
     solids = []
     for i, shell_faces in enumerate(brep.solids):
         shell = w.add("CLOSED_SHELL('',(" + ",".join(f"#{faces[f]}" for f in shell_faces) + "))")

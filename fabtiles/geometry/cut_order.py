@@ -114,14 +114,24 @@ def order_paths(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0)) -> 
     layer's rings keep their order (its fill is swept line by line, not path by path).
     Open score lines may come out reversed.
     """
-    out, here = dict(paths), np.asarray(start, float)
+    out = dict(paths)
+    for role, (order, flipped) in path_orders(paths, outer_closed=outer_closed, start=start).items():
+        rings = [np.asarray(r, float) for r in paths[role]]
+        out[role] = [rings[i][::-1] if f else rings[i] for i, f in zip(order.tolist(), flipped.tolist())]
+    return out
+
+
+def path_orders(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0)) -> dict:
+    """:func:`order_paths`' orders: role -> ``(order, flipped)``, the paths' indices in cut order and
+    whether each runs backwards (so a plan can reorder what it carries along with the paths: their arcs)."""
+    out, here = {}, np.asarray(start, float)
     roles = ("engrave", "score", "inner", "outer")
     for k, role in enumerate(roles):
         rings = [np.asarray(r, float) for r in paths.get(role, ())]
         if not rings:
             continue
         if role == "engrave":
-            out[role] = rings
+            out[role] = (np.arange(len(rings)), np.zeros(len(rings), bool))
             here = rings[-1][0]
             continue
         closed = role in ("inner", "outer") and (role == "inner" or outer_closed)
@@ -134,8 +144,8 @@ def order_paths(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0)) -> 
         end = np.asarray(paths[after[0]][0][0], float) if fixed else None
         order, flipped = _order(first, last, start=here, end=end, flip=role == "score", pairs=pairs,
                                 two_opt=closed or role == "score")
-        out[role] = [rings[i][::-1] if f else rings[i] for i, f in zip(order.tolist(), flipped.tolist())]
-        end = out[role][-1]
+        out[role] = (order, flipped)
+        end = rings[order[-1]][::-1] if flipped[-1] else rings[order[-1]]
         here = end[0] if closed else end[-1]
     return out
 

@@ -1,8 +1,8 @@
-"""The planar boundary representation of a stacked part, as a CAD modeller would draw it.
+"""The boundary representation of a stacked part, as a CAD modeller would draw it.
 
 A printed tile is a stack (see :mod:`fabtiles.solid._mesh_build`): polygons raised to
-a few levels above a flat bottom. Its B-rep here has planar faces and straight edges
-only, and one face per flat region:
+a few levels above a flat bottom. Its B-rep here has planar faces, vertical
+cylinders and straight or circular edges, and one face per flat region:
 
 - each connected region at a level is ONE horizontal face with all its holes, and
   the bottom of each solid is one face;
@@ -11,7 +11,11 @@ only, and one face per flat region:
   one face (a straight side of the outline is one face, even where the top of the
   wall steps between levels);
 - vertical edges wherever walls of two planes meet (the outline's corners among
-  them), split only at the levels where a horizontal face meets them.
+  them), split only at the levels where a horizontal face meets them;
+- with a ``tolerance_mm``, the walls over each arc of the boundary (arcs found by
+  :func:`fabtiles.geometry.arcs.arc_runs`, see :func:`_wall_arcs`) are ONE cylinder
+  face, its top and bottom circle edges shared with the flat faces; a whole circle is
+  two halves.
 
 Every edge is shared by exactly two faces, in opposite directions, by construction.
 The result is plain numpy data (:class:`Brep`); :mod:`fabtiles.export.step_file`
@@ -41,26 +45,47 @@ from .parts import checked_parts
 
 @dataclass(frozen=True)
 class Face:
-    """A planar face: its plane and its loops of signed edge numbers.
+    """A face: its surface and its loops of signed edge numbers.
 
-    ``loops[0]`` is the outer loop, counter-clockwise seen from outside; the
-    others are holes. Edge ``i`` is ``edges[i]`` run forwards, ``~i`` backwards.
+    A plane (``radius == 0``): through ``origin``, outward ``normal``, ``ref`` a
+    direction in it. ``loops[0]`` is the outer loop, counter-clockwise seen from
+    outside; the others are holes. Edge ``i`` is ``edges[i]`` run forwards, ``~i``
+    backwards.
+
+    A vertical cylinder (``radius > 0``): its axis through ``origin`` along
+    ``normal`` (0, 0, 1), ``ref`` the direction from the axis to where its angle
+    starts (its seam); ``inward``: the face's outward normal points to the axis
+    (the wall of a round hole). One loop: the arc at the bottom, the vertical edge
+    up, the arc at the top back, the vertical edge down; a whole circle's loop runs
+    up and down the same vertical edge, the seam.
     """
 
-    origin: tuple  # a point of the plane (mm)
-    normal: tuple  # outward normal (direction ratios)
-    ref: tuple  # a direction in the plane (x axis of its placement)
+    origin: tuple  # a point of the plane, or of the cylinder's axis (mm)
+    normal: tuple  # outward normal (direction ratios), or the cylinder's axis
+    ref: tuple  # a direction in the plane (x axis of its placement), or to the cylinder's seam
     loops: tuple  # tuple of tuples of signed edge numbers
+    radius: float = 0.0  # > 0: a cylinder of this radius
+    inward: bool = False  # a cylinder whose material lies outside it
 
 
 @dataclass(frozen=True)
 class Brep:
-    """Points, straight edges between them, planar faces, and the faces of each solid."""
+    """Points, edges between them (straight or arcs of horizontal circles), faces, and the faces of each solid."""
 
     points: np.ndarray  # (n, 3) float
     edges: np.ndarray  # (m, 2) point indices, each edge runs from the first to the second
     faces: tuple  # of Face
     solids: tuple  # tuple of tuples of face indices, one closed shell each
+    arcs: np.ndarray | None = None
+    """(m, 5) per edge: ``(cx, cy, r, sweep, flat)``; ``r > 0``: the edge is an arc of the horizontal
+    circle of centre (cx, cy) and radius r, counter-clockwise from its first point to its second
+    through ``sweep`` radians (2 pi: a whole circle, both ends one point); ``flat``: the signed area
+    between the chords the arc stands for and the straight line between its ends (what the mesh has
+    there, for :func:`check_brep`). ``None`` or ``r == 0``: a straight edge."""
+
+    def arc_rows(self) -> np.ndarray:
+        """:attr:`arcs`, zeros where there are none."""
+        return self.arcs if self.arcs is not None else np.zeros((len(self.edges), 5))
 
 
 class _Edges:
@@ -70,6 +95,26 @@ class _Edges:
         self.points = {}
         self.edges = {}
         self.list = []
+        self.arcs = {}  # edge number -> (cx, cy, r, sweep, flat)
+        self.arc_of = {}  # (low vid, high vid, level) of a chord an arc stands for -> (arc key, its ccw start vid)
+
+    def arc(self, key, pa, pb, row):
+        """The arc edge ``key`` from point pa to pb (counter-clockwise), made once."""
+        e = self.edges.get(key)
+        if e is None:
+            e = self.edges[key] = len(self.list)
+            self.list.append((pa, pb))
+            self.arcs[e] = row
+        return e
+
+    def horizontal_or_arc(self, u, v, k):
+        """Signed edge from ring vertex u to v at level k: the arc it is a chord of, if any
+        (consecutive chords of one arc give the same signed arc: :func:`_collapse`)."""
+        hit = self.arc_of.get((min(u, v), max(u, v), k))
+        if hit is None:
+            return self.horizontal(u, v, k)
+        e = self.edges[hit[0]]
+        return e if u == hit[1] else ~e
 
     def point(self, vid, k):
         key = (vid, k)
@@ -259,13 +304,15 @@ def _side_of_wall(pa, pb, side_of, xy, sides):
     return k if np.dot(xy[pb] - xy[pa], b - a) > 0 else -1  # xy: the moved points
 
 
-def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid") -> Brep:
-    """The planar B-rep of a stack coverage (one closed shell per connected part).
+def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", tolerance_mm: float = 0.0) -> Brep:
+    """The B-rep of a stack coverage (one closed shell per connected part).
 
     ``cov`` should hold one piece per level (a single meshing cell), so that each
     flat region is one face; pieces at the same level are merged first.
     ``sides`` (k, 4): the straight sides ``(x0, y0, x1, y1)`` of the outline,
     counter-clockwise; the walls along each are one face, whatever meets it.
+    ``tolerance_mm > 0``: the arcs of the boundary within it (:func:`_wall_arcs`)
+    become circle edges and their walls cylinders; 0: planar faces only.
     """
     import shapely
 
@@ -315,6 +362,39 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid") -> Brep:
                    for lp in _chain([(int(u_all[e]), int(v_all[e]), e) for e in outer], what)]
     _keep_pieces_valid(topo, vxy, side_of, outer_loops)
     sides_arr = None if sides is None else np.asarray(sides, float)
+
+    # --- arcs: one cylinder face per arc of walls, its circle edges shared with the flat faces
+    arcs = _wall_arcs(topo, vxy, tolerance_mm) if tolerance_mm > 0 else []
+    in_arc = np.zeros(len(u_all), bool)
+    for at, centre, radius, _, onto in arcs:
+        if onto:
+            for p in (int(u_all[at[0]]), int(v_all[at[-1]])):
+                d = vxy[p] - centre
+                vxy[p] = centre + d * (radius / np.hypot(d[0], d[1]))
+    for j, (at, centre, radius, sweep, _) in enumerate(arcs):
+        in_arc[at] = True
+        lo, hi = int(topo.out_level[at[0]]), int(topo.level[at[0]])
+        chain = u_all[at].tolist() + [int(v_all[at[-1]])]
+        ccw = sweep > 0
+        flat = _loop_area(vxy[chain])  # the chords and the line back from the last vertex to the first
+        a_vid, b_vid = (chain[0], chain[-1]) if ccw else (chain[-1], chain[0])
+        row = (float(centre[0]), float(centre[1]), float(radius), float(abs(sweep)), flat if ccw else -flat)
+        signed = {}
+        for lvl in (lo, hi):
+            e = ed.arc(("a", j, lvl), ed.point(a_vid, lvl), ed.point(b_vid, lvl), row)
+            signed[lvl] = e if ccw else ~e
+            for x, y in zip(chain[:-1], chain[1:]):
+                ed.arc_of[(min(x, y), max(x, y), lvl)] = (("a", j, lvl), x if ccw else y)
+        # the chain runs with the material on its left, as a wall's bottom edge does
+        loop = [signed[lo]] + [e for _, _, e in side(chain[-1], lo, hi, up=True)]
+        loop += [~signed[hi]] + [e for _, _, e in side(chain[0], lo, hi, up=False)]
+        ref = seam_direction(vxy[a_vid] - centre, abs(sweep))
+        faces.append(Face((float(centre[0]), float(centre[1]), float(z[lo])), (0.0, 0.0, 1.0),
+                          (float(ref[0]), float(ref[1]), 0.0), (tuple(loop),), radius=float(radius), inward=not ccw))
+    if arcs:  # the other walls stay planar
+        keep = np.flatnonzero(~in_arc[w])
+        wu, wv = [wu[i] for i in keep], [wv[i] for i in keep]
+        wlo, whi = [wlo[i] for i in keep], [whi[i] for i in keep]
     wall_edges = []  # per wall: its directed edges (start node, end node, signed edge)
     keys = []
     for a, b, lo, hi in zip(wu, wv, wlo, whi):
@@ -382,18 +462,19 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid") -> Brep:
             for r in rings:
                 idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
                 uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
-                loops.append(tuple(ed.horizontal(a, b, lvl) for a, b in zip(uu, vv) if a != b))
+                loops.append(_collapse([ed.horizontal_or_arc(a, b, lvl) for a, b in zip(uu, vv) if a != b]))
             faces.append(Face((0.0, 0.0, float(z[lvl])), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), tuple(loops)))
 
     # --- bottoms: the ring edges with nothing beside them, run backwards
     b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
-    directed = [(ed.point(vv, 0), ed.point(uu, 0), ed.horizontal(vv, uu, 0))
-                for uu, vv in zip(u_all[b].tolist(), v_all[b].tolist())]
+    # (an arc's chords give one edge: its ends from the edge itself)
+    signed = dict.fromkeys(ed.horizontal_or_arc(vv, uu, 0) for uu, vv in zip(u_all[b].tolist(), v_all[b].tolist()))
+    directed = [(*(ed.list[e] if e >= 0 else ed.list[~e][::-1]), e) for e in signed]
     loops = _chain(directed, what)
     pts = _node_xyz(ed, vxy, z)
     outers, holes = [], []
     for lp in loops:
-        xy = pts[[directed[i][0] for i in lp], :2]
+        xy = _loop_points([directed[i][2] for i in lp], ed.list, ed.arcs, pts)
         (outers if _loop_area(xy) < 0 else holes).append((lp, xy))  # seen from above, reversed
     polys = [shapely.Polygon(xy) for _, xy in outers]
     bottom_loops = [[tuple(directed[i][2] for i in lp)] for lp, _ in outers]
@@ -412,7 +493,11 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid") -> Brep:
 
     points = _node_xyz(ed, vxy, z)
     edges = np.array(ed.list, dtype=np.int64).reshape(-1, 2)
-    return _compact(Brep(points, edges, tuple(faces), _solids(faces, len(edges))), what)
+    arc_rows = None
+    if ed.arcs:
+        arc_rows = np.zeros((len(edges), 5))
+        arc_rows[list(ed.arcs)] = list(ed.arcs.values())
+    return _compact(Brep(points, edges, tuple(faces), _solids(faces, len(edges)), arc_rows), what)
 
 
 def _compact(brep: Brep, what: str) -> Brep:
@@ -431,13 +516,195 @@ def _compact(brep: Brep, what: str) -> Brep:
                                "(the region touches itself at a point); nothing was written")
     new = np.cumsum(used) - 1
     faces = tuple(Face(f.origin, f.normal, f.ref,
-                       tuple(tuple(int(new[e]) if e >= 0 else ~int(new[~e]) for e in loop) for loop in f.loops))
+                       tuple(tuple(int(new[e]) if e >= 0 else ~int(new[~e]) for e in loop) for loop in f.loops),
+                       f.radius, f.inward)
                   for f in brep.faces)
     edges = brep.edges[used]
     keep = np.zeros(len(brep.points), bool)
     keep[edges.ravel()] = True
     renum = np.cumsum(keep) - 1
-    return Brep(brep.points[keep], renum[edges], faces, brep.solids)
+    arcs = None if brep.arcs is None else brep.arcs[used]
+    return Brep(brep.points[keep], renum[edges], faces, brep.solids, arcs)
+
+
+ARC_SAGITTA_MM = 0.001
+"""Largest gap between an arc and the chords :func:`_loop_points` draws it with (for GEOS's checks)."""
+
+
+def _loop_points(loop, edges, arcs, pts) -> np.ndarray:
+    """The x, y of a loop of signed edges: each edge's start, and points along each arc.
+
+    ``arcs``: a mapping (or array) of edge number -> ``(cx, cy, r, sweep, flat)`` (r = 0:
+    straight). The arcs are drawn by chords within :data:`ARC_SAGITTA_MM`, for GEOS:
+    the loop's side and the faces' validity.
+    """
+    loop = np.asarray(loop, np.int64)
+    index = np.where(loop >= 0, loop, ~loop)
+    is_arc = (np.fromiter((e in arcs for e in index.tolist()), bool, len(index)) if isinstance(arcs, dict)
+              else np.asarray(arcs)[index, 2] > 0)
+    if not is_arc.any():  # straight edges only (most loops): their starts
+        ends = np.asarray(edges)[index] if not isinstance(edges, list) else np.array([edges[e] for e in index])
+        return pts[np.where(loop >= 0, ends[:, 0], ends[:, 1]), :2]
+    out = []
+    for s in loop.tolist():
+        e = s if s >= 0 else ~s
+        a, b = edges[e]
+        out.append(pts[a if s >= 0 else b, :2])
+        row = arcs.get(e) if isinstance(arcs, dict) else arcs[e]
+        if row is None or row[2] <= 0:
+            continue
+        cx, cy, r, sweep = (float(v) for v in row[:4])
+        step = 2.0 * np.arccos(max(1.0 - ARC_SAGITTA_MM / r, -1.0))
+        n = max(4, int(np.ceil(sweep / step)))
+        t0 = np.arctan2(pts[a, 1] - cy, pts[a, 0] - cx)
+        t = t0 + sweep * np.arange(1, n) / n
+        inner = np.column_stack([cx + r * np.cos(t), cy + r * np.sin(t)])
+        out.extend(inner if s >= 0 else inner[::-1])
+    return np.asarray(out, float).reshape(-1, 2)
+
+
+def seam_direction(start, sweep: float) -> np.ndarray:
+    """The direction, from a circle's centre, opposite the middle of its arc from ``start`` (counter-clockwise,
+    ``sweep`` radians): where a circle's or a cylinder's angle starts, away from the arc's ends.
+
+    With the angle starting at an end, OCCT's STEP reader may put that end at 2 pi
+    instead of 0, and the face or edge is invalid (measured: every cylinder face
+    invalid that way).
+
+    >>> np.round(seam_direction(np.array([2.0, 0.0]), np.pi), 12).tolist() == [0.0, -1.0]
+    True
+    """
+    t = np.arctan2(start[1], start[0]) + sweep / 2 + np.pi
+    return np.array([np.cos(t), np.sin(t)])
+
+
+def _collapse(loop) -> tuple:
+    """A loop's signed edges with the repeats of one arc (its chords, in a row) made one, cyclically.
+
+    >>> _collapse([5, 7, 7, 7, 2, 5])
+    (5, 7, 2)
+    """
+    out = [e for i, e in enumerate(loop) if i == 0 or e != loop[i - 1]]
+    while len(out) > 1 and out[0] == out[-1]:
+        out.pop()
+    return tuple(out)
+
+
+ON_LINE_MM = 2 * QUANTUM
+"""A vertex this close to the line between its neighbours, and between them, is left out of the arc search
+(see :func:`_wall_arcs`)."""
+
+
+def _wall_arcs(topo, xy, tolerance_mm: float) -> list:
+    """The arcs of the walls: ``[(ring positions, centre, radius, sweep, onto), ...]``.
+
+    A ring's edges with a wall beside them (the piece on their left higher than the one on
+    their right) are cut where the wall's bottom level changes, where it stops, and at the
+    vertices where more than two edges of the boundary meet (a vertical edge of another
+    face stands there); each stretch is then searched for arcs within ``tolerance_mm``
+    (:func:`fabtiles.geometry.arcs.arc_runs`, each arc through its end vertices). A whole
+    ring without a cut is searched as a closed ring: a round hole. ``sweep`` is signed
+    along the ring (positive: counter-clockwise). The points within :data:`ON_LINE_MM` of
+    the lines between the others (Douglas-Peucker, GEOS) are left out of the search: a
+    circle outline's chords hold such points wherever the region's noding met them, up
+    to the chords' sagitta off the circle, and each would cut the circle there
+    (measured: the 100 mm circle outline in 28 arcs of radii 49.68 to 50.13 mm instead
+    of one circle); the arc found passes by them within that sagitta. All the stretches
+    are searched in one pass (:func:`~fabtiles.geometry.arcs.arc_runs_many`).
+
+    A whole circle is two arcs, each from one of two opposite vertices to the other,
+    and ``onto`` is True: those vertices are to be moved onto the circle (by at most
+    :func:`~fabtiles.geometry.arcs.fit_distance`, 2 micrometres at 0.02 mm), which is
+    fitted to all its vertices. Two halves and not one closed circle: a closed edge
+    on a cylinder is a seam, which OCCT's STEP reader makes only from a ``SEAM_CURVE``
+    with a curve of the surface's parameters for each side; the halves need none
+    (measured: one closed circle and its seam written as a plain line read back as an
+    invalid face).
+    """
+    import shapely
+
+    from ..geometry.arcs import GRID_LINK_SLACK, arc_runs_many
+
+    u, v = topo.vid, topo.vid[topo.nxt]
+    real = u != v
+    pairs = np.unique(np.column_stack([np.minimum(u, v), np.maximum(u, v)])[real], axis=0)
+    degree = np.bincount(pairs.ravel(), minlength=len(xy))
+    walled = real & (topo.level > topo.out_level)
+    out = []
+
+    def collect(positions, verts, at, runs):
+        """The arcs ``runs`` found among the vertices ``at`` of ``verts`` (the ends of ``positions``)."""
+        n = len(positions)
+        if runs.full:  # a whole circle: two halves (see above), its sense the ring's
+            turn = np.copysign(1.0, _loop_area(xy[verts[at]]))
+            # the halves' ends: the vertices nearest the circle, one in each half of the ring
+            d = xy[verts[at]] - runs.centre[0]
+            off = np.abs(np.hypot(d[:, 0], d[:, 1]) - runs.radius[0])
+            m = len(at) // 2
+            i = int(np.argmin(off[:m]))
+            lo = i + m // 2  # at least a quarter of the ring away on either side
+            j = lo + int(np.argmin(off[lo:min(i + m + m // 2 + 1, len(at) - m // 2 + i + 1, len(at))]))
+            if max(off[i], off[j]) > ON_LINE_MM:
+                return  # moved onto the circle they would change the faces: the ring stays planar
+            for a, b in ((at[i], at[j]), (at[j], at[i] + n)):
+                part = positions[np.arange(a, b) % n]
+                ends = xy[[verts[a % n], verts[b % n]]] - runs.centre[0]
+                t = np.arctan2(ends[:, 1], ends[:, 0])
+                sweep = ((t[1] - t[0]) * turn) % (2 * np.pi)
+                out.append((part, runs.centre[0], float(runs.radius[0]), float(turn * sweep), True))
+            return
+        for f, l, c, rad, sw in zip(runs.first.tolist(), runs.last.tolist(), runs.centre, runs.radius.tolist(),
+                                    runs.sweep.tolist()):
+            a, b = at[f], at[l]
+            if b <= a:
+                b += n
+            out.append((positions[np.arange(a, b) % n], c, rad, sw, False))
+
+    jobs = []  # (ring positions, their vertices, closed)
+    for r in range(len(topo.ring_start) - 1):
+        idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
+        idx = idx[real[idx]]
+        if len(idx) < 4 or not walled[idx].any():
+            continue
+        before = idx[np.arange(-1, len(idx) - 1)]
+        cut = (degree[u[idx]] != 2) | ~walled[idx] | ~walled[before] | (topo.out_level[idx] != topo.out_level[before])
+        if not cut.any():
+            jobs.append((idx, u[idx], True))
+            continue
+        starts = np.flatnonzero(cut)
+        for s0, s1 in zip(starts.tolist(), np.roll(starts, -1).tolist()):
+            seg = idx[(s0 + np.arange((s1 - s0) % len(idx) or len(idx))) % len(idx)]
+            if walled[seg[0]] and len(seg) >= 3:
+                jobs.append((seg, np.append(u[seg], v[seg[-1]]), False))
+    if not jobs:
+        return out
+    # the vertices searched: those Douglas-Peucker keeps within ON_LINE_MM, all rings in one GEOS call
+    lines = np.array([shapely.linearrings(xy[verts]) if closed else shapely.linestrings(xy[verts])
+                      for _, verts, closed in jobs], dtype=object)
+    kept_xy, kept_of = shapely.get_coordinates(shapely.simplify(lines, ON_LINE_MM), return_index=True)
+    # a vertex is kept when its job and point are among the kept ones: one exact key each (grid points,
+    # each job's x shifted by a whole multiple of the extent)
+    lengths = np.array([len(verts) for _, verts, _ in jobs])
+    verts_all = np.concatenate([verts for _, verts, _ in jobs])
+    job_of = np.repeat(np.arange(len(jobs)), lengths)
+    x0, shift = xy[:, 0].min(), np.ceil(np.ptp(xy[:, 0]) + 1.0)
+    keys = (xy[verts_all, 0] - x0 + shift * job_of) + 1j * xy[verts_all, 1]
+    keep_all = np.isin(keys, (kept_xy[:, 0] - x0 + shift * kept_of) + 1j * kept_xy[:, 1])
+    offsets = np.concatenate([[0], np.cumsum(lengths)])
+    searched = []
+    for k, (_, verts, closed) in enumerate(jobs):
+        keep = keep_all[offsets[k]:offsets[k + 1]]
+        if not closed:
+            keep[[0, -1]] = True
+        searched.append(np.flatnonzero(keep))
+    for closed in (True, False):
+        ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
+        found = arc_runs_many([xy[jobs[k][1][searched[k]]] for k in ks], tolerance_mm=tolerance_mm, closed=closed,
+                              link_slack=GRID_LINK_SLACK)
+        for k, runs in zip(ks, found):
+            if len(runs.first):
+                collect(jobs[k][0], jobs[k][1], searched[k], runs)
+    return out
 
 
 def _node_xyz(ed: _Edges, xy, z):
@@ -561,24 +828,57 @@ def _sides(outline):
     return np.vstack(rows) if rows else np.empty((0, 4))
 
 
-def build_brep(*, region, outline, stack: Stack, dips=None):
-    """The planar B-rep of a printed tile, beside its checked mesh.
+def build_brep(*, region, outline, stack: Stack, dips=None, tolerance_mm: float = 0.0):
+    """The B-rep of a printed tile, beside its checked mesh.
 
     Returns ``(brep, mesh_volume, n_solids)``. The mesh goes first: it is
     checked, bridges point contacts of the region (the B-rep is built from the
-    region it used) and gives the volume the solid must have. A pierced tile in
-    several pieces is one solid per piece.
+    region it used) and gives the volume the solid must have (with the arcs'
+    chords, see :func:`check_brep`). A pierced tile in several pieces is one solid
+    per piece. ``tolerance_mm > 0``: arcs within it are circles and cylinders.
     """
     (part,) = checked_parts(region, outline, stack, single=True, dips=dips).values()
-    return brep_of_part(part, stack, dips)
+    return brep_of_part(part, stack, dips, tolerance_mm=tolerance_mm)
 
 
-def brep_of_part(part, stack: Stack, dips=None):
-    """The planar B-rep of a checked fused body (see :func:`build_brep`): ``(brep, mesh_volume, n_solids)``."""
+def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0):
+    """The B-rep of a checked fused body (see :func:`build_brep`): ``(brep, mesh_volume, n_solids)``."""
     kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
     layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
-    brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), sides=_sides(part.outline))
+    brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), sides=_sides(part.outline),
+                       tolerance_mm=tolerance_mm)
     return brep, part.mesh_volume_mm3, len(brep.solids)
+
+
+def brep_volume(brep: Brep) -> float:
+    """The volume of a B-rep's solids, its arcs as arcs: what OCCT and CAD programs report of the STEP.
+
+    By the divergence theorem with the field (0, 0, z), only the horizontal faces
+    count: each its height times its signed area, an arc adding the segment between
+    it and its chord, ``r**2 / 2 * (sweep - sin(sweep))``. The checked mesh's volume
+    differs by those segments (:func:`check_brep`).
+
+    >>> import shapely
+    >>> from fabtiles.solid._mesh_build import coverage
+    >>> disc = shapely.Point(0, 0).buffer(10.0, quad_segs=16)
+    >>> b = planar_brep(coverage([(disc, 2.0)], bottom=0.0, cell_vertices=SINGLE_CELL), tolerance_mm=0.02)
+    >>> round(brep_volume(b) / (np.pi * 100 * 2.0), 6), round(disc.area * 2.0 / brep_volume(b), 4)
+    (1.0, 0.9984)
+    """
+    pts, edges, arcs = np.asarray(brep.points, float), np.asarray(brep.edges, np.int64), brep.arc_rows()
+    total = 0.0
+    for face in brep.faces:
+        if face.radius > 0 or face.normal[0] or face.normal[1]:
+            continue
+        loop = np.concatenate([np.asarray(lp, np.int64) for lp in face.loops])
+        e = np.where(loop >= 0, loop, ~loop)
+        a = pts[np.where(loop >= 0, edges[e, 0], edges[e, 1])]
+        b = pts[np.where(loop >= 0, edges[e, 1], edges[e, 0])]
+        row = arcs[e]
+        area = 0.5 * float(np.sum(a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]))
+        area += float(np.sum(np.where(loop >= 0, 1.0, -1.0) * row[:, 2] ** 2 / 2 * (row[:, 3] - np.sin(row[:, 3]))))
+        total += face.origin[2] * area
+    return total
 
 
 BREP_VOLUME_TOLERANCE = 0.0005
@@ -635,33 +935,67 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     # each signed edge from its start to its end, as the loop runs it
     a = np.where(signed >= 0, edges[index, 0], edges[index, 1])
     b = np.where(signed >= 0, edges[index, 1], edges[index, 0])
+    arcs = brep.arc_rows()
+    radius = np.asarray([f.radius for f in brep.faces], float)
+    cyl = radius > 0
     normals = np.asarray([f.normal for f in brep.faces], float)
     normals /= np.linalg.norm(normals, axis=1, keepdims=True)
     origins = np.asarray([f.origin for f in brep.faces], float)
-    off = np.abs(np.einsum("ij,ij->i", pts[a] - origins[face_of], normals[face_of]))
+    on_plane = ~cyl[face_of]
+    off = np.abs(np.einsum("ij,ij->i", pts[a] - origins[face_of], normals[face_of]))[on_plane]
     if off.size and off.max() > 1e-6:
         fail(f"has a face with a point {off.max():.3g} mm off its plane")
+    d = pts[a[~on_plane], :2] - origins[face_of[~on_plane], :2]
+    off = np.abs(np.hypot(d[:, 0], d[:, 1]) - radius[face_of[~on_plane]])
+    is_arc = arcs[:, 2] > 0
+    d = pts[edges[is_arc]][:, :, :2] - arcs[is_arc, None, :2]
+    off = np.concatenate([off, np.abs(np.hypot(d[..., 0], d[..., 1]) - arcs[is_arc, 2:3]).ravel()])
+    if off.size and off.max() > 1e-6:
+        fail(f"has a point {off.max():.3g} mm off its cylinder or circle")
     cross = np.cross(pts[a], pts[b])
     area_vec = np.zeros((len(brep.faces), 3))
     np.add.at(area_vec, face_of, cross / 2)
-    if np.any(np.einsum("ij,ij->i", area_vec, normals) <= 0):
+    # an arc adds to its face's area what lies between it and its chord: exactly, and as the mesh's chords did
+    run = np.where(signed >= 0, 1.0, -1.0)
+    row = arcs[index]
+    exact, flat = np.zeros(len(brep.faces)), np.zeros(len(brep.faces))
+    np.add.at(exact, face_of, run * row[:, 2] ** 2 / 2 * (row[:, 3] - np.sin(row[:, 3])))
+    np.add.at(flat, face_of, run * row[:, 4])
+    flat_faces = ~cyl & (np.abs(normals[:, 2]) == 1.0)  # the horizontal faces: they alone hold the volume
+    wound = np.einsum("ij,ij->i", area_vec, normals) + np.where(flat_faces, exact * normals[:, 2], 0.0)
+    wound[cyl] = 1.0
+    for f in np.flatnonzero(cyl).tolist():  # a cylinder's patch faces out from its axis at its middle
+        e = brep.faces[f].loops[0][0]  # the arc at its bottom
+        row_e = arcs[e if e >= 0 else ~e]
+        if row_e[3] >= 2 * np.pi - 1e-9:
+            continue  # a whole circle: its vector area is nought
+        start = pts[edges[e if e >= 0 else ~e, 0], :2] - row_e[:2]
+        mid = np.arctan2(start[1], start[0]) + row_e[3] / 2
+        out = np.array([np.cos(mid), np.sin(mid)]) * (-1.0 if brep.faces[f].inward else 1.0)
+        wound[f] = float(area_vec[f, :2] @ out)
+    if np.any(wound <= 0):
         fail("has a face wound against its normal (inside out)")
-    total = float(np.einsum("ij,ij->i", origins, area_vec).sum() / 3)
+    # the divergence theorem with the field (0, 0, z): only the horizontal faces count
+    z_of = origins[:, 2] * flat_faces
+    total, chords = float(z_of @ (area_vec[:, 2] + exact)), float(z_of @ (area_vec[:, 2] + flat))
     if not total > 0:
         fail(f"has a volume of {total:.6g} mm^3: inside out")
-    if abs(total - volume) > BREP_VOLUME_TOLERANCE * abs(volume):
-        fail(f"has a volume of {total:.6g} mm^3, not the mesh's {volume:.6g} mm^3 "
+    if abs(chords - volume) > BREP_VOLUME_TOLERANCE * abs(volume):
+        fail(f"has a volume of {chords:.6g} mm^3, not the mesh's {volume:.6g} mm^3 "
              f"({BREP_VOLUME_TOLERANCE:.2%} allowed)")
     # horizontal faces: their loops, in x, y, must make a valid polygon
     polys = []
     for face in brep.faces:
-        if abs(face.normal[0]) + abs(face.normal[1]) > 0:
+        if face.radius > 0 or abs(face.normal[0]) + abs(face.normal[1]) > 0:
             continue
         rings = []
         for loop in face.loops:
             loop = np.asarray(loop, np.int64)
-            start = np.where(loop >= 0, edges[np.where(loop >= 0, loop, ~loop), 0],
-                             edges[np.where(loop >= 0, loop, ~loop), 1])
+            e = np.where(loop >= 0, loop, ~loop)
+            if is_arc[e].any():
+                rings.append(_loop_points(loop.tolist(), edges, arcs, pts))
+                continue
+            start = np.where(loop >= 0, edges[e, 0], edges[e, 1])
             rings.append(pts[start, :2])
         polys.append(shapely.Polygon(rings[0], rings[1:]))
     valid = shapely.is_valid(np.asarray(polys, dtype=object)) if polys else np.ones(0, bool)

@@ -9,7 +9,7 @@ findings of the printability checks, and, made on first use and then kept:
   its ``inlay``, a pierced ``pattern``), each with its material (the slicer's
   extruder, 1-based) and display colour and its checked mesh;
 - ``fused``: the print as one checked body (an STL holds one body);
-- ``brep``: the planar B-rep of the fused body, only for STEP.
+- ``brep``: the B-rep of the fused body (planes and cylinders), only for STEP.
 
 A pierced or deboss print without inlay is one part: its fused body *is* that
 part, meshed once. A build makes one model, whatever print formats it writes.
@@ -140,10 +140,10 @@ class PrintModel:
 
     @cached_property
     def brep(self):
-        """``(brep, mesh volume, solids)``: the planar B-rep of the fused body (:mod:`.brep`), for STEP."""
+        """``(brep, mesh volume, solids)``: the B-rep of the fused body (:mod:`.brep`), for STEP."""
         from .brep import brep_of_part
 
-        return brep_of_part(self.fused, self.stack, self.dips)
+        return brep_of_part(self.fused, self.stack, self.dips, tolerance_mm=self.profile.tolerance_mm)
 
     def stats(self) -> dict:
         """The stack's style and heights, for a file's report."""

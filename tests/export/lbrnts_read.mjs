@@ -15,7 +15,12 @@ const cuts = project.children.filter((c) => c instanceof CutSetting).map((c) => 
 const shapes = []
 const walk = (list) => {
   for (const s of list) {
-    if (s instanceof ShapePath) shapes.push({ cutIndex: s.cutIndex, closed: s.isClosed, vertices: s.verts.length })
+    if (s instanceof ShapePath) shapes.push({
+      cutIndex: s.cutIndex, closed: s.isClosed, vertices: s.verts.length,
+      // the vertices with their handles and the primitives' kinds (0 line, 1 Bezier), as lbrnts read them
+      verts: s.verts.map((v) => [v.x, v.y, v.c0x ?? null, v.c0y ?? null, v.c1x ?? null, v.c1y ?? null]),
+      prims: s.prims.map((p) => p.type),
+    })
     if (s instanceof ShapeGroup) walk(s.children)
   }
 }

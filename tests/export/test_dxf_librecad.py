@@ -18,7 +18,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from dxf_helpers import motif_tile, star_plate, vertices
+from dxf_helpers import bulges, motif_tile, star_plate, vertices
 
 from fabtiles._profiles import LaserLayers, Layer, load_profile
 from fabtiles.export.dxf import write_dxf
@@ -88,6 +88,71 @@ def _extent(points) -> np.ndarray:
     return pts.max(0) - pts.min(0)
 
 
+def _arc_middles(dxf, layers) -> np.ndarray:
+    """The middle point of every arc (bulged edge) of the file's polylines on ``layers``, in mm."""
+    import ezdxf
+    from dxf_helpers import bulges, is_closed, raw_vertices
+
+    out = []
+    for e in ezdxf.readfile(dxf).modelspace():
+        if e.dxf.layer not in layers:
+            continue
+        xy, b = raw_vertices(e), bulges(e)
+        nxt = np.roll(xy, -1, axis=0)
+        arc = b != 0 if is_closed(e) else (b != 0) & (np.arange(len(b)) < len(b) - 1)
+        for (ax, ay), (zx, zy), bb in zip(xy[arc], nxt[arc], b[arc]):
+            # the arc's middle stands off its chord's middle by the sagitta, c/2 * b, to the right of a/z for b > 0
+            dx, dy = zx - ax, zy - ay
+            out.append(((ax + zx) / 2 + dy * bb / 2, (ay + zy) / 2 - dx * bb / 2))
+    return np.array(out).reshape(-1, 2)
+
+
+def assert_draws_the_curves(drawn: np.ndarray, dxf, layers, *, tol_mm: float) -> None:
+    """LibreCAD drew the file's curves: its drawing, moved and scaled onto the file, lies within
+    ``tol_mm`` of the polylines as ezdxf draws them (arcs and all), and every arc's middle point
+    (off its chord by the sagitta) is on the drawing: an arc drawn as its chord would not be.
+
+    LibreCAD 2.2 puts the points of the arcs it draws up to 0.13 mm off them on a 150 mm sheet
+    (its straight edges within 0.007 mm): ``tol_mm`` allows for it; the 20 mm circles' half-turn
+    arcs stand 20 mm off their chords."""
+    import ezdxf
+    from scipy.spatial import cKDTree
+
+    ref = np.vstack([vertices(e) for e in ezdxf.readfile(dxf).modelspace() if e.dxf.layer in layers])
+    pts = np.asarray(drawn).reshape(-1, 2)
+    scale = _extent(pts)[0] / _extent(ref)[0]
+    assert _extent(pts)[1] / scale == pytest.approx(_extent(ref)[1], rel=1e-3)
+    tree_ref = cKDTree(_densify(ref))
+    seg = np.asarray(drawn).reshape(-1, 2, 2)
+    t = np.linspace(0, 1, 5)[None, :, None]
+    dense = (seg[:, :1] + (seg[:, 1:] - seg[:, :1]) * t).reshape(-1, 2)
+
+    def onto_file(p, flip):  # the page's y may run down: whichever lays the drawing on the file
+        q = (p - pts.min(0)) / scale
+        if flip:
+            q[:, 1] = _extent(pts)[1] / scale - q[:, 1]
+        return q + ref.min(0)
+
+    flip = min((False, True), key=lambda f: np.median(tree_ref.query(onto_file(pts[::97], f))[0]))
+    mm, dense = onto_file(pts, flip), onto_file(dense, flip)
+    # the drawing against the curves' points (ezdxf's, 1 micrometre apart at most, densified)
+    assert tree_ref.query(mm)[0].max() <= tol_mm
+    mids = _arc_middles(dxf, layers)
+    if len(mids):
+        assert cKDTree(dense).query(mids)[0].max() <= tol_mm
+
+
+def _densify(points: np.ndarray, step: float = 0.01) -> np.ndarray:
+    """``points`` with points every ``step`` mm between neighbours closer than 1 mm (the curves' pieces)."""
+    a, b = points[:-1], points[1:]
+    d = np.hypot(*(b - a).T)
+    near = d < 1.0
+    k = np.maximum(1, np.ceil(d[near] / step).astype(int))
+    reps = np.repeat(np.arange(near.sum()), k)
+    t = (np.arange(k.sum()) - np.repeat(np.cumsum(k) - k, k)) / k[reps]
+    return np.vstack([points, a[near][reps] + (b[near] - a[near])[reps] * t[:, None]])
+
+
 @pytest.mark.parametrize("version", ["R12", "R2000"])
 def test_librecad_draws_the_cut_contours(librecad, tmp_path, version):
     region, outline = star_plate()
@@ -144,8 +209,29 @@ def test_librecad_draws_a_nested_sheet(librecad, tmp_path):
     dxf = tmp_path / "hexagon-sheet-1.dxf"
     drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
     red = drawn[RGB[1]]  # the bundled profile cuts both layers red
-    edges = sum(len(vertices(e)) for e in ezdxf.readfile(dxf).modelspace())  # closed: as many edges as vertices
-    assert len(red) == edges
+    # every straight edge a segment, every arc (the circle tiles' outlines) several
+    straight = sum(int((bulges(e) == 0).sum()) for e in ezdxf.readfile(dxf).modelspace())
+    assert len(red) > straight
+    assert_draws_the_curves(red, dxf, {DEFAULT.layers.inner_cut.name, DEFAULT.layers.outer_cut.name}, tol_mm=0.2)
     points = np.vstack([vertices(e) for e in ezdxf.readfile(dxf).modelspace()])
     scale = _extent(red)[0] / _extent(points)[0]
     assert _extent(red)[1] / scale == pytest.approx(_extent(points)[1], rel=1e-3)
+
+
+@pytest.mark.parametrize("version", ["R12", "R2000"])
+def test_librecad_draws_the_arcs(librecad, tmp_path, version):
+    # issue 35: a circle tile with round joins and outline circles, its curves as arcs (bulges)
+    from fabtiles.build.models import BuildOptions, Models
+    from fabtiles.design import design_from_text
+
+    design = design_from_text('[packing]\nkind = "archimedean"\ntiling = "3.3.3.4.4"\noutline_circles = true\n'
+                              '[tile]\noutline = "circle"\nsize = 60\njoin = "round"\n', name="circles")
+    plan = Models(design.build_tile(), BuildOptions.of_design(design)).cut
+    assert plan.report.stats["arcs"] > 100
+    dxf = tmp_path / "circles.dxf"
+    write_dxf(dxf, region=design.build_tile().region(), outline=design.build_tile().outline_shape(),
+              profile=DEFAULT, dxf_version=version)
+    drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
+    assert set(drawn) == {RGB[1]}
+    assert_draws_the_curves(drawn[RGB[1]], dxf, {DEFAULT.layers.inner_cut.name, DEFAULT.layers.outer_cut.name},
+                            tol_mm=0.2)

@@ -30,8 +30,10 @@ def tile(size=60, radius=10, stroke=1.0):
 
 
 def rings(path, layer):
-    return [np.array([p[:2] for p in e.get_points("xy")]) for e in ezdxf.readfile(path).modelspace()
-            if e.dxf.layer == layer]
+    """The polylines on ``layer`` as drawn: their arcs (a piece's rounded corners) flattened by ezdxf."""
+    from dxf_helpers import vertices
+
+    return [vertices(e) for e in ezdxf.readfile(path).modelspace() if e.dxf.layer == layer]
 
 
 @pytest.fixture(scope="module")

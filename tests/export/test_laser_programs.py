@@ -188,3 +188,86 @@ def test_inkscape_imports_the_dxf_with_every_layer_and_contour(files, tmp_path, 
     xs = np.array([float(v) for p in imported[PLY.layers.outer_cut.name]
                    for v in re.findall(r"-?\d+\.?\d*", p.get("d"))[0::2]])
     assert (xs.max() - xs.min()) * 25.4 / 96 == pytest.approx(SIZE + PLY.kerf_mm, abs=0.002)
+
+
+# --------------------------------------------------------------------------- arcs (issue 35)
+
+CIRCLES = ('[packing]\nkind = "archimedean"\ntiling = "3.3.3.4.4"\noutline_circles = true\n'
+           '[tile]\noutline = "circle"\nsize = 60\njoin = "round"\n')
+
+
+@pytest.fixture(scope="module")
+def arc_files(tmp_path_factory):
+    """The 60 mm circle tile with round joins and outline circles: its DXF and SVG, curves as arcs."""
+    from fabtiles.build import build_design
+    from fabtiles.design import design_from_text
+
+    out = tmp_path_factory.mktemp("arcs")
+    design = design_from_text(CIRCLES + '[output]\nformats = ["dxf", "svg"]\n', name="circles")
+    build_design(design, out)
+    return {fmt: next(out.glob(f"*.{fmt}")) for fmt in ("dxf", "svg")}
+
+
+def _curve_points(dxf) -> np.ndarray:
+    from dxf_helpers import vertices
+
+    return np.vstack([vertices(e) for e in ezdxf.readfile(dxf).modelspace()])
+
+
+@pytest.mark.parametrize("fmt", ["dxf", "svg"])
+def test_meerk40t_cuts_the_arcs_as_arcs(arc_files, tmp_path, fmt):
+    from scipy.spatial import cKDTree
+    from test_dxf_librecad import _arc_middles, _densify
+
+    dxf = arc_files["dxf"]
+    job = meerk40t(arc_files[fmt], tmp_path)
+    paths = burns(job["gcode"])
+    layers = dxf_layers(dxf)
+    assert len(paths) == sum(len(v) for v in layers.values())
+    burnt = np.concatenate(paths)
+    curves = _curve_points(dxf)
+    # the extents of what it burns are the file's, arcs as arcs (the tile's circle is two half-turn
+    # arcs: read as chords, it would burn a line), within 0.05 mm
+    assert burnt.max(axis=0) - burnt.min(axis=0) == pytest.approx(curves.max(axis=0) - curves.min(axis=0), abs=0.05)
+    if fmt == "svg":
+        # MeerK40t 0.9 burns a few of the SVG's paths off the file (the outline's circle up to 1.6 mm,
+        # thin slivers between the outline and the pattern's circles up to 0.85 mm), the same whether
+        # the SVG's curves are arcs or the flattened polylines it had before: its SVG import's, not ours
+        return
+    # every burnt point on the file's curves, every arc's middle burnt (a chord would miss it)
+    moved = burnt - burnt.min(axis=0) + curves.min(axis=0)
+    assert cKDTree(_densify(curves)).query(moved)[0].max() <= 0.05
+    mids = _arc_middles(dxf, set(layers))
+    assert len(mids) > 100
+    assert cKDTree(_densify(moved, step=0.005)).query(mids)[0].max() <= 0.05
+
+
+def test_inkscape_imports_the_dxf_arcs(arc_files):
+    python = require(os.path.exists(SYSTEM_PYTHON) and SYSTEM_PYTHON, SYSTEM_PYTHON, "apt-get install python3")
+    extension = require((INKSCAPE_EXTENSIONS / "dxf_input.py").exists() and INKSCAPE_EXTENSIONS / "dxf_input.py",
+                        "Inkscape's dxf_input.py", "apt-get install inkscape")
+    dxf = arc_files["dxf"]
+    svg = run([python, extension, dxf], cwd=INKSCAPE_EXTENSIONS).stdout
+    root = ET.fromstring(svg)
+    ns = {"s": "http://www.w3.org/2000/svg", "i": "http://www.inkscape.org/namespaces/inkscape"}
+    paths = [p.get("d") for g in root.iter("{%s}g" % ns["s"]) if g.get("{%s}groupmode" % ns["i"]) == "layer"
+             for p in g.findall("s:path", ns)]
+    assert len(paths) == sum(len(v) for v in dxf_layers(dxf).values())
+    bulged = sum(int((np.array([p[2] for p in e.get_points("xyb")]) != 0).sum())
+                 for e in ezdxf.readfile(dxf).modelspace())
+    # Inkscape draws each bulge as an SVG arc ("A")
+    assert sum(d.count("A") for d in paths) == bulged
+
+
+def test_inkscape_measures_the_svg_arcs(arc_files):
+    # the circle tile's outline is two SVG arcs: Inkscape's box of the file is the circle's, kerf and
+    # hairline included (as chords, the two arcs would measure a line)
+    inkscape = program("inkscape", "apt-get install inkscape")
+    svg = arc_files["svg"]
+    assert "A" in svg.read_text()
+    rows = [line.split(",") for line in run([inkscape, "--query-all", svg]).stdout.splitlines()]
+    (_, _, w, h) = np.array([float(v) for v in rows[0][1:]]) * 25.4 / 96
+    curves = _curve_points(arc_files["dxf"])
+    size = curves.max(axis=0) - curves.min(axis=0)
+    stroke = float(ET.parse(svg).getroot().find("{http://www.w3.org/2000/svg}g").get("stroke-width"))
+    assert (w, h) == pytest.approx(tuple(size + stroke), abs=0.005)

@@ -231,3 +231,62 @@ def test_the_palette_index_of_each_layer():
     assert lbrn2.palette_index("FF0000", set()) == 2 and lbrn2.palette_index("0000FF", set()) == 1
     assert lbrn2.palette_index("FF00FF", set()) == 7
     assert lbrn2.palette_index("FF0000", {2}) != 2
+
+
+# --------------------------------------------------------------------------- arcs (issue 35)
+
+
+@pytest.fixture(scope="module")
+def arc_files(tmp_path_factory):
+    from test_laser_programs import CIRCLES
+
+    from fabtiles.build import build_design
+    from fabtiles.design import design_from_text
+
+    out = tmp_path_factory.mktemp("lbrn2-arcs")
+    build_design(design_from_text(CIRCLES + '[output]\nformats = ["dxf", "lbrn2"]\n', name="circles"), out)
+    return {fmt: next(out.glob(f"*.{fmt}")) for fmt in ("dxf", "lbrn2")}
+
+
+def _drawn(verts, prims, closed) -> np.ndarray:
+    """Points along a LightBurn path as a reader draws it: lines, and Beziers from vertex i's c0 to j's c1."""
+    t = np.linspace(0, 1, 33)[1:, None]
+    out = [np.array(verts[0][:2])[None]]
+    n = len(verts)
+    for i, kind in enumerate(prims):
+        a, z = verts[i], verts[(i + 1) % n]
+        p0, p3 = np.array(a[:2]), np.array(z[:2])
+        if kind == 1:
+            p1, p2 = np.array(a[2:4]), np.array(z[4:6])
+            out.append((1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t ** 2 * p2 + t ** 3 * p3)
+        else:
+            out.append(p0 + (p3 - p0) * t)
+    return np.vstack(out)
+
+
+def test_lbrnts_reads_the_arcs_as_beziers_on_the_dxfs_curves(arc_files):
+    import shapely
+    from dxf_helpers import vertices
+
+    got = lbrnts(arc_files["lbrn2"])
+    doc = ezdxf.readfile(arc_files["dxf"])
+    want = [vertices(e) for e in doc.modelspace()]
+    assert len(got["shapes"]) == len(want)
+    beziers = sum(sum(s["prims"]) for s in got["shapes"])
+    assert beziers >= sum(int((np.array([p[2] for p in e.get_points("xyb")]) != 0).sum()) for e in doc.modelspace())
+    tol = PLY.tolerance_mm
+    for shape, ring in zip(got["shapes"], want):
+        assert shape["closed"]
+        drawn = _drawn(shape["verts"], shape["prims"], True)
+        # the Beziers as lbrnts reads them lie on the DXF's arcs (ezdxf's drawing of its bulges)
+        # within a tenth of the tolerance and the 4 decimals
+        d = shapely.hausdorff_distance(shapely.LinearRing(drawn), shapely.LinearRing(ring), densify=0.05)
+        assert d <= 0.1 * tol + 2e-4
+
+
+def test_meerk40t_burns_the_projects_beziers_as_the_dxfs_arcs(arc_files, tmp_path):
+    lb = burns(meerk40t(arc_files["lbrn2"], tmp_path)["gcode"])
+    dx = burns(meerk40t(arc_files["dxf"], tmp_path / "dxf")["gcode"])
+    a, b = np.concatenate(lb), np.concatenate(dx)
+    assert len(lb) == len(dx)
+    assert a.max(axis=0) - a.min(axis=0) == pytest.approx(b.max(axis=0) - b.min(axis=0), abs=0.05)

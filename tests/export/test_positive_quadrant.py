@@ -44,20 +44,36 @@ CASES = {
 
 
 def dxf_read(path):
-    """(every vertex, $EXTMIN, $EXTMAX) of a DXF read back by ezdxf."""
+    """(every vertex, the drawing's corners, $EXTMIN, $EXTMAX) of a DXF read back by ezdxf.
+
+    The drawing's corners take its arcs (bulges) as ezdxf's own arcs: ``bulge_to_arc``, and each
+    arc's exact bounding box (an arc reaches past its end vertices).
+    """
+    from dxf_helpers import bulges, is_closed, raw_vertices
+    from ezdxf.math import ConstructionArc, bulge_to_arc
+
     doc = ezdxf.readfile(path)
-    pts = [np.array([p[:2] for p in e.get_points("xy")]) if e.dxftype() == "LWPOLYLINE"
-           else np.array([v.dxf.location[:2] for v in e.vertices]) for e in doc.modelspace()]
-    return np.concatenate(pts), np.array(doc.header["$EXTMIN"][:2]), np.array(doc.header["$EXTMAX"][:2])
+    pts, corners = [], []
+    for e in doc.modelspace():
+        xy, b = raw_vertices(e), bulges(e)
+        pts.append(xy)
+        corners.append(xy)
+        for i in np.flatnonzero(b if is_closed(e) else b[:-1]):
+            centre, start, end, radius = bulge_to_arc(xy[i], xy[(i + 1) % len(xy)], b[i])
+            box = ConstructionArc(centre, radius, np.degrees(start), np.degrees(end)).bounding_box
+            corners.append(np.array([[box.extmin.x, box.extmin.y], [box.extmax.x, box.extmax.y]]))
+    corners = np.concatenate(corners)
+    drawn = np.array([corners.min(axis=0), corners.max(axis=0)])
+    return np.concatenate(pts), drawn, np.array(doc.header["$EXTMIN"][:2]), np.array(doc.header["$EXTMAX"][:2])
 
 
 def svg_read(path):
-    """(every vertex with y up, the viewBox's lower-left, its upper-right, width and height in mm)."""
+    """(every vertex with y up, an arc's end too, the viewBox's lower-left, its upper-right, width and height in mm)."""
     root = ET.parse(path).getroot()
     x, y, w, h = map(float, root.get("viewBox").split())
     size = [float(root.get(k).removesuffix("mm")) for k in ("width", "height")]
     pts = np.array([(float(a), -float(b)) for p in root.iter("{http://www.w3.org/2000/svg}path")
-                    for a, b in re.findall(r"[ML](-?[0-9.]+) (-?[0-9.]+)", p.get("d"))])
+                    for a, b in re.findall(r"(?:[ML]|A\S+ \S+ 0 [01] [01] )(-?[0-9.]+) (-?[0-9.]+)", p.get("d"))])
     return pts, np.array([x, -(y + h)]), np.array([x + w, -y]), np.array(size)
 
 
@@ -85,23 +101,29 @@ def test_every_coordinate_is_at_least_0_and_the_extents_agree(built):
     stems = sorted({p.stem for p in out.glob("*.dxf")})
     assert len(stems) == (2 if case.startswith("inlay") else 1)
     for stem in stems:
-        pts, extmin, extmax = dxf_read(out / f"{stem}.dxf")
+        pts, drawn, extmin, extmax = dxf_read(out / f"{stem}.dxf")
         assert pts.min() >= 0.0, f"{stem}.dxf: a coordinate {pts.min()} below 0"
+        assert drawn.min() >= -1e-9, f"{stem}.dxf: an arc reaches {drawn.min()}, below 0"
         assert extmin.tolist() == [0.0, 0.0]
         if not stem.endswith("-pieces"):  # a kit's pieces file keeps the lattice's extents
-            assert pts.min(axis=0).tolist() == [0.0, 0.0]  # the drawing starts at the origin
-            assert extmax == pytest.approx(pts.max(axis=0), abs=1e-9)
+            assert drawn[0] == pytest.approx([0.0, 0.0], abs=1e-9)  # the drawing starts at the origin
+            assert extmax == pytest.approx(drawn[1], abs=1e-9)
         svg, low, high, size = svg_read(out / f"{stem}.svg")
         assert svg.min() >= 0.0, f"{stem}.svg: a coordinate {svg.min()} below 0"
         assert low.tolist() == [0.0, 0.0]
         assert high == pytest.approx(extmax, abs=PRINTED) and size == pytest.approx(extmax, abs=PRINTED)
-        assert svg.max(axis=0) == pytest.approx(pts.max(axis=0), abs=PRINTED)
+        # its vertices: the DXF's, and points on the DXF's arcs where a half turn is cut in quarters
+        assert (svg.max(axis=0) >= pts.max(axis=0) - PRINTED).all()
+        assert (svg.max(axis=0) <= drawn[1] + PRINTED).all()
         project = out / f"{stem}.lbrn2"
         if project.exists():
             shapes = np.concatenate(lbrn2_shapes(project))
             assert shapes.min() >= 0.0, f"{stem}.lbrn2: a coordinate {shapes.min()} below 0"
-            assert shapes.min(axis=0) == pytest.approx(pts.min(axis=0), abs=PRINTED)
-            assert shapes.max(axis=0) == pytest.approx(pts.max(axis=0), abs=PRINTED)
+            # its vertices: the DXF's, and points on the DXF's arcs where a Bezier of a long arc ends
+            assert (shapes.min(axis=0) <= pts.min(axis=0) + PRINTED).all()
+            assert (shapes.min(axis=0) >= drawn[0] - PRINTED).all()
+            assert (shapes.max(axis=0) >= pts.max(axis=0) - PRINTED).all()
+            assert (shapes.max(axis=0) <= drawn[1] + PRINTED).all()
 
 
 def test_the_report_gives_the_files_move_from_the_tile(built):

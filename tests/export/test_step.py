@@ -37,13 +37,16 @@ def _faces(shape):
     return out
 
 
-def _planes(shape):
-    """(normal (x, y, z), a point) of every face, all of which must be planes."""
-    from OCP.GeomAbs import GeomAbs_Plane
+def _planes(shape, cylinders=False):
+    """(normal (x, y, z), a point) of every plane face; every face must be a plane (or, with
+    ``cylinders``, a cylinder: a round wall, which is left out)."""
+    from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Plane
     from OCP.TopAbs import TopAbs_REVERSED
 
     out = []
     for face, surf in _faces(shape):
+        if cylinders and surf.GetType() == GeomAbs_Cylinder:
+            continue
         assert surf.GetType() == GeomAbs_Plane
         ax = surf.Plane().Axis()
         n = ax.Direction()
@@ -70,8 +73,10 @@ def _edges(shape):
 
 
 def assert_no_coplanar_neighbours(shape):
-    """Every edge joins two faces in different planes: each flat region is one face."""
+    """Every edge joins two faces in different planes: each flat region is one face (cylinders: see
+    tests/export/test_step_cylinders.py)."""
     from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.GeomAbs import GeomAbs_Plane
     from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
     from OCP.TopExp import TopExp
     from OCP.TopoDS import TopoDS
@@ -82,9 +87,12 @@ def assert_no_coplanar_neighbours(shape):
     for i in range(1, owners.Extent() + 1):
         faces = list(owners.FindFromIndex(i))
         assert len(faces) == 2
+        surfaces = [BRepAdaptor_Surface(TopoDS.Face(f), False) for f in faces]
+        if any(surf.GetType() != GeomAbs_Plane for surf in surfaces):
+            continue
         planes = []
-        for f in faces:
-            pl = BRepAdaptor_Surface(TopoDS.Face(f), False).Plane()
+        for surf in surfaces:
+            pl = surf.Plane()
             n, p = pl.Axis().Direction(), pl.Location()
             planes.append(((n.X(), n.Y(), n.Z()), n.X() * p.X() + n.Y() * p.Y() + n.Z() * p.Z()))
         (n1, d1), (n2, d2) = planes
@@ -181,7 +189,8 @@ def test_cad_fillets_the_corners_and_drills_a_hole(tmp_path):
 
 
 def test_interlaced_relief_dips_in_the_step_too(tmp_path):
-    """A woven relief on a seamless hexagon: valid, planar, the dips' level present, the mesh's volume."""
+    """A woven relief on a seamless hexagon: valid, planes and cylinders, the dips' level present, the mesh's
+    volume (its round parts as arcs, within 0.05 %)."""
     from fabtiles.solid.levels import dip_z
     from fabtiles.geometry.stack import resolve_stack
 
@@ -191,13 +200,13 @@ def test_interlaced_relief_dips_in_the_step_too(tmp_path):
     path = tmp_path / "t.step"
     report = tile.export(path, profile="fdm-0.4mm")
     back = step.read_step(path)
-    planes = _planes(back)
+    planes = _planes(back, cylinders=True)
     assert_no_coplanar_neighbours(back)
     dip = dip_z(resolve_stack("fdm-0.4mm"))
     assert any(n[2] > 0.999 and abs(p[2] - dip) < 1e-9 for n, p, _ in planes)
     assert occt_volume(back) == pytest.approx(report.stats["volume_mm3"], rel=0.0005)
     stl = tile.export(tmp_path / "t.stl", profile="fdm-0.4mm")
-    assert report.stats["volume_mm3"] == pytest.approx(stl.stats["volume_mm3"], rel=1e-6)
+    assert report.stats["volume_mm3"] == pytest.approx(stl.stats["volume_mm3"], rel=0.0005)
 
 
 def test_pierced_in_pieces_gives_one_solid_each(tmp_path):
@@ -338,7 +347,7 @@ def test_any_design_step_volume_is_occts(tmp_path, size, radius, preset, style, 
     back = step.read_step(path)
     assert solids_of(back) == report.stats["solids"]
     assert occt_volume(back) == pytest.approx(report.stats["volume_mm3"], rel=0.0005)
-    _planes(back)
+    _planes(back, cylinders=True)
     assert_no_coplanar_neighbours(back)
 
 

@@ -168,3 +168,48 @@ def test_a_sliver_under_a_quantum_wide_joins_its_neighbour():
     assert merged[0].area == pytest.approx(big.area + sliver.area, rel=1e-12) and merged[0].is_valid
     assert merged[1].equals(other)
     assert len(_merge_slivers([big, other])) == 2
+
+
+# --------------------------------------------------------------------------- round walls (issue 35)
+
+
+def _holed_plate(tolerance_mm=0.02):
+    hole = shapely.Point(10, 10).buffer(4.0, quad_segs=64)
+    return planar_brep(coverage([(box(0, 0, 20, 20).difference(hole), 3.0)], bottom=0.0, cell_vertices=1 << 40),
+                       tolerance_mm=tolerance_mm)
+
+
+def test_a_round_hole_is_two_half_cylinders_sharing_their_circles_with_the_flat_faces():
+    from fabtiles.solid.brep import brep_volume, check_brep as check
+
+    b = _holed_plate()
+    assert (_edge_uses(b) == 1).all()
+    cylinders = [f for f in b.faces if f.radius > 0]
+    assert len(cylinders) == 2 and all(f.inward for f in cylinders)
+    assert [f.radius for f in cylinders] == pytest.approx([4.0, 4.0], abs=1e-3)
+    arcs = b.arc_rows()
+    assert (arcs[:, 2] > 0).sum() == 4  # a half circle at the top and at the bottom of each
+    assert arcs[arcs[:, 2] > 0, 3].sum() == pytest.approx(4 * np.pi)
+    exact = (400 - np.pi * 16) * 3.0
+    assert brep_volume(b) == pytest.approx(exact, rel=1e-5)
+    chords = (box(0, 0, 20, 20).difference(shapely.Point(10, 10).buffer(4.0, quad_segs=64))).area * 3.0
+    assert check(b, volume=chords, parts=1) == pytest.approx(brep_volume(b), rel=1e-12)
+
+
+def test_a_tolerance_of_zero_gives_planar_walls():
+    b = _holed_plate(0.0)
+    assert all(f.radius == 0 for f in b.faces) and b.arcs is None
+    check_brep(b)
+
+
+def test_the_check_refuses_a_point_off_its_cylinder():
+    import dataclasses
+
+    from fabtiles.solid.brep import check_brep as check
+
+    b = _holed_plate()
+    f = next(i for i, face in enumerate(b.faces) if face.radius > 0)
+    faces = list(b.faces)
+    faces[f] = dataclasses.replace(faces[f], radius=faces[f].radius + 0.01)
+    with pytest.raises(FabricationError, match="off its cylinder or circle"):
+        check(dataclasses.replace(b, faces=tuple(faces)), volume=1000.0, parts=1)
