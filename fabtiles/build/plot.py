@@ -22,7 +22,6 @@ Its front ends: ``fabtiles plot`` (SVG, or HPGL through vpype), the vpype plugin
 from __future__ import annotations
 
 import numpy as np
-import shapely
 
 from .. import _limits
 from .._validate import check_choice, check_float
@@ -90,5 +89,7 @@ def plot_drawing(design, *, what: str = "centrelines", pen_mm=None, limits: _lim
 
 def _rings(geom) -> list:
     """Every ring of a (Multi)Polygon, closed (its first point repeated)."""
+    import shapely  # here, not at the top: `fabtiles --help` imports this module for WHATS and no shapely
+
     rings = shapely.get_rings(shapely.get_parts(geom))
     return [np.asarray(shapely.get_coordinates(r)) for r in rings]

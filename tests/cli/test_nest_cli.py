@@ -12,6 +12,7 @@ import shapely
 from click.testing import CliRunner
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "export"))
+from dxf_helpers import bulges, raw_vertices, vertices  # noqa: E402
 from test_laser_programs import burns, meerk40t  # noqa: E402
 
 from fabtiles import FabtilesError, ParameterError  # noqa: E402
@@ -55,9 +56,13 @@ def designs(tmp_path):
 
 
 def rings(path, layer=None):
-    """Every polyline of the DXF (of ``layer``), as (n, 2) arrays."""
-    return [np.array([(x, y) for x, y, *_ in e.get_points()]) for e in ezdxf.readfile(path).modelspace()
-            if layer is None or e.dxf.layer == layer]
+    """Every polyline of the DXF (of ``layer``), as (n, 2) arrays: its arcs drawn by ezdxf."""
+    return [vertices(e) for e in ezdxf.readfile(path).modelspace() if layer is None or e.dxf.layer == layer]
+
+
+def bulged(path, layer):
+    """Every polyline of ``layer`` as written: its vertices and bulges."""
+    return [(raw_vertices(e), bulges(e)) for e in ezdxf.readfile(path).modelspace() if e.dxf.layer == layer]
 
 
 def test_nested_files_hold_every_part_once_moved_rigidly_inside_and_apart(designs, tmp_path):
@@ -83,18 +88,23 @@ def test_nested_files_hold_every_part_once_moved_rigidly_inside_and_apart(design
         for i, a in enumerate(outer):  # no two parts' cut paths closer than the gap (nor overlapping)
             for b in outer[i + 1:]:
                 assert shapely.distance(a, b) >= gap - 1e-6
-        # each placed part is its source tile's cut moved rigidly: its outer path in the file, turned and
-        # moved back, is the tile's own (Hausdorff under 1 um); every path of the file belongs to one part
+        # each placed part is its source tile's cut moved rigidly: its outer path in the file (vertices and
+        # arcs as written), turned and moved back, is the tile's own (vertices within 1 um, the same arcs);
+        # every path of the file belongs to one part
+        written = bulged(dxf, OUTER)
+        arcs = 0
         for i in on:
             p = n.placements[i]
-            source = plans[p.id.split("#")[0]].paths("outer")[0]
-            placed = shapely.Polygon(p.move(source))
-            match = min(outer, key=lambda o: shapely.hausdorff_distance(o, placed))
+            source = next(layer for layer in plans[p.id.split("#")[0]].layers if layer.role == "outer").curves[0]
+            placed = p.move(source.xy)
+            xy, bulge = min(written, key=lambda w: np.linalg.norm(w[0].mean(axis=0) - placed.mean(axis=0)))
             a = np.radians(p.rotation)
-            back = (shapely.get_coordinates(match.exterior) - p.translation) @ np.array(
-                [[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
-            assert shapely.hausdorff_distance(shapely.Polygon(back), shapely.Polygon(source)) < 1e-3
+            back = (xy - p.translation) @ np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+            assert back.shape == source.xy.shape and np.abs(back - source.xy).max() < 1e-3
+            assert bulge == pytest.approx(source.bulge, abs=1e-6)
+            arcs += np.count_nonzero(bulge)
         assert shapely.covers(shapely.union_all(outer).buffer(1e-6), shapely.points(every)).all()
+        assert arcs > 0 or not any(n.placements[i].id.startswith("circle") for i in on)  # a circle's outline: arcs
     assert [s["parts"] for s in result.sheets] == [len(n.on_sheet(k)) for k in range(n.sheets)]
     assert sum(s["designs"].get("square", 0) for s in result.sheets) == 5
     assert sum(s["designs"].get("circle", 0) for s in result.sheets) == 4
