@@ -34,7 +34,7 @@ import numpy as np
 
 from .._io import atomic_write
 from .._report import Report
-from ..geometry.arcs import Beziers, beziers
+from ..geometry.arcs import Beziers, beziers_many
 from ..geometry.cut_plan import CutPlan, plan_cut
 
 APP_VERSION = "1.7.03"
@@ -162,10 +162,15 @@ def layer_groups(job: CutPlan):
     written as Beziers of at most a quarter turn, within a tenth of the profile's tolerance.
     """
     tol = job.profile.tolerance_mm
-    return [(cut.key, cut.layer,
-             [beziers(c, tolerance_mm=tol, closed=cut.closed) if c.bulge.any() else c.xy
-              for c in cut.curves_or_paths()],
-             cut.closed, "Scan" if cut.fill else "Cut") for cut in job.layers]
+    out = []
+    for cut in job.layers:
+        curves = cut.curves_or_paths()
+        bent = [k for k, c in enumerate(curves) if c.bulge.any()]
+        paths = [c.xy for c in curves]
+        for k, b in zip(bent, beziers_many([curves[k] for k in bent], tolerance_mm=tol, closed=cut.closed)):
+            paths[k] = b
+        out.append((cut.key, cut.layer, paths, cut.closed, "Scan" if cut.fill else "Cut"))
+    return out
 
 
 def lbrn2_bytes(plan: CutPlan) -> bytes:

@@ -555,20 +555,39 @@ def beziers(curve: Curve, *, tolerance_mm: float, closed: bool = True) -> Bezier
     >>> np.round(b.c0[0], 6).tolist(), np.round(b.c1[0], 6).tolist()
     ([1.0, 0.552285], [0.552285, 1.0])
     """
-    xy = np.asarray(curve.xy, dtype=float)
-    bulge = np.asarray(curve.bulge, dtype=float)
+    return beziers_many([curve], tolerance_mm=tolerance_mm, closed=closed)[0]
+
+
+def beziers_many(curves_, *, tolerance_mm: float, closed: bool = True) -> list:
+    """:func:`beziers` of every curve of ``curves_`` in one vectorised pass (a call per curve cost
+    0.1 ms each: 27 of the 32 ms of a 100 mm circle tile's LightBurn project, 268 curves).
+
+    >>> half = Curve(np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([1.0, 0.0]))
+    >>> [b.bezier.tolist() for b in beziers_many([half, half], tolerance_mm=0.01, closed=False)]
+    [[True, True, False], [True, True, False]]
+    """
+    if not len(curves_):
+        return []
+    sizes = np.array([len(c.xy) for c in curves_], dtype=np.int64)
+    xy = np.concatenate([np.asarray(c.xy, dtype=float) for c in curves_])
+    bulge = np.concatenate([np.asarray(c.bulge, dtype=float) for c in curves_])
     n = len(xy)
-    nan = np.full((n, 2), np.nan)
-    m_pieces = n if closed else n - 1
-    arc = np.flatnonzero(bulge[:m_pieces] != 0)
-    if not len(arc):
-        return Beziers(xy, np.zeros(n, dtype=bool), nan, nan)
-    a, z = xy[arc], xy[(arc + 1) % n]
-    c, r, a0, sweep = arc_geometry(a, z, bulge[arc])
-    limit = np.pi / 2 * np.minimum(1.0, (0.1 * tolerance_mm / (BEZIER_QUARTER_ERROR * r)) ** (1 / 6))
-    m = np.maximum(1, np.ceil(np.abs(sweep) / limit - 1e-9)).astype(np.int64)
+    first = np.repeat(np.cumsum(sizes) - sizes, sizes)
+    pos = np.arange(n) - first
+    last = pos == np.repeat(sizes - 1, sizes)
+    nxt = np.where(last, first, np.arange(n) + 1)  # each vertex's next one on its own path
+    has_piece = ~last if not closed else np.ones(n, dtype=bool)
+    arc = np.flatnonzero((bulge != 0) & has_piece)
     count = np.ones(n, dtype=np.int64)
-    count[arc] = m
+    out_sizes = sizes.copy()
+    if len(arc):
+        a, z = xy[arc], xy[nxt[arc]]
+        c, r, a0, sweep = arc_geometry(a, z, bulge[arc])
+        limit = np.pi / 2 * np.minimum(1.0, (0.1 * tolerance_mm / (BEZIER_QUARTER_ERROR * r)) ** (1 / 6))
+        m = np.maximum(1, np.ceil(np.abs(sweep) / limit - 1e-9)).astype(np.int64)
+        count[arc] = m
+        out_sizes = np.bincount(np.repeat(np.arange(len(sizes)), sizes), weights=count,
+                                minlength=len(sizes)).astype(np.int64)
     at = np.concatenate([[0], np.cumsum(count)[:-1]])  # where each old vertex lands
     total = int(count.sum())
     out = np.empty((total, 2))
@@ -576,24 +595,26 @@ def beziers(curve: Curve, *, tolerance_mm: float, closed: bool = True) -> Bezier
     bez = np.zeros(total, dtype=bool)
     c0 = np.full((total, 2), np.nan)
     c1 = np.full((total, 2), np.nan)
-    # the pieces of each arc: angles a0 + sweep * k / m, k = 0..m
-    which = np.repeat(np.arange(len(arc)), m)
-    k = np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m)
-    step = sweep[which] / m[which]
-    alpha0 = a0[which] + step * k
-    alpha1 = alpha0 + step
-    idx = at[arc][which] + k  # the piece's start vertex in the output
-    inner = k > 0
-    out[idx[inner]] = c[which][inner] + r[which][inner, None] * np.column_stack(
-        [np.cos(alpha0[inner]), np.sin(alpha0[inner])])
-    h = (4 / 3) * np.tan(step / 4) * r[which]
-    bez[idx] = True
-    c0[idx] = out[idx] + h[:, None] * np.column_stack([-np.sin(alpha0), np.cos(alpha0)])
-    end = (idx + 1) % total
-    end_pt = np.where((k == m[which] - 1)[:, None], out[end], c[which] + r[which][:, None] *
-                      np.column_stack([np.cos(alpha1), np.sin(alpha1)]))
-    c1[idx] = end_pt - h[:, None] * np.column_stack([-np.sin(alpha1), np.cos(alpha1)])
-    return Beziers(out, bez, c0, c1)
+    if len(arc):
+        # the pieces of each arc: angles a0 + sweep * k / m, k = 0..m
+        which = np.repeat(np.arange(len(arc)), m)
+        k = np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m)
+        step = sweep[which] / m[which]
+        alpha0 = a0[which] + step * k
+        alpha1 = alpha0 + step
+        idx = at[arc][which] + k  # the piece's start vertex in the output
+        inner = k > 0
+        out[idx[inner]] = c[which][inner] + r[which][inner, None] * np.column_stack(
+            [np.cos(alpha0[inner]), np.sin(alpha0[inner])])
+        h = (4 / 3) * np.tan(step / 4) * r[which]
+        bez[idx] = True
+        c0[idx] = out[idx] + h[:, None] * np.column_stack([-np.sin(alpha0), np.cos(alpha0)])
+        end_pt = np.where((k == m[which] - 1)[:, None], z[which], c[which] + r[which][:, None] *
+                          np.column_stack([np.cos(alpha1), np.sin(alpha1)]))
+        c1[idx] = end_pt - h[:, None] * np.column_stack([-np.sin(alpha1), np.cos(alpha1)])
+    cuts = np.cumsum(out_sizes)[:-1]
+    return [Beziers(*parts) for parts in zip(np.split(out, cuts), np.split(bez, cuts), np.split(c0, cuts),
+                                              np.split(c1, cuts))]
 
 
 def subdivide(curve: Curve, *, max_sweep: float, closed: bool = True) -> Curve:
