@@ -49,5 +49,5 @@ def command(design_file, output, what, pen_mm, overrides):
     drawing = plot_drawing(load_design(design_file, overrides=overrides), what=what, pen_mm=pen_mm)
     data = plot_svg.svg_bytes(drawing) if suffix == ".svg" else plot_svg.hpgl_bytes(drawing)
     atomic_write(output, data)
-    layers = ", ".join(f"{layer.name} {len(layer.paths):,} strokes" for layer in drawing.layers)
+    layers = ", ".join(f"{layer.name} {len(layer.paths):,} stroke{'' if len(layer.paths) == 1 else 's'}" for layer in drawing.layers)
     click.echo(f"{output}: {layers}; pen down {drawing.length_mm / 1000:.3g} m, pen up {drawing.travel_mm / 1000:.3g} m")
