@@ -37,7 +37,7 @@ from .arcs import Curve, curve_bounds, curves
 from .cut_order import path_orders
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate as job_estimate
-from .laser_checks import check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer
+from .laser_checks import check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer, fits_bed
 from .material import sheet
 from .narrow import fill_small_holes as _fill_small_holes
 from .tabs import check_tabs, tab_paths
@@ -423,10 +423,9 @@ def _note_bed_edge(plan: CutPlan, profile, report: Report) -> None:
     """
     x0, y0, x1, y1 = plan.bounds
     w, h = x1 - x0, y1 - y0
-    bw, bh = profile.bed_mm
-    eps = 1e-6
-    if (w <= bw + eps and h <= bh + eps) or (w <= bh + eps and h <= bw + eps):
+    if fits_bed(w, h, profile.bed_mm):
         return
+    bw, bh = profile.bed_mm
     report.note(f"the cut paths span {w:.2f} x {h:.2f} mm, beyond the {bw:g} x {bh:g} mm bed by the cut's width "
                 f"outside the tile: the outline is cut at the sheet's edges (most machines travel a little beyond "
                 f"the nominal bed; if yours does not, make the tile smaller)")

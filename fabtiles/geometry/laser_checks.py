@@ -40,6 +40,17 @@ from .contours import polygon_parts
 from .narrow import MAX_LOCATIONS, add_small_holes, hole_polygons, locations, narrow_places, small_hole_mask
 
 
+def fits_bed(width: float, height: float, bed_mm) -> bool:
+    """Whether a ``width`` x ``height`` mm piece fits a bed of ``bed_mm`` either way round (to 1e-6 mm).
+
+    >>> fits_bed(400, 600, (600, 400)), fits_bed(600.15, 400.15, (600, 400))
+    (True, False)
+    """
+    bw, bh = bed_mm
+    eps = 1e-6
+    return (width <= bw + eps and height <= bh + eps) or (width <= bh + eps and height <= bw + eps)
+
+
 def check_fits_bed(outline, profile: LaserProfile) -> None:
     """Raise :class:`~fabtiles.FabricationError` if ``outline`` does not fit the bed either way round.
 
@@ -52,10 +63,9 @@ def check_fits_bed(outline, profile: LaserProfile) -> None:
     """
     xmin, ymin, xmax, ymax = outline.bounds
     w, h = xmax - xmin, ymax - ymin
-    bw, bh = profile.bed_mm
-    eps = 1e-6
-    if (w <= bw + eps and h <= bh + eps) or (w <= bh + eps and h <= bw + eps):
+    if fits_bed(w, h, profile.bed_mm):
         return
+    bw, bh = profile.bed_mm
     raise FabricationError(
         f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of {profile.kind} profile "
         f"{profile.name!r} (either way round); make the tile smaller or use a profile with a larger bed_mm"

@@ -49,6 +49,7 @@ from .._report import Report, distinct
 from .narrow import MAX_LOCATIONS, add_small_holes, hole_polygons, hole_widths, locations, narrow_places, \
     neck_pieces, small_hole_mask, without_holes
 from .contours import polygon_parts
+from .laser_checks import fits_bed
 
 WALL_TOLERANCE_MM = 0.01
 """A wall this much thinner than the minimum still counts as the minimum (rounding)."""
@@ -480,8 +481,7 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
     xmin, ymin, xmax, ymax = outline.bounds
     w, h = xmax - xmin, ymax - ymin
     bw, bh = profile.bed_mm
-    eps = 1e-6
-    if not ((w <= bw + eps and h <= bh + eps) or (w <= bh + eps and h <= bw + eps)):
+    if not fits_bed(w, h, profile.bed_mm):
         report.add("bed_size",
                    f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of printer profile "
                    f"{profile.name!r} (either way round)")
