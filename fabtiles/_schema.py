@@ -543,11 +543,12 @@ KEYS: tuple[Key, ...] = MOTIF + (
 )
 """Every design key, section by section in the order of a design file."""
 
-_ROSETTE = (PACKED, ("gap_rosette", ("true",)))  # the page's gap rosette box: special circle 2
+_GAP = (PACKED, ("method", ("motifs",)))  # gap circles: the paper's method only (Hankin's rays leave no gaps)
+_ROSETTE = (*_GAP, ("gap_rosette", ("true",)))  # the page's gap rosette box: special circle 2
 GAP_WIDGETS = {
-    "n": Widget(kind="slider", label="gap n", min=3, max=24, step=1, group="packing-sliders", when=(PACKED,)),
+    "n": Widget(kind="slider", label="gap n", min=3, max=24, step=1, group="packing-sliders", when=_GAP),
     "rotation": Widget(kind="slider", label="gap rotation (deg)", min=-180, max=180, step=0.5, group="packing-sliders",
-                       when=(PACKED,)),
+                       when=_GAP),
     "alpha": Widget(kind="slider", label="gap alpha (deg)", min=-90, max=90, step=0.5, group="packing-sliders",
                     when=_ROSETTE),
     "spr": Widget(kind="slider", label="gap spr", min=-2, max=2, step=0.01, group="packing-sliders", when=_ROSETTE),

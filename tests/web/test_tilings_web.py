@@ -157,10 +157,13 @@ def test_page_hankin_method_and_its_sliders(page, server):  # noqa: F811 - fixtu
     assert page.is_visible("#method") and page.input_value("#method") == "motifs"
     assert page.is_hidden("#contact_angle-row") and page.is_hidden("#contact_gap-row")
     assert "method=" not in page.url  # the paper's method: the query as before
+    assert page.is_visible("#motif-box") and page.is_visible("#gap_n") and page.is_visible("#gap_inner")
     old = _preview_version(page)
     page.select_option("#method", "hankin")
     _wait_new_preview(page, old)
     assert page.is_visible("#contact_angle-row") and page.is_visible("#contact_gap-row")
+    # Hankin's rays take neither the motif nor gap circles: their controls go
+    assert page.is_hidden("#motif-box") and page.is_hidden("#gap_n") and page.is_hidden("#gap_inner")
     assert "method=hankin" in page.url and "contact_angle=60" in page.url and "contact_gap" not in page.url
     assert page.locator("#motif_8 option").first.inner_text() == "Hankin's rays"
     old = _preview_version(page)
@@ -182,3 +185,5 @@ def test_page_hankin_method_and_its_sliders(page, server):  # noqa: F811 - fixtu
     page.wait_for_function("() => document.querySelector('#preview').dataset.version")
     assert page.input_value("#method") == "hankin" and page.input_value("#contact_angle") == "67.5"
     assert page.input_value("#contact_gap") == "1"
+    page.select_option("#method", "motifs")  # back to the paper's: the motif and the gap circles again
+    assert page.is_visible("#motif-box") and page.is_visible("#gap_n")
