@@ -331,6 +331,20 @@ def outline_contours(outline, *, kerf_mm: float, kerf_y_mm: float | None = None,
     return _order(cleaned)
 
 
+def unique_segments(segments) -> np.ndarray:
+    """Segments ``(k, 2, 2)`` rounded to :data:`ROUND_DECIMALS`, each run from its lower end (by x, then y),
+    zero-length ones and repeats dropped, sorted: what is cut or drawn once.
+
+    >>> unique_segments([[[1, 0], [0, 0]], [[0, 0], [1, 0]], [[2, 2], [2, 2]]]).tolist()
+    [[[0.0, 0.0], [1.0, 0.0]]]
+    """
+    seg = np.round(np.asarray(segments, float).reshape(-1, 2, 2), ROUND_DECIMALS) + 0.0
+    seg = seg[np.any(seg[:, 0] != seg[:, 1], axis=1)]
+    flip = (seg[:, 0, 0] > seg[:, 1, 0]) | ((seg[:, 0, 0] == seg[:, 1, 0]) & (seg[:, 0, 1] > seg[:, 1, 1]))
+    seg[flip] = seg[flip][:, ::-1]
+    return np.unique(seg.reshape(-1, 4), axis=0).reshape(-1, 2, 2)
+
+
 def score_paths(centrelines, outline, *, tolerance_mm: float = 0.01) -> list:
     """Centre-lines clipped to ``outline`` and joined into open paths (the score layer).
 
@@ -349,12 +363,7 @@ def score_paths(centrelines, outline, *, tolerance_mm: float = 0.01) -> list:
                              param="centrelines")
     if not np.all(np.isfinite(seg)):
         raise ParameterError("centrelines must be finite numbers, got NaN or infinite values", param="centrelines")
-    seg = np.round(seg, ROUND_DECIMALS) + 0.0
-    seg = seg[np.any(seg[:, 0] != seg[:, 1], axis=1)]
-    # canonical direction, then drop exact repeats
-    flip = (seg[:, 0, 0] > seg[:, 1, 0]) | ((seg[:, 0, 0] == seg[:, 1, 0]) & (seg[:, 0, 1] > seg[:, 1, 1]))
-    seg[flip] = seg[flip][:, ::-1]
-    seg = np.unique(seg.reshape(-1, 4), axis=0).reshape(-1, 2, 2)
+    seg = unique_segments(seg)
     if not len(seg):
         return []
     polygon_parts(outline, "outline")

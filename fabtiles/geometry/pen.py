@@ -19,10 +19,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .contours import unique_segments
 from .cut_order import order_paths
-
-ROUND_DECIMALS = 6
-"""Segment ends equal to 1e-6 mm are one vertex."""
 
 
 @dataclass(frozen=True)
@@ -66,13 +64,9 @@ def strokes(segments) -> list:
     Repeated and zero-length segments are dropped. A closed strand comes out closed
     (its last point equal to its first).
     """
-    seg = np.round(np.asarray(segments, float).reshape(-1, 2, 2), ROUND_DECIMALS) + 0.0
-    seg = seg[np.any(seg[:, 0] != seg[:, 1], axis=1)]
+    seg = unique_segments(segments)
     if not len(seg):
         return []
-    flip = (seg[:, 0, 0] > seg[:, 1, 0]) | ((seg[:, 0, 0] == seg[:, 1, 0]) & (seg[:, 0, 1] > seg[:, 1, 1]))
-    seg[flip] = seg[flip][:, ::-1]
-    seg = np.unique(seg.reshape(-1, 4), axis=0).reshape(-1, 2, 2)
     k = len(seg)
     ends = seg.reshape(-1, 2)  # end e of segment e // 2; its other end is e ^ 1
     verts, node = np.unique(ends, axis=0, return_inverse=True)
