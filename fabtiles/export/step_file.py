@@ -35,19 +35,35 @@ TIME_STAMP = "2000-01-01T00:00:00"
 """The ``FILE_NAME`` time stamp of every STEP file (ISO 8601, as the standard asks): the same bytes every run."""
 
 
-def _real(x: float) -> str:
-    """A STEP REAL: always with a decimal point, exponent as ``E``."""
-    s = repr(float(x))
+LENGTH_DECIMALS = 9
+"""Decimals of every length and coordinate written (mm): a nanometre, a thousandth of the file's
+``distance_accuracy_value`` (1e-6 mm), so rounding moves no vertex off its curve or surface as
+OCCT measures them. Shortest-repr doubles took 17 digits each: the 100 mm circle tile's file was
+3.31 MB, 2.8 MB with the points and placements below shared as well."""
+
+DIRECTION_DECIMALS = 12
+"""Decimals of the components of a direction: a unit vector's error of 1e-12 moves a point 2.4 m
+away (the 2440 mm panel's side) by 2.4e-9 mm, still far inside the accuracy value."""
+
+
+def _real(x: float, decimals: int = LENGTH_DECIMALS) -> str:
+    """A STEP REAL rounded to ``decimals``: always with a decimal point, exponent as ``E``.
+
+    >>> _real(84.41797125771316), _real(3.0), _real(-1e-12), _real(2.5e-10, 12)
+    ('84.417971258', '3.', '0.', '2.5E-10')
+    """
+    x = round(float(x), decimals) + 0.0  # + 0.0: no negative zero
+    s = repr(x)
     if "e" in s:
         mant, exp = s.split("e")
         if "." not in mant:
             mant += "."
         return f"{mant}E{exp}"
-    return s if "." in s else s + "."
+    return s[:-1] if s.endswith(".0") else s  # "3." is a STEP REAL, a byte shorter
 
 
-def _triple(v) -> str:
-    return f"({_real(v[0])},{_real(v[1])},{_real(v[2])})"
+def _triple(v, decimals: int = LENGTH_DECIMALS) -> str:
+    return f"({_real(v[0], decimals)},{_real(v[1], decimals)},{_real(v[2], decimals)})"
 
 
 def _name(text: str) -> str:
@@ -60,7 +76,9 @@ class _Writer:
     def __init__(self):
         self.lines = []
         self.directions = {}
-
+        self.points = {}
+        self.placements = {}
+        self.vectors = {}
         self.context_2d = None
 
     def add(self, entity: str) -> int:
@@ -68,11 +86,40 @@ class _Writer:
         return len(self.lines)
 
     def direction(self, v) -> int:
-        key = tuple(float(c) for c in v)
-        ref = self.directions.get(key)
+        """A ``DIRECTION``: the unit vector along ``v``, one entity for each written (a wall's plane
+        takes its bottom edge's direction, every vertical edge the one up)."""
+        v = np.asarray(v, float)
+        text = ",".join(_real(c, DIRECTION_DECIMALS) for c in v / np.sqrt(v @ v))
+        ref = self.directions.get(text)
         if ref is None:
-            text = _triple(key) if len(key) == 3 else f"({_real(key[0])},{_real(key[1])})"
-            ref = self.directions[key] = self.add(f"DIRECTION('',{text})")
+            ref = self.directions[text] = self.add(f"DIRECTION('',({text}))")
+        return ref
+
+    def vector(self, v, length: float) -> int:
+        """A ``VECTOR`` along ``v`` of ``length``: the vertical edges of one height share one."""
+        key = (self.direction(v), _real(length))
+        ref = self.vectors.get(key)
+        if ref is None:
+            ref = self.vectors[key] = self.add("VECTOR('',#{},{})".format(*key))
+        return ref
+
+    def point(self, p) -> int:
+        """A 3D ``CARTESIAN_POINT``, one entity per point written: a vertex's point is also a wall
+        plane's origin and a line's start, a circle's centre also its cylinder's (the entities
+        a file holds are a third of its size)."""
+        text = _triple(p)
+        ref = self.points.get(text)
+        if ref is None:
+            ref = self.points[text] = self.add(f"CARTESIAN_POINT('',{text})")
+        return ref
+
+    def placement(self, origin, axis, ref_direction) -> int:
+        """An ``AXIS2_PLACEMENT_3D``, shared by the entities that stand on the same one (a cylinder
+        and the circle at its foot)."""
+        key = (self.point(origin), self.direction(axis), self.direction(ref_direction))
+        ref = self.placements.get(key)
+        if ref is None:
+            ref = self.placements[key] = self.add("AXIS2_PLACEMENT_3D('',#{},#{},#{})".format(*key))
         return ref
 
 
@@ -97,8 +144,8 @@ def _pcurve(w: _Writer, surface: int, face, start, arc) -> int:
         d = np.asarray(start[:2], float) - face.origin[:2]
         angle = float(np.arctan2(ref[0] * d[1] - ref[1] * d[0], ref @ d)) % (2 * np.pi)
         point, along = (angle, height), (0.0, 1.0)
-    p = w.add(f"CARTESIAN_POINT('',({_real(point[0])},{_real(point[1])}))")
-    vec = w.add(f"VECTOR('',#{w.direction(along)},1.)")
+    p = w.add(f"CARTESIAN_POINT('',({_real(point[0], DIRECTION_DECIMALS)},{_real(point[1])}))")
+    vec = w.vector(along, 1.0)
     line = w.add(f"LINE('',#{p},#{vec})")
     rep = w.add(f"DEFINITIONAL_REPRESENTATION('',(#{line}),#{w.context_2d})")
     return w.add(f"PCURVE('',#{surface},#{rep})")
@@ -107,14 +154,13 @@ def _pcurve(w: _Writer, surface: int, face, start, arc) -> int:
 def _brep_entities(w: _Writer, brep: Brep, name: str):
     """Write one B-rep's entities; return the entity numbers of its solids."""
     pts = brep.points
-    cart = [w.add(f"CARTESIAN_POINT('',{_triple(p)})") for p in pts]
+    cart = [w.point(p) for p in pts]
     vert = [w.add(f"VERTEX_POINT('',#{c})") for c in cart]
     # the cylinders first: their edges carry curves in their parameters (see _pcurves)
     surfaces, on_cylinders = {}, {}
     for f, face in enumerate(brep.faces):
         if face.radius > 0:
-            origin = w.add(f"CARTESIAN_POINT('',{_triple(face.origin)})")
-            place = w.add(f"AXIS2_PLACEMENT_3D('',#{origin},#{w.direction(face.normal)},#{w.direction(face.ref)})")
+            place = w.placement(face.origin, face.normal, face.ref)
             surfaces[f] = w.add(f"CYLINDRICAL_SURFACE('',#{place},{_real(face.radius)})")
             for e in face.loops[0]:
                 on_cylinders.setdefault(e if e >= 0 else ~e, []).append(f)
@@ -125,13 +171,11 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
     for i, ((a, b), dv, ln, arc) in enumerate(zip(brep.edges.tolist(), d, length, arcs)):
         if arc[2] > 0:  # a counter-clockwise arc of a horizontal circle, its angle starting opposite its middle
             cx, cy, r = (float(v) for v in arc[:3])
-            centre = w.add(f"CARTESIAN_POINT('',{_triple((cx, cy, pts[a, 2]))})")
             ref = (*seam_direction(pts[a, :2] - (cx, cy), float(arc[3])).tolist(), 0.0)
-            place = w.add(f"AXIS2_PLACEMENT_3D('',#{centre},#{w.direction((0.0, 0.0, 1.0))},#{w.direction(ref)})")
+            place = w.placement((cx, cy, pts[a, 2]), (0.0, 0.0, 1.0), ref)
             curve = w.add(f"CIRCLE('',#{place},{_real(r)})")
         else:
-            # direction ratios are the edge's own grid vector: exact, no rounding of a unit vector
-            vec = w.add(f"VECTOR('',#{w.direction(dv)},{_real(ln)})")
+            vec = w.vector(dv, ln)
             curve = w.add(f"LINE('',#{cart[a]},#{vec})")
         if i in on_cylinders:
             pcurves = [_pcurve(w, surfaces[f], brep.faces[f], pts[a], arc) for f in on_cylinders[i]]
@@ -142,9 +186,7 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
         if face.radius > 0:
             surface = surfaces[f]
         else:
-            origin = w.add(f"CARTESIAN_POINT('',{_triple(face.origin)})")
-            place = w.add(f"AXIS2_PLACEMENT_3D('',#{origin},#{w.direction(face.normal)},#{w.direction(face.ref)})")
-            surface = w.add(f"PLANE('',#{place})")
+            surface = w.add(f"PLANE('',#{w.placement(face.origin, face.normal, face.ref)})")
         bounds = []
         for i, loop in enumerate(face.loops):
             oes = [w.add(f"ORIENTED_EDGE('',*,*,#{edges[e]},.T.)") if e >= 0
@@ -181,8 +223,7 @@ def step_text(breps, *, name: str = "tile") -> str:
                 "'confusion accuracy')")
     ctx = w.add(f"( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc})) "
                 f"GLOBAL_UNIT_ASSIGNED_CONTEXT((#{mm},#{rad},#{sr})) REPRESENTATION_CONTEXT('','3D') )")
-    o = w.add("CARTESIAN_POINT('',(0.,0.,0.))")
-    axis = w.add(f"AXIS2_PLACEMENT_3D('',#{o},#{w.direction((0, 0, 1))},#{w.direction((1, 0, 0))})")
+    axis = w.placement((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0))
     solids = []
     for brep in breps:
         solids.extend(_brep_entities(w, brep, name))
