@@ -304,7 +304,8 @@ def _side_of_wall(pa, pb, side_of, xy, sides):
     return k if np.dot(xy[pb] - xy[pa], b - a) > 0 else -1  # xy: the moved points
 
 
-def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", tolerance_mm: float = 0.0) -> Brep:
+def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", tolerance_mm: float = 0.0,
+                radii=()) -> Brep:
     """The B-rep of a stack coverage (one closed shell per connected part).
 
     ``cov`` should hold one piece per level (a single meshing cell), so that each
@@ -312,7 +313,9 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     ``sides`` (k, 4): the straight sides ``(x0, y0, x1, y1)`` of the outline,
     counter-clockwise; the walls along each are one face, whatever meets it.
     ``tolerance_mm > 0``: the arcs of the boundary within it (:func:`_wall_arcs`)
-    become circle edges and their walls cylinders; 0: planar faces only.
+    become circle edges and their walls cylinders; 0: planar faces only. ``radii``: radii the
+    boundary's curves are known to have (a round join's, half the stroke): two chords on one of
+    them are an arc too (:func:`fabtiles.geometry.arcs.arc_runs_many`).
     """
     import shapely
 
@@ -364,7 +367,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     sides_arr = None if sides is None else np.asarray(sides, float)
 
     # --- arcs: one cylinder face per arc of walls, its circle edges shared with the flat faces
-    arcs = _wall_arcs(topo, vxy, tolerance_mm) if tolerance_mm > 0 else []
+    arcs = _wall_arcs(topo, vxy, tolerance_mm, radii) if tolerance_mm > 0 else []
     in_arc = np.zeros(len(u_all), bool)
     for at, centre, radius, _, onto in arcs:
         if onto:
@@ -595,7 +598,7 @@ ON_LINE_MM = 2 * QUANTUM
 (see :func:`_wall_arcs`)."""
 
 
-def _wall_arcs(topo, xy, tolerance_mm: float) -> list:
+def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
     """The arcs of the walls: ``[(ring positions, centre, radius, sweep, onto), ...]``.
 
     A ring's edges with a wall beside them (the piece on their left higher than the one on
@@ -700,7 +703,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float) -> list:
     for closed in (True, False):
         ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
         found = arc_runs_many([xy[jobs[k][1][searched[k]]] for k in ks], tolerance_mm=tolerance_mm, closed=closed,
-                              link_slack=GRID_LINK_SLACK)
+                              link_slack=GRID_LINK_SLACK, radii=radii)
         for k, runs in zip(ks, found):
             if len(runs.first):
                 collect(jobs[k][0], jobs[k][1], searched[k], runs)
@@ -828,25 +831,26 @@ def _sides(outline):
     return np.vstack(rows) if rows else np.empty((0, 4))
 
 
-def build_brep(*, region, outline, stack: Stack, dips=None, tolerance_mm: float = 0.0):
+def build_brep(*, region, outline, stack: Stack, dips=None, tolerance_mm: float = 0.0, radii=()):
     """The B-rep of a printed tile, beside its checked mesh.
 
     Returns ``(brep, mesh_volume, n_solids)``. The mesh goes first: it is
     checked, bridges point contacts of the region (the B-rep is built from the
     region it used) and gives the volume the solid must have (with the arcs'
     chords, see :func:`check_brep`). A pierced tile in several pieces is one solid
-    per piece. ``tolerance_mm > 0``: arcs within it are circles and cylinders.
+    per piece. ``tolerance_mm > 0``: arcs within it are circles and cylinders; ``radii``: radii
+    the region's curves are known to have (:func:`planar_brep`).
     """
     (part,) = checked_parts(region, outline, stack, single=True, dips=dips).values()
-    return brep_of_part(part, stack, dips, tolerance_mm=tolerance_mm)
+    return brep_of_part(part, stack, dips, tolerance_mm=tolerance_mm, radii=radii)
 
 
-def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0):
+def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0, radii=()):
     """The B-rep of a checked fused body (see :func:`build_brep`): ``(brep, mesh_volume, n_solids)``."""
     kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
     layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
     brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), sides=_sides(part.outline),
-                       tolerance_mm=tolerance_mm)
+                       tolerance_mm=tolerance_mm, radii=radii)
     return brep, part.mesh_volume_mm3, len(brep.solids)
 
 

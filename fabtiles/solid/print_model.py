@@ -69,7 +69,7 @@ class PrintModel:
     """
 
     def __init__(self, *, profile, stack, region, outline, report: Report, dips=None, inlay: bool = False,
-                 colours=None, mosaic=()):
+                 colours=None, mosaic=(), arc_radii_mm=()):
         self.profile = profile
         self.stack = stack
         self.region = region
@@ -81,6 +81,8 @@ class PrintModel:
         """The design's :class:`~fabtiles._colour.Colouring`, or None (the parts' own colours)."""
         self.mosaic = tuple(mosaic)
         """A mosaic's parts, one per colour (:class:`~fabtiles.solid.parts.MosaicPart`)."""
+        self.arc_radii_mm = tuple(float(r) for r in arc_radii_mm)
+        """Radii the region's curves are known to have (half the stroke: its round joins), for the STEP's arcs."""
 
     @property
     def single_part(self) -> bool:
@@ -143,7 +145,8 @@ class PrintModel:
         """``(brep, mesh volume, solids)``: the B-rep of the fused body (:mod:`.brep`), for STEP."""
         from .brep import brep_of_part
 
-        return brep_of_part(self.fused, self.stack, self.dips, tolerance_mm=self.profile.tolerance_mm)
+        return brep_of_part(self.fused, self.stack, self.dips, tolerance_mm=self.profile.tolerance_mm,
+                            radii=self.arc_radii_mm)
 
     def stats(self) -> dict:
         """The stack's style and heights, for a file's report."""
@@ -171,8 +174,10 @@ def print_model(region, outline, *, profile, style=None, base_mm=None, relief_mm
     check_inlay(stack, inlay)
     if mosaic and stack.style != "mosaic":
         raise ParameterError(f"mosaic parts need style='mosaic', got style={stack.style!r}", param="style")
+    # the strokes' round joins have half the stroke's radius (the STEP's cylinders find them by it)
+    radii = () if stroke is None else (float(stroke) / 2,)
     return PrintModel(profile=profile, stack=stack, region=region, outline=outline, report=report, dips=dips,
-                      inlay=inlay, colours=colours, mosaic=mosaic)
+                      inlay=inlay, colours=colours, mosaic=mosaic, arc_radii_mm=radii)
 
 
 def _slug(name: str) -> str:

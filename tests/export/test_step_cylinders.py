@@ -113,6 +113,30 @@ def test_a_pierced_circle_tile_with_outline_circles_and_round_joins(tmp_path):
     _check_unhealed(path, report)
 
 
+def test_narrow_round_joins_in_two_chords_are_cylinders_of_half_the_stroke(tmp_path):
+    """A band turning 58 degrees twice: each join flattened in two chords (within the profile's
+    0.02 mm). Given the stroke, the STEP knows their radius and makes each a cylinder; without it,
+    two chords prove no circle and the walls stay planar. Either way OCCT reads one valid solid of
+    the true shape's volume (the joins' chords against their arcs: 0.002 mm^2 each)."""
+    t = math.radians(58)
+    path = [(2, 10), (12, 10), (12 + 6 * math.cos(t), 10 + 6 * math.sin(t))]
+    path.append((path[-1][0] + 10, path[-1][1]))
+    outline = box(0, 0, 40, 25)
+    band = shapely.LineString(path).buffer(0.6, quad_segs=3).intersection(outline)
+    fine = shapely.LineString(path).buffer(0.6, quad_segs=FINE).intersection(outline)
+    joins = {}
+    for stroke in (None, 1.2):
+        out = tmp_path / f"{stroke}.step"
+        report = step.write_step(out, region=band, outline=outline, profile="fdm-0.4mm", style="relief",
+                                 stroke=stroke, name="t")
+        part = _read(out)
+        joins[stroke] = sorted(round(_radius(f), 4) for f in _cylinders(part) if _radius(f) < 1)
+        assert part.volume == pytest.approx(outline.area * B + fine.area * H, rel=0.0005)
+        _check_unhealed(out, report)
+    # the caps (180 degrees in six chords of 30: 0.0204 mm off the arc) are no arcs at 0.02 mm
+    assert joins == {None: [], 1.2: [0.6, 0.6]}
+
+
 def test_the_file_is_the_same_bytes_every_time(tmp_path):
     plate, hole = box(0, 0, 30, 30), Point(15, 15).buffer(4.0, quad_segs=64)
     a, _ = _write(tmp_path, plate.difference(hole), plate, name="a.step")

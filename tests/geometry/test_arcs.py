@@ -8,7 +8,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, Polygon, box
 
-from fabtiles.geometry.arcs import Curve, arc_runs, beziers, bulge_path, curves, fit_distance, piece_lengths
+from fabtiles.geometry.arcs import Curve, arc_runs, arc_runs_many, beziers, bulge_path, curves, fit_distance, piece_lengths
 from hypothesis_scale import examples
 
 
@@ -241,3 +241,52 @@ def test_beziers_stay_within_a_tenth_of_the_tolerance_of_the_arc(r, start, sweep
         # turning the arc's way
         cross = (p3 - p0)[0] * (p1 - p0)[1] - (p3 - p0)[1] * (p1 - p0)[0]
         assert (cross < 0) == ccw
+
+
+def _narrow_join(turn_deg: float, r: float = 0.6, segs: int = 3) -> np.ndarray:
+    """A stroke of two lines turning ``turn_deg``: its join flattened in two chords at quad_segs ``segs``."""
+    t = np.radians(turn_deg)
+    path = LineString([(0, 0), (5, 0), (5 + 5 * np.cos(t), 5 * np.sin(t))])
+    return _ring(path.buffer(r, quad_segs=segs, cap_style="flat"))
+
+
+def test_two_chords_on_a_known_radius_are_an_arc_and_on_another_radius_not():
+    """A 58-degree round join of a 1.2 mm stroke in two chords (within 0.02 mm): three points prove
+    no circle, three on the join's radius do."""
+    ring = _narrow_join(58)
+    assert len(arc_runs(ring, tolerance_mm=0.02).first) == 0
+    runs = arc_runs(ring, tolerance_mm=0.02, radii=(0.6,))
+    assert len(runs.first) == 1 and (runs.last - runs.first).tolist() == [2]
+    assert runs.radius[0] == pytest.approx(0.6, abs=1e-9)
+    assert abs(runs.sweep[0]) == pytest.approx(np.radians(58), abs=1e-9)
+    assert len(arc_runs(ring, tolerance_mm=0.02, radii=(0.7,)).first) == 0  # 17 % off: no
+    # the arc through the three vertices: its ends exactly on the ring, as bulge_path draws it
+    curve = bulge_path(ring, runs)
+    assert len(curve.xy) == len(ring) - 1 and np.count_nonzero(curve.bulge) == 1
+
+
+def test_a_radius_that_recurs_among_the_arcs_found_is_known_without_being_given():
+    """Three wide joins of one stroke (four chords each) give their radius; the narrow join's two chords
+    of that radius then are an arc too, searched together; alone they are not."""
+    wide = [_narrow_join(100 + 10 * k, segs=4) + (20 * k, 0) for k in range(3)]
+    assert all(len(arc_runs(w, tolerance_mm=0.02).first) == 1 for w in wide)
+    narrow = _narrow_join(40, segs=4)
+    found = arc_runs_many([*wide, narrow], tolerance_mm=0.02)
+    assert (found[-1].last - found[-1].first).tolist() == [2]
+    assert found[-1].radius[0] == pytest.approx(0.6, abs=1e-9)
+    assert len(arc_runs_many([wide[0], narrow], tolerance_mm=0.02)[-1].first) == 0  # one wide join: no
+
+
+def test_one_chord_and_straight_bends_stay_straight_whatever_the_radii():
+    """A bevel's chord is a one-chord join's: no arc. Two slight bends of a straight edge whose circle
+    happens to have the radius given: their middle vertex stands off the chord by less than the fit's
+    distance, so they stay straight."""
+    bevel = _ring(LineString([(0, 0), (5, 0), (5, 5)]).buffer(0.6, join_style="bevel", cap_style="flat"))
+    assert len(arc_runs(bevel, tolerance_mm=0.02, radii=(0.6,)).first) == 0
+    r = 100.0
+    h = r - np.sqrt(r * r - 0.25)  # the middle vertex's offset on a 100 mm circle over a 1 mm chord
+    assert h < fit_distance(0.02)
+    bends = np.array([[10, -5], [10, 0], [10.5, h], [11, 0], [11, -5]])  # between two square corners
+    assert len(arc_runs(bends, tolerance_mm=0.02, radii=(r,)).first) == 0
+    deeper = bends * [1, 2]  # twice the offset: an arc
+    assert len(arc_runs(deeper, tolerance_mm=0.02, radii=(r / 2,)).first) == 1
