@@ -37,6 +37,7 @@ from .arcs import Curve, curve_bounds, curves
 from .cut_order import path_orders
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate as job_estimate
+from .job_time import travel_mm
 from .laser_checks import check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer, fits_bed
 from .material import sheet
 from .narrow import fill_small_holes as _fill_small_holes
@@ -176,7 +177,7 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
         low = np.where(np.abs(flat.min(axis=0)) < 1e-9, 0.0, flat.min(axis=0))
         bounds = (*low.tolist(), *flat.max(axis=0).tolist())
     # the head's travel made short (.cut_order), from the file's origin; the arcs go with their paths
-    travel_before = job_estimate(profile, **moved, outer_closed=outer_closed).travel_mm
+    travel_before = travel_mm(profile, **moved, outer_closed=outer_closed)
     for role, (order, flipped) in path_orders(moved, outer_closed=outer_closed).items():
         moved[role] = [moved[role][i][::-1] if f else moved[role][i] for i, f in zip(order.tolist(), flipped.tolist())]
         arcs[role] = [_reversed(arcs[role][i]) if f else arcs[role][i] for i, f in zip(order.tolist(), flipped.tolist())]

@@ -125,6 +125,27 @@ def _travel(groups) -> float:
     return total
 
 
+def _layer_groups(profile, inner, outer, score, engrave, outer_closed: bool) -> list:
+    """``(key, layer, rings, closed, role)`` of each layer in cut order: engrave, score, inner, outer."""
+    layers = profile.layers
+    return [("engrave", layers.engrave, engrave, True, "engrave"), ("score", layers.score, score, False, "score"),
+            ("inner_cut", layers.inner_cut, inner, True, "inner"),
+            ("outer_cut", layers.outer_cut, outer, outer_closed, "outer")]
+
+
+def travel_mm(profile, *, inner=(), outer=(), score=(), engrave=(), outer_closed: bool = True) -> float:
+    """The head's travel of :func:`estimate` alone, without the cut lengths and times.
+
+    >>> from fabtiles._profiles import load_profile
+    >>> square = np.array([[0, 0], [10, 0], [10, 10], [0, 10]], float)
+    >>> round(travel_mm(load_profile("laser-3mm-plywood"), inner=[square + 5], outer=[square * 3]), 6)  # 2 x 5 sqrt 2
+    14.142136
+    """
+    return _travel([(_flat(rings), closed, layer.passes)
+                    for _, layer, rings, closed, _ in _layer_groups(profile, inner, outer, score, engrave, outer_closed)
+                    if len(rings) and layer is not None])
+
+
 def estimate(profile, *, inner=(), outer=(), score=(), engrave=(), engrave_area_mm2: float = 0.0,
              outer_closed: bool = True, curves: dict | None = None) -> JobEstimate:
     """The :class:`JobEstimate` of a laser job: its paths by layer, in cut order.
@@ -145,12 +166,8 @@ def estimate(profile, *, inner=(), outer=(), score=(), engrave=(), engrave_area_
     >>> job.cut_mm["outer_cut"], job.pierces
     (38.0, 2)
     """
-    layers = profile.layers
-    groups = [("engrave", layers.engrave, engrave, True, "engrave"), ("score", layers.score, score, False, "score"),
-              ("inner_cut", layers.inner_cut, inner, True, "inner"),
-              ("outer_cut", layers.outer_cut, outer, outer_closed, "outer")]
     cut, seconds, pierces, travel_groups = {}, 0.0, 0, []
-    for key, layer, rings, closed, role in groups:
+    for key, layer, rings, closed, role in _layer_groups(profile, inner, outer, score, engrave, outer_closed):
         if not len(rings) or layer is None:
             continue
         flat = _flat(rings)

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from fabtiles._profiles import CutterProfile, LaserLayers, Layer
-from fabtiles.geometry.job_time import JobEstimate, estimate, path_lengths, total
+from fabtiles.geometry.job_time import JobEstimate, estimate, path_lengths, total, travel_mm
 
 
 def profile(*, inner=(10.0, 1), outer=(5.0, 1), score=(20.0, 1), engrave=None, pierce_s=0.5, travel_mm_s=100.0):
@@ -95,6 +95,20 @@ def test_the_cut_order_is_engrave_score_inner_outer():
     assert job.travel_mm == pytest.approx(travel)
     seconds = 50 / 0.5 / 250 + 5 / 20 + 0.5 + 40 / 10 + 0.5 + 40 / 5 + 0.5 + travel / 100
     assert job.seconds == pytest.approx(seconds)
+
+
+@pytest.mark.parametrize("passes", [1, 3])
+@pytest.mark.parametrize("outer_closed", [True, False])
+def test_travel_alone_is_the_estimates_travel(passes, outer_closed):
+    """The cut plan measures the travel before its cut order with travel_mm, not a whole estimate."""
+    p = profile(engrave=(250.0, 1, 0.5), inner=(10.0, passes))
+    rng = np.random.default_rng(passes)
+    paths = dict(outer=[square(*rng.uniform(0, 90, 2)) for _ in range(3)],
+                 inner=[square(*rng.uniform(0, 90, 2), side=2) for _ in range(5)],
+                 score=[rng.uniform(0, 90, (3, 2))], engrave=[square(0, 10)])
+    job = estimate(p, **paths, engrave_area_mm2=50.0, outer_closed=outer_closed)
+    assert travel_mm(p, **paths, outer_closed=outer_closed) == pytest.approx(job.travel_mm, rel=1e-12)
+    assert job.travel_mm > 0
 
 
 def test_no_engrave_layer_or_no_engrave_paths_cost_nothing():
