@@ -312,6 +312,22 @@ def override_notes(path, overrides) -> list[str]:
 _MISSING = object()
 
 
+def design_notes(design: Design) -> list[str]:
+    """What a design file says that the tile will not show, as notes for the build's output.
+
+    >>> packing = {"kind": "archimedean", "tiling": "4.8.8", "method": "hankin"}
+    >>> print(*design_notes(design_from_dict({"motif": {"preset": "table3-3"}, "packing": packing, "tile": {"size": 60}})))
+    [motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take Hankin's rays (name a motif there for a kind, or remove [motif])
+    >>> design_notes(design_from_dict({"packing": packing, "tile": {"size": 60}}))
+    []
+    """
+    p = design.packing
+    if p is not None and p.kind == "archimedean" and p.method == "hankin" and design.motif is not None:
+        return ['[motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take '
+                "Hankin's rays (name a motif there for a kind, or remove [motif])"]
+    return []
+
+
 def _toml_text(value) -> str:
     """A value as TOML writes it, short: ``150``, ``[150, 150]``, ``"square"``, ``true``."""
     if isinstance(value, bool):

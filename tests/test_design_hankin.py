@@ -100,12 +100,15 @@ def test_cli_method_on_a_hex_packing_exits_2(tmp_path):
     assert result.exit_code == 2 and "is a key of kind = \"archimedean\"" in result.output and not out.exists()
 
 
-def test_cli_builds_a_hankin_design(tmp_path):
+@pytest.mark.parametrize("motif", [False, True])
+def test_cli_builds_a_hankin_design(tmp_path, motif):
+    """A [motif] section is drawn nowhere with Hankin's method: the build says so, and still builds."""
     path = tmp_path / "h.toml"
-    path.write_text(BASE, encoding="utf-8")
+    path.write_text(BASE + ('[motif]\npreset = "table1-part1"\n' if motif else ""), encoding="utf-8")
     result = CliRunner().invoke(cli, ["build", str(path), "-o", str(tmp_path / "out")], catch_exceptions=False)
     assert result.exit_code == 0, result.output
     assert 'width="100.15mm"' in (tmp_path / "out" / "h.svg").read_text()
+    assert ("note: [motif] is not drawn: with method = \"hankin\"" in result.output) == motif
 
 
 def test_seamless_keeps_the_method():

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import click
 
-from ..design import FORMATS, load_design, override_notes
+from ..design import FORMATS, design_notes, load_design, override_notes
 
 
 def single_file_target(output, formats):
@@ -98,7 +98,8 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
         outdir, formats, file_name = target[0].parent, (target[1],), target[0].name
     result = build_design(design, outdir, formats or None, sheet=sheet, copies=copies, gap_mm=gap_mm,
                           file_name=file_name)
-    for line in override_notes(design_file, overrides):  # what this build changed from the file
+    # what this build changed from the file, and what the file says that the tile does not show
+    for line in override_notes(design_file, overrides) + design_notes(design):
         click.echo(f"fabtiles: note: {line}", err=True)
     replaced = set(result.replaced)
     for report in result.reports:  # the files, then each model's figures and findings once
