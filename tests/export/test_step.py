@@ -414,3 +414,32 @@ def test_check_solids_refuses_an_empty_solid_a_hollow_one_and_one_inside_out():
     assert step.check_solids([cube], volume=1000, parts=1) == pytest.approx(1000)
     with pytest.raises(FabricationError, match=r"has a solid of volume -1000 mm\^3 \(solid 1\): inside out"):
         step.check_solids([TopoDS.Solid(cube.Reversed())], volume=1000, parts=1)
+
+
+@settings(max_examples=examples(60), deadline=None)
+@given(st.lists(st.tuples(*[st.floats(-3000, 3000, allow_subnormal=False)] * 3), min_size=1, max_size=40),
+       st.sampled_from([9, 12]))
+def test_the_rows_formatted_at_once_are_each_number_as_real_writes_it(rows, decimals):
+    """The writer formats points and directions an array at a time; each number must read as the one
+    STEP REAL that _real gives it (a point shared by text is then the same point), and as its value."""
+    import numpy as np
+
+    from fabtiles.export.step_file import _real, _rows
+
+    got = _rows(rows, decimals)
+    assert got == ["(" + ",".join(_real(x, decimals) for x in row) + ")" for row in rows]
+    back = np.array([[float(t.replace("E", "e")) for t in text[1:-1].split(",")] for text in got])
+    given = np.array(rows)  # within half the last decimal, and the doubles' own spacing
+    assert (np.abs(back - given) <= 0.5 * 10.0 ** -decimals + 4 * np.spacing(np.abs(given))).all()
+    assert all("." in t for text in got for t in text[1:-1].split(","))  # every number a REAL
+
+
+def test_the_file_writes_each_point_direction_and_placement_once(tmp_path):
+    """Entities shared, not repeated: a vertex's point is its wall's plane origin and its line's start."""
+    plate = box(0, 0, 30, 30).difference(shapely.Point(15, 15).buffer(4.0, quad_segs=64))
+    path = tmp_path / "p.step"
+    step.write_step(path, region=plate, outline=box(0, 0, 30, 30), profile="fdm-0.4mm", style="pierced")
+    lines = path.read_text().splitlines()
+    for kind in ("CARTESIAN_POINT(", "DIRECTION(", "AXIS2_PLACEMENT_3D(", "VECTOR("):
+        bodies = [line.split("=", 1)[1] for line in lines if kind in line]
+        assert bodies and len(bodies) == len(set(bodies)), kind
