@@ -483,6 +483,8 @@ def _describe(ring: np.ndarray, islands: int = 0) -> str:
     'rectangle'
     >>> _describe(np.array([[0, 0], [1, -1], [3, 0], [1, 1]]))
     'kite'
+    >>> _describe(np.array([[0, 0], [3, -1], [1, 0], [3, 1]])), _describe(np.array([[0, 0], [6, 0], [6, 6], [3, 2], [0, 6]]))
+    ('dart', 'concave pentagon')
     """
     n = len(ring)
     if islands or n < 3:
@@ -508,12 +510,12 @@ def _describe(ring: np.ndarray, islands: int = 0) -> str:
             if any(near(length[k], length[(k + 1) % 4]) and near(length[(k + 2) % 4], length[(k + 3) % 4])
                    for k in range(2)):
                 return "kite"
-            return "4-sided polygon"
-        if n in (5, 6):
-            return _NAMES[n]
-        return f"{n}-sided polygon" if n <= MAX_SIDES else ""
+            return "quadrilateral"
+        return _NAMES.get(n, f"{n}-gon") if n <= MAX_SIDES else ""
     if n >= 6 and n % 2 == 0 and same_len and (convex[::2].all() and not convex[1::2].any()
                                               or convex[1::2].all() and not convex[::2].any()):
         return f"{n // 2}-point star"
+    if n == 4:
+        return "dart"  # the kite's concave partner, as Penrose named it
     # beyond 24 sides a face is no polygon a reader would count (the ring round a motif, an arc's chords)
-    return f"{n}-sided polygon" if n <= MAX_SIDES else ""
+    return f"concave {_NAMES.get(n, f'{n}-gon')}" if n <= MAX_SIDES else ""

@@ -23,8 +23,8 @@ def test_check_lists_the_face_classes_with_their_colours():
     result = run("check", SAMPLE)
     assert result.exit_code == 0, result.output
     lines = [line.strip() for line in result.output.splitlines() if "face class" in line]
-    assert lines == ["face class A: 108 x 8-sided polygon, 3,035.9 mm^2, cobalt",
-                     "face class B: 23 x 24-sided polygon, 1,606.0 mm^2, turquoise",
+    assert lines == ["face class A: 108 x concave octagon, 3,035.9 mm^2, cobalt",
+                     "face class B: 23 x 24-gon, 1,606.0 mm^2, turquoise",
                      "face class C: 28 x 6-point star, 8.4 mm^2, bole",
                      "face class D: 212 x kite, 4.5 mm^2, green"]
 
@@ -32,8 +32,8 @@ def test_check_lists_the_face_classes_with_their_colours():
 def test_set_gives_a_class_its_colour_and_a_palette():
     result = run("check", SAMPLE, "--set", "colour.faces.B=navy", "--set", "colour.palette=mamluk")
     assert result.exit_code == 0, result.output
-    assert "face class A: 108 x 8-sided polygon, 3,035.9 mm^2, lapis" in result.output
-    assert "face class B: 23 x 24-sided polygon, 1,606.0 mm^2, navy" in result.output
+    assert "face class A: 108 x concave octagon, 3,035.9 mm^2, lapis" in result.output
+    assert "face class B: 23 x 24-gon, 1,606.0 mm^2, navy" in result.output
 
 
 def test_a_mosaic_build_writes_a_part_per_colour(tmp_path):
