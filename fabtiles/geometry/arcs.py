@@ -178,11 +178,12 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
 
     ``radii``: radii (mm) the rings' curves are known to have, such as a round join's (half the
     stroke), besides those of :data:`RADIUS_RECURS` arcs found in the rings. Two chords between
-    corners whose circle has one of them (within :data:`RADIUS_MATCH`) are an arc too: a round join that meets other bands
-    after 60 degrees is flattened within the printer's 0.02 mm in two chords, and three points
-    on an arbitrary circle prove nothing, while three on the join's own radius do (measured on
-    issue 35's 100 mm tile: 280 such joins, all of radius 0.6 mm within 0.2 %). One chord is no
-    arc whatever its length: a bevel's is the same chord.
+    corners whose circle has one of them (within :data:`RADIUS_MATCH`) are an arc too, on a
+    radius given exactly that radius: a round join that meets other bands within 60 degrees is
+    flattened within the printer's 0.02 mm in two chords, and three points on an arbitrary
+    circle prove nothing, while three on the join's own radius do (measured on issue 35's
+    100 mm tile: 280 such joins, all of radius 0.6 mm within 0.2 %). One chord is no arc
+    whatever its length: a bevel's is the same chord.
 
     The sheets' and panels' cut plans hold thousands of rings: one pass over all their
     vertices instead of a pass per ring (the 2440 x 1220 mm panel's 2,812 rings and
@@ -287,9 +288,9 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
     known = known[given | (hi_k - lo_k >= RADIUS_RECURS)]
     if len(known):
         # two chords of a known radius, a triple of their own (neither neighbour triple is a piece
-        # of arc, so they overlap no run above); their circle is the triple's, through all three
+        # of arc, so they overlap no run above)
         t = np.flatnonzero(ok & ~ok[prev] & ~ok[nxt] & ~np.isin(rid, list(results)))
-        # |radius - k| <= RADIUS_MATCH k for some known k: the least k >= radius / (1 + RADIUS_MATCH) is close enough
+        # |radius - k| <= RADIUS_MATCH k for some known k: the least k >= radius / (1 + RADIUS_MATCH) tells
         at = np.minimum(np.searchsorted(known, radius[t] / (1 + RADIUS_MATCH)), len(known) - 1)
         near = np.abs(radius[t] - known[at]) <= RADIUS_MATCH * known[at]
         # the middle vertex off the chord between the ends by more than the fit's distance: no straight line

@@ -483,8 +483,10 @@ def _describe(ring: np.ndarray, islands: int = 0) -> str:
     'rectangle'
     >>> _describe(np.array([[0, 0], [1, -1], [3, 0], [1, 1]]))
     'kite'
-    >>> _describe(np.array([[0, 0], [3, -1], [1, 0], [3, 1]])), _describe(np.array([[0, 0], [6, 0], [6, 6], [3, 2], [0, 6]]))
-    ('dart', 'concave pentagon')
+    >>> _describe(np.array([[0, 0], [3, -1], [1, 0], [3, 1]]))
+    'dart'
+    >>> _describe(np.array([[0, 0], [6, 0], [6, 6], [3, 2], [0, 6]]))
+    'concave pentagon'
     """
     n = len(ring)
     if islands or n < 3:

@@ -8,7 +8,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, Polygon, box
 
-from fabtiles.geometry.arcs import Curve, arc_runs, arc_runs_many, beziers, bulge_path, curves, fit_distance, piece_lengths
+from fabtiles.geometry.arcs import (Curve, arc_runs, arc_runs_many, beziers, bulge_path, curves, fit_distance,
+                                    piece_lengths)
 from hypothesis_scale import examples
 
 
