@@ -9,9 +9,6 @@ job and material lines below them.
 
 from __future__ import annotations
 
-import socket
-import threading
-import time
 from pathlib import Path
 
 OUT = Path(__file__).with_name("screenshots") / "web-3d.png"
@@ -19,23 +16,15 @@ QUERY = "preset=table3-3&radius=15&width=150&interlace=true&stroke=1.5"
 
 
 def main() -> None:
-    import uvicorn
     from playwright.sync_api import sync_playwright
 
-    from fabtiles.web.app import create_app
+    from fabtiles.web.app import local_server
 
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    server = uvicorn.Server(uvicorn.Config(create_app(), host="127.0.0.1", port=port, log_level="warning"))
-    threading.Thread(target=server.run, daemon=True).start()
-    while not server.started:
-        time.sleep(0.05)
-    with sync_playwright() as pw:
+    with local_server() as url, sync_playwright() as pw:
         browser = pw.chromium.launch(executable_path="/usr/bin/chromium", args=[
             "--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"])
         page = browser.new_page(viewport={"width": 1500, "height": 1000}, device_scale_factor=1)
-        page.goto(f"http://127.0.0.1:{port}/?{QUERY}")
+        page.goto(f"{url}/?{QUERY}")
         page.wait_for_function("() => document.querySelector('#view3d-canvas').dataset.version", timeout=120_000)
         page.wait_for_function("() => document.querySelector('#job').dataset.version", timeout=120_000)
         box = page.locator("#view3d-canvas").bounding_box()
@@ -53,7 +42,6 @@ def main() -> None:
         OUT.parent.mkdir(exist_ok=True)
         page.screenshot(path=str(OUT), clip=clip)
         browser.close()
-    server.should_exit = True
     print(f"wrote {OUT}")
 
 

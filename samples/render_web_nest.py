@@ -8,9 +8,6 @@ and browser extras and Debian's Chromium). It serves the app on a loopback port,
 
 from __future__ import annotations
 
-import socket
-import threading
-import time
 from pathlib import Path
 
 OUT = Path(__file__).with_name("screenshots") / "web-nest.png"
@@ -22,22 +19,14 @@ DESIGNS = [  # (editor query, count)
 
 
 def main() -> None:
-    import uvicorn
     from playwright.sync_api import sync_playwright
 
-    from fabtiles.web.app import create_app
+    from fabtiles.web.app import local_server
 
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    server = uvicorn.Server(uvicorn.Config(create_app(), host="127.0.0.1", port=port, log_level="warning"))
-    threading.Thread(target=server.run, daemon=True).start()
-    while not server.started:
-        time.sleep(0.05)
-    with sync_playwright() as pw:
+    with local_server() as url, sync_playwright() as pw:
         browser = pw.chromium.launch(executable_path="/usr/bin/chromium", args=["--no-sandbox"])
         page = browser.new_page(viewport={"width": 1300, "height": 900}, device_scale_factor=1)
-        page.goto(f"http://127.0.0.1:{port}/nest?{DESIGNS[0][0]}")
+        page.goto(f"{url}/nest?{DESIGNS[0][0]}")
         page.wait_for_selector("#designs li")
         for query, _ in DESIGNS[1:]:  # the others as the editor's Nest link would add them
             page.evaluate("(q) => window.addDesign && window.addDesign(new URLSearchParams(q))", query)
@@ -53,7 +42,6 @@ def main() -> None:
         bottom = max(b["y"] + b["height"] for b in (page.locator(sel).bounding_box() for sel in ("#nest-form", "#view")))
         page.screenshot(path=str(OUT), clip={"x": 0, "y": 0, "width": 1300, "height": bottom + 16})
         browser.close()
-    server.should_exit = True
     print(f"wrote {OUT}")
 
 

@@ -13,6 +13,7 @@ chosen by bundled name.
 
 from __future__ import annotations
 
+import contextlib
 import os
 
 from fastapi import FastAPI
@@ -24,7 +25,8 @@ from .routes import catalogue, nest, pages, tile
 from .routes.pages import STATIC
 from .routes.tile import MEDIA_TYPES
 
-__all__ = ["MEDIA_TYPES", "STATIC", "create_app", "fabrication_checks", "field_of_param", "serve", "tile_from_dict"]
+__all__ = ["MEDIA_TYPES", "STATIC", "create_app", "fabrication_checks", "field_of_param", "local_server", "serve",
+           "tile_from_dict"]
 
 
 def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
@@ -50,3 +52,37 @@ def serve(host: str = "127.0.0.1", port: int = 8765) -> None:  # pragma: no cove
     import uvicorn
 
     uvicorn.run(create_app(), host=host, port=port, log_level=os.environ.get("FABTILES_LOG", "warning"))
+
+
+@contextlib.contextmanager
+def local_server(*, start_timeout_s: float = 10.0):
+    """The app on a free loopback port, served from a thread while the block runs: yields its URL.
+
+    For scripts that drive the app in a browser (the tests, the manual's screenshots). Only
+    127.0.0.1: nothing beyond this machine reaches it.
+
+    >>> import urllib.request
+    >>> with local_server() as url:
+    ...     urllib.request.urlopen(f"{url}/api/schema").status
+    200
+    """
+    import socket
+    import threading
+    import time
+
+    import uvicorn
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    server = uvicorn.Server(uvicorn.Config(create_app(), host="127.0.0.1", port=port, log_level="warning"))
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + start_timeout_s
+    while not server.started and time.monotonic() < deadline:
+        time.sleep(0.05)
+    try:
+        yield f"http://127.0.0.1:{port}"
+    finally:
+        server.should_exit = True
+        thread.join(timeout=10)

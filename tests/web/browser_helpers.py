@@ -7,9 +7,6 @@ FABTILES_REQUIRE_BROWSER=1, so there a missing browser fails instead of skipping
 import contextlib
 import os
 import shutil
-import socket
-import threading
-import time
 
 import pytest
 
@@ -31,24 +28,10 @@ def need(ok, why):
 
 @pytest.fixture(scope="module")
 def server():
-    import uvicorn
+    from fabtiles.web.app import local_server
 
-    from fabtiles.web.app import create_app
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    config = uvicorn.Config(create_app(), host="127.0.0.1", port=port, log_level="warning")
-    srv = uvicorn.Server(config)
-    thread = threading.Thread(target=srv.run, daemon=True)
-    thread.start()
-    for _ in range(200):
-        if srv.started:
-            break
-        time.sleep(0.05)
-    yield f"http://127.0.0.1:{port}"
-    srv.should_exit = True
-    thread.join(timeout=10)
+    with local_server() as url:
+        yield url
 
 
 @contextlib.contextmanager
