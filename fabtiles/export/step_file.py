@@ -97,7 +97,17 @@ def _rows(a, decimals: int, unit: bool = False) -> list:
         return []
     if unit:
         a = a / np.sqrt(np.einsum("ij,ij->i", a, a))[:, None]
-    text = repr((np.round(a, decimals) + 0.0).tolist())[1:-1]  # + 0.0: no negative zero
+    r = np.ascontiguousarray(np.round(a, decimals) + 0.0)  # + 0.0: no negative zero
+    if len(r) > 64:  # each row once: a wall's top and bottom edges have one direction (the sheet's half)
+        keys = r.view(np.dtype((np.void, r.dtype.itemsize * r.shape[1]))).ravel()
+        _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+        texts = _format_rows(r[first])
+        return [texts[i] for i in inverse.ravel().tolist()]
+    return _format_rows(r)
+
+
+def _format_rows(r: np.ndarray) -> list:
+    text = repr(r.tolist())[1:-1]
     text = text.replace(", ", ",").replace(".0,", ".,").replace(".0]", ".]")
     if "e" in text:
         text = _EXPONENT.sub(_exponent, text)
@@ -211,8 +221,9 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
     edges = []
     d = pts[brep.edges[:, 1]] - pts[brep.edges[:, 0]]
     units = _rows(d, DIRECTION_DECIMALS, unit=True)
-    lengths = list(map(_text, (np.round(np.sqrt(np.einsum("ij,ij->i", d, d)), LENGTH_DECIMALS) + 0.0).tolist()))
+    lengths = [t[1:-1] for t in _rows(np.sqrt(np.einsum("ij,ij->i", d, d))[:, None], LENGTH_DECIMALS)]
     arcs = brep.arc_rows()
+    vectors = {}
     for i, ((a, b), unit, ln, arc) in enumerate(zip(brep.edges.tolist(), units, lengths, arcs)):
         if arc[2] > 0:  # a counter-clockwise arc of a horizontal circle, its angle starting opposite its middle
             cx, cy, r = (float(v) for v in arc[:3])
@@ -220,7 +231,9 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
             place = w.placement((cx, cy, pts[a, 2]), (0.0, 0.0, 1.0), ref)
             curve = w.add(f"CIRCLE('',#{place},{_real(r)})")
         else:
-            vec = w.vector(unit, ln)
+            vec = vectors.get((unit, ln))  # (the writer's vector(), inlined: once an edge, 85,000 on the sheet)
+            if vec is None:
+                vec = vectors[(unit, ln)] = w.vector(unit, ln)
             curve = w.add(f"LINE('',#{cart[a]},#{vec})")
         if i in on_cylinders:
             pcurves = [_pcurve(w, surfaces[f], brep.faces[f], pts[a], arc) for f in on_cylinders[i]]

@@ -309,7 +309,7 @@ def _side_of_wall(pa, pb, side_of, xy, sides, whole=None):
 
 
 def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", tolerance_mm: float = 0.0,
-                radii=()) -> Brep:
+                radii=(), cells: bool = False) -> Brep:
     """The B-rep of a stack coverage (one closed shell per connected part).
 
     ``cov`` should hold one piece per level (a single meshing cell), so that each
@@ -319,20 +319,22 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     ``tolerance_mm > 0``: the arcs of the boundary within it (:func:`_wall_arcs`)
     become circle edges and their walls cylinders; 0: planar faces only. ``radii``: radii the
     boundary's curves are known to have (a round join's, half the stroke): two chords on one of
-    them are an arc too (:func:`fabtiles.geometry.arcs.arc_runs_many`).
+    them are an arc too (:func:`fabtiles.geometry.arcs.arc_runs_many`). ``cells``: each piece
+    of the coverage (a cell of its grid) is a face of its own, and a one-level body's bottom too
+    (see :data:`MAX_FACE_HOLES`); else the pieces at one level are merged first.
     """
     import shapely
 
-    # one piece per level: a flat region is one face whatever the coverage's cells
     by_level = {}
     for geom, lvl in cov.pieces:
         by_level.setdefault(int(lvl), []).append(geom)
     pieces = []
     for lvl, geoms in sorted(by_level.items()):
-        merged = geoms[0] if len(geoms) == 1 else shapely.coverage_union_all(geoms)
-        if merged.geom_type == "Polygon":  # one polygon (a flush mosaic's whole top): as the others, a multi
-            merged = shapely.MultiPolygon([merged])
-        pieces.append((shapely.orient_polygons(merged), lvl))
+        # one piece per level (a flat region one face whatever the coverage's cells), or each cell's own
+        for merged in (geoms if cells else [geoms[0] if len(geoms) == 1 else shapely.coverage_union_all(geoms)]):
+            if merged.geom_type == "Polygon":  # one polygon (a flush mosaic's whole top): as the others, a multi
+                merged = shapely.MultiPolygon([merged])
+            pieces.append((shapely.orient_polygons(merged), lvl))
     cov = Coverage(pieces, cov.levels)
     topo = topology(cov, triangulate=False, exact=True)
     z = np.asarray(cov.levels, float)
@@ -472,6 +474,23 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
                 uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
                 loops.append(_collapse([ed.horizontal_or_arc(a, b, lvl) for a, b in zip(uu, vv) if a != b]))
             faces.append(Face((0.0, 0.0, float(z[lvl])), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), tuple(loops)))
+
+    if cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
+        for k in range(len(topo.piece_level)):
+            for rings in _ring_polygons(topo, k):
+                loops = []
+                for r in rings:
+                    idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
+                    uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
+                    loops.append(_collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu[::-1], vv[::-1]) if a != b]))
+                faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops)))
+        points = _node_xyz(ed, vxy, z)
+        edges = np.array(ed.list, dtype=np.int64).reshape(-1, 2)
+        arc_rows = None
+        if ed.arcs:
+            arc_rows = np.zeros((len(edges), 5))
+            arc_rows[list(ed.arcs)] = list(ed.arcs.values())
+        return _compact(Brep(points, edges, tuple(faces), _solids(faces, len(edges)), arc_rows), what)
 
     # --- bottoms: the ring edges with nothing beside them, run backwards
     b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
@@ -764,6 +783,30 @@ def _solids(faces, n_edges):
 SINGLE_CELL = 1 << 40
 """``cell_vertices`` that keeps a coverage in one cell: one face per flat region."""
 
+MAX_FACE_HOLES = 300
+"""A flat face holds at most about this many holes; a region with more is cut into cells of a
+grid, a face each (and a pierced tile's bottom likewise). OCCT's STEP reader heals each wire
+of a face against the whole face (``ShapeFix_IntersectionTool::FixSelfIntersectWire`` applies
+its context to the face once per wire), so its time grows as the holes times the face's edges:
+issue 35's 200 mm pierced tile, its top and bottom each one face of about 1,100 holes, took
+67 s to import; cut by four by four lines, 7.8 s. The seams show on the face in a CAD program,
+so a tile of up to about 100 mm (260 holes on issue 35's design) keeps its one face."""
+
+
+def _cells_for_faces(layers) -> int:
+    """``cell_vertices`` for the B-rep's coverage: :data:`SINGLE_CELL` unless a flat region holds
+    more than :data:`MAX_FACE_HOLES` holes, else a size that gives each cell about that many."""
+    import shapely
+
+    polys = [p for g, _ in layers for p in shapely.get_parts(g)]
+    holes = shapely.get_num_interior_rings(polys) if polys else np.zeros(0, int)
+    if not len(holes) or holes.max() <= MAX_FACE_HOLES:
+        return SINGLE_CELL
+    vertices = int(shapely.get_num_coordinates(polys).sum())
+    # cells_for sizes a cell to hold cell_vertices of the region's vertices: as many as MAX_FACE_HOLES / 2
+    # holes would bring (a cell's holes are cut by its lines, and the region is not uniform)
+    return max(int(vertices * MAX_FACE_HOLES / 2 / int(holes.sum())), 64)
+
 
 # --------------------------------------------------------------------------- building
 
@@ -856,8 +899,9 @@ def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0, ra
     """The B-rep of a checked fused body (see :func:`build_brep`): ``(brep, mesh_volume, n_solids)``."""
     kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
     layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
-    brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), sides=_sides(part.outline),
-                       tolerance_mm=tolerance_mm, radii=radii)
+    cell_vertices = _cells_for_faces(layers)
+    brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=cell_vertices), sides=_sides(part.outline),
+                       tolerance_mm=tolerance_mm, radii=radii, cells=cell_vertices != SINGLE_CELL)
     return brep, part.mesh_volume_mm3, len(brep.solids)
 
 

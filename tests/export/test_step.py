@@ -417,14 +417,17 @@ def test_check_solids_refuses_an_empty_solid_a_hollow_one_and_one_inside_out():
 
 
 @settings(max_examples=examples(60), deadline=None)
-@given(st.lists(st.tuples(*[st.floats(-3000, 3000, allow_subnormal=False)] * 3), min_size=1, max_size=40),
-       st.sampled_from([9, 12]))
-def test_the_rows_formatted_at_once_are_each_number_as_real_writes_it(rows, decimals):
-    """The writer formats points and directions an array at a time; each number must read as the one
-    STEP REAL that _real gives it (a point shared by text is then the same point), and as its value."""
+@given(st.lists(st.tuples(*[st.floats(-3000, 3000, allow_subnormal=False)] * 3), min_size=1, max_size=100),
+       st.sampled_from([9, 12]), st.integers(0, 100))
+def test_the_rows_formatted_at_once_are_each_number_as_real_writes_it(rows, decimals, repeats):
+    """The writer formats points and directions an array at a time (each distinct row once, past 64
+    rows); each number must read as the one STEP REAL that _real gives it (a point shared by text is
+    then the same point), and as its value."""
     import numpy as np
 
     from fabtiles.export.step_file import _real, _rows
+
+    rows = rows + rows[:repeats]  # rows again, as a wall's top and bottom edges share a direction
 
     got = _rows(rows, decimals)
     assert got == ["(" + ",".join(_real(x, decimals) for x in row) + ")" for row in rows]
