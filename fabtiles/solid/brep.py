@@ -480,17 +480,11 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             for rings in _ring_polygons(topo, k):
                 loops = []
                 for r in rings:
-                    idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
+                    idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])[::-1]
                     uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
-                    loops.append(_collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu[::-1], vv[::-1]) if a != b]))
+                    loops.append(_collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu, vv) if a != b]))
                 faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops)))
-        points = _node_xyz(ed, vxy, z)
-        edges = np.array(ed.list, dtype=np.int64).reshape(-1, 2)
-        arc_rows = None
-        if ed.arcs:
-            arc_rows = np.zeros((len(edges), 5))
-            arc_rows[list(ed.arcs)] = list(ed.arcs.values())
-        return _compact(Brep(points, edges, tuple(faces), _solids(faces, len(edges)), arc_rows), what)
+        return _finish(ed, vxy, z, faces, what)
 
     # --- bottoms: the ring edges with nothing beside them, run backwards
     b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
@@ -517,7 +511,11 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             bottom_loops[j].append(tuple(directed[i][2] for i in lp))
     for loops_ in bottom_loops:
         faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops_)))
+    return _finish(ed, vxy, z, faces, what)
 
+
+def _finish(ed: _Edges, vxy, z, faces: list, what: str) -> Brep:
+    """The B-rep of ``faces`` on the edges and points ``ed`` made, compacted (:func:`_compact`)."""
     points = _node_xyz(ed, vxy, z)
     edges = np.array(ed.list, dtype=np.int64).reshape(-1, 2)
     arc_rows = None
@@ -788,9 +786,9 @@ MAX_FACE_HOLES = 300
 grid, a face each (and a pierced tile's bottom likewise). OCCT's STEP reader heals each wire
 of a face against the whole face (``ShapeFix_IntersectionTool::FixSelfIntersectWire`` applies
 its context to the face once per wire), so its time grows as the holes times the face's edges:
-issue 35's 200 mm pierced tile, its top and bottom each one face of about 1,100 holes, took
-67 s to import; cut by four by four lines, 7.8 s. The seams show on the face in a CAD program,
-so a tile of up to about 100 mm (260 holes on issue 35's design) keeps its one face."""
+issue 35's 200 mm pierced tile, its top and bottom each one face of 1,133 holes, took 67.5 s
+to import; in cells, 12.3 s (CPU). The seams show on the face in a CAD program, so a tile of up
+to about 100 mm (259 holes on issue 35's design) keeps its one face."""
 
 
 def _cells_for_faces(layers) -> int:
