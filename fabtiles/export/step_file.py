@@ -150,11 +150,12 @@ class _Writer:
         return ref
 
     def vector(self, v, length: str) -> int:
-        """A ``VECTOR`` along ``v`` of ``length`` (a STEP REAL): the vertical edges of one height share one."""
-        key = (self.direction(v), length)
-        ref = self.vectors.get(key)
+        """A ``VECTOR`` along ``v`` (as :meth:`direction` takes it) of ``length`` (a STEP REAL): the
+        vertical edges of one height share one."""
+        text = v if isinstance(v, str) else _rows([v], DIRECTION_DECIMALS, unit=True)[0]
+        ref = self.vectors.get((text, length))
         if ref is None:
-            ref = self.vectors[key] = self.add("VECTOR('',#{},{})".format(*key))
+            ref = self.vectors[(text, length)] = self.add(f"VECTOR('',#{self.direction(text)},{length})")
         return ref
 
     def point(self, p) -> int:
@@ -223,7 +224,6 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
     units = _rows(d, DIRECTION_DECIMALS, unit=True)
     lengths = [t[1:-1] for t in _rows(np.sqrt(np.einsum("ij,ij->i", d, d))[:, None], LENGTH_DECIMALS)]
     arcs = brep.arc_rows()
-    vectors = {}
     for i, ((a, b), unit, ln, arc) in enumerate(zip(brep.edges.tolist(), units, lengths, arcs)):
         if arc[2] > 0:  # a counter-clockwise arc of a horizontal circle, its angle starting opposite its middle
             cx, cy, r = (float(v) for v in arc[:3])
@@ -231,9 +231,7 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
             place = w.placement((cx, cy, pts[a, 2]), (0.0, 0.0, 1.0), ref)
             curve = w.add(f"CIRCLE('',#{place},{_real(r)})")
         else:
-            vec = vectors.get((unit, ln))  # (the writer's vector(), inlined: once an edge, 85,000 on the sheet)
-            if vec is None:
-                vec = vectors[(unit, ln)] = w.vector(unit, ln)
+            vec = w.vector(unit, ln)
             curve = w.add(f"LINE('',#{cart[a]},#{vec})")
         if i in on_cylinders:
             pcurves = [_pcurve(w, surfaces[f], brep.faces[f], pts[a], arc) for f in on_cylinders[i]]

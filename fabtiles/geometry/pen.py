@@ -33,8 +33,10 @@ class PenLayer:
 
     @property
     def length_mm(self) -> float:
-        """The pen-down length: every stroke's length."""
-        return float(sum(np.hypot(*np.diff(p, axis=0).T).sum() for p in self.paths))
+        """The pen-down length: every stroke's length (the job time's path lengths, open paths)."""
+        from .job_time import path_lengths
+
+        return float(path_lengths(self.paths, closed=False).sum())
 
 
 @dataclass(frozen=True)

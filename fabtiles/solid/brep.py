@@ -285,19 +285,17 @@ def _piece_polygons(topo, k, xy):
     return out
 
 
-def _side_of_wall(pa, pb, side_of, xy, sides, whole=None):
+def _side_of_wall(pa, pb, side_of, xy, sides, whole):
     """The side a wall from point pa to pb runs along (same direction), or -1.
 
-    ``whole``: ``{(x0, y0, x1, y1): k}`` of the sides (a wall from corner to corner is one);
-    made from ``sides`` when not given (a wall at a time: the loop over the sides took 24 ms
-    of the 0.2 s ``table3-3`` STEP, whose walls are nearly all round holes far from any side).
+    ``whole``: ``{(x0, y0, x1, y1): k}`` of the sides (a wall from corner to corner is one), made
+    once: a loop over the sides for every wall took 3.96 s of issue 35's 100 mm circle tile's
+    4.7 s STEP (its circle outline has 240 sides).
     """
     ks = {int(side_of[pa]), int(side_of[pb])} - {-1}
     if len(ks) != 1:
         if ks or sides is None:
             return -1
-        if whole is None:
-            whole = {tuple(row): k for k, row in enumerate(np.asarray(sides, float).tolist())}
         # both ends corners: a whole side from corner to corner
         return whole.get((*xy[pa].tolist(), *xy[pb].tolist()), -1)
     (k,) = ks
