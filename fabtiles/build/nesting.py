@@ -248,8 +248,20 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
     report.stats.update(profile=profile.name, sheets=nesting.sheets, sheet_mm=[w, h], gap_mm=gap,
                         rotations=rotations, parts=len(parts), material_use=list(nesting.material_use()))
     labels = [(f"{profile.kind} {profile.name}: {d.name}", p.report) for (d, _), p in zip(designs, plans)]
-    stem = name if name is not None else designs[0][0].name
+    stem = name if name is not None else default_stem([d for d, _ in designs])
     return NestJob(NestedSheets(sheets, nesting, report), options[0], labels, designs, shapes, cut, stem)
+
+
+def default_stem(designs) -> str:
+    """The nested files' stem when none is given: the design's name when all parts are of one design,
+    else ``nest`` (a sheet holding several designs is named after none of them).
+
+    >>> from types import SimpleNamespace as D
+    >>> default_stem([D(name="rosette")]), default_stem([D(name="a"), D(name="b")])
+    ('rosette', 'nest')
+    """
+    names = {d.name for d in designs}
+    return names.pop() if len(names) == 1 else "nest"
 
 
 def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None, sheet_mm=None,
@@ -275,7 +287,7 @@ def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None,
     rotations, time_s, progress
         As :func:`~fabtiles.geometry.nest.nest` (``time_s`` default 5 s).
     name : str, optional
-        The files' stem; default the first design's name.
+        The files' stem; default :func:`default_stem`: the design's name, or ``nest`` for several.
     limits : Limits
         The work limits (segments, parts, time).
 

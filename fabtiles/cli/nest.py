@@ -64,7 +64,7 @@ def parse_sheet(text: str) -> tuple[float, float]:
               help="The packer's time budget (> 0); at least a second per sheet.")
 @click.option("--format", "formats", multiple=True, type=click.Choice(("dxf", "svg", "lbrn2")),
               help="Cutter format (repeatable); default: dxf.")
-@click.option("--name", help="The files' stem; default: the first design's name.")
+@click.option("--name", help="The files' stem; default: the design's name, or nest when there are several.")
 def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, formats, name):
     """Nest tiles of one or more designs onto sheets: as few sheets as the packer finds.
 
@@ -89,7 +89,10 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
     state: dict = {"done": 0, "bar": None}
 
     def progress(p):
-        # opened at the packer's first report, so an error before it is still one line on stderr
+        # a bar on a terminal only (elsewhere click would print its label as a stray line); opened at
+        # the packer's first report, so an error before it is still one line on stderr
+        if not sys.stderr.isatty():
+            return
         if state["bar"] is None:
             state["bar"] = click.progressbar(length=1000, label="nesting", file=sys.stderr,
                                              show_eta=False, show_percent=True).__enter__()

@@ -78,8 +78,8 @@ def test_nested_files_hold_every_part_once_moved_rigidly_inside_and_apart(design
         d = load_design(path)
         plans[d.name] = Models(prepare_tile(d), BuildOptions.of_design(d)).cut
     for k in range(n.sheets):
-        dxf = out / f"square-sheet-{k + 1}.dxf"
-        assert (out / f"square-sheet-{k + 1}.svg").is_file()
+        dxf = out / f"nest-sheet-{k + 1}.dxf"  # several designs: the files are named after none of them
+        assert (out / f"nest-sheet-{k + 1}.svg").is_file()
         outer = [shapely.Polygon(r) for r in rings(dxf, OUTER)]
         every = np.concatenate(rings(dxf))
         assert every.min() >= 0 and (every <= (150, 100)).all()  # every cut inside the sheet, kerf included
@@ -120,6 +120,17 @@ def test_the_command_writes_a_file_per_sheet_and_reports_each(designs, tmp_path)
     assert files == sorted(f"kit-sheet-{k}.{f}" for k in range(1, sheets + 1) for f in ("dxf", "lbrn2"))
     assert f"5 parts on {sheets} sheet" in result.output and "100 x 100 mm, gap 1.15 mm, rotate 180" in result.output
     assert "sheet 1: " in result.output and "material use " in result.output and " of cut" in result.output
+
+
+def test_the_files_are_named_after_the_one_design_or_nest_and_no_bar_off_a_terminal(designs, tmp_path):
+    """Sheets of one design are named after it, of several ``nest-sheet-<k>`` (not after the first);
+    off a terminal the progress bar prints nothing (its label would be a stray line)."""
+    result = run("nest", f"{designs[0]}:1", f"{designs[1]}:1", "-o", tmp_path / "two", "--time", "1")
+    assert result.exit_code == 0, result.output
+    assert [p.name for p in (tmp_path / "two").iterdir()] == ["nest-sheet-1.dxf"]
+    assert result.output.splitlines()[0] == f"wrote {tmp_path / 'two' / 'nest-sheet-1.dxf'}"
+    result = run("nest", f"{designs[1]}:2", "-o", tmp_path / "one", "--time", "1")
+    assert [p.name for p in (tmp_path / "one").iterdir()] == ["circle-sheet-1.dxf"]
 
 
 @pytest.mark.parametrize("args, match", [
@@ -189,7 +200,7 @@ def test_meerk40t_loads_a_nested_sheet_where_it_lies(designs, tmp_path):
     out = tmp_path / "out"
     result = nest_designs([(load_design(p), 2) for p in designs], out, ("dxf",), sheet_mm=(200, 150), time_s=1)
     assert result.nesting.sheets == 1
-    dxf = out / "square-sheet-1.dxf"
+    dxf = out / "nest-sheet-1.dxf"
     job = meerk40t(dxf, tmp_path)
     every = np.concatenate(rings(dxf))
     assert job["added"] == len(rings(dxf))
@@ -215,5 +226,5 @@ def test_the_public_nest_takes_files_and_designs(tmp_path):
                              name="b")
     result = ft.nest([small, (other, 2)], tmp_path / "out", sheet_mm=(200, 150), time_s=1)
     files = sorted(p.name for p in (tmp_path / "out").iterdir())
-    assert files == ["a-sheet-1.dxf"]
+    assert files == ["nest-sheet-1.dxf"]  # several designs: named after none of them
     assert len(result.nesting.placements) == 3  # one of a, two of b
