@@ -32,24 +32,45 @@ class Outcome:
 def outcome_of(key: str, result: BuildResult) -> Outcome:
     """An :class:`Outcome` for a successful build: its one line (files, findings per machine) and the findings.
 
-    The line counts each machine's findings once, whatever the formats:
-    ``"5 files, laser 0, printer 1 warning"``.
+    The line says which files were new and which replaced (as ``fabtiles build`` does) and, for
+    each machine, its findings by code and count, each counted once whatever the formats:
+    ``"replaced 5 files; laser: nothing found; printer: 1 finding (thin_wall 12)"``.
     """
-    n = len(result.paths)
     counts = [(label.split()[0], len(r.findings)) for label, r in result.models]
-    message = ", ".join([f"{n} file{'s' if n != 1 else ''}"] + [f"{machine} {_warnings(k)}" for machine, k in counts])
+    machines = [f"{label.split()[0]}: {_findings(r.findings)}" for label, r in result.models]
+    message = "; ".join([_files(len(result.paths), len(set(map(str, result.replaced))))] + machines)
     # each finding once, by the model it was found on (not once per file of that model)
     lines = [f"{label}: {f.code}: {f.message}" for label, r in result.models for f in r.findings]
     return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports), counts)
 
 
-def _warnings(n: int) -> str:
-    """``"0"``, ``"1 warning"``, ``"3 warnings"``.
+def _files(n: int, replaced: int) -> str:
+    """How many files were written new and how many replaced files that were there.
 
-    >>> _warnings(0), _warnings(1), _warnings(1200)
-    ('0', '1 warning', '1,200 warnings')
+    >>> _files(5, 0), _files(1, 1), _files(5, 3)
+    ('wrote 5 files', 'replaced 1 file', 'wrote 2 files, replaced 3')
     """
-    return "0" if n == 0 else f"{n:,} warning{'s' if n != 1 else ''}"
+    def files(k):
+        return f"{k} file{'s' if k != 1 else ''}"
+
+    if replaced == 0:
+        return f"wrote {files(n)}"
+    if replaced == n:
+        return f"replaced {files(n)}"
+    return f"wrote {files(n - replaced)}, replaced {replaced}"
+
+
+def _findings(findings) -> str:
+    """A machine's findings in a few words: ``nothing found``, or each code with its count.
+
+    >>> from fabtiles._report import Finding
+    >>> _findings([]), _findings([Finding("rounded_corner", "", 9476), Finding("thin_bridge", "", 12)])
+    ('nothing found', '2 findings (rounded_corner 9,476, thin_bridge 12)')
+    """
+    if not findings:
+        return "nothing found"
+    codes = ", ".join(f"{f.code} {f.count:,}" for f in findings)
+    return f"{len(findings)} finding{'s' if len(findings) != 1 else ''} ({codes})"
 
 
 def _figures(reports) -> dict:

@@ -21,8 +21,9 @@ def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, e
                    verbose: bool = False) -> list:
     """Run ``jobs`` with a progress bar on a terminal; print one line per outcome, in order.
 
-    The line is the status, the key, the files and the findings per machine
-    (``ok     samples/table3-3.toml: 5 files, laser 0, printer 1 warning``); with
+    The line is the status, the key, the files (new or replaced) and each machine's findings by
+    code and count (``ok     samples/table3-2.toml: wrote 3 files; laser: nothing found; printer:
+    1 finding (thin_wall 12)``); with
     ``verbose``, each finding follows on a line of its own. ``labels`` adds a text to
     a job's key in the report (a sweep's varied values); ``explain(outcome)`` words a
     failure (default: its message).
@@ -67,9 +68,10 @@ def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, e
 def command(design_files, outdir, jobs, scheduler, overrides, formats, verbose):
     """Build many designs in parallel; a failing design is reported and skipped.
 
-    One line per design: its status, files and the findings of each machine
-    (ok     samples/table3-3.toml: 5 files, laser 0, printer 1 warning); with -v,
-    each finding under it.
+    One line per design: its status, the files it wrote or replaced and each
+    machine's findings by code and count (ok     samples/table3-3.toml: wrote 5
+    files; laser: nothing found; printer: nothing found); with -v, each finding
+    under it.
 
     \b
     fabtiles batch samples/*.toml -o out/ --jobs 2
