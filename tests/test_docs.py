@@ -13,9 +13,10 @@ import pytest
 from fabtiles import _profiles, design
 from fabtiles.cli.main import cli
 
-ROOT = Path(__file__).resolve().parents[1]
-DOCS = sorted((ROOT / "docs").glob("*.md"))
-PAGES = [ROOT / "README.md", *DOCS]
+import doc_pages
+
+ROOT = doc_pages.ROOT
+PAGES = doc_pages.PAGES
 
 
 def text_of(*names) -> str:
@@ -131,18 +132,150 @@ def test_a_copy_of_a_profile_comes_with_the_command_that_makes_it():
     assert "fabtiles profile copy laser-3mm-plywood my-laser.toml" in text_of("profiles.md")
 
 
-def test_the_readme_tour_prints_the_figures_it_quotes(tmp_path, monkeypatch, capsys):
-    """The README's Python tour runs as shown (in an empty folder), and what its ``print`` lines print
-    holds the figures their comments quote (the laser job of the default export, its small holes
-    filled)."""
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    tour = readme[readme.index("## A tour"):]
-    block = tour[tour.index("```python\n") + len("```python\n"):]
-    block = block[:block.index("```")]
-    quoted = [q for line in block.splitlines() if line.lstrip().startswith("print(") and "#" in line
-              for q in re.findall(r'"([^"]+)"', line.split("#", 1)[1])]
-    assert quoted, "the tour's print lines quote no figures"
-    monkeypatch.chdir(tmp_path)
-    exec(compile(block, "README.md", "exec"), {})
-    printed = capsys.readouterr().out
-    assert [q for q in quoted if q not in printed] == [], printed
+# --- the docs run: every page's commands, shown outputs and snippets (tests/doc_pages.py) ---
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.name)
+def test_the_page_runs_as_shown(page, tmp_path):
+    """The page's commands run, in its order, in one fresh folder holding the samples; each exits as
+    the page says; each output the page shows is what was printed (``...`` where abridged); its
+    Python snippets run (doctests where they show values)."""
+    run = doc_pages.run_page(page, doc_pages.fresh_folder(tmp_path))
+    assert run.problems == [], "\n\n".join(run.problems)
+
+
+def test_every_command_not_run_is_named_and_still_in_the_docs():
+    """The commands the docs test does not run (they install, serve or need a cluster) are the ones
+    `doc_pages.NOT_RUN` lists by name, and each entry still names a command of the docs."""
+    commands = [c for page in PAGES for step in doc_pages.steps(page) for c, _ in step.commands]
+    assert [start for start in doc_pages.NOT_RUN if not any(c.startswith(start) for c in commands)] == []
+    snippets = {(page.name, block.strip().splitlines()[0]) for page in PAGES
+                for lang, block in doc_pages.BLOCK.findall(page.read_text(encoding="utf-8")) if lang == "python"}
+    assert set(doc_pages.SNIPPETS_NOT_RUN) <= snippets
+
+
+def test_the_readme_tour_quotes_figures_to_check():
+    """The README's tour is a snippet whose print lines quote figures (the runner checks them)."""
+    tour = [s for s in doc_pages.steps(ROOT / "README.md") if s.kind == "python"]
+    assert len(tour) == 1
+    assert re.search(r'^print\(.*#.*"[^"]*\d[^"]*"', tour[0].code, re.M)
+
+
+PLANTED = """# a page with planted mistakes
+
+```sh
+fabtiles presets --no-such-option
+```
+
+```sh
+fabtiles calibrate --profile laser-3mm-plywood -o card.svg
+```
+
+```
+wrote card.svg: test card 99 x 99 mm for laser profile laser-3mm-plywood (kerf 0.15 mm), 24 labelled features
+```
+
+```
+$ fabtiles calibrate --profile laser-3mm-plywood -o card.dxf
+wrote card.dxf: test card ... 24 labelled features
+...
+```
+
+```sh
+fabtiles check samples/table3-3.toml --set packing.radius=40 --set tile.size=60   # exits 1
+```
+
+```
+samples/table3-3.toml: laser profile laser-3mm-plywood, printer profile fdm-0.4mm
+...
+ok: nothing found
+```
+
+```python
+import fabtiles as ft
+ft.Star(n=2, radii=(1, 2))
+```
+
+```python
+>>> 1 + 1
+3
+```
+
+```
+a stray block
+```
+"""
+
+
+def test_the_runner_finds_planted_mistakes(tmp_path):
+    """A command that does not exist, an output line that differs, an output that goes on past the
+    block shown, a status other than the page's, a snippet that raises, a doctest that fails and a
+    stray block each fail; the abridged output that matches passes."""
+    page = tmp_path / "planted.md"
+    page.write_text(PLANTED, encoding="utf-8")
+    folder = tmp_path / "run"
+    folder.mkdir()
+    problems = doc_pages.run_page(page, doc_pages.fresh_folder(folder)).problems
+    text = "\n".join(problems)
+    assert "`fabtiles presets --no-such-option` exited 2, not 0" in text
+    assert "test card 99 x 99 mm" in text
+    assert "card.dxf" not in text  # the abridged transcript matches
+    assert "exited 0, not 1" in text
+    assert "'ok: nothing found'" not in text or "exited" in text
+    assert "the snippet raised" in text
+    assert "Expected:\n    3\nGot:\n    2" in text
+    assert "a plain ``` block that is not a command's output" in text
+    assert len(problems) == 6, text
+
+
+@pytest.mark.parametrize("shown,printed,ok", [
+    (["a", "b"], ["a", "b"], True),
+    (["a"], ["a", "b"], False),                 # output past the block
+    (["a", "...", "d"], ["a", "b", "c", "d"], True),
+    (["a", "...", "d"], ["a", "d"], True),      # ... stands for no line too
+    (["a ... c"], ["a b c"], True),
+    (["a ... c"], ["a b d"], False),
+    (["a", "c"], ["a", "b", "c"], False),       # abridged without saying so
+])
+def test_the_output_match(shown, printed, ok):
+    assert (doc_pages.mismatch(shown, printed) is None) == ok
+
+
+INLINE = re.compile(r"`(fabtiles [^`\n]+)`")
+
+
+def test_every_command_in_the_prose_names_a_command_and_its_options():
+    """A ``fabtiles ...`` written in the prose (not run: many are patterns, ``NAME``) names a command
+    that exists and only options that command has (``fabtiles build --preview`` would fail)."""
+    wrong = []
+    for page in PAGES:
+        text = doc_pages.BLOCK.sub("", page.read_text(encoding="utf-8"))
+        for command in INLINE.findall(text):
+            words = command.split()[1:]
+            group, path = cli, []
+            while words and hasattr(group, "commands") and words[0] in group.commands:
+                group = group.commands[words[0]]
+                path.append(words.pop(0))
+            if not path and words and not words[0].startswith("-"):
+                wrong.append(f"{page.name}: `{command}`: no command {words[0]!r}")
+                continue
+            opts = {o for p in group.params for o in getattr(p, "opts", ()) + getattr(p, "secondary_opts", ())}
+            opts |= {"--help"}
+            wrong += [f"{page.name}: `{command}`: no option {w.split('=')[0]!r}" for w in words
+                      if w.startswith("-") and w.split("=")[0] not in opts and w != "..."]
+    assert wrong == []
+
+
+def test_the_readmes_speed_figures_are_the_benchmarks_or_say_when_they_were_measured():
+    """The README's speeds are `benchmarks/results.json`'s (the 600 x 400 mm sheet, whole command),
+    and a figure not from there says the day it was measured."""
+    import json
+
+    readme = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
+    brief = readme[readme.index("Speed in brief"):]
+    results = json.loads((ROOT / "benchmarks" / "results.json").read_text())
+    sheet = next(s for s in results["scenarios"] if s["scenario"] == "sheet-600x400")
+    ends = sheet["end_to_end"]
+    assert (f"sheet of {sheet['segments']:,} segments writes its DXF in {ends['dxf end to end']:.2f} s, "
+            f"its relief STL in {ends['stl end to end']:.2f} s (`benchmarks/results.json`)") in brief
+    for m in re.finditer(r"[^;]*\d s\b[^;]*", brief.split(". ")[0]):
+        assert "results.json" in m.group(0) or re.search(r"measured .*\d{4}-\d\d-\d\d", m.group(0)), m.group(0)
