@@ -75,15 +75,17 @@ class JobEstimate:
             {} if self.travel_before_mm is None else {"travel_before_mm": round(self.travel_before_mm, 3)})
 
     def travel_line(self) -> str:
-        """The head's travel, and before the cut order shortened it.
+        """The head's travel between cuts, and what the cut order saved, in words a newcomer reads.
 
         >>> JobEstimate(travel_mm=20_300.0, travel_before_mm=26_285.0).travel_line()
-        'head travel 20.3 m (26.3 m in the order the contours were made, -23 %)'
+        'head travel between cuts: 20.3 m, 23 % less than the 26.3 m in the order the contours were drawn'
         """
-        line = f"head travel {self.travel_mm / 1000:.3g} m"
+        line = f"head travel between cuts: {self.travel_mm / 1000:.3g} m"
         if self.travel_before_mm:
-            cut = 100 * (self.travel_mm / self.travel_before_mm - 1)
-            line += f" ({self.travel_before_mm / 1000:.3g} m in the order the contours were made, {cut:+.0f} %)"
+            saved = 100 * (1 - self.travel_mm / self.travel_before_mm)
+            more_or_less = "less" if saved >= 0 else "more"
+            line += (f", {abs(saved):.0f} % {more_or_less} than the {self.travel_before_mm / 1000:.3g} m in the order "
+                     "the contours were drawn")
         return line
 
 
