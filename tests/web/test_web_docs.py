@@ -62,3 +62,22 @@ def test_the_default_radii_stated_are_the_apps_and_the_samples():
     assert f"with\nR = {web:g} mm" in PAGE or f"with R = {web:g} mm" in PAGE
     assert f"has R = {ours:g} mm" in PAGE
     assert f"`?radius={ours:g}`" in PAGE
+
+
+def test_the_3d_views_size_and_figures_stated_are_the_apps():
+    """The default tile's 3D view (web-app.md's table, the README) and its checks' filament line are
+    what the app answers: the GLB's kB and triangles, the grams and metres."""
+    import json
+
+    from fastapi.testclient import TestClient
+
+    client = TestClient(create_app())
+    view = client.get("/api/view.glb")
+    assert view.status_code == 200
+    triangles = sum(p["triangles"] for p in json.loads(view.headers["X-Fabtiles-Parts"]).values())
+    kb = f"{len(view.content) / 1000:.0f} kB"
+    assert re.search(rf"^\| default 150 mm square, relief \| [\d,]+ \| {kb} \| {triangles:,} \|$", PAGE, re.M), (kb, triangles)
+    readme = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
+    assert f"{triangles:,} triangles, {kb} for the 150 mm default tile" in readme
+    material = client.get("/api/checks").json()["material"]["line"]
+    assert f'("{material}",' in " ".join(PAGE.split())
