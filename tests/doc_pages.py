@@ -274,3 +274,35 @@ def run_page(page: Path, folder: Path) -> PageRun:
         problems += [f"{page.name}: the prose quotes {f!r}, which no command printed"
                      for f in prose_figures(page) if f not in everything]
     return PageRun(problems, printed, not_run)
+
+
+TIME = re.compile(r"(?<![\w.])\d[\d,]*(?:\.\d+)?\s?(?:s|ms)\b")
+"""A time in the prose: ``1.45 s``, ``104 ms``."""
+SETTING = re.compile(r"(at most|within|under|over|budget|target|limit|--time|time_s|up to|less than|more than|"
+                     r"below|above|[<>])\b[^.;]{0,20}$|^\W*(budget|limit)", re.I)
+"""Words that make a time a setting or a bound (``at most 10 s``, ``its 2 s budget``), not a measurement."""
+DATED = re.compile(r"\b20\d\d-\d\d-\d\d\b|results\.json")
+
+
+def undated_timings(page: Path) -> list[str]:
+    """The paragraphs of ``page`` (a table with the paragraph before it) that give a measured time
+    but neither the day it was measured nor `benchmarks/results.json` as its source."""
+    text = BLOCK.sub("\n\n", page.read_text(encoding="utf-8"))
+    # the tables benchmarks/run.py --readme writes from benchmarks/results.json
+    text = re.sub(r"<!-- benchmarks/run.py --readme: start -->.*?<!-- benchmarks/run.py --readme: end -->", "",
+                  text, flags=re.S)
+    units: list[str] = []
+    for para in re.split(r"\n\s*\n", text):
+        if para.lstrip().startswith("|") and units:
+            units[-1] += "\n" + para
+        else:
+            units.append(para)
+    found = []
+    for unit in units:
+        flat = " ".join(unit.split())
+        times = [m for m in TIME.finditer(flat)
+                 if not SETTING.search(flat[max(0, m.start() - 25):m.start()]) and not
+                 SETTING.search(flat[m.end():m.end() + 10])]
+        if times and not DATED.search(flat):
+            found.append(f"{page.name}: {[m.group(0) for m in times]} in: {flat[:100]}...")
+    return found

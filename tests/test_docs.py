@@ -280,3 +280,18 @@ def test_the_readmes_speed_figures_are_the_benchmarks_or_say_when_they_were_meas
             f"its relief STL in {ends['stl end to end']:.2f} s (`benchmarks/results.json`)") in brief
     for m in re.finditer(r"[^;]*\d s\b[^;]*", brief.split(". ")[0]):
         assert "results.json" in m.group(0) or re.search(r"measured .*\d{4}-\d\d-\d\d", m.group(0)), m.group(0)
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(ROOT)))
+def test_every_time_in_the_prose_says_where_it_comes_from(page):
+    """A measured time in the prose (``1.45 s``, ``104 ms``; not a setting or a bound such as
+    ``at most 10 s``) sits in a paragraph that names `benchmarks/results.json` or the day it was
+    measured (the tables `benchmarks/run.py --readme` writes come from results.json)."""
+    assert doc_pages.undated_timings(page) == []
+
+
+def test_the_timing_check_finds_an_undated_time(tmp_path):
+    page = tmp_path / "p.md"
+    page.write_text("It takes 1.45 s.\n\nAt most 10 s here.\n\nIt took 2.0 s (measured on 2026-12-04).\n")
+    assert [x.split(":")[0] for x in doc_pages.undated_timings(page)] == ["p.md"]
+    assert "1.45 s" in doc_pages.undated_timings(page)[0]
