@@ -36,7 +36,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 
-BLOCK = re.compile(r"^```(\w*)\n(.*?)^```\n", re.M | re.S)
+BLOCK = re.compile(r"^```(\w*)\n(.*?)^```\n", re.MULTILINE | re.DOTALL)
 
 NOT_RUN = {
     # the start of a command line -> why the docs test does not run it
@@ -115,7 +115,7 @@ def steps(page: Path) -> list[Step]:
             first = body.strip().splitlines()[0]
             if any(page.name == name and first.startswith(start) for name, start in SNIPPETS_NOT_RUN):
                 continue
-            out.append(Step("doctest" if re.search(r"^\s*>>> ", body, re.M) else "python", where, code=body))
+            out.append(Step("doctest" if re.search(r"^\s*>>> ", body, re.MULTILINE) else "python", where, code=body))
     return out
 
 
@@ -279,7 +279,7 @@ def run_page(page: Path, folder: Path) -> PageRun:
 TIME = re.compile(r"(?<![\w.])\d[\d,]*(?:\.\d+)?\s?(?:s|ms)\b")
 """A time in the prose: ``1.45 s``, ``104 ms``."""
 SETTING = re.compile(r"(at most|within|under|over|budget|target|limit|--time|time_s|up to|less than|more than|"
-                     r"below|above|[<>])\b[^.;]{0,20}$|^\W*(budget|limit)", re.I)
+                     r"below|above|[<>])\b[^.;]{0,20}$|^\W*(budget|limit)", re.IGNORECASE)
 """Words that make a time a setting or a bound (``at most 10 s``, ``its 2 s budget``), not a measurement."""
 DATED = re.compile(r"\b20\d\d-\d\d-\d\d\b|results\.json")
 
@@ -290,7 +290,7 @@ def undated_timings(page: Path) -> list[str]:
     text = BLOCK.sub("\n\n", page.read_text(encoding="utf-8"))
     # the tables benchmarks/run.py --readme writes from benchmarks/results.json
     text = re.sub(r"<!-- benchmarks/run.py --readme: start -->.*?<!-- benchmarks/run.py --readme: end -->", "",
-                  text, flags=re.S)
+                  text, flags=re.DOTALL)
     units: list[str] = []
     for para in re.split(r"\n\s*\n", text):
         if para.lstrip().startswith("|") and units:

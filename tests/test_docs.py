@@ -4,16 +4,14 @@ from __future__ import annotations
 
 import re
 from dataclasses import fields
-from pathlib import Path
 
 import click
+import doc_pages
 import numpy as np
 import pytest
 
 from fabtiles import _profiles, design
 from fabtiles.cli.main import cli
-
-import doc_pages
 
 ROOT = doc_pages.ROOT
 PAGES = doc_pages.PAGES

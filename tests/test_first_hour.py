@@ -9,7 +9,6 @@ from __future__ import annotations
 import re
 
 import pytest
-
 from doc_pages import BLOCK, ROOT, prose_figures, steps
 
 PAGES = ["first-cut.md", "first-print.md"]
