@@ -242,26 +242,36 @@ def test_the_output_match(shown, printed, ok):
 INLINE = re.compile(r"`(fabtiles [a-z-][^`\n]*)`")
 
 
+def prose_command_problems(name: str, text: str) -> list[str]:
+    """What is wrong with the ``fabtiles ...`` spans of ``text``'s prose: a command or an option
+    the CLI does not have."""
+    wrong = []
+    for command in INLINE.findall(doc_pages.BLOCK.sub("", text)):
+        words = command.split()[1:]
+        group, path = cli, []
+        while words and hasattr(group, "commands") and words[0] in group.commands:
+            group = group.commands[words[0]]
+            path.append(words.pop(0))
+        if not path and words and not words[0].startswith("-"):
+            wrong.append(f"{name}: `{command}`: no command {words[0]!r}")
+            continue
+        opts = {o for p in group.params for o in getattr(p, "opts", ()) + getattr(p, "secondary_opts", ())}
+        opts |= {"--help"}
+        wrong += [f"{name}: `{command}`: no option {w.split('=')[0]!r}" for w in words
+                  if w.startswith("-") and w.split("=")[0] not in opts and w != "..."]
+    return wrong
+
+
 def test_every_command_in_the_prose_names_a_command_and_its_options():
     """A ``fabtiles ...`` written in the prose (not run: many are patterns, ``NAME``) names a command
-    that exists and only options that command has (``fabtiles build --preview`` would fail)."""
-    wrong = []
-    for page in PAGES:
-        text = doc_pages.BLOCK.sub("", page.read_text(encoding="utf-8"))
-        for command in INLINE.findall(text):
-            words = command.split()[1:]
-            group, path = cli, []
-            while words and hasattr(group, "commands") and words[0] in group.commands:
-                group = group.commands[words[0]]
-                path.append(words.pop(0))
-            if not path and words and not words[0].startswith("-"):
-                wrong.append(f"{page.name}: `{command}`: no command {words[0]!r}")
-                continue
-            opts = {o for p in group.params for o in getattr(p, "opts", ()) + getattr(p, "secondary_opts", ())}
-            opts |= {"--help"}
-            wrong += [f"{page.name}: `{command}`: no option {w.split('=')[0]!r}" for w in words
-                      if w.startswith("-") and w.split("=")[0] not in opts and w != "..."]
-    assert wrong == []
+    that exists and only options that command has."""
+    assert [w for page in PAGES for w in prose_command_problems(page.name, page.read_text(encoding="utf-8"))] == []
+
+
+def test_the_prose_check_finds_a_missing_option_and_command():
+    text = "The preview (`fabtiles build --preview`), `fabtiles frob x`, `fabtiles build -o out`."
+    assert prose_command_problems("p.md", text) == [
+        "p.md: `fabtiles build --preview`: no option '--preview'", "p.md: `fabtiles frob x`: no command 'frob'"]
 
 
 def test_the_readmes_speed_figures_are_the_benchmarks_or_say_when_they_were_measured():
