@@ -252,8 +252,11 @@ def run_page(page: Path, folder: Path) -> PageRun:
                 problems += run_python(step, namespace)
             else:
                 out = ""
+                missing = False
                 for command, status in step.commands:
-                    if skipped(command):
+                    why = skipped(command)
+                    missing = missing or bool(why and why.endswith(PROGRAMS.get(command.split()[0], "\0")))
+                    if why or missing:  # after a missing program, the block's other commands need its files
                         not_run.append(command)
                         continue
                     done = run_command(command, folder)
@@ -262,7 +265,7 @@ def run_page(page: Path, folder: Path) -> PageRun:
                     if done.returncode != status:
                         problems.append(f"{step.where}: `{command}` exited {done.returncode}, not {status}:\n"
                                         f"{done.stdout[-3000:]}")
-                if step.shown is not None:
+                if step.shown is not None and not missing:
                     wrong = mismatch(step.shown, output_lines(out))
                     if wrong is not None:
                         problems.append(f"{step.where}: the page shows a line that was not printed there: "

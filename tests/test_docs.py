@@ -303,3 +303,21 @@ def test_the_timing_check_finds_an_undated_time(tmp_path):
     page.write_text("It takes 1.45 s.\n\nAt most 10 s here.\n\nIt took 2.0 s (measured on 2026-12-04).\n")
     assert [x.split(":")[0] for x in doc_pages.undated_timings(page)] == ["p.md"]
     assert "1.45 s" in doc_pages.undated_timings(page)[0]
+
+
+def test_a_missing_program_skips_its_block_unless_programs_are_required(tmp_path, monkeypatch):
+    """Without PrusaSlicer (and not in CI) its command and the rest of its block are not run, nor
+    their output checked; where programs are required, the command runs (and fails)."""
+    import real_programs
+
+    page = tmp_path / "p.md"
+    page.write_text("```sh\nprusa-slicer --info x.3mf\ngrep T x.gcode\n```\n\n```\nT0\n```\n", encoding="utf-8")
+    which = doc_pages.shutil.which
+    monkeypatch.setattr(doc_pages.shutil, "which", lambda name, *a, **k: None if name == "prusa-slicer" else which(name))
+    monkeypatch.setattr(real_programs, "REQUIRED", False)
+    (tmp_path / "a").mkdir()
+    run = doc_pages.run_page(page, doc_pages.fresh_folder(tmp_path / "a"))
+    assert run.problems == [] and run.not_run == ["prusa-slicer --info x.3mf", "grep T x.gcode"]
+    monkeypatch.setattr(real_programs, "REQUIRED", True)
+    (tmp_path / "b").mkdir()
+    assert doc_pages.run_page(page, doc_pages.fresh_folder(tmp_path / "b")).problems != []
