@@ -309,3 +309,37 @@ def undated_timings(page: Path) -> list[str]:
         if times and not DATED.search(flat):
             found.append(f"{page.name}: {[m.group(0) for m in times]} in: {flat[:100]}...")
     return found
+
+
+def toml_blocks(page: Path) -> list[tuple[str, str]]:
+    """The page's ```toml blocks: ``(page:line, text)``."""
+    text = page.read_text(encoding="utf-8")
+    return [(f"{page.name}:{text[:m.start()].count(chr(10)) + 2}", m.group(2))
+            for m in BLOCK.finditer(text) if m.group(1) == "toml"]
+
+
+def toml_problem(where: str, body: str) -> str | None:
+    """None when a page's TOML loads as what it shows: a profile (it has ``kind``), else a design,
+    its sections put in place of those of ``samples/table3-3.toml`` (a page shows the sections it
+    is about)."""
+    import tempfile
+    import tomllib
+
+    import tomli_w
+
+    from fabtiles import _profiles
+    from fabtiles.design import design_from_text
+
+    try:
+        shown = tomllib.loads(body)
+        if "kind" in shown:
+            with tempfile.TemporaryDirectory() as folder:
+                path = Path(folder) / "profile.toml"
+                path.write_text(body, encoding="utf-8")
+                _profiles.load_profile(str(path))
+        else:
+            design = tomllib.loads((ROOT / "samples" / "table3-3.toml").read_text(encoding="utf-8"))
+            design_from_text(tomli_w.dumps(design | shown), name="shown")
+    except Exception as error:  # noqa: BLE001 - the report names it
+        return f"{where}: {type(error).__name__}: {error}"
+    return None

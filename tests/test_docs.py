@@ -321,3 +321,14 @@ def test_a_missing_program_skips_its_block_unless_programs_are_required(tmp_path
     monkeypatch.setattr(real_programs, "REQUIRED", True)
     (tmp_path / "b").mkdir()
     assert doc_pages.run_page(page, doc_pages.fresh_folder(tmp_path / "b")).problems != []
+
+
+@pytest.mark.parametrize("where,body", [b for page in PAGES for b in doc_pages.toml_blocks(page)], ids=lambda x: x if ":" in x else "")
+def test_every_toml_the_docs_show_loads(where, body):
+    """A design's sections (over the sample's) or a profile, as the page shows them, load."""
+    assert doc_pages.toml_problem(where, body) is None
+
+
+def test_the_toml_check_finds_a_wrong_key():
+    assert "4.8.8" in doc_pages.toml_problem("p.md:1", '[packing]\nkind = "archimedean"\ntiling = "4.8.8"\n'
+                                             'edge = 14\n[packing.motifs]\n12 = "table3-1"\n')
