@@ -323,9 +323,9 @@ def toml_problem(where: str, body: str) -> str | None:
     its sections put in place of those of ``samples/table3-3.toml`` (a page shows the sections it
     is about)."""
     import tempfile
-    import tomllib
 
     import tomli_w
+    import tomllib
 
     from fabtiles import _profiles
     from fabtiles.design import design_from_text
