@@ -38,7 +38,8 @@ from .cut_order import path_orders
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate as job_estimate
 from .job_time import travel_mm
-from .laser_checks import check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer, fits_bed
+from .laser_checks import check_cut_pattern, check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer, \
+    fits_bed
 from .material import sheet
 from .narrow import fill_small_holes as _fill_small_holes
 from .tabs import check_tabs, tab_paths
@@ -354,7 +355,7 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
     paths: dict = {}
     groups, engrave_area, part = (), 0.0, region
     if mode == "pierced":
-        tool_filled = 0
+        designed, tool_filled = region, 0
         if kind.opens_holes:  # the part as the bit or the jet makes it: holes opened by its radius
             region, _, tool_filled = check_tool(region, profile, fill_small_holes=fill_small_holes, report=report)
             parts = shapely.get_parts(region)
@@ -369,6 +370,7 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
                 report.note(f"filled {filled:,} hole{'s' if filled != 1 else ''} narrower than min_hole_mm = "
                             f"{profile.min_hole_mm:g} mm of {profile.kind} profile {profile.name!r}")
         check_laser(region, outline, profile, stroke=stroke, report=report, validate=False)
+        check_cut_pattern(designed, region, outline, profile, stroke=stroke, report=report)
         report.raise_if_strict(profile.strict)
         paths["inner"], paths["outer"] = laser_contours(region, outline, kerf_mm=kerf, kerf_y_mm=kerf_y,
                                                         tolerance_mm=profile.tolerance_mm, validate=False)
