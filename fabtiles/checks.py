@@ -83,9 +83,9 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         for the laser files): ``CheckResult.job``. None when the tile cannot be cut
         (larger than the bed).
     """
-    from .geometry.laser_checks import check_engrave, check_fits_bed, check_laser
+    from .geometry.laser_checks import check_cut_pattern, check_engrave, check_fits_bed, check_laser
     from .geometry.narrow import fill_small_holes as fill
-    from .geometry.print_checks import check_print
+    from .geometry.print_checks import check_print, check_print_pattern
     from .geometry.print_checks import print_region as made_print_region
 
     laser = load_profile(laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
@@ -113,13 +113,18 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
             cut, more = fill(cut, laser.min_hole_mm, tolerance_mm=laser.tolerance_mm)
             filled += more
         check_laser(cut, outline, laser, stroke=tile.stroke, report=laser_report, validate=False)
+        check_cut_pattern(cut_region, cut, outline, laser, stroke=tile.stroke, report=laser_report)
     elif (laser_mode or laser.mode) == "engrave" and not cut_region.is_empty:
         check_engrave(cut_region, laser, laser_report)
     style = print_style or printer.style  # the print's region as its files hold it (an interlaced relief unthinned)
-    print_region, print_filled = made_print_region(region, outline, printer, style, fill_small_holes=fill_small_holes,
-                                                   flatten=not (getattr(tile, "interlace", False) and style == "relief"))
+    designed, _ = made_print_region(region, outline, printer, style,
+                                    flatten=not (getattr(tile, "interlace", False) and style == "relief"))
+    print_region, print_filled = made_print_region(designed, outline, printer, style, fill_small_holes=fill_small_holes,
+                                                   flatten=False)
     print_report = check_print(print_region, outline, printer, stroke=tile.stroke, style=print_style,
                                report=Report(path="", format="print"), **(heights or {}))
+    if print_filled:
+        check_print_pattern(designed, print_region, outline, printer, style, stroke=tile.stroke, report=print_report)
     estimate = _job(tile, cut_region, laser, laser_mode, fill_small_holes) if job and "bed_size" not in {
         f.code for f in laser_report.findings} else None
     material = _filament(print_region, outline, printer, print_style, heights) if job else None

@@ -151,8 +151,24 @@ def test_a_coloured_relief_takes_the_base_and_band_colours():
         model = Models(d.build_tile(), BuildOptions.of_design(d)).print
         parts[name] = {n: p.colour for n, p in model.parts.items()}
     pal = PALETTES["mamluk"]
-    assert parts["coloured"] == {"base": pal.base.linear, "pattern": pal.band.linear}
+    # named as a mosaic's parts are, by colour and what each holds
+    assert parts["coloured"] == {f"{pal.base.name} (base)": pal.base.linear,
+                                 f"{pal.band.name} (bands)": pal.band.linear}
     assert parts["plain"]["pattern"] != pal.band.linear  # no [colour]: the parts' own display colours
+
+
+@pytest.mark.parametrize("style, inlay", [("relief", False), ("deboss", True)])
+def test_a_coloured_relief_3mf_carries_its_colours_as_a_mosaic_does(tmp_path, style, inlay):
+    """In the 3MF: one part per colour, named by it, on extruders 1 and 2 (no display colours: docs/slicers.md)."""
+    from fabtiles.build import build_design
+    from fabtiles.export.threemf import read_3mf
+
+    output = f'[output]\nformats = ["3mf"]\nprint_style = "{style}"\ninlay = {str(inlay).lower()}\n'
+    design = design_from_text(BASE + output + '[colour]\nbase_colour = "navy"\nband_colour = "white"\n', name="c")
+    build_design(design, tmp_path)
+    parts = read_3mf(tmp_path / "c.3mf")
+    assert [(name, p.extruder) for name, p in parts.items()] == [("navy (base)", 1), ("white (bands)", 2)]
+    assert b"basematerials" not in (tmp_path / "c.3mf").read_bytes()
 
 
 def test_the_export_api_takes_colours(tmp_path):

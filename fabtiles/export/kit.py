@@ -40,8 +40,10 @@ def kit_paths(path) -> tuple[Path, Path]:
 
 
 def kit_files(plans: KitPlans, path) -> list:
-    """``[(path, plan), ...]``: the kit's files beside ``path`` and the plan each is written from."""
-    return [(p, getattr(plans, which)) for p, (_, which) in zip(kit_paths(path), KIT_FILES)]
+    """``[(path, plan), ...]``: the kit's files beside ``path`` and the plan each is written from (a kit
+    with no piece, its lattice alone: see :meth:`~fabtiles.geometry.cut_plan.KitPlans.files_of`)."""
+    kept = {suffix for suffix, _ in plans.files_of("")}
+    return [(p, getattr(plans, which)) for p, (suffix, which) in zip(kit_paths(path), KIT_FILES) if suffix in kept]
 
 
 def write_kit(path, *, region, outline, profile, inlay_fit_mm=None, inlay_base: str = "pierced", kerf_mm=None,

@@ -38,8 +38,10 @@ from .cut_order import path_orders
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .job_time import estimate as job_estimate
 from .job_time import travel_mm
-from .laser_checks import check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer, fits_bed
+from .laser_checks import check_cut_pattern, check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer, \
+    fits_bed
 from .material import sheet
+from .narrow import check_pattern_kept
 from .narrow import fill_small_holes as _fill_small_holes
 from .tabs import check_tabs, tab_paths
 
@@ -354,7 +356,7 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
     paths: dict = {}
     groups, engrave_area, part = (), 0.0, region
     if mode == "pierced":
-        tool_filled = 0
+        designed, tool_filled = region, 0
         if kind.opens_holes:  # the part as the bit or the jet makes it: holes opened by its radius
             region, _, tool_filled = check_tool(region, profile, fill_small_holes=fill_small_holes, report=report)
             parts = shapely.get_parts(region)
@@ -369,6 +371,7 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
                 report.note(f"filled {filled:,} hole{'s' if filled != 1 else ''} narrower than min_hole_mm = "
                             f"{profile.min_hole_mm:g} mm of {profile.kind} profile {profile.name!r}")
         check_laser(region, outline, profile, stroke=stroke, report=report, validate=False)
+        check_cut_pattern(designed, region, outline, profile, stroke=stroke, report=report)
         report.raise_if_strict(profile.strict)
         paths["inner"], paths["outer"] = laser_contours(region, outline, kerf_mm=kerf, kerf_y_mm=kerf_y,
                                                         tolerance_mm=profile.tolerance_mm, validate=False)
@@ -448,10 +451,13 @@ class KitPlans:
     """A coloured kit's pieces, one plan per face colour: ``((colour name, CutPlan), ...)``."""
 
     def files_of(self, fmt: str) -> list:
-        """``[(suffix, plan), ...]``: ``-lattice`` and ``-pieces``, or a pieces file per colour
-        (``-pieces-<colour>``) when the kit is coloured."""
+        """``[(suffix, plan), ...]``: ``-lattice``, then ``-pieces``, or with colours (a design's
+        ``[colour]``) a ``-pieces-<colour>`` per colour that has pieces. A kit with no piece (every
+        hole too small for one, filled) is its lattice alone: no empty pieces file."""
         if self.by_colour:
             return [("-lattice", self.lattice)] + [(f"-pieces-{name}", plan) for name, plan in self.by_colour]
+        if not any(layer.paths for layer in self.pieces.layers):
+            return [("-lattice", self.lattice)]
         return [("-lattice", self.lattice), ("-pieces", self.pieces)]
 
     @property
@@ -524,8 +530,18 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
                    f"(no straight cut inside the hole reaches {'them' if n != 1 else 'it'}) left as lattice and "
                    f"cut off {'their pieces' if n != 1 else 'its piece'} (at {where}); make the stroke narrower "
                    f"or the kerf smaller to keep {'them' if n != 1 else 'it'}", count=n, locations=kit.split)
-    report.note(f"pieces: {stats['pieces']:,} pieces of {kit.kinds} shapes, fit {fit:+g} mm, "
-                f"{kit.filled_holes:,} holes too small filled; laser job {pieces.estimate.line()}")
+    if len(kit.pieces):
+        report.note(f"pieces: {stats['pieces']:,} pieces of {kit.kinds} shapes, fit {fit:+g} mm, "
+                    f"{kit.filled_holes:,} holes too small filled; laser job {pieces.estimate.line()}")
+    else:
+        report.note(f"pieces: none, every one of the {kit.filled_holes:,} holes is too small for a piece (filled): "
+                    "the kit is its lattice alone, and no pieces file is written")
+    # a kit fills the holes too small for a piece: say so when that leaves little of the pattern
+    check_pattern_kept(report, region, kit.lattice, outline, limit_mm=profile.min_piece_or_default_mm,
+                       limit=f"the smallest piece ({profile.min_piece_or_default_mm:g} mm, min_piece_mm of laser "
+                             f"profile {profile.name!r})", stroke=stroke, min_stroke_mm=profile.min_feature_mm,
+                       tool="a profile with min_piece_mm <= {w} mm", tolerance_mm=profile.tolerance_mm)
+    report.raise_if_strict(profile.strict)
     by_colour = _pieces_by_colour(kit, colours, profile, lattice, kx, ky, tabs) if colours else ()
     if by_colour:
         report.stats["pieces_by_colour"] = {}

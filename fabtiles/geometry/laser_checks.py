@@ -13,6 +13,10 @@
 ``loose_part``
     Pieces of material not joined to the main piece of their tile (every piece but
     the largest inside each outline polygon): they fall out of the sheet.
+``filled_pattern``
+    Filling the small holes (or a router's bit not entering them) left less than
+    :data:`~fabtiles.geometry.narrow.PATTERN_KEPT` of the pattern's open area
+    (:func:`check_cut_pattern`, run by the cut plan on the region before and after).
 
 A tile larger than the profile's bed (either way round) is not a finding but a
 :class:`~fabtiles.FabricationError` (:func:`check_fits_bed`): the file could not be
@@ -37,7 +41,8 @@ from .._errors import FabricationError, ProfileError
 from .._profiles import LaserProfile, load_profile
 from .._report import Report, distinct
 from .contours import polygon_parts
-from .narrow import MAX_LOCATIONS, add_small_holes, hole_polygons, locations, narrow_places, small_hole_mask
+from .narrow import MAX_LOCATIONS, add_small_holes, check_pattern_kept, hole_polygons, locations, narrow_places, \
+    small_hole_mask
 
 
 def fits_bed(width: float, height: float, bed_mm) -> bool:
@@ -140,6 +145,34 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
                        sizes=area[loose][:MAX_LOCATIONS].round(3), worst=round(float(area[loose].max()), 3),
                        unit="mm^2")
     return report
+
+
+def check_cut_pattern(before, after, outline, profile, *, stroke=None, report: Report) -> float:
+    """Report ``filled_pattern`` when the cutter's part keeps too little of the pattern (returns the share kept).
+
+    ``before`` is the material as designed, ``after`` as the file holds it (its small
+    holes filled; a router's or waterjet's holes opened by its tool, those it cannot
+    enter left material). The limit is the profile's ``min_hole_mm``, or the tool's
+    diameter when that is wider; see :func:`~fabtiles.geometry.narrow.check_pattern_kept`.
+
+    >>> from shapely.geometry import box
+    >>> plate = box(0, 0, 20, 20).difference(box(4, 4, 5, 5))
+    >>> r = Report(path="", format="")
+    >>> check_cut_pattern(plate, box(0, 0, 20, 20), box(0, 0, 20, 20), load_profile("laser-3mm-plywood"),
+    ...                   stroke=2.0, report=r)
+    0.0
+    >>> print(r.findings[0].message)  # doctest: +ELLIPSIS
+    filling the holes narrower than min_hole_mm = 1.2 mm of laser profile 'laser-3mm-plywood' left none of ... or a profile with min_hole_mm <= 1 mm
+    """
+    kind = profile.cutter
+    m = profile.min_hole_mm
+    limit = f"min_hole_mm = {m:g} mm of {profile.kind} profile {profile.name!r}"
+    tool = "a profile with min_hole_mm <= {w} mm"
+    if kind.opens_holes and 2 * kind.tool_radius(profile) > m:
+        m = 2 * kind.tool_radius(profile)
+        limit, tool = kind.tool_name(profile), f"a {kind.tool} of {{w}} mm or narrower"
+    return check_pattern_kept(report, before, after, outline, limit_mm=m, limit=limit, stroke=stroke,
+                              min_stroke_mm=profile.min_feature_mm, tool=tool, tolerance_mm=profile.tolerance_mm)
 
 
 def check_layers(profile: LaserProfile) -> None:

@@ -154,6 +154,110 @@ def without_holes(region, parts, holes, owner, drop):
     return new[0] if len(new) == 1 and region.geom_type == "Polygon" else shapely.multipolygons(new)
 
 
+PATTERN_KEPT = 0.5
+"""The share of a pattern's open area a file must keep once its small holes are filled, else a
+``filled_pattern`` finding: below half, what is cut or printed no longer reads as the design.
+Measured as area, not as a count of holes: a pattern often has many small holes (where its bands
+cross the outline, the points of its stars) that hold little of its open area, and filling them
+changes little of what one sees (the samples keep 84 % to 100 % of their open area on the bundled
+profiles while keeping 14 % to 97 % of their holes)."""
+
+
+def check_pattern_kept(report, before, after, outline, *, limit_mm: float, limit: str, openings: str = "holes",
+                       stroke=None, min_stroke_mm: float = 0.0, scale: bool = True, tool: str = "",
+                       deboss: bool = False, tolerance_mm: float = 0.01) -> float:
+    """Report ``filled_pattern`` when filling small openings left less than :data:`PATTERN_KEPT` of the pattern.
+
+    The pattern's open area is the tile's area without material (``outline`` less
+    ``before``); the share kept is that area in ``after`` over that area in ``before``.
+    A ``deboss`` (``before`` and ``after`` are its grooves) loses pattern both ways: its
+    islands of plate too small become groove (the open area above), and its grooves too
+    narrow become plate (the grooves' area); the share is the smaller of the two. The
+    message tells how wide the openings that must stay open are (the narrowest of the
+    widest filled openings that, kept, bring the share back to :data:`PATTERN_KEPT`) and
+    what makes them as wide as ``limit_mm``: a stroke that much thinner (wider, for
+    grooves), kept at ``min_stroke_mm`` or more; the packing scaled up (``scale``: the
+    openings of a stroke ``s`` grow from ``w`` to ``k (w + s) - s``); ``tool`` (a format
+    with ``{w}``), a machine whose limit they meet.
+
+    Returns the share kept (1.0 when the pattern had no open area).
+
+    >>> from shapely.geometry import box
+    >>> from fabtiles._report import Report
+    >>> plate = box(0, 0, 20, 20).difference(box(4, 4, 5, 5)).difference(box(10, 10, 11, 11))
+    >>> filled, n = fill_small_holes(plate, 1.2)
+    >>> r = Report(path="", format="")
+    >>> check_pattern_kept(r, plate, filled, box(0, 0, 20, 20), limit_mm=1.2, limit="min_hole_mm = 1.2 mm",
+    ...                    stroke=2.0, min_stroke_mm=1.0, tool="a profile with min_hole_mm <= {w} mm")
+    0.0
+    >>> print(r.findings[0].message)
+    filling the holes narrower than min_hole_mm = 1.2 mm left none of the pattern (all 2 holes filled): to keep at least 50 % of the pattern's open area, the holes of 1 mm must be 1.2 mm wide or wider: a stroke of at most 1.8 mm (it is 2 mm), a packing at least 1.07x larger (its edge or radius), or a profile with min_hole_mm <= 1 mm
+    """
+    o_area, b_area = float(shapely.area(outline)), float(shapely.area(before))
+    # only a deboss's filling takes material (groove) away; elsewhere it only adds
+    gone = float(shapely.area(shapely.difference(before, after))) if deboss else 0.0
+    phases = [(o_area - b_area, float(shapely.area(after)) - b_area + gone, False)]
+    if deboss:
+        phases.append((b_area, gone, True))
+    shares = [(max(0.0, 1.0 - lost / area), area, grooves) for area, lost, grooves in phases
+              if area > tolerance_mm ** 2]
+    if not shares:
+        return 1.0
+    kept, open_before, grooves = min(shares, key=lambda x: x[0])
+    kept = min(kept, 1.0)
+    if kept >= PATTERN_KEPT:
+        return kept
+    if kept < 1e-9:
+        kept = 0.0
+    openings = "grooves" if grooves else openings
+    # the openings before, and those the filling closed (their inside is material now; plate, for grooves)
+    pieces = shapely.get_parts(before if grooves else shapely.difference(outline, before))
+    pieces = pieces[shapely.area(pieces) > tolerance_mm ** 2]
+    shapely.prepare(after)
+    inside = shapely.contains(after, shapely.point_on_surface(pieces))
+    filled = pieces[inside != grooves]
+    n, total = len(filled), len(pieces)
+    centres, widths = hole_widths(filled, tolerance_mm=tolerance_mm) if n else (np.empty(0, object), np.empty(0))
+    what = f"all {total:,} {openings}" if n == total else f"{n:,} of {total:,} {openings}"
+    area_of = "its grooves' area" if grooves else "the pattern's open area"
+    share = "none of the pattern" if kept == 0 else f"{100 * kept:.0f} % of {area_of}"
+    message = f"filling the {openings} narrower than {limit} left {share} ({what} filled)"
+    if n:
+        # the widest filled openings first, until they bring back enough area
+        order = np.argsort(-widths, kind="stable")
+        need = PATTERN_KEPT * open_before - kept * open_before
+        reach = np.searchsorted(np.cumsum(shapely.area(filled)[order]), need)
+        w = float(widths[order[min(reach, n - 1)]])
+        m = limit_mm
+        ways = []
+        if stroke is not None:
+            if grooves:
+                ways.append(f"a stroke of at least {_up(stroke + m - w):g} mm (it is {stroke:g} mm)")
+            elif stroke - (m - w) >= min_stroke_mm:
+                ways.append(f"a stroke of at most {_down(stroke - (m - w)):g} mm (it is {stroke:g} mm)")
+        if scale and not grooves:
+            s = stroke if stroke is not None else 0.0
+            ways.append(f"a packing at least {_up((m + s) / max(w + s, 1e-9)):g}x larger (its edge or radius)")
+        if tool:
+            ways.append(tool.format(w=f"{_down(w):g}"))
+        ways = ", ".join(ways[:-1]) + ", or " + ways[-1] if len(ways) > 1 else "".join(ways)
+        message += (f": to keep at least {100 * PATTERN_KEPT:.0f} % of {area_of}, the {openings} of {w:.3g} mm "
+                    f"must be {m:g} mm wide or wider: {ways}")
+    report.add("filled_pattern", message, count=n, locations=locations(centres), worst=round(100 * kept, 1),
+               unit="%", limit=100 * PATTERN_KEPT)
+    return kept
+
+
+def _up(x: float) -> float:
+    """``x`` rounded up to 0.01 (a float's last bit does not make 1.07 read 1.08)."""
+    return math.ceil(x * 100 - 1e-6) / 100
+
+
+def _down(x: float) -> float:
+    """``x`` rounded down to 0.01."""
+    return math.floor(x * 100 + 1e-6) / 100
+
+
 def neck_pieces(polygons: np.ndarray, neck_mm: float):
     """Each polygon cut where it narrows below ``neck_mm`` or touches itself at a point: ``(pieces, owner)``.
 

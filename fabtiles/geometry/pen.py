@@ -129,6 +129,6 @@ def pen_drawing(layers, *, bounds, pen_mm: float, stats=None, order: bool = True
         paths = [np.asarray(p, float) for p in paths if len(p) >= 2]
         if not paths:
             continue
-        ordered = order_paths({"score": paths})["score"] if order else paths
+        ordered = order_paths({"score": paths}, thorough=True)["score"] if order else paths
         out.append(PenLayer(name, colour, tuple(ordered)))
     return PenDrawing(tuple(out), tuple(float(v) for v in bounds), float(pen_mm), dict(stats or {}))

@@ -25,6 +25,11 @@
     error: the file may be meant for another printer).
 ``loose_part``
     Pierced style only: pieces of material not joined to the largest one.
+``filled_pattern``
+    ``fill_small_holes`` filled so many openings that less than
+    :data:`~fabtiles.geometry.narrow.PATTERN_KEPT` of the pattern's open area is left
+    (a deboss: of its grooves); :func:`check_print_pattern`, run on the region before
+    and after the filling.
 
 >>> from shapely.geometry import box
 >>> plate = box(0, 0, 300, 20)
@@ -46,8 +51,8 @@ import shapely
 from .._errors import FabricationError, ProfileError
 from .._profiles import PrinterProfile, load_profile
 from .._report import Report, distinct
-from .narrow import MAX_LOCATIONS, add_small_holes, hole_polygons, hole_widths, locations, narrow_places, \
-    neck_pieces, small_hole_mask, without_holes
+from .narrow import MAX_LOCATIONS, add_small_holes, check_pattern_kept, hole_polygons, hole_widths, locations, \
+    narrow_places, neck_pieces, small_hole_mask, without_holes
 from .contours import polygon_parts
 from .laser_checks import fits_bed
 
@@ -175,6 +180,33 @@ def print_region(region, outline, profile, style: str, *, fill_small_holes: bool
         return region, 0
     check_min_hole(profile, outline)
     return fill_print_holes(region, outline, profile, style)
+
+
+def check_print_pattern(before, after, outline, profile, style: str, *, stroke=None, report: Report) -> float:
+    """Report ``filled_pattern`` when ``fill_small_holes`` left too little of the print's pattern.
+
+    ``before`` and ``after`` are the region before and after :func:`fill_print_holes`: the
+    pattern's openings (a deboss's islands of plate among its grooves), and a deboss's
+    grooves, which are filled with plate when too narrow. Returns the share kept (see
+    :func:`~fabtiles.geometry.narrow.check_pattern_kept`).
+
+    >>> from shapely.geometry import box
+    >>> plate = box(0, 0, 20, 20).difference(box(4, 4, 4.5, 4.5))
+    >>> r = Report(path="", format="")
+    >>> check_print_pattern(plate, box(0, 0, 20, 20), box(0, 0, 20, 20), load_profile("fdm-0.4mm"), "relief",
+    ...                     stroke=1.0, report=r)
+    0.0
+    >>> print(r.findings[0].message)  # doctest: +ELLIPSIS
+    filling the openings narrower than min_hole_mm = 0.8 mm of printer profile 'fdm-0.4mm' left none of ... or a printer profile with min_hole_mm <= 0.5 mm (a finer nozzle)
+    """
+    profile = load_profile(profile, kind="printer")
+    deboss = style == "deboss"
+    return check_pattern_kept(report, before, after, outline, limit_mm=profile.min_hole_mm,
+                              limit=f"min_hole_mm = {profile.min_hole_mm:g} mm of printer profile {profile.name!r}",
+                              openings="islands of the plate" if deboss else "openings", stroke=stroke,
+                              min_stroke_mm=profile.min_wall_mm, deboss=deboss,
+                              tool="a printer profile with min_hole_mm <= {w} mm (a finer nozzle)",
+                              tolerance_mm=PRINT_TOLERANCE_MM)
 
 
 def check_min_hole(profile: PrinterProfile, outline) -> None:

@@ -61,7 +61,7 @@ def prepare_print(region, outline, profile, style, heights, stroke=None, *, fill
     profile's ``min_hole_mm`` filled when ``fill_small_holes``; ``report.stats["filled_holes"]``
     counts them). A strict profile with findings raises.
     """
-    from ..geometry.print_checks import check_print, print_region
+    from ..geometry.print_checks import check_print, check_print_pattern, print_region
 
     profile = load_profile(profile, kind="printer")
     stack = resolve_stack(profile, style, **heights)
@@ -70,8 +70,9 @@ def prepare_print(region, outline, profile, style, heights, stroke=None, *, fill
                              param="fill_small_holes")
     region, outline = check_shapes(region, outline)
     report = Report(path=str(path), format=fmt)
-    region, filled = print_region(region, outline, profile, stack.style, fill_small_holes=bool(fill_small_holes),
-                                  flatten=flatten)
+    designed, _ = print_region(region, outline, profile, stack.style, flatten=flatten)
+    region, filled = print_region(designed, outline, profile, stack.style, fill_small_holes=bool(fill_small_holes),
+                                  flatten=False)
     if fill_small_holes:
         report.stats["filled_holes"] = filled
         if filled:
@@ -80,6 +81,8 @@ def prepare_print(region, outline, profile, style, heights, stroke=None, *, fill
     check_print(region, outline, profile, stroke=stroke, style=stack.style, base_mm=stack.base,
                 relief_mm=stack.relief, pierced_mm=stack.pierced, deboss_mm=stack.deboss,
                 mosaic_inset_mm=stack.inset, report=report)
+    if filled:
+        check_print_pattern(designed, region, outline, profile, stack.style, stroke=stroke, report=report)
     report.raise_if_strict(profile.strict)
     return profile, stack, report, region
 

@@ -52,6 +52,11 @@ A print of one part takes extruder 1 whatever its name; the user can change any 
 
 OTHER = Material(1, (0.6, 0.6, 0.6))
 
+HOLDS = {"base": "base", "pattern": "bands", "plate": "base", "inlay": "bands"}
+"""What each part of a relief or deboss holds, in a coloured print's part names (``navy (base)``,
+``white (bands)``), the words a mosaic's parts use: the 3MF carries a print's colours by its
+parts' names and extruders (no display colours, docs/slicers.md)."""
+
 
 class PrintPart(NamedTuple):
     """One part of a print: its name, material and checked mesh."""
@@ -109,9 +114,13 @@ class PrintModel:
         for name, mesh in checked.items():
             material = PART_MATERIALS.get(name, OTHER)
             colour = material.colour
+            label = name
             if self.colours is not None:  # the design's colours: a relief's plate and bands, a deboss and its inlay
-                colour = (self.colours.band if name in ("pattern", "inlay") else self.colours.base).linear
-            out[name] = PrintPart(name, 1 if one else material.extruder, colour, mesh)
+                chosen = self.colours.band if name in ("pattern", "inlay") else self.colours.base
+                colour = chosen.linear
+                if not one and name in HOLDS:  # named as a mosaic's parts are: by colour and what it holds
+                    label = f"{chosen.name} ({HOLDS[name]})"
+            out[label] = PrintPart(label, 1 if one else material.extruder, colour, mesh)
         return out
 
     @cached_property

@@ -80,3 +80,40 @@ def test_an_uncoloured_kit_keeps_its_two_files(tmp_path):
     design = design_from_text(DESIGN.split("[colour]")[0], name="kit")
     build_design(design, tmp_path)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["kit-lattice.dxf", "kit-pieces.dxf"]
+
+
+@pytest.mark.parametrize("colour, files", [
+    ('[colour]\nby = "none"\n', ["kit-lattice.dxf", "kit-pieces-cobalt.dxf"]),
+    ('[colour]\nby = "none"\n[colour.faces]\nA = "teal"\n', ["kit-lattice.dxf", "kit-pieces-teal.dxf"]),
+])
+def test_any_colour_section_names_the_pieces_by_colour(tmp_path, colour, files):
+    """One rule: with a [colour] section, every pieces file is -pieces-<colour>, one class or many."""
+    design = design_from_text(DESIGN.split("[colour]")[0] + colour, name="kit")
+    build_design(design, tmp_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == files
+
+
+# every hole of this tile is narrower than 1.2 mm, so none is large enough for a piece (2.4 mm)
+NO_PIECES = design_toml(preset="table3-2", packing={"kind": "archimedean", "tiling": "3.3.3.3.3.3", "edge": 10.14},
+                        radius=None, size=[89.5, 89.5], stroke=2.0,
+                        output={"formats": ["dxf"], "laser_mode": "inlay"})
+
+
+@pytest.mark.parametrize("colour", ["", '[colour]\nby = "shape"\n', '[colour]\nby = "none"\n'])
+def test_a_kit_with_no_piece_writes_no_pieces_file(tmp_path, colour):
+    design = design_from_text(NO_PIECES + colour, name="kit")
+    build_design(design, tmp_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["kit-lattice.dxf"]
+    report = Models(design.build_tile(), BuildOptions.of_design(design)).cut.report
+    assert any("no pieces file is written" in n for n in report.stats["notes"])
+    assert [f.code for f in report.findings] == ["filled_pattern"]
+
+
+def test_the_kit_api_writes_no_empty_pieces_file(tmp_path):
+    from fabtiles.export.kit import write_kit
+
+    tile = design_from_text(NO_PIECES, name="kit").build_tile()
+    report = write_kit(tmp_path / "k.dxf", region=tile.region(), outline=tile.outline_shape(),
+                       profile="laser-3mm-plywood", stroke=2.0)
+    assert report.stats["files"] == [str(tmp_path / "k-lattice.dxf")]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["k-lattice.dxf"]

@@ -290,3 +290,80 @@ def test_meerk40t_burns_the_projects_beziers_as_the_dxfs_arcs(arc_files, tmp_pat
     a, b = np.concatenate(lb), np.concatenate(dx)
     assert len(lb) == len(dx)
     assert a.max(axis=0) - a.min(axis=0) == pytest.approx(b.max(axis=0) - b.min(axis=0), abs=0.05)
+
+
+
+def read_beziers(path) -> list:
+    """Every Path of a project as points along it: each straight line's end, and each Bezier (``B i j``:
+    vertex i's ``c0`` handle, vertex j's ``c1``) at 256 points, as a reader of the format draws it."""
+    number = r"(-?[0-9.]+)"
+    vertex = re.compile(rf"V{number} {number}(?:c0x{number}c0y{number}|c0x1)(?:c1x{number}c1y{number}|c1x1)")
+    t = np.linspace(0, 1, 257)[1:, None]
+    out = []
+    for s in ET.parse(path).getroot().findall("Shape"):
+        v = np.array([[np.nan if x is None else float(x) for x in m.groups()]
+                      for m in vertex.finditer(s.find("VertList").text)])
+        pts = [v[:1, :2]]
+        for kind, i, j in re.findall(r"([LB])(\d+) (\d+)", s.find("PrimList").text):
+            a, z = v[int(i)], v[int(j)]
+            if kind == "B":
+                assert not np.isnan(a[2:4]).any() and not np.isnan(z[4:6]).any()
+                pts.append((1 - t) ** 3 * a[:2] + 3 * (1 - t) ** 2 * t * a[2:4] + 3 * (1 - t) * t ** 2 * z[4:6]
+                           + t ** 3 * z[:2])
+            else:
+                pts.append(z[None, :2])
+        out.append(np.vstack(pts))
+    return out
+
+
+def dxf_exact_paths(path, sagitta_mm: float = 1e-5) -> list:
+    """Every DXF polyline's points, its arcs (bulges) at points on their circles close enough that the
+    chords between stand within ``sagitta_mm`` of them."""
+    from ezdxf.math import bulge_to_arc
+
+    out = []
+    for e in ezdxf.readfile(path).modelspace():
+        pts = list(e.get_points("xyb"))
+        ring = []
+        for i, (x, y, b) in enumerate(pts):
+            ring.append((x, y))
+            if b == 0 or (i == len(pts) - 1 and not e.closed):
+                continue
+            x2, y2, _ = pts[(i + 1) % len(pts)]
+            c, _, _, r = bulge_to_arc((x, y), (x2, y2), b)
+            sweep, start = 4 * np.arctan(b), np.arctan2(y - c[1], x - c[0])
+            k = max(8, int(np.ceil(abs(sweep) * r / np.sqrt(8 * sagitta_mm * r))))
+            a = start + sweep * np.arange(1, k) / k
+            ring += list(zip(c[0] + r * np.cos(a), c[1] + r * np.sin(a)))
+        if e.closed:
+            ring.append(ring[0])
+        out.append(np.array(ring))
+    return out
+
+
+def _farthest(points, path) -> float:
+    """The largest distance from any of ``points`` to the polyline ``path`` (a tree of its segments)."""
+    import shapely
+
+    segments = shapely.linestrings(np.stack([path[:-1], path[1:]], axis=1))
+    _, d = shapely.STRtree(segments).query_nearest(shapely.points(points), return_distance=True, all_matches=False)
+    return float(d.max())
+
+
+def test_a_large_circles_beziers_lie_on_the_dxfs_arcs_within_the_tolerance(tmp_path):
+    """A 140 mm circle tile: every Bezier, drawn, stands within a tenth of the profile's tolerance of the
+    DXF's exact arcs (a quarter turn as one cubic would stand 0.019 mm off on this radius), and every
+    point of the DXF's arcs within as much of the project's curves."""
+    from fabtiles.build import build_design
+    from fabtiles.design import load_design
+
+    sample = HERE.parents[1] / "samples" / "table3-3.toml"
+    design = load_design(sample, overrides=('tile.outline="circle"', "tile.size=140",
+                                            'output.formats=["dxf", "lbrn2"]'))
+    build_design(design, tmp_path)
+    drawn = read_beziers(tmp_path / "table3-3.lbrn2")
+    exact = dxf_exact_paths(tmp_path / "table3-3.dxf")
+    assert len(drawn) == len(exact)
+    assert max(np.ptp(p[:, 0]) for p in exact) == pytest.approx(140.15, abs=1e-3)  # the outline, kerf outside
+    worst = max(max(_farthest(ours, theirs), _farthest(theirs, ours)) for ours, theirs in zip(drawn, exact))
+    assert worst <= 0.1 * PLY.tolerance_mm + 2e-4  # a tenth of the tolerance, and the file's 4 decimals

@@ -8,8 +8,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, Polygon, box
 
-from fabtiles.geometry.arcs import (Curve, arc_runs, arc_runs_many, beziers, bulge_path, curves, fit_distance,
-                                    piece_lengths)
+from fabtiles.geometry.arcs import (Curve, arc_runs, arc_runs_many, beziers, bezier_error, bulge_path, curves,
+                                    fit_distance, piece_lengths)
 from hypothesis_scale import examples
 
 
@@ -242,6 +242,18 @@ def test_beziers_stay_within_a_tenth_of_the_tolerance_of_the_arc(r, start, sweep
         # turning the arc's way
         cross = (p3 - p0)[0] * (p1 - p0)[1] - (p3 - p0)[1] * (p1 - p0)[0]
         assert (cross < 0) == ccw
+
+
+@pytest.mark.parametrize("sweep", [0.1, 0.7, np.pi / 2, 2.5, np.pi])
+def test_bezier_error_bounds_the_cubics_distance_from_its_arc(sweep):
+    r = 70.0
+    h = 4 / 3 * np.tan(sweep / 4) * r
+    p0, p3 = np.array([r, 0.0]), r * np.array([np.cos(sweep), np.sin(sweep)])
+    p1, p2 = p0 + [0, h], p3 - h * np.array([-np.sin(sweep), np.cos(sweep)])
+    t = np.linspace(0, 1, 20001)[:, None]
+    pts = (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t ** 2 * p2 + t ** 3 * p3
+    largest = np.abs(np.hypot(*pts.T) - r).max()
+    assert 0.99 * bezier_error(sweep, r) <= largest <= bezier_error(sweep, r) + 1e-12  # a bound, within 1 %
 
 
 def _narrow_join(turn_deg: float, r: float = 0.6, segs: int = 3) -> np.ndarray:
