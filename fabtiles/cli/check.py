@@ -78,16 +78,24 @@ def command(design_file, output, overrides, deep):
     profile_of(design, "printer")
     tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
     out = design.output
-    class_lines = []
-    if design.colour.given or (out.print_style or profile_of(design, "printer").style) == "mosaic":
-        from .._report import face_class_lines
+    style = out.print_style or profile_of(design, "printer").style
+    models = None
+    if design.colour.given or style == "mosaic":
         from ..build.models import BuildOptions, Models
 
+        models = Models(tile, BuildOptions.of_design(design))
         try:  # the build's classes and colours; a letter the design lacks is refused before anything is printed
-            class_lines = face_class_lines(Models(tile, BuildOptions.of_design(design)).face_class_stats())
+            models.colouring
         except ParameterError as exc:
             raise ParameterError(f"{design_file}: {exc}", param=exc.param) from None
     result = check_design(design, tile, job=True)
+    class_lines = []
+    if models is not None:  # the classes as the print makes them: those filled with the bands print no colour
+        from .._report import face_class_lines
+
+        filled = models.filled_classes(result.print_region) if out.fill_small_holes else frozenset()
+        class_lines = [models.print_parts_line(result.print_region, style)]
+        class_lines += face_class_lines(models.face_class_stats(filled))
     laser = f"{cutter} profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
     if result.filled_holes:
         laser += f" ({result.filled_holes:,} small holes filled)"

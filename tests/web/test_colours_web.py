@@ -40,9 +40,10 @@ def test_faces_by_shape_in_the_palettes_colours(client):
 def test_faces_given_colours_override_the_palettes(client):
     data = client.get(f"/api/faces?{SMALL}&colour_by=shape&palette=iznik&face_B=navy&band_colour=%23ffd400"
                       f"&base_colour=black").json()
-    assert data["classes"][1]["colour"] == "#000080" and data["classes"][1]["name"] == "navy"
+    # navy and black are Iznik's own colours of those names (its base's navy, its black), not CSS's
+    assert data["classes"][1]["colour"] == "#1e2a5a" and data["classes"][1]["name"] == "navy"
     assert data["classes"][0]["colour"] == PALETTES["iznik"].faces[0].hex  # the others keep the palette's
-    assert data["band"] == {"colour": "#ffd400", "name": "ffd400"} and data["base"]["colour"] == "#000000"
+    assert data["band"] == {"colour": "#ffd400", "name": "ffd400"} and data["base"]["colour"] == "#1b1b1b"
 
 
 def test_faces_without_colours_is_one_class(client):
@@ -61,9 +62,9 @@ def test_faces_respects_the_web_limits():
 BAD_COLOURS = [
     ("colour_by=size", "colour_by", "'size' is not valid, must be one of: none, shape"),
     ("palette=persian", "palette", "'persian' is not valid, must be one of: zellige, iznik"),
-    ("band_colour=nope", "band_colour", "band_colour 'nope' is not a CSS colour name"),
+    ("band_colour=nope", "band_colour", "band_colour 'nope' is not a CSS or palette colour name"),
     ("base_colour=%2312345", "base_colour", "base_colour must be #rrggbb or a CSS colour name"),
-    ("colour_by=shape&face_A=reddish", "face_A", "face_A 'reddish' is not a CSS colour name (did you mean 'red'?)"),
+    ("colour_by=shape&face_A=reddish", "face_A", "face_A 'reddish' is not a CSS or palette colour name (did you mean 'red'?)"),
     ("colour_by=shape&face_Q=red", "face_Q", "face class 'Q' is not one of this design's: A, B, C, D"),
 ]
 
