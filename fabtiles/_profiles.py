@@ -221,7 +221,7 @@ def load_profile(profile, *, kind: str | None = None):
     else:
         if not isinstance(profile, (str, Path)):
             raise ProfileError(f"profile must be a profile name or a path to a .toml file, got {profile!r}")
-        text, source, name = _read(profile)
+        text, source, name = _read(profile, kind)
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
@@ -264,7 +264,42 @@ def kind_of(name: str) -> str:
     return load_profile(name).kind
 
 
-def _read(profile) -> tuple[str, str, str]:
+def _unknown_profile(name: str, kind: str | None) -> str:
+    """The message for a profile ``name`` not bundled, in a slot of ``kind`` (None: any).
+
+    The suggestion is among the slot's profiles, and among those of the kind the name
+    starts with (``laser-5mm-mdf`` is meant as a laser's); a near profile of another
+    kind the slot takes is named apart, with its kind.
+
+    >>> _unknown_profile("laser-5mm-mdf", "laser")  # doctest: +NORMALIZE_WHITESPACE
+    "profile 'laser-5mm-mdf' does not exist (did you mean 'laser-3mm-plywood'?; a router profile is near:
+    'router-6mm-mdf'); bundled profiles for this slot: laser-3mm-acrylic, laser-3mm-plywood (laser),
+    router-3.175mm-plywood, router-6mm-mdf (router), waterjet-1mm-aluminium (waterjet); or give the path of a
+    .toml file"
+    >>> _unknown_profile("laser-3mm-plywod", "printer")
+    "profile 'laser-3mm-plywod' does not exist; bundled printer profiles: fdm-0.4mm, fdm-0.6mm; or give the path of a .toml file"
+    """
+    slot = bundled_profiles(kind) if kind is not None else bundled_profiles()
+    kinds = {n: kind_of(n) for n in slot}
+    typed = name.split("-", 1)[0]
+    meant = [n for n in slot if kinds[n] == typed] if typed in kinds.values() else list(slot)
+    hints = [did_you_mean(name, meant)]
+    other = did_you_mean(name, [n for n in slot if n not in meant])
+    if other:
+        near = other.removeprefix("did you mean ").rstrip("?")
+        hints.append(f"a {kinds[near.strip(chr(39))]} profile is near: {near}")
+    hint_text = f" ({'; '.join(h for h in hints if h)})" if any(hints) else ""
+    by_kind = {}
+    for n in slot:
+        by_kind.setdefault(kinds[n], []).append(n)
+    if len(by_kind) > 1:
+        listed = f"bundled profiles{' for this slot' if kind else ''}: " + ", ".join(f"{', '.join(v)} ({k})" for k, v in by_kind.items())
+    else:
+        listed = f"bundled {kind + ' ' if kind else ''}profiles: {', '.join(slot)}"
+    return f"profile {name!r} does not exist{hint_text}; {listed}; or give the path of a .toml file"
+
+
+def _read(profile, kind: str | None = None) -> tuple[str, str, str]:
     text_form = str(profile)
     looks_like_path = isinstance(profile, Path) or text_form.endswith(".toml") or "/" in text_form or "\\" in text_form
     if looks_like_path:
@@ -275,12 +310,7 @@ def _read(profile) -> tuple[str, str, str]:
             raise ProfileError(f"cannot read profile file {str(path)!r}: {exc}") from None
     names = bundled_profiles()
     if text_form not in names:
-        hint = did_you_mean(text_form, names)
-        hint_text = f" ({hint})" if hint else ""
-        raise ProfileError(
-            f"profile {text_form!r} does not exist{hint_text}; bundled profiles: {', '.join(names)}; "
-            "or give the path of a .toml file"
-        )
+        raise ProfileError(_unknown_profile(text_form, kind))
     res = resources.files("fabtiles.profiles") / f"{text_form}.toml"
     return res.read_text(encoding="utf-8"), f"profiles/{text_form}.toml", text_form
 

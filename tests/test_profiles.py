@@ -80,8 +80,21 @@ def test_bad_profiles_name_file_and_key(tmp_path, text, match):
 
 
 def test_unknown_bundled_profile_suggests_and_lists():
-    with pytest.raises(ft.ProfileError, match=r"profile 'laser-3mm-plywod' does not exist \(did you mean 'laser-3mm-plywood'\?\); bundled profiles: fdm-0.4mm"):
+    with pytest.raises(ft.ProfileError, match=r"profile 'laser-3mm-plywod' does not exist \(did you mean 'laser-3mm-plywood'\?\); bundled profiles: fdm-0.4mm, fdm-0.6mm \(printer\), laser-3mm-acrylic"):
         load_profile("laser-3mm-plywod")
+
+
+def test_an_unknown_profile_is_matched_among_the_slots_kind():
+    # meant as a laser's: a laser profile is suggested, the router's near name said apart with its kind
+    with pytest.raises(ft.ProfileError, match=r"profile 'laser-5mm-mdf' does not exist \(did you mean "
+                                              r"'laser-3mm-plywood'\?; a router profile is near: 'router-6mm-mdf'\); "
+                                              r"bundled profiles for this slot: laser-3mm-acrylic, laser-3mm-plywood "
+                                              r"\(laser\), router-3.175mm-plywood, router-6mm-mdf \(router\)"):
+        load_profile("laser-5mm-mdf", kind="laser")
+    # a printer slot names no cutter, however near
+    with pytest.raises(ft.ProfileError, match=r"profile 'laser-3mm-plywod' does not exist; bundled printer "
+                                              r"profiles: fdm-0.4mm, fdm-0.6mm; or give the path"):
+        load_profile("laser-3mm-plywod", kind="printer")
 
 
 def test_unreadable_file(tmp_path):
