@@ -268,8 +268,8 @@ def _unknown_profile(name: str, kind: str | None) -> str:
     """The message for a profile ``name`` not bundled, in a slot of ``kind`` (None: any).
 
     The suggestion is among the slot's profiles, and among those of the kind the name
-    starts with (``laser-5mm-mdf`` is meant as a laser's); a near profile of another
-    kind the slot takes is named apart, with its kind.
+    starts with (``laser-5mm-mdf`` is meant as a laser's); a profile of another kind
+    the slot takes, nearer than those, is named apart, with its kind.
 
     >>> _unknown_profile("laser-5mm-mdf", "laser")  # doctest: +NORMALIZE_WHITESPACE
     "profile 'laser-5mm-mdf' does not exist (did you mean 'laser-3mm-plywood'?; a router profile is near:
@@ -283,11 +283,17 @@ def _unknown_profile(name: str, kind: str | None) -> str:
     kinds = {n: kind_of(n) for n in slot}
     typed = name.split("-", 1)[0]
     meant = [n for n in slot if kinds[n] == typed] if typed in kinds.values() else list(slot)
-    hints = [did_you_mean(name, meant)]
-    other = did_you_mean(name, [n for n in slot if n not in meant])
-    if other:
-        near = other.removeprefix("did you mean ").rstrip("?")
-        hints.append(f"a {kinds[near.strip(chr(39))]} profile is near: {near}")
+    import difflib
+
+    def closest(candidates):
+        near = difflib.get_close_matches(name, candidates, n=1)
+        return (near[0], difflib.SequenceMatcher(None, name, near[0]).ratio()) if near else (None, 0.0)
+
+    mine, mine_score = closest(meant)
+    other, other_score = closest([n for n in slot if n not in meant])
+    hints = [f"did you mean {mine!r}?" if mine else ""]
+    if other and other_score > mine_score:  # nearer than any of the kind meant: said apart, with its kind
+        hints.append(f"a {kinds[other]} profile is near: {other!r}")
     hint_text = f" ({'; '.join(h for h in hints if h)})" if any(hints) else ""
     by_kind = {}
     for n in slot:
