@@ -269,7 +269,7 @@ def _unknown_profile(name: str, kind: str | None) -> str:
 
     The suggestion is among the slot's profiles, and among those of the kind the name
     starts with (``laser-5mm-mdf`` is meant as a laser's); a profile of another kind
-    the slot takes, nearer than those, is named apart, with its kind.
+    the slot takes, as near as those, is named apart, with its kind.
 
     >>> _unknown_profile("laser-5mm-mdf", "laser")  # doctest: +NORMALIZE_WHITESPACE
     "profile 'laser-5mm-mdf' does not exist (did you mean 'laser-3mm-plywood'?; a router profile is near:
@@ -292,7 +292,7 @@ def _unknown_profile(name: str, kind: str | None) -> str:
     mine, mine_score = closest(meant)
     other, other_score = closest([n for n in slot if n not in meant])
     hints = [f"did you mean {mine!r}?" if mine else ""]
-    if other and other_score > mine_score:  # nearer than any of the kind meant: said apart, with its kind
+    if other and other_score >= mine_score:  # as near as any of the kind meant: said apart, with its kind
         hints.append(f"a {kinds[other]} profile is near: {other!r}")
     hint_text = f" ({'; '.join(h for h in hints if h)})" if any(hints) else ""
     by_kind = {}
