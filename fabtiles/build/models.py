@@ -202,9 +202,16 @@ class Models:
         if o.kit:
             raise ParameterError("a sheet of inlay kits is not laid out; write the kit of one tile (drop --sheet "
                                  "and --copies) or choose laser_mode = \"pierced\"", param="laser_mode")
-        return plan_cut(region, outline, profile=o.cutter, centrelines=centrelines, mode=o.laser_mode,
+        plan = plan_cut(region, outline, profile=o.cutter, centrelines=centrelines, mode=o.laser_mode,
                         dxf_version=o.dxf_version, kerf_mm=o.kerf_mm, fill_small_holes=o.fill_small_holes,
                         stroke=self.tile.stroke, tab_mm=o.tab_mm, tabs_per_part=o.tabs_per_part)
+        if self.sheet is not None:  # how many tiles, which the files' summary does not show otherwise
+            n = len(self.sheet.offsets)
+            bed = " x ".join(f"{v:g}" for v in o.cutter.bed_mm)
+            used = " x ".join(f"{v:.1f}" for v in self.sheet.size)
+            plan.report.note(f"laid {n} {'tile' if n == 1 else 'tiles'} on the {bed} mm bed of {o.cutter.kind} "
+                             f"profile {o.cutter.name!r} ({used} mm used)")
+        return plan
 
     # ------------------------------------------------------------------ the colours
 
