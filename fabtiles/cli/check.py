@@ -72,7 +72,7 @@ def command(design_file, output, overrides, deep):
     if output is not None and Path(output).suffix.lower() != ".svg":
         raise ParameterError(f"the overlay (-o) must be an .svg file, got {output!r}")
     design = load_design(design_file, overrides=overrides)
-    from ..design import profile_of
+    from ..design import design_notes, profile_of
 
     cutter = profile_of(design, "laser").kind  # an unknown profile is refused before any geometry
     profile_of(design, "printer")
@@ -102,6 +102,8 @@ def command(design_file, output, overrides, deep):
     printer = f"printer profile {out.printer_profile or DEFAULT_PRINTER_PROFILE}"
     if result.print_filled_holes:
         printer += f" ({result.print_filled_holes:,} small holes filled)"
+    for line in design_notes(design):  # what the checked tile has that the file does not say (a seamless fit)
+        click.echo(f"fabtiles: note: {line}", err=True)
     click.echo(f"{design_file}: {laser}, {printer}")
     if result.job is not None:
         click.echo(f"  {cutter} job: {result.job.line()}")
