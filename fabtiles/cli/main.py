@@ -117,7 +117,8 @@ def _register_optional_commands():
     """Commands defined in their own modules (imported lazily by click when run)."""
     import importlib
 
-    for module in ("build", "nest", "batch", "sweep", "serve", "check", "calibrate", "profile", "plot", "inkscape"):
+    for module in ("new", "build", "nest", "batch", "sweep", "serve", "check", "calibrate", "profile", "plot",
+                   "inkscape"):
         try:
             mod = importlib.import_module(f"{__package__}.{module}")
         except ModuleNotFoundError as exc:
