@@ -173,7 +173,9 @@ class PrinterProfile:
     relief_mm: float = 1.2
     pierced_mm: float = 3.0
     deboss_mm: float = 0.8
-    style: str = "relief"
+    print_style: str = "relief"
+    """The print's style unless a design or call gives one: the design key ``[output] print_style``,
+    one name for both (a profile's older ``style`` key still loads, with a note)."""
     bed_mm: tuple[float, float] = (256.0, 256.0)
     strict: bool = False
     filament_density_g_cm3: float = 1.24
@@ -362,6 +364,8 @@ def _parse(data: dict, source: str, name: str):
     if not isinstance(section, dict):
         raise ProfileError(f"{source}: [{kind}] must be a table")
     allowed = list(cutter.keys) if cutter else [f.name for f in fields(cls) if f.name not in ("name", "description")]
+    if cutter is None and "style" in section:
+        section = _renamed_style(section, source)
     _unknown(source, f"{kind}.", section, allowed)
     for key in cutter.required if cutter else ():
         if key not in section:
@@ -381,8 +385,8 @@ def _parse(data: dict, source: str, name: str):
         elif key == "inlay_fit_mm":
             values[key] = schema_key("output.inlay_fit_mm").check(value, name=full, prefix=f"{source}: ",
                                                                  error=ProfileError, param=full, note=False)
-        elif key in ("mode", "style", "dxf_version"):
-            choices = {"mode": cutter.modes if cutter else LASER_MODES, "style": PRINT_STYLES,
+        elif key in ("mode", "print_style", "dxf_version"):
+            choices = {"mode": cutter.modes if cutter else LASER_MODES, "print_style": PRINT_STYLES,
                        "dxf_version": DXF_VERSIONS}[key]
             if value not in choices:
                 hint = did_you_mean(value, choices)
@@ -398,6 +402,20 @@ def _parse(data: dict, source: str, name: str):
         values["kind"] = kind
         values.update(cutter.fixed)  # a router's file holds the part contour: no kerf; the bit decides the holes
     return cls(name=name, description=description, **values)
+
+
+def _renamed_style(section: dict, source: str) -> dict:
+    """A printer section with its older ``style`` key read as ``print_style`` (the design key's name),
+    with a :class:`~fabtiles.FabtilesDeprecationWarning` saying the new name; both keys is an error."""
+    import warnings
+
+    from ._errors import FabtilesDeprecationWarning
+
+    if "print_style" in section:
+        raise ProfileError(f"{source}: printer.style and printer.print_style are one setting; keep print_style")
+    warnings.warn(f"{source}: printer.style is now printer.print_style (the design key's name); rename it, "
+                  f"the old name will stop loading", FabtilesDeprecationWarning, stacklevel=4)
+    return {("print_style" if k == "style" else k): v for k, v in section.items()}
 
 
 def _parse_layers(section, source) -> LaserLayers:

@@ -117,7 +117,7 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         check_laser(cut, outline, laser, stroke=tile.stroke, report=laser_report, validate=False)
     elif (laser_mode or laser.mode) == "engrave" and not cut_region.is_empty:
         check_engrave(cut_region, laser, laser_report)
-    style = print_style or printer.style  # the print's region as its files hold it (an interlaced relief unthinned)
+    style = print_style or printer.print_style  # the print's region as its files hold it (an interlaced relief unthinned)
     print_region, print_filled = made_print_region(region, outline, printer, style, fill_small_holes=fill_small_holes,
                                                    flatten=not (getattr(tile, "interlace", False) and style == "relief"))
     print_report = check_print(print_region, outline, printer, stroke=tile.stroke, style=print_style,

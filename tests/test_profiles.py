@@ -59,7 +59,7 @@ def test_profiles_are_frozen():
         ('kind = "laser"\n[laser]\nstrict = "yes"\n', r"p.toml: laser.strict must be true or false"),
         ('kind = "laser"\n[laser]\nmode = "etch"\n', r"p.toml: laser.mode = 'etch' is not valid, must be one of: pierced, score, engrave"),
         ('kind = "laser"\n[laser]\ndxf_version = "R14"\n', r"laser.dxf_version = 'R14' is not valid \(did you mean 'R12'\?\), must be one of: R12, R2000"),
-        ('kind = "printer"\n[printer]\nstyle = "emboss"\n', r"printer.style = 'emboss' is not valid \(did you mean 'deboss'\?\), must be one of: relief, pierced, deboss"),
+        ('kind = "printer"\n[printer]\nprint_style = "emboss"\n', r"printer.print_style = 'emboss' is not valid \(did you mean 'deboss'\?\), must be one of: relief, pierced, deboss"),
         ('kind = "printer"\n[printer]\nbase_mm = -2\n', r"printer.base_mm must be > 0, got -2"),
         ('kind = "laser"\n[layers]\nscore = { name = "S", color = 300 }\n', r"layers.score.color must be an AutoCAD Color Index 1..255, got 300"),
         ('kind = "laser"\n[layers]\nscore = { name = "S", colour = 3 }\n', r"unknown key layers.score.'colour' \(did you mean 'color'\?\)"),
@@ -128,3 +128,28 @@ def test_printer_min_hole_given_default_and_off(tmp_path):
     given = load_profile(write(tmp_path, 'kind = "printer"\n[printer]\nnozzle_mm = 0.4\nmin_hole_mm = 0.6\n'))
     assert given.min_hole_mm == 0.6
     assert load_profile(write(tmp_path, 'kind = "printer"\n[printer]\nmin_hole_mm = 0\n')).min_hole_mm == 0.0
+
+
+def test_a_printers_old_style_key_loads_with_a_note_naming_print_style(tmp_path):
+    from fabtiles._errors import FabtilesDeprecationWarning
+
+    path = write(tmp_path, 'kind = "printer"\n[printer]\nstyle = "deboss"\n')
+    with pytest.warns(FabtilesDeprecationWarning, match=r"p.toml: printer.style is now printer.print_style"):
+        assert load_profile(path).print_style == "deboss"
+    both = write(tmp_path, 'kind = "printer"\n[printer]\nstyle = "deboss"\nprint_style = "relief"\n')
+    with pytest.raises(ft.ProfileError, match=r"printer.style and printer.print_style are one setting; keep "
+                                              r"print_style"):
+        load_profile(both)
+
+
+def test_the_cli_prints_the_renamed_key_as_one_note(tmp_path):
+    from click.testing import CliRunner
+
+    from fabtiles.cli.main import cli
+
+    path = tmp_path / "old.toml"
+    path.write_text('kind = "printer"\n[printer]\nstyle = "pierced"\n')
+    result = CliRunner().invoke(cli, ["profile", "show", str(path)])
+    assert result.exit_code == 0, result.output
+    assert result.stderr == (f"fabtiles: note: {path}: printer.style is now printer.print_style (the design "
+                             f"key's name); rename it, the old name will stop loading\n")

@@ -346,7 +346,7 @@ class Models:
         o = self.options
         region, dips = self.print_region
         self._material(region)
-        style = o.print_style or o.printer.style
+        style = o.print_style or o.printer.print_style
         given = self.coloured
         model = print_model(region, self.tile.outline_shape(), profile=o.printer, style=o.print_style,
                             stroke=self.tile.stroke, fill_small_holes=o.fill_small_holes, inlay=o.inlay,

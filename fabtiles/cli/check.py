@@ -78,7 +78,7 @@ def command(design_file, output, overrides, deep):
     profile_of(design, "printer")
     tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
     out = design.output
-    style = out.print_style or profile_of(design, "printer").style
+    style = out.print_style or profile_of(design, "printer").print_style
     models = None
     if design.colour.given or style == "mosaic":
         from ..build.models import BuildOptions, Models
