@@ -352,11 +352,12 @@ class Models:
                             stroke=self.tile.stroke, fill_small_holes=o.fill_small_holes, inlay=o.inlay,
                             dips=dips, colours=self.colouring if given or style == "mosaic" else None,
                             **o.heights)
+        if style != "mosaic" and not given:
+            return model
         filled = self.filled_classes(model.region) if o.fill_small_holes else frozenset()
         if style == "mosaic":  # the parts are made lazily: they take the classes left open by the print's filling
             model.mosaic = self.mosaic_specs(filled)
-        if style == "mosaic" or given:
-            model.report.stats["face_classes"] = self.face_class_stats(filled)
+        model.report.stats["face_classes"] = self.face_class_stats(filled)
         return model
 
     def model(self, family: str):

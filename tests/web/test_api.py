@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 
 from fabtiles._limits import Limits
 from fabtiles.web.app import create_app

@@ -3,7 +3,7 @@ palettes, and a bad colour named by its parameter."""
 
 import pytest
 
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 
 from fabtiles._colour import PALETTES
 from fabtiles._limits import Limits

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 
 from fabtiles._limits import WEB_LIMITS
 from fabtiles.design import load_design
