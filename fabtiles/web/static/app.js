@@ -303,14 +303,18 @@ async function refresh() {
   if (!res.ok) {
     const body = await res.json().catch(() => ({ error: res.statusText, field: null }));
     showError(body.field, body.error);
+    notShown(body.error);
     return;
   }
   const svg = await res.text();
   $("preview").src = "data:image/svg+xml;charset=utf-8," + encodeURIComponent(svg);
+  $("preview").hidden = false;
+  $("preview-error").hidden = true;
   showMarks(svg);
   $("preview").dataset.version = String(mine);
   showError(null, "");
   window.fabtilesDesign = String(q);  // the 3D view (view3d.js) follows every good design
+  window.fabtilesInvalid = null;
   document.dispatchEvent(new CustomEvent("fabtiles:design", { detail: String(q) }));
   const kit = state.laser_mode === "inlay";
   $("kit-box").hidden = !kit;
@@ -341,6 +345,23 @@ async function refresh() {
   $("material").textContent = data.material
     ? `Print material: ${data.material.line} (the print time is the slicer's to tell)` : "";
   $("job").dataset.version = String(mine);
+}
+
+// An invalid design: what is wrong, said where the picture, the 3D view and the checks would be (the
+// picture of the last good design stays, under the message; before any, there is none to show).
+function notShown(message) {
+  const note = $("preview-error");
+  note.textContent = `${$("preview").getAttribute("src") ? "Not updated" : "No picture"}: ${message}`;
+  note.hidden = false;
+  if (!$("preview").getAttribute("src")) $("preview").hidden = true;
+  const li = document.createElement("li");
+  li.className = "error";
+  li.textContent = `Not checked: ${message}`;
+  $("checks").replaceChildren(li);
+  $("job").textContent = "";
+  $("material").textContent = "";
+  window.fabtilesInvalid = message;  // for the 3D view, if its module loads after this
+  document.dispatchEvent(new CustomEvent("fabtiles:invalid", { detail: message }));
 }
 
 // The marks of the preview's findings, copied into #marks (an SVG laid over the
