@@ -134,6 +134,31 @@ def parse_colour(value, *, param: str = "colour", palette=None) -> Colour:
                          param=param)
 
 
+def palette_names(palette_name: str) -> dict:
+    """``{name: "#rrggbb"}`` of every palette colour name a design of ``palette_name`` reads (its own
+    names, another palette's, ``"iznik.cobalt"``), as :func:`parse_colour` reads them: what a page
+    resolves a typed name by (a CSS name it knows itself).
+
+    >>> names = palette_names("iznik")
+    >>> names["white"], names["lapis"], names["zellige.cobalt"], "turquoise" in palette_names("mamluk")
+    ('#f5f1e8', '#26428b', '#1d4e89', False)
+    """
+    import webcolors
+
+    pal = palette(palette_name)
+    out = {}
+    for p in PALETTES.values():
+        for c in _colours_of(p):
+            for name in (c.name, f"{p.name}.{c.name}"):
+                try:
+                    found = parse_colour(name, palette=pal)
+                except ParameterError:
+                    continue  # a name of several palettes, not this one's: only its qualified form reads
+                if name not in webcolors.names("css3") or _named(pal, name) is not None:
+                    out[name] = found.hex
+    return out
+
+
 def _colours_of(pal) -> tuple:
     """A palette's colours: band, base, then the faces'."""
     return (pal.band, pal.base, *pal.faces)

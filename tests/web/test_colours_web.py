@@ -22,7 +22,8 @@ def test_faces_by_shape_in_the_palettes_colours(client):
     assert r.status_code == 200, r.text
     data = r.json()
     iznik = PALETTES["iznik"]
-    assert set(data) == {"band", "base", "classes"}
+    assert set(data) == {"band", "base", "classes", "plain", "names"}
+    assert data["names"]["navy"] == iznik.base.hex  # the names the page resolves as the server does
     assert data["band"] == {"colour": iznik.band.hex, "name": iznik.band.name}
     assert data["base"] == {"colour": iznik.base.hex, "name": iznik.base.name}
     classes = data["classes"]
@@ -84,3 +85,16 @@ def test_the_preview_fills_the_faces_in_the_palettes_colours(client):
         assert f'class="face-{letter}"' in svg and f'fill="{colour}"' in svg
     plain = client.get(f"/api/preview.svg?{SMALL}").text
     assert 'class="face-' not in plain  # no colours asked for: the plain picture
+
+
+def test_a_design_given_no_colours_says_so_and_what_the_pictures_show(client):
+    from fabtiles.solid.print_model import PART_MATERIALS
+
+    plain = client.get(f"/api/faces?{SMALL}").json()["plain"]
+    assert plain["band"] == {"colour": "#1f3b73", "name": "ink"} and plain["face"]["colour"] == "#ffffff"
+    # the plate as the 3D view draws it: the base material's linear colour in sRGB
+    linear = [int(plain["base"]["colour"][i:i + 2], 16) / 255 for i in (1, 3, 5)]
+    linear = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in linear]
+    assert linear == pytest.approx(PART_MATERIALS["base"].colour, abs=0.005)
+    assert client.get(f"/api/preview.svg?{SMALL}").headers["X-Fabtiles-Coloured"] == "false"
+    assert client.get(f"/api/preview.svg?{SMALL}&colour_by=shape").headers["X-Fabtiles-Coloured"] == "true"

@@ -307,6 +307,8 @@ async function refresh() {
     return;
   }
   const svg = await res.text();
+  const nowColoured = res.headers.get("X-Fabtiles-Coloured") === "true";
+  if (nowColoured !== coloured) { coloured = nowColoured; showColours(); }
   $("preview").src = "data:image/svg+xml;charset=utf-8," + encodeURIComponent(svg);
   $("preview").hidden = false;
   $("preview-error").hidden = true;
@@ -396,6 +398,9 @@ function choose(li, keep = false) {
 // class. The classes and the palette's colours do not depend on the colours chosen, so the list is asked
 // for without them, and again only when something else changes.
 let facesInfo = null, facesKey = null, facesSeq = 0;
+// Whether the pictures are in the design's colours (the preview says so); else they show the plain ink
+// and plate, and so do the pickers.
+let coloured = false;
 
 function classesQuery() {
   const q = query();
@@ -418,8 +423,11 @@ async function refreshFaces() {
   return gone.length > 0;
 }
 
-// A colour as #rrggbb, what a colour picker takes (a link may give a CSS name: "navy").
+// A colour as #rrggbb, what a colour picker takes (a link may give a name: a palette's, read in the design's
+// palette first as the server reads it, else CSS's: "navy").
 function hexOf(colour) {
+  const named = facesInfo && facesInfo.names && facesInfo.names[String(colour).trim().toLowerCase()];
+  if (named) return named;
   const ctx = document.createElement("canvas").getContext("2d");
   ctx.fillStyle = "#000000";
   ctx.fillStyle = colour;
@@ -429,15 +437,16 @@ function hexOf(colour) {
 // The pickers show the colour chosen, else the palette's; each "palette's" button is enabled once a colour is chosen.
 function showColours() {
   const palettes = facesInfo || { band: { colour: "#ffffff" }, base: { colour: "#000000" }, classes: [] };
+  const plain = !coloured && palettes.plain;  // no colours given: what the pictures show
   for (const k of COLOUR_KEYS) {
-    const own = palettes[k.replace("_colour", "")];
+    const own = plain ? plain[k.replace("_colour", "")] : palettes[k.replace("_colour", "")];
     $(k).value = state[k] ? hexOf(state[k]) : own ? own.colour : "#000000";
     document.querySelector(`.reset[data-reset="${k}"]`).disabled = !state[k];
   }
   const box = $("face-classes");
   box.innerHTML = "";
   for (const c of palettes.classes) {
-    const chosen = state.faces[c.letter], colour = chosen ? hexOf(chosen) : c.colour;
+    const chosen = state.faces[c.letter], colour = chosen ? hexOf(chosen) : plain ? plain.face.colour : c.colour;
     const row = document.createElement("div");
     row.className = "face-row";
     row.dataset.letter = c.letter;
