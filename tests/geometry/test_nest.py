@@ -57,6 +57,19 @@ def test_thirty_parts_of_three_shapes_on_two_sheets():
     assert sum(n.material_use()) == pytest.approx(sum(s.area for _, s in parts) / 240_000, abs=1e-3)
 
 
+def test_each_sheets_parts_lie_in_its_corner():
+    """A lone tile at the sheet's corner, not half-way up its edge; every sheet's block of parts too."""
+    n = nest([("one", HEX)], sheet_mm=(400, 300), gap_mm=1, time_s=1)
+    x0, y0, _, _ = n.outlines[0].bounds
+    assert (x0, y0) == pytest.approx((0, 0), abs=1e-9)
+    parts = [(f"sq{k}", box(0, 0, 100, 100)) for k in range(5)]
+    n = nest(parts, sheet_mm=(250, 250), gap_mm=1, time_s=2)
+    check_nesting(n, parts, 1)
+    for k in range(n.sheets):
+        corner = np.min([n.outlines[i].bounds[:2] for i in n.on_sheet(k)], axis=0)
+        assert corner == pytest.approx((0, 0), abs=1e-9)
+
+
 def test_a_part_with_holes_is_its_outer_boundary_and_the_dict_form():
     frame = box(0, 0, 50, 50).difference(box(10, 10, 40, 40))
     n = nest({"frame": frame, "small": box(0, 0, 10, 10)}, sheet_mm=(70, 52), gap_mm=1, time_s=1)
