@@ -145,6 +145,6 @@ def face_class_lines(classes) -> list[str]:
         what = c.get("description") or "face"
         line = f"face class {c['letter']}: {c['count']:,} x {what}, {c['area_mm2']:,.1f} mm^2"
         if c.get("filled"):
-            line += ", filled with the bands (too small to print)"
+            line += ", filled with the bands (too small to make)"
         out.append(line + (f", {c['colour']}" if c.get("colour") else ""))
     return out

@@ -188,7 +188,14 @@ class Models:
                             stroke=self.tile.stroke, colours=self.kit_colours() if self.coloured else (),
                             tab_mm=o.tab_mm, tabs_per_part=o.tabs_per_part)
             if self.coloured:
-                kit.report.stats["face_classes"] = self.face_class_stats()
+                from ..geometry.kit_nesting import class_letters
+
+                # a class none of whose faces became a piece (all too small: filled) is cut in no wood
+                classes = self.face_classes
+                cut = set(class_letters(kit.kit.holes, classes.faces, classes.labels,
+                                        [c.letter for c in classes.classes]))
+                filled = frozenset(c.letter for c in classes.classes if c.letter not in cut)
+                kit.report.stats["face_classes"] = self.face_class_stats(filled)
                 kit.report.note(f"lattice in {self.colouring.band.name} (the band colour)")
             if (o.inlay_pieces or "registration") == "nested":
                 from ..geometry.kit_nesting import class_letters, nest_kit

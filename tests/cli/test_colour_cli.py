@@ -26,8 +26,8 @@ def test_check_lists_the_face_classes_with_their_colours():
     # C and D are narrower than the printer's min_hole_mm: filled with the bands, in no colour of their own
     assert lines == ["face class A: 108 x concave octagon, 3,035.9 mm^2, cobalt",
                      "face class B: 23 x 24-gon, 1,606.0 mm^2, turquoise",
-                     "face class C: 28 x 6-point star, 8.4 mm^2, filled with the bands (too small to print)",
-                     "face class D: 212 x kite, 4.5 mm^2, filled with the bands (too small to print)"]
+                     "face class C: 28 x 6-point star, 8.4 mm^2, filled with the bands (too small to make)",
+                     "face class D: 212 x kite, 4.5 mm^2, filled with the bands (too small to make)"]
     assert "  print: 4 parts, one filament each: navy (base), white (bands), cobalt (A), turquoise (B)\n" in \
         result.output
 
@@ -89,7 +89,7 @@ def test_a_mosaic_build_writes_a_part_per_colour(tmp_path):
     # zellige's fourth colour is its base's black, but class D is filled with the bands: in no part
     assert re.search(r"\(black \(base\) [0-9.]+ g, white \(bands\) [0-9.]+ g, cobalt \(A, B\) [0-9.]+ g\)",
                      material)
-    assert "face class D: 62 x kite, 1.3 mm^2, filled with the bands (too small to print)" in result.output
+    assert "face class D: 62 x kite, 1.3 mm^2, filled with the bands (too small to make)" in result.output
 
 
 def test_a_letter_the_design_lacks_is_one_line_exit_2(tmp_path):
@@ -139,3 +139,12 @@ def test_an_inset_not_below_the_relief_is_one_line_exit_2(tmp_path):
     design.write_text(SMALL.replace('print_style = "mosaic"', 'print_style = "mosaic"\nmosaic_inset_mm = -0.5'))
     result = CliRunner().invoke(cli, ["build", str(design), "-o", str(tmp_path / "out")])
     assert result.exit_code == 2 and "mosaic_inset_mm must be a finite number >= 0" in result.output
+
+
+def test_a_kits_classes_of_no_piece_are_listed_as_filled(tmp_path):
+    result = run("build", SAMPLE, "-o", tmp_path / "kit", "--set", "output.laser_mode=inlay", "--format", "svg")
+    assert result.exit_code == 0, result.output
+    assert "face class A: 108 x concave octagon, 3,035.9 mm^2, cobalt" in result.output
+    assert "face class C: 28 x 6-point star, 8.4 mm^2, filled with the bands (too small to make)" in result.output
+    assert sorted(p.name for p in (tmp_path / "kit").iterdir()) == [
+        "mosaic-iznik-lattice.svg", "mosaic-iznik-pieces-cobalt.svg", "mosaic-iznik-pieces-turquoise.svg"]
