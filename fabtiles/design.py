@@ -490,7 +490,7 @@ def _fit_lines(key: str, asked: float, fit, t) -> tuple[str, ...]:
         lines.append(f"packing.seamless: {key} {asked:g} mm fitted to {fit.radius:.5g} mm "
                      f"({fit.repeats[0]} period{'s' if fit.repeats[0] != 1 else ''} across the "
                      f"{fit.size[0]:g} mm {across})")
-    w, h = (t.size, t.size) if not isinstance(t.size, (tuple, list)) else t.size
+    h = t.size[1] if isinstance(t.size, (tuple, list)) else t.size
     if abs(fit.size[1] - h) > 1e-9:
         lines.append(f"packing.seamless: tile height {h:g} mm moved to {fit.size[1]:.6g} mm "
                      f"({fit.size[1] - h:+.5g} mm, {fit.repeats[1]} whole period{'s' if fit.repeats[1] != 1 else ''} up)")

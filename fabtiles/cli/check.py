@@ -85,7 +85,7 @@ def command(design_file, output, overrides, deep):
 
         models = Models(tile, BuildOptions.of_design(design))
         try:  # the build's classes and colours; a letter the design lacks is refused before anything is printed
-            models.colouring
+            _ = models.colouring
         except ParameterError as exc:
             raise ParameterError(f"{design_file}: {exc}", param=exc.param) from None
     result = check_design(design, tile, job=True)

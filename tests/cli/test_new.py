@@ -33,7 +33,7 @@ def test_the_starter_builds_as_written_with_no_warning(tmp_path):
 def test_the_starters_colour_section_builds_once_uncommented(tmp_path):
     design = tmp_path / "c.toml"
     run("new", design)
-    text = re.sub(r"^# (?=\[colour|by |palette |A )", "", design.read_text(), flags=re.M)
+    text = re.sub(r"^# (?=\[colour|by |palette |A )", "", design.read_text(), flags=re.MULTILINE)
     text = text.replace('# print_style = "mosaic"', 'print_style = "mosaic"')
     design.write_text(text)
     d = load_design(design)
