@@ -148,3 +148,10 @@ def test_a_kits_classes_of_no_piece_are_listed_as_filled(tmp_path):
     assert "face class C: 28 x 6-point star, 8.4 mm^2, filled with the bands (too small to make)" in result.output
     assert sorted(p.name for p in (tmp_path / "kit").iterdir()) == [
         "mosaic-iznik-lattice.svg", "mosaic-iznik-pieces-cobalt.svg", "mosaic-iznik-pieces-turquoise.svg"]
+
+
+def test_a_coloured_relief_says_its_parts_in_their_colours():
+    result = run("check", SAMPLE, "--set", "output.print_style=relief")
+    assert "  print: 2 parts (navy (base), white (pattern)), 2 filaments\n" in result.output
+    result = run("check", SAMPLE, "--set", "output.print_style=pierced")
+    assert "  print: 1 part (white (pattern)), 1 filament\n" in result.output
