@@ -4,9 +4,10 @@ A design's ``[colour]`` section (``docs/colours.md``) gives the band's colour, t
 base's and one per face class (by letter), over a named palette's defaults.
 Colours are compared by value: classes given the same colour share one material
 (one filament, one wood), so the number of materials is the number of distinct
-colours. A colour is ``#rrggbb`` or a CSS colour name (``"navy"``), parsed with
-``webcolors`` (the CSS3 names); it is named in file names and parts by its
-palette name, its CSS name, or its hex digits.
+colours. A colour is ``#rrggbb``, a palette's colour name (``"cobalt"``, read in the
+design's palette first) or a CSS colour name (``"navy"``, parsed with ``webcolors``);
+it is named in file names and parts by its palette name, its CSS name, or its hex
+digits.
 
 >>> parse_colour("Navy")
 Colour(hex='#000080', name='navy')
@@ -60,17 +61,37 @@ class Colour:
         return tuple(c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in self.srgb)
 
 
-def parse_colour(value, *, param: str = "colour") -> Colour:
-    """``value`` (``#rrggbb`` or a CSS colour name) as a :class:`Colour`; a :class:`ParameterError` otherwise.
+PART_COLOURS = ("band", "base")
+"""The values a face class may take to join the bands' part or the base's: ``B = "band"``."""
 
-    A hex value that is a CSS colour's takes its name (``#000080`` is ``navy``).
+
+def parse_colour(value, *, param: str = "colour", palette=None) -> Colour:
+    """``value`` as a :class:`Colour`; a :class:`ParameterError` otherwise.
+
+    ``value`` is ``#rrggbb``, a colour name of the design's ``palette`` (a
+    :class:`Palette` or its name: in ``iznik``, ``"cobalt"`` is ``#1e4fa0``), a CSS
+    colour name, or a name of one other palette (``"lapis"``) or of a palette
+    named first (``"iznik.cobalt"``). A name the design's palette has means the
+    palette's colour, so a name the summary prints can be typed back. A hex value
+    takes the palette's name of it, else the CSS name, else its hex digits. Without
+    a palette, a name any palette has is accepted (its value is settled by the
+    design's palette, :func:`colouring`).
+
+    >>> parse_colour("white", palette="iznik"), parse_colour("#1e4fa0", palette="iznik").name
+    (Colour(hex='#f5f1e8', name='white'), 'cobalt')
+    >>> parse_colour("mamluk.lapis"), parse_colour("bole", palette="zellige").hex
+    (Colour(hex='#26428b', name='lapis'), '#b8322a')
     """
     import webcolors
 
     if isinstance(value, Colour):
         return value
+    pal = palette if isinstance(palette, Palette) or palette is None else PALETTES.get(palette)
     if isinstance(value, str) and _HEX.fullmatch(value):
         hex_ = value.lower()
+        own = {c.hex: c.name for c in _colours_of(pal)} if pal is not None else {}
+        if hex_ in own:
+            return Colour(hex_, own[hex_])
         try:
             name = webcolors.hex_to_name(hex_)
         except ValueError:
@@ -78,14 +99,79 @@ def parse_colour(value, *, param: str = "colour") -> Colour:
         return Colour(hex_, name)
     if isinstance(value, str) and value.strip() and not value.startswith("#"):
         name = value.strip().lower()
+        if name in PART_COLOURS:
+            raise ParameterError(f"{param} {value!r} names a part's colour, which only a face class takes "
+                                 f"([colour.faces] C = \"band\"); give #rrggbb or a colour name", param=param)
+        if "." in name:  # a colour of a palette named first: "iznik.cobalt"
+            pname, _, cname = name.partition(".")
+            if pname in PALETTES:
+                found = _named(PALETTES[pname], cname)
+                if found is not None:
+                    return found
+                hint = did_you_mean(cname, [c.name for c in _colours_of(PALETTES[pname])])
+                raise ParameterError(f"{param} {value!r}: palette {pname!r} has no colour {cname!r}"
+                                     f"{f' ({hint})' if hint else ''}; its colours: "
+                                     f"{', '.join(_names_of(PALETTES[pname]))}", param=param)
+        if pal is not None and _named(pal, name) is not None:
+            return _named(pal, name)
         try:
             return Colour(webcolors.name_to_hex(name), name)
         except ValueError:
-            hint = did_you_mean(name, webcolors.names("css3"))
-            raise ParameterError(f"{param} {value!r} is not a CSS colour name{f' ({hint})' if hint else ''}; give "
-                                 f"#rrggbb or a CSS name like \"navy\"", param=param) from None
+            pass
+        others = {p.name: _named(p, name) for p in PALETTES.values() if _named(p, name) is not None}
+        values = {c.hex for c in others.values()}
+        if len(values) == 1 or (others and pal is None):
+            return next(iter(others.values()))
+        if others:
+            where = ", ".join(f"{p}.{name}" for p in others)
+            raise ParameterError(f"{param} {value!r} is a colour of several palettes, not of this design's "
+                                 f"({pal.name}); name one: {where} (or give #rrggbb)", param=param)
+        known = list(webcolors.names("css3")) + sorted({c.name for p in PALETTES.values() for c in _colours_of(p)})
+        hint = did_you_mean(name, known)
+        raise ParameterError(f"{param} {value!r} is not a CSS or palette colour name{f' ({hint})' if hint else ''}; "
+                             f"give #rrggbb, a CSS name like \"navy\" or a palette's like \"cobalt\"", param=param)
     raise ParameterError(f"{param} must be #rrggbb or a CSS colour name (like \"navy\"), got {value!r}",
                          param=param)
+
+
+def palette_names(palette_name: str) -> dict:
+    """``{name: "#rrggbb"}`` of every palette colour name a design of ``palette_name`` reads (its own
+    names, another palette's, ``"iznik.cobalt"``), as :func:`parse_colour` reads them: what a page
+    resolves a typed name by (a CSS name it knows itself).
+
+    >>> names = palette_names("iznik")
+    >>> names["white"], names["lapis"], names["zellige.cobalt"], "turquoise" in palette_names("mamluk")
+    ('#f5f1e8', '#26428b', '#1d4e89', False)
+    """
+    import webcolors
+
+    pal = palette(palette_name)
+    out = {}
+    for p in PALETTES.values():
+        for c in _colours_of(p):
+            for name in (c.name, f"{p.name}.{c.name}"):
+                try:
+                    found = parse_colour(name, palette=pal)
+                except ParameterError:
+                    continue  # a name of several palettes, not this one's: only its qualified form reads
+                if name not in webcolors.names("css3") or _named(pal, name) is not None:
+                    out[name] = found.hex
+    return out
+
+
+def _colours_of(pal) -> tuple:
+    """A palette's colours: band, base, then the faces'."""
+    return (pal.band, pal.base, *pal.faces)
+
+
+def _names_of(pal) -> list:
+    """A palette's colour names, each once, in order."""
+    return list(dict.fromkeys(c.name for c in _colours_of(pal)))
+
+
+def _named(pal, name: str):
+    """The colour of ``pal`` called ``name``, or None."""
+    return next((c for c in _colours_of(pal) if c.name == name), None)
 
 
 @dataclass(frozen=True)
@@ -190,12 +276,17 @@ def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, fac
 
     ``band``, ``base`` and ``faces`` (``{letter: colour}``) override the palette's; a
     class the palette has no colour for takes the palette's colours again from the
-    first (A's), so its material is shared. A letter in ``faces`` that is not a class
-    is a :class:`ParameterError` naming the classes.
+    first (A's), so its material is shared. A class given ``"band"`` or ``"base"``
+    takes the bands' or the base's colour, so it joins that part. Names are read in
+    the palette first (:func:`parse_colour`), and one value has one name: the first
+    it was given (base, bands, A, B, ...), so the class lines and the parts agree.
+    A letter in ``faces`` that is not a class is a :class:`ParameterError` naming
+    the classes.
 
-    >>> c = colouring(palette_name="iznik", faces={"B": "navy"}, classes=("A", "B"))
-    >>> [(k, v.name) for k, v in c.faces], c.band.name  # CSS navy is not Iznik's navy base: a name of its own
-    ([('A', 'cobalt'), ('B', 'navy-000080')], 'white')
+    >>> c = colouring(palette_name="iznik", faces={"B": "navy", "C": "band", "D": "#000080"},
+    ...               classes=("A", "B", "C", "D"))
+    >>> [(k, v.name) for k, v in c.faces], c.band.name  # navy is Iznik's (the base's); #000080 CSS navy
+    ([('A', 'cobalt'), ('B', 'navy'), ('C', 'white'), ('D', 'navy-000080')], 'white')
     """
     pal = palette(palette_name)
     faces = dict(faces or {})
@@ -204,15 +295,29 @@ def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, fac
         hint = did_you_mean(unknown[0], classes)
         raise ParameterError(f"face class {unknown[0]!r} is not one of this design's{f' ({hint})' if hint else ''}: "
                              f"{', '.join(classes)}", param=f"faces.{unknown[0]}")
-    chosen = tuple((k, parse_colour(faces[k], param=f"faces.{k}") if k in faces
-                    else pal.faces[i % len(pal.faces)]) for i, k in enumerate(classes))
-    base = pal.base if base is None else parse_colour(base, param="base")
-    band = pal.band if band is None else parse_colour(band, param="band")
-    # one name per colour (it names a part and an STL file): a second colour of a name takes its hex digits
-    owner = {}
+    base = pal.base if base is None else parse_colour(base, param="base", palette=pal)
+    band = pal.band if band is None else parse_colour(band, param="band", palette=pal)
+    parts = {"band": band, "base": base}
+
+    def face(k, i):
+        if k not in faces:
+            return pal.faces[i % len(pal.faces)]
+        value = faces[k]
+        if isinstance(value, str) and value.strip().lower() in parts:
+            return parts[value.strip().lower()]
+        return parse_colour(value, param=f"faces.{k}", palette=pal)
+
+    chosen = tuple((k, face(k, i)) for i, k in enumerate(classes))
+    # one name per colour (it names a part and an STL file): a value keeps the first name it was given, and a
+    # second value of a name takes its hex digits
+    names, owner = {}, {}
+
     def named(c):
+        if c.hex in names:
+            return Colour(c.hex, names[c.hex])
         first = owner.setdefault(c.name, c.hex)
-        return c if first == c.hex else Colour(c.hex, f"{c.name}-{c.hex[1:]}")
+        names[c.hex] = c.name if first == c.hex else f"{c.name}-{c.hex[1:]}"
+        return Colour(c.hex, names[c.hex])
     base, band = named(base), named(band)
     return Colouring(band=band, base=base, faces=tuple((k, named(c)) for k, c in chosen))
 
@@ -231,8 +336,9 @@ class Colours:
     """How a tile is coloured: a design's ``[colour]`` section, and the export API's ``colours=`` option.
 
     ``by`` (``"none"`` or ``"shape"``) groups the faces into classes; ``palette`` names
-    the palette; ``band_colour`` and ``base_colour`` (``#rrggbb`` or a CSS name)
-    override the palette's; ``faces`` maps class letters to colours (a dict or pairs).
+    the palette; ``band_colour`` and ``base_colour`` (``#rrggbb``, a palette's or a CSS
+    name) override the palette's; ``faces`` maps class letters to colours (a dict or
+    pairs), or to ``"band"`` or ``"base"`` (the class joins that part).
     ``given`` says that colours were asked for (a design with a ``[colour]`` section:
     a relief's and a deboss's parts then take the base and band colours). Every value
     is checked here; the letters against the design's classes when the build knows them.
@@ -264,7 +370,8 @@ class Colours:
             if not (isinstance(letter, str) and re.fullmatch(r"[A-Z]{1,2}", letter)):
                 raise ParameterError(f"key {letter!r} must be a class letter (A, B, ... as fabtiles check "
                                      f"lists them)", param="faces")
-            parse_colour(value, param=letter)
+            if not (isinstance(value, str) and value.strip().lower() in PART_COLOURS):
+                parse_colour(value, param=letter)
             pairs.append((letter, value))
         object.__setattr__(self, "faces", tuple(sorted(pairs)))
 

@@ -78,3 +78,8 @@ def did_you_mean(name, valid) -> str:
     valid = [str(v) for v in valid]
     near = difflib.get_close_matches(str(name), valid, n=1)
     return f"did you mean {near[0]!r}?" if near else ""
+
+
+class FabtilesDeprecationWarning(FutureWarning):
+    """A name fabtiles still reads but has renamed (a profile's ``style`` is ``print_style``): the
+    message says the new name. The command line prints it as a one-line note."""

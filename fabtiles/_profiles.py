@@ -173,7 +173,9 @@ class PrinterProfile:
     relief_mm: float = 1.2
     pierced_mm: float = 3.0
     deboss_mm: float = 0.8
-    style: str = "relief"
+    print_style: str = "relief"
+    """The print's style unless a design or call gives one: the design key ``[output] print_style``,
+    one name for both (a profile's older ``style`` key still loads, with a note)."""
     bed_mm: tuple[float, float] = (256.0, 256.0)
     strict: bool = False
     filament_density_g_cm3: float = 1.24
@@ -221,7 +223,7 @@ def load_profile(profile, *, kind: str | None = None):
     else:
         if not isinstance(profile, (str, Path)):
             raise ProfileError(f"profile must be a profile name or a path to a .toml file, got {profile!r}")
-        text, source, name = _read(profile)
+        text, source, name = _read(profile, kind)
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
@@ -264,7 +266,48 @@ def kind_of(name: str) -> str:
     return load_profile(name).kind
 
 
-def _read(profile) -> tuple[str, str, str]:
+def _unknown_profile(name: str, kind: str | None) -> str:
+    """The message for a profile ``name`` not bundled, in a slot of ``kind`` (None: any).
+
+    The suggestion is among the slot's profiles, and among those of the kind the name
+    starts with (``laser-5mm-mdf`` is meant as a laser's); a profile of another kind
+    the slot takes, as near as those, is named apart, with its kind.
+
+    >>> _unknown_profile("laser-5mm-mdf", "laser")  # doctest: +NORMALIZE_WHITESPACE
+    "profile 'laser-5mm-mdf' does not exist (did you mean 'laser-3mm-plywood'?; a router profile is near:
+    'router-6mm-mdf'); bundled profiles for this slot: laser-3mm-acrylic, laser-3mm-plywood (laser),
+    router-3.175mm-plywood, router-6mm-mdf (router), waterjet-1mm-aluminium (waterjet); or give the path of a
+    .toml file"
+    >>> _unknown_profile("laser-3mm-plywod", "printer")
+    "profile 'laser-3mm-plywod' does not exist; bundled printer profiles: fdm-0.4mm, fdm-0.6mm; or give the path of a .toml file"
+    """
+    slot = bundled_profiles(kind) if kind is not None else bundled_profiles()
+    kinds = {n: kind_of(n) for n in slot}
+    typed = name.split("-", 1)[0]
+    meant = [n for n in slot if kinds[n] == typed] if typed in kinds.values() else list(slot)
+    import difflib
+
+    def closest(candidates):
+        near = difflib.get_close_matches(name, candidates, n=1)
+        return (near[0], difflib.SequenceMatcher(None, name, near[0]).ratio()) if near else (None, 0.0)
+
+    mine, mine_score = closest(meant)
+    other, other_score = closest([n for n in slot if n not in meant])
+    hints = [f"did you mean {mine!r}?" if mine else ""]
+    if other and other_score >= mine_score:  # as near as any of the kind meant: said apart, with its kind
+        hints.append(f"a {kinds[other]} profile is near: {other!r}")
+    hint_text = f" ({'; '.join(h for h in hints if h)})" if any(hints) else ""
+    by_kind = {}
+    for n in slot:
+        by_kind.setdefault(kinds[n], []).append(n)
+    if len(by_kind) > 1:
+        listed = f"bundled profiles{' for this slot' if kind else ''}: " + ", ".join(f"{', '.join(v)} ({k})" for k, v in by_kind.items())
+    else:
+        listed = f"bundled {kind + ' ' if kind else ''}profiles: {', '.join(slot)}"
+    return f"profile {name!r} does not exist{hint_text}; {listed}; or give the path of a .toml file"
+
+
+def _read(profile, kind: str | None = None) -> tuple[str, str, str]:
     text_form = str(profile)
     looks_like_path = isinstance(profile, Path) or text_form.endswith(".toml") or "/" in text_form or "\\" in text_form
     if looks_like_path:
@@ -275,12 +318,7 @@ def _read(profile) -> tuple[str, str, str]:
             raise ProfileError(f"cannot read profile file {str(path)!r}: {exc}") from None
     names = bundled_profiles()
     if text_form not in names:
-        hint = did_you_mean(text_form, names)
-        hint_text = f" ({hint})" if hint else ""
-        raise ProfileError(
-            f"profile {text_form!r} does not exist{hint_text}; bundled profiles: {', '.join(names)}; "
-            "or give the path of a .toml file"
-        )
+        raise ProfileError(_unknown_profile(text_form, kind))
     res = resources.files("fabtiles.profiles") / f"{text_form}.toml"
     return res.read_text(encoding="utf-8"), f"profiles/{text_form}.toml", text_form
 
@@ -326,6 +364,8 @@ def _parse(data: dict, source: str, name: str):
     if not isinstance(section, dict):
         raise ProfileError(f"{source}: [{kind}] must be a table")
     allowed = list(cutter.keys) if cutter else [f.name for f in fields(cls) if f.name not in ("name", "description")]
+    if cutter is None and "style" in section:
+        section = _renamed_style(section, source)
     _unknown(source, f"{kind}.", section, allowed)
     for key in cutter.required if cutter else ():
         if key not in section:
@@ -345,8 +385,8 @@ def _parse(data: dict, source: str, name: str):
         elif key == "inlay_fit_mm":
             values[key] = schema_key("output.inlay_fit_mm").check(value, name=full, prefix=f"{source}: ",
                                                                  error=ProfileError, param=full, note=False)
-        elif key in ("mode", "style", "dxf_version"):
-            choices = {"mode": cutter.modes if cutter else LASER_MODES, "style": PRINT_STYLES,
+        elif key in ("mode", "print_style", "dxf_version"):
+            choices = {"mode": cutter.modes if cutter else LASER_MODES, "print_style": PRINT_STYLES,
                        "dxf_version": DXF_VERSIONS}[key]
             if value not in choices:
                 hint = did_you_mean(value, choices)
@@ -362,6 +402,20 @@ def _parse(data: dict, source: str, name: str):
         values["kind"] = kind
         values.update(cutter.fixed)  # a router's file holds the part contour: no kerf; the bit decides the holes
     return cls(name=name, description=description, **values)
+
+
+def _renamed_style(section: dict, source: str) -> dict:
+    """A printer section with its older ``style`` key read as ``print_style`` (the design key's name),
+    with a :class:`~fabtiles._errors.FabtilesDeprecationWarning` saying the new name; both keys is an error."""
+    import warnings
+
+    from ._errors import FabtilesDeprecationWarning
+
+    if "print_style" in section:
+        raise ProfileError(f"{source}: printer.style and printer.print_style are one setting; keep print_style")
+    warnings.warn(f"{source}: printer.style is now printer.print_style (the design key's name); rename it, "
+                  f"the old name will stop loading", FabtilesDeprecationWarning, stacklevel=4)
+    return {("print_style" if k == "style" else k): v for k, v in section.items()}
 
 
 def _parse_layers(section, source) -> LaserLayers:

@@ -133,7 +133,8 @@ class Report:
 
 
 def face_class_lines(classes) -> list[str]:
-    """One line per face class (``FaceClasses.stats()``, with a ``colour`` where the build knows it).
+    """One line per face class (``FaceClasses.stats()``, with a ``colour`` where the build knows it, or
+    ``filled``: the class is filled with the bands, in no colour of its own).
 
     >>> face_class_lines([{"letter": "A", "count": 12, "description": "8-point star", "area_mm2": 1234.5,
     ...                    "colour": "cobalt"}])
@@ -143,5 +144,7 @@ def face_class_lines(classes) -> list[str]:
     for c in classes:
         what = c.get("description") or "face"
         line = f"face class {c['letter']}: {c['count']:,} x {what}, {c['area_mm2']:,.1f} mm^2"
+        if c.get("filled"):
+            line += ", filled with the bands (too small to make)"
         out.append(line + (f", {c['colour']}" if c.get("colour") else ""))
     return out

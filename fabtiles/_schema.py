@@ -40,7 +40,7 @@ TYPES = ("string", "integer", "number", "numbers", "boolean", "choice", "size", 
          "colour", "colours")
 """A key's value type. ``numbers`` is a list of numbers, ``size`` a number or a [width, height]
 pair, ``motif`` a motif table or a preset name, ``motifs`` a table of motifs keyed by polygon sides,
-``formats`` a list of output formats, ``colour`` a ``#rrggbb`` or CSS colour name, ``colours`` a table of
+``formats`` a list of output formats, ``colour`` a ``#rrggbb``, palette or CSS colour name, ``colours`` a table of
 face class letters to colours."""
 
 WIDGETS = ("slider", "number", "select", "checkbox", "text", "colour")
@@ -531,15 +531,16 @@ KEYS: tuple[Key, ...] = MOTIF + (
              "([colours.md](colours.md) says where each comes from)",
         widget=Widget(kind="select", label="Palette")),
     Key(section="colour", name="band_colour", type="colour", default_text="the palette's",
-        note="#rrggbb or a CSS colour name", help="the bands' colour (the strapwork): a print's bands, a kit's lattice",
+        note="#rrggbb, a palette's or a CSS colour name", help="the bands' colour (the strapwork): a print's bands, a kit's lattice",
         widget=Widget(kind="colour", label="Band colour")),
     Key(section="colour", name="base_colour", type="colour", default_text="the palette's",
-        note="#rrggbb or a CSS colour name", help="the base plate's colour (relief, mosaic and deboss prints)",
+        note="#rrggbb, a palette's or a CSS colour name", help="the base plate's colour (relief, mosaic and deboss prints)",
         widget=Widget(kind="colour", label="Base colour")),
     Key(section="colour", name="faces", type="colours", default_text="the palette's, in class order",
         note="a table of class letters to colours", query=None,
         help="`[colour.faces]` `A = \"navy\"`, `B = \"#c8553d\"`: a colour per face class; classes given one "
-             "colour share a material (a filament, a wood), so six classes fit a four-slot AMS as four colours"),
+             "colour share a material (a filament, a wood), so six classes fit a four-slot AMS as four colours; "
+             "`\"band\"` or `\"base\"` gives a class the bands' or the base's colour (it joins that part)"),
 )
 """Every design key, section by section in the order of a design file."""
 
@@ -677,7 +678,7 @@ def _family(family: str) -> tuple[str, ...]:
 _TYPE_WORDS = {"string": "string", "integer": "integer", "number": "number", "numbers": "list of numbers",
                "boolean": "true or false", "choice": "string", "size": "number or [width, height]",
                "motif": "table or preset name", "motifs": "table", "formats": "list of strings",
-               "colour": "string, #rrggbb or a CSS colour name", "colours": "table of class letters to colours"}
+               "colour": "string, #rrggbb, a palette's or a CSS colour name", "colours": "table of class letters to colours"}
 
 
 def _doc_type(k: Key) -> str:

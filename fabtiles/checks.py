@@ -48,6 +48,8 @@ class CheckResult:
     """The 2D cutter's kind (the laser profile's ``kind``): ``"laser"``, ``"router"`` or ``"waterjet"``."""
     print_filled_holes: int = 0
     """The print's openings filled (``fill_small_holes``): narrower than the printer profile's ``min_hole_mm``."""
+    print_region: object = None
+    """The print's material as its files hold it (small openings filled with ``fill_small_holes``)."""
 
     def findings(self) -> list[tuple[str, Finding]]:
         """Every finding with where it comes from: the cutter's kind (``"laser"``, ``"router"``,
@@ -116,7 +118,7 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         check_cut_pattern(cut_region, cut, outline, laser, stroke=tile.stroke, report=laser_report)
     elif (laser_mode or laser.mode) == "engrave" and not cut_region.is_empty:
         check_engrave(cut_region, laser, laser_report)
-    style = print_style or printer.style  # the print's region as its files hold it (an interlaced relief unthinned)
+    style = print_style or printer.print_style  # the print's region as its files hold it (an interlaced relief unthinned)
     designed, _ = made_print_region(region, outline, printer, style,
                                     flatten=not (getattr(tile, "interlace", False) and style == "relief"))
     print_region, print_filled = made_print_region(designed, outline, printer, style, fill_small_holes=fill_small_holes,
@@ -128,7 +130,8 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
     estimate = _job(tile, cut_region, laser, laser_mode, fill_small_holes) if job and "bed_size" not in {
         f.code for f in laser_report.findings} else None
     material = _filament(print_region, outline, printer, print_style, heights) if job else None
-    return CheckResult(laser_report, print_report, filled, estimate, material, made, laser.kind, print_filled)
+    return CheckResult(laser_report, print_report, filled, estimate, material, made, laser.kind, print_filled,
+                       print_region)
 
 
 def _filament(region, outline, printer, style, heights):

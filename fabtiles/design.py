@@ -185,6 +185,8 @@ class Design:
     output: OutputSpec = field(default_factory=OutputSpec)
     source: str = "<design>"
     colour: Colours = field(default_factory=Colours)
+    fitted: tuple[str, ...] = ()
+    """What ``packing.seamless`` changed (the radius or edge, a rectangle's height), one line each."""
 
     def build_tile(self, tile_cls=None):
         """The :class:`~fabtiles.geometry.tile.TileGeometry` of this design (see :func:`build_tile`)."""
@@ -313,7 +315,8 @@ _MISSING = object()
 
 
 def design_notes(design: Design) -> list[str]:
-    """What a design file says that the tile will not show, as notes for the build's output.
+    """What a design file says that the tile will not show, as notes for the build's output: what a
+    seamless fit changed, a motif not drawn.
 
     >>> packing = {"kind": "archimedean", "tiling": "4.8.8", "method": "hankin"}
     >>> print(*design_notes(design_from_dict({"motif": {"preset": "table3-3"}, "packing": packing, "tile": {"size": 60}})))
@@ -322,10 +325,11 @@ def design_notes(design: Design) -> list[str]:
     []
     """
     p = design.packing
+    notes = list(design.fitted)
     if p is not None and p.kind == "archimedean" and p.method == "hankin" and design.motif is not None:
-        return ['[motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take '
-                "Hankin's rays (name a motif there for a kind, or remove [motif])"]
-    return []
+        notes.append('[motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take '
+                     "Hankin's rays (name a motif there for a kind, or remove [motif])")
+    return notes
 
 
 def _toml_text(value) -> str:
@@ -461,9 +465,36 @@ def _fit_seamless(design: Design) -> Design:
     t = design.tile_spec
     if p.kind == "archimedean":
         fit = seamless_fit(t.outline, t.size, p.edge, packing=p.tiling)
-        return replace(design, packing=replace(p, edge=fit.edge), tile_spec=replace(t, size=fit.size))
-    fit = seamless_fit(t.outline, t.size, p.radius, packing=p.kind)
-    return replace(design, packing=replace(p, radius=fit.radius), tile_spec=replace(t, size=fit.size))
+        fitted = replace(design, packing=replace(p, edge=fit.edge), tile_spec=replace(t, size=fit.size))
+        key, asked = "edge", p.edge
+    else:
+        fit = seamless_fit(t.outline, t.size, p.radius, packing=p.kind)
+        fitted = replace(design, packing=replace(p, radius=fit.radius), tile_spec=replace(t, size=fit.size))
+        key, asked = "radius", p.radius
+    return replace(fitted, fitted=_fit_lines(key, asked, fit, t))
+
+
+def _fit_lines(key: str, asked: float, fit, t) -> tuple[str, ...]:
+    """What a seamless fit changed, one line each, with how much: the build prints them as notes.
+
+    >>> from fabtiles.geometry.seamless import seamless_fit
+    >>> t = TileSpec(outline="rectangle", size=(300.0, 300.0))
+    >>> for line in _fit_lines("radius", 14.0, seamless_fit("rectangle", (300, 300), 14), t):
+    ...     print(line)
+    packing.seamless: radius 14 mm fitted to 13.636 mm (11 periods across the 300 mm width)
+    packing.seamless: tile height 300 mm moved to 283.426 mm (-16.574 mm, 6 whole periods up)
+    """
+    lines = []
+    across = "width" if t.outline == "rectangle" else "tile"
+    if abs(fit.radius - asked) > 1e-9:
+        lines.append(f"packing.seamless: {key} {asked:g} mm fitted to {fit.radius:.5g} mm "
+                     f"({fit.repeats[0]} period{'s' if fit.repeats[0] != 1 else ''} across the "
+                     f"{fit.size[0]:g} mm {across})")
+    h = t.size[1] if isinstance(t.size, (tuple, list)) else t.size
+    if abs(fit.size[1] - h) > 1e-9:
+        lines.append(f"packing.seamless: tile height {h:g} mm moved to {fit.size[1]:.6g} mm "
+                     f"({fit.size[1] - h:+.5g} mm, {fit.repeats[1]} whole period{'s' if fit.repeats[1] != 1 else ''} up)")
+    return tuple(lines)
 
 
 def _build_packing(p: PackingSpec, star: Star | None):

@@ -32,12 +32,48 @@ def test_colours_parse_by_hex_and_css_name():
     ("#ggggggg", r"colour must be #rrggbb"),
     (42, r"colour must be #rrggbb or a CSS colour name"),
     ("", r"colour must be #rrggbb or a CSS colour name"),
-    ("nav", r"colour 'nav' is not a CSS colour name \(did you mean 'navy'\?\); give #rrggbb"),
-    ("qqq", r"colour 'qqq' is not a CSS colour name; give #rrggbb or a CSS name like \"navy\""),
+    ("nav", r"colour 'nav' is not a CSS or palette colour name \(did you mean 'navy'\?\); give #rrggbb"),
+    ("qqq", r"colour 'qqq' is not a CSS or palette colour name; give #rrggbb, a CSS name like \"navy\" or a "
+            r"palette's like \"cobalt\""),
+    ("lapiz", r"colour 'lapiz' is not a CSS or palette colour name \(did you mean 'lapis'\?\)"),
+    ("band", r"colour 'band' names a part's colour, which only a face class takes"),
+    ("iznik.lapis", r"colour 'iznik.lapis': palette 'iznik' has no colour 'lapis'; its colours: white, navy, "
+                    r"cobalt, turquoise, bole, green, black, sky"),
 ])
 def test_bad_colours_are_refused(bad, match):
     with pytest.raises(ParameterError, match=match):
         parse_colour(bad)
+
+
+def test_palette_names_read_in_the_design_palette_first():
+    iznik = PALETTES["iznik"]
+    assert parse_colour("cobalt", palette="iznik") == iznik.faces[0]
+    assert parse_colour("white", palette=iznik) == iznik.band  # the palette's white, not CSS #ffffff
+    assert parse_colour("white", palette="mamluk").hex == "#ffffff"  # mamluk has no white: CSS
+    assert parse_colour("#1e4fa0", palette="iznik").name == "cobalt"  # a hex takes the palette's name
+    assert parse_colour("lapis", palette="iznik") == PALETTES["mamluk"].faces[0]  # one palette's: no doubt
+    assert parse_colour("zellige.cobalt", palette="iznik") == PALETTES["zellige"].faces[0]
+    assert parse_colour("cobalt").name == "cobalt"  # no palette given: accepted, settled by the design's
+
+
+def test_a_name_of_several_palettes_not_the_designs_is_asked_by_palette():
+    with pytest.raises(ParameterError, match=r"faces.C 'cobalt' is a colour of several palettes, not of this "
+                                             r"design's \(mamluk\); name one: zellige.cobalt, iznik.cobalt, "
+                                             r"haft-rangi.cobalt"):
+        colouring(palette_name="mamluk", faces={"C": "cobalt"}, classes=("A", "B", "C"))
+
+
+def test_band_and_base_give_a_class_the_part_colour():
+    c = colouring(palette_name="iznik", band="#ffeedd", faces={"A": "band", "B": "Base"}, classes=("A", "B", "C"))
+    assert c.face("A") == c.band and c.band.hex == "#ffeedd"
+    assert c.face("B") == c.base == PALETTES["iznik"].base
+    assert [m.hex for m in c.materials()] == [c.base.hex, c.band.hex, PALETTES["iznik"].faces[2].hex]
+
+
+def test_one_value_has_one_name():
+    # C given the base's value in hex digits is named as the base is: the class line and the part agree
+    c = colouring(palette_name="zellige", faces={"C": "#2B2B2B", "B": "#1d4e89"}, classes=("A", "B", "C"))
+    assert c.face("C").name == c.base.name == "black" and c.face("B").name == "cobalt"
 
 
 def test_letters_run_past_z():
@@ -104,7 +140,8 @@ def test_a_design_reads_its_colour_section():
     assert d.colour.given and d.colour.by == "shape" and d.colour.palette == "iznik"
     assert d.colour.band_colour == "white" and d.colour.faces == (("A", "navy"), ("B", "#1e4fa0"))
     c = d.colour.colouring(("A", "B", "C"))
-    assert c.face("A").hex == "#000080" and c.band.hex == "#ffffff"
+    # navy and white are Iznik's own (the base's and the bands'): the names the summary prints
+    assert c.face("A") == PALETTES["iznik"].base and c.band == PALETTES["iznik"].band
     plain = design_from_text(BASE)
     assert not plain.colour.given and plain.colour.by == "none"
 
@@ -114,11 +151,11 @@ def test_a_design_reads_its_colour_section():
                                        r"iznik, mamluk, alhambra, haft-rangi"),
     ('[colour]\nby = "colour"\n', r"\[colour\] by = 'colour' is not valid, must be one of: none, shape"),
     ('[colour]\nband_colour = "#12"\n', r"\[colour\] band_colour must be #rrggbb or a CSS colour name"),
-    ('[colour]\nbase_colour = "blu"\n', r"\[colour\] base_colour 'blu' is not a CSS colour name \(did you mean "
+    ('[colour]\nbase_colour = "blu"\n', r"\[colour\] base_colour 'blu' is not a CSS or palette colour name \(did you mean "
                                         r"'blue'\?\)"),
     ('[colour]\nfaces = "red"\n', r"\[colour.faces\] must be a table of class letters to colours"),
     ('[colour.faces]\nstar = "red"\n', r"\[colour.faces\] key 'star' must be a class letter"),
-    ('[colour.faces]\nA = "reddish"\n', r"\[colour.faces\] A 'reddish' is not a CSS colour name"),
+    ('[colour.faces]\nA = "reddish"\n', r"\[colour.faces\] A 'reddish' is not a CSS or palette colour name"),
     ('[colour]\nbands = "red"\n', r"unknown key 'bands' in \[colour\]"),
 ])
 def test_bad_colour_sections_name_the_key(section, match):
@@ -176,8 +213,8 @@ def test_the_export_api_takes_colours(tmp_path):
     from fabtiles.export.threemf import read_3mf
 
     tile = ft.Tile("square", 60, ft.HexPacking(radius=12.5, motif=ft.Star.preset("table3-3")), frame=3, stroke=1.2)
-    tile.export(tmp_path / "a.3mf", style="mosaic", colours=ft.Colours(by="shape", palette="iznik", faces={"A": "navy"}))
-    # CSS navy for A beside Iznik's own navy base: two colours, two names, two parts
+    tile.export(tmp_path / "a.3mf", style="mosaic", colours=ft.Colours(by="shape", palette="iznik", faces={"A": "#000080"}))
+    # CSS navy (#000080) for A beside Iznik's own navy base: two colours, two names, two parts
     assert list(read_3mf(tmp_path / "a.3mf")) == ["navy (base)", "white (bands)", "navy-000080 (A)", "turquoise (B)"]
     tile.export(tmp_path / "b.3mf", style="mosaic", colours={"by": "shape", "palette": "mamluk"})
     assert list(read_3mf(tmp_path / "b.3mf"))[1] == "gold (bands)"
@@ -193,7 +230,7 @@ def test_the_export_api_takes_colours(tmp_path):
 
 def test_a_bad_face_colour_names_its_class():
     """A bad class colour names its key, ``colour.faces.<letter>`` (the web app's ``face_<letter>``)."""
-    with pytest.raises(DesignError, match=r"\[colour.faces\] B 'reddish' is not a CSS colour name") as info:
+    with pytest.raises(DesignError, match=r"\[colour.faces\] B 'reddish' is not a CSS or palette colour name") as info:
         design_from_text(BASE + '[colour.faces]\nB = "reddish"\n')
     assert info.value.key == "colour.faces.B"
     with pytest.raises(DesignError, match=r"\[colour.faces\] key 'star' must be a class letter") as info:

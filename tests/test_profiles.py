@@ -59,7 +59,7 @@ def test_profiles_are_frozen():
         ('kind = "laser"\n[laser]\nstrict = "yes"\n', r"p.toml: laser.strict must be true or false"),
         ('kind = "laser"\n[laser]\nmode = "etch"\n', r"p.toml: laser.mode = 'etch' is not valid, must be one of: pierced, score, engrave"),
         ('kind = "laser"\n[laser]\ndxf_version = "R14"\n', r"laser.dxf_version = 'R14' is not valid \(did you mean 'R12'\?\), must be one of: R12, R2000"),
-        ('kind = "printer"\n[printer]\nstyle = "emboss"\n', r"printer.style = 'emboss' is not valid \(did you mean 'deboss'\?\), must be one of: relief, pierced, deboss"),
+        ('kind = "printer"\n[printer]\nprint_style = "emboss"\n', r"printer.print_style = 'emboss' is not valid \(did you mean 'deboss'\?\), must be one of: relief, pierced, deboss"),
         ('kind = "printer"\n[printer]\nbase_mm = -2\n', r"printer.base_mm must be > 0, got -2"),
         ('kind = "laser"\n[layers]\nscore = { name = "S", color = 300 }\n', r"layers.score.color must be an AutoCAD Color Index 1..255, got 300"),
         ('kind = "laser"\n[layers]\nscore = { name = "S", colour = 3 }\n', r"unknown key layers.score.'colour' \(did you mean 'color'\?\)"),
@@ -80,8 +80,21 @@ def test_bad_profiles_name_file_and_key(tmp_path, text, match):
 
 
 def test_unknown_bundled_profile_suggests_and_lists():
-    with pytest.raises(ft.ProfileError, match=r"profile 'laser-3mm-plywod' does not exist \(did you mean 'laser-3mm-plywood'\?\); bundled profiles: fdm-0.4mm"):
+    with pytest.raises(ft.ProfileError, match=r"profile 'laser-3mm-plywod' does not exist \(did you mean 'laser-3mm-plywood'\?\); bundled profiles: fdm-0.4mm, fdm-0.6mm \(printer\), laser-3mm-acrylic"):
         load_profile("laser-3mm-plywod")
+
+
+def test_an_unknown_profile_is_matched_among_the_slots_kind():
+    # meant as a laser's: a laser profile is suggested, the router's near name said apart with its kind
+    with pytest.raises(ft.ProfileError, match=r"profile 'laser-5mm-mdf' does not exist \(did you mean "
+                                              r"'laser-3mm-plywood'\?; a router profile is near: 'router-6mm-mdf'\); "
+                                              r"bundled profiles for this slot: laser-3mm-acrylic, laser-3mm-plywood "
+                                              r"\(laser\), router-3.175mm-plywood, router-6mm-mdf \(router\)"):
+        load_profile("laser-5mm-mdf", kind="laser")
+    # a printer slot names no cutter, however near
+    with pytest.raises(ft.ProfileError, match=r"profile 'laser-3mm-plywod' does not exist; bundled printer "
+                                              r"profiles: fdm-0.4mm, fdm-0.6mm; or give the path"):
+        load_profile("laser-3mm-plywod", kind="printer")
 
 
 def test_unreadable_file(tmp_path):
@@ -115,3 +128,28 @@ def test_printer_min_hole_given_default_and_off(tmp_path):
     given = load_profile(write(tmp_path, 'kind = "printer"\n[printer]\nnozzle_mm = 0.4\nmin_hole_mm = 0.6\n'))
     assert given.min_hole_mm == 0.6
     assert load_profile(write(tmp_path, 'kind = "printer"\n[printer]\nmin_hole_mm = 0\n')).min_hole_mm == 0.0
+
+
+def test_a_printers_old_style_key_loads_with_a_note_naming_print_style(tmp_path):
+    from fabtiles._errors import FabtilesDeprecationWarning
+
+    path = write(tmp_path, 'kind = "printer"\n[printer]\nstyle = "deboss"\n')
+    with pytest.warns(FabtilesDeprecationWarning, match=r"p.toml: printer.style is now printer.print_style"):
+        assert load_profile(path).print_style == "deboss"
+    both = write(tmp_path, 'kind = "printer"\n[printer]\nstyle = "deboss"\nprint_style = "relief"\n')
+    with pytest.raises(ft.ProfileError, match=r"printer.style and printer.print_style are one setting; keep "
+                                              r"print_style"):
+        load_profile(both)
+
+
+def test_the_cli_prints_the_renamed_key_as_one_note(tmp_path):
+    from click.testing import CliRunner
+
+    from fabtiles.cli.main import cli
+
+    path = tmp_path / "old.toml"
+    path.write_text('kind = "printer"\n[printer]\nstyle = "pierced"\n')
+    result = CliRunner().invoke(cli, ["profile", "show", str(path)])
+    assert result.exit_code == 0, result.output
+    assert result.stderr == (f"fabtiles: note: {path}: printer.style is now printer.print_style (the design "
+                             f"key's name); rename it, the old name will stop loading\n")

@@ -188,7 +188,14 @@ class Models:
                             stroke=self.tile.stroke, colours=self.kit_colours() if self.coloured else (),
                             tab_mm=o.tab_mm, tabs_per_part=o.tabs_per_part)
             if self.coloured:
-                kit.report.stats["face_classes"] = self.face_class_stats()
+                from ..geometry.kit_nesting import class_letters
+
+                # a class none of whose faces became a piece (all too small: filled) is cut in no wood
+                classes = self.face_classes
+                cut = set(class_letters(kit.kit.holes, classes.faces, classes.labels,
+                                        [c.letter for c in classes.classes]))
+                filled = frozenset(c.letter for c in classes.classes if c.letter not in cut)
+                kit.report.stats["face_classes"] = self.face_class_stats(filled)
                 kit.report.note(f"lattice in {self.colouring.band.name} (the band colour)")
             if (o.inlay_pieces or "registration") == "nested":
                 from ..geometry.kit_nesting import class_letters, nest_kit
@@ -202,9 +209,16 @@ class Models:
         if o.kit:
             raise ParameterError("a sheet of inlay kits is not laid out; write the kit of one tile (drop --sheet "
                                  "and --copies) or choose laser_mode = \"pierced\"", param="laser_mode")
-        return plan_cut(region, outline, profile=o.cutter, centrelines=centrelines, mode=o.laser_mode,
+        plan = plan_cut(region, outline, profile=o.cutter, centrelines=centrelines, mode=o.laser_mode,
                         dxf_version=o.dxf_version, kerf_mm=o.kerf_mm, fill_small_holes=o.fill_small_holes,
                         stroke=self.tile.stroke, tab_mm=o.tab_mm, tabs_per_part=o.tabs_per_part)
+        if self.sheet is not None:  # how many tiles, which the files' summary does not show otherwise
+            n = len(self.sheet.offsets)
+            bed = " x ".join(f"{v:g}" for v in o.cutter.bed_mm)
+            used = " x ".join(f"{v:.1f}" for v in self.sheet.size)
+            plan.report.note(f"laid {n} {'tile' if n == 1 else 'tiles'} on the {bed} mm bed of {o.cutter.kind} "
+                             f"profile {o.cutter.name!r} ({used} mm used)")
+        return plan
 
     # ------------------------------------------------------------------ the colours
 
@@ -250,9 +264,25 @@ class Models:
         return dict(fill=colours.band.hex,
                     faces=tuple((c.letter, classes.of(c.letter), colours.face(c.letter).hex) for c in classes.classes))
 
-    def face_class_stats(self) -> list:
-        """The face classes for a report: letter, count, description, area and colour name."""
-        return [dict(c, colour=self.colouring.face(c["letter"]).name) for c in self.face_classes.stats()]
+    def filled_classes(self, region) -> frozenset:
+        """The letters of the classes none of whose faces is an opening of ``region``: every face filled
+        with the bands (``fill_small_holes``: narrower than the machine makes), so the class prints in no
+        colour of its own."""
+        import shapely
+
+        classes = self.face_classes
+        if region is None or not len(classes.faces):
+            return frozenset()
+        probe = shapely.get_coordinates(shapely.point_on_surface(np.asarray(classes.faces, dtype=object)))
+        shapely.prepare(region)
+        covered = shapely.contains_xy(region, probe[:, 0], probe[:, 1])
+        return frozenset(c.letter for k, c in enumerate(classes.classes) if covered[classes.labels == k].all())
+
+    def face_class_stats(self, filled=frozenset()) -> list:
+        """The face classes for a report: letter, count, description, area and colour name; a class of
+        ``filled`` (:meth:`filled_classes`) says so in place of a colour."""
+        return [dict(c, colour=None, filled=True) if c["letter"] in filled
+                else dict(c, colour=self.colouring.face(c["letter"]).name) for c in self.face_classes.stats()]
 
     def kit_colours(self) -> tuple:
         """A coloured kit's woods: ``((colour name, faces), ...)``, one per distinct face colour, in class order."""
@@ -265,23 +295,46 @@ class Models:
             out[colour.hex] = (name, faces)
         return tuple((name, tuple(faces)) for name, faces in out.values())
 
-    def mosaic_specs(self) -> tuple:
-        """A mosaic's parts, one per distinct colour (base, bands, then the classes'), in material order."""
+    def mosaic_specs(self, filled=frozenset()) -> tuple:
+        """A mosaic's parts, one per distinct colour (base, bands, then the classes'), in material order;
+        the classes of ``filled`` (:meth:`filled_classes`) print with the bands, in no part of their own."""
         from .._colour import check_materials
         from ..solid.parts import MosaicPart
 
         colours, classes = self.colouring, self.face_classes
-        materials = colours.materials()
+        printed = tuple((k, v) for k, v in colours.faces if k not in filled)
+        materials = tuple({c.hex: c for c in (colours.base, colours.band, *(v for _, v in printed))}.values())
         check_materials(materials)
         specs = []
         for c in materials:
-            letters = [k for k, v in colours.faces if v.hex == c.hex]
+            letters = [k for k, v in printed if v.hex == c.hex]
             holds = (["base"] if colours.base.hex == c.hex else []) + (["bands"] if colours.band.hex == c.hex else [])
             index = [i for i, fc in enumerate(classes.classes) if fc.letter in letters]
             faces = tuple(classes.faces[np.isin(classes.labels, index)]) if index else ()
             specs.append(MosaicPart(f"{c.name} ({', '.join(holds + letters)})", "base" in holds, "bands" in holds,
                                     faces, c))
         return tuple(specs)
+
+    def print_parts_line(self, region, style: str) -> str:
+        """What the print of ``region`` (the print's material, small openings filled) is made of, in a line:
+        its parts and the filaments they take (a mosaic's parts are its colours).
+        """
+        from ..solid.parts import part_kinds
+        from ..solid.print_model import PART_MATERIALS
+
+        if style == "mosaic":
+            names = [s.name for s in self.mosaic_specs(self.filled_classes(region))]
+            return f"print: {len(names)} part{'s' if len(names) != 1 else ''}, one filament each: {', '.join(names)}"
+        names = list(part_kinds(style, single=False, inlay=self.options.inlay))
+        if self.coloured:
+            c = self.colouring
+            colours = {n: (c.band if n in ("pattern", "inlay") else c.base) for n in names}
+            shown = [f"{colours[n].name} ({n})" for n in names]
+            n_fil = len({colours[n].hex for n in names})
+        else:
+            shown, n_fil = names, len({PART_MATERIALS[n].extruder for n in names}) if len(names) > 1 else 1
+        return (f"print: {len(names)} part{'s' if len(names) != 1 else ''} ({', '.join(shown)}), "
+                f"{n_fil} filament{'s' if n_fil != 1 else ''}")
 
     # ------------------------------------------------------------------ the printer
 
@@ -300,14 +353,18 @@ class Models:
         o = self.options
         region, dips = self.print_region
         self._material(region)
-        style = o.print_style or o.printer.style
+        style = o.print_style or o.printer.print_style
         given = self.coloured
         model = print_model(region, self.tile.outline_shape(), profile=o.printer, style=o.print_style,
                             stroke=self.tile.stroke, fill_small_holes=o.fill_small_holes, inlay=o.inlay,
                             dips=dips, colours=self.colouring if given or style == "mosaic" else None,
-                            mosaic=self.mosaic_specs() if style == "mosaic" else (), **o.heights)
-        if style == "mosaic" or given:
-            model.report.stats["face_classes"] = self.face_class_stats()
+                            **o.heights)
+        if style != "mosaic" and not given:
+            return model
+        filled = self.filled_classes(model.region) if o.fill_small_holes else frozenset()
+        if style == "mosaic":  # the parts are made lazily: they take the classes left open by the print's filling
+            model.mosaic = self.mosaic_specs(filled)
+        model.report.stats["face_classes"] = self.face_class_stats(filled)
         return model
 
     def model(self, family: str):

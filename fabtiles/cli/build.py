@@ -18,6 +18,7 @@ from pathlib import Path
 
 import click
 
+from .._errors import ParameterError
 from ..design import FORMATS, design_notes, load_design, override_notes
 
 
@@ -30,11 +31,16 @@ def single_file_target(output, formats):
     True
 
     Raises :class:`click.UsageError` (exit status 2) when ``formats`` asks for another
-    format or for several.
+    format or for several, and a :class:`ParameterError` when ``output`` names a file of
+    a type fabtiles does not write (``tile.png``).
     """
     path = Path(output)
     fmt = path.suffix.lower().lstrip(".")
     if fmt not in FORMATS:
+        if _file_suffix(output):
+            raise ParameterError(
+                f"-o {output}: fabtiles does not write .{fmt} files; name the file with a format's suffix "
+                f"({', '.join('.' + f for f in FORMATS)}) or give a folder", param="output")
         return None
     others = [f for f in dict.fromkeys(formats) if f != fmt]
     if others:
@@ -44,11 +50,35 @@ def single_file_target(output, formats):
     return path, fmt
 
 
+OTHER_FILE_SUFFIXES = ("gcode", "nc", "ngc", "tap", "dwg", "stp", "iges", "igs", "obj", "glb", "gltf", "lbrn",
+                       "plt", "hpgl", "ai", "cdr", "f3d")
+"""Suffixes of machine and CAD files :mod:`mimetypes` does not know: ``-o tile.gcode`` is a mistake, not a folder."""
+
+
+def _file_suffix(output) -> bool:
+    """Whether ``output`` ends in a file type's suffix (``tile.png``, ``t.pdf``, ``t.gcode``): a file
+    fabtiles does not write, never meant as a folder. A folder that exists, a trailing ``/`` or an
+    unknown suffix (``tiles.v2``) is a folder.
+
+    >>> _file_suffix("tile.png"), _file_suffix("t.PDF"), _file_suffix("tiles.v2"), _file_suffix("tile.png/")
+    (True, True, False, False)
+    """
+    import mimetypes
+
+    text = str(output)
+    path = Path(text)
+    if text.endswith(("/", "\\")) or path.is_dir() or not path.suffix:
+        return False
+    suffix = path.suffix.lower()
+    return mimetypes.guess_type("f" + suffix, strict=False)[0] is not None or suffix[1:] in OTHER_FILE_SUFFIXES
+
+
 @click.command("build")
 @click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", "outdir", required=True, type=click.Path(),
               help="Folder to write OUTDIR/<design name>.<format> into; or one file, named with "
-                   "its format's suffix (tile.dxf, tile.STL, ...), to write just that file.")
+                   "its format's suffix (tile.dxf, tile.STL, ...), to write just that file; a file of "
+                   "another type (tile.png) is an error.")
 @click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
               help="Override a design value, in TOML syntax: --set tile.size=[200,200] (repeatable).")
 @click.option("--format", "formats", multiple=True, type=click.Choice(FORMATS),

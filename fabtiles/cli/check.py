@@ -72,28 +72,38 @@ def command(design_file, output, overrides, deep):
     if output is not None and Path(output).suffix.lower() != ".svg":
         raise ParameterError(f"the overlay (-o) must be an .svg file, got {output!r}")
     design = load_design(design_file, overrides=overrides)
-    from ..design import profile_of
+    from ..design import design_notes, profile_of
 
     cutter = profile_of(design, "laser").kind  # an unknown profile is refused before any geometry
     profile_of(design, "printer")
     tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
     out = design.output
-    class_lines = []
-    if design.colour.given or (out.print_style or profile_of(design, "printer").style) == "mosaic":
-        from .._report import face_class_lines
+    style = out.print_style or profile_of(design, "printer").print_style
+    models = None
+    if design.colour.given or style == "mosaic":
         from ..build.models import BuildOptions, Models
 
+        models = Models(tile, BuildOptions.of_design(design))
         try:  # the build's classes and colours; a letter the design lacks is refused before anything is printed
-            class_lines = face_class_lines(Models(tile, BuildOptions.of_design(design)).face_class_stats())
+            _ = models.colouring
         except ParameterError as exc:
             raise ParameterError(f"{design_file}: {exc}", param=exc.param) from None
     result = check_design(design, tile, job=True)
+    class_lines = []
+    if models is not None:  # the classes as the print makes them: those filled with the bands print no colour
+        from .._report import face_class_lines
+
+        filled = models.filled_classes(result.print_region) if out.fill_small_holes else frozenset()
+        class_lines = [models.print_parts_line(result.print_region, style)]
+        class_lines += face_class_lines(models.face_class_stats(filled))
     laser = f"{cutter} profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
     if result.filled_holes:
         laser += f" ({result.filled_holes:,} small holes filled)"
     printer = f"printer profile {out.printer_profile or DEFAULT_PRINTER_PROFILE}"
     if result.print_filled_holes:
         printer += f" ({result.print_filled_holes:,} small holes filled)"
+    for line in design_notes(design):  # what the checked tile has that the file does not say (a seamless fit)
+        click.echo(f"fabtiles: note: {line}", err=True)
     click.echo(f"{design_file}: {laser}, {printer}")
     if result.job is not None:
         click.echo(f"  {cutter} job: {result.job.line()}")

@@ -17,8 +17,22 @@ class _Group(click.Group):
     """A click group that reports FabtilesError as one line and exit status 2."""
 
     def invoke(self, ctx):
+        import warnings
+
+        from .._errors import FabtilesDeprecationWarning
+
         try:
-            return super().invoke(ctx)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always", FabtilesDeprecationWarning)
+                try:
+                    return super().invoke(ctx)
+                finally:  # a renamed key still read: one note each, saying the new name
+                    for message in dict.fromkeys(str(w.message) for w in caught
+                                                 if issubclass(w.category, FabtilesDeprecationWarning)):
+                        click.echo(f"fabtiles: note: {message}", err=True)
+                    for w in caught:  # anything else is shown as it would have been
+                        if not issubclass(w.category, FabtilesDeprecationWarning):
+                            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
         except FabtilesError as exc:
             click.echo(f"fabtiles: error: {exc}", err=True)
             ctx.exit(2)
@@ -117,7 +131,8 @@ def _register_optional_commands():
     """Commands defined in their own modules (imported lazily by click when run)."""
     import importlib
 
-    for module in ("build", "nest", "batch", "sweep", "serve", "check", "calibrate", "profile", "plot", "inkscape"):
+    for module in ("new", "build", "nest", "batch", "sweep", "serve", "check", "calibrate", "profile", "plot",
+                   "inkscape"):
         try:
             mod = importlib.import_module(f"{__package__}.{module}")
         except ModuleNotFoundError as exc:

@@ -85,7 +85,11 @@ def findings_overlay(findings, height: float, *, mark_mm: float = 1.5) -> str:
     return "\n".join(out)
 
 
-def tile_svg(tile, *, fill: str = "#1f3b73", outline_color: str = "#c0392b",
+INK = "#1f3b73"
+"""The bands' colour in a picture of a design given no colours (the print's second filament, as the 3D view shows it)."""
+
+
+def tile_svg(tile, *, fill: str = INK, outline_color: str = "#c0392b",
              background: str = "#ffffff", title: str | None = None, findings=None, region=None, faces=()) -> str:
     """An SVG picture of ``tile`` at true size: material filled, outline stroked.
 

@@ -56,7 +56,7 @@ def print_geometry(tile, *, profile=None, style=None):
     """
     dips = None
     if getattr(tile, "interlace", False) and (style or load_profile(
-            profile if profile is not None else DEFAULT_PRINTER_PROFILE, kind="printer").style) == "relief":
+            profile if profile is not None else DEFAULT_PRINTER_PROFILE, kind="printer").print_style) == "relief":
         from . import interlace
 
         dips = interlace.tile_dips(tile)

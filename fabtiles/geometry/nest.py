@@ -333,8 +333,12 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
             i = remaining[0]
             rot, shift = _fallback(shapes[i], w, h, angles)
             kept = [(i, Placement(ids[i], sheet, rot, shift))]
+        # the strip packer leaves the parts anywhere up the sheet's height: slid as one block to the sheet's
+        # corner (a lone tile at the origin, not half-way up the edge), their gaps unchanged
+        x0, y0 = np.min([p.place(shapes[i]).bounds[:2] for i, p in kept], axis=0)
         for i, p in kept:
-            placements[i] = p
+            tx, ty = p.translation
+            placements[i] = Placement(p.id, p.sheet, p.rotation, (tx - x0, ty - y0))
         done = {i for i, _ in kept}
         remaining = [i for i in remaining if i not in done]
         sheet += 1

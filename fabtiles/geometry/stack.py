@@ -91,7 +91,7 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
     """
     profile = load_profile(profile, kind="printer")
     assert isinstance(profile, PrinterProfile)
-    style = check_choice("style", profile.style if style is None else style, PRINT_STYLES)
+    style = check_choice("style", profile.print_style if style is None else style, PRINT_STYLES)
     values = {}
     for key, given in (("base_mm", base_mm), ("relief_mm", relief_mm),
                        ("pierced_mm", pierced_mm), ("deboss_mm", deboss_mm)):

@@ -133,8 +133,8 @@ def user_message(exc: Exception, field: str | None) -> str:
     'height must be > 0, got 0'
     >>> user_message(DesignError("query: [packing.motifs] 8 'x' is not a valid preset"), "motif_8")
     "motif_8: 'x' is not a valid preset"
-    >>> user_message(DesignError("query: [colour.faces] A 'x' is not a CSS colour name"), "face_A")
-    "face_A 'x' is not a CSS colour name"
+    >>> user_message(DesignError("query: [colour.faces] A 'x' is not a CSS or palette colour name"), "face_A")
+    "face_A 'x' is not a CSS or palette colour name"
     """
     text = str(exc).removeprefix(f"{SOURCE}: ")
     where = _WHERE.match(text)

@@ -1,7 +1,9 @@
 """The gallery: places to start from, each a shareable editor query and a thumbnail.
 
-The paper's seven presets on the default hexagonal packing, their faces coloured
-by shape in the palettes (``docs/colours.md``), and the eleven Archimedean
+The paper's seven presets on the default hexagonal packing (a smaller packing or
+a wider stroke where the default's bands would be thinner than the default
+profiles cut and print), their faces coloured by shape in the palettes
+(``docs/colours.md``), and the eleven Archimedean
 tilings as their samples in ``samples/tilings/`` have them (a test builds each
 entry and its sample and compares the tiles, so the two cannot drift; the
 samples have no colours, so neither have these entries), then four tilings by
@@ -32,13 +34,19 @@ from ..pattern.tilings import NAMES, TILINGS
 _PRESET_PALETTES = {"table1-part1": "zellige", "table1-part2": "iznik", "table2-left": "mamluk",
                     "table2-right": "alhambra", "table3-1": "haft-rangi", "table3-2": "iznik", "table3-3": "zellige"}
 
+# preset -> packing radius and stroke (mm) where it differs from 15 and 1: each entry opens with no finding
+# on the default profiles (a stroke of 1 leaves bridges under 1 mm where these presets' bands meet at a
+# sharp angle; table2-left's long thin points need a smaller packing as well)
+_PRESET_TILES = {"table1-part2": ("15", 1.5), "table2-left": ("10", 2), "table2-right": ("15", 1.5),
+                 "table3-2": ("15", 1.5)}
+
 _GAP_STAR = {"n": 6, "radii": (0.5, 1)}  # a six-point star of radii 0.5 and 1, the tilings' small motif
 
 # tiling -> edge (mm), preset per polygon kind, the motif above (for the kinds with none), gap motif,
 # stroke (mm): the values of samples/tilings/<tiling>.toml
 _TILINGS = {
     "3.12.12": (9, {12: "table3-1"}, _GAP_STAR, None, 1),
-    "3.3.3.3.3.3": (18, {}, _GAP_STAR, None, 1),
+    "3.3.3.3.3.3": (18, {}, _GAP_STAR, None, 1.2),
     "3.3.3.3.6": (12, {6: "table3-3"}, _GAP_STAR, 3, 1),
     "3.3.3.4.4": (16, {4: "table1-part1"}, _GAP_STAR, 4, 1),
     "3.3.4.3.4": (20, {4: "table1-part1"}, _GAP_STAR, None, 1),
@@ -68,6 +76,8 @@ class Entry:
     title: str
     note: str
     query: dict
+    group: str = "preset"
+    """``"preset"``, ``"tiling"`` or ``"hankin"``: the gallery's header counts each."""
 
 
 def _tile_query(stroke=1) -> dict:
@@ -77,9 +87,12 @@ def _tile_query(stroke=1) -> dict:
 @functools.cache
 def entries() -> tuple[Entry, ...]:
     """The gallery's entries: the presets, then the tilings, then the tilings by Hankin's method."""
-    out = [Entry(name, f"Preset {name}", PRESET_NOTES[name] or "the paper's parameters, as printed",
-                 {"preset": name, "packing": "hex", "radius": "15", **_tile_query(),
-                  "colour_by": "shape", "palette": _PRESET_PALETTES[name]}) for name in PRESETS]
+    out = []
+    for name in PRESETS:
+        radius, stroke = _PRESET_TILES.get(name, ("15", 1))
+        out.append(Entry(name, f"Preset {name}", PRESET_NOTES[name] or "the paper's parameters, as printed",
+                         {"preset": name, "packing": "hex", "radius": radius, **_tile_query(stroke),
+                          "colour_by": "shape", "palette": _PRESET_PALETTES[name]}))
     for tiling, (edge, motifs, main, gap_n, stroke) in _TILINGS.items():
         query = {"packing": "archimedean", "tiling": tiling, "edge": f"{edge:g}"}
         if main is None:
@@ -90,7 +103,8 @@ def entries() -> tuple[Entry, ...]:
         query.update({f"motif_{p}": name for p, name in motifs.items()})
         if gap_n is not None:
             query.update(gap_n=str(gap_n), gap_radii="0.5,1")
-        out.append(Entry(tiling, f"Tiling {tiling}", f"the {NAMES[tiling]} tiling", {**query, **_tile_query(stroke)}))
+        out.append(Entry(tiling, f"Tiling {tiling}", f"the {NAMES[tiling]} tiling", {**query, **_tile_query(stroke)},
+                         "tiling"))
     for tiling, (angle, gap) in _HANKIN.items():
         query = {"preset": "table3-3", "packing": "archimedean", "tiling": tiling, "edge": "14", "method": "hankin",
                  "contact_angle": f"{angle:g}"}
@@ -99,7 +113,7 @@ def entries() -> tuple[Entry, ...]:
         gap_words = f", {gap:g} mm apart" if gap else ""
         out.append(Entry(f"hankin-{tiling}", f"Hankin {tiling}",
                          f"the {NAMES[tiling]} tiling by Hankin's polygons in contact, rays at {angle:g} degrees"
-                         f"{gap_words}", {**query, **_tile_query(1)}))
+                         f"{gap_words}", {**query, **_tile_query(1)}, "hankin"))
     assert set(_TILINGS) == set(TILINGS), "a tiling is missing from the gallery"
     assert set(_PRESET_PALETTES) == set(PRESETS), "a preset has no palette in the gallery"
     return tuple(out)

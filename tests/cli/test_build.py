@@ -241,3 +241,17 @@ def test_build_result_lists_replaced_and_earlier_files(tmp_path):
     assert again.replaced == [str(tmp_path / "small.svg")] and again.earlier == [str(tmp_path / "small.dxf")]
     one = build_design(d, tmp_path, ["svg"], file_name="small.svg")
     assert one.replaced == [str(tmp_path / "small.svg")] and one.earlier == []
+
+
+def test_a_seamless_fit_says_what_it_changed(tmp_path):
+    design = tmp_path / "seam.toml"
+    design.write_text('[motif]\npreset = "table3-3"\n[packing]\nkind = "hex"\nradius = 14\nseamless = true\n'
+                      '[tile]\noutline = "rectangle"\nsize = [120, 120]\nframe = 0.0\n[output]\nformats = ["svg"]\n')
+    notes = ["fabtiles: note: packing.seamless: radius 14 mm fitted to 15 mm (4 periods across the 120 mm width)",
+             "fabtiles: note: packing.seamless: tile height 120 mm moved to 103.923 mm (-16.077 mm, 2 whole "
+             "periods up)"]
+    result = CliRunner().invoke(cli, ["build", str(design), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    assert result.stderr.splitlines() == notes
+    result = CliRunner().invoke(cli, ["check", str(design)])
+    assert result.stderr.splitlines() == notes

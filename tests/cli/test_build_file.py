@@ -75,3 +75,23 @@ def test_unknown_suffix_is_a_folder(design, tmp_path):
     result = run("build", design, "-o", out)
     assert result.exit_code == 0, result.output
     assert (out / "small.svg").is_file()
+
+
+@pytest.mark.parametrize("name", ["tile.png", "t.PDF", "tile.gcode", "tile.stp"])
+def test_a_file_type_fabtiles_does_not_write_is_an_error(design, tmp_path, name):
+    out = tmp_path / name
+    result = run("build", design, "-o", out)
+    assert result.exit_code == 2 and result.output.count("\n") == 1, result.output
+    suffix = name.rsplit(".", 1)[1]
+    assert f"fabtiles does not write .{suffix.lower()} files; name the file with a format's suffix (.dxf, .svg, " \
+           f".lbrn2, .stl, .3mf, .step) or give a folder" in result.output
+    assert list(tmp_path.iterdir()) == [design]
+
+
+def test_an_existing_folder_or_a_trailing_slash_is_a_folder_whatever_its_suffix(design, tmp_path):
+    (tmp_path / "pics.png").mkdir()
+    assert run("build", design, "-o", tmp_path / "pics.png").exit_code == 0
+    assert (tmp_path / "pics.png" / "small.svg").is_file()
+    result = run("build", design, "-o", f"{tmp_path / 'new.png'}/")
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "new.png" / "small.svg").is_file()

@@ -64,6 +64,7 @@ def test_copies_writes_a_sheet_of_n_tiles(design, tmp_path):
     wrote = [line.split(" (")[0] for line in result.stdout.splitlines() if line.startswith("wrote ")]
     assert wrote == [f"wrote {out / 'small-sheet.dxf'}", f"wrote {out / 'small-sheet.svg'}"]
     assert result.stdout.count("laser laser-3mm-plywood: ") == 1  # the sheet's checks, once for both files
+    assert "  laid 7 tiles on the 600 x 400 mm bed of laser profile 'laser-3mm-plywood' (" in result.stdout
     assert result.stderr == ""
     check_sheet_dxf(out / "small-sheet.dxf", design, 7)
     svg = (out / "small-sheet.svg").read_text()
@@ -84,6 +85,7 @@ def test_sheet_fills_the_bed_and_skips_print_formats(tmp_path):
     fit = [int((bed + gap) // (60 + gap)) for bed in PLY.bed_mm]  # 9 x 6 tiles of 60 mm
     assert fit == [9, 6]
     check_sheet_dxf(out / "coaster-sheet.dxf", design, fit[0] * fit[1])
+    assert "  laid 54 tiles on the 600 x 400 mm bed of laser profile 'laser-3mm-plywood' (" in result.stdout
 
 
 def test_score_mode_sheet_and_gap(design, tmp_path):

@@ -255,7 +255,7 @@ def test_the_web_app_downloads_a_kit_as_one_archive():
     import io
     import zipfile
 
-    from fastapi.testclient import TestClient
+    from asgi_client import TestClient
 
     from fabtiles.web.app import create_app
 
@@ -283,7 +283,7 @@ def test_the_kit_picture_of_the_sample_is_up_to_date(tmp_path):
 
 
 def test_the_web_app_draws_the_kit():
-    from fastapi.testclient import TestClient
+    from asgi_client import TestClient
 
     from fabtiles.web.app import create_app
 

@@ -72,7 +72,7 @@ def test_build_and_check_print_the_filament(tmp_path):
 
 
 def test_the_web_app_gives_the_material():
-    from fastapi.testclient import TestClient
+    from asgi_client import TestClient
 
     from fabtiles.web.app import create_app
 

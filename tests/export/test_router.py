@@ -269,7 +269,7 @@ def test_fabtiles_check_lists_and_draws_the_rounded_part(tmp_path):
 
 
 def test_the_web_app_lists_the_routers_and_reports_their_findings():
-    from fastapi.testclient import TestClient
+    from asgi_client import TestClient
 
     from fabtiles.web.app import create_app
 

@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 
 from fabtiles._limits import Limits
 from fabtiles.web.app import create_app
@@ -151,7 +151,7 @@ BAD = [
     ("outline=oval", "outline", "'oval' is not valid, must be one of: square, rectangle, hexagon, circle"),
     ("width=0", "width", "width must be a finite number > 0"),
     ("outline=rectangle&width=100&height=0", "width", "height must be a finite number > 0"),
-    ("width=5000", "width", "larger than the limit of 1200 mm"),
+    ("width=5000", "width", "larger than the limit of 3000 mm"),
     ("outline=rectangle&width=100&height=x", "height", "height must be a number"),
     ("frame=-1", "frame", "frame"),
     ("frame=100", "frame", "too small for frame 100 mm"),
@@ -253,3 +253,9 @@ def test_holding_tabs_from_the_query(client):
     r = client.get(f"/api/export/dxf?{SMALL}&tab_mm=0.5&laser_profile=router-6mm-mdf&stroke=5")
     assert r.status_code == 422 and r.json()["field"] == "tab_mm"
     assert re.search(r"tab_mm must be 0 for router profile 'router-6mm-mdf', got 0\.5", r.json()["error"])
+
+
+def test_the_size_limit_is_the_command_lines():
+    from fabtiles._limits import CLI_LIMITS, WEB_LIMITS
+
+    assert WEB_LIMITS.max_size_mm == CLI_LIMITS.max_size_mm

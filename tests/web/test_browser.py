@@ -226,6 +226,21 @@ def test_downloads_are_disabled_while_the_design_is_invalid(page, server):
     assert page.locator(f"{links}[href]").count() == 7 and page.locator(f"{links}.disabled").count() == 0
 
 
+def test_a_page_opened_with_an_invalid_value_says_what_is_wrong_in_each_view(page, server):
+    page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3&stroke=0")
+    page.wait_for_function("() => !document.querySelector('#preview-error').hidden")
+    wrong = "stroke must be a finite number > 0, got 0"
+    # no broken picture, no "loading" 3D view, no "..." checks: the error in each place
+    assert page.text_content("#preview-error").startswith(f"No picture: {wrong}")
+    assert page.locator("#preview").is_hidden()
+    page.wait_for_function("() => document.querySelector('#view3d-caption').textContent.includes('not shown')")
+    assert page.text_content("#view3d-caption").startswith(f"The print in 3D: not shown, {wrong}")
+    assert page.text_content("#checks").startswith(f"Not checked: {wrong}")
+    _set(page, "#stroke", "1")  # fixed: the picture and the checks come back
+    assert page.locator("#preview").is_visible() and page.locator("#preview-error").is_hidden()
+    page.wait_for_function("() => !document.querySelector('#checks').textContent.startsWith('Not checked')")
+
+
 def test_controls_show_only_where_they_apply(page, server):
     page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3")
     page.wait_for_function("() => document.querySelector('#preview').dataset.version")

@@ -79,11 +79,13 @@ def test_palette_and_pickers_fill_the_faces(page, server):
     assert "face_B" not in page.url and _fills(page)["B"] == mamluk.faces[1].hex
     _wait_faces(page, "B", mamluk.faces[1].hex)
 
-    # a link opens with its colours (a CSS name too) in the pickers
-    page.goto(f"{server}/?{SMALL}&colour_by=shape&palette=iznik&face_C=navy")
-    _wait_faces(page, "C", "#000080")
+    # a link opens with its colours (a CSS name, a palette's) in the pickers as in the picture: navy is
+    # Iznik's own, teal CSS's
+    page.goto(f"{server}/?{SMALL}&colour_by=shape&palette=iznik&face_C=navy&face_D=teal")
+    _wait_faces(page, "C", iznik.base.hex)
+    _wait_faces(page, "D", "#008080")
     page.wait_for_function("() => document.querySelector('#preview').dataset.version")
-    assert _fills(page)["C"] == "#000080"
+    assert _fills(page)["C"] == iznik.base.hex and _fills(page)["D"] == "#008080"
 
 
 def test_a_chosen_colour_of_a_class_the_design_lacks_is_dropped(page, server):

@@ -3,7 +3,7 @@ palettes, and a bad colour named by its parameter."""
 
 import pytest
 
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 
 from fabtiles._colour import PALETTES
 from fabtiles._limits import Limits
@@ -22,7 +22,8 @@ def test_faces_by_shape_in_the_palettes_colours(client):
     assert r.status_code == 200, r.text
     data = r.json()
     iznik = PALETTES["iznik"]
-    assert set(data) == {"band", "base", "classes"}
+    assert set(data) == {"band", "base", "classes", "plain", "names"}
+    assert data["names"]["navy"] == iznik.base.hex  # the names the page resolves as the server does
     assert data["band"] == {"colour": iznik.band.hex, "name": iznik.band.name}
     assert data["base"] == {"colour": iznik.base.hex, "name": iznik.base.name}
     classes = data["classes"]
@@ -40,9 +41,10 @@ def test_faces_by_shape_in_the_palettes_colours(client):
 def test_faces_given_colours_override_the_palettes(client):
     data = client.get(f"/api/faces?{SMALL}&colour_by=shape&palette=iznik&face_B=navy&band_colour=%23ffd400"
                       f"&base_colour=black").json()
-    assert data["classes"][1]["colour"] == "#000080" and data["classes"][1]["name"] == "navy"
+    # navy and black are Iznik's own colours of those names (its base's navy, its black), not CSS's
+    assert data["classes"][1]["colour"] == "#1e2a5a" and data["classes"][1]["name"] == "navy"
     assert data["classes"][0]["colour"] == PALETTES["iznik"].faces[0].hex  # the others keep the palette's
-    assert data["band"] == {"colour": "#ffd400", "name": "ffd400"} and data["base"]["colour"] == "#000000"
+    assert data["band"] == {"colour": "#ffd400", "name": "ffd400"} and data["base"]["colour"] == "#1b1b1b"
 
 
 def test_faces_without_colours_is_one_class(client):
@@ -61,9 +63,9 @@ def test_faces_respects_the_web_limits():
 BAD_COLOURS = [
     ("colour_by=size", "colour_by", "'size' is not valid, must be one of: none, shape"),
     ("palette=persian", "palette", "'persian' is not valid, must be one of: zellige, iznik"),
-    ("band_colour=nope", "band_colour", "band_colour 'nope' is not a CSS colour name"),
+    ("band_colour=nope", "band_colour", "band_colour 'nope' is not a CSS or palette colour name"),
     ("base_colour=%2312345", "base_colour", "base_colour must be #rrggbb or a CSS colour name"),
-    ("colour_by=shape&face_A=reddish", "face_A", "face_A 'reddish' is not a CSS colour name (did you mean 'red'?)"),
+    ("colour_by=shape&face_A=reddish", "face_A", "face_A 'reddish' is not a CSS or palette colour name (did you mean 'red'?)"),
     ("colour_by=shape&face_Q=red", "face_Q", "face class 'Q' is not one of this design's: A, B, C, D"),
 ]
 
@@ -83,3 +85,16 @@ def test_the_preview_fills_the_faces_in_the_palettes_colours(client):
         assert f'class="face-{letter}"' in svg and f'fill="{colour}"' in svg
     plain = client.get(f"/api/preview.svg?{SMALL}").text
     assert 'class="face-' not in plain  # no colours asked for: the plain picture
+
+
+def test_a_design_given_no_colours_says_so_and_what_the_pictures_show(client):
+    from fabtiles.solid.print_model import PART_MATERIALS
+
+    plain = client.get(f"/api/faces?{SMALL}").json()["plain"]
+    assert plain["band"] == {"colour": "#1f3b73", "name": "ink"} and plain["face"]["colour"] == "#ffffff"
+    # the plate as the 3D view draws it: the base material's linear colour in sRGB
+    linear = [int(plain["base"]["colour"][i:i + 2], 16) / 255 for i in (1, 3, 5)]
+    linear = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in linear]
+    assert linear == pytest.approx(PART_MATERIALS["base"].colour, abs=0.005)
+    assert client.get(f"/api/preview.svg?{SMALL}").headers["X-Fabtiles-Coloured"] == "false"
+    assert client.get(f"/api/preview.svg?{SMALL}&colour_by=shape").headers["X-Fabtiles-Coloured"] == "true"

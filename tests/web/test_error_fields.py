@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 from test_api import BAD
 
 from fabtiles.web import app as app_mod

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import shapely
 
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 
 from fabtiles._profiles import load_profile
 from fabtiles.web.app import create_app

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 
 from fabtiles._limits import WEB_LIMITS
 from fabtiles.design import load_design
@@ -56,8 +56,21 @@ def test_preset_entry_is_the_editor_default_with_that_preset_in_a_palette():
     for name in PRESETS:
         query = gallery.entry(name).query
         palettes.add(query["palette"])
-        assert query == {**DEFAULTS, "preset": name, "colour_by": "shape", "palette": query["palette"]}
+        radius, stroke = gallery._PRESET_TILES.get(name, (DEFAULTS["radius"], 1))
+        assert query == {**DEFAULTS, "preset": name, "colour_by": "shape", "palette": query["palette"],
+                         "radius": radius, "stroke": f"{stroke:g}"}
     assert palettes == set(PALETTE_NAMES)  # every palette shown
+
+
+@pytest.mark.parametrize("key", [e.key for e in gallery.entries()])
+def test_every_entry_opens_with_no_finding(key):
+    """A place to start from is one that cuts and prints on the default profiles as it opens."""
+    from fabtiles.checks import check_design
+    from fabtiles.design import design_from_dict
+    from fabtiles.web.params import design_from_query
+
+    result = check_design(design_from_dict(design_from_query(gallery.entry(key).query)))
+    assert [(where, f.code, f.count) for where, f in result.findings()] == []
 
 
 def test_thumbnails_show_the_colours(client):

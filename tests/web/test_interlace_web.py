@@ -2,7 +2,7 @@
 
 import pytest
 
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 
 from fabtiles.web.app import create_app
 from fabtiles.web.params import design_from_query

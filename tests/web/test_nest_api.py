@@ -9,7 +9,7 @@ import zipfile
 import ezdxf
 import pytest
 import shapely
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 
 from fabtiles._limits import WEB_LIMITS, Limits
 from fabtiles.web.app import create_app

@@ -1,7 +1,7 @@
 """The web app and the Archimedean tilings: query parameters, the API, the page's menus."""
 
 import pytest
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 from test_browser import _preview_version, _wait_new_preview, page, server  # noqa: F401 - fixtures
 
 from fabtiles.design import design_from_dict

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import trimesh
-from fastapi.testclient import TestClient
+from asgi_client import TestClient
 
 from fabtiles._limits import Limits
 from fabtiles.web.app import create_app

@@ -169,11 +169,37 @@ def test_a_mosaic_shows_its_parts_in_their_colours(page, server):
     assert all(p in caption for p in parts)
 
 
+def test_one_colour_mode_shows_the_pictures_colours_in_the_colours_box(page, server):
+    """No colours given: the pickers show the bands as the preview draws them and the plate as the 3D view does."""
+    page.goto(f"{server}/?{SMALL}")
+    _wait_model(page)
+    page.wait_for_function("() => document.querySelector('#face-classes .face-row')")
+    svg = page.evaluate("() => decodeURIComponent(document.querySelector('#preview').src.split(',')[1])")
+    band = page.input_value("#band_colour")
+    assert band == "#1f3b73" and f'fill="{band}"' in svg  # the bands as the preview draws them
+    base = page.get_attribute("#view3d", "data-colours").split(",")[0]  # the relief's base, its first part
+    assert page.get_attribute("#view3d", "data-parts").split(",")[0] == "base"
+    assert _close(page.input_value("#base_colour"), base), (page.input_value("#base_colour"), base)
+    assert page.locator("#face-classes .swatch").first.evaluate("e => getComputedStyle(e).backgroundColor") == \
+        "rgb(255, 255, 255)"  # the faces are open: the picture's white
+    # colours asked for: the pickers show the palette's, as the pictures then do
+    old = page.get_attribute("#preview", "data-version")
+    page.select_option("#colour_by", "shape")
+    page.wait_for_function("old => document.querySelector('#preview').dataset.version !== old", arg=old)
+    from fabtiles._colour import PALETTES
+
+    page.wait_for_function(f"() => document.querySelector('#base_colour').value === '{PALETTES['zellige'].base.hex}'")
+    assert page.input_value("#band_colour") == PALETTES["zellige"].band.hex
+
+
 def test_the_gallery_opens_a_tiling_in_the_editor(page, server):
     page.goto(f"{server}/gallery")
     from fabtiles.web.gallery import entries
 
     page.wait_for_function(f"() => document.querySelectorAll('#gallery a').length === {len(entries())}")
+    # the header counts what the page shows
+    counts = [int(n) for n in __import__("re").findall(r"\d+", page.text_content("#gallery-intro"))]
+    assert counts == [7, 11, 4] and sum(counts) == page.locator("#gallery a").count()
     page.wait_for_function("() => { const i = document.querySelector('#gallery a[data-key=\"4.8.8\"] img');"
                            " return i.complete && i.naturalWidth > 0; }", timeout=60_000)
     page.click('#gallery a[data-key="4.8.8"]')

@@ -47,7 +47,8 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         """The gallery: the paper's presets and the tilings' samples, each with its editor query."""
         from ..gallery import entries
 
-        return [{"key": e.key, "title": e.title, "note": e.note, "query": e.query} for e in entries()]
+        return [{"key": e.key, "title": e.title, "note": e.note, "query": e.query, "group": e.group}
+                for e in entries()]
 
     @api.get("/api/gallery/{key}.svg")
     def gallery_thumbnail(key: str):

@@ -13,6 +13,23 @@ from ..params import QueryError, parse_flag
 MEDIA_TYPES = {"toml": "application/toml"}
 
 
+def _plain() -> dict:
+    """The colours the pictures take when a design gives none: the preview's ink for the bands, the 3D
+    view's plate, and the faces left open (the picture's white)."""
+    from ...export.preview_svg import INK
+    from ...solid.print_model import PART_MATERIALS
+
+    linear = PART_MATERIALS["base"].colour
+    srgb = [12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055 for c in linear]
+    return {"band": {"colour": INK, "name": "ink"},
+            "base": {"colour": "#" + "".join(f"{round(255 * c):02x}" for c in srgb), "name": "plate"},
+            "face": {"colour": "#ffffff", "name": "open"}}
+
+
+PLAIN = _plain()
+"""What the pictures show of a design given no colours (``/api/faces``' ``plain``)."""
+
+
 def router(*, limits: _limits.Limits) -> APIRouter:
     """``/api/preview.svg``, ``/api/faces``, ``/api/kit.svg``, ``/api/view.glb``, ``/api/checks``,
     ``/api/design.toml``, ``/api/export/{fmt}``."""
@@ -33,16 +50,20 @@ def router(*, limits: _limits.Limits) -> APIRouter:
             findings, made = result.findings(), result.made
         # a router's or waterjet's part is drawn as its tool makes it (None: a laser's, the tile's own);
         # a coloured design's faces in their colours
+        # whether the pictures are in the design's colours (else the plain ink and plate: /api/faces "plain")
         return Response(tile_picture(tile, spec, title=repr(tile), findings=findings, made=made),
-                        media_type="image/svg+xml")
+                        media_type="image/svg+xml",
+                        headers={"X-Fabtiles-Coloured": "true" if spec.colour.given else "false"})
 
     @api.get("/api/faces")
     def faces(request: Request):
         """The design's face classes in their colours, and the bands' and the base's colour.
 
         ``{"band": {colour, name}, "base": {colour, name}, "classes": [{letter,
-        count, description, area_mm2, colour, name}]}``: the classes as ``fabtiles check`` lists
-        them, each colour as ``#rrggbb`` and its name (the palette's unless the query gives it).
+        count, description, area_mm2, colour, name}], "plain": ...}``: the classes as ``fabtiles
+        check`` lists them, each colour as ``#rrggbb`` and its name (the palette's unless the query
+        gives it); ``plain``, what the pictures show of a design given no colours (:data:`PLAIN`);
+        ``names``, the palette colour names the design reads (``{"cobalt": "#1e4fa0", ...}``).
         """
         from ...build import BuildOptions, Models
 
@@ -54,7 +75,10 @@ def router(*, limits: _limits.Limits) -> APIRouter:
             return {"colour": c.hex, "name": c.name}
 
         classes = [{**c, **named(colours.face(c["letter"]))} for c in models.face_classes.stats()]
-        return {"band": named(colours.band), "base": named(colours.base), "classes": classes}
+        from ..._colour import palette_names
+
+        return {"band": named(colours.band), "base": named(colours.base), "classes": classes, "plain": PLAIN,
+                "names": palette_names(spec.colour.palette)}
 
     @api.get("/api/kit.svg")
     def kit_picture(request: Request):

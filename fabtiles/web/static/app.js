@@ -303,14 +303,20 @@ async function refresh() {
   if (!res.ok) {
     const body = await res.json().catch(() => ({ error: res.statusText, field: null }));
     showError(body.field, body.error);
+    notShown(body.error);
     return;
   }
   const svg = await res.text();
+  const nowColoured = res.headers.get("X-Fabtiles-Coloured") === "true";
+  if (nowColoured !== coloured) { coloured = nowColoured; showColours(); }
   $("preview").src = "data:image/svg+xml;charset=utf-8," + encodeURIComponent(svg);
+  $("preview").hidden = false;
+  $("preview-error").hidden = true;
   showMarks(svg);
   $("preview").dataset.version = String(mine);
   showError(null, "");
   window.fabtilesDesign = String(q);  // the 3D view (view3d.js) follows every good design
+  window.fabtilesInvalid = null;
   document.dispatchEvent(new CustomEvent("fabtiles:design", { detail: String(q) }));
   const kit = state.laser_mode === "inlay";
   $("kit-box").hidden = !kit;
@@ -341,6 +347,23 @@ async function refresh() {
   $("material").textContent = data.material
     ? `Print material: ${data.material.line} (the print time is the slicer's to tell)` : "";
   $("job").dataset.version = String(mine);
+}
+
+// An invalid design: what is wrong, said where the picture, the 3D view and the checks would be (the
+// picture of the last good design stays, under the message; before any, there is none to show).
+function notShown(message) {
+  const note = $("preview-error");
+  note.textContent = `${$("preview").getAttribute("src") ? "Not updated" : "No picture"}: ${message}`;
+  note.hidden = false;
+  if (!$("preview").getAttribute("src")) $("preview").hidden = true;
+  const li = document.createElement("li");
+  li.className = "error";
+  li.textContent = `Not checked: ${message}`;
+  $("checks").replaceChildren(li);
+  $("job").textContent = "";
+  $("material").textContent = "";
+  window.fabtilesInvalid = message;  // for the 3D view, if its module loads after this
+  document.dispatchEvent(new CustomEvent("fabtiles:invalid", { detail: message }));
 }
 
 // The marks of the preview's findings, copied into #marks (an SVG laid over the
@@ -375,6 +398,9 @@ function choose(li, keep = false) {
 // class. The classes and the palette's colours do not depend on the colours chosen, so the list is asked
 // for without them, and again only when something else changes.
 let facesInfo = null, facesKey = null, facesSeq = 0;
+// Whether the pictures are in the design's colours (the preview says so); else they show the plain ink
+// and plate, and so do the pickers.
+let coloured = false;
 
 function classesQuery() {
   const q = query();
@@ -397,8 +423,11 @@ async function refreshFaces() {
   return gone.length > 0;
 }
 
-// A colour as #rrggbb, what a colour picker takes (a link may give a CSS name: "navy").
+// A colour as #rrggbb, what a colour picker takes (a link may give a name: a palette's, read in the design's
+// palette first as the server reads it, else CSS's: "navy").
 function hexOf(colour) {
+  const named = facesInfo && facesInfo.names && facesInfo.names[String(colour).trim().toLowerCase()];
+  if (named) return named;
   const ctx = document.createElement("canvas").getContext("2d");
   ctx.fillStyle = "#000000";
   ctx.fillStyle = colour;
@@ -408,15 +437,16 @@ function hexOf(colour) {
 // The pickers show the colour chosen, else the palette's; each "palette's" button is enabled once a colour is chosen.
 function showColours() {
   const palettes = facesInfo || { band: { colour: "#ffffff" }, base: { colour: "#000000" }, classes: [] };
+  const plain = !coloured && palettes.plain;  // no colours given: what the pictures show
   for (const k of COLOUR_KEYS) {
-    const own = palettes[k.replace("_colour", "")];
+    const own = plain ? plain[k.replace("_colour", "")] : palettes[k.replace("_colour", "")];
     $(k).value = state[k] ? hexOf(state[k]) : own ? own.colour : "#000000";
     document.querySelector(`.reset[data-reset="${k}"]`).disabled = !state[k];
   }
   const box = $("face-classes");
   box.innerHTML = "";
   for (const c of palettes.classes) {
-    const chosen = state.faces[c.letter], colour = chosen ? hexOf(chosen) : c.colour;
+    const chosen = state.faces[c.letter], colour = chosen ? hexOf(chosen) : plain ? plain.face.colour : c.colour;
     const row = document.createElement("div");
     row.className = "face-row";
     row.dataset.letter = c.letter;

@@ -4,6 +4,11 @@
 async function gallery() {
   const box = document.getElementById("gallery");
   const items = await (await fetch("/api/gallery")).json();
+  // the header counts what the page shows, from the same list
+  const count = (g) => items.filter((e) => e.group === g).length;
+  document.getElementById("gallery-intro").textContent =
+    `The paper's ${count("preset")} presets, the ${count("tiling")} Archimedean tilings and ` +
+    `${count("hankin")} of them by Hankin's method: choose one to open it in the editor.`;
   for (const e of items) {
     const a = document.createElement("a");
     a.href = `/?${new URLSearchParams({ gallery: e.key, ...e.query })}`;  // the editor names the design after it

@@ -129,7 +129,15 @@ async function start() {
     mesh.material.needsUpdate = true;
   };
   document.addEventListener("fabtiles:design", (e) => show(e.detail));
-  if (window.fabtilesDesign) show(window.fabtilesDesign);  // drawn before this module loaded
+  // an invalid design: no model is asked for; the last good one stays, the caption says why
+  const invalid = (message) => {
+    ++seq;
+    box.classList.remove("loading");
+    caption.textContent = model ? `3D view not updated: ${message}` : `The print in 3D: not shown, ${message}`;
+  };
+  document.addEventListener("fabtiles:invalid", (e) => invalid(e.detail));
+  if (window.fabtilesInvalid) invalid(window.fabtilesInvalid);  // refused before this module loaded
+  else if (window.fabtilesDesign) show(window.fabtilesDesign);  // drawn before this module loaded
   resize();
 }
 
