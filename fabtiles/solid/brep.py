@@ -333,7 +333,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             if merged.geom_type == "Polygon":  # one polygon (a flush mosaic's whole top): as the others, a multi
                 merged = shapely.MultiPolygon([merged])
             pieces.append((shapely.orient_polygons(merged), lvl))
-    cov = Coverage(pieces, cov.levels)
+    cov = Coverage(_unpinched(pieces), cov.levels)
     topo = topology(cov, triangulate=False, exact=True)
     z = np.asarray(cov.levels, float)
     ed = _Edges()
@@ -510,6 +510,74 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     for loops_ in bottom_loops:
         faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops_)))
     return _finish(ed, vxy, z, faces, what)
+
+
+def _unpinched(pieces: list) -> list:
+    """``[(MultiPolygon, level), ...]`` with each pinched polygon split into valid ones where it touches itself.
+
+    A meshing cell is clipped out of the region along its lines; where the region's
+    boundary only touches a cell line at one of its vertices (a sharp corner of an
+    interlace dip resting on the line), the clipped piece touches itself there: its
+    ring runs along the line past that vertex and back to it. A mesh does not mind;
+    a face must be valid. The piece is split there (GEOS :func:`shapely.make_valid`,
+    which adds no point off the grid: the touching vertex is already one), and that
+    vertex is put into the edges of the other pieces it lies on (the neighbour across
+    the line), so that every edge still has its twin.
+    """
+    import shapely
+
+    parts = [shapely.get_parts(g) for g, _ in pieces]
+    flat = np.concatenate(parts) if parts else np.empty(0, object)
+    bad = np.flatnonzero(~shapely.is_valid(flat))
+    if not len(bad):
+        return pieces
+    owner = np.repeat(np.arange(len(pieces)), [len(p) for p in parts])
+    fixed, added = {}, []
+    for i in bad.tolist():
+        poly = flat[i]
+        split = shapely.make_valid(poly, method="structure", keep_collapsed=False)
+        polys = [g for g in shapely.get_parts(split) if g.geom_type == "Polygon" and g.area > 0]
+        old = {tuple(c) for c in shapely.get_coordinates(poly).tolist()}
+        new = {tuple(c) for c in shapely.get_coordinates(polys).tolist()} if polys else set()
+        if not polys or not new <= old or abs(sum(g.area for g in polys) - poly.area) > 1e-9 * max(poly.area, 1.0):
+            continue  # not a pinch on its own vertices: left for check_brep to refuse
+        fixed[i] = polys
+        added.extend(old)  # the touching vertices among them, to be put into the neighbours' edges
+    if not fixed:
+        return pieces
+    pins = np.unique(np.asarray([c for c in added], float), axis=0)
+    out = [[] for _ in pieces]
+    for i, poly in enumerate(flat):
+        for g in fixed.get(i, [poly]):
+            out[owner[i]].append(_with_points_on_edges(g, pins))
+    return [(shapely.orient_polygons(shapely.MultiPolygon(polys)), lvl) for polys, (_, lvl) in zip(out, pieces)]
+
+
+def _with_points_on_edges(poly, pins):
+    """``poly`` with each of the grid points ``pins`` that lies inside one of its edges made a vertex there."""
+    import shapely
+
+    lo, hi = np.asarray(poly.bounds[:2]), np.asarray(poly.bounds[2:])
+    pins = pins[np.all((pins >= lo) & (pins <= hi), axis=1)]
+    if not len(pins):
+        return poly
+    grid = np.round(pins / QUANTUM).astype(np.int64)
+    rings = []
+    for ring in (poly.exterior, *poly.interiors):
+        xy = np.asarray(ring.coords)[:-1]
+        ij = np.round(xy / QUANTUM).astype(np.int64)
+        out = []
+        for k in range(len(xy)):
+            a, b = ij[k], ij[(k + 1) % len(xy)]
+            d, rel = b - a, grid - a
+            # exactly on the segment (integer grid coordinates), strictly between its ends
+            t = rel @ d
+            on = (rel[:, 0] * d[1] - rel[:, 1] * d[0] == 0) & (t > 0) & (t < d @ d)
+            out.append(xy[k:k + 1])
+            if on.any():
+                out.append(pins[on][np.argsort(t[on])])
+        rings.append(np.concatenate(out))
+    return shapely.Polygon(rings[0], rings[1:])
 
 
 def _finish(ed: _Edges, vxy, z, faces: list, what: str) -> Brep:
