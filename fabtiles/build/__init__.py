@@ -1,4 +1,4 @@
-"""The build: a design's models made once, its files written all or nothing, for every front end.
+"""The build: a design's models made once, each format's files written or refused on its own, for every front end.
 
 - :mod:`.models`: :class:`BuildOptions` (the profiles, loaded once, and the options)
   and :class:`Models` (the cut plan and the print model of one tile or sheet);
@@ -6,7 +6,7 @@
   (one format as bytes, the web app's downloads), :func:`export_tile` and
   :func:`export_region` (the API's one-file exports);
 - :mod:`.views`: the pictures' and the 3D view's geometry from the same models;
-- :mod:`.staging`: all-or-nothing writes; :mod:`.outcome`: batch and sweep results.
+- :mod:`.staging`: the files made, moved into place together; :mod:`.outcome`: batch and sweep results.
 """
 
 from .models import BuildOptions, Models

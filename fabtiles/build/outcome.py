@@ -27,20 +27,27 @@ class Outcome:
     print file (``filament_mass_g``, ..., ``filament_line``): empty without them."""
     counts: list[tuple[str, int]] = field(default_factory=list)
     """The findings of each machine the build made files for: ``[("laser", 0), ("printer", 1)]``."""
+    refused: list[str] = field(default_factory=list)
+    """One line per format the build refused while writing the others, ``"<format>: <reason>"``
+    (:attr:`~fabtiles.build.pipeline.BuildResult.refused`)."""
 
 
 def outcome_of(key: str, result: BuildResult) -> Outcome:
-    """An :class:`Outcome` for a successful build: its one line (files, findings per machine) and the findings.
+    """An :class:`Outcome` for a build that wrote files: its one line (files, findings per machine, formats
+    refused) and the findings.
 
     The line counts each machine's findings once, whatever the formats:
-    ``"5 files, laser 0, printer 1 warning"``.
+    ``"5 files, laser 0, printer 1 warning"``; a build that refused formats adds them,
+    ``"4 files, laser 0, printer 0, refused step"`` (the reasons in :attr:`Outcome.refused`).
     """
     n = len(result.paths)
     counts = [(label.split()[0], len(r.findings)) for label, r in result.models]
-    message = ", ".join([f"{n} file{'s' if n != 1 else ''}"] + [f"{machine} {_warnings(k)}" for machine, k in counts])
+    message = ", ".join([f"{n} file{'s' if n != 1 else ''}"] + [f"{machine} {_warnings(k)}" for machine, k in counts]
+                        + ([f"refused {', '.join(r.format for r in result.refused)}"] if result.refused else []))
     # each finding once, by the model it was found on (not once per file of that model)
     lines = [f"{label}: {f.code}: {f.message}" for label, r in result.models for f in r.findings]
-    return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports), counts)
+    refused = [f"{r.format}: {r.reason}" for r in result.refused]
+    return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports), counts, refused)
 
 
 def _warnings(n: int) -> str:
