@@ -16,6 +16,7 @@ from .pipeline import (
     SHEET_SUFFIX,
     BuildResult,
     Download,
+    Refused,
     build_bytes,
     build_design,
     check_format_limits,
@@ -31,7 +32,7 @@ from .views import VIEW_SEGMENTS, inlay_kit_of, made_region, print_view
 
 __all__ = [
     "BuildOptions", "Models", "Outcome", "outcome_of", "run_job", "PREVIEW_SUFFIX", "SHEET_SUFFIX", "BuildResult",
-    "Download", "build_bytes", "build_design", "check_format_limits", "export_region", "export_tile",
+    "Download", "Refused", "build_bytes", "build_design", "check_format_limits", "export_region", "export_tile",
     "layout_tile_sheet", "prepare_tile", "sheet_formats", "write_files", "STAGING_PREFIX", "StagingFolder",
     "remove_stale_staging", "VIEW_SEGMENTS", "inlay_kit_of", "made_region", "print_view",
 ]

@@ -40,7 +40,7 @@ import numpy as np
 from .._errors import FabricationError
 from ._mesh_build import QUANTUM, Coverage, Stack, coverage, topology
 from .levels import body_layers, dip_z, split_region
-from .parts import checked_parts
+from .parts import GRID_SHIFTS, checked_parts
 
 
 @dataclass(frozen=True)
@@ -963,10 +963,30 @@ def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0, ra
     """The B-rep of a checked fused body (see :func:`build_brep`): ``(brep, mesh_volume, n_solids)``."""
     kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
     layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
-    cell_vertices = _cells_for_faces(layers)
-    brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=cell_vertices), sides=_sides(part.outline),
-                       tolerance_mm=tolerance_mm, radii=radii, cells=cell_vertices != SINGLE_CELL)
+    cov, cells = _face_coverage(layers, bottom, _cells_for_faces(layers))
+    brep = planar_brep(cov, sides=_sides(part.outline), tolerance_mm=tolerance_mm, radii=radii, cells=cells)
     return brep, part.mesh_volume_mm3, len(brep.solids)
+
+
+def _face_coverage(layers, bottom: float, cell_vertices: int):
+    """``(coverage, in cells)``: the coverage whose pieces are the flat faces, and whether they are cells.
+
+    A ring noded at a cell line has the point where it crosses the line rounded to the
+    grid, which may put it across a neighbouring edge: GEOS cannot clip it. As the
+    mesh does (:data:`~fabtiles.solid.parts.GRID_SHIFTS` tries), the cut was unlucky,
+    not the region: the lines are moved and the cells cut again; when every try
+    fails, each flat region stays one face (slower for a CAD program to read, as
+    valid).
+    """
+    import shapely
+
+    if cell_vertices != SINGLE_CELL:
+        for shift in range(GRID_SHIFTS):
+            try:
+                return coverage(layers, bottom=bottom, cell_vertices=cell_vertices, shift=shift), True
+            except shapely.errors.GEOSException:
+                continue
+    return coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), False
 
 
 def brep_volume(brep: Brep) -> float:

@@ -30,9 +30,10 @@ def dip_level(dips, region=None):
     than :data:`THIN_MM` dropped (those stay at full height), no holes. A
     MultiPolygon, or an empty Polygon.
 
-    A part with a hole is filled where the hole is an island of the ``region``; a
-    part ringing an opening of the ``region`` (an outline circle inside a crossing)
-    is dropped and stays at full height: filled, it would lay plastic over the opening.
+    A part with a hole is filled where the hole is an island of the ``region`` (all
+    material); a part ringing an opening of the ``region`` (an outline circle inside
+    a crossing) is dropped and stays at full height: filled, it would lay plastic over
+    the opening.
 
     >>> from shapely.geometry import box
     >>> dip_level(box(0, 0, 1, 2 ** -12)).is_empty, round(dip_level(box(0, 0, 1, 0.5)).area, 3)
@@ -57,7 +58,7 @@ def dip_level(dips, region=None):
     if holed.any() and region is not None:
         for i in np.flatnonzero(holed).tolist():
             holes = shapely.polygons(shapely.get_interior_ring(parts[i], range(shapely.get_num_interior_rings(parts[i]))))
-            if not shapely.intersects(region, shapely.point_on_surface(holes)).all():
+            if not shapely.covers(region, holes).all():  # an opening of the region in the hole
                 holed[i] = False  # it rings an opening: no dip here
                 parts[i] = None
         parts = parts[~shapely.is_missing(parts)] if shapely.is_missing(parts).any() else parts

@@ -151,6 +151,12 @@ fill_small_holes = {str(fill).lower()}
 # a dip crossing a cell line left a cell's rest without a polygon: a traceback numbering the rest's pieces
 @example(_example("table2-left", 'kind = "archimedean"\ntiling = "4.4.4.4"\nedge = 12.92\noutline_circles = false',
                   "square", 46.5, 2.0, 2.24, "round", True, "fdm-0.6mm", "relief", False))
+# a dip ringing an opening and an island of the region at once
+@example(_example("table1-part2", 'kind = "archimedean"\ntiling = "6.6.6"\nedge = 9.86\noutline_circles = false',
+                  "rectangle", "[46.2, 55.1]", 2.0, 2.48, "miter", True, "fdm-0.6mm", "relief", False))
+# GEOS could not clip a ring noded at a cell line, wherever the lines were: the flat faces stay whole
+@example(_example("table1-part2", 'kind = "archimedean"\ntiling = "6.6.6"\nedge = 13.77\noutline_circles = false',
+                  "hexagon", 62.4, 0.0, 1.09, "round", True, "fdm-0.6mm", "relief", True))
 def test_any_design_builds_its_step(text):
     try:
         design = design_from_text(text, name="t")
