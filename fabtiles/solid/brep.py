@@ -307,7 +307,7 @@ def _side_of_wall(pa, pb, side_of, xy, sides, whole):
 
 
 def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", tolerance_mm: float = 0.0,
-                radii=(), cells: bool = False) -> Brep:
+                radii=(), cells: bool = False, chords=frozenset()) -> Brep:
     """The B-rep of a stack coverage (one closed shell per connected part).
 
     ``cov`` should hold one piece per level (a single meshing cell), so that each
@@ -319,7 +319,8 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     boundary's curves are known to have (a round join's, half the stroke): two chords on one of
     them are an arc too (:func:`fabtiles.geometry.arcs.arc_runs_many`). ``cells``: each piece
     of the coverage (a cell of its grid) is a face of its own, and a one-level body's bottom too
-    (see :data:`MAX_FACE_HOLES`); else the pieces at one level are merged first.
+    (see :data:`MAX_FACE_HOLES`); else the pieces at one level are merged first. ``chords``: the
+    circles ``(cx, cy, r)`` (:func:`_circle_key`) whose arcs stay chords (see :func:`brep_of_part`).
     """
     import shapely
 
@@ -373,6 +374,8 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
 
     # --- arcs: one cylinder face per arc of walls, its circle edges shared with the flat faces
     arcs = _wall_arcs(topo, vxy, tolerance_mm, radii) if tolerance_mm > 0 else []
+    if chords:
+        arcs = [a for a in arcs if _circle_key(a[1], a[2]) not in chords]
     in_arc = np.zeros(len(u_all), bool)
     for at, centre, radius, _, onto in arcs:
         if onto:
@@ -964,8 +967,65 @@ def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0, ra
     kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
     layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
     cov, cells = _face_coverage(layers, bottom, _cells_for_faces(layers))
-    brep = planar_brep(cov, sides=_sides(part.outline), tolerance_mm=tolerance_mm, radii=radii, cells=cells)
+    sides, chords = _sides(part.outline), frozenset()
+    for _ in range(CHORD_ROUNDS):
+        brep = planar_brep(cov, sides=sides, tolerance_mm=tolerance_mm, radii=radii, cells=cells, chords=chords)
+        crossing = _crossing_arcs(brep)
+        if not crossing:
+            break
+        chords |= crossing
     return brep, part.mesh_volume_mm3, len(brep.solids)
+
+
+CHORD_ROUNDS = 4
+"""How many times a B-rep is made again with the arcs that crossed another loop left as chords."""
+
+def _circle_key(centre, radius) -> tuple:
+    """A circle found by :func:`_wall_arcs`, as a key that the same search finds again."""
+    return (round(float(centre[0]), 9), round(float(centre[1]), 9), round(float(radius), 9))
+
+
+def _crossing_arcs(brep: Brep) -> frozenset:
+    """The circles of the arcs that cross or touch another edge of their flat face.
+
+    An arc stands for its chords within the tolerance, so it bulges up to that far
+    past them: where two loops of a face come closer (a wall thinner than the
+    tolerance), the arc crosses the other loop. Such an arc stays chords, as the mesh
+    has it. Only faces GEOS finds invalid are searched.
+    """
+    import shapely
+
+    if brep.arcs is None:
+        return frozenset()
+    pts, edges, arcs = brep.points, brep.edges, brep.arcs
+    out = set()
+    for face in brep.faces:
+        if face.radius > 0 or abs(face.normal[0]) + abs(face.normal[1]) > 0:
+            continue
+        index = [e if e >= 0 else ~e for loop in face.loops for e in loop]
+        if not (arcs[index, 2] > 0).any():
+            continue
+        rings = [_loop_points(list(loop), edges, arcs, pts) for loop in face.loops]
+        if shapely.is_valid(shapely.Polygon(rings[0], rings[1:])):
+            continue
+        lines, where = [], []  # each edge as drawn, and (loop, position, loop length)
+        for li, loop in enumerate(face.loops):
+            for k, e in enumerate(loop):
+                a = edges[e if e >= 0 else ~e]
+                end = pts[a[1] if e >= 0 else a[0], :2]
+                lines.append(shapely.LineString(np.vstack([_loop_points([e], edges, arcs, pts), end])))
+                where.append((li, k, len(loop)))
+        tree = shapely.STRtree(lines)
+        for i, e in enumerate(index):
+            if arcs[e, 2] <= 0:
+                continue
+            li, k, n = where[i]
+            near = {(li, k), (li, (k - 1) % n), (li, (k + 1) % n)}  # itself and the edges it joins
+            hits = [j for j in tree.query(lines[i], predicate="intersects").tolist() if where[j][:2] not in near]
+            for j in hits + ([i] if hits else []):
+                if arcs[index[j], 2] > 0:
+                    out.add(_circle_key(arcs[index[j], :2], arcs[index[j], 2]))
+    return frozenset(out)
 
 
 def _face_coverage(layers, bottom: float, cell_vertices: int):

@@ -157,6 +157,9 @@ fill_small_holes = {str(fill).lower()}
 # GEOS could not clip a ring noded at a cell line, wherever the lines were: the flat faces stay whole
 @example(_example("table1-part2", 'kind = "archimedean"\ntiling = "6.6.6"\nedge = 13.77\noutline_circles = false',
                   "hexagon", 62.4, 0.0, 1.09, "round", True, "fdm-0.6mm", "relief", True))
+# round joins' arcs between holes closer than the tolerance: each arc bulged across the next hole
+@example(_example("table2-left", 'kind = "hex"\nradius = 14.27\noutline_circles = false', "circle", 49.4, 2.0,
+                  1.81, "round", False, "fdm-0.4mm", "pierced", True))
 def test_any_design_builds_its_step(text):
     try:
         design = design_from_text(text, name="t")
