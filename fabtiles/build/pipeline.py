@@ -201,7 +201,7 @@ def _made(models: Models, f, name: str, file_name: str | None, failed: dict):
     return report, contents
 
 
-def _all_refused(refused: list[Refused]) -> FabtilesError:
+def refusal_error(refused: list[Refused]) -> FabtilesError:
     """The error of a build whose every format was refused: the one error when they share it, else all named."""
     if len({r.reason for r in refused}) == 1:
         return refused[0].error
@@ -235,7 +235,7 @@ def write_files(models: Models, formats, outdir, name: str, *, file_name: str | 
         contents.extend(made)
         reports.append(report)
     if not reports:  # every format refused: the build fails, with nothing written
-        raise _all_refused(refused)
+        raise refusal_error(refused)
     with StagingFolder(outdir) as (staging, final):
         staged = [atomic_write(staging / fname, data) for fname, data in contents]
         picture = atomic_write(staging / f"{name}{PREVIEW_SUFFIX}", preview_svg) if preview_svg is not None else None
