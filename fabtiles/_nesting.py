@@ -11,7 +11,7 @@ from pathlib import Path
 
 def nest(designs, outdir, *, formats=("dxf",), count: int | None = None, sheet_mm=None, gap_mm=None,
          rotations: str = "90", time_s: float | None = None, name: str | None = None):
-    """Nest tiles of ``designs`` onto sheets and write ``OUTDIR/<name>-sheet-<k>.<format>``, all or nothing.
+    """Nest tiles of ``designs`` onto sheets and write ``OUTDIR/<name>-sheet-<k>.<format>``, each format on its own.
 
     Parameters
     ----------

@@ -103,8 +103,9 @@ class Report:
         """Turn the findings into a FabricationError when ``strict``."""
         if strict and self.findings:
             lines = "; ".join(f"{f.code}: {f.message}" for f in self.findings)
+            where = f" for {self.path}" if self.path else ""  # a model's report has no file yet
             raise FabricationError(
-                f"fabrication checks failed for {self.path} (profile is strict): {lines}; "
+                f"fabrication checks failed{where} (profile is strict): {lines}; "
                 "fix the design or set strict = false in the profile"
             )
 

@@ -1,8 +1,8 @@
 """Run many builds: in local processes, or as tasks on a Dask cluster.
 
 ``fabtiles batch`` and ``fabtiles sweep`` hand their designs here as :class:`Job`\\ s;
-each is built by :func:`fabtiles.build.run_job` (all or nothing, through a staging
-folder), locally in a process pool or on the workers of a ``dask.distributed``
+each is built by :func:`fabtiles.build.run_job` (through a staging folder: each
+format written or refused on its own, never a partial file), locally in a process pool or on the workers of a ``dask.distributed``
 scheduler. A job never raises: a failure comes back as a failed
 :class:`~fabtiles.build.Outcome` and the others go on. A cluster worker lost in the
 middle of a task leaves no partial file (the staging folder never becomes an

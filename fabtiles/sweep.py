@@ -232,11 +232,12 @@ def write_index(outdir, varies, variants_, outcomes) -> tuple[Path, Path]:
         o = by_name[v.name]
         files = [Path(p).name for p in o.paths]
         figures = o.figures if o.ok else {}
-        rows.append(dict(variant=v.name, status="ok" if o.ok else "failed",
+        rows.append(dict(variant=v.name, status=("part" if o.refused else "ok") if o.ok else "failed",
                          **{k: _text(val) for k, val in v.values},
                          files=" ".join(files), findings=len(o.findings),
                          **{c: "" if figures.get(k) is None else figures[k] for c, k in JOB_COLUMNS.items()},
-                         details=" | ".join(o.findings) if o.ok else explain(o, v)))
+                         details=" | ".join([f"refused {r}" for r in o.refused] + o.findings) if o.ok
+                         else explain(o, v)))
     buf = io.StringIO()
     writer = csv.DictWriter(buf, fieldnames=["variant", "status", *keys, "files", "findings", *JOB_COLUMNS,
                                              "details"], lineterminator="\n")
@@ -259,7 +260,8 @@ def _contact_sheet(varies, variants_, by_name) -> str:
             picture = (f'<a href="{esc(Path(o.preview).name)}"><img src="{esc(Path(o.preview).name)}" '
                        f'alt="{esc(v.name)}"></a>' if o.preview else "")
             links = " ".join(f'<a href="{esc(Path(p).name)}">{esc(Path(p).suffix[1:])}</a>' for p in o.paths)
-            notes = ("".join(f"<li>{esc(f)}</li>" for f in o.findings) if o.findings else "<li>no findings</li>")
+            notes = "".join(f"<li>refused {esc(r)}</li>" for r in o.refused)
+            notes += "".join(f"<li>{esc(f)}</li>" for f in o.findings) if o.findings else "<li>no findings</li>"
             cards.append(f'<figure class="ok" id="{esc(v.name)}">{picture}<figcaption>{_figures_html(o.figures)}'
                          f'<div class="name">{esc(v.name)}</div>{label}<div class="files">{links}</div>'
                          f'<ul class="findings">{notes}</ul></figcaption></figure>')

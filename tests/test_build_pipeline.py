@@ -183,3 +183,103 @@ def test_inlay_needs_the_deboss_style(tmp_path):
 def test_inlay_must_be_a_flag():
     with pytest.raises(DesignError, match=r"inlay must be true or false"):
         small(overrides=["output.inlay=1"])
+
+
+# --------------------------------------------------------------------------- each format on its own
+
+
+def _refusing(fmt, message, monkeypatch):
+    """Make format ``fmt``'s writer refuse with ``message``, as a writer's own check does."""
+    from dataclasses import replace
+
+    from fabtiles import FabricationError
+    from fabtiles.export.formats import FORMATS
+
+    def write(model, options):
+        raise FabricationError(message)
+
+    monkeypatch.setitem(FORMATS, fmt, replace(FORMATS[fmt], write=write))
+
+
+def test_a_format_its_writer_refuses_is_named_and_the_others_are_written(tmp_path, monkeypatch):
+    _refusing("step", "the STEP solid is bad", monkeypatch)
+    result = pipeline.build_design(small(), tmp_path, ["svg", "step", "stl"])
+    assert [Path(p).name for p in result.paths] == ["small.svg", "small.stl"]
+    assert [r.format for r in result.reports] == ["svg", "stl"]
+    (refused,) = result.refused
+    assert (refused.format, refused.path, refused.reason) == ("step", str(tmp_path / "small.step"), "the STEP solid is bad")
+    assert refused.line() == f"refused {tmp_path / 'small.step'} (step): the STEP solid is bad"
+    # the refused file is absent, and nothing else (no staging folder) is left
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["small.stl", "small.svg"]
+    # the printer's model was made, its findings reported once, though one of its formats was refused
+    assert [label.split()[0] for label, _ in result.models] == ["laser", "printer"]
+
+
+@pytest.mark.parametrize("machine,written", [("laser", ["small.stl"]), ("printer", ["small.dxf", "small.svg"])])
+def test_a_strict_machine_refuses_its_own_formats_only(tmp_path, machine, written):
+    """A strict profile's findings (and a bed too small) refuse that machine's formats; the other
+    machine's are written, its findings reported."""
+    profile = tmp_path / "strict.toml"
+    profile.write_text(f'kind = "{machine}"\n[{machine}]\nstrict = true\nbed_mm = [10, 10]\n')
+    design = small(overrides=[f'output.{machine}_profile="{profile}"'])
+    out = tmp_path / "out"
+    result = pipeline.build_design(design, out, ["svg", "dxf", "stl"])
+    assert sorted(p.name for p in out.iterdir()) == written
+    refused = {r.format for r in result.refused}
+    assert refused == {"svg", "dxf", "stl"} - {Path(p).suffix[1:] for p in written}
+    assert len({r.reason for r in result.refused}) == 1  # one model, one reason
+    assert "10 x 10 mm bed" in result.refused[0].reason
+    assert [label.split()[0] for label, _ in result.models] == ["printer" if machine == "laser" else "laser"]
+
+
+def test_a_build_whose_every_format_is_refused_raises_and_writes_nothing(tmp_path, monkeypatch):
+    from fabtiles import FabricationError, ProfileError
+
+    # one reason (one model's, or one format): that error itself, its type kept
+    profile = tmp_path / "strict.toml"
+    profile.write_text('kind = "printer"\n[printer]\nstrict = true\nbed_mm = [10, 10]\n')
+    design = small(overrides=[f'output.printer_profile="{profile}"'])
+    with pytest.raises(FabricationError, match="profile is strict"):
+        pipeline.build_design(design, tmp_path / "a", ["stl", "3mf"])
+    assert not (tmp_path / "a").exists()
+
+    def coarse(model, options):
+        raise ProfileError("tolerance_mm is too coarse", param="tolerance_mm")
+
+    from dataclasses import replace
+
+    from fabtiles.export.formats import FORMATS
+
+    monkeypatch.setitem(FORMATS, "step", replace(FORMATS["step"], write=coarse))
+    with pytest.raises(ProfileError, match="too coarse") as err:
+        pipeline.build_design(small(), tmp_path / "b", ["step"])
+    assert err.value.param == "tolerance_mm"
+    # several reasons: each format named with its own
+    _refusing("svg", "the SVG is bad", monkeypatch)
+    with pytest.raises(FabricationError, match=r"^formats refused: svg: the SVG is bad; step: tolerance_mm is too coarse$"):
+        pipeline.build_design(small(), tmp_path / "c", ["svg", "step"])
+    assert not (tmp_path / "b").exists() and not (tmp_path / "c").exists()
+
+
+def test_a_refused_format_leaves_the_file_of_an_earlier_build_as_it_was(tmp_path, monkeypatch):
+    (tmp_path / "small.stl").write_text("old")
+    _refusing("stl", "the mesh is bad", monkeypatch)
+    result = pipeline.build_design(small(), tmp_path, ["svg", "stl"])
+    assert (tmp_path / "small.stl").read_text() == "old"
+    assert result.earlier == [str(tmp_path / "small.stl")] and result.refused[0].path == result.earlier[0]
+
+
+def test_an_outcome_names_the_formats_refused(tmp_path, monkeypatch):
+    _refusing("stl", "the mesh is bad", monkeypatch)
+    out = pipeline.run_job("t", small, str(tmp_path), ("svg", "stl"))
+    assert out.ok and out.message == "1 file, laser 0, printer 0, refused stl" and out.refused == ["stl: the mesh is bad"]
+
+
+def test_the_deep_check_fails_on_a_refused_print_file(tmp_path, monkeypatch):
+    from fabtiles import FabricationError
+    from fabtiles.build.deep import read_back
+
+    _refusing("stl", "the mesh is bad", monkeypatch)
+    design = small(overrides=['output.formats=["stl", "3mf"]'])
+    with pytest.raises(FabricationError, match="^the mesh is bad$"):
+        read_back(design)

@@ -1,4 +1,4 @@
-"""The build: a design's models made once, its files written all or nothing, for every front end.
+"""The build: a design's models made once, each format's files written or refused on its own, for every front end.
 
 - :mod:`.models`: :class:`BuildOptions` (the profiles, loaded once, and the options)
   and :class:`Models` (the cut plan and the print model of one tile or sheet);
@@ -6,7 +6,7 @@
   (one format as bytes, the web app's downloads), :func:`export_tile` and
   :func:`export_region` (the API's one-file exports);
 - :mod:`.views`: the pictures' and the 3D view's geometry from the same models;
-- :mod:`.staging`: all-or-nothing writes; :mod:`.outcome`: batch and sweep results.
+- :mod:`.staging`: the files made, moved into place together; :mod:`.outcome`: batch and sweep results.
 """
 
 from .models import BuildOptions, Models
@@ -16,6 +16,7 @@ from .pipeline import (
     SHEET_SUFFIX,
     BuildResult,
     Download,
+    Refused,
     build_bytes,
     build_design,
     check_format_limits,
@@ -31,7 +32,7 @@ from .views import VIEW_SEGMENTS, inlay_kit_of, made_region, print_view
 
 __all__ = [
     "BuildOptions", "Models", "Outcome", "outcome_of", "run_job", "PREVIEW_SUFFIX", "SHEET_SUFFIX", "BuildResult",
-    "Download", "build_bytes", "build_design", "check_format_limits", "export_region", "export_tile",
+    "Download", "Refused", "build_bytes", "build_design", "check_format_limits", "export_region", "export_tile",
     "layout_tile_sheet", "prepare_tile", "sheet_formats", "write_files", "STAGING_PREFIX", "StagingFolder",
     "remove_stale_staging", "VIEW_SEGMENTS", "inlay_kit_of", "made_region", "print_view",
 ]

@@ -90,12 +90,14 @@ def read_back(design, *, limits: _limits.Limits = _limits.CLI_LIMITS) -> list[Re
     """
     from ..export.formats import FORMATS
     from ..export.step import check_step_file
-    from .pipeline import build_design
+    from .pipeline import build_design, refusal_error
 
     formats = [f for f in design.output.formats if FORMATS[f].family == "print"] or list(DEEP_FORMATS)
     out = []
     with tempfile.TemporaryDirectory(prefix="fabtiles-deep-") as tmp:
         result = build_design(design, tmp, formats, limits=limits)
+        if result.refused:  # a file the writer refused is not read back: the check fails as its build does
+            raise refusal_error(result.refused)
         for report in result.reports:
             path = Path(tmp) / Path(report.path).name
             try:

@@ -267,7 +267,7 @@ def default_stem(designs) -> str:
 def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None, sheet_mm=None,
                  gap_mm: float | None = None, rotations: str = "90", time_s: float | None = None,
                  name: str | None = None, progress=None, limits: _limits.Limits = _limits.CLI_LIMITS) -> NestResult:
-    """Nest tiles of ``designs`` onto sheets and write ``OUTDIR/<name>-sheet-<k>.<format>``, all or nothing.
+    """Nest tiles of ``designs`` onto sheets and write ``OUTDIR/<name>-sheet-<k>.<format>``, each format on its own.
 
     Parameters
     ----------
@@ -296,7 +296,9 @@ def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None,
     FabtilesError
         With nothing written: a count < 1, designs of different cutter profiles, an
         inlay kit, a print format, a gap below the kerf, a sheet larger than the bed,
-        a part larger than the sheet, a job over the limits.
+        a part larger than the sheet, a job over the limits. A format its writer
+        refuses is in ``result.build.refused``, the others written (see
+        :func:`~fabtiles.build.pipeline.write_files`).
     """
     from .pipeline import write_files
 

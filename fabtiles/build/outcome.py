@@ -27,21 +27,29 @@ class Outcome:
     print file (``filament_mass_g``, ..., ``filament_line``): empty without them."""
     counts: list[tuple[str, int]] = field(default_factory=list)
     """The findings of each machine the build made files for: ``[("laser", 0), ("printer", 1)]``."""
+    refused: list[str] = field(default_factory=list)
+    """One line per format the build refused while writing the others, ``"<format>: <reason>"``
+    (:attr:`~fabtiles.build.pipeline.BuildResult.refused`)."""
 
 
 def outcome_of(key: str, result: BuildResult) -> Outcome:
-    """An :class:`Outcome` for a successful build: its one line (files, findings per machine) and the findings.
+    """An :class:`Outcome` for a build that wrote files: its one line (files, findings per machine, formats
+    refused) and the findings.
 
     The line says which files were new and which replaced (as ``fabtiles build`` does) and, for
     each machine, its findings by code and count, each counted once whatever the formats:
-    ``"replaced 5 files; laser: nothing found; printer: 1 finding (thin_wall 12)"``.
+    ``"replaced 5 files; laser: nothing found; printer: 1 finding (thin_wall 12)"``; a build that
+    refused formats adds them, ``"wrote 4 files; laser: nothing found; printer: nothing found;
+    refused step"`` (the reasons in :attr:`Outcome.refused`).
     """
     counts = [(label.split()[0], len(r.findings)) for label, r in result.models]
     machines = [f"{label.split()[0]}: {_findings(r.findings)}" for label, r in result.models]
-    message = "; ".join([_files(len(result.paths), len(set(map(str, result.replaced))))] + machines)
+    refused_note = [f"refused {', '.join(r.format for r in result.refused)}"] if result.refused else []
+    message = "; ".join([_files(len(result.paths), len(set(map(str, result.replaced))))] + machines + refused_note)
     # each finding once, by the model it was found on (not once per file of that model)
     lines = [f"{label}: {f.code}: {f.message}" for label, r in result.models for f in r.findings]
-    return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports), counts)
+    refused = [f"{r.format}: {r.reason}" for r in result.refused]
+    return Outcome(key, True, message, result.paths, lines, result.preview, _figures(result.reports), counts, refused)
 
 
 def _files(n: int, replaced: int) -> str:

@@ -8,8 +8,14 @@ reaches every one of them, and the work limits are checked once, in
 One build, one model per machine: the tile's cut plan and print model
 (:class:`~fabtiles.build.models.Models`) are made once, and every file is the
 format table's pure function of one of them (:mod:`fabtiles.export.formats`).
-Only this module writes files: into a staging folder inside the output folder,
-moved into place when every file has been made (:mod:`.staging`). Sheets
+Each format is made or refused on its own: a model or writer that fails (a
+strict check, a solid the STEP's own check refuses) refuses its formats, named
+with the reason in :attr:`BuildResult.refused`, and the others are written all
+the same. The design's own errors (bad values, the work limits, checked before
+any geometry) and a build whose every format is refused raise, with nothing
+written. Only this module writes files: into a staging folder inside the output
+folder, moved into place when every file that could be made has been made
+(:mod:`.staging`). Sheets
 (``sheet=True`` or ``copies``) write the cutter formats as
 ``<design name>-sheet.<format>``: copies of the tile on the cutter profile's bed.
 
@@ -33,7 +39,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from .. import _limits
-from .._errors import FabtilesError, ParameterError
+from .._errors import FabricationError, FabtilesError, ParameterError
 from .._profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
 from .._report import Report
 from .._schema import build_options, option_keys
@@ -45,6 +51,22 @@ SHEET_SUFFIX = "-sheet"
 
 PREVIEW_SUFFIX = ".preview.svg"
 """The tile's picture, ``<design name>.preview.svg`` (``build_design(..., preview=True)``)."""
+
+
+@dataclass(frozen=True)
+class Refused:
+    """A format a build did not write, and why: its model's or writer's error, as its message says it."""
+
+    format: str
+    path: str
+    """The file it would have written (a kit's first file)."""
+    reason: str
+    error: FabtilesError | None = field(default=None, compare=False, repr=False)
+    """The error itself (its type and ``param``), when the build raised it in this process."""
+
+    def line(self) -> str:
+        """``"refused out/t.step (step): <reason>"``: one line for people."""
+        return f"refused {self.path} ({self.format}): {self.reason}"
 
 
 @dataclass
@@ -66,7 +88,9 @@ class BuildResult:
     """The paths of :attr:`paths` that replaced a file already there (the rest are new)."""
     earlier: list[str] = field(default_factory=list)
     """Files of the same name in formats this build did not write (``table3-3.stl`` beside a
-    build of ``table3-3.dxf``): left from an earlier build, not rewritten."""
+    build of ``table3-3.dxf``, or a refused format's): left from an earlier build, not rewritten."""
+    refused: list[Refused] = field(default_factory=list)
+    """The formats asked for that were refused, each with its reason; their files were not written."""
 
     @property
     def findings(self) -> int:
@@ -137,50 +161,81 @@ def _file_report(model_report: Report, path, fmt: str, figures: dict) -> Report:
                   findings=list(model_report.findings))
 
 
-def _planned_files(models: Models, formats, name: str, *, layout: str):
-    """``[(format, [(file name, model), ...], file options), ...]``: what each format writes, from which model.
+def _planned_files(model, fmt: str, name: str, *, layout: str):
+    """``([(file name, model), ...], file options)``: the files format ``fmt`` writes of ``model``."""
+    from ..export.formats import FileOptions
 
-    Every model is made here (and its checks run), before anything is written.
-    """
-    from ..export.formats import FORMATS, FileOptions
+    if hasattr(model, "files_of"):  # several files of a format: a kit's sheets, a mosaic's STLs
+        files = [(f"{name}{suffix}.{fmt}", m) for suffix, m in model.files_of(fmt)]
+    else:
+        files = [(f"{name}.{fmt}", model)]
+    return files, FileOptions(name=Path(name).stem, layout=layout)
 
-    planned = []
-    for fmt in formats:
-        f = FORMATS[fmt]
-        model = models.model(f.family)
-        if hasattr(model, "files_of"):  # several files of a format: a kit's sheets, a mosaic's STLs
-            files = [(f"{name}{suffix}.{fmt}", m) for suffix, m in model.files_of(fmt)]
-        else:
-            files = [(f"{name}.{fmt}", model)]
-        planned.append((f, files, FileOptions(name=Path(name).stem, layout=layout)))
-    return planned
+
+def _model_of(models: Models, family: str, failed: dict):
+    """``models.model(family)``, its error kept in ``failed`` so that its other formats are refused alike."""
+    if family in failed:
+        raise failed[family]
+    try:
+        return models.model(family)
+    except FabtilesError as exc:
+        failed[family] = exc
+        raise
+
+
+def _made(models: Models, f, name: str, file_name: str | None, failed: dict):
+    """``(report, [(file name, bytes), ...])`` of format ``f``: its model made (once) and its files written."""
+    model = _model_of(models, f.family, failed)
+    files, options = _planned_files(model, f.name, name, layout=models.options.threemf_layout)
+    if file_name is not None:  # one format: its file (or a kit's two) named after file_name
+        stem = Path(file_name).stem
+        files = [(file_name, files[0][1])] if len(files) == 1 else \
+            [(f"{stem}{n[len(name):]}", m) for n, m in files]
+        options = replace(options, name=stem)
+    contents = [(fname, f.write(m, options)) for fname, m in files]
+    # a print's figures are its model's (a mosaic's STLs: every colour's), a kit's its first file's
+    measured = files[0][1] if f.family == "cut" else model
+    report = _file_report(model.report, files[0][0], f.name, f.figures(measured, options))
+    if len(files) > 1:
+        report.stats["files"] = [n for n, _ in files]
+    return report, contents
+
+
+def refusal_error(refused: list[Refused]) -> FabtilesError:
+    """The error of a build whose every format was refused: the one error when they share it, else all named."""
+    if len({r.reason for r in refused}) == 1:
+        return refused[0].error
+    return FabricationError("formats refused: " + "; ".join(f"{r.format}: {r.reason}" for r in refused))
 
 
 def write_files(models: Models, formats, outdir, name: str, *, file_name: str | None = None,
                 preview_svg: str | None = None) -> BuildResult:
-    """Make every file of ``formats`` from ``models`` and move them into ``outdir``, all or nothing.
+    """Make the files of ``formats`` from ``models``, each format on its own, and move them into ``outdir``.
 
+    A format whose model or writer raises a :class:`~fabtiles.FabtilesError` is refused
+    (:attr:`BuildResult.refused`: no file of it is written, none is changed); the
+    others are staged and moved into place together. When every format is refused,
+    the error is raised (the one error, when they share it) and nothing is written.
     ``name`` is the files' stem (``<name>.<format>``); ``file_name`` names the one file
     of a one-format build instead. ``preview_svg``: a picture's text, written as
     ``<name>.preview.svg`` with the rest.
     """
     from .._io import atomic_write
+    from ..export.formats import FORMATS
 
-    planned = _planned_files(models, formats, name, layout=models.options.threemf_layout)
-    reports, contents = [], []
-    for f, files, options in planned:
-        if file_name is not None:  # one format: its file (or a kit's two) named after file_name
-            stem = Path(file_name).stem
-            files = [(file_name, files[0][1])] if len(files) == 1 else \
-                [(f"{stem}{n[len(name):]}", m) for n, m in files]
-            options = replace(options, name=stem)
-        contents.extend((fname, f.write(model, options)) for fname, model in files)
-        # a print's figures are its model's (a mosaic's STLs: every colour's), a kit's its first file's
-        measured = files[0][1] if f.family == "cut" else models.model(f.family)
-        report = _file_report(models.model(f.family).report, files[0][0], f.name, f.figures(measured, options))
-        if len(files) > 1:
-            report.stats["files"] = [n for n, _ in files]
+    reports, contents, refused, failed = [], [], [], {}
+    for fmt in formats:
+        f = FORMATS[fmt]
+        try:
+            report, made = _made(models, f, name, file_name, failed)
+        except FabtilesError as exc:
+            path = file_name if file_name is not None else f"{name}.{fmt}"
+            refused.append(Refused(fmt, str(Path(outdir) / path), str(exc), exc))
+            continue
+        contents.extend(made)
         reports.append(report)
+    if not reports:  # every format refused: the build fails, with nothing written
+        raise refusal_error(refused)
     with StagingFolder(outdir) as (staging, final):
         staged = [atomic_write(staging / fname, data) for fname, data in contents]
         picture = atomic_write(staging / f"{name}{PREVIEW_SUFFIX}", preview_svg) if preview_svg is not None else None
@@ -196,7 +251,7 @@ def write_files(models: Models, formats, outdir, name: str, *, file_name: str | 
         report.path = str(folder / report.path)
         if "files" in report.stats:
             report.stats["files"] = [str(folder / n) for n in report.stats["files"]]
-    return BuildResult(reports, (), picture, paths, models.reports(), replaced)
+    return BuildResult(reports, (), picture, paths, models.reports(), replaced, refused=refused)
 
 
 def earlier_files(outdir, name: str, written) -> list[str]:
@@ -220,7 +275,7 @@ def earlier_files(outdir, name: str, written) -> list[str]:
 def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: int | None = None,
                  gap_mm: float | None = None, file_name: str | None = None, preview: bool = False,
                  limits: _limits.Limits = _limits.CLI_LIMITS) -> BuildResult:
-    """Write ``OUTDIR/<design name>.<format>`` for each format, all or nothing.
+    """Write ``OUTDIR/<design name>.<format>`` for each format, each written or refused on its own.
 
     Parameters
     ----------
@@ -250,13 +305,16 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
     Returns
     -------
     BuildResult
-        One report per format written, every path, and each model's findings once.
+        One report per format written, every path, each model's findings once, and
+        the formats refused with their reasons (:attr:`BuildResult.refused`): a
+        model or writer that fails refuses its own formats only (see :func:`write_files`).
 
     Raises
     ------
     FabtilesError
-        On any failure, with nothing written: among others, a sheet asked for with
-        only print formats, copies that do not fit on the bed, a job over the limits.
+        With nothing written: the design's own errors, found before any geometry (a
+        sheet asked for with only print formats, copies that do not fit on the bed, a
+        job over the limits, a format the cutter does not take), or every format refused.
     """
     formats = tuple(dict.fromkeys(formats or design.output.formats))
     sheet = sheet or copies is not None or gap_mm is not None

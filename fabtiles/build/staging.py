@@ -1,6 +1,7 @@
-"""Staging: every file of a build written into a hidden folder, then moved into place all at once.
+"""Staging: the files a build made written into a hidden folder, then moved into place together.
 
-All or nothing: a failure leaves no new or partial file and never clobbers an existing
+A format the build refused has no file here (:func:`~fabtiles.build.pipeline.write_files`);
+a failure while writing leaves no new or partial file and never clobbers an existing
 one; a process killed outright leaves only its hidden staging folder, which
 :func:`remove_stale_staging` removes later.
 """

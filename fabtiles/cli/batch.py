@@ -1,8 +1,10 @@
 """``fabtiles batch``: build many designs in parallel processes or on a Dask cluster.
 
 One failing design is reported and skipped; the others go on. The builds run in
-:mod:`fabtiles.jobs` through the build pipeline (all or nothing per design, so a
-failure leaves no partial file). Exit status 0 only when every design succeeded.
+:mod:`fabtiles.jobs` through the build pipeline: a design that fails leaves no
+file, and a design some of whose formats are refused writes the others and is
+reported with the formats refused and why. Exit status 0 only when every design
+wrote every format; 2 when a design failed, else 3 when formats were refused.
 """
 
 from __future__ import annotations
@@ -42,7 +44,9 @@ def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, e
     for o in outcomes:
         name = f"{o.key} ({labels[o.key]})" if o.key in labels else o.key
         if o.ok:
-            click.echo(f"ok     {name}: {o.message}")
+            click.echo(f"{'part' if o.refused else 'ok':<6} {name}: {o.message}")
+            for line in o.refused:
+                click.echo(f"         refused {line}", err=True)
             for line in o.findings if verbose else ():
                 click.echo(f"         - {line}")
         else:
@@ -71,7 +75,10 @@ def command(design_files, outdir, jobs, scheduler, overrides, formats, verbose):
     One line per design: its status, the files it wrote or replaced and each
     machine's findings by code and count (ok     samples/table3-3.toml: wrote 5
     files; laser: nothing found; printer: nothing found); with -v, each finding
-    under it.
+    under it. A design whose model or writer refused some formats writes the
+    others and is "part", each format refused on a line of its own with the
+    reason. Exit status 0 when every design wrote every format, 2 when a design
+    failed, else 3 when formats were refused.
 
     \b
     fabtiles batch samples/*.toml -o out/ --jobs 2
@@ -94,7 +101,13 @@ def command(design_files, outdir, jobs, scheduler, overrides, formats, verbose):
     outcomes = run_and_report(work, workers=jobs or os.cpu_count() or 1, scheduler=scheduler,
                               label="building", keys=design_files, verbose=verbose)
     failed = [o for o in outcomes if not o.ok]
-    click.echo(f"{len(outcomes) - len(failed)} of {len(outcomes)} designs built"
+    part = [o for o in outcomes if o.ok and o.refused]
+    click.echo(f"{len(outcomes) - len(failed) - len(part)} of {len(outcomes)} designs built"
+               + (f", {len(part)} in part (formats refused)" if part else "")
                + (f", {len(failed)} failed" if failed else ""))
     if failed:
         sys.exit(2)
+    if part:
+        from .main import REFUSED_EXIT
+
+        sys.exit(REFUSED_EXIT)

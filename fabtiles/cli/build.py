@@ -1,8 +1,10 @@
 """``fabtiles build``: build a design file into output files.
 
 The command parses its arguments and prints; the work is done by the build
-pipeline, :func:`fabtiles.build.build_design` (all or nothing: on an error,
-exit status 2, no new or partial file and no existing file changed).
+pipeline, :func:`fabtiles.build.build_design`. Bad input is exit status 2 with no
+new or partial file and no existing file changed; a format whose model or writer
+fails is refused on its own (its file not written, the line says why) while the
+others are written, and the exit status is then 3 (:data:`~fabtiles.cli.main.REFUSED_EXIT`).
 
 Sheets: with ``--sheet`` (as many copies as fit) or ``--copies N`` the laser
 formats are written as ``OUTDIR/<design name>-sheet.<format>``: copies of the tile
@@ -94,8 +96,11 @@ def _file_suffix(output) -> bool:
 def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
     """Build a design file into laser/print/CAD files.
 
-    Writes OUTDIR/<design name>.<format> for each format, all or nothing: on an
-    error (exit status 2) no file is written or changed. Each file is reported as
+    Writes OUTDIR/<design name>.<format> for each format. On bad input (exit
+    status 2) no file is written or changed. A format whose model or writer
+    fails (a strict profile's findings, a solid the STEP check refuses) is
+    refused on its own: "refused PATH (fmt): why" on stderr, its file not
+    written, the other formats written, exit status 3. Each file is reported as
     "wrote" (new) or "replaced" (it was there); each --set as what it changed; and
     files of the design's name in formats this build did not write are named, as
     left from an earlier build.
@@ -141,11 +146,29 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
     if skipped:
         click.echo(f"fabtiles: note: skipped {', '.join(skipped)}: a sheet is laid out for the laser "
                    f"formats (dxf, svg) only", err=True)
-    if result.earlier:
-        one = len(result.earlier) == 1
+    refused = {r.path for r in result.refused}
+    earlier = [p for p in result.earlier if p not in refused]
+    if earlier:
+        one = len(earlier) == 1
         it = "it" if one else "them"
-        others = " ".join(f"--format {f}" for f in dict.fromkeys(Path(p).suffix[1:] for p in result.earlier))
-        click.echo(f"fabtiles: note: {', '.join(result.earlier)} {'is' if one else 'are'} from an earlier build and "
+        others = " ".join(f"--format {f}" for f in dict.fromkeys(Path(p).suffix[1:] for p in earlier))
+        click.echo(f"fabtiles: note: {', '.join(earlier)} {'is' if one else 'are'} from an earlier build and "
                    f"{'was' if one else 'were'} not rewritten (this build wrote "
                    f"{', '.join(r.format for r in result.reports)}); add {others} to rebuild {it}, or delete {it}",
                    err=True)
+    report_refused(result.refused, result.earlier)
+
+
+def report_refused(refused, earlier=()) -> None:
+    """One line on stderr per refused format (its file, format and why), then exit with status 3.
+
+    A file of that name from an earlier build is said to be left as it was.
+    """
+    if not refused:
+        return
+    from .main import REFUSED_EXIT
+
+    for r in refused:
+        old = f" ({r.path}, from an earlier build, was left as it was)" if r.path in earlier else ""
+        click.echo(f"fabtiles: {r.line()}{old}", err=True)
+    click.get_current_context().exit(REFUSED_EXIT)

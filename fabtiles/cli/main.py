@@ -1,7 +1,8 @@
 """Entry point of the ``fabtiles`` command.
 
 A :class:`~fabtiles.FabtilesError` becomes one line on stderr and exit status 2;
-anything else escaping is a bug and keeps its traceback.
+anything else escaping is a bug and keeps its traceback. A build that wrote some
+formats and refused others exits with :data:`REFUSED_EXIT`.
 """
 
 from __future__ import annotations
@@ -11,6 +12,10 @@ import sys
 import click
 
 from .._errors import FabtilesError
+
+REFUSED_EXIT = 3
+"""The exit status of a build that wrote some of its formats and refused others (each named with its
+reason); 2 is bad input, with nothing written, and 1 ``check``'s findings."""
 
 
 class _Group(click.Group):

@@ -1,8 +1,8 @@
 """``fabtiles nest``: tiles of one or more designs packed onto the cutter's sheets.
 
 The command parses its arguments and prints; the work is done by
-:func:`fabtiles.build.nesting.nest_designs` (all or nothing: on an error, exit
-status 2 and no file).
+:func:`fabtiles.build.nesting.nest_designs` (on bad input, exit status 2 and no
+file; a format its writer refuses is named, the others written, exit status 3).
 """
 
 from __future__ import annotations
@@ -72,7 +72,8 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
     included) is its part, packed with Sparrow's strip packing (spyrrow) on sheets
     of the cutter profile's bed (or --sheet), --gap apart; holes are not filled
     with other parts. Writes OUTDIR/<name>-sheet-1.dxf, -sheet-2.dxf, ... (each
-    --format), all or nothing, and reports each sheet's parts, material use (the
+    --format; a format its writer refuses is named with the reason, exit status 3,
+    and the others written), and reports each sheet's parts, material use (the
     parts' area over the sheet's) and job.
 
     Copies: --count N for every design, or DESIGN.toml:N for one.
@@ -122,3 +123,6 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
     for label, report in result.build.models:
         if report.findings:
             click.echo(report.summary(label))
+    from .build import report_refused
+
+    report_refused(result.build.refused)

@@ -39,7 +39,8 @@ def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, ye
     each (<design name>-001.preview.svg), the contact sheet OUTDIR/index.html (the
     pictures, labelled with their values and findings, linking their files) and
     OUTDIR/index.csv (one row per variant). Exit status 0 when every variant was
-    built, 2 when some failed or on bad input.
+    built, 2 when some failed or on bad input, else 3 when a variant's formats were
+    refused (the others written; "part" in the table, the reasons in its details).
 
     \b
     fabtiles sweep samples/table3-3.toml --vary packing.radius=10:20:5 --vary tile.stroke=1,1.5 -o sweep/
@@ -62,7 +63,13 @@ def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, ye
                               explain=lambda o: explain(o, by_name[o.key]), verbose=verbose)
     csv_path, html_path = write_index(outdir, parsed, todo, outcomes)
     failed = [o for o in outcomes if not o.ok]
-    click.echo(f"{len(outcomes) - len(failed)} of {len(outcomes)} variants built"
+    part = [o for o in outcomes if o.ok and o.refused]
+    click.echo(f"{len(outcomes) - len(failed) - len(part)} of {len(outcomes)} variants built"
+               + (f", {len(part)} in part (formats refused)" if part else "")
                + (f", {len(failed)} failed" if failed else "") + f"; contact sheet {html_path}, table {csv_path}")
     if failed:
         sys.exit(2)
+    if part:
+        from .main import REFUSED_EXIT
+
+        sys.exit(REFUSED_EXIT)

@@ -11,7 +11,7 @@ any laser format (DXF, SVG, LightBurn ``.lbrn2``), each file with the profile's 
   drop out where they belong. The pieces sheet has no outline of its own.
 
 A kit is a multi-file output: :data:`KIT_FILES` names its files' suffixes, and the
-build pipeline writes them as it writes any file (staged, both or neither).
+build pipeline writes them as it writes any file (staged, both or neither: one format).
 """
 
 from __future__ import annotations

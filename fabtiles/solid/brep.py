@@ -40,7 +40,7 @@ import numpy as np
 from .._errors import FabricationError
 from ._mesh_build import QUANTUM, Coverage, Stack, coverage, topology
 from .levels import body_layers, dip_z, split_region
-from .parts import checked_parts
+from .parts import GRID_SHIFTS, checked_parts
 
 
 @dataclass(frozen=True)
@@ -307,7 +307,7 @@ def _side_of_wall(pa, pb, side_of, xy, sides, whole):
 
 
 def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", tolerance_mm: float = 0.0,
-                radii=(), cells: bool = False) -> Brep:
+                radii=(), cells: bool = False, chords=frozenset()) -> Brep:
     """The B-rep of a stack coverage (one closed shell per connected part).
 
     ``cov`` should hold one piece per level (a single meshing cell), so that each
@@ -319,7 +319,8 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     boundary's curves are known to have (a round join's, half the stroke): two chords on one of
     them are an arc too (:func:`fabtiles.geometry.arcs.arc_runs_many`). ``cells``: each piece
     of the coverage (a cell of its grid) is a face of its own, and a one-level body's bottom too
-    (see :data:`MAX_FACE_HOLES`); else the pieces at one level are merged first.
+    (see :data:`MAX_FACE_HOLES`); else the pieces at one level are merged first. ``chords``: the
+    circles ``(cx, cy, r)`` (:func:`_circle_key`) whose arcs stay chords (see :func:`brep_of_part`).
     """
     import shapely
 
@@ -333,7 +334,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             if merged.geom_type == "Polygon":  # one polygon (a flush mosaic's whole top): as the others, a multi
                 merged = shapely.MultiPolygon([merged])
             pieces.append((shapely.orient_polygons(merged), lvl))
-    cov = Coverage(pieces, cov.levels)
+    cov = Coverage(_unpinched(pieces), cov.levels)
     topo = topology(cov, triangulate=False, exact=True)
     z = np.asarray(cov.levels, float)
     ed = _Edges()
@@ -373,6 +374,8 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
 
     # --- arcs: one cylinder face per arc of walls, its circle edges shared with the flat faces
     arcs = _wall_arcs(topo, vxy, tolerance_mm, radii) if tolerance_mm > 0 else []
+    if chords:
+        arcs = [a for a in arcs if _circle_key(a[1], a[2]) not in chords]
     in_arc = np.zeros(len(u_all), bool)
     for at, centre, radius, _, onto in arcs:
         if onto:
@@ -510,6 +513,74 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     for loops_ in bottom_loops:
         faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops_)))
     return _finish(ed, vxy, z, faces, what)
+
+
+def _unpinched(pieces: list) -> list:
+    """``[(MultiPolygon, level), ...]`` with each pinched polygon split into valid ones where it touches itself.
+
+    A meshing cell is clipped out of the region along its lines; where the region's
+    boundary only touches a cell line at one of its vertices (a sharp corner of an
+    interlace dip resting on the line), the clipped piece touches itself there: its
+    ring runs along the line past that vertex and back to it. A mesh does not mind;
+    a face must be valid. The piece is split there (GEOS :func:`shapely.make_valid`,
+    which adds no point off the grid: the touching vertex is already one), and that
+    vertex is put into the edges of the other pieces it lies on (the neighbour across
+    the line), so that every edge still has its twin.
+    """
+    import shapely
+
+    parts = [shapely.get_parts(g) for g, _ in pieces]
+    flat = np.concatenate(parts) if parts else np.empty(0, object)
+    bad = np.flatnonzero(~shapely.is_valid(flat))
+    if not len(bad):
+        return pieces
+    owner = np.repeat(np.arange(len(pieces)), [len(p) for p in parts])
+    fixed, added = {}, []
+    for i in bad.tolist():
+        poly = flat[i]
+        split = shapely.make_valid(poly, method="structure", keep_collapsed=False)
+        polys = [g for g in shapely.get_parts(split) if g.geom_type == "Polygon" and g.area > 0]
+        old = {tuple(c) for c in shapely.get_coordinates(poly).tolist()}
+        new = {tuple(c) for c in shapely.get_coordinates(polys).tolist()} if polys else set()
+        if not polys or not new <= old or abs(sum(g.area for g in polys) - poly.area) > 1e-9 * max(poly.area, 1.0):
+            continue  # not a pinch on its own vertices: left for check_brep to refuse
+        fixed[i] = polys
+        added.extend(old)  # the touching vertices among them, to be put into the neighbours' edges
+    if not fixed:
+        return pieces
+    pins = np.unique(np.asarray([c for c in added], float), axis=0)
+    out = [[] for _ in pieces]
+    for i, poly in enumerate(flat):
+        for g in fixed.get(i, [poly]):
+            out[owner[i]].append(_with_points_on_edges(g, pins))
+    return [(shapely.orient_polygons(shapely.MultiPolygon(polys)), lvl) for polys, (_, lvl) in zip(out, pieces)]
+
+
+def _with_points_on_edges(poly, pins):
+    """``poly`` with each of the grid points ``pins`` that lies inside one of its edges made a vertex there."""
+    import shapely
+
+    lo, hi = np.asarray(poly.bounds[:2]), np.asarray(poly.bounds[2:])
+    pins = pins[np.all((pins >= lo) & (pins <= hi), axis=1)]
+    if not len(pins):
+        return poly
+    grid = np.round(pins / QUANTUM).astype(np.int64)
+    rings = []
+    for ring in (poly.exterior, *poly.interiors):
+        xy = np.asarray(ring.coords)[:-1]
+        ij = np.round(xy / QUANTUM).astype(np.int64)
+        out = []
+        for k in range(len(xy)):
+            a, b = ij[k], ij[(k + 1) % len(xy)]
+            d, rel = b - a, grid - a
+            # exactly on the segment (integer grid coordinates), strictly between its ends
+            t = rel @ d
+            on = (rel[:, 0] * d[1] - rel[:, 1] * d[0] == 0) & (t > 0) & (t < d @ d)
+            out.append(xy[k:k + 1])
+            if on.any():
+                out.append(pins[on][np.argsort(t[on])])
+        rings.append(np.concatenate(out))
+    return shapely.Polygon(rings[0], rings[1:])
 
 
 def _finish(ed: _Edges, vxy, z, faces: list, what: str) -> Brep:
@@ -895,10 +966,87 @@ def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0, ra
     """The B-rep of a checked fused body (see :func:`build_brep`): ``(brep, mesh_volume, n_solids)``."""
     kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
     layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
-    cell_vertices = _cells_for_faces(layers)
-    brep = planar_brep(coverage(layers, bottom=bottom, cell_vertices=cell_vertices), sides=_sides(part.outline),
-                       tolerance_mm=tolerance_mm, radii=radii, cells=cell_vertices != SINGLE_CELL)
+    cov, cells = _face_coverage(layers, bottom, _cells_for_faces(layers))
+    sides, chords = _sides(part.outline), frozenset()
+    for _ in range(CHORD_ROUNDS):
+        brep = planar_brep(cov, sides=sides, tolerance_mm=tolerance_mm, radii=radii, cells=cells, chords=chords)
+        crossing = _crossing_arcs(brep)
+        if not crossing:
+            break
+        chords |= crossing
     return brep, part.mesh_volume_mm3, len(brep.solids)
+
+
+CHORD_ROUNDS = 4
+"""How many times a B-rep is made again with the arcs that crossed another loop left as chords."""
+
+def _circle_key(centre, radius) -> tuple:
+    """A circle found by :func:`_wall_arcs`, as a key that the same search finds again."""
+    return (round(float(centre[0]), 9), round(float(centre[1]), 9), round(float(radius), 9))
+
+
+def _crossing_arcs(brep: Brep) -> frozenset:
+    """The circles of the arcs that cross or touch another edge of their flat face.
+
+    An arc stands for its chords within the tolerance, so it bulges up to that far
+    past them: where two loops of a face come closer (a wall thinner than the
+    tolerance), the arc crosses the other loop. Such an arc stays chords, as the mesh
+    has it. Only faces GEOS finds invalid are searched.
+    """
+    import shapely
+
+    if brep.arcs is None:
+        return frozenset()
+    pts, edges, arcs = brep.points, brep.edges, brep.arcs
+    out = set()
+    for face in brep.faces:
+        if face.radius > 0 or abs(face.normal[0]) + abs(face.normal[1]) > 0:
+            continue
+        index = [e if e >= 0 else ~e for loop in face.loops for e in loop]
+        if not (arcs[index, 2] > 0).any():
+            continue
+        rings = [_loop_points(list(loop), edges, arcs, pts) for loop in face.loops]
+        if shapely.is_valid(shapely.Polygon(rings[0], rings[1:])):
+            continue
+        lines, where = [], []  # each edge as drawn, and (loop, position, loop length)
+        for li, loop in enumerate(face.loops):
+            for k, e in enumerate(loop):
+                a = edges[e if e >= 0 else ~e]
+                end = pts[a[1] if e >= 0 else a[0], :2]
+                lines.append(shapely.LineString(np.vstack([_loop_points([e], edges, arcs, pts), end])))
+                where.append((li, k, len(loop)))
+        tree = shapely.STRtree(lines)
+        for i, e in enumerate(index):
+            if arcs[e, 2] <= 0:
+                continue
+            li, k, n = where[i]
+            near = {(li, k), (li, (k - 1) % n), (li, (k + 1) % n)}  # itself and the edges it joins
+            hits = [j for j in tree.query(lines[i], predicate="intersects").tolist() if where[j][:2] not in near]
+            for j in hits + ([i] if hits else []):
+                if arcs[index[j], 2] > 0:
+                    out.add(_circle_key(arcs[index[j], :2], arcs[index[j], 2]))
+    return frozenset(out)
+
+
+def _face_coverage(layers, bottom: float, cell_vertices: int):
+    """``(coverage, in cells)``: the coverage whose pieces are the flat faces, and whether they are cells.
+
+    A ring noded at a cell line has the point where it crosses the line rounded to the
+    grid, which may put it across a neighbouring edge: GEOS cannot clip it. As the
+    mesh does (:data:`~fabtiles.solid.parts.GRID_SHIFTS` tries), the cut was unlucky,
+    not the region: the lines are moved and the cells cut again; when every try
+    fails, each flat region stays one face (slower for a CAD program to read, as
+    valid).
+    """
+    import shapely
+
+    if cell_vertices != SINGLE_CELL:
+        for shift in range(GRID_SHIFTS):
+            try:
+                return coverage(layers, bottom=bottom, cell_vertices=cell_vertices, shift=shift), True
+            except shapely.errors.GEOSException:
+                continue
+    return coverage(layers, bottom=bottom, cell_vertices=SINGLE_CELL), False
 
 
 def brep_volume(brep: Brep) -> float:

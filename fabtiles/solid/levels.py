@@ -25,14 +25,22 @@ def dip_z(stack) -> float:
     return stack.base + DIP_FRACTION * stack.relief
 
 
-def dip_level(dips):
+def dip_level(dips, region=None):
     """The dips as the meshes and the STEP file build them: on the grid, parts thinner
     than :data:`THIN_MM` dropped (those stay at full height), no holes. A
     MultiPolygon, or an empty Polygon.
 
+    A part with a hole is filled where the hole is an island of the ``region`` (all
+    material); a part ringing an opening of the ``region`` (an outline circle inside
+    a crossing) is dropped and stays at full height: filled, it would lay plastic over
+    the opening.
+
     >>> from shapely.geometry import box
     >>> dip_level(box(0, 0, 1, 2 ** -12)).is_empty, round(dip_level(box(0, 0, 1, 0.5)).area, 3)
     (True, 0.5)
+    >>> ring = box(0, 0, 3, 3).difference(box(1, 1, 2, 2))
+    >>> dip_level(ring, region=box(0, 0, 3, 3)).area, dip_level(ring, region=ring).is_empty
+    (9.0, True)
     """
     import shapely
 
@@ -47,6 +55,14 @@ def dip_level(dips):
     parts = shapely.get_parts(dips if on_grid else snap(dips))
     parts = parts[~_thin(parts)] if len(parts) else parts
     holed = shapely.get_num_interior_rings(parts) > 0
+    if holed.any() and region is not None:
+        for i in np.flatnonzero(holed).tolist():
+            holes = shapely.polygons(shapely.get_interior_ring(parts[i], range(shapely.get_num_interior_rings(parts[i]))))
+            if not shapely.covers(region, holes).all():  # an opening of the region in the hole
+                holed[i] = False  # it rings an opening: no dip here
+                parts[i] = None
+        parts = parts[~shapely.is_missing(parts)] if shapely.is_missing(parts).any() else parts
+        holed = shapely.get_num_interior_rings(parts) > 0
     if holed.any():  # an island ringed by overlapping slivers: far too small to stand up, it dips too
         parts[holed] = shapely.polygons(shapely.get_exterior_ring(parts[holed]))
     return shapely.multipolygons(parts) if len(parts) else shapely.Polygon()
@@ -65,7 +81,7 @@ def split_region(r, dips, *, holes: bool = True, leveled: bool = False):
     """
     import shapely
 
-    d = dips if leveled else dip_level(dips)
+    d = dips if leveled else dip_level(dips, r)
     if d is None or d.is_empty:
         return r, shapely.Polygon()
     parts = shapely.get_parts(d)
@@ -314,7 +330,9 @@ def _relevel_crossed(pieces, rest, low, dips):
     out = [pc for k, pc in enumerate(pieces) if pieces[k][1] != rest]
     for sel, lvl in ((~hit, rest), (hit, low)):
         if sel.any():  # a piece a cell still (indices sorted: get_parts keeps the order)
-            out += [(g, lvl) for g in shapely.multipolygons(polys[sel], indices=piece[sel]) if not g.is_empty]
+            # the pieces' numbers made consecutive: a piece with no polygon selected has none
+            index = np.unique(piece[sel], return_inverse=True)[1].ravel()
+            out += [(g, lvl) for g in shapely.multipolygons(polys[sel], indices=index) if not g.is_empty]
     return out
 
 

@@ -100,13 +100,13 @@ def _snapped(region, outline):
     return r, o
 
 
-def _leveled(dips):
-    """An interlaced relief's dips as meshed (:func:`fabtiles.solid.levels.dip_level`), or None."""
+def _leveled(dips, r):
+    """An interlaced relief's dips in the region ``r`` as meshed (:func:`fabtiles.solid.levels.dip_level`), or None."""
     if dips is None:
         return None
     from .levels import dip_level
 
-    return dip_level(dips)
+    return dip_level(dips, r)
 
 
 def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0, dips=None):
@@ -399,7 +399,7 @@ def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay:
     Returns a dict of name to :class:`CheckedPart`.
     """
     r, o = _snapped(region, outline)
-    dips = _leveled(dips)
+    dips = _leveled(dips, r)
     if splits_fused(stack, single, inlay, dips):
         return relief_parts(_fused_part(r, o, stack), stack)
     out = {}
@@ -480,7 +480,7 @@ def fused_body(region, outline, stack: Stack, *, dips=None):
     merges the float32 corners, which is what is to be written.
     """
     r, o = _snapped(region, outline)
-    dips = _leveled(dips)
+    dips = _leveled(dips, r)
     ((name, kind),) = part_kinds(stack.style, single=True).items()
     mverts, mfaces, _, volume = _checked_body(kind, name, r, o, stack, dips)
     return name, mverts, mfaces, volume

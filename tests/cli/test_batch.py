@@ -82,3 +82,21 @@ def test_batch_bad_set_names_the_option(tmp_path):
     proc = run_batch(SAMPLES / "rosette.toml", "-o", tmp_path, "--set", "tile.stroke=-1")
     assert proc.returncode == 2
     assert f"FAILED {SAMPLES / 'rosette.toml'}: --set tile.stroke=-1: [tile] stroke must be" in proc.stderr
+
+
+def test_a_design_with_formats_refused_is_built_in_part_exit_3(tmp_path):
+    """A strict printer whose bed the tile does not fit refuses the print formats; the laser's are
+    written, the design is "part", each refused format on a line with its reason, exit status 3."""
+    from designs import design_toml
+
+    profile = tmp_path / "strict.toml"
+    profile.write_text('kind = "printer"\n[printer]\nstrict = true\nbed_mm = [10, 10]\n')
+    tile, good = tmp_path / "tile.toml", tmp_path / "good.toml"
+    tile.write_text(design_toml(preset="table3-1", radius=8, output={"printer_profile": str(profile)}))
+    good.write_text(design_toml(preset="table3-1", radius=8))
+    proc = run_batch(tile, good, "-o", tmp_path / "out", "--format", "svg", "--format", "stl")
+    assert proc.returncode == 3, proc.stderr
+    assert f"part   {tile}: 1 file, laser 0, refused stl" in proc.stdout
+    assert "refused stl: fabrication checks failed" in proc.stderr and "10 x 10 mm bed" in proc.stderr
+    assert "1 of 2 designs built, 1 in part (formats refused)" in proc.stdout
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["good.stl", "good.svg", "tile.svg"]

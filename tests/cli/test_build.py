@@ -1,4 +1,5 @@
-"""``fabtiles build``: outputs, overrides, errors (exit 2, nothing written), golden renders."""
+"""``fabtiles build``: outputs, overrides, errors (exit 2, nothing written), refused formats (exit 3),
+golden renders."""
 
 import sys
 from dataclasses import replace
@@ -111,19 +112,30 @@ def test_unknown_format_option_is_a_usage_error(design, tmp_path):
     assert result.exit_code == 2 and "'png' is not one of" in result.output
 
 
-def test_failing_format_keeps_existing_files(design, tmp_path, monkeypatch):
+def test_a_refused_format_is_named_and_the_others_written_exit_3(design, tmp_path, monkeypatch):
+    """A format whose writer fails is refused on its own: one line naming it and why, its earlier
+    file left as it was; the other formats are written, and the exit status is 3."""
     out = tmp_path / "out"
     out.mkdir()
     (out / "small.svg").write_text("old")
+    (out / "small.stl").write_text("old")
 
     def boom(model, options):
         raise FabtilesError("mesh is not watertight")
 
     monkeypatch.setitem(FORMATS, "stl", replace(FORMATS["stl"], write=boom))
     result = run("build", design, "-o", out, "--format", "svg", "--format", "stl")
-    assert result.exit_code == 2 and "mesh is not watertight" in result.output
-    assert (out / "small.svg").read_text() == "old"
-    assert sorted(p.name for p in out.iterdir()) == ["small.svg"]
+    assert result.exit_code == 3, result.output
+    assert f"replaced {out / 'small.svg'} (svg)" in result.output
+    assert (f"fabtiles: refused {out / 'small.stl'} (stl): mesh is not watertight ({out / 'small.stl'}, from an "
+            f"earlier build, was left as it was)") in result.output
+    assert "add --format stl" not in result.output  # rebuilding would not help: it was refused
+    assert (out / "small.svg").read_text() != "old" and (out / "small.stl").read_text() == "old"
+    assert sorted(p.name for p in out.iterdir()) == ["small.stl", "small.svg"]
+    # every format refused: bad input's exit status 2, nothing written or changed
+    result = run("build", design, "-o", out, "--format", "stl")
+    assert result.exit_code == 2 and "fabtiles: error: mesh is not watertight" in result.output
+    assert (out / "small.stl").read_text() == "old"
 
 
 @pytest.mark.parametrize("sample", SAMPLES, ids=[p.stem for p in SAMPLES])

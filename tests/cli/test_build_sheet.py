@@ -149,10 +149,12 @@ def test_bad_sheet_exits_2_writes_nothing(design, tmp_path, extra, match):
     assert not out.exists()
 
 
-def test_failing_sheet_format_keeps_existing_files(design, tmp_path, monkeypatch):
+def test_a_refused_sheet_format_keeps_its_existing_file(design, tmp_path, monkeypatch):
+    """A sheet format whose writer fails is refused on its own (exit 3): its file of an earlier
+    build is left as it was, the other format is written; every format refused is exit 2."""
     out = tmp_path / "out"
     out.mkdir()
-    (out / "small-sheet.dxf").write_text("old")
+    (out / "small-sheet.svg").write_text("old")
     calls = []
 
     def boom(fmt):
@@ -166,10 +168,15 @@ def test_failing_sheet_format_keeps_existing_files(design, tmp_path, monkeypatch
     for fmt in ("dxf", "svg"):
         monkeypatch.setitem(FORMATS, fmt, replace(FORMATS[fmt], write=boom(fmt)))
     result = run("build", design, "-o", out, "--copies", 2, "--format", "dxf", "--format", "svg")
-    assert result.exit_code == 2 and result.stderr == "fabtiles: error: disk on fire\n"
+    assert result.exit_code == 3
+    assert result.stderr == (f"fabtiles: refused {out / 'small-sheet.svg'} (svg): disk on fire "
+                             f"({out / 'small-sheet.svg'}, from an earlier build, was left as it was)\n")
     assert calls == ["dxf", "svg"]
-    assert [p.name for p in out.iterdir()] == ["small-sheet.dxf"]
-    assert (out / "small-sheet.dxf").read_text() == "old"
+    assert sorted(p.name for p in out.iterdir()) == ["small-sheet.dxf", "small-sheet.svg"]
+    assert (out / "small-sheet.svg").read_text() == "old" and (out / "small-sheet.dxf").read_text() == "new"
+    result = run("build", design, "-o", out, "--copies", 2, "--format", "svg")
+    assert result.exit_code == 2 and result.stderr == "fabtiles: error: disk on fire\n"
+    assert (out / "small-sheet.svg").read_text() == "old"
 
 
 WOVEN = SMALL.replace("stroke = 1.0", "stroke = 1.0\ninterlace = true")

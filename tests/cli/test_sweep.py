@@ -140,3 +140,26 @@ def test_jobs_and_scheduler_together_is_a_usage_error(design, tmp_path):
               "--scheduler", "tcp://127.0.0.1:1")
     assert res.exit_code == 2 and "--jobs sets local processes" in res.output
     assert not (tmp_path / "o").exists()
+
+
+def test_a_variant_with_formats_refused_is_built_in_part_exit_3(design, tmp_path, monkeypatch):
+    from dataclasses import replace
+
+    from fabtiles import FabricationError
+    from fabtiles.export.formats import FORMATS
+
+    def refuse(model, options):
+        raise FabricationError("the mesh is bad")
+
+    monkeypatch.setitem(FORMATS, "stl", replace(FORMATS["stl"], write=refuse))  # --jobs 1: built in this process
+    out = tmp_path / "sweep"
+    res = run("sweep", design, "--vary", "packing.radius=6,8", "--format", "svg", "--format", "stl", "-o", out,
+              "--jobs", "1")
+    assert res.exit_code == 3, res.output
+    assert "part   small-001 (packing.radius=6): 1 file, laser 0, printer 0, refused stl" in res.output
+    assert "refused stl: the mesh is bad" in res.output
+    assert "0 of 2 variants built, 2 in part (formats refused)" in res.output
+    rows = list(csv.DictReader((out / "index.csv").open()))
+    assert [r["status"] for r in rows] == ["part", "part"] and rows[0]["details"].startswith("refused stl: the mesh")
+    assert "<li>refused stl: the mesh is bad</li>" in (out / "index.html").read_text()
+    assert not (out / "small-001.stl").exists() and (out / "small-001.svg").exists()

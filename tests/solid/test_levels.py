@@ -134,3 +134,17 @@ def test_an_island_ringed_by_dips_dips_too():
         assert by_level[dip_z(STACK)] == pytest.approx(1.5 ** 2)
         v, f = mesh_coverage(cov)
         sc.check_mesh(v, f, bodies=1 if kind == "relief" else None)
+
+
+def test_a_dip_ringing_an_opening_of_the_region_stays_at_full_height():
+    """A dip around an opening of the region (an outline circle inside a crossing) is not filled over
+    the opening: it stays at full height, and the mesh holds the region's volume exactly."""
+    outline = box(0, 0, 20, 20)
+    region = box(2, 2, 18, 18).difference(box(9, 9, 11, 11))
+    dips = box(6, 6, 14, 14).difference(box(8.5, 8.5, 11.5, 11.5))
+    (part,) = parts.checked_parts(region, outline, STACK, single=True, dips=dips).values()
+    assert part.mesh_volume_mm3 == pytest.approx(outline.area * STACK.base + region.area * STACK.relief)
+    # a dip ringing an island of the region still dips, its island with it
+    island = box(6, 6, 14, 14).difference(box(9, 9, 11, 11))
+    full, dip = split_region(box(2, 2, 18, 18), island)
+    assert dip.area == pytest.approx(64.0) and full.area == pytest.approx(256.0 - 64.0)
