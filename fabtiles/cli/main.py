@@ -39,7 +39,7 @@ def _float_list(text: str) -> tuple[float, ...]:
     try:
         return tuple(float(x) for x in text.replace(" ", "").split(",") if x != "")
     except ValueError:
-        raise click.BadParameter(f"expected comma-separated numbers like 51,70,172, got {text!r}")
+        raise click.BadParameter(f"expected comma-separated numbers like 51,70,172, got {text!r}") from None
 
 
 def motif_options(command):

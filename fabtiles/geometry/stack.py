@@ -93,10 +93,10 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
     assert isinstance(profile, PrinterProfile)
     style = check_choice("style", profile.style if style is None else style, PRINT_STYLES)
     values = {}
-    for key, given in (("base_mm", base_mm), ("relief_mm", relief_mm),
-                       ("pierced_mm", pierced_mm), ("deboss_mm", deboss_mm)):
-        value = getattr(profile, key) if given is None else given
-        values[key] = check_float(key, value, low=0, low_open=True, high=MAX_HEIGHT_MM)
+    for name, given in (("base_mm", base_mm), ("relief_mm", relief_mm),
+                        ("pierced_mm", pierced_mm), ("deboss_mm", deboss_mm)):
+        value = getattr(profile, name) if given is None else given
+        values[name] = check_float(name, value, low=0, low_open=True, high=MAX_HEIGHT_MM)
     if style == "deboss" and values["deboss_mm"] >= values["base_mm"]:
         raise ParameterError(
             f"deboss_mm must be smaller than base_mm (the plate is {values['base_mm']:g} mm thick), "

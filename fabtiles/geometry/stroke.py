@@ -30,6 +30,7 @@ Vertices
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 
 import numpy as np
 import shapely
@@ -57,7 +58,7 @@ def segment_graph(segments: np.ndarray, *, return_ids: bool = False):
     """
     pts = segments.reshape(-1, 2)
     key = np.round(pts / _MERGE).astype(np.int64)
-    uniq, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
     verts = pts[first]
     seg_ids = inverse.reshape(-1, 2)
     ids = seg_ids[seg_ids[:, 0] != seg_ids[:, 1]]
@@ -292,7 +293,7 @@ def _bucketed_union(contours, per_bucket: int = 128):
     sorted_keys = key[order]
     cuts = np.flatnonzero(np.r_[True, sorted_keys[1:] != sorted_keys[:-1], True])
     parts = [m3d.CrossSection([contours[i] for i in order[a:b]], m3d.FillRule.Positive)
-             for a, b in zip(cuts[:-1], cuts[1:])]
+             for a, b in pairwise(cuts)]
     return m3d.CrossSection.batch_boolean(parts, m3d.OpType.Add)
 
 

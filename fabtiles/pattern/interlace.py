@@ -484,7 +484,6 @@ def weave(segments) -> Weave:
     k = len(seg)
     verts, piece_v, piece_seg = _node(seg)
     partner, cross_v, knot_v = _pair_ends(verts, piece_v)
-    n_piece = len(piece_v)
     is_cross = np.zeros(len(verts), bool)
     is_cross[cross_v] = True
     plen = np.linalg.norm(verts[piece_v[:, 1]] - verts[piece_v[:, 0]], axis=1)

@@ -272,7 +272,7 @@ def apollonius_outer(c, r):
     >>> round(float(rad[0]), 6), centre[0].round(6).tolist()  # Soddy: 2/sqrt(3) - 1
     (0.154701, [1.0, 0.57735])
     """
-    (x1, y1), (r1) = c[0], r[0]
+    r1 = r[0]
     a = 2 * (c[1:] - c[0])  # rows: equations i = 2, 3
     if abs(np.linalg.det(a)) < 1e-12:
         return np.empty((0, 2)), np.empty(0)

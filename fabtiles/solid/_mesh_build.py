@@ -116,7 +116,7 @@ def _grid_lines(lo: float, hi: float, size: float, shift: int = 0) -> np.ndarray
     ``shift`` moves every line by ``shift * GRID_SHIFT_MM``: a retry for the rare
     ring that, noded at a line and snapped, lands on a neighbouring ring's edge.
     """
-    n = max(1, int(math.ceil((hi - lo) / size)))
+    n = max(1, math.ceil((hi - lo) / size))
     step = (hi - lo) / n
     # 0.3125 + 0.0390625 mm offsets keep lines off the round values designs use
     lines = lo + step * np.arange(1, n) + 0.3515625 + shift * GRID_SHIFT_MM

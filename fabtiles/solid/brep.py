@@ -33,6 +33,7 @@ Example: a 10 x 10 mm plate 2 mm thick is 6 faces, 12 edges and 8 vertices.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import pairwise
 from math import gcd
 
 import numpy as np
@@ -356,7 +357,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     def side(p, lo, hi, up):
         """Signed vertical edges at vertex p from lo to hi (up) or hi to lo."""
         ks = [k for k in splits[p] if lo <= k <= hi]
-        pairs = list(zip(ks[:-1], ks[1:]))
+        pairs = list(pairwise(ks))
         if up:
             return [(ed.point(p, a), ed.point(p, b), ed.vertical(p, a, b)) for a, b in pairs]
         return [(ed.point(p, b), ed.point(p, a), ed.vertical(p, b, a)) for a, b in reversed(pairs)]
@@ -391,7 +392,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
         for lvl in (lo, hi):
             e = ed.arc(("a", j, lvl), ed.point(a_vid, lvl), ed.point(b_vid, lvl), row)
             signed[lvl] = e if ccw else ~e
-            for x, y in zip(chain[:-1], chain[1:]):
+            for x, y in pairwise(chain):
                 ed.arc_of[(min(x, y), max(x, y), lvl)] = (("a", j, lvl), x if ccw else y)
         # the chain runs with the material on its left, as a wall's bottom edge does
         loop = [signed[lo]] + [e for _, _, e in side(chain[-1], lo, hi, up=True)]
@@ -454,7 +455,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
         # the outer loop is the one of largest area in the wall's own (s, z) coordinates
         dirn = np.array([dx, dy], float) / np.hypot(dx, dy)
 
-        def area(loop):
+        def area(loop, directed=directed, dirn=dirn):
             nodes = [directed[i][0] for i in loop]
             p = pts[nodes]
             return _loop_area(np.column_stack([p[:, :2] @ dirn, p[:, 2]]))
@@ -678,9 +679,9 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
                 sweep = ((t[1] - t[0]) * turn) % (2 * np.pi)
                 out.append((part, runs.centre[0], float(runs.radius[0]), float(turn * sweep), True))
             return
-        for f, l, c, rad, sw in zip(runs.first.tolist(), runs.last.tolist(), runs.centre, runs.radius.tolist(),
-                                    runs.sweep.tolist()):
-            a, b = at[f], at[l]
+        for first, last, c, rad, sw in zip(runs.first.tolist(), runs.last.tolist(), runs.centre,
+                                           runs.radius.tolist(), runs.sweep.tolist(), strict=True):
+            a, b = at[first], at[last]
             if b <= a:
                 b += n
             out.append((positions[np.arange(a, b) % n], c, rad, sw, False))
@@ -717,7 +718,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
     keep_all = np.isin(keys, (kept_xy[:, 0] - x0 + shift * kept_of) + 1j * kept_xy[:, 1])
     offsets = np.concatenate([[0], np.cumsum(lengths)])
     searched = []
-    for k, (_, verts, closed) in enumerate(jobs):
+    for k, (_, _verts, closed) in enumerate(jobs):
         keep = keep_all[offsets[k]:offsets[k + 1]]
         if not closed:
             keep[[0, -1]] = True
