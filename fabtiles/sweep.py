@@ -178,7 +178,7 @@ def variants(varies, name: str, *, yes: bool = False) -> list[Variant]:
         raise ParameterError(f"the sweep has {total:,} variants, more than {MAX_VARIANTS:,}; pass --yes to "
                              f"build them all, or vary fewer values", param="vary")
     width = max(3, len(str(total)))
-    return [Variant(f"{name}-{k + 1:0{width}d}", tuple(zip(keys, combo)))
+    return [Variant(f"{name}-{k + 1:0{width}d}", tuple(zip(keys, combo, strict=True)))
             for k, combo in enumerate(itertools.product(*(v.values for v in varies)))]
 
 
@@ -208,7 +208,7 @@ def _read(path: Path) -> str:
 def explain(outcome, variant: Variant) -> str:
     """The outcome's message, naming the ``--vary`` value rather than the override it became."""
     message = outcome.message
-    for (key, value), item in zip(variant.values, variant.overrides()):
+    for (key, value), item in zip(variant.values, variant.overrides(), strict=True):
         message = message.replace(f"--set {item}", f"{key}={_text(value)}")
     return message
 

@@ -195,7 +195,7 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
                              f"{', '.join(formats) or 'none'}; use --format dxf, svg or lbrn2", param="formats")
     options = [BuildOptions.of_design(d) for d, _ in designs]
     profile = options[0].cutter
-    for (d, _), o in zip(designs, options):
+    for (d, _), o in zip(designs, options, strict=True):
         if o.cutter.name != profile.name:
             raise ParameterError(f"every nested design must use one cutter profile (one material): "
                                  f"{designs[0][0].name} uses {profile.name!r}, {d.name} uses {o.cutter.name!r}; "
@@ -217,11 +217,11 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
                              f"{profile.kind} profile {profile.name!r}; use a sheet of at most the bed "
                              f"(--sheet {bed_w:g}x{bed_h:g})", param="sheet_mm")
     tiles = [prepare_tile(d, limits=limits) for d, _ in designs]
-    _limits.check_segments(sum(len(t.segments()) * n for t, (_, n) in zip(tiles, designs)), limits,
+    _limits.check_segments(sum(len(t.segments()) * n for t, (_, n) in zip(tiles, designs, strict=True)), limits,
                            what=f"the nest of {sum(n for _, n in designs)} tiles")
     from .models import Models
 
-    plans = [Models(t, o).cut for t, o in zip(tiles, options)]
+    plans = [Models(t, o).cut for t, o in zip(tiles, options, strict=True)]
     kerf = max(p.kerf_mm for p in plans)
     least = max(kerf, 2 * profile.tool_radius_mm)  # a router's bit must pass between two parts
     gap = least + GAP_EXTRA_MM if gap_mm is None else check_float("gap_mm", gap_mm)
@@ -236,7 +236,7 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
                              f"use --rotate 180 or --rotate none, got {rotations!r}", param="rotations")
     outlines = [part_outline(p) for p in plans]
     parts, shapes = [], []
-    for k, ((d, n), outline) in enumerate(zip(designs, outlines)):
+    for k, ((d, n), outline) in enumerate(zip(designs, outlines, strict=True)):
         for c in range(n):
             parts.append((f"{d.name}#{k}:{c + 1}", outline))
             shapes.append(k)
@@ -247,7 +247,7 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
     report = Report(path="", format="")
     report.stats.update(profile=profile.name, sheets=nesting.sheets, sheet_mm=[w, h], gap_mm=gap,
                         rotations=rotations, parts=len(parts), material_use=list(nesting.material_use()))
-    labels = [(f"{profile.kind} {profile.name}: {d.name}", p.report) for (d, _), p in zip(designs, plans)]
+    labels = [(f"{profile.kind} {profile.name}: {d.name}", p.report) for (d, _), p in zip(designs, plans, strict=True)]
     stem = name if name is not None else designs[0][0].name
     return NestJob(NestedSheets(sheets, nesting, report), options[0], labels, designs, shapes, cut, stem)
 

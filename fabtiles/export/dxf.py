@@ -120,10 +120,10 @@ def build_document(job: CutPlan, *, entities: bool = True):
         attribs = {"layer": layer.name, "color": layer.color}
         for xy, bulge in curves:
             if job.dxf_version == "R12":
-                points = [(x, y, 0.0, 0.0, b) for (x, y), b in zip(xy.tolist(), bulge.tolist())]
+                points = [(x, y, 0.0, 0.0, b) for (x, y), b in zip(xy.tolist(), bulge.tolist(), strict=True)]
                 msp.add_polyline2d(points, format="xyseb", close=closed, dxfattribs=attribs)
             else:
-                points = [(x, y, b) for (x, y), b in zip(xy.tolist(), bulge.tolist())]
+                points = [(x, y, b) for (x, y), b in zip(xy.tolist(), bulge.tolist(), strict=True)]
                 msp.add_lwpolyline(points, format="xyb", close=closed, dxfattribs=attribs)
     return doc
 

@@ -41,7 +41,7 @@ def kit_paths(path) -> tuple[Path, Path]:
 
 def kit_files(plans: KitPlans, path) -> list:
     """``[(path, plan), ...]``: the kit's files beside ``path`` and the plan each is written from."""
-    return [(p, getattr(plans, which)) for p, (_, which) in zip(kit_paths(path), KIT_FILES)]
+    return [(p, getattr(plans, which)) for p, (_, which) in zip(kit_paths(path), KIT_FILES, strict=True)]
 
 
 def write_kit(path, *, region, outline, profile, inlay_fit_mm=None, inlay_base: str = "pierced", kerf_mm=None,

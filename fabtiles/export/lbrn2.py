@@ -167,7 +167,7 @@ def layer_groups(job: CutPlan):
         curves = cut.curves_or_paths()
         bent = [k for k, c in enumerate(curves) if c.bulge.any()]
         paths = [c.xy for c in curves]
-        for k, b in zip(bent, beziers_many([curves[k] for k in bent], tolerance_mm=tol, closed=cut.closed)):
+        for k, b in zip(bent, beziers_many([curves[k] for k in bent], tolerance_mm=tol, closed=cut.closed), strict=True):
             paths[k] = b
         out.append((cut.key, cut.layer, paths, cut.closed, "Scan" if cut.fill else "Cut"))
     return out

@@ -304,7 +304,7 @@ def _prusa_config(parts, ranges, name) -> str:
     out = ['<?xml version="1.0" encoding="UTF-8"?>\n<config>\n <object id="1" instances_count="1">\n',
            f'  <metadata type="object" key="name" value={quoteattr(name)}/>\n',
            '  <metadata type="object" key="extruder" value="1"/>\n']
-    for p, (first, last) in zip(parts, ranges):
+    for p, (first, last) in zip(parts, ranges, strict=True):
         out += [f'  <volume firstid="{first}" lastid="{last}">\n',
                 f'   <metadata type="volume" key="name" value={quoteattr(p.name)}/>\n',
                 '   <metadata type="volume" key="volume_type" value="ModelPart"/>\n',
@@ -331,7 +331,7 @@ def _bambu_config(parts, ranges, name) -> str:
     out = ['<?xml version="1.0" encoding="UTF-8"?>\n<config>\n <object id="1">\n',
            f'  <metadata key="name" value={quoteattr(name)}/>\n',
            '  <metadata key="extruder" value="1"/>\n']
-    for i, (p, (first, last)) in enumerate(zip(parts, ranges), start=1):
+    for i, (p, (first, last)) in enumerate(zip(parts, ranges, strict=True), start=1):
         out += _bambu_part(i, p, f' firstid="{first}" lastid="{last}"')
     out.append(' </object>\n</config>\n')
     return "".join(out)

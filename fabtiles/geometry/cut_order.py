@@ -117,7 +117,7 @@ def order_paths(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0)) -> 
     out = dict(paths)
     for role, (order, flipped) in path_orders(paths, outer_closed=outer_closed, start=start).items():
         rings = [np.asarray(r, float) for r in paths[role]]
-        out[role] = [rings[i][::-1] if f else rings[i] for i, f in zip(order.tolist(), flipped.tolist())]
+        out[role] = [rings[i][::-1] if f else rings[i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)]
     return out
 
 

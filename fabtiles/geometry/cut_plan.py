@@ -179,8 +179,8 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
     # the head's travel made short (.cut_order), from the file's origin; the arcs go with their paths
     travel_before = travel_mm(profile, **moved, outer_closed=outer_closed)
     for role, (order, flipped) in path_orders(moved, outer_closed=outer_closed).items():
-        moved[role] = [moved[role][i][::-1] if f else moved[role][i] for i, f in zip(order.tolist(), flipped.tolist())]
-        arcs[role] = [_reversed(arcs[role][i]) if f else arcs[role][i] for i, f in zip(order.tolist(), flipped.tolist())]
+        moved[role] = [moved[role][i][::-1] if f else moved[role][i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)]
+        arcs[role] = [_reversed(arcs[role][i]) if f else arcs[role][i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)]
     layers = []
     for role in ROLES:
         rings = moved[role]

@@ -314,7 +314,7 @@ def _whole_faces(tile, faces):
         own = _inner_points(wholes[reached])
         a, c = tree.query(shapely.points((own[None, :, :] + steps).reshape(-1, 2)), predicate="within")
         a = reached[a % len(reached)]
-        for x, y in sorted(zip(a[open_[c]].tolist(), c[open_[c]].tolist())):
+        for x, y in sorted(zip(a[open_[c]].tolist(), c[open_[c]].tolist(), strict=True)):
             rx, ry = _find(root, x), _find(root, y)
             root[max(rx, ry)] = min(rx, ry)
         k = np.array([_find(root, j) for j in k.tolist()], dtype=int)

@@ -176,7 +176,7 @@ def _packing_shapes(shapes) -> list:
     simple = shapely.buffer(shapely.simplify(np.asarray(shapes, dtype=object), SIMPLIFY_MM), SIMPLIFY_MM,
                             join_style="mitre")
     out = []
-    for original, s in zip(shapes, simple):
+    for original, s in zip(shapes, simple, strict=True):
         s = shapely.geometry.polygon.orient(Polygon(s.exterior), 1.0) if s.geom_type == "Polygon" else original
         out.append(s if s.covers(original) else original)  # never smaller than the part
     return out
@@ -277,7 +277,7 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
     budget = check_float("time_s", time_s, low=0, low_open=True)
     ids, shapes = _check_parts(parts)
     angles = ROTATIONS[rotations]
-    for i, shape in zip(ids, shapes):
+    for i, shape in zip(ids, shapes, strict=True):
         if not _fits(shape, w, h, angles):
             x0, y0, x1, y1 = shape.bounds
             turn = "either way round" if angles is None or 90.0 in angles else "unturned (rotations " \
@@ -320,7 +320,7 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
         close: dict = {}
         if len(outlines) > 1:
             a, b = shapely.STRtree(outlines).query(outlines, predicate="dwithin", distance=gap * (1 - 1e-12))
-            for x, y in zip(a.tolist(), b.tolist()):
+            for x, y in zip(a.tolist(), b.tolist(), strict=True):
                 if x != y:
                     close.setdefault(x, set()).add(y)
         kept, taken = [], set()
@@ -340,4 +340,4 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
         sheet += 1
         tick()
     ordered = tuple(placements[i] for i in range(len(shapes)))
-    return Nesting(ordered, tuple(p.place(s) for p, s in zip(ordered, shapes)), (w, h), gap, rotations)
+    return Nesting(ordered, tuple(p.place(s) for p, s in zip(ordered, shapes, strict=True)), (w, h), gap, rotations)

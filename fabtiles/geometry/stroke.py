@@ -384,7 +384,7 @@ def _merge_line_touching(polys: list[Polygon]) -> list[Polygon]:
             i = parent[i]
         return i
 
-    for i, j in zip(a.tolist(), b.tolist()):
+    for i, j in zip(a.tolist(), b.tolist(), strict=True):
         if i < j and shapely.get_dimensions(polys[i].intersection(polys[j])) >= 1:
             parent[find(i)] = find(j)
     groups: dict[int, list[Polygon]] = {}
@@ -408,7 +408,7 @@ def _assign_holes(shells, holes) -> list[Polygon]:
             if len(inside):
                 best = inside[np.argmin(shapely.area(shell_polys[inside]))]
                 owner[best].append(holes[k])
-    return [shapely.Polygon(s, h) for s, h in zip(shells, owner)]
+    return [shapely.Polygon(s, h) for s, h in zip(shells, owner, strict=True)]
 
 
 def _polygons_of(geom):

@@ -271,7 +271,7 @@ class ArchimedeanPacking:
         pts, idx = [], []
         lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
         margins = self._reach(radii) * (1 + 1e-9)
-        for off, m in zip(offsets, margins):
+        for off, m in zip(offsets, margins, strict=True):
             corners = np.array([[x0 - m, y0 - m], [x1 + m, y0 - m], [x0 - m, y1 + m], [x1 + m, y1 + m]])
             ij = (corners - off) @ inv.T
             lo, hi = np.minimum(lo, np.floor(ij.min(axis=0))), np.maximum(hi, np.ceil(ij.max(axis=0)))
@@ -283,7 +283,7 @@ class ArchimedeanPacking:
                 param="edge")
         jj, ii = np.meshgrid(np.arange(lo[1], hi[1] + 1), np.arange(lo[0], hi[0] + 1), indexing="ij")
         lattice = ii.reshape(-1, 1) * basis[0] + jj.reshape(-1, 1) * basis[1]
-        for e, (off, m) in enumerate(zip(offsets, margins)):
+        for e, (off, m) in enumerate(zip(offsets, margins, strict=True)):
             p = lattice + off
             keep = (p[:, 0] >= x0 - m) & (p[:, 0] <= x1 + m) & (p[:, 1] >= y0 - m) & (p[:, 1] <= y1 + m)
             pts.append(p[keep])
@@ -325,7 +325,7 @@ class ArchimedeanPacking:
         if self._outline_circles:
             _, radii = self.circles(window)
             r, k = np.unique(radii, return_counts=True)
-            count += sum(chord_count(float(v)) * int(m) for v, m in zip(r, k))
+            count += sum(chord_count(float(v)) * int(m) for v, m in zip(r, k, strict=True))
         return count
 
     # -- motifs ---------------------------------------------------------------
@@ -336,7 +336,7 @@ class ArchimedeanPacking:
             return radii
         units = self._unit_motifs()
         return np.array([max(r, float(np.hypot(*u.reshape(-1, 2).T).max()) if len(u) else 0.0)
-                         for r, u in zip(radii, units)])
+                         for r, u in zip(radii, units, strict=True)])
 
     def _hankin_units(self) -> list:
         """Per polygon of the unit cell: its Hankin rays (None for a kind that keeps a motif), centred at 0.
@@ -350,7 +350,7 @@ class ArchimedeanPacking:
         centres = cell.centres * a
         hankin = [int(p) not in stars for p in cell.sides]
         rays = [polygon_rays(int(p), a, angle, gap, t) if h else None
-                for p, t, h in zip(cell.sides, cell.angles, hankin)]
+                for p, t, h in zip(cell.sides, cell.angles, hankin, strict=True)]
         # the snub hexagonal cell's polygons lie up to 2.5 lattice steps from its origin
         shifts = np.array([(i, j) for i in range(-4, 5) for j in range(-4, 5)], dtype=float) @ self.lattice
         near = (centres[None] + shifts[:, None]).reshape(-1, 2)  # every polygon near the cell
@@ -393,7 +393,7 @@ class ArchimedeanPacking:
             stars = dict(self._motifs)
             radii = cell.radii() * self._edge
             out = self._hankin_units()
-            for e, (p, angle, r) in enumerate(zip(cell.sides.tolist(), cell.angles, radii)):
+            for e, (p, angle, r) in enumerate(zip(cell.sides.tolist(), cell.angles, radii, strict=True)):
                 if out[e] is None:
                     star = stars[p]
                     seg = star.segments() * (r * self._fill / star.extent)
@@ -404,10 +404,10 @@ class ArchimedeanPacking:
             cell = self._cell
             _, radii, _ = self._entries()
             stars = dict(self._motifs)
-            turns = [(stars[int(p)], a) for p, a in zip(cell.sides, cell.angles)]
+            turns = [(stars[int(p)], a) for p, a in zip(cell.sides, cell.angles, strict=True)]
             turns += [(self._gap_motif, a) for a in cell.gap_angles]
             cache, out = {}, []
-            for (star, angle), r in zip(turns, radii):
+            for (star, angle), r in zip(turns, radii, strict=True):
                 key = (star, round(angle - _turn(star), 12), r)
                 if key not in cache:
                     seg = star.segments() * (r * self._fill / star.extent)

@@ -623,7 +623,7 @@ def _assign(n_strand, sa, sb, ia, ib) -> np.ndarray:
     """
     need = ((1 + ia + ib) % 2).tolist()
     adj = [[] for _ in range(n_strand)]
-    for a, b, w in zip(sa.tolist(), sb.tolist(), need):
+    for a, b, w in zip(sa.tolist(), sb.tolist(), need, strict=True):
         adj[a].append((b, w))
         adj[b].append((a, w))
     bit = [-1] * n_strand

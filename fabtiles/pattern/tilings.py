@@ -232,7 +232,7 @@ def _reduce(points, lattice):
 
 def _corners(centres, sides, angles):
     out = []
-    for c, p, a in zip(centres, sides, angles):
+    for c, p, a in zip(centres, sides, angles, strict=True):
         t = a + math.pi / p + 2 * math.pi * np.arange(p) / p
         out.append(c + circumradius(int(p)) * np.stack([np.cos(t), np.sin(t)], axis=1))
     return np.concatenate(out)
@@ -307,7 +307,7 @@ def _gap_circles(lattice, centres, sides, vertices):
         for tri in itertools.combinations(range(len(cc)), 3):
             idx = list(tri)
             cand_c, cand_r = apollonius_outer(cc[idx], rr[idx])
-            for x, rad in zip(cand_c, cand_r):
+            for x, rad in zip(cand_c, cand_r, strict=True):
                 gaps = np.hypot(*(cc - x).T) - rr - rad
                 d = x - cc
                 inside = (edges[:, 0] * d[:, 1] - edges[:, 1] * d[:, 0]).min() > 0

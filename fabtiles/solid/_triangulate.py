@@ -288,7 +288,7 @@ def bottom_triangles(u, v, out_level, xy):
         return None
     if len(np.unique(bu)) != len(bu) or not np.array_equal(np.sort(bu), np.sort(bv)):
         return None
-    succ = dict(zip(bu.tolist(), bv.tolist()))
+    succ = dict(zip(bu.tolist(), bv.tolist(), strict=True))
     rings, seen = [], set()
     for start in bu.tolist():
         if start in seen:

@@ -214,7 +214,7 @@ def _onto_sides(xy, sides, outer):
     ends = np.unique(np.asarray(outer).ravel())
     pi, si = tree.query(shapely.points(out[ends]), predicate="dwithin", distance=SIDE_TOLERANCE_MM)
     near = {}  # point -> sides it is near (corners: both of theirs)
-    for p, k in zip(ends[pi].tolist(), si.tolist()):
+    for p, k in zip(ends[pi].tolist(), si.tolist(), strict=True):
         near.setdefault(p, set()).add(k)
     succ = {}
     for u, v in np.asarray(outer).tolist():
@@ -347,7 +347,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     wlo, whi = topo.out_level[w].tolist(), topo.level[w].tolist()
     # split levels at each vertex: the bottoms and tops of the walls that meet there
     splits = {}
-    for a, b, lo, hi in zip(wu, wv, wlo, whi):
+    for a, b, lo, hi in zip(wu, wv, wlo, whi, strict=True):
         for p in (a, b):
             s = splits.setdefault(p, set())
             s.add(lo)
@@ -406,7 +406,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
         wlo, whi = [wlo[i] for i in keep], [whi[i] for i in keep]
     wall_edges = []  # per wall: its directed edges (start node, end node, signed edge)
     keys = []
-    for a, b, lo, hi in zip(wu, wv, wlo, whi):
+    for a, b, lo, hi in zip(wu, wv, wlo, whi, strict=True):
         loop = [(ed.point(a, lo), ed.point(b, lo), ed.horizontal(a, b, lo))]
         loop += side(b, lo, hi, up=True)
         loop.append((ed.point(b, hi), ed.point(a, hi), ed.horizontal(b, a, hi)))
@@ -471,7 +471,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             for r in rings:
                 idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
                 uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
-                loops.append(_collapse([ed.horizontal_or_arc(a, b, lvl) for a, b in zip(uu, vv) if a != b]))
+                loops.append(_collapse([ed.horizontal_or_arc(a, b, lvl) for a, b in zip(uu, vv, strict=True) if a != b]))
             faces.append(Face((0.0, 0.0, float(z[lvl])), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), tuple(loops)))
 
     if cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
@@ -481,14 +481,14 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
                 for r in rings:
                     idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])[::-1]
                     uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
-                    loops.append(_collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu, vv) if a != b]))
+                    loops.append(_collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu, vv, strict=True) if a != b]))
                 faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops)))
         return _finish(ed, vxy, z, faces, what)
 
     # --- bottoms: the ring edges with nothing beside them, run backwards
     b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
     # (an arc's chords give one edge: its ends from the edge itself)
-    signed = dict.fromkeys(ed.horizontal_or_arc(vv, uu, 0) for uu, vv in zip(u_all[b].tolist(), v_all[b].tolist()))
+    signed = dict.fromkeys(ed.horizontal_or_arc(vv, uu, 0) for uu, vv in zip(u_all[b].tolist(), v_all[b].tolist(), strict=True))
     directed = [(*(ed.list[e] if e >= 0 else ed.list[~e][::-1]), e) for e in signed]
     loops = _chain(directed, what)
     pts = _node_xyz(ed, vxy, z)
@@ -698,7 +698,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
             jobs.append((idx, u[idx], True))
             continue
         starts = np.flatnonzero(cut)
-        for s0, s1 in zip(starts.tolist(), np.roll(starts, -1).tolist()):
+        for s0, s1 in zip(starts.tolist(), np.roll(starts, -1).tolist(), strict=True):
             seg = idx[(s0 + np.arange((s1 - s0) % len(idx) or len(idx))) % len(idx)]
             if walled[seg[0]] and len(seg) >= 3:
                 jobs.append((seg, np.append(u[seg], v[seg[-1]]), False))
@@ -727,7 +727,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
         ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
         found = arc_runs_many([xy[jobs[k][1][searched[k]]] for k in ks], tolerance_mm=tolerance_mm, closed=closed,
                               link_slack=GRID_LINK_SLACK, radii=radii)
-        for k, runs in zip(ks, found):
+        for k, runs in zip(ks, found, strict=True):
             if len(runs.first):
                 collect(jobs[k][0], jobs[k][1], searched[k], runs)
     return out
