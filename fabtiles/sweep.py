@@ -208,7 +208,8 @@ def _read(path: Path) -> str:
 def explain(outcome, variant: Variant) -> str:
     """The outcome's message, naming the ``--vary`` value rather than the override it became."""
     message = outcome.message
-    for (key, value), item in zip(variant.values, variant.overrides(), strict=True):
+    # overrides() ends with the output name, which no --vary value made: zip stops before it
+    for (key, value), item in zip(variant.values, variant.overrides(), strict=False):
         message = message.replace(f"--set {item}", f"{key}={_text(value)}")
     return message
 
