@@ -15,6 +15,7 @@ a bad value is a :class:`~fabtiles.ProfileError` that names the file and the key
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, fields
 from importlib import resources
 from pathlib import Path
@@ -23,9 +24,9 @@ from ._cutters import CUTTER_KINDS, KINDS, LASER_MODES, cutter_kind, family, mem
 from ._errors import ProfileError, did_you_mean
 from ._schema import key as schema_key
 
-try:  # Python 3.11+
+if sys.version_info >= (3, 11):
     import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 PRINT_STYLES = ("relief", "pierced", "deboss", "mosaic")

@@ -277,7 +277,7 @@ class Key:
 MOTIF_REQUIRED = ("n", "radii")
 """The keys a motif without a preset needs."""
 
-GAP_MOTIF = {"n": 6, "radii": (0.5, 1.0)}
+GAP_MOTIF: dict[str, Any] = {"n": 6, "radii": (0.5, 1.0)}
 """The gap circles' motif when a packing names none (a table of motif keys)."""
 
 

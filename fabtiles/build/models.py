@@ -13,12 +13,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .._errors import FabricationError, ParameterError
 from .._report import Report
 from .._schema import CALL_OPTIONS, FAMILIES, option_keys
+
+if TYPE_CHECKING:
+    from .._colour import Colours
+    from .._profiles import CutterProfile, PrinterProfile
 
 HEIGHT_FIELDS = tuple(k.name for k in option_keys("print") if k.unit == "mm")
 """The print heights, gathered in :attr:`BuildOptions.heights`."""
@@ -33,9 +38,9 @@ class BuildOptions:
     ``None`` means the profile's own value. Make one from a design with :meth:`of_design`.
     """
 
-    cutter: object
+    cutter: CutterProfile
     """The cutter profile (:class:`~fabtiles.CutterProfile`), loaded."""
-    printer: object
+    printer: PrinterProfile
     """The printer profile (:class:`~fabtiles.PrinterProfile`), loaded."""
     laser_mode: str | None = None
     fill_small_holes: bool = True
@@ -52,7 +57,7 @@ class BuildOptions:
     inlay: bool = False
     """The deboss grooves filled as a second part of the print."""
     threemf_layout: str = "volumes"
-    colours: object = None
+    colours: Colours | None = None
     """The design's ``[colour]`` or the call's ``colours`` (:class:`~fabtiles.Colours`), or None: none given."""
 
     @classmethod

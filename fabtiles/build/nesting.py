@@ -12,6 +12,7 @@ unchanged, through the pipeline's staging (all files or none):
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
@@ -21,6 +22,10 @@ from .._errors import ParameterError
 from .._report import Report
 from .._validate import check_float, check_int
 from .models import BuildOptions
+
+if TYPE_CHECKING:
+    from ..geometry.nest import Nesting
+    from .pipeline import BuildResult
 
 NEST_SUFFIX = "-sheet-"
 """Nested sheets are ``<name>-sheet-<k>.<format>``, k from 1."""
@@ -34,7 +39,7 @@ class NestedSheets:
     """The cut model of a nest: one plan per sheet (the format table writes each as a file)."""
 
     plans: tuple
-    nesting: object
+    nesting: Nesting
     report: Report
 
     def files_of(self, fmt: str) -> list:
@@ -62,8 +67,8 @@ class NestResult:
     """What :func:`nest_designs` wrote and found: the build's files and reports, the nesting,
     and per sheet its parts (design names), material use and job."""
 
-    build: object
-    nesting: object
+    build: BuildResult
+    nesting: Nesting
     sheets: list = field(default_factory=list)
 
 

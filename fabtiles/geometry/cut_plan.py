@@ -24,6 +24,7 @@ makes an inlay kit's two plans, the lattice and the pieces.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
@@ -36,12 +37,18 @@ from .._validate import check_choice, check_float
 from .arcs import Curve, curve_bounds, curves
 from .cut_order import path_orders
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
+from .job_time import JobEstimate
 from .job_time import estimate as job_estimate
 from .job_time import travel_mm
 from .laser_checks import check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer, fits_bed
 from .material import sheet
 from .narrow import fill_small_holes as _fill_small_holes
 from .tabs import check_tabs, tab_paths
+
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
+
+    from .inlay import InlayKit
 
 ROLES = ("engrave", "score", "inner", "outer")
 """The roles of a plan's layers, in cut order: engrave fills first, then score lines, inner
@@ -106,9 +113,9 @@ class CutPlan:
     layers: tuple = ()
     declared: tuple = ()
     bounds: tuple = (0.0, 0.0, 0.0, 0.0)
-    estimate: object = None
+    estimate: JobEstimate | None = None
     report: Report = field(default_factory=lambda: Report(path="", format=""))
-    part: object = None
+    part: BaseGeometry | None = None
     engrave_area_mm2: float = 0.0
     offset: tuple = (0.0, 0.0)
 
@@ -442,7 +449,7 @@ class KitPlans:
 
     lattice: CutPlan
     pieces: CutPlan
-    kit: object
+    kit: InlayKit
     """The :class:`~fabtiles.geometry.inlay.InlayKit` (holes, pieces, figures)."""
     by_colour: tuple = ()
     """A coloured kit's pieces, one plan per face colour: ``((colour name, CutPlan), ...)``."""

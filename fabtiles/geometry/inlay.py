@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
@@ -43,6 +44,9 @@ from .._errors import FabricationError, ParameterError
 from .._report import distinct
 from .._schema import key
 from .contours import MITRE_LIMIT, polygon_parts
+
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
 
 _FIT = key("output.inlay_fit_mm")
 FIT_RANGE_MM = (_FIT.range.min, _FIT.range.max)
@@ -53,7 +57,7 @@ FIT_RANGE_MM = (_FIT.range.min, _FIT.range.max)
 class InlayKit:
     """The two sheets of a kit (nominal shapes, file coordinates in mm) and what they hold."""
 
-    lattice: object
+    lattice: BaseGeometry
     """The lattice's material: the tile's material with the holes too small for pieces filled."""
     pieces: np.ndarray
     """The pieces' nominal polygons, each in its hole's place."""

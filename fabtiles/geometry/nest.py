@@ -35,6 +35,7 @@ from __future__ import annotations
 import math
 import threading
 import time
+from collections.abc import Hashable
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,7 +64,7 @@ class Placement:
     """Where one part goes: sheet ``sheet`` (0-based), rotated by ``rotation`` degrees
     (counter-clockwise about the origin of the part's coordinates), then moved by ``translation``."""
 
-    id: object
+    id: Hashable
     sheet: int
     rotation: float
     translation: tuple[float, float]

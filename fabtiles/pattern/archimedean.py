@@ -17,6 +17,7 @@ import numbers
 from collections.abc import Mapping
 from dataclasses import KW_ONLY, dataclass, field
 from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 
@@ -27,7 +28,7 @@ from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, defaul
 from .star import Star
 from .tilings import NAMES, TILINGS, UnitCell, inradius, unit_cell
 
-DEFAULT_MOTIFS = MappingProxyType({
+DEFAULT_MOTIFS: Mapping[int, dict[str, Any]] = MappingProxyType({
     3: dict(n=6, radii=(0.5, 1.0)),
     4: dict(n=8, radii=(0.55, 1.0)),
     6: dict(n=12, radii=(123, 85, 178), alpha=23, spr=-7, special=2),  # preset table3-3

@@ -26,7 +26,7 @@ trimesh and manifold3d are imported only inside the functions.
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -45,6 +45,11 @@ from ._mesh_build import (
     snap,
 )
 from .mesh_check import check_indexed
+
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
+
+    from .._colour import Colour
 
 
 
@@ -336,9 +341,9 @@ class CheckedPart(NamedTuple):
     """Area x height of the region actually meshed."""
     bodies: int
     """Connected bodies expected."""
-    region: object
+    region: BaseGeometry
     """The region actually meshed: snapped to the grid, point contacts bridged (shapely)."""
-    outline: object
+    outline: BaseGeometry
     """The outline, snapped to the grid (shapely)."""
     mesh_volume_mm3: float
     """The mesh's own volume, as the check found it."""
@@ -494,7 +499,7 @@ class MosaicPart(NamedTuple):
     """The bands (the region), up to the top."""
     faces: tuple
     """The faces of this colour (shapely polygons, file coordinates), up to the top less the inset."""
-    colour: object = None
+    colour: Colour | None = None
     """Its :class:`~fabtiles._colour.Colour`: the display colour and the STL file's name."""
 
 
