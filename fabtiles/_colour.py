@@ -48,7 +48,8 @@ class Colour:
         >>> parse_colour("#ff8000").srgb
         (1.0, 0.5019607843137255, 0.0)
         """
-        return tuple(int(self.hex[i:i + 2], 16) / 255 for i in (1, 3, 5))
+        r, g, b = (int(self.hex[i:i + 2], 16) / 255 for i in (1, 3, 5))
+        return r, g, b
 
     @property
     def linear(self) -> tuple[float, float, float]:
@@ -57,7 +58,8 @@ class Colour:
         >>> [round(c, 4) for c in parse_colour("#808080").linear]
         [0.2159, 0.2159, 0.2159]
         """
-        return tuple(c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in self.srgb)
+        r, g, b = (c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in self.srgb)
+        return r, g, b
 
 
 def parse_colour(value, *, param: str = "colour") -> Colour:
@@ -178,7 +180,7 @@ class Colouring:
 
     def materials(self, *, base: bool = True, band: bool = True) -> tuple[Colour, ...]:
         """The distinct colours in order of first use (base, band, A, B, ...): one material each."""
-        seen = {}
+        seen: dict = {}
         for c in ([self.base] if base else []) + ([self.band] if band else []) + [c for _, c in self.faces]:
             seen.setdefault(c.hex, c)
         return tuple(seen.values())
@@ -209,7 +211,7 @@ def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, fac
     base = pal.base if base is None else parse_colour(base, param="base")
     band = pal.band if band is None else parse_colour(band, param="band")
     # one name per colour (it names a part and an STL file): a second colour of a name takes its hex digits
-    owner = {}
+    owner: dict = {}
     def named(c):
         first = owner.setdefault(c.name, c.hex)
         return c if first == c.hex else Colour(c.hex, f"{c.name}-{c.hex[1:]}")
@@ -249,7 +251,7 @@ class Colours:
     palette: str = PALETTE_NAMES[0]
     band_colour: str | None = None
     base_colour: str | None = None
-    faces: tuple = field(default=())
+    faces: tuple | dict = field(default=())
     given: bool = True
 
     def __post_init__(self):

@@ -19,6 +19,7 @@ import sys
 from dataclasses import dataclass, fields
 from importlib import resources
 from pathlib import Path
+from typing import Any
 
 from ._cutters import CUTTER_KINDS, KINDS, LASER_MODES, cutter_kind, family, members
 from ._errors import ProfileError, did_you_mean
@@ -238,7 +239,7 @@ def load_profile(profile, *, kind: str | None = None):
     return result
 
 
-def profile_text(profile) -> tuple[str, object]:
+def profile_text(profile) -> tuple[str, CutterProfile | PrinterProfile]:
     """The TOML text of a bundled profile (by name) or a profile file (by path), and the profile it loads as.
 
     The text is validated first (an unknown name or a bad file is the same
@@ -331,8 +332,8 @@ def _parse(data: dict, source: str, name: str):
     for key in cutter.required if cutter else ():
         if key not in section:
             raise ProfileError(f"{source}: a {kind} profile needs {kind}.{key} "
-                               f"(the {cutter.tool}'s diameter in mm, > 0)")
-    values = {}
+                               f"(the {cutter.tool}'s diameter in mm, > 0)")  # type: ignore[union-attr]  # required: a cutter's
+    values: dict[str, Any] = {}
     for key, value in section.items():
         full = f"{kind}.{key}"
         if key == "bed_mm":

@@ -76,6 +76,7 @@ class Range:
     def __contains__(self, value) -> bool:
         if isinstance(value, bool) or not isinstance(value, numbers.Real) or math.isnan(value):
             return False
+        value = float(value)
         if self.min is not None and (value <= self.min if self.min_open else value < self.min):
             return False
         return not (self.max is not None and (value >= self.max if self.max_open else value > self.max))
@@ -288,7 +289,7 @@ PACKED = ("packing", ("hex", "square", "archimedean"))
 def _motif_keys(section: str) -> tuple[Key, ...]:
     """The keys of a motif table: ``[motif]``, and the ``gap_motif`` and ``[packing.motifs]`` tables' entries."""
     star = "fabtiles.pattern.star.Star"
-    angle = dict(type="number", unit="degrees", checked_by=star)
+    angle: dict[str, Any] = dict(type="number", unit="degrees", checked_by=star)
     return (
         Key(section=section, name="preset", type="string", help="a preset name (`fabtiles presets` lists them; see construction.md)",
             choices="fabtiles.pattern.presets:PRESETS", widget=Widget(kind="select", label="Preset")),

@@ -180,7 +180,7 @@ class Design:
     """A validated design. ``name`` is ``[output] name`` or the file's stem."""
 
     name: str
-    motif: MotifSpec
+    motif: MotifSpec | None
     tile_spec: TileSpec
     packing: PackingSpec | None = None
     output: OutputSpec = field(default_factory=OutputSpec)
@@ -473,6 +473,7 @@ def _build_packing(p: PackingSpec, star: Star | None):
         from .pattern.archimedean import ArchimedeanPacking
         from .pattern.tilings import unit_cell
 
+        assert p.tiling is not None  # the design's check: an archimedean packing names its tiling
         motifs = {sides: spec.star() for sides, spec in p.motifs}
         if p.method == "hankin":  # the kinds [packing.motifs] leaves out take Hankin's rays
             return ArchimedeanPacking(p.tiling, p.edge, motifs, gap, outline_circles=p.outline_circles,
@@ -483,7 +484,7 @@ def _build_packing(p: PackingSpec, star: Star | None):
             motifs = {**{k: star for k in kinds - set(motifs)}, **motifs}
         return ArchimedeanPacking(p.tiling, p.edge, motifs, gap, outline_circles=p.outline_circles,
                                   fill=p.fill)
-    return PACKINGS[p.kind](p.radius, star, gap, outline_circles=p.outline_circles, fill=p.fill)
+    return PACKINGS[p.kind](p.radius, star, gap, outline_circles=p.outline_circles, fill=p.fill)  # type: ignore[arg-type]  # a None motif is refused by the packing, by name
 
 
 # -- sections -------------------------------------------------------------------

@@ -65,7 +65,7 @@ class BuildOptions:
         """The options a validated design's ``[output]`` gives."""
         out = design.output
         keys = {k.name: k for family in FAMILIES for k in option_keys(family)}  # the design keys that are options
-        values = {k.option.name: getattr(out, name) for name, k in keys.items()}
+        values = {k.option.name: getattr(out, name) for name, k in keys.items()}  # type: ignore[union-attr]  # option keys have an option
         from ..design import profile_of
 
         return cls(cutter=profile_of(design, "laser"), printer=profile_of(design, "printer"),
@@ -88,7 +88,7 @@ class BuildOptions:
             out["colours"] = _colours(out["colours"])
         for family in families:
             for k in option_keys(family):
-                value = options.get(k.option.name)
+                value = options.get(k.option.name)  # type: ignore[union-attr]  # option keys have an option
                 if value is None:
                     continue  # not given: the field's default (the profile's)
                 if k.name in HEIGHT_FIELDS:
@@ -238,7 +238,7 @@ class Models:
         try:
             return spec.colouring(tuple(c.letter for c in self.face_classes.classes) or ("A",))
         except ParameterError as exc:
-            raise ParameterError(f"[colour.faces] {exc}" if exc.param.startswith("faces") else f"[colour] {exc}",
+            raise ParameterError(f"[colour.faces] {exc}" if (exc.param or "").startswith("faces") else f"[colour] {exc}",
                                  param=f"colour.{exc.param}") from None
 
     @property
@@ -262,7 +262,7 @@ class Models:
     def kit_colours(self) -> tuple:
         """A coloured kit's woods: ``((colour name, faces), ...)``, one per distinct face colour, in class order."""
         colours, classes = self.colouring, self.face_classes
-        out = {}
+        out: dict = {}
         for c in classes.classes:
             colour = colours.face(c.letter)
             name, faces = out.get(colour.hex, (colour.name, []))

@@ -109,7 +109,9 @@ def _sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf):
     from ..geometry.cut_plan import ROLES, make_plan
 
     paths: dict = {r: [] for r in ROLES}
-    groups, engrave_area, parts = [], 0.0, []
+    groups: list = []
+    engrave_area = 0.0
+    parts: list = []
     for i in nesting.on_sheet(k):
         p = nesting.placements[i]
         plan = plans[shapes[i]]
@@ -295,7 +297,8 @@ def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None,
 
     job = plan_nest(designs, formats, count=count, sheet_mm=sheet_mm, gap_mm=gap_mm, rotations=rotations,
                     time_s=time_s, name=name, progress=progress, limits=limits)
-    result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)
+    # a nest's models stand in for Models by the members the writers read
+    result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)  # type: ignore[arg-type]
     return NestResult(result, job.nesting, job.sheets())
 
 

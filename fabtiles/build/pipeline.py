@@ -167,7 +167,8 @@ def write_files(models: Models, formats, outdir, name: str, *, file_name: str | 
     from .._io import atomic_write
 
     planned = _planned_files(models, formats, name, layout=models.options.threemf_layout)
-    reports, contents = [], []
+    reports: list = []
+    contents: list = []
     for f, files, options in planned:
         if file_name is not None:  # one format: its file (or a kit's two) named after file_name
             stem = Path(file_name).stem
@@ -343,7 +344,7 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
 _CUT_OPTIONS = build_options("cut")
 _PRINT_OPTIONS = build_options("print")
 _3MF_OPTIONS = build_options("3mf")
-_INLAY_OPTIONS = tuple(k.option.name for k in option_keys("cut") if k.requires == 'laser_mode = "inlay"')
+_INLAY_OPTIONS = tuple(k.option.name for k in option_keys("cut") if k.requires == 'laser_mode = "inlay"')  # type: ignore[union-attr]  # option keys have an option
 
 
 def _options_for(fmt, profile, options: dict) -> BuildOptions:

@@ -29,7 +29,7 @@ KIT_FILES = (("-lattice", "lattice"), ("-pieces", "pieces"))
 """A kit's files: the suffix added to the name, and which of :class:`~fabtiles.geometry.cut_plan.KitPlans`' plans it holds."""
 
 
-def kit_paths(path) -> tuple[Path, Path]:
+def kit_paths(path) -> tuple[Path, ...]:
     """``<stem>-lattice<suffix>`` and ``<stem>-pieces<suffix>`` beside ``path``.
 
     >>> [p.name for p in kit_paths("out/tile.dxf")]

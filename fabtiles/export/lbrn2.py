@@ -185,7 +185,9 @@ def lbrn2_text(job: CutPlan) -> str:
     head = ['<?xml version="1.0" encoding="UTF-8"?>\n',
             f'<LightBurnProject AppVersion="{APP_VERSION}" FormatVersion="1" MaterialHeight="0" '
             'MirrorX="False" MirrorY="False">\n']
-    settings, shapes, taken = [], [], set()
+    settings: list = []
+    shapes: list = []
+    taken: set = set()
     for priority, (_, layer, rings, closed, kind) in enumerate(layer_groups(job)):
         index = palette_index(aci_to_hex(layer.color)[1:], taken)
         taken.add(index)

@@ -212,7 +212,8 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
     cart = [w.point(t) for t in _rows(pts, LENGTH_DECIMALS)]
     vert = w.extend([f"VERTEX_POINT('',#{c})" for c in cart])
     # the cylinders first: their edges carry curves in their parameters (see _pcurves)
-    surfaces, on_cylinders = {}, {}
+    surfaces: dict = {}
+    on_cylinders: dict = {}
     for f, face in enumerate(brep.faces):
         if face.radius > 0:
             place = w.placement(face.origin, face.normal, face.ref)

@@ -169,7 +169,7 @@ def takes_prusa_path(files: dict) -> bool:
     if "3D/_rels/3dmodel.model.rels" in files:
         return False
     m = re.search(rb'<metadata name="Application">([^<]*)</metadata>', files.get(MODEL_PATH, b""))
-    return bool(m) and b"PrusaSlicer" in m.group(1)
+    return m is not None and b"PrusaSlicer" in m.group(1)
 
 
 def _numbers(fmt: str, values: np.ndarray) -> str:
@@ -407,14 +407,14 @@ def read_3mf(source) -> dict:
     tris = _block(model, b"triangles", b"triangle", (b"v1", b"v2", b"v3"), np.int64)
     parts = {}
     for vol in config.iter("volume"):
-        first, last = int(vol.get("firstid")), int(vol.get("lastid"))
+        first, last = int(vol.get("firstid", "")), int(vol.get("lastid", ""))
         meta = {m.get("key"): m.get("value") for m in vol.iter("metadata")}
         f = tris[first:last + 1]
         if not len(f) or last < first or last >= len(tris) or f.min() < 0 or f.max() >= len(verts):
             raise FabricationError(f"the 3MF volume {meta.get('name')!r} has an invalid triangle range "
                                    f"{first}..{last} ({len(tris)} triangles, {len(verts)} vertices)")
         lo, hi = int(f.min()), int(f.max())
-        parts[meta.get("name", "")] = Part(meta.get("name", ""), int(meta.get("extruder", 0)),
+        parts[meta.get("name") or ""] = Part(meta.get("name") or "", int(meta.get("extruder") or 0),
                                            verts[lo:hi + 1], f - lo)
     return parts
 

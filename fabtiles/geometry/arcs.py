@@ -82,7 +82,7 @@ class ArcRuns(NamedTuple):
     centre: np.ndarray
     radius: np.ndarray
     full: bool
-    sweep: np.ndarray | None = None
+    sweep: np.ndarray
 
 
 def _empty() -> ArcRuns:
@@ -331,7 +331,7 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
     return out
 
 
-def _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps) -> list:
+def _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps) -> tuple:
     """Fit each candidate run (ring ``ring_of``, rotated vertex positions ``v0..v1``), all at once.
 
     Returns the arrays ``(ring, v0, v1, centre, radius, sweep)`` of the runs that fit; a run that

@@ -79,7 +79,8 @@ def inlay_fits(profile) -> tuple[float, ...]:
     >>> inlay_fits(load_profile("laser-3mm-plywood"))
     (0.05, 0.1, 0.15, 0.2, 0.25)
     """
-    fits = (round(FIT.range.clamp(profile.inlay_fit_mm + d), 3) for d in INLAY_STEPS_MM)
+    fits = (round(FIT.range.clamp(  # type: ignore[union-attr]  # the schema gives the fit a range
+profile.inlay_fit_mm + d), 3) for d in INLAY_STEPS_MM)
     return tuple(dict.fromkeys(fits))
 
 

@@ -173,7 +173,7 @@ def _order(first, last, *, start, end=None, flip: bool, pairs, two_opt: bool = T
         nodes = [sorted({c % n for c in near[q] + (near[q + n] if flip else [])} - {q}) for q in range(n)]
         for o, f in tours:
             _two_opt(first, last, o, f, nodes, start, end, flip, pairs)
-    return min(tours, key=lambda t: _cost(first, last, *t, start, end))
+    return min(tours, key=lambda t: _cost(first, last, t[0], t[1], start, end))
 
 
 def _cost(first, last, order, flipped, start, end=None) -> float:
@@ -216,7 +216,7 @@ def _nearest_neighbour(ends, exits, near, n, start, pairs):
     a path is found.
     """
     waiting = np.bincount(pairs[:, 1], minlength=n).tolist() if len(pairs) else [0] * n
-    around = [[] for _ in range(n)]
+    around: list[list] = [[] for _ in range(n)]
     for a, b in pairs.tolist():
         around[a].append(b)
     done = [False] * n

@@ -113,7 +113,7 @@ class CutPlan:
     layers: tuple = ()
     declared: tuple = ()
     bounds: tuple = (0.0, 0.0, 0.0, 0.0)
-    estimate: JobEstimate | None = None
+    estimate: JobEstimate = field(default_factory=JobEstimate)
     report: Report = field(default_factory=lambda: Report(path="", format=""))
     part: BaseGeometry | None = None
     engrave_area_mm2: float = 0.0
@@ -569,7 +569,7 @@ def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: fl
             paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(mine))),
                                                             kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
         part = shapely.union_all(mine) if len(mine) else shapely.Polygon()
-        closed = split_at_tabs(paths, *tabs, None)
+        closed = split_at_tabs(paths, tabs[0], tabs[1], None)
         out.append((name, make_plan(profile, "pierced", lattice.dxf_version, kx, paths, like=lattice, part=part,
                                     outer_closed=closed)))
     return tuple(out)

@@ -49,7 +49,7 @@ if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
 
 _FIT = key("output.inlay_fit_mm")
-FIT_RANGE_MM = (_FIT.range.min, _FIT.range.max)
+FIT_RANGE_MM = (_FIT.range.min, _FIT.range.max)  # type: ignore[union-attr]  # the schema gives the fit a range
 """The fits accepted (the schema's range of ``inlay_fit_mm``): beyond half a millimetre a piece no longer fits."""
 
 
@@ -184,7 +184,10 @@ def _cut_whole(holes, d: float, tolerance_mm: float):
     where needed), the corridors cut out of the lattice, the regions filled in it,
     ``(x, y, width)`` of each neck widened, and ``(x, y)`` of each part filled.
     """
-    corridors, fills, necks, split = [], [], [], []
+    corridors: list = []
+    fills: list = []
+    necks: list = []
+    split: list = []
     if not d or not len(holes):
         return holes, np.empty(0, dtype=object), np.empty(0, dtype=object), necks, split
     shrunk = shapely.buffer(holes, -d, join_style="mitre", mitre_limit=MITRE_LIMIT)
@@ -265,7 +268,7 @@ def shape_key(poly, decimals: int = 3) -> tuple:
         heading = np.arctan2(edges[:, 1], edges[:, 0])
         turn = (np.roll(heading, -1) - heading + math.pi) % (2 * math.pi) - math.pi
         seq = np.round(np.c_[length, turn], decimals) + 0.0
-        n = len(seq)
+        n = len(length)
         rows = [tuple(map(tuple, np.roll(seq, -k, axis=0))) for k in range(n)]
         readings.append(min(rows))
     holes = (len(poly.interiors), round(poly.area, decimals))

@@ -52,7 +52,8 @@ def _label_points(polys):
 
 def _letter_paths(letters, polys) -> tuple[list, int]:
     """Score paths of ``letters`` centred in ``polys`` (one each); how many were too small for one."""
-    out, skipped = [], 0
+    out: list = []
+    skipped = 0
     if not len(polys):
         return out, skipped
     points, sizes = _label_points(polys)

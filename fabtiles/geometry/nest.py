@@ -200,7 +200,7 @@ def _solve(shapes, idx, height, gap, angles, seconds, on_tick):
         corner[i] = ring.min(axis=0)
         key = np.round(ring - corner[i], 6).tobytes()
         groups.setdefault(key, []).append(i)
-    items = [spyrrow.Item(str(g), [tuple(map(float, p)) for p in np.asarray(shapes[members[0]].exterior.coords)[:-1]
+    items = [spyrrow.Item(str(g), [(float(p[0]), float(p[1])) for p in np.asarray(shapes[members[0]].exterior.coords)[:-1]
                                    - corner[members[0]]],
                           demand=len(members), allowed_orientations=None if angles is None else list(angles))
              for g, members in enumerate(groups.values())]
@@ -324,7 +324,8 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
             for x, y in zip(a.tolist(), b.tolist(), strict=True):
                 if x != y:
                     close.setdefault(x, set()).add(y)
-        kept, taken = [], set()
+        kept: list = []
+        taken: set = set()
         for k, (i, p, _) in enumerate(candidates):
             if close.get(k, set()) & taken:
                 continue

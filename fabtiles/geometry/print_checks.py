@@ -81,7 +81,7 @@ class SmallOpenings(NamedTuple):
     """Deboss: islands of the plate among the grooves, too small to print (empty for the other styles)."""
 
     @property
-    def count(self) -> int:
+    def count(self) -> int:  # type: ignore[override]  # the number of openings; tuple.count is not used
         return len(self.holes) + len(self.islands)
 
 
@@ -374,6 +374,7 @@ def _polygons(geometry):
 
 def _report_small_openings(report: Report, found: SmallOpenings, profile: PrinterProfile, style: str) -> None:
     m = profile.min_hole_mm
+    assert m is not None  # called for a printer that has a smallest hole
     where = f"narrower than min_hole_mm = {m:g} mm"
 
     def message(n, narrowest):

@@ -87,7 +87,7 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
         xmin, ymin, xmax, ymax = pair[1].bounds
         sizes.append((xmax - xmin, ymax - ymin, xmin, ymin))
     order = list(range(len(tiles))) * (copies if not fill else 10_000)
-    placed = []  # (tile index, dx, dy)
+    placed: list = []  # (tile index, dx, dy)
     x = y = row_h = 0.0
     eps = 1e-6
     for i in order:

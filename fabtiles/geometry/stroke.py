@@ -228,7 +228,7 @@ def stroke_cross_section(segments, width, *, join="miter", miter_limit=4.0, tole
         band_edges = edges[~np.isin(edges[:, 0] * n + edges[:, 1], chord_key)]
         at = np.zeros(n, bool)
         at[band_edges.ravel()] = True
-        rings = _annulus_rings(*circles, half)
+        rings = _annulus_rings(circles[0], circles[1], half)
     polys = [band_polygons(verts, band_edges, half)] if len(band_edges) else []
     polys += join_polygons(verts, edges, half, join=join, miter_limit=miter_limit, tolerance=tolerance, at=at)
     contours = [p for block in polys for p in block]
@@ -400,7 +400,7 @@ def _merge_line_touching(polys: list[Polygon]) -> list[Polygon]:
 def _assign_holes(shells, holes) -> list[Polygon]:
     """Polygons from several shells of one component (lobes of a pinched ring) and holes."""
     shell_polys = shapely.polygons(shells)
-    owner = [[] for _ in shells]
+    owner: list[list] = [[] for _ in shells]
     if len(holes):
         probe = shapely.point_on_surface(shapely.polygons(holes))
         for k, pt in enumerate(probe):

@@ -17,7 +17,7 @@ import numbers
 from collections.abc import Mapping
 from dataclasses import KW_ONLY, dataclass, field
 from types import MappingProxyType
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -347,14 +347,14 @@ class ArchimedeanPacking:
         stars = dict(self._motifs)
         centres = cell.centres * a
         hankin = [int(p) not in stars for p in cell.sides]
-        rays = [polygon_rays(int(p), a, angle, gap, t) if h else None
+        rays: list[Any] = [polygon_rays(int(p), a, angle, gap, t) if h else None
                 for p, t, h in zip(cell.sides, cell.angles, hankin, strict=True)]
         # the snub hexagonal cell's polygons lie up to 2.5 lattice steps from its origin
         shifts = np.array([(i, j) for i in range(-4, 5) for j in range(-4, 5)], dtype=float) @ self.lattice
         near = (centres[None] + shifts[:, None]).reshape(-1, 2)  # every polygon near the cell
         entry = np.tile(np.arange(len(centres)), len(shifts))
         radii = cell.radii()[entry] * a
-        out = []
+        out: list[np.ndarray | None] = []
         for e, p in enumerate(cell.sides.tolist()):
             if not hankin[e]:
                 out.append(None)
@@ -406,7 +406,8 @@ class ArchimedeanPacking:
             _, radii, _ = self._entries()
             stars = dict(self._motifs)
             turns = [(stars[int(p)], a) for p, a in zip(cell.sides, cell.angles, strict=True)]
-            turns += [(self.gap_motif, a) for a in cell.gap_angles]
+            gap_motif = cast(Star, self.gap_motif)  # __post_init__ made it a Star
+            turns += [(gap_motif, a) for a in cell.gap_angles]
             cache, out = {}, []
             for (star, angle), r in zip(turns, radii, strict=True):
                 key = (star, round(angle - _turn(star), 12), r)

@@ -622,7 +622,7 @@ def _assign(n_strand, sa, sb, ia, ib) -> np.ndarray:
     ``bit[sa] ^ bit[sb] == (1 + ia + ib) % 2``. Breadth-first over the strands.
     """
     need = ((1 + ia + ib) % 2).tolist()
-    adj = [[] for _ in range(n_strand)]
+    adj: list[list[tuple[int, int]]] = [[] for _ in range(n_strand)]
     for a, b, w in zip(sa.tolist(), sb.tolist(), need, strict=True):
         adj[a].append((b, w))
         adj[b].append((a, w))

@@ -317,6 +317,7 @@ def _gap_circles(lattice, centres, sides, vertices):
                 key = (-round(rad, 9), sorted(index[gaps < 1e-9].tolist()))
                 if best is None or key < best[0]:
                     best = (key, x, rad, gaps)
+        assert best is not None, "every vertex of a tiling has a gap circle"
         _, x, rad, gaps = best
         touching = np.flatnonzero(gaps < 1e-9)
         first = min(touching, key=lambda t: (-sides[index[t]], index[t]))

@@ -271,8 +271,8 @@ class Coverage:
 
     pieces: list  # list of (shapely MultiPolygon, level index)
     levels: np.ndarray  # z of each level index; index 0 is the bottom
-    xs: np.ndarray = None  # the cell lines
-    ys: np.ndarray = None
+    xs: np.ndarray | None = None  # the cell lines
+    ys: np.ndarray | None = None
 
 
 def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES, shift: int = 0,
@@ -297,7 +297,7 @@ def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES, shift
     geoms = [g for g, _ in layers if not g.is_empty]
     xs, ys, box = cells if cells is not None else cells_for(geoms, cell_vertices, shift)
     levels = np.array(sorted({bottom, *[z for _, z in layers]}))
-    pieces = []
+    pieces: list = []
     for geom, z in layers:
         if geom.is_empty:
             continue
@@ -448,6 +448,7 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
 def mesh_coverage(cov: Coverage):
     """Mesh a coverage as one stack: returns ``(vertices (n, 3) float64, faces (m, 3) int64)``."""
     topo = topology(cov)
+    assert topo.tris is not None and topo.tri_level is not None  # topology() triangulates by default
     nl = len(cov.levels)
     tris = topo.vid[topo.tris]
     top = tris * nl + topo.tri_level[:, None]

@@ -92,7 +92,8 @@ def restore_collinear(ij, tris, nxt, *, rounds: int = 8):
         if not bad:
             break
         edges = np.stack([u, v], axis=1)
-        drop, add = set(), []
+        drop: set = set()
+        add: list = []
         for k in bad:
             t = k // 3
             if t in drop:
@@ -222,7 +223,7 @@ def flip_degenerate(tris: np.ndarray, ij: np.ndarray) -> np.ndarray:
             owner[(c, a)] = k
         alive = np.ones(len(tris), bool)
         extra = []
-        touched = set()
+        touched: set = set()
         for k in flat.tolist():
             if k in touched:
                 continue

@@ -33,6 +33,7 @@ Example: a 10 x 10 mm plate 2 mm thick is 6 faces, 12 edges and 8 vertices.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 from itertools import pairwise
 from math import gcd
 
@@ -146,7 +147,7 @@ class _Edges:
 
 def _ring_polygons(topo, k):
     """Rings of piece k grouped into polygons: [[outer ring, hole rings...], ...]."""
-    polys = []
+    polys: list = []
     for r in range(topo.piece_rings[k], topo.piece_rings[k + 1]):
         xy = topo.xy[topo.vid[topo.ring_start[r]:topo.ring_start[r + 1]]]
         area = 0.5 * np.sum(xy[:, 0] * np.roll(xy[:, 1], -1) - np.roll(xy[:, 0], -1) * xy[:, 1])
@@ -163,7 +164,7 @@ def _chain(directed, what):
     At a node with several ways on (two loops touching at a point), the first
     unused one is taken: each loop still closes, which is all a face needs.
     """
-    out = {}
+    out: dict = {}
     for i, (a, _, _) in enumerate(directed):
         out.setdefault(a, []).append(i)
     used = np.zeros(len(directed), bool)
@@ -213,10 +214,10 @@ def _onto_sides(xy, sides, outer):
     tree = shapely.STRtree(shapely.linestrings(sides.reshape(-1, 2, 2)))
     ends = np.unique(np.asarray(outer).ravel())
     pi, si = tree.query(shapely.points(out[ends]), predicate="dwithin", distance=SIDE_TOLERANCE_MM)
-    near = {}  # point -> sides it is near (corners: both of theirs)
+    near: dict = {}  # point -> sides it is near (corners: both of theirs)
     for p, k in zip(ends[pi].tolist(), si.tolist(), strict=True):
         near.setdefault(p, set()).add(k)
-    succ = {}
+    succ: dict = {}
     for u, v in np.asarray(outer).tolist():
         if k_common := (near.get(u, set()) & near.get(v, set())):
             for k in k_common:
@@ -324,7 +325,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     """
     import shapely
 
-    by_level = {}
+    by_level: dict = {}
     for geom, lvl in cov.pieces:
         by_level.setdefault(int(lvl), []).append(geom)
     pieces = []
@@ -346,7 +347,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     wu, wv = u_all[w].tolist(), v_all[w].tolist()
     wlo, whi = topo.out_level[w].tolist(), topo.level[w].tolist()
     # split levels at each vertex: the bottoms and tops of the walls that meet there
-    splits = {}
+    splits: dict = {}
     for a, b, lo, hi in zip(wu, wv, wlo, whi, strict=True):
         for p in (a, b):
             s = splits.setdefault(p, set())
@@ -369,7 +370,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     outer_loops = [[int(u_all[outer[i]]) for i in lp]
                    for lp in _chain([(int(u_all[e]), int(v_all[e]), e) for e in outer], what)]
     _keep_pieces_valid(topo, vxy, side_of, outer_loops)
-    sides_arr = None if sides is None else np.asarray(sides, float)
+    sides_arr: Any = None if sides is None else np.asarray(sides, float)  # read only where sides are given
     whole = None if sides is None else {tuple(row): k for k, row in enumerate(sides_arr.tolist())}
 
     # --- arcs: one cylinder face per arc of walls, its circle edges shared with the flat faces
@@ -405,7 +406,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
         wu, wv = [wu[i] for i in keep], [wv[i] for i in keep]
         wlo, whi = [wlo[i] for i in keep], [whi[i] for i in keep]
     wall_edges = []  # per wall: its directed edges (start node, end node, signed edge)
-    keys = []
+    keys: list[tuple] = []
     for a, b, lo, hi in zip(wu, wv, wlo, whi, strict=True):
         loop = [(ed.point(a, lo), ed.point(b, lo), ed.horizontal(a, b, lo))]
         loop += side(b, lo, hi, up=True)
@@ -425,7 +426,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             keys.append((dx, dy, dy * int(ij[a, 0]) - dx * int(ij[a, 1])))
 
     # walls in one plane that share a vertical edge are one face
-    users = {}
+    users: dict = {}
     for i, loop in enumerate(wall_edges):
         for _, _, e in loop:
             users.setdefault(e if e >= 0 else ~e, []).append(i)
@@ -445,7 +446,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             faces.append(Face(origin, normal, ref, (tuple(e for _, _, e in wall_edges[members[0]]),)))
             continue
         # drop the edges inside the merged face (used by two of its walls), chain the rest
-        count = {}
+        count: dict = {}
         for i in members:
             for _, _, e in wall_edges[i]:
                 key = e if e >= 0 else ~e
@@ -492,7 +493,8 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     directed = [(*(ed.list[e] if e >= 0 else ed.list[~e][::-1]), e) for e in signed]
     loops = _chain(directed, what)
     pts = _node_xyz(ed, vxy, z)
-    outers, holes = [], []
+    outers: list = []
+    holes: list = []
     for lp in loops:
         xy = _loop_points([directed[i][2] for i in lp], ed.list, ed.arcs, pts)
         (outers if _loop_area(xy) < 0 else holes).append((lp, xy))  # seen from above, reversed

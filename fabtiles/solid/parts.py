@@ -307,9 +307,10 @@ def _checked_body(kind, name, r, o, stack, dips=None):
             error = error or exc
             if kind == "base":
                 raise
+    assert error is not None  # every repair failed: the loop above returned otherwise
     points, exc = np.empty((0, 2)), error
     for _ in range(BRIDGE_ROUNDS):
-        if getattr(exc, "mesh", None) is None:
+        if exc.mesh is None:
             break
         found = _nonmanifold_points(*exc.mesh)
         if not len(found):
@@ -588,6 +589,7 @@ def _mosaic_body(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
             error = error or exc
             continue
         return CheckedPart(mverts, mfaces, float(volume), int(bodies), top, o, float(found))
+    assert error is not None  # every attempt failed: the loop above returned otherwise
     raise error
 
 

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import Any
 
 from .._errors import ParameterError
 from ..pattern.presets import PRESET_NOTES, PRESETS
@@ -32,11 +33,11 @@ from ..pattern.tilings import NAMES, TILINGS
 _PRESET_PALETTES = {"table1-part1": "zellige", "table1-part2": "iznik", "table2-left": "mamluk",
                     "table2-right": "alhambra", "table3-1": "haft-rangi", "table3-2": "iznik", "table3-3": "zellige"}
 
-_GAP_STAR = {"n": 6, "radii": (0.5, 1)}  # a six-point star of radii 0.5 and 1, the tilings' small motif
+_GAP_STAR: dict[str, Any] = {"n": 6, "radii": (0.5, 1)}  # a six-point star of radii 0.5 and 1, the tilings' small motif
 
 # tiling -> edge (mm), preset per polygon kind, the motif above (for the kinds with none), gap motif,
 # stroke (mm): the values of samples/tilings/<tiling>.toml
-_TILINGS = {
+_TILINGS: dict[str, tuple[float, dict[int, str], dict[str, Any] | None, int | None, float]] = {
     "3.12.12": (9, {12: "table3-1"}, _GAP_STAR, None, 1),
     "3.3.3.3.3.3": (18, {}, _GAP_STAR, None, 1),
     "3.3.3.3.6": (12, {6: "table3-3"}, _GAP_STAR, 3, 1),
