@@ -330,9 +330,9 @@ def _parse(data: dict, source: str, name: str):
     allowed = list(cutter.keys) if cutter else [f.name for f in fields(cls) if f.name not in ("name", "description")]
     _unknown(source, f"{kind}.", section, allowed)
     for key in cutter.required if cutter else ():
-        if key not in section:
+        if cutter and key not in section:
             raise ProfileError(f"{source}: a {kind} profile needs {kind}.{key} "
-                               f"(the {cutter.tool}'s diameter in mm, > 0)")  # type: ignore[union-attr]  # required: a cutter's
+                               f"(the {cutter.tool}'s diameter in mm, > 0)")
     values: dict[str, Any] = {}
     for key, value in section.items():
         full = f"{kind}.{key}"

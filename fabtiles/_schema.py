@@ -20,7 +20,7 @@ tilings) are named as ``"module:NAME"`` and looked up when asked for.
 ('square', 'rectangle', 'hexagon', 'circle')
 >>> build_options("3mf")[:2], build_options("3mf")[-3:]
 (('style', 'base_mm'), ('inlay', 'layout', 'colours'))
-"""
+"""  # noqa: E501 - a doctest's lines are as Python prints them
 
 from __future__ import annotations
 
@@ -619,7 +619,7 @@ def build_options(family: str) -> tuple[str, ...]:
 
     >>> build_options("cut")
     ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'inlay_fit_mm', 'inlay_pieces', 'inlay_base', 'tab_mm', 'tabs_per_part', 'colours')
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     wanted = _family(family)
     mine = [k.option.name for k in KEYS if k.option is not None and set(wanted) & set(k.option.families)]
     calls = [o.name for o in CALL_OPTIONS if set(wanted) & set(o.families)]

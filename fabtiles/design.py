@@ -1,4 +1,5 @@
-"""Design files: a TOML description of one tile, validated into frozen dataclasses (reference: ``docs/design-files.md``).
+"""Design files: a TOML description of one tile, validated into frozen dataclasses
+(reference: ``docs/design-files.md``).
 
 A design has four sections; every key is checked, and an unknown key is an
 error naming the key, its section and the valid keys (with a "did you mean").
@@ -321,7 +322,7 @@ def design_notes(design: Design) -> list[str]:
     [motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take Hankin's rays (name a motif there for a kind, or remove [motif])
     >>> design_notes(design_from_dict({"packing": packing, "tile": {"size": 60}}))
     []
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     p = design.packing
     if p is not None and p.kind == "archimedean" and p.method == "hankin" and design.motif is not None:
         return ['[motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take '
@@ -545,7 +546,8 @@ def _key(where: str, exc=None, *, key=None) -> str | None:
 
 
 def _value(table, section: str, name: str, source: str, where: str, default=None):
-    """``table[name]`` checked by its key in the schema (type, and range unless the library checks it), or ``default``."""
+    """``table[name]`` checked by its key in the schema (type, and range unless the library checks it),
+    or ``default``."""
     if name not in table:
         return default
     return _schema.key(f"{section}.{name}").check(table[name], prefix=f"{source}: {where} ", error=DesignError,

@@ -164,7 +164,7 @@ def variants(varies, name: str, *, yes: bool = False) -> list[Variant]:
     ParameterError
         No ``--vary``, a key varied twice, or more than :data:`MAX_VARIANTS` variants
         without ``yes``.
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     varies = list(varies)
     if not varies:
         raise ParameterError("a sweep needs at least one --vary KEY=SPEC (like --vary packing.radius=8:16:5)",
@@ -305,7 +305,7 @@ def _figures_html(figures: dict) -> str:
     '<div class="figures"><div>laser job: 2.0 m of cut, 65 pierces, about 2 min</div><div>print: 23.2 g of filament, 7.78 m</div></div>'
     >>> _figures_html({})
     ''
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     lines = []
     if "line" in figures:
         lines.append(f"{figures.get('cutter', 'laser')} job: {figures['line']}")

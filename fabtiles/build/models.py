@@ -117,7 +117,7 @@ def _colours(value):
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: colours must be a fabtiles.Colours (or a dict of its keys: by, palette, band_colour, base_colour, faces), got 'iznik'
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     from .._colour import Colours
     from .._schema import names
 
@@ -164,7 +164,8 @@ class Models:
 
     @cached_property
     def cut_region(self):
-        """``(region, centrelines)`` the cutter's files are made from (see :func:`~fabtiles.geometry.machine_geometry.cut_geometry`)."""
+        """``(region, centrelines)`` the cutter's files are made from
+        (see :func:`~fabtiles.geometry.machine_geometry.cut_geometry`)."""
         from ..geometry.machine_geometry import cut_geometry
 
         o = self.options
@@ -292,7 +293,8 @@ class Models:
 
     @cached_property
     def print_region(self):
-        """``(region, dips)`` the print is made from (see :func:`~fabtiles.geometry.machine_geometry.print_geometry`)."""
+        """``(region, dips)`` the print is made from
+        (see :func:`~fabtiles.geometry.machine_geometry.print_geometry`)."""
         from ..geometry.machine_geometry import print_geometry
 
         return print_geometry(self.tile, profile=self.options.printer, style=self.options.print_style)

@@ -83,7 +83,7 @@ def part_outline(plan):
     >>> plan = plan_cut(box(0, 0, 40, 40).difference(box(10, 10, 30, 30)), box(0, 0, 40, 40), profile="laser-3mm-plywood")
     >>> [round(v, 3) for v in part_outline(plan).bounds]
     [-0.075, -0.075, 40.075, 40.075]
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     outer = [shapely.Polygon(r) for r in plan.paths("outer") if len(r) >= 3]
     every = np.concatenate([r for layer in plan.layers for r in layer.paths])
     part = shapely.union_all([p.buffer(0) for p in outer]) if outer else shapely.Polygon()
@@ -176,7 +176,8 @@ class NestJob:
         on = nesting.on_sheet(k)
         parts = [(self.designs[self.shapes[i]][0].name, nesting.outlines[i]) for i in on]
         return nested_sheet_svg(self.model.plans[k], parts, nesting.sheet_mm,
-                                title=f"sheet {k + 1}: {len(on)} part{'s' if len(on) != 1 else ''}, material use {nesting.material_use()[k]:.0%}")
+                                title=f"sheet {k + 1}: {len(on)} part{'s' if len(on) != 1 else ''}, "
+                                      f"material use {nesting.material_use()[k]:.0%}")
 
 
 def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=None, gap_mm: float | None = None,

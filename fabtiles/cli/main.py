@@ -43,7 +43,8 @@ def _float_list(text: str) -> tuple[float, ...]:
 
 
 def motif_options(command):
-    """The ``[motif]`` keys of the schema as options (``--preset``, ``--n``, ``--radii``, ...), in the schema's order."""
+    """The ``[motif]`` keys of the schema as options (``--preset``, ``--n``, ``--radii``, ...), in the schema's
+    order."""
     from .. import _schema
 
     types = {"integer": int, "number": float}

@@ -26,7 +26,8 @@ from .formats import CUT_FORMATS, FORMATS, format_of
 KIT_FORMATS = CUT_FORMATS
 
 KIT_FILES = (("-lattice", "lattice"), ("-pieces", "pieces"))
-"""A kit's files: the suffix added to the name, and which of :class:`~fabtiles.geometry.cut_plan.KitPlans`' plans it holds."""
+"""A kit's files: the suffix added to the name, and which of :class:`~fabtiles.geometry.cut_plan.KitPlans`' plans
+it holds."""
 
 
 def kit_paths(path) -> tuple[Path, ...]:

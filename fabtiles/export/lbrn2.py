@@ -13,8 +13,8 @@ in LightBurn's own XML, so a job opens with its speeds, powers and passes set:
 - Every contour one ``<Shape Type="Path">``: its vertices once each (the first not
   repeated) and a primitive list of straight lines ``L0 1 ... L(n-1) 0`` that closes it;
   a score line the same with no closing line. Its arcs are cubic Beziers (``B i j``, the
-  handles on the vertices as ``c0x``/``c0y``, ``c1x``/``c1y``), at most a quarter turn each. No ``VertID``/``PrimID`` (shared
-  geometry) and an identity ``XForm``.
+  handles on the vertices as ``c0x``/``c0y``, ``c1x``/``c1y``), at most a quarter turn each. No ``VertID``/``PrimID``
+  (shared geometry) and an identity ``XForm``.
 
 What the readers in the open read, and why these choices (``docs/laser-programs.md``):
 LightBurn's shorthand ``LineClosed`` is read by MeerK40t as one line too many, so the

@@ -428,7 +428,7 @@ def _note_bed_edge(plan: CutPlan, profile, report: Report) -> None:
     ...                load_profile("laser-3mm-plywood"), r)
     >>> print(r.stats["notes"][0])
     the cut paths span 600.15 x 400.15 mm, beyond the 600 x 400 mm bed by the cut's width outside the tile: the outline is cut at the sheet's edges (most machines travel a little beyond the nominal bed; if yours does not, make the tile smaller)
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     x0, y0, x1, y1 = plan.bounds
     w, h = x1 - x0, y1 - y0
     if fits_bed(w, h, profile.bed_mm):

@@ -84,7 +84,7 @@ def check_fit(fit_mm) -> float:
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: inlay_fit_mm must be a number of mm from -0.5 to 0.5 (positive: a press fit, negative: play), got 0.6
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     return _FIT.check(fit_mm, required=True)
 
 

@@ -146,7 +146,8 @@ def _check_parts(parts) -> tuple[list, list]:
 
 
 def _fits(shape, w: float, h: float, angles) -> bool:
-    """Whether ``shape`` fits a ``w`` x ``h`` sheet at one of ``angles`` (``None``: free, tried at the quarter turns)."""
+    """Whether ``shape`` fits a ``w`` x ``h`` sheet at one of ``angles`` (``None``: free, tried at the quarter
+    turns)."""
     for a in (0.0, 90.0) if angles is None else angles:
         x0, y0, x1, y1 = Placement(None, 0, a, (0.0, 0.0)).place(shape).bounds
         if x1 - x0 <= w - 2 * MARGIN_MM and y1 - y0 <= h - 2 * MARGIN_MM:
@@ -285,7 +286,8 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
                 f"{rotations!r})"
             raise FabricationError(
                 f"part {i!r} ({x1 - x0:.4g} x {y1 - y0:.4g} mm) does not fit on the {w:g} x {h:g} mm sheet "
-                f"{turn}; use a larger sheet, a smaller part{'' if angles is None or 90.0 in angles else ' or --rotate 90'}",
+                f"{turn}; use a larger sheet, a smaller part"
+                f"{'' if angles is None or 90.0 in angles else ' or --rotate 90'}",
                 param="sheet_mm")
 
     start = time.monotonic()

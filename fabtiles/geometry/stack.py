@@ -88,7 +88,7 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: mosaic_inset_mm must be smaller than relief_mm (the bands stand 1.2 mm above the plate), got 2
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     profile = load_profile(profile, kind="printer")
     assert isinstance(profile, PrinterProfile)
     style = check_choice("style", profile.style if style is None else style, PRINT_STYLES)

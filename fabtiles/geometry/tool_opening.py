@@ -292,7 +292,8 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
         n = len(made.corners)
         report.add("rounded_corner",
                    f"{n:,} corner{'s' if n > 1 else ''} rounded to the tool's radius r = {r:g} mm by "
-                   f"{cutter.tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm (up to {distinct(made.moved.max(), VISIBLE_MM)} "
+                   f"{cutter.tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm "
+                   f"(up to {distinct(made.moved.max(), VISIBLE_MM)} "
                    "mm); the file holds the rounded part",
                    count=n, locations=locations(made.corners), sizes=made.moved[:MAX_LOCATIONS].round(3),
                    worst=round(float(made.moved.max()), 3), limit=VISIBLE_MM)

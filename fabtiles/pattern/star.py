@@ -100,7 +100,7 @@ class Star:
         Traceback (most recent call last):
         ...
         fabtiles._errors.ParameterError: preset 'table3-33' is unknown; did you mean 'table3-3'? (presets: table1-part1, table1-part2, table2-left, table2-right, table3-1, table3-2, table3-3; `fabtiles presets` lists them)
-        """
+        """  # noqa: E501 - a doctest's lines are as Python prints them
         if not isinstance(name, str) or name not in PRESETS:
             hint = did_you_mean(name, PRESETS)
             raise ParameterError(

@@ -89,7 +89,7 @@ def canonical(tiling) -> str:
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: tiling '5.5.5' is unknown (tilings: 3.3.3.3.3.3, 4.4.4.4, 6.6.6, 3.6.3.6, 3.12.12, 4.6.12, 4.8.8, 3.3.3.3.6, 3.3.3.4.4, 3.3.4.3.4, 3.4.6.4; exponent forms such as 3^4.6 also work)
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     try:
         name = _FORMS.get(_expand(tiling)) if isinstance(tiling, str) else None
     except ValueError:

@@ -966,7 +966,7 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     Traceback (most recent call last):
     ...
     fabtiles._errors.FabricationError: the STEP solid has a volume of 200 mm^3, not the mesh's 100 mm^3 (0.05% allowed); nothing was written
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     import shapely
 
     def fail(why):

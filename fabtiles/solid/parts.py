@@ -468,7 +468,7 @@ def check_inlay(stack: Stack, inlay) -> None:
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: inlay=True needs style='deboss' (the inlay fills the deboss grooves), got style='relief'; pass style='deboss' or drop inlay
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     if not isinstance(inlay, (bool, np.bool_)):
         raise ParameterError(f"inlay must be True or False, got {inlay!r}")
     if inlay and stack.style != "deboss":

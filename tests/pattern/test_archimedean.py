@@ -153,7 +153,7 @@ def test_one_gap_circle_per_vertex_and_vertex_configuration(tiling):
     shifts = np.array([(i, j) for i in range(-2, 3) for j in range(-2, 3)]) @ cell.lattice
     allc = (cell.centres[None] + shifts[:, None]).reshape(-1, 2)
     alls = np.tile(cell.sides, len(shifts))
-    for v, g in zip(cell.vertices, cell.gap_centres):
+    for v, g in zip(cell.vertices, cell.gap_centres, strict=True):
         at = np.abs(np.hypot(*(allc - v).T) - [circumradius(s) for s in alls]) < TOL
         around = alls[at][np.argsort(np.arctan2(*(allc[at] - v).T[::-1]))].tolist()
         # The polygons around the vertex, in turn, are the configuration (up to rotation/reflection).
@@ -171,7 +171,7 @@ def test_gap_circles_in_a_window_are_one_per_vertex(tiling):
     edge = 10
     p = ArchimedeanPacking(tiling, edge)
     half = 3 * max(p.period)
-    c, r, sides = window_circles(p, half)
+    c, _r, sides = window_circles(p, half)
     gaps = c[sides == 0]
     # The tiling's vertices near the origin, from the unit cell.
     cell = unit_cell(tiling)
