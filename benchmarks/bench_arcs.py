@@ -70,7 +70,7 @@ def measure(design, repeat: int, formats) -> dict:
             row = best.setdefault(label, {"plan_s": t})
             row["plan_s"] = min(row["plan_s"], t)
             for fmt in formats:
-                t, data = _cpu(lambda: writers[fmt](p))
+                t, data = _cpu(lambda fmt=fmt, p=p: writers[fmt](p))
                 row[f"{fmt}_s"] = min(row.get(f"{fmt}_s", t), t)
                 row[f"{fmt}_bytes"] = len(data)
             row["vertices"] = p.report.stats["vertices"] if label == "after" else sum(

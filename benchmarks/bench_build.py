@@ -72,7 +72,7 @@ def paired(a, b, runs: int) -> tuple[float, float, float]:
     for _ in range(runs):
         ta.append(timed(*a))
         tb.append(timed(*b))
-    return statistics.median(ta), statistics.median(tb), statistics.median(x / y for x, y in zip(ta, tb))
+    return statistics.median(ta), statistics.median(tb), statistics.median(x / y for x, y in zip(ta, tb, strict=True))
 
 
 def single(a, runs: int) -> float:

@@ -39,7 +39,7 @@ def main() -> None:
 
     t, faces = best_of(lambda: F._faces(region, tile.outline_shape()), args.repeat)
     print(f"  faces from the region      {t:7.3f} s  ({len(faces)} faces)")
-    t, (wholes, index, _) = best_of(lambda: F._whole_faces(tile, faces), args.repeat)
+    t, (_wholes, index, _) = best_of(lambda: F._whole_faces(tile, faces), args.repeat)
     print(f"  whole faces and look-up    {t:7.3f} s  ({len(set(index.tolist()))} distinct whole faces)")
     t, fc = best_of(lambda: F.face_classes(tile), args.repeat)
     verdict = "within" if t < TARGET_S else "OVER"

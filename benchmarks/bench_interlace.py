@@ -88,8 +88,8 @@ def main(argv=None) -> None:
     rows = [("weave alone", None, best(lambda: weave(segments), args.repeat))]
     for label, name, opts in (("DXF pierced", "t.dxf", {}), ("DXF score", "t.dxf", {"mode": "score"}),
                               ("STL relief", "t.stl", {})):
-        plain = best(lambda: sheet(False).export(out / name, **opts), args.repeat)
-        woven = best(lambda: sheet(True).export(out / name, **opts), args.repeat)
+        plain = best(lambda name=name, opts=opts: sheet(False).export(out / name, **opts), args.repeat)
+        woven = best(lambda name=name, opts=opts: sheet(True).export(out / name, **opts), args.repeat)
         rows.append((label, plain, woven))
     print(f"600 x 400 mm sheet, {len(segments):,} segments; best of {args.repeat}")
     print("| file | plain (s) | interlaced (s) | added |")

@@ -45,7 +45,7 @@ def main() -> None:
     t, seg = best_of(lambda: sheet().segments(), args.repeat)
     print(f"pattern segments      {t:7.3f} s  ({len(seg)} segments)")
     for join in ("miter", "bevel", "round"):
-        t, reg = best_of(lambda: sheet(join).region(), args.repeat)
+        t, reg = best_of(lambda join=join: sheet(join).region(), args.repeat)
         parts = len(getattr(reg, "geoms", [reg]))
         print(f"region join={join:<6}    {t:7.3f} s  (valid={reg.is_valid}, parts={parts}, "
               f"area={reg.area:.1f} mm2)")

@@ -149,7 +149,7 @@ def main(argv=None):
             for label, checkout in order:
                 out = work / f"{name}-{label}.step"
                 rows[label] = export(checkout, toml, out) | counts(out)
-            for label, checkout in order:
+            for label, _ in order:
                 rows[label] |= ({"import_cpu_s": float("nan"), "parse_cpu_s": float("nan"), "check_cpu_s": float("nan"),
                                  "valid": None}
                                 if args.no_import else run(NEW, IMPORT, work / f"{name}-{label}.step"))

@@ -92,8 +92,8 @@ def run_sheet(tiling: str, segments: int) -> dict:
 
 
 def _child(tiling: str, segments: int) -> dict:
-    code = ("import json, sys; sys.path.insert(0, %r); import bench_tilings as b; "
-            "print('@@' + json.dumps(b.run_sheet(%r, %d)))" % (str(HERE), tiling, segments))
+    code = (f"import json, sys; sys.path.insert(0, {str(HERE)!r}); import bench_tilings as b; "
+            f"print('@@' + json.dumps(b.run_sheet({tiling!r}, {segments:d})))")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     line = next((s for s in proc.stdout.splitlines() if s.startswith("@@")), None)
     if line is None:

@@ -52,7 +52,8 @@ def main(repeat: int = 15) -> None:
             assert r.status_code == 200, r.text
         print(f"| {label} | {statistics.median(times):.0f} | {min(times):.0f} | {len(r.content) / 1000:.0f} |")
     print()
-    print("| 3D view (GET /api/view.glb) | median ms | best ms | GLB kB | triangles | shown |\n|---|---:|---:|---:|---:|---|")
+    print("| 3D view (GET /api/view.glb) | median ms | best ms | GLB kB | triangles | shown |\n"
+          "|---|---:|---:|---:|---:|---|")
     for label, query in VIEWS.items():
         times = []
         for _ in range(max(3, repeat // 3)):

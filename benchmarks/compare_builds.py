@@ -75,7 +75,7 @@ def same_dxf(a: Path, b: Path) -> str:
     ea, eb = dxf_entities(a), dxf_entities(b)
     if len(ea) != len(eb):
         return f"{len(ea)} entities, now {len(eb)}"
-    for k, (x, y) in enumerate(zip(ea, eb)):
+    for k, (x, y) in enumerate(zip(ea, eb, strict=True)):
         if x[:3] != y[:3] or x[3].shape != y[3].shape or (x[3].size and np.abs(x[3] - y[3]).max() > 1e-9):
             return f"entity {k} differs: {x[:3]} vs {y[:3]}"
     return ""
@@ -136,7 +136,7 @@ def compare(a: Path, b: Path, fmt: str) -> str:
         oa, ob = threemf_objects(a), threemf_objects(b)
         if len(oa) != len(ob):
             return f"{len(oa)} objects, now {len(ob)}"
-        for (na, va, ta), (nb, vb, tb) in zip(oa, ob):
+        for (na, va, ta), (nb, vb, tb) in zip(oa, ob, strict=True):
             if va.shape != vb.shape or not np.allclose(va, vb, atol=1e-6) or not np.array_equal(ta, tb):
                 return f"object {na!r}/{nb!r} differs"
         return ""

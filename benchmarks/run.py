@@ -101,7 +101,7 @@ def run_scenario(name: str) -> dict:
     sizes = {}
     for fmt in spec["stages"][2:]:
         path = out / f"{name}.{fmt}"
-        stage(fmt, lambda: tile.export(path, profile=_profile(fmt, spec.get("profile"))))
+        stage(fmt, lambda path=path, fmt=fmt: tile.export(path, profile=_profile(fmt, spec.get("profile"))))
         sizes[fmt] = path.stat().st_size
     front = sum(r["seconds"] for r in rows if r["stage"] in ("pattern", "region"))
     end_to_end = {f"{r['stage']} end to end": front + r["seconds"] for r in rows if r["stage"] in sizes}
@@ -201,8 +201,8 @@ def run_occt_face_baseline(stage: str) -> dict:
 
 def _child(kind: str, arg: str, timeout: float | None = None) -> dict:
     code = (
-        "import json, sys; sys.path.insert(0, %r); import run; "
-        "print('@@' + json.dumps(run.%s))" % (str(HERE), arg)
+        "import json, sys; sys.path.insert(0, {!r}); import run; "
+        "print('@@' + json.dumps(run.{}))".format(str(HERE), arg)
     )
     try:
         proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=timeout)
@@ -210,7 +210,7 @@ def _child(kind: str, arg: str, timeout: float | None = None) -> dict:
         return {"error": f"stopped after {timeout:g} s", "kind": kind, "timeout": timeout}
     if proc.returncode != 0:
         return {"error": proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else "failed", "kind": kind}
-    line = [l for l in proc.stdout.splitlines() if l.startswith("@@")][-1]
+    line = [ln for ln in proc.stdout.splitlines() if ln.startswith("@@")][-1]
     return json.loads(line[2:])
 
 
@@ -228,7 +228,7 @@ def _slope(xs, ys) -> float:
     lx = [math.log(x) for x in xs]
     ly = [math.log(max(y, 1e-6)) for y in ys]
     mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
-    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
+    return sum((a - mx) * (b - my) for a, b in zip(lx, ly, strict=True)) / sum((a - mx) ** 2 for a in lx)
 
 
 def report(results: dict) -> str:

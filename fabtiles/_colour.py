@@ -49,7 +49,8 @@ class Colour:
         >>> parse_colour("#ff8000").srgb
         (1.0, 0.5019607843137255, 0.0)
         """
-        return tuple(int(self.hex[i:i + 2], 16) / 255 for i in (1, 3, 5))
+        r, g, b = (int(self.hex[i:i + 2], 16) / 255 for i in (1, 3, 5))
+        return r, g, b
 
     @property
     def linear(self) -> tuple[float, float, float]:
@@ -58,7 +59,8 @@ class Colour:
         >>> [round(c, 4) for c in parse_colour("#808080").linear]
         [0.2159, 0.2159, 0.2159]
         """
-        return tuple(c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in self.srgb)
+        r, g, b = (c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in self.srgb)
+        return r, g, b
 
 
 PART_COLOURS = ("band", "base")
@@ -264,7 +266,7 @@ class Colouring:
 
     def materials(self, *, base: bool = True, band: bool = True) -> tuple[Colour, ...]:
         """The distinct colours in order of first use (base, band, A, B, ...): one material each."""
-        seen = {}
+        seen: dict = {}
         for c in ([self.base] if base else []) + ([self.band] if band else []) + [c for _, c in self.faces]:
             seen.setdefault(c.hex, c)
         return tuple(seen.values())
@@ -310,7 +312,8 @@ def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, fac
     chosen = tuple((k, face(k, i)) for i, k in enumerate(classes))
     # one name per colour (it names a part and an STL file): a value keeps the first name it was given, and a
     # second value of a name takes its hex digits
-    names, owner = {}, {}
+    names: dict = {}
+    owner: dict = {}
 
     def named(c):
         if c.hex in names:
@@ -355,7 +358,7 @@ class Colours:
     palette: str = PALETTE_NAMES[0]
     band_colour: str | None = None
     base_colour: str | None = None
-    faces: tuple = field(default=())
+    faces: tuple | dict = field(default=())
     given: bool = True
 
     def __post_init__(self):

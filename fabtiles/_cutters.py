@@ -96,7 +96,7 @@ class CutterKind:
             return 0.0
         if self.kerf == "jet":
             return max(profile.kerf_xy_mm)
-        return getattr(profile, self.tool_key)
+        return getattr(profile, self.tool_key)  # type: ignore[arg-type]  # a kind that opens holes names its tool
 
     def tool_radius(self, profile) -> float:
         """The radius ``profile``'s tool rounds a hole's corners to; 0 for a laser.
@@ -137,7 +137,7 @@ class CutterKind:
         Traceback (most recent call last):
         ...
         fabtiles._errors.ParameterError: mode must be 'pierced' for router profile 'router-6mm-mdf' (a router cuts through; score, engrave and inlay are laser modes), got 'engrave'
-        """
+        """  # noqa: E501 - a doctest's lines are as Python prints them
         if mode is None or (isinstance(mode, str) and mode in self.modes):
             return
         if self.modes == LASER_MODES:  # every mode: then it is not a mode at all
@@ -170,7 +170,7 @@ class CutterKind:
         Traceback (most recent call last):
         ...
         fabtiles._errors.ParameterError: tab_mm must be 0 for router profile 'router-6mm-mdf', got 0.5: a router file holds the part whole and CAM adds the holding tabs (with its lead-ins); set tab_mm = 0 and add tabs in CAM
-        """
+        """  # noqa: E501 - a doctest's lines are as Python prints them
         if tab_mm and not self.tabs:
             raise ParameterError(f"tab_mm must be 0 for {self.name} profile {profile.name!r}, got {tab_mm:g}: a "
                                  f"{self.name} file holds the part whole and CAM adds the holding tabs (with its "
@@ -201,7 +201,7 @@ class CutterKind:
         >>> print("\\n".join(p.cutter.dxf_comments(p, 0.0)))
         fabtiles router profile router-6mm-mdf: the part as the 6 mm bit makes it (hole corners rounded to 3 mm), NO tool compensation: CAM offsets the tool
         layers: INSIDE (inside profiles, cut first), OUTSIDE (outside profile, cut last); millimetres
-        """
+        """  # noqa: E501 - a doctest's lines are as Python prints them
         if self.dxf_note is None:
             return ()
         what = self.dxf_note.format(**self._values(profile, "", kerf_mm))

@@ -59,6 +59,9 @@ class DesignError(FabtilesError, ValueError):
 class FabricationError(FabtilesError, ValueError):
     """The part cannot be made as asked (strict fabrication checks, bad mesh)."""
 
+    mesh: tuple | None = None
+    """A bad mesh's ``(vertices, faces)``, merged by float32 position, when the check has one (or None)."""
+
 
 class LimitError(FabtilesError, ValueError):
     """The job is larger than a set work limit; it is refused before work starts."""

@@ -65,7 +65,7 @@ def estimate_segments(pattern, width_mm: float, height_mm: float) -> int:
     if motif is None:  # a single Star
         return len(pattern.segments())
     # Counting the circles is cheap (numpy on the lattice, no motif is placed).
-    centres, radii = pattern.circles((-width_mm / 2, -height_mm / 2, width_mm / 2, height_mm / 2))
+    _, radii = pattern.circles((-width_mm / 2, -height_mm / 2, width_mm / 2, height_mm / 2))
     big = int(np.count_nonzero(radii >= pattern.radius * (1 - 1e-9)))
     gap = len(radii) - big
     per_big = len(motif.segments())

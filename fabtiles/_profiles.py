@@ -15,17 +15,19 @@ a bad value is a :class:`~fabtiles.ProfileError` that names the file and the key
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, fields
 from importlib import resources
 from pathlib import Path
+from typing import Any
 
 from ._cutters import CUTTER_KINDS, KINDS, LASER_MODES, cutter_kind, family, members
 from ._errors import ProfileError, did_you_mean
 from ._schema import key as schema_key
 
-try:  # Python 3.11+
+if sys.version_info >= (3, 11):
     import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 PRINT_STYLES = ("relief", "pierced", "deboss", "mosaic")
@@ -239,7 +241,7 @@ def load_profile(profile, *, kind: str | None = None):
     return result
 
 
-def profile_text(profile) -> tuple[str, object]:
+def profile_text(profile) -> tuple[str, CutterProfile | PrinterProfile]:
     """The TOML text of a bundled profile (by name) or a profile file (by path), and the profile it loads as.
 
     The text is validated first (an unknown name or a bad file is the same
@@ -368,10 +370,10 @@ def _parse(data: dict, source: str, name: str):
         section = _renamed_style(section, source)
     _unknown(source, f"{kind}.", section, allowed)
     for key in cutter.required if cutter else ():
-        if key not in section:
+        if cutter and key not in section:
             raise ProfileError(f"{source}: a {kind} profile needs {kind}.{key} "
                                f"(the {cutter.tool}'s diameter in mm, > 0)")
-    values = {}
+    values: dict[str, Any] = {}
     for key, value in section.items():
         full = f"{kind}.{key}"
         if key == "bed_mm":

@@ -86,7 +86,7 @@ class Report:
     def add(self, code: str, message: str, *, count: int = 1, locations=(), sizes=(), worst=None,
             unit: str = "mm", limit=None) -> None:
         """Record a finding (see :class:`Finding`)."""
-        self.findings.append(Finding(code, message, count, tuple(tuple(map(float, p)) for p in locations),
+        self.findings.append(Finding(code, message, count, tuple((float(p[0]), float(p[1])) for p in locations),
                                      tuple(map(float, sizes)), None if worst is None else float(worst), unit,
                                      None if limit is None else float(limit)))
 

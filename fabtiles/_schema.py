@@ -20,7 +20,7 @@ tilings) are named as ``"module:NAME"`` and looked up when asked for.
 ('square', 'rectangle', 'hexagon', 'circle')
 >>> build_options("3mf")[:2], build_options("3mf")[-3:]
 (('style', 'base_mm'), ('inlay', 'layout', 'colours'))
-"""
+"""  # noqa: E501 - a doctest's lines are as Python prints them
 
 from __future__ import annotations
 
@@ -76,6 +76,7 @@ class Range:
     def __contains__(self, value) -> bool:
         if isinstance(value, bool) or not isinstance(value, numbers.Real) or math.isnan(value):
             return False
+        value = float(value)
         if self.min is not None and (value <= self.min if self.min_open else value < self.min):
             return False
         return not (self.max is not None and (value >= self.max if self.max_open else value > self.max))
@@ -277,7 +278,7 @@ class Key:
 MOTIF_REQUIRED = ("n", "radii")
 """The keys a motif without a preset needs."""
 
-GAP_MOTIF = {"n": 6, "radii": (0.5, 1.0)}
+GAP_MOTIF: dict[str, Any] = {"n": 6, "radii": (0.5, 1.0)}
 """The gap circles' motif when a packing names none (a table of motif keys)."""
 
 
@@ -288,7 +289,7 @@ PACKED = ("packing", ("hex", "square", "archimedean"))
 def _motif_keys(section: str) -> tuple[Key, ...]:
     """The keys of a motif table: ``[motif]``, and the ``gap_motif`` and ``[packing.motifs]`` tables' entries."""
     star = "fabtiles.pattern.star.Star"
-    angle = dict(type="number", unit="degrees", checked_by=star)
+    angle: dict[str, Any] = dict(type="number", unit="degrees", checked_by=star)
     return (
         Key(section=section, name="preset", type="string", help="a preset name (`fabtiles presets` lists them; see construction.md)",
             choices="fabtiles.pattern.presets:PRESETS", widget=Widget(kind="select", label="Preset")),
@@ -619,7 +620,7 @@ def build_options(family: str) -> tuple[str, ...]:
 
     >>> build_options("cut")
     ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'inlay_fit_mm', 'inlay_pieces', 'inlay_base', 'tab_mm', 'tabs_per_part', 'colours')
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     wanted = _family(family)
     mine = [k.option.name for k in KEYS if k.option is not None and set(wanted) & set(k.option.families)]
     calls = [o.name for o in CALL_OPTIONS if set(wanted) & set(o.families)]

@@ -56,5 +56,5 @@ class Tile(TileGeometry):
 
 
 # help(Tile.export) lists every option from the schema of design keys, so it cannot drift
-Tile.export.__doc__ = (Tile.export.__doc__.rstrip() + "\n\n"
+Tile.export.__doc__ = ((Tile.export.__doc__ or "").rstrip() + "\n\n"
                        + "\n".join("        " + line for line in _schema.api_options_doc().splitlines()) + "\n")

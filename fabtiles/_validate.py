@@ -26,7 +26,7 @@ def check_int(name: str, value, *, low: int | None = None, high: int | None = No
     """
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         if isinstance(value, numbers.Real) and not isinstance(value, bool) and math.isfinite(value) and float(value).is_integer():
-            value = int(value)
+            value = math.trunc(value)  # int(value), for any Real
         else:
             raise ParameterError(
                 f"{name} must be an integer{_range_text(low, high)}, got {value!r}", param=_base(name)

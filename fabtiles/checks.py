@@ -22,12 +22,19 @@ the profile allows shows up as thin bridges.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 from ._errors import FabricationError
 from ._profiles import load_profile
 from ._report import Finding, Report
 from ._profiles import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE
 from .geometry.machine_geometry import cut_geometry as laser_geometry
+
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
+
+    from .geometry.job_time import JobEstimate
+    from .geometry.material import Filament
 
 
 @dataclass(frozen=True)
@@ -38,11 +45,11 @@ class CheckResult:
     print: Report
     filled_holes: int = 0
     """The cutter's holes filled (``fill_small_holes``): narrower than its ``min_hole_mm``, or than a router's bit."""
-    job: object = None
+    job: JobEstimate | None = None
     """The laser job's length and time (:class:`~fabtiles.geometry.job_time.JobEstimate`), when asked for."""
-    filament: object = None
+    filament: Filament | None = None
     """The print's filament (:class:`~fabtiles.geometry.material.Filament`), with the job."""
-    made: object = None
+    made: BaseGeometry | None = None
     """A router's or waterjet's part as the tool makes it (holes opened by its radius), None for a laser."""
     cutter: str = "laser"
     """The 2D cutter's kind (the laser profile's ``kind``): ``"laser"``, ``"router"`` or ``"waterjet"``."""

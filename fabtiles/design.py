@@ -1,4 +1,5 @@
-"""Design files: a TOML description of one tile, validated into frozen dataclasses (reference: ``docs/design-files.md``).
+"""Design files: a TOML description of one tile, validated into frozen dataclasses
+(reference: ``docs/design-files.md``).
 
 A design has four sections; every key is checked, and an unknown key is an
 error naming the key, its section and the valid keys (with a "did you mean").
@@ -51,13 +52,14 @@ error naming the key, its section and the valid keys (with a "did you mean").
 from __future__ import annotations
 
 import re
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-try:  # Python 3.11+
+if sys.version_info >= (3, 11):
     import tomllib
-except ModuleNotFoundError:  # pragma: no cover - Python 3.10
+else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 from . import _schema
@@ -179,7 +181,7 @@ class Design:
     """A validated design. ``name`` is ``[output] name`` or the file's stem."""
 
     name: str
-    motif: MotifSpec
+    motif: MotifSpec | None
     tile_spec: TileSpec
     packing: PackingSpec | None = None
     output: OutputSpec = field(default_factory=OutputSpec)
@@ -323,7 +325,7 @@ def design_notes(design: Design) -> list[str]:
     [motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take Hankin's rays (name a motif there for a kind, or remove [motif])
     >>> design_notes(design_from_dict({"packing": packing, "tile": {"size": 60}}))
     []
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     p = design.packing
     notes = list(design.fitted)
     if p is not None and p.kind == "archimedean" and p.method == "hankin" and design.motif is not None:
@@ -503,6 +505,7 @@ def _build_packing(p: PackingSpec, star: Star | None):
         from .pattern.archimedean import ArchimedeanPacking
         from .pattern.tilings import unit_cell
 
+        assert p.tiling is not None  # the design's check: an archimedean packing names its tiling
         motifs = {sides: spec.star() for sides, spec in p.motifs}
         if p.method == "hankin":  # the kinds [packing.motifs] leaves out take Hankin's rays
             return ArchimedeanPacking(p.tiling, p.edge, motifs, gap, outline_circles=p.outline_circles,
@@ -513,7 +516,7 @@ def _build_packing(p: PackingSpec, star: Star | None):
             motifs = {**{k: star for k in kinds - set(motifs)}, **motifs}
         return ArchimedeanPacking(p.tiling, p.edge, motifs, gap, outline_circles=p.outline_circles,
                                   fill=p.fill)
-    return PACKINGS[p.kind](p.radius, star, gap, outline_circles=p.outline_circles, fill=p.fill)
+    return PACKINGS[p.kind](p.radius, star, gap, outline_circles=p.outline_circles, fill=p.fill)  # type: ignore[arg-type]  # a None motif is refused by the packing, by name
 
 
 # -- sections -------------------------------------------------------------------
@@ -574,7 +577,8 @@ def _key(where: str, exc=None, *, key=None) -> str | None:
 
 
 def _value(table, section: str, name: str, source: str, where: str, default=None):
-    """``table[name]`` checked by its key in the schema (type, and range unless the library checks it), or ``default``."""
+    """``table[name]`` checked by its key in the schema (type, and range unless the library checks it),
+    or ``default``."""
     if name not in table:
         return default
     return _schema.key(f"{section}.{name}").check(table[name], prefix=f"{source}: {where} ", error=DesignError,

@@ -112,7 +112,7 @@ def _run_dask(jobs: Sequence[Job], scheduler: str) -> Iterator[Outcome]:
         # pure=False: two jobs with equal arguments are still two tasks; the scheduler
         # reruns the task of a lost worker elsewhere (its allowed-failures setting).
         futures = [client.submit(_run, job, pure=False) for job in jobs]
-        by_future = {f.key: job for f, job in zip(futures, jobs)}
+        by_future = {f.key: job for f, job in zip(futures, jobs, strict=True)}
         for fut in dask_completed(futures):
             try:
                 yield fut.result()

@@ -164,7 +164,7 @@ def variants(varies, name: str, *, yes: bool = False) -> list[Variant]:
     ParameterError
         No ``--vary``, a key varied twice, or more than :data:`MAX_VARIANTS` variants
         without ``yes``.
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     varies = list(varies)
     if not varies:
         raise ParameterError("a sweep needs at least one --vary KEY=SPEC (like --vary packing.radius=8:16:5)",
@@ -178,7 +178,7 @@ def variants(varies, name: str, *, yes: bool = False) -> list[Variant]:
         raise ParameterError(f"the sweep has {total:,} variants, more than {MAX_VARIANTS:,}; pass --yes to "
                              f"build them all, or vary fewer values", param="vary")
     width = max(3, len(str(total)))
-    return [Variant(f"{name}-{k + 1:0{width}d}", tuple(zip(keys, combo)))
+    return [Variant(f"{name}-{k + 1:0{width}d}", tuple(zip(keys, combo, strict=True)))
             for k, combo in enumerate(itertools.product(*(v.values for v in varies)))]
 
 
@@ -208,7 +208,8 @@ def _read(path: Path) -> str:
 def explain(outcome, variant: Variant) -> str:
     """The outcome's message, naming the ``--vary`` value rather than the override it became."""
     message = outcome.message
-    for (key, value), item in zip(variant.values, variant.overrides()):
+    # overrides() ends with the output name, which no --vary value made: zip stops before it
+    for (key, value), item in zip(variant.values, variant.overrides(), strict=False):
         message = message.replace(f"--set {item}", f"{key}={_text(value)}")
     return message
 
@@ -306,7 +307,7 @@ def _figures_html(figures: dict) -> str:
     '<div class="figures"><div>laser job: 2.0 m of cut, 65 pierces, about 2 min</div><div>print: 23.2 g of filament, 7.78 m</div></div>'
     >>> _figures_html({})
     ''
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     lines = []
     if "line" in figures:
         lines.append(f"{figures.get('cutter', 'laser')} job: {figures['line']}")

@@ -164,7 +164,7 @@ def _soft_shadow(covered, supersample):
     """A blurred, slightly offset copy of the tile's silhouette (0..1), for a contact shadow."""
     from PIL import Image, ImageFilter
 
-    h, w = covered.shape
+    _h, _w = covered.shape
     shift = 6 * supersample
     m = np.zeros_like(covered, dtype=np.uint8)
     m[shift:, :] = covered[:-shift, :] * 255

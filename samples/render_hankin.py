@@ -47,7 +47,7 @@ def _tiling_edges(tiling: str, half: float) -> np.ndarray:
     edges = {}
     for i in range(-n, n + 1):
         for j in range(-n, n + 1):
-            for c, p, a in zip(cell.centres * EDGE, cell.sides.tolist(), cell.angles):
+            for c, p, a in zip(cell.centres * EDGE, cell.sides.tolist(), cell.angles, strict=True):
                 c = c + i * lat[0] + j * lat[1]
                 if np.abs(c).max() > half + EDGE * 2:
                     continue

@@ -2,7 +2,8 @@
 
 Writes ``samples/pictures/router-rounding.svg`` by default (docs/cnc-and-waterjet.md shows it;
 a test checks it is up to date): a 120 mm table3-3 tile with 4 mm bands (hex packing R = 40 mm), as designed
-(left) and as the 3.175 mm (1/8 in) bit of ``router-3.175mm-plywood`` makes it (right): the part in wood, what the bit cannot
+(left) and as the 3.175 mm (1/8 in) bit of ``router-3.175mm-plywood`` makes it (right): the part in wood, what the
+bit cannot
 cut (the corners it rounds, the holes it cannot enter) in orange, the design's sharp holes
 outlined in blue. Drawn from fabtiles' own geometry (:mod:`fabtiles.geometry.tool_opening`).
 """

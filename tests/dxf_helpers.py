@@ -62,7 +62,7 @@ def assert_same_file(name: str, got: bytes, want: bytes) -> None:
     if str(name).lower().endswith(".dxf"):
         g, w = dxf_tags(got), dxf_tags(want)
         assert len(g) == len(w), f"{name}: {len(g)} tags, expected {len(w)}"
-        diff = next((k for k, (a, b) in enumerate(zip(g, w)) if a != b), None)
+        diff = next((k for k, (a, b) in enumerate(zip(g, w, strict=False)) if a != b), None)  # the first difference
         assert diff is None, f"{name}: tag {diff} is {g[diff]}, expected {w[diff]}"
     else:
         assert got == want, f"{name}: {len(got)} bytes differ from the expected {len(want)}"
@@ -184,7 +184,7 @@ def assert_golden(path, name: str, decimals: int = 4) -> None:
         return
     want = [_entity(e) for e in json.loads(golden.read_text())]
     assert len(got) == len(want), f"{len(got)} entities, golden has {len(want)}"
-    for k, (g, w) in enumerate(zip(got, want)):
+    for k, (g, w) in enumerate(zip(got, want, strict=True)):
         assert_same_entity(g, w, k, decimals)
 
 
@@ -220,7 +220,7 @@ def assert_golden_summary(path, name: str, decimals: int = 4, samples: int = 40)
     want = json.loads(golden.read_text())
     for key in ("entities", "vertices", "by_layer_type_closed_colour", "sample_every"):
         assert got[key] == want[key], f"{key}: {got[key]} != golden {want[key]}"
-    for k, (g, w) in enumerate(zip(got["sample"], want["sample"])):
+    for k, (g, w) in enumerate(zip(got["sample"], want["sample"], strict=True)):
         assert_same_entity(_entity(g), _entity(w), k * want["sample_every"], decimals)
 
 
@@ -293,7 +293,7 @@ def edge_problems(pts: np.ndarray, closed: bool = True) -> tuple[int, int]:
     ring = np.vstack([pts, pts[:1]]) if closed else pts
     a, b = ring[:-1], ring[1:]
     zero = int((np.hypot(*(b - a).T) < 1e-9).sum())
-    keys = {tuple(sorted((tuple(p), tuple(q)))) for p, q in zip(a.tolist(), b.tolist())}
+    keys = {tuple(sorted((tuple(p), tuple(q)))) for p, q in zip(a.tolist(), b.tolist(), strict=True)}
     return zero, len(a) - len(keys)
 
 

@@ -125,7 +125,7 @@ def test_the_palette_table_in_the_docs_is_the_codes():
     block = re.search(r"<!-- palettes -->\n(.*?)<!-- /palettes -->", text, re.S).group(1)
     rows = block.strip().splitlines()[2:]
     assert len(rows) == len(PALETTES)
-    for row, p in zip(rows, PALETTES.values()):
+    for row, p in zip(rows, PALETTES.values(), strict=True):
         faces = ", ".join(f"{c.name} `{c.hex}`" for c in p.faces)
         assert row == (f"| `{p.name}` | {p.band.name} `{p.band.hex}` | {p.base.name} `{p.base.hex}` | {faces} | "
                        f"{p.source} |")

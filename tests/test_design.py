@@ -169,8 +169,10 @@ def test_unreadable_and_invalid_files(tmp_path):
 @pytest.mark.parametrize(
     "change, match",
     [
-        (("[tile]", "[tyle]"), r"unknown section 'tyle' in the design; did you mean 'tile'\? \(valid sections: motif, packing, tile, output, colour\)"),
-        (('preset = "table3-3"', 'preset = "table3-3"\nradius = 3'), r"unknown key 'radius' in \[motif\]; did you mean 'radii'\? \(valid keys: preset, n, radii, alpha, spr, special, rotation\)"),
+        (("[tile]", "[tyle]"), r"unknown section 'tyle' in the design; did you mean 'tile'\? "
+                               r"\(valid sections: motif, packing, tile, output, colour\)"),
+        (('preset = "table3-3"', 'preset = "table3-3"\nradius = 3'), r"unknown key 'radius' in \[motif\]; did you mean "
+                                                                     r"'radii'\? \(valid keys: preset, n, radii, alpha, spr, special, rotation\)"),
         (("radius = 12.5", "raduis = 12.5"), r"unknown key 'raduis' in \[packing\]; did you mean 'radius'\?"),
         (("stroke = 1.0", "strok = 1.0"), r"unknown key 'strok' in \[tile\]; did you mean 'stroke'\?"),
         (("radius = 12.5", "radius = 12.5\ngap_motif = { n = 6, radis = [1, 2] }"), r"unknown key 'radis' in \[packing\] gap_motif; did you mean 'radii'\?"),

@@ -59,7 +59,8 @@ def test_profiles_are_frozen():
         ('kind = "laser"\n[laser]\nstrict = "yes"\n', r"p.toml: laser.strict must be true or false"),
         ('kind = "laser"\n[laser]\nmode = "etch"\n', r"p.toml: laser.mode = 'etch' is not valid, must be one of: pierced, score, engrave"),
         ('kind = "laser"\n[laser]\ndxf_version = "R14"\n', r"laser.dxf_version = 'R14' is not valid \(did you mean 'R12'\?\), must be one of: R12, R2000"),
-        ('kind = "printer"\n[printer]\nprint_style = "emboss"\n', r"printer.print_style = 'emboss' is not valid \(did you mean 'deboss'\?\), must be one of: relief, pierced, deboss"),
+        ('kind = "printer"\n[printer]\nprint_style = "emboss"\n', r"printer.print_style = 'emboss' is not valid "
+                                                                   r"\(did you mean 'deboss'\?\), must be one of: relief, pierced, deboss"),
         ('kind = "printer"\n[printer]\nbase_mm = -2\n', r"printer.base_mm must be > 0, got -2"),
         ('kind = "laser"\n[layers]\nscore = { name = "S", color = 300 }\n', r"layers.score.color must be an AutoCAD Color Index 1..255, got 300"),
         ('kind = "laser"\n[layers]\nscore = { name = "S", colour = 3 }\n', r"unknown key layers.score.'colour' \(did you mean 'color'\?\)"),
@@ -80,7 +81,9 @@ def test_bad_profiles_name_file_and_key(tmp_path, text, match):
 
 
 def test_unknown_bundled_profile_suggests_and_lists():
-    with pytest.raises(ft.ProfileError, match=r"profile 'laser-3mm-plywod' does not exist \(did you mean 'laser-3mm-plywood'\?\); bundled profiles: fdm-0.4mm, fdm-0.6mm \(printer\), laser-3mm-acrylic"):
+    with pytest.raises(ft.ProfileError, match=r"profile 'laser-3mm-plywod' does not exist "
+                                              r"\(did you mean 'laser-3mm-plywood'\?\); bundled profiles: fdm-0.4mm, "
+                                              r"fdm-0.6mm \(printer\), laser-3mm-acrylic"):
         load_profile("laser-3mm-plywod")
 
 
@@ -103,7 +106,9 @@ def test_unreadable_file(tmp_path):
 
 
 def test_wrong_kind_is_named():
-    with pytest.raises(ft.ProfileError, match=r"'fdm-0.4mm' is a printer profile, but a laser profile is needed here \(or a router or waterjet one\); bundled laser profiles: laser-3mm-acrylic, laser-3mm-plywood, router-3.175mm-plywood, router-6mm-mdf, waterjet-1mm-aluminium"):
+    with pytest.raises(ft.ProfileError, match=r"'fdm-0.4mm' is a printer profile, but a laser profile is needed here "
+                                              r"\(or a router or waterjet one\); bundled laser profiles: laser-3mm-acrylic, "
+                                              r"laser-3mm-plywood, router-3.175mm-plywood, router-6mm-mdf, waterjet-1mm-aluminium"):
         load_profile("fdm-0.4mm", kind="laser")
 
 

@@ -81,7 +81,7 @@ def first_difference(a: bytes, b: bytes) -> str:
         za, zb = zipfile.ZipFile(io.BytesIO(a)), zipfile.ZipFile(io.BytesIO(b))
         if za.namelist() != zb.namelist():
             return f"zip members {za.namelist()} against {zb.namelist()}"
-        for ia, ib in zip(za.infolist(), zb.infolist()):
+        for ia, ib in zip(za.infolist(), zb.infolist(), strict=True):
             for attr in ("date_time", "compress_type", "external_attr", "create_system", "extra", "comment"):
                 if getattr(ia, attr) != getattr(ib, attr):
                     return f"zip member {ia.filename}: {attr} {getattr(ia, attr)!r} against {getattr(ib, attr)!r}"
@@ -89,7 +89,7 @@ def first_difference(a: bytes, b: bytes) -> str:
             if ma != mb:
                 return f"zip member {ia.filename}: {first_difference(ma, mb)}"
         return "the zip's members are the same, its other bytes differ"
-    at = next((i for i, (x, y) in enumerate(zip(a, b)) if x != y), min(len(a), len(b)))
+    at = next((i for i, (x, y) in enumerate(zip(a, b, strict=False)) if x != y), min(len(a), len(b)))  # the first difference
     line = a.count(b"\n", 0, at) + 1
 
     def line_of(data):

@@ -83,7 +83,8 @@ def test_the_validated_sections_hold_the_schemas_keys():
 
 
 def test_the_manual_tables_are_the_schemas():
-    """docs/design-files.md's key tables are made from the schema: rerun `python -m fabtiles._schema docs/design-files.md`."""
+    """docs/design-files.md's key tables are made from the schema: rerun
+    `python -m fabtiles._schema docs/design-files.md`."""
     path = ROOT / "docs" / "design-files.md"
     text = path.read_text(encoding="utf-8")
     assert _schema.render_docs(text) == text

@@ -61,11 +61,12 @@ def _mesh_read_back(path, fmt: str, report) -> ReadBack:
         # and pattern meet along the outline in edges of four faces (the file is right, the check not)
         from ..export.threemf import read_3mf
 
-        meshes = [trimesh.Trimesh(p.vertices.astype(np.float64), p.faces, process=False)
+        meshes: list[trimesh.Trimesh] = [trimesh.Trimesh(p.vertices.astype(np.float64), p.faces, process=False)
                   for p in read_3mf(str(path)).values()]
     else:
         loaded = trimesh.load(str(path), file_type=fmt, force="scene", process=False)
-        meshes = list(loaded.dump()) if hasattr(loaded, "dump") else [loaded]
+        # force="scene" gives a Scene, whose dump() is its meshes (the other branch is a fallback)
+        meshes = list(loaded.dump()) if hasattr(loaded, "dump") else [loaded]  # type: ignore[list-item]
     volume = 0.0
     for mesh in meshes:
         mesh.merge_vertices()

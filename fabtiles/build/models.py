@@ -13,12 +13,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .._errors import FabricationError, ParameterError
 from .._report import Report
 from .._schema import CALL_OPTIONS, FAMILIES, option_keys
+
+if TYPE_CHECKING:
+    from .._colour import Colours
+    from .._profiles import CutterProfile, PrinterProfile
 
 HEIGHT_FIELDS = tuple(k.name for k in option_keys("print") if k.unit == "mm")
 """The print heights, gathered in :attr:`BuildOptions.heights`."""
@@ -33,9 +38,9 @@ class BuildOptions:
     ``None`` means the profile's own value. Make one from a design with :meth:`of_design`.
     """
 
-    cutter: object
+    cutter: CutterProfile
     """The cutter profile (:class:`~fabtiles.CutterProfile`), loaded."""
-    printer: object
+    printer: PrinterProfile
     """The printer profile (:class:`~fabtiles.PrinterProfile`), loaded."""
     laser_mode: str | None = None
     fill_small_holes: bool = True
@@ -52,7 +57,7 @@ class BuildOptions:
     inlay: bool = False
     """The deboss grooves filled as a second part of the print."""
     threemf_layout: str = "volumes"
-    colours: object = None
+    colours: Colours | None = None
     """The design's ``[colour]`` or the call's ``colours`` (:class:`~fabtiles.Colours`), or None: none given."""
 
     @classmethod
@@ -60,7 +65,7 @@ class BuildOptions:
         """The options a validated design's ``[output]`` gives."""
         out = design.output
         keys = {k.name: k for family in FAMILIES for k in option_keys(family)}  # the design keys that are options
-        values = {k.option.name: getattr(out, name) for name, k in keys.items()}
+        values = {k.option.name: getattr(out, name) for name, k in keys.items()}  # type: ignore[union-attr]  # option keys have an option
         from ..design import profile_of
 
         return cls(cutter=profile_of(design, "laser"), printer=profile_of(design, "printer"),
@@ -83,7 +88,7 @@ class BuildOptions:
             out["colours"] = _colours(out["colours"])
         for family in families:
             for k in option_keys(family):
-                value = options.get(k.option.name)
+                value = options.get(k.option.name)  # type: ignore[union-attr]  # option keys have an option
                 if value is None:
                     continue  # not given: the field's default (the profile's)
                 if k.name in HEIGHT_FIELDS:
@@ -112,7 +117,7 @@ def _colours(value):
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: colours must be a fabtiles.Colours (or a dict of its keys: by, palette, band_colour, base_colour, faces), got 'iznik'
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     from .._colour import Colours
     from .._schema import names
 
@@ -159,7 +164,8 @@ class Models:
 
     @cached_property
     def cut_region(self):
-        """``(region, centrelines)`` the cutter's files are made from (see :func:`~fabtiles.geometry.machine_geometry.cut_geometry`)."""
+        """``(region, centrelines)`` the cutter's files are made from
+        (see :func:`~fabtiles.geometry.machine_geometry.cut_geometry`)."""
         from ..geometry.machine_geometry import cut_geometry
 
         o = self.options
@@ -247,7 +253,7 @@ class Models:
         try:
             return spec.colouring(tuple(c.letter for c in self.face_classes.classes) or ("A",))
         except ParameterError as exc:
-            raise ParameterError(f"[colour.faces] {exc}" if exc.param.startswith("faces") else f"[colour] {exc}",
+            raise ParameterError(f"[colour.faces] {exc}" if (exc.param or "").startswith("faces") else f"[colour] {exc}",
                                  param=f"colour.{exc.param}") from None
 
     @property
@@ -287,7 +293,7 @@ class Models:
     def kit_colours(self) -> tuple:
         """A coloured kit's woods: ``((colour name, faces), ...)``, one per distinct face colour, in class order."""
         colours, classes = self.colouring, self.face_classes
-        out = {}
+        out: dict = {}
         for c in classes.classes:
             colour = colours.face(c.letter)
             name, faces = out.get(colour.hex, (colour.name, []))
@@ -340,7 +346,8 @@ class Models:
 
     @cached_property
     def print_region(self):
-        """``(region, dips)`` the print is made from (see :func:`~fabtiles.geometry.machine_geometry.print_geometry`)."""
+        """``(region, dips)`` the print is made from
+        (see :func:`~fabtiles.geometry.machine_geometry.print_geometry`)."""
         from ..geometry.machine_geometry import print_geometry
 
         return print_geometry(self.tile, profile=self.options.printer, style=self.options.print_style)

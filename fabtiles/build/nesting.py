@@ -12,6 +12,7 @@ unchanged, through the pipeline's staging (all files or none):
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
@@ -21,6 +22,10 @@ from .._errors import ParameterError
 from .._report import Report
 from .._validate import check_float, check_int
 from .models import BuildOptions
+
+if TYPE_CHECKING:
+    from ..geometry.nest import Nesting
+    from .pipeline import BuildResult
 
 NEST_SUFFIX = "-sheet-"
 """Nested sheets are ``<name>-sheet-<k>.<format>``, k from 1."""
@@ -34,7 +39,7 @@ class NestedSheets:
     """The cut model of a nest: one plan per sheet (the format table writes each as a file)."""
 
     plans: tuple
-    nesting: object
+    nesting: Nesting
     report: Report
 
     def files_of(self, fmt: str) -> list:
@@ -62,8 +67,8 @@ class NestResult:
     """What :func:`nest_designs` wrote and found: the build's files and reports, the nesting,
     and per sheet its parts (design names), material use and job."""
 
-    build: object
-    nesting: object
+    build: BuildResult
+    nesting: Nesting
     sheets: list = field(default_factory=list)
 
 
@@ -78,7 +83,7 @@ def part_outline(plan):
     >>> plan = plan_cut(box(0, 0, 40, 40).difference(box(10, 10, 30, 30)), box(0, 0, 40, 40), profile="laser-3mm-plywood")
     >>> [round(v, 3) for v in part_outline(plan).bounds]
     [-0.075, -0.075, 40.075, 40.075]
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     outer = [shapely.Polygon(r) for r in plan.paths("outer") if len(r) >= 3]
     every = np.concatenate([r for layer in plan.layers for r in layer.paths])
     part = shapely.union_all([p.buffer(0) for p in outer]) if outer else shapely.Polygon()
@@ -104,7 +109,9 @@ def _sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf):
     from ..geometry.cut_plan import ROLES, make_plan
 
     paths: dict = {r: [] for r in ROLES}
-    groups, engrave_area, parts = [], 0.0, []
+    groups: list = []
+    engrave_area = 0.0
+    parts: list = []
     for i in nesting.on_sheet(k):
         p = nesting.placements[i]
         plan = plans[shapes[i]]
@@ -169,7 +176,8 @@ class NestJob:
         on = nesting.on_sheet(k)
         parts = [(self.designs[self.shapes[i]][0].name, nesting.outlines[i]) for i in on]
         return nested_sheet_svg(self.model.plans[k], parts, nesting.sheet_mm,
-                                title=f"sheet {k + 1}: {len(on)} part{'s' if len(on) != 1 else ''}, material use {nesting.material_use()[k]:.0%}")
+                                title=f"sheet {k + 1}: {len(on)} part{'s' if len(on) != 1 else ''}, "
+                                      f"material use {nesting.material_use()[k]:.0%}")
 
 
 def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=None, gap_mm: float | None = None,
@@ -195,7 +203,7 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
                              f"{', '.join(formats) or 'none'}; use --format dxf, svg or lbrn2", param="formats")
     options = [BuildOptions.of_design(d) for d, _ in designs]
     profile = options[0].cutter
-    for (d, _), o in zip(designs, options):
+    for (d, _), o in zip(designs, options, strict=True):
         if o.cutter.name != profile.name:
             raise ParameterError(f"every nested design must use one cutter profile (one material): "
                                  f"{designs[0][0].name} uses {profile.name!r}, {d.name} uses {o.cutter.name!r}; "
@@ -217,11 +225,11 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
                              f"{profile.kind} profile {profile.name!r}; use a sheet of at most the bed "
                              f"(--sheet {bed_w:g}x{bed_h:g})", param="sheet_mm")
     tiles = [prepare_tile(d, limits=limits) for d, _ in designs]
-    _limits.check_segments(sum(len(t.segments()) * n for t, (_, n) in zip(tiles, designs)), limits,
+    _limits.check_segments(sum(len(t.segments()) * n for t, (_, n) in zip(tiles, designs, strict=True)), limits,
                            what=f"the nest of {sum(n for _, n in designs)} tiles")
     from .models import Models
 
-    plans = [Models(t, o).cut for t, o in zip(tiles, options)]
+    plans = [Models(t, o).cut for t, o in zip(tiles, options, strict=True)]
     kerf = max(p.kerf_mm for p in plans)
     least = max(kerf, 2 * profile.tool_radius_mm)  # a router's bit must pass between two parts
     gap = least + GAP_EXTRA_MM if gap_mm is None else check_float("gap_mm", gap_mm)
@@ -236,7 +244,7 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
                              f"use --rotate 180 or --rotate none, got {rotations!r}", param="rotations")
     outlines = [part_outline(p) for p in plans]
     parts, shapes = [], []
-    for k, ((d, n), outline) in enumerate(zip(designs, outlines)):
+    for k, ((d, n), outline) in enumerate(zip(designs, outlines, strict=True)):
         for c in range(n):
             parts.append((f"{d.name}#{k}:{c + 1}", outline))
             shapes.append(k)
@@ -247,7 +255,7 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
     report = Report(path="", format="")
     report.stats.update(profile=profile.name, sheets=nesting.sheets, sheet_mm=[w, h], gap_mm=gap,
                         rotations=rotations, parts=len(parts), material_use=list(nesting.material_use()))
-    labels = [(f"{profile.kind} {profile.name}: {d.name}", p.report) for (d, _), p in zip(designs, plans)]
+    labels = [(f"{profile.kind} {profile.name}: {d.name}", p.report) for (d, _), p in zip(designs, plans, strict=True)]
     stem = name if name is not None else default_stem([d for d, _ in designs])
     return NestJob(NestedSheets(sheets, nesting, report), options[0], labels, designs, shapes, cut, stem)
 
@@ -304,7 +312,8 @@ def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None,
 
     job = plan_nest(designs, formats, count=count, sheet_mm=sheet_mm, gap_mm=gap_mm, rotations=rotations,
                     time_s=time_s, name=name, progress=progress, limits=limits)
-    result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)
+    # a nest's models stand in for Models by the members the writers read
+    result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)  # type: ignore[arg-type]
     return NestResult(result, job.nesting, job.sheets())
 
 

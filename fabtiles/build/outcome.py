@@ -5,8 +5,12 @@ from __future__ import annotations
 import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .._errors import FabtilesError
+
+if TYPE_CHECKING:  # the pipeline imports this module: its result type is named for the annotations only
+    from .pipeline import BuildResult
 
 
 @dataclass

@@ -80,7 +80,7 @@ def plot_drawing(design, *, what: str = "centrelines", pen_mm=None, limits: _lim
         classes = models.face_classes
         for c in classes.classes:
             colour = models.colouring.face(c.letter)
-            name, rings = by_colour.setdefault(colour.hex, (colour.name, []))
+            _, rings = by_colour.setdefault(colour.hex, (colour.name, []))
             rings.extend(_rings(classes.of(c.letter)))
         layers += [(name, hex_, rings) for hex_, (name, rings) in by_colour.items()]
     x0, y0, x1, y1 = outline.bounds

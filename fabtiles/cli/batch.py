@@ -87,7 +87,7 @@ def command(design_files, outdir, jobs, scheduler, overrides, formats, verbose):
     from ..design import load_design
     from ..jobs import Job
 
-    stems = {}
+    stems: dict = {}
     for f in design_files:
         stem = Path(f).stem
         if stem in stems and stems[stem] != f:

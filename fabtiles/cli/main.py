@@ -58,11 +58,12 @@ def _float_list(text: str) -> tuple[float, ...]:
     try:
         return tuple(float(x) for x in text.replace(" ", "").split(",") if x != "")
     except ValueError:
-        raise click.BadParameter(f"expected comma-separated numbers like 51,70,172, got {text!r}")
+        raise click.BadParameter(f"expected comma-separated numbers like 51,70,172, got {text!r}") from None
 
 
 def motif_options(command):
-    """The ``[motif]`` keys of the schema as options (``--preset``, ``--n``, ``--radii``, ...), in the schema's order."""
+    """The ``[motif]`` keys of the schema as options (``--preset``, ``--n``, ``--radii``, ...), in the schema's
+    order."""
     from .. import _schema
 
     types = {"integer": int, "number": float}

@@ -42,7 +42,7 @@ def parse_sheet(text: str) -> tuple[float, float]:
     """
     m = _SHEET.match(text)
     try:
-        return float(m["w"]), float(m["h"])
+        return float(m["w"]), float(m["h"])  # type: ignore[index]  # no match: None[...] is the TypeError below
     except (TypeError, ValueError):
         raise click.BadParameter(f"expected WIDTHxHEIGHT in mm like 600x400, got {text!r}",
                                  param_hint="--sheet") from None

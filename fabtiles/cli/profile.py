@@ -13,6 +13,7 @@ from pathlib import Path
 import click
 
 from .._errors import ProfileError
+from .._profiles import CutterProfile
 
 KEY_OF_FAMILY = {"laser": "laser_profile", "printer": "printer_profile"}
 """The design key (``[output]``) that takes a profile of each family."""
@@ -94,7 +95,7 @@ def copy(name, path, force):
     load_profile(target)  # the copy loads as the original did
     key = KEY_OF_FAMILY[family(profile.kind)]
     use = [f'{key} = "{target.as_posix()}" in a design\'s [output]', f"--set output.{key}={target.as_posix()}"]
-    if key == "laser_profile" and profile.cutter.card:  # the test card is a laser's
+    if key == "laser_profile" and isinstance(profile, CutterProfile) and profile.cutter.card:  # the test card is a laser's
         use.append(f"fabtiles calibrate --profile {target.as_posix()}")
     click.echo(f"wrote {path}: a copy of {profile.kind} profile {profile.name}; edit its values, then use it by "
                f"path: {', or '.join(use)}")

@@ -5,7 +5,8 @@ The file imports into LightBurn, RDWorks, LaserGRBL or a CAM package as is:
 POLYLINEs (``dxf_version="R12"``, for old laser software), no SPLINEs, no loose
 LINEs, no repeated points. Curves are arcs: a polyline's arc is a bulge on the vertex
 it leaves from (group code 42, ``tan(sweep / 4)``, at most a half turn each), as AutoCAD
-writes them; CAM turns each into one G2/G3 move (:mod:`fabtiles.geometry.arcs` finds them). Layers and ACI colours come from the profile; each
+writes them; CAM turns each into one G2/G3 move (:mod:`fabtiles.geometry.arcs` finds them). Layers and ACI colours
+come from the profile; each
 entity also carries its layer's colour explicitly, for programs that ignore layers.
 Entity order is cut order: score paths, inner contours, outer contours (see
 :mod:`fabtiles.geometry.contours`).
@@ -120,10 +121,10 @@ def build_document(job: CutPlan, *, entities: bool = True):
         attribs = {"layer": layer.name, "color": layer.color}
         for xy, bulge in curves:
             if job.dxf_version == "R12":
-                points = [(x, y, 0.0, 0.0, b) for (x, y), b in zip(xy.tolist(), bulge.tolist())]
+                points = [(x, y, 0.0, 0.0, b) for (x, y), b in zip(xy.tolist(), bulge.tolist(), strict=True)]
                 msp.add_polyline2d(points, format="xyseb", close=closed, dxfattribs=attribs)
             else:
-                points = [(x, y, b) for (x, y), b in zip(xy.tolist(), bulge.tolist())]
+                points = [(x, y, b) for (x, y), b in zip(xy.tolist(), bulge.tolist(), strict=True)]
                 msp.add_lwpolyline(points, format="xyb", close=closed, dxfattribs=attribs)
     return doc
 
@@ -319,5 +320,5 @@ def cutter_comment(job: CutPlan) -> str:
     fabtiles router profile router-6mm-mdf: the part as the 6 mm bit makes it (hole corners rounded to 3 mm), NO tool compensation: CAM offsets the tool
     999
     layers: INSIDE (inside profiles, cut first), OUTSIDE (outside profile, cut last); millimetres
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     return "".join(f"999\n{line}\n" for line in job.profile.cutter.dxf_comments(job.profile, job.kerf_mm))

@@ -165,7 +165,7 @@ def format_of(path, *, allowed=FILE_FORMATS) -> Format:
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: 'png' is not a valid output format (from the suffix of 'tile.png'), must be one of: dxf, svg, lbrn2, stl, 3mf, step
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     suffix = Path(path).suffix.lower().lstrip(".")
     if suffix not in allowed:
         raise ParameterError(

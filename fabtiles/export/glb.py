@@ -22,7 +22,7 @@ def glb_bytes(parts: dict) -> bytes:
     >>> data = glb_bytes({"base": (*tri, (0.9, 0.84, 0.72))})
     >>> data[:4], int.from_bytes(data[8:12], "little") == len(data)
     (b'glTF', True)
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     import trimesh
 
     scene = trimesh.Scene()

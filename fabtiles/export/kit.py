@@ -26,10 +26,11 @@ from .formats import CUT_FORMATS, FORMATS, format_of
 KIT_FORMATS = CUT_FORMATS
 
 KIT_FILES = (("-lattice", "lattice"), ("-pieces", "pieces"))
-"""A kit's files: the suffix added to the name, and which of :class:`~fabtiles.geometry.cut_plan.KitPlans`' plans it holds."""
+"""A kit's files: the suffix added to the name, and which of :class:`~fabtiles.geometry.cut_plan.KitPlans`' plans
+it holds."""
 
 
-def kit_paths(path) -> tuple[Path, Path]:
+def kit_paths(path) -> tuple[Path, ...]:
     """``<stem>-lattice<suffix>`` and ``<stem>-pieces<suffix>`` beside ``path``.
 
     >>> [p.name for p in kit_paths("out/tile.dxf")]
@@ -43,7 +44,7 @@ def kit_files(plans: KitPlans, path) -> list:
     """``[(path, plan), ...]``: the kit's files beside ``path`` and the plan each is written from (a kit
     with no piece, its lattice alone: see :meth:`~fabtiles.geometry.cut_plan.KitPlans.files_of`)."""
     kept = {suffix for suffix, _ in plans.files_of("")}
-    return [(p, getattr(plans, which)) for p, (suffix, which) in zip(kit_paths(path), KIT_FILES) if suffix in kept]
+    return [(p, getattr(plans, which)) for p, (suffix, which) in zip(kit_paths(path), KIT_FILES, strict=True) if suffix in kept]
 
 
 def write_kit(path, *, region, outline, profile, inlay_fit_mm=None, inlay_base: str = "pierced", kerf_mm=None,

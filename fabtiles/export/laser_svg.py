@@ -104,7 +104,7 @@ def _layer_path_data(curves, closed: bool) -> list:
     rad = [_num(v) if v else "" for v in radius.tolist()]
     bl = b.tolist()
     out = []
-    for s0, n in zip(starts.tolist(), sizes.tolist()):
+    for s0, n in zip(starts.tolist(), sizes.tolist(), strict=True):
         p = pts[s0:s0 + n]
         if not any(bl[s0:s0 + n]):
             out.append("M" + "L".join(p) + ("Z" if closed else ""))
@@ -140,7 +140,7 @@ def svg_text(job: CutPlan) -> str:
             out.append(f'<g id="{_escape(layer.name)}" fill="{aci_to_hex(layer.color)}" fill-rule="evenodd" '
                        'stroke="none">\n')
             polys: dict = {}
-            for r, p in zip(cut.curves_or_paths(), cut.groups):
+            for r, p in zip(cut.curves_or_paths(), cut.groups, strict=True):
                 polys.setdefault(p, []).append(_path_data(r, 0.0, True))
             out.extend(f'<path d="{"".join(d)}"/>\n' for d in polys.values())
         else:

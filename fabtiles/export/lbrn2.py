@@ -13,8 +13,8 @@ in LightBurn's own XML, so a job opens with its speeds, powers and passes set:
 - Every contour one ``<Shape Type="Path">``: its vertices once each (the first not
   repeated) and a primitive list of straight lines ``L0 1 ... L(n-1) 0`` that closes it;
   a score line the same with no closing line. Its arcs are cubic Beziers (``B i j``, the
-  handles on the vertices as ``c0x``/``c0y``, ``c1x``/``c1y``), at most a quarter turn each. No ``VertID``/``PrimID`` (shared
-  geometry) and an identity ``XForm``.
+  handles on the vertices as ``c0x``/``c0y``, ``c1x``/``c1y``), at most a quarter turn each. No ``VertID``/``PrimID``
+  (shared geometry) and an identity ``XForm``.
 
 What the readers in the open read, and why these choices (``docs/laser-programs.md``):
 LightBurn's shorthand ``LineClosed`` is read by MeerK40t as one line too many, so the
@@ -167,7 +167,7 @@ def layer_groups(job: CutPlan):
         curves = cut.curves_or_paths()
         bent = [k for k, c in enumerate(curves) if c.bulge.any()]
         paths = [c.xy for c in curves]
-        for k, b in zip(bent, beziers_many([curves[k] for k in bent], tolerance_mm=tol, closed=cut.closed)):
+        for k, b in zip(bent, beziers_many([curves[k] for k in bent], tolerance_mm=tol, closed=cut.closed), strict=True):
             paths[k] = b
         out.append((cut.key, cut.layer, paths, cut.closed, "Scan" if cut.fill else "Cut"))
     return out
@@ -185,7 +185,9 @@ def lbrn2_text(job: CutPlan) -> str:
     head = ['<?xml version="1.0" encoding="UTF-8"?>\n',
             f'<LightBurnProject AppVersion="{APP_VERSION}" FormatVersion="1" MaterialHeight="0" '
             'MirrorX="False" MirrorY="False">\n']
-    settings, shapes, taken = [], [], set()
+    settings: list = []
+    shapes: list = []
+    taken: set = set()
     for priority, (_, layer, rings, closed, kind) in enumerate(layer_groups(job)):
         index = palette_index(aci_to_hex(layer.color)[1:], taken)
         taken.add(index)

@@ -70,7 +70,7 @@ def findings_overlay(findings, height: float, *, mark_mm: float = 1.5) -> str:
     <g class="findings" fill="none" stroke-width="0.375">
     <circle class="finding small_hole" data-where="laser" cx="2" cy="9" r="1.5" stroke="#ff8c00"><title>small hole, 0.62 mm (laser)</title></circle>
     </g>
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     out = [f'<g class="findings" fill="none" stroke-width="{_num(mark_mm / 4)}">']
     for where, f in findings:
         colour = MARK_COLOURS.get(f.code, MARK_COLOUR)
@@ -217,7 +217,8 @@ def kit_svg(kit, outline, *, title: str = "inlay kit", colours=KIT_COLOURS) -> s
     ])
     return ('<?xml version="1.0" encoding="UTF-8"?>\n'
             f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(total)}mm" height="{_num(h)}mm" '
-            f'viewBox="0 0 {_num(total)} {_num(h)}">\n<title>{_escape(title)}: lattice, pieces, assembled, reverse</title>\n'
+            f'viewBox="0 0 {_num(total)} {_num(h)}">\n'
+            f'<title>{_escape(title)}: lattice, pieces, assembled, reverse</title>\n'
             f"{body}\n</svg>\n")
 
 

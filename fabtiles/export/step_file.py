@@ -212,7 +212,8 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
     cart = [w.point(t) for t in _rows(pts, LENGTH_DECIMALS)]
     vert = w.extend([f"VERTEX_POINT('',#{c})" for c in cart])
     # the cylinders first: their edges carry curves in their parameters (see _pcurves)
-    surfaces, on_cylinders = {}, {}
+    surfaces: dict = {}
+    on_cylinders: dict = {}
     for f, face in enumerate(brep.faces):
         if face.radius > 0:
             place = w.placement(face.origin, face.normal, face.ref)
@@ -224,7 +225,7 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
     units = _rows(d, DIRECTION_DECIMALS, unit=True)
     lengths = [t[1:-1] for t in _rows(np.sqrt(np.einsum("ij,ij->i", d, d))[:, None], LENGTH_DECIMALS)]
     arcs = brep.arc_rows()
-    for i, ((a, b), unit, ln, arc) in enumerate(zip(brep.edges.tolist(), units, lengths, arcs)):
+    for i, ((a, b), unit, ln, arc) in enumerate(zip(brep.edges.tolist(), units, lengths, arcs, strict=True)):
         if arc[2] > 0:  # a counter-clockwise arc of a horizontal circle, its angle starting opposite its middle
             cx, cy, r = (float(v) for v in arc[:3])
             ref = (*seam_direction(pts[a, :2] - (cx, cy), float(arc[3])).tolist(), 0.0)
@@ -243,7 +244,7 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
         origins = _rows([brep.faces[f].origin for f in planes], LENGTH_DECIMALS)
         normals = _rows([brep.faces[f].normal for f in planes], DIRECTION_DECIMALS, unit=True)
         refs = _rows([brep.faces[f].ref for f in planes], DIRECTION_DECIMALS, unit=True)
-        placed = dict(zip(planes, zip(origins, normals, refs)))
+        placed = dict(zip(planes, zip(origins, normals, refs, strict=True), strict=True))
     for f, face in enumerate(brep.faces):
         if face.radius > 0:
             surface = surfaces[f]

@@ -169,7 +169,7 @@ def takes_prusa_path(files: dict) -> bool:
     if "3D/_rels/3dmodel.model.rels" in files:
         return False
     m = re.search(rb'<metadata name="Application">([^<]*)</metadata>', files.get(MODEL_PATH, b""))
-    return bool(m) and b"PrusaSlicer" in m.group(1)
+    return m is not None and b"PrusaSlicer" in m.group(1)
 
 
 def _numbers(fmt: str, values: np.ndarray) -> str:
@@ -304,7 +304,7 @@ def _prusa_config(parts, ranges, name) -> str:
     out = ['<?xml version="1.0" encoding="UTF-8"?>\n<config>\n <object id="1" instances_count="1">\n',
            f'  <metadata type="object" key="name" value={quoteattr(name)}/>\n',
            '  <metadata type="object" key="extruder" value="1"/>\n']
-    for p, (first, last) in zip(parts, ranges):
+    for p, (first, last) in zip(parts, ranges, strict=True):
         out += [f'  <volume firstid="{first}" lastid="{last}">\n',
                 f'   <metadata type="volume" key="name" value={quoteattr(p.name)}/>\n',
                 '   <metadata type="volume" key="volume_type" value="ModelPart"/>\n',
@@ -331,7 +331,7 @@ def _bambu_config(parts, ranges, name) -> str:
     out = ['<?xml version="1.0" encoding="UTF-8"?>\n<config>\n <object id="1">\n',
            f'  <metadata key="name" value={quoteattr(name)}/>\n',
            '  <metadata key="extruder" value="1"/>\n']
-    for i, (p, (first, last)) in enumerate(zip(parts, ranges), start=1):
+    for i, (p, (first, last)) in enumerate(zip(parts, ranges, strict=True), start=1):
         out += _bambu_part(i, p, f' firstid="{first}" lastid="{last}"')
     out.append(' </object>\n</config>\n')
     return "".join(out)
@@ -407,14 +407,14 @@ def read_3mf(source) -> dict:
     tris = _block(model, b"triangles", b"triangle", (b"v1", b"v2", b"v3"), np.int64)
     parts = {}
     for vol in config.iter("volume"):
-        first, last = int(vol.get("firstid")), int(vol.get("lastid"))
+        first, last = int(vol.get("firstid", "")), int(vol.get("lastid", ""))
         meta = {m.get("key"): m.get("value") for m in vol.iter("metadata")}
         f = tris[first:last + 1]
         if not len(f) or last < first or last >= len(tris) or f.min() < 0 or f.max() >= len(verts):
             raise FabricationError(f"the 3MF volume {meta.get('name')!r} has an invalid triangle range "
                                    f"{first}..{last} ({len(tris)} triangles, {len(verts)} vertices)")
         lo, hi = int(f.min()), int(f.max())
-        parts[meta.get("name", "")] = Part(meta.get("name", ""), int(meta.get("extruder", 0)),
+        parts[meta.get("name") or ""] = Part(meta.get("name") or "", int(meta.get("extruder") or 0),
                                            verts[lo:hi + 1], f - lo)
     return parts
 

@@ -82,7 +82,7 @@ class ArcRuns(NamedTuple):
     centre: np.ndarray
     radius: np.ndarray
     full: bool
-    sweep: np.ndarray | None = None
+    sweep: np.ndarray
 
 
 def _empty() -> ArcRuns:
@@ -271,7 +271,7 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
         first_of = np.flatnonzero(np.r_[True, ring_of[1:] != ring_of[:-1]])
         last_of = np.r_[first_of[1:], len(lo)] - 1
         wraps = (last_of != first_of) & (v1[last_of] > v0[first_of] + cnt[ring_of[first_of]])
-        pairs += list(zip(last_of[wraps].tolist(), first_of[wraps].tolist()))
+        pairs += list(zip(last_of[wraps].tolist(), first_of[wraps].tolist(), strict=True))
     for a, b in pairs:
         nb = cnt[ring_of[b]] if b < a else 0  # the first run, seen from the last one, is a ring further on
         if v1[a] - v0[a] < v1[b] - v0[b]:
@@ -324,14 +324,14 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
         first = order[start[j] + a % cnt[j]] - start[j]
         last = order[start[j] + b % cnt[j]] - start[j]
         cut = np.flatnonzero(np.r_[True, j[1:] != j[:-1], True])
-        for s0, s1 in zip(cut[:-1].tolist(), cut[1:].tolist()):
+        for s0, s1 in zip(cut[:-1].tolist(), cut[1:].tolist(), strict=True):
             results[int(j[s0])] = ArcRuns(first[s0:s1], last[s0:s1], c[s0:s1], r[s0:s1], False, sw[s0:s1])
     for k, res in results.items():
         out[use[k]] = res
     return out
 
 
-def _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps) -> list:
+def _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps) -> tuple:
     """Fit each candidate run (ring ``ring_of``, rotated vertex positions ``v0..v1``), all at once.
 
     Returns the arrays ``(ring, v0, v1, centre, radius, sweep)`` of the runs that fit; a run that
@@ -376,9 +376,9 @@ def _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps) -> list:
         ring_pts = p[order[start[j]:start[j] + cnt[j]]]
         extra += [(j, *piece) for piece in _verified(ring_pts, int(v0[i]), int(v1[i]), eps)]
     if extra:
-        more = list(zip(*extra))
+        more = list(zip(*extra, strict=True))
         cols = [np.concatenate([col, np.array(m, dtype=col.dtype).reshape(-1, *col.shape[1:])])
-                for col, m in zip(cols, more)]
+                for col, m in zip(cols, more, strict=True)]
     return tuple(cols)
 
 
@@ -494,7 +494,7 @@ def curves(rings, *, tolerance_mm: float, closed: bool = True, max_sweep: float 
     [8]
     """
     return [bulge_path(r, runs, closed=closed, max_sweep=max_sweep)
-            for r, runs in zip(rings, arc_runs_many(rings, tolerance_mm=tolerance_mm, closed=closed, radii=radii))]
+            for r, runs in zip(rings, arc_runs_many(rings, tolerance_mm=tolerance_mm, closed=closed, radii=radii), strict=True)]
 
 
 def piece_lengths(curve: Curve, closed: bool = True) -> np.ndarray:
@@ -690,7 +690,7 @@ def beziers_many(curves_, *, tolerance_mm: float, closed: bool = True) -> list:
         c1[idx] = end_pt - h[:, None] * np.column_stack([-np.sin(alpha1), np.cos(alpha1)])
     cuts = np.cumsum(out_sizes)[:-1]
     return [Beziers(*parts) for parts in zip(np.split(out, cuts), np.split(bez, cuts), np.split(c0, cuts),
-                                              np.split(c1, cuts))]
+                                              np.split(c1, cuts), strict=True)]
 
 
 def subdivide(curve: Curve, *, max_sweep: float, closed: bool = True) -> Curve:

@@ -38,6 +38,7 @@ True
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import shapely
 from shapely.geometry import Point, box
@@ -47,6 +48,9 @@ from .._profiles import load_profile
 from .._schema import key
 from .inlay import piece_of_hole
 from .stroke_font import text_paths, text_width
+
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
 
 STEPS = (0.5, 0.75, 1.0, 1.25, 1.5, 2.0)
 """Feature sizes as multiples of the profile's limit."""
@@ -75,7 +79,8 @@ def inlay_fits(profile) -> tuple[float, ...]:
     >>> inlay_fits(load_profile("laser-3mm-plywood"))
     (0.05, 0.1, 0.15, 0.2, 0.25)
     """
-    fits = (round(FIT.range.clamp(profile.inlay_fit_mm + d), 3) for d in INLAY_STEPS_MM)
+    fits = (round(FIT.range.clamp(  # type: ignore[union-attr]  # the schema gives the fit a range
+profile.inlay_fit_mm + d), 3) for d in INLAY_STEPS_MM)
     return tuple(dict.fromkeys(fits))
 
 
@@ -93,8 +98,8 @@ class Feature:
 class Card:
     """The test card: material region, outline, score labels (open polylines), features."""
 
-    region: object
-    outline: object
+    region: BaseGeometry
+    outline: BaseGeometry
     labels: tuple
     features: tuple[Feature, ...]
     kerf_mm: float

@@ -215,7 +215,7 @@ def clean_rings(rings, *, min_area: float = 0.0, ccw=None):
     ring_ids = idx[starts]
     ok = (counts >= 3) & (np.abs(area2) / 2 > min_area)
     out = []
-    for s, c, a, r, good in zip(starts.tolist(), counts.tolist(), area2.tolist(), ring_ids.tolist(), ok.tolist()):
+    for s, c, a, r, good in zip(starts.tolist(), counts.tolist(), area2.tolist(), ring_ids.tolist(), ok.tolist(), strict=True):
         if not good:
             continue
         ring = coords[s:s + c]
@@ -308,8 +308,8 @@ def laser_contours(region, outline=None, *, kerf_mm: float, kerf_y_mm: float | N
     cleaned, kept = clean_rings(_scaled(rings, 1.0 / sy), min_area=min_area, ccw=first)
     depth = depth[kept]
     is_outer = depth == 0
-    inner = _order([r for r, o in zip(cleaned, is_outer) if not o], depth[~is_outer])
-    outer = _order([r for r, o in zip(cleaned, is_outer) if o])
+    inner = _order([r for r, o in zip(cleaned, is_outer, strict=True) if not o], depth[~is_outer])
+    outer = _order([r for r, o in zip(cleaned, is_outer, strict=True) if o])
     return inner, outer
 
 

@@ -119,7 +119,7 @@ def order_paths(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0), tho
     for role, (order, flipped) in path_orders(paths, outer_closed=outer_closed, start=start,
                                               thorough=thorough).items():
         rings = [np.asarray(r, float) for r in paths[role]]
-        out[role] = [rings[i][::-1] if f else rings[i] for i, f in zip(order.tolist(), flipped.tolist())]
+        out[role] = [rings[i][::-1] if f else rings[i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)]
     return out
 
 
@@ -177,7 +177,7 @@ def _order(first, last, *, start, end=None, flip: bool, pairs, two_opt: bool = T
         nodes = [sorted({c % n for c in near[q] + (near[q + n] if flip else [])} - {q}) for q in range(n)]
         for o, f in tours:
             _two_opt(first, last, o, f, nodes, start, end, flip, pairs)
-    best = min(tours, key=lambda t: _cost(first, last, *t, start, end))
+    best = min(tours, key=lambda t: _cost(first, last, t[0], t[1], start, end))
     if thorough and flip and end is None and not len(pairs) and 2 < n <= POLISH_MAX:
         best = _polish(first, last, *best, start)
     return best
@@ -301,7 +301,7 @@ def _nearest_neighbour(ends, exits, near, n, start, pairs):
     a path is found.
     """
     waiting = np.bincount(pairs[:, 1], minlength=n).tolist() if len(pairs) else [0] * n
-    around = [[] for _ in range(n)]
+    around: list[list] = [[] for _ in range(n)]
     for a, b in pairs.tolist():
         around[a].append(b)
     done = [False] * n

@@ -24,6 +24,7 @@ makes an inlay kit's two plans, the lattice and the pieces.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
@@ -36,6 +37,7 @@ from .._validate import check_choice, check_float
 from .arcs import Curve, curve_bounds, curves
 from .cut_order import path_orders
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
+from .job_time import JobEstimate
 from .job_time import estimate as job_estimate
 from .job_time import travel_mm
 from .laser_checks import check_cut_pattern, check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer, \
@@ -44,6 +46,11 @@ from .material import sheet
 from .narrow import check_pattern_kept
 from .narrow import fill_small_holes as _fill_small_holes
 from .tabs import check_tabs, tab_paths
+
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
+
+    from .inlay import InlayKit
 
 ROLES = ("engrave", "score", "inner", "outer")
 """The roles of a plan's layers, in cut order: engrave fills first, then score lines, inner
@@ -108,9 +115,9 @@ class CutPlan:
     layers: tuple = ()
     declared: tuple = ()
     bounds: tuple = (0.0, 0.0, 0.0, 0.0)
-    estimate: object = None
+    estimate: JobEstimate = field(default_factory=JobEstimate)
     report: Report = field(default_factory=lambda: Report(path="", format=""))
-    part: object = None
+    part: BaseGeometry | None = None
     engrave_area_mm2: float = 0.0
     offset: tuple = (0.0, 0.0)
 
@@ -181,8 +188,8 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
     # the head's travel made short (.cut_order), from the file's origin; the arcs go with their paths
     travel_before = travel_mm(profile, **moved, outer_closed=outer_closed)
     for role, (order, flipped) in path_orders(moved, outer_closed=outer_closed).items():
-        moved[role] = [moved[role][i][::-1] if f else moved[role][i] for i, f in zip(order.tolist(), flipped.tolist())]
-        arcs[role] = [_reversed(arcs[role][i]) if f else arcs[role][i] for i, f in zip(order.tolist(), flipped.tolist())]
+        moved[role] = [moved[role][i][::-1] if f else moved[role][i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)]
+        arcs[role] = [_reversed(arcs[role][i]) if f else arcs[role][i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)]
     layers = []
     for role in ROLES:
         rings = moved[role]
@@ -424,7 +431,7 @@ def _note_bed_edge(plan: CutPlan, profile, report: Report) -> None:
     ...                load_profile("laser-3mm-plywood"), r)
     >>> print(r.stats["notes"][0])
     the cut paths span 600.15 x 400.15 mm, beyond the 600 x 400 mm bed by the cut's width outside the tile: the outline is cut at the sheet's edges (most machines travel a little beyond the nominal bed; if yours does not, make the tile smaller)
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     x0, y0, x1, y1 = plan.bounds
     w, h = x1 - x0, y1 - y0
     if fits_bed(w, h, profile.bed_mm):
@@ -445,7 +452,7 @@ class KitPlans:
 
     lattice: CutPlan
     pieces: CutPlan
-    kit: object
+    kit: InlayKit
     """The :class:`~fabtiles.geometry.inlay.InlayKit` (holes, pieces, figures)."""
     by_colour: tuple = ()
     """A coloured kit's pieces, one plan per face colour: ``((colour name, CutPlan), ...)``."""
@@ -578,7 +585,7 @@ def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: fl
             paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(mine))),
                                                             kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
         part = shapely.union_all(mine) if len(mine) else shapely.Polygon()
-        closed = split_at_tabs(paths, *tabs, None)
+        closed = split_at_tabs(paths, tabs[0], tabs[1], None)
         out.append((name, make_plan(profile, "pierced", lattice.dxf_version, kx, paths, like=lattice, part=part,
                                     outer_closed=closed)))
     return tuple(out)

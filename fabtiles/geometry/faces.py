@@ -206,7 +206,7 @@ def face_classes(tile, *, by: str = "shape", region=None) -> FaceClasses:
     desc = ["" if free[i] else _describe(rings[i], len(shapes[i].interiors)) for i in first]
     # ties (equal total areas within 1e-9 relative) broken by description, then the shape's
     # own area and vertex count, then its vertices: the same design always gets the same letters
-    order = sorted(range(ngroups), key=lambda g: (-_rounded(total[g]), desc[g], -_rounded(shapes[first[g]].area),
+    order = sorted(range(ngroups), key=lambda g: (-_rounded(float(total[g])), desc[g], -_rounded(shapes[first[g]].area),
                                                   len(rings[first[g]]), _vertex_key(rings[first[g]])))
     rank = np.empty(ngroups, int)
     rank[order] = np.arange(ngroups)
@@ -314,7 +314,7 @@ def _whole_faces(tile, faces):
         own = _inner_points(wholes[reached])
         a, c = tree.query(shapely.points((own[None, :, :] + steps).reshape(-1, 2)), predicate="within")
         a = reached[a % len(reached)]
-        for x, y in sorted(zip(a[open_[c]].tolist(), c[open_[c]].tolist())):
+        for x, y in sorted(zip(a[open_[c]].tolist(), c[open_[c]].tolist(), strict=True)):
             rx, ry = _find(root, x), _find(root, y)
             root[max(rx, ry)] = min(rx, ry)
         k = np.array([_find(root, j) for j in k.tolist()], dtype=int)

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
@@ -44,8 +45,11 @@ from .._report import distinct
 from .._schema import key
 from .contours import MITRE_LIMIT, polygon_parts
 
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
+
 _FIT = key("output.inlay_fit_mm")
-FIT_RANGE_MM = (_FIT.range.min, _FIT.range.max)
+FIT_RANGE_MM = (_FIT.range.min, _FIT.range.max)  # type: ignore[union-attr]  # the schema gives the fit a range
 """The fits accepted (the schema's range of ``inlay_fit_mm``): beyond half a millimetre a piece no longer fits."""
 
 
@@ -53,7 +57,7 @@ FIT_RANGE_MM = (_FIT.range.min, _FIT.range.max)
 class InlayKit:
     """The two sheets of a kit (nominal shapes, file coordinates in mm) and what they hold."""
 
-    lattice: object
+    lattice: BaseGeometry
     """The lattice's material: the tile's material with the holes too small for pieces filled."""
     pieces: np.ndarray
     """The pieces' nominal polygons, each in its hole's place."""
@@ -80,7 +84,7 @@ def check_fit(fit_mm) -> float:
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: inlay_fit_mm must be a number of mm from -0.5 to 0.5 (positive: a press fit, negative: play), got 0.6
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     return _FIT.check(fit_mm, required=True)
 
 
@@ -180,7 +184,10 @@ def _cut_whole(holes, d: float, tolerance_mm: float):
     where needed), the corridors cut out of the lattice, the regions filled in it,
     ``(x, y, width)`` of each neck widened, and ``(x, y)`` of each part filled.
     """
-    corridors, fills, necks, split = [], [], [], []
+    corridors: list = []
+    fills: list = []
+    necks: list = []
+    split: list = []
     if not d or not len(holes):
         return holes, np.empty(0, dtype=object), np.empty(0, dtype=object), necks, split
     shrunk = shapely.buffer(holes, -d, join_style="mitre", mitre_limit=MITRE_LIMIT)
@@ -261,7 +268,7 @@ def shape_key(poly, decimals: int = 3) -> tuple:
         heading = np.arctan2(edges[:, 1], edges[:, 0])
         turn = (np.roll(heading, -1) - heading + math.pi) % (2 * math.pi) - math.pi
         seq = np.round(np.c_[length, turn], decimals) + 0.0
-        n = len(seq)
+        n = len(length)
         rows = [tuple(map(tuple, np.roll(seq, -k, axis=0))) for k in range(n)]
         readings.append(min(rows))
     holes = (len(poly.interiors), round(poly.area, decimals))

@@ -197,7 +197,7 @@ def total(estimates) -> JobEstimate:
 
     >>> total([JobEstimate({"inner_cut": 1.0}, 2, seconds=3), JobEstimate({"inner_cut": 2.0}, 1, seconds=4)])
     JobEstimate(cut_mm={'inner_cut': 3.0}, pierces=3, engrave_area_mm2=0.0, travel_mm=0.0, seconds=7.0, travel_before_mm=None)
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     cut: dict = {}
     estimates = list(estimates)
     for e in estimates:

@@ -52,11 +52,12 @@ def _label_points(polys):
 
 def _letter_paths(letters, polys) -> tuple[list, int]:
     """Score paths of ``letters`` centred in ``polys`` (one each); how many were too small for one."""
-    out, skipped = [], 0
+    out: list = []
+    skipped = 0
     if not len(polys):
         return out, skipped
     points, sizes = _label_points(polys)
-    for letter, (x, y), size in zip(letters, points, sizes):
+    for letter, (x, y), size in zip(letters, points, sizes, strict=True):
         height = min(LETTER_MM[1], 0.6 * size)
         if not letter or height < LETTER_MM[0]:
             skipped += 1
@@ -72,7 +73,7 @@ def class_letters(holes, faces, labels, letters) -> list[str]:
     probe = shapely.point_on_surface(np.asarray(holes, dtype=object))
     near = shapely.STRtree(np.asarray(faces, dtype=object)).query_nearest(probe, return_distance=False)
     out = [""] * len(holes)
-    for i, j in zip(*near):
+    for i, j in zip(*near, strict=True):
         out[int(i)] = letters[int(labels[int(j)])]
     return out
 

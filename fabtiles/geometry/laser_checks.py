@@ -65,7 +65,7 @@ def check_fits_bed(outline, profile: LaserProfile) -> None:
     Traceback (most recent call last):
     ...
     fabtiles._errors.FabricationError: the tile is 700 x 100 mm, larger than the 600 x 400 mm bed of laser profile 'laser-3mm-plywood' (either way round); make the tile smaller or use a profile with a larger bed_mm
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     xmin, ymin, xmax, ymax = outline.bounds
     w, h = xmax - xmin, ymax - ymin
     if fits_bed(w, h, profile.bed_mm):

@@ -25,7 +25,7 @@ MAX_LOCATIONS = 100_000
 class NarrowPlaces(NamedTuple):
     """What :func:`narrow_places` found: one entry per pair of boundaries closer than the width."""
 
-    count: int
+    count: int  # type: ignore[assignment]  # the field is the count of places; tuple.count is not used
     narrowest: float
     points: np.ndarray
     """The narrowest point of each pair (the midpoint of its shortest line), shapely Points."""

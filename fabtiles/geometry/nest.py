@@ -35,6 +35,7 @@ from __future__ import annotations
 import math
 import threading
 import time
+from collections.abc import Hashable
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,7 +64,7 @@ class Placement:
     """Where one part goes: sheet ``sheet`` (0-based), rotated by ``rotation`` degrees
     (counter-clockwise about the origin of the part's coordinates), then moved by ``translation``."""
 
-    id: object
+    id: Hashable
     sheet: int
     rotation: float
     translation: tuple[float, float]
@@ -145,7 +146,8 @@ def _check_parts(parts) -> tuple[list, list]:
 
 
 def _fits(shape, w: float, h: float, angles) -> bool:
-    """Whether ``shape`` fits a ``w`` x ``h`` sheet at one of ``angles`` (``None``: free, tried at the quarter turns)."""
+    """Whether ``shape`` fits a ``w`` x ``h`` sheet at one of ``angles`` (``None``: free, tried at the quarter
+    turns)."""
     for a in (0.0, 90.0) if angles is None else angles:
         x0, y0, x1, y1 = Placement(None, 0, a, (0.0, 0.0)).place(shape).bounds
         if x1 - x0 <= w - 2 * MARGIN_MM and y1 - y0 <= h - 2 * MARGIN_MM:
@@ -176,7 +178,7 @@ def _packing_shapes(shapes) -> list:
     simple = shapely.buffer(shapely.simplify(np.asarray(shapes, dtype=object), SIMPLIFY_MM), SIMPLIFY_MM,
                             join_style="mitre")
     out = []
-    for original, s in zip(shapes, simple):
+    for original, s in zip(shapes, simple, strict=True):
         s = shapely.geometry.polygon.orient(Polygon(s.exterior), 1.0) if s.geom_type == "Polygon" else original
         out.append(s if s.covers(original) else original)  # never smaller than the part
     return out
@@ -199,7 +201,7 @@ def _solve(shapes, idx, height, gap, angles, seconds, on_tick):
         corner[i] = ring.min(axis=0)
         key = np.round(ring - corner[i], 6).tobytes()
         groups.setdefault(key, []).append(i)
-    items = [spyrrow.Item(str(g), [tuple(map(float, p)) for p in np.asarray(shapes[members[0]].exterior.coords)[:-1]
+    items = [spyrrow.Item(str(g), [(float(p[0]), float(p[1])) for p in np.asarray(shapes[members[0]].exterior.coords)[:-1]
                                    - corner[members[0]]],
                           demand=len(members), allowed_orientations=None if angles is None else list(angles))
              for g, members in enumerate(groups.values())]
@@ -277,14 +279,15 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
     budget = check_float("time_s", time_s, low=0, low_open=True)
     ids, shapes = _check_parts(parts)
     angles = ROTATIONS[rotations]
-    for i, shape in zip(ids, shapes):
+    for i, shape in zip(ids, shapes, strict=True):
         if not _fits(shape, w, h, angles):
             x0, y0, x1, y1 = shape.bounds
             turn = "either way round" if angles is None or 90.0 in angles else "unturned (rotations " \
                 f"{rotations!r})"
             raise FabricationError(
                 f"part {i!r} ({x1 - x0:.4g} x {y1 - y0:.4g} mm) does not fit on the {w:g} x {h:g} mm sheet "
-                f"{turn}; use a larger sheet, a smaller part{'' if angles is None or 90.0 in angles else ' or --rotate 90'}",
+                f"{turn}; use a larger sheet, a smaller part"
+                f"{'' if angles is None or 90.0 in angles else ' or --rotate 90'}",
                 param="sheet_mm")
 
     start = time.monotonic()
@@ -320,10 +323,11 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
         close: dict = {}
         if len(outlines) > 1:
             a, b = shapely.STRtree(outlines).query(outlines, predicate="dwithin", distance=gap * (1 - 1e-12))
-            for x, y in zip(a.tolist(), b.tolist()):
+            for x, y in zip(a.tolist(), b.tolist(), strict=True):
                 if x != y:
                     close.setdefault(x, set()).add(y)
-        kept, taken = [], set()
+        kept: list = []
+        taken: set = set()
         for k, (i, p, _) in enumerate(candidates):
             if close.get(k, set()) & taken:
                 continue
@@ -344,4 +348,4 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
         sheet += 1
         tick()
     ordered = tuple(placements[i] for i in range(len(shapes)))
-    return Nesting(ordered, tuple(p.place(s) for p, s in zip(ordered, shapes)), (w, h), gap, rotations)
+    return Nesting(ordered, tuple(p.place(s) for p, s in zip(ordered, shapes, strict=True)), (w, h), gap, rotations)

@@ -82,7 +82,8 @@ def strokes(segments) -> list:
     two = np.flatnonzero(counts == 2)  # most vertices: a strand's bend, its two segments joined
     a, b = by_node[first[two]], by_node[first[two] + 1]
     mate[a], mate[b] = b, a
-    pairs_of = {}  # the index pairs of each degree, made once (np.triu_indices per vertex was half of this function's time, profiled)
+    # the index pairs of each degree, made once (np.triu_indices per vertex was half of this function's time, profiled)
+    pairs_of: dict = {}
     for v in np.flatnonzero(counts > 2).tolist():  # crossings and knots: the straightest pairs first
         es = by_node[first[v]:first[v] + counts[v]]
         d = out_dir[es]

@@ -39,7 +39,7 @@
 >>> holed = box(0, 0, 20, 20).difference(box(5, 5, 5.3, 5.3))
 >>> [f.message for f in check_print(holed, box(0, 0, 20, 20), "fdm-0.4mm", style="pierced").findings]
 ['1 hole through the tile narrower than min_hole_mm = 0.8 mm (narrowest 0.3 mm): the plastic laid around it squeezes it shut while the slicer traces it, slowly; fill_small_holes fills it']
-"""
+"""  # noqa: E501 - a doctest's lines are as Python prints them
 
 from __future__ import annotations
 
@@ -86,7 +86,7 @@ class SmallOpenings(NamedTuple):
     """Deboss: islands of the plate among the grooves, too small to print (empty for the other styles)."""
 
     @property
-    def count(self) -> int:
+    def count(self) -> int:  # type: ignore[override]  # the number of openings; tuple.count is not used
         return len(self.holes) + len(self.islands)
 
 
@@ -218,7 +218,7 @@ def check_min_hole(profile: PrinterProfile, outline) -> None:
     Traceback (most recent call last):
     ...
     fabtiles._errors.ProfileError: printer profile 'fdm-0.4mm': min_hole_mm = 60 mm is larger than the tile (50 x 80 mm); give the narrowest hole the printer makes, about two widths of its 0.4 mm nozzle, or 0 for no limit
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     m = profile.min_hole_mm
     if isinstance(m, bool) or not isinstance(m, (int, float)) or not np.isfinite(m) or m < 0:
         raise ProfileError(f"printer profile {profile.name!r}: min_hole_mm must be a finite number of mm >= 0, "
@@ -228,7 +228,8 @@ def check_min_hole(profile: PrinterProfile, outline) -> None:
     if m > min(w, h):
         raise ProfileError(
             f"printer profile {profile.name!r}: min_hole_mm = {m:g} mm is larger than the tile ({w:g} x {h:g} mm); "
-            f"give the narrowest hole the printer makes, about two widths of its {profile.nozzle_mm:g} mm nozzle, or 0 for no limit")
+            f"give the narrowest hole the printer makes, about two widths of its {profile.nozzle_mm:g} mm nozzle, "
+            "or 0 for no limit")
 
 
 def _real(polys: np.ndarray) -> np.ndarray:
@@ -406,6 +407,7 @@ def _polygons(geometry):
 
 def _report_small_openings(report: Report, found: SmallOpenings, profile: PrinterProfile, style: str) -> None:
     m = profile.min_hole_mm
+    assert m is not None  # called for a printer that has a smallest hole
     where = f"narrower than min_hole_mm = {m:g} mm"
 
     def message(n, narrowest):

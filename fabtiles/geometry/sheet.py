@@ -18,6 +18,7 @@ loose parts per tile), ``centrelines`` the moved centre-lines when given.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
@@ -25,6 +26,9 @@ import shapely
 from .._errors import FabricationError, ParameterError
 from .._profiles import load_profile
 from .._validate import check_float, check_int
+
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
 
 GAP_EXTRA_MM = 2.0
 """Default gap between tiles: the kerf plus this much."""
@@ -34,8 +38,8 @@ GAP_EXTRA_MM = 2.0
 class Sheet:
     """Tiles laid out on a sheet: inputs for :func:`~fabtiles.export.dxf.write_dxf`."""
 
-    region: object
-    outline: object
+    region: BaseGeometry
+    outline: BaseGeometry
     centrelines: np.ndarray | None
     offsets: tuple[tuple[float, float], ...]
     size: tuple[float, float]
@@ -83,7 +87,7 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
         xmin, ymin, xmax, ymax = pair[1].bounds
         sizes.append((xmax - xmin, ymax - ymin, xmin, ymin))
     order = list(range(len(tiles))) * (copies if not fill else 10_000)
-    placed = []  # (tile index, dx, dy)
+    placed: list = []  # (tile index, dx, dy)
     x = y = row_h = 0.0
     eps = 1e-6
     for i in order:

@@ -23,7 +23,7 @@ QUANTUM = 2.0**-10
 16 m, so a binary STL stores the very vertices the mesh was checked with (see
 :mod:`fabtiles.solid._mesh_build`); the STEP writer's vertices sit on the same grid."""
 
-MAX_HEIGHT_MM = key("output.base_mm").range.max  # the schema's range of every print height
+MAX_HEIGHT_MM = key("output.base_mm").range.max  # type: ignore[union-attr]  # the schema's range of every print height
 """Largest base, relief, pierced or deboss height accepted (mm)."""
 
 
@@ -88,15 +88,15 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: mosaic_inset_mm must be smaller than relief_mm (the bands stand 1.2 mm above the plate), got 2
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     profile = load_profile(profile, kind="printer")
     assert isinstance(profile, PrinterProfile)
     style = check_choice("style", profile.print_style if style is None else style, PRINT_STYLES)
     values = {}
-    for key, given in (("base_mm", base_mm), ("relief_mm", relief_mm),
-                       ("pierced_mm", pierced_mm), ("deboss_mm", deboss_mm)):
-        value = getattr(profile, key) if given is None else given
-        values[key] = check_float(key, value, low=0, low_open=True, high=MAX_HEIGHT_MM)
+    for name, given in (("base_mm", base_mm), ("relief_mm", relief_mm),
+                        ("pierced_mm", pierced_mm), ("deboss_mm", deboss_mm)):
+        value = getattr(profile, name) if given is None else given
+        values[name] = check_float(name, value, low=0, low_open=True, high=MAX_HEIGHT_MM)
     if style == "deboss" and values["deboss_mm"] >= values["base_mm"]:
         raise ParameterError(
             f"deboss_mm must be smaller than base_mm (the plate is {values['base_mm']:g} mm thick), "

@@ -30,6 +30,7 @@ Vertices
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 
 import numpy as np
 import shapely
@@ -57,7 +58,7 @@ def segment_graph(segments: np.ndarray, *, return_ids: bool = False):
     """
     pts = segments.reshape(-1, 2)
     key = np.round(pts / _MERGE).astype(np.int64)
-    uniq, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
     verts = pts[first]
     seg_ids = inverse.reshape(-1, 2)
     ids = seg_ids[seg_ids[:, 0] != seg_ids[:, 1]]
@@ -227,7 +228,7 @@ def stroke_cross_section(segments, width, *, join="miter", miter_limit=4.0, tole
         band_edges = edges[~np.isin(edges[:, 0] * n + edges[:, 1], chord_key)]
         at = np.zeros(n, bool)
         at[band_edges.ravel()] = True
-        rings = _annulus_rings(*circles, half)
+        rings = _annulus_rings(circles[0], circles[1], half)
     polys = [band_polygons(verts, band_edges, half)] if len(band_edges) else []
     polys += join_polygons(verts, edges, half, join=join, miter_limit=miter_limit, tolerance=tolerance, at=at)
     contours = [p for block in polys for p in block]
@@ -292,7 +293,7 @@ def _bucketed_union(contours, per_bucket: int = 128):
     sorted_keys = key[order]
     cuts = np.flatnonzero(np.r_[True, sorted_keys[1:] != sorted_keys[:-1], True])
     parts = [m3d.CrossSection([contours[i] for i in order[a:b]], m3d.FillRule.Positive)
-             for a, b in zip(cuts[:-1], cuts[1:])]
+             for a, b in pairwise(cuts)]
     return m3d.CrossSection.batch_boolean(parts, m3d.OpType.Add)
 
 
@@ -383,7 +384,7 @@ def _merge_line_touching(polys: list[Polygon]) -> list[Polygon]:
             i = parent[i]
         return i
 
-    for i, j in zip(a.tolist(), b.tolist()):
+    for i, j in zip(a.tolist(), b.tolist(), strict=True):
         if i < j and shapely.get_dimensions(polys[i].intersection(polys[j])) >= 1:
             parent[find(i)] = find(j)
     groups: dict[int, list[Polygon]] = {}
@@ -399,7 +400,7 @@ def _merge_line_touching(polys: list[Polygon]) -> list[Polygon]:
 def _assign_holes(shells, holes) -> list[Polygon]:
     """Polygons from several shells of one component (lobes of a pinched ring) and holes."""
     shell_polys = shapely.polygons(shells)
-    owner = [[] for _ in shells]
+    owner: list[list] = [[] for _ in shells]
     if len(holes):
         probe = shapely.point_on_surface(shapely.polygons(holes))
         for k, pt in enumerate(probe):
@@ -407,7 +408,7 @@ def _assign_holes(shells, holes) -> list[Polygon]:
             if len(inside):
                 best = inside[np.argmin(shapely.area(shell_polys[inside]))]
                 owner[best].append(holes[k])
-    return [shapely.Polygon(s, h) for s, h in zip(shells, owner)]
+    return [shapely.Polygon(s, h) for s, h in zip(shells, owner, strict=True)]
 
 
 def _polygons_of(geom):

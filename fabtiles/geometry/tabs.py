@@ -113,7 +113,7 @@ def check_tabs(tab_mm, tabs_per_part, *, kerf_mm: float = 0.0, profile=None) -> 
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: tab_mm must be 0 (no tabs) or more than the kerf (0.15 mm), got 0.1: the beam eats half a kerf at each end of a gap, so the bridge left is tab_mm - kerf_mm wide; make tab_mm larger
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     tab = TAB.check(TAB.default if tab_mm is None else tab_mm)
     per = TABS_PER_PART.check(TABS_PER_PART.default if tabs_per_part is None else tabs_per_part)
     if profile is not None:

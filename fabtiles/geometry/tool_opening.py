@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
@@ -47,6 +48,9 @@ import shapely
 from .._errors import ParameterError
 from .._report import Report, distinct
 from .narrow import MAX_LOCATIONS, add_small_holes, hole_widths, locations
+
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
 
 VISIBLE_MM = 0.1
 """A corner that moves more than this (mm) is reported as ``rounded_corner``.
@@ -86,7 +90,7 @@ class OpenedRegion:
     Points on the nominal boundary) and ``moved`` how far each moved (mm).
     """
 
-    region: object
+    region: BaseGeometry
     radius_mm: float
     holes: int = 0
     vanished: int = 0
@@ -288,7 +292,8 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
         n = len(made.corners)
         report.add("rounded_corner",
                    f"{n:,} corner{'s' if n > 1 else ''} rounded to the tool's radius r = {r:g} mm by "
-                   f"{cutter.tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm (up to {distinct(made.moved.max(), VISIBLE_MM)} "
+                   f"{cutter.tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm "
+                   f"(up to {distinct(made.moved.max(), VISIBLE_MM)} "
                    "mm); the file holds the rounded part",
                    count=n, locations=locations(made.corners), sizes=made.moved[:MAX_LOCATIONS].round(3),
                    worst=round(float(made.moved.max()), 3), limit=VISIBLE_MM)

@@ -11,9 +11,13 @@ scaled to the circle as in :class:`~fabtiles.pattern.packing.HexPacking`.
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
+from collections.abc import Mapping
+from dataclasses import KW_ONLY, dataclass, field
 from types import MappingProxyType
+from typing import Any, cast
 
 import numpy as np
 
@@ -22,9 +26,9 @@ from .._validate import check_float
 from .hankin import check_contact, check_method, polygon_rays
 from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, default_gap_motif
 from .star import Star
-from .tilings import NAMES, TILINGS, inradius, unit_cell
+from .tilings import NAMES, TILINGS, UnitCell, inradius, unit_cell
 
-DEFAULT_MOTIFS = MappingProxyType({
+DEFAULT_MOTIFS: Mapping[int, dict[str, Any]] = MappingProxyType({
     3: dict(n=6, radii=(0.5, 1.0)),
     4: dict(n=8, radii=(0.55, 1.0)),
     6: dict(n=12, radii=(123, 85, 178), alpha=23, spr=-7, special=2),  # preset table3-3
@@ -52,6 +56,7 @@ def _rotated(seg: np.ndarray, angle: float, step: float) -> np.ndarray:
     return seg @ np.array([[c, s], [-s, c]])
 
 
+@dataclass(frozen=True, slots=True, repr=False)
 class ArchimedeanPacking:
     """An Archimedean tiling's incircles and gap circles, a motif in each (immutable).
 
@@ -105,87 +110,90 @@ class ArchimedeanPacking:
     (mappingproxy({}), (8, 2, 2))
     """
 
-    __slots__ = ("_tiling", "_edge", "_motifs", "_gap_motif", "_outline_circles", "_fill", "_cell",
-                 "_units", "_kinds", "_method", "_contact")
+    tiling: str
+    """Vertex configuration, as in :meth:`tilings`."""
+    edge: float
+    """Edge length of the polygons, mm."""
+    motifs: Mapping[int, Star] | Mapping[int | str, Star | str] | None = field(default=None, compare=False)
+    """Polygon sides -> motif, for every kind of the tiling (``method="hankin"``: the kinds
+    that keep a motif) (read-only mapping)."""
+    gap_motif: Star | str | None = None
+    """Motif of the gap circles (a Star once the packing is made)."""
+    _: KW_ONLY
+    outline_circles: bool = False
+    """Whether the circles are stroked."""
+    fill: float = 1.0
+    """Motif extent / circle radius."""
+    method: str = "motifs"
+    """``"motifs"`` (the paper's) or ``"hankin"`` (polygons in contact)."""
+    contact_angle: float = 60.0
+    """Hankin's rays' angle to their edge, degrees."""
+    contact_gap: float = 0.0
+    """Between the two rays' starts on an edge, mm."""
+    _motifs: tuple[tuple[int, Star], ...] = field(init=False, repr=False)
+    """``motifs`` as ``(sides, Star)`` pairs: what equality and the hash compare (a mapping has no hash)."""
 
-    def __init__(self, tiling, edge, motifs=None, gap_motif=None, *, outline_circles=False, fill=1.0,
-                 method="motifs", contact_angle=60.0, contact_gap=0.0):
-        cell = unit_cell(tiling)
+    def __post_init__(self) -> None:
+        cell = unit_cell(self.tiling)
         kinds = tuple(sorted(set(cell.sides.tolist())))
         given = {}
+        motifs = self.motifs
         if motifs is not None:
             if not hasattr(motifs, "items"):
                 raise ParameterError(f"motifs must be a mapping from polygon sides to a Star or preset "
                                      f"name, like {{8: 'table3-3'}}, got {motifs!r}", param="motifs")
             for key, star in motifs.items():
                 given[_kind(key, kinds, cell.name)] = _motif(f"motifs[{key!r}]", star)
-        method = check_method(method)
+        method = check_method(self.method)
         if method == "hankin":  # only the kinds named keep a motif; the rest take Hankin's rays
             full = tuple((p, given[p]) for p in kinds if p in given)
         else:
             full = tuple((p, given.get(p) or Star(**DEFAULT_MOTIFS[p])) for p in kinds)
-        gap = default_gap_motif() if gap_motif is None else _motif("gap_motif", gap_motif)
-        if not isinstance(outline_circles, bool):
-            raise ParameterError(f"outline_circles must be true or false, got {outline_circles!r}",
+        gap = default_gap_motif() if self.gap_motif is None else _motif("gap_motif", self.gap_motif)
+        if not isinstance(self.outline_circles, bool):
+            raise ParameterError(f"outline_circles must be true or false, got {self.outline_circles!r}",
                                  param="outline_circles")
-        init = object.__setattr__
-        init(self, "_tiling", cell.name)
-        init(self, "_edge", check_float("edge", edge, low=0, low_open=True))
+        init = object.__setattr__  # the frozen dataclass's own way to set a field in __post_init__
+        init(self, "tiling", cell.name)
+        edge = check_float("edge", self.edge, low=0, low_open=True)
+        init(self, "edge", edge)
         if method == "hankin":
             rays = [p for p in kinds if p not in given]
-            contact = check_contact(contact_angle, contact_gap, self._edge, rays, cell.name)
+            contact = check_contact(self.contact_angle, self.contact_gap, edge, rays, cell.name)
         else:  # unused, but kept (and checked) so replace(method="hankin") takes them
-            contact = (check_float("contact_angle", contact_angle, low=0, high=90, low_open=True, high_open=True),
-                       check_float("contact_gap", contact_gap, low=0))
-        init(self, "_kinds", kinds)
-        init(self, "_method", method)
-        init(self, "_contact", contact)
+            contact = (check_float("contact_angle", self.contact_angle, low=0, high=90, low_open=True,
+                                   high_open=True),
+                       check_float("contact_gap", self.contact_gap, low=0))
+        init(self, "method", method)
+        init(self, "contact_angle", contact[0])
+        init(self, "contact_gap", contact[1])
         init(self, "_motifs", full)
-        init(self, "_gap_motif", gap)
-        init(self, "_outline_circles", outline_circles)
-        init(self, "_fill", check_float("fill", fill, low=0, high=1, low_open=True))
-        init(self, "_cell", cell)
-        init(self, "_units", {})
-
-    def __setattr__(self, name, value):
-        raise AttributeError(f"ArchimedeanPacking is read-only; use packing.replace({name.lstrip('_')}=...)")
-
-    def __delattr__(self, name):
-        self.__setattr__(name, None)
+        init(self, "motifs", MappingProxyType(dict(full)))
+        init(self, "gap_motif", gap)
+        init(self, "fill", check_float("fill", self.fill, low=0, high=1, low_open=True))
 
     def __reduce__(self):
-        # Slots and a refusing __setattr__: pickle and copy rebuild from the parameters.
+        # ``motifs`` is a mappingproxy, which does not pickle: pickle and copy rebuild from the parameters.
         return (_rebuild, ({**self.params(), "motifs": dict(self._motifs)},))
 
     # -- parameters ---------------------------------------------------------
-    tiling = property(lambda self: self._tiling, doc="Vertex configuration, as in :meth:`tilings`.")
-    edge = property(lambda self: self._edge, doc="Edge length of the polygons, mm.")
-    gap_motif = property(lambda self: self._gap_motif, doc="Motif of the gap circles.")
-    outline_circles = property(lambda self: self._outline_circles, doc="Whether the circles are stroked.")
-    fill = property(lambda self: self._fill, doc="Motif extent / circle radius.")
-    method = property(lambda self: self._method, doc='"motifs" (the paper\'s) or "hankin" (polygons in contact).')
-    contact_angle = property(lambda self: self._contact[0], doc="Hankin's rays' angle to their edge, degrees.")
-    contact_gap = property(lambda self: self._contact[1], doc="Between the two rays' starts on an edge, mm.")
-
     @property
-    def motifs(self):
-        """Polygon sides -> motif, for every kind of the tiling (``method="hankin"``: the kinds
-        that keep a motif) (read-only mapping)."""
-        return MappingProxyType(dict(self._motifs))
+    def _cell(self) -> UnitCell:
+        return unit_cell(self.tiling)
 
     @property
     def kinds(self) -> tuple[int, ...]:
         """The polygon kinds of the tiling (numbers of sides), ascending."""
-        return self._kinds
+        return tuple(sorted(set(self._cell.sides.tolist())))
 
     @property
     def radius(self) -> float:
         """The smallest incircle radius, mm: the largest stroke a tile of this packing takes."""
-        return inradius(self.kinds[0], self._edge)
+        return inradius(self.kinds[0], self.edge)
 
     def incircle_radius(self, sides: int) -> float:
         """Incircle radius of the tiling's ``sides``-gons, ``edge / (2 tan(pi / sides))``, mm."""
-        return inradius(_kind(sides, self.kinds, self._tiling), self._edge)
+        return inradius(_kind(sides, self.kinds, self.tiling), self.edge)
 
     @staticmethod
     def tilings() -> tuple[str, ...]:
@@ -208,19 +216,19 @@ class ArchimedeanPacking:
     @property
     def lattice(self) -> np.ndarray:
         """The two lattice vectors (rows), mm."""
-        return self._cell.lattice * self._edge
+        return self._cell.lattice * self.edge
 
     @property
     def period(self) -> tuple[float, float]:
         """Smallest rectangular period ``(px, py)`` of the packing, mm (see :func:`rectangular_period`)."""
-        px, py = rectangular_period(self._tiling)
-        return (px * self._edge, py * self._edge)
+        px, py = rectangular_period(self.tiling)
+        return (px * self.edge, py * self.edge)
 
     def params(self) -> dict:
         """The constructor arguments."""
-        return dict(tiling=self._tiling, edge=self._edge, motifs=self.motifs, gap_motif=self._gap_motif,
-                    outline_circles=self._outline_circles, fill=self._fill, method=self._method,
-                    contact_angle=self._contact[0], contact_gap=self._contact[1])
+        return dict(tiling=self.tiling, edge=self.edge, motifs=self.motifs, gap_motif=self.gap_motif,
+                    outline_circles=self.outline_circles, fill=self.fill, method=self.method,
+                    contact_angle=self.contact_angle, contact_gap=self.contact_gap)
 
     def replace(self, **changes) -> "ArchimedeanPacking":
         """A copy with some parameters changed (validated again).
@@ -230,31 +238,21 @@ class ArchimedeanPacking:
         """
         return type(self)(**{**self.params(), **changes})
 
-    def _key(self):
-        return (self._tiling, self._edge, self._motifs, self._gap_motif, self._outline_circles, self._fill,
-                self._method, self._contact)
-
-    def __eq__(self, other) -> bool:
-        return type(other) is type(self) and self._key() == other._key()
-
-    def __hash__(self) -> int:
-        return hash(self._key())
-
     def __repr__(self) -> str:
         motifs = ", ".join(f"{p}: {s!r}" for p, s in self._motifs)
-        extra = ", outline_circles=True" if self._outline_circles else ""
-        extra += f", fill={self._fill:g}" if self._fill != 1.0 else ""
-        if self._method == "hankin":
-            extra += (f", method='hankin', contact_angle={self._contact[0]:g}, "
-                      f"contact_gap={self._contact[1]:g}")
-        return (f"ArchimedeanPacking({self._tiling!r}, edge={self._edge:g}, motifs={{{motifs}}}, "
-                f"gap_motif={self._gap_motif!r}{extra})")
+        extra = ", outline_circles=True" if self.outline_circles else ""
+        extra += f", fill={self.fill:g}" if self.fill != 1.0 else ""
+        if self.method == "hankin":
+            extra += (f", method='hankin', contact_angle={self.contact_angle:g}, "
+                      f"contact_gap={self.contact_gap:g}")
+        return (f"ArchimedeanPacking({self.tiling!r}, edge={self.edge:g}, motifs={{{motifs}}}, "
+                f"gap_motif={self.gap_motif!r}{extra})")
 
     # -- circles --------------------------------------------------------------
     def _entries(self):
         """Per unit-cell circle: offset (mm), radius (mm), sides (0: gap); Hankin's method has no gap circles."""
-        cell, a = self._cell, self._edge
-        if self._method == "hankin":
+        cell, a = self._cell, self.edge
+        if self.method == "hankin":
             return cell.centres * a, cell.radii() * a, np.asarray(cell.sides)
         offsets = np.concatenate([cell.centres, cell.gap_centres]) * a
         radii = np.concatenate([cell.radii(), cell.gap_radii]) * a
@@ -271,7 +269,7 @@ class ArchimedeanPacking:
         pts, idx = [], []
         lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
         margins = self._reach(radii) * (1 + 1e-9)
-        for off, m in zip(offsets, margins):
+        for off, m in zip(offsets, margins, strict=True):
             corners = np.array([[x0 - m, y0 - m], [x1 + m, y0 - m], [x0 - m, y1 + m], [x1 + m, y1 + m]])
             ij = (corners - off) @ inv.T
             lo, hi = np.minimum(lo, np.floor(ij.min(axis=0))), np.maximum(hi, np.ceil(ij.max(axis=0)))
@@ -279,11 +277,11 @@ class ArchimedeanPacking:
         if count > MAX_CIRCLES_IN_WINDOW:
             raise LimitError(
                 f"the window holds about {count:.3g} circles, more than the limit of "
-                f"{MAX_CIRCLES_IN_WINDOW}; use a larger edge (got {self._edge:g} mm) or a smaller tile",
+                f"{MAX_CIRCLES_IN_WINDOW}; use a larger edge (got {self.edge:g} mm) or a smaller tile",
                 param="edge")
         jj, ii = np.meshgrid(np.arange(lo[1], hi[1] + 1), np.arange(lo[0], hi[0] + 1), indexing="ij")
         lattice = ii.reshape(-1, 1) * basis[0] + jj.reshape(-1, 1) * basis[1]
-        for e, (off, m) in enumerate(zip(offsets, margins)):
+        for e, (off, m) in enumerate(zip(offsets, margins, strict=True)):
             p = lattice + off
             keep = (p[:, 0] >= x0 - m) & (p[:, 0] <= x1 + m) & (p[:, 1] >= y0 - m) & (p[:, 1] <= y1 + m)
             pts.append(p[keep])
@@ -322,21 +320,21 @@ class ArchimedeanPacking:
         """
         per = np.array([len(u) for u in self._unit_motifs()])
         count = int(per[self._placed(window)[1]].sum())
-        if self._outline_circles:
+        if self.outline_circles:
             _, radii = self.circles(window)
             r, k = np.unique(radii, return_counts=True)
-            count += sum(chord_count(float(v)) * int(m) for v, m in zip(r, k))
+            count += sum(chord_count(float(v)) * int(m) for v, m in zip(r, k, strict=True))
         return count
 
     # -- motifs ---------------------------------------------------------------
     def _reach(self, radii) -> np.ndarray:
         """Per unit-cell entry: how far its segments reach from its centre, mm (its circle's radius,
         a Hankin polygon's farthest ray end: rays merged across an edge reach into the neighbour)."""
-        if self._method != "hankin":
+        if self.method != "hankin":
             return radii
         units = self._unit_motifs()
         return np.array([max(r, float(np.hypot(*u.reshape(-1, 2).T).max()) if len(u) else 0.0)
-                         for r, u in zip(radii, units)])
+                         for r, u in zip(radii, units, strict=True)])
 
     def _hankin_units(self) -> list:
         """Per polygon of the unit cell: its Hankin rays (None for a kind that keeps a motif), centred at 0.
@@ -344,19 +342,19 @@ class ArchimedeanPacking:
         Without a gap, a ray and the neighbour's ray continuing it across a shared edge are one
         segment, kept by the polygon the edge's outward normal points right (or up) from, so
         each is listed once in the tiling."""
-        cell, a = self._cell, self._edge
-        angle, gap = self._contact
+        cell, a = self._cell, self.edge
+        angle, gap = self.contact_angle, self.contact_gap
         stars = dict(self._motifs)
         centres = cell.centres * a
         hankin = [int(p) not in stars for p in cell.sides]
-        rays = [polygon_rays(int(p), a, angle, gap, t) if h else None
-                for p, t, h in zip(cell.sides, cell.angles, hankin)]
+        rays: list[Any] = [polygon_rays(int(p), a, angle, gap, t) if h else None
+                for p, t, h in zip(cell.sides, cell.angles, hankin, strict=True)]
         # the snub hexagonal cell's polygons lie up to 2.5 lattice steps from its origin
         shifts = np.array([(i, j) for i in range(-4, 5) for j in range(-4, 5)], dtype=float) @ self.lattice
         near = (centres[None] + shifts[:, None]).reshape(-1, 2)  # every polygon near the cell
         entry = np.tile(np.arange(len(centres)), len(shifts))
         radii = cell.radii()[entry] * a
-        out = []
+        out: list[np.ndarray | None] = []
         for e, p in enumerate(cell.sides.tolist()):
             if not hankin[e]:
                 out.append(None)
@@ -387,35 +385,38 @@ class ArchimedeanPacking:
 
     def _unit_motifs(self) -> list:
         """Per unit-cell circle: its motif's segments scaled to the circle, turned, centred at 0
-        (``method="hankin"``: a polygon's rays, or its motif)."""
-        if "all" not in self._units and self._method == "hankin":
+        (``method="hankin"``: a polygon's rays, or its motif); read-only arrays, made once per packing."""
+        return _unit_motifs(self)
+
+    def _make_unit_motifs(self) -> list:
+        if self.method == "hankin":
             cell = self._cell
             stars = dict(self._motifs)
-            radii = cell.radii() * self._edge
+            radii = cell.radii() * self.edge
             out = self._hankin_units()
-            for e, (p, angle, r) in enumerate(zip(cell.sides.tolist(), cell.angles, radii)):
+            for e, (p, angle, r) in enumerate(zip(cell.sides.tolist(), cell.angles, radii, strict=True)):
                 if out[e] is None:
                     star = stars[p]
-                    seg = star.segments() * (r * self._fill / star.extent)
+                    seg = star.segments() * (r * self.fill / star.extent)
                     out[e] = _rotated(seg, angle - _turn(star), 2 * math.pi / star.n)
                 out[e].setflags(write=False)
-            self._units["all"] = out
-        if "all" not in self._units:
+            return out
+        else:
             cell = self._cell
             _, radii, _ = self._entries()
             stars = dict(self._motifs)
-            turns = [(stars[int(p)], a) for p, a in zip(cell.sides, cell.angles)]
-            turns += [(self._gap_motif, a) for a in cell.gap_angles]
+            turns = [(stars[int(p)], a) for p, a in zip(cell.sides, cell.angles, strict=True)]
+            gap_motif = cast(Star, self.gap_motif)  # __post_init__ made it a Star
+            turns += [(gap_motif, a) for a in cell.gap_angles]
             cache, out = {}, []
-            for (star, angle), r in zip(turns, radii):
+            for (star, angle), r in zip(turns, radii, strict=True):
                 key = (star, round(angle - _turn(star), 12), r)
                 if key not in cache:
-                    seg = star.segments() * (r * self._fill / star.extent)
+                    seg = star.segments() * (r * self.fill / star.extent)
                     cache[key] = _rotated(seg, angle - _turn(star), 2 * math.pi / star.n)
                     cache[key].setflags(write=False)  # shared by every circle of the kind
                 out.append(cache[key])
-            self._units["all"] = out
-        return self._units["all"]
+            return out
 
     def motif_segments(self, window) -> np.ndarray:
         """The motifs' centre-lines alone (without outline circles), ``(k, 2, 2)`` mm."""
@@ -435,7 +436,7 @@ class ArchimedeanPacking:
         (76, 2, 2)
         """
         parts = [self.motif_segments(window)]
-        if self._outline_circles:
+        if self.outline_circles:
             parts.append(circle_segments(*self.circles(window)))
         return np.concatenate(parts)
 
@@ -462,6 +463,12 @@ def rectangular_period(tiling) -> tuple[float, float]:
 
 def _rebuild(params: dict) -> ArchimedeanPacking:
     return ArchimedeanPacking(**params)
+
+
+@functools.lru_cache(maxsize=64)
+def _unit_motifs(packing: ArchimedeanPacking) -> list:
+    """A packing's placed motifs, once per distinct packing (packings are values: equal ones share them)."""
+    return packing._make_unit_motifs()
 
 
 def _kind(key, kinds, tiling) -> int:

@@ -79,7 +79,7 @@ def check_contact(angle, gap, edge: float, kinds, tiling: str) -> tuple[float, f
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: contact_angle 80 has no pattern on the tiling 3.12.12 with contact_gap 5 mm: the rays of its 3-gons would meet past their centres; with this gap contact_angle must be > 0 and <= 49.1066, or contact_gap <= 1.01802 mm for this angle
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     angle = check_float("contact_angle", angle, low=0, high=90, low_open=True, high_open=True)
     gap = check_float("contact_gap", gap, low=0)
     if gap >= edge:

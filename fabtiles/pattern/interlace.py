@@ -484,7 +484,6 @@ def weave(segments) -> Weave:
     k = len(seg)
     verts, piece_v, piece_seg = _node(seg)
     partner, cross_v, knot_v = _pair_ends(verts, piece_v)
-    n_piece = len(piece_v)
     is_cross = np.zeros(len(verts), bool)
     is_cross[cross_v] = True
     plen = np.linalg.norm(verts[piece_v[:, 1]] - verts[piece_v[:, 0]], axis=1)
@@ -623,8 +622,8 @@ def _assign(n_strand, sa, sb, ia, ib) -> np.ndarray:
     ``bit[sa] ^ bit[sb] == (1 + ia + ib) % 2``. Breadth-first over the strands.
     """
     need = ((1 + ia + ib) % 2).tolist()
-    adj = [[] for _ in range(n_strand)]
-    for a, b, w in zip(sa.tolist(), sb.tolist(), need):
+    adj: list[list[tuple[int, int]]] = [[] for _ in range(n_strand)]
+    for a, b, w in zip(sa.tolist(), sb.tolist(), need, strict=True):
         adj[a].append((b, w))
         adj[b].append((a, w))
     bit = [-1] * n_strand

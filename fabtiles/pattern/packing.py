@@ -15,7 +15,10 @@ Two packings share one base class and differ only in their lattice:
 
 from __future__ import annotations
 
+import functools
 import math
+from dataclasses import KW_ONLY, dataclass
+from typing import ClassVar, cast
 
 import numpy as np
 
@@ -73,53 +76,45 @@ def circle_segments(centres, radii, *, tolerance: float = 0.005, multiple: int =
     return np.concatenate(out) if out else np.empty((0, 2, 2))
 
 
+@dataclass(frozen=True, slots=True, repr=False)
 class Packing:
     """Shared machinery of the packings; a subclass only defines its lattice.
 
     Subclasses set ``kind``, ``gap_ratio`` (gap circle radius / R) and implement
     :meth:`_basis` (two lattice vectors in units of R) and :meth:`_gap_offsets`
-    (gap circle centres relative to each lattice point, units of R).
+    (gap circle centres relative to each lattice point, units of R). A packing is a
+    frozen value: change it with :meth:`replace`.
     """
 
-    kind = ""
-    gap_ratio = 0.0
-    __slots__ = ("_radius", "_motif", "_gap_motif", "_outline_circles", "_fill", "_unit")
+    kind: ClassVar[str] = ""
+    gap_ratio: ClassVar[float] = 0.0
 
-    def __init__(self, radius, motif, gap_motif=None, *, outline_circles=False, fill=1.0):
-        radius = check_float("radius", radius, low=0, low_open=True)
-        if not isinstance(motif, Star):
-            raise ParameterError(f"motif must be a Star, got {motif!r}", param="motif")
-        if gap_motif is None:
-            gap_motif = default_gap_motif()
-        if not isinstance(gap_motif, Star):
-            raise ParameterError(f"gap_motif must be a Star or None (the default), got {gap_motif!r}",
+    radius: float
+    """Radius R of the big circles, mm."""
+    motif: Star
+    """Motif of the big circles."""
+    gap_motif: Star | None = None
+    """Motif of the gap circles (None given: :func:`default_gap_motif`, set when the packing is made)."""
+    _: KW_ONLY
+    outline_circles: bool = False
+    """Whether the circles are stroked."""
+    fill: float = 1.0
+    """Motif extent / circle radius."""
+
+    def __post_init__(self) -> None:
+        init = object.__setattr__  # the frozen dataclass's own way to set a field in __post_init__
+        init(self, "radius", check_float("radius", self.radius, low=0, low_open=True))
+        if not isinstance(self.motif, Star):
+            raise ParameterError(f"motif must be a Star, got {self.motif!r}", param="motif")
+        if self.gap_motif is None:
+            init(self, "gap_motif", default_gap_motif())
+        if not isinstance(self.gap_motif, Star):
+            raise ParameterError(f"gap_motif must be a Star or None (the default), got {self.gap_motif!r}",
                                  param="gap_motif")
-        if not isinstance(outline_circles, bool):
-            raise ParameterError(f"outline_circles must be true or false, got {outline_circles!r}",
+        if not isinstance(self.outline_circles, bool):
+            raise ParameterError(f"outline_circles must be true or false, got {self.outline_circles!r}",
                                  param="outline_circles")
-        init = object.__setattr__  # the only writes: a packing is read-only once built
-        init(self, "_radius", radius)
-        init(self, "_motif", motif)
-        init(self, "_gap_motif", gap_motif)
-        init(self, "_outline_circles", outline_circles)
-        init(self, "_fill", check_float("fill", fill, low=0, high=1, low_open=True))
-        init(self, "_unit", {})  # "big"/"gap" -> placed motif (read-only array), filled on first use
-
-    def __setattr__(self, name, value):
-        raise AttributeError(f"{type(self).__name__} is read-only; use packing.replace({name.lstrip('_')}=...) "
-                             f"for a changed copy")
-
-    def __delattr__(self, name):
-        self.__setattr__(name, None)
-
-    def __reduce__(self):
-        return (_packing, (type(self), self.params()))
-
-    radius = property(lambda self: self._radius, doc="Radius R of the big circles, mm.")
-    motif = property(lambda self: self._motif, doc="Motif of the big circles.")
-    gap_motif = property(lambda self: self._gap_motif, doc="Motif of the gap circles.")
-    outline_circles = property(lambda self: self._outline_circles, doc="Whether the circles are stroked.")
-    fill = property(lambda self: self._fill, doc="Motif extent / circle radius.")
+        init(self, "fill", check_float("fill", self.fill, low=0, high=1, low_open=True))
 
     # -- lattice ------------------------------------------------------------
     def _basis(self) -> np.ndarray:  # pragma: no cover - abstract
@@ -211,13 +206,7 @@ class Packing:
         """
         if which not in ("big", "gap"):
             raise ParameterError(f"{which!r} is not a valid motif, must be one of: big, gap", param="which")
-        unit = self._unit.get(which)
-        if unit is None:
-            star, c = (self.motif, self.radius) if which == "big" else (self.gap_motif, self.gap_radius)
-            unit = star.segments() * (c * self.fill / star.extent)
-            unit.flags.writeable = False  # the cache is never handed out (a copy is)
-            self._unit[which] = unit  # two threads may both compute it: the same array either way
-        return unit.copy()
+        return _placed_motif(self, which).copy()  # the cache is never handed out (a copy is)
 
     def segments(self, window) -> np.ndarray:
         """Centre-lines of every motif whose circle meets ``window``, ``(k, 2, 2)`` mm.
@@ -262,12 +251,6 @@ class Packing:
         """
         return type(self)(**{**self.params(), **changes})
 
-    def __eq__(self, other) -> bool:
-        return type(other) is type(self) and self.params() == other.params()
-
-    def __hash__(self) -> int:
-        return hash((type(self).__name__, *self.params().values()))
-
     def __repr__(self) -> str:
         extra = ", outline_circles=True" if self.outline_circles else ""
         extra += f", fill={self.fill:g}" if self.fill != 1.0 else ""
@@ -275,6 +258,7 @@ class Packing:
                 f"gap_motif={self.gap_motif!r}{extra})")
 
 
+@dataclass(frozen=True, slots=True, repr=False)
 class HexPacking(Packing):
     """Hexagonal packing of tangent circles with a motif in each (paper section 5).
 
@@ -301,7 +285,6 @@ class HexPacking(Packing):
 
     kind = "hex"
     gap_ratio = 2.0 / math.sqrt(3.0) - 1.0
-    __slots__ = ()
 
     def _basis(self):
         return np.array([[2.0, 0.0], [1.0, math.sqrt(3.0)]])
@@ -314,6 +297,7 @@ class HexPacking(Packing):
         return (2.0 * self.radius, 2.0 * math.sqrt(3.0) * self.radius)
 
 
+@dataclass(frozen=True, slots=True, repr=False)
 class SquarePacking(Packing):
     """Square packing of tangent circles, a gap circle in each cell (same parameters as
     :class:`HexPacking`; gap circle radius ``(sqrt(2) - 1) R``).
@@ -327,7 +311,6 @@ class SquarePacking(Packing):
 
     kind = "square"
     gap_ratio = math.sqrt(2.0) - 1.0
-    __slots__ = ()
 
     def _basis(self):
         return np.array([[2.0, 0.0], [0.0, 2.0]])
@@ -344,9 +327,16 @@ PACKINGS = {"hex": HexPacking, "square": SquarePacking}
 """Packing kind name -> class."""
 
 
-def _packing(cls, params: dict):
-    """Rebuild a pickled packing."""
-    return cls(**params)
+@functools.lru_cache(maxsize=64)
+def _placed_motif(packing: Packing, which: str) -> np.ndarray:
+    """One motif of a packing placed for its circle (read-only), once per distinct packing."""
+    if which == "big":
+        star, c = packing.motif, packing.radius
+    else:
+        star, c = cast(Star, packing.gap_motif), packing.gap_radius  # never None once the packing is made
+    unit = star.segments() * (c * packing.fill / star.extent)
+    unit.flags.writeable = False
+    return unit
 
 
 def _check_window(window):

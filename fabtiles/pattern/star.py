@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import functools
+from collections.abc import Sequence
+from dataclasses import KW_ONLY, dataclass
+
 import numpy as np
 
 from .._errors import ParameterError, did_you_mean
@@ -15,6 +19,7 @@ MAX_CIRCLES = 24
 """Largest number of concentric circles S."""
 
 
+@dataclass(frozen=True, slots=True, repr=False)
 class Star:
     """A star or rosette: ``n`` points on each of ``len(radii)`` concentric circles.
 
@@ -49,42 +54,40 @@ class Star:
     >>> Star(n=9, radii=(93, 225), alpha=48, spr=-68, special=2).segments().shape
     (36, 2, 2)
 
-    A Star is read-only (its segments are cached): change it with :meth:`replace`.
+    A Star is a frozen value (equal stars share their cached segments): change it with
+    :meth:`replace`.
 
     >>> star.n = 9
     Traceback (most recent call last):
     ...
-    AttributeError: Star is read-only; use star.replace(n=...) for a changed copy
+    dataclasses.FrozenInstanceError: cannot assign to field 'n'
     """
 
-    __slots__ = ("_n", "_radii", "_alpha", "_spr", "_special", "_rotation", "_segments")
+    n: int
+    """Points on each circle."""
+    radii: Sequence[float]
+    """Radius of each circle (a tuple)."""
+    _: KW_ONLY
+    alpha: float = 0.0
+    """Angular offset of the special points, degrees."""
+    spr: float = 0.0
+    """The special points lie at r(special) - spr."""
+    special: int | None = None
+    """1-based special circle, or None."""
+    rotation: float = 0.0
+    """Degrees added to every angle."""
 
-    def __init__(self, n, radii, *, alpha=0.0, spr=0.0, special=None, rotation=0.0):
-        init = object.__setattr__  # the only writes: a Star is read-only once built
-        init(self, "_n", check_int("n", n, low=3, high=MAX_N))
-        init(self, "_radii", check_float_seq("radii", radii, min_len=2, max_len=MAX_CIRCLES, low=0, low_open=True))
-        init(self, "_alpha", check_float("alpha", alpha))
-        init(self, "_spr", check_float("spr", spr))
-        s = len(self._radii)
-        init(self, "_special", None if special is None else check_int("special", special, low=2, high=s))
-        init(self, "_rotation", check_float("rotation", rotation))
-        init(self, "_segments", None)
-
-    def __setattr__(self, name, value):
-        raise AttributeError(f"Star is read-only; use star.replace({name.lstrip('_')}=...) for a changed copy")
-
-    def __delattr__(self, name):
-        self.__setattr__(name, None)
-
-    def __reduce__(self):
-        return (_star, (self.params(),))
-
-    n = property(lambda self: self._n, doc="Points on each circle.")
-    radii = property(lambda self: self._radii, doc="Radius of each circle (a tuple).")
-    alpha = property(lambda self: self._alpha, doc="Angular offset of the special points, degrees.")
-    spr = property(lambda self: self._spr, doc="The special points lie at r(special) - spr.")
-    special = property(lambda self: self._special, doc="1-based special circle, or None.")
-    rotation = property(lambda self: self._rotation, doc="Degrees added to every angle.")
+    def __post_init__(self) -> None:
+        # Each field checked and normalised (radii to a tuple of floats) before the Star is used.
+        init = object.__setattr__  # the frozen dataclass's own way to set a field in __post_init__
+        init(self, "n", check_int("n", self.n, low=3, high=MAX_N))
+        radii = check_float_seq("radii", self.radii, min_len=2, max_len=MAX_CIRCLES, low=0, low_open=True)
+        init(self, "radii", radii)
+        init(self, "alpha", check_float("alpha", self.alpha))
+        init(self, "spr", check_float("spr", self.spr))
+        special = self.special
+        init(self, "special", None if special is None else check_int("special", special, low=2, high=len(radii)))
+        init(self, "rotation", check_float("rotation", self.rotation))
 
     # -- construction -------------------------------------------------------
     @classmethod
@@ -97,7 +100,7 @@ class Star:
         Traceback (most recent call last):
         ...
         fabtiles._errors.ParameterError: preset 'table3-33' is unknown; did you mean 'table3-3'? (presets: table1-part1, table1-part2, table2-left, table2-right, table3-1, table3-2, table3-3; `fabtiles presets` lists them)
-        """
+        """  # noqa: E501 - a doctest's lines are as Python prints them
         if not isinstance(name, str) or name not in PRESETS:
             hint = did_you_mean(name, PRESETS)
             raise ParameterError(
@@ -143,12 +146,6 @@ class Star:
         radii = ", ".join(f"{r:g}" for r in self.radii)
         return f"Star(n={self.n}, radii=({radii}){extra})"
 
-    def __eq__(self, other) -> bool:
-        return isinstance(other, Star) and self.params() == other.params()
-
-    def __hash__(self) -> int:
-        return hash(tuple(self.params().items()))
-
     # -- geometry -----------------------------------------------------------
     def points(self) -> np.ndarray:
         """The marked points ``P(w, i)``: array of shape ``(S, n, 2)``.
@@ -170,12 +167,12 @@ class Star:
         (zero length) or repeat, which are dropped or merged. The returned array is
         a fresh copy.
         """
-        if self._segments is None:
-            # Computed once; the cache is never handed out (a copy is) and cannot be written.
-            seg = _dedupe(self._raw_segments())
-            seg.flags.writeable = False
-            object.__setattr__(self, "_segments", seg)
         return self._segments.copy()
+
+    @property
+    def _segments(self) -> np.ndarray:
+        """The cached segments (read-only): never handed out, a copy is."""
+        return _segments_of(self)
 
     @property
     def extent(self) -> float:
@@ -203,9 +200,12 @@ class Star:
         return np.stack(out, axis=1).reshape(-1, 2, 2)
 
 
-def _star(params: dict) -> Star:
-    """Rebuild a pickled Star."""
-    return Star(**params)
+@functools.lru_cache(maxsize=64)
+def _segments_of(star: Star) -> np.ndarray:
+    """A star's segments, computed once per distinct star (stars are values: equal ones share them)."""
+    seg = _dedupe(star._raw_segments())
+    seg.flags.writeable = False
+    return seg
 
 
 def _dedupe(seg: np.ndarray) -> np.ndarray:

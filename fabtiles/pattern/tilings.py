@@ -89,7 +89,7 @@ def canonical(tiling) -> str:
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: tiling '5.5.5' is unknown (tilings: 3.3.3.3.3.3, 4.4.4.4, 6.6.6, 3.6.3.6, 3.12.12, 4.6.12, 4.8.8, 3.3.3.3.6, 3.3.3.4.4, 3.3.4.3.4, 3.4.6.4; exponent forms such as 3^4.6 also work)
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     try:
         name = _FORMS.get(_expand(tiling)) if isinstance(tiling, str) else None
     except ValueError:
@@ -232,7 +232,7 @@ def _reduce(points, lattice):
 
 def _corners(centres, sides, angles):
     out = []
-    for c, p, a in zip(centres, sides, angles):
+    for c, p, a in zip(centres, sides, angles, strict=True):
         t = a + math.pi / p + 2 * math.pi * np.arange(p) / p
         out.append(c + circumradius(int(p)) * np.stack([np.cos(t), np.sin(t)], axis=1))
     return np.concatenate(out)
@@ -272,7 +272,7 @@ def apollonius_outer(c, r):
     >>> round(float(rad[0]), 6), centre[0].round(6).tolist()  # Soddy: 2/sqrt(3) - 1
     (0.154701, [1.0, 0.57735])
     """
-    (x1, y1), (r1) = c[0], r[0]
+    r1 = r[0]
     a = 2 * (c[1:] - c[0])  # rows: equations i = 2, 3
     if abs(np.linalg.det(a)) < 1e-12:
         return np.empty((0, 2)), np.empty(0)
@@ -307,7 +307,7 @@ def _gap_circles(lattice, centres, sides, vertices):
         for tri in itertools.combinations(range(len(cc)), 3):
             idx = list(tri)
             cand_c, cand_r = apollonius_outer(cc[idx], rr[idx])
-            for x, rad in zip(cand_c, cand_r):
+            for x, rad in zip(cand_c, cand_r, strict=True):
                 gaps = np.hypot(*(cc - x).T) - rr - rad
                 d = x - cc
                 inside = (edges[:, 0] * d[:, 1] - edges[:, 1] * d[:, 0]).min() > 0
@@ -317,6 +317,7 @@ def _gap_circles(lattice, centres, sides, vertices):
                 key = (-round(rad, 9), sorted(index[gaps < 1e-9].tolist()))
                 if best is None or key < best[0]:
                     best = (key, x, rad, gaps)
+        assert best is not None, "every vertex of a tiling has a gap circle"
         _, x, rad, gaps = best
         touching = np.flatnonzero(gaps < 1e-9)
         first = min(touching, key=lambda t: (-sides[index[t]], index[t]))

@@ -116,7 +116,7 @@ def _grid_lines(lo: float, hi: float, size: float, shift: int = 0) -> np.ndarray
     ``shift`` moves every line by ``shift * GRID_SHIFT_MM``: a retry for the rare
     ring that, noded at a line and snapped, lands on a neighbouring ring's edge.
     """
-    n = max(1, int(math.ceil((hi - lo) / size)))
+    n = max(1, math.ceil((hi - lo) / size))
     step = (hi - lo) / n
     # 0.3125 + 0.0390625 mm offsets keep lines off the round values designs use
     lines = lo + step * np.arange(1, n) + 0.3515625 + shift * GRID_SHIFT_MM
@@ -271,8 +271,8 @@ class Coverage:
 
     pieces: list  # list of (shapely MultiPolygon, level index)
     levels: np.ndarray  # z of each level index; index 0 is the bottom
-    xs: np.ndarray = None  # the cell lines
-    ys: np.ndarray = None
+    xs: np.ndarray | None = None  # the cell lines
+    ys: np.ndarray | None = None
 
 
 def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES, shift: int = 0,
@@ -297,7 +297,7 @@ def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES, shift
     geoms = [g for g, _ in layers if not g.is_empty]
     xs, ys, box = cells if cells is not None else cells_for(geoms, cell_vertices, shift)
     levels = np.array(sorted({bottom, *[z for _, z in layers]}))
-    pieces = []
+    pieces: list = []
     for geom, z in layers:
         if geom.is_empty:
             continue
@@ -448,6 +448,7 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
 def mesh_coverage(cov: Coverage):
     """Mesh a coverage as one stack: returns ``(vertices (n, 3) float64, faces (m, 3) int64)``."""
     topo = topology(cov)
+    assert topo.tris is not None and topo.tri_level is not None  # topology() triangulates by default
     nl = len(cov.levels)
     tris = topo.vid[topo.tris]
     top = tris * nl + topo.tri_level[:, None]

@@ -33,6 +33,8 @@ Example: a 10 x 10 mm plate 2 mm thick is 6 faces, 12 edges and 8 vertices.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
+from itertools import pairwise
 from math import gcd
 
 import numpy as np
@@ -145,7 +147,7 @@ class _Edges:
 
 def _ring_polygons(topo, k):
     """Rings of piece k grouped into polygons: [[outer ring, hole rings...], ...]."""
-    polys = []
+    polys: list = []
     for r in range(topo.piece_rings[k], topo.piece_rings[k + 1]):
         xy = topo.xy[topo.vid[topo.ring_start[r]:topo.ring_start[r + 1]]]
         area = 0.5 * np.sum(xy[:, 0] * np.roll(xy[:, 1], -1) - np.roll(xy[:, 0], -1) * xy[:, 1])
@@ -162,7 +164,7 @@ def _chain(directed, what):
     At a node with several ways on (two loops touching at a point), the first
     unused one is taken: each loop still closes, which is all a face needs.
     """
-    out = {}
+    out: dict = {}
     for i, (a, _, _) in enumerate(directed):
         out.setdefault(a, []).append(i)
     used = np.zeros(len(directed), bool)
@@ -212,10 +214,10 @@ def _onto_sides(xy, sides, outer):
     tree = shapely.STRtree(shapely.linestrings(sides.reshape(-1, 2, 2)))
     ends = np.unique(np.asarray(outer).ravel())
     pi, si = tree.query(shapely.points(out[ends]), predicate="dwithin", distance=SIDE_TOLERANCE_MM)
-    near = {}  # point -> sides it is near (corners: both of theirs)
-    for p, k in zip(ends[pi].tolist(), si.tolist()):
+    near: dict = {}  # point -> sides it is near (corners: both of theirs)
+    for p, k in zip(ends[pi].tolist(), si.tolist(), strict=True):
         near.setdefault(p, set()).add(k)
-    succ = {}
+    succ: dict = {}
     for u, v in np.asarray(outer).tolist():
         if k_common := (near.get(u, set()) & near.get(v, set())):
             for k in k_common:
@@ -324,7 +326,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     """
     import shapely
 
-    by_level = {}
+    by_level: dict = {}
     for geom, lvl in cov.pieces:
         by_level.setdefault(int(lvl), []).append(geom)
     pieces = []
@@ -346,8 +348,8 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     wu, wv = u_all[w].tolist(), v_all[w].tolist()
     wlo, whi = topo.out_level[w].tolist(), topo.level[w].tolist()
     # split levels at each vertex: the bottoms and tops of the walls that meet there
-    splits = {}
-    for a, b, lo, hi in zip(wu, wv, wlo, whi):
+    splits: dict = {}
+    for a, b, lo, hi in zip(wu, wv, wlo, whi, strict=True):
         for p in (a, b):
             s = splits.setdefault(p, set())
             s.add(lo)
@@ -357,7 +359,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     def side(p, lo, hi, up):
         """Signed vertical edges at vertex p from lo to hi (up) or hi to lo."""
         ks = [k for k in splits[p] if lo <= k <= hi]
-        pairs = list(zip(ks[:-1], ks[1:]))
+        pairs = list(pairwise(ks))
         if up:
             return [(ed.point(p, a), ed.point(p, b), ed.vertical(p, a, b)) for a, b in pairs]
         return [(ed.point(p, b), ed.point(p, a), ed.vertical(p, b, a)) for a, b in reversed(pairs)]
@@ -369,7 +371,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     outer_loops = [[int(u_all[outer[i]]) for i in lp]
                    for lp in _chain([(int(u_all[e]), int(v_all[e]), e) for e in outer], what)]
     _keep_pieces_valid(topo, vxy, side_of, outer_loops)
-    sides_arr = None if sides is None else np.asarray(sides, float)
+    sides_arr: Any = None if sides is None else np.asarray(sides, float)  # read only where sides are given
     whole = None if sides is None else {tuple(row): k for k, row in enumerate(sides_arr.tolist())}
 
     # --- arcs: one cylinder face per arc of walls, its circle edges shared with the flat faces
@@ -394,7 +396,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
         for lvl in (lo, hi):
             e = ed.arc(("a", j, lvl), ed.point(a_vid, lvl), ed.point(b_vid, lvl), row)
             signed[lvl] = e if ccw else ~e
-            for x, y in zip(chain[:-1], chain[1:]):
+            for x, y in pairwise(chain):
                 ed.arc_of[(min(x, y), max(x, y), lvl)] = (("a", j, lvl), x if ccw else y)
         # the chain runs with the material on its left, as a wall's bottom edge does
         loop = [signed[lo]] + [e for _, _, e in side(chain[-1], lo, hi, up=True)]
@@ -407,8 +409,8 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
         wu, wv = [wu[i] for i in keep], [wv[i] for i in keep]
         wlo, whi = [wlo[i] for i in keep], [whi[i] for i in keep]
     wall_edges = []  # per wall: its directed edges (start node, end node, signed edge)
-    keys = []
-    for a, b, lo, hi in zip(wu, wv, wlo, whi):
+    keys: list[tuple] = []
+    for a, b, lo, hi in zip(wu, wv, wlo, whi, strict=True):
         loop = [(ed.point(a, lo), ed.point(b, lo), ed.horizontal(a, b, lo))]
         loop += side(b, lo, hi, up=True)
         loop.append((ed.point(b, hi), ed.point(a, hi), ed.horizontal(b, a, hi)))
@@ -427,7 +429,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             keys.append((dx, dy, dy * int(ij[a, 0]) - dx * int(ij[a, 1])))
 
     # walls in one plane that share a vertical edge are one face
-    users = {}
+    users: dict = {}
     for i, loop in enumerate(wall_edges):
         for _, _, e in loop:
             users.setdefault(e if e >= 0 else ~e, []).append(i)
@@ -447,7 +449,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             faces.append(Face(origin, normal, ref, (tuple(e for _, _, e in wall_edges[members[0]]),)))
             continue
         # drop the edges inside the merged face (used by two of its walls), chain the rest
-        count = {}
+        count: dict = {}
         for i in members:
             for _, _, e in wall_edges[i]:
                 key = e if e >= 0 else ~e
@@ -457,7 +459,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
         # the outer loop is the one of largest area in the wall's own (s, z) coordinates
         dirn = np.array([dx, dy], float) / np.hypot(dx, dy)
 
-        def area(loop):
+        def area(loop, directed=directed, dirn=dirn):
             nodes = [directed[i][0] for i in loop]
             p = pts[nodes]
             return _loop_area(np.column_stack([p[:, :2] @ dirn, p[:, 2]]))
@@ -473,7 +475,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             for r in rings:
                 idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
                 uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
-                loops.append(_collapse([ed.horizontal_or_arc(a, b, lvl) for a, b in zip(uu, vv) if a != b]))
+                loops.append(_collapse([ed.horizontal_or_arc(a, b, lvl) for a, b in zip(uu, vv, strict=True) if a != b]))
             faces.append(Face((0.0, 0.0, float(z[lvl])), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), tuple(loops)))
 
     if cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
@@ -483,18 +485,19 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
                 for r in rings:
                     idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])[::-1]
                     uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
-                    loops.append(_collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu, vv) if a != b]))
+                    loops.append(_collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu, vv, strict=True) if a != b]))
                 faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops)))
         return _finish(ed, vxy, z, faces, what)
 
     # --- bottoms: the ring edges with nothing beside them, run backwards
     b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
     # (an arc's chords give one edge: its ends from the edge itself)
-    signed = dict.fromkeys(ed.horizontal_or_arc(vv, uu, 0) for uu, vv in zip(u_all[b].tolist(), v_all[b].tolist()))
+    signed = dict.fromkeys(ed.horizontal_or_arc(vv, uu, 0) for uu, vv in zip(u_all[b].tolist(), v_all[b].tolist(), strict=True))
     directed = [(*(ed.list[e] if e >= 0 else ed.list[~e][::-1]), e) for e in signed]
     loops = _chain(directed, what)
     pts = _node_xyz(ed, vxy, z)
-    outers, holes = [], []
+    outers: list = []
+    holes: list = []
     for lp in loops:
         xy = _loop_points([directed[i][2] for i in lp], ed.list, ed.arcs, pts)
         (outers if _loop_area(xy) < 0 else holes).append((lp, xy))  # seen from above, reversed
@@ -749,9 +752,9 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
                 sweep = ((t[1] - t[0]) * turn) % (2 * np.pi)
                 out.append((part, runs.centre[0], float(runs.radius[0]), float(turn * sweep), True))
             return
-        for f, l, c, rad, sw in zip(runs.first.tolist(), runs.last.tolist(), runs.centre, runs.radius.tolist(),
-                                    runs.sweep.tolist()):
-            a, b = at[f], at[l]
+        for first, last, c, rad, sw in zip(runs.first.tolist(), runs.last.tolist(), runs.centre,
+                                           runs.radius.tolist(), runs.sweep.tolist(), strict=True):
+            a, b = at[first], at[last]
             if b <= a:
                 b += n
             out.append((positions[np.arange(a, b) % n], c, rad, sw, False))
@@ -768,7 +771,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
             jobs.append((idx, u[idx], True))
             continue
         starts = np.flatnonzero(cut)
-        for s0, s1 in zip(starts.tolist(), np.roll(starts, -1).tolist()):
+        for s0, s1 in zip(starts.tolist(), np.roll(starts, -1).tolist(), strict=True):
             seg = idx[(s0 + np.arange((s1 - s0) % len(idx) or len(idx))) % len(idx)]
             if walled[seg[0]] and len(seg) >= 3:
                 jobs.append((seg, np.append(u[seg], v[seg[-1]]), False))
@@ -788,7 +791,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
     keep_all = np.isin(keys, (kept_xy[:, 0] - x0 + shift * kept_of) + 1j * kept_xy[:, 1])
     offsets = np.concatenate([[0], np.cumsum(lengths)])
     searched = []
-    for k, (_, verts, closed) in enumerate(jobs):
+    for k, (_, _verts, closed) in enumerate(jobs):
         keep = keep_all[offsets[k]:offsets[k + 1]]
         if not closed:
             keep[[0, -1]] = True
@@ -797,7 +800,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
         ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
         found = arc_runs_many([xy[jobs[k][1][searched[k]]] for k in ks], tolerance_mm=tolerance_mm, closed=closed,
                               link_slack=GRID_LINK_SLACK, radii=radii)
-        for k, runs in zip(ks, found):
+        for k, runs in zip(ks, found, strict=True):
             if len(runs.first):
                 collect(jobs[k][0], jobs[k][1], searched[k], runs)
     return out
@@ -1111,7 +1114,7 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     Traceback (most recent call last):
     ...
     fabtiles._errors.FabricationError: the STEP solid has a volume of 200 mm^3, not the mesh's 100 mm^3 (0.05% allowed); nothing was written
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     import shapely
 
     def fail(why):

@@ -122,7 +122,7 @@ def check_mesh(vertices, faces, *, name="mesh", volume=None, bodies=None):
     Traceback (most recent call last):
     ...
     fabtiles._errors.FabricationError: the mesh mesh is not watertight as a slicer reads it (float32): 3 open edges; nothing was written
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     import trimesh
 
     verts, faces = check_indexed(vertices, faces, name=name, volume=volume, bodies=bodies)

@@ -26,7 +26,7 @@ trimesh and manifold3d are imported only inside the functions.
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -45,6 +45,11 @@ from ._mesh_build import (
     snap,
 )
 from .mesh_check import check_indexed
+
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
+
+    from .._colour import Colour
 
 
 
@@ -305,9 +310,10 @@ def _checked_body(kind, name, r, o, stack, dips=None):
             error = error or exc
             if kind == "base":
                 raise
+    assert error is not None  # every repair failed: the loop above returned otherwise
     points, exc = np.empty((0, 2)), error
     for _ in range(BRIDGE_ROUNDS):
-        if getattr(exc, "mesh", None) is None:
+        if exc.mesh is None:
             break
         found = _nonmanifold_points(*exc.mesh)
         if not len(found):
@@ -339,9 +345,9 @@ class CheckedPart(NamedTuple):
     """Area x height of the region actually meshed."""
     bodies: int
     """Connected bodies expected."""
-    region: object
+    region: BaseGeometry
     """The region actually meshed: snapped to the grid, point contacts bridged (shapely)."""
-    outline: object
+    outline: BaseGeometry
     """The outline, snapped to the grid (shapely)."""
     mesh_volume_mm3: float
     """The mesh's own volume, as the check found it."""
@@ -465,7 +471,7 @@ def check_inlay(stack: Stack, inlay) -> None:
     Traceback (most recent call last):
     ...
     fabtiles._errors.ParameterError: inlay=True needs style='deboss' (the inlay fills the deboss grooves), got style='relief'; pass style='deboss' or drop inlay
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     if not isinstance(inlay, (bool, np.bool_)):
         raise ParameterError(f"inlay must be True or False, got {inlay!r}")
     if inlay and stack.style != "deboss":
@@ -497,7 +503,7 @@ class MosaicPart(NamedTuple):
     """The bands (the region), up to the top."""
     faces: tuple
     """The faces of this colour (shapely polygons, file coordinates), up to the top less the inset."""
-    colour: object = None
+    colour: Colour | None = None
     """Its :class:`~fabtiles._colour.Colour`: the display colour and the STL file's name."""
 
 
@@ -586,6 +592,7 @@ def _mosaic_body(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
             error = error or exc
             continue
         return CheckedPart(mverts, mfaces, float(volume), int(bodies), top, o, float(found))
+    assert error is not None  # every attempt failed: the loop above returned otherwise
     raise error
 
 

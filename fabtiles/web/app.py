@@ -4,7 +4,8 @@ A FastAPI application made of four routers (:mod:`fabtiles.web.routes`): the
 pages and static files, the catalogue the form is made from (the schema of the
 design keys, presets, tilings, profiles, the gallery), the tile's answers
 (preview, checks, downloads), and the nest (several designs on the cutter's
-sheets). Every request's query is turned into a design dictionary (:mod:`fabtiles.web.params`), checked against the work limits before
+sheets). Every request's query is turned into a design dictionary (:mod:`fabtiles.web.params`), checked against the
+work limits before
 anything is built, and built through the same code as ``fabtiles build``. Bad
 input answers 422 with ``{"error": ..., "field": ...}``, never 500; the field
 comes from the error's key. No file path ever comes from a request: profiles are

@@ -146,7 +146,7 @@ def user_message(exc: Exception, field: str | None) -> str:
                     else f"{field}: {text}")
     letter = field.removeprefix("face_") if field and field.startswith("face_") else None
     if letter and text.startswith(f"{letter} "):  # a face class's colour: its parameter names it
-        text = field + text[len(letter):]
+        text = f"{field}{text[len(letter):]}"
     for size, name in _SIZE.items():
         if text.startswith(size):
             text = name + text[len(size):]

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import Any
 
 from .._errors import ParameterError
 from ..pattern.presets import PRESET_NOTES, PRESETS
@@ -40,11 +41,11 @@ _PRESET_PALETTES = {"table1-part1": "zellige", "table1-part2": "iznik", "table2-
 _PRESET_TILES = {"table1-part2": ("15", 1.5), "table2-left": ("10", 2), "table2-right": ("15", 1.5),
                  "table3-2": ("15", 1.5)}
 
-_GAP_STAR = {"n": 6, "radii": (0.5, 1)}  # a six-point star of radii 0.5 and 1, the tilings' small motif
+_GAP_STAR: dict[str, Any] = {"n": 6, "radii": (0.5, 1)}  # a six-point star of radii 0.5 and 1, the tilings' small motif
 
 # tiling -> edge (mm), preset per polygon kind, the motif above (for the kinds with none), gap motif,
 # stroke (mm): the values of samples/tilings/<tiling>.toml
-_TILINGS = {
+_TILINGS: dict[str, tuple[float, dict[int, str], dict[str, Any] | None, int | None, float]] = {
     "3.12.12": (9, {12: "table3-1"}, _GAP_STAR, None, 1),
     "3.3.3.3.3.3": (18, {}, _GAP_STAR, None, 1.2),
     "3.3.3.3.6": (12, {6: "table3-3"}, _GAP_STAR, 3, 1),

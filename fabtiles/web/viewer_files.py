@@ -69,7 +69,7 @@ def check_integrity(data: bytes, integrity: str | None = None) -> None:
     Traceback (most recent call last):
     ...
     fabtiles.web.viewer_files.ViewerFilesError: the three.js tarball's sha512 is not npm's integrity for three 0.187.0 (a changed or truncated download); nothing was installed: fetch it again, or give the tarball of `npm pack three@0.187.0` with --tarball
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     algorithm, _, digest = (INTEGRITY if integrity is None else integrity).partition("-")
     found = base64.b64encode(hashlib.new(algorithm, data).digest()).decode()
     if found != digest:

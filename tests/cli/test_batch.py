@@ -33,7 +33,7 @@ def test_batch_builds_good_designs_and_reports_broken_ones(tmp_path):
     proc = run_batch(*samples, *broken, "-o", out, "--jobs", "2", "--format", "svg", "--format", "dxf")
     assert proc.returncode == 2
     for name, (_, message) in BROKEN.items():
-        line = [l for l in proc.stderr.splitlines() if l.startswith(f"FAILED {tmp_path / name}")]
+        line = [ln for ln in proc.stderr.splitlines() if ln.startswith(f"FAILED {tmp_path / name}")]
         assert line and message in line[0], proc.stderr
     assert f"{len(samples)} of {len(samples) + len(broken)} designs built, {len(broken)} failed" in proc.stdout
     written = sorted(p.name for p in out.iterdir())

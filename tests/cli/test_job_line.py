@@ -37,7 +37,7 @@ def test_engrave_mode_prints_the_engraved_area(tmp_path):
     design = tmp_path / "d.toml"
     design.write_text(DESIGN.replace('formats = ["dxf", "lbrn2"]', 'formats = ["svg"]\nlaser_mode = "engrave"'))
     built = run("build", design, "-o", tmp_path / "out")
-    ((metres, pierces, area, _),) = JOB.findall(built.output)
+    ((_metres, pierces, area, _),) = JOB.findall(built.output)
     assert pierces == "1" and float(area) > 10  # the outline is the only cut
 
 

@@ -30,6 +30,7 @@ def test_sweep_writes_every_variant_the_sheet_and_the_csv(design, tmp_path):
     assert names == sorted(["index.csv", "index.html"] + [f"{n}{ext}" for n in built
                                                           for ext in (".svg", ".dxf", ".preview.svg")])
     assert "3 of 6 variants built, 3 failed" in res.output
+    assert all(f"FAILED {n} (" in res.output for n in failed)
     assert "ok     small-001 (packing.radius=6, tile.stroke=1.2): wrote 2 files" in res.output
     assert re.search(r"FAILED small-002 \(packing\.radius=6, tile\.stroke=20\): .*tile\.stroke=20: \[tile\] "
                      r"stroke must be > 0 and <= 6 mm", res.output)

@@ -61,7 +61,7 @@ def test_stat_reports_the_layers_and_the_centrelines_length(vpype):
     layers = stat_layers(out)
     drawing = plot_drawing(load_design(SAMPLE))
     assert len(layers) == len(drawing.layers)
-    for (length, up, block), layer in zip(layers.values(), drawing.layers):
+    for (length, _up, block), layer in zip(layers.values(), drawing.layers, strict=True):
         assert f"vp_name: '{layer.name}'" in block
         assert length / PX_PER_MM == pytest.approx(layer.length_mm, rel=1e-3)
     # the pen-down length is the centre-lines' total (the strands layer), within 0.1 %
@@ -88,7 +88,7 @@ def test_options_set_and_cut(vpype):
     (["--pen", "0", SAMPLE], "pen_mm must be"),
 ])
 def test_errors_are_one_line(vpype, args, message):
-    code, out, err = vpype("fabtiles", *args, "stat")
+    code, _out, err = vpype("fabtiles", *args, "stat")
     assert code != 0
     assert "Traceback" not in err
     lines = [x for x in err.splitlines() if x.strip()]

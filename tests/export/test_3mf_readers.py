@@ -220,7 +220,7 @@ def info(cmd, path, tmp_path) -> list[dict]:
 
 def test_prusaslicer_opens_the_components_layout_as_one_object_per_part(files, tmp_path):
     prusa = program("prusa-slicer", "apt-get install prusa-slicer")
-    tile, paths = files
+    _tile, paths = files
     base, pattern = info([prusa, "--loglevel", "1", "--datadir", tmp_path / "data"], paths["relief", "components"],
                          tmp_path)
     assert (float(base["min_z"]), float(base["max_z"])) == pytest.approx((0, B), abs=1e-5)

@@ -14,7 +14,7 @@ def _empty_tile():
 def test_a_tile_without_material_is_an_error_not_a_file(tmp_path, fmt):
     tile = _empty_tile()
     assert tile.region().is_empty
-    with pytest.raises(ft.FabricationError, match="the tile holds no material: .* add a frame"):
+    with pytest.raises(ft.FabricationError, match=r"the tile holds no material: .* add a frame"):
         tile.export(tmp_path / f"t.{fmt}")
     assert list(tmp_path.iterdir()) == []
 

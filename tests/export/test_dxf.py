@@ -149,7 +149,7 @@ def test_strict_profile_refuses_and_writes_nothing(tmp_path):
     strict = replace(PLY, strict=True)
     region, outline = thin_bridge_region()
     path = tmp_path / "out.dxf"
-    with pytest.raises(FabricationError, match="thin_bridge.*strict"):
+    with pytest.raises(FabricationError, match=r"thin_bridge.*strict"):
         write_dxf(path, region=region, outline=outline, profile=strict)
     assert list(tmp_path.iterdir()) == []
     region, outline = star_plate()

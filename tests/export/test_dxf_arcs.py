@@ -4,7 +4,8 @@ The DXF, read back by ezdxf and its arcs (bulges) flattened by ezdxf itself, aga
 material region built again by GEOS with every curve flattened 50 times finer (the tile's
 chord tolerance 1e-4 mm instead of 0.005 mm) and offset by the same half kerf: the even-odd
 area within 0.01 % and the Hausdorff distance within the profile's tolerance. On the samples
-with curves and on random designs with circles, round joins and outline circles. (The seamless hexagon sample, 42 outline circles
+with curves and on random designs with circles, round joins and outline circles. (The seamless hexagon sample, 42
+outline circles
 of 14 mm, takes minutes at that resolution: its arcs are checked by the sample's golden file.)
 """
 

@@ -100,7 +100,7 @@ def _arc_middles(dxf, layers) -> np.ndarray:
         xy, b = raw_vertices(e), bulges(e)
         nxt = np.roll(xy, -1, axis=0)
         arc = b != 0 if is_closed(e) else (b != 0) & (np.arange(len(b)) < len(b) - 1)
-        for (ax, ay), (zx, zy), bb in zip(xy[arc], nxt[arc], b[arc]):
+        for (ax, ay), (zx, zy), bb in zip(xy[arc], nxt[arc], b[arc], strict=True):
             # the arc's middle stands off its chord's middle by the sagitta, c/2 * b, to the right of a/z for b > 0
             dx, dy = zx - ax, zy - ay
             out.append(((ax + zx) / 2 + dy * bb / 2, (ay + zy) / 2 - dx * bb / 2))

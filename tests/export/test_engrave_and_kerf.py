@@ -18,6 +18,7 @@ from fabtiles import HexPacking, ParameterError, ProfileError, Star, Tile
 from fabtiles._profiles import LaserLayers, load_profile
 from fabtiles.export.card import write_card
 from fabtiles.geometry.contours import laser_contours, outline_contours
+import itertools
 
 PLY = load_profile("laser-3mm-plywood")
 ANISO = replace(PLY, kerf_x_mm=0.12, kerf_y_mm=0.3)
@@ -144,7 +145,7 @@ def test_an_edge_moves_by_the_kerf_across_it(n, turn, kx, ky):
         return
     _, (ring,) = laser_contours(part, kerf_mm=kx, kerf_y_mm=ky)
     pts = np.asarray(part.exterior.coords)
-    for a, b in zip(pts[:-1], pts[1:]):
+    for a, b in itertools.pairwise(pts):
         edge = b - a
         normal = np.array([edge[1], -edge[0]]) / np.hypot(*edge)  # outward: the ring runs counter-clockwise
         assert support(ring, normal) == pytest.approx(support(pts, normal) + ellipse_support(normal, kx, ky),

@@ -99,7 +99,7 @@ def test_score_dxf_shows_the_weave(tmp_path):
     checked = 0
     for visits in states.values():
         visits.sort()
-        for (_, a), (_, b) in zip(visits, visits[1:]):
+        for (_, a), (_, b) in itertools.pairwise(visits):
             if a is not None and b is not None:
                 assert a != b, "along a segment the crossings must alternate over, under"
                 checked += 1

@@ -47,7 +47,7 @@ def kit(tmp_path_factory):
 
 
 def test_a_kit_is_two_files_in_registration(kit):
-    t, report, lattice, pieces, _ = kit
+    _t, report, lattice, pieces, _ = kit
     assert report.stats["files"] == [str(lattice), str(pieces)]
     assert not (lattice.parent / "t.dxf").exists()
     assert report.stats["file_offset_mm"] == pytest.approx([OFFSET, OFFSET], abs=1e-9)

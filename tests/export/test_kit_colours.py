@@ -30,7 +30,7 @@ def kit(tmp_path_factory):
 
 
 def test_a_pieces_file_per_face_colour(kit):
-    out, result, models = kit
+    out, result, _models = kit
     names = sorted(p.name for p in out.iterdir())
     # class C (6-point stars) is too small for a piece anywhere: no blue sheet
     assert names == ["kit-lattice.dxf", "kit-pieces-green.dxf", "kit-pieces-ochre.dxf"]

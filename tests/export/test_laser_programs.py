@@ -173,15 +173,15 @@ def test_inkscape_imports_the_dxf_with_every_layer_and_contour(files, tmp_path, 
     svg = run([python, extension, dxf], cwd=INKSCAPE_EXTENSIONS).stdout
     root = ET.fromstring(svg)
     ns = {"s": "http://www.w3.org/2000/svg", "i": "http://www.inkscape.org/namespaces/inkscape"}
-    label = "{%s}label" % ns["i"]
-    imported = {g.get(label): g.findall("s:path", ns) for g in root.iter("{%s}g" % ns["s"])
-                if g.get("{%s}groupmode" % ns["i"]) == "layer" and g.findall("s:path", ns)}
+    label = "{{{}}}label".format(ns["i"])
+    imported = {g.get(label): g.findall("s:path", ns) for g in root.iter("{{{}}}g".format(ns["s"]))
+                if g.get("{{{}}}groupmode".format(ns["i"])) == "layer" and g.findall("s:path", ns)}
     layers = dxf_layers(dxf)
     assert {k: len(v) for k, v in imported.items()} == {k: len(v) for k, v in layers.items()}
     colours = {PLY.layers.inner_cut.name: "#FF0000", PLY.layers.outer_cut.name: "#FF0000",
                PLY.layers.score.name: "#0000FF"}
     for name, paths in imported.items():
-        for p, closed in zip(paths, layers[name]):
+        for p, closed in zip(paths, layers[name], strict=True):
             assert p.get("d").strip().lower().endswith("z") == closed
             assert f"stroke:{colours[name]}" in p.get("style")
     # millimetres: Inkscape's default import scale reads one DXF unit as 1 mm (96 px per inch)
@@ -250,7 +250,7 @@ def test_inkscape_imports_the_dxf_arcs(arc_files):
     svg = run([python, extension, dxf], cwd=INKSCAPE_EXTENSIONS).stdout
     root = ET.fromstring(svg)
     ns = {"s": "http://www.w3.org/2000/svg", "i": "http://www.inkscape.org/namespaces/inkscape"}
-    paths = [p.get("d") for g in root.iter("{%s}g" % ns["s"]) if g.get("{%s}groupmode" % ns["i"]) == "layer"
+    paths = [p.get("d") for g in root.iter("{{{}}}g".format(ns["s"])) if g.get("{{{}}}groupmode".format(ns["i"])) == "layer"
              for p in g.findall("s:path", ns)]
     assert len(paths) == sum(len(v) for v in dxf_layers(dxf).values())
     bulged = sum(int((np.array([p[2] for p in e.get_points("xyb")]) != 0).sum())

@@ -43,7 +43,7 @@ def test_same_contours_as_dxf(tmp_path):
     paths = [(g.get("id"), p.get("d")) for g in groups for p in g.findall("s:path", NS)]
     ents = dxf_entities(dxf)
     assert [layer for layer, _ in paths] == [e[0] for e in ents]
-    for (_, d), e in zip(paths, ents):
+    for (_, d), e in zip(paths, ents, strict=True):
         assert d.startswith("M") and d.endswith("Z")
         pts = parse_path(d)
         pts[:, 1] = -pts[:, 1]  # y flipped back

@@ -87,7 +87,7 @@ def test_the_project_is_the_dxf_contour_for_contour(files, mode):
     got, want = read_lbrn2(paths[mode, "lbrn2"]), dxf_paths(paths[mode, "dxf"])
     names = {int(i): c["name"] for i, c in got["cuts"].items()}
     assert len(got["shapes"]) == len(want)
-    for shape, (layer, closed, verts) in zip(got["shapes"], want):
+    for shape, (layer, closed, verts) in zip(got["shapes"], want, strict=True):
         assert names[shape["index"]] == layer and shape["closed"] == closed
         assert shape["vertices"] == pytest.approx(verts, abs=1e-4)  # 4 decimals
         if closed:  # the first vertex not doubled (a score path may run round a loop back to its start)
@@ -99,7 +99,7 @@ def test_every_layer_carries_the_profiles_settings_and_runs_inner_before_outer(f
     for mode, keys in (("pierced", ["inner_cut", "outer_cut"]), ("score", ["score", "outer_cut"])):
         cuts = read_lbrn2(paths[mode, "lbrn2"])["cuts"]
         by_priority = sorted(cuts.values(), key=lambda c: int(c["priority"]))
-        for c, key in zip(by_priority, keys):
+        for c, key in zip(by_priority, keys, strict=True):
             layer = getattr(PLY.layers, key)
             assert (c["type"], c["name"], float(c["speed"]), float(c["maxPower"]), int(c["numPasses"])) == (
                 "Cut", layer.name, layer.speed_mm_s, layer.power_pct, layer.passes)
@@ -194,7 +194,7 @@ def test_lbrnts_reads_every_cut_setting_and_shape(files):
             (s["index"], len(s["vertices"])) for s in ours["shapes"]]
         # lbrnts 0.0.17 calls a path open only when its primitives are LightBurn's shorthand
         # "LineOpen" (MeerK40t then burns nothing of it): the closed contours it reads right
-        assert all(s["closed"] for s, o in zip(got["shapes"], ours["shapes"]) if o["closed"])
+        assert all(s["closed"] for s, o in zip(got["shapes"], ours["shapes"], strict=True) if o["closed"])
 
 
 # --------------------------------------------------------------------------- settings
@@ -275,7 +275,7 @@ def test_lbrnts_reads_the_arcs_as_beziers_on_the_dxfs_curves(arc_files):
     beziers = sum(sum(s["prims"]) for s in got["shapes"])
     assert beziers >= sum(int((np.array([p[2] for p in e.get_points("xyb")]) != 0).sum()) for e in doc.modelspace())
     tol = PLY.tolerance_mm
-    for shape, ring in zip(got["shapes"], want):
+    for shape, ring in zip(got["shapes"], want, strict=True):
         assert shape["closed"]
         drawn = _drawn(shape["verts"], shape["prims"], True)
         # the Beziers as lbrnts reads them lie on the DXF's arcs (ezdxf's drawing of its bulges)

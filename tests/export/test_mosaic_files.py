@@ -90,14 +90,14 @@ def test_cura_and_lib3mf_read_the_four_parts(built):
 
 
 def test_an_stl_per_colour_in_one_frame(built):
-    out, result, models, _ = built
+    out, result, _models, _ = built
     names = ["navy", "white", "cobalt", "turquoise"]
     files = [out / f"mosaic-iznik-{n}.stl" for n in names]
     assert all(f.exists() for f in files) and not (out / "mosaic-iznik.stl").exists()
     meshes = [trimesh.load(f) for f in files]
     assert all(m.is_watertight and m.is_winding_consistent for m in meshes)
     parts = threemf.read_3mf(out / "mosaic-iznik.3mf")
-    for mesh, part in zip(meshes, parts.values()):
+    for mesh, part in zip(meshes, parts.values(), strict=True):
         # the same body as the 3MF's part, in the same frame
         np.testing.assert_allclose(mesh.bounds, [part.vertices.min(axis=0), part.vertices.max(axis=0)], atol=1e-5)
         assert mesh.volume == pytest.approx(trimesh.Trimesh(part.vertices, part.faces).volume, rel=1e-9)

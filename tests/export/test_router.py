@@ -123,7 +123,7 @@ def test_every_removed_hole_is_reported_and_fill_small_holes_counts_them(tmp_pat
     assert "the tool cannot enter them" in small.message
     holes = [Polygon(h) for h in region.interiors if Polygon(h).buffer(-r, quad_segs=64).is_empty]
     tree = shapely.STRtree(holes)
-    for (x, y), width in zip(small.locations, small.sizes):  # each mark inside a removed hole
+    for (x, y), width in zip(small.locations, small.sizes, strict=True):  # each mark inside a removed hole
         near = tree.query(shapely.Point(x, y), predicate="intersects")
         assert len(near) == 1 and width < 2 * r
     filled = write_dxf(tmp_path / "b.dxf", region=region, outline=outline, profile=ROUTER, fill_small_holes=True)
@@ -163,7 +163,7 @@ def test_inkscape_measures_the_router_svg_as_the_part(tmp_path):
     boxes = {r[0]: np.array([float(v) for v in r[1:]]) * 25.4 / 96 for r in rows}  # px at 96 per inch -> mm
     stroke = float(ET.parse(tmp_path / "t.svg").getroot().find("{http://www.w3.org/2000/svg}g").get("stroke-width"))
     assert boxes["OUTSIDE"][2:] == pytest.approx((150 + stroke,) * 2, abs=0.005)  # the part: no tool offset
-    x, y, w, h = boxes["INSIDE"]
+    x, _y, w, _h = boxes["INSIDE"]
     assert x > boxes["OUTSIDE"][0] and w < boxes["OUTSIDE"][2]
     holes = [b for k, b in boxes.items() if k not in ("INSIDE", "OUTSIDE") and k != rows[0][0]]
     assert len(holes) > 50 and min(min(b[2], b[3]) for b in holes) >= ROUTER.tool_diameter_mm - 0.01
@@ -190,7 +190,8 @@ def test_the_laser_files_are_unchanged_by_the_kind_field(tmp_path):
 @pytest.mark.parametrize("options, error, match", [
     (dict(profile=ROUTER, mode="score"), ft.ParameterError, r"mode must be 'pierced' for router profile"),
     (dict(profile=ROUTER, kerf_mm=0.2), ft.ParameterError,
-     r"kerf_mm must be 0 for router profile 'router-3.175mm-plywood', got 0.2: a router file holds the part contour"),
+     r"kerf_mm must be 0 for router profile 'router-3.175mm-plywood', got 0.2: "
+     r"a router file holds the part contour"),
     (dict(profile=WATERJET, kerf_mm=0), ft.ParameterError,
      r"kerf_mm must be > 0 for waterjet profile 'waterjet-1mm-aluminium' \(the jet's diameter\), got 0"),
     (dict(profile=replace(ROUTER, tool_diameter_mm=-1.0)), ft.ProfileError,

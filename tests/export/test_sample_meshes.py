@@ -131,7 +131,7 @@ def test_sample_step(tmp_path, sample, style):
     from fabtiles.export import step
 
     tile, profile = sample_tile(sample, shrink=(sample.stem, style) != STEP_FULL)
-    region, outline, _, volume, zmax, parts = expectations(tile, profile, style)
+    _region, outline, _, volume, zmax, parts = expectations(tile, profile, style)
     path = tmp_path / "t.step"
     report = tile.export(path, profile=profile, style=style, fill_small_holes=False)
     assert report.format == "step" and report.stats["solids"] == parts

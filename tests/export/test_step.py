@@ -96,7 +96,7 @@ def assert_no_coplanar_neighbours(shape):
             n, p = pl.Axis().Direction(), pl.Location()
             planes.append(((n.X(), n.Y(), n.Z()), n.X() * p.X() + n.Y() * p.Y() + n.Z() * p.Z()))
         (n1, d1), (n2, d2) = planes
-        dot = sum(a * b for a, b in zip(n1, n2))
+        dot = sum(a * b for a, b in zip(n1, n2, strict=True))
         assert not (abs(abs(dot) - 1) < 1e-9 and abs(d1 - (d2 if dot > 0 else -d2)) < 1e-6), planes
 
 
@@ -129,7 +129,7 @@ def test_relief_is_modelled_with_planar_faces_one_per_flat_region(tmp_path, outl
     assert all(abs(p[2]) < 1e-9 for n, p, _ in planes if n[2] < -0.999)
     # each straight side of the outline is one face (corners are snapped to the 2**-10 mm grid)
     ring = shapely.get_coordinates(tile.outline_shape().exterior)[:-1]
-    for a, b in zip(ring, [*ring[1:], ring[0]]):
+    for a, b in zip(ring, [*ring[1:], ring[0]], strict=True):
         d = (b - a) / math.hypot(*(b - a))
         on_side = [f for n, p, f in planes if abs(n[2]) < 1e-9
                    and abs(n[0] * d[0] + n[1] * d[1]) < 1e-4
@@ -162,7 +162,7 @@ def test_occt_volume_is_the_mesh_volume_within_005_percent(tmp_path, style, pres
                 "pierced": tile.region().area * T,
                 "deboss": tile.outline_shape().area * B - tile.region().area * D}[style]
     assert occt_volume(back) == pytest.approx(expected, rel=0.005)
-    x0, y0, z0, x1, y1, z1 = step_bounds(back)
+    _x0, _y0, z0, _x1, _y1, z1 = step_bounds(back)
     assert z0 == pytest.approx(0, abs=1e-3) and z1 == pytest.approx({"relief": B + H, "pierced": T, "deboss": B}[style],
                                                                      abs=1e-3)
 

@@ -176,7 +176,7 @@ def test_bad_input_no_file(tmp_path, shapes, writer, kwargs, exc, msg):
 
 
 def test_bad_geometry(tmp_path, shapes):
-    region, outline = shapes
+    _region, outline = shapes
     with pytest.raises(ParameterError, match="region must be a shapely Polygon"):
         stl.write_stl(tmp_path / "t.stl", region="square", outline=outline, profile="fdm-0.4mm")
     with pytest.raises(ParameterError, match="region must have an area > 0"):
@@ -207,7 +207,8 @@ def test_no_heavy_imports_at_import_time():
     import subprocess
     import sys
 
-    code = ("import sys, fabtiles.export.stl, fabtiles.export.threemf, fabtiles.export.step, fabtiles.geometry.print_checks; "
+    code = ("import sys, fabtiles.export.stl, fabtiles.export.threemf, fabtiles.export.step, "
+            "fabtiles.geometry.print_checks; "
             "print([m for m in ('trimesh', 'manifold3d', 'OCP', 'build123d') if m in sys.modules])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
@@ -255,7 +256,7 @@ def test_defect_on_a_cell_line_is_meshed_again_with_moved_lines(tmp_path, monkey
     stl.write_stl(path, region=region, outline=outline, profile=drawn, stroke=1.0)
     assert shifts[:2] == [0, 1], f"this sheet no longer exercises the moved-lines retry: {shifts}"
     tris = stl.read_stl_triangles(path.read_bytes())
-    verts, faces = sc.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
+    verts, _faces = sc.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
     assert np.ptp(verts, axis=0) == pytest.approx([1200, 600, B + H], abs=1e-5)
 
 
@@ -273,10 +274,10 @@ def test_geos_failure_while_cutting_cells_is_a_fabrication_error(tmp_path, shape
 
 
 def test_read_stl_triangles_refuses_what_is_not_a_binary_stl():
-    with pytest.raises(FabricationError, match="^not a binary STL: shorter than its header$"):
+    with pytest.raises(FabricationError, match=r"^not a binary STL: shorter than its header$"):
         stl.read_stl_triangles(b"solid ascii\n")
     header = b" " * 80
-    with pytest.raises(FabricationError, match="^not a binary STL: 134 bytes for 2 triangles$"):
+    with pytest.raises(FabricationError, match=r"^not a binary STL: 134 bytes for 2 triangles$"):
         stl.read_stl_triangles(header + np.uint32(2).tobytes() + bytes(50))  # one triangle's record, two announced
     tri = np.array([[[0, 0, 0], [1, 0, 0], [0, 1, 0]]], np.float32)
     assert stl.read_stl_triangles(stl.stl_bytes(tri[0], np.array([[0, 1, 2]]))).tolist() == tri.tolist()

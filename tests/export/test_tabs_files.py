@@ -67,10 +67,10 @@ def test_the_dxfs_outer_cut_is_four_pieces_around_gaps_of_tab_mm(dxfs, version):
     # they sit on the square's straight sides)
     assert max(ring.distance(LineString(p)) for p in pieces) < 1e-6
     assert gap_lengths(ring, pieces) == pytest.approx([TAB] * 4, abs=0.01)
-    chords = [np.hypot(*(b[0] - a[-1])) for a, b in zip(pieces, pieces[1:] + pieces[:1])]
+    chords = [np.hypot(*(b[0] - a[-1])) for a, b in zip(pieces, pieces[1:] + pieces[:1], strict=True)]
     assert chords == pytest.approx([TAB] * 4, abs=0.01)
     # the pieces and the gaps bridged make the closed outline again
-    bridges = [LineString([a[-1], b[0]]) for a, b in zip(pieces, pieces[1:] + pieces[:1])]
+    bridges = [LineString([a[-1], b[0]]) for a, b in zip(pieces, pieces[1:] + pieces[:1], strict=True)]
     merged = shapely.line_merge(shapely.union_all([LineString(p) for p in pieces] + bridges))
     assert merged.geom_type == "LineString" and merged.is_closed
     assert Polygon(merged).symmetric_difference(Polygon(ring)).area < 1e-6
@@ -92,7 +92,7 @@ def test_a_frameless_tiles_jagged_outline_gets_its_tabs_on_its_straight_stretche
         assert max(ring.distance(LineString(p)) for p in mine) < 1e-6
         assert gap_lengths(ring, mine) == pytest.approx([TAB] * 4, abs=0.01)
         # each gap on one straight edge of the outline: its ends a straight tab_mm apart
-        chords = [np.hypot(*(b[0] - a[-1])) for a, b in zip(mine, mine[1:] + mine[:1])]
+        chords = [np.hypot(*(b[0] - a[-1])) for a, b in zip(mine, mine[1:] + mine[:1], strict=True)]
         assert chords == pytest.approx([TAB] * 4, abs=0.01)
 
 

@@ -11,6 +11,7 @@ from shapely.geometry import LineString, Point, Polygon, box
 from fabtiles.geometry.arcs import (Curve, arc_runs, arc_runs_many, beziers, bezier_error, bulge_path, curves,
                                     fit_distance, piece_lengths)
 from hypothesis_scale import examples
+import itertools
 
 
 def _ring(geom) -> np.ndarray:
@@ -86,7 +87,7 @@ def test_round_joins_of_a_stroked_path_are_arcs_exactly_at_the_joins(points, r, 
     tol = r * (1 - np.cos(1.5 * np.pi / (4 * quad_segs))) * 1.01
     runs = arc_runs(ring, tolerance_mm=tol)
     eps = fit_distance(tol)
-    for first, last, c, rad in zip(runs.first, runs.last, runs.centre, runs.radius):
+    for first, last, c, rad in zip(runs.first, runs.last, runs.centre, runs.radius, strict=True):
         # every arc is a join or a cap: its centre is a vertex of the path, its radius the stroke's
         assert np.hypot(*(np.asarray(points) - c).T).min() == pytest.approx(0, abs=1e-6)
         assert rad == pytest.approx(r, abs=1e-6)
@@ -98,7 +99,7 @@ def test_round_joins_of_a_stroked_path_are_arcs_exactly_at_the_joins(points, r, 
     # path vertex (a join or a cap of >= 3 chords) is covered by arcs, and nothing else is
     n = len(ring)
     covered = np.zeros(n, dtype=bool)
-    for first, last in zip(runs.first, runs.last):
+    for first, last in zip(runs.first, runs.last, strict=True):
         covered[np.arange(first, last + (n if last < first else 0) + 1) % n] = True
     dist = np.hypot(*(ring[:, None, :] - np.asarray(points)[None, :, :]).transpose(2, 0, 1))
     on = np.abs(dist - r) <= 1e-6
@@ -106,7 +107,7 @@ def test_round_joins_of_a_stroked_path_are_arcs_exactly_at_the_joins(points, r, 
     start = int(np.flatnonzero(np.r_[label, label[0]][1:] != label)[0]) + 1 if len(set(label)) > 1 else 0
     rolled, cov = np.roll(label, -start), np.roll(covered, -start)
     bounds = np.flatnonzero(np.diff(np.r_[-2, rolled, -2]) != 0)
-    for a, b in zip(bounds[:-1], bounds[1:]):
+    for a, b in itertools.pairwise(bounds):
         if rolled[a] >= 0 and b - a >= 4:
             assert cov[a:b].all()
     assert not cov[rolled < 0].any()
@@ -131,7 +132,7 @@ def test_an_ellipse_is_split_into_arcs_that_fit():
     ring = np.column_stack([10 * np.cos(t), 6 * np.sin(t)])
     runs = arc_runs(ring, tolerance_mm=0.01)
     assert not runs.full and len(runs.first) > 4
-    for first, last, c, rad in zip(runs.first, runs.last, runs.centre, runs.radius):
+    for first, last, c, rad in zip(runs.first, runs.last, runs.centre, runs.radius, strict=True):
         pts = _run_vertices(ring, first, last)
         assert len(pts) >= 4
         assert np.abs(np.hypot(*(pts - c).T) - rad).max() <= fit_distance(0.01)

@@ -36,7 +36,7 @@ def late_enclosures(paths) -> list:
     tree = shapely.STRtree(polys)
     probe = shapely.points(np.array([p[0] for p in paths]))
     i, j = tree.query(probe, predicate="within")
-    return [(a, b) for a, b in zip(i.tolist(), j.tolist()) if a != b and b < a]
+    return [(a, b) for a, b in zip(i.tolist(), j.tolist(), strict=True) if a != b and b < a]
 
 
 @pytest.mark.parametrize("sample", SAMPLES, ids=lambda p: p.stem)

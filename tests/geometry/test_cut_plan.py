@@ -35,7 +35,7 @@ def test_a_pocket_kit_needs_a_hole_large_enough_for_a_piece():
     # holes of 0.5 mm: far under the profile's smallest piece (twice min_hole_mm, 2.4 mm)
     holes = [box(x, y, x + 0.5, y + 0.5) for x in range(5, 35, 5) for y in range(5, 35, 5)]
     region = PLATE.difference(shapely.union_all(holes))
-    with pytest.raises(ParameterError, match="^the tile has no hole large enough for a piece; nothing to pocket$") as err:
+    with pytest.raises(ParameterError, match=r"^the tile has no hole large enough for a piece; nothing to pocket$") as err:
         plan_kit(region, PLATE, profile="laser-3mm-plywood", inlay_base="pocket")
     assert err.value.param == "region"
 

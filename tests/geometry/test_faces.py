@@ -7,6 +7,7 @@ share a class, pieces cut by the frame included; letters follow the total area.
 """
 
 import math
+from itertools import pairwise
 from pathlib import Path
 
 import numpy as np
@@ -83,11 +84,11 @@ def test_faces_and_region_partition_the_outline(classed):
 
 
 def test_counts_areas_and_letters(classed):
-    tile, fc = classed
+    _tile, fc = classed
     cls = fc.classes
     assert [c.letter for c in cls] == [chr(ord("A") + k) for k in range(len(cls))]
     areas = [c.area_mm2 for c in cls]
-    assert all(a >= b * (1 - 1e-9) for a, b in zip(areas, areas[1:]))  # ties within float noise
+    assert all(a >= b * (1 - 1e-9) for a, b in pairwise(areas))  # ties within float noise
     assert sum(c.count for c in cls) == len(fc.faces) == len(fc.labels)
     np.testing.assert_allclose(np.bincount(fc.labels, weights=shapely.area(fc.faces)), areas, rtol=1e-12)
     for c in cls:
@@ -149,7 +150,7 @@ def test_translates_share_a_class(name):
     tree = shapely.STRtree(fc.faces)
     checked = 0
     for dx, dy in moves:
-        moved = shapely.transform(inside, lambda c: c + (dx, dy))
+        moved = shapely.transform(inside, lambda c, dx=dx, dy=dy: c + (dx, dy))
         i, j = tree.query(moved, predicate="within")
         # face i moved lies in face j (when i is the smaller: i is a piece of j's translate, or equal)
         keep = areas[i] <= areas[j] * (1 + 1e-6)
@@ -298,7 +299,7 @@ def test_random_motifs_on_a_packing(n, r1, r2, stroke, frame, join, outline, pac
     total = shapely.area(fc.faces).sum()
     assert total + region.area == pytest.approx(outline.area, rel=1e-4)
     areas = [c.area_mm2 for c in fc.classes]
-    assert all(a >= b * (1 - 1e-9) for a, b in zip(areas, areas[1:]))
+    assert all(a >= b * (1 - 1e-9) for a, b in pairwise(areas))
     cut = _cut(tile, fc.faces)
     areas = shapely.area(fc.faces)
     for k in range(len(fc.classes)):

@@ -108,7 +108,7 @@ def test_each_piece_and_each_hole_carry_their_face_class_letter(built):
     _, lattice_doc = _cuts(folder / "kit-lattice.dxf")
     strokes = _scores(lattice_doc)
     checked = 0
-    for hole, letter in zip(kit.holes, want):
+    for hole, letter in zip(kit.holes, want, strict=True):
         inside = [s for s in strokes if shapely.contains(hole, shapely.LineString(s))]
         if not inside:  # too small a hole for a letter
             continue
@@ -121,7 +121,7 @@ def test_each_piece_and_each_hole_carry_their_face_class_letter(built):
         assert _canonical(inside, got.min(axis=0), scale) == _canonical(glyph, ref.min(axis=0), 1.0)
     assert checked == len(kit.holes)  # every hole of this kit is large enough for its letter
     # each nested piece holds its own letter's strokes (the kit's holes here are all of one class or more)
-    pieces, pieces_doc = _cuts(folder / "kit-pieces.dxf")
+    _pieces, pieces_doc = _cuts(folder / "kit-pieces.dxf")
     piece_strokes = _scores(pieces_doc)
     assert len(piece_strokes) == sum(len(text_paths(letter, height_mm=1.0)) for letter in want)
 

@@ -39,7 +39,7 @@ def test_small_holes_reported_with_locations():
     assert (x1, y1) == (10.4, 10.4)
     assert x2 == 30.25 and 30.25 <= y2 <= 39.75  # anywhere along the slot's middle line
     # each location carries the hole's width there (its largest inscribed disc)
-    sizes = dict(zip(f.locations, f.sizes))
+    sizes = dict(zip(f.locations, f.sizes, strict=True))
     assert sizes[(x1, y1)] == pytest.approx(0.8, abs=0.02) and sizes[(x2, y2)] == pytest.approx(0.5, abs=0.02)
     assert f.worst == pytest.approx(0.5, abs=0.02) and f.unit == "mm"
 

@@ -25,12 +25,12 @@ def check_nesting(n: Nesting, parts, gap: float) -> None:
     """Every part once, its placed outline the part moved rigidly, inside its sheet, ``gap`` from the others."""
     w, h = n.sheet_mm
     assert [p.id for p in n.placements] == [i for i, _ in parts]
-    for (pid, shape), p, outline in zip(parts, n.placements, n.outlines):
+    for (_pid, shape), p, outline in zip(parts, n.placements, n.outlines, strict=True):
         moved = p.place(shapely.Polygon(shape.exterior))
         assert shapely.hausdorff_distance(moved, outline) < 1e-3 * 1e-3  # under 1 um
         # the inverse: turned back and moved back, the outline is the part
         a = np.radians(p.rotation)
-        back = shapely.transform(outline, lambda xy: (xy - p.translation) @ np.array(
+        back = shapely.transform(outline, lambda xy, p=p, a=a: (xy - p.translation) @ np.array(
             [[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]))
         assert shapely.hausdorff_distance(back, shapely.Polygon(shape.exterior)) < 1e-6
         x0, y0, x1, y1 = outline.bounds

@@ -160,11 +160,11 @@ def test_fill_print_holes_fills_only_what_no_nozzle_disc_fits(style):
     assert n == 2  # the 1 micron sliver goes uncounted
     assert len(filled.interiors) == 2
     assert filled.area == pytest.approx(plate.area + 0.3 * 0.3 + 0.35 * 4 + 1e-6, rel=1e-9)
-    assert not [f for f in check_print(filled, box(0, 0, 30, 30), FDM, style=style).findings]
+    assert not list(check_print(filled, box(0, 0, 30, 30), FDM, style=style).findings)
 
 
 def test_a_deboss_with_only_too_narrow_grooves_is_refused():
-    with pytest.raises(FabricationError, match="every groove of this deboss is narrower than min_hole_mm = 0.8"):
+    with pytest.raises(FabricationError, match=r"every groove of this deboss is narrower than min_hole_mm = 0.8"):
         fill_print_holes(box(2, 2, 2.3, 20), box(0, 0, 30, 30), FDM, "deboss")
 
 

@@ -45,7 +45,7 @@ def test_mixed_tiles_fill_and_centrelines():
 def test_too_many_copies():
     with pytest.raises(FabricationError, match="do not fit on the 600 x 400 mm bed"):
         layout_sheet([star_plate(size=100)], PLY, copies=40)
-    with pytest.raises(ParameterError, match="gap_mm must be a finite number > 0.15"):
+    with pytest.raises(ParameterError, match=r"gap_mm must be a finite number > 0.15"):
         layout_sheet([star_plate(size=100)], PLY, gap_mm=0.1)
     with pytest.raises(ParameterError, match="copies must be an integer"):
         layout_sheet([star_plate(size=100)], PLY, copies=0)

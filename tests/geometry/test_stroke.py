@@ -39,7 +39,7 @@ def test_stroked_region_equals_geos_buffer_away_from_joins():
     # Round joins and caps: the stroked region is the GEOS buffer of the centre-lines.
     seg = ft.Star.preset("table3-3").segments() * 0.1
     ours = stroke.to_shapely(stroke.stroke_cross_section(seg, 1.0, join="round", tolerance=0.001))
-    geos = MultiLineString([s for s in seg]).buffer(0.5, quad_segs=64)
+    geos = MultiLineString(list(seg)).buffer(0.5, quad_segs=64)
     assert ours.is_valid
     assert ours.symmetric_difference(geos).area < 1e-3 * geos.area
 

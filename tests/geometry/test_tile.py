@@ -80,7 +80,8 @@ def test_corner_radius_rounds_the_outline():
         (("square", "big"), {}, r"size must be a number or a \(width, height\) pair in mm, got 'big'"),
         (("square", -5), {}, r"size must be a finite number > 0, got -5"),
         (("rectangle", (10, float("inf"))), {}, r"size\[1\] must be a finite number > 0, got inf"),
-        (("square", 9), dict(frame=5), r"tile size \(9, 9\) mm is too small for frame 5 mm: the square must be wider than twice the frame \(10 mm\)"),
+        (("square", 9), dict(frame=5), r"tile size \(9, 9\) mm is too small for frame 5 mm: "
+                                        r"the square must be wider than twice the frame \(10 mm\)"),
         (("rectangle", (100, 10)), dict(frame=5), r"too small for frame 5 mm"),
         (("square", 100), dict(frame=-1), r"frame must be a finite number >= 0, got -1"),
         (("square", 100), dict(stroke=0), r"stroke must be a finite number > 0, got 0"),
@@ -201,7 +202,7 @@ def test_miter_keeps_star_tips_sharp(miter_limit, reach):
     tips, rays = _tips(tile)
     assert len(tips) == 8
     others = {j: tile.replace(join=j).region() for j in ("bevel", "round")}
-    for tip, ray in zip(tips, rays):
+    for tip, ray in zip(tips, rays, strict=True):
         assert tile.region().contains(Point(tip + 0.97 * reach * h * ray))
         assert not tile.region().contains(Point(tip + 1.03 * reach * h * ray))
         assert tile.region().contains(Point(tip + 2 * h * ray))

@@ -46,7 +46,7 @@ def reference_rays(tiling, angle, gap, reach):
     rays = []
     for i in range(-n, n + 1):
         for j in range(-n, n + 1):
-            for c, p, a in zip(cell.centres * EDGE, cell.sides, cell.angles):
+            for c, p, a in zip(cell.centres * EDGE, cell.sides, cell.angles, strict=True):
                 c = c + i * lat[0] + j * lat[1]
                 if np.abs(c).max() > reach:
                     continue
@@ -176,7 +176,7 @@ def test_a_gaps_two_rays_start_contact_gap_apart_on_their_edge(tiling, gap):
     ends = segs.reshape(-1, 2)
     cell = unit_cell(tiling)
     checked = 0
-    for c, p, a in zip(cell.centres * EDGE, cell.sides, cell.angles):
+    for c, p, a in zip(cell.centres * EDGE, cell.sides, cell.angles, strict=True):
         v = corners(c, int(p), a, EDGE)
         for k in range(p):
             a0, a1 = v[k], v[(k + 1) % p]

@@ -126,7 +126,7 @@ def test_outline_circles_are_fine_chords_through_the_tangency_points():
     centres, radii = p.circles(window)
     assert len(chords) > 0
     # Every chord end lies on one of the circles, and sagitta <= 0.005 mm.
-    for c, r in zip(centres, radii):
+    for c, r in zip(centres, radii, strict=True):
         mine = chords[np.abs(np.hypot(*(chords[:, 0] - c).T) - r) < 1e-9]
         length = np.linalg.norm(mine[:, 1] - mine[:, 0], axis=1)
         sagitta = r - np.sqrt(r**2 - (length / 2) ** 2)

@@ -77,7 +77,7 @@ def test_preset_segments_follow_the_spec(name):
     seg = star.segments()
     assert seg.shape == (PRESET_COUNTS[name], 2, 2)
     assert seg.dtype == np.float64
-    expected = spec_segments(**{k: v for k, v in star.params().items()})
+    expected = spec_segments(**dict(star.params().items()))
     assert canon(seg) == canon(expected)
 
 

@@ -49,7 +49,7 @@ def check_brep(brep):
         for loop in face.loops:
             pts = np.array(_loop_points(brep, loop))
             assert np.abs((pts - face.origin) @ n / np.linalg.norm(n)).max() < 1e-9, "planar"
-            for a, b in zip(loop, [*loop[1:], loop[0]]):  # loops are closed chains
+            for a, b in zip(loop, [*loop[1:], loop[0]], strict=True):  # loops are closed chains
                 end = brep.edges[a][1] if a >= 0 else brep.edges[~a][0]
                 start = brep.edges[b][0] if b >= 0 else brep.edges[~b][1]
                 assert end == start
@@ -134,7 +134,7 @@ def test_any_stack_is_closed_planar_and_has_the_right_volume(layers):
         for loop in face.loops:
             for e in loop:
                 owner.setdefault(e if e >= 0 else ~e, []).append(f)
-    for e, (f1, f2) in owner.items():
+    for f1, f2 in owner.values():
         a, c = b.faces[f1], b.faces[f2]
         assert not (a.normal == c.normal and np.dot(np.subtract(a.origin, c.origin), a.normal) == 0)
 

@@ -75,7 +75,7 @@ def test_dips_crossed_by_cell_lines_are_cut_with_the_region(kind, monkeypatch):
 
 
 def test_dips_are_holes_of_the_full_level():
-    r, o, d = woven()
+    r, _o, d = woven()
     full, dip = split_region(r, d)
     assert full.is_valid and full.area + dip.area == pytest.approx(r.area)
     assert shapely.get_num_interior_rings(shapely.get_parts(full)).sum() > \

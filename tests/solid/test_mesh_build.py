@@ -46,7 +46,7 @@ def test_check_shapes_passes_good_shapes_through():
 
 
 def test_topology_of_no_pieces_is_refused():
-    with pytest.raises(FabricationError, match="^nothing to mesh: the material region is empty$"):
+    with pytest.raises(FabricationError, match=r"^nothing to mesh: the material region is empty$"):
         topology(Coverage(pieces=[], levels=np.array([0.0, 1.0])))
 
 
@@ -62,6 +62,6 @@ def test_topology_refuses_an_edge_of_three_pieces():
     # so the third is a triangle on the other side sharing the edge
     left, right = MultiPolygon([box(0, 0, 1, 1)]), MultiPolygon([box(1, 0, 2, 1)])
     third = MultiPolygon([shapely.Polygon([(1, 0), (1, 1), (3, 0.5)])])
-    with pytest.raises(FabricationError, match="^cannot mesh the region: an edge is shared by more than two pieces$"):
+    with pytest.raises(FabricationError, match=r"^cannot mesh the region: an edge is shared by more than two pieces$"):
         topology(Coverage(pieces=[(left, 1), (right, 1), (third, 1)], levels=np.array([0.0, 1.0])),
                  triangulate=False)

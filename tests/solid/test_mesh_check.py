@@ -85,7 +85,7 @@ def test_a_good_mesh_passes_both_checks_alike():
     cube = trimesh.creation.box()
     a = sc.check_indexed(cube.vertices, cube.faces, volume=1.0, bodies=1)
     b = sc.check_triangles(corners32(cube.vertices, cube.faces), volume=1.0, bodies=1)
-    assert all(np.array_equal(x, y) for x, y in zip(a, b))
+    assert all(np.array_equal(x, y) for x, y in zip(a, b, strict=True))
 
 
 @settings(max_examples=examples(80), deadline=None)
@@ -143,7 +143,7 @@ def test_a_bad_ear_clipping_falls_back_to_manifold3d(monkeypatch):
     ij = np.round(np.asarray(notched.exterior.coords)[:-1] / mb.QUANTUM).astype(np.int64)
     nxt = np.r_[np.arange(1, len(ij)), 0]
     assert tr.ear_clip(ij, np.array([0, len(ij)]), np.array([0, 1]), nxt) is None
-    v, f = mesh_of([(notched, 2)])  # meshed all the same, by manifold3d: watertight
+    _v, f = mesh_of([(notched, 2)])  # meshed all the same, by manifold3d: watertight
     assert calls and len(f) == 2 * (len(ij) - 2) + 2 * 2 * len(ij)  # top, bottom, walls over two levels
 
 

@@ -47,7 +47,7 @@ def _specs(faces_a, faces_b, *, shared=False):
 @given(st.lists(st.tuples(st.floats(5, 35), st.floats(5, 25), st.floats(1.0, 3.0)), min_size=2, max_size=5),
        st.sampled_from([0.0, 0.4]), st.booleans())
 def test_the_parts_tile_the_outline_and_weigh_their_areas(holes, inset, shared):
-    region, faces = _tile(holes)
+    region, _faces = _tile(holes)
     parts_geom = shapely.get_parts(OUTLINE.difference(region))
     a, b = parts_geom[::2], parts_geom[1::2]
     model = print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=_specs(a, b, shared=shared),
@@ -125,4 +125,4 @@ def test_a_part_that_cannot_be_meshed_is_refused():
                         fill_small_holes=False)
     with pytest.raises(FabricationError, match=r"the part '[a-z]+ \([a-zA-Z, ]+\)' mesh is not watertight as a "
                                                r"slicer reads it"):
-        model.parts
+        _ = model.parts

@@ -58,7 +58,7 @@ def test_the_model_and_the_api_make_the_same_parts():
     region, outline = _region([(10, 10, 3), (30, 20, 2.5)])
     api = checked_parts(region, outline, STACK)
     model = print_model(region, outline, profile="fdm-0.4mm", style="relief")
-    model.fused  # the STL's body made first, as a build writing STL and 3MF does
+    _ = model.fused  # the STL's body made first, as a build writing STL and 3MF does
     for name, part in model.parts.items():
         np.testing.assert_array_equal(part.mesh.vertices, api[name].vertices)
         np.testing.assert_array_equal(part.mesh.faces, api[name].faces)

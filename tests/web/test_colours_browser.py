@@ -53,7 +53,7 @@ def test_palette_and_pickers_fill_the_faces(page, server):
     _wait_faces(page, "D", iznik.faces[3].hex)
     rows = page.locator("#face-classes .face-row")
     assert rows.count() == 4
-    assert re.fullmatch(r"[\d,]+ × .+", rows.nth(0).locator(".what").text_content())
+    assert re.fullmatch(r"[\d,]+ × .+", rows.nth(0).locator(".what").text_content())  # noqa: RUF001 - the page's sign
     assert page.input_value("#band_colour") == iznik.band.hex and page.input_value("#base_colour") == iznik.base.hex
 
     # a class's picker changes that class's fill only, and the URL keeps it

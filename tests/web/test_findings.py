@@ -56,7 +56,7 @@ def test_default_dxf_has_no_hole_or_bridge_under_the_limits(client, tmp_path):
     edges = np.array([shapely.get_exterior_ring(p) for p in [*inner, outer]])
     gap = profile.min_feature_mm + kerf - 0.01
     a, b = shapely.STRtree(edges).query(edges, predicate="dwithin", distance=gap)
-    close = [(i, j) for i, j in zip(a, b) if i < j]
+    close = [(i, j) for i, j in zip(a, b, strict=True) if i < j]
     assert not close, f"{len(close)} bridges under {profile.min_feature_mm} mm, e.g. {close[:3]}"
 
 

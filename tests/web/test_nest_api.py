@@ -58,7 +58,7 @@ def test_the_zip_holds_one_dxf_per_sheet_that_ezdxf_reads(client, answer, tmp_pa
     for name in names:
         doc = ezdxf.readfile(tmp_path / name)
         for e in doc.modelspace().query("LWPOLYLINE"):  # every cut path on its sheet (the kerf's 0.075 mm inside)
-            xs, ys = zip(*((p[0], p[1]) for p in e.get_points()))
+            xs, ys = zip(*((p[0], p[1]) for p in e.get_points()), strict=True)
             assert min(xs) >= -1e-6 and max(xs) <= 120 + 1e-6 and min(ys) >= -1e-6 and max(ys) <= 80 + 1e-6
 
 

@@ -40,7 +40,7 @@ def test_nest_draws_the_sheets_and_downloads_their_zip(page, server, tmp_path):
     assert page.locator("#sheets svg path.part").count() == 3
     box = page.locator("#sheets figure.sheet svg").first.bounding_box()
     assert box["width"] <= 1280 and box["height"] > 0  # scaled to fit the page, not at true size
-    assert "3 parts on 2 sheets of 100 × 60 mm" in page.text_content("#summary")
+    assert "3 parts on 2 sheets of 100 × 60 mm" in page.text_content("#summary")  # noqa: RUF001 - the page's sign
 
     with page.expect_download() as info:
         page.click("#download")

@@ -39,7 +39,7 @@ def _pixels(page) -> np.ndarray:
 
 def _colour_counts(rgb: np.ndarray) -> dict:
     """Pixels of the background, the light base (warm: red over blue) and the dark blue pattern."""
-    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    r, _g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
     background = (np.abs(rgb - [0xEE, 0xF1, 0xF5]).sum(axis=-1) < 12)
     base = ~background & (r > 150) & (r > b + 12)
     pattern = ~background & (b > r + 40) & (r < 120)
@@ -164,7 +164,7 @@ def test_a_mosaic_shows_its_parts_in_their_colours(page, server):
     _wait_model(page)
     assert page.get_attribute("#view3d", "data-parts") == ",".join(parts)
     shown = page.get_attribute("#view3d", "data-colours").split(",")
-    assert len(shown) == len(parts) and all(_close(a, b) for a, b in zip(shown, expected)), (shown, expected)
+    assert len(shown) == len(parts) and all(_close(a, b) for a, b in zip(shown, expected, strict=True)), (shown, expected)
     caption = page.text_content("#view3d-caption")
     assert all(p in caption for p in parts)
 

@@ -51,7 +51,7 @@ def test_changed_tarball_is_refused(tmp_path):
 def test_tarball_missing_a_module(tmp_path, monkeypatch):
     data = _tarball({"LICENSE": b"MIT"})
     monkeypatch.setattr(viewer_files, "INTEGRITY", _integrity(data))
-    with pytest.raises(viewer_files.ViewerFilesError, match="the three.js tarball has no build/three.module.js"):
+    with pytest.raises(viewer_files.ViewerFilesError, match=r"the three.js tarball has no build/three.module.js"):
         viewer_files.install(data, tmp_path / "three")
 
 
@@ -70,7 +70,8 @@ def test_cli_bad_tarball_is_one_line_exit_2(tmp_path):
     res = CliRunner().invoke(cli, ["install-viewer", "--tarball", str(bad)])
     assert res.exit_code == 2
     assert res.output.strip().splitlines() == [
-        "fabtiles: error: the three.js tarball's sha512 is not npm's integrity for three 0.187.0 (a changed or truncated "
+        "fabtiles: error: the three.js tarball's sha512 is not npm's integrity for three 0.187.0 "
+        "(a changed or truncated "
         "download); nothing was installed: fetch it again, or give the tarball of `npm pack three@0.187.0` "
         "with --tarball"]
 

@@ -1,4 +1,5 @@
-"""What the form is made from: the schema of the design keys, the presets, tilings, profiles and defaults, the gallery."""
+"""What the form is made from: the schema of the design keys, the presets, tilings, profiles and defaults,
+the gallery."""
 
 from __future__ import annotations
 

@@ -82,7 +82,8 @@ def read_body(body, *, limits: _limits.Limits) -> dict:
     entries = body.get("designs")
     if not isinstance(entries, list) or not entries:
         raise NestError("designs must be a non-empty list of {query, count}: give at least one design", "designs")
-    designs, names = [], {}
+    designs: list = []
+    names: dict = {}
     for k, entry in enumerate(entries):
         where = f"designs[{k}]"
         if not isinstance(entry, dict) or not isinstance(entry.get("query", ""), str):
@@ -147,7 +148,7 @@ def nest_files(body, *, limits: _limits.Limits):
         field = getattr(exc, "field", None)
         if field is None:
             param = getattr(exc, "param", None)
-            field = _FIELDS.get(param, "designs")  # the rest (profiles, inlay, segments) are the designs' own
+            field = _FIELDS.get(param or "", "designs")  # the rest (profiles, inlay, segments) are the designs' own
         raise NestError(user_message(exc, None), field) from exc
 
 
