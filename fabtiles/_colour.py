@@ -127,7 +127,7 @@ def parse_colour(value, *, param: str = "colour", palette=None) -> Colour:
         if others:
             where = ", ".join(f"{p}.{name}" for p in others)
             raise ParameterError(f"{param} {value!r} is a colour of several palettes, not of this design's "
-                                 f"({pal.name}); name one: {where} (or give #rrggbb)", param=param)
+                                 f"({pal.name if pal else None}); name one: {where} (or give #rrggbb)", param=param)
         known = list(webcolors.names("css3")) + sorted({c.name for p in PALETTES.values() for c in _colours_of(p)})
         hint = did_you_mean(name, known)
         raise ParameterError(f"{param} {value!r} is not a CSS or palette colour name{f' ({hint})' if hint else ''}; "

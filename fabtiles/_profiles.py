@@ -299,7 +299,7 @@ def _unknown_profile(name: str, kind: str | None) -> str:
     if other and other_score >= mine_score:  # as near as any of the kind meant: said apart, with its kind
         hints.append(f"a {kinds[other]} profile is near: {other!r}")
     hint_text = f" ({'; '.join(h for h in hints if h)})" if any(hints) else ""
-    by_kind = {}
+    by_kind: dict[str, list[str]] = {}
     for n in slot:
         by_kind.setdefault(kinds[n], []).append(n)
     if len(by_kind) > 1:

@@ -203,7 +203,7 @@ def _made(models: Models, f, name: str, file_name: str | None, failed: dict):
 
 def refusal_error(refused: list[Refused]) -> FabtilesError:
     """The error of a build whose every format was refused: the one error when they share it, else all named."""
-    if len({r.reason for r in refused}) == 1:
+    if len({r.reason for r in refused}) == 1 and refused[0].error is not None:
         return refused[0].error
     return FabricationError("formats refused: " + "; ".join(f"{r.format}: {r.reason}" for r in refused))
 
@@ -223,7 +223,10 @@ def write_files(models: Models, formats, outdir, name: str, *, file_name: str | 
     from .._io import atomic_write
     from ..export.formats import FORMATS
 
-    reports, contents, refused, failed = [], [], [], {}
+    reports: list = []
+    contents: list = []
+    refused: list[Refused] = []
+    failed: dict = {}
     for fmt in formats:
         f = FORMATS[fmt]
         try:

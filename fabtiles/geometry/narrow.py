@@ -226,7 +226,7 @@ def check_pattern_kept(report, before, after, outline, *, limit_mm: float, limit
         # the widest filled openings first, until they bring back enough area
         order = np.argsort(-widths, kind="stable")
         need = PATTERN_KEPT * open_before - kept * open_before
-        reach = np.searchsorted(np.cumsum(shapely.area(filled)[order]), need)
+        reach = int(np.searchsorted(np.cumsum(shapely.area(filled)[order]), need))
         w = float(widths[order[min(reach, n - 1)]])
         m = limit_mm
         ways = []

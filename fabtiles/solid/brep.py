@@ -538,7 +538,8 @@ def _unpinched(pieces: list) -> list:
     if not len(bad):
         return pieces
     owner = np.repeat(np.arange(len(pieces)), [len(p) for p in parts])
-    fixed, added = {}, []
+    fixed: dict[int, list] = {}
+    added: list[tuple[float, ...]] = []
     for i in bad.tolist():
         poly = flat[i]
         split = shapely.make_valid(poly, method="structure", keep_collapsed=False)
@@ -551,8 +552,8 @@ def _unpinched(pieces: list) -> list:
         added.extend(old)  # the touching vertices among them, to be put into the neighbours' edges
     if not fixed:
         return pieces
-    pins = np.unique(np.asarray([c for c in added], float), axis=0)
-    out = [[] for _ in pieces]
+    pins = np.unique(np.asarray(added, dtype=np.float64), axis=0)
+    out: list[list] = [[] for _ in pieces]
     for i, poly in enumerate(flat):
         for g in fixed.get(i, [poly]):
             out[owner[i]].append(_with_points_on_edges(g, pins))
@@ -970,7 +971,7 @@ def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0, ra
     kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
     layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
     cov, cells = _face_coverage(layers, bottom, _cells_for_faces(layers))
-    sides, chords = _sides(part.outline), frozenset()
+    sides, chords = _sides(part.outline), frozenset[tuple]()
     for _ in range(CHORD_ROUNDS):
         brep = planar_brep(cov, sides=sides, tolerance_mm=tolerance_mm, radii=radii, cells=cells, chords=chords)
         crossing = _crossing_arcs(brep)
