@@ -1,7 +1,7 @@
 """``fabtiles build``: build a design file into output files.
 
 The command parses its arguments and prints; the work is done by the build
-pipeline, :func:`fabtiles.build.build_design` (all or nothing: on an error,
+pipeline, :func:`fabtiles.making.build_design` (all or nothing: on an error,
 exit status 2, no new or partial file and no existing file changed).
 
 Sheets: with ``--sheet`` (as many copies as fit) or ``--copies N`` the laser
@@ -18,7 +18,7 @@ from pathlib import Path
 
 import click
 
-from ..design import FORMATS, design_notes, load_design, override_notes
+from ..designs.design_file import FORMATS, design_notes, load_design, override_notes
 
 
 def single_file_target(output, formats):
@@ -89,7 +89,7 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
     fabtiles build samples/rosette.toml -o out/ --copies 12 --format dxf
     fabtiles build samples/sheet-600x400.toml -o out/
     """
-    from ..build import build_design
+    from ..making import build_design
 
     target = single_file_target(outdir, formats)
     design = load_design(design_file, overrides=overrides)

@@ -42,9 +42,9 @@ from dataclasses import dataclass
 import shapely
 from shapely.geometry import Point, box
 
-from .._errors import ParameterError
-from .._profiles import load_profile
-from .._schema import key
+from ..core.errors import ParameterError
+from ..machines.profiles import load_profile
+from ..core.schema import key
 from .inlay import piece_of_hole
 from .stroke_font import text_paths, text_width
 

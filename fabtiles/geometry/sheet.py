@@ -22,9 +22,9 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .._errors import FabricationError, ParameterError
-from .._profiles import load_profile
-from .._validate import check_float, check_int
+from ..core.errors import FabricationError, ParameterError
+from ..machines.profiles import load_profile
+from ..core.validate import check_float, check_int
 
 GAP_EXTRA_MM = 2.0
 """Default gap between tiles: the kerf plus this much."""

@@ -14,9 +14,9 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from .._errors import ParameterError
-from .._report import distinct
-from .._validate import check_choice, check_float
+from ..core.errors import ParameterError
+from ..core.report import distinct
+from ..core.validate import check_choice, check_float
 from ..pattern.archimedean import ArchimedeanPacking
 from ..pattern.packing import Packing
 from ..pattern.star import Star
@@ -115,7 +115,7 @@ class TileGeometry:
     >>> TileGeometry("square", 60, pack, join="zigzag")
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: 'zigzag' is not a valid join, must be one of: miter, round, bevel
+    fabtiles.core.errors.ParameterError: 'zigzag' is not a valid join, must be one of: miter, round, bevel
     """
 
     def __init__(self, outline, size, pattern, *, frame=0.0, stroke=1.0, join="miter",

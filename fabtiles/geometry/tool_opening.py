@@ -44,8 +44,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import shapely
 
-from .._errors import ParameterError
-from .._report import Report, distinct
+from ..core.errors import ParameterError
+from ..core.report import Report, distinct
 from .narrow import MAX_LOCATIONS, add_small_holes, hole_widths, locations
 
 VISIBLE_MM = 0.1

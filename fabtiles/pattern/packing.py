@@ -19,9 +19,9 @@ import math
 
 import numpy as np
 
-from .._errors import LimitError, ParameterError
-from .._schema import GAP_MOTIF
-from .._validate import check_float
+from ..core.errors import LimitError, ParameterError
+from ..core.schema import GAP_MOTIF
+from ..core.validate import check_float
 from .star import Star
 
 MAX_CIRCLES_IN_WINDOW = 2_000_000

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._errors import ParameterError, did_you_mean
-from .._validate import check_float, check_float_seq, check_int
+from ..core.errors import ParameterError, did_you_mean
+from ..core.validate import check_float, check_float_seq, check_int
 from .presets import PRESETS
 
 MAX_N = 120
@@ -96,7 +96,7 @@ class Star:
         >>> Star.preset("table3-33")
         Traceback (most recent call last):
         ...
-        fabtiles._errors.ParameterError: preset 'table3-33' is unknown; did you mean 'table3-3'? (presets: table1-part1, table1-part2, table2-left, table2-right, table3-1, table3-2, table3-3; `fabtiles presets` lists them)
+        fabtiles.core.errors.ParameterError: preset 'table3-33' is unknown; did you mean 'table3-3'? (presets: table1-part1, table1-part2, table2-left, table2-right, table3-1, table3-2, table3-3; `fabtiles presets` lists them)
         """
         if not isinstance(name, str) or name not in PRESETS:
             hint = did_you_mean(name, PRESETS)

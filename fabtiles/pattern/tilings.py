@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._errors import ParameterError, did_you_mean
+from ..core.errors import ParameterError, did_you_mean
 
 S3 = math.sqrt(3.0)
 
@@ -88,7 +88,7 @@ def canonical(tiling) -> str:
     >>> canonical("5.5.5")
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: tiling '5.5.5' is unknown (tilings: 3.3.3.3.3.3, 4.4.4.4, 6.6.6, 3.6.3.6, 3.12.12, 4.6.12, 4.8.8, 3.3.3.3.6, 3.3.3.4.4, 3.3.4.3.4, 3.4.6.4; exponent forms such as 3^4.6 also work)
+    fabtiles.core.errors.ParameterError: tiling '5.5.5' is unknown (tilings: 3.3.3.3.3.3, 4.4.4.4, 6.6.6, 3.6.3.6, 3.12.12, 4.6.12, 4.8.8, 3.3.3.3.6, 3.3.3.4.4, 3.3.4.3.4, 3.4.6.4; exponent forms such as 3^4.6 also work)
     """
     try:
         name = _FORMS.get(_expand(tiling)) if isinstance(tiling, str) else None
