@@ -8,8 +8,12 @@ the build's option lists (:mod:`fabtiles.making`) and the key tables of
 rewrites them). ``tests/core/test_schema.py`` fails when a key is declared anywhere else.
 
 The module imports no layer of the package (any layer may read it, the lowest
-included): the valid values that belong to a layer (the outlines, the joins, the
-tilings) are named as ``"module:NAME"`` and looked up when asked for.
+included): what belongs to a layer above is registered by that layer when it is
+imported (the root package imports every such layer): the valid values of a key
+(the tilings, the presets, the palettes: :func:`register_choices`), the code that
+checks a key's range (:func:`register_check`) and the parser of a value type (a
+colour: :func:`register_type`). So every import goes one way, and the import linter
+sees it.
 
 >>> fit = key("output.inlay_fit_mm")
 >>> fit.range, fit.describe()
@@ -24,12 +28,11 @@ tilings) are named as ``"module:NAME"`` and looked up when asked for.
 
 from __future__ import annotations
 
-import importlib
 import math
 import numbers
 import re
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 from .errors import ParameterError, did_you_mean
 
@@ -161,10 +164,13 @@ class BuildOption:
 class Key:
     """One design key.
 
-    ``checked_by`` names the code that checks the value's range where it depends
-    on other values (a stroke is at most the packing radius): the schema's
+    ``checked_by`` names the layer whose code checks the value's range where it
+    depends on other values (a stroke is at most the packing radius), code that
+    layer registers (:func:`register_check`, :attr:`checker`): the schema's
     ``range`` is then the static part of it, for the manual and the web form,
     and only the type is checked here. Without it the schema checks the range.
+    ``choices`` are the valid values, or the name of the layer that registers them
+    (:func:`register_choices`).
     ``query`` is the web query parameter (None: the key has none). ``requires`` is
     the setting the key belongs to (``'kind = "archimedean"'``), if any.
     """
@@ -204,8 +210,15 @@ class Key:
         """The valid values of a ``choice`` (or a ``formats`` list), looked up when named by ``"module:NAME"``."""
         if not isinstance(self.choices, str):
             return tuple(self.choices or ())
-        module, _, name = self.choices.partition(":")
-        return tuple(getattr(importlib.import_module(module), name))
+        if self.path not in _CHOICES:
+            raise LookupError(f"the values of {self.path} are registered by the {self.choices} layer, "
+                              f"which is not imported")
+        return _CHOICES[self.path]
+
+    @property
+    def checker(self) -> Callable | None:
+        """The code that checks the range (``checked_by``), as its layer registered it; None before."""
+        return _CHECKS.get(self.path)
 
     def describe(self, *, note: bool = True) -> str:
         """What the value must be, as the errors say it: ``"a number of mm > 0"``."""
@@ -259,10 +272,11 @@ class Key:
                 raise error(f"{prefix}{name} = {value!r} is not valid{f' ({hint})' if hint else ''}, must be one of: "
                             f"{', '.join(self.choice_values())}", param=param)
         elif self.type == "colour":
-            from ..designs.colour import parse_colour
-
+            if self.type not in _TYPE_CHECKS:
+                raise LookupError(f"the {self.type} values of {self.path} are checked by a layer that "
+                                  f"registers the check, and none is imported")
             try:
-                parse_colour(value, param=name)
+                _TYPE_CHECKS[self.type](value, param=name)
             except ParameterError as exc:
                 raise error(f"{prefix}{exc}", param=param) from None
             return value
@@ -287,11 +301,11 @@ PACKED = ("packing", ("hex", "square", "archimedean"))
 
 def _motif_keys(section: str) -> tuple[Key, ...]:
     """The keys of a motif table: ``[motif]``, and the ``gap_motif`` and ``[packing.motifs]`` tables' entries."""
-    star = "fabtiles.pattern.star.Star"
+    star = "pattern"
     angle = dict(type="number", unit="degrees", checked_by=star)
     return (
         Key(section=section, name="preset", type="string", help="a preset name (`fabtiles presets` lists them; see construction.md)",
-            choices="fabtiles.pattern.presets:PRESETS", widget=Widget(kind="select", label="Preset")),
+            choices="pattern", widget=Widget(kind="select", label="Preset")),
         Key(section=section, name="n", type="integer", range=Range(3, 120), help="points on each circle",
             checked_by=star, widget=Widget(kind="slider", label="n (points)", min=3, max=48, step=1,
                                            group="motif-sliders")),
@@ -316,14 +330,14 @@ def _motif_keys(section: str) -> tuple[Key, ...]:
 
 MOTIF = _motif_keys("motif")
 
-_TILE = "fabtiles.geometry.tile.TileGeometry"
+_TILE = "geometry"
 _ARCH = 'kind = "archimedean"'
 _HANKIN = 'method = "hankin"'
 _HANKIN_WHEN = (("packing", ("archimedean",)), ("method", ("hankin",)))
 _INLAY_WHEN = (("laser_mode", ("inlay",)),)
 _INLAY = '{} = "{}"'.format(_INLAY_WHEN[0][0], _INLAY_WHEN[0][1][0])  # the manual's words for the same
 _HEX_SQUARE = (("packing", ("hex", "square")),)
-_PACKING = "fabtiles.pattern.packing"
+_PACKING = "pattern"
 _HEIGHT_RANGE = Range(0, 1000, min_open=True)
 _PRINT = ("print",)
 
@@ -360,13 +374,13 @@ KEYS: tuple[Key, ...] = MOTIF + (
     Key(section="packing", name="seamless", type="boolean", default=False,
         help="fit the radius (and a rectangle's height) so the tile repeats seamlessly",
         widget=Widget(kind="checkbox", label="Seamless", when=(PACKED,))),
-    Key(section="packing", name="tiling", type="choice", choices="fabtiles.pattern.tilings:TILINGS",
-        requires=_ARCH, checked_by="fabtiles.pattern.tilings.unit_cell",
+    Key(section="packing", name="tiling", type="choice", choices="pattern",
+        requires=_ARCH, checked_by="pattern",
         help="the vertex configuration, e.g. `\"4.8.8\"`",
         widget=Widget(kind="select", label="Tiling")),
     Key(section="packing", name="edge", type="number", unit="mm", range=Range(0, None, min_open=True),
         default=20.0, requires=_ARCH, help="the polygons' edge length (instead of `radius`)",
-        checked_by="fabtiles.pattern.archimedean.ArchimedeanPacking",
+        checked_by="pattern",
         widget=Widget(kind="slider", label="edge a (mm)", min=3, max=100, step=0.5, group="packing-sliders",
                       when=(("packing", ("archimedean",)),))),
     Key(section="packing", name="motifs", type="motifs", query=None, requires=_ARCH,
@@ -374,36 +388,37 @@ KEYS: tuple[Key, ...] = MOTIF + (
              "(`8 = \"table3-3\"`, `4 = { n = 8, radii = [1, 2] }`); `[motif]` fills the kinds not listed "
              "(with `method = \"hankin\"` the kinds not listed take Hankin's rays); on the web, `motif_<sides>`"),
     Key(section="packing", name="method", type="choice", default="motifs", requires=_ARCH,
-        choices="fabtiles.pattern.hankin:METHODS", checked_by="fabtiles.pattern.hankin.check_method",
+        choices="pattern", checked_by="pattern",
         help="`\"motifs\"`: the paper's motifs in the incircles and gap circles; `\"hankin\"`: Hankin's "
              "polygons in contact, two rays from each edge at `contact_angle` (see hankin.md)",
         widget=Widget(kind="select", label="Method", labels=(("motifs", "the paper's motifs (incircles)"),
                                                              ("hankin", "Hankin's polygons in contact")),
                       when=(("packing", ("archimedean",)),))),
     Key(section="packing", name="contact_angle", type="number", unit="degrees", range=Range(0, 90, min_open=True, max_open=True),
-        default=60.0, requires=_HANKIN, checked_by="fabtiles.pattern.hankin.check_contact",
+        default=60.0, requires=_HANKIN, checked_by="pattern",
         help="the rays' angle to their edge; with a gap, at most the tiling's limit (hankin.md)",
         widget=Widget(kind="slider", label="contact angle (deg)", min=1, max=89, step=0.5, group="packing-sliders",
                       when=_HANKIN_WHEN)),
     Key(section="packing", name="contact_gap", type="number", unit="mm", range=Range(0, None), default=0.0,
-        requires=_HANKIN, checked_by="fabtiles.pattern.hankin.check_contact",
+        requires=_HANKIN, checked_by="pattern",
         help="the distance along the edge between the two rays' starts (less than the edge)",
         widget=Widget(kind="slider", label="contact gap (mm)", min=0, max=20, step=0.1, group="packing-sliders",
                       when=_HANKIN_WHEN)),
     # [tile]
-    Key(section="tile", name="outline", type="choice", default="square", choices="fabtiles.geometry.tile:OUTLINES",
+    Key(section="tile", name="outline", type="choice", default="square",
+        choices=("square", "rectangle", "hexagon", "circle"),
         help="`square`, `rectangle`, `hexagon` (pointy-top) or `circle`", widget=Widget(kind="select", label="Outline")),
     Key(section="tile", name="size", type="size", unit="mm", range=Range(0, None, min_open=True),
         default_text="required", note="a number or [width, height] in mm", query=None,
         help="a number (side, width across flats, diameter), or `[width, height]` for a rectangle; "
-             "on the web, `width` and `height`", checked_by="fabtiles.geometry.tile.check_tile_size"),
+             "on the web, `width` and `height`", checked_by="geometry"),
     Key(section="tile", name="frame", type="number", unit="mm", range=Range(0, None), default=0.0,
         help="solid margin inside the outline", checked_by=_TILE,
         widget=Widget(kind="slider", label="frame (mm)", min=0, max=30, step=0.5, group="tile-sliders")),
     Key(section="tile", name="stroke", type="number", unit="mm", range=Range(0, None, min_open=True), default=1.0,
         help="width of each band; at most the packing radius", checked_by=_TILE,
         widget=Widget(kind="slider", label="stroke (mm)", min=0.2, max=6, step=0.1, group="tile-sliders")),
-    Key(section="tile", name="join", type="choice", default="miter", choices="fabtiles.geometry.stroke:JOINS",
+    Key(section="tile", name="join", type="choice", default="miter", choices=("miter", "round", "bevel"),
         help="`miter`, `round` or `bevel`", widget=Widget(kind="select", label="Join")),
     Key(section="tile", name="miter_limit", type="number", range=Range(1, None), default=4.0,
         help="in half stroke widths", checked_by=_TILE,
@@ -441,13 +456,13 @@ KEYS: tuple[Key, ...] = MOTIF + (
     Key(section="output", name="printer_profile", type="string", note="a profile name or path",
         default_text="`fdm-0.4mm`", help="likewise, for the print formats",
         widget=Widget(kind="select", label="Printer profile")),
-    Key(section="output", name="laser_mode", type="choice", choices="fabtiles.machines.profiles:LASER_MODES",
+    Key(section="output", name="laser_mode", type="choice", choices="machines",
         default_text="the profile's",
         help="`pierced` (cut every edge of the material), `score` (cut the outline, score the centre-lines), "
              "`engrave` (cut the outline, fill the bands on the profile's engrave layer) or `inlay` (a kit: "
              "`<name>-lattice` and `<name>-pieces` files, see [inlay.md](inlay.md))",
         widget=Widget(kind="select", label="Laser mode", labels=(("inlay", "inlay kit"),)), option=BuildOption(name="mode", families=("cut",))),
-    Key(section="output", name="print_style", type="choice", choices="fabtiles.machines.profiles:PRINT_STYLES",
+    Key(section="output", name="print_style", type="choice", choices="machines",
         default_text="the profile's", help="`relief`, `pierced`, `deboss` or `mosaic` (a plate with the bands and "
         "every face on it, a part per colour: see [colours.md](colours.md))",
         widget=Widget(kind="select", label="Print style"), option=BuildOption(name="style", families=_PRINT)),
@@ -456,7 +471,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
     _height("pierced_mm", "Pierced (mm)", "a pierced tile's thickness", ("pierced",)),
     _height("deboss_mm", "Deboss (mm)", "the grooves' depth (deboss)", ("deboss",)),
     Key(section="output", name="mosaic_inset_mm", type="number", unit="mm", range=Range(0, 1000), default_text="0",
-        checked_by="fabtiles.solid._mesh_build.resolve_stack", note="below relief_mm",
+        checked_by="geometry", note="below relief_mm",
         help="`print_style = \"mosaic\"`: how far the faces' tops sit below the bands' (0: flush; more: the bands "
              "stand proud, cloisonne style); less than the relief height",
         widget=Widget(kind="number", label="Mosaic inset (mm)", min=0, step=0.1, when=(("print_style", ("mosaic",)),)),
@@ -526,7 +541,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
              "congruent shapes, lettered A, B, ... by total area, each class its own colour; `\"none\"`: every "
              "face one class, A (the two colours of band and face)",
         widget=Widget(kind="select", label="Colour faces by", labels=(("none", "one colour"), ("shape", "shape")))),
-    Key(section="colour", name="palette", type="choice", default="zellige", choices="fabtiles.designs.colour:PALETTE_NAMES",
+    Key(section="colour", name="palette", type="choice", default="zellige", choices="designs",
         help="the named palette giving the band's, the base's and the classes' colours unless set below "
              "([colours.md](colours.md) says where each comes from)",
         widget=Widget(kind="select", label="Palette")),
@@ -578,6 +593,62 @@ CALL_OPTIONS = (
 """Build options of the export API that no design key sets (the cutter profile's, overridden per call)."""
 
 _BY_PATH = {k.path: k for k in KEYS}
+
+_CHOICES: dict[str, tuple] = {}
+"""The valid values of the keys whose ``choices`` name a layer, as the layer registered them."""
+
+_CHECKS: dict[str, Callable] = {}
+"""The code that checks the range of the keys whose ``checked_by`` names a layer, as it registered it."""
+
+_TYPE_CHECKS: dict[str, Callable] = {}
+"""The parser of each value type whose check belongs to a layer above (``colour``)."""
+
+
+def register_choices(values, *paths: str) -> None:
+    """Register ``values`` as the valid values of the keys at ``paths``.
+
+    Called when it is imported by the module that owns the values (the tilings' module its
+    tilings), so the schema names no module above it.
+
+    >>> register_choices(("x",), "tile.stroke")
+    Traceback (most recent call last):
+    ...
+    fabtiles.core.errors.ParameterError: tile.stroke's choices are not a layer's, it takes no registered values
+    """
+    for path in paths:
+        k = key(path)
+        if not isinstance(k.choices, str):
+            raise ParameterError(f"{k.path}'s choices are not a layer's, it takes no registered values", param="path")
+        _CHOICES[k.path] = tuple(values)
+
+
+def register_check(check: Callable, *paths: str) -> None:
+    """Register ``check`` as the code that checks the range of the keys at ``paths`` (their ``checked_by``).
+
+    >>> register_check(print, "tile.outline")
+    Traceback (most recent call last):
+    ...
+    fabtiles.core.errors.ParameterError: tile.outline is checked by the schema, it takes no registered check
+    """
+    for path in paths:
+        k = key(path)
+        if k.checked_by is None:
+            raise ParameterError(f"{k.path} is checked by the schema, it takes no registered check", param="path")
+        _CHECKS[k.path] = check
+
+
+def register_type(type_: str, parse: Callable) -> None:
+    """Register ``parse(value, param=name)`` as the check of the values of type ``type_`` (raises a ParameterError).
+
+    >>> register_type("number", float)
+    Traceback (most recent call last):
+    ...
+    fabtiles.core.errors.ParameterError: a value type whose check is registered must be one of: colour, got 'number'
+    """
+    if type_ not in ("colour",):
+        raise ParameterError(f"a value type whose check is registered must be one of: colour, got {type_!r}",
+                             param="type_")
+    _TYPE_CHECKS[type_] = parse
 
 
 def key(path: str) -> Key:

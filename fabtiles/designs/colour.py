@@ -26,6 +26,7 @@ import re
 from dataclasses import dataclass, field
 
 from ..core.errors import ParameterError, did_you_mean
+from ..core.schema import register_choices, register_type, section_keys
 
 _HEX = re.compile(r"#[0-9a-fA-F]{6}")
 
@@ -253,8 +254,6 @@ class Colours:
     given: bool = True
 
     def __post_init__(self):
-        from ..core.schema import section_keys
-
         for k in section_keys("colour"):
             if k.name != "faces":
                 k.check(getattr(self, k.name))
@@ -272,3 +271,8 @@ class Colours:
         """The colours of a tile whose face classes are ``classes`` (:func:`colouring`)."""
         return colouring(palette_name=self.palette, band=self.band_colour, base=self.base_colour,
                          faces=dict(self.faces), classes=classes)
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_choices(PALETTE_NAMES, "colour.palette")
+register_type("colour", parse_colour)

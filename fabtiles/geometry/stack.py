@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from ..core.errors import ParameterError
 from ..machines.profiles import PRINT_STYLES, PrinterProfile, load_profile
-from ..core.schema import key
+from ..core.schema import key, register_check
 from ..core.validate import check_choice, check_float
 
 QUANTUM = 2.0**-10
@@ -111,3 +111,7 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
             f"plate), got {inset:g}", param="mosaic_inset_mm")
     return Stack(style, values["base_mm"], values["relief_mm"], values["pierced_mm"], values["deboss_mm"],
                  inset if style == "mosaic" else 0.0)
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_check(resolve_stack, "output.mosaic_inset_mm")

@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass
 
 from ..core.errors import ParameterError, ProfileError
+from ..core.schema import register_choices
 from ..core.validate import check_choice
 
 LASER_MODES = ("pierced", "score", "engrave", "inlay")
@@ -293,3 +294,7 @@ def members(fam: str) -> tuple[str, ...]:
     (('laser', 'router', 'waterjet'), ('printer',))
     """
     return CUTTER_KINDS if fam == FAMILY else (fam,)
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_choices(LASER_MODES, "output.laser_mode")

@@ -22,6 +22,7 @@ from pathlib import Path
 from .cutters import CUTTER_KINDS, KINDS, LASER_MODES, cutter_kind, family, members
 from ..core.errors import ProfileError, did_you_mean
 from ..core.schema import key as schema_key
+from ..core.schema import register_choices
 
 try:  # Python 3.11+
     import tomllib
@@ -410,3 +411,7 @@ def _layer_settings(value: dict, default: Layer, source: str, full: str) -> dict
     if interval is not None:
         interval = _positive(source, f"{full}.line_interval_mm", interval)
     return dict(speed_mm_s=speed, power_pct=float(power), passes=passes, line_interval_mm=interval)
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_choices(PRINT_STYLES, "output.print_style")

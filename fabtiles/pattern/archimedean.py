@@ -18,6 +18,7 @@ from types import MappingProxyType
 import numpy as np
 
 from ..core.errors import LimitError, ParameterError
+from ..core.schema import register_check
 from ..core.validate import check_float
 from .hankin import check_contact, check_method, polygon_rays
 from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, default_gap_motif
@@ -496,3 +497,7 @@ def _check_window(window):
         raise ParameterError(f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}",
                              param="window")
     return x0, y0, x1, y1
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_check(ArchimedeanPacking, "packing.edge")

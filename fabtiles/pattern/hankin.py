@@ -34,6 +34,7 @@ import math
 import numpy as np
 
 from ..core.errors import ParameterError
+from ..core.schema import register_check, register_choices
 from ..core.validate import check_float
 from .tilings import inradius
 
@@ -118,3 +119,9 @@ def polygon_rays(p: int, edge: float, angle: float, gap: float = 0.0, turn: floa
         rays[:, r, 0] = start
         rays[:, r, 1] = start + length * direction
     return rays
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_choices(METHODS, "packing.method")
+register_check(check_method, "packing.method")
+register_check(check_contact, "packing.contact_angle", "packing.contact_gap")

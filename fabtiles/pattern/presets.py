@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from types import MappingProxyType
 
+from ..core.schema import register_choices
+
 # name -> (parameters, note). Parameters are exactly Star's keyword arguments.
 _ROWS = {
     "table1-part1": (dict(n=8, radii=(51, 70, 172), alpha=0, spr=0, special=None), "8-pointed star"),
@@ -29,3 +31,7 @@ PRESETS = MappingProxyType({name: MappingProxyType(params) for name, (params, _)
 
 PRESET_NOTES = MappingProxyType({name: note for name, (_, note) in _ROWS.items()})
 """Preset name -> how fabtiles reads the paper's row (empty when the row is plain)."""
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_choices(PRESETS, "motif.preset")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.errors import ParameterError, did_you_mean
+from ..core.schema import register_check
 from ..core.validate import check_float, check_float_seq, check_int
 from .presets import PRESETS
 
@@ -221,3 +222,7 @@ def _dedupe(seg: np.ndarray) -> np.ndarray:
     key = np.round(canon.reshape(len(canon), 4) / (tol * 100)).astype(np.int64)
     _, first = np.unique(key, axis=0, return_index=True)
     return np.ascontiguousarray(seg[np.sort(first)], dtype=float)
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_check(Star, "motif.n", "motif.radii", "motif.alpha", "motif.spr", "motif.special", "motif.rotation")

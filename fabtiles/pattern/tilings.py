@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.errors import ParameterError, did_you_mean
+from ..core.schema import register_check, register_choices
 
 S3 = math.sqrt(3.0)
 
@@ -324,3 +325,8 @@ def _gap_circles(lattice, centres, sides, vertices):
         out_r.append(rad)
         out_a.append(math.atan2(*(cc[first] - x)[::-1]))
     return np.array(out_c), np.array(out_r), np.array(out_a)
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_choices(TILINGS, "packing.tiling")
+register_check(unit_cell, "packing.tiling")

@@ -257,3 +257,32 @@ def test_every_key_is_documented_and_typed():
             assert k.choice_values(), k.path
         if k.widget is not None and k.widget.kind == "slider" and k.range is not None:
             assert k.widget.min in k.range or k.range.min == k.widget.min, k.path
+
+
+def test_what_belongs_to_a_layer_above_is_registered_by_it():
+    """A key's values and range checks that a layer owns are registered by a module of that layer, when imported."""
+    import fabtiles.geometry.stack  # noqa: F401  (the layers the root package does not import: shapely's)
+    import fabtiles.geometry.tile  # noqa: F401
+
+    layered = [k for k in _schema.KEYS if isinstance(k.choices, str)]
+    assert {k.choices for k in layered} == {"pattern", "machines", "designs"}
+    for k in layered:
+        assert k.choice_values(), k.path
+    checked = [k for k in _schema.KEYS if k.checked_by is not None]
+    assert {k.checked_by for k in checked} == {"pattern", "geometry"}
+    for k in checked:
+        assert k.checker is not None and k.checker.__module__.startswith(f"fabtiles.{k.checked_by}."), k.path
+    assert _schema.key("tile.outline").checker is None  # the schema checks it: one of its choices
+    assert fabtiles.geometry.tile.OUTLINES == _schema.key("tile.outline").choice_values()
+
+
+def test_a_layers_values_not_registered_are_an_error(monkeypatch):
+    """A key whose values no imported layer registered says so (a programming error, not a user's)."""
+    unregistered = Key(section="tile", name="finish", type="choice", choices="geometry", help="a finish")
+    with pytest.raises(LookupError, match=r"the values of tile\.finish are registered by the geometry layer, "
+                                          r"which is not imported"):
+        unregistered.choice_values()
+    monkeypatch.delitem(_schema._TYPE_CHECKS, "colour")
+    with pytest.raises(LookupError, match=r"the colour values of colour\.band_colour are checked by a layer that "
+                                          r"registers the check, and none is imported"):
+        _schema.key("colour.band_colour").check("navy")
