@@ -46,7 +46,7 @@ def _cpu(fn):
 
 
 def measure(design, repeat: int, formats) -> dict:
-    from fabtiles.build.models import BuildOptions, Models
+    from fabtiles.making.models import BuildOptions, Models
     from fabtiles.export.dxf import dxf_bytes
     from fabtiles.export.laser_svg import svg_bytes
     from fabtiles.export.lbrn2 import lbrn2_bytes
@@ -80,7 +80,7 @@ def measure(design, repeat: int, formats) -> dict:
 
 
 def main() -> None:
-    from fabtiles.design import design_from_text, load_design
+    from fabtiles.designs.design_file import design_from_text, load_design
 
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeat", type=int, default=3)

@@ -30,9 +30,9 @@ def contours(sample: Path) -> dict:
     """The sample's cut plan's paths, role -> list, in the order the contours were made."""
     from unittest import mock
 
-    from fabtiles.build.models import BuildOptions, Models
-    from fabtiles.build.pipeline import prepare_tile
-    from fabtiles.design import load_design
+    from fabtiles.making.models import BuildOptions, Models
+    from fabtiles.making.pipeline import prepare_tile
+    from fabtiles.designs.design_file import load_design
     from fabtiles.geometry import cut_plan
 
     design = load_design(sample)

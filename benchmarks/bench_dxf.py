@@ -96,7 +96,7 @@ def main(argv=None):
     from fabtiles.export.laser_svg import write_laser_svg
     from fabtiles.geometry.contours import laser_contours
     from fabtiles.geometry.laser_checks import check_laser
-    from fabtiles._profiles import load_profile
+    from fabtiles.machines.profiles import load_profile
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)

@@ -28,7 +28,7 @@ def main() -> None:
     ap.add_argument("--no-baseline", action="store_true", help="skip shape_key of every face")
     args = ap.parse_args()
 
-    from fabtiles.design import load_design
+    from fabtiles.designs.design_file import load_design
     from fabtiles.geometry import faces as F
     from fabtiles.geometry.narrow import fill_small_holes
 

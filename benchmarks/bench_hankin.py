@@ -30,7 +30,7 @@ TARGET = 1.5
 
 def dense_edge(segments: int) -> float:
     """The edge (mm) at which the Hankin sheet holds about ``segments`` segments (bisection on segment_count)."""
-    from fabtiles.design import load_design
+    from fabtiles.designs.design_file import load_design
 
     pack = load_design(DESIGNS["hankin"]).build_tile().pattern
     window = (-SIZE[0] / 2, -SIZE[1] / 2, SIZE[0] / 2, SIZE[1] / 2)
@@ -44,7 +44,7 @@ def dense_edge(segments: int) -> float:
 def run_once(method: str, edge: float | None = None) -> dict:
     """One sheet of ``method``'s design (at ``edge``, if given): CPU seconds of each stage and the segments."""
     import fabtiles as ft
-    from fabtiles.design import load_design
+    from fabtiles.designs.design_file import load_design
 
     t = time.process_time()
     extra = [f"packing.edge={edge!r}"] if edge is not None else []

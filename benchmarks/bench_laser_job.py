@@ -31,8 +31,8 @@ def best(fn, repeat: int) -> float:
 
 
 def in_process(repeat: int) -> dict:
-    from fabtiles.build import prepare_tile
-    from fabtiles.design import load_design
+    from fabtiles.making import prepare_tile
+    from fabtiles.designs.design_file import load_design
     from fabtiles.export import dxf, lbrn2
     from fabtiles.export.dispatch import laser_geometry
     from fabtiles.geometry import job_time

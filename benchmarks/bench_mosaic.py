@@ -45,7 +45,7 @@ def run(args) -> tuple[float, float]:
 def face_class_seconds(runs: int) -> float:
     """Median seconds of :func:`~fabtiles.geometry.faces.face_classes` on the sheet's tile, its region made."""
     sys.path.insert(0, str(ROOT))
-    from fabtiles.design import load_design
+    from fabtiles.designs.design_file import load_design
     from fabtiles.geometry.faces import face_classes
 
     tile = load_design(SHEET).build_tile()

@@ -86,8 +86,8 @@ def main(argv=None):
     ap.add_argument("--limit", type=float, default=120.0, help="seconds each filled file must slice in")
     args = ap.parse_args(argv)
 
-    from fabtiles.build import build_design
-    from fabtiles.design import design_from_text
+    from fabtiles.making import build_design
+    from fabtiles.designs.design_file import design_from_text
 
     prusa = shutil.which("prusa-slicer")
     if prusa is None:

@@ -29,9 +29,9 @@ NEW = HERE.parent
 
 EXPORT = """
 import json, sys, time
-from fabtiles.build.models import BuildOptions, Models
-from fabtiles.build.pipeline import prepare_tile
-from fabtiles.design import load_design
+from fabtiles.making.models import BuildOptions, Models
+from fabtiles.making.pipeline import prepare_tile
+from fabtiles.designs.design_file import load_design
 from fabtiles.export.step import step_bytes
 d = load_design(sys.argv[1])
 models = Models(prepare_tile(d), BuildOptions.of_design(d))
@@ -112,8 +112,12 @@ def cli_export(checkout: Path, toml: Path, out: Path) -> dict:
 
 
 def export(checkout: Path, toml: Path, out: Path) -> dict:
-    if (checkout / "fabtiles" / "build" / "models.py").exists():
+    if (checkout / "fabtiles" / "making" / "models.py").exists():
         return run(checkout, EXPORT, toml, out)
+    if (checkout / "fabtiles" / "build" / "models.py").exists():  # before the layers were folders
+        old_names = EXPORT.replace("fabtiles.making.", "fabtiles.build.").replace("fabtiles.designs.design_file",
+                                                                                  "fabtiles.design")
+        return run(checkout, old_names, toml, out)
     return cli_export(checkout, toml, out)
 
 
@@ -126,7 +130,8 @@ def counts(path: Path) -> dict:
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--old", required=True, type=Path,
-                    help="the older checkout (its STEP has planar faces); one without fabtiles/build/models.py "
+                    help="the older checkout (its STEP has planar faces); one without fabtiles/making/models.py "
+                         "(fabtiles/build/models.py before the layers were folders) "
                          "(as when issue 35 was filed, e.g. 3650417) writes it through its CLI")
     ap.add_argument("--sizes", type=float, nargs="*", default=[100.0, 150.0])
     ap.add_argument("--repeat", type=int, default=1)

@@ -34,7 +34,7 @@ formats = ["svg", "dxf"]
 
 
 def jobs(n: int, outdir: Path, size: float = 100.0):
-    from fabtiles.sweep import make_jobs, parse_vary, variants
+    from fabtiles.making.sweep import make_jobs, parse_vary, variants
 
     design = outdir.parent / "bench.toml"
     design.write_text(DESIGN.format(size=size))
@@ -43,7 +43,7 @@ def jobs(n: int, outdir: Path, size: float = 100.0):
 
 
 def timed(run, n: int, root: Path, size: float = 100.0) -> float:
-    from fabtiles.jobs import run_jobs
+    from fabtiles.making.jobs import run_jobs
 
     out = root / "out"
     shutil.rmtree(out, ignore_errors=True)

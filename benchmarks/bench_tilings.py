@@ -40,7 +40,7 @@ REFERENCE = "hex"
 
 
 def sample_packing(tiling: str):
-    from fabtiles.design import load_design
+    from fabtiles.designs.design_file import load_design
 
     return load_design(SAMPLES / f"{tiling}.toml").build_tile().pattern
 
@@ -112,7 +112,7 @@ def web_previews(tilings, repeat: int = 11) -> dict:
     warnings.simplefilter("ignore", DeprecationWarning)
     from fastapi.testclient import TestClient
 
-    from fabtiles.design import load_design
+    from fabtiles.designs.design_file import load_design
     from fabtiles.web.app import create_app
 
     client = TestClient(create_app())
@@ -140,7 +140,7 @@ def web_previews(tilings, repeat: int = 11) -> dict:
 def sample_query(tiling: str) -> dict:
     """The web query of a sample: presets per polygon kind, its one own motif as the page's
     motif (which fills the kinds without a preset), its gap motif and stroke."""
-    from fabtiles.design import load_design
+    from fabtiles.designs.design_file import load_design
 
     design = load_design(SAMPLES / f"{tiling}.toml")
     query = {"packing": "archimedean", "tiling": tiling, "edge": design.packing.edge, "width": 150,

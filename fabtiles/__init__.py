@@ -7,8 +7,8 @@ The public API, fixed for scripts (``docs/file-conventions.md``), is exactly ``_
 (32, 2, 2)
 """
 
-from ._colour import Colours
-from ._errors import (
+from .designs.colour import Colours
+from .core.errors import (
     DesignError,
     FabricationError,
     FabtilesError,
@@ -16,9 +16,9 @@ from ._errors import (
     ParameterError,
     ProfileError,
 )
-from ._profiles import CutterProfile, LaserProfile, PrinterProfile, load_profile
-from ._report import Report
-from .design import load_design
+from .machines.profiles import CutterProfile, LaserProfile, PrinterProfile, load_profile
+from .core.report import Report
+from .designs.design_file import load_design
 from .pattern.archimedean import ArchimedeanPacking
 from .pattern.packing import HexPacking, SquarePacking
 from .pattern.radii import straight_radii

@@ -1,6 +1,6 @@
 """The public :func:`nest`: tiles of one or more designs nested onto sheets, from a script.
 
-The ``fabtiles nest`` command's work (:func:`fabtiles.build.nesting.nest_designs`) for
+The ``fabtiles nest`` command's work (:func:`fabtiles.making.nesting.nest_designs`) for
 designs given as files or as loaded designs; see ``docs/nesting.md``.
 """
 
@@ -30,8 +30,8 @@ def nest(designs, outdir, *, formats=("dxf",), count: int | None = None, sheet_m
     NestResult
         The build's reports (sheets used, each sheet's parts and material use) and the placements.
     """
-    from .build.nesting import nest_designs
-    from .design import Design, load_design
+    from .making.nesting import nest_designs
+    from .designs.design_file import Design, load_design
 
     def one(d):
         return d if isinstance(d, Design) else load_design(Path(d))

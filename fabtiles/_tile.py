@@ -11,7 +11,8 @@ limits, and nothing else.
 
 from __future__ import annotations
 
-from . import _limits, _schema
+from .machines import limits as _limits
+from .core import schema as _schema
 from .geometry.tile import TileGeometry
 
 
@@ -19,7 +20,7 @@ class Tile(TileGeometry):
     """A tile to fabricate: an outline of a size, a frame, and a stroked pattern.
 
     See :class:`fabtiles.geometry.tile.TileGeometry` for the geometry. Construction also
-    checks the work limits (:data:`fabtiles._limits.CLI_LIMITS`) from the
+    checks the work limits (:data:`fabtiles.machines.limits.CLI_LIMITS`) from the
     parameters alone, before any geometry is built.
 
     >>> import fabtiles as ft
@@ -50,7 +51,7 @@ class Tile(TileGeometry):
             What was written and what the fabrication checks found.
 
         """
-        from .build import export_tile
+        from .making import export_tile
 
         return export_tile(self, path, profile=profile, **options)
 

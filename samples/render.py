@@ -15,9 +15,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import fabtiles
-from fabtiles.design import load_design
-from fabtiles._io import atomic_write
-from fabtiles.build.views import tile_picture
+from fabtiles.designs.design_file import load_design
+from fabtiles.core.files import atomic_write
+from fabtiles.making.views import tile_picture
 
 HERE = Path(__file__).resolve().parent
 

@@ -45,7 +45,7 @@ SHADOW = 0.35
 def relief_bodies(design_path=DESIGN):
     """The ``base`` and ``pattern`` trimesh bodies of a design's relief (its printer profile)."""
     import fabtiles
-    from fabtiles.design import load_design
+    from fabtiles.designs.design_file import load_design
     from fabtiles.export.dispatch import DEFAULT_PRINTER_PROFILE
     from fabtiles.solid.parts import build_meshes
 

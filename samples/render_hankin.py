@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from fabtiles import ArchimedeanPacking
-from fabtiles._io import atomic_write
+from fabtiles.core.files import atomic_write
 from fabtiles.pattern.hankin import polygon_rays
 from fabtiles.pattern.tilings import TILINGS, circumradius, unit_cell
 

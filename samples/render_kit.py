@@ -14,9 +14,9 @@ HERE = Path(__file__).parent
 
 
 def render(design_path, out_path) -> Path:
-    from fabtiles._io import atomic_write
-    from fabtiles.build import inlay_kit_of, prepare_tile
-    from fabtiles.design import load_design
+    from fabtiles.core.files import atomic_write
+    from fabtiles.making import inlay_kit_of, prepare_tile
+    from fabtiles.designs.design_file import load_design
     from fabtiles.export.preview_svg import kit_svg
 
     design = load_design(design_path)

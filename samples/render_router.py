@@ -40,9 +40,9 @@ WOOD, LEFT, DESIGN_FILL, HOLE_EDGE = "#d9b382", "#e8590c", "#1f3b73", "#1f3b73"
 def render(out_path) -> Path:
     import shapely
 
-    from fabtiles._io import atomic_write
-    from fabtiles.build import made_region, prepare_tile
-    from fabtiles.design import design_from_text
+    from fabtiles.core.files import atomic_write
+    from fabtiles.making import made_region, prepare_tile
+    from fabtiles.designs.design_file import design_from_text
     from fabtiles.export.preview_svg import _num, region_path_data
 
     design = design_from_text(DESIGN, name="router-rounding")

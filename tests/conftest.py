@@ -1,7 +1,7 @@
 """Shared test settings.
 
 Hypothesis runs with a fixed seed and bounded examples by default (CI); a longer
-run by hand: ``FABTILES_HYPOTHESIS=long python -m pytest tests/test_pipeline_properties.py``
+run by hand: ``FABTILES_HYPOTHESIS=long python -m pytest tests/making/test_pipeline_properties.py``
 (random seed, and ten times the examples: see ``hypothesis_scale.py``).
 """
 

@@ -255,7 +255,7 @@ def check_laser_dxf(path, region, *, kerf, version="R2000", profile="laser-3mm-p
     """
     import pytest
 
-    from fabtiles._profiles import load_profile
+    from fabtiles.machines.profiles import load_profile
     from fabtiles.geometry.contours import MITRE_LIMIT
 
     profile = load_profile(profile, kind="laser")

@@ -10,7 +10,8 @@ import doc_pages
 import numpy as np
 import pytest
 
-from fabtiles import _profiles, design
+from fabtiles.machines import profiles as _profiles
+from fabtiles.designs import design_file as design
 from fabtiles.cli.main import cli
 
 ROOT = doc_pages.ROOT
@@ -110,7 +111,7 @@ def test_the_card_size_in_laser_cutting_md_is_the_cards():
 
 def test_design_files_md_example_names_every_output_key():
     """The example design of design-files.md shows every [output] key of the schema (the inlay ones too)."""
-    from fabtiles import _schema
+    from fabtiles.core import schema as _schema
 
     text = text_of("design-files.md")
     example = text[text.index("[output]"):text.index("```", text.index("[output]"))]

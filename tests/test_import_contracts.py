@@ -12,7 +12,7 @@ PACKAGE = ROOT / "fabtiles"
 
 
 def test_import_contracts_are_kept():
-    """pattern -> geometry -> solid -> export -> build -> front ends, no import going up (lazy ones too)."""
+    """core -> machines | pattern -> geometry -> solid -> export -> designs -> making -> front ends: none goes up."""
     lint = Path(sys.executable).with_name("lint-imports")
     proc = subprocess.run([str(lint), str(ROOT / ".importlinter")], cwd=ROOT, capture_output=True, text=True,
                           timeout=300)
@@ -43,9 +43,9 @@ def test_the_layer_contract_catches_an_import_going_up(tmp_path):
 
 def test_the_solid_layer_writes_no_file(tmp_path):
     """solid builds bodies; a module of it reaching for a writer or the atomic file writer breaks a contract."""
-    proc = lint_with(tmp_path, "solid/writes.py", "from .._io import atomic_write\nfrom ..export import stl\n")
+    proc = lint_with(tmp_path, "solid/writes.py", "from ..core.files import atomic_write\nfrom ..export import stl\n")
     assert "fabtiles.solid is not allowed to import fabtiles.export" in proc.stdout
-    assert "fabtiles.solid.writes -> fabtiles._io" in proc.stdout
+    assert "fabtiles.solid.writes -> fabtiles.core.files" in proc.stdout
 
 
 def _module_name(path: Path, root: Path) -> str:
@@ -77,7 +77,7 @@ def borrowed_private_names(package: Path = PACKAGE) -> list[str]:
                 if not name.startswith("_") or name.startswith("__"):
                     continue
                 if (root / Path(*source.split("."), f"{name}.py")).exists():
-                    continue  # a private module of the package (fabtiles._limits): that is its purpose
+                    continue  # a private module of the package (fabtiles.solid._triangulate): that is its purpose
                 found.append(f"{rel}:{node.lineno} imports {name} from {source}")
     return found
 

@@ -31,7 +31,7 @@ def test_laser_options():
 
 
 def test_export_and_sheet_options():
-    from fabtiles.build import export_region
+    from fabtiles.making import export_region
     from fabtiles.export.formats import format_of
     from fabtiles.geometry.sheet import layout_sheet
     from fabtiles.geometry.stack import resolve_stack

@@ -55,7 +55,7 @@ def test_help_of_tile_export_lists_every_option_the_call_takes():
     """help(Tile.export) names each keyword option the export API accepts (from the schema), so it cannot drift."""
     import pydoc
 
-    from fabtiles import _schema
+    from fabtiles.core import schema as _schema
 
     text = pydoc.render_doc(fabtiles.Tile.export, renderer=pydoc.plaintext)
     for family in ("cut", "print", "3mf"):

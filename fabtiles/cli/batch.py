@@ -1,7 +1,7 @@
 """``fabtiles batch``: build many designs in parallel processes or on a Dask cluster.
 
 One failing design is reported and skipped; the others go on. The builds run in
-:mod:`fabtiles.jobs` through the build pipeline: a design that fails leaves no
+:mod:`fabtiles.making.jobs` through the build pipeline: a design that fails leaves no
 file, and a design some of whose formats are refused writes the others and is
 reported with the formats refused and why. Exit status 0 only when every design
 wrote every format; 2 when a design failed, else 3 when formats were refused.
@@ -16,7 +16,7 @@ from pathlib import Path
 
 import click
 
-from ..design import FORMATS
+from ..designs.design_file import FORMATS
 
 
 def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, explain=None,
@@ -30,7 +30,7 @@ def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, e
     a job's key in the report (a sweep's varied values); ``explain(outcome)`` words a
     failure (default: its message).
     """
-    from ..jobs import run_jobs
+    from ..making.jobs import run_jobs
 
     outcomes = []
     with click.progressbar(length=len(jobs), label=label, file=sys.stderr,
@@ -84,8 +84,8 @@ def command(design_files, outdir, jobs, scheduler, overrides, formats, verbose):
     fabtiles batch samples/*.toml -o out/ --jobs 2
     fabtiles batch samples/*.toml -o out/ --scheduler tcp://10.0.0.5:8786
     """
-    from ..design import load_design
-    from ..jobs import Job
+    from ..designs.design_file import load_design
+    from ..making.jobs import Job
 
     stems: dict = {}
     for f in design_files:

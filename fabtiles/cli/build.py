@@ -1,7 +1,7 @@
 """``fabtiles build``: build a design file into output files.
 
 The command parses its arguments and prints; the work is done by the build
-pipeline, :func:`fabtiles.build.build_design`. Bad input is exit status 2 with no
+pipeline, :func:`fabtiles.making.build_design`. Bad input is exit status 2 with no
 new or partial file and no existing file changed; a format whose model or writer
 fails is refused on its own (its file not written, the line says why) while the
 others are written, and the exit status is then 3 (:data:`~fabtiles.cli.main.REFUSED_EXIT`).
@@ -20,8 +20,8 @@ from pathlib import Path
 
 import click
 
-from .._errors import ParameterError
-from ..design import FORMATS, design_notes, load_design, override_notes
+from ..core.errors import ParameterError
+from ..designs.design_file import FORMATS, design_notes, load_design, override_notes
 
 
 def single_file_target(output, formats):
@@ -124,7 +124,7 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
     fabtiles build samples/rosette.toml -o out/ --copies 12 --format dxf
     fabtiles build samples/sheet-600x400.toml -o out/
     """
-    from ..build import build_design
+    from ..making import build_design
 
     target = single_file_target(outdir, formats)
     design = load_design(design_file, overrides=overrides)

@@ -2,7 +2,7 @@
 
 The laser checks of the design's laser profile (on the region as the laser files
 would hold it: with ``fill_small_holes``, its small holes filled) and the print
-checks of its printer profile, style and heights (see :mod:`fabtiles.checks`).
+checks of its printer profile, style and heights (see :mod:`fabtiles.making.checks`).
 Each finding is one line: where (laser or print), code, count, worst value and
 the first places. ``-o overlay.svg`` writes a picture of the tile with a mark at
 every place (written atomically).
@@ -17,7 +17,7 @@ from pathlib import Path
 
 import click
 
-from .._errors import ParameterError
+from ..core.errors import ParameterError
 
 SHOWN_PLACES = 3
 """Places listed per finding on the terminal (the overlay shows them all)."""
@@ -26,7 +26,7 @@ SHOWN_PLACES = 3
 def finding_line(where: str, finding) -> str:
     """One line for a finding: where, code, count, worst value, first places.
 
-    >>> from fabtiles._report import Finding
+    >>> from fabtiles.core.report import Finding
     >>> f = Finding("thin_bridge", "...", 12, ((1.0, 2.0),), (0.155,), 0.155)
     >>> finding_line("laser", f)
     'laser thin_bridge: 12, worst 0.155 mm, at (1, 2) and 11 more'
@@ -66,13 +66,13 @@ def command(design_file, output, overrides, deep):
     """
     import fabtiles
 
-    from ..checks import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE, check_design
-    from ..design import load_design
+    from ..making.checks import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE, check_design
+    from ..designs.design_file import load_design
 
     if output is not None and Path(output).suffix.lower() != ".svg":
         raise ParameterError(f"the overlay (-o) must be an .svg file, got {output!r}")
     design = load_design(design_file, overrides=overrides)
-    from ..design import design_notes, profile_of
+    from ..designs.design_file import design_notes, profile_of
 
     cutter = profile_of(design, "laser").kind  # an unknown profile is refused before any geometry
     profile_of(design, "printer")
@@ -81,7 +81,7 @@ def command(design_file, output, overrides, deep):
     style = out.print_style or profile_of(design, "printer").print_style
     models = None
     if design.colour.given or style == "mosaic":
-        from ..build.models import BuildOptions, Models
+        from ..making.models import BuildOptions, Models
 
         models = Models(tile, BuildOptions.of_design(design))
         try:  # the build's classes and colours; a letter the design lacks is refused before anything is printed
@@ -117,14 +117,14 @@ def command(design_file, output, overrides, deep):
         click.echo("  " + finding_line(where, f))
     if output is not None:
         # a router's or waterjet's part is drawn as the tool makes it (the holes opened)
-        from .._io import atomic_write
-        from ..build.views import tile_picture
+        from ..core.files import atomic_write
+        from ..making.views import tile_picture
 
         atomic_write(output, tile_picture(tile, design, title=f"{design.name}: fabrication findings",
                                           findings=findings, made=result.made))
         click.echo(f"wrote {output}")
     if deep:
-        from ..build.deep import read_back
+        from ..making.deep import read_back
 
         for back in read_back(design):
             click.echo("  " + back.line())

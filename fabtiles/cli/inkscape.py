@@ -22,7 +22,7 @@ def install(dest, python: str = sys.executable) -> list:
     """Copy the extension into ``dest``, its script told to run fabtiles with ``python``; the paths written."""
     from importlib.resources import files
 
-    from .._io import atomic_write
+    from ..core.files import atomic_write
 
     dest = Path(dest)
     dest.mkdir(parents=True, exist_ok=True)

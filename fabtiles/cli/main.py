@@ -11,7 +11,7 @@ import sys
 
 import click
 
-from .._errors import FabtilesError
+from ..core.errors import FabtilesError
 
 REFUSED_EXIT = 3
 """The exit status of a build that wrote some of its formats and refused others (each named with its
@@ -64,7 +64,7 @@ def _float_list(text: str) -> tuple[float, ...]:
 def motif_options(command):
     """The ``[motif]`` keys of the schema as options (``--preset``, ``--n``, ``--radii``, ...), in the schema's
     order."""
-    from .. import _schema
+    from ..core import schema as _schema
 
     types = {"integer": int, "number": float}
     for k in reversed(_schema.section_keys("motif")):
@@ -112,7 +112,7 @@ def star(preset, n, radii, alpha, spr, special, rotation, size_mm, output):
     fabtiles star --preset table1-part1 -o star.svg
     fabtiles star --n 8 --radii 51,70,172 -o star.svg
     """
-    from .._schema import MOTIF_REQUIRED
+    from ..core.schema import MOTIF_REQUIRED
     from ..export.motif_svg import write_motif_svg
     from ..pattern.star import Star
 

@@ -1,7 +1,7 @@
 """``fabtiles nest``: tiles of one or more designs packed onto the cutter's sheets.
 
 The command parses its arguments and prints; the work is done by
-:func:`fabtiles.build.nesting.nest_designs` (on bad input, exit status 2 and no
+:func:`fabtiles.making.nesting.nest_designs` (on bad input, exit status 2 and no
 file; a format its writer refuses is named, the others written, exit status 3).
 """
 
@@ -82,8 +82,8 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
     fabtiles nest samples/rosette.toml --count 12 -o out/
     fabtiles nest a.toml:10 b.toml:5 -o out/ --sheet 600x400 --rotate 180 --format svg
     """
-    from ..build.nesting import nest_designs
-    from ..design import load_design
+    from ..making.nesting import nest_designs
+    from ..designs.design_file import load_design
 
     designs = [(load_design(path), n) for path, n in map(split_count, design_files)]
     size = parse_sheet(sheet) if sheet is not None else None

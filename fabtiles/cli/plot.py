@@ -1,7 +1,7 @@
 """``fabtiles plot``: a design as a pen plotter draws it (SVG; HPGL through vpype).
 
 The command parses its arguments and prints; the drawing is
-:func:`fabtiles.build.plot.plot_drawing`'s, the files :mod:`fabtiles.export.plot_svg`'s.
+:func:`fabtiles.making.plot.plot_drawing`'s, the files :mod:`fabtiles.export.plot_svg`'s.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from pathlib import Path
 
 import click
 
-from ..build.plot import WHATS
+from ..making.plot import WHATS
 
 PLOT_SUFFIXES = (".svg", ".hpgl")
 """The files ``fabtiles plot`` writes, by the output's suffix."""
@@ -34,10 +34,10 @@ def command(design_file, output, what, pen_mm, overrides):
 
     One layer per pen: the strands, the outline, each face colour (with [colour]).
     """
-    from .._errors import ParameterError
-    from .._io import atomic_write
-    from ..build.plot import plot_drawing
-    from ..design import load_design
+    from ..core.errors import ParameterError
+    from ..core.files import atomic_write
+    from ..making.plot import plot_drawing
+    from ..designs.design_file import load_design
     from ..export import plot_svg
 
     suffix = Path(output).suffix.lower()

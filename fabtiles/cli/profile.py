@@ -12,8 +12,8 @@ from pathlib import Path
 
 import click
 
-from .._errors import ProfileError
-from .._profiles import CutterProfile
+from ..core.errors import ProfileError
+from ..machines.profiles import CutterProfile
 
 KEY_OF_FAMILY = {"laser": "laser_profile", "printer": "printer_profile"}
 """The design key (``[output]``) that takes a profile of each family."""
@@ -33,8 +33,8 @@ def command():
 @command.command("list")
 def list_profiles():
     """List the bundled profiles by kind (laser, router, waterjet, printer), each with its description."""
-    from .._cutters import CUTTER_KINDS
-    from .._profiles import PRINTER, bundled_profiles, load_profile
+    from ..machines.cutters import CUTTER_KINDS
+    from ..machines.profiles import PRINTER, bundled_profiles, load_profile
 
     profiles = [load_profile(name) for name in bundled_profiles()]
     width = max(len(p.name) for p in profiles)
@@ -58,7 +58,7 @@ def show(name):
     fabtiles profile show fdm-0.4mm
     fabtiles profile show my-laser.toml
     """
-    from .._profiles import profile_text
+    from ..machines.profiles import profile_text
 
     text, _ = profile_text(name)
     click.echo(text, nl=not text.endswith("\n"))
@@ -75,9 +75,9 @@ def copy(name, path, force):
     fabtiles profile copy laser-3mm-plywood my-laser.toml
     fabtiles profile copy fdm-0.4mm my-printer.toml --force
     """
-    from .._cutters import family
-    from .._io import atomic_write
-    from .._profiles import load_profile, profile_text
+    from ..machines.cutters import family
+    from ..core.files import atomic_write
+    from ..machines.profiles import load_profile, profile_text
 
     target = Path(path)
     if target.suffix.lower() != ".toml":

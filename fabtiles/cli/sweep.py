@@ -1,7 +1,7 @@
 """``fabtiles sweep``: build every combination of some design values, with a contact sheet.
 
-Parses the arguments and prints; :mod:`fabtiles.sweep` makes the variants and the
-index files, :mod:`fabtiles.jobs` builds them (local processes or a Dask cluster).
+Parses the arguments and prints; :mod:`fabtiles.making.sweep` makes the variants and the
+index files, :mod:`fabtiles.making.jobs` builds them (local processes or a Dask cluster).
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import sys
 
 import click
 
-from ..design import FORMATS
+from ..designs.design_file import FORMATS
 
 
 @click.command("sweep")
@@ -46,13 +46,13 @@ def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, ye
     fabtiles sweep samples/table3-3.toml --vary packing.radius=10:20:5 --vary tile.stroke=1,1.5 -o sweep/
     fabtiles sweep samples/rosette.toml --vary motif.preset=table3-1,table3-2,table3-3 -o presets/ --format svg
     """
-    from ..sweep import explain, make_jobs, parse_vary, variants, write_index
+    from ..making.sweep import explain, make_jobs, parse_vary, variants, write_index
     from .batch import run_and_report
 
     if scheduler is not None and jobs is not None:
         raise click.UsageError("--jobs sets local processes; with --scheduler the cluster's workers build")
     parsed = [parse_vary(v) for v in varies]
-    from ..design import load_design
+    from ..designs.design_file import load_design
 
     design = load_design(design_file, overrides=overrides)  # the base design must be valid on its own
     todo = variants(parsed, design.name, yes=yes)

@@ -10,7 +10,7 @@ It is a vpype *global processor* (as vpype's own ``read``): a generator fills on
 layer, and a design has several (the strands, the outline, each face colour; or each
 cutter layer), each added as a new layer with its name (``vp_name``), colour
 (``vp_color``) and the pen's width (``vp_pen_width``). The drawing is
-:func:`fabtiles.build.plot.plot_drawing`'s, at true size. fabtiles' errors reach
+:func:`fabtiles.making.plot.plot_drawing`'s, at true size. fabtiles' errors reach
 vpype's error channel as one line (``Error: fabtiles: ...``, exit status 1), never a
 traceback.
 """
@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import click
 
-from ..build.plot import WHATS
+from ..making.plot import WHATS
 
 try:
     import vpype_cli
@@ -46,9 +46,9 @@ def fabtiles_command(document, design, what, overrides, pen_mm):
 
 def add_design(document, design, *, what="centrelines", overrides=(), pen_mm=None):
     """``document`` with the design's drawing added, a layer per pen; fabtiles' errors as click's."""
-    from .._errors import FabtilesError
-    from ..build.plot import plot_drawing
-    from ..design import load_design
+    from ..core.errors import FabtilesError
+    from ..making.plot import plot_drawing
+    from ..designs.design_file import load_design
     from ..export.plot_svg import vpype_document
 
     try:

@@ -11,5 +11,5 @@ used. Pictures: :mod:`~fabtiles.export.motif_svg` (one motif),
 :mod:`~fabtiles.export.preview_svg` (a tile, its findings marked);
 :mod:`~fabtiles.export.card` the laser calibration card; :mod:`~fabtiles.export.kit`
 an inlay kit's files. The ``write_*`` functions of the modules are conveniences for
-scripts; the build pipeline (:mod:`fabtiles.build`) writes every file of a build.
+scripts; the build pipeline (:mod:`fabtiles.making`) writes every file of a build.
 """

@@ -18,11 +18,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._errors import ParameterError
-from .._io import atomic_write
-from .._profiles import DXF_VERSIONS, load_profile
-from .._report import Report
-from .._validate import check_choice
+from ..core.errors import ParameterError
+from ..core.files import atomic_write
+from ..machines.profiles import DXF_VERSIONS, load_profile
+from ..core.report import Report
+from ..core.validate import check_choice
 from ..geometry.calibration import calibration_card
 from ..geometry.contours import laser_contours
 from ..geometry.cut_plan import CutPlan, make_plan
@@ -47,7 +47,7 @@ def card_job(profile, *, dxf_version=None):
 def write_card(path, profile, *, dxf_version=None) -> Report:
     """Write the test card of a laser profile to ``path`` (``.dxf`` or ``.svg``), atomically.
 
-    Returns a :class:`~fabtiles._report.Report` whose stats give the card's size,
+    Returns a :class:`~fabtiles.core.report.Report` whose stats give the card's size,
     its features and contour counts.
     """
     from pathlib import Path

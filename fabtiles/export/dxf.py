@@ -25,8 +25,8 @@ import threading
 from contextlib import contextmanager
 from pathlib import Path
 
-from .._io import atomic_write
-from .._report import Report
+from ..core.files import atomic_write
+from ..core.report import Report
 from ..geometry.cut_plan import CutPlan, plan_cut
 
 
@@ -313,7 +313,7 @@ def cutter_comment(job: CutPlan) -> str:
     CAM programs skip 999 groups, ezdxf's reader drops them, LibreCAD draws the file as
     before (tests/export/test_router.py). A laser's file stays byte for byte as it was.
 
-    >>> from fabtiles._profiles import load_profile
+    >>> from fabtiles.machines.profiles import load_profile
     >>> from fabtiles.geometry.cut_plan import make_plan
     >>> print(cutter_comment(make_plan(load_profile("router-6mm-mdf"), "pierced", "R2000", 0.0, {})), end="")
     999

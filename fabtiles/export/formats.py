@@ -5,7 +5,7 @@ Each row says which model a format is written from (``"cut"``: a
 :class:`~fabtiles.solid.print_model.PrintModel`), its media type, and two pure
 functions of that model: ``write(model, options) -> bytes`` and
 ``figures(model, options) -> dict`` (what the file adds to its model's report).
-No writer touches the file system: the build pipeline (:mod:`fabtiles.build`)
+No writer touches the file system: the build pipeline (:mod:`fabtiles.making`)
 stages and moves every file. A writer's module is imported when its format is
 written, so a DXF never loads manifold3d and only STEP loads build123d/OCP.
 
@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from .._errors import ParameterError
+from ..core.errors import ParameterError
 
 
 @dataclass(frozen=True)
@@ -164,7 +164,7 @@ def format_of(path, *, allowed=FILE_FORMATS) -> Format:
     >>> format_of("tile.png")
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: 'png' is not a valid output format (from the suffix of 'tile.png'), must be one of: dxf, svg, lbrn2, stl, 3mf, step
+    fabtiles.core.errors.ParameterError: 'png' is not a valid output format (from the suffix of 'tile.png'), must be one of: dxf, svg, lbrn2, stl, 3mf, step
     """  # noqa: E501 - a doctest's lines are as Python prints them
     suffix = Path(path).suffix.lower().lstrip(".")
     if suffix not in allowed:

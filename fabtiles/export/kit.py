@@ -18,8 +18,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .._io import atomic_write
-from .._report import Report
+from ..core.files import atomic_write
+from ..core.report import Report
 from ..geometry.cut_plan import INLAY_BASES, KitPlans, plan_kit  # noqa: F401  (INLAY_BASES: public here too)
 from .formats import CUT_FORMATS, FORMATS, format_of
 

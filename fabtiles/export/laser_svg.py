@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._io import atomic_write
-from .._report import Report
+from ..core.files import atomic_write
+from ..core.report import Report
 from ..geometry.arcs import subdivide
 from ..geometry.cut_plan import CutPlan, plan_cut
 

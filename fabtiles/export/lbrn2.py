@@ -32,8 +32,8 @@ import functools
 
 import numpy as np
 
-from .._io import atomic_write
-from .._report import Report
+from ..core.files import atomic_write
+from ..core.report import Report
 from ..geometry.arcs import Beziers, beziers_many
 from ..geometry.cut_plan import CutPlan, plan_cut
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._io import atomic_write
+from ..core.files import atomic_write
 
 
 def _num(x: float) -> str:

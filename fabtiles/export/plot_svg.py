@@ -12,7 +12,7 @@ it with vpype's own HPGL writer; both need vpype (``pip install 'fabtiles[vpype]
 
 from __future__ import annotations
 
-from .._errors import ParameterError
+from ..core.errors import ParameterError
 
 PX_PER_MM = 96 / 25.4
 """vpype's unit is the CSS pixel, 1/96 inch."""

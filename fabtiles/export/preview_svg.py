@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._io import atomic_write
+from ..core.files import atomic_write
 
 _DIGITS = 3  # 1 micrometre
 
@@ -58,13 +58,13 @@ def findings_overlay(findings, height: float, *, mark_mm: float = 1.5) -> str:
     Parameters
     ----------
     findings : iterable of (str, Finding)
-        Where each finding comes from and the finding (see :meth:`fabtiles.checks.CheckResult.findings`).
+        Where each finding comes from and the finding (see :meth:`fabtiles.making.checks.CheckResult.findings`).
     height : float
         Height of the picture (mm), to flip y.
     mark_mm : float
         Radius of a mark.
 
-    >>> from fabtiles._report import Finding
+    >>> from fabtiles.core.report import Finding
     >>> f = Finding("small_hole", "1 hole", 1, ((2.0, 1.0),), (0.62,), 0.62)
     >>> print(findings_overlay([("laser", f)], 10))
     <g class="findings" fill="none" stroke-width="0.375">
@@ -108,7 +108,7 @@ def tile_svg(tile, *, fill: str = INK, outline_color: str = "#c0392b",
         Fabrication findings to mark where they are (see :func:`findings_overlay`).
     region : shapely geometry, optional
         The material to draw instead of the tile's own: a router's or waterjet's part
-        as the tool makes it (:attr:`fabtiles.checks.CheckResult.made`, the holes opened).
+        as the tool makes it (:attr:`fabtiles.making.checks.CheckResult.made`, the holes opened).
     faces : sequence of (str, shapely geometry, str), optional
         The pattern's faces in colour, drawn under the material: ``(class letter, faces,
         colour)`` each (a coloured design, ``docs/colours.md``), as ``<path class="face-A">``.

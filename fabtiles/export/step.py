@@ -21,8 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._errors import FabricationError, ProfileError
-from .._io import atomic_write
+from ..core.errors import FabricationError, ProfileError
+from ..core.files import atomic_write
 from ..geometry.material import filament
 from ..geometry.stack import QUANTUM
 from ..solid.brep import brep_volume, check_brep

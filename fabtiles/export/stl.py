@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._errors import FabricationError
-from .._io import atomic_write
-from .._report import Report
+from ..core.errors import FabricationError
+from ..core.files import atomic_write
+from ..core.report import Report
 from ..geometry.material import filament
 from ..solid.mesh_check import cross_rows
 

@@ -96,8 +96,8 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from .._errors import FabricationError, ParameterError
-from .._io import atomic_write, zip_entry
+from ..core.errors import FabricationError, ParameterError
+from ..core.files import atomic_write, zip_entry
 from ..geometry.material import filament
 
 MAX_EXTRUDERS = 16

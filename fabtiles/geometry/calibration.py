@@ -43,9 +43,9 @@ from typing import TYPE_CHECKING
 import shapely
 from shapely.geometry import Point, box
 
-from .._errors import ParameterError
-from .._profiles import load_profile
-from .._schema import key
+from ..core.errors import ParameterError
+from ..machines.profiles import load_profile
+from ..core.schema import key
 from .inlay import piece_of_hole
 from .stroke_font import text_paths, text_width
 

@@ -38,7 +38,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from .._errors import ParameterError
+from ..core.errors import ParameterError
 
 MITRE_LIMIT = 5.0
 """Mitre limit of the kerf offset (a corner sharper than about 23 degrees is bevelled)."""

@@ -29,11 +29,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from .._cutters import cutter_kind
-from .._errors import ParameterError
-from .._profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, Layer, load_profile
-from .._report import Report, distinct
-from .._validate import check_choice, check_float
+from ..machines.cutters import cutter_kind
+from ..core.errors import ParameterError
+from ..machines.profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, Layer, load_profile
+from ..core.report import Report, distinct
+from ..core.validate import check_choice, check_float
 from .arcs import Curve, curve_bounds, curves
 from .cut_order import path_orders
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
@@ -127,7 +127,7 @@ class CutPlan:
 
     @property
     def kind(self):
-        """The cutter's rules (:class:`~fabtiles._cutters.CutterKind`)."""
+        """The cutter's rules (:class:`~fabtiles.machines.cutters.CutterKind`)."""
         return cutter_kind(self.profile)
 
 
@@ -146,7 +146,7 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
     files share the lattice's, so each piece lies in its hole when the sheets are laid
     alike).
 
-    >>> from fabtiles._profiles import load_profile
+    >>> from fabtiles.machines.profiles import load_profile
     >>> ring = np.array([[-0.075, -0.075], [40.075, -0.075], [40.075, 40.075], [-0.075, 40.075]])
     >>> plan = make_plan(load_profile("laser-3mm-plywood"), "pierced", "R2000", 0.15, {"outer": [ring]})
     >>> plan.offset, np.round(plan.bounds, 9).tolist(), plan.paths("outer")[0].min(axis=0).tolist()
@@ -424,7 +424,7 @@ def _note_bed_edge(plan: CutPlan, profile, report: Report) -> None:
     tile by half the kerf on every side (a router's by the bit's radius): 600.15 x 400.15 mm.
     Most machines travel a few mm beyond their nominal bed, so this is a note, not a finding.
 
-    >>> from fabtiles._profiles import load_profile
+    >>> from fabtiles.machines.profiles import load_profile
     >>> ring = np.array([[-0.075, -0.075], [600.075, -0.075], [600.075, 400.075], [-0.075, 400.075]])
     >>> r = Report(path="", format="")
     >>> _note_bed_edge(make_plan(load_profile("laser-3mm-plywood"), "pierced", "R2000", 0.15, {"outer": [ring]}),

@@ -39,8 +39,8 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from .._errors import ParameterError
-from .._validate import check_choice
+from ..core.errors import ParameterError
+from ..core.validate import check_choice
 from ..pattern.star import Star
 from .contours import polygon_parts
 

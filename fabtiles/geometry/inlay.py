@@ -40,9 +40,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from .._errors import FabricationError, ParameterError
-from .._report import distinct
-from .._schema import key
+from ..core.errors import FabricationError, ParameterError
+from ..core.report import distinct
+from ..core.schema import key
 from .contours import MITRE_LIMIT, polygon_parts
 
 if TYPE_CHECKING:
@@ -83,7 +83,7 @@ def check_fit(fit_mm) -> float:
     >>> check_fit(0.6)
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: inlay_fit_mm must be a number of mm from -0.5 to 0.5 (positive: a press fit, negative: play), got 0.6
+    fabtiles.core.errors.ParameterError: inlay_fit_mm must be a number of mm from -0.5 to 0.5 (positive: a press fit, negative: play), got 0.6
     """  # noqa: E501 - a doctest's lines are as Python prints them
     return _FIT.check(fit_mm, required=True)
 

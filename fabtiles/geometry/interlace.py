@@ -248,7 +248,7 @@ def checked_weave(tile) -> Weave:
     Raises :class:`~fabtiles.ParameterError` when the given ``interlace_gap_mm`` is
     so large that the gaps swallow a strand.
     """
-    from .._errors import ParameterError
+    from ..core.errors import ParameterError
     from ..pattern.interlace import weave
 
     w = weave(woven_segments(tile))

@@ -17,7 +17,7 @@ simulation of GRBL's motion planner (acceleration included) on the G-code MeerK4
 writes from the same file.
 
 >>> import numpy as np
->>> from fabtiles._profiles import load_profile
+>>> from fabtiles.machines.profiles import load_profile
 >>> square = np.array([[0, 0], [10, 0], [10, 10], [0, 10]], float)
 >>> job = estimate(load_profile("laser-3mm-plywood"), inner=[square + 20], outer=[square * 5])
 >>> job.cut_mm["inner_cut"], job.cut_mm["outer_cut"], job.pierces
@@ -138,7 +138,7 @@ def _layer_groups(profile, inner, outer, score, engrave, outer_closed: bool) -> 
 def travel_mm(profile, *, inner=(), outer=(), score=(), engrave=(), outer_closed: bool = True) -> float:
     """The head's travel of :func:`estimate` alone, without the cut lengths and times.
 
-    >>> from fabtiles._profiles import load_profile
+    >>> from fabtiles.machines.profiles import load_profile
     >>> square = np.array([[0, 0], [10, 0], [10, 10], [0, 10]], float)
     >>> round(travel_mm(load_profile("laser-3mm-plywood"), inner=[square + 5], outer=[square * 3]), 6)  # 2 x 5 sqrt 2
     14.142136
@@ -162,7 +162,7 @@ def estimate(profile, *, inner=(), outer=(), score=(), engrave=(), engrave_area_
     ``(8 s / r) / 24`` of itself (0.6 % for a 0.575 mm round join at 0.01 mm; the 100 mm
     circle tile's cut: 1,937.8 mm in chords, 1,939.0 mm in arcs).
 
-    >>> from fabtiles._profiles import load_profile
+    >>> from fabtiles.machines.profiles import load_profile
     >>> piece = np.array([[0, 0], [10, 0], [10, 9]], float)
     >>> job = estimate(load_profile("laser-3mm-plywood"), outer=[piece, piece + 20], outer_closed=False)
     >>> job.cut_mm["outer_cut"], job.pierces

@@ -18,7 +18,7 @@ from dataclasses import replace
 import numpy as np
 import shapely
 
-from .._errors import FabricationError
+from ..core.errors import FabricationError
 from .contours import laser_contours
 from .cut_plan import KitPlans, make_plan
 from .nest import nest

@@ -1,6 +1,6 @@
 """The 2D cutters' fabrication checks (the cut plan, :mod:`.cut_plan`, runs them once per plan).
 
-:func:`check_laser` reports, into a :class:`~fabtiles._report.Report`:
+:func:`check_laser` reports, into a :class:`~fabtiles.core.report.Report`:
 
 ``small_hole``
     Holes no disc of ``min_hole_mm`` fits in (their inscribed width is smaller):
@@ -25,7 +25,7 @@ kerf below 0 or wider than the stroke are :class:`~fabtiles.ParameterError` (see
 ``docs/file-conventions.md``), raised by :func:`~fabtiles.geometry.cut_plan.plan_cut` before any work.
 
 >>> from shapely.geometry import box
->>> from fabtiles._profiles import load_profile
+>>> from fabtiles.machines.profiles import load_profile
 >>> plate = box(0, 0, 50, 50).difference(box(10, 10, 10.5, 10.5))
 >>> report = check_laser(plate, box(0, 0, 50, 50), load_profile("laser-3mm-plywood"))
 >>> [f.code for f in report.findings]
@@ -37,9 +37,9 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from .._errors import FabricationError, ProfileError
-from .._profiles import LaserProfile, load_profile
-from .._report import Report, distinct
+from ..core.errors import FabricationError, ProfileError
+from ..machines.profiles import LaserProfile, load_profile
+from ..core.report import Report, distinct
 from .contours import polygon_parts
 from .narrow import MAX_LOCATIONS, add_small_holes, check_pattern_kept, hole_polygons, locations, narrow_places, \
     small_hole_mask
@@ -64,7 +64,7 @@ def check_fits_bed(outline, profile: LaserProfile) -> None:
     >>> check_fits_bed(box(0, 0, 700, 100), load_profile("laser-3mm-plywood"))
     Traceback (most recent call last):
     ...
-    fabtiles._errors.FabricationError: the tile is 700 x 100 mm, larger than the 600 x 400 mm bed of laser profile 'laser-3mm-plywood' (either way round); make the tile smaller or use a profile with a larger bed_mm
+    fabtiles.core.errors.FabricationError: the tile is 700 x 100 mm, larger than the 600 x 400 mm bed of laser profile 'laser-3mm-plywood' (either way round); make the tile smaller or use a profile with a larger bed_mm
     """  # noqa: E501 - a doctest's lines are as Python prints them
     xmin, ymin, xmax, ymax = outline.bounds
     w, h = xmax - xmin, ymax - ymin

@@ -3,13 +3,13 @@
 An interlaced tile differs by machine: a cutter scores its centre-lines broken where
 a strand passes under (score mode) or cuts the under gaps (pierced mode with
 ``interlace_cut``, leaving tabs ``min(min_feature_mm, stroke / 2)`` wide); a relief
-print dips its under strands. The build's models (:mod:`fabtiles.build`), the
+print dips its under strands. The build's models (:mod:`fabtiles.making`), the
 checks and the pictures all take their geometry from here.
 """
 
 from __future__ import annotations
 
-from .._profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
+from ..machines.profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
 
 
 def cut_geometry(tile, *, profile=None, mode=None, lines: bool = True):

@@ -9,7 +9,7 @@ the outline's bounding box. A cost is given only when the profile has a price
 currency. Print time is the slicer's to tell (it depends on its settings): fabtiles
 does not estimate it.
 
->>> from fabtiles._profiles import load_profile
+>>> from fabtiles.machines.profiles import load_profile
 >>> print(filament({"base": 3200.0, "pattern": 1228.9}, load_profile("fdm-0.4mm")).line())
 5.49 g of filament, 1.84 m (base 3.97 g, pattern 1.52 g)
 """

@@ -42,8 +42,8 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
-from .._errors import FabricationError, ParameterError
-from .._validate import check_float
+from ..core.errors import FabricationError, ParameterError
+from ..core.validate import check_float
 
 ROTATIONS = {"none": (0.0,), "180": (0.0, 180.0), "90": (0.0, 90.0, 180.0, 270.0), "free": None}
 """The rotation modes and their angles in degrees (``free``: any angle)."""

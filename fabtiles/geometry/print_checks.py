@@ -1,6 +1,6 @@
 """3D-printing checks from the printer profile, reported like the laser checks.
 
-:func:`check_print` adds these findings to a :class:`~fabtiles._report.Report`:
+:func:`check_print` adds these findings to a :class:`~fabtiles.core.report.Report`:
 
 ``small_hole``
     Openings of the print no disc of the profile's ``min_hole_mm`` fits in (default
@@ -48,9 +48,9 @@ from typing import NamedTuple
 import numpy as np
 import shapely
 
-from .._errors import FabricationError, ProfileError
-from .._profiles import PrinterProfile, load_profile
-from .._report import Report, distinct
+from ..core.errors import FabricationError, ProfileError
+from ..machines.profiles import PrinterProfile, load_profile
+from ..core.report import Report, distinct
 from .narrow import MAX_LOCATIONS, add_small_holes, check_pattern_kept, hole_polygons, hole_widths, locations, \
     narrow_places, neck_pieces, small_hole_mask, without_holes
 from .contours import polygon_parts
@@ -217,7 +217,7 @@ def check_min_hole(profile: PrinterProfile, outline) -> None:
     >>> check_min_hole(replace(load_profile("fdm-0.4mm"), min_hole_mm=60.0), box(0, 0, 50, 80))
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ProfileError: printer profile 'fdm-0.4mm': min_hole_mm = 60 mm is larger than the tile (50 x 80 mm); give the narrowest hole the printer makes, about two widths of its 0.4 mm nozzle, or 0 for no limit
+    fabtiles.core.errors.ProfileError: printer profile 'fdm-0.4mm': min_hole_mm = 60 mm is larger than the tile (50 x 80 mm); give the narrowest hole the printer makes, about two widths of its 0.4 mm nozzle, or 0 for no limit
     """  # noqa: E501 - a doctest's lines are as Python prints them
     m = profile.min_hole_mm
     if isinstance(m, bool) or not isinstance(m, (int, float)) or not np.isfinite(m) or m < 0:

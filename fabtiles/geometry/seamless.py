@@ -20,8 +20,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .._errors import ParameterError
-from .._validate import check_choice, check_float
+from ..core.errors import ParameterError
+from ..core.validate import check_choice, check_float
 from ..pattern.archimedean import rectangular_period
 from ..pattern.tilings import TILINGS, canonical, unit_cell
 from .tile import OUTLINES, check_tile_size

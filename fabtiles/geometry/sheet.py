@@ -23,9 +23,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from .._errors import FabricationError, ParameterError
-from .._profiles import load_profile
-from .._validate import check_float, check_int
+from ..core.errors import FabricationError, ParameterError
+from ..machines.profiles import load_profile
+from ..core.validate import check_float, check_int
 
 if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .._errors import ParameterError
-from .._profiles import PRINT_STYLES, PrinterProfile, load_profile
-from .._schema import key
-from .._validate import check_choice, check_float
+from ..core.errors import ParameterError
+from ..machines.profiles import PRINT_STYLES, PrinterProfile, load_profile
+from ..core.schema import key, register_check
+from ..core.validate import check_choice, check_float
 
 QUANTUM = 2.0**-10
 """Grid of every x, y coordinate of a printed part (mm): about 1 micron, exact in float32 up to
@@ -83,11 +83,11 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
     >>> resolve_stack("fdm-0.4mm", style="deboss", deboss_mm=2.5)
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: deboss_mm must be smaller than base_mm (the plate is 2 mm thick), got 2.5
+    fabtiles.core.errors.ParameterError: deboss_mm must be smaller than base_mm (the plate is 2 mm thick), got 2.5
     >>> resolve_stack("fdm-0.4mm", style="mosaic", mosaic_inset_mm=2)
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: mosaic_inset_mm must be smaller than relief_mm (the bands stand 1.2 mm above the plate), got 2
+    fabtiles.core.errors.ParameterError: mosaic_inset_mm must be smaller than relief_mm (the bands stand 1.2 mm above the plate), got 2
     """  # noqa: E501 - a doctest's lines are as Python prints them
     profile = load_profile(profile, kind="printer")
     assert isinstance(profile, PrinterProfile)
@@ -111,3 +111,7 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
             f"plate), got {inset:g}", param="mosaic_inset_mm")
     return Stack(style, values["base_mm"], values["relief_mm"], values["pierced_mm"], values["deboss_mm"],
                  inset if style == "mosaic" else 0.0)
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_check(resolve_stack, "output.mosaic_inset_mm")

@@ -36,7 +36,9 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-JOINS = ("miter", "round", "bevel")
+from ..core.schema import key
+
+JOINS = key("tile.join").choices
 """Valid join styles."""
 
 _MERGE = 1e-6  # mm: endpoints closer than about this are one vertex

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._errors import ParameterError
+from ..core.errors import ParameterError
 
 _GLYPHS: dict[str, tuple[tuple[tuple[float, float], ...], ...]] = {
     "0": (((0, 0), (4, 0), (4, 6), (0, 6), (0, 0)), ((0, 0), (4, 6))),

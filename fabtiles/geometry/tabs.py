@@ -19,7 +19,7 @@ leaving ``tabs_per_part`` gaps of ``tab_mm`` each, measured along the cut path:
   lengths); the report names them.
 
 Holes get no tabs: their slugs should fall. Only a laser's files get them (a router's
-and a waterjet's CAM adds its own: :meth:`~fabtiles._cutters.CutterKind.check_tabs`).
+and a waterjet's CAM adds its own: :meth:`~fabtiles.machines.cutters.CutterKind.check_tabs`).
 
 >>> sq = np.array([[0, 0], [10, 0], [10, 10], [0, 10]], float)
 >>> tabs = tab_paths([sq], tab_mm=1.0, tabs_per_part=4)
@@ -35,9 +35,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._cutters import cutter_kind
-from .._errors import ParameterError
-from .._schema import key
+from ..machines.cutters import cutter_kind
+from ..core.errors import ParameterError
+from ..core.schema import key
 from .contours import ROUND_DECIMALS
 
 CORNER_DEG = 20.0
@@ -103,7 +103,7 @@ def check_tabs(tab_mm, tabs_per_part, *, kerf_mm: float = 0.0, profile=None) -> 
     """``(tab_mm, tabs_per_part)`` checked: the schema's ranges, a cutter that leaves tabs, a tab wider than the kerf.
 
     None is the default (no tabs; 4 per part). ``profile``: the cutter's, whose kind
-    may leave tabs to CAM (:meth:`~fabtiles._cutters.CutterKind.check_tabs`). The beam
+    may leave tabs to CAM (:meth:`~fabtiles.machines.cutters.CutterKind.check_tabs`). The beam
     eats half a kerf at each end of a gap, so the bridge left is ``tab_mm - kerf_mm``
     wide: a tab no wider than the kerf leaves nothing.
 
@@ -112,7 +112,7 @@ def check_tabs(tab_mm, tabs_per_part, *, kerf_mm: float = 0.0, profile=None) -> 
     >>> check_tabs(0.1, 4, kerf_mm=0.15)
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: tab_mm must be 0 (no tabs) or more than the kerf (0.15 mm), got 0.1: the beam eats half a kerf at each end of a gap, so the bridge left is tab_mm - kerf_mm wide; make tab_mm larger
+    fabtiles.core.errors.ParameterError: tab_mm must be 0 (no tabs) or more than the kerf (0.15 mm), got 0.1: the beam eats half a kerf at each end of a gap, so the bridge left is tab_mm - kerf_mm wide; make tab_mm larger
     """  # noqa: E501 - a doctest's lines are as Python prints them
     tab = TAB.check(TAB.default if tab_mm is None else tab_mm)
     per = TABS_PER_PART.check(TABS_PER_PART.default if tabs_per_part is None else tabs_per_part)

@@ -14,15 +14,16 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-from .._errors import ParameterError
-from .._report import distinct
-from .._validate import check_choice, check_float
+from ..core.errors import ParameterError
+from ..core.report import distinct
+from ..core.schema import key, register_check
+from ..core.validate import check_choice, check_float
 from ..pattern.archimedean import ArchimedeanPacking
 from ..pattern.packing import Packing
 from ..pattern.star import Star
 from .stroke import JOINS, clip_segments, stroke_cross_section, to_cross_section, to_shapely
 
-OUTLINES = ("square", "rectangle", "hexagon", "circle")
+OUTLINES = key("tile.outline").choices
 """Valid tile outlines. ``hexagon`` is pointy-top, its size is the width across flats."""
 
 TOLERANCE = 0.005
@@ -115,7 +116,7 @@ class TileGeometry:
     >>> TileGeometry("square", 60, pack, join="zigzag")
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: 'zigzag' is not a valid join, must be one of: miter, round, bevel
+    fabtiles.core.errors.ParameterError: 'zigzag' is not a valid join, must be one of: miter, round, bevel
     """
 
     def __init__(self, outline, size, pattern, *, frame=0.0, stroke=1.0, join="miter",
@@ -357,3 +358,9 @@ def check_tile_size(outline: str, size) -> tuple[float, float]:
             f"use outline 'rectangle' for unequal sides" if outline == "square" else
             f"size of a {outline} is one number (its {what}) or an equal pair, got ({w:g}, {h:g})", param="size")
     return (w, h)
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_check(check_tile_size, "tile.size")
+register_check(TileGeometry, "tile.frame", "tile.stroke", "tile.miter_limit", "tile.corner_radius",
+               "tile.interlace_gap_mm")

@@ -45,8 +45,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from .._errors import ParameterError
-from .._report import Report, distinct
+from ..core.errors import ParameterError
+from ..core.report import Report, distinct
 from .narrow import MAX_LOCATIONS, add_small_holes, hole_widths, locations
 
 if TYPE_CHECKING:

@@ -21,8 +21,9 @@ from typing import Any, cast
 
 import numpy as np
 
-from .._errors import LimitError, ParameterError
-from .._validate import check_float
+from ..core.errors import LimitError, ParameterError
+from ..core.schema import register_check
+from ..core.validate import check_float
 from .hankin import check_contact, check_method, polygon_rays
 from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, default_gap_motif
 from .star import Star
@@ -104,7 +105,7 @@ class ArchimedeanPacking:
     >>> ArchimedeanPacking("4.8.8", edge=20, motifs={6: "table3-3"})
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: motifs key 6 is not a polygon of the tiling 4.8.8, must be one of: 4, 8
+    fabtiles.core.errors.ParameterError: motifs key 6 is not a polygon of the tiling 4.8.8, must be one of: 4, 8
     >>> h = ArchimedeanPacking("4.8.8", edge=20, method="hankin", contact_angle=67.5)
     >>> h.motifs, h.segments((-1, -1, 1, 1)).shape  # the octagon's: 2 per edge it keeps (4 of 8)
     (mappingproxy({}), (8, 2, 2))
@@ -503,3 +504,7 @@ def _check_window(window):
         raise ParameterError(f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}",
                              param="window")
     return x0, y0, x1, y1
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_check(ArchimedeanPacking, "packing.edge")

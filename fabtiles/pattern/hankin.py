@@ -33,8 +33,9 @@ import math
 
 import numpy as np
 
-from .._errors import ParameterError
-from .._validate import check_float
+from ..core.errors import ParameterError
+from ..core.schema import register_check, register_choices
+from ..core.validate import check_float
 from .tilings import inradius
 
 METHODS = ("motifs", "hankin")
@@ -49,7 +50,7 @@ def check_method(method) -> str:
     >>> check_method("kaplan")
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: method = 'kaplan' is not valid, must be one of: motifs, hankin
+    fabtiles.core.errors.ParameterError: method = 'kaplan' is not valid, must be one of: motifs, hankin
     """
     if method not in METHODS:
         raise ParameterError(f"method = {method!r} is not valid, must be one of: {', '.join(METHODS)}",
@@ -78,7 +79,7 @@ def check_contact(angle, gap, edge: float, kinds, tiling: str) -> tuple[float, f
     >>> check_contact(80, 5, 10, (3, 12), "3.12.12")
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: contact_angle 80 has no pattern on the tiling 3.12.12 with contact_gap 5 mm: the rays of its 3-gons would meet past their centres; with this gap contact_angle must be > 0 and <= 49.1066, or contact_gap <= 1.01802 mm for this angle
+    fabtiles.core.errors.ParameterError: contact_angle 80 has no pattern on the tiling 3.12.12 with contact_gap 5 mm: the rays of its 3-gons would meet past their centres; with this gap contact_angle must be > 0 and <= 49.1066, or contact_gap <= 1.01802 mm for this angle
     """  # noqa: E501 - a doctest's lines are as Python prints them
     angle = check_float("contact_angle", angle, low=0, high=90, low_open=True, high_open=True)
     gap = check_float("contact_gap", gap, low=0)
@@ -118,3 +119,9 @@ def polygon_rays(p: int, edge: float, angle: float, gap: float = 0.0, turn: floa
         rays[:, r, 0] = start
         rays[:, r, 1] = start + length * direction
     return rays
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_choices(METHODS, "packing.method")
+register_check(check_method, "packing.method")
+register_check(check_contact, "packing.contact_angle", "packing.contact_gap")

@@ -537,11 +537,11 @@ def _walk(partner, piece_v, plen, is_cross):
     length and whether it is a loop; per visit of a crossing (in walk order), the
     strand, how far along, the vertex and the piece arriving there.
 
-    In numpy (:func:`fabtiles._graph.chain_ranks`, 0.01 s for the 600 x 400 mm
+    In numpy (:func:`fabtiles.core.graph.chain_ranks`, 0.01 s for the 600 x 400 mm
     sheet's 64,000 pieces; a Python walk took 0.05 s). Positions are summed along
     each strand one piece after the other, as a walk would.
     """
-    from .._graph import chain_ranks, components
+    from ..core.graph import chain_ranks, components
 
     n = len(piece_v)
     m = 2 * n

@@ -22,9 +22,9 @@ from typing import ClassVar, cast
 
 import numpy as np
 
-from .._errors import LimitError, ParameterError
-from .._schema import GAP_MOTIF
-from .._validate import check_float
+from ..core.errors import LimitError, ParameterError
+from ..core.schema import GAP_MOTIF, register_check
+from ..core.validate import check_float
 from .star import Star
 
 MAX_CIRCLES_IN_WINDOW = 2_000_000
@@ -347,3 +347,7 @@ def _check_window(window):
     if not all(math.isfinite(v) for v in (x0, y0, x1, y1)) or x1 < x0 or y1 < y0:
         raise ParameterError(f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}")
     return x0, y0, x1, y1
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_check(Packing, "packing.radius", "packing.fill")

@@ -6,6 +6,8 @@ from collections.abc import Mapping
 from types import MappingProxyType
 from typing import Any
 
+from ..core.schema import register_choices
+
 # name -> (parameters, note). Parameters are exactly Star's keyword arguments.
 _ROWS = {
     "table1-part1": (dict(n=8, radii=(51, 70, 172), alpha=0, spr=0, special=None), "8-pointed star"),
@@ -31,3 +33,7 @@ PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType({name: MappingProxyT
 
 PRESET_NOTES = MappingProxyType({name: note for name, (_, note) in _ROWS.items()})
 """Preset name -> how fabtiles reads the paper's row (empty when the row is plain)."""
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_choices(PRESETS, "motif.preset")

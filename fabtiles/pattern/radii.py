@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
-from .._errors import ParameterError
-from .._validate import check_float, check_int
+from ..core.errors import ParameterError
+from ..core.validate import check_float, check_int
 from .star import MAX_CIRCLES, MAX_N
 
 

@@ -8,8 +8,9 @@ from dataclasses import KW_ONLY, dataclass
 
 import numpy as np
 
-from .._errors import ParameterError, did_you_mean
-from .._validate import check_float, check_float_seq, check_int
+from ..core.errors import ParameterError, did_you_mean
+from ..core.schema import register_check
+from ..core.validate import check_float, check_float_seq, check_int
 from .presets import PRESETS
 
 MAX_N = 120
@@ -99,7 +100,7 @@ class Star:
         >>> Star.preset("table3-33")
         Traceback (most recent call last):
         ...
-        fabtiles._errors.ParameterError: preset 'table3-33' is unknown; did you mean 'table3-3'? (presets: table1-part1, table1-part2, table2-left, table2-right, table3-1, table3-2, table3-3; `fabtiles presets` lists them)
+        fabtiles.core.errors.ParameterError: preset 'table3-33' is unknown; did you mean 'table3-3'? (presets: table1-part1, table1-part2, table2-left, table2-right, table3-1, table3-2, table3-3; `fabtiles presets` lists them)
         """  # noqa: E501 - a doctest's lines are as Python prints them
         if not isinstance(name, str) or name not in PRESETS:
             hint = did_you_mean(name, PRESETS)
@@ -221,3 +222,7 @@ def _dedupe(seg: np.ndarray) -> np.ndarray:
     key = np.round(canon.reshape(len(canon), 4) / (tol * 100)).astype(np.int64)
     _, first = np.unique(key, axis=0, return_index=True)
     return np.ascontiguousarray(seg[np.sort(first)], dtype=float)
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_check(Star, "motif.n", "motif.radii", "motif.alpha", "motif.spr", "motif.special", "motif.rotation")

@@ -28,7 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._errors import ParameterError, did_you_mean
+from ..core.errors import ParameterError, did_you_mean
+from ..core.schema import register_check, register_choices
 
 S3 = math.sqrt(3.0)
 
@@ -88,7 +89,7 @@ def canonical(tiling) -> str:
     >>> canonical("5.5.5")
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: tiling '5.5.5' is unknown (tilings: 3.3.3.3.3.3, 4.4.4.4, 6.6.6, 3.6.3.6, 3.12.12, 4.6.12, 4.8.8, 3.3.3.3.6, 3.3.3.4.4, 3.3.4.3.4, 3.4.6.4; exponent forms such as 3^4.6 also work)
+    fabtiles.core.errors.ParameterError: tiling '5.5.5' is unknown (tilings: 3.3.3.3.3.3, 4.4.4.4, 6.6.6, 3.6.3.6, 3.12.12, 4.6.12, 4.8.8, 3.3.3.3.6, 3.3.3.4.4, 3.3.4.3.4, 3.4.6.4; exponent forms such as 3^4.6 also work)
     """  # noqa: E501 - a doctest's lines are as Python prints them
     try:
         name = _FORMS.get(_expand(tiling)) if isinstance(tiling, str) else None
@@ -325,3 +326,8 @@ def _gap_circles(lattice, centres, sides, vertices):
         out_r.append(rad)
         out_a.append(math.atan2(*(cc[first] - x)[::-1]))
     return np.array(out_c), np.array(out_r), np.array(out_a)
+
+
+# The schema names no module above it: the values and checks of its keys are registered from here.
+register_choices(TILINGS, "packing.tiling")
+register_check(unit_cell, "packing.tiling")

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._errors import FabricationError, ParameterError
+from ..core.errors import FabricationError, ParameterError
 from ..geometry.stack import MAX_HEIGHT_MM, QUANTUM, Stack, resolve_stack  # noqa: F401  (the writers' names)
 from ._triangulate import bottom_triangles, cdt, ear_clip, flat, flip_degenerate
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._errors import FabricationError
+from ..core.errors import FabricationError
 from ..geometry.stack import QUANTUM
 
 

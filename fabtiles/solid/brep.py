@@ -39,7 +39,7 @@ from math import gcd
 
 import numpy as np
 
-from .._errors import FabricationError
+from ..core.errors import FabricationError
 from ._mesh_build import QUANTUM, Coverage, Stack, coverage, topology
 from .levels import body_layers, dip_z, split_region
 from .parts import GRID_SHIFTS, checked_parts
@@ -818,13 +818,13 @@ def _node_xyz(ed: _Edges, xy, z):
 
 def _groups(n, pairs):
     """The numbers 0..n-1 grouped by the pairs that join them, each group in order, the groups in
-    the order of their smallest member (:func:`fabtiles._graph.components`; networkx's union-find
+    the order of their smallest member (:func:`fabtiles.core.graph.components`; networkx's union-find
     cost 0.22 s to import in every STEP export).
 
     >>> _groups(5, [(3, 1), (4, 2)])
     [[0], [1, 3], [2, 4]]
     """
-    from .._graph import components
+    from ..core.graph import components
 
     pairs = np.asarray(list(pairs), np.int64).reshape(-1, 2)
     label = components(n, pairs[:, 0], pairs[:, 1])
@@ -1114,7 +1114,7 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     >>> check_brep(b, volume=100.0, parts=1)
     Traceback (most recent call last):
     ...
-    fabtiles._errors.FabricationError: the STEP solid has a volume of 200 mm^3, not the mesh's 100 mm^3 (0.05% allowed); nothing was written
+    fabtiles.core.errors.FabricationError: the STEP solid has a volume of 200 mm^3, not the mesh's 100 mm^3 (0.05% allowed); nothing was written
     """  # noqa: E501 - a doctest's lines are as Python prints them
     import shapely
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._errors import FabricationError
+from ..core.errors import FabricationError
 from ._triangulate import edges_pair_up
 
 VOLUME_TOLERANCE = 0.005
@@ -83,12 +83,12 @@ def merge_indexed32(vertices, faces):
 
 
 def count_bodies(n_vertices: int, edges: np.ndarray) -> int:
-    """Connected components of a graph that hold at least one edge (:func:`fabtiles._graph.components`).
+    """Connected components of a graph that hold at least one edge (:func:`fabtiles.core.graph.components`).
 
     >>> count_bodies(5, np.array([[0, 1], [1, 2], [3, 4]]))
     2
     """
-    from .._graph import components
+    from ..core.graph import components
 
     edges = np.asarray(edges)
     parent = components(n_vertices, edges[:, 0], edges[:, 1])
@@ -121,7 +121,7 @@ def check_mesh(vertices, faces, *, name="mesh", volume=None, bodies=None):
     >>> check_mesh(v, f[:3])
     Traceback (most recent call last):
     ...
-    fabtiles._errors.FabricationError: the mesh mesh is not watertight as a slicer reads it (float32): 3 open edges; nothing was written
+    fabtiles.core.errors.FabricationError: the mesh mesh is not watertight as a slicer reads it (float32): 3 open edges; nothing was written
     """  # noqa: E501 - a doctest's lines are as Python prints them
     import trimesh
 

@@ -30,9 +30,9 @@ from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
-from .._errors import FabricationError, ParameterError
-from .._profiles import load_profile
-from .._report import Report
+from ..core.errors import FabricationError, ParameterError
+from ..machines.profiles import load_profile
+from ..core.report import Report
 from ._mesh_build import (
     QUANTUM,
     Stack,
@@ -470,7 +470,7 @@ def check_inlay(stack: Stack, inlay) -> None:
     >>> check_inlay(resolve_stack("fdm-0.4mm", "relief"), True)
     Traceback (most recent call last):
     ...
-    fabtiles._errors.ParameterError: inlay=True needs style='deboss' (the inlay fills the deboss grooves), got style='relief'; pass style='deboss' or drop inlay
+    fabtiles.core.errors.ParameterError: inlay=True needs style='deboss' (the inlay fills the deboss grooves), got style='relief'; pass style='deboss' or drop inlay
     """  # noqa: E501 - a doctest's lines are as Python prints them
     if not isinstance(inlay, (bool, np.bool_)):
         raise ParameterError(f"inlay must be True or False, got {inlay!r}")
@@ -504,7 +504,7 @@ class MosaicPart(NamedTuple):
     faces: tuple
     """The faces of this colour (shapely polygons, file coordinates), up to the top less the inset."""
     colour: Colour | None = None
-    """Its :class:`~fabtiles._colour.Colour`: the display colour and the STL file's name."""
+    """Its :class:`~fabtiles.designs.colour.Colour`: the display colour and the STL file's name."""
 
 
 def mosaic_parts(region, outline, stack: Stack, specs) -> dict:

@@ -28,8 +28,8 @@ from __future__ import annotations
 from functools import cached_property
 from typing import NamedTuple
 
-from .._report import Report
-from .._errors import ParameterError
+from ..core.report import Report
+from ..core.errors import ParameterError
 from .parts import (CheckedPart, MosaicPart, check_inlay, checked_parts, mosaic_parts, part_kinds, prepare_print,
                     relief_parts, splits_fused, stack_stats)
 
@@ -83,7 +83,7 @@ class PrintModel:
         self.dips = dips
         self.inlay = bool(inlay)
         self.colours = colours
-        """The design's :class:`~fabtiles._colour.Colouring`, or None (the parts' own colours)."""
+        """The design's :class:`~fabtiles.designs.colour.Colouring`, or None (the parts' own colours)."""
         self.mosaic = tuple(mosaic)
         """A mosaic's parts, one per colour (:class:`~fabtiles.solid.parts.MosaicPart`)."""
         self.arc_radii_mm = tuple(float(r) for r in arc_radii_mm)
@@ -170,7 +170,7 @@ def print_model(region, outline, *, profile, style=None, base_mm=None, relief_mm
     Parameters as :func:`~fabtiles.export.stl.write_stl`; ``inlay`` (deboss only) adds
     the grooves' filling as a second part; ``dips`` lowers an interlaced relief's
     under strands (:mod:`fabtiles.solid.levels`); ``colours`` (a
-    :class:`~fabtiles._colour.Colouring`) colours the parts, and a mosaic's ``mosaic``
+    :class:`~fabtiles.designs.colour.Colouring`) colours the parts, and a mosaic's ``mosaic``
     (:class:`~fabtiles.solid.parts.MosaicPart`, one per colour) says which part holds
     the plate, the bands and which faces. No mesh is built here: the model
     makes each on first use. A strict profile with findings raises.

@@ -19,8 +19,8 @@ import os
 
 from fastapi import FastAPI
 
-from .. import _limits
-from .._errors import FabtilesError
+from ..machines import limits as _limits
+from ..core.errors import FabtilesError
 from .building import error_response, fabrication_checks, field_of_param, tile_from_dict
 from .routes import catalogue, nest, pages, tile
 from .routes.pages import STATIC

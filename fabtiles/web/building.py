@@ -13,7 +13,7 @@ import re
 from fastapi import Request
 from fastapi.responses import JSONResponse
 
-from .. import _limits
+from ..machines import limits as _limits
 from .params import DEFAULTS, FIELDS, design_from_query
 
 
@@ -36,8 +36,8 @@ def design_name(design: dict) -> str:
 
 def tile_from_dict(design: dict, *, limits: _limits.Limits):
     """Validate a design dictionary and build its tile (no geometry yet) within the work limits."""
-    from ..build import prepare_tile
-    from ..design import design_from_dict
+    from ..making import prepare_tile
+    from ..designs.design_file import design_from_dict
 
     spec = design_from_dict(design, name=design_name(design), source=SOURCE)
     return spec, prepare_tile(spec, limits=limits)
@@ -65,7 +65,7 @@ def design_of_query(query: dict, *, limits: _limits.Limits):
 
 def fabrication_checks(tile, spec) -> dict:
     """Laser and print checks of a tile with the design's profiles and options, as JSON."""
-    from ..checks import check_design
+    from ..making.checks import check_design
 
     result = check_design(spec, tile, job=True)
     findings = [{"where": where, "code": f.code, "message": f.message, "count": f.count, "worst": f.worst,
@@ -126,7 +126,7 @@ def user_message(exc: Exception, field: str | None) -> str:
     a polygon kind's motif and the tile's size by their parameters (``gap_n``, ``motif_8``,
     ``width``), a face class's colour by its ``face_<letter>``.
 
-    >>> from fabtiles._errors import DesignError
+    >>> from fabtiles.core.errors import DesignError
     >>> user_message(DesignError("query: [packing] gap_motif n must be >= 3, got 2"), "gap_n")
     'gap_n must be >= 3, got 2'
     >>> user_message(DesignError("query: [tile] size[1] must be > 0, got 0"), "width")

@@ -8,7 +8,7 @@ tilings as their samples in ``samples/tilings/`` have them (a test builds each
 entry and its sample and compares the tiles, so the two cannot drift; the
 samples have no colours, so neither have these entries), then four tilings by
 Hankin's polygons in contact as ``samples/hankin/`` has them (compared likewise). The thumbnails are
-drawn by the preview code (:func:`~fabtiles.build.views.tile_picture`, the
+drawn by the preview code (:func:`~fabtiles.making.views.tile_picture`, the
 coloured faces too) and kept for the life of the process.
 
 >>> [e.key for e in entries()][:3]
@@ -27,7 +27,7 @@ import functools
 from dataclasses import dataclass
 from typing import Any
 
-from .._errors import ParameterError
+from ..core.errors import ParameterError
 from ..pattern.presets import PRESET_NOTES, PRESETS
 from ..pattern.tilings import NAMES, TILINGS
 
@@ -132,7 +132,7 @@ def entry(key: str) -> Entry:
 @functools.lru_cache(maxsize=64)
 def thumbnail(key: str, *, limits) -> str:
     """The entry's tile drawn as SVG by the preview code, in its colours (kept once drawn)."""
-    from ..build.views import tile_picture
+    from ..making.views import tile_picture
     from .app import tile_from_dict
     from .params import design_from_query
 

@@ -13,9 +13,9 @@ from __future__ import annotations
 
 import math
 
-from .. import _schema
-from .._errors import FabtilesError
-from .._profiles import bundled_profiles
+from ..core import schema as _schema
+from ..core.errors import FabtilesError
+from ..machines.profiles import bundled_profiles
 
 
 class QueryError(FabtilesError, ValueError):
@@ -96,7 +96,7 @@ MOTIF_SIDES = _motif_sides()
 
 
 def _fields() -> dict:
-    """Query parameter -> (section, design key, parser), from the schema (:mod:`fabtiles._schema`).
+    """Query parameter -> (section, design key, parser), from the schema (:mod:`fabtiles.core.schema`).
 
     A key's parameter is its name, with these exceptions: ``[packing] kind`` is ``packing``;
     ``[colour.faces]`` is ``face_<letter>`` (section ``faces``);

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import asdict
 
-from .. import _schema
+from ..core import schema as _schema
 from .params import FIELDS
 
 

@@ -24,8 +24,8 @@ import tarfile
 import urllib.request
 from pathlib import Path
 
-from .._errors import FabtilesError
-from .._io import atomic_write
+from ..core.errors import FabtilesError
+from ..core.files import atomic_write
 
 VERSION = "0.187.0"
 """The three.js release the view is written and tested against."""

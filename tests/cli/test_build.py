@@ -243,8 +243,8 @@ def test_files_of_other_formats_left_from_an_earlier_build_are_named(tmp_path):
 
 
 def test_build_result_lists_replaced_and_earlier_files(tmp_path):
-    from fabtiles.build import build_design
-    from fabtiles.design import design_from_text
+    from fabtiles.making import build_design
+    from fabtiles.designs.design_file import design_from_text
 
     d = design_from_text(SMALL, name="small")
     first = build_design(d, tmp_path, ["svg", "dxf"])

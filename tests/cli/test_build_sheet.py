@@ -17,10 +17,10 @@ from test_build import run  # noqa: E402
 
 import fabtiles  # noqa: E402
 from fabtiles import FabtilesError  # noqa: E402
-from fabtiles._profiles import load_profile  # noqa: E402
-from fabtiles.build import BuildOptions, layout_tile_sheet  # noqa: E402
+from fabtiles.machines.profiles import load_profile  # noqa: E402
+from fabtiles.making import BuildOptions, layout_tile_sheet  # noqa: E402
 from fabtiles.export.formats import FORMATS  # noqa: E402
-from fabtiles.design import load_design  # noqa: E402
+from fabtiles.designs.design_file import load_design  # noqa: E402
 from fabtiles.geometry.narrow import fill_small_holes  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]

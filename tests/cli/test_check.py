@@ -69,12 +69,12 @@ def test_bad_input_exits_2_and_writes_nothing(designs, tmp_path, args, message):
 
 def test_check_judges_the_interlace_cut_region(tmp_path):
     """With ``interlace_cut`` the laser file holds the cut gaps and their tabs: so does the check."""
-    from fabtiles.checks import check_design
-    from fabtiles.design import load_design
+    from fabtiles.making.checks import check_design
+    from fabtiles.designs.design_file import load_design
     from fabtiles.geometry.machine_geometry import cut_geometry as laser_geometry
     from fabtiles.geometry.laser_checks import check_laser
-    from fabtiles._profiles import load_profile
-    from fabtiles._report import Report
+    from fabtiles.machines.profiles import load_profile
+    from fabtiles.core.report import Report
 
     woven = design_text(False).replace("stroke = 1.0", "stroke = 1.0\ninterlace = true")
     p = tmp_path / "woven.toml"

@@ -110,9 +110,9 @@ def test_more_than_sixteen_colours_is_refused(tmp_path):
     import shapely
 
     from fabtiles import ParameterError
-    from fabtiles._colour import Colours, letters
-    from fabtiles.build.models import BuildOptions, Models
-    from fabtiles.design import design_from_text
+    from fabtiles.designs.colour import Colours, letters
+    from fabtiles.making.models import BuildOptions, Models
+    from fabtiles.designs.design_file import design_from_text
     from fabtiles.geometry.faces import FaceClass, FaceClasses
 
     design = design_from_text(SMALL)

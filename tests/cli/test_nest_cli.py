@@ -16,11 +16,11 @@ from dxf_helpers import bulges, raw_vertices, vertices  # noqa: E402
 from test_laser_programs import burns, meerk40t  # noqa: E402
 
 from fabtiles import FabtilesError, ParameterError  # noqa: E402
-from fabtiles._profiles import load_profile  # noqa: E402
-from fabtiles.build import BuildOptions, Models, prepare_tile  # noqa: E402
-from fabtiles.build.nesting import nest_designs, part_outline  # noqa: E402
+from fabtiles.machines.profiles import load_profile  # noqa: E402
+from fabtiles.making import BuildOptions, Models, prepare_tile  # noqa: E402
+from fabtiles.making.nesting import nest_designs, part_outline  # noqa: E402
 from fabtiles.cli.main import cli  # noqa: E402
-from fabtiles.design import load_design  # noqa: E402
+from fabtiles.designs.design_file import load_design  # noqa: E402
 
 PLY = load_profile("laser-3mm-plywood")
 OUTER = PLY.layers.outer_cut.name
@@ -218,7 +218,7 @@ def test_the_commands_choices_are_the_nestings():
 
 def test_the_public_nest_takes_files_and_designs(tmp_path):
     import fabtiles as ft
-    from fabtiles.design import design_from_text
+    from fabtiles.designs.design_file import design_from_text
 
     small = tmp_path / "a.toml"
     small.write_text('[motif]\npreset = "table3-3"\n[tile]\noutline = "circle"\nsize = 40\nframe = 3\n')

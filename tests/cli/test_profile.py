@@ -6,9 +6,9 @@ import pytest
 from click.testing import CliRunner
 
 import fabtiles as ft
-from fabtiles._profiles import bundled_profiles, kind_of
+from fabtiles.machines.profiles import bundled_profiles, kind_of
 from fabtiles.cli.main import cli
-from fabtiles.design import design_from_text, profile_of
+from fabtiles.designs.design_file import design_from_text, profile_of
 
 ROOT = Path(__file__).resolve().parents[2]
 

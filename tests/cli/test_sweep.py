@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from test_build import SMALL, run
 
-from fabtiles.design import design_from_text
+from fabtiles.designs.design_file import design_from_text
 
 
 @pytest.fixture

@@ -17,8 +17,8 @@ from pathlib import Path
 import pytest
 from lxml import etree
 
-from fabtiles.build.plot import plot_drawing
-from fabtiles.design import load_design
+from fabtiles.making.plot import plot_drawing
+from fabtiles.designs.design_file import load_design
 from fabtiles.export.plot_svg import PX_PER_MM
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -258,8 +258,8 @@ def test_both_layouts_hold_the_same_parts(files):
 
 
 def test_the_design_key_picks_the_layout(tmp_path):
-    from fabtiles.build import build_design
-    from fabtiles.design import design_from_text
+    from fabtiles.making import build_design
+    from fabtiles.designs.design_file import design_from_text
 
     text = ('[motif]\npreset = "table3-3"\n[packing]\nradius = 10\n[tile]\noutline = "square"\nsize = 40\n'
             'frame = 3\n[output]\nformats = ["3mf"]\nthreemf_layout = "components"\n')
@@ -271,7 +271,7 @@ def test_the_design_key_picks_the_layout(tmp_path):
 
 
 def test_a_bad_layout_names_the_valid_ones(tmp_path):
-    from fabtiles.design import design_from_text
+    from fabtiles.designs.design_file import design_from_text
 
     text = ('[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 40\n'
             '[output]\nthreemf_layout = "assembly"\n')

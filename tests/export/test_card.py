@@ -8,7 +8,7 @@ import pytest
 from click.testing import CliRunner
 
 from fabtiles import ParameterError
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.cli.main import cli
 from fabtiles.export.card import write_card
 from fabtiles.geometry.calibration import INLAY_MM, MAX_CARD_MM, calibration_card, inlay_fits

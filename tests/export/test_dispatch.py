@@ -1,7 +1,7 @@
 import pytest
 
 import fabtiles as ft
-from fabtiles.build import export_region
+from fabtiles.making import export_region
 from fabtiles.export.formats import format_of
 
 

@@ -28,7 +28,7 @@ from dxf_helpers import (
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError
-from fabtiles._profiles import Layer, LaserLayers, load_profile
+from fabtiles.machines.profiles import Layer, LaserLayers, load_profile
 from fabtiles.export.dxf import build_document, dxf_text, write_dxf
 from fabtiles.geometry.cut_plan import plan_cut
 
@@ -255,7 +255,7 @@ def test_importing_the_writer_does_not_load_ezdxf():
 
 
 def test_dispatch_passes_options(tmp_path):
-    from fabtiles.build import export_region
+    from fabtiles.making import export_region
 
     region, outline = star_plate()
     report = export_region(tmp_path / "d.dxf", region=region, outline=outline, stroke=1.0, kerf_mm=0.0)

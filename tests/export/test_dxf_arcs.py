@@ -23,8 +23,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
 
-from fabtiles._profiles import load_profile
-from fabtiles.design import design_from_text, load_design
+from fabtiles.machines.profiles import load_profile
+from fabtiles.designs.design_file import design_from_text, load_design
 from fabtiles.export.dxf import dxf_bytes
 from fabtiles.geometry import tile as tile_module
 from fabtiles.geometry.contours import MITRE_LIMIT

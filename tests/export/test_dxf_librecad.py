@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 from dxf_helpers import bulges, motif_tile, star_plate, vertices
 
-from fabtiles._profiles import LaserLayers, Layer, load_profile
+from fabtiles.machines.profiles import LaserLayers, Layer, load_profile
 from fabtiles.export.dxf import write_dxf
 
 LIBRECAD = shutil.which("librecad")
@@ -199,8 +199,8 @@ def test_librecad_draws_a_nested_sheet(librecad, tmp_path):
     # issue 34: a sheet of two designs nested, turned copies and all, drawn whole and in proportion
     import ezdxf
 
-    from fabtiles.build.nesting import nest_designs
-    from fabtiles.design import design_from_text
+    from fabtiles.making.nesting import nest_designs
+    from fabtiles.designs.design_file import design_from_text
 
     designs = [(design_from_text(f'[motif]\npreset = "table3-{k}"\n[packing]\nradius = 8\n[tile]\noutline = '
                                  f'"{outline}"\nsize = 40\nframe = 3\nstroke = 1.0\n', name=outline), 3)
@@ -221,8 +221,8 @@ def test_librecad_draws_a_nested_sheet(librecad, tmp_path):
 @pytest.mark.parametrize("version", ["R12", "R2000"])
 def test_librecad_draws_the_arcs(librecad, tmp_path, version):
     # issue 35: a circle tile with round joins and outline circles, its curves as arcs (bulges)
-    from fabtiles.build.models import BuildOptions, Models
-    from fabtiles.design import design_from_text
+    from fabtiles.making.models import BuildOptions, Models
+    from fabtiles.designs.design_file import design_from_text
 
     design = design_from_text('[packing]\nkind = "archimedean"\ntiling = "3.3.3.4.4"\noutline_circles = true\n'
                               '[tile]\noutline = "circle"\nsize = 60\njoin = "round"\n', name="circles")

@@ -15,7 +15,7 @@ from shapely.geometry import Polygon, box
 from test_laser_programs import meerk40t
 
 from fabtiles import HexPacking, ParameterError, ProfileError, Star, Tile
-from fabtiles._profiles import LaserLayers, load_profile
+from fabtiles.machines.profiles import LaserLayers, load_profile
 from fabtiles.export.card import write_card
 from fabtiles.geometry.contours import laser_contours, outline_contours
 import itertools

@@ -19,9 +19,9 @@ from test_dxf_librecad import _dxf_edges, _print_pdf, _segments_by_colour
 from test_tiling_samples import SAMPLES as TILING_SAMPLES
 
 import fabtiles
-from fabtiles._profiles import load_profile
-from fabtiles.build import build_design
-from fabtiles.design import load_design
+from fabtiles.machines.profiles import load_profile
+from fabtiles.making import build_design
+from fabtiles.designs.design_file import load_design
 from fabtiles.pattern.tilings import TILINGS
 from real_programs import program
 

@@ -196,7 +196,7 @@ def test_cli_bad_gap_exits_2_and_writes_nothing(tmp_path):
 
 
 def test_design_file_keys(tmp_path):
-    from fabtiles.design import design_from_text
+    from fabtiles.designs.design_file import design_from_text
 
     d = design_from_text('[motif]\npreset = "table3-1"\n[tile]\nsize = 50\ninterlace = true\n'
                          'interlace_gap_mm = 0.2\ninterlace_cut = true\n')
@@ -265,7 +265,7 @@ SAMPLE_FILES = sorted((Path(__file__).resolve().parents[2] / "samples").rglob("*
 @pytest.mark.parametrize("path", SAMPLE_FILES, ids=[p.stem for p in SAMPLE_FILES])
 def test_every_sample_weaves_without_conflicts(path):
     """docs/tile-operation.md says so: every sample alternates at every crossing, tiling samples too."""
-    from fabtiles.design import load_design
+    from fabtiles.designs.design_file import load_design
 
     tile = load_design(path).build_tile(tile_cls=ft.Tile).replace(interlace=True)
     w = tile.weave()

@@ -15,7 +15,7 @@ from real_programs import program, run
 from test_laser_programs import burns, meerk40t
 
 from fabtiles import DesignError, FabricationError, HexPacking, ParameterError, ProfileError, Star, Tile
-from fabtiles._profiles import LaserLayers, load_profile
+from fabtiles.machines.profiles import LaserLayers, load_profile
 from fabtiles.cli.main import cli
 from fabtiles.geometry.inlay import inlay_kit, shape_key
 
@@ -221,7 +221,7 @@ def test_pocket_needs_an_engrave_layer(tmp_path):
 
 
 def test_design_and_cli_errors(tmp_path):
-    from fabtiles.design import design_from_text
+    from fabtiles.designs.design_file import design_from_text
 
     text = '[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 40\n[output]\nlaser_mode = "inlay"\n'
     with pytest.raises(DesignError, match=r"\[output\] inlay_fit_mm must be a number of mm from -0\.5 to 0\.5"):

@@ -13,10 +13,10 @@ import shapely
 from designs import design_toml
 from dxf_helpers import read_checked, ring_polygons
 
-from fabtiles._profiles import load_profile
-from fabtiles.build import build_design
-from fabtiles.build.models import BuildOptions, Models
-from fabtiles.design import design_from_text
+from fabtiles.machines.profiles import load_profile
+from fabtiles.making import build_design
+from fabtiles.making.models import BuildOptions, Models
+from fabtiles.designs.design_file import design_from_text
 
 DESIGN = design_toml(radius=12.5, size=80, stroke=1.5, output={"formats": ["dxf"], "laser_mode": "inlay"}, colour={"by": "shape", "palette": "alhambra"})
 

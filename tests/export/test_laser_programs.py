@@ -26,7 +26,7 @@ import pytest
 from real_programs import INKSCAPE_EXTENSIONS, SYSTEM_PYTHON, program, require, run
 
 from fabtiles import ArchimedeanPacking, HexPacking, Star, Tile
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 SIZE = 60.0  # inside MeerK40t's default 235 mm bed, which it would otherwise scale the job to
@@ -199,8 +199,8 @@ CIRCLES = ('[packing]\nkind = "archimedean"\ntiling = "3.3.3.4.4"\noutline_circl
 @pytest.fixture(scope="module")
 def arc_files(tmp_path_factory):
     """The 60 mm circle tile with round joins and outline circles: its DXF and SVG, curves as arcs."""
-    from fabtiles.build import build_design
-    from fabtiles.design import design_from_text
+    from fabtiles.making import build_design
+    from fabtiles.designs.design_file import design_from_text
 
     out = tmp_path_factory.mktemp("arcs")
     design = design_from_text(CIRCLES + '[output]\nformats = ["dxf", "svg"]\n', name="circles")

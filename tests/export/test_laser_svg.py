@@ -11,7 +11,7 @@ from dxf_helpers import dxf_entities, motif_tile, star_plate
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError, ProfileError
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.export.dxf import write_dxf
 from fabtiles.export.laser_svg import aci_to_hex, write_laser_svg
 

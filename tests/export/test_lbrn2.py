@@ -22,7 +22,7 @@ from real_programs import program, require, run
 from test_laser_programs import burns, meerk40t
 
 from fabtiles import ArchimedeanPacking, HexPacking, ProfileError, Star, Tile
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.export import lbrn2
 from fabtiles.geometry.job_time import path_lengths
 
@@ -240,8 +240,8 @@ def test_the_palette_index_of_each_layer():
 def arc_files(tmp_path_factory):
     from test_laser_programs import CIRCLES
 
-    from fabtiles.build import build_design
-    from fabtiles.design import design_from_text
+    from fabtiles.making import build_design
+    from fabtiles.designs.design_file import design_from_text
 
     out = tmp_path_factory.mktemp("lbrn2-arcs")
     build_design(design_from_text(CIRCLES + '[output]\nformats = ["dxf", "lbrn2"]\n', name="circles"), out)

@@ -12,7 +12,7 @@ import trimesh
 from click.testing import CliRunner
 
 from fabtiles import HexPacking, ProfileError, Star, Tile
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.cli.main import cli
 from fabtiles.export import threemf
 

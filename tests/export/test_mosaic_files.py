@@ -19,9 +19,9 @@ import trimesh
 from test_3mf_multicolour import extrusions_by_tool, prusa_cmd, slice_gcode
 from test_3mf_readers import lib3mf_read, savitar
 
-from fabtiles.build import build_design
-from fabtiles.build.models import BuildOptions, Models
-from fabtiles.design import load_design
+from fabtiles.making import build_design
+from fabtiles.making.models import BuildOptions, Models
+from fabtiles.designs.design_file import load_design
 from fabtiles.export import threemf
 from fabtiles.export.step import check_step_file
 

@@ -11,8 +11,8 @@ import vpype as vp
 from lxml import etree
 
 from fabtiles import ParameterError
-from fabtiles.build.plot import plot_drawing
-from fabtiles.design import load_design
+from fabtiles.making.plot import plot_drawing
+from fabtiles.designs.design_file import load_design
 from fabtiles.export.plot_svg import PX_PER_MM, hpgl_bytes, need_vpype, svg_bytes, vpype_document
 
 ROOT = Path(__file__).resolve().parents[2]

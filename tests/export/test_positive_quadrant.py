@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 import shapely
 
-from fabtiles.build import build_design
-from fabtiles.design import load_design
+from fabtiles.making import build_design
+from fabtiles.designs.design_file import load_design
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = ROOT / "samples"

@@ -24,8 +24,8 @@ from mesh_helpers import B, assert_section, load_stl, mid_heights, section_regio
 from real_programs import program
 
 import fabtiles as ft
-from fabtiles.build import build_design
-from fabtiles.design import design_from_text
+from fabtiles.making import build_design
+from fabtiles.designs.design_file import design_from_text
 from fabtiles.pattern.tilings import TILINGS
 
 MIN_HOLE = ft.load_profile("fdm-0.4mm").min_hole_mm

@@ -33,10 +33,10 @@ from real_programs import program, run
 from shapely.geometry import Polygon
 
 import fabtiles as ft
-from fabtiles._profiles import load_profile
-from fabtiles.build import build_design
+from fabtiles.machines.profiles import load_profile
+from fabtiles.making import build_design
 from fabtiles.cli.main import cli
-from fabtiles.design import load_design
+from fabtiles.designs.design_file import load_design
 from fabtiles.export.dxf import write_dxf
 from fabtiles.export.laser_svg import write_laser_svg
 from fabtiles.geometry.contours import MITRE_LIMIT

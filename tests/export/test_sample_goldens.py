@@ -33,11 +33,11 @@ from dxf_helpers import (
 )
 
 import fabtiles
-from fabtiles._profiles import load_profile
-from fabtiles.build import build_design
-from fabtiles.design import load_design
-from fabtiles._profiles import DEFAULT_LASER_PROFILE
-from fabtiles.build import export_tile
+from fabtiles.machines.profiles import load_profile
+from fabtiles.making import build_design
+from fabtiles.designs.design_file import load_design
+from fabtiles.machines.profiles import DEFAULT_LASER_PROFILE
+from fabtiles.making import export_tile
 from fabtiles.export.dxf import write_dxf
 from fabtiles.geometry.narrow import fill_small_holes
 

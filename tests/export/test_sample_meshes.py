@@ -38,9 +38,9 @@ from mesh_helpers import (
 )
 
 import fabtiles
-from fabtiles.design import load_design
+from fabtiles.designs.design_file import load_design
 from fabtiles.geometry.stack import resolve_stack
-from fabtiles._profiles import DEFAULT_PRINTER_PROFILE
+from fabtiles.machines.profiles import DEFAULT_PRINTER_PROFILE
 
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -14,7 +14,7 @@ from shapely.geometry import LinearRing, LineString, Point, Polygon
 from test_laser_programs import burns, meerk40t
 
 from fabtiles import HexPacking, ParameterError, Star, Tile
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 OUTER, INNER = PLY.layers.outer_cut.name, PLY.layers.inner_cut.name

@@ -15,7 +15,7 @@ import pytest
 from mesh_helpers import assert_solid, assert_style_sections, expected_volume, load_stl, top
 
 import fabtiles
-from fabtiles.design import load_design
+from fabtiles.designs.design_file import load_design
 from fabtiles.pattern.tilings import TILINGS
 
 

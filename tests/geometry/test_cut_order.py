@@ -12,9 +12,9 @@ from hypothesis import strategies as st
 from hypothesis_scale import examples
 from shapely.geometry import box
 
-from fabtiles.build.models import BuildOptions, Models
-from fabtiles.build.pipeline import prepare_tile
-from fabtiles.design import load_design
+from fabtiles.making.models import BuildOptions, Models
+from fabtiles.making.pipeline import prepare_tile
+from fabtiles.designs.design_file import load_design
 from fabtiles.geometry.cut_order import enclosing_pairs, order_paths, order_rings, travel
 from fabtiles.geometry.cut_plan import plan_cut
 

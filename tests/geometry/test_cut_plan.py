@@ -10,7 +10,7 @@ import shapely
 from shapely.geometry import box
 
 from fabtiles import ParameterError
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.geometry.cut_plan import make_plan, plan_cut, plan_kit
 
 PLATE = box(0, 0, 40, 40)

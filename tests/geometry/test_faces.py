@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 from hypothesis_scale import examples
 
 from fabtiles import ParameterError
-from fabtiles.design import load_design
+from fabtiles.designs.design_file import load_design
 from fabtiles.geometry.faces import FaceClass, FaceClasses, face_classes
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking, SquarePacking

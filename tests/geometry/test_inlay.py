@@ -10,9 +10,9 @@ from click.testing import CliRunner
 from dxf_helpers import vertices
 
 from fabtiles import FabricationError
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.cli.main import cli
-from fabtiles.design import design_from_text
+from fabtiles.designs.design_file import design_from_text
 from fabtiles.geometry.inlay import inlay_kit
 
 PLY = load_profile("laser-3mm-plywood")

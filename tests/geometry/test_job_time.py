@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from fabtiles._profiles import CutterProfile, LaserLayers, Layer
+from fabtiles.machines.profiles import CutterProfile, LaserLayers, Layer
 from fabtiles.geometry.job_time import JobEstimate, estimate, path_lengths, total, travel_mm
 
 

@@ -13,9 +13,9 @@ import shapely
 from designs import design_toml
 from dxf_helpers import read_checked, vertices
 
-from fabtiles.build import build_design
-from fabtiles.build.models import BuildOptions, Models
-from fabtiles.design import design_from_text
+from fabtiles.making import build_design
+from fabtiles.making.models import BuildOptions, Models
+from fabtiles.designs.design_file import design_from_text
 from fabtiles.geometry.faces import face_classes
 from fabtiles.geometry.kit_nesting import GAP_MM
 from fabtiles.geometry.stroke_font import text_paths

@@ -11,7 +11,7 @@ import shapely
 from shapely.geometry import Polygon, box
 
 from fabtiles import FabricationError, ParameterError
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.geometry.cut_plan import plan_cut
 from fabtiles.geometry.laser_checks import check_fits_bed, check_laser
 from fabtiles.geometry.narrow import fill_small_holes, small_hole_mask

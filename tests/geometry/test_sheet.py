@@ -9,7 +9,7 @@ from dxf_helpers import read_checked, star_plate
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.export.dxf import write_dxf
 from fabtiles.geometry.sheet import layout_sheet
 

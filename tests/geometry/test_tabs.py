@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from shapely.geometry import Point, box
 
 from fabtiles import ParameterError
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.geometry.cut_plan import plan_cut, plan_kit
 from fabtiles.geometry.job_time import path_lengths
 from fabtiles.geometry.tabs import PIECES_PER_TAB, check_tabs, tab_paths

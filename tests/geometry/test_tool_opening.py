@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from shapely.geometry import Polygon, box
 
 from fabtiles import ParameterError, ProfileError
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.geometry.tool_opening import VISIBLE_MM, check_tool, open_region, quad_segs_for
 
 ROUTER = load_profile("router-3.175mm-plywood")

@@ -12,7 +12,7 @@ from hypothesis_scale import examples
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError
-from fabtiles._colour import colouring
+from fabtiles.designs.colour import colouring
 from fabtiles.solid.parts import MosaicPart
 from fabtiles.solid.print_model import print_model
 

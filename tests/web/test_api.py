@@ -8,7 +8,7 @@ import pytest
 
 from asgi_client import TestClient
 
-from fabtiles._limits import Limits
+from fabtiles.machines.limits import Limits
 from fabtiles.web.app import create_app
 
 SMALL = "width=40&frame=3&radius=8"
@@ -226,7 +226,7 @@ def test_router_preview_draws_the_part_its_bit_makes(client):
     from fabtiles.geometry.tool_opening import open_region
     from fabtiles.web.app import tile_from_dict
     from fabtiles.web.params import DEFAULTS, design_from_query
-    from fabtiles._limits import WEB_LIMITS
+    from fabtiles.machines.limits import WEB_LIMITS
 
     q = "width=80&frame=4&radius=15&stroke=2&fill_small_holes=false&laser_profile=router-3.175mm-plywood"
     query = {**DEFAULTS, **dict(p.split("=") for p in q.split("&"))}

@@ -7,7 +7,7 @@ from urllib.parse import unquote
 import pytest
 from browser_helpers import page, server  # noqa: F401 - page and server are fixtures
 
-from fabtiles._colour import PALETTES
+from fabtiles.designs.colour import PALETTES
 
 pytestmark = pytest.mark.browser
 

@@ -5,8 +5,8 @@ import pytest
 
 from asgi_client import TestClient
 
-from fabtiles._colour import PALETTES
-from fabtiles._limits import Limits
+from fabtiles.designs.colour import PALETTES
+from fabtiles.machines.limits import Limits
 from fabtiles.web.app import create_app
 
 SMALL = "width=60&radius=10&frame=3"

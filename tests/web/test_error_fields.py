@@ -31,7 +31,7 @@ def test_field_comes_from_the_parameter(client, query, field, message):
 
 
 def test_segment_limit_names_the_radius():
-    from fabtiles._limits import Limits
+    from fabtiles.machines.limits import Limits
 
     client = TestClient(app_mod.create_app(limits=Limits(max_segments=100)))
     r = client.get("/api/checks?width=100&radius=5")

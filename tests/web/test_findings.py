@@ -9,7 +9,7 @@ import shapely
 
 from asgi_client import TestClient
 
-from fabtiles._profiles import load_profile
+from fabtiles.machines.profiles import load_profile
 from fabtiles.web.app import create_app
 
 SMALL = "width=60&frame=3&radius=10"

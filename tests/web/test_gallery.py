@@ -6,8 +6,8 @@ import pytest
 
 from asgi_client import TestClient
 
-from fabtiles._limits import WEB_LIMITS
-from fabtiles.design import load_design
+from fabtiles.machines.limits import WEB_LIMITS
+from fabtiles.designs.design_file import load_design
 from fabtiles.pattern.presets import PRESETS
 from fabtiles.pattern.tilings import TILINGS
 from fabtiles.web import gallery
@@ -49,7 +49,7 @@ def test_tiling_entry_is_its_sample(tiling):
 
 
 def test_preset_entry_is_the_editor_default_with_that_preset_in_a_palette():
-    from fabtiles._colour import PALETTE_NAMES
+    from fabtiles.designs.colour import PALETTE_NAMES
     from fabtiles.web.params import DEFAULTS
 
     palettes = set()
@@ -75,7 +75,7 @@ def test_every_entry_opens_with_no_finding(key):
 
 def test_thumbnails_show_the_colours(client):
     """A preset's thumbnail fills its faces in its palette's colours; a tiling's (no colours) does not."""
-    from fabtiles._colour import PALETTES
+    from fabtiles.designs.colour import PALETTES
 
     svg = client.get("/api/gallery/table1-part2.svg").text
     iznik = PALETTES["iznik"]

@@ -11,7 +11,7 @@ import pytest
 import shapely
 from asgi_client import TestClient
 
-from fabtiles._limits import WEB_LIMITS, Limits
+from fabtiles.machines.limits import WEB_LIMITS, Limits
 from fabtiles.web.app import create_app
 from fabtiles.web.routes.nest import KEPT, NestError, nest_files, read_body
 

@@ -66,7 +66,7 @@ QUERY_NAMES = {("tile", "width"): ("tile", "size"), ("tile", "height"): ("tile",
 
 def test_every_design_key_is_a_query_parameter():
     """The web app says everything a design file says (and nothing else)."""
-    from fabtiles import design
+    from fabtiles.designs import design_file as design
     from fabtiles.web.params import FIELDS, NOT_WEB_PARAMS
 
     keys = {("motif", k) for k in design.MOTIF_KEYS}
@@ -80,7 +80,7 @@ def test_every_design_key_is_a_query_parameter():
 
 
 def test_new_keys_map_to_the_design_and_validate():
-    from fabtiles.design import design_from_dict
+    from fabtiles.designs.design_file import design_from_dict
 
     d = design_from_query({
         "preset": "table3-3", "radius": "10", "seamless": "true", "gap_alpha": "10", "gap_spr": "-0.1",

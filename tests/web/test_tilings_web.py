@@ -4,7 +4,7 @@ import pytest
 from asgi_client import TestClient
 from test_browser import _preview_version, _wait_new_preview, page, server  # noqa: F401 - fixtures
 
-from fabtiles.design import design_from_dict
+from fabtiles.designs.design_file import design_from_dict
 from fabtiles.pattern.tilings import TILINGS
 from fabtiles.web.app import create_app
 from fabtiles.web.params import QueryError, design_from_query
@@ -90,7 +90,7 @@ def test_too_much_work_points_at_the_edge(client):
 
 
 def test_design_toml_download_builds_the_same_packing(client):
-    from fabtiles.design import design_from_text
+    from fabtiles.designs.design_file import design_from_text
 
     params = {"packing": "archimedean", "tiling": "4.6.12", "edge": "12", "motif_4": "table1-part1",
               "width": "150"}
@@ -101,7 +101,7 @@ def test_design_toml_download_builds_the_same_packing(client):
 
 
 def test_hankin_design_toml_download_builds_the_same_packing(client):
-    from fabtiles.design import design_from_text
+    from fabtiles.designs.design_file import design_from_text
 
     params = {"packing": "archimedean", "tiling": "6.6.6", "edge": "14", "method": "hankin",
               "contact_angle": "60", "contact_gap": "1.5", "width": "150"}
@@ -114,7 +114,7 @@ def test_hankin_design_toml_download_builds_the_same_packing(client):
 def load_design_pattern(name):
     from pathlib import Path
 
-    from fabtiles.design import load_design
+    from fabtiles.designs.design_file import load_design
 
     return load_design(Path(__file__).resolve().parents[2] / "samples" / name).build_tile().pattern
 

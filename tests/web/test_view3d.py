@@ -9,7 +9,7 @@ import pytest
 import trimesh
 from asgi_client import TestClient
 
-from fabtiles._limits import Limits
+from fabtiles.machines.limits import Limits
 from fabtiles.web.app import create_app
 
 SMALL = "width=40&frame=3&radius=8"
@@ -92,9 +92,9 @@ def test_a_big_tile_shows_its_centre(client):
 
 
 def test_print_view_window_figures():
-    from fabtiles._limits import WEB_LIMITS
-    from fabtiles.build import VIEW_SEGMENTS, print_view
-    from fabtiles.design import design_from_dict
+    from fabtiles.machines.limits import WEB_LIMITS
+    from fabtiles.making import VIEW_SEGMENTS, print_view
+    from fabtiles.designs.design_file import design_from_dict
 
     def design(size):
         return design_from_dict({"motif": {"preset": "table3-3"}, "packing": {"radius": 15},

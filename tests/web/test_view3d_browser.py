@@ -150,7 +150,7 @@ def test_a_mosaic_shows_its_parts_in_their_colours(page, server):
     import json
     import urllib.request
 
-    from fabtiles._colour import PALETTES
+    from fabtiles.designs.colour import PALETTES
 
     query = f"{SMALL}&colour_by=shape&palette=iznik&print_style=mosaic"
 

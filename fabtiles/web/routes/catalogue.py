@@ -6,8 +6,8 @@ from __future__ import annotations
 from fastapi import APIRouter
 from fastapi.responses import Response
 
-from ... import _limits
-from ..._profiles import bundled_profiles
+from ...machines import limits as _limits
+from ...machines.profiles import bundled_profiles
 from ...pattern.presets import PRESET_NOTES, PRESETS
 from ..params import DEFAULTS
 from ..schema_json import schema_json

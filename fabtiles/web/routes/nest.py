@@ -6,8 +6,8 @@ picture, parts and material use, and a link to the sheets' files as one zip
 the packer's result depends on its time budget, so the files are the very ones the
 pictures show, not a second packing. ``POST /api/nest.zip`` answers the zip of the
 same body directly (for scripts: no state). The work is
-:func:`fabtiles.build.nesting.nest_bytes`, the build of ``fabtiles nest``, within the
-web's limits (:data:`fabtiles._limits.WEB_LIMITS`: parts and time).
+:func:`fabtiles.making.nesting.nest_bytes`, the build of ``fabtiles nest``, within the
+web's limits (:data:`fabtiles.machines.limits.WEB_LIMITS`: parts and time).
 """
 
 from __future__ import annotations
@@ -23,8 +23,8 @@ from fastapi import APIRouter, Request
 from fastapi.responses import JSONResponse, Response
 from starlette.concurrency import run_in_threadpool
 
-from ... import _limits
-from ..._errors import FabtilesError
+from ...machines import limits as _limits
+from ...core.errors import FabtilesError
 from ...geometry.nest import ROTATIONS
 from ..building import design_of_query, field_of_param, user_message
 
@@ -39,7 +39,7 @@ KEPT = 8
 
 _FIELDS = {"sheet_mm": "sheet", "gap_mm": "gap_mm", "rotations": "rotate", "time_s": "time_s", "count": "designs",
            "formats": "format"}
-"""An error's ``param`` in :func:`~fabtiles.build.nesting.plan_nest` -> the body's field it is about."""
+"""An error's ``param`` in :func:`~fabtiles.making.nesting.plan_nest` -> the body's field it is about."""
 
 
 class NestError(FabtilesError, ValueError):
@@ -132,12 +132,12 @@ def read_body(body, *, limits: _limits.Limits) -> dict:
 
 
 def nest_files(body, *, limits: _limits.Limits):
-    """The nest of a request's body: :class:`~fabtiles.build.nesting.NestedFiles`.
+    """The nest of a request's body: :class:`~fabtiles.making.nesting.NestedFiles`.
 
     Errors of the nest itself (a gap below the kerf, a part larger than the sheet) are
     raised as :class:`NestError` naming the body's field.
     """
-    from ...build.nesting import nest_bytes
+    from ...making.nesting import nest_bytes
 
     asked = read_body(body, limits=limits)
     stem = "nest"  # the zip's files: nest-sheet-1.dxf, ... (the designs are several)

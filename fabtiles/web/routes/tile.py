@@ -5,7 +5,7 @@ from __future__ import annotations
 from fastapi import APIRouter, Request
 from fastapi.responses import Response
 
-from ... import _limits
+from ...machines import limits as _limits
 from ...export.formats import FILE_FORMATS as FORMATS
 from ..building import build, fabrication_checks
 from ..params import QueryError, parse_flag
@@ -40,11 +40,11 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         """The tile as SVG; ``findings=true`` marks each finding of the checks where it is."""
         show = parse_flag("findings", request.query_params.get("findings", "false"))
         _, spec, tile = build(request, limits=limits, view=("findings",))
-        from ...build.views import tile_picture
+        from ...making.views import tile_picture
 
         findings, made = None, False
         if show:
-            from ...checks import check_design
+            from ...making.checks import check_design
 
             result = check_design(spec, tile)
             findings, made = result.findings(), result.made
@@ -65,7 +65,7 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         gives it); ``plain``, what the pictures show of a design given no colours (:data:`PLAIN`);
         ``names``, the palette colour names the design reads (``{"cobalt": "#1e4fa0", ...}``).
         """
-        from ...build import BuildOptions, Models
+        from ...making import BuildOptions, Models
 
         _, spec, tile = build(request, limits=limits)
         models = Models(tile, BuildOptions.of_design(spec))
@@ -83,7 +83,7 @@ def router(*, limits: _limits.Limits) -> APIRouter:
     @api.get("/api/kit.svg")
     def kit_picture(request: Request):
         """The design's inlay kit: the lattice, the pieces and the tile assembled, in two materials."""
-        from ...build import inlay_kit_of
+        from ...making import inlay_kit_of
         from ...export.preview_svg import kit_svg
 
         _, spec, tile = build(request, limits=limits)
@@ -99,7 +99,7 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         """
         import json
 
-        from ...build import print_view
+        from ...making import print_view
 
         _, spec, _ = build(request, limits=limits)
         data, report = print_view(spec, limits=limits)
@@ -130,7 +130,7 @@ def router(*, limits: _limits.Limits) -> APIRouter:
     def export(fmt: str, request: Request):
         if fmt not in FORMATS:
             raise QueryError(f"{fmt!r} is not a valid format, must be one of: {', '.join(FORMATS)}", "format")
-        from ...build import build_bytes
+        from ...making import build_bytes
 
         _, spec, _ = build(request, limits=limits)
         # The build pipeline, as `fabtiles build`: the design's profiles and options, the limits.

@@ -2,7 +2,7 @@
 "use strict";
 
 // The form's sliders, text boxes and check boxes, and the choices of its menus, come from the schema
-// of the design keys (/api/schema, fabtiles/_schema.py): filled in by applySchema() before the form is built.
+// of the design keys (/api/schema, fabtiles/core/schema.py): filled in by applySchema() before the form is built.
 let SLIDERS = {};
 const state = {
   preset: "table3-3", n: 12, radii: [123, 85, 178], alpha: 23, spr: -7, special: 2, rotation: 0,

@@ -1,0 +1,177 @@
+"""The fabrication checks of a design, without writing any file.
+
+:func:`check_tile` runs what the exporters would run on a tile: the laser checks
+of the laser profile (pierced mode; in the score mode only the outline is cut and
+there is nothing to check but the bed), on the region as the laser file would hold
+it (an interlaced tile's ``interlace_cut`` gaps cut; with ``fill_small_holes``, the
+small holes filled first), and the print checks
+of the printer profile with the design's style and heights. Used by
+``fabtiles check``, the web app's checks and the preview's findings overlay.
+
+Unlike an export, nothing here raises for the fabrication problems themselves: a
+tile larger than the laser bed is a ``bed_size`` finding, a stroke thinner than
+the profile allows shows up as thin bridges.
+
+>>> import fabtiles as ft
+>>> tile = ft.Tile("square", 40, ft.HexPacking(radius=8, motif=ft.Star.preset("table3-3")), frame=3)
+>>> result = check_tile(tile, fill_small_holes=True)
+>>> [(where, f.code) for where, f in result.findings()], result.filled_holes > 0
+([], True)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+from ..core.errors import FabricationError
+from ..machines.profiles import load_profile
+from ..core.report import Finding, Report
+from ..machines.profiles import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE
+from ..geometry.machine_geometry import cut_geometry as laser_geometry
+
+if TYPE_CHECKING:
+    from shapely.geometry.base import BaseGeometry
+
+    from .geometry.job_time import JobEstimate
+    from .geometry.material import Filament
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """The reports of :func:`check_tile`: ``laser`` and ``print`` (paths are empty)."""
+
+    laser: Report
+    print: Report
+    filled_holes: int = 0
+    """The cutter's holes filled (``fill_small_holes``): narrower than its ``min_hole_mm``, or than a router's bit."""
+    job: JobEstimate | None = None
+    """The laser job's length and time (:class:`~fabtiles.geometry.job_time.JobEstimate`), when asked for."""
+    filament: Filament | None = None
+    """The print's filament (:class:`~fabtiles.geometry.material.Filament`), with the job."""
+    made: BaseGeometry | None = None
+    """A router's or waterjet's part as the tool makes it (holes opened by its radius), None for a laser."""
+    cutter: str = "laser"
+    """The 2D cutter's kind (the laser profile's ``kind``): ``"laser"``, ``"router"`` or ``"waterjet"``."""
+    print_filled_holes: int = 0
+    """The print's openings filled (``fill_small_holes``): narrower than the printer profile's ``min_hole_mm``."""
+    print_region: object = None
+    """The print's material as its files hold it (small openings filled with ``fill_small_holes``)."""
+
+    def findings(self) -> list[tuple[str, Finding]]:
+        """Every finding with where it comes from: the cutter's kind (``"laser"``, ``"router"``,
+        ``"waterjet"``) or ``"print"``."""
+        return [(self.cutter, f) for f in self.laser.findings] + [("print", f) for f in self.print.findings]
+
+    @property
+    def ok(self) -> bool:
+        """True when neither check found anything."""
+        return self.laser.ok and self.print.ok
+
+
+def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=None, fill_small_holes=False,
+               print_style=None, heights=None, job: bool = False) -> CheckResult:
+    """Run the laser and print checks of ``tile`` (see the module text).
+
+    Parameters
+    ----------
+    tile : Tile
+    laser_profile, printer_profile : str, Path or profile, optional
+        Defaults: ``laser-3mm-plywood`` and ``fdm-0.4mm``.
+    laser_mode : {"pierced", "score", "engrave", "inlay"}, optional
+        Default: the laser profile's. An inlay kit's lattice is checked as a pierced tile.
+    fill_small_holes : bool
+        Check the laser region with the holes too small for the cutter filled, and the
+        print's with the openings too small for the printer filled (as the files would be).
+    print_style : {"relief", "pierced", "deboss"}, optional
+        Default: the printer profile's.
+    heights : dict, optional
+        ``base_mm``, ``relief_mm``, ``pierced_mm``, ``deboss_mm`` overrides.
+    job : bool
+        Also estimate the laser job's length and time (its contours are built, as
+        for the laser files): ``CheckResult.job``. None when the tile cannot be cut
+        (larger than the bed).
+    """
+    from .geometry.laser_checks import check_cut_pattern, check_engrave, check_fits_bed, check_laser
+    from .geometry.narrow import fill_small_holes as fill
+    from .geometry.print_checks import check_print, check_print_pattern
+    from .geometry.print_checks import print_region as made_print_region
+
+    laser = load_profile(laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
+    printer = load_profile(printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")
+    if (laser_mode or laser.mode) == "inlay":  # an inlay kit's lattice is checked (and timed) as a pierced tile
+        laser_mode = "pierced"
+    region, outline = tile.region(), tile.outline_shape()
+    # the laser file's material: with interlace_cut, the under gaps cut and their tabs
+    cut_region, _ = laser_geometry(tile, profile=laser, mode=laser_mode, lines=False)
+    laser_report = Report(path="", format="laser")
+    try:
+        check_fits_bed(outline, laser)
+    except FabricationError as exc:
+        laser_report.add("bed_size", str(exc))
+    filled = 0
+    made = None
+    if (laser_mode or laser.mode) == "pierced" and not cut_region.is_empty:
+        cut = cut_region
+        if laser.cutter.opens_holes:  # a router's or waterjet's part: holes opened by the tool's radius
+            from ..geometry.tool_opening import check_tool
+
+            cut, _, filled = check_tool(cut, laser, fill_small_holes=fill_small_holes, report=laser_report)
+            made = cut
+        if fill_small_holes:
+            cut, more = fill(cut, laser.min_hole_mm, tolerance_mm=laser.tolerance_mm)
+            filled += more
+        check_laser(cut, outline, laser, stroke=tile.stroke, report=laser_report, validate=False)
+        check_cut_pattern(cut_region, cut, outline, laser, stroke=tile.stroke, report=laser_report)
+    elif (laser_mode or laser.mode) == "engrave" and not cut_region.is_empty:
+        check_engrave(cut_region, laser, laser_report)
+    style = print_style or printer.print_style  # the print's region as its files hold it (an interlaced relief unthinned)
+    designed, _ = made_print_region(region, outline, printer, style,
+                                    flatten=not (getattr(tile, "interlace", False) and style == "relief"))
+    print_region, print_filled = made_print_region(designed, outline, printer, style, fill_small_holes=fill_small_holes,
+                                                   flatten=False)
+    print_report = check_print(print_region, outline, printer, stroke=tile.stroke, style=print_style,
+                               report=Report(path="", format="print"), **(heights or {}))
+    if print_filled:
+        check_print_pattern(designed, print_region, outline, printer, style, stroke=tile.stroke, report=print_report)
+    estimate = _job(tile, cut_region, laser, laser_mode, fill_small_holes) if job and "bed_size" not in {
+        f.code for f in laser_report.findings} else None
+    material = _filament(print_region, outline, printer, print_style, heights) if job else None
+    return CheckResult(laser_report, print_report, filled, estimate, material, made, laser.kind, print_filled,
+                       print_region)
+
+
+def _filament(region, outline, printer, style, heights):
+    """The print's filament from its areas and heights (no mesh is built: the file's is within 0.5 %)."""
+    from ..geometry.material import filament, stack_volume
+    from ..geometry.stack import resolve_stack
+
+    stack = resolve_stack(printer, style, **(heights or {}))
+    return filament({"print": stack_volume(region.area, outline.area, stack)}, printer)
+
+
+def _job(tile, cut_region, laser, mode, fill_small_holes):
+    """The laser job of the tile's laser files (their contours, kerf and order).
+
+    ``cut_region`` is the laser files' material, already made by :func:`check_tile`; only
+    the score mode needs the score lines as well.
+    """
+    from ..geometry.cut_plan import plan_cut
+
+    region, lines = cut_region, None
+    if (mode or laser.mode) == "score":
+        region, lines = laser_geometry(tile, profile=laser, mode=mode)
+    plan = plan_cut(region, tile.outline_shape(), centrelines=lines, profile=replace(laser, strict=False), mode=mode,
+                    fill_small_holes=fill_small_holes, fmt="check")
+    return plan.estimate
+
+
+def check_design(design, tile=None, *, job: bool = False) -> CheckResult:
+    """:func:`check_tile` with the profiles, modes and options of a :class:`~fabtiles.designs.design_file.Design`."""
+    out = design.output
+    tile = tile if tile is not None else design.build_tile()
+    from ..designs.design_file import profile_of
+
+    return check_tile(tile, laser_profile=profile_of(design, "laser"), printer_profile=profile_of(design, "printer"),
+                      laser_mode=out.laser_mode, fill_small_holes=out.fill_small_holes,
+                      print_style=out.print_style, heights=out.heights(), job=job)

@@ -1,0 +1,389 @@
+"""The models of one build: the cut plan and the print model, each made once and shared by every file.
+
+:class:`BuildOptions` gathers what a design (or a call) says about its machines: the
+two profiles, loaded once, and the options of each. :class:`Models` makes, on
+first use and then keeps, the cut plan (or an inlay kit's two plans, or a sheet's
+plan) and the print model of one tile; every writer in the format table
+(:mod:`fabtiles.export.formats`) is a pure function of one of them. So a build of
+five formats runs the cutter's checks and contours once and the printer's checks
+once, and each finding is reported once (``tests/making/test_one_model.py`` counts).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..core.errors import FabricationError, ParameterError
+from ..core.report import Report
+from ..core.schema import CALL_OPTIONS, FAMILIES, option_keys
+
+if TYPE_CHECKING:
+    from .._colour import Colours
+    from .._profiles import CutterProfile, PrinterProfile
+
+HEIGHT_FIELDS = tuple(k.name for k in option_keys("print") if k.unit == "mm")
+"""The print heights, gathered in :attr:`BuildOptions.heights`."""
+
+KIT_MODE = "inlay"
+
+
+@dataclass(frozen=True)
+class BuildOptions:
+    """A build's machine settings: the profiles (loaded) and every option of the cut and the print.
+
+    ``None`` means the profile's own value. Make one from a design with :meth:`of_design`.
+    """
+
+    cutter: CutterProfile
+    """The cutter profile (:class:`~fabtiles.CutterProfile`), loaded."""
+    printer: PrinterProfile
+    """The printer profile (:class:`~fabtiles.PrinterProfile`), loaded."""
+    laser_mode: str | None = None
+    fill_small_holes: bool = True
+    inlay_fit_mm: float | None = None
+    inlay_pieces: str | None = None
+    inlay_base: str | None = None
+    tab_mm: float | None = None
+    """Holding tabs' length along the outer cut (mm; None or 0: none)."""
+    tabs_per_part: int | None = None
+    dxf_version: str | None = None
+    kerf_mm: float | None = None
+    print_style: str | None = None
+    heights: dict = field(default_factory=dict)
+    inlay: bool = False
+    """The deboss grooves filled as a second part of the print."""
+    threemf_layout: str = "volumes"
+    colours: Colours | None = None
+    """The design's ``[colour]`` or the call's ``colours`` (:class:`~fabtiles.Colours`), or None: none given."""
+
+    @classmethod
+    def of_design(cls, design) -> "BuildOptions":
+        """The options a validated design's ``[output]`` gives."""
+        out = design.output
+        keys = {k.name: k for family in FAMILIES for k in option_keys(family)}  # the design keys that are options
+        values = {k.option.name: getattr(out, name) for name, k in keys.items()}  # type: ignore[union-attr]  # option keys have an option
+        from ..designs.design_file import profile_of
+
+        return cls(cutter=profile_of(design, "laser"), printer=profile_of(design, "printer"),
+                   colours=design.colour, **cls.fields_of(values, *FAMILIES))
+
+    @staticmethod
+    def fields_of(options: dict, *families: str) -> dict:
+        """The fields given by build ``options`` (the export API's keywords: ``mode``, ``style``, ``base_mm``)
+        of ``families``, named as the design's keys (``laser_mode``, ``print_style``, in ``heights``).
+
+        >>> BuildOptions.fields_of({"mode": "inlay", "base_mm": 2.0, "layout": None}, "cut", "3mf")
+        {'laser_mode': 'inlay', 'heights': {'base_mm': 2.0}}
+        """
+        out: dict = {}
+        wanted = {f for family in families for f in (("print", "3mf") if family == "3mf" else (family,))}
+        calls = {o.name for o in CALL_OPTIONS if set(o.families) & wanted}
+        for name in calls & set(options):
+            out[name] = options[name]  # the call's own options (dxf_version, kerf_mm) keep their names
+        if out.get("colours") is not None:
+            out["colours"] = _colours(out["colours"])
+        for family in families:
+            for k in option_keys(family):
+                value = options.get(k.option.name)  # type: ignore[union-attr]  # option keys have an option
+                if value is None:
+                    continue  # not given: the field's default (the profile's)
+                if k.name in HEIGHT_FIELDS:
+                    out.setdefault("heights", {})[k.name] = value
+                else:
+                    out[k.name] = value
+        return out
+
+    @property
+    def mode(self) -> str:
+        """The cutter's mode: the option's, else the profile's."""
+        return self.laser_mode or self.cutter.mode
+
+    @property
+    def kit(self) -> bool:
+        """Whether the cutter's files are an inlay kit (two files per format)."""
+        return self.mode == KIT_MODE
+
+
+def _colours(value):
+    """The API's ``colours=``: a :class:`~fabtiles.Colours`, or a dict of its keys made into one.
+
+    >>> _colours({"by": "shape"}).by
+    'shape'
+    >>> _colours("iznik")
+    Traceback (most recent call last):
+    ...
+    fabtiles.core.errors.ParameterError: colours must be a fabtiles.Colours (or a dict of its keys: by, palette, band_colour, base_colour, faces), got 'iznik'
+    """  # noqa: E501 - a doctest's lines are as Python prints them
+    from ..designs.colour import Colours
+    from ..core.schema import names
+
+    if isinstance(value, Colours):
+        return value
+    keys = names("colour")
+    if isinstance(value, dict) and set(value) <= set(keys):
+        return Colours(**value)
+    raise ParameterError(f"colours must be a fabtiles.Colours (or a dict of its keys: {', '.join(keys)}), "
+                         f"got {value!r}", param="colours")
+
+
+class Models:
+    """The cut plan and print model of one tile (or one sheet), each made on first use, once.
+
+    Parameters
+    ----------
+    tile : TileGeometry
+        The tile (its region, outline, centre-lines, stroke).
+    options : BuildOptions
+    sheet : Sheet, optional
+        A laid-out sheet (:func:`~fabtiles.geometry.sheet.layout_sheet`): the cut plan
+        is the sheet's; a sheet has no print model.
+    checking : bool
+        Make the models for ``fabtiles check``: the inlay kit's plans are not made
+        (its lattice is checked as a pierced tile), nothing is meshed.
+    """
+
+    def __init__(self, tile, options: BuildOptions, *, sheet=None, checking: bool = False):
+        self.tile = tile
+        self.options = options
+        self.sheet = sheet
+        self.checking = checking
+
+    def _material(self, region):
+        """``region``, or a :class:`~fabtiles.FabricationError` when it is empty (no file of nothing)."""
+        if region is None or region.is_empty:
+            raise FabricationError(
+                "the tile holds no material: every stroke of its pattern falls outside the outline; "
+                "add a frame, make the tile larger, or make the packing radius smaller")
+        return region
+
+    # ------------------------------------------------------------------ the cutter
+
+    @cached_property
+    def cut_region(self):
+        """``(region, centrelines)`` the cutter's files are made from
+        (see :func:`~fabtiles.geometry.machine_geometry.cut_geometry`)."""
+        from ..geometry.machine_geometry import cut_geometry
+
+        o = self.options
+        mode = "pierced" if o.kit else o.laser_mode
+        if self.sheet is not None:
+            return self.sheet.region, self.sheet.centrelines
+        return cut_geometry(self.tile, profile=o.cutter, mode=mode, lines=not o.kit)
+
+    @cached_property
+    def cut(self):
+        """The cut plan (:class:`~fabtiles.geometry.cut_plan.CutPlan`), or an inlay kit's two
+        (:class:`~fabtiles.geometry.cut_plan.KitPlans`)."""
+        from ..geometry.cut_plan import plan_cut, plan_kit
+
+        o = self.options
+        region, centrelines = self.cut_region
+        self._material(self.tile.region() if self.sheet is None else region)
+        outline = self.sheet.outline if self.sheet is not None else self.tile.outline_shape()
+        if o.kit and self.checking:  # the check looks at the lattice as a pierced tile
+            return plan_cut(region, outline, profile=o.cutter, mode="pierced", kerf_mm=o.kerf_mm,
+                            fill_small_holes=o.fill_small_holes, stroke=self.tile.stroke, tab_mm=o.tab_mm,
+                            tabs_per_part=o.tabs_per_part)
+        if o.kit and self.sheet is None:
+            kit = plan_kit(region, outline, profile=o.cutter, inlay_fit_mm=o.inlay_fit_mm,
+                            inlay_base=o.inlay_base or "pierced", kerf_mm=o.kerf_mm, dxf_version=o.dxf_version,
+                            stroke=self.tile.stroke, colours=self.kit_colours() if self.coloured else (),
+                            tab_mm=o.tab_mm, tabs_per_part=o.tabs_per_part)
+            if self.coloured:
+                from ..geometry.kit_nesting import class_letters
+
+                # a class none of whose faces became a piece (all too small: filled) is cut in no wood
+                classes = self.face_classes
+                cut = set(class_letters(kit.kit.holes, classes.faces, classes.labels,
+                                        [c.letter for c in classes.classes]))
+                filled = frozenset(c.letter for c in classes.classes if c.letter not in cut)
+                kit.report.stats["face_classes"] = self.face_class_stats(filled)
+                kit.report.note(f"lattice in {self.colouring.band.name} (the band colour)")
+            if (o.inlay_pieces or "registration") == "nested":
+                from ..geometry.kit_nesting import class_letters, nest_kit
+
+                classes = self.face_classes if self.options.colours is not None and \
+                    self.options.colours.by == "shape" else self._shape_classes
+                letters = class_letters(kit.kit.holes, classes.faces, classes.labels,
+                                        [c.letter for c in classes.classes])
+                kit = nest_kit(kit, letters_of_holes=letters, tabs=(o.tab_mm, o.tabs_per_part))
+            return kit
+        if o.kit:
+            raise ParameterError("a sheet of inlay kits is not laid out; write the kit of one tile (drop --sheet "
+                                 "and --copies) or choose laser_mode = \"pierced\"", param="laser_mode")
+        plan = plan_cut(region, outline, profile=o.cutter, centrelines=centrelines, mode=o.laser_mode,
+                        dxf_version=o.dxf_version, kerf_mm=o.kerf_mm, fill_small_holes=o.fill_small_holes,
+                        stroke=self.tile.stroke, tab_mm=o.tab_mm, tabs_per_part=o.tabs_per_part)
+        if self.sheet is not None:  # how many tiles, which the files' summary does not show otherwise
+            n = len(self.sheet.offsets)
+            bed = " x ".join(f"{v:g}" for v in o.cutter.bed_mm)
+            used = " x ".join(f"{v:.1f}" for v in self.sheet.size)
+            plan.report.note(f"laid {n} {'tile' if n == 1 else 'tiles'} on the {bed} mm bed of {o.cutter.kind} "
+                             f"profile {o.cutter.name!r} ({used} mm used)")
+        return plan
+
+    # ------------------------------------------------------------------ the colours
+
+    @cached_property
+    def face_classes(self):
+        """The tile's faces grouped into classes (:func:`~fabtiles.geometry.faces.face_classes`), by the
+        design's ``[colour] by`` (one class when no colours are given)."""
+        from ..geometry.faces import face_classes
+
+        spec = self.options.colours
+        return face_classes(self.tile, by=spec.by if spec is not None else "none")
+
+    @cached_property
+    def _shape_classes(self):
+        """The faces classed by shape whatever the colours say: a nested kit's letters."""
+        from ..geometry.faces import face_classes
+
+        return face_classes(self.tile, by="shape")
+
+    @cached_property
+    def colouring(self):
+        """The colours of the band, the base and each face class (:class:`~fabtiles.designs.colour.Colouring`)."""
+        from ..designs.colour import Colours
+
+        spec = self.options.colours if self.options.colours is not None else Colours(given=False)
+        try:
+            return spec.colouring(tuple(c.letter for c in self.face_classes.classes) or ("A",))
+        except ParameterError as exc:
+            raise ParameterError(f"[colour.faces] {exc}" if (exc.param or "").startswith("faces") else f"[colour] {exc}",
+                                 param=f"colour.{exc.param}") from None
+
+    @property
+    def coloured(self) -> bool:
+        """Whether colours were asked for (a ``[colour]`` section, the API's ``colours=``)."""
+        return self.options.colours is not None and self.options.colours.given
+
+    def picture_colours(self) -> dict:
+        """:func:`~fabtiles.export.preview_svg.tile_svg`'s colours: the bands', and each class's faces
+        (nothing when no colours were asked for)."""
+        if not self.coloured:
+            return {}
+        classes, colours = self.face_classes, self.colouring
+        return dict(fill=colours.band.hex,
+                    faces=tuple((c.letter, classes.of(c.letter), colours.face(c.letter).hex) for c in classes.classes))
+
+    def filled_classes(self, region) -> frozenset:
+        """The letters of the classes none of whose faces is an opening of ``region``: every face filled
+        with the bands (``fill_small_holes``: narrower than the machine makes), so the class prints in no
+        colour of its own."""
+        import shapely
+
+        classes = self.face_classes
+        if region is None or not len(classes.faces):
+            return frozenset()
+        probe = shapely.get_coordinates(shapely.point_on_surface(np.asarray(classes.faces, dtype=object)))
+        shapely.prepare(region)
+        covered = shapely.contains_xy(region, probe[:, 0], probe[:, 1])
+        return frozenset(c.letter for k, c in enumerate(classes.classes) if covered[classes.labels == k].all())
+
+    def face_class_stats(self, filled=frozenset()) -> list:
+        """The face classes for a report: letter, count, description, area and colour name; a class of
+        ``filled`` (:meth:`filled_classes`) says so in place of a colour."""
+        return [dict(c, colour=None, filled=True) if c["letter"] in filled
+                else dict(c, colour=self.colouring.face(c["letter"]).name) for c in self.face_classes.stats()]
+
+    def kit_colours(self) -> tuple:
+        """A coloured kit's woods: ``((colour name, faces), ...)``, one per distinct face colour, in class order."""
+        colours, classes = self.colouring, self.face_classes
+        out: dict = {}
+        for c in classes.classes:
+            colour = colours.face(c.letter)
+            name, faces = out.get(colour.hex, (colour.name, []))
+            faces.extend(classes.faces[classes.labels == classes.classes.index(c)])
+            out[colour.hex] = (name, faces)
+        return tuple((name, tuple(faces)) for name, faces in out.values())
+
+    def mosaic_specs(self, filled=frozenset()) -> tuple:
+        """A mosaic's parts, one per distinct colour (base, bands, then the classes'), in material order;
+        the classes of ``filled`` (:meth:`filled_classes`) print with the bands, in no part of their own."""
+        from ..designs.colour import check_materials
+        from ..solid.parts import MosaicPart
+
+        colours, classes = self.colouring, self.face_classes
+        printed = tuple((k, v) for k, v in colours.faces if k not in filled)
+        materials = tuple({c.hex: c for c in (colours.base, colours.band, *(v for _, v in printed))}.values())
+        check_materials(materials)
+        specs = []
+        for c in materials:
+            letters = [k for k, v in printed if v.hex == c.hex]
+            holds = (["base"] if colours.base.hex == c.hex else []) + (["bands"] if colours.band.hex == c.hex else [])
+            index = [i for i, fc in enumerate(classes.classes) if fc.letter in letters]
+            faces = tuple(classes.faces[np.isin(classes.labels, index)]) if index else ()
+            specs.append(MosaicPart(f"{c.name} ({', '.join(holds + letters)})", "base" in holds, "bands" in holds,
+                                    faces, c))
+        return tuple(specs)
+
+    def print_parts_line(self, region, style: str) -> str:
+        """What the print of ``region`` (the print's material, small openings filled) is made of, in a line:
+        its parts and the filaments they take (a mosaic's parts are its colours).
+        """
+        from ..solid.parts import part_kinds
+        from ..solid.print_model import PART_MATERIALS
+
+        if style == "mosaic":
+            names = [s.name for s in self.mosaic_specs(self.filled_classes(region))]
+            return f"print: {len(names)} part{'s' if len(names) != 1 else ''}, one filament each: {', '.join(names)}"
+        names = list(part_kinds(style, single=False, inlay=self.options.inlay))
+        if self.coloured:
+            c = self.colouring
+            colours = {n: (c.band if n in ("pattern", "inlay") else c.base) for n in names}
+            shown = [f"{colours[n].name} ({n})" for n in names]
+            n_fil = len({colours[n].hex for n in names})
+        else:
+            shown, n_fil = names, len({PART_MATERIALS[n].extruder for n in names}) if len(names) > 1 else 1
+        return (f"print: {len(names)} part{'s' if len(names) != 1 else ''} ({', '.join(shown)}), "
+                f"{n_fil} filament{'s' if n_fil != 1 else ''}")
+
+    # ------------------------------------------------------------------ the printer
+
+    @cached_property
+    def print_region(self):
+        """``(region, dips)`` the print is made from
+        (see :func:`~fabtiles.geometry.machine_geometry.print_geometry`)."""
+        from ..geometry.machine_geometry import print_geometry
+
+        return print_geometry(self.tile, profile=self.options.printer, style=self.options.print_style)
+
+    @cached_property
+    def print(self):
+        """The print model (:class:`~fabtiles.solid.print_model.PrintModel`); its meshes are made on first use."""
+        from ..solid.print_model import print_model
+
+        o = self.options
+        region, dips = self.print_region
+        self._material(region)
+        style = o.print_style or o.printer.print_style
+        given = self.coloured
+        model = print_model(region, self.tile.outline_shape(), profile=o.printer, style=o.print_style,
+                            stroke=self.tile.stroke, fill_small_holes=o.fill_small_holes, inlay=o.inlay,
+                            dips=dips, colours=self.colouring if given or style == "mosaic" else None,
+                            **o.heights)
+        if style != "mosaic" and not given:
+            return model
+        filled = self.filled_classes(model.region) if o.fill_small_holes else frozenset()
+        if style == "mosaic":  # the parts are made lazily: they take the classes left open by the print's filling
+            model.mosaic = self.mosaic_specs(filled)
+        model.report.stats["face_classes"] = self.face_class_stats(filled)
+        return model
+
+    def model(self, family: str):
+        """The model a format family is written from: ``"cut"`` or ``"print"``."""
+        return self.cut if family == "cut" else self.print
+
+    def reports(self) -> list[tuple[str, Report]]:
+        """``(label, report)`` of each model made so far: one set of findings per model."""
+        out = []
+        if "cut" in self.__dict__:
+            label = f"{self.options.cutter.kind} {self.options.cutter.name}"
+            out.append((label + (" (inlay kit)" if hasattr(self.cut, "lattice") else ""), self.cut.report))
+        if "print" in self.__dict__:
+            out.append((f"printer {self.options.printer.name}", self.print.report))
+        return out

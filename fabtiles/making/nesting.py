@@ -1,0 +1,353 @@
+"""Nested sheets: tiles of several designs packed onto the cutter's sheets, one file per sheet and format.
+
+Each design's tile is planned once, as the cutter cuts it (its
+:class:`~fabtiles.geometry.cut_plan.CutPlan`: every layer, kerf included); its part
+is the outer boundary of its cut paths, and :func:`~fabtiles.geometry.nest.nest`
+places the copies. A sheet is a cut plan too: each placed copy's paths, every layer,
+moved rigidly (turned and translated), so the writers of the format table write it
+unchanged, through the pipeline's staging (all files or none):
+``<name>-sheet-1.dxf``, ``<name>-sheet-2.dxf``, ...
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+import shapely
+
+from ..machines import limits as _limits
+from ..core.errors import ParameterError
+from ..core.report import Report
+from ..core.validate import check_float, check_int
+from .models import BuildOptions
+
+if TYPE_CHECKING:
+    from ..geometry.nest import Nesting
+    from .pipeline import BuildResult
+
+NEST_SUFFIX = "-sheet-"
+"""Nested sheets are ``<name>-sheet-<k>.<format>``, k from 1."""
+
+GAP_EXTRA_MM = 1.0
+"""The default gap between the nested parts' cut paths: the kerf (a router's bit) plus this much."""
+
+
+@dataclass(frozen=True)
+class NestedSheets:
+    """The cut model of a nest: one plan per sheet (the format table writes each as a file)."""
+
+    plans: tuple
+    nesting: Nesting
+    report: Report
+
+    def files_of(self, fmt: str) -> list:
+        """``[(suffix, plan), ...]``: ``-sheet-1``, ``-sheet-2``, ..."""
+        return [(f"{NEST_SUFFIX}{k + 1}", plan) for k, plan in enumerate(self.plans)]
+
+
+class _NestModels:
+    """What :func:`~fabtiles.making.pipeline.write_files` asks of a build's models, for a nest."""
+
+    def __init__(self, options: BuildOptions, sheets: NestedSheets, reports):
+        self.options = options
+        self.cut = sheets
+        self._reports = reports
+
+    def model(self, family: str):
+        return self.cut
+
+    def reports(self):
+        return list(self._reports)
+
+
+@dataclass
+class NestResult:
+    """What :func:`nest_designs` wrote and found: the build's files and reports, the nesting,
+    and per sheet its parts (design names), material use and job."""
+
+    build: BuildResult
+    nesting: Nesting
+    sheets: list = field(default_factory=list)
+
+
+def part_outline(plan):
+    """The outer boundary a cut plan takes on a sheet: its outer cut paths (kerf included) filled.
+
+    When they are several pieces, or a path of another layer lies outside them, the
+    convex hull of every path (so every cut of the part stays inside its outline).
+
+    >>> from shapely.geometry import box
+    >>> from fabtiles.geometry.cut_plan import plan_cut
+    >>> plan = plan_cut(box(0, 0, 40, 40).difference(box(10, 10, 30, 30)), box(0, 0, 40, 40), profile="laser-3mm-plywood")
+    >>> [round(v, 3) for v in part_outline(plan).bounds]
+    [-0.075, -0.075, 40.075, 40.075]
+    """  # noqa: E501 - a doctest's lines are as Python prints them
+    outer = [shapely.Polygon(r) for r in plan.paths("outer") if len(r) >= 3]
+    every = np.concatenate([r for layer in plan.layers for r in layer.paths])
+    part = shapely.union_all([p.buffer(0) for p in outer]) if outer else shapely.Polygon()
+    if isinstance(part, shapely.Polygon) and not part.is_empty:
+        part = shapely.Polygon(part.exterior)
+        if shapely.covers(part.buffer(1e-6), shapely.points(every)).all():
+            return part
+    return shapely.MultiPoint(every).convex_hull
+
+
+def parse_counts(designs, count: int | None):
+    """``[(design, copies), ...]`` from ``[(design, copies or None), ...]`` and the count for all (default 1)."""
+    out = []
+    default = 1 if count is None else check_int("count", count, low=1, high=10_000)
+    for design, n in designs:
+        n = default if n is None else check_int(f"count of {design.name}", n, low=1, high=10_000)
+        out.append((design, n))
+    return out
+
+
+def _sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf):
+    """The cut plan of sheet ``k``: each placed copy's paths, every layer, moved rigidly."""
+    from ..geometry.cut_plan import ROLES, make_plan
+
+    paths: dict = {r: [] for r in ROLES}
+    groups: list = []
+    engrave_area = 0.0
+    parts: list = []
+    for i in nesting.on_sheet(k):
+        p = nesting.placements[i]
+        plan = plans[shapes[i]]
+        for layer in plan.layers:
+            if layer.fill:  # an engraved fill's groups number its polygons: shifted past the sheet's
+                base = 1 + max(groups, default=-1)
+                groups.extend(base + g for g in layer.groups)
+            paths[layer.role].extend(p.move(r) for r in layer.paths)
+        engrave_area += plan.engrave_area_mm2
+        if plan.part is not None:
+            parts.append(p.place(plan.part))
+    w, h = nesting.sheet_mm
+    report = Report(path="", format="")
+    used = nesting.material_use()[k]
+    report.stats.update(profile=profile.name, sheet=k + 1, sheet_mm=[w, h], parts=len(nesting.on_sheet(k)),
+                        material_use=used)
+    sheet = make_plan(profile, mode, dxf_version, kerf, paths, report=report,
+                      part=shapely.union_all(parts) if parts else None, groups=groups,
+                      engrave_area_mm2=engrave_area, bounds=(0.0, 0.0, w, h))
+    report.stats["job"] = sheet.estimate.as_stats()
+    return sheet
+
+
+@dataclass(frozen=True)
+class NestJob:
+    """A nest planned and checked, nothing written: the sheets' cut plans and what is on each.
+
+    Made by :func:`plan_nest`; :func:`nest_designs` writes it into a folder,
+    :func:`nest_bytes` as bytes (the web app's downloads).
+    """
+
+    model: NestedSheets
+    options: BuildOptions
+    labels: list
+    """``(label, report)`` of each design's cut plan (its findings)."""
+    designs: list
+    """``[(design, copies), ...]``."""
+    shapes: list
+    """Per part (in the nesting's order), the index of its design."""
+    formats: tuple
+    stem: str
+
+    @property
+    def nesting(self):
+        return self.model.nesting
+
+    def sheets(self) -> list[dict]:
+        """Per sheet: its number, parts, each design's copies, material use, job and files."""
+        nesting, out = self.model.nesting, []
+        for k, plan in enumerate(self.model.plans):
+            names = [self.designs[self.shapes[i]][0].name for i in nesting.on_sheet(k)]
+            out.append(dict(sheet=k + 1, parts=len(names), designs={n: names.count(n) for n in dict.fromkeys(names)},
+                            material_use=nesting.material_use()[k], job=plan.estimate.as_stats(),
+                            files=[f"{self.stem}{NEST_SUFFIX}{k + 1}.{fmt}" for fmt in self.formats]))
+        return out
+
+    def picture(self, k: int) -> str:
+        """Sheet ``k`` (0-based) drawn: the sheet, each part's outline named, every cut path."""
+        from ..export.preview_svg import nested_sheet_svg
+
+        nesting = self.model.nesting
+        on = nesting.on_sheet(k)
+        parts = [(self.designs[self.shapes[i]][0].name, nesting.outlines[i]) for i in on]
+        return nested_sheet_svg(self.model.plans[k], parts, nesting.sheet_mm,
+                                title=f"sheet {k + 1}: {len(on)} part{'s' if len(on) != 1 else ''}, "
+                                      f"material use {nesting.material_use()[k]:.0%}")
+
+
+def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=None, gap_mm: float | None = None,
+              rotations: str = "90", time_s: float | None = None, name: str | None = None, progress=None,
+              limits: _limits.Limits = _limits.CLI_LIMITS) -> NestJob:
+    """Nest tiles of ``designs`` onto sheets: each sheet's cut plan, checked, nothing written.
+
+    The parameters and errors are :func:`nest_designs`'s (which writes the job).
+    """
+    from ..geometry.nest import DEFAULT_TIME_S, nest
+    from ..machines.cutters import cutter_kind
+    from .pipeline import prepare_tile, sheet_formats
+
+    if not designs:
+        raise ParameterError("give at least one design to nest", param="designs")
+    designs = parse_counts(designs, count)
+    time_s = DEFAULT_TIME_S if time_s is None else check_float("time_s", time_s, low=0, low_open=True)
+    _limits.check_nest(sum(n for _, n in designs), time_s, limits)
+    formats = tuple(dict.fromkeys(formats))
+    cut, printed = sheet_formats(formats)
+    if printed or not cut:
+        raise ParameterError(f"nested sheets are written in the cutter formats (dxf, svg, lbrn2) only, got "
+                             f"{', '.join(formats) or 'none'}; use --format dxf, svg or lbrn2", param="formats")
+    options = [BuildOptions.of_design(d) for d, _ in designs]
+    profile = options[0].cutter
+    for (d, _), o in zip(designs, options, strict=True):
+        if o.cutter.name != profile.name:
+            raise ParameterError(f"every nested design must use one cutter profile (one material): "
+                                 f"{designs[0][0].name} uses {profile.name!r}, {d.name} uses {o.cutter.name!r}; "
+                                 f"set [output] laser_profile alike", param="laser_profile")
+        if o.kit:
+            raise ParameterError(f"{d.name} is an inlay kit (laser_mode = \"inlay\"), which is not nested; "
+                                 f"choose laser_mode = \"pierced\", \"score\" or \"engrave\"", param="laser_mode")
+        for fmt in cut:  # the cutter's kind allows the format (a LightBurn project is for lasers)
+            cutter_kind(o.cutter).check_format(o.cutter, fmt)
+    bed_w, bed_h = profile.bed_mm
+    if sheet_mm is None:
+        sheet_mm = (bed_w, bed_h)
+    if not isinstance(sheet_mm, (list, tuple)) or len(sheet_mm) != 2:
+        raise ParameterError(f"sheet_mm must be (width, height) in mm, got {sheet_mm!r}", param="sheet_mm")
+    w = check_float("sheet width", sheet_mm[0], low=0, low_open=True)
+    h = check_float("sheet height", sheet_mm[1], low=0, low_open=True)
+    if w > bed_w + 1e-9 or h > bed_h + 1e-9:
+        raise ParameterError(f"the sheet {w:g} x {h:g} mm is larger than the {bed_w:g} x {bed_h:g} mm bed of "
+                             f"{profile.kind} profile {profile.name!r}; use a sheet of at most the bed "
+                             f"(--sheet {bed_w:g}x{bed_h:g})", param="sheet_mm")
+    tiles = [prepare_tile(d, limits=limits) for d, _ in designs]
+    _limits.check_segments(sum(len(t.segments()) * n for t, (_, n) in zip(tiles, designs, strict=True)), limits,
+                           what=f"the nest of {sum(n for _, n in designs)} tiles")
+    from .models import Models
+
+    plans = [Models(t, o).cut for t, o in zip(tiles, options, strict=True)]
+    kerf = max(p.kerf_mm for p in plans)
+    least = max(kerf, 2 * profile.tool_radius_mm)  # a router's bit must pass between two parts
+    gap = least + GAP_EXTRA_MM if gap_mm is None else check_float("gap_mm", gap_mm)
+    if gap < least:
+        raise ParameterError(f"gap_mm must be >= the cut's width ({least:g} mm, the kerf of {profile.kind} "
+                             f"profile {profile.name!r}) so the cuts of two parts stay apart, got {gap:g}; "
+                             f"use --gap {least + GAP_EXTRA_MM:g}", param="gap_mm")
+    turns = rotations in ("90", "free")
+    if turns and any("kerf_y_mm" in p.report.stats for p in plans):  # a quarter turn swaps the two kerfs
+        raise ParameterError(f"{profile.kind} profile {profile.name!r} has a kerf along Y unlike along X "
+                             f"(kerf_x_mm, kerf_y_mm): a part turned by a quarter would be cut to the wrong size; "
+                             f"use --rotate 180 or --rotate none, got {rotations!r}", param="rotations")
+    outlines = [part_outline(p) for p in plans]
+    parts, shapes = [], []
+    for k, ((d, n), outline) in enumerate(zip(designs, outlines, strict=True)):
+        for c in range(n):
+            parts.append((f"{d.name}#{k}:{c + 1}", outline))
+            shapes.append(k)
+    nesting = nest(parts, sheet_mm=(w, h), gap_mm=gap, rotations=rotations, time_s=time_s, progress=progress)
+    mode, dxf_version = plans[0].mode, plans[0].dxf_version
+    sheets = tuple(_sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf)
+                   for k in range(nesting.sheets))
+    report = Report(path="", format="")
+    report.stats.update(profile=profile.name, sheets=nesting.sheets, sheet_mm=[w, h], gap_mm=gap,
+                        rotations=rotations, parts=len(parts), material_use=list(nesting.material_use()))
+    labels = [(f"{profile.kind} {profile.name}: {d.name}", p.report) for (d, _), p in zip(designs, plans, strict=True)]
+    stem = name if name is not None else default_stem([d for d, _ in designs])
+    return NestJob(NestedSheets(sheets, nesting, report), options[0], labels, designs, shapes, cut, stem)
+
+
+def default_stem(designs) -> str:
+    """The nested files' stem when none is given: the design's name when all parts are of one design,
+    else ``nest`` (a sheet holding several designs is named after none of them).
+
+    >>> from types import SimpleNamespace as D
+    >>> default_stem([D(name="rosette")]), default_stem([D(name="a"), D(name="b")])
+    ('rosette', 'nest')
+    """
+    names = {d.name for d in designs}
+    return names.pop() if len(names) == 1 else "nest"
+
+
+def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None, sheet_mm=None,
+                 gap_mm: float | None = None, rotations: str = "90", time_s: float | None = None,
+                 name: str | None = None, progress=None, limits: _limits.Limits = _limits.CLI_LIMITS) -> NestResult:
+    """Nest tiles of ``designs`` onto sheets and write ``OUTDIR/<name>-sheet-<k>.<format>``, each format on its own.
+
+    Parameters
+    ----------
+    designs : list of (Design, int or None)
+        Each design and its copies (``None``: ``count``).
+    outdir : str or Path
+        Output folder.
+    formats : iterable of str
+        Cutter formats (``dxf``, ``svg``, ``lbrn2``).
+    count : int, optional
+        Copies of each design whose own count is ``None`` (>= 1; default 1).
+    sheet_mm : (float, float), optional
+        The sheet; default the cutter profile's bed; larger than the bed is an error.
+    gap_mm : float, optional
+        Least distance between two parts' cut paths (>= the kerf, or a router's bit);
+        default that + 1 mm.
+    rotations, time_s, progress
+        As :func:`~fabtiles.geometry.nest.nest` (``time_s`` default 5 s).
+    name : str, optional
+        The files' stem; default :func:`default_stem`: the design's name, or ``nest`` for several.
+    limits : Limits
+        The work limits (segments, parts, time).
+
+    Raises
+    ------
+    FabtilesError
+        With nothing written: a count < 1, designs of different cutter profiles, an
+        inlay kit, a print format, a gap below the kerf, a sheet larger than the bed,
+        a part larger than the sheet, a job over the limits. A format its writer
+        refuses is in ``result.build.refused``, the others written (see
+        :func:`~fabtiles.build.pipeline.write_files`).
+    """
+    from .pipeline import write_files
+
+    job = plan_nest(designs, formats, count=count, sheet_mm=sheet_mm, gap_mm=gap_mm, rotations=rotations,
+                    time_s=time_s, name=name, progress=progress, limits=limits)
+    # a nest's models stand in for Models by the members the writers read
+    result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)  # type: ignore[arg-type]
+    return NestResult(result, job.nesting, job.sheets())
+
+
+@dataclass(frozen=True)
+class NestedFiles:
+    """A nest's files as bytes (:func:`nest_bytes`): ``files`` is ``[(file name, bytes), ...]``."""
+
+    job: NestJob
+    files: list
+
+    def zip_bytes(self) -> bytes:
+        """Every file in one zip archive, in sheet order."""
+        import io
+        import zipfile
+
+        from ..core.files import zip_entry
+
+        buf = io.BytesIO()
+        with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as zf:
+            for fname, data in self.files:
+                zf.writestr(zip_entry(fname), data, compress_type=zipfile.ZIP_DEFLATED)
+        return buf.getvalue()
+
+
+def nest_bytes(designs, formats=("dxf",), **options) -> NestedFiles:
+    """Nest tiles of ``designs`` as :func:`nest_designs` does, and make the files as bytes (no folder).
+
+    Takes :func:`nest_designs`'s keyword ``options`` but ``outdir``; the files are
+    the same writers' (``<name>-sheet-<k>.<format>``), for the web app's downloads.
+    """
+    from ..export.formats import FORMATS, FileOptions
+
+    job = plan_nest(designs, formats, **options)
+    opts = FileOptions(name=job.stem, layout=job.options.threemf_layout)
+    files = [(f"{job.stem}{suffix}.{fmt}", FORMATS[fmt].write(plan, opts))
+             for fmt in job.formats for suffix, plan in job.model.files_of(fmt)]
+    return NestedFiles(job, files)

@@ -1,0 +1,225 @@
+"""Reproducible files (issue 31): the same design gives the same bytes, run after run.
+
+Every shipped sample is built in every format its machines allow, twice, by two
+``fabtiles build`` processes started a second apart, each with its own string hash
+seed (a set's order follows the seed: ezdxf's CLASSES section did), and every file
+is compared byte for byte. So are an inlay kit, a sheet of copies, a test card in a
+DXF version with CLASSES, and the web app's downloads (the kit's zip, the 3D view's
+GLB). In process, every writer of the format table writes the same bytes from two
+models of the same design.
+
+A failure names the file and its first difference: the byte, the line of a text
+file, the member of a zip.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import subprocess
+import sys
+import time
+import zipfile
+from pathlib import Path
+
+import pytest
+
+from fabtiles.core.errors import FabtilesError
+from fabtiles.core.files import ZIP_TIME
+from fabtiles.making import build_bytes
+from fabtiles.making.models import BuildOptions, Models
+from fabtiles.making.pipeline import prepare_tile
+from fabtiles.designs.design_file import design_from_text, load_design
+from fabtiles.export.formats import FILE_FORMATS, FORMATS, FileOptions
+
+ROOT = Path(__file__).resolve().parents[2]
+SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
+
+LEFT_OUT = {"sheet-600x400": ("step",), "panel-2440x1220": ("step",)}
+"""Formats the two large samples are not built in: the sheet's STEP alone takes 15 of the 24 s
+its six formats take (measured); the five 150 mm samples write STEP."""
+
+
+def formats_of(sample: Path) -> list[str]:
+    """The file formats the sample's machines allow (a router writes no LightBurn project)."""
+    options = BuildOptions.of_design(load_design(sample))
+    allowed = []
+    for fmt in FILE_FORMATS:
+        if FORMATS[fmt].family == "cut":
+            try:
+                options.cutter.cutter.check_format(options.cutter, fmt)
+            except FabtilesError:
+                continue
+        allowed.append(fmt)
+    return allowed
+
+
+def run_twice(tmp_path, commands) -> tuple[Path, Path]:
+    """Run each ``(argv, folder)`` of ``commands`` in two rounds of fresh processes, a second apart.
+
+    ``argv`` is run as ``python <argv>`` with ``{out}`` replaced by the round's
+    ``folder``; each round has its own string hash seed. Returns the two rounds' folders.
+    """
+    rounds = []
+    for seed in ("1", "5"):  # under Python 3.11 these two took the CLASSES in different orders
+        top = tmp_path / f"round-{seed}"
+        env = dict(os.environ, PYTHONHASHSEED=seed)
+        for argv, folder in commands:
+            out = top / folder
+            args = [str(a).replace("{out}", str(out)) for a in argv]
+            proc = subprocess.run([sys.executable, *args], cwd=ROOT, env=env, capture_output=True, text=True)
+            assert proc.returncode == 0, f"{' '.join(args)} failed:\n{proc.stdout}\n{proc.stderr}"
+        rounds.append(top)
+        if seed == "1":
+            time.sleep(1.0)  # a time stamp of whole seconds changes between the rounds
+    return rounds[0], rounds[1]
+
+
+def first_difference(a: bytes, b: bytes) -> str:
+    """Where ``a`` and ``b`` first differ: the zip member, else the byte and its line."""
+    if a[:4] == b[:4] == b"PK\x03\x04":
+        za, zb = zipfile.ZipFile(io.BytesIO(a)), zipfile.ZipFile(io.BytesIO(b))
+        if za.namelist() != zb.namelist():
+            return f"zip members {za.namelist()} against {zb.namelist()}"
+        for ia, ib in zip(za.infolist(), zb.infolist(), strict=True):
+            for attr in ("date_time", "compress_type", "external_attr", "create_system", "extra", "comment"):
+                if getattr(ia, attr) != getattr(ib, attr):
+                    return f"zip member {ia.filename}: {attr} {getattr(ia, attr)!r} against {getattr(ib, attr)!r}"
+            ma, mb = za.read(ia), zb.read(ib)
+            if ma != mb:
+                return f"zip member {ia.filename}: {first_difference(ma, mb)}"
+        return "the zip's members are the same, its other bytes differ"
+    at = next((i for i, (x, y) in enumerate(zip(a, b, strict=False)) if x != y), min(len(a), len(b)))  # the first difference
+    line = a.count(b"\n", 0, at) + 1
+
+    def line_of(data):
+        start = data.rfind(b"\n", 0, at) + 1
+        end = data.find(b"\n", at)
+        return data[start:end if end >= 0 else len(data)][:120]
+
+    return (f"first difference at byte {at} ({len(a)} and {len(b)} bytes), line {line}: "
+            f"{line_of(a)!r} against {line_of(b)!r}")
+
+
+def assert_same_files(first: Path, second: Path) -> int:
+    """Every file under ``first`` and ``second`` byte-identical; returns how many were compared."""
+    names = sorted(str(p.relative_to(first)) for p in first.rglob("*") if p.is_file())
+    assert names == sorted(str(p.relative_to(second)) for p in second.rglob("*") if p.is_file())
+    differ = [f"{name}: {first_difference((first / name).read_bytes(), (second / name).read_bytes())}"
+              for name in names if (first / name).read_bytes() != (second / name).read_bytes()]
+    assert not differ, "files differ between two builds of the same design:\n" + "\n".join(differ)
+    return len(names)
+
+
+def test_first_difference_names_the_line_and_the_zip_member():
+    assert first_difference(b"a\nbc\n", b"a\nbd\n") == \
+        "first difference at byte 3 (5 and 5 bytes), line 2: b'bc' against b'bd'"
+
+    def zipped(text, when=ZIP_TIME):
+        buf = io.BytesIO()
+        with zipfile.ZipFile(buf, "w") as zf:
+            zf.writestr(zipfile.ZipInfo("model.xml", date_time=when), text)
+        return buf.getvalue()
+
+    assert first_difference(zipped("x\ny"), zipped("x\nz")).startswith(
+        "zip member model.xml: first difference at byte 2 (3 and 3 bytes), line 2")
+    assert first_difference(zipped("x"), zipped("x", (2024, 5, 6, 7, 8, 10))).startswith(
+        "zip member model.xml: date_time (1980, 1, 1, 0, 0, 0) against (2024, 5, 6, 7, 8, 10)")
+
+
+def test_the_samples_formats_cover_every_file_format():
+    built = {fmt for s in SAMPLES for fmt in formats_of(s) if fmt not in LEFT_OUT.get(s.stem, ())}
+    assert built == set(FILE_FORMATS)
+    assert "lbrn2" not in formats_of(ROOT / "samples" / "panel-2440x1220.toml")  # a router's
+
+
+@pytest.mark.parametrize("sample", [pytest.param(s, marks=pytest.mark.slow) if s.stem in LEFT_OUT else s
+                                    for s in SAMPLES], ids=[s.stem for s in SAMPLES])
+def test_two_builds_of_a_sample_are_byte_identical(tmp_path, sample):
+    formats = [f for f in formats_of(sample) if f not in LEFT_OUT.get(sample.stem, ())]
+    argv = ["-m", "fabtiles", "build", sample, "-o", "{out}"]
+    for fmt in formats:
+        argv += ["--format", fmt]
+    first, second = run_twice(tmp_path, [(argv, ".")])
+    # a mosaic writes an STL per colour
+    assert assert_same_files(first, second) == len(formats) + (3 if sample.stem == "mosaic-iznik" else 0)
+
+
+_WEB_DOWNLOADS = """
+import sys
+from pathlib import Path
+from fabtiles.machines.limits import WEB_LIMITS
+from fabtiles.making import build_bytes
+from fabtiles.making.views import print_view
+from fabtiles.designs.design_file import load_design
+out = Path(sys.argv[1]); out.mkdir(parents=True)
+kit = build_bytes(load_design("samples/table3-3.toml", overrides=["output.laser_mode=inlay"]), "dxf", limits=WEB_LIMITS)
+(out / kit.file_name).write_bytes(kit.data)
+design = load_design("samples/rosette.toml", overrides=["output.print_style=deboss", "output.inlay=true"])
+(out / "view.glb").write_bytes(print_view(design, limits=WEB_LIMITS)[0])
+"""
+
+
+def test_kits_sheets_cards_and_downloads_are_byte_identical(tmp_path):
+    table = ROOT / "samples" / "table3-3.toml"
+    cut = ["--format", "dxf", "--format", "svg", "--format", "lbrn2"]
+    commands = [
+        (["-m", "fabtiles", "build", table, "-o", "{out}", "--set", "output.laser_mode=inlay", *cut], "kit"),
+        (["-m", "fabtiles", "build", ROOT / "samples" / "rosette.toml", "-o", "{out}", "--copies", "3", *cut],
+         "sheet"),
+        (["-m", "fabtiles", "build", table, "-o", "{out}", "--set", "output.print_style=deboss",
+          "--set", "output.inlay=true", "--set", "output.threemf_layout=components", "--format", "3mf"], "inlay"),
+        # R2004 and later have the CLASSES section whose order followed the hash seed
+        (["-m", "fabtiles", "calibrate", "--profile", "laser-3mm-plywood", "--dxf-version", "R2018",
+          "-o", "{out}/card.dxf"], "card"),
+        (["-c", _WEB_DOWNLOADS, "{out}"], "web"),
+    ]
+    first, second = run_twice(tmp_path, commands)
+    assert assert_same_files(first, second) == 13
+
+
+# --------------------------------------------------------------------------- in process, per writer
+
+SMALL = """
+[motif]
+preset = "table3-3"
+[packing]
+kind = "hex"
+radius = 10
+[tile]
+outline = "square"
+size = 50
+frame = 3.0
+stroke = 1.0
+"""
+
+
+def _models(extra: str = "") -> Models:
+    design = design_from_text(SMALL + extra, name="small")
+    return Models(prepare_tile(design), BuildOptions.of_design(design))
+
+
+@pytest.mark.parametrize("fmt", list(FORMATS))
+def test_every_writer_writes_the_same_bytes_from_two_models_of_one_design(fmt):
+    f = FORMATS[fmt]
+    options = FileOptions(name="small")
+    one, two = (f.write(_models().model(f.family), options) for _ in range(2))
+    assert one == two, first_difference(one, two)
+
+
+@pytest.mark.parametrize("layout", ["volumes", "components"])
+def test_every_3mf_member_is_dated_1980(layout):
+    data = FORMATS["3mf"].write(_models().print, FileOptions(layout=layout))
+    with zipfile.ZipFile(io.BytesIO(data)) as zf:
+        assert {i.date_time for i in zf.infolist()} == {ZIP_TIME}
+
+
+def test_the_web_kit_zip_is_dated_1980_and_the_same_twice():
+    from fabtiles.machines.limits import WEB_LIMITS
+
+    design = design_from_text(SMALL + '[output]\nlaser_mode = "inlay"\n', name="small")
+    one, two = (build_bytes(design, "svg", limits=WEB_LIMITS) for _ in range(2))
+    assert one.file_name == "small-kit-svg.zip" and one.data == two.data
+    with zipfile.ZipFile(io.BytesIO(one.data)) as zf:
+        assert zf.namelist() == ["small-lattice.svg", "small-pieces.svg"]
+        assert {i.date_time for i in zf.infolist()} == {ZIP_TIME}
