@@ -48,7 +48,7 @@ NOT_RUN = {
     "dask scheduler": "serves a Dask scheduler until stopped",
     "dask worker": "serves a Dask worker until stopped",
     "fabtiles batch designs/*.toml -o /shared/out --scheduler":
-        "needs a Dask cluster (tests/test_jobs_dask.py runs one)",
+        "needs a Dask cluster (tests/making/test_jobs_dask.py runs one)",
     "HOME=$tmp meerk40t": "how tests/export/test_laser_programs.py runs MeerK40t on its own file",
 }
 
@@ -327,8 +327,8 @@ def toml_problem(where: str, body: str) -> str | None:
     import tomli_w
     import tomllib
 
-    from fabtiles import _profiles
-    from fabtiles.design import design_from_text
+    from fabtiles.machines import profiles as _profiles
+    from fabtiles.designs.design_file import design_from_text
 
     try:
         shown = tomllib.loads(body)

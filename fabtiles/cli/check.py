@@ -91,7 +91,7 @@ def command(design_file, output, overrides, deep):
     result = check_design(design, tile, job=True)
     class_lines = []
     if models is not None:  # the classes as the print makes them: those filled with the bands print no colour
-        from .._report import face_class_lines
+        from ..core.report import face_class_lines
 
         filled = models.filled_classes(result.print_region) if out.fill_small_holes else frozenset()
         class_lines = [models.print_parts_line(result.print_region, style)]

@@ -24,7 +24,7 @@ class _Group(click.Group):
     def invoke(self, ctx):
         import warnings
 
-        from .._errors import FabtilesDeprecationWarning
+        from ..core.errors import FabtilesDeprecationWarning
 
         try:
             with warnings.catch_warnings(record=True) as caught:

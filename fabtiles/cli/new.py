@@ -12,7 +12,7 @@ from pathlib import Path
 
 import click
 
-from .._errors import ParameterError
+from ..core.errors import ParameterError
 
 STARTER = '''\
 # {name}: a fabtiles design, a star pattern for a laser (or router) and a 3D printer.
@@ -68,7 +68,7 @@ def command(path, force):
 
     An existing file is left as it is unless --force.
     """
-    from .._io import atomic_write
+    from ..core.files import atomic_write
 
     target = Path(path)
     if target.suffix.lower() != ".toml":

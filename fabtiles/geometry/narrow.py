@@ -183,7 +183,7 @@ def check_pattern_kept(report, before, after, outline, *, limit_mm: float, limit
     Returns the share kept (1.0 when the pattern had no open area).
 
     >>> from shapely.geometry import box
-    >>> from fabtiles._report import Report
+    >>> from fabtiles.core.report import Report
     >>> plate = box(0, 0, 20, 20).difference(box(4, 4, 5, 5)).difference(box(10, 10, 11, 11))
     >>> filled, n = fill_small_holes(plate, 1.2)
     >>> r = Report(path="", format="")

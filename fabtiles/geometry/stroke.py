@@ -38,7 +38,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from ..core.schema import key
 
-JOINS = key("tile.join").choices
+JOINS: tuple[str, ...] = key("tile.join").choice_values()
 """Valid join styles."""
 
 _MERGE = 1e-6  # mm: endpoints closer than about this are one vertex

@@ -23,7 +23,7 @@ from ..pattern.packing import Packing
 from ..pattern.star import Star
 from .stroke import JOINS, clip_segments, stroke_cross_section, to_cross_section, to_shapely
 
-OUTLINES = key("tile.outline").choices
+OUTLINES: tuple[str, ...] = key("tile.outline").choice_values()
 """Valid tile outlines. ``hexagon`` is pointy-top, its size is the width across flats."""
 
 TOLERANCE = 0.005

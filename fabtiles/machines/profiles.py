@@ -409,10 +409,10 @@ def _parse(data: dict, source: str, name: str):
 
 def _renamed_style(section: dict, source: str) -> dict:
     """A printer section with its older ``style`` key read as ``print_style`` (the design key's name),
-    with a :class:`~fabtiles._errors.FabtilesDeprecationWarning` saying the new name; both keys is an error."""
+    with a :class:`~fabtiles.core.errors.FabtilesDeprecationWarning` saying the new name; both keys is an error."""
     import warnings
 
-    from ._errors import FabtilesDeprecationWarning
+    from ..core.errors import FabtilesDeprecationWarning
 
     if "print_style" in section:
         raise ProfileError(f"{source}: printer.style and printer.print_style are one setting; keep print_style")

@@ -33,8 +33,8 @@ from ..geometry.machine_geometry import cut_geometry as laser_geometry
 if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
 
-    from .geometry.job_time import JobEstimate
-    from .geometry.material import Filament
+    from ..geometry.job_time import JobEstimate
+    from ..geometry.material import Filament
 
 
 @dataclass(frozen=True)
@@ -92,10 +92,10 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         for the laser files): ``CheckResult.job``. None when the tile cannot be cut
         (larger than the bed).
     """
-    from .geometry.laser_checks import check_cut_pattern, check_engrave, check_fits_bed, check_laser
-    from .geometry.narrow import fill_small_holes as fill
-    from .geometry.print_checks import check_print, check_print_pattern
-    from .geometry.print_checks import print_region as made_print_region
+    from ..geometry.laser_checks import check_cut_pattern, check_engrave, check_fits_bed, check_laser
+    from ..geometry.narrow import fill_small_holes as fill
+    from ..geometry.print_checks import check_print, check_print_pattern
+    from ..geometry.print_checks import print_region as made_print_region
 
     laser = load_profile(laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
     printer = load_profile(printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")

@@ -22,8 +22,8 @@ from ..core.report import Report
 from ..core.schema import CALL_OPTIONS, FAMILIES, option_keys
 
 if TYPE_CHECKING:
-    from .._colour import Colours
-    from .._profiles import CutterProfile, PrinterProfile
+    from ..designs.colour import Colours
+    from ..machines.profiles import CutterProfile, PrinterProfile
 
 HEIGHT_FIELDS = tuple(k.name for k in option_keys("print") if k.unit == "mm")
 """The print heights, gathered in :attr:`BuildOptions.heights`."""

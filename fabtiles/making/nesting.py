@@ -306,7 +306,7 @@ def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None,
         inlay kit, a print format, a gap below the kerf, a sheet larger than the bed,
         a part larger than the sheet, a job over the limits. A format its writer
         refuses is in ``result.build.refused``, the others written (see
-        :func:`~fabtiles.build.pipeline.write_files`).
+        :func:`~fabtiles.making.pipeline.write_files`).
     """
     from .pipeline import write_files
 

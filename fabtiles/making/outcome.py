@@ -33,7 +33,7 @@ class Outcome:
     """The findings of each machine the build made files for: ``[("laser", 0), ("printer", 1)]``."""
     refused: list[str] = field(default_factory=list)
     """One line per format the build refused while writing the others, ``"<format>: <reason>"``
-    (:attr:`~fabtiles.build.pipeline.BuildResult.refused`)."""
+    (:attr:`~fabtiles.making.pipeline.BuildResult.refused`)."""
 
 
 def outcome_of(key: str, result: BuildResult) -> Outcome:
@@ -75,7 +75,7 @@ def _files(n: int, replaced: int) -> str:
 def _findings(findings) -> str:
     """A machine's findings in a few words: ``nothing found``, or each code with its count.
 
-    >>> from fabtiles._report import Finding
+    >>> from fabtiles.core.report import Finding
     >>> _findings([]), _findings([Finding("rounded_corner", "", 9476), Finding("thin_bridge", "", 12)])
     ('nothing found', '2 findings (rounded_corner 9,476, thin_bridge 12)')
     """

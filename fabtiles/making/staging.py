@@ -1,6 +1,6 @@
 """Staging: the files a build made written into a hidden folder, then moved into place together.
 
-A format the build refused has no file here (:func:`~fabtiles.build.pipeline.write_files`);
+A format the build refused has no file here (:func:`~fabtiles.making.pipeline.write_files`);
 a failure while writing leaves no new or partial file and never clobbers an existing
 one; a process killed outright leaves only its hidden staging folder, which
 :func:`remove_stale_staging` removes later.

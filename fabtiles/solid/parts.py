@@ -26,7 +26,7 @@ trimesh and manifold3d are imported only inside the functions.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING, NamedTuple, Protocol
 
 import numpy as np
 
@@ -48,8 +48,6 @@ from .mesh_check import check_indexed
 
 if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
-
-    from .._colour import Colour
 
 
 
@@ -492,6 +490,13 @@ def fused_body(region, outline, stack: Stack, *, dips=None):
     return name, mverts, mfaces, volume
 
 
+class NamedColour(Protocol):
+    """What a part needs of a colour (:class:`~fabtiles.designs.colour.Colour` is one, from the layer above)."""
+
+    hex: str
+    name: str
+
+
 class MosaicPart(NamedTuple):
     """What one part (one colour) of a mosaic print holds: the plate, the bands, some faces."""
 
@@ -503,7 +508,7 @@ class MosaicPart(NamedTuple):
     """The bands (the region), up to the top."""
     faces: tuple
     """The faces of this colour (shapely polygons, file coordinates), up to the top less the inset."""
-    colour: Colour | None = None
+    colour: NamedColour | None = None
     """Its :class:`~fabtiles.designs.colour.Colour`: the display colour and the STL file's name."""
 
 

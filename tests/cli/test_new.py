@@ -8,7 +8,7 @@ import pytest
 from click.testing import CliRunner
 
 from fabtiles.cli.main import cli
-from fabtiles.design import load_design
+from fabtiles.designs.design_file import load_design
 
 
 def run(*args):

@@ -197,7 +197,7 @@ def test_a_coloured_relief_takes_the_base_and_band_colours():
 @pytest.mark.parametrize("style, inlay", [("relief", False), ("deboss", True)])
 def test_a_coloured_relief_3mf_carries_its_colours_as_a_mosaic_does(tmp_path, style, inlay):
     """In the 3MF: one part per colour, named by it, on extruders 1 and 2 (no display colours: docs/slicers.md)."""
-    from fabtiles.build import build_design
+    from fabtiles.making import build_design
     from fabtiles.export.threemf import read_3mf
 
     output = f'[output]\nformats = ["3mf"]\nprint_style = "{style}"\ninlay = {str(inlay).lower()}\n'

@@ -354,8 +354,8 @@ def test_a_large_circles_beziers_lie_on_the_dxfs_arcs_within_the_tolerance(tmp_p
     """A 140 mm circle tile: every Bezier, drawn, stands within a tenth of the profile's tolerance of the
     DXF's exact arcs (a quarter turn as one cubic would stand 0.019 mm off on this radius), and every
     point of the DXF's arcs within as much of the project's curves."""
-    from fabtiles.build import build_design
-    from fabtiles.design import load_design
+    from fabtiles.making import build_design
+    from fabtiles.designs.design_file import load_design
 
     sample = HERE.parents[1] / "samples" / "table3-3.toml"
     design = load_design(sample, overrides=('tile.outline="circle"', "tile.size=140",

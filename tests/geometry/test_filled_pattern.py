@@ -9,11 +9,11 @@ import shapely
 from shapely.geometry import box
 
 from fabtiles import FabricationError
-from fabtiles._profiles import load_profile
-from fabtiles._report import Report
-from fabtiles.build.models import BuildOptions, Models
-from fabtiles.checks import check_design
-from fabtiles.design import build_tile, design_from_text
+from fabtiles.machines.profiles import load_profile
+from fabtiles.core.report import Report
+from fabtiles.making.models import BuildOptions, Models
+from fabtiles.making.checks import check_design
+from fabtiles.designs.design_file import build_tile, design_from_text
 from fabtiles.geometry.cut_plan import plan_cut
 from fabtiles.geometry.laser_checks import check_cut_pattern
 from fabtiles.geometry.narrow import PATTERN_KEPT, check_pattern_kept

@@ -136,7 +136,7 @@ def test_printer_min_hole_given_default_and_off(tmp_path):
 
 
 def test_a_printers_old_style_key_loads_with_a_note_naming_print_style(tmp_path):
-    from fabtiles._errors import FabtilesDeprecationWarning
+    from fabtiles.core.errors import FabtilesDeprecationWarning
 
     path = write(tmp_path, 'kind = "printer"\n[printer]\nstyle = "deboss"\n')
     with pytest.warns(FabtilesDeprecationWarning, match=r"p.toml: printer.style is now printer.print_style"):

@@ -277,7 +277,7 @@ def test_an_outcome_names_the_formats_refused(tmp_path, monkeypatch):
 
 def test_the_deep_check_fails_on_a_refused_print_file(tmp_path, monkeypatch):
     from fabtiles import FabricationError
-    from fabtiles.build.deep import read_back
+    from fabtiles.making.deep import read_back
 
     _refusing("stl", "the mesh is bad", monkeypatch)
     design = small(overrides=['output.formats=["stl", "3mf"]'])

@@ -21,9 +21,9 @@ from hypothesis_scale import examples
 from shapely.geometry import MultiPolygon, Polygon, box
 
 from fabtiles import DesignError, ProfileError
-from fabtiles.build.models import BuildOptions, Models
-from fabtiles.build.pipeline import prepare_tile
-from fabtiles.design import design_from_text
+from fabtiles.making.models import BuildOptions, Models
+from fabtiles.making.pipeline import prepare_tile
+from fabtiles.designs.design_file import design_from_text
 from fabtiles.solid._mesh_build import Coverage
 from fabtiles.solid.brep import check_brep, planar_brep
 
@@ -71,7 +71,7 @@ def test_a_face_pinched_at_a_cell_line_is_split_there():
 
 @pytest.mark.slow
 def test_design_1_writes_every_format_and_its_step_is_valid_in_occt(tmp_path):
-    from fabtiles import build
+    from fabtiles import making as build
     from fabtiles.export.step import check_step_file
 
     design = design_from_text(DESIGN_1, name="design1")

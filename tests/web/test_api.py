@@ -256,6 +256,6 @@ def test_holding_tabs_from_the_query(client):
 
 
 def test_the_size_limit_is_the_command_lines():
-    from fabtiles._limits import CLI_LIMITS, WEB_LIMITS
+    from fabtiles.machines.limits import CLI_LIMITS, WEB_LIMITS
 
     assert WEB_LIMITS.max_size_mm == CLI_LIMITS.max_size_mm

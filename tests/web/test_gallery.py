@@ -65,8 +65,8 @@ def test_preset_entry_is_the_editor_default_with_that_preset_in_a_palette():
 @pytest.mark.parametrize("key", [e.key for e in gallery.entries()])
 def test_every_entry_opens_with_no_finding(key):
     """A place to start from is one that cuts and prints on the default profiles as it opens."""
-    from fabtiles.checks import check_design
-    from fabtiles.design import design_from_dict
+    from fabtiles.making.checks import check_design
+    from fabtiles.designs.design_file import design_from_dict
     from fabtiles.web.params import design_from_query
 
     result = check_design(design_from_dict(design_from_query(gallery.entry(key).query)))

@@ -186,7 +186,7 @@ def test_one_colour_mode_shows_the_pictures_colours_in_the_colours_box(page, ser
     old = page.get_attribute("#preview", "data-version")
     page.select_option("#colour_by", "shape")
     page.wait_for_function("old => document.querySelector('#preview').dataset.version !== old", arg=old)
-    from fabtiles._colour import PALETTES
+    from fabtiles.designs.colour import PALETTES
 
     page.wait_for_function(f"() => document.querySelector('#base_colour').value === '{PALETTES['zellige'].base.hex}'")
     assert page.input_value("#band_colour") == PALETTES["zellige"].band.hex

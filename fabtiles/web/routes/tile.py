@@ -75,7 +75,7 @@ def router(*, limits: _limits.Limits) -> APIRouter:
             return {"colour": c.hex, "name": c.name}
 
         classes = [{**c, **named(colours.face(c["letter"]))} for c in models.face_classes.stats()]
-        from ..._colour import palette_names
+        from ...designs.colour import palette_names
 
         return {"band": named(colours.band), "base": named(colours.base), "classes": classes, "plain": PLAIN,
                 "names": palette_names(spec.colour.palette)}
