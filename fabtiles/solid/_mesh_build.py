@@ -196,10 +196,12 @@ def node_polygons(geom, xs, ys):
     return polys[0] if len(polys) == 1 else shapely.MultiPolygon(list(polys))
 
 
-def cells_for(geoms, cell_vertices: int = CELL_VERTICES, shift: int = 0):
+def cells_for(geoms, cell_vertices: int = CELL_VERTICES, shift: int = 0, avoid=()):
     """Cell lines (xs, ys) for geometries with about ``cell_vertices`` vertices a cell.
 
-    ``shift`` moves the lines (see :func:`_grid_lines`).
+    ``shift`` moves the lines (see :func:`_grid_lines`). No line passes through a
+    vertex of ``geoms`` or of ``avoid`` (geometries cut with the same lines, not
+    counted in the size; see :func:`_off_vertices`).
     """
     import shapely
 
@@ -210,7 +212,34 @@ def cells_for(geoms, cell_vertices: int = CELL_VERTICES, shift: int = 0):
     area = max((x1 - x0) * (y1 - y0), 1e-9)
     size = math.sqrt(area * cell_vertices / max(nverts, 1))
     size = max(size, 2.0)
-    return _grid_lines(x0, x1, size, shift), _grid_lines(y0, y1, size, shift), (x0, y0, x1, y1)
+    xs, ys = _grid_lines(x0, x1, size, shift), _grid_lines(y0, y1, size, shift)
+    if len(xs) or len(ys):
+        pts = shapely.get_coordinates(np.array([*geoms, *avoid], dtype=object))
+        xs, ys = _off_vertices(xs, pts[:, 0]), _off_vertices(ys, pts[:, 1])
+    return xs, ys, (x0, y0, x1, y1)
+
+
+def _off_vertices(lines: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Cell lines (on the grid) moved a quantum at a time until none holds one of ``values``.
+
+    A ring that only touches a cell line at a vertex is not noded there, and
+    clipping it at the line gives a ring that touches itself (two lobes joined at
+    that vertex): invalid, and GEOS's triangulator stops on it. A line through no
+    vertex is crossed by every ring that reaches it, at points :func:`_node_rings`
+    inserts.
+
+    >>> _off_vertices(np.array([1.0, 2.0]), np.array([2.0, 2.0 + QUANTUM, 5.0])).tolist() == [1.0, 2.0 + 2 * QUANTUM]
+    True
+    """
+    if not len(lines):
+        return lines
+    taken = np.unique(np.round(values / QUANTUM).astype(np.int64))
+    k = np.round(lines / QUANTUM).astype(np.int64)
+    hit = np.isin(k, taken)
+    while hit.any():
+        k[hit] += 1
+        hit = np.isin(k, taken)
+    return k * QUANTUM
 
 
 def split_cells(geom, xs, ys, box):

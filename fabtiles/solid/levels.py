@@ -247,7 +247,7 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
         raise ValueError(f"{kind!r} has no dips, must be one of: relief, pattern")
     b, h = stack.base, stack.relief
     _, dip = split_region(r, dips, holes=False, leveled=leveled)
-    cells = cells_for([r, o] if kind == "relief" else [r], CELL_VERTICES, shift)
+    cells = cells_for([r, o] if kind == "relief" else [r], CELL_VERTICES, shift, avoid=[dip])
     xs, ys, box = cells
     parts = shapely.get_parts(dip) if not dip.is_empty else np.empty(0, object)
     # each dip's ring (dip_level leaves them no holes) as arrays, and its box

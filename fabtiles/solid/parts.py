@@ -513,6 +513,7 @@ def mosaic_parts(region, outline, stack: Stack, specs) -> dict:
 
     r, o = _snapped(region, outline)
     faces = np.asarray(polygons_of(shapely.difference(o, r, grid_size=QUANTUM)), dtype=object)
+    faces = faces[~_slivers(faces)]
     owner = np.full(len(faces), -1)
     spec_faces = [(np.asarray(s.faces, dtype=object), k) for k, s in enumerate(specs) if len(s.faces)]
     if len(faces) and spec_faces:
@@ -542,6 +543,30 @@ def mosaic_parts(region, outline, stack: Stack, specs) -> dict:
         if not layers and not spec.base:
             continue  # a colour no face of this print took (all its faces were filled)
         out[spec.name] = _mosaic_body(spec, layers, o, stack)
+    return out
+
+
+def _slivers(faces) -> np.ndarray:
+    """Which of ``faces`` (polygons on the grid) are slivers: nowhere two quanta wide.
+
+    Where the region runs along a slanted edge of the outline, its vertices and the
+    outline's round to the grid on either side of the true line: the outline less
+    the region leaves chains of slivers a fraction of a micron thin, touching one
+    another at their ends. A part holding them would have an edge of four walls
+    there (not watertight as a slicer reads it); they are no face of the design.
+
+    >>> import shapely
+    >>> _slivers(np.array([shapely.box(0, 0, 1, 1), shapely.box(0, 0, 1, QUANTUM)])).tolist()
+    [False, True]
+    """
+    import shapely
+
+    out = np.zeros(len(faces), bool)
+    if not len(faces):
+        return out
+    # twice the area over the perimeter is about a thin face's width: only those are buffered
+    thin = np.flatnonzero(2 * shapely.area(faces) < 4 * QUANTUM * shapely.length(faces))
+    out[thin] = shapely.is_empty(shapely.buffer(faces[thin], -QUANTUM, quad_segs=1))
     return out
 
 
