@@ -219,27 +219,50 @@ def cells_for(geoms, cell_vertices: int = CELL_VERTICES, shift: int = 0, avoid=(
     return xs, ys, (x0, y0, x1, y1)
 
 
+LINE_SEARCH = 40
+"""Grid steps a cell line may move forward to keep clear of vertices (less than a retry's move,
+:data:`GRID_SHIFT_MM`, so that a retry tries other lines)."""
+
+LINE_CLEARANCE = 16
+"""Grid steps of clearance from every vertex that a cell line looks for."""
+
+
 def _off_vertices(lines: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """Cell lines (on the grid) moved a quantum at a time until none holds one of ``values``.
+    """Cell lines (on the grid) moved forward by up to :data:`LINE_SEARCH` steps, clear of ``values``.
 
-    A ring that only touches a cell line at a vertex is not noded there, and
-    clipping it at the line gives a ring that touches itself (two lobes joined at
-    that vertex): invalid, and GEOS's triangulator stops on it. A line through no
-    vertex is crossed by every ring that reaches it, at points :func:`_node_rings`
-    inserts.
+    Each line goes to the first place of its window farthest from every value there
+    (up to :data:`LINE_CLEARANCE` steps). A ring that only touches a cell line at a
+    vertex is not noded there, and clipped at the line it becomes a ring touching
+    itself (two lobes joined at that vertex): invalid, and GEOS's triangulator stops
+    on it. A line just beside a sharp tip is no better: the tip's two edges cross it
+    at points that round to one, and the ring folds back on itself. Clear of the
+    vertices, a line is crossed by every ring that reaches it, at distinct points
+    (:func:`_node_rings` inserts them).
 
-    >>> _off_vertices(np.array([1.0, 2.0]), np.array([2.0, 2.0 + QUANTUM, 5.0])).tolist() == [1.0, 2.0 + 2 * QUANTUM]
+    >>> q = QUANTUM
+    >>> _off_vertices(np.array([1.0]), np.array([1.0, 1.0 + 3 * q, 5.0])).tolist() == [1.0 + 19 * q]
     True
     """
     if not len(lines):
         return lines
-    taken = np.unique(np.round(values / QUANTUM).astype(np.int64))
     k = np.round(lines / QUANTUM).astype(np.int64)
-    hit = np.isin(k, taken)
-    while hit.any():
-        k[hit] += 1
-        hit = np.isin(k, taken)
-    return k * QUANTUM
+    v = np.round(np.asarray(values) / QUANTUM).astype(np.int64)
+    lo, hi = k - LINE_CLEARANCE, k + LINE_SEARCH + LINE_CLEARANCE
+    # the values near each line (its window with the clearance either side; the windows do not overlap)
+    at = np.searchsorted(lo, v, side="right") - 1
+    near = (at >= 0) & (v <= hi[np.maximum(at, 0)])
+    v, at = v[near], at[near]
+    out = k.copy()
+    cand = np.arange(LINE_SEARCH + 1)
+    for i in np.unique(at).tolist():
+        taken = np.unique(v[at == i])
+        c = k[i] + cand
+        j = np.searchsorted(taken, c)
+        below = np.where(j > 0, c - taken[np.maximum(j - 1, 0)], LINE_CLEARANCE)
+        above = np.where(j < len(taken), taken[np.minimum(j, len(taken) - 1)] - c, LINE_CLEARANCE)
+        clear = np.minimum(np.minimum(below, above), LINE_CLEARANCE)
+        out[i] = c[int(np.argmax(clear))]
+    return out * QUANTUM
 
 
 def split_cells(geom, xs, ys, box):
