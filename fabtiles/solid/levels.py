@@ -59,7 +59,8 @@ def split_region(r, dips, *, holes: bool = True, leveled: bool = False):
     makes them (20 grid steps inside, so snapping keeps them there). The full part
     is then ``r`` with the dips as holes, vertex for vertex: each dip is added as a
     hole of the part of ``r`` holding it, no overlay of the whole region. Dip parts
-    thinner than :data:`THIN_MM` stay at full height. ``dips`` may be None or empty;
+    thinner than :data:`THIN_MM`, and dips ringing a face of the region
+    (:func:`_ringing_faces`), stay at full height. ``dips`` may be None or empty;
     ``holes=False`` returns ``r`` itself as the full part; ``leveled`` says ``dips``
     already is :func:`dip_level`'s.
     """
@@ -69,6 +70,12 @@ def split_region(r, dips, *, holes: bool = True, leveled: bool = False):
     if d is None or d.is_empty:
         return r, shapely.Polygon()
     parts = shapely.get_parts(d)
+    ringing = _ringing_faces(r, parts)
+    if ringing.any():
+        parts = parts[~ringing]
+        d = shapely.multipolygons(parts) if len(parts) else shapely.Polygon()
+        if not len(parts):
+            return r, d
     if not holes:
         return r, d
     owners = shapely.get_parts(r)
@@ -80,6 +87,33 @@ def split_region(r, dips, *, holes: bool = True, leveled: bool = False):
             return r, d
     full = add_holes(owners, owner_of, *_ragged_rings(shapely.get_exterior_ring(parts)))
     return shapely.multipolygons(full), d
+
+
+def _ringing_faces(r, parts) -> np.ndarray:
+    """Which dips of ``parts`` (:func:`dip_level`'s) ring a hole of the region ``r``.
+
+    The under strands around a small face can dip all the way round it: the dip is a
+    ring whose hole is that face, and :func:`dip_level` fills it (the hole it is made
+    for is an island of material too small to stand). Filled, the dip would cover the
+    face, and as a hole of the region it would hold the face's own hole: no valid
+    polygon. Those dips stay at full height.
+
+    >>> import shapely
+    >>> r = shapely.box(0, 0, 10, 10).difference(shapely.box(4, 4, 6, 6))
+    >>> _ringing_faces(r, np.array([shapely.box(3, 3, 7, 7), shapely.box(1, 1, 2, 2)])).tolist()
+    [True, False]
+    """
+    import shapely
+
+    out = np.zeros(len(parts), bool)
+    polys = shapely.get_parts(r)
+    counts = shapely.get_num_interior_rings(polys)
+    if not len(parts) or not counts.sum():
+        return out
+    holes = shapely.get_interior_ring(np.repeat(polys, counts), np.concatenate([np.arange(c) for c in counts]))
+    _, ringing = shapely.STRtree(parts).query(shapely.get_point(holes, 0), predicate="within")
+    out[ringing] = True
+    return out
 
 
 def _owner_of(polys, points) -> np.ndarray:

@@ -138,3 +138,20 @@ def test_an_island_ringed_by_dips_dips_too():
         assert by_level[dip_z(STACK)] == pytest.approx(1.5 ** 2)
         v, f = mesh_coverage(cov)
         sc.check_mesh(v, f, bodies=1 if kind == "relief" else None)
+
+
+@pytest.mark.parametrize("kind", ["relief", "pattern"])
+def test_a_dip_ringing_a_face_stays_at_full_height(kind):
+    """Strands dipping all round a small face: the dip is a ring, and filled it would cover the face."""
+    o = box(0, 0, 20, 20)
+    r = box(2, 2, 18, 18).difference(box(9, 9, 11, 11))  # a band round a 2 x 2 mm face
+    ring = box(8, 8, 12, 12).difference(box(9, 9, 11, 11))  # the dips all round the face
+    other = box(4, 4, 5, 6)
+    dips = shapely.union_all([ring, other])
+    full, dip = split_region(r, dips)
+    assert full.is_valid and dip.equals(other)
+    assert full.area == pytest.approx(r.area - other.area)
+    cov = body_coverage(kind, r, o, STACK, dips)
+    v, f = mesh_coverage(cov)
+    full_volume = {"relief": o.area * STACK.base + r.area * STACK.relief, "pattern": r.area * STACK.relief}[kind]
+    sc.check_mesh(v, f, volume=full_volume - other.area * (STACK.base + STACK.relief - dip_z(STACK)))
