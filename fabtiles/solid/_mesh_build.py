@@ -12,9 +12,10 @@ stack directly, without mesh booleans:
    slicer reads the file back.
 2. Cut the plane into square cells along grid lines. Triangulating one polygon
    with thousands of holes is quadratic in the number of holes (36 s for a
-   600 x 400 mm sheet); cells of a few hundred vertices keep it linear. Rings are
-   first noded at the cell lines (crossing points inserted, snapped), so the
-   pieces of neighbouring cells share their seam vertices exactly.
+   600 x 400 mm sheet); cells of a few hundred vertices keep it linear. The lines
+   keep clear of every vertex (:func:`_off_vertices`), and rings are first noded
+   at them (crossing points inserted, snapped), so the pieces of neighbouring
+   cells share their seam vertices exactly.
 3. Triangulate each piece (:mod:`fabtiles.solid._triangulate`: fans, earcut
    checked exactly, else manifold3d's triangulator), put its top at its level,
    its bottom at the common bottom (an outline alone is triangulated on its own),

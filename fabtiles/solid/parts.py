@@ -594,11 +594,11 @@ def _mosaic_body(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
 
     Two polygons of one part that touch at a single point (two faces of a class on
     either side of a band's tip on a tile's edge) would meet on a vertical edge of
-    four walls: a defect that is no cell line's is cut away, a few microns of the
-    part's top layers around each point where the mesh's edges do not pair up
-    (:func:`_apart`), a few rounds. The other parts do not take that speck: the parts
-    still touch without overlapping. The first attempt's error is raised when no
-    round helps.
+    four walls. So where the mesh's edges do not pair up (off the cell lines, which
+    :func:`_mosaic_mesh` moves), a few microns of the part's top layers are cut away
+    around each such point (:func:`_apart`), a few rounds. No other part takes that
+    speck: the parts still touch without overlapping. The first attempt's error is
+    raised when no round helps.
     """
     error, points = None, np.empty((0, 2))
     for _ in range(BRIDGE_ROUNDS + 1):

@@ -81,8 +81,30 @@ def _read_back(vertices, faces, *, name, volume, bodies):
     check_triangles(tris, name=name, volume=volume, bodies=bodies)
 
 
+def _design(motif, packing, tile, style, **output):
+    """A design's tables as :func:`designs` draws them (the pinned cases below)."""
+    return {"motif": motif, "packing": packing, "tile": tile,
+            "output": {"formats": ["stl", "3mf"], "printer_profile": "fdm-0.4mm", "print_style": style, **output}}
+
+
+EDGE_BAND_TIP = dict(outline="hexagon", frame=0.0, join="bevel", interlace=True)
+"""A hexagon without a frame, interlaced: bands end in tips on its edges."""
+
+
 @settings(max_examples=examples(10), suppress_health_check=[HealthCheck.too_slow])
 @given(designs())
+# two faces of a class meeting at a band's tip on the edge: a vertical edge of four walls in their part
+@example(_design({"n": 9, "radii": [150.0, 195.3]}, {"kind": "hex", "radius": 10.41, "outline_circles": False},
+                 {"size": [59.5, 59.5], "stroke": 1.2, **EDGE_BAND_TIP}, "mosaic", fill_small_holes=False,
+                 mosaic_inset_mm=0.0))
+@example(_design({"n": 9, "radii": [119.7, 90.0, 199.0]},
+                 {"kind": "archimedean", "tiling": "3.4.6.4", "edge": 6.19, "outline_circles": False,
+                  "motifs": {"4": "table1-part1"}},
+                 {"size": [66.1, 66.1], "stroke": 1.32, **EDGE_BAND_TIP}, "mosaic", fill_small_holes=False,
+                 mosaic_inset_mm=0.0))
+# the under strands dipping all round a small face: filled, the dip nested the face's hole in the region
+@example(_design({"preset": "table3-1"}, {"kind": "hex", "radius": 10.92, "outline_circles": False},
+                 {"size": [57.0, 57.0], "stroke": 1.42, **EDGE_BAND_TIP}, "relief", fill_small_holes=False))
 def test_every_mesh_of_a_random_design_passes_its_slicer_check(data):
     try:
         design = design_from_dict(data, name="random")
