@@ -12,7 +12,7 @@ Every failing case found is pinned as an ``@example``.
 from __future__ import annotations
 
 import pytest
-from hypothesis import HealthCheck, example, given, reject, settings
+from hypothesis import HealthCheck, Phase, example, given, reject, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
 
@@ -41,8 +41,8 @@ def motifs(draw):
 
 
 @st.composite
-def designs(draw):
-    """A design as its TOML tables: a small tile, its packing, strokes, colours and print."""
+def designs(draw, styles=PRINT_STYLES):
+    """A design as its TOML tables: a small tile, its packing, strokes, colours and a print of ``styles``."""
     data = {"motif": draw(motifs())}
     if draw(st.booleans()):
         data["packing"] = {"kind": "hex", "radius": draw(st.floats(6, 15).map(lambda r: round(r, 2))),
@@ -61,7 +61,7 @@ def designs(draw):
     data["tile"] = {"outline": outline, "size": [w, h], "frame": draw(st.sampled_from([0.0, 1.5, 3.0])),
                     "stroke": round(draw(st.floats(0.6, 2.0)), 2), "join": draw(st.sampled_from(["miter", "round", "bevel"])),
                     "interlace": draw(st.booleans())}
-    style = draw(st.sampled_from(PRINT_STYLES))
+    style = draw(st.sampled_from(styles))
     output = {"formats": ["stl", "3mf"], "printer_profile": draw(st.sampled_from(["fdm-0.4mm", "fdm-0.6mm"])),
               "print_style": style, "fill_small_holes": draw(st.booleans())}
     if style == "mosaic":
@@ -91,21 +91,8 @@ EDGE_BAND_TIP = dict(outline="hexagon", frame=0.0, join="bevel", interlace=True)
 """A hexagon without a frame, interlaced: bands end in tips on its edges."""
 
 
-@settings(max_examples=examples(10), suppress_health_check=[HealthCheck.too_slow])
-@given(designs())
-# two faces of a class meeting at a band's tip on the edge: a vertical edge of four walls in their part
-@example(_design({"n": 9, "radii": [150.0, 195.3]}, {"kind": "hex", "radius": 10.41, "outline_circles": False},
-                 {"size": [59.5, 59.5], "stroke": 1.2, **EDGE_BAND_TIP}, "mosaic", fill_small_holes=False,
-                 mosaic_inset_mm=0.0))
-@example(_design({"n": 9, "radii": [119.7, 90.0, 199.0]},
-                 {"kind": "archimedean", "tiling": "3.4.6.4", "edge": 6.19, "outline_circles": False,
-                  "motifs": {"4": "table1-part1"}},
-                 {"size": [66.1, 66.1], "stroke": 1.32, **EDGE_BAND_TIP}, "mosaic", fill_small_holes=False,
-                 mosaic_inset_mm=0.0))
-# the under strands dipping all round a small face: filled, the dip nested the face's hole in the region
-@example(_design({"preset": "table3-1"}, {"kind": "hex", "radius": 10.92, "outline_circles": False},
-                 {"size": [57.0, 57.0], "stroke": 1.42, **EDGE_BAND_TIP}, "relief", fill_small_holes=False))
-def test_every_mesh_of_a_random_design_passes_its_slicer_check(data):
+def _check(data):
+    """Build a design's print model; every mesh it makes must pass its slicer check, read back."""
     try:
         design = design_from_dict(data, name="random")
     except DesignError:  # a stroke wider than the packing allows
@@ -122,3 +109,28 @@ def test_every_mesh_of_a_random_design_passes_its_slicer_check(data):
         _read_back(part.mesh.vertices, part.mesh.faces, name=name, volume=part.mesh.volume_mm3,
                    bodies=part.mesh.bodies)
     _read_back(fused.vertices, fused.faces, name="fused", volume=fused.volume_mm3, bodies=fused.bodies)
+
+
+@pytest.mark.parametrize("style", PRINT_STYLES)
+@settings(max_examples=examples(3), suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_every_mesh_of_a_random_design_passes_its_slicer_check(style, data):
+    _check(data.draw(designs((style,)), label="design"))
+
+
+@settings(phases=[Phase.explicit])
+@given(designs())
+# two faces of a class meeting at a band's tip on the edge: a vertical edge of four walls in their part
+@example(_design({"n": 9, "radii": [150.0, 195.3]}, {"kind": "hex", "radius": 10.41, "outline_circles": False},
+                 {"size": [59.5, 59.5], "stroke": 1.2, **EDGE_BAND_TIP}, "mosaic", fill_small_holes=False,
+                 mosaic_inset_mm=0.0))
+@example(_design({"n": 9, "radii": [119.7, 90.0, 199.0]},
+                 {"kind": "archimedean", "tiling": "3.4.6.4", "edge": 6.19, "outline_circles": False,
+                  "motifs": {"4": "table1-part1"}},
+                 {"size": [66.1, 66.1], "stroke": 1.32, **EDGE_BAND_TIP}, "mosaic", fill_small_holes=False,
+                 mosaic_inset_mm=0.0))
+# the under strands dipping all round a small face: filled, the dip nested the face's hole in the region
+@example(_design({"preset": "table3-1"}, {"kind": "hex", "radius": 10.92, "outline_circles": False},
+                 {"size": [57.0, 57.0], "stroke": 1.42, **EDGE_BAND_TIP}, "relief", fill_small_holes=False))
+def test_the_random_designs_that_broke_pass(data):
+    _check(data)
