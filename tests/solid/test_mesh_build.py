@@ -1,4 +1,4 @@
-"""The meshing core's refusals (fabtiles.solid._mesh_build): bad shapes, and coverages it cannot mesh, and its cells."""
+"""The meshing core (fabtiles.solid._mesh_build): its refusals (bad shapes, coverages it cannot mesh) and its cells."""
 
 from __future__ import annotations
 
@@ -11,8 +11,16 @@ from shapely.geometry import MultiPolygon, box
 
 from fabtiles import FabricationError, ParameterError
 from fabtiles.solid import _mesh_build as mb
-from fabtiles.solid._mesh_build import (QUANTUM, Coverage, cells_for, check_shapes, coverage, coverage_from_cells,
-                                        mesh_coverage, topology)
+from fabtiles.solid._mesh_build import (
+    QUANTUM,
+    Coverage,
+    cells_for,
+    check_shapes,
+    coverage,
+    coverage_from_cells,
+    mesh_coverage,
+    topology,
+)
 from fabtiles.solid._triangulate import cdt
 from fabtiles.solid.mesh_check import check_indexed
 

@@ -170,10 +170,10 @@ def _geos_failure(*args, **kwargs):
 
 
 @pytest.mark.parametrize("target, broken, match", [
-    ("mesh_coverage", _cdt_failure, r"could not be made: cannot triangulate the region near \(15, 15\) mm: GEOS stops "
-                                    r"there; nothing was written$"),
-    ("coverage", _geos_failure, r"could not be cut into cells \(TopologyException: side location conflict at 15 15\); "
-                                r"nothing was written$"),
+    ("mesh_coverage", _cdt_failure, (r"could not be made: cannot triangulate the region near \(15, 15\) mm: GEOS "
+                                     r"stops there; nothing was written$")),
+    ("coverage", _geos_failure, (r"could not be cut into cells \(TopologyException: side location conflict at 15 "
+                                 r"15\); nothing was written$")),
 ])
 def test_a_part_whose_cut_fails_is_refused_by_name_after_moved_lines(monkeypatch, target, broken, match):
     calls = []

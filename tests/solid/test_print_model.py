@@ -87,7 +87,7 @@ def _design(motif, packing, tile, style, **output):
             "output": {"formats": ["stl", "3mf"], "printer_profile": "fdm-0.4mm", "print_style": style, **output}}
 
 
-EDGE_BAND_TIP = dict(outline="hexagon", frame=0.0, join="bevel", interlace=True)
+EDGE_BAND_TIP = {"outline": "hexagon", "frame": 0.0, "join": "bevel", "interlace": True}
 """A hexagon without a frame, interlaced: bands end in tips on its edges."""
 
 
