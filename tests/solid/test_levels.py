@@ -9,7 +9,7 @@ import fabtiles as ft
 from fabtiles.solid import mesh_check as sc
 from fabtiles.solid import parts
 from fabtiles.solid._mesh_build import Stack, coverage, mesh_coverage
-from fabtiles.solid.levels import body_coverage, body_layers, dip_z, split_region
+from fabtiles.solid.levels import APART_MM, body_coverage, body_layers, dip_z, split_region
 from fabtiles.geometry.interlace import tile_dips
 
 STACK = Stack("relief", base=2.0, relief=1.2, pierced=3.0, deboss=0.8)
@@ -155,3 +155,17 @@ def test_a_dip_ringing_a_face_stays_at_full_height(kind):
     v, f = mesh_coverage(cov)
     full_volume = {"relief": o.area * STACK.base + r.area * STACK.relief, "pattern": r.area * STACK.relief}[kind]
     sc.check_mesh(v, f, volume=full_volume - other.area * (STACK.base + STACK.relief - dip_z(STACK)))
+
+
+@pytest.mark.parametrize("kind", ["relief", "pattern"])
+def test_dips_touching_at_a_point_mesh_watertight(kind):
+    """Two dips meeting at a corner would put four walls on one vertical edge: they are cut back there."""
+    o = box(0, 0, 20, 20)
+    r = box(2, 2, 18, 18)
+    dips = shapely.MultiPolygon([box(6, 6, 10, 10), box(10, 10, 14, 14)])
+    cov = body_coverage(kind, r, o, STACK, dips)
+    v, f = mesh_coverage(cov)
+    depth = STACK.base + STACK.relief - dip_z(STACK)
+    cut = APART_MM ** 2  # a quarter of the diamond off each of the two dips
+    full = {"relief": o.area * STACK.base + r.area * STACK.relief, "pattern": r.area * STACK.relief}[kind]
+    sc.check_mesh(v, f, volume=full - (32 - cut) * depth, bodies=1)

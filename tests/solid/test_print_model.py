@@ -132,5 +132,9 @@ def test_every_mesh_of_a_random_design_passes_its_slicer_check(style, data):
 # the under strands dipping all round a small face: filled, the dip nested the face's hole in the region
 @example(_design({"preset": "table3-1"}, {"kind": "hex", "radius": 10.92, "outline_circles": False},
                  {"size": [57.0, 57.0], "stroke": 1.42, **EDGE_BAND_TIP}, "relief", fill_small_holes=False))
+# two dips touching at a point: the full height's walls and theirs on one vertical edge
+@example(_design({"n": 7, "radii": [117.0, 43.4, 30.0, 150.0]}, {"kind": "hex", "radius": 6.96, "outline_circles": False},
+                 {"outline": "rectangle", "size": [60.0, 67.1], "frame": 0.0, "stroke": 0.9, "join": "miter",
+                  "interlace": True}, "relief", fill_small_holes=True))
 def test_the_random_designs_that_broke_pass(data):
     _check(data)
