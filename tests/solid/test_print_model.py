@@ -26,7 +26,6 @@ from fabtiles.solid.mesh_check import check_triangles
 
 PRESETS = ("table1-part1", "table1-part2", "table2-left", "table2-right", "table3-1", "table3-2", "table3-3")
 
-
 REFUSED = ("the tile holds no material", "every groove of this deboss is narrower than min_hole_mm")
 """What a design may be refused for: what it is, not a mesh fabtiles made of it."""
 
