@@ -12,9 +12,10 @@ stack directly, without mesh booleans:
    slicer reads the file back.
 2. Cut the plane into square cells along grid lines. Triangulating one polygon
    with thousands of holes is quadratic in the number of holes (36 s for a
-   600 x 400 mm sheet); cells of a few hundred vertices keep it linear. Rings are
-   first noded at the cell lines (crossing points inserted, snapped), so the
-   pieces of neighbouring cells share their seam vertices exactly.
+   600 x 400 mm sheet); cells of a few hundred vertices keep it linear. The lines
+   keep clear of every vertex (:func:`_off_vertices`), and rings are first noded
+   at them (crossing points inserted, snapped), so the pieces of neighbouring
+   cells share their seam vertices exactly.
 3. Triangulate each piece (:mod:`fabtiles.solid._triangulate`: fans, earcut
    checked exactly, else manifold3d's triangulator), put its top at its level,
    its bottom at the common bottom (an outline alone is triangulated on its own),
@@ -196,10 +197,12 @@ def node_polygons(geom, xs, ys):
     return polys[0] if len(polys) == 1 else shapely.MultiPolygon(list(polys))
 
 
-def cells_for(geoms, cell_vertices: int = CELL_VERTICES, shift: int = 0):
+def cells_for(geoms, cell_vertices: int = CELL_VERTICES, shift: int = 0, avoid=()):
     """Cell lines (xs, ys) for geometries with about ``cell_vertices`` vertices a cell.
 
-    ``shift`` moves the lines (see :func:`_grid_lines`).
+    ``shift`` moves the lines (see :func:`_grid_lines`). No line passes through a
+    vertex of ``geoms`` or of ``avoid`` (geometries cut with the same lines, not
+    counted in the size; see :func:`_off_vertices`).
     """
     import shapely
 
@@ -210,7 +213,57 @@ def cells_for(geoms, cell_vertices: int = CELL_VERTICES, shift: int = 0):
     area = max((x1 - x0) * (y1 - y0), 1e-9)
     size = math.sqrt(area * cell_vertices / max(nverts, 1))
     size = max(size, 2.0)
-    return _grid_lines(x0, x1, size, shift), _grid_lines(y0, y1, size, shift), (x0, y0, x1, y1)
+    xs, ys = _grid_lines(x0, x1, size, shift), _grid_lines(y0, y1, size, shift)
+    if len(xs) or len(ys):
+        pts = shapely.get_coordinates(np.array([*geoms, *avoid], dtype=object))
+        xs, ys = _off_vertices(xs, pts[:, 0]), _off_vertices(ys, pts[:, 1])
+    return xs, ys, (x0, y0, x1, y1)
+
+
+LINE_SEARCH = 40
+"""Grid steps a cell line may move forward to keep clear of vertices (less than a retry's move,
+:data:`GRID_SHIFT_MM`, so that a retry tries other lines)."""
+
+LINE_CLEARANCE = 16
+"""Grid steps of clearance from every vertex that a cell line looks for."""
+
+
+def _off_vertices(lines: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Cell lines (on the grid) moved forward by up to :data:`LINE_SEARCH` steps, clear of ``values``.
+
+    Each line goes to the first place of its window farthest from every value there
+    (up to :data:`LINE_CLEARANCE` steps). A ring that only touches a cell line at a
+    vertex is not noded there, and clipped at the line it becomes a ring touching
+    itself (two lobes joined at that vertex): invalid, and GEOS's triangulator stops
+    on it. A line just beside a sharp tip is no better: the tip's two edges cross it
+    at points that round to one, and the ring folds back on itself. Clear of the
+    vertices, a line is crossed by every ring that reaches it, at distinct points
+    (:func:`_node_rings` inserts them).
+
+    >>> q = QUANTUM
+    >>> _off_vertices(np.array([1.0]), np.array([1.0, 1.0 + 3 * q, 5.0])).tolist() == [1.0 + 19 * q]
+    True
+    """
+    if not len(lines):
+        return lines
+    k = np.round(lines / QUANTUM).astype(np.int64)
+    v = np.round(np.asarray(values) / QUANTUM).astype(np.int64)
+    lo, hi = k - LINE_CLEARANCE, k + LINE_SEARCH + LINE_CLEARANCE
+    # the values near each line (its window with the clearance either side; the windows do not overlap)
+    at = np.searchsorted(lo, v, side="right") - 1
+    near = (at >= 0) & (v <= hi[np.maximum(at, 0)])
+    v, at = v[near], at[near]
+    out = k.copy()
+    cand = np.arange(LINE_SEARCH + 1)
+    for i in np.unique(at).tolist():
+        taken = np.unique(v[at == i])
+        c = k[i] + cand
+        j = np.searchsorted(taken, c)
+        below = np.where(j > 0, c - taken[np.maximum(j - 1, 0)], LINE_CLEARANCE)
+        above = np.where(j < len(taken), taken[np.minimum(j, len(taken) - 1)] - c, LINE_CLEARANCE)
+        clear = np.minimum(np.minimum(below, above), LINE_CLEARANCE)
+        out[i] = c[int(np.argmax(clear))]
+    return out * QUANTUM
 
 
 def split_cells(geom, xs, ys, box):

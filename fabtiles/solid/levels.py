@@ -27,8 +27,8 @@ def dip_z(stack) -> float:
 
 def dip_level(dips, region=None):
     """The dips as the meshes and the STEP file build them: on the grid, parts thinner
-    than :data:`THIN_MM` dropped (those stay at full height), no holes. A
-    MultiPolygon, or an empty Polygon.
+    than :data:`THIN_MM` dropped (those stay at full height), no holes, none touching
+    another (:func:`_apart_dips`). A MultiPolygon, or an empty Polygon.
 
     A part with a hole is filled where the hole is an island of the ``region`` (all
     material); a part ringing an opening of the ``region`` (an outline circle inside
@@ -65,7 +65,43 @@ def dip_level(dips, region=None):
         holed = shapely.get_num_interior_rings(parts) > 0
     if holed.any():  # an island ringed by overlapping slivers: far too small to stand up, it dips too
         parts[holed] = shapely.polygons(shapely.get_exterior_ring(parts[holed]))
+    parts = _apart_dips(parts)
     return shapely.multipolygons(parts) if len(parts) else shapely.Polygon()
+
+
+APART_MM = 8 * 2.0**-10
+"""How far around the point where two dips touch :func:`_apart_dips` cuts them back."""
+
+
+def _apart_dips(parts):
+    """Dips ``parts`` (on the grid) cut back :data:`APART_MM` around the points where two touch.
+
+    Two dips meeting at a point (the under strands' ends of two crossings) would share
+    the vertical edge there with the full height's walls: four walls on one edge. Cut
+    back, the full height fills the speck between them.
+
+    >>> from shapely.geometry import box
+    >>> out = _apart_dips(np.array([box(0, 0, 1, 1), box(1, 1, 2, 2), box(3, 3, 4, 4)]))
+    >>> sorted(round((1 - p.area) / APART_MM ** 2, 6) for p in out)  # a quarter of a diamond off each of two
+    [0.0, 0.5, 0.5]
+    """
+    import shapely
+
+    from ._mesh_build import QUANTUM, polygons_of
+
+    if len(parts) < 2:
+        return parts
+    a, b = shapely.STRtree(parts).query(parts, predicate="touches")
+    a, b = a[a < b], b[a < b]
+    if not len(a):
+        return parts
+    points = shapely.get_coordinates(shapely.intersection(parts[a], parts[b]))
+    cut = shapely.union_all(shapely.buffer(shapely.points(points), APART_MM, quad_segs=1))
+    hit = np.unique(np.concatenate([a, b]))
+    cut_parts = [polygons_of(shapely.difference(p, cut, grid_size=QUANTUM)) for p in parts[hit]]
+    keep = np.ones(len(parts), bool)
+    keep[hit] = False
+    return np.concatenate([parts[keep], np.asarray([q for qs in cut_parts for q in qs], dtype=object)])
 
 
 def split_region(r, dips, *, holes: bool = True, leveled: bool = False):
@@ -75,7 +111,8 @@ def split_region(r, dips, *, holes: bool = True, leveled: bool = False):
     makes them (20 grid steps inside, so snapping keeps them there). The full part
     is then ``r`` with the dips as holes, vertex for vertex: each dip is added as a
     hole of the part of ``r`` holding it, no overlay of the whole region. Dip parts
-    thinner than :data:`THIN_MM` stay at full height. ``dips`` may be None or empty;
+    thinner than :data:`THIN_MM`, and dips ringing a face of the region
+    (:func:`_ringing_faces`), stay at full height. ``dips`` may be None or empty;
     ``holes=False`` returns ``r`` itself as the full part; ``leveled`` says ``dips``
     already is :func:`dip_level`'s.
     """
@@ -85,6 +122,12 @@ def split_region(r, dips, *, holes: bool = True, leveled: bool = False):
     if d is None or d.is_empty:
         return r, shapely.Polygon()
     parts = shapely.get_parts(d)
+    ringing = _ringing_faces(r, parts)
+    if ringing.any():
+        parts = parts[~ringing]
+        d = shapely.multipolygons(parts) if len(parts) else shapely.Polygon()
+        if not len(parts):
+            return r, d
     if not holes:
         return r, d
     owners = shapely.get_parts(r)
@@ -96,6 +139,33 @@ def split_region(r, dips, *, holes: bool = True, leveled: bool = False):
             return r, d
     full = add_holes(owners, owner_of, *_ragged_rings(shapely.get_exterior_ring(parts)))
     return shapely.multipolygons(full), d
+
+
+def _ringing_faces(r, parts) -> np.ndarray:
+    """Which dips of ``parts`` (:func:`dip_level`'s) ring a hole of the region ``r``.
+
+    The under strands around a small face can dip all the way round it: the dip is a
+    ring whose hole is that face, and :func:`dip_level` fills it (the hole it is made
+    for is an island of material too small to stand). Filled, the dip would cover the
+    face, and as a hole of the region it would hold the face's own hole: no valid
+    polygon. Those dips stay at full height.
+
+    >>> import shapely
+    >>> r = shapely.box(0, 0, 10, 10).difference(shapely.box(4, 4, 6, 6))
+    >>> _ringing_faces(r, np.array([shapely.box(3, 3, 7, 7), shapely.box(1, 1, 2, 2)])).tolist()
+    [True, False]
+    """
+    import shapely
+
+    out = np.zeros(len(parts), bool)
+    polys = shapely.get_parts(r)
+    counts = shapely.get_num_interior_rings(polys)
+    if not len(parts) or not counts.sum():
+        return out
+    holes = shapely.get_interior_ring(np.repeat(polys, counts), np.concatenate([np.arange(c) for c in counts]))
+    _, ringing = shapely.STRtree(parts).query(shapely.get_point(holes, 0), predicate="within")
+    out[ringing] = True
+    return out
 
 
 def _owner_of(polys, points) -> np.ndarray:
@@ -263,7 +333,7 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
         raise ValueError(f"{kind!r} has no dips, must be one of: relief, pattern")
     b, h = stack.base, stack.relief
     _, dip = split_region(r, dips, holes=False, leveled=leveled)
-    cells = cells_for([r, o] if kind == "relief" else [r], CELL_VERTICES, shift)
+    cells = cells_for([r, o] if kind == "relief" else [r], CELL_VERTICES, shift, avoid=[dip])
     xs, ys, box = cells
     parts = shapely.get_parts(dip) if not dip.is_empty else np.empty(0, object)
     # each dip's ring (dip_level leaves them no holes) as arrays, and its box

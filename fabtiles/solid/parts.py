@@ -263,8 +263,9 @@ def _checked_body(kind, name, r, o, stack, dips=None):
     actually used and the mesh's volume (mm^3). Two kinds of defect are repaired:
 
     - a defect on a meshing cell line (a ring noded at the line and snapped onto
-      a neighbouring ring's edge): the region is fine, the cut was unlucky, so the
-      same region is meshed again with the cell lines moved (``GRID_SHIFTS`` tries);
+      a neighbouring ring's edge), or a piece of the cut that GEOS cannot clip or
+      triangulate: the region is fine, the cut was unlucky, so the same region is
+      meshed again with the cell lines moved (``GRID_SHIFTS`` tries);
     - two boundaries of the region touching at a single point (a mesh edge would
       join four faces): it retries with those contacts bridged by a few microns of
       material, then closed by a few microns, and last bridges wherever the mesh
@@ -282,7 +283,12 @@ def _checked_body(kind, name, r, o, stack, dips=None):
             try:
                 extra = {} if dips is None else {"dips": dips}
                 verts, faces, lines = _body_arrays(kind, g, o, stack, shift, **extra)
-            except shapely.errors.GEOSException as exc:
+            except (shapely.errors.GEOSException, FabricationError) as exc:
+                # a piece the cell lines cut that GEOS cannot clip or triangulate: other lines may do
+                if shift + 1 < GRID_SHIFTS:
+                    continue
+                if isinstance(exc, FabricationError):
+                    raise _named(exc, name) from None
                 raise FabricationError(f"the {name} mesh could not be cut into cells ({exc}); "
                                        "nothing was written") from None
             try:
@@ -323,6 +329,15 @@ def _checked_body(kind, name, r, o, stack, dips=None):
         except FabricationError as new:
             exc = new
     raise error
+
+
+def _named(exc: FabricationError, name: str) -> FabricationError:
+    """A meshing error naming the part it is about (the check's own errors already do)."""
+    if str(exc).startswith(f"the {name} mesh "):
+        return exc
+    named = FabricationError(f"the {name} mesh could not be made: {exc}; nothing was written")
+    named.__dict__.update(exc.__dict__)  # the place (``points``) or the merged mesh it found
+    return named
 
 
 GRID_SHIFTS = 3
@@ -526,7 +541,12 @@ def mosaic_parts(region, outline, stack: Stack, specs) -> dict:
     import shapely
 
     r, o = _snapped(region, outline)
-    faces = np.asarray(polygons_of(shapely.difference(o, r, grid_size=QUANTUM)), dtype=object)
+    try:
+        faces = np.asarray(polygons_of(shapely.difference(o, r, grid_size=QUANTUM)), dtype=object)
+    except shapely.errors.GEOSException as exc:
+        raise FabricationError(f"the mosaic's faces could not be cut from the outline ({exc}); "
+                               "nothing was written") from None
+    faces = faces[~_slivers(faces)]
     owner = np.full(len(faces), -1)
     spec_faces = [(np.asarray(s.faces, dtype=object), k) for k, s in enumerate(specs) if len(s.faces)]
     if len(faces) and spec_faces:
@@ -559,17 +579,92 @@ def mosaic_parts(region, outline, stack: Stack, specs) -> dict:
     return out
 
 
+def _slivers(faces) -> np.ndarray:
+    """Which of ``faces`` (polygons on the grid) are slivers: nowhere two quanta wide.
+
+    Where the region runs along a slanted edge of the outline, its vertices and the
+    outline's round to the grid on either side of the true line: the outline less
+    the region leaves chains of slivers a fraction of a micron thin, touching one
+    another at their ends. A part holding them would have an edge of four walls
+    there (not watertight as a slicer reads it); they are no face of the design.
+
+    >>> import shapely
+    >>> _slivers(np.array([shapely.box(0, 0, 1, 1), shapely.box(0, 0, 1, QUANTUM)])).tolist()
+    [False, True]
+    """
+    import shapely
+
+    out = np.zeros(len(faces), bool)
+    if not len(faces):
+        return out
+    # twice the area over the perimeter is about a thin face's width: only those are buffered
+    thin = np.flatnonzero(2 * shapely.area(faces) < 4 * QUANTUM * shapely.length(faces))
+    out[thin] = shapely.is_empty(shapely.buffer(faces[thin], -QUANTUM, quad_segs=1))
+    return out
+
+
 def _mosaic_body(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
-    """One mosaic part meshed and checked (see :func:`mosaic_parts`), trying moved cell lines on a defect."""
+    """One mosaic part meshed and checked (see :func:`mosaic_parts`).
+
+    Two polygons of one part that touch at a single point (two faces of a class on
+    either side of a band's tip on a tile's edge) would meet on a vertical edge of
+    four walls. So where the mesh's edges do not pair up (off the cell lines, which
+    :func:`_mosaic_mesh` moves), a few microns of the part's top layers are cut away
+    around each such point (:func:`_apart`), a few rounds. No other part takes that
+    speck: the parts still touch without overlapping. The first attempt's error is
+    raised when no round helps.
+    """
+    error, points = None, np.empty((0, 2))
+    for _ in range(BRIDGE_ROUNDS + 1):
+        try:
+            return _mosaic_mesh(spec, _apart(layers, points), o, stack)
+        except FabricationError as exc:
+            error = error or exc
+            mesh = getattr(exc, "mesh", None)
+            found = _nonmanifold_points(*mesh) if mesh is not None else np.empty((0, 2))
+            if not len(found) or not len(layers):
+                break
+            points = np.unique(np.concatenate([points, found]), axis=0)
+    raise error
+
+
+APART_MM = 8 * QUANTUM
+"""How far around a point contact :func:`_apart` cuts a part's top layers (a diamond of this radius)."""
+
+
+def _apart(layers, points):
+    """``layers`` (geometry, z) with a diamond of :data:`APART_MM` cut out around each of ``points``.
+
+    >>> import shapely
+    >>> (g, z), = _apart([(shapely.box(0, 0, 1, 1), 2.0)], np.array([[1.0, 1.0]]))
+    >>> z, round(1 - g.area, 9) == round(APART_MM ** 2 / 2, 9)
+    (2.0, True)
+    """
+    import shapely
+
+    if not len(points):
+        return layers
+    cut = shapely.union_all(shapely.buffer(shapely.points(points), APART_MM, quad_segs=1))
+    out = [(polygons_of(shapely.difference(g, cut, grid_size=QUANTUM)), z) for g, z in layers]
+    return [(shapely.MultiPolygon(polys), z) for polys, z in out if polys]
+
+
+def _mosaic_mesh(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
+    """One mosaic part meshed and checked as it is, trying moved cell lines on a defect that lies on them."""
     import shapely
 
     b = stack.base
     one_level = len({z for _, z in layers}) <= 1
     # the bands and the faces share their edges exactly (the faces are the outline less the bands, on the
     # grid): a coverage union joins them without an overlay
+    name = f"part {spec.name!r}"
     geoms = [g for g, _ in layers]
-    top = shapely.Polygon() if not geoms else geoms[0] if len(geoms) == 1 else \
-        shapely.coverage_union_all(np.concatenate([shapely.get_parts(g) for g in geoms]))
+    try:
+        top = shapely.Polygon() if not geoms else geoms[0] if len(geoms) == 1 else \
+            shapely.coverage_union_all(np.concatenate([shapely.get_parts(g) for g in geoms]))
+    except shapely.errors.GEOSException as exc:
+        raise FabricationError(f"the {name} mesh could not be made: its bands and faces do not join ({exc}); "
+                               "nothing was written") from None
     if spec.base:
         volume = o.area * b + sum(g.area * (z - b) for g, z in layers)
         bodies = len(polygons_of(o))
@@ -578,24 +673,34 @@ def _mosaic_body(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
         bodies = len(polygons_of(top))
     error = None
     for shift in range(GRID_SHIFTS):
-        if spec.base and not layers:
-            cov = coverage([(o, b)], bottom=0.0, shift=shift)
-        elif spec.base and one_level:
-            cov = coverage_pair(top, o, region_z=layers[0][1], rest_z=b, bottom=0.0, shift=shift)
-        elif spec.base:
-            rest = shapely.difference(o, top, grid_size=QUANTUM)
-            cov = coverage(layers + ([(rest, b)] if not rest.is_empty else []), bottom=0.0, shift=shift)
-        elif one_level:
-            cov = coverage([(top, layers[0][1])], bottom=b, shift=shift)
-        else:
-            cov = coverage(layers, bottom=b, shift=shift)
-        verts, faces = mesh_coverage(cov)
         try:
-            mverts, mfaces, found = check_indexed(verts, faces, name=f"part {spec.name!r}", volume=volume,
-                                                  bodies=bodies, with_volume=True)
+            if spec.base and not layers:
+                cov = coverage([(o, b)], bottom=0.0, shift=shift)
+            elif spec.base and one_level:
+                cov = coverage_pair(top, o, region_z=layers[0][1], rest_z=b, bottom=0.0, shift=shift)
+            elif spec.base:
+                rest = shapely.difference(o, top, grid_size=QUANTUM)
+                cov = coverage(layers + ([(rest, b)] if not rest.is_empty else []), bottom=0.0, shift=shift)
+            elif one_level:
+                cov = coverage([(top, layers[0][1])], bottom=b, shift=shift)
+            else:
+                cov = coverage(layers, bottom=b, shift=shift)
+            verts, faces = mesh_coverage(cov)
+        except shapely.errors.GEOSException as exc:
+            error = error or FabricationError(f"the {name} mesh could not be cut into cells ({exc}); "
+                                              "nothing was written")
+            continue
+        except FabricationError as exc:  # a piece the lines cut that cannot be triangulated or paired
+            error = error or _named(exc, name)
+            continue
+        try:
+            mverts, mfaces, found = check_indexed(verts, faces, name=name, volume=volume, bodies=bodies,
+                                                  with_volume=True)
         except FabricationError as exc:
             error = error or exc
-            continue
+            if exc.mesh is not None and _on_cell_lines(_nonmanifold_points(*exc.mesh), (cov.xs, cov.ys)):
+                continue
+            raise error from None
         return CheckedPart(mverts, mfaces, float(volume), int(bodies), top, o, float(found))
     assert error is not None  # every attempt failed: the loop above returned otherwise
     raise error

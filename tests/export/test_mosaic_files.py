@@ -19,9 +19,10 @@ import trimesh
 from test_3mf_multicolour import extrusions_by_tool, prusa_cmd, slice_gcode
 from test_3mf_readers import lib3mf_read, savitar
 
+from fabtiles.machines.profiles import load_profile
 from fabtiles.making import build_design
 from fabtiles.making.models import BuildOptions, Models
-from fabtiles.designs.design_file import load_design
+from fabtiles.designs.design_file import design_from_text, load_design
 from fabtiles.export import threemf
 from fabtiles.export.step import check_step_file
 
@@ -114,3 +115,70 @@ def test_the_step_is_the_whole_mosaic_as_one_solid(built):
     expected = model.outline.area * (s.base + s.relief) - faces.area * s.inset
     volume = check_step_file(out / "mosaic-iznik.step", volume=model.fused.mesh_volume_mm3, parts=1)
     assert volume == pytest.approx(expected, rel=1e-3)
+
+
+# -- a 150 mm hexagon of the 6.6.6 tiling, interlaced: a mosaic that was refused, or ended in a traceback --
+
+HEXAGON = """
+[motif]
+n = 5
+radii = [96.0, 151.0, 161.7, 164.2]
+[packing]
+kind = "archimedean"
+tiling = "6.6.6"
+edge = 12.89
+outline_circles = false
+[packing.motifs]
+6 = "table3-2"
+[tile]
+outline = "hexagon"
+size = [149.8, 149.8]
+frame = 3.0
+stroke = 1.2
+join = "round"
+interlace = true
+[output]
+formats = ["3mf", "stl"]
+printer_profile = "fdm-0.6mm"
+print_style = "mosaic"
+fill_small_holes = {fill}
+"""
+"""Its bands run along the hexagon's slanted edges, where the outline less the bands left slivers
+touching end to end; kept open (``fill_small_holes = false``) its faces cut at a cell line through a
+vertex made a ring GEOS could not triangulate."""
+
+HEXAGON_PARTS = ["black (base)", "white (bands)", "cobalt (A)"]
+
+
+@pytest.fixture(scope="module", params=[True, False], ids=["filled", "kept"])
+def hexagon(request, tmp_path_factory):
+    fill = request.param
+    out = tmp_path_factory.mktemp(f"hexagon-{'filled' if fill else 'kept'}")
+    design = design_from_text(HEXAGON.format(fill=str(fill).lower()), name="hexagon")
+    build_design(design, out)
+    return out, fill
+
+
+def test_the_hexagon_mosaic_writes_every_part_watertight(hexagon):
+    out, _ = hexagon
+    parts = threemf.read_3mf(out / "hexagon.3mf")
+    assert list(parts) == HEXAGON_PARTS and [p.extruder for p in parts.values()] == [1, 2, 3]
+    for name, part in parts.items():
+        mesh = trimesh.Trimesh(part.vertices, part.faces, process=True)
+        assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0, name
+    for colour in ("black", "white", "cobalt"):
+        mesh = trimesh.load(out / f"hexagon-{colour}.stl")
+        assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0, colour
+    # the faces and the bands share the hexagon's top: their footprints' areas add up to the outline's
+    volumes = {n: trimesh.Trimesh(p.vertices, p.faces).volume for n, p in parts.items()}
+    side = 149.8 / 3 ** 0.5  # a pointy-top hexagon 149.8 mm across its flats
+    area = 3 * 3 ** 0.5 / 2 * side ** 2
+    relief = load_profile("fdm-0.6mm").relief_mm  # the faces flush with the bands (no inset)
+    assert volumes["white (bands)"] + volumes["cobalt (A)"] == pytest.approx(area * relief, rel=1e-3)
+
+
+def test_prusaslicer_prints_each_hexagon_part_with_its_own_tool(hexagon, tmp_path):
+    out, _ = hexagon
+    gcode = slice_gcode(tmp_path, out / "hexagon.3mf", len(HEXAGON_PARTS))
+    assert sorted({int(t) for t in re.findall(r"^T(\d+)\s*$", gcode, flags=re.M)}) == [0, 1, 2]
+    assert sorted(k for k in extrusions_by_tool(gcode) if k is not None) == [0, 1, 2]

@@ -9,7 +9,7 @@ import fabtiles as ft
 from fabtiles.solid import mesh_check as sc
 from fabtiles.solid import parts
 from fabtiles.solid._mesh_build import Stack, coverage, mesh_coverage
-from fabtiles.solid.levels import body_coverage, body_layers, dip_z, split_region
+from fabtiles.solid.levels import APART_MM, body_coverage, body_layers, dip_z, split_region
 from fabtiles.geometry.interlace import tile_dips
 
 STACK = Stack("relief", base=2.0, relief=1.2, pierced=3.0, deboss=0.8)
@@ -60,7 +60,11 @@ def test_dips_crossed_by_cell_lines_are_cut_with_the_region(kind, monkeypatch):
                or any(p.bounds[1] <= y <= p.bounds[3] for y in ys)]
     assert len(crossed) > 10 and len(crossed) < len(parts)
     cov = body_coverage(kind, r, o, STACK, d)
-    plain = body_coverage(kind, r, o, STACK, shapely.Polygon())  # the same cells, no dips
+    # the same cells (kept off the dips' vertices too), no dips
+    cells_for = mb.cells_for
+    monkeypatch.setattr(mb, "cells_for", lambda geoms, *args, avoid=(), **kwargs: cells_for(geoms, *args, avoid=[d],
+                                                                                            **kwargs))
+    plain = body_coverage(kind, r, o, STACK, shapely.Polygon())
     fast = areas_by_level([(p, cov.levels[lvl]) for p, lvl in cov.pieces])
     without = areas_by_level([(p, plain.levels[lvl]) for p, lvl in plain.pieces])
     top, low = STACK.base + STACK.relief, dip_z(STACK)
@@ -148,3 +152,34 @@ def test_a_dip_ringing_an_opening_of_the_region_stays_at_full_height():
     island = box(6, 6, 14, 14).difference(box(9, 9, 11, 11))
     full, dip = split_region(box(2, 2, 18, 18), island)
     assert dip.area == pytest.approx(64.0) and full.area == pytest.approx(256.0 - 64.0)
+
+
+@pytest.mark.parametrize("kind", ["relief", "pattern"])
+def test_a_dip_ringing_a_face_stays_at_full_height(kind):
+    """Strands dipping all round a small face: the dip is a ring, and filled it would cover the face."""
+    o = box(0, 0, 20, 20)
+    r = box(2, 2, 18, 18).difference(box(9, 9, 11, 11))  # a band round a 2 x 2 mm face
+    ring = box(8, 8, 12, 12).difference(box(9, 9, 11, 11))  # the dips all round the face
+    other = box(4, 4, 5, 6)
+    dips = shapely.union_all([ring, other])
+    full, dip = split_region(r, dips)
+    assert full.is_valid and dip.equals(other)
+    assert full.area == pytest.approx(r.area - other.area)
+    cov = body_coverage(kind, r, o, STACK, dips)
+    v, f = mesh_coverage(cov)
+    full_volume = {"relief": o.area * STACK.base + r.area * STACK.relief, "pattern": r.area * STACK.relief}[kind]
+    sc.check_mesh(v, f, volume=full_volume - other.area * (STACK.base + STACK.relief - dip_z(STACK)))
+
+
+@pytest.mark.parametrize("kind", ["relief", "pattern"])
+def test_dips_touching_at_a_point_mesh_watertight(kind):
+    """Two dips meeting at a corner would put four walls on one vertical edge: they are cut back there."""
+    o = box(0, 0, 20, 20)
+    r = box(2, 2, 18, 18)
+    dips = shapely.MultiPolygon([box(6, 6, 10, 10), box(10, 10, 14, 14)])
+    cov = body_coverage(kind, r, o, STACK, dips)
+    v, f = mesh_coverage(cov)
+    depth = STACK.base + STACK.relief - dip_z(STACK)
+    cut = APART_MM ** 2  # a quarter of the diamond off each of the two dips
+    full = {"relief": o.area * STACK.base + r.area * STACK.relief, "pattern": r.area * STACK.relief}[kind]
+    sc.check_mesh(v, f, volume=full - (32 - cut) * depth, bodies=1)

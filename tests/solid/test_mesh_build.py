@@ -1,4 +1,4 @@
-"""The meshing core's refusals (fabtiles.solid._mesh_build): bad shapes, and coverages it cannot mesh."""
+"""The meshing core (fabtiles.solid._mesh_build): its refusals (bad shapes, coverages it cannot mesh) and its cells."""
 
 from __future__ import annotations
 
@@ -10,7 +10,19 @@ import shapely
 from shapely.geometry import MultiPolygon, box
 
 from fabtiles import FabricationError, ParameterError
-from fabtiles.solid._mesh_build import Coverage, check_shapes, topology
+from fabtiles.solid import _mesh_build as mb
+from fabtiles.solid._mesh_build import (
+    QUANTUM,
+    Coverage,
+    cells_for,
+    check_shapes,
+    coverage,
+    coverage_from_cells,
+    mesh_coverage,
+    topology,
+)
+from fabtiles.solid._triangulate import cdt
+from fabtiles.solid.mesh_check import check_indexed
 
 OUTLINE = box(0, 0, 10, 10)
 
@@ -65,3 +77,62 @@ def test_topology_refuses_an_edge_of_three_pieces():
     with pytest.raises(FabricationError, match=r"^cannot mesh the region: an edge is shared by more than two pieces$"):
         topology(Coverage(pieces=[(left, 1), (right, 1), (third, 1)], levels=np.array([0.0, 1.0])),
                  triangulate=False)
+
+
+LOBES = shapely.Polygon([(0, 0), (4, 0), (4, 2), (2, 0), (0, 2)])
+"""A ring touching itself at (2, 0): two lobes, as a piece cut at a line through a vertex of its ring was."""
+
+
+def test_a_piece_geos_cannot_triangulate_is_a_fabrication_error_at_its_place():
+    cov = coverage_from_cells([(LOBES, 1)], [0.0, 1.0])
+    with pytest.raises(FabricationError, match=r"^cannot triangulate the region near \(2, 0\) mm: GEOS stops there "
+                                               r"\(IllegalStateException: .*; its ring touches itself\)$") as info:
+        mesh_coverage(cov)
+    assert info.value.points.tolist() == [[2.0, 0.0]]
+
+
+def test_a_valid_piece_geos_cannot_triangulate_is_refused_at_a_point_of_it(monkeypatch):
+    def broken(geom, **kwargs):
+        raise shapely.errors.GEOSException("IllegalStateException: Unable to find a convex corner")
+
+    monkeypatch.setattr(shapely, "constrained_delaunay_triangles", broken)
+    ij = np.array([[0, 0], [4, 0], [4, 2]]) * 1024
+    with pytest.raises(FabricationError, match=r"^cannot triangulate the region near \(3, 1\) mm: "
+                                               r"GEOS stops \(IllegalStateException: Unable to find a convex corner\)$"):
+        cdt(shapely.Polygon([(0, 0), (4, 0), (4, 2)]), ij)
+
+
+def test_a_triangle_corner_off_the_rings_is_refused(monkeypatch):
+    monkeypatch.setattr(shapely, "constrained_delaunay_triangles",
+                        lambda geom, **kwargs: shapely.Polygon([(0, 0), (4, 0), (3, 1)]))
+    ij = np.array([[0, 0], [4, 0], [4, 2]]) * 1024
+    with pytest.raises(FabricationError, match=r"^cannot triangulate the region near \(3, 1\) mm: GEOS gives a point "
+                                               r"not on its rings$"):
+        cdt(shapely.Polygon([(0, 0), (4, 0), (4, 2)]), ij)
+
+
+def test_no_cell_line_passes_through_a_vertex():
+    """A notch whose tip touches a cell line: the line moves off it, and the cut pieces mesh watertight."""
+    square = box(0, 0, 40, 40)
+    xs, ys, _ = cells_for([square], 1)
+    x, y = float(xs[1]) - 5, float(ys[1])
+    # a notch from the top edge down to the line y = ys[1], its tip on it: the bounds stay the square's
+    notch = shapely.Polygon([(x - 3, 40), (x, y), (x + 3, 40)])
+    shape = square.difference(notch)
+    assert [x, y] in shapely.get_coordinates(shape).tolist()
+    xs2, ys2, _ = cells_for([shape], 1)
+    # moved forward a little, clear of the tip
+    assert len(xs2) == len(xs) and len(ys2) == len(ys)
+    assert np.all((ys2 >= ys) & (ys2 <= ys + mb.LINE_SEARCH * QUANTUM))
+    assert np.abs(ys2 - y).min() >= mb.LINE_CLEARANCE * QUANTUM
+    verts, faces = mesh_coverage(coverage([(shape, 1.0)], bottom=0.0, cell_vertices=1))
+    check_indexed(verts, faces, volume=shape.area, bodies=1)
+
+
+def test_the_lines_kept_off_a_vertex_are_what_kept_the_notch_triangulable(monkeypatch):
+    square = box(0, 0, 40, 40)
+    xs, ys, _ = cells_for([square], 1)
+    shape = square.difference(shapely.Polygon([(xs[1] - 8, 40), (xs[1] - 5, ys[1]), (xs[1] - 2, 40)]))
+    monkeypatch.setattr(mb, "_off_vertices", lambda lines, values: lines)
+    with pytest.raises(FabricationError, match=r"^cannot triangulate the region near"):
+        check_indexed(*mesh_coverage(coverage([(shape, 1.0)], bottom=0.0, cell_vertices=1)))

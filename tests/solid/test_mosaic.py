@@ -13,7 +13,9 @@ from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError
 from fabtiles.designs.colour import colouring
-from fabtiles.solid.parts import MosaicPart
+from fabtiles.solid import parts
+from fabtiles.solid._mesh_build import QUANTUM, polygons_of, resolve_stack
+from fabtiles.solid.parts import APART_MM, MosaicPart
 from fabtiles.solid.print_model import print_model
 
 OUTLINE = box(0, 0, 40, 30)
@@ -115,14 +117,124 @@ def test_mosaic_parts_need_the_mosaic_style():
         print_model(region, OUTLINE, profile="fdm-0.4mm", style="relief", mosaic=_specs([], []))
 
 
-def test_a_part_that_cannot_be_meshed_is_refused():
-    """Two faces of one colour touching at a point cannot be one watertight body: an error, not a file."""
-    pinch = [box(10, 10, 15, 15), box(15, 15, 20, 20)]
-    region = OUTLINE.difference(shapely.union_all(pinch))
+PINCH = [box(10, 10, 15, 15), box(15, 15, 20, 20)]
+"""Two faces of one colour touching at the point (15, 15)."""
+
+
+def _pinched(**kwargs):
+    region = OUTLINE.difference(shapely.union_all(PINCH))
     specs = (MosaicPart("black (base, bands)", True, True, (), COLOURS.base),
-             MosaicPart("cobalt (A)", False, False, tuple(pinch), COLOURS.face("A")))
-    model = print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=specs, colours=COLOURS,
-                        fill_small_holes=False)
-    with pytest.raises(FabricationError, match=r"the part '[a-z]+ \([a-zA-Z, ]+\)' mesh is not watertight as a "
+             MosaicPart("cobalt (A)", False, False, tuple(PINCH), COLOURS.face("A")))
+    return print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=specs, colours=COLOURS,
+                       fill_small_holes=False, **kwargs)
+
+
+@pytest.mark.parametrize("inset", [0.0, 0.4])
+def test_two_faces_touching_at_a_point_are_cut_apart_there(inset):
+    """A vertical edge of four walls at the point cannot be watertight: a speck of the faces is cut away there."""
+    model = _pinched(mosaic_inset_mm=inset)
+    s = model.stack
+    height = s.relief - inset
+    cobalt = model.parts["cobalt (A)"].mesh
+    mesh = trimesh.Trimesh(cobalt.vertices, cobalt.faces, process=True)
+    assert mesh.is_watertight and mesh.is_winding_consistent and mesh.body_count == 2
+    # the faces less a diamond of APART_MM about the point (a quarter of it from each face)
+    cut = APART_MM ** 2  # two quarters of a diamond of area 2 * APART_MM ** 2
+    assert mesh.volume == pytest.approx((50 - cut) * height, rel=1e-6)
+    footprint = _footprint(model.parts["cobalt (A)"])
+    assert footprint.distance(shapely.Point(15, 15)) == pytest.approx(APART_MM / 2 ** 0.5, abs=2e-3)
+    # the bands touch themselves at the point too (the faces' corners): cut there the same way
+    black = model.parts["black (base, bands)"].mesh
+    mesh = trimesh.Trimesh(black.vertices, black.faces, process=True)
+    assert mesh.is_watertight and mesh.is_winding_consistent and mesh.body_count == 1
+    assert mesh.volume == pytest.approx(OUTLINE.area * s.base + (OUTLINE.area - 50 - cut) * s.relief, rel=1e-6)
+
+
+def test_a_part_that_cannot_be_meshed_is_refused(monkeypatch):
+    """Without the cut at the point of contact, the part is refused: an error, not a file."""
+    monkeypatch.setattr(parts, "_apart", lambda layers, points: layers)
+    model = _pinched()
+    with pytest.raises(FabricationError, match=r"^the part '[a-z]+ \([a-zA-Z, ]+\)' mesh is not watertight as a "
                                                r"slicer reads it"):
         _ = model.parts
+
+
+def _cdt_failure(*args, **kwargs):
+    exc = FabricationError("cannot triangulate the region near (15, 15) mm: GEOS stops there")
+    exc.points = np.array([[15.0, 15.0]])
+    raise exc
+
+
+def _geos_failure(*args, **kwargs):
+    raise shapely.errors.GEOSException("TopologyException: side location conflict at 15 15")
+
+
+@pytest.mark.parametrize("target, broken, match", [
+    ("mesh_coverage", _cdt_failure, (r"could not be made: cannot triangulate the region near \(15, 15\) mm: GEOS "
+                                     r"stops there; nothing was written$")),
+    ("coverage", _geos_failure, (r"could not be cut into cells \(TopologyException: side location conflict at 15 "
+                                 r"15\); nothing was written$")),
+])
+def test_a_part_whose_cut_fails_is_refused_by_name_after_moved_lines(monkeypatch, target, broken, match):
+    calls = []
+
+    def spy(*args, **kwargs):
+        calls.append(kwargs.get("shift"))
+        return broken(*args, **kwargs)
+
+    model = _pinched()
+    monkeypatch.setattr(parts, target, spy)
+    with pytest.raises(FabricationError, match=r"^the part '[a-z]+ \([a-zA-Z, ]+\)' mesh " + match):
+        model.parts
+    assert len(calls) == parts.GRID_SHIFTS  # every cut of lines tried, then refused
+
+
+def test_bands_and_faces_that_do_not_join_are_refused(monkeypatch):
+    region, _ = _tile([(10, 10, 3)])
+    faces = shapely.get_parts(OUTLINE.difference(region))
+    specs = (MosaicPart("black (base)", True, False, (), COLOURS.base),
+             MosaicPart("white (bands, A)", False, True, tuple(faces), COLOURS.band))
+    model = print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=specs, colours=COLOURS,
+                        mosaic_inset_mm=0.0)
+    monkeypatch.setattr(shapely, "coverage_union_all", _geos_failure)
+    with pytest.raises(FabricationError, match=r"^the part 'white \(bands, A\)' mesh could not be made: its bands and "
+                                               r"faces do not join \(TopologyException"):
+        model.parts
+
+
+def test_faces_that_cannot_be_cut_from_the_outline_are_refused(monkeypatch):
+    region, faces = _tile([(10, 10, 3)])
+    stack = resolve_stack("fdm-0.4mm", "mosaic")
+    monkeypatch.setattr(shapely, "difference", _geos_failure)
+    with pytest.raises(FabricationError, match=r"^the mosaic's faces could not be cut from the outline "
+                                               r"\(TopologyException"):
+        parts.mosaic_parts(region, OUTLINE, stack, _specs(faces, []))
+
+
+def _slanted():
+    """A mosaic along a slanted edge whose bands' ring runs a hair inside the outline between points on it."""
+    outline = shapely.Polygon([(0, 0), (40, 0), (40, 20), (0, 40)])
+    inner = shapely.Polygon([(3, 3), (37, 3), (37, 18), (3, 35)])
+    # on the grid: every other point of the bands' edge on the slanted line, the others a grid step inside it
+    x = np.arange(40 * 1024 - 64, 0, -64)
+    y = 20 * 1024 + (40 * 1024 - x) // 2 - np.where(np.arange(len(x)) % 2, 1, 0)
+    edge = np.stack([x, y], axis=1) * QUANTUM
+    region = shapely.Polygon([(0, 0), (40, 0), (40, 20), *edge.tolist(), (0, 40)], [list(inner.exterior.coords)])
+    specs = (MosaicPart("black (base, bands)", True, True, (), COLOURS.base),
+             MosaicPart("cobalt (A)", False, False, (inner,), COLOURS.face("A")))
+    return region, outline, inner, specs
+
+
+def test_slivers_along_a_slanted_outline_are_no_faces():
+    """Where the bands run along a slanted edge, the outline less them on the grid leaves slivers thinner
+    than a micron, touching one another at their ends: not faces (a part of them would not be watertight)."""
+    region, outline, inner, specs = _slanted()
+    faces = np.asarray(polygons_of(shapely.difference(outline, region, grid_size=QUANTUM)), dtype=object)
+    slivers = parts._slivers(faces)
+    assert slivers.sum() > 100 and list(shapely.area(faces[~slivers])) == [inner.area]
+    model = print_model(region, outline, profile="fdm-0.4mm", style="mosaic", mosaic=specs, colours=COLOURS,
+                        fill_small_holes=False)
+    cobalt = model.parts["cobalt (A)"].mesh
+    mesh = trimesh.Trimesh(cobalt.vertices, cobalt.faces, process=True)
+    assert mesh.is_watertight and mesh.body_count == 1
+    assert mesh.volume == pytest.approx(inner.area * model.stack.relief, rel=1e-6)

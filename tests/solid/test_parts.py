@@ -10,6 +10,8 @@ from hypothesis import strategies as st
 from hypothesis_scale import examples
 from shapely.geometry import box
 
+from fabtiles import FabricationError
+from fabtiles.solid import parts as solid_parts
 from fabtiles.solid._mesh_build import resolve_stack
 from fabtiles.solid.parts import checked_parts, relief_parts, splits_fused
 from fabtiles.solid.print_model import print_model
@@ -81,3 +83,21 @@ def test_relief_parts_keeps_the_base_a_plain_slab():
     (fused,) = checked_parts(region, outline, STACK, single=True).values()
     parts = relief_parts(fused, STACK)
     assert len(parts["base"].faces) < len(parts["pattern"].faces) / 2
+
+
+def test_a_piece_that_cannot_be_triangulated_is_refused_by_name_after_moved_lines(monkeypatch):
+    shifts = []
+
+    def broken(kind, r, o, stack, shift=0, **kwargs):
+        shifts.append(shift)
+        exc = FabricationError("cannot triangulate the region near (1, 2) mm: GEOS stops there")
+        exc.points = np.array([[1.0, 2.0]])
+        raise exc
+
+    monkeypatch.setattr(solid_parts, "_body_arrays", broken)
+    region, outline = _region([(10, 10, 3)])
+    with pytest.raises(FabricationError, match=r"^the body mesh could not be made: cannot triangulate the region "
+                                               r"near \(1, 2\) mm: GEOS stops there; nothing was written$") as info:
+        checked_parts(region, outline, STACK, single=True)
+    assert shifts[:3] == [0, 1, 2]  # every cut of lines tried before the refusal
+    assert info.value.points.tolist() == [[1.0, 2.0]]
