@@ -8,6 +8,8 @@ line on stderr and exit status 2; anything else escaping is a bug.
 
 from __future__ import annotations
 
+from typing import Any
+
 
 class FabtilesError(Exception):
     """Root of every error fabtiles raises on purpose.
@@ -61,6 +63,8 @@ class FabricationError(FabtilesError, ValueError):
 
     mesh: tuple | None = None
     """A bad mesh's ``(vertices, faces)``, merged by float32 position, when the check has one (or None)."""
+    points: Any = None
+    """Where a triangulation stopped, an ``(n, 2)`` array of x, y in mm, when known (or None)."""
 
 
 class LimitError(FabtilesError, ValueError):

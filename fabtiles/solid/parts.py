@@ -625,6 +625,7 @@ def _mosaic_body(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
             if not len(found) or not len(layers):
                 break
             points = np.unique(np.concatenate([points, found]), axis=0)
+    assert error is not None  # the loop runs at least once and returns or records an error
     raise error
 
 
