@@ -82,7 +82,7 @@ def part_outline(plan):
     >>> from fabtiles.geometry.cut_plan import plan_cut
     >>> plan = plan_cut(box(0, 0, 40, 40).difference(box(10, 10, 30, 30)), box(0, 0, 40, 40), profile="laser-3mm-plywood")
     >>> [round(v, 3) for v in part_outline(plan).bounds]
-    [-0.075, -0.075, 40.075, 40.075]
+    [0.0, 0.0, 40.15, 40.15]
     """  # noqa: E501 - a doctest's lines are as Python prints them
     outer = [shapely.Polygon(r) for r in plan.paths("outer") if len(r) >= 3]
     every = np.concatenate([r for layer in plan.layers for r in layer.paths])

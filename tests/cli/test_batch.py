@@ -96,7 +96,7 @@ def test_a_design_with_formats_refused_is_built_in_part_exit_3(tmp_path):
     good.write_text(design_toml(preset="table3-1", radius=8))
     proc = run_batch(tile, good, "-o", tmp_path / "out", "--format", "svg", "--format", "stl")
     assert proc.returncode == 3, proc.stderr
-    assert f"part   {tile}: 1 file, laser 0, refused stl" in proc.stdout
+    assert f"part   {tile}: wrote 1 file; laser: nothing found; refused stl" in proc.stdout
     assert "refused stl: fabrication checks failed" in proc.stderr and "10 x 10 mm bed" in proc.stderr
     assert "1 of 2 designs built, 1 in part (formats refused)" in proc.stdout
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["good.stl", "good.svg", "tile.svg"]

@@ -157,7 +157,7 @@ def test_a_variant_with_formats_refused_is_built_in_part_exit_3(design, tmp_path
     res = run("sweep", design, "--vary", "packing.radius=6,8", "--format", "svg", "--format", "stl", "-o", out,
               "--jobs", "1")
     assert res.exit_code == 3, res.output
-    assert "part   small-001 (packing.radius=6): 1 file, laser 0, printer 0, refused stl" in res.output
+    assert "part   small-001 (packing.radius=6): wrote 1 file; laser: 1 finding (filled_pattern 465); printer: nothing found; refused stl" in res.output
     assert "refused stl: the mesh is bad" in res.output
     assert "0 of 2 variants built, 2 in part (formats refused)" in res.output
     rows = list(csv.DictReader((out / "index.csv").open()))

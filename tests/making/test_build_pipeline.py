@@ -272,7 +272,7 @@ def test_a_refused_format_leaves_the_file_of_an_earlier_build_as_it_was(tmp_path
 def test_an_outcome_names_the_formats_refused(tmp_path, monkeypatch):
     _refusing("stl", "the mesh is bad", monkeypatch)
     out = pipeline.run_job("t", small, str(tmp_path), ("svg", "stl"))
-    assert out.ok and out.message == "1 file, laser 0, printer 0, refused stl" and out.refused == ["stl: the mesh is bad"]
+    assert out.ok and out.message == "wrote 1 file; laser: nothing found; printer: nothing found; refused stl" and out.refused == ["stl: the mesh is bad"]
 
 
 def test_the_deep_check_fails_on_a_refused_print_file(tmp_path, monkeypatch):
