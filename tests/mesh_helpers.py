@@ -179,14 +179,25 @@ def load_3mf_parts(path):
 
 def section_region(mesh, z):
     """The cross-section of a trimesh body at height ``z`` as a shapely (Multi)Polygon (trimesh cuts,
-    GEOS assembles the rings by nesting: a ring inside an odd number of others is a hole)."""
-    import shapely
+    GEOS assembles the rings by nesting: a ring inside an odd number of others is a hole).
 
-    sec = mesh.section(plane_origin=[0, 0, z], plane_normal=[0, 0, 1])
-    if sec is None:
+    trimesh's segments with their ends merged as ``Trimesh.section`` merges them, handed to GEOS as
+    segments: ``section`` chains them into paths one connected piece at a time, each piece a search
+    of the whole graph (seconds for a tile's thousands of holes), and GEOS finds the rings anyway.
+    """
+    import shapely
+    from trimesh import grouping, intersections
+    from trimesh.constants import tol_path
+
+    lines = intersections.mesh_plane(mesh, plane_normal=[0, 0, 1], plane_origin=[0, 0, z])
+    if not len(lines):
         return shapely.Polygon()
-    rings = [shapely.linearrings(d[:, :2]) for d in sec.discrete if len(d) >= 4]
-    return shapely.build_area(shapely.geometrycollections(rings))
+    points = np.asarray(lines, dtype=np.float64).reshape(-1, 3)
+    unique, inverse = grouping.unique_rows(points, digits=tol_path.merge_digits)
+    edges = np.sort(inverse.reshape(-1, 2), axis=1)
+    edges = np.unique(edges[edges[:, 0] != edges[:, 1]], axis=0)
+    segments = shapely.linestrings(points[unique][:, :2][edges])
+    return shapely.build_area(shapely.multilinestrings(segments))
 
 
 def mid_heights(style, b=B, h=H, t=T, d=D):
