@@ -233,17 +233,19 @@ def assert_section(mesh, z, expected, *, area=SECTION_AREA_REL, width=SECTION_WI
     plate leaves along the outline, which the mesh's 2^-10 mm grid closes, by their length.)
     A piece is wider than ``width`` where it keeps anything once shrunk by half of it (GEOS's
     inward buffer: a second on the 150 mm seamless sample's 8,700 slivers, against minutes for
-    each piece's largest inscribed disc).
+    each piece's largest inscribed disc). Each piece is shrunk on its own: the pieces of a valid
+    region meet at points at most, so a disc inside their union is inside one of them, and GEOS
+    buffers the pieces one by one faster than their union at once.
     """
     import shapely
 
     diff = section_difference(mesh, z, expected)
     rel = diff.area / expected.area
     assert rel <= area, f"the section at z = {z} differs from the region by {rel:.3g} of its area"
-    wide = shapely.buffer(diff, -width / 2, quad_segs=2)
-    if not wide.is_empty:
-        pieces = shapely.get_parts(diff)
-        pieces = pieces[shapely.intersects(pieces, wide)]
+    pieces = shapely.get_parts(diff)
+    wide = ~shapely.is_empty(shapely.buffer(pieces, -width / 2, quad_segs=2))
+    if wide.any():
+        pieces = pieces[wide]
         k = int(np.argmax(widths(pieces)))
         raise AssertionError(f"the section at z = {z} differs from the region by {widths(pieces)[k]:.4g} mm "
                              f"around {pieces[k].representative_point().wkt}")
