@@ -18,7 +18,7 @@ import ezdxf
 import numpy as np
 import pytest
 import shapely
-from dxf_helpers import bulges, even_odd_area, vertices
+from dxf_helpers import bulges, even_odd_area, hausdorff_distance, vertices
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
@@ -86,12 +86,11 @@ def check_against_geos(design, monkeypatch, *, kerf: float, min_arcs: int = 1, r
     assert area == pytest.approx(fine.area, rel=rel_area)
     drawn = shapely.union_all([shapely.LinearRing(p.exterior.coords) for p in polygons])
     edge = fine.boundary
-    # Hausdorff both ways, densified so the long straight edges count their middles too
     # Hausdorff both ways, densified so the long straight edges count their middles too. Within the
     # tolerance but where a band meets the circle outline at a shallow angle: the tile's region
     # flattens the outline within 0.005 mm, which moves that crossing by 0.005 / sin(angle) along
     # the band (0.023 mm on the 60 mm circle tile, the flattened file before the arcs the same)
-    assert shapely.hausdorff_distance(drawn, edge, densify=0.05) <= 3 * PLY.tolerance_mm
+    assert hausdorff_distance(drawn, edge, densify=0.05) <= 3 * PLY.tolerance_mm
     # every arc itself: its middle (off its chord by the sagitta) on GEOS's fine boundary
     mids = _arc_middles(data)
     assert len(mids) == arcs

@@ -53,15 +53,18 @@ class Cluster:
             client.wait_for_workers(n, timeout=120)
 
     def close(self):
-        for proc in [*self.workers, self.scheduler]:
-            if proc.poll() is None:
-                proc.terminate()
-        for proc in [*self.workers, self.scheduler]:
-            try:
-                proc.wait(timeout=30)
-            except subprocess.TimeoutExpired:  # pragma: no cover - a stuck process
-                proc.kill()
-                proc.wait()
+        # The workers first, while their scheduler still answers: a worker that has run a task and
+        # is told to close by its scheduler and by the signal at once can hang in its own close.
+        for group in (self.workers, [self.scheduler]):
+            for proc in group:
+                if proc.poll() is None:
+                    proc.terminate()
+            for proc in group:
+                try:
+                    proc.wait(timeout=30)
+                except subprocess.TimeoutExpired:  # pragma: no cover - a stuck process
+                    proc.kill()
+                    proc.wait()
 
 
 @pytest.fixture(scope="module")

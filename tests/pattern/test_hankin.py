@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
 
@@ -260,6 +260,9 @@ def test_an_unknown_method_is_refused():
 @settings(max_examples=examples(25), deadline=None)
 @given(tiling=st.sampled_from(TILINGS), angle=st.floats(1, 89), gap_fraction=st.floats(0, 0.9),
        edge=st.floats(2, 30))
+# the case this property found: a gap of float dust, whose two ray starts are one point
+@example(tiling="4.8.8", angle=30.0, gap_fraction=1e-12, edge=10.0)
+@example(tiling="3.6.3.6", angle=45.0, gap_fraction=5e-324, edge=2.0)
 def test_any_valid_angle_and_gap_closes_every_strand(tiling, angle, gap_fraction, edge):
     """Property: every valid (angle, gap) gives closed strands, each segment once; an invalid one is refused."""
     kinds = set(unit_cell(tiling).sides.tolist())
