@@ -206,7 +206,7 @@ def test_librecad_draws_a_nested_sheet(librecad, tmp_path):
                                  f'"{outline}"\nsize = 40\nframe = 3\nstroke = 1.0\n', name=outline), 3)
                for k, outline in ((1, "hexagon"), (3, "circle"))]
     nest_designs(designs, tmp_path, ("dxf",), sheet_mm=(150, 100), time_s=1)
-    dxf = tmp_path / "hexagon-sheet-1.dxf"
+    dxf = tmp_path / "nest-sheet-1.dxf"  # a sheet of several designs is named after none of them
     drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
     red = drawn[RGB[1]]  # the bundled profile cuts both layers red
     # every straight edge a segment, every arc (the circle tiles' outlines) several

@@ -69,7 +69,7 @@ def test_the_3d_views_size_and_figures_stated_are_the_apps():
     what the app answers: the GLB's kB and triangles, the grams and metres."""
     import json
 
-    from fastapi.testclient import TestClient
+    from asgi_client import TestClient
 
     client = TestClient(create_app())
     view = client.get("/api/view.glb")
