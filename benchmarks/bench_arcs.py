@@ -22,8 +22,10 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-CIRCLE = ('[packing]\nkind = "archimedean"\ntiling = "3.3.3.4.4"\noutline_circles = true\n'
-          '[tile]\noutline = "circle"\nsize = 100\njoin = "round"\n')
+CIRCLE = (
+    '[packing]\nkind = "archimedean"\ntiling = "3.3.3.4.4"\noutline_circles = true\n'
+    '[tile]\noutline = "circle"\nsize = 100\njoin = "round"\n'
+)
 
 
 @contextmanager
@@ -46,10 +48,10 @@ def _cpu(fn):
 
 
 def measure(design, repeat: int, formats) -> dict:
-    from fabtiles.making.models import BuildOptions, Models
     from fabtiles.export.dxf import dxf_bytes
     from fabtiles.export.laser_svg import svg_bytes
     from fabtiles.export.lbrn2 import lbrn2_bytes
+    from fabtiles.making.models import BuildOptions, Models
 
     writers = {"dxf": dxf_bytes, "svg": svg_bytes, "lbrn2": lbrn2_bytes}
     tile = design.build_tile()
@@ -58,10 +60,12 @@ def measure(design, repeat: int, formats) -> dict:
     best: dict = {}
     for _ in range(repeat):
         for label in ("before", "after"):
+
             def plan():
                 m = Models(tile, options)
                 m.__dict__["cut_region"] = region
                 return m.cut
+
             if label == "before":
                 with flattened():
                     t, p = _cpu(plan)
@@ -73,8 +77,11 @@ def measure(design, repeat: int, formats) -> dict:
                 t, data = _cpu(lambda fmt=fmt, p=p: writers[fmt](p))
                 row[f"{fmt}_s"] = min(row.get(f"{fmt}_s", t), t)
                 row[f"{fmt}_bytes"] = len(data)
-            row["vertices"] = p.report.stats["vertices"] if label == "after" else sum(
-                len(x) for layer in p.layers for x in layer.paths)
+            row["vertices"] = (
+                p.report.stats["vertices"]
+                if label == "after"
+                else sum(len(x) for layer in p.layers for x in layer.paths)
+            )
             row["arcs"] = p.report.stats.get("arcs", 0) if label == "after" else 0
     return best
 
@@ -85,17 +92,21 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
-    cases = [("circle tile 100 mm", design_from_text(CIRCLE, name="circle"), ("dxf", "svg", "lbrn2")),
-             ("sheet 600 x 400 mm", load_design(ROOT / "samples" / "sheet-600x400.toml"), ("dxf", "svg", "lbrn2")),
-             ("panel 2440 x 1220 mm (router)", load_design(ROOT / "samples" / "panel-2440x1220.toml"), ("dxf", "svg"))]
+    cases = [
+        ("circle tile 100 mm", design_from_text(CIRCLE, name="circle"), ("dxf", "svg", "lbrn2")),
+        ("sheet 600 x 400 mm", load_design(ROOT / "samples" / "sheet-600x400.toml"), ("dxf", "svg", "lbrn2")),
+        ("panel 2440 x 1220 mm (router)", load_design(ROOT / "samples" / "panel-2440x1220.toml"), ("dxf", "svg")),
+    ]
     for name, design, formats in cases:
         res = measure(design, args.repeat, formats)
         b, a = res["before"], res["after"]
         print(f"\n{name}: vertices {b['vertices']:,} -> {a['vertices']:,} ({a['arcs']:,} arcs)")
         print(f"  plan (CPU s)      {b['plan_s']:.3f} -> {a['plan_s']:.3f}")
         for fmt in formats:
-            print(f"  {fmt:5} bytes {b[f'{fmt}_bytes']:>11,} -> {a[f'{fmt}_bytes']:>11,};"
-                  f"  write (CPU s) {b[f'{fmt}_s']:.3f} -> {a[f'{fmt}_s']:.3f}")
+            print(
+                f"  {fmt:5} bytes {b[f'{fmt}_bytes']:>11,} -> {a[f'{fmt}_bytes']:>11,};"
+                f"  write (CPU s) {b[f'{fmt}_s']:.3f} -> {a[f'{fmt}_s']:.3f}"
+            )
         total_b = b["plan_s"] + sum(b[f"{f}_s"] for f in formats)
         total_a = a["plan_s"] + sum(a[f"{f}_s"] for f in formats)
         print(f"  plan + every file (CPU s) {total_b:.3f} -> {total_a:.3f} ({total_a / total_b:.2f}x)")

@@ -95,8 +95,9 @@ def main(argv=None) -> int:
         out = tmp / "out"
         rows = []
         if want("sheet-cut"):
-            ma, mb, r = paired(command(ROOT, sheet, ["dxf", "svg", "lbrn2"], out), command(ROOT, sheet, ["dxf"], out),
-                               args.runs)
+            ma, mb, r = paired(
+                command(ROOT, sheet, ["dxf", "svg", "lbrn2"], out), command(ROOT, sheet, ["dxf"], out), args.runs
+            )
             rows.append(("sheet 600x400: dxf + svg + lbrn2 / dxf", f"{ma:.2f} / {mb:.2f}", f"{r:.2f}x", "<= 1.2x"))
         if want("sheet-print"):
             ma, mb, r = paired(command(ROOT, sheet, ["stl", "3mf"], out), command(ROOT, sheet, ["stl"], out), args.runs)
@@ -112,8 +113,9 @@ def main(argv=None) -> int:
             if args.before:
                 old = args.before / "samples" / "table3-3.toml"
                 ma, mb, r = paired(command(args.before, old, five, out), command(ROOT, sample, five, out), args.runs)
-                rows.append(("README job (5 formats): before / after", f"{ma:.2f} / {mb:.2f}", f"{r:.2f}x faster",
-                             ">= 2x"))
+                rows.append(
+                    ("README job (5 formats): before / after", f"{ma:.2f} / {mb:.2f}", f"{r:.2f}x faster", ">= 2x")
+                )
             else:
                 m = single(command(ROOT, sample, five, out), args.runs)
                 rows.append(("README job (5 formats)", f"{m:.2f}", "", ""))

@@ -30,10 +30,10 @@ def contours(sample: Path) -> dict:
     """The sample's cut plan's paths, role -> list, in the order the contours were made."""
     from unittest import mock
 
-    from fabtiles.making.models import BuildOptions, Models
-    from fabtiles.making.pipeline import prepare_tile
     from fabtiles.designs.design_file import load_design
     from fabtiles.geometry import cut_plan
+    from fabtiles.making.models import BuildOptions, Models
+    from fabtiles.making.pipeline import prepare_tile
 
     design = load_design(sample)
     # the plan as it was made, before the cut order: order_paths stood aside
@@ -67,13 +67,17 @@ def vpype_order(paths: dict):
     doc = vp.Document()
     for k, role in enumerate(("inner", "outer"), start=1):
         if paths.get(role):
-            doc.add(vp.LineCollection([np.append(r[:, 0] + 1j * r[:, 1], r[0, 0] + 1j * r[0, 1])
-                                       for r in paths[role]]), k)
+            doc.add(
+                vp.LineCollection([np.append(r[:, 0] + 1j * r[:, 1], r[0, 0] + 1j * r[0, 1]) for r in paths[role]]), k
+            )
     t = time.process_time()
     out = vpype_cli.execute("linesort --two-opt", doc)
     seconds = time.process_time() - t
-    result = {role: [np.column_stack([line.real, line.imag])[:-1] for line in out.layers[k]]
-              for k, role in enumerate(("inner", "outer"), start=1) if k in out.layers}
+    result = {
+        role: [np.column_stack([line.real, line.imag])[:-1] for line in out.layers[k]]
+        for k, role in enumerate(("inner", "outer"), start=1)
+        if k in out.layers
+    }
     pen_up = sum(out.layers[k].pen_up_length()[0] for k in out.layers)
     return result, seconds, pen_up
 
@@ -87,14 +91,18 @@ def main(argv=None) -> None:
     print(f"{args.sample.name}: {len(paths.get('inner', ())):,} inner contours, {len(paths.get('outer', ())):,} outer")
     print(f"{'order the contours were made in':40s} travel {travel(paths) / 1000:8.3f} m")
     mine, seconds = ours(paths, args.repeat)
-    print(f"{'fabtiles cut order':40s} travel {travel(mine) / 1000:8.3f} m   {seconds:6.3f} s CPU (best of {args.repeat})")
+    print(
+        f"{'fabtiles cut order':40s} travel {travel(mine) / 1000:8.3f} m   {seconds:6.3f} s CPU (best of {args.repeat})"
+    )
     try:
         theirs, vs, pen_up = vpype_order(paths)
     except ImportError:
         print("vpype is not installed: pip install vpype")
         return
-    print(f"{'vpype linesort --two-opt':40s} travel {travel(theirs) / 1000:8.3f} m   {vs:6.3f} s CPU "
-          f"(its pen-up length, without the move from the origin: {pen_up / 1000:.3f} m)")
+    print(
+        f"{'vpype linesort --two-opt':40s} travel {travel(theirs) / 1000:8.3f} m   {vs:6.3f} s CPU "
+        f"(its pen-up length, without the move from the origin: {pen_up / 1000:.3f} m)"
+    )
     print(f"ours / vpype's: {travel(mine) / travel(theirs):.4f}; ours / before: {travel(mine) / travel(paths):.4f}")
 
 

@@ -68,8 +68,7 @@ def sheet_region(size=SIZE, radius=RADIUS, frame=FRAME, stroke=STROKE, *, cache=
     outline = shapely.box(0, 0, w, h)
     inner = shapely.box(frame, frame, w - frame, h - frame)
     pattern = shapely.union_all(bands, grid_size=None)
-    region = shapely.union(shapely.intersection(pattern, outline),
-                           shapely.difference(outline, inner))
+    region = shapely.union(shapely.intersection(pattern, outline), shapely.difference(outline, inner))
     region = shapely.normalize(region)
     if cache is not None:
         cache.write_bytes(shapely.to_wkb(region))
@@ -84,8 +83,9 @@ def tile_region(*, cache=TILE_CACHE):
     from fabtiles.geometry.tile import TileGeometry
     from fabtiles.pattern.packing import HexPacking
 
-    region = TileGeometry("rectangle", SIZE, HexPacking(RADIUS, Star.preset("table3-3")), frame=FRAME,
-                  stroke=STROKE).region()
+    region = TileGeometry(
+        "rectangle", SIZE, HexPacking(RADIUS, Star.preset("table3-3")), frame=FRAME, stroke=STROKE
+    ).region()
     if cache is not None:
         cache.write_bytes(shapely.to_wkb(region))
     return region
@@ -112,8 +112,10 @@ def main(argv=None):
     parts = shapely.get_parts(region)
     holes = int(shapely.get_num_interior_rings(parts).sum())
     nseg = int(shapely.get_num_coordinates(region)) - len(parts) - holes
-    print(f"sheet {SIZE[0]:g} x {SIZE[1]:g} mm, R = {RADIUS:g}: {len(parts)} parts, {holes} holes, "
-          f"{nseg} segments (nominal)")
+    print(
+        f"sheet {SIZE[0]:g} x {SIZE[1]:g} mm, R = {RADIUS:g}: {len(parts)} parts, {holes} holes, "
+        f"{nseg} segments (nominal)"
+    )
     profile = load_profile("laser-3mm-plywood", kind="laser")
 
     def best(label, fn):
@@ -126,20 +128,32 @@ def main(argv=None):
         return out, min(times)
 
     best("checks", lambda: check_laser(region, outline, profile, stroke=STROKE))
-    best("kerf contours", lambda: laser_contours(region, outline, kerf_mm=profile.kerf_mm,
-                                                 tolerance_mm=profile.tolerance_mm))
+    best(
+        "kerf contours",
+        lambda: laser_contours(region, outline, kerf_mm=profile.kerf_mm, tolerance_mm=profile.tolerance_mm),
+    )
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "sheet.dxf"
-        report, total = best("write_dxf end to end", lambda: write_dxf(
-            path, region=region, outline=outline, profile=profile, stroke=STROKE))
+        report, total = best(
+            "write_dxf end to end",
+            lambda: write_dxf(path, region=region, outline=outline, profile=profile, stroke=STROKE),
+        )
         print(f"  {path.stat().st_size / 1e6:.1f} MB; stats: {report.stats}")
         print("  " + report.summary().replace("\n", "\n  "))
         if args.r12:
-            best("write_dxf R12", lambda: write_dxf(path, region=region, outline=outline,
-                                                    profile=profile, stroke=STROKE, dxf_version="R12"))
+            best(
+                "write_dxf R12",
+                lambda: write_dxf(
+                    path, region=region, outline=outline, profile=profile, stroke=STROKE, dxf_version="R12"
+                ),
+            )
         if args.svg:
-            best("write_laser_svg", lambda: write_laser_svg(
-                Path(tmp) / "sheet.svg", region=region, outline=outline, profile=profile, stroke=STROKE))
+            best(
+                "write_laser_svg",
+                lambda: write_laser_svg(
+                    Path(tmp) / "sheet.svg", region=region, outline=outline, profile=profile, stroke=STROKE
+                ),
+            )
     verdict = "PASS" if total < 2.0 else "FAIL"
     print(f"budget 2.0 s: {verdict} ({total:.3f} s)")
     return 0 if total < 2.0 else 1

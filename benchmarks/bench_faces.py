@@ -43,8 +43,10 @@ def main() -> None:
     print(f"  whole faces and look-up    {t:7.3f} s  ({len(set(index.tolist()))} distinct whole faces)")
     t, fc = best_of(lambda: F.face_classes(tile), args.repeat)
     verdict = "within" if t < TARGET_S else "OVER"
-    print(f"face_classes(by='shape')     {t:7.3f} s  ({len(fc.faces)} faces, {len(fc.classes)} classes; "
-          f"{verdict} the {TARGET_S:g} s target)")
+    print(
+        f"face_classes(by='shape')     {t:7.3f} s  ({len(fc.faces)} faces, {len(fc.classes)} classes; "
+        f"{verdict} the {TARGET_S:g} s target)"
+    )
     for c in fc.classes:
         print(f"    {c.letter}  {c.count:6d}  {c.description:<18} {c.area_mm2:12.1f} mm2")
     t, _ = best_of(lambda: F.face_classes(tile, by="none"), args.repeat)
@@ -56,8 +58,10 @@ def main() -> None:
         from fabtiles.geometry.inlay import shape_key
 
         t, keys = best_of(lambda: {shape_key(p) for p in faces}, 1)
-        print(f"baseline: shape_key of every face  {t:7.3f} s  ({len(keys)} keys; the pieces cut by the frame "
-              f"each a shape of their own)")
+        print(
+            f"baseline: shape_key of every face  {t:7.3f} s  ({len(keys)} keys; the pieces cut by the frame "
+            f"each a shape of their own)"
+        )
 
 
 if __name__ == "__main__":

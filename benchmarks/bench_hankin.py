@@ -22,8 +22,10 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-DESIGNS = {"motifs": HERE.parent / "samples" / "tilings" / "4.8.8.toml",
-           "hankin": HERE.parent / "samples" / "hankin" / "4.8.8.toml"}
+DESIGNS = {
+    "motifs": HERE.parent / "samples" / "tilings" / "4.8.8.toml",
+    "hankin": HERE.parent / "samples" / "hankin" / "4.8.8.toml",
+}
 SIZE = (600.0, 400.0)
 TARGET = 1.5
 
@@ -48,8 +50,9 @@ def run_once(method: str, edge: float | None = None) -> dict:
 
     t = time.process_time()
     extra = [f"packing.edge={edge!r}"] if edge is not None else []
-    design = load_design(DESIGNS[method], overrides=["tile.outline=rectangle", f"tile.size=[{SIZE[0]}, {SIZE[1]}]",
-                                                      *extra])
+    design = load_design(
+        DESIGNS[method], overrides=["tile.outline=rectangle", f"tile.size=[{SIZE[0]}, {SIZE[1]}]", *extra]
+    )
     tile = design.build_tile(tile_cls=ft.Tile)
     seg = tile.segments()
     pattern = time.process_time() - t
@@ -61,8 +64,14 @@ def run_once(method: str, edge: float | None = None) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         tile.export(Path(tmp) / "sheet.dxf", profile=laser)
     dxf = time.process_time() - t
-    return {"edge": design.packing.edge, "segments": len(seg), "pattern": pattern, "region": region, "dxf": dxf,
-            "total": pattern + region + dxf}
+    return {
+        "edge": design.packing.edge,
+        "segments": len(seg),
+        "pattern": pattern,
+        "region": region,
+        "dxf": dxf,
+        "total": pattern + region + dxf,
+    }
 
 
 def main(argv=None) -> None:
@@ -74,8 +83,11 @@ def main(argv=None) -> None:
     runs = {"motifs": [], "hankin": [], "hankin, as many segments": []}
     ratios = {"hankin": [], "hankin, as many segments": []}
     for _ in range(args.pairs):
-        pair = {"motifs": run_once("motifs"), "hankin": run_once("hankin"),
-                "hankin, as many segments": run_once("hankin", edge)}
+        pair = {
+            "motifs": run_once("motifs"),
+            "hankin": run_once("hankin"),
+            "hankin, as many segments": run_once("hankin", edge),
+        }
         for m, r in pair.items():
             runs[m].append(r)
         for m in ratios:
@@ -84,11 +96,15 @@ def main(argv=None) -> None:
     print("|---|---:|---:|---:|---:|---:|---:|")
     for m, rs in runs.items():
         best = min(rs, key=lambda r: r["total"])
-        print(f"| {m} | {best['edge']:.2f} | {best['segments']:,} | {best['pattern']:.2f} | {best['region']:.2f} | "
-              f"{best['dxf']:.2f} | {best['total']:.2f} |")
+        print(
+            f"| {m} | {best['edge']:.2f} | {best['segments']:,} | {best['pattern']:.2f} | {best['region']:.2f} | "
+            f"{best['dxf']:.2f} | {best['total']:.2f} |"
+        )
     for m, rs in ratios.items():
-        print(f"\n{m} / motifs, CPU time end to end: median of {args.pairs} pairs {statistics.median(rs):.2f} "
-              f"(range {min(rs):.2f} to {max(rs):.2f}; target <= {TARGET:g} for the sample's edge)")
+        print(
+            f"\n{m} / motifs, CPU time end to end: median of {args.pairs} pairs {statistics.median(rs):.2f} "
+            f"(range {min(rs):.2f} to {max(rs):.2f}; target <= {TARGET:g} for the sample's edge)"
+        )
 
 
 if __name__ == "__main__":

@@ -86,8 +86,11 @@ def main(argv=None) -> None:
     out = Path(tempfile.mkdtemp())
     segments = sheet(False).segments()
     rows = [("weave alone", None, best(lambda: weave(segments), args.repeat))]
-    for label, name, opts in (("DXF pierced", "t.dxf", {}), ("DXF score", "t.dxf", {"mode": "score"}),
-                              ("STL relief", "t.stl", {})):
+    for label, name, opts in (
+        ("DXF pierced", "t.dxf", {}),
+        ("DXF score", "t.dxf", {"mode": "score"}),
+        ("STL relief", "t.stl", {}),
+    ):
         plain = best(lambda name=name, opts=opts: sheet(False).export(out / name, **opts), args.repeat)
         woven = best(lambda name=name, opts=opts: sheet(True).export(out / name, **opts), args.repeat)
         rows.append((label, plain, woven))

@@ -31,20 +31,21 @@ def best(fn, repeat: int) -> float:
 
 
 def in_process(repeat: int) -> dict:
-    from fabtiles.making import prepare_tile
     from fabtiles.designs.design_file import load_design
     from fabtiles.export import dxf, lbrn2
     from fabtiles.export.dispatch import laser_geometry
     from fabtiles.geometry import job_time
     from fabtiles.geometry.laser_checks import prepare_laser
+    from fabtiles.making import prepare_tile
 
     tile = prepare_tile(load_design(SHEET))
     region, _ = laser_geometry(tile)
     outline = tile.outline_shape()
     job, _ = prepare_laser("sheet", "dxf", region=region, outline=outline, profile="laser-3mm-plywood")
     return {
-        "prepare (checks, contours, estimate)": best(lambda: prepare_laser(
-            "sheet", "dxf", region=region, outline=outline, profile="laser-3mm-plywood"), repeat),
+        "prepare (checks, contours, estimate)": best(
+            lambda: prepare_laser("sheet", "dxf", region=region, outline=outline, profile="laser-3mm-plywood"), repeat
+        ),
         "job estimate alone": best(lambda: job_time.estimate(job.profile, inner=job.inner, outer=job.outer), repeat),
         "DXF text": best(lambda: dxf.dxf_text(job), repeat),
         ".lbrn2 text": best(lambda: lbrn2.lbrn2_text(job), repeat),

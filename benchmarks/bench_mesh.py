@@ -37,8 +37,10 @@ def main(argv=None):
     writer = stl.write_stl if args.format == "stl" else threemf.write_3mf
     report = writer(out, region=region, outline=outline, profile="fdm-0.4mm", style=args.style, stroke=tile.stroke)
     t2 = time.perf_counter()
-    print(f"region {t1 - t0:.2f} s, {args.format} {t2 - t1:.2f} s, total {t2 - t0:.2f} s; "
-          f"{report.stats['triangles']} triangles, {out.stat().st_size / 1e6:.1f} MB -> {out}")
+    print(
+        f"region {t1 - t0:.2f} s, {args.format} {t2 - t1:.2f} s, total {t2 - t0:.2f} s; "
+        f"{report.stats['triangles']} triangles, {out.stat().st_size / 1e6:.1f} MB -> {out}"
+    )
 
 
 if __name__ == "__main__":

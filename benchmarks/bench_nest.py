@@ -27,11 +27,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from fabtiles.making import BuildOptions, Models, prepare_tile  # noqa: E402
-from fabtiles.making.nesting import part_outline  # noqa: E402
 from fabtiles.designs.design_file import design_from_text  # noqa: E402
 from fabtiles.geometry.nest import DEFAULT_TIME_S, nest  # noqa: E402
 from fabtiles.geometry.sheet import layout_sheet  # noqa: E402
+from fabtiles.making import BuildOptions, Models, prepare_tile  # noqa: E402
+from fabtiles.making.nesting import part_outline  # noqa: E402
 
 SHEET = (600.0, 400.0)
 COPIES = 10
@@ -42,8 +42,11 @@ def parts():
     """The three designs' parts (outer cut paths), their tile outlines and the profile."""
     out = []
     for preset, outline in DESIGNS:
-        d = design_from_text(f'[motif]\npreset = "{preset}"\n[packing]\nradius = 12.5\n[tile]\noutline = '
-                             f'"{outline}"\nsize = 100\nframe = 4.0\nstroke = 1.0\n', name=preset)
+        d = design_from_text(
+            f'[motif]\npreset = "{preset}"\n[packing]\nradius = 12.5\n[tile]\noutline = '
+            f'"{outline}"\nsize = 100\nframe = 4.0\nstroke = 1.0\n',
+            name=preset,
+        )
         options = BuildOptions.of_design(d)
         tile = prepare_tile(d)
         plan = Models(tile, options).cut
@@ -85,12 +88,16 @@ def main():
         t0 = time.perf_counter()
         n = nest([(k, s) for k, s in enumerate(shapes)], sheet_mm=SHEET, gap_mm=gap, time_s=budget)
         wall = time.perf_counter() - t0
-        print(f"| fabtiles nest (spyrrow), quarter turns | {budget:g} s | {wall:.1f} | {n.sheets} | "
-              f"{' / '.join(f'{u:.2f}' for u in n.material_use())} |")
+        print(
+            f"| fabtiles nest (spyrrow), quarter turns | {budget:g} s | {wall:.1f} | {n.sheets} | "
+            f"{' / '.join(f'{u:.2f}' for u in n.material_use())} |"
+        )
     t0 = time.perf_counter()
     sheets = rectpack_sheets(shapes, gap)
-    print(f"| bounding boxes, rectpack max-rects, turned | - | {time.perf_counter() - t0:.2f} | {len(sheets)} | "
-          f"{use(sheets)} |")
+    print(
+        f"| bounding boxes, rectpack max-rects, turned | - | {time.perf_counter() - t0:.2f} | {len(sheets)} | "
+        f"{use(sheets)} |"
+    )
     grid = []
     for name, part, outline, profile, _ in designs:
         fit = len(layout_sheet([(outline, outline)], profile, gap_mm=gap, fill=True).offsets)

@@ -49,8 +49,10 @@ def main(argv=None) -> None:
             a.append(cpu(plug, env))
             b.append(cpu(build, env))
     ma, mb = statistics.median(a), statistics.median(b)
-    print(f"{args.sample.name}: vpype fabtiles ... write {ma:.2f} s CPU, fabtiles build --format svg {mb:.2f} s CPU, "
-          f"ratio {ma / mb:.2f}x (medians of {args.pairs} pairs)")
+    print(
+        f"{args.sample.name}: vpype fabtiles ... write {ma:.2f} s CPU, fabtiles build --format svg {mb:.2f} s CPU, "
+        f"ratio {ma / mb:.2f}x (medians of {args.pairs} pairs)"
+    )
 
 
 if __name__ == "__main__":

@@ -47,16 +47,14 @@ def main() -> None:
     for join in ("miter", "bevel", "round"):
         t, reg = best_of(lambda join=join: sheet(join).region(), args.repeat)
         parts = len(getattr(reg, "geoms", [reg]))
-        print(f"region join={join:<6}    {t:7.3f} s  (valid={reg.is_valid}, parts={parts}, "
-              f"area={reg.area:.1f} mm2)")
+        print(f"region join={join:<6}    {t:7.3f} s  (valid={reg.is_valid}, parts={parts}, area={reg.area:.1f} mm2)")
     t, cl = best_of(lambda: sheet().centrelines(), args.repeat)
     print(f"centrelines (clipped) {t:7.3f} s  ({len(cl)} segments)")
     if not args.no_baseline:
         tile = sheet()
 
         def naive():
-            bands = shapely.buffer(shapely.linestrings(tile.segments()), 0.5,
-                                   cap_style="flat", join_style="mitre")
+            bands = shapely.buffer(shapely.linestrings(tile.segments()), 0.5, cap_style="flat", join_style="mitre")
             return shapely.union_all(bands)
 
         t, _ = best_of(naive, 1)

@@ -37,7 +37,7 @@ def issue_design(fill: bool) -> str:
     """The design of issue 30, as the tests hold it."""
     text = ISSUE_DESIGN.read_text()
     start = text.index('ISSUE_DESIGN = """') + len('ISSUE_DESIGN = """')
-    return text[start:text.index('"""', start)].format(fill="true" if fill else "false", size=150.8)
+    return text[start : text.index('"""', start)].format(fill="true" if fill else "false", size=150.8)
 
 
 def random_design(rng: random.Random) -> str:
@@ -70,9 +70,26 @@ def slice_file(prusa: str, path: Path, work: Path, timeout: float) -> tuple[floa
     gcode = path.with_suffix(".gcode")
     t0 = time.perf_counter()
     try:
-        subprocess.run([prusa, "--loglevel", "1", "--datadir", str(work / "prusa-data"), "--load", str(ini),
-                        "--export-gcode", "--center", "150,150", "--output", str(gcode), str(path)],
-                       capture_output=True, check=True, timeout=timeout)
+        subprocess.run(
+            [
+                prusa,
+                "--loglevel",
+                "1",
+                "--datadir",
+                str(work / "prusa-data"),
+                "--load",
+                str(ini),
+                "--export-gcode",
+                "--center",
+                "150,150",
+                "--output",
+                str(gcode),
+                str(path),
+            ],
+            capture_output=True,
+            check=True,
+            timeout=timeout,
+        )
     except subprocess.TimeoutExpired:
         return time.perf_counter() - t0, None
     return time.perf_counter() - t0, len(re.findall(r"^;Z:", gcode.read_text(), flags=re.M))
@@ -86,8 +103,8 @@ def main(argv=None):
     ap.add_argument("--limit", type=float, default=120.0, help="seconds each filled file must slice in")
     args = ap.parse_args(argv)
 
-    from fabtiles.making import build_design
     from fabtiles.designs.design_file import design_from_text
+    from fabtiles.making import build_design
 
     prusa = shutil.which("prusa-slicer")
     if prusa is None:
@@ -109,9 +126,12 @@ def main(argv=None):
         seconds, layers = slice_file(prusa, Path(report.path), work, timeout=max(args.limit * 8, 900))
         expected = round(height / 0.2)
         ok = layers == expected and (not filled or seconds <= args.limit)
-        print(f"{name:<24} {report.stats['style']:<8} {report.stats['triangles']:>9,} "
-              f"{report.stats.get('filled_holes', 0):>7,} {seconds:>8.1f} {str(layers):>7}  "
-              f"{'yes' if ok else 'NO'} (expected {expected} layers)", flush=True)
+        print(
+            f"{name:<24} {report.stats['style']:<8} {report.stats['triangles']:>9,} "
+            f"{report.stats.get('filled_holes', 0):>7,} {seconds:>8.1f} {layers!s:>7}  "
+            f"{'yes' if ok else 'NO'} (expected {expected} layers)",
+            flush=True,
+        )
     shutil.rmtree(work, ignore_errors=True)
 
 

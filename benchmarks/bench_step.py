@@ -30,8 +30,10 @@ def main(argv=None):
     out = Path(args.out or tempfile.mkdtemp()) / "tile.step"
     step.write_step(out, region=region, outline=outline, profile="fdm-0.4mm", style=args.style, stroke=tile.stroke)
     t2 = time.perf_counter()
-    print(f"region {t1 - t0:.2f} s, step {t2 - t1:.2f} s, total {t2 - t0:.2f} s; "
-          f"{out.stat().st_size / 1e6:.1f} MB -> {out}")
+    print(
+        f"region {t1 - t0:.2f} s, step {t2 - t1:.2f} s, total {t2 - t0:.2f} s; "
+        f"{out.stat().st_size / 1e6:.1f} MB -> {out}"
+    )
 
 
 if __name__ == "__main__":

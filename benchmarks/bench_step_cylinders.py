@@ -78,8 +78,9 @@ def sample_design(size: float) -> str:
 
 def run(checkout: Path, code: str, *args) -> dict:
     env = dict(os.environ, PYTHONPATH=str(checkout))
-    proc = subprocess.run([sys.executable, "-c", code, *map(str, args)], capture_output=True, text=True,
-                          env=env, cwd=checkout)
+    proc = subprocess.run(
+        [sys.executable, "-c", code, *map(str, args)], capture_output=True, text=True, env=env, cwd=checkout
+    )
     if proc.returncode:
         raise SystemExit(proc.stderr)
     return json.loads(proc.stdout.strip().splitlines()[-1])
@@ -101,8 +102,13 @@ def cli_export(checkout: Path, toml: Path, out: Path) -> dict:
     folder = out.with_suffix(".out")
     shutil.rmtree(folder, ignore_errors=True)
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    proc = subprocess.run([sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(folder)],
-                          capture_output=True, text=True, cwd=checkout, env=dict(os.environ, PYTHONPATH=str(checkout)))
+    proc = subprocess.run(
+        [sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(folder)],
+        capture_output=True,
+        text=True,
+        cwd=checkout,
+        env=dict(os.environ, PYTHONPATH=str(checkout)),
+    )
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode:
         raise SystemExit(proc.stderr)
@@ -115,24 +121,32 @@ def export(checkout: Path, toml: Path, out: Path) -> dict:
     if (checkout / "fabtiles" / "making" / "models.py").exists():
         return run(checkout, EXPORT, toml, out)
     if (checkout / "fabtiles" / "build" / "models.py").exists():  # before the layers were folders
-        old_names = EXPORT.replace("fabtiles.making.", "fabtiles.build.").replace("fabtiles.designs.design_file",
-                                                                                  "fabtiles.design")
+        old_names = EXPORT.replace("fabtiles.making.", "fabtiles.build.").replace(
+            "fabtiles.designs.design_file", "fabtiles.design"
+        )
         return run(checkout, old_names, toml, out)
     return cli_export(checkout, toml, out)
 
 
 def counts(path: Path) -> dict:
     text = path.read_text()
-    return {"mb": path.stat().st_size / 1e6, "faces": text.count("ADVANCED_FACE("),
-            "cylinders": text.count("CYLINDRICAL_SURFACE(")}
+    return {
+        "mb": path.stat().st_size / 1e6,
+        "faces": text.count("ADVANCED_FACE("),
+        "cylinders": text.count("CYLINDRICAL_SURFACE("),
+    }
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--old", required=True, type=Path,
-                    help="the older checkout (its STEP has planar faces); one without fabtiles/making/models.py "
-                         "(fabtiles/build/models.py before the layers were folders) "
-                         "(as when issue 35 was filed, e.g. 3650417) writes it through its CLI")
+    ap.add_argument(
+        "--old",
+        required=True,
+        type=Path,
+        help="the older checkout (its STEP has planar faces); one without fabtiles/making/models.py "
+        "(fabtiles/build/models.py before the layers were folders) "
+        "(as when issue 35 was filed, e.g. 3650417) writes it through its CLI",
+    )
     ap.add_argument("--sizes", type=float, nargs="*", default=[100.0, 150.0])
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--no-sample", action="store_true", help="leave out the 3.3.3.4.4 sample")
@@ -155,20 +169,31 @@ def main(argv=None):
                 out = work / f"{name}-{label}.step"
                 rows[label] = export(checkout, toml, out) | counts(out)
             for label, _ in order:
-                rows[label] |= ({"import_cpu_s": float("nan"), "parse_cpu_s": float("nan"), "check_cpu_s": float("nan"),
-                                 "valid": None}
-                                if args.no_import else run(NEW, IMPORT, work / f"{name}-{label}.step"))
+                rows[label] |= (
+                    {
+                        "import_cpu_s": float("nan"),
+                        "parse_cpu_s": float("nan"),
+                        "check_cpu_s": float("nan"),
+                        "valid": None,
+                    }
+                    if args.no_import
+                    else run(NEW, IMPORT, work / f"{name}-{label}.step")
+                )
             for label in ("old", "new"):
                 r = rows[label]
                 cpu = f"{r['export_cpu_s']:.2f}" + (" (whole build, CLI)" if r.get("cli") else "")
-                print(f"{name} | {label} | {cpu} | {r['mb']:.1f} | {r['faces']:,} | {r['cylinders']:,}"
-                      f" | {r['import_cpu_s']:.2f} ({r['parse_cpu_s']:.2f}) | {r['check_cpu_s']:.2f} | {r['valid']}",
-                      flush=True)
+                print(
+                    f"{name} | {label} | {cpu} | {r['mb']:.1f} | {r['faces']:,} | {r['cylinders']:,}"
+                    f" | {r['import_cpu_s']:.2f} ({r['parse_cpu_s']:.2f}) | {r['check_cpu_s']:.2f} | {r['valid']}",
+                    flush=True,
+                )
             o, n = rows["old"], rows["new"]
             ratio = "(not paired: a whole build)" if o.get("cli") else f"{n['export_cpu_s'] / o['export_cpu_s']:.2f}x"
-            print(f"{name} | new/old | {ratio} | {n['mb'] / o['mb']:.2f}x | "
-                  f"{n['faces'] / o['faces']:.2f}x | | {o['import_cpu_s'] / n['import_cpu_s']:.1f}x faster | |",
-                  flush=True)
+            print(
+                f"{name} | new/old | {ratio} | {n['mb'] / o['mb']:.2f}x | "
+                f"{n['faces'] / o['faces']:.2f}x | | {o['import_cpu_s'] / n['import_cpu_s']:.1f}x faster | |",
+                flush=True,
+            )
 
 
 if __name__ == "__main__":

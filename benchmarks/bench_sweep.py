@@ -73,22 +73,28 @@ def main(argv=None):
         # For comparison: what two local processes (--jobs 2) get from the same machine right now.
         results["local, 2 procs"] = [timed({"workers": 2}, args.variants, root, size) for _ in range(args.repeat)]
     for workers in (1, 2):
-        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                          dashboard_address=None) as cluster:
+        with LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+        ) as cluster:
             address = cluster.scheduler_address
             timed({"scheduler": address}, 2 * workers, root, size)  # warm up the workers
             results[f"dask, {workers} worker{'s' if workers > 1 else ''}"] = [
-                timed({"scheduler": address}, args.variants, root, size) for _ in range(args.repeat)]
+                timed({"scheduler": address}, args.variants, root, size) for _ in range(args.repeat)
+            ]
     best = {k: min(v) for k, v in results.items()}
     for name, times in results.items():
-        print(f"{name:<16} best {min(times):6.2f} s  median {statistics.median(times):6.2f} s  "
-              f"({min(times) / args.variants * 1000:.0f} ms per variant)")
+        print(
+            f"{name:<16} best {min(times):6.2f} s  median {statistics.median(times):6.2f} s  "
+            f"({min(times) / args.variants * 1000:.0f} ms per variant)"
+        )
     speedup = best["dask, 1 worker"] / best["dask, 2 workers"]
     print(f"2 workers vs 1: {speedup:.2f}x (target >= 1.6)")
     if not args.skip_local:
         overhead = (best["dask, 1 worker"] - best["in process"]) / args.variants
-        print(f"per-variant overhead of the cluster: {overhead * 1000:.0f} ms (target < 200 ms); "
-              f"2 local processes vs this process: {best['in process'] / best['local, 2 procs']:.2f}x")
+        print(
+            f"per-variant overhead of the cluster: {overhead * 1000:.0f} ms (target < 200 ms); "
+            f"2 local processes vs this process: {best['in process'] / best['local, 2 procs']:.2f}x"
+        )
     shutil.rmtree(root, ignore_errors=True)
 
 

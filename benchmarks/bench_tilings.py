@@ -87,13 +87,22 @@ def run_sheet(tiling: str, segments: int) -> dict:
             tile.export(Path(tmp) / f"sheet.{fmt}", profile=profile)
             times[fmt] = time.perf_counter() - t
     front = times["pattern"] + times["region"]
-    return {"tiling": tiling, "edge": getattr(pack, "edge", float("nan")), "segments": int(len(seg)), "import_s": import_s,
-            "seconds": times, "dxf_end_to_end": front + times["dxf"], "stl_end_to_end": front + times["stl"]}
+    return {
+        "tiling": tiling,
+        "edge": getattr(pack, "edge", float("nan")),
+        "segments": len(seg),
+        "import_s": import_s,
+        "seconds": times,
+        "dxf_end_to_end": front + times["dxf"],
+        "stl_end_to_end": front + times["stl"],
+    }
 
 
 def _child(tiling: str, segments: int) -> dict:
-    code = (f"import json, sys; sys.path.insert(0, {str(HERE)!r}); import bench_tilings as b; "
-            f"print('@@' + json.dumps(b.run_sheet({tiling!r}, {segments:d})))")
+    code = (
+        f"import json, sys; sys.path.insert(0, {str(HERE)!r}); import bench_tilings as b; "
+        f"print('@@' + json.dumps(b.run_sheet({tiling!r}, {segments:d})))"
+    )
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     line = next((s for s in proc.stdout.splitlines() if s.startswith("@@")), None)
     if line is None:
@@ -112,7 +121,6 @@ def web_previews(tilings, repeat: int = 11) -> dict:
     warnings.simplefilter("ignore", DeprecationWarning)
     from fastapi.testclient import TestClient
 
-    from fabtiles.designs.design_file import load_design
     from fabtiles.web.app import create_app
 
     client = TestClient(create_app())
@@ -143,8 +151,13 @@ def sample_query(tiling: str) -> dict:
     from fabtiles.designs.design_file import load_design
 
     design = load_design(SAMPLES / f"{tiling}.toml")
-    query = {"packing": "archimedean", "tiling": tiling, "edge": design.packing.edge, "width": 150,
-             "stroke": design.tile_spec.stroke}
+    query = {
+        "packing": "archimedean",
+        "tiling": tiling,
+        "edge": design.packing.edge,
+        "width": 150,
+        "stroke": design.tile_spec.stroke,
+    }
     for sides, spec in design.packing.motifs:
         if spec.preset is not None and not spec.params:
             query[f"motif_{sides}"] = spec.preset
@@ -163,24 +176,31 @@ def main(argv=None) -> None:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--segments", type=int, default=34_000, help="segments on the sheet (default 34,000)")
-    ap.add_argument("--only", nargs="*", default=[REFERENCE, *TILINGS],
-                    help="tilings to run (default: the hex reference and all 11)")
+    ap.add_argument(
+        "--only",
+        nargs="*",
+        default=[REFERENCE, *TILINGS],
+        help="tilings to run (default: the hex reference and all 11)",
+    )
     ap.add_argument("--no-web", action="store_true", help="skip the preview timings")
     args = ap.parse_args(argv)
     web = {} if args.no_web else web_previews(args.only)
-    print("| tiling | edge mm | segments | pattern s | region s | DXF s | STL s | DXF end to end s "
-          f"| STL end to end s | preview 150 mm ms (~{PREVIEW_SEGMENTS:,} segments / sample's edge) |")
+    print(
+        "| tiling | edge mm | segments | pattern s | region s | DXF s | STL s | DXF end to end s "
+        f"| STL end to end s | preview 150 mm ms (~{PREVIEW_SEGMENTS:,} segments / sample's edge) |"
+    )
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     worst = {"dxf": 0.0, "stl": 0.0, "preview_ms": 0.0}
     for tiling in args.only:
         r = _child(tiling, args.segments)
         s = r["seconds"]
         p = web.get(tiling)
-        pv = f"{p['ms']:.0f} / {p['sample_ms']:.0f}" if p and "sample_ms" in p else (
-            f"{p['ms']:.0f}" if p else "-")
-        print(f"| {tiling} | {r['edge']:.2f} | {r['segments']:,} | {s['pattern']:.2f} | {s['region']:.2f} | "
-              f"{s['dxf']:.2f} | {s['stl']:.2f} | {r['dxf_end_to_end']:.2f} | {r['stl_end_to_end']:.2f} | {pv} |",
-              flush=True)
+        pv = f"{p['ms']:.0f} / {p['sample_ms']:.0f}" if p and "sample_ms" in p else (f"{p['ms']:.0f}" if p else "-")
+        print(
+            f"| {tiling} | {r['edge']:.2f} | {r['segments']:,} | {s['pattern']:.2f} | {s['region']:.2f} | "
+            f"{s['dxf']:.2f} | {s['stl']:.2f} | {r['dxf_end_to_end']:.2f} | {r['stl_end_to_end']:.2f} | {pv} |",
+            flush=True,
+        )
         if tiling == REFERENCE:
             continue
         worst["dxf"] = max(worst["dxf"], r["dxf_end_to_end"])

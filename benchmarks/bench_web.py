@@ -42,7 +42,7 @@ def main(repeat: int = 15) -> None:
 
     client = TestClient(create_app())
     client.get("/api/preview.svg")  # warm-up: imports and first build
-    print(f"| preview | median ms | best ms | SVG kB |\n|---|---:|---:|---:|")
+    print("| preview | median ms | best ms | SVG kB |\n|---|---:|---:|---:|")
     for label, query in QUERIES.items():
         times = []
         for _ in range(repeat):
@@ -52,8 +52,10 @@ def main(repeat: int = 15) -> None:
             assert r.status_code == 200, r.text
         print(f"| {label} | {statistics.median(times):.0f} | {min(times):.0f} | {len(r.content) / 1000:.0f} |")
     print()
-    print("| 3D view (GET /api/view.glb) | median ms | best ms | GLB kB | triangles | shown |\n"
-          "|---|---:|---:|---:|---:|---|")
+    print(
+        "| 3D view (GET /api/view.glb) | median ms | best ms | GLB kB | triangles | shown |\n"
+        "|---|---:|---:|---:|---:|---|"
+    )
     for label, query in VIEWS.items():
         times = []
         for _ in range(max(3, repeat // 3)):
@@ -62,8 +64,10 @@ def main(repeat: int = 15) -> None:
             times.append((time.perf_counter() - t) * 1000)
             assert r.status_code == 200, r.text
         triangles = sum(p["triangles"] for p in json.loads(r.headers["X-Fabtiles-Parts"]).values())
-        print(f"| {label} | {statistics.median(times):.0f} | {min(times):.0f} | {len(r.content) / 1000:.0f} | "
-              f"{triangles:,} | {r.headers['X-Fabtiles-View']} |")
+        print(
+            f"| {label} | {statistics.median(times):.0f} | {min(times):.0f} | {len(r.content) / 1000:.0f} | "
+            f"{triangles:,} | {r.headers['X-Fabtiles-View']} |"
+        )
     print()
     print("| checks (GET /api/checks, job and material) | median ms | best ms |\n|---|---:|---:|")
     for label, query in {"default 150 mm square": ""}.items():

@@ -39,8 +39,13 @@ FINDING = re.compile(r"^\s+- (?:[^:]+: )?([a-z_]+: .*)$")
 def build(checkout: Path, sample: Path, fmt: str, out: Path) -> tuple[int, str]:
     out.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ, PYTHONPATH=str(checkout))
-    proc = subprocess.run([sys.executable, "-m", "fabtiles", "build", str(sample), "-o", str(out), "--format", fmt],
-                          capture_output=True, text=True, env=env, cwd=checkout)
+    proc = subprocess.run(
+        [sys.executable, "-m", "fabtiles", "build", str(sample), "-o", str(out), "--format", fmt],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=checkout,
+    )
     return proc.returncode, proc.stdout + proc.stderr
 
 
@@ -84,7 +89,7 @@ def same_dxf(a: Path, b: Path) -> str:
 def stl_vertices(path: Path) -> np.ndarray:
     data = path.read_bytes()
     n = int.from_bytes(data[80:84], "little")
-    rec = np.frombuffer(data[84:84 + 50 * n], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]))
+    rec = np.frombuffer(data[84 : 84 + 50 * n], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]))
     return rec["v"]
 
 

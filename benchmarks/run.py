@@ -30,20 +30,51 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 
 SCENARIOS = {
-    "rosette-tile": dict(outline="circle", size=150, pattern="single", preset="table2-left",
-                         stages=["pattern", "region", "dxf", "svg", "stl", "3mf", "step"]),
-    "sheet-600x400": dict(outline="rectangle", size=(600, 400), pattern="hex", radius=15,
-                          stages=["pattern", "region", "dxf", "svg", "stl", "3mf"]),
-    "relief-200x200": dict(outline="square", size=200, pattern="hex", radius=15,
-                           stages=["pattern", "region", "stl", "3mf", "step"]),
-    "sheet-1200x600": dict(outline="rectangle", size=(1200, 600), pattern="hex", radius=15,
-                           stages=["pattern", "region", "dxf", "svg", "stl"]),
+    "rosette-tile": dict(
+        outline="circle",
+        size=150,
+        pattern="single",
+        preset="table2-left",
+        stages=["pattern", "region", "dxf", "svg", "stl", "3mf", "step"],
+    ),
+    "sheet-600x400": dict(
+        outline="rectangle",
+        size=(600, 400),
+        pattern="hex",
+        radius=15,
+        stages=["pattern", "region", "dxf", "svg", "stl", "3mf"],
+    ),
+    "relief-200x200": dict(
+        outline="square", size=200, pattern="hex", radius=15, stages=["pattern", "region", "stl", "3mf", "step"]
+    ),
+    "sheet-1200x600": dict(
+        outline="rectangle",
+        size=(1200, 600),
+        pattern="hex",
+        radius=15,
+        stages=["pattern", "region", "dxf", "svg", "stl"],
+    ),
     # a full router sheet (samples/panel-2440x1220.toml): the 6 mm bit's DXF, and for comparison the
     # same panel's pierced laser DXF on a laser profile with a bed that large
-    "panel-2440x1220": dict(outline="rectangle", size=(2440, 1220), pattern="hex", radius=60, stroke=12.0,
-                            frame=40.0, profile="router-6mm-mdf", stages=["pattern", "region", "dxf"]),
-    "panel-2440x1220-laser": dict(outline="rectangle", size=(2440, 1220), pattern="hex", radius=60, stroke=12.0,
-                                  frame=40.0, stages=["pattern", "region", "dxf"]),
+    "panel-2440x1220": dict(
+        outline="rectangle",
+        size=(2440, 1220),
+        pattern="hex",
+        radius=60,
+        stroke=12.0,
+        frame=40.0,
+        profile="router-6mm-mdf",
+        stages=["pattern", "region", "dxf"],
+    ),
+    "panel-2440x1220-laser": dict(
+        outline="rectangle",
+        size=(2440, 1220),
+        pattern="hex",
+        radius=60,
+        stroke=12.0,
+        frame=40.0,
+        stages=["pattern", "region", "dxf"],
+    ),
 }
 
 SCALING_SIZES = [(150, 100), (300, 200), (600, 400), (1200, 800)]
@@ -108,16 +139,24 @@ def run_scenario(name: str) -> dict:
     for p in out.iterdir():
         p.unlink()
     out.rmdir()
-    return {"scenario": name, "segments": int(len(segments)), "import_s": import_s, "stages": rows,
-            "end_to_end": end_to_end, "file_bytes": sizes, "peak_mb": _peak_mb()}
+    return {
+        "scenario": name,
+        "segments": len(segments),
+        "import_s": import_s,
+        "stages": rows,
+        "end_to_end": end_to_end,
+        "file_bytes": sizes,
+        "peak_mb": _peak_mb(),
+    }
 
 
 def run_scaling(width: float, height: float) -> dict:
     """Pattern, region and DXF for one sheet size (for the growth table)."""
     import fabtiles as ft
 
-    tile = ft.Tile("rectangle", (width, height), ft.HexPacking(radius=15, motif=ft.Star.preset("table3-3")),
-                   frame=5.0, stroke=1.0)
+    tile = ft.Tile(
+        "rectangle", (width, height), ft.HexPacking(radius=15, motif=ft.Star.preset("table3-3")), frame=5.0, stroke=1.0
+    )
     times = {}
     t = time.perf_counter()
     segments = tile.segments()
@@ -129,7 +168,7 @@ def run_scaling(width: float, height: float) -> dict:
         t = time.perf_counter()
         tile.export(Path(tmp) / "s.dxf", profile=_profile("dxf"))
         times["dxf"] = time.perf_counter() - t
-    return {"size": [width, height], "segments": int(len(segments)), "seconds": times, "peak_mb": _peak_mb()}
+    return {"size": [width, height], "segments": len(segments), "seconds": times, "peak_mb": _peak_mb()}
 
 
 def run_baselines() -> dict:
@@ -140,8 +179,9 @@ def run_baselines() -> dict:
     import fabtiles as ft
 
     result = {}
-    tile = ft.Tile("rectangle", (600, 400), ft.HexPacking(radius=15, motif=ft.Star.preset("table3-3")),
-                   frame=5.0, stroke=1.0)
+    tile = ft.Tile(
+        "rectangle", (600, 400), ft.HexPacking(radius=15, motif=ft.Star.preset("table3-3")), frame=5.0, stroke=1.0
+    )
     seg = tile.segments()
     t = time.perf_counter()
     bands = shapely.buffer(shapely.linestrings(seg), 0.5, cap_style="flat", join_style="mitre")
@@ -187,9 +227,11 @@ def run_occt_face_baseline(stage: str) -> dict:
         outer = Wire.make_polygon([tuple(p) + (0.0,) for p in np.asarray(poly.exterior.coords)[:-1]])
         inner = [Wire.make_polygon([tuple(p) + (0.0,) for p in np.asarray(r.coords)[:-1]]) for r in poly.interiors]
         solids.append(extrude(Face(outer, inner), amount=1.2))
-    out = {"holes": int(sum(len(p.interiors) for p in polys)),
-           "vertices": int(shapely.get_num_coordinates(region)),
-           "extrude_s": time.perf_counter() - t}
+    out = {
+        "holes": int(sum(len(p.interiors) for p in polys)),
+        "vertices": int(shapely.get_num_coordinates(region)),
+        "extrude_s": time.perf_counter() - t,
+    }
     if stage == "step":
         with tempfile.TemporaryDirectory() as tmp:
             t = time.perf_counter()
@@ -200,10 +242,7 @@ def run_occt_face_baseline(stage: str) -> dict:
 
 
 def _child(kind: str, arg: str, timeout: float | None = None) -> dict:
-    code = (
-        "import json, sys; sys.path.insert(0, {!r}); import run; "
-        "print('@@' + json.dumps(run.{}))".format(str(HERE), arg)
-    )
+    code = f"import json, sys; sys.path.insert(0, {str(HERE)!r}); import run; print('@@' + json.dumps(run.{arg}))"
     try:
         proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
@@ -232,19 +271,31 @@ def _slope(xs, ys) -> float:
 
 
 def report(results: dict) -> str:
-    lines = ["# fabtiles benchmark results", "",
-             f"Machine: {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}; "
-             f"command: `python benchmarks/run.py{' ' + ' '.join(sys.argv[1:]) if sys.argv[1:] else ''}`.", "",
-             f"Start-up, `fabtiles --help`: **{results['startup_s']:.3f} s** (target < 0.3 s).", ""]
+    lines = [
+        "# fabtiles benchmark results",
+        "",
+        f"Machine: {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}; "
+        f"command: `python benchmarks/run.py{' ' + ' '.join(sys.argv[1:]) if sys.argv[1:] else ''}`.",
+        "",
+        f"Start-up, `fabtiles --help`: **{results['startup_s']:.3f} s** (target < 0.3 s).",
+        "",
+    ]
     lines += ["| scenario | segments | stage | seconds | peak MB (so far) |", "|---|---:|---|---:|---:|"]
     for sc in results["scenarios"]:
         if "error" in sc:
             lines.append(f"| {sc.get('scenario', '?')} | | error: {sc['error']} | | |")
             continue
         for r in sc["stages"]:
-            lines.append(f"| {sc['scenario']} | {sc['segments']:,} | {r['stage']} | {r['seconds']:.2f} | {r['peak_mb']:.0f} |")
-    lines += ["", "End to end (pattern + region + writer) against the targets:", "",
-              "| scenario | output | seconds | target | file size |", "|---|---|---:|---:|---:|"]
+            lines.append(
+                f"| {sc['scenario']} | {sc['segments']:,} | {r['stage']} | {r['seconds']:.2f} | {r['peak_mb']:.0f} |"
+            )
+    lines += [
+        "",
+        "End to end (pattern + region + writer) against the targets:",
+        "",
+        "| scenario | output | seconds | target | file size |",
+        "|---|---|---:|---:|---:|",
+    ]
     for sc in results["scenarios"]:
         for what, sec in sc.get("end_to_end", {}).items():
             target = TARGETS.get((sc["scenario"], what))
@@ -253,19 +304,28 @@ def report(results: dict) -> str:
             size = sc["file_bytes"].get(fmt, 0) / 1e6
             lines.append(f"| {sc['scenario']} | {fmt} | {sec:.2f} | {verdict} | {size:.1f} MB |")
     if results.get("scaling"):
-        lines += ["", "Growth with segment count (hexagonal packing R = 15 mm, table3-3):", "",
-                  "| sheet mm | segments | pattern s | region s | dxf s | peak MB |", "|---|---:|---:|---:|---:|---:|"]
+        lines += [
+            "",
+            "Growth with segment count (hexagonal packing R = 15 mm, table3-3):",
+            "",
+            "| sheet mm | segments | pattern s | region s | dxf s | peak MB |",
+            "|---|---:|---:|---:|---:|---:|",
+        ]
         ok = [s for s in results["scaling"] if "error" not in s]
         for s in ok:
             t = s["seconds"]
-            lines.append(f"| {s['size'][0]:g} x {s['size'][1]:g} | {s['segments']:,} | {t['pattern']:.2f} | "
-                         f"{t['region']:.2f} | {t['dxf']:.2f} | {s['peak_mb']:.0f} |")
+            lines.append(
+                f"| {s['size'][0]:g} x {s['size'][1]:g} | {s['segments']:,} | {t['pattern']:.2f} | "
+                f"{t['region']:.2f} | {t['dxf']:.2f} | {s['peak_mb']:.0f} |"
+            )
         if len(ok) >= 3:
             xs = [s["segments"] for s in ok]
             for stage in ("region", "dxf"):
                 k = _slope(xs[1:], [s["seconds"][stage] for s in ok[1:]])
-                lines.append(f"\nLog-log slope of {stage} time against segments (largest three sizes): "
-                             f"**{k:.2f}** (1.0 is linear).")
+                lines.append(
+                    f"\nLog-log slope of {stage} time against segments (largest three sizes): "
+                    f"**{k:.2f}** (1.0 is linear)."
+                )
     if results.get("baselines"):
         lines += ["", "Straightforward pipelines, for comparison:", "", "| pipeline | seconds |", "|---|---:|"]
         for what, sec in results["baselines"].items():
@@ -290,13 +350,19 @@ def update_readme(readme: Path, text: str) -> None:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--quick", action="store_true",
-                    help="skip the 1,200 x 600 mm sheet, the 2,440 x 1,220 mm panel and the scaling table")
+    ap.add_argument(
+        "--quick",
+        action="store_true",
+        help="skip the 1,200 x 600 mm sheet, the 2,440 x 1,220 mm panel and the scaling table",
+    )
     ap.add_argument("--baselines", action="store_true", help="also time the straightforward pipelines (slow)")
     ap.add_argument("--only", nargs="*", choices=list(SCENARIOS), help="run only these scenarios")
     ap.add_argument("-o", "--output", default=str(HERE / "results.md"), help="markdown report to write")
-    ap.add_argument("--readme", action="store_true",
-                    help="also replace the section of docs/speed.md between the bench markers with the report")
+    ap.add_argument(
+        "--readme",
+        action="store_true",
+        help="also replace the section of docs/speed.md between the bench markers with the report",
+    )
     args = ap.parse_args(argv)
     names = args.only or [n for n in SCENARIOS if not (args.quick and (n == "sheet-1200x600" or n.startswith("panel")))]
     results = {"startup_s": startup_seconds(), "scenarios": []}
@@ -319,8 +385,9 @@ def main(argv=None) -> int:
         if "error" in step:
             results["baselines"][f"{what}: face + extrude + STEP write"] = f"> {OCCT_STEP_LIMIT_S} (stopped, no file)"
         else:
-            results["baselines"][f"{what}: face + extrude + STEP write ({step['step_mb']:.0f} MB)"] = \
+            results["baselines"][f"{what}: face + extrude + STEP write ({step['step_mb']:.0f} MB)"] = (
                 step["extrude_s"] + step["step_s"]
+            )
     text = report(results)
     Path(args.output).write_text(text)
     if args.readme:

@@ -7,7 +7,6 @@ The public API, fixed for scripts (``docs/file-conventions.md``), is exactly ``_
 (32, 2, 2)
 """
 
-from .designs.colour import Colours
 from .core.errors import (
     DesignError,
     FabricationError,
@@ -16,9 +15,10 @@ from .core.errors import (
     ParameterError,
     ProfileError,
 )
-from .machines.profiles import CutterProfile, LaserProfile, PrinterProfile, load_profile
 from .core.report import Report
+from .designs.colour import Colours
 from .designs.design_file import load_design
+from .machines.profiles import CutterProfile, LaserProfile, PrinterProfile, load_profile
 from .pattern.archimedean import ArchimedeanPacking
 from .pattern.packing import HexPacking, SquarePacking
 from .pattern.radii import straight_radii
@@ -47,6 +47,7 @@ def __getattr__(name):
 
 def __dir__():
     return sorted(set(globals()) | set(_LAZY))
+
 
 __version__ = "0.1.0"
 

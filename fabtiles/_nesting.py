@@ -9,8 +9,18 @@ from __future__ import annotations
 from pathlib import Path
 
 
-def nest(designs, outdir, *, formats=("dxf",), count: int | None = None, sheet_mm=None, gap_mm=None,
-         rotations: str = "90", time_s: float | None = None, name: str | None = None):
+def nest(
+    designs,
+    outdir,
+    *,
+    formats=("dxf",),
+    count: int | None = None,
+    sheet_mm=None,
+    gap_mm=None,
+    rotations: str = "90",
+    time_s: float | None = None,
+    name: str | None = None,
+):
     """Nest tiles of ``designs`` onto sheets and write ``OUTDIR/<name>-sheet-<k>.<format>``, each format on its own.
 
     Parameters
@@ -30,8 +40,8 @@ def nest(designs, outdir, *, formats=("dxf",), count: int | None = None, sheet_m
     NestResult
         The build's reports (sheets used, each sheet's parts and material use) and the placements.
     """
-    from .making.nesting import nest_designs
     from .designs.design_file import Design, load_design
+    from .making.nesting import nest_designs
 
     def one(d):
         return d if isinstance(d, Design) else load_design(Path(d))
@@ -39,5 +49,14 @@ def nest(designs, outdir, *, formats=("dxf",), count: int | None = None, sheet_m
     if isinstance(designs, (str, Path, Design)):
         designs = [designs]
     pairs = [(one(d[0]), d[1]) if isinstance(d, tuple) else (one(d), None) for d in designs]
-    return nest_designs(pairs, outdir, formats, count=count, sheet_mm=sheet_mm, gap_mm=gap_mm, rotations=rotations,
-                        time_s=time_s, name=name)
+    return nest_designs(
+        pairs,
+        outdir,
+        formats,
+        count=count,
+        sheet_mm=sheet_mm,
+        gap_mm=gap_mm,
+        rotations=rotations,
+        time_s=time_s,
+        name=name,
+    )

@@ -11,9 +11,9 @@ limits, and nothing else.
 
 from __future__ import annotations
 
-from .machines import limits as _limits
 from .core import schema as _schema
 from .geometry.tile import TileGeometry
+from .machines import limits as _limits
 
 
 class Tile(TileGeometry):
@@ -57,5 +57,9 @@ class Tile(TileGeometry):
 
 
 # help(Tile.export) lists every option from the schema of design keys, so it cannot drift
-Tile.export.__doc__ = ((Tile.export.__doc__ or "").rstrip() + "\n\n"
-                       + "\n".join("        " + line for line in _schema.api_options_doc().splitlines()) + "\n")
+Tile.export.__doc__ = (
+    (Tile.export.__doc__ or "").rstrip()
+    + "\n\n"
+    + "\n".join("        " + line for line in _schema.api_options_doc().splitlines())
+    + "\n"
+)

@@ -15,8 +15,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import fabtiles
-from fabtiles.designs.design_file import load_design
 from fabtiles.core.files import atomic_write
+from fabtiles.designs.design_file import load_design
 from fabtiles.making.views import tile_picture
 
 HERE = Path(__file__).resolve().parent
@@ -31,8 +31,11 @@ def render(design_path, out_dir) -> Path:
 
 
 def main() -> None:
-    for designs, out in ((HERE, HERE / "renders"), (HERE / "tilings", HERE / "renders" / "tilings"),
-                         (HERE / "hankin", HERE / "renders" / "hankin")):
+    for designs, out in (
+        (HERE, HERE / "renders"),
+        (HERE / "tilings", HERE / "renders" / "tilings"),
+        (HERE / "hankin", HERE / "renders" / "hankin"),
+    ):
         out.mkdir(parents=True, exist_ok=True)
         for path in sorted(designs.glob("*.toml")):
             written = render(path, out)

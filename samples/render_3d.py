@@ -51,8 +51,12 @@ def relief_bodies(design_path=DESIGN):
 
     design = load_design(design_path)
     tile = design.build_tile(tile_cls=fabtiles.Tile)
-    return build_meshes(region=tile.region(), outline=tile.outline_shape(),
-                        profile=design.output.printer_profile or DEFAULT_PRINTER_PROFILE, style="relief")
+    return build_meshes(
+        region=tile.region(),
+        outline=tile.outline_shape(),
+        profile=design.output.printer_profile or DEFAULT_PRINTER_PROFILE,
+        style="relief",
+    )
 
 
 def _normalize(v):
@@ -123,7 +127,7 @@ def rasterize(screen, depth, colors, width, height, chunk_pixels=4_000_000):
         w1 = (tc[:, 0] - cx) * (ta[:, 1] - cy) - (tc[:, 1] - cy) * (ta[:, 0] - cx)
         w2 = (ta[:, 0] - cx) * (tb[:, 1] - cy) - (ta[:, 1] - cy) * (tb[:, 0] - cx)
         s = area[tri]
-        inside = ((w0 * s >= 0) & (w1 * s >= 0) & (w2 * s >= 0))
+        inside = (w0 * s >= 0) & (w1 * s >= 0) & (w2 * s >= 0)
         tri, px, py = tri[inside], px[inside], py[inside]
         w0, w1, w2, s = w0[inside] / s[inside], w1[inside] / s[inside], w2[inside] / s[inside], s[inside]
         inv = w0 / depth[tri, 0] + w1 / depth[tri, 1] + w2 / depth[tri, 2]  # 1/z is affine on screen

@@ -64,14 +64,16 @@ def table_picture(tiling: str, angle: float) -> str:
     pack = ArchimedeanPacking(tiling, EDGE, method="hankin", contact_angle=angle)
     rays = pack.segments((-HALF, -HALF, HALF, HALF))
     box = f"{_f(-HALF)} {_f(-HALF)} {_f(2 * HALF)} {_f(2 * HALF)}"
-    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{SIZE}" height="{SIZE}" viewBox="{box}">\n'
-            f'<title>{tiling}, contact angle {angle:g} degrees</title>\n'
-            f'<defs><clipPath id="c"><rect x="{_f(-HALF)}" y="{_f(-HALF)}" width="{_f(2 * HALF)}" '
-            f'height="{_f(2 * HALF)}"/></clipPath></defs>\n'
-            f'<rect x="{_f(-HALF)}" y="{_f(-HALF)}" width="{_f(2 * HALF)}" height="{_f(2 * HALF)}" fill="#fff"/>\n'
-            f'<g clip-path="url(#c)" fill="none" stroke-linecap="round">\n'
-            f'{_lines(_tiling_edges(tiling, HALF), stroke="#b8c4d6", stroke_width="0.25")}\n'
-            f'{_lines(rays, stroke="#1d3b6e", stroke_width="0.6")}\n</g>\n</svg>\n')
+    return (
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{SIZE}" height="{SIZE}" viewBox="{box}">\n'
+        f"<title>{tiling}, contact angle {angle:g} degrees</title>\n"
+        f'<defs><clipPath id="c"><rect x="{_f(-HALF)}" y="{_f(-HALF)}" width="{_f(2 * HALF)}" '
+        f'height="{_f(2 * HALF)}"/></clipPath></defs>\n'
+        f'<rect x="{_f(-HALF)}" y="{_f(-HALF)}" width="{_f(2 * HALF)}" height="{_f(2 * HALF)}" fill="#fff"/>\n'
+        f'<g clip-path="url(#c)" fill="none" stroke-linecap="round">\n'
+        f"{_lines(_tiling_edges(tiling, HALF), stroke='#b8c4d6', stroke_width='0.25')}\n"
+        f"{_lines(rays, stroke='#1d3b6e', stroke_width='0.6')}\n</g>\n</svg>\n"
+    )
 
 
 def construction_picture() -> str:
@@ -97,19 +99,27 @@ def construction_picture() -> str:
         s = starts[0]  # ray 0 starts below the midpoint (gap / 2) and leans up, towards the upper corner
         arc = 9.0
         end = s + arc * np.array([-math.sin(math.radians(angle)), math.cos(math.radians(angle))])
-        parts.append(f'<path d="M{_f(s[0])} {_f(-(s[1] + arc))}A{_f(arc)} {_f(arc)} 0 0 0 {_f(end[0])} '
-                     f'{_f(-end[1])}" fill="none" stroke="#c0392b" stroke-width="0.5"/>')
-        parts.append(f'<text x="{_f(s[0] - 9)}" y="{_f(-(s[1] + 10))}" font-size="4.5" fill="#c0392b">'
-                     f'{angle:g}°</text>')
+        parts.append(
+            f'<path d="M{_f(s[0])} {_f(-(s[1] + arc))}A{_f(arc)} {_f(arc)} 0 0 0 {_f(end[0])} '
+            f'{_f(-end[1])}" fill="none" stroke="#c0392b" stroke-width="0.5"/>'
+        )
+        parts.append(
+            f'<text x="{_f(s[0] - 9)}" y="{_f(-(s[1] + 10))}" font-size="4.5" fill="#c0392b">{angle:g}°</text>'
+        )
         # the midpoint M, or the gap g between the two starts, beside the edge
-        parts.append(f'<text x="{_f(mid[0] + 2)}" y="{_f(-mid[1] + 1.5)}" font-size="4" '
-                     f'fill="{"#c0392b" if gap else "#333"}">{"g" if gap else "M"}</text>')
-        parts.append(f'<text x="{_f(shift)}" y="{_f(r_out + 8)}" font-size="5" text-anchor="middle" '
-                     f'fill="#333">{title}</text>')
+        parts.append(
+            f'<text x="{_f(mid[0] + 2)}" y="{_f(-mid[1] + 1.5)}" font-size="4" '
+            f'fill="{"#c0392b" if gap else "#333"}">{"g" if gap else "M"}</text>'
+        )
+        parts.append(
+            f'<text x="{_f(shift)}" y="{_f(r_out + 8)}" font-size="5" text-anchor="middle" fill="#333">{title}</text>'
+        )
     body = "\n".join(parts)
-    return ('<svg xmlns="http://www.w3.org/2000/svg" width="672" height="372" viewBox="-112 -58 224 124" '
-            'font-family="sans-serif">\n<title>Hankin\'s construction on an octagon</title>\n'
-            f'<rect x="-112" y="-58" width="224" height="124" fill="#fff"/>\n{body}\n</svg>\n')
+    return (
+        '<svg xmlns="http://www.w3.org/2000/svg" width="672" height="372" viewBox="-112 -58 224 124" '
+        'font-family="sans-serif">\n<title>Hankin\'s construction on an octagon</title>\n'
+        f'<rect x="-112" y="-58" width="224" height="124" fill="#fff"/>\n{body}\n</svg>\n'
+    )
 
 
 def render(out: Path = OUT) -> list[Path]:
@@ -127,8 +137,7 @@ def render(out: Path = OUT) -> list[Path]:
 
 def table_markdown() -> str:
     """The docs' table of the pictures: a row per tiling, a column per angle."""
-    rows = ["| tiling | " + " | ".join(f"{a}°" for a in ANGLES) + " |",
-            "|---|" + "---|" * len(ANGLES)]
+    rows = ["| tiling | " + " | ".join(f"{a}°" for a in ANGLES) + " |", "|---|" + "---|" * len(ANGLES)]
     for tiling in TILINGS:
         cells = " | ".join(f"![{tiling} at {a} degrees](../samples/pictures/hankin/{tiling}-{a}.svg)" for a in ANGLES)
         rows.append(f"| {tiling} | {cells} |")

@@ -31,9 +31,9 @@ def relief_parts(tile):
     """The checked ``base`` and ``pattern`` parts of the interlaced relief, as trimesh meshes."""
     import trimesh
 
-    from fabtiles.solid.parts import checked_parts
     from fabtiles.geometry.interlace import tile_dips
     from fabtiles.geometry.stack import resolve_stack
+    from fabtiles.solid.parts import checked_parts
 
     stack = resolve_stack("fdm-0.4mm", "relief", relief_mm=RELIEF_MM)
     parts = checked_parts(tile.region(), tile.outline_shape(), stack, dips=tile_dips(tile))

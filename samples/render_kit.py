@@ -15,9 +15,9 @@ HERE = Path(__file__).parent
 
 def render(design_path, out_path) -> Path:
     from fabtiles.core.files import atomic_write
-    from fabtiles.making import inlay_kit_of, prepare_tile
     from fabtiles.designs.design_file import load_design
     from fabtiles.export.preview_svg import kit_svg
+    from fabtiles.making import inlay_kit_of, prepare_tile
 
     design = load_design(design_path)
     tile = prepare_tile(design)

@@ -41,9 +41,9 @@ def render(out_path) -> Path:
     import shapely
 
     from fabtiles.core.files import atomic_write
-    from fabtiles.making import made_region, prepare_tile
     from fabtiles.designs.design_file import design_from_text
     from fabtiles.export.preview_svg import _num, region_path_data
+    from fabtiles.making import made_region, prepare_tile
 
     design = design_from_text(DESIGN, name="router-rounding")
     tile = prepare_tile(design)
@@ -51,24 +51,30 @@ def render(out_path) -> Path:
     left = shapely.difference(made, region)  # what the bit leaves: rounded corners, holes it cannot enter
     w, h = tile.width_mm, tile.height_mm
     gap = w / 10
-    holes = shapely.multipolygons([shapely.Polygon(r) for p in getattr(region, "geoms", [region])
-                                   for r in p.interiors])
+    holes = shapely.multipolygons([shapely.Polygon(r) for p in getattr(region, "geoms", [region]) for r in p.interiors])
 
     def path(geom, **attrs):
         extra = " ".join(f'{k.replace("_", "-")}="{v}"' for k, v in attrs.items())
         return f'<path d="{region_path_data(geom, h)}" fill-rule="evenodd" {extra}/>'
 
     before = path(region, fill=DESIGN_FILL, stroke="none")
-    after = "".join([path(made, fill=WOOD, stroke="none"), path(left, fill=LEFT, stroke="none", **{"class": "left"}),
-                     path(holes, fill="none", stroke=HOLE_EDGE, stroke_width="0.3")])
+    after = "".join(
+        [
+            path(made, fill=WOOD, stroke="none"),
+            path(left, fill=LEFT, stroke="none", **{"class": "left"}),
+            path(holes, fill="none", stroke=HOLE_EDGE, stroke_width="0.3"),
+        ]
+    )
     total = 2 * w + gap
-    svg = ('<?xml version="1.0" encoding="UTF-8"?>\n'
-           f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(total)}mm" height="{_num(h)}mm" '
-           f'viewBox="0 0 {_num(total)} {_num(h)}">\n'
-           "<title>a 120 mm tile as designed (left) and as a 3.175 mm router bit cuts it (right): the part in wood, "
-           "what the bit cannot cut in orange, the design's holes outlined in blue</title>\n"
-           f'<rect width="100%" height="100%" fill="#ffffff"/>\n{before}\n'
-           f'<g transform="translate({_num(w + gap)} 0)">{after}</g>\n</svg>\n')
+    svg = (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(total)}mm" height="{_num(h)}mm" '
+        f'viewBox="0 0 {_num(total)} {_num(h)}">\n'
+        "<title>a 120 mm tile as designed (left) and as a 3.175 mm router bit cuts it (right): the part in wood, "
+        "what the bit cannot cut in orange, the design's holes outlined in blue</title>\n"
+        f'<rect width="100%" height="100%" fill="#ffffff"/>\n{before}\n'
+        f'<g transform="translate({_num(w + gap)} 0)">{after}</g>\n</svg>\n'
+    )
     return atomic_write(out_path, svg)
 
 

@@ -21,8 +21,10 @@ def main() -> None:
     from fabtiles.web.app import local_server
 
     with local_server() as url, sync_playwright() as pw:
-        browser = pw.chromium.launch(executable_path="/usr/bin/chromium", args=[
-            "--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"])
+        browser = pw.chromium.launch(
+            executable_path="/usr/bin/chromium",
+            args=["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
+        )
         page = browser.new_page(viewport={"width": 1500, "height": 1000}, device_scale_factor=1)
         page.goto(f"{url}/?{QUERY}")
         page.wait_for_function("() => document.querySelector('#view3d-canvas').dataset.version", timeout=120_000)
@@ -37,8 +39,12 @@ def main() -> None:
         page.wait_for_timeout(300)
         top = page.locator("#pictures").bounding_box()
         bottom = page.locator("#material").bounding_box()
-        clip = {"x": top["x"] - 4, "y": top["y"] - 4, "width": top["width"] + 8,
-                "height": bottom["y"] + bottom["height"] - top["y"] + 8}
+        clip = {
+            "x": top["x"] - 4,
+            "y": top["y"] - 4,
+            "width": top["width"] + 8,
+            "height": bottom["y"] + bottom["height"] - top["y"] + 8,
+        }
         OUT.parent.mkdir(exist_ok=True)
         page.screenshot(path=str(OUT), clip=clip)
         browser.close()

@@ -39,7 +39,9 @@ def main() -> None:
         page.wait_for_selector("#sheets figure.sheet svg", timeout=120_000)
         page.wait_for_timeout(300)
         OUT.parent.mkdir(exist_ok=True)
-        bottom = max(b["y"] + b["height"] for b in (page.locator(sel).bounding_box() for sel in ("#nest-form", "#view")))
+        bottom = max(
+            b["y"] + b["height"] for b in (page.locator(sel).bounding_box() for sel in ("#nest-form", "#view"))
+        )
         page.screenshot(path=str(OUT), clip={"x": 0, "y": 0, "width": 1300, "height": bottom + 16})
         browser.close()
     print(f"wrote {OUT}")

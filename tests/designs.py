@@ -30,9 +30,19 @@ def _table(name: str, keys: dict) -> list[str]:
     return [f"[{name}]"] + [f"{k} = {_value(v)}" for k, v in keys.items() if v is not None]
 
 
-def design_toml(*, preset: str = "table3-3", radius: float = 10, outline: str | None = "square", size=60,
-                frame: float | None = 3, stroke: float | None = 1.0, packing: dict | None = None,
-                tile: dict | None = None, output: dict | None = None, colour: dict | None = None) -> str:
+def design_toml(
+    *,
+    preset: str = "table3-3",
+    radius: float = 10,
+    outline: str | None = "square",
+    size=60,
+    frame: float | None = 3,
+    stroke: float | None = 1.0,
+    packing: dict | None = None,
+    tile: dict | None = None,
+    output: dict | None = None,
+    colour: dict | None = None,
+) -> str:
     """A design file's text: the preset motif in a hex packing of ``radius`` on a tile.
 
     ``None`` leaves a key out (the design's default); ``packing``, ``tile``, ``output`` and

@@ -47,16 +47,19 @@ NOT_RUN = {
     "fabtiles install-inkscape-extension": "installs into the user's Inkscape (tests/cli/test_inkscape_extension.py)",
     "dask scheduler": "serves a Dask scheduler until stopped",
     "dask worker": "serves a Dask worker until stopped",
-    "fabtiles batch designs/*.toml -o /shared/out --scheduler":
-        "needs a Dask cluster (tests/making/test_jobs_dask.py runs one)",
+    "fabtiles batch designs/*.toml -o /shared/out --scheduler": (
+        "needs a Dask cluster (tests/making/test_jobs_dask.py runs one)"
+    ),
     "HOME=$tmp meerk40t": "how tests/export/test_laser_programs.py runs MeerK40t on its own file",
 }
 
 PROSE_FROM_OUTPUT = ("first-cut.md", "first-print.md")
 """The pages whose prose quotes figures of their commands' outputs (each must be printed there)."""
 
-FIGURE = re.compile(r"about \d+ min|[\d.,]+ m of cut|[\d,]+ pierces|[\d.]+ g of filament"
-                    r"|[\d,]+ (?:small )?holes|\d+ x \d+ mm")
+FIGURE = re.compile(
+    r"about \d+ min|[\d.,]+ m of cut|[\d,]+ pierces|[\d.]+ g of filament"
+    r"|[\d,]+ (?:small )?holes|\d+ x \d+ mm"
+)
 """A figure quoted from a command's output: a job time, a length of cut, pierces, filament, a count
 of holes, a card's size."""
 
@@ -76,8 +79,8 @@ class Step:
     """One thing a reader does: commands (kind ``sh``) or a snippet (``python``, ``doctest``)."""
 
     kind: str
-    where: str                      # page:line
-    commands: list[tuple[str, int]] = field(default_factory=list)   # (command, exit status)
+    where: str  # page:line
+    commands: list[tuple[str, int]] = field(default_factory=list)  # (command, exit status)
     code: str = ""
     shown: list[str] | None = None  # the output the page shows, if it shows one
 
@@ -95,7 +98,7 @@ def steps(page: Path) -> list[Step]:
         if lang == "sh":
             step = Step("sh", where, commands=shell_lines(body))
             nxt = blocks[i + 1] if i + 1 < len(blocks) else None
-            if nxt and nxt[0] == "" and not text[end:nxt[2]].strip():
+            if nxt and nxt[0] == "" and not text[end : nxt[2]].strip():
                 step.shown = output_lines(nxt[1])
                 taken.add(i + 1)
             out.append(step)
@@ -160,8 +163,10 @@ def skipped(command: str) -> str | None:
 def mismatch(shown: list[str], printed: list[str]) -> str | None:
     """None when ``printed`` matches ``shown`` (``...`` lines and in-line ``...`` as wildcards),
     else the first shown line that does not match."""
-    patterns = [None if s.strip() == "..." else
-                re.compile(".*".join(re.escape(part) for part in s.split("...")) + r"\Z") for s in shown]
+    patterns = [
+        None if s.strip() == "..." else re.compile(".*".join(re.escape(part) for part in s.split("...")) + r"\Z")
+        for s in shown
+    ]
     best = [0]
 
     @_memo
@@ -185,6 +190,7 @@ def _memo(f):
         if args not in seen:
             seen[args] = f(*args)
         return seen[args]
+
     return g
 
 
@@ -194,8 +200,11 @@ def fresh_folder(tmp: Path) -> Path:
     shutil.copytree(ROOT / "samples", tmp / "samples")
     shims = tmp / ".shims"
     shims.mkdir()
-    for name, target in (("fabtiles", f'"{sys.executable}" -m fabtiles'), ("python", f'"{sys.executable}"'),
-                         ("python3", f'"{sys.executable}"')):
+    for name, target in (
+        ("fabtiles", f'"{sys.executable}" -m fabtiles'),
+        ("python", f'"{sys.executable}"'),
+        ("python3", f'"{sys.executable}"'),
+    ):
         (shims / name).write_text(f'#!/bin/sh\nexec {target} "$@"\n')
         (shims / name).chmod(0o755)
     return tmp
@@ -205,10 +214,24 @@ def run_command(command: str, folder: Path) -> subprocess.CompletedProcess:
     """``command`` run by bash in ``folder``, stdout and stderr together as a terminal shows them."""
     path = os.pathsep.join([str(folder / ".shims"), str(Path(sys.executable).parent), os.environ.get("PATH", "")])
     (folder / ".home").mkdir(exist_ok=True)  # the programs' settings (PrusaSlicer's) stay in the folder
-    env = {**os.environ, "PATH": path, "PYTHONPATH": str(ROOT), "PYTHONUNBUFFERED": "1", "COLUMNS": "100",
-           "HOME": str(folder / ".home")}
-    return subprocess.run(["bash", "-c", command], cwd=folder, env=env, stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True, timeout=600, check=False)
+    env = {
+        **os.environ,
+        "PATH": path,
+        "PYTHONPATH": str(ROOT),
+        "PYTHONUNBUFFERED": "1",
+        "COLUMNS": "100",
+        "HOME": str(folder / ".home"),
+    }
+    return subprocess.run(
+        ["bash", "-c", command],
+        cwd=folder,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        timeout=600,
+        check=False,
+    )
 
 
 def run_python(step: Step, namespace: dict) -> list[str]:
@@ -219,13 +242,17 @@ def run_python(step: Step, namespace: dict) -> list[str]:
         runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
         runner.run(test, out=report.write, clear_globs=False)
         return [report.getvalue()] if runner.failures else []
-    quoted = [q for line in step.code.splitlines() if line.lstrip().startswith("print(") and "#" in line
-              for q in re.findall(r'"([^"]+)"', line.split("#", 1)[1])]
+    quoted = [
+        q
+        for line in step.code.splitlines()
+        if line.lstrip().startswith("print(") and "#" in line
+        for q in re.findall(r'"([^"]+)"', line.split("#", 1)[1])
+    ]
     printed = io.StringIO()
     try:
         with contextlib.redirect_stdout(printed):
-            exec(compile(step.code, step.where, "exec"), namespace)  # noqa: S102 - the manual's own snippet
-    except Exception as error:  # noqa: BLE001 - the report names it
+            exec(compile(step.code, step.where, "exec"), namespace)
+    except Exception as error:
         return [f"{step.where}: the snippet raised {type(error).__name__}: {error}"]
     return [f"{step.where}: printed no {q!r}:\n{printed.getvalue()}" for q in quoted if q not in printed.getvalue()]
 
@@ -233,8 +260,8 @@ def run_python(step: Step, namespace: dict) -> list[str]:
 @dataclass
 class PageRun:
     problems: list[str]
-    printed: list[str]      # what each command printed, in order
-    not_run: list[str]      # the commands skipped by name
+    printed: list[str]  # what each command printed, in order
+    not_run: list[str]  # the commands skipped by name
 
 
 def run_page(page: Path, folder: Path) -> PageRun:
@@ -246,8 +273,10 @@ def run_page(page: Path, folder: Path) -> PageRun:
     try:
         for step in steps(page):
             if step.kind == "stray":
-                problems.append(f"{step.where}: a plain ``` block that is not a command's output "
-                                "(fence text as ```text, a transcript starts with '$ ')")
+                problems.append(
+                    f"{step.where}: a plain ``` block that is not a command's output "
+                    "(fence text as ```text, a transcript starts with '$ ')"
+                )
             elif step.kind in ("python", "doctest"):
                 problems += run_python(step, namespace)
             else:
@@ -263,26 +292,35 @@ def run_page(page: Path, folder: Path) -> PageRun:
                     out += done.stdout
                     printed.append(done.stdout)
                     if done.returncode != status:
-                        problems.append(f"{step.where}: `{command}` exited {done.returncode}, not {status}:\n"
-                                        f"{done.stdout[-3000:]}")
+                        problems.append(
+                            f"{step.where}: `{command}` exited {done.returncode}, not {status}:\n{done.stdout[-3000:]}"
+                        )
                 if step.shown is not None and not missing:
                     wrong = mismatch(step.shown, output_lines(out))
                     if wrong is not None:
-                        problems.append(f"{step.where}: the page shows a line that was not printed there: "
-                                        f"{wrong!r}\nprinted:\n{out}")
+                        problems.append(
+                            f"{step.where}: the page shows a line that was not printed there: "
+                            f"{wrong!r}\nprinted:\n{out}"
+                        )
     finally:
         os.chdir(here)
     if page.name in PROSE_FROM_OUTPUT:
         everything = "\n".join(printed)
-        problems += [f"{page.name}: the prose quotes {f!r}, which no command printed"
-                     for f in prose_figures(page) if f not in everything]
+        problems += [
+            f"{page.name}: the prose quotes {f!r}, which no command printed"
+            for f in prose_figures(page)
+            if f not in everything
+        ]
     return PageRun(problems, printed, not_run)
 
 
 TIME = re.compile(r"(?<![\w.])\d[\d,]*(?:\.\d+)?\s?(?:s|ms)\b")
 """A time in the prose: ``1.45 s``, ``104 ms``."""
-SETTING = re.compile(r"(at most|within|under|over|budget|target|limit|--time|time_s|up to|less than|more than|"
-                     r"below|above|[<>])\b[^.;]{0,20}$|^\W*(budget|limit)", re.IGNORECASE)
+SETTING = re.compile(
+    r"(at most|within|under|over|budget|target|limit|--time|time_s|up to|less than|more than|"
+    r"below|above|[<>])\b[^.;]{0,20}$|^\W*(budget|limit)",
+    re.IGNORECASE,
+)
 """Words that make a time a setting or a bound (``at most 10 s``, ``its 2 s budget``), not a measurement."""
 DATED = re.compile(r"\b20\d\d-\d\d-\d\d\b|results\.json")
 
@@ -292,8 +330,12 @@ def undated_timings(page: Path) -> list[str]:
     but neither the day it was measured nor `benchmarks/results.json` as its source."""
     text = BLOCK.sub("\n\n", page.read_text(encoding="utf-8"))
     # the tables benchmarks/run.py --readme writes from benchmarks/results.json
-    text = re.sub(r"<!-- benchmarks/run.py --readme: start -->.*?<!-- benchmarks/run.py --readme: end -->", "",
-                  text, flags=re.DOTALL)
+    text = re.sub(
+        r"<!-- benchmarks/run.py --readme: start -->.*?<!-- benchmarks/run.py --readme: end -->",
+        "",
+        text,
+        flags=re.DOTALL,
+    )
     units: list[str] = []
     for para in re.split(r"\n\s*\n", text):
         if para.lstrip().startswith("|") and units:
@@ -303,9 +345,12 @@ def undated_timings(page: Path) -> list[str]:
     found = []
     for unit in units:
         flat = " ".join(unit.split())
-        times = [m for m in TIME.finditer(flat)
-                 if not SETTING.search(flat[max(0, m.start() - 25):m.start()]) and not
-                 SETTING.search(flat[m.end():m.end() + 10])]
+        times = [
+            m
+            for m in TIME.finditer(flat)
+            if not SETTING.search(flat[max(0, m.start() - 25) : m.start()])
+            and not SETTING.search(flat[m.end() : m.end() + 10])
+        ]
         if times and not DATED.search(flat):
             found.append(f"{page.name}: {[m.group(0) for m in times]} in: {flat[:100]}...")
     return found
@@ -314,8 +359,11 @@ def undated_timings(page: Path) -> list[str]:
 def toml_blocks(page: Path) -> list[tuple[str, str]]:
     """The page's ```toml blocks: ``(page:line, text)``."""
     text = page.read_text(encoding="utf-8")
-    return [(f"{page.name}:{text[:m.start()].count(chr(10)) + 2}", m.group(2))
-            for m in BLOCK.finditer(text) if m.group(1) == "toml"]
+    return [
+        (f"{page.name}:{text[: m.start()].count(chr(10)) + 2}", m.group(2))
+        for m in BLOCK.finditer(text)
+        if m.group(1) == "toml"
+    ]
 
 
 def toml_problem(where: str, body: str) -> str | None:
@@ -327,8 +375,8 @@ def toml_problem(where: str, body: str) -> str | None:
     import tomli_w
     import tomllib
 
-    from fabtiles.machines import profiles as _profiles
     from fabtiles.designs.design_file import design_from_text
+    from fabtiles.machines import profiles as _profiles
 
     try:
         shown = tomllib.loads(body)
@@ -340,6 +388,6 @@ def toml_problem(where: str, body: str) -> str | None:
         else:
             design = tomllib.loads((ROOT / "samples" / "table3-3.toml").read_text(encoding="utf-8"))
             design_from_text(tomli_w.dumps(design | shown), name="shown")
-    except Exception as error:  # noqa: BLE001 - the report names it
+    except Exception as error:
         return f"{where}: {type(error).__name__}: {error}"
     return None

@@ -27,8 +27,18 @@ CUT_TYPES = ("LWPOLYLINE", "POLYLINE")
 
 # --- comparing whole files ------------------------------------------------------------------
 
-VOLATILE_HEADER = frozenset({"$TDCREATE", "$TDUCREATE", "$TDUPDATE", "$TDUUPDATE", "$TDINDWG", "$TDUSRTIMER",
-                             "$FINGERPRINTGUID", "$VERSIONGUID"})
+VOLATILE_HEADER = frozenset(
+    {
+        "$TDCREATE",
+        "$TDUCREATE",
+        "$TDUPDATE",
+        "$TDUUPDATE",
+        "$TDINDWG",
+        "$TDUSRTIMER",
+        "$FINGERPRINTGUID",
+        "$VERSIONGUID",
+    }
+)
 """Header variables that hold the time of writing or a fresh GUID: they differ between two runs
 unless the writer fixes them, so :func:`dxf_tags` leaves their values out."""
 
@@ -69,6 +79,7 @@ def assert_same_file(name: str, got: bytes, want: bytes) -> None:
 
 
 # --- reading DXF back ------------------------------------------------------------------------
+
 
 def read_checked(path, *, allow_fixes: bool = False):
     """``ezdxf.readfile`` + audit; asserts no audit errors (and no fixes unless allowed)."""
@@ -129,8 +140,13 @@ def dxf_entities(path, decimals: int = 4) -> list[tuple]:
     for e in doc.modelspace():
         pts = raw_vertices(e) if e.dxftype() in CUT_TYPES else np.empty((0, 2))
         rounded = tuple(tuple(float(round(c, decimals)) + 0.0 for c in p) for p in pts)
-        entity = (e.dxf.layer, e.dxftype(), is_closed(e) if e.dxftype() in CUT_TYPES else False,
-                  e.dxf.get("color", 256), rounded)
+        entity = (
+            e.dxf.layer,
+            e.dxftype(),
+            is_closed(e) if e.dxftype() in CUT_TYPES else False,
+            e.dxf.get("color", 256),
+            rounded,
+        )
         b = bulges(e) if e.dxftype() in CUT_TYPES else np.zeros(0)
         if b.any():  # arcs: the bulges too (a file without arcs compares as before)
             entity += (tuple(float(round(v, decimals)) + 0.0 for v in b),)
@@ -167,11 +183,11 @@ def assert_same_entity(got, want, k, decimals: int = 4) -> None:
     assert got[:4] == want[:4], f"entity {k}: {got[:4]} != golden {want[:4]}"
     assert len(got[4]) == len(want[4]), f"entity {k}: {len(got[4])} vertices, golden has {len(want[4])}"
     diff = np.abs(np.array(got[4]) - np.array(want[4])).max() if got[4] else 0.0
-    assert diff <= 2 * 10.0 ** -decimals, f"entity {k}: vertices differ by {diff}"
+    assert diff <= 2 * 10.0**-decimals, f"entity {k}: vertices differ by {diff}"
     assert len(got) == len(want), f"entity {k}: {'arcs' if len(got) > 5 else 'no arc'}, golden the other"
     if len(got) > 5:
         bdiff = np.abs(np.array(got[5]) - np.array(want[5])).max()
-        assert bdiff <= 2 * 10.0 ** -decimals, f"entity {k}: bulges differ by {bdiff}"
+        assert bdiff <= 2 * 10.0**-decimals, f"entity {k}: bulges differ by {bdiff}"
 
 
 def assert_golden(path, name: str, decimals: int = 4) -> None:
@@ -245,7 +261,7 @@ def hausdorff_distance(a, b, *, densify: float) -> float:
     point finds its nearest segment through an STRtree: GEOS measures every point against every
     segment, minutes for the tens of thousands of segments of a finely flattened tile.
     """
-    cuts = int(round(1 / densify))
+    cuts = round(1 / densify)
     steps = np.arange(cuts)[None, :, None] / cuts
     worst = 0.0
     for near, far in ((a, b), (b, a)):
@@ -257,8 +273,7 @@ def hausdorff_distance(a, b, *, densify: float) -> float:
             c = shapely.get_coordinates(line)
             segments.append(np.stack([c[:-1], c[1:]], axis=1))
         tree = shapely.STRtree(shapely.linestrings(np.concatenate(segments)))
-        _, dist = tree.query_nearest(shapely.points(np.concatenate(points)), return_distance=True,
-                                     all_matches=False)
+        _, dist = tree.query_nearest(shapely.points(np.concatenate(points)), return_distance=True, all_matches=False)
         worst = max(worst, float(dist.max()))
     return worst
 
@@ -279,8 +294,7 @@ def even_odd_area(polygons) -> float:
         return 0.0
     while len(geoms) > 1:
         pairs = len(geoms) // 2 * 2
-        geoms = np.concatenate([shapely.symmetric_difference(geoms[0:pairs:2], geoms[1:pairs:2]),
-                                geoms[pairs:]])
+        geoms = np.concatenate([shapely.symmetric_difference(geoms[0:pairs:2], geoms[1:pairs:2]), geoms[pairs:]])
     return float(geoms[0].area)
 
 
@@ -294,8 +308,8 @@ def check_laser_dxf(path, region, *, kerf, version="R2000", profile="laser-3mm-p
     """
     import pytest
 
-    from fabtiles.machines.profiles import load_profile
     from fabtiles.geometry.contours import MITRE_LIMIT
+    from fabtiles.machines.profiles import load_profile
 
     profile = load_profile(profile, kind="laser")
     doc = read_checked(path)
@@ -338,6 +352,7 @@ def edge_problems(pts: np.ndarray, closed: bool = True) -> tuple[int, int]:
 
 # --- test parts ------------------------------------------------------------------------------
 
+
 def star_polygon(cx, cy, r_out, r_in, n=8, rotation=0.0) -> Polygon:
     t = np.radians(rotation) + np.arange(2 * n) * math.pi / n
     r = np.where(np.arange(2 * n) % 2 == 0, r_out, r_in)
@@ -348,8 +363,11 @@ def star_plate(size=60.0, grid=3, r_out=7.0, r_in=3.5):
     """A square plate with a ``grid`` x ``grid`` array of 8-pointed star holes: (region, outline)."""
     outline = box(0, 0, size, size)
     step = size / grid
-    stars = [star_polygon(step * (i + 0.5), step * (j + 0.5), r_out, r_in, rotation=11.25 * (i + j))
-             for i in range(grid) for j in range(grid)]
+    stars = [
+        star_polygon(step * (i + 0.5), step * (j + 0.5), r_out, r_in, rotation=11.25 * (i + j))
+        for i in range(grid)
+        for j in range(grid)
+    ]
     return outline.difference(shapely.union_all(stars)), outline
 
 
@@ -387,6 +405,7 @@ def thin_bridge_region(width=0.4):
 
 
 # --- router and waterjet files --------------------------------------------------------------
+
 
 def opened_reference(region, r: float, quad_segs: int = 64):
     """The part as a tool of radius ``r`` makes it, computed here on its own: every hole
@@ -451,8 +470,10 @@ def check_router_dxf(path, region, profile, *, rel_area: float = 0.001):
     head = Path(path).read_text(encoding="cp1252")[:600]
     assert head.startswith("999\n") and "NO tool compensation: CAM offsets the tool" in head
     layers = profile.layers
-    assert {layer.dxf.name for layer in doc.layers} - {"0", "Defpoints"} == {layers.inner_cut.name,
-                                                                           layers.outer_cut.name}
+    assert {layer.dxf.name for layer in doc.layers} - {"0", "Defpoints"} == {
+        layers.inner_cut.name,
+        layers.outer_cut.name,
+    }
     seen_outer = False
     rings = []  # every entity is one of the two layers' rings: flattened once, for both checks
     for e in doc.modelspace():

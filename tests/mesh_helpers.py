@@ -45,9 +45,11 @@ def expected_volume(style, region, outline, b=B, h=H, t=T, d=D):
     b, h, t, d : float, optional
         Base, relief, pierced and deboss heights (mm).
     """
-    return {"relief": outline.area * b + region.area * h,
-            "pierced": region.area * t,
-            "deboss": outline.area * b - region.area * d}[style]
+    return {
+        "relief": outline.area * b + region.area * h,
+        "pierced": region.area * t,
+        "deboss": outline.area * b - region.area * d,
+    }[style]
 
 
 def top(style, b=B, h=H, t=T):
@@ -93,8 +95,9 @@ def manifold_of(m):
     """A trimesh body as a manifold3d Manifold (for boolean checks)."""
     import manifold3d as m3
 
-    return m3.Manifold(m3.Mesh(vert_properties=np.asarray(m.vertices, np.float32),
-                               tri_verts=np.asarray(m.faces, np.uint32)))
+    return m3.Manifold(
+        m3.Mesh(vert_properties=np.asarray(m.vertices, np.float32), tri_verts=np.asarray(m.faces, np.uint32))
+    )
 
 
 def assert_touch_without_overlap(base, pattern):
@@ -173,8 +176,10 @@ def load_3mf_parts(path):
 
     from fabtiles.export.threemf import read_3mf
 
-    return {name: trimesh.Trimesh(vertices=p.vertices.astype(np.float64), faces=p.faces, process=True)
-            for name, p in read_3mf(path).items()}
+    return {
+        name: trimesh.Trimesh(vertices=p.vertices.astype(np.float64), faces=p.faces, process=True)
+        for name, p in read_3mf(path).items()
+    }
 
 
 def section_region(mesh, z):
@@ -247,17 +252,21 @@ def assert_section(mesh, z, expected, *, area=SECTION_AREA_REL, width=SECTION_WI
     if wide.any():
         pieces = pieces[wide]
         k = int(np.argmax(widths(pieces)))
-        raise AssertionError(f"the section at z = {z} differs from the region by {widths(pieces)[k]:.4g} mm "
-                             f"around {pieces[k].representative_point().wkt}")
+        raise AssertionError(
+            f"the section at z = {z} differs from the region by {widths(pieces)[k]:.4g} mm "
+            f"around {pieces[k].representative_point().wkt}"
+        )
 
 
 def style_sections(style, region, outline, b=B, h=H, t=T, d=D):
     """``[(z, expected region), ...]``: the middle of each layer of a part of ``style`` and what its
     section there is (a relief's plate and raised pattern, a pierced tile, a deboss's plate under and
     between its grooves)."""
-    return {"relief": [(b / 2, outline), (b + h / 2, region)],
-            "pierced": [(t / 2, region)],
-            "deboss": [((b - d) / 2, outline), (b - d / 2, outline.difference(region))]}[style]
+    return {
+        "relief": [(b / 2, outline), (b + h / 2, region)],
+        "pierced": [(t / 2, region)],
+        "deboss": [((b - d) / 2, outline), (b - d / 2, outline.difference(region))],
+    }[style]
 
 
 def assert_style_sections(mesh, style, region, outline, b=B, h=H, t=T, d=D, **tolerances):

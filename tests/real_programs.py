@@ -40,8 +40,10 @@ def program(name: str, install: str) -> str:
 
 def system_python_module(module: str, install: str) -> str:
     """Debian's python3, once it imports ``module``."""
-    ok = os.path.exists(SYSTEM_PYTHON) and subprocess.run(
-        [SYSTEM_PYTHON, "-c", f"import {module}"], capture_output=True).returncode == 0
+    ok = (
+        os.path.exists(SYSTEM_PYTHON)
+        and subprocess.run([SYSTEM_PYTHON, "-c", f"import {module}"], capture_output=True).returncode == 0
+    )
     return require(SYSTEM_PYTHON if ok else None, f"{module} for {SYSTEM_PYTHON}", install)
 
 
@@ -53,9 +55,12 @@ def cura_definitions() -> Path:
     """
     candidates = [os.environ.get("FABTILES_CURA_DEFINITIONS"), "/usr/share/cura/resources/definitions"]
     found = next((Path(c) for c in candidates if c and (Path(c) / "fdmprinter.def.json").exists()), None)
-    return require(found, "Cura's fdmprinter.def.json",
-                   "apt-get download cura && dpkg-deb -x cura_*.deb DIR, then "
-                   "FABTILES_CURA_DEFINITIONS=DIR/usr/share/cura/resources/definitions")
+    return require(
+        found,
+        "Cura's fdmprinter.def.json",
+        "apt-get download cura && dpkg-deb -x cura_*.deb DIR, then "
+        "FABTILES_CURA_DEFINITIONS=DIR/usr/share/cura/resources/definitions",
+    )
 
 
 def run(cmd, *, timeout: float = 300, **kwargs) -> subprocess.CompletedProcess:

@@ -18,15 +18,22 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def uncollected(root: Path, env: dict | None = None) -> list[str]:
     """The test files and doctest modules under ``root`` of which ``pytest --collect-only`` collects nothing."""
-    proc = subprocess.run([sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider"],
-                          cwd=root, capture_output=True, text=True, timeout=600, env=env)
+    proc = subprocess.run(
+        [sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider"],
+        cwd=root,
+        capture_output=True,
+        text=True,
+        timeout=600,
+        env=env,
+    )
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     collected = {line.split("::", 1)[0] for line in proc.stdout.splitlines() if "::" in line}
     expected = {p.relative_to(root).as_posix() for p in (root / "tests").rglob("test_*.py")}
     package = root / "fabtiles"
     if package.is_dir():
-        expected |= {p.relative_to(root).as_posix() for p in package.rglob("*.py")
-                     if ">>>" in p.read_text(encoding="utf-8")}
+        expected |= {
+            p.relative_to(root).as_posix() for p in package.rglob("*.py") if ">>>" in p.read_text(encoding="utf-8")
+        }
     return sorted(expected - collected)
 
 
@@ -41,8 +48,9 @@ def test_a_folder_pytest_skips_is_found(tmp_path):
         (tmp_path / folder).mkdir(parents=True)
     (tmp_path / "fabtiles" / "__init__.py").write_text("")
     (tmp_path / "fabtiles" / "build" / "__init__.py").write_text("")
-    (tmp_path / "fabtiles" / "build" / "steps.py").write_text('def two():\n    """\n    >>> two()\n    2\n    """\n'
-                                                              '    return 2\n')
+    (tmp_path / "fabtiles" / "build" / "steps.py").write_text(
+        'def two():\n    """\n    >>> two()\n    2\n    """\n    return 2\n'
+    )
     (tmp_path / "fabtiles" / "seen.py").write_text('"""\n>>> 1 + 1\n2\n"""\n')
     for test in ("tests/build/test_hidden.py", "tests/geometry/test_seen.py"):
         (tmp_path / test).write_text("def test_one():\n    assert True\n")

@@ -10,9 +10,9 @@ import doc_pages
 import numpy as np
 import pytest
 
-from fabtiles.machines import profiles as _profiles
-from fabtiles.designs import design_file as design
 from fabtiles.cli.main import cli
+from fabtiles.designs import design_file as design
+from fabtiles.machines import profiles as _profiles
 
 ROOT = doc_pages.ROOT
 PAGES = doc_pages.PAGES
@@ -28,9 +28,15 @@ def documented(key: str, text: str) -> bool:
     return bool(re.search(rf"`{k}`|^\s*{k}\s*=|[{{,]\s*{k}\s*=|^\[{k}\]", text, re.M))
 
 
-@pytest.mark.parametrize("section,keys", [
-    ("motif", design.MOTIF_KEYS), ("packing", design.PACKING_KEYS), ("tile", design.TILE_KEYS),
-    ("output", design.OUTPUT_KEYS)])
+@pytest.mark.parametrize(
+    "section,keys",
+    [
+        ("motif", design.MOTIF_KEYS),
+        ("packing", design.PACKING_KEYS),
+        ("tile", design.TILE_KEYS),
+        ("output", design.OUTPUT_KEYS),
+    ],
+)
 def test_every_design_key_is_in_design_files_md(section, keys):
     text = text_of("design-files.md")
     assert f"[{section}]" in text
@@ -114,7 +120,7 @@ def test_design_files_md_example_names_every_output_key():
     from fabtiles.core import schema as _schema
 
     text = text_of("design-files.md")
-    example = text[text.index("[output]"):text.index("```", text.index("[output]"))]
+    example = text[text.index("[output]") : text.index("```", text.index("[output]"))]
     keys = [k.name for k in _schema.KEYS if k.section == "output"]
     assert keys and [k for k in keys if not re.search(rf"^{k} = ", example, re.M)] == []
 
@@ -125,13 +131,14 @@ def test_a_copy_of_a_profile_comes_with_the_command_that_makes_it():
     for page in PAGES:
         text = " ".join(page.read_text(encoding="utf-8").split())
         for m in re.finditer(r"copy of (the|a|your) profile", text, re.I):
-            if "fabtiles profile copy" not in text[m.start():m.end() + 200]:
-                missing.append(f"{page.name}: {text[m.start():m.end() + 60]}")
+            if "fabtiles profile copy" not in text[m.start() : m.end() + 200]:
+                missing.append(f"{page.name}: {text[m.start() : m.end() + 60]}")
     assert missing == []
     assert "fabtiles profile copy laser-3mm-plywood my-laser.toml" in text_of("profiles.md")
 
 
 # --- the docs run: every page's commands, shown outputs and snippets (tests/doc_pages.py) ---
+
 
 @pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(ROOT)))
 def test_the_page_runs_as_shown(page, tmp_path):
@@ -147,10 +154,17 @@ def test_every_command_not_run_is_named_and_still_in_the_docs():
     `doc_pages.NOT_RUN` lists by name, and each entry still names a command of the docs."""
     commands = [c for page in PAGES for step in doc_pages.steps(page) for c, _ in step.commands]
     assert [start for start in doc_pages.NOT_RUN if not any(c.startswith(start) for c in commands)] == []
-    snippets = [(page.name, block.strip().splitlines()[0]) for page in PAGES
-                for lang, block in doc_pages.BLOCK.findall(page.read_text(encoding="utf-8")) if lang == "python"]
-    assert [(name, start) for name, start in doc_pages.SNIPPETS_NOT_RUN
-            if not any(name == n and first.startswith(start) for n, first in snippets)] == []
+    snippets = [
+        (page.name, block.strip().splitlines()[0])
+        for page in PAGES
+        for lang, block in doc_pages.BLOCK.findall(page.read_text(encoding="utf-8"))
+        if lang == "python"
+    ]
+    assert [
+        (name, start)
+        for name, start in doc_pages.SNIPPETS_NOT_RUN
+        if not any(name == n and first.startswith(start) for n, first in snippets)
+    ] == []
 
 
 def test_the_readme_tour_quotes_figures_to_check():
@@ -227,15 +241,18 @@ def test_the_runner_finds_planted_mistakes(tmp_path):
     assert len(problems) == 7, text
 
 
-@pytest.mark.parametrize("shown,printed,ok", [
-    (["a", "b"], ["a", "b"], True),
-    (["a"], ["a", "b"], False),                 # output past the block
-    (["a", "...", "d"], ["a", "b", "c", "d"], True),
-    (["a", "...", "d"], ["a", "d"], True),      # ... stands for no line too
-    (["a ... c"], ["a b c"], True),
-    (["a ... c"], ["a b d"], False),
-    (["a", "c"], ["a", "b", "c"], False),       # abridged without saying so
-])
+@pytest.mark.parametrize(
+    "shown,printed,ok",
+    [
+        (["a", "b"], ["a", "b"], True),
+        (["a"], ["a", "b"], False),  # output past the block
+        (["a", "...", "d"], ["a", "b", "c", "d"], True),
+        (["a", "...", "d"], ["a", "d"], True),  # ... stands for no line too
+        (["a ... c"], ["a b c"], True),
+        (["a ... c"], ["a b d"], False),
+        (["a", "c"], ["a", "b", "c"], False),  # abridged without saying so
+    ],
+)
 def test_the_output_match(shown, printed, ok):
     assert (doc_pages.mismatch(shown, printed) is None) == ok
 
@@ -258,8 +275,11 @@ def prose_command_problems(name: str, text: str) -> list[str]:
             continue
         opts = {o for p in group.params for o in getattr(p, "opts", ()) + getattr(p, "secondary_opts", ())}
         opts |= {"--help"}
-        wrong += [f"{name}: `{command}`: no option {w.split('=')[0]!r}" for w in words
-                  if w.startswith("-") and w.split("=")[0] not in opts and w != "..."]
+        wrong += [
+            f"{name}: `{command}`: no option {w.split('=')[0]!r}"
+            for w in words
+            if w.startswith("-") and w.split("=")[0] not in opts and w != "..."
+        ]
     return wrong
 
 
@@ -272,7 +292,9 @@ def test_every_command_in_the_prose_names_a_command_and_its_options():
 def test_the_prose_check_finds_a_missing_option_and_command():
     text = "The preview (`fabtiles build --preview`), `fabtiles frob x`, `fabtiles build -o out`."
     assert prose_command_problems("p.md", text) == [
-        "p.md: `fabtiles build --preview`: no option '--preview'", "p.md: `fabtiles frob x`: no command 'frob'"]
+        "p.md: `fabtiles build --preview`: no option '--preview'",
+        "p.md: `fabtiles frob x`: no command 'frob'",
+    ]
 
 
 def test_the_readmes_speed_figures_are_the_benchmarks_or_say_when_they_were_measured():
@@ -281,12 +303,14 @@ def test_the_readmes_speed_figures_are_the_benchmarks_or_say_when_they_were_meas
     import json
 
     readme = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
-    brief = readme[readme.index("Speed in brief"):]
+    brief = readme[readme.index("Speed in brief") :]
     results = json.loads((ROOT / "benchmarks" / "results.json").read_text())
     sheet = next(s for s in results["scenarios"] if s["scenario"] == "sheet-600x400")
     ends = sheet["end_to_end"]
-    assert (f"sheet of {sheet['segments']:,} segments writes its DXF in {ends['dxf end to end']:.2f} s, "
-            f"its relief STL in {ends['stl end to end']:.2f} s (`benchmarks/results.json`)") in brief
+    assert (
+        f"sheet of {sheet['segments']:,} segments writes its DXF in {ends['dxf end to end']:.2f} s, "
+        f"its relief STL in {ends['stl end to end']:.2f} s (`benchmarks/results.json`)"
+    ) in brief
     for m in re.finditer(r"[^;]*\d s\b[^;]*", brief.split(". ")[0]):
         assert "results.json" in m.group(0) or re.search(r"measured .*\d{4}-\d\d-\d\d", m.group(0)), m.group(0)
 
@@ -314,7 +338,9 @@ def test_a_missing_program_skips_its_block_unless_programs_are_required(tmp_path
     page = tmp_path / "p.md"
     page.write_text("```sh\nprusa-slicer --info x.3mf\ngrep T x.gcode\n```\n\n```\nT0\n```\n", encoding="utf-8")
     which = doc_pages.shutil.which
-    monkeypatch.setattr(doc_pages.shutil, "which", lambda name, *a, **k: None if name == "prusa-slicer" else which(name))
+    monkeypatch.setattr(
+        doc_pages.shutil, "which", lambda name, *a, **k: None if name == "prusa-slicer" else which(name)
+    )
     monkeypatch.setattr(real_programs, "REQUIRED", False)
     (tmp_path / "a").mkdir()
     run = doc_pages.run_page(page, doc_pages.fresh_folder(tmp_path / "a"))
@@ -324,12 +350,15 @@ def test_a_missing_program_skips_its_block_unless_programs_are_required(tmp_path
     assert doc_pages.run_page(page, doc_pages.fresh_folder(tmp_path / "b")).problems != []
 
 
-@pytest.mark.parametrize("where,body", [b for page in PAGES for b in doc_pages.toml_blocks(page)], ids=lambda x: x if ":" in x else "")
+@pytest.mark.parametrize(
+    "where,body", [b for page in PAGES for b in doc_pages.toml_blocks(page)], ids=lambda x: x if ":" in x else ""
+)
 def test_every_toml_the_docs_show_loads(where, body):
     """A design's sections (over the sample's) or a profile, as the page shows them, load."""
     assert doc_pages.toml_problem(where, body) is None
 
 
 def test_the_toml_check_finds_a_wrong_key():
-    assert "4.8.8" in doc_pages.toml_problem("p.md:1", '[packing]\nkind = "archimedean"\ntiling = "4.8.8"\n'
-                                             'edge = 14\n[packing.motifs]\n12 = "table3-1"\n')
+    assert "4.8.8" in doc_pages.toml_problem(
+        "p.md:1", '[packing]\nkind = "archimedean"\ntiling = "4.8.8"\nedge = 14\n[packing.motifs]\n12 = "table3-1"\n'
+    )

@@ -27,15 +27,28 @@ def test_first_cut_gives_each_measured_key_and_each_step():
     text = (ROOT / "docs" / "first-cut.md").read_text(encoding="utf-8")
     for key in ("kerf_mm", "kerf_x_mm", "kerf_y_mm", "min_feature_mm", "min_hole_mm", "inlay_fit_mm"):
         assert f"`{key}`" in text, key
-    for step in ("fabtiles profile copy laser-3mm-plywood my-laser.toml",
-                 "fabtiles calibrate --profile my-laser.toml", "laser-programs.md", "inlay.md"):
+    for step in (
+        "fabtiles profile copy laser-3mm-plywood my-laser.toml",
+        "fabtiles calibrate --profile my-laser.toml",
+        "laser-programs.md",
+        "inlay.md",
+    ):
         assert step in text, step
 
 
 def test_first_print_names_each_style_and_slicer():
     text = (ROOT / "docs" / "first-print.md").read_text(encoding="utf-8")
-    for word in ("fabtiles profile copy fdm-0.4mm", "`relief`", "`pierced`", "`deboss`",
-                 "PrusaSlicer", "Bambu Studio", "OrcaSlicer", "Cura", "slicers.md"):
+    for word in (
+        "fabtiles profile copy fdm-0.4mm",
+        "`relief`",
+        "`pierced`",
+        "`deboss`",
+        "PrusaSlicer",
+        "Bambu Studio",
+        "OrcaSlicer",
+        "Cura",
+        "slicers.md",
+    ):
         assert word in text, word
 
 

@@ -14,8 +14,9 @@ PACKAGE = ROOT / "fabtiles"
 def test_import_contracts_are_kept():
     """core -> machines | pattern -> geometry -> solid -> export -> designs -> making -> front ends: none goes up."""
     lint = Path(sys.executable).with_name("lint-imports")
-    proc = subprocess.run([str(lint), str(ROOT / ".importlinter")], cwd=ROOT, capture_output=True, text=True,
-                          timeout=300)
+    proc = subprocess.run(
+        [str(lint), str(ROOT / ".importlinter")], cwd=ROOT, capture_output=True, text=True, timeout=300
+    )
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "Contracts: 4 kept, 0 broken." in proc.stdout
 
@@ -28,8 +29,14 @@ def lint_with(tmp_path, module: str, text: str) -> subprocess.CompletedProcess:
     shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__", "static", "*.toml"))
     (copy / module).write_text(text)
     lint = Path(sys.executable).with_name("lint-imports")
-    proc = subprocess.run([str(lint), str(ROOT / ".importlinter")], cwd=tmp_path, capture_output=True, text=True,
-                          timeout=300, env={"PYTHONPATH": str(tmp_path), "PATH": ""})
+    proc = subprocess.run(
+        [str(lint), str(ROOT / ".importlinter")],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={"PYTHONPATH": str(tmp_path), "PATH": ""},
+    )
     assert proc.returncode == 1, proc.stdout + proc.stderr
     return proc
 

@@ -31,10 +31,10 @@ def test_laser_options():
 
 
 def test_export_and_sheet_options():
-    from fabtiles.making import export_region
     from fabtiles.export.formats import format_of
     from fabtiles.geometry.sheet import layout_sheet
     from fabtiles.geometry.stack import resolve_stack
+    from fabtiles.making import export_region
 
     plate = box(0, 0, 40, 40)
     assert _param(lambda: format_of("t.png")) == "path"

@@ -19,8 +19,9 @@ import click
 from ..designs.design_file import FORMATS
 
 
-def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, explain=None,
-                   verbose: bool = False) -> list:
+def run_and_report(
+    jobs, *, workers, scheduler, label: str, keys, labels=None, explain=None, verbose: bool = False
+) -> list:
     """Run ``jobs`` with a progress bar on a terminal; print one line per outcome, in order.
 
     The line is the status, the key, the files (new or replaced) and each machine's findings by
@@ -33,8 +34,7 @@ def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, e
     from ..making.jobs import run_jobs
 
     outcomes = []
-    with click.progressbar(length=len(jobs), label=label, file=sys.stderr,
-                           hidden=not sys.stderr.isatty()) as bar:
+    with click.progressbar(length=len(jobs), label=label, file=sys.stderr, hidden=not sys.stderr.isatty()) as bar:
         for outcome in run_jobs(jobs, workers=workers, scheduler=scheduler):
             outcomes.append(outcome)
             bar.update(1)
@@ -55,19 +55,41 @@ def run_and_report(jobs, *, workers, scheduler, label: str, keys, labels=None, e
 
 
 @click.command("batch")
-@click.argument("design_files", metavar="DESIGN.toml...", nargs=-1, required=True,
-                type=click.Path(dir_okay=False))
-@click.option("-o", "--output", "outdir", required=True, type=click.Path(file_okay=False),
-              help="Folder to write OUTDIR/<design name>.<format> into.")
-@click.option("-j", "--jobs", type=click.IntRange(1, 64), default=None,
-              help="Parallel processes (default: the number of CPU cores).")
-@click.option("--scheduler", metavar="ADDRESS",
-              help="Run every design as a task on a Dask cluster (e.g. tcp://10.0.0.5:8786); "
-                   "needs the dask extra.")
-@click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
-              help="Override a value in every design, TOML syntax (repeatable).")
-@click.option("--format", "formats", multiple=True, type=click.Choice(FORMATS),
-              help="Output format (repeatable); default: each design's [output] formats.")
+@click.argument("design_files", metavar="DESIGN.toml...", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option(
+    "-o",
+    "--output",
+    "outdir",
+    required=True,
+    type=click.Path(file_okay=False),
+    help="Folder to write OUTDIR/<design name>.<format> into.",
+)
+@click.option(
+    "-j",
+    "--jobs",
+    type=click.IntRange(1, 64),
+    default=None,
+    help="Parallel processes (default: the number of CPU cores).",
+)
+@click.option(
+    "--scheduler",
+    metavar="ADDRESS",
+    help="Run every design as a task on a Dask cluster (e.g. tcp://10.0.0.5:8786); needs the dask extra.",
+)
+@click.option(
+    "--set",
+    "overrides",
+    multiple=True,
+    metavar="SECTION.KEY=VALUE",
+    help="Override a value in every design, TOML syntax (repeatable).",
+)
+@click.option(
+    "--format",
+    "formats",
+    multiple=True,
+    type=click.Choice(FORMATS),
+    help="Output format (repeatable); default: each design's [output] formats.",
+)
 @click.option("-v", "--verbose", is_flag=True, help="List each design's fabrication findings under its line.")
 def command(design_files, outdir, jobs, scheduler, overrides, formats, verbose):
     """Build many designs in parallel; a failing design is reported and skipped.
@@ -96,15 +118,25 @@ def command(design_files, outdir, jobs, scheduler, overrides, formats, verbose):
     if scheduler is not None and jobs is not None:
         raise click.UsageError("--jobs sets local processes; with --scheduler the cluster's workers build")
     design_files = list(dict.fromkeys(design_files))
-    work = [Job(f, functools.partial(load_design, f, overrides=tuple(overrides)), str(outdir), tuple(formats))
-            for f in design_files]
-    outcomes = run_and_report(work, workers=jobs or os.cpu_count() or 1, scheduler=scheduler,
-                              label="building", keys=design_files, verbose=verbose)
+    work = [
+        Job(f, functools.partial(load_design, f, overrides=tuple(overrides)), str(outdir), tuple(formats))
+        for f in design_files
+    ]
+    outcomes = run_and_report(
+        work,
+        workers=jobs or os.cpu_count() or 1,
+        scheduler=scheduler,
+        label="building",
+        keys=design_files,
+        verbose=verbose,
+    )
     failed = [o for o in outcomes if not o.ok]
     part = [o for o in outcomes if o.ok and o.refused]
-    click.echo(f"{len(outcomes) - len(failed) - len(part)} of {len(outcomes)} designs built"
-               + (f", {len(part)} in part (formats refused)" if part else "")
-               + (f", {len(failed)} failed" if failed else ""))
+    click.echo(
+        f"{len(outcomes) - len(failed) - len(part)} of {len(outcomes)} designs built"
+        + (f", {len(part)} in part (formats refused)" if part else "")
+        + (f", {len(failed)} failed" if failed else "")
+    )
     if failed:
         sys.exit(2)
     if part:

@@ -42,18 +42,38 @@ def single_file_target(output, formats):
         if _file_suffix(output):
             raise ParameterError(
                 f"-o {output}: fabtiles does not write .{fmt} files; name the file with a format's suffix "
-                f"({', '.join('.' + f for f in FORMATS)}) or give a folder", param="output")
+                f"({', '.join('.' + f for f in FORMATS)}) or give a folder",
+                param="output",
+            )
         return None
     others = [f for f in dict.fromkeys(formats) if f != fmt]
     if others:
         raise click.UsageError(
             f"-o {output} writes one .{fmt} file, but --format asks for {', '.join(dict.fromkeys(formats))}; "
-            f"drop --format, or give an output folder for several formats")
+            f"drop --format, or give an output folder for several formats"
+        )
     return path, fmt
 
 
-OTHER_FILE_SUFFIXES = ("gcode", "nc", "ngc", "tap", "dwg", "stp", "iges", "igs", "obj", "glb", "gltf", "lbrn",
-                       "plt", "hpgl", "ai", "cdr", "f3d")
+OTHER_FILE_SUFFIXES = (
+    "gcode",
+    "nc",
+    "ngc",
+    "tap",
+    "dwg",
+    "stp",
+    "iges",
+    "igs",
+    "obj",
+    "glb",
+    "gltf",
+    "lbrn",
+    "plt",
+    "hpgl",
+    "ai",
+    "cdr",
+    "f3d",
+)
 """Suffixes of machine and CAD files :mod:`mimetypes` does not know: ``-o tile.gcode`` is a mistake, not a folder."""
 
 
@@ -77,22 +97,50 @@ def _file_suffix(output) -> bool:
 
 @click.command("build")
 @click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", "outdir", required=True, type=click.Path(),
-              help="Folder to write OUTDIR/<design name>.<format> into; or one file, named with "
-                   "its format's suffix (tile.dxf, tile.STL, ...), to write just that file; a file of "
-                   "another type (tile.png) is an error.")
-@click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
-              help="Override a design value, in TOML syntax: --set tile.size=[200,200] (repeatable).")
-@click.option("--format", "formats", multiple=True, type=click.Choice(FORMATS),
-              help="Output format (repeatable); default: the design's [output] formats.")
-@click.option("--sheet", is_flag=True,
-              help="Lay as many copies of the tile as fit on the laser profile's bed and write "
-                   "OUTDIR/<design name>-sheet.dxf/.svg instead of the tile's laser files. "
-                   "Print formats are skipped.")
-@click.option("--copies", type=int, metavar="N",
-              help="Lay exactly N copies on the sheet (implies --sheet); more than fit is an error.")
-@click.option("--gap", "gap_mm", type=float, metavar="MM",
-              help="Space between tiles on the sheet, mm (> kerf; implies --sheet); default: kerf + 2.")
+@click.option(
+    "-o",
+    "--output",
+    "outdir",
+    required=True,
+    type=click.Path(),
+    help="Folder to write OUTDIR/<design name>.<format> into; or one file, named with "
+    "its format's suffix (tile.dxf, tile.STL, ...), to write just that file; a file of "
+    "another type (tile.png) is an error.",
+)
+@click.option(
+    "--set",
+    "overrides",
+    multiple=True,
+    metavar="SECTION.KEY=VALUE",
+    help="Override a design value, in TOML syntax: --set tile.size=[200,200] (repeatable).",
+)
+@click.option(
+    "--format",
+    "formats",
+    multiple=True,
+    type=click.Choice(FORMATS),
+    help="Output format (repeatable); default: the design's [output] formats.",
+)
+@click.option(
+    "--sheet",
+    is_flag=True,
+    help="Lay as many copies of the tile as fit on the laser profile's bed and write "
+    "OUTDIR/<design name>-sheet.dxf/.svg instead of the tile's laser files. "
+    "Print formats are skipped.",
+)
+@click.option(
+    "--copies",
+    type=int,
+    metavar="N",
+    help="Lay exactly N copies on the sheet (implies --sheet); more than fit is an error.",
+)
+@click.option(
+    "--gap",
+    "gap_mm",
+    type=float,
+    metavar="MM",
+    help="Space between tiles on the sheet, mm (> kerf; implies --sheet); default: kerf + 2.",
+)
 def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
     """Build a design file into laser/print/CAD files.
 
@@ -131,8 +179,9 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
     file_name = None
     if target is not None:
         outdir, formats, file_name = target[0].parent, (target[1],), target[0].name
-    result = build_design(design, outdir, formats or None, sheet=sheet, copies=copies, gap_mm=gap_mm,
-                          file_name=file_name)
+    result = build_design(
+        design, outdir, formats or None, sheet=sheet, copies=copies, gap_mm=gap_mm, file_name=file_name
+    )
     # what this build changed from the file, and what the file says that the tile does not show
     for line in override_notes(design_file, overrides) + design_notes(design):
         click.echo(f"fabtiles: note: {line}", err=True)
@@ -144,18 +193,22 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
         click.echo(report.summary(label))
     skipped = result.skipped
     if skipped:
-        click.echo(f"fabtiles: note: skipped {', '.join(skipped)}: a sheet is laid out for the laser "
-                   f"formats (dxf, svg) only", err=True)
+        click.echo(
+            f"fabtiles: note: skipped {', '.join(skipped)}: a sheet is laid out for the laser formats (dxf, svg) only",
+            err=True,
+        )
     refused = {r.path for r in result.refused}
     earlier = [p for p in result.earlier if p not in refused]
     if earlier:
         one = len(earlier) == 1
         it = "it" if one else "them"
         others = " ".join(f"--format {f}" for f in dict.fromkeys(Path(p).suffix[1:] for p in earlier))
-        click.echo(f"fabtiles: note: {', '.join(earlier)} {'is' if one else 'are'} from an earlier build and "
-                   f"{'was' if one else 'were'} not rewritten (this build wrote "
-                   f"{', '.join(r.format for r in result.reports)}); add {others} to rebuild {it}, or delete {it}",
-                   err=True)
+        click.echo(
+            f"fabtiles: note: {', '.join(earlier)} {'is' if one else 'are'} from an earlier build and "
+            f"{'was' if one else 'were'} not rewritten (this build wrote "
+            f"{', '.join(r.format for r in result.reports)}); add {others} to rebuild {it}, or delete {it}",
+            err=True,
+        )
     report_refused(result.refused, result.earlier)
 
 

@@ -11,8 +11,12 @@ import click
 
 
 @click.command("calibrate")
-@click.option("--profile", "profile", required=True,
-              help="A bundled laser profile name (e.g. laser-3mm-plywood) or the path of a profile file.")
+@click.option(
+    "--profile",
+    "profile",
+    required=True,
+    help="A bundled laser profile name (e.g. laser-3mm-plywood) or the path of a profile file.",
+)
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="card.dxf or card.svg")
 @click.option("--dxf-version", default=None, help="DXF version (default: the profile's), e.g. R12.")
 def command(profile, output, dxf_version):
@@ -25,5 +29,7 @@ def command(profile, output, dxf_version):
 
     report = write_card(output, profile, dxf_version=dxf_version)
     w, h = report.stats["size_mm"]
-    click.echo(f"wrote {output}: test card {w:.0f} x {h:.0f} mm for laser profile {report.stats['profile']} "
-               f"(kerf {report.stats['kerf_mm']:g} mm), {report.stats['features']} labelled features")
+    click.echo(
+        f"wrote {output}: test card {w:.0f} x {h:.0f} mm for laser profile {report.stats['profile']} "
+        f"(kerf {report.stats['kerf_mm']:g} mm), {report.stats['features']} labelled features"
+    )

@@ -47,13 +47,25 @@ def finding_line(where: str, finding) -> str:
 
 @click.command("check")
 @click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", type=click.Path(dir_okay=False),
-              help="Write an SVG picture of the tile with a mark at every finding.")
-@click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
-              help="Override a design value, in TOML syntax: --set output.fill_small_holes=false (repeatable).")
-@click.option("--deep", is_flag=True,
-              help="Also write the print files (the design's, else STL, 3MF and STEP) to a temporary folder and "
-                   "read each back: STEP by OCCT, STL and 3MF by trimesh (slower: the STEP's B-rep is built).")
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False),
+    help="Write an SVG picture of the tile with a mark at every finding.",
+)
+@click.option(
+    "--set",
+    "overrides",
+    multiple=True,
+    metavar="SECTION.KEY=VALUE",
+    help="Override a design value, in TOML syntax: --set output.fill_small_holes=false (repeatable).",
+)
+@click.option(
+    "--deep",
+    is_flag=True,
+    help="Also write the print files (the design's, else STL, 3MF and STEP) to a temporary folder and "
+    "read each back: STEP by OCCT, STL and 3MF by trimesh (slower: the STEP's B-rep is built).",
+)
 def command(design_file, output, overrides, deep):
     """Run the laser and print checks of a design; write no fabrication file.
 
@@ -66,8 +78,8 @@ def command(design_file, output, overrides, deep):
     """
     import fabtiles
 
-    from ..making.checks import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE, check_design
     from ..designs.design_file import load_design
+    from ..making.checks import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE, check_design
 
     if output is not None and Path(output).suffix.lower() != ".svg":
         raise ParameterError(f"the overlay (-o) must be an .svg file, got {output!r}")
@@ -120,8 +132,12 @@ def command(design_file, output, overrides, deep):
         from ..core.files import atomic_write
         from ..making.views import tile_picture
 
-        atomic_write(output, tile_picture(tile, design, title=f"{design.name}: fabrication findings",
-                                          findings=findings, made=result.made))
+        atomic_write(
+            output,
+            tile_picture(
+                tile, design, title=f"{design.name}: fabrication findings", findings=findings, made=result.made
+            ),
+        )
         click.echo(f"wrote {output}")
     if deep:
         from ..making.deep import read_back

@@ -37,8 +37,12 @@ def install(dest, python: str = sys.executable) -> list:
 
 
 @click.command("install-inkscape-extension")
-@click.option("--dest", type=click.Path(file_okay=False), default=None,
-              help="The folder to install into (default: ~/.config/inkscape/extensions).")
+@click.option(
+    "--dest",
+    type=click.Path(file_okay=False),
+    default=None,
+    help="The folder to install into (default: ~/.config/inkscape/extensions).",
+)
 def command(dest):
     """Install Extensions > Render > fabtiles into Inkscape (restart Inkscape to see it).
 

@@ -32,8 +32,9 @@ class _Group(click.Group):
                 try:
                     return super().invoke(ctx)
                 finally:  # a renamed key still read: one note each, saying the new name
-                    for message in dict.fromkeys(str(w.message) for w in caught
-                                                 if issubclass(w.category, FabtilesDeprecationWarning)):
+                    for message in dict.fromkeys(
+                        str(w.message) for w in caught if issubclass(w.category, FabtilesDeprecationWarning)
+                    ):
                         click.echo(f"fabtiles: note: {message}", err=True)
                     for w in caught:  # anything else is shown as it would have been
                         if not issubclass(w.category, FabtilesDeprecationWarning):
@@ -87,8 +88,7 @@ def presets():
     for name, p in PRESETS.items():
         radii = ",".join(f"{r:g}" for r in p["radii"])
         special = p["special"] if p["special"] is not None else "-"
-        line = (f"{name:<13} n={p['n']:<3} radii={radii:<16} alpha={p['alpha']:<3g} "
-                f"spr={p['spr']:<5g} special={special}")
+        line = f"{name:<13} n={p['n']:<3} radii={radii:<16} alpha={p['alpha']:<3g} spr={p['spr']:<5g} special={special}"
         note = PRESET_NOTES[name]
         click.echo(line + (f"   ({note})" if note else ""))
     from ..pattern.tilings import NAMES, TILINGS, unit_cell
@@ -101,10 +101,8 @@ def presets():
 
 @cli.command()
 @motif_options
-@click.option("--size", "size_mm", type=float, default=100.0, show_default=True,
-              help="Width of the picture in mm.")
-@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False),
-              help="SVG file to write.")
+@click.option("--size", "size_mm", type=float, default=100.0, show_default=True, help="Width of the picture in mm.")
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="SVG file to write.")
 def star(preset, n, radii, alpha, spr, special, rotation, size_mm, output):
     """Draw one star or rosette as an SVG preview.
 
@@ -116,8 +114,9 @@ def star(preset, n, radii, alpha, spr, special, rotation, size_mm, output):
     from ..export.motif_svg import write_motif_svg
     from ..pattern.star import Star
 
-    given = {k: v for k, v in dict(n=n, alpha=alpha, spr=spr, special=special,
-                                    rotation=rotation).items() if v is not None}
+    given = {
+        k: v for k, v in dict(n=n, alpha=alpha, spr=spr, special=special, rotation=rotation).items() if v is not None
+    }
     if radii is not None:
         given["radii"] = _float_list(radii)
     if preset is not None:
@@ -137,8 +136,19 @@ def _register_optional_commands():
     """Commands defined in their own modules (imported lazily by click when run)."""
     import importlib
 
-    for module in ("new", "build", "nest", "batch", "sweep", "serve", "check", "calibrate", "profile", "plot",
-                   "inkscape"):
+    for module in (
+        "new",
+        "build",
+        "nest",
+        "batch",
+        "sweep",
+        "serve",
+        "check",
+        "calibrate",
+        "profile",
+        "plot",
+        "inkscape",
+    ):
         try:
             mod = importlib.import_module(f"{__package__}.{module}")
         except ModuleNotFoundError as exc:
@@ -153,7 +163,7 @@ def _register_optional_commands():
 _register_optional_commands()
 
 
-def _exit_on_sigterm(signum, frame):  # noqa: ARG001
+def _exit_on_sigterm(signum, frame):
     # Raise instead of dying, so every `finally` runs: temporary files and staging
     # folders are removed and no partial output is left behind.
     raise SystemExit(128 + signum)

@@ -44,26 +44,61 @@ def parse_sheet(text: str) -> tuple[float, float]:
     try:
         return float(m["w"]), float(m["h"])  # type: ignore[index]  # no match: None[...] is the TypeError below
     except (TypeError, ValueError):
-        raise click.BadParameter(f"expected WIDTHxHEIGHT in mm like 600x400, got {text!r}",
-                                 param_hint="--sheet") from None
+        raise click.BadParameter(
+            f"expected WIDTHxHEIGHT in mm like 600x400, got {text!r}", param_hint="--sheet"
+        ) from None
 
 
 @click.command("nest")
 @click.argument("design_files", metavar="DESIGN.toml[:N] ...", nargs=-1, required=True)
-@click.option("-o", "--output", "outdir", required=True, type=click.Path(file_okay=False),
-              help="Folder to write OUTDIR/<name>-sheet-<k>.<format> into.")
-@click.option("--count", type=int, metavar="N",
-              help="Copies of each design not given as DESIGN.toml:N (>= 1); default 1.")
-@click.option("--sheet", "sheet", metavar="WxH",
-              help="The sheet in mm, e.g. 600x400; default: the cutter profile's bed (no larger).")
-@click.option("--gap", "gap_mm", type=float, metavar="MM",
-              help="Least distance between two parts' cut paths, mm (>= the kerf); default: kerf + 1.")
-@click.option("--rotate", "rotations", type=click.Choice(tuple(ROTATIONS)), default="90", show_default=True,
-              help="Turns a part may take: 90 (quarter turns), 180 (wood grain), free (any angle), none.")
-@click.option("--time", "time_s", type=float, default=DEFAULT_TIME_S, show_default=True, metavar="SECONDS",
-              help="The packer's time budget (> 0); at least a second per sheet.")
-@click.option("--format", "formats", multiple=True, type=click.Choice(("dxf", "svg", "lbrn2")),
-              help="Cutter format (repeatable); default: dxf.")
+@click.option(
+    "-o",
+    "--output",
+    "outdir",
+    required=True,
+    type=click.Path(file_okay=False),
+    help="Folder to write OUTDIR/<name>-sheet-<k>.<format> into.",
+)
+@click.option(
+    "--count", type=int, metavar="N", help="Copies of each design not given as DESIGN.toml:N (>= 1); default 1."
+)
+@click.option(
+    "--sheet",
+    "sheet",
+    metavar="WxH",
+    help="The sheet in mm, e.g. 600x400; default: the cutter profile's bed (no larger).",
+)
+@click.option(
+    "--gap",
+    "gap_mm",
+    type=float,
+    metavar="MM",
+    help="Least distance between two parts' cut paths, mm (>= the kerf); default: kerf + 1.",
+)
+@click.option(
+    "--rotate",
+    "rotations",
+    type=click.Choice(tuple(ROTATIONS)),
+    default="90",
+    show_default=True,
+    help="Turns a part may take: 90 (quarter turns), 180 (wood grain), free (any angle), none.",
+)
+@click.option(
+    "--time",
+    "time_s",
+    type=float,
+    default=DEFAULT_TIME_S,
+    show_default=True,
+    metavar="SECONDS",
+    help="The packer's time budget (> 0); at least a second per sheet.",
+)
+@click.option(
+    "--format",
+    "formats",
+    multiple=True,
+    type=click.Choice(("dxf", "svg", "lbrn2")),
+    help="Cutter format (repeatable); default: dxf.",
+)
 @click.option("--name", help="The files' stem; default: the design's name, or nest when there are several.")
 def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, formats, name):
     """Nest tiles of one or more designs onto sheets: as few sheets as the packer finds.
@@ -82,8 +117,8 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
     fabtiles nest samples/rosette.toml --count 12 -o out/
     fabtiles nest a.toml:10 b.toml:5 -o out/ --sheet 600x400 --rotate 180 --format svg
     """
-    from ..making.nesting import nest_designs
     from ..designs.design_file import load_design
+    from ..making.nesting import nest_designs
 
     designs = [(load_design(path), n) for path, n in map(split_count, design_files)]
     size = parse_sheet(sheet) if sheet is not None else None
@@ -95,8 +130,9 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
         if not sys.stderr.isatty():
             return
         if state["bar"] is None:
-            state["bar"] = click.progressbar(length=1000, label="nesting", file=sys.stderr,
-                                             show_eta=False, show_percent=True).__enter__()
+            state["bar"] = click.progressbar(
+                length=1000, label="nesting", file=sys.stderr, show_eta=False, show_percent=True
+            ).__enter__()
         # the budget's fraction spent, and all of it once every part is placed
         done = 1000 if p.placed == p.parts else min(999, int(1000 * p.elapsed_s / p.budget_s))
         if done > state["done"]:
@@ -104,8 +140,18 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
             state["done"] = done
 
     try:
-        result = nest_designs(designs, outdir, formats or ("dxf",), count=count, sheet_mm=size, gap_mm=gap_mm,
-                              rotations=rotations, time_s=time_s, name=name, progress=progress)
+        result = nest_designs(
+            designs,
+            outdir,
+            formats or ("dxf",),
+            count=count,
+            sheet_mm=size,
+            gap_mm=gap_mm,
+            rotations=rotations,
+            time_s=time_s,
+            name=name,
+            progress=progress,
+        )
     finally:
         if state["bar"] is not None:
             state["bar"].__exit__(None, None, None)
@@ -114,12 +160,16 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
     n = result.nesting
     w, h = n.sheet_mm
     parts = len(n.placements)
-    click.echo(f"{parts} part{'s' if parts != 1 else ''} on {n.sheets} sheet{'s' if n.sheets != 1 else ''} of "
-               f"{w:g} x {h:g} mm, gap {n.gap_mm:g} mm, rotate {n.rotations}")
+    click.echo(
+        f"{parts} part{'s' if parts != 1 else ''} on {n.sheets} sheet{'s' if n.sheets != 1 else ''} of "
+        f"{w:g} x {h:g} mm, gap {n.gap_mm:g} mm, rotate {n.rotations}"
+    )
     for s in result.sheets:
         parts = ", ".join(f"{k} x{v}" for k, v in s["designs"].items())
-        click.echo(f"sheet {s['sheet']}: {s['parts']} parts ({parts}), material use {s['material_use']:.0%}, "
-                   f"{s['job']['line']}")
+        click.echo(
+            f"sheet {s['sheet']}: {s['parts']} parts ({parts}), material use {s['material_use']:.0%}, "
+            f"{s['job']['line']}"
+        )
     for label, report in result.build.models:
         if report.findings:
             click.echo(report.summary(label))

@@ -14,7 +14,7 @@ import click
 
 from ..core.errors import ParameterError
 
-STARTER = '''\
+STARTER = """\
 # {name}: a fabtiles design, a star pattern for a laser (or router) and a 3D printer.
 # Build it:  fabtiles build {file} -o out/
 # Check it:  fabtiles check {file}
@@ -52,7 +52,7 @@ fill_small_holes = true              # holes too small for the machine are left 
 # palette = "iznik"      # zellige, iznik, mamluk, alhambra, haft-rangi
 # [colour.faces]
 # A = "cobalt"           # a palette's or CSS colour name, #rrggbb, "band" or "base"
-'''
+"""
 """The starter design; ``{name}`` and ``{file}`` are the new file's stem and name."""
 
 
@@ -74,8 +74,7 @@ def command(path, force):
     if target.suffix.lower() != ".toml":
         raise ParameterError(f"the design must be a .toml file, got {path!r}", param="path")
     if target.is_dir():
-        raise ParameterError(f"{path!r} is a folder; give the design's file name, like {path}/tile.toml",
-                             param="path")
+        raise ParameterError(f"{path!r} is a folder; give the design's file name, like {path}/tile.toml", param="path")
     if not target.parent.is_dir():
         raise ParameterError(f"the folder {str(target.parent)!r} of {path!r} does not exist", param="path")
     if target.exists() and not force:

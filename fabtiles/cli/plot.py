@@ -18,13 +18,30 @@ PLOT_SUFFIXES = (".svg", ".hpgl")
 
 @click.command("plot")
 @click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False),
-              help="The file to write: .svg, or .hpgl (needs vpype: pip install 'fabtiles[vpype]').")
-@click.option("--what", type=click.Choice(WHATS), default="centrelines", show_default=True,
-              help="centrelines: the strands as single strokes, for a pen; cut: the cutter's contours.")
-@click.option("--pen", "pen_mm", type=float, default=None, help="The pen's width in mm, the strokes' width (default 0.3).")
-@click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
-              help="Override a design key for this run (repeatable), as in `fabtiles build`.")
+@click.option(
+    "-o",
+    "--output",
+    required=True,
+    type=click.Path(dir_okay=False),
+    help="The file to write: .svg, or .hpgl (needs vpype: pip install 'fabtiles[vpype]').",
+)
+@click.option(
+    "--what",
+    type=click.Choice(WHATS),
+    default="centrelines",
+    show_default=True,
+    help="centrelines: the strands as single strokes, for a pen; cut: the cutter's contours.",
+)
+@click.option(
+    "--pen", "pen_mm", type=float, default=None, help="The pen's width in mm, the strokes' width (default 0.3)."
+)
+@click.option(
+    "--set",
+    "overrides",
+    multiple=True,
+    metavar="SECTION.KEY=VALUE",
+    help="Override a design key for this run (repeatable), as in `fabtiles build`.",
+)
 def command(design_file, output, what, pen_mm, overrides):
     """Write a design for a pen plotter: merged single strokes, ordered for the least pen-up travel.
 
@@ -36,18 +53,23 @@ def command(design_file, output, what, pen_mm, overrides):
     """
     from ..core.errors import ParameterError
     from ..core.files import atomic_write
-    from ..making.plot import plot_drawing
     from ..designs.design_file import load_design
     from ..export import plot_svg
+    from ..making.plot import plot_drawing
 
     suffix = Path(output).suffix.lower()
     if suffix not in PLOT_SUFFIXES:
-        raise ParameterError(f"the plot's output (-o) must end in {' or '.join(PLOT_SUFFIXES)}, got {output!r}",
-                             param="output")
+        raise ParameterError(
+            f"the plot's output (-o) must end in {' or '.join(PLOT_SUFFIXES)}, got {output!r}", param="output"
+        )
     if suffix == ".hpgl":
         plot_svg.need_vpype("HPGL")  # before any geometry
     drawing = plot_drawing(load_design(design_file, overrides=overrides), what=what, pen_mm=pen_mm)
     data = plot_svg.svg_bytes(drawing) if suffix == ".svg" else plot_svg.hpgl_bytes(drawing)
     atomic_write(output, data)
-    layers = ", ".join(f"{layer.name} {len(layer.paths):,} stroke{'' if len(layer.paths) == 1 else 's'}" for layer in drawing.layers)
-    click.echo(f"{output}: {layers}; pen down {drawing.length_mm / 1000:.3g} m, pen up {drawing.travel_mm / 1000:.3g} m")
+    layers = ", ".join(
+        f"{layer.name} {len(layer.paths):,} stroke{'' if len(layer.paths) == 1 else 's'}" for layer in drawing.layers
+    )
+    click.echo(
+        f"{output}: {layers}; pen down {drawing.length_mm / 1000:.3g} m, pen up {drawing.travel_mm / 1000:.3g} m"
+    )

@@ -45,8 +45,9 @@ def list_profiles():
         click.echo(f"{kind}:")
         for p in of_kind:
             click.echo(f"  {p.name:<{width}}  {p.description}".rstrip())
-    click.echo("\nfabtiles profile show NAME prints one; fabtiles profile copy NAME my-NAME.toml makes your own "
-               "copy to edit.")
+    click.echo(
+        "\nfabtiles profile show NAME prints one; fabtiles profile copy NAME my-NAME.toml makes your own copy to edit."
+    )
 
 
 @command.command("show")
@@ -75,19 +76,23 @@ def copy(name, path, force):
     fabtiles profile copy laser-3mm-plywood my-laser.toml
     fabtiles profile copy fdm-0.4mm my-printer.toml --force
     """
-    from ..machines.cutters import family
     from ..core.files import atomic_write
+    from ..machines.cutters import family
     from ..machines.profiles import load_profile, profile_text
 
     target = Path(path)
     if target.suffix.lower() != ".toml":
-        raise ProfileError(f"the copy must be a .toml file (a name without it is taken for a bundled profile), "
-                           f"got {path!r}; try {str(target.with_suffix('.toml'))!r}")
+        raise ProfileError(
+            f"the copy must be a .toml file (a name without it is taken for a bundled profile), "
+            f"got {path!r}; try {str(target.with_suffix('.toml'))!r}"
+        )
     if target.exists() and not force:
         raise ProfileError(f"{path} exists; pass --force to overwrite it, or give another PATH")
     text, profile = profile_text(name)
-    head = (f"# A copy of profile {profile.name!r} (fabtiles profile copy): write your machine's and material's\n"
-            f"# values into it, and pass it by path.\n")
+    head = (
+        f"# A copy of profile {profile.name!r} (fabtiles profile copy): write your machine's and material's\n"
+        f"# values into it, and pass it by path.\n"
+    )
     try:
         atomic_write(target, head + text)
     except OSError as exc:
@@ -95,7 +100,11 @@ def copy(name, path, force):
     load_profile(target)  # the copy loads as the original did
     key = KEY_OF_FAMILY[family(profile.kind)]
     use = [f'{key} = "{target.as_posix()}" in a design\'s [output]', f"--set output.{key}={target.as_posix()}"]
-    if key == "laser_profile" and isinstance(profile, CutterProfile) and profile.cutter.card:  # the test card is a laser's
+    if (
+        key == "laser_profile" and isinstance(profile, CutterProfile) and profile.cutter.card
+    ):  # the test card is a laser's
         use.append(f"fabtiles calibrate --profile {target.as_posix()}")
-    click.echo(f"wrote {path}: a copy of {profile.kind} profile {profile.name}; edit its values, then use it by "
-               f"path: {', or '.join(use)}")
+    click.echo(
+        f"wrote {path}: a copy of {profile.kind} profile {profile.name}; edit its values, then use it by "
+        f"path: {', or '.join(use)}"
+    )

@@ -6,14 +6,17 @@ from pathlib import Path
 
 import click
 
-
 EXTRA_COMMANDS = ("install_viewer",)
 """Commands of this module besides `command`."""
 
 
 @click.command("serve")
-@click.option("--host", default="127.0.0.1", show_default=True,
-              help="Address to bind. Keep 127.0.0.1 unless other machines must reach it.")
+@click.option(
+    "--host",
+    default="127.0.0.1",
+    show_default=True,
+    help="Address to bind. Keep 127.0.0.1 unless other machines must reach it.",
+)
 @click.option("--port", default=8765, show_default=True, type=click.IntRange(1, 65535), help="TCP port.")
 def command(host, port):
     """Serve the web app: change the parameters, watch the tile, download files.
@@ -23,17 +26,19 @@ def command(host, port):
     try:
         from ..web.app import serve
     except ModuleNotFoundError as exc:  # fastapi/uvicorn are the "web" extra
-        raise click.ClickException(
-            f"the web app needs {exc.name}: pip install 'fabtiles[web]'"
-        ) from None
+        raise click.ClickException(f"the web app needs {exc.name}: pip install 'fabtiles[web]'") from None
     shown = f"[{host}]" if ":" in host else host
     click.echo(f"fabtiles web app at http://{shown}:{port}/  (Ctrl+C stops it)")
     serve(host=host, port=port)
 
 
 @click.command("install-viewer")
-@click.option("--tarball", type=click.Path(exists=True, dir_okay=False, path_type=Path), default=None,
-              help="The npm tarball of three (`npm pack three@VERSION`), for a machine without the internet.")
+@click.option(
+    "--tarball",
+    type=click.Path(exists=True, dir_okay=False, path_type=Path),
+    default=None,
+    help="The npm tarball of three (`npm pack three@VERSION`), for a machine without the internet.",
+)
 def install_viewer(tarball):
     """Install three.js, the web app's 3D view, into the package (once; then the app works offline).
 
@@ -47,5 +52,7 @@ def install_viewer(tarball):
         return
     written = viewer_files.install(tarball.read_bytes() if tarball else None)
     size = sum(p.stat().st_size for p in written)
-    click.echo(f"installed three.js {viewer_files.VERSION} ({len(written)} files, {size / 1e6:.1f} MB) "
-               f"in {viewer_files.VENDOR}")
+    click.echo(
+        f"installed three.js {viewer_files.VERSION} ({len(written)} files, {size / 1e6:.1f} MB) "
+        f"in {viewer_files.VENDOR}"
+    )

@@ -16,22 +16,55 @@ from ..designs.design_file import FORMATS
 
 @click.command("sweep")
 @click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
-@click.option("--vary", "varies", multiple=True, metavar="KEY=SPEC",
-              help="A design key and its values: a:b:n (n values from a to b) or x,y,z (repeatable; "
-                   "the sweep builds every combination).")
-@click.option("-o", "--output", "outdir", required=True, type=click.Path(file_okay=False),
-              help="Folder for the variants' files, index.html and index.csv.")
-@click.option("--format", "formats", multiple=True, type=click.Choice(FORMATS),
-              help="Output format (repeatable); default: the design's [output] formats.")
-@click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
-              help="Override a value in every variant, TOML syntax (repeatable).")
-@click.option("-j", "--jobs", type=click.IntRange(1, 64), default=None,
-              help="Parallel processes (default: the number of CPU cores).")
-@click.option("--scheduler", metavar="ADDRESS",
-              help="Run every variant as a task on a Dask cluster (e.g. tcp://10.0.0.5:8786); needs the dask extra.")
+@click.option(
+    "--vary",
+    "varies",
+    multiple=True,
+    metavar="KEY=SPEC",
+    help="A design key and its values: a:b:n (n values from a to b) or x,y,z (repeatable; "
+    "the sweep builds every combination).",
+)
+@click.option(
+    "-o",
+    "--output",
+    "outdir",
+    required=True,
+    type=click.Path(file_okay=False),
+    help="Folder for the variants' files, index.html and index.csv.",
+)
+@click.option(
+    "--format",
+    "formats",
+    multiple=True,
+    type=click.Choice(FORMATS),
+    help="Output format (repeatable); default: the design's [output] formats.",
+)
+@click.option(
+    "--set",
+    "overrides",
+    multiple=True,
+    metavar="SECTION.KEY=VALUE",
+    help="Override a value in every variant, TOML syntax (repeatable).",
+)
+@click.option(
+    "-j",
+    "--jobs",
+    type=click.IntRange(1, 64),
+    default=None,
+    help="Parallel processes (default: the number of CPU cores).",
+)
+@click.option(
+    "--scheduler",
+    metavar="ADDRESS",
+    help="Run every variant as a task on a Dask cluster (e.g. tcp://10.0.0.5:8786); needs the dask extra.",
+)
 @click.option("--yes", is_flag=True, help="Build more than 10,000 variants.")
-@click.option("-v", "--verbose", is_flag=True,
-              help="List each variant's fabrication findings under its line (index.html and index.csv hold them).")
+@click.option(
+    "-v",
+    "--verbose",
+    is_flag=True,
+    help="List each variant's fabrication findings under its line (index.html and index.csv hold them).",
+)
 def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, yes, verbose):
     """Build every combination of the varied values; a failing variant is reported and skipped.
 
@@ -58,15 +91,25 @@ def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, ye
     todo = variants(parsed, design.name, yes=yes)
     work = make_jobs(design_file, todo, outdir, formats, overrides)
     by_name = {v.name: v for v in todo}
-    outcomes = run_and_report(work, workers=jobs or os.cpu_count() or 1, scheduler=scheduler,
-                              label="sweeping", keys=[v.name for v in todo], labels={v.name: v.label() for v in todo},
-                              explain=lambda o: explain(o, by_name[o.key]), verbose=verbose)
+    outcomes = run_and_report(
+        work,
+        workers=jobs or os.cpu_count() or 1,
+        scheduler=scheduler,
+        label="sweeping",
+        keys=[v.name for v in todo],
+        labels={v.name: v.label() for v in todo},
+        explain=lambda o: explain(o, by_name[o.key]),
+        verbose=verbose,
+    )
     csv_path, html_path = write_index(outdir, parsed, todo, outcomes)
     failed = [o for o in outcomes if not o.ok]
     part = [o for o in outcomes if o.ok and o.refused]
-    click.echo(f"{len(outcomes) - len(failed) - len(part)} of {len(outcomes)} variants built"
-               + (f", {len(part)} in part (formats refused)" if part else "")
-               + (f", {len(failed)} failed" if failed else "") + f"; contact sheet {html_path}, table {csv_path}")
+    click.echo(
+        f"{len(outcomes) - len(failed) - len(part)} of {len(outcomes)} variants built"
+        + (f", {len(part)} in part (formats refused)" if part else "")
+        + (f", {len(failed)} failed" if failed else "")
+        + f"; contact sheet {html_path}, table {csv_path}"
+    )
     if failed:
         sys.exit(2)
     if part:

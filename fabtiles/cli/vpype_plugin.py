@@ -33,10 +33,20 @@ def _global_processor(f):
 
 @click.command("fabtiles")
 @click.argument("design", type=str)
-@click.option("--what", type=click.Choice(WHATS), default="centrelines", show_default=True,
-              help="centrelines: the strands as single strokes, for a pen; cut: the cutter's contours.")
-@click.option("--set", "overrides", multiple=True, metavar="SECTION.KEY=VALUE",
-              help="Override a design key, as in `fabtiles build --set` (repeatable).")
+@click.option(
+    "--what",
+    type=click.Choice(WHATS),
+    default="centrelines",
+    show_default=True,
+    help="centrelines: the strands as single strokes, for a pen; cut: the cutter's contours.",
+)
+@click.option(
+    "--set",
+    "overrides",
+    multiple=True,
+    metavar="SECTION.KEY=VALUE",
+    help="Override a design key, as in `fabtiles build --set` (repeatable).",
+)
 @click.option("--pen", "pen_mm", type=float, default=None, help="The pen's width in mm (default 0.3).")
 @_global_processor
 def fabtiles_command(document, design, what, overrides, pen_mm):
@@ -47,9 +57,9 @@ def fabtiles_command(document, design, what, overrides, pen_mm):
 def add_design(document, design, *, what="centrelines", overrides=(), pen_mm=None):
     """``document`` with the design's drawing added, a layer per pen; fabtiles' errors as click's."""
     from ..core.errors import FabtilesError
-    from ..making.plot import plot_drawing
     from ..designs.design_file import load_design
     from ..export.plot_svg import vpype_document
+    from ..making.plot import plot_drawing
 
     try:
         drawing = plot_drawing(load_design(design, overrides=list(overrides)), what=what, pen_mm=pen_mm)

@@ -83,12 +83,31 @@ class Report:
     stats: dict = field(default_factory=dict)
     findings: list[Finding] = field(default_factory=list)
 
-    def add(self, code: str, message: str, *, count: int = 1, locations=(), sizes=(), worst=None,
-            unit: str = "mm", limit=None) -> None:
+    def add(
+        self,
+        code: str,
+        message: str,
+        *,
+        count: int = 1,
+        locations=(),
+        sizes=(),
+        worst=None,
+        unit: str = "mm",
+        limit=None,
+    ) -> None:
         """Record a finding (see :class:`Finding`)."""
-        self.findings.append(Finding(code, message, count, tuple((float(p[0]), float(p[1])) for p in locations),
-                                     tuple(map(float, sizes)), None if worst is None else float(worst), unit,
-                                     None if limit is None else float(limit)))
+        self.findings.append(
+            Finding(
+                code,
+                message,
+                count,
+                tuple((float(p[0]), float(p[1])) for p in locations),
+                tuple(map(float, sizes)),
+                None if worst is None else float(worst),
+                unit,
+                None if limit is None else float(limit),
+            )
+        )
 
     def note(self, line: str) -> None:
         """Add a line to the summary (``stats["notes"]``): what the export did, such as holes it filled."""
@@ -122,8 +141,11 @@ class Report:
           laser job: 1.2 m of cut, 3 pierces, about 2 min
         """
         n = len(self.findings)
-        head = (label if label is not None else f"{self.path} ({self.format})") + ": " + (
-            "ok" if n == 0 else f"{n} warning{'s' if n > 1 else ''}")
+        head = (
+            (label if label is not None else f"{self.path} ({self.format})")
+            + ": "
+            + ("ok" if n == 0 else f"{n} warning{'s' if n > 1 else ''}")
+        )
         cutter = self.stats.get("cutter", "laser")  # a router's or a waterjet's job
         job = [f"  {cutter} job: {self.stats['job']['line']}"] if "job" in self.stats else []
         notes = [f"  {n}" for n in self.stats.get("notes", [])]

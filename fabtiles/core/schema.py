@@ -31,16 +31,29 @@ from __future__ import annotations
 import math
 import numbers
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 from .errors import ParameterError, did_you_mean
 
 SECTIONS = ("motif", "packing", "tile", "output", "colour")
 """The design's sections, in the order of a design file."""
 
-TYPES = ("string", "integer", "number", "numbers", "boolean", "choice", "size", "motif", "motifs", "formats",
-         "colour", "colours")
+TYPES = (
+    "string",
+    "integer",
+    "number",
+    "numbers",
+    "boolean",
+    "choice",
+    "size",
+    "motif",
+    "motifs",
+    "formats",
+    "colour",
+    "colours",
+)
 """A key's value type. ``numbers`` is a list of numbers, ``size`` a number or a [width, height]
 pair, ``motif`` a motif table or a preset name, ``motifs`` a table of motifs keyed by polygon sides,
 ``formats`` a list of output formats, ``colour`` a ``#rrggbb``, palette or CSS colour name, ``colours`` a table of
@@ -73,8 +86,7 @@ class Range:
             if end is not None and (isinstance(end, bool) or not isinstance(end, numbers.Real) or math.isnan(end)):
                 raise ParameterError(f"a Range's ends must be numbers or None, got {end!r}", param="range")
         if self.min is not None and self.max is not None and self.min > self.max:
-            raise ParameterError(f"a Range's min must be <= its max, got {self.min!r} > {self.max!r}",
-                                 param="range")
+            raise ParameterError(f"a Range's min must be <= its max, got {self.min!r} > {self.max!r}", param="range")
 
     def __contains__(self, value) -> bool:
         if isinstance(value, bool) or not isinstance(value, numbers.Real) or math.isnan(value):
@@ -134,15 +146,23 @@ class Widget:
 
     def __post_init__(self):
         if self.kind not in WIDGETS:
-            raise ParameterError(f"a widget's kind must be one of: {', '.join(WIDGETS)}, got {self.kind!r}",
-                                 param="kind")
+            raise ParameterError(
+                f"a widget's kind must be one of: {', '.join(WIDGETS)}, got {self.kind!r}", param="kind"
+            )
         if self.kind == "slider" and (self.min is None or self.max is None or self.step is None):
             raise ParameterError("a slider needs min, max and step", param="kind")
         for pair in self.when:
-            if not (isinstance(pair, tuple) and len(pair) == 2 and isinstance(pair[0], str)
-                    and isinstance(pair[1], tuple) and pair[1] and all(isinstance(v, str) for v in pair[1])):
-                raise ParameterError(f"a widget's when must hold (parameter, (value, ...)) pairs, got {pair!r}",
-                                     param="when")
+            if not (
+                isinstance(pair, tuple)
+                and len(pair) == 2
+                and isinstance(pair[0], str)
+                and isinstance(pair[1], tuple)
+                and pair[1]
+                and all(isinstance(v, str) for v in pair[1])
+            ):
+                raise ParameterError(
+                    f"a widget's when must hold (parameter, (value, ...)) pairs, got {pair!r}", param="when"
+                )
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -157,8 +177,10 @@ class BuildOption:
     def __post_init__(self):
         bad = [f for f in self.families if f not in FAMILIES]
         if bad or not self.families:
-            raise ParameterError(f"a build option's families must be some of: {', '.join(FAMILIES)}, "
-                                 f"got {self.families!r}", param="families")
+            raise ParameterError(
+                f"a build option's families must be some of: {', '.join(FAMILIES)}, got {self.families!r}",
+                param="families",
+            )
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -194,11 +216,11 @@ class Key:
 
     def __post_init__(self):
         if self.section not in SECTIONS:
-            raise ParameterError(f"a key's section must be one of: {', '.join(SECTIONS)}, got {self.section!r}",
-                                 param="section")
+            raise ParameterError(
+                f"a key's section must be one of: {', '.join(SECTIONS)}, got {self.section!r}", param="section"
+            )
         if self.type not in TYPES:
-            raise ParameterError(f"a key's type must be one of: {', '.join(TYPES)}, got {self.type!r}",
-                                 param="type")
+            raise ParameterError(f"a key's type must be one of: {', '.join(TYPES)}, got {self.type!r}", param="type")
         if self.query == "":
             object.__setattr__(self, "query", self.name)
 
@@ -212,8 +234,9 @@ class Key:
         if not isinstance(self.choices, str):
             return tuple(self.choices or ())
         if self.path not in _CHOICES:
-            raise LookupError(f"the values of {self.path} are registered by the {self.choices} layer, "
-                              f"which is not imported")
+            raise LookupError(
+                f"the values of {self.path} are registered by the {self.choices} layer, which is not imported"
+            )
         return _CHOICES[self.path]
 
     @property
@@ -238,8 +261,17 @@ class Key:
             return f"one of: {', '.join(self.choice_values())}"
         return self.note or f"a {self.type}"
 
-    def check(self, value, *, name: str | None = None, prefix: str = "", error=ParameterError,
-              param: str | None = None, required: bool = False, note: bool = True):
+    def check(
+        self,
+        value,
+        *,
+        name: str | None = None,
+        prefix: str = "",
+        error=ParameterError,
+        param: str | None = None,
+        required: bool = False,
+        note: bool = True,
+    ):
         """``value`` checked for its type (and its range, unless ``checked_by``), numbers as floats.
 
         The error (``error``, a :class:`~fabtiles.FabtilesError`) says
@@ -270,20 +302,27 @@ class Key:
             ok = isinstance(value, str) if self.checked_by else isinstance(value, (str, int, float))
             if ok and self.checked_by is None and value not in self.choice_values():
                 hint = did_you_mean(value, self.choice_values())
-                raise error(f"{prefix}{name} = {value!r} is not valid{f' ({hint})' if hint else ''}, must be one of: "
-                            f"{', '.join(self.choice_values())}", param=param)
+                raise error(
+                    f"{prefix}{name} = {value!r} is not valid{f' ({hint})' if hint else ''}, must be one of: "
+                    f"{', '.join(self.choice_values())}",
+                    param=param,
+                )
         elif self.type == "colour":
             if self.type not in _TYPE_CHECKS:
-                raise LookupError(f"the {self.type} values of {self.path} are checked by a layer that "
-                                  f"registers the check, and none is imported")
+                raise LookupError(
+                    f"the {self.type} values of {self.path} are checked by a layer that "
+                    f"registers the check, and none is imported"
+                )
             try:
                 _TYPE_CHECKS[self.type](value, param=name)
             except ParameterError as exc:
                 raise error(f"{prefix}{exc}", param=param) from None
             return value
         else:
-            raise ParameterError(f"{self.path} is a {self.type}: its value is checked where it is read, "
-                                 f"not by Key.check", param=self.path)
+            raise ParameterError(
+                f"{self.path} is a {self.type}: its value is checked where it is read, not by Key.check",
+                param=self.path,
+            )
         if not ok:
             raise error(f"{prefix}{name} must be {self.describe(note=note)}, got {value!r}", param=param)
         return float(value) if self.type == "number" else value
@@ -305,27 +344,69 @@ def _motif_keys(section: str) -> tuple[Key, ...]:
     star = "pattern"
     angle: dict[str, Any] = dict(type="number", unit="degrees", checked_by=star)
     return (
-        Key(section=section, name="preset", type="string", help="a preset name (`fabtiles presets` lists them; see construction.md)",
-            choices="pattern", widget=Widget(kind="select", label="Preset")),
-        Key(section=section, name="n", type="integer", range=Range(3, 120), help="points on each circle",
-            checked_by=star, widget=Widget(kind="slider", label="n (points)", min=3, max=48, step=1,
-                                           group="motif-sliders")),
-        Key(section=section, name="radii", type="numbers", range=Range(0, None, min_open=True),
-            note="2 to 24 numbers > 0", help="the circles' radii", checked_by=star,
+        Key(
+            section=section,
+            name="preset",
+            type="string",
+            help="a preset name (`fabtiles presets` lists them; see construction.md)",
+            choices="pattern",
+            widget=Widget(kind="select", label="Preset"),
+        ),
+        Key(
+            section=section,
+            name="n",
+            type="integer",
+            range=Range(3, 120),
+            help="points on each circle",
+            checked_by=star,
+            widget=Widget(kind="slider", label="n (points)", min=3, max=48, step=1, group="motif-sliders"),
+        ),
+        Key(
+            section=section,
+            name="radii",
+            type="numbers",
+            range=Range(0, None, min_open=True),
+            note="2 to 24 numbers > 0",
+            help="the circles' radii",
+            checked_by=star,
             # only the radii's ratios count (the motif is scaled to its circle): the gallery's tilings give
             # 0.5 and 1, the presets up to 226, so the travel holds both
-            widget=Widget(kind="slider", label="r", min=0.05, max=400, step=0.05, group="radii-sliders")),
-        Key(section=section, name="alpha", help="offset of the special points", **angle,
-            widget=Widget(kind="slider", label="alpha (deg)", min=-90, max=90, step=0.5, group="motif-sliders")),
-        Key(section=section, name="spr", type="number", help="the special points lie at `r(special) - spr`",
-            checked_by=star, widget=Widget(kind="slider", label="spr", min=-300, max=300, step=1,
-                                           group="motif-sliders")),
-        Key(section=section, name="special", type="integer", range=Range(2, None), note="2..S",
-            default_text="none (a star)", help="the special circle, 1-based (omit for a plain star)",
-            checked_by=star, widget=Widget(kind="select", label="Special circle")),
-        Key(section=section, name="rotation", help="added to every angle", default=0.0, **angle,
-            widget=Widget(kind="slider", label="rotation (deg)", min=-180, max=180, step=0.5,
-                          group="motif-sliders")),
+            widget=Widget(kind="slider", label="r", min=0.05, max=400, step=0.05, group="radii-sliders"),
+        ),
+        Key(
+            section=section,
+            name="alpha",
+            help="offset of the special points",
+            **angle,
+            widget=Widget(kind="slider", label="alpha (deg)", min=-90, max=90, step=0.5, group="motif-sliders"),
+        ),
+        Key(
+            section=section,
+            name="spr",
+            type="number",
+            help="the special points lie at `r(special) - spr`",
+            checked_by=star,
+            widget=Widget(kind="slider", label="spr", min=-300, max=300, step=1, group="motif-sliders"),
+        ),
+        Key(
+            section=section,
+            name="special",
+            type="integer",
+            range=Range(2, None),
+            note="2..S",
+            default_text="none (a star)",
+            help="the special circle, 1-based (omit for a plain star)",
+            checked_by=star,
+            widget=Widget(kind="select", label="Special circle"),
+        ),
+        Key(
+            section=section,
+            name="rotation",
+            help="added to every angle",
+            default=0.0,
+            **angle,
+            widget=Widget(kind="slider", label="rotation (deg)", min=-180, max=180, step=0.5, group="motif-sliders"),
+        ),
     )
 
 
@@ -336,7 +417,7 @@ _ARCH = 'kind = "archimedean"'
 _HANKIN = 'method = "hankin"'
 _HANKIN_WHEN = (("packing", ("archimedean",)), ("method", ("hankin",)))
 _INLAY_WHEN = (("laser_mode", ("inlay",)),)
-_INLAY = '{} = "{}"'.format(_INLAY_WHEN[0][0], _INLAY_WHEN[0][1][0])  # the manual's words for the same
+_INLAY = f'{_INLAY_WHEN[0][0]} = "{_INLAY_WHEN[0][1][0]}"'  # the manual's words for the same
 _HEX_SQUARE = (("packing", ("hex", "square")),)
 _PACKING = "pattern"
 _HEIGHT_RANGE = Range(0, 1000, min_open=True)
@@ -345,218 +426,561 @@ _PRINT = ("print",)
 
 def _height(name: str, label: str, what: str, styles: tuple[str, ...]) -> Key:
     """A print height, shown on the form for the print ``styles`` that have it."""
-    return Key(section="output", name=name, type="number", unit="mm", range=_HEIGHT_RANGE,
-               default_text="the profile's", help=f"print height: {what}, overriding the printer profile's",
-               widget=Widget(kind="number", label=label, min=0, step=0.1, placeholder="profile",
-                             when=(("print_style", styles),)),
-               option=BuildOption(name=name, families=_PRINT))
+    return Key(
+        section="output",
+        name=name,
+        type="number",
+        unit="mm",
+        range=_HEIGHT_RANGE,
+        default_text="the profile's",
+        help=f"print height: {what}, overriding the printer profile's",
+        widget=Widget(
+            kind="number", label=label, min=0, step=0.1, placeholder="profile", when=(("print_style", styles),)
+        ),
+        option=BuildOption(name=name, families=_PRINT),
+    )
 
 
 KEYS: tuple[Key, ...] = MOTIF + (
     # [packing]
-    Key(section="packing", name="kind", type="choice", default="hex", query="packing",
-        choices=("hex", "square", "archimedean"), help="`hex`, `square` or `archimedean`",
-        widget=Widget(kind="select", label="Kind", labels=(("hex", "hexagonal (tangent circles)"),
-                                                           ("archimedean", "Archimedean tiling (incircles)")),
-                      extra=(("none", "none: one motif"),))),
-    Key(section="packing", name="radius", type="number", unit="mm", range=Range(0, None, min_open=True),
-        default=12.5, help="radius of the big circles (hex, square)", checked_by=_PACKING,
-        widget=Widget(kind="slider", label="radius R (mm)", min=3, max=100, step=0.5, group="packing-sliders",
-                      when=_HEX_SQUARE)),
-    Key(section="packing", name="outline_circles", type="boolean", default=False,
-        help="also stroke the packing circles", widget=Widget(kind="checkbox", label="Outline circles",
-                                                                when=(PACKED,))),
-    Key(section="packing", name="fill", type="number", range=Range(0, 1, min_open=True), default=1.0,
-        help="motif extent / circle radius", checked_by=_PACKING),
-    Key(section="packing", name="gap_motif", type="motif", default=GAP_MOTIF, default_text="`{ n = 6, radii = [0.5, 1.0] }`",
-        note="a table like [motif] or a preset name", query=None,
+    Key(
+        section="packing",
+        name="kind",
+        type="choice",
+        default="hex",
+        query="packing",
+        choices=("hex", "square", "archimedean"),
+        help="`hex`, `square` or `archimedean`",
+        widget=Widget(
+            kind="select",
+            label="Kind",
+            labels=(("hex", "hexagonal (tangent circles)"), ("archimedean", "Archimedean tiling (incircles)")),
+            extra=(("none", "none: one motif"),),
+        ),
+    ),
+    Key(
+        section="packing",
+        name="radius",
+        type="number",
+        unit="mm",
+        range=Range(0, None, min_open=True),
+        default=12.5,
+        help="radius of the big circles (hex, square)",
+        checked_by=_PACKING,
+        widget=Widget(
+            kind="slider", label="radius R (mm)", min=3, max=100, step=0.5, group="packing-sliders", when=_HEX_SQUARE
+        ),
+    ),
+    Key(
+        section="packing",
+        name="outline_circles",
+        type="boolean",
+        default=False,
+        help="also stroke the packing circles",
+        widget=Widget(kind="checkbox", label="Outline circles", when=(PACKED,)),
+    ),
+    Key(
+        section="packing",
+        name="fill",
+        type="number",
+        range=Range(0, 1, min_open=True),
+        default=1.0,
+        help="motif extent / circle radius",
+        checked_by=_PACKING,
+    ),
+    Key(
+        section="packing",
+        name="gap_motif",
+        type="motif",
+        default=GAP_MOTIF,
+        default_text="`{ n = 6, radii = [0.5, 1.0] }`",
+        note="a table like [motif] or a preset name",
+        query=None,
         help="the gap circles' motif: a table like `[motif]`, or a preset name; its keys are the web's "
-             "`gap_` parameters"),
-    Key(section="packing", name="seamless", type="boolean", default=False,
+        "`gap_` parameters",
+    ),
+    Key(
+        section="packing",
+        name="seamless",
+        type="boolean",
+        default=False,
         help="fit the radius (and a rectangle's height) so the tile repeats seamlessly",
-        widget=Widget(kind="checkbox", label="Seamless", when=(PACKED,))),
-    Key(section="packing", name="tiling", type="choice", choices="pattern",
-        requires=_ARCH, checked_by="pattern",
-        help="the vertex configuration, e.g. `\"4.8.8\"`",
-        widget=Widget(kind="select", label="Tiling")),
-    Key(section="packing", name="edge", type="number", unit="mm", range=Range(0, None, min_open=True),
-        default=20.0, requires=_ARCH, help="the polygons' edge length (instead of `radius`)",
+        widget=Widget(kind="checkbox", label="Seamless", when=(PACKED,)),
+    ),
+    Key(
+        section="packing",
+        name="tiling",
+        type="choice",
+        choices="pattern",
+        requires=_ARCH,
         checked_by="pattern",
-        widget=Widget(kind="slider", label="edge a (mm)", min=3, max=100, step=0.5, group="packing-sliders",
-                      when=(("packing", ("archimedean",)),))),
-    Key(section="packing", name="motifs", type="motifs", query=None, requires=_ARCH,
+        help='the vertex configuration, e.g. `"4.8.8"`',
+        widget=Widget(kind="select", label="Tiling"),
+    ),
+    Key(
+        section="packing",
+        name="edge",
+        type="number",
+        unit="mm",
+        range=Range(0, None, min_open=True),
+        default=20.0,
+        requires=_ARCH,
+        help="the polygons' edge length (instead of `radius`)",
+        checked_by="pattern",
+        widget=Widget(
+            kind="slider",
+            label="edge a (mm)",
+            min=3,
+            max=100,
+            step=0.5,
+            group="packing-sliders",
+            when=(("packing", ("archimedean",)),),
+        ),
+    ),
+    Key(
+        section="packing",
+        name="motifs",
+        type="motifs",
+        query=None,
+        requires=_ARCH,
         help="`[packing.motifs]`, a motif per polygon kind keyed by its sides "
-             "(`8 = \"table3-3\"`, `4 = { n = 8, radii = [1, 2] }`); `[motif]` fills the kinds not listed "
-             "(with `method = \"hankin\"` the kinds not listed take Hankin's rays); on the web, `motif_<sides>`"),
-    Key(section="packing", name="method", type="choice", default="motifs", requires=_ARCH,
-        choices="pattern", checked_by="pattern",
-        help="`\"motifs\"`: the paper's motifs in the incircles and gap circles; `\"hankin\"`: Hankin's "
-             "polygons in contact, two rays from each edge at `contact_angle` (see hankin.md)",
-        widget=Widget(kind="select", label="Method", labels=(("motifs", "the paper's motifs (incircles)"),
-                                                             ("hankin", "Hankin's polygons in contact")),
-                      when=(("packing", ("archimedean",)),))),
-    Key(section="packing", name="contact_angle", type="number", unit="degrees", range=Range(0, 90, min_open=True, max_open=True),
-        default=60.0, requires=_HANKIN, checked_by="pattern",
+        '(`8 = "table3-3"`, `4 = { n = 8, radii = [1, 2] }`); `[motif]` fills the kinds not listed '
+        '(with `method = "hankin"` the kinds not listed take Hankin\'s rays); on the web, `motif_<sides>`',
+    ),
+    Key(
+        section="packing",
+        name="method",
+        type="choice",
+        default="motifs",
+        requires=_ARCH,
+        choices="pattern",
+        checked_by="pattern",
+        help='`"motifs"`: the paper\'s motifs in the incircles and gap circles; `"hankin"`: Hankin\'s '
+        "polygons in contact, two rays from each edge at `contact_angle` (see hankin.md)",
+        widget=Widget(
+            kind="select",
+            label="Method",
+            labels=(("motifs", "the paper's motifs (incircles)"), ("hankin", "Hankin's polygons in contact")),
+            when=(("packing", ("archimedean",)),),
+        ),
+    ),
+    Key(
+        section="packing",
+        name="contact_angle",
+        type="number",
+        unit="degrees",
+        range=Range(0, 90, min_open=True, max_open=True),
+        default=60.0,
+        requires=_HANKIN,
+        checked_by="pattern",
         help="the rays' angle to their edge; with a gap, at most the tiling's limit (hankin.md)",
-        widget=Widget(kind="slider", label="contact angle (deg)", min=1, max=89, step=0.5, group="packing-sliders",
-                      when=_HANKIN_WHEN)),
-    Key(section="packing", name="contact_gap", type="number", unit="mm", range=Range(0, None), default=0.0,
-        requires=_HANKIN, checked_by="pattern",
+        widget=Widget(
+            kind="slider",
+            label="contact angle (deg)",
+            min=1,
+            max=89,
+            step=0.5,
+            group="packing-sliders",
+            when=_HANKIN_WHEN,
+        ),
+    ),
+    Key(
+        section="packing",
+        name="contact_gap",
+        type="number",
+        unit="mm",
+        range=Range(0, None),
+        default=0.0,
+        requires=_HANKIN,
+        checked_by="pattern",
         help="the distance along the edge between the two rays' starts (less than the edge)",
-        widget=Widget(kind="slider", label="contact gap (mm)", min=0, max=20, step=0.1, group="packing-sliders",
-                      when=_HANKIN_WHEN)),
+        widget=Widget(
+            kind="slider", label="contact gap (mm)", min=0, max=20, step=0.1, group="packing-sliders", when=_HANKIN_WHEN
+        ),
+    ),
     # [tile]
-    Key(section="tile", name="outline", type="choice", default="square",
+    Key(
+        section="tile",
+        name="outline",
+        type="choice",
+        default="square",
         choices=("square", "rectangle", "hexagon", "circle"),
-        help="`square`, `rectangle`, `hexagon` (pointy-top) or `circle`", widget=Widget(kind="select", label="Outline")),
-    Key(section="tile", name="size", type="size", unit="mm", range=Range(0, None, min_open=True),
-        default_text="required", note="a number or [width, height] in mm", query=None,
+        help="`square`, `rectangle`, `hexagon` (pointy-top) or `circle`",
+        widget=Widget(kind="select", label="Outline"),
+    ),
+    Key(
+        section="tile",
+        name="size",
+        type="size",
+        unit="mm",
+        range=Range(0, None, min_open=True),
+        default_text="required",
+        note="a number or [width, height] in mm",
+        query=None,
         help="a number (side, width across flats, diameter), or `[width, height]` for a rectangle; "
-             "on the web, `width` and `height`", checked_by="geometry"),
-    Key(section="tile", name="frame", type="number", unit="mm", range=Range(0, None), default=0.0,
-        help="solid margin inside the outline", checked_by=_TILE,
-        widget=Widget(kind="slider", label="frame (mm)", min=0, max=30, step=0.5, group="tile-sliders")),
-    Key(section="tile", name="stroke", type="number", unit="mm", range=Range(0, None, min_open=True), default=1.0,
-        help="width of each band; at most the packing radius", checked_by=_TILE,
-        widget=Widget(kind="slider", label="stroke (mm)", min=0.2, max=6, step=0.1, group="tile-sliders")),
-    Key(section="tile", name="join", type="choice", default="miter", choices=("miter", "round", "bevel"),
-        help="`miter`, `round` or `bevel`", widget=Widget(kind="select", label="Join")),
-    Key(section="tile", name="miter_limit", type="number", range=Range(1, None), default=4.0,
-        help="in half stroke widths", checked_by=_TILE,
-        widget=Widget(kind="slider", label="miter limit", min=1, max=20, step=0.5, group="tile-sliders",
-                      when=(("join", ("miter",)),))),
-    Key(section="tile", name="corner_radius", type="number", unit="mm", range=Range(0, None), default=0.0,
-        help="rounds the outline's corners (not a circle's)", checked_by=_TILE,
-        widget=Widget(kind="slider", label="corner r (mm)", min=0, max=30, step=0.5, group="tile-sliders",
-                      when=(("outline", ("square", "rectangle", "hexagon")),))),
-    Key(section="tile", name="interlace", type="boolean", default=False,
+        "on the web, `width` and `height`",
+        checked_by="geometry",
+    ),
+    Key(
+        section="tile",
+        name="frame",
+        type="number",
+        unit="mm",
+        range=Range(0, None),
+        default=0.0,
+        help="solid margin inside the outline",
+        checked_by=_TILE,
+        widget=Widget(kind="slider", label="frame (mm)", min=0, max=30, step=0.5, group="tile-sliders"),
+    ),
+    Key(
+        section="tile",
+        name="stroke",
+        type="number",
+        unit="mm",
+        range=Range(0, None, min_open=True),
+        default=1.0,
+        help="width of each band; at most the packing radius",
+        checked_by=_TILE,
+        widget=Widget(kind="slider", label="stroke (mm)", min=0.2, max=6, step=0.1, group="tile-sliders"),
+    ),
+    Key(
+        section="tile",
+        name="join",
+        type="choice",
+        default="miter",
+        choices=("miter", "round", "bevel"),
+        help="`miter`, `round` or `bevel`",
+        widget=Widget(kind="select", label="Join"),
+    ),
+    Key(
+        section="tile",
+        name="miter_limit",
+        type="number",
+        range=Range(1, None),
+        default=4.0,
+        help="in half stroke widths",
+        checked_by=_TILE,
+        widget=Widget(
+            kind="slider",
+            label="miter limit",
+            min=1,
+            max=20,
+            step=0.5,
+            group="tile-sliders",
+            when=(("join", ("miter",)),),
+        ),
+    ),
+    Key(
+        section="tile",
+        name="corner_radius",
+        type="number",
+        unit="mm",
+        range=Range(0, None),
+        default=0.0,
+        help="rounds the outline's corners (not a circle's)",
+        checked_by=_TILE,
+        widget=Widget(
+            kind="slider",
+            label="corner r (mm)",
+            min=0,
+            max=30,
+            step=0.5,
+            group="tile-sliders",
+            when=(("outline", ("square", "rectangle", "hexagon")),),
+        ),
+    ),
+    Key(
+        section="tile",
+        name="interlace",
+        type="boolean",
+        default=False,
         help="weave the strands over and under at every crossing ([interlace.md](interlace.md))",
-        widget=Widget(kind="checkbox", label="Interlace")),
-    Key(section="tile", name="interlace_gap_mm", type="number", unit="mm", range=Range(0, None),
-        default_text="a third of the stroke", checked_by=_TILE,
+        widget=Widget(kind="checkbox", label="Interlace"),
+    ),
+    Key(
+        section="tile",
+        name="interlace_gap_mm",
+        type="number",
+        unit="mm",
+        range=Range(0, None),
+        default_text="a third of the stroke",
+        checked_by=_TILE,
         help="gap on each side of an over strand where the under strand passes",
-        widget=Widget(kind="number", label="Interlace gap (mm)", min=0, step=0.05, placeholder="stroke / 3",
-                      when=(("interlace", ("true",)),))),
-    Key(section="tile", name="interlace_cut", type="boolean", default=False,
+        widget=Widget(
+            kind="number",
+            label="Interlace gap (mm)",
+            min=0,
+            step=0.05,
+            placeholder="stroke / 3",
+            when=(("interlace", ("true",)),),
+        ),
+    ),
+    Key(
+        section="tile",
+        name="interlace_cut",
+        type="boolean",
+        default=False,
         help="laser, pierced: cut the under gaps through, leaving tabs; otherwise they are scored or dipped",
-        widget=Widget(kind="checkbox", label="Cut the gaps",
-                      when=(("interlace", ("true",)), ("laser_mode", ("pierced",))))),
+        widget=Widget(
+            kind="checkbox", label="Cut the gaps", when=(("interlace", ("true",)), ("laser_mode", ("pierced",)))
+        ),
+    ),
     # [output]
-    Key(section="output", name="formats", type="formats", default=("svg",), choices=("dxf", "svg", "lbrn2", "stl",
-                                                                                     "3mf", "step"),
-        note="a non-empty list", query=None,
+    Key(
+        section="output",
+        name="formats",
+        type="formats",
+        default=("svg",),
+        choices=("dxf", "svg", "lbrn2", "stl", "3mf", "step"),
+        note="a non-empty list",
+        query=None,
         help="any of `dxf`, `svg`, `lbrn2` (LightBurn project), `stl`, `3mf`, `step`; not a web parameter: "
-             "each download is one format"),
-    Key(section="output", name="laser_profile", type="string", note="a profile name or path",
+        "each download is one format",
+    ),
+    Key(
+        section="output",
+        name="laser_profile",
+        type="string",
+        note="a profile name or path",
         default_text="`laser-3mm-plywood`",
         help="a bundled profile name or a path to a profile file: a laser, or a CNC router or waterjet "
-             "(`router-6mm-mdf`, `router-3.175mm-plywood`, `waterjet-1mm-aluminium`). One key for every 2D "
-             "cutter, since the DXF/SVG pipeline is the same: a router's files hold the part as its bit makes it "
-             "([cnc-and-waterjet.md](cnc-and-waterjet.md)); on the web, a bundled name only",
-        widget=Widget(kind="select", label="Cutter profile")),
-    Key(section="output", name="printer_profile", type="string", note="a profile name or path",
-        default_text="`fdm-0.4mm`", help="likewise, for the print formats",
-        widget=Widget(kind="select", label="Printer profile")),
-    Key(section="output", name="laser_mode", type="choice", choices="machines",
+        "(`router-6mm-mdf`, `router-3.175mm-plywood`, `waterjet-1mm-aluminium`). One key for every 2D "
+        "cutter, since the DXF/SVG pipeline is the same: a router's files hold the part as its bit makes it "
+        "([cnc-and-waterjet.md](cnc-and-waterjet.md)); on the web, a bundled name only",
+        widget=Widget(kind="select", label="Cutter profile"),
+    ),
+    Key(
+        section="output",
+        name="printer_profile",
+        type="string",
+        note="a profile name or path",
+        default_text="`fdm-0.4mm`",
+        help="likewise, for the print formats",
+        widget=Widget(kind="select", label="Printer profile"),
+    ),
+    Key(
+        section="output",
+        name="laser_mode",
+        type="choice",
+        choices="machines",
         default_text="the profile's",
         help="`pierced` (cut every edge of the material), `score` (cut the outline, score the centre-lines), "
-             "`engrave` (cut the outline, fill the bands on the profile's engrave layer) or `inlay` (a kit: "
-             "`<name>-lattice` and `<name>-pieces` files, see [inlay.md](inlay.md))",
-        widget=Widget(kind="select", label="Laser mode", labels=(("inlay", "inlay kit"),)), option=BuildOption(name="mode", families=("cut",))),
-    Key(section="output", name="print_style", type="choice", choices="machines",
-        default_text="the profile's", help="`relief`, `pierced`, `deboss` or `mosaic` (a plate with the bands and "
+        "`engrave` (cut the outline, fill the bands on the profile's engrave layer) or `inlay` (a kit: "
+        "`<name>-lattice` and `<name>-pieces` files, see [inlay.md](inlay.md))",
+        widget=Widget(kind="select", label="Laser mode", labels=(("inlay", "inlay kit"),)),
+        option=BuildOption(name="mode", families=("cut",)),
+    ),
+    Key(
+        section="output",
+        name="print_style",
+        type="choice",
+        choices="machines",
+        default_text="the profile's",
+        help="`relief`, `pierced`, `deboss` or `mosaic` (a plate with the bands and "
         "every face on it, a part per colour: see [colours.md](colours.md))",
-        widget=Widget(kind="select", label="Print style"), option=BuildOption(name="style", families=_PRINT)),
+        widget=Widget(kind="select", label="Print style"),
+        option=BuildOption(name="style", families=_PRINT),
+    ),
     _height("base_mm", "Base (mm)", "the plate under the bands", ("relief", "deboss")),
     _height("relief_mm", "Relief (mm)", "the bands above the plate (relief)", ("relief",)),
     _height("pierced_mm", "Pierced (mm)", "a pierced tile's thickness", ("pierced",)),
     _height("deboss_mm", "Deboss (mm)", "the grooves' depth (deboss)", ("deboss",)),
-    Key(section="output", name="mosaic_inset_mm", type="number", unit="mm", range=Range(0, 1000), default_text="0",
-        checked_by="geometry", note="below relief_mm",
+    Key(
+        section="output",
+        name="mosaic_inset_mm",
+        type="number",
+        unit="mm",
+        range=Range(0, 1000),
+        default_text="0",
+        checked_by="geometry",
+        note="below relief_mm",
         help="`print_style = \"mosaic\"`: how far the faces' tops sit below the bands' (0: flush; more: the bands "
-             "stand proud, cloisonne style); less than the relief height",
+        "stand proud, cloisonne style); less than the relief height",
         widget=Widget(kind="number", label="Mosaic inset (mm)", min=0, step=0.1, when=(("print_style", ("mosaic",)),)),
-        option=BuildOption(name="mosaic_inset_mm", families=_PRINT)),
-    Key(section="output", name="name", type="string", default_text="the file's stem",
+        option=BuildOption(name="mosaic_inset_mm", families=_PRINT),
+    ),
+    Key(
+        section="output",
+        name="name",
+        type="string",
+        default_text="the file's stem",
         help="the output files' name (a plain file name: letters, digits, `. _ -` and spaces)",
-        widget=Widget(kind="text", label="File name", placeholder="the design's")),
-    Key(section="output", name="fill_small_holes", type="boolean", default=True,
+        widget=Widget(kind="text", label="File name", placeholder="the design's"),
+    ),
+    Key(
+        section="output",
+        name="fill_small_holes",
+        type="boolean",
+        default=True,
         help="fill what each machine cannot make instead of reporting it: in the cutter files the holes narrower "
-             "than the cutter profile's `min_hole_mm` (a router's: those its bit cannot enter), in the print files "
-             "the openings narrower than the printer profile's `min_hole_mm` (default its nozzle); every summary "
-             "says how many it filled for which",
+        "than the cutter profile's `min_hole_mm` (a router's: those its bit cannot enter), in the print files "
+        "the openings narrower than the printer profile's `min_hole_mm` (default its nozzle); every summary "
+        "says how many it filled for which",
         widget=Widget(kind="checkbox", label="Fill small holes"),
-        option=BuildOption(name="fill_small_holes", families=("cut", "print"))),
-    Key(section="output", name="inlay", type="boolean", default=False,
+        option=BuildOption(name="fill_small_holes", families=("cut", "print")),
+    ),
+    Key(
+        section="output",
+        name="inlay",
+        type="boolean",
+        default=False,
         help="a deboss tile's 3MF gets a second part, `inlay`, filling the grooves flush (two-colour inlay "
-             "print); needs `print_style = \"deboss\"`",
+        'print); needs `print_style = "deboss"`',
         widget=Widget(kind="checkbox", label="Inlay part (deboss 3MF)", when=(("print_style", ("deboss",)),)),
-        option=BuildOption(name="inlay", families=("3mf",))),
-    Key(section="output", name="threemf_layout", type="choice", default="volumes", choices=("volumes", "components"),
-        help="how the 3MF holds its parts: `\"volumes\"`, one object cut into named parts for PrusaSlicer, "
-             "Bambu Studio and OrcaSlicer; `\"components\"`, one object of components (each part its own mesh "
-             "with its Cura extruder) for UltiMaker Cura, which Bambu Studio and OrcaSlicer also read as one "
-             "object of parts and PrusaSlicer as separate objects",
-        widget=Widget(kind="select", label="3MF for", labels=(("volumes", "PrusaSlicer, Bambu Studio, OrcaSlicer"),
-                                                             ("components", "UltiMaker Cura"))), option=BuildOption(name="layout", families=("3mf",))),
-    Key(section="output", name="inlay_fit_mm", type="number", unit="mm", range=Range(-0.5, 0.5),
-        note="positive: a press fit, negative: play", default_text="the laser profile's",
-        requires=_INLAY, help="each piece is grown from its hole by this much; beyond half a "
-             "millimetre a piece no longer fits its hole at all (see [inlay.md](inlay.md))",
-        widget=Widget(kind="number", label="Inlay kit: fit (mm)", min=-0.5, max=0.5, step=0.05,
-                      placeholder="profile", when=_INLAY_WHEN),
-        option=BuildOption(name="inlay_fit_mm", families=("cut",))),
-    Key(section="output", name="inlay_pieces", type="choice", default="registration",
-        choices=("registration", "nested"), requires=_INLAY,
+        option=BuildOption(name="inlay", families=("3mf",)),
+    ),
+    Key(
+        section="output",
+        name="threemf_layout",
+        type="choice",
+        default="volumes",
+        choices=("volumes", "components"),
+        help='how the 3MF holds its parts: `"volumes"`, one object cut into named parts for PrusaSlicer, '
+        'Bambu Studio and OrcaSlicer; `"components"`, one object of components (each part its own mesh '
+        "with its Cura extruder) for UltiMaker Cura, which Bambu Studio and OrcaSlicer also read as one "
+        "object of parts and PrusaSlicer as separate objects",
+        widget=Widget(
+            kind="select",
+            label="3MF for",
+            labels=(("volumes", "PrusaSlicer, Bambu Studio, OrcaSlicer"), ("components", "UltiMaker Cura")),
+        ),
+        option=BuildOption(name="layout", families=("3mf",)),
+    ),
+    Key(
+        section="output",
+        name="inlay_fit_mm",
+        type="number",
+        unit="mm",
+        range=Range(-0.5, 0.5),
+        note="positive: a press fit, negative: play",
+        default_text="the laser profile's",
+        requires=_INLAY,
+        help="each piece is grown from its hole by this much; beyond half a "
+        "millimetre a piece no longer fits its hole at all (see [inlay.md](inlay.md))",
+        widget=Widget(
+            kind="number",
+            label="Inlay kit: fit (mm)",
+            min=-0.5,
+            max=0.5,
+            step=0.05,
+            placeholder="profile",
+            when=_INLAY_WHEN,
+        ),
+        option=BuildOption(name="inlay_fit_mm", families=("cut",)),
+    ),
+    Key(
+        section="output",
+        name="inlay_pieces",
+        type="choice",
+        default="registration",
+        choices=("registration", "nested"),
+        requires=_INLAY,
         help="`\"registration\"` (each piece at its hole's place: the pieces' sheet as big as the tile) or "
-             "`\"nested\"` (the pieces packed tight, half turns only for the grain, each with its face class's "
-             "letter scored on it and in its lattice hole; see [inlay.md](inlay.md))",
-        widget=Widget(kind="select", label="Inlay kit: pieces", labels=(("registration", "in registration"),
-                                                                       ("nested", "nested, lettered")),
-                      when=_INLAY_WHEN),
-        option=BuildOption(name="inlay_pieces", families=("cut",))),
-    Key(section="output", name="inlay_base", type="choice", default="pierced", choices=("pierced", "pocket"),
-        requires=_INLAY, help="`\"pierced\"` (the lattice's holes cut through) or `\"pocket\"` "
-             "(engraved as pockets on the engrave layer)",
-        widget=Widget(kind="select", label="Inlay kit: lattice", labels=(("pierced", "holes cut through"),
-                                                                        ("pocket", "pockets engraved")),
-                      when=_INLAY_WHEN),
-        option=BuildOption(name="inlay_base", families=("cut",))),
-    Key(section="output", name="tab_mm", type="number", unit="mm", range=Range(0, 5), default=0.0,
+        '`"nested"` (the pieces packed tight, half turns only for the grain, each with its face class\'s '
+        "letter scored on it and in its lattice hole; see [inlay.md](inlay.md))",
+        widget=Widget(
+            kind="select",
+            label="Inlay kit: pieces",
+            labels=(("registration", "in registration"), ("nested", "nested, lettered")),
+            when=_INLAY_WHEN,
+        ),
+        option=BuildOption(name="inlay_pieces", families=("cut",)),
+    ),
+    Key(
+        section="output",
+        name="inlay_base",
+        type="choice",
+        default="pierced",
+        choices=("pierced", "pocket"),
+        requires=_INLAY,
+        help='`"pierced"` (the lattice\'s holes cut through) or `"pocket"` (engraved as pockets on the engrave layer)',
+        widget=Widget(
+            kind="select",
+            label="Inlay kit: lattice",
+            labels=(("pierced", "holes cut through"), ("pocket", "pockets engraved")),
+            when=_INLAY_WHEN,
+        ),
+        option=BuildOption(name="inlay_base", families=("cut",)),
+    ),
+    Key(
+        section="output",
+        name="tab_mm",
+        type="number",
+        unit="mm",
+        range=Range(0, 5),
+        default=0.0,
         note="0: no tabs; else more than the kerf",
         help="holding tabs (laser only): each part's outer cut leaves `tabs_per_part` uncut gaps this long, "
-             "measured along the cut, so the part stays in the sheet on a honeycomb bed; the bridge left is "
-             "`tab_mm` less the kerf wide; holes get none; a router's or waterjet's CAM adds its own "
-             "([laser-cutting.md](laser-cutting.md#holding-tabs))",
+        "measured along the cut, so the part stays in the sheet on a honeycomb bed; the bridge left is "
+        "`tab_mm` less the kerf wide; holes get none; a router's or waterjet's CAM adds its own "
+        "([laser-cutting.md](laser-cutting.md#holding-tabs))",
         widget=Widget(kind="number", label="Holding tabs (mm)", min=0, max=5, step=0.1, placeholder="none"),
-        option=BuildOption(name="tab_mm", families=("cut",))),
-    Key(section="output", name="tabs_per_part", type="integer", range=Range(1, 64), default=4,
+        option=BuildOption(name="tab_mm", families=("cut",)),
+    ),
+    Key(
+        section="output",
+        name="tabs_per_part",
+        type="integer",
+        range=Range(1, 64),
+        default=4,
         help="how many holding tabs each part's outer cut gets when `tab_mm` > 0, spread evenly round it and "
-             "slid onto straight stretches away from corners; a part shorter round than three tab lengths per "
-             "tab gets fewer",
+        "slid onto straight stretches away from corners; a part shorter round than three tab lengths per "
+        "tab gets fewer",
         widget=Widget(kind="number", label="Tabs per part", min=1, max=64, step=1, placeholder="4"),
-        option=BuildOption(name="tabs_per_part", families=("cut",))),
+        option=BuildOption(name="tabs_per_part", families=("cut",)),
+    ),
     # [colour]
-    Key(section="colour", name="by", type="choice", default="none", choices=("none", "shape"), query="colour_by",
-        help="`\"shape\"`: the faces of the pattern (the openings between the bands) grouped into classes of "
-             "congruent shapes, lettered A, B, ... by total area, each class its own colour; `\"none\"`: every "
-             "face one class, A (the two colours of band and face)",
-        widget=Widget(kind="select", label="Colour faces by", labels=(("none", "one colour"), ("shape", "shape")))),
-    Key(section="colour", name="palette", type="choice", default="zellige", choices="designs",
+    Key(
+        section="colour",
+        name="by",
+        type="choice",
+        default="none",
+        choices=("none", "shape"),
+        query="colour_by",
+        help='`"shape"`: the faces of the pattern (the openings between the bands) grouped into classes of '
+        'congruent shapes, lettered A, B, ... by total area, each class its own colour; `"none"`: every '
+        "face one class, A (the two colours of band and face)",
+        widget=Widget(kind="select", label="Colour faces by", labels=(("none", "one colour"), ("shape", "shape"))),
+    ),
+    Key(
+        section="colour",
+        name="palette",
+        type="choice",
+        default="zellige",
+        choices="designs",
         help="the named palette giving the band's, the base's and the classes' colours unless set below "
-             "([colours.md](colours.md) says where each comes from)",
-        widget=Widget(kind="select", label="Palette")),
-    Key(section="colour", name="band_colour", type="colour", default_text="the palette's",
-        note="#rrggbb, a palette's or a CSS colour name", help="the bands' colour (the strapwork): a print's bands, a kit's lattice",
-        widget=Widget(kind="colour", label="Band colour")),
-    Key(section="colour", name="base_colour", type="colour", default_text="the palette's",
-        note="#rrggbb, a palette's or a CSS colour name", help="the base plate's colour (relief, mosaic and deboss prints)",
-        widget=Widget(kind="colour", label="Base colour")),
-    Key(section="colour", name="faces", type="colours", default_text="the palette's, in class order",
-        note="a table of class letters to colours", query=None,
-        help="`[colour.faces]` `A = \"navy\"`, `B = \"#c8553d\"`: a colour per face class; classes given one "
-             "colour share a material (a filament, a wood), so six classes fit a four-slot AMS as four colours; "
-             "`\"band\"` or `\"base\"` gives a class the bands' or the base's colour (it joins that part)"),
+        "([colours.md](colours.md) says where each comes from)",
+        widget=Widget(kind="select", label="Palette"),
+    ),
+    Key(
+        section="colour",
+        name="band_colour",
+        type="colour",
+        default_text="the palette's",
+        note="#rrggbb, a palette's or a CSS colour name",
+        help="the bands' colour (the strapwork): a print's bands, a kit's lattice",
+        widget=Widget(kind="colour", label="Band colour"),
+    ),
+    Key(
+        section="colour",
+        name="base_colour",
+        type="colour",
+        default_text="the palette's",
+        note="#rrggbb, a palette's or a CSS colour name",
+        help="the base plate's colour (relief, mosaic and deboss prints)",
+        widget=Widget(kind="colour", label="Base colour"),
+    ),
+    Key(
+        section="colour",
+        name="faces",
+        type="colours",
+        default_text="the palette's, in class order",
+        note="a table of class letters to colours",
+        query=None,
+        help='`[colour.faces]` `A = "navy"`, `B = "#c8553d"`: a colour per face class; classes given one '
+        "colour share a material (a filament, a wood), so six classes fit a four-slot AMS as four colours; "
+        '`"band"` or `"base"` gives a class the bands\' or the base\'s colour (it joins that part)',
+    ),
 )
 """Every design key, section by section in the order of a design file."""
 
@@ -564,10 +988,12 @@ _GAP = (PACKED, ("method", ("motifs",)))  # gap circles: the paper's method only
 _ROSETTE = (*_GAP, ("gap_rosette", ("true",)))  # the page's gap rosette box: special circle 2
 GAP_WIDGETS = {
     "n": Widget(kind="slider", label="gap n", min=3, max=24, step=1, group="packing-sliders", when=_GAP),
-    "rotation": Widget(kind="slider", label="gap rotation (deg)", min=-180, max=180, step=0.5, group="packing-sliders",
-                       when=_GAP),
-    "alpha": Widget(kind="slider", label="gap alpha (deg)", min=-90, max=90, step=0.5, group="packing-sliders",
-                    when=_ROSETTE),
+    "rotation": Widget(
+        kind="slider", label="gap rotation (deg)", min=-180, max=180, step=0.5, group="packing-sliders", when=_GAP
+    ),
+    "alpha": Widget(
+        kind="slider", label="gap alpha (deg)", min=-90, max=90, step=0.5, group="packing-sliders", when=_ROSETTE
+    ),
     "spr": Widget(kind="slider", label="gap spr", min=-2, max=2, step=0.01, group="packing-sliders", when=_ROSETTE),
 }
 """The web form's controls of the gap motif's keys (``gap_n``, ...): its circles' radii are about 1, so its
@@ -575,22 +1001,37 @@ sliders travel less than the motif's."""
 
 SIZE_WIDGETS = {
     "width": Widget(kind="slider", label="width (mm)", min=20, max=600, step=1, group="tile-sliders"),
-    "height": Widget(kind="slider", label="height (mm)", min=20, max=400, step=1, group="tile-sliders",
-                     when=(("outline", ("rectangle",)),)),
+    "height": Widget(
+        kind="slider",
+        label="height (mm)",
+        min=20,
+        max=400,
+        step=1,
+        group="tile-sliders",
+        when=(("outline", ("rectangle",)),),
+    ),
 }
 """The web form's controls of ``[tile] size``: its ``width`` and ``height`` parameters."""
 
 CALL_OPTIONS = (
-    BuildOption(name="dxf_version", families=("cut",),
-                help="string, `R12`, `R2000`, `R2004`, `R2007`, `R2010`, `R2013` or `R2018` (default: the cutter "
-                     "profile's): the DXF version"),
-    BuildOption(name="kerf_mm", families=("cut",),
-                help="number >= 0 (mm; default: the cutter profile's): the cut's width, each contour offset by half "
-                     "of it"),
-    BuildOption(name="colours", families=("cut", "print"),
-                help="a `fabtiles.Colours` (the `[colour]` section's keys: `by`, `palette`, `band_colour`, "
-                     "`base_colour`, `faces`): the faces classed and coloured, for `style=\"mosaic\"`, the "
-                     "parts' colours and an inlay kit's pieces by colour (see docs/colours.md)"),
+    BuildOption(
+        name="dxf_version",
+        families=("cut",),
+        help="string, `R12`, `R2000`, `R2004`, `R2007`, `R2010`, `R2013` or `R2018` (default: the cutter "
+        "profile's): the DXF version",
+    ),
+    BuildOption(
+        name="kerf_mm",
+        families=("cut",),
+        help="number >= 0 (mm; default: the cutter profile's): the cut's width, each contour offset by half of it",
+    ),
+    BuildOption(
+        name="colours",
+        families=("cut", "print"),
+        help="a `fabtiles.Colours` (the `[colour]` section's keys: `by`, `palette`, `band_colour`, "
+        '`base_colour`, `faces`): the faces classed and coloured, for `style="mosaic"`, the '
+        "parts' colours and an inlay kit's pieces by colour (see docs/colours.md)",
+    ),
 )
 """Build options of the export API that no design key sets (the cutter profile's, overridden per call)."""
 
@@ -648,8 +1089,9 @@ def register_type(type_: str, parse: Callable) -> None:
     fabtiles.core.errors.ParameterError: a value type whose check is registered must be one of: colour, got 'number'
     """
     if type_ not in ("colour",):
-        raise ParameterError(f"a value type whose check is registered must be one of: colour, got {type_!r}",
-                             param="type_")
+        raise ParameterError(
+            f"a value type whose check is registered must be one of: colour, got {type_!r}", param="type_"
+        )
     _TYPE_CHECKS[type_] = parse
 
 
@@ -674,8 +1116,7 @@ def section_keys(section: str) -> tuple[Key, ...]:
     ['preset', 'n', 'radii']
     """
     if section not in SECTIONS:
-        raise ParameterError(f"{section!r} is not a section, must be one of: {', '.join(SECTIONS)}",
-                             param="section")
+        raise ParameterError(f"{section!r} is not a section, must be one of: {', '.join(SECTIONS)}", param="section")
     return tuple(k for k in KEYS if k.section == section)
 
 
@@ -716,12 +1157,16 @@ def api_options_doc() -> str:
     >>> print(api_options_doc().splitlines()[0])
     Options for cutter files (.dxf, .svg, .lbrn2):
     """
+
     def plain(text: str) -> str:
         return re.sub(r"\[([^\]]+)\]\([^)]+\)", r"\1", text).replace("`", "")
 
     out = []
-    for family, files in (("cut", "cutter files (.dxf, .svg, .lbrn2)"), ("print", "print files (.stl, .3mf, .step)"),
-                          ("3mf", ".3mf files only")):
+    for family, files in (
+        ("cut", "cutter files (.dxf, .svg, .lbrn2)"),
+        ("print", "print files (.stl, .3mf, .step)"),
+        ("3mf", ".3mf files only"),
+    ):
         out.append(f"Options for {files}:")
         calls = {o.name: o for o in CALL_OPTIONS if family in o.families}
         keys = {k.option.name: k for k in KEYS if k.option is not None and family in k.option.families}
@@ -741,16 +1186,27 @@ def api_options_doc() -> str:
 def _family(family: str) -> tuple[str, ...]:
     """The option lists ``family`` takes: the 3MF takes the print's options and its own."""
     if family not in FAMILIES:
-        raise ParameterError(f"{family!r} is not a family of build options, must be one of: {', '.join(FAMILIES)}",
-                             param="family")
+        raise ParameterError(
+            f"{family!r} is not a family of build options, must be one of: {', '.join(FAMILIES)}", param="family"
+        )
     return ("print", "3mf") if family == "3mf" else (family,)
 
 
 # -- the manual's tables -------------------------------------------------------------------------------------------
-_TYPE_WORDS = {"string": "string", "integer": "integer", "number": "number", "numbers": "list of numbers",
-               "boolean": "true or false", "choice": "string", "size": "number or [width, height]",
-               "motif": "table or preset name", "motifs": "table", "formats": "list of strings",
-               "colour": "string, #rrggbb, a palette's or a CSS colour name", "colours": "table of class letters to colours"}
+_TYPE_WORDS = {
+    "string": "string",
+    "integer": "integer",
+    "number": "number",
+    "numbers": "list of numbers",
+    "boolean": "true or false",
+    "choice": "string",
+    "size": "number or [width, height]",
+    "motif": "table or preset name",
+    "motifs": "table",
+    "formats": "list of strings",
+    "colour": "string, #rrggbb, a palette's or a CSS colour name",
+    "colours": "table of class letters to colours",
+}
 
 
 def _doc_type(k: Key) -> str:
@@ -802,6 +1258,7 @@ _BLOCK = re.compile(r"(<!-- schema:(\w+) -->\n)(.*?)(<!-- /schema:\2 -->)", re.S
 
 def render_docs(text: str) -> str:
     """``text`` with each ``<!-- schema:SECTION -->`` ... ``<!-- /schema:SECTION -->`` block made from the schema."""
+
     def table(m):
         return f"{m.group(1)}{markdown_table(m.group(2))}\n{m.group(4)}"
 
@@ -809,7 +1266,10 @@ def render_docs(text: str) -> str:
 
 
 def main(argv=None) -> int:
-    """``python -m fabtiles.core.schema FILE.md``: rewrite the file's schema blocks; ``--check``: exit 1 if they drift."""
+    """``python -m fabtiles.core.schema FILE.md``: rewrite the file's schema blocks.
+
+    ``--check``: exit 1 if they drift.
+    """
     import sys
     from pathlib import Path
 

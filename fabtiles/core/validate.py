@@ -25,17 +25,18 @@ def check_int(name: str, value, *, low: int | None = None, high: int | None = No
     fabtiles.core.errors.ParameterError: n must be an integer >= 3, got 2
     """
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        if isinstance(value, numbers.Real) and not isinstance(value, bool) and math.isfinite(value) and float(value).is_integer():
+        if (
+            isinstance(value, numbers.Real)
+            and not isinstance(value, bool)
+            and math.isfinite(value)
+            and float(value).is_integer()
+        ):
             value = math.trunc(value)  # int(value), for any Real
         else:
-            raise ParameterError(
-                f"{name} must be an integer{_range_text(low, high)}, got {value!r}", param=_base(name)
-            )
+            raise ParameterError(f"{name} must be an integer{_range_text(low, high)}, got {value!r}", param=_base(name))
     value = int(value)
     if (low is not None and value < low) or (high is not None and value > high):
-        raise ParameterError(
-            f"{name} must be an integer{_range_text(low, high)}, got {value}", param=_base(name)
-        )
+        raise ParameterError(f"{name} must be an integer{_range_text(low, high)}, got {value}", param=_base(name))
     return value
 
 
@@ -117,9 +118,7 @@ def check_float_seq(
             f"{name} must hold {min_len} to {max_len} numbers, got {len(values)}: {values!r}",
             param=_base(name),
         )
-    return tuple(
-        check_float(f"{name}[{k}]", v, low=low, low_open=low_open) for k, v in enumerate(values)
-    )
+    return tuple(check_float(f"{name}[{k}]", v, low=low, low_open=low_open) for k, v in enumerate(values))
 
 
 def _base(name: str) -> str:

@@ -50,7 +50,7 @@ class Colour:
         >>> parse_colour("#ff8000").srgb
         (1.0, 0.5019607843137255, 0.0)
         """
-        r, g, b = (int(self.hex[i:i + 2], 16) / 255 for i in (1, 3, 5))
+        r, g, b = (int(self.hex[i : i + 2], 16) / 255 for i in (1, 3, 5))
         return r, g, b
 
     @property
@@ -103,8 +103,11 @@ def parse_colour(value, *, param: str = "colour", palette=None) -> Colour:
     if isinstance(value, str) and value.strip() and not value.startswith("#"):
         name = value.strip().lower()
         if name in PART_COLOURS:
-            raise ParameterError(f"{param} {value!r} names a part's colour, which only a face class takes "
-                                 f"([colour.faces] C = \"band\"); give #rrggbb or a colour name", param=param)
+            raise ParameterError(
+                f"{param} {value!r} names a part's colour, which only a face class takes "
+                f'([colour.faces] C = "band"); give #rrggbb or a colour name',
+                param=param,
+            )
         if "." in name:  # a colour of a palette named first: "iznik.cobalt"
             pname, _, cname = name.partition(".")
             if pname in PALETTES:
@@ -112,9 +115,12 @@ def parse_colour(value, *, param: str = "colour", palette=None) -> Colour:
                 if found is not None:
                     return found
                 hint = did_you_mean(cname, [c.name for c in _colours_of(PALETTES[pname])])
-                raise ParameterError(f"{param} {value!r}: palette {pname!r} has no colour {cname!r}"
-                                     f"{f' ({hint})' if hint else ''}; its colours: "
-                                     f"{', '.join(_names_of(PALETTES[pname]))}", param=param)
+                raise ParameterError(
+                    f"{param} {value!r}: palette {pname!r} has no colour {cname!r}"
+                    f"{f' ({hint})' if hint else ''}; its colours: "
+                    f"{', '.join(_names_of(PALETTES[pname]))}",
+                    param=param,
+                )
         if pal is not None and _named(pal, name) is not None:
             return _named(pal, name)
         try:
@@ -127,14 +133,19 @@ def parse_colour(value, *, param: str = "colour", palette=None) -> Colour:
             return next(iter(others.values()))
         if others:
             where = ", ".join(f"{p}.{name}" for p in others)
-            raise ParameterError(f"{param} {value!r} is a colour of several palettes, not of this design's "
-                                 f"({pal.name if pal else None}); name one: {where} (or give #rrggbb)", param=param)
+            raise ParameterError(
+                f"{param} {value!r} is a colour of several palettes, not of this design's "
+                f"({pal.name if pal else None}); name one: {where} (or give #rrggbb)",
+                param=param,
+            )
         known = list(webcolors.names("css3")) + sorted({c.name for p in PALETTES.values() for c in _colours_of(p)})
         hint = did_you_mean(name, known)
-        raise ParameterError(f"{param} {value!r} is not a CSS or palette colour name{f' ({hint})' if hint else ''}; "
-                             f"give #rrggbb, a CSS name like \"navy\" or a palette's like \"cobalt\"", param=param)
-    raise ParameterError(f"{param} must be #rrggbb or a CSS colour name (like \"navy\"), got {value!r}",
-                         param=param)
+        raise ParameterError(
+            f"{param} {value!r} is not a CSS or palette colour name{f' ({hint})' if hint else ''}; "
+            f'give #rrggbb, a CSS name like "navy" or a palette\'s like "cobalt"',
+            param=param,
+        )
+    raise ParameterError(f'{param} must be #rrggbb or a CSS colour name (like "navy"), got {value!r}', param=param)
 
 
 def palette_names(palette_name: str) -> dict:
@@ -193,33 +204,86 @@ def _c(hex_: str, name: str) -> Colour:
     return Colour(hex_, name)
 
 
-PALETTES = {p.name: p for p in (
-    Palette("zellige", "Moroccan zellige (Fez and Meknes, Marinid period to today): hand-cut glazed terracotta "
+PALETTES = {
+    p.name: p
+    for p in (
+        Palette(
+            "zellige",
+            "Moroccan zellige (Fez and Meknes, Marinid period to today): hand-cut glazed terracotta "
             "in white, cobalt, green, honey, black and turquoise, the strapwork often white",
-            band=_c("#f2ede1", "white"), base=_c("#2b2b2b", "black"),
-            faces=(_c("#1d4e89", "cobalt"), _c("#2e6f40", "green"), _c("#c98f2b", "honey"),
-                   _c("#2b2b2b", "black"), _c("#2d8c9e", "turquoise"), _c("#9c3d26", "terracotta"))),
-    Palette("iznik", "Ottoman Iznik ceramics (16th century): a white ground painted in cobalt blue, turquoise, "
+            band=_c("#f2ede1", "white"),
+            base=_c("#2b2b2b", "black"),
+            faces=(
+                _c("#1d4e89", "cobalt"),
+                _c("#2e6f40", "green"),
+                _c("#c98f2b", "honey"),
+                _c("#2b2b2b", "black"),
+                _c("#2d8c9e", "turquoise"),
+                _c("#9c3d26", "terracotta"),
+            ),
+        ),
+        Palette(
+            "iznik",
+            "Ottoman Iznik ceramics (16th century): a white ground painted in cobalt blue, turquoise, "
             "raised bole red and green, outlined in black",
-            band=_c("#f5f1e8", "white"), base=_c("#1e2a5a", "navy"),
-            faces=(_c("#1e4fa0", "cobalt"), _c("#23a0a5", "turquoise"), _c("#b8322a", "bole"),
-                   _c("#3a7d4a", "green"), _c("#1b1b1b", "black"), _c("#7fb3d5", "sky"))),
-    Palette("mamluk", "Mamluk Cairo (13th to 16th century) Qur'an illumination and inlaid metalwork: gold "
+            band=_c("#f5f1e8", "white"),
+            base=_c("#1e2a5a", "navy"),
+            faces=(
+                _c("#1e4fa0", "cobalt"),
+                _c("#23a0a5", "turquoise"),
+                _c("#b8322a", "bole"),
+                _c("#3a7d4a", "green"),
+                _c("#1b1b1b", "black"),
+                _c("#7fb3d5", "sky"),
+            ),
+        ),
+        Palette(
+            "mamluk",
+            "Mamluk Cairo (13th to 16th century) Qur'an illumination and inlaid metalwork: gold "
             "strapwork on lapis blue, black, red and white",
-            band=_c("#c9a227", "gold"), base=_c("#1a1a1a", "black"),
-            faces=(_c("#26428b", "lapis"), _c("#9e2b25", "red"), _c("#1a1a1a", "black"),
-                   _c("#efe6d2", "ivory"), _c("#2f6b4f", "green"), _c("#6b8fb8", "pale-blue"))),
-    Palette("alhambra", "Nasrid alicatado of the Alhambra (14th century): glazed tile mosaic in black, green, "
+            band=_c("#c9a227", "gold"),
+            base=_c("#1a1a1a", "black"),
+            faces=(
+                _c("#26428b", "lapis"),
+                _c("#9e2b25", "red"),
+                _c("#1a1a1a", "black"),
+                _c("#efe6d2", "ivory"),
+                _c("#2f6b4f", "green"),
+                _c("#6b8fb8", "pale-blue"),
+            ),
+        ),
+        Palette(
+            "alhambra",
+            "Nasrid alicatado of the Alhambra (14th century): glazed tile mosaic in black, green, "
             "ochre, blue, white and manganese purple",
-            band=_c("#efe9dc", "white"), base=_c("#1b1b1b", "black"),
-            faces=(_c("#2c6e49", "green"), _c("#c8932f", "ochre"), _c("#27408b", "blue"),
-                   _c("#1b1b1b", "black"), _c("#5b3a4a", "manganese"), _c("#8a9a5b", "olive"))),
-    Palette("haft-rangi", "Safavid haft-rangi, the \"seven colours\" tiles of 17th-century Isfahan: cobalt, "
+            band=_c("#efe9dc", "white"),
+            base=_c("#1b1b1b", "black"),
+            faces=(
+                _c("#2c6e49", "green"),
+                _c("#c8932f", "ochre"),
+                _c("#27408b", "blue"),
+                _c("#1b1b1b", "black"),
+                _c("#5b3a4a", "manganese"),
+                _c("#8a9a5b", "olive"),
+            ),
+        ),
+        Palette(
+            "haft-rangi",
+            'Safavid haft-rangi, the "seven colours" tiles of 17th-century Isfahan: cobalt, '
             "turquoise, yellow, green, white, black and a red-brown",
-            band=_c("#f2ede2", "white"), base=_c("#1f3f95", "cobalt"),
-            faces=(_c("#2aa1b3", "turquoise"), _c("#e0b43a", "yellow"), _c("#1f3f95", "cobalt"),
-                   _c("#3a7d44", "green"), _c("#9b4a2c", "red-brown"), _c("#1a1a1a", "black"))),
-)}
+            band=_c("#f2ede2", "white"),
+            base=_c("#1f3f95", "cobalt"),
+            faces=(
+                _c("#2aa1b3", "turquoise"),
+                _c("#e0b43a", "yellow"),
+                _c("#1f3f95", "cobalt"),
+                _c("#3a7d44", "green"),
+                _c("#9b4a2c", "red-brown"),
+                _c("#1a1a1a", "black"),
+            ),
+        ),
+    )
+}
 """The named palettes, ``[colour] palette``; the first is the default."""
 
 PALETTE_NAMES = tuple(PALETTES)
@@ -231,8 +295,10 @@ def palette(name: str) -> Palette:
         return PALETTES[name]
     except (KeyError, TypeError):
         hint = did_you_mean(name, PALETTE_NAMES) if isinstance(name, str) else ""
-        raise ParameterError(f"palette {name!r} is not known{f' ({hint})' if hint else ''}, must be one of: "
-                             f"{', '.join(PALETTE_NAMES)}", param="palette") from None
+        raise ParameterError(
+            f"palette {name!r} is not known{f' ({hint})' if hint else ''}, must be one of: {', '.join(PALETTE_NAMES)}",
+            param="palette",
+        ) from None
 
 
 def letters(n: int) -> tuple[str, ...]:
@@ -273,8 +339,7 @@ class Colouring:
         return tuple(seen.values())
 
 
-def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, faces=None,
-              classes=("A",)) -> Colouring:
+def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, faces=None, classes=("A",)) -> Colouring:
     """The colours of a design whose face classes are ``classes`` (letters).
 
     ``band``, ``base`` and ``faces`` (``{letter: colour}``) override the palette's; a
@@ -296,8 +361,11 @@ def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, fac
     unknown = [k for k in faces if k not in classes]
     if unknown:
         hint = did_you_mean(unknown[0], classes)
-        raise ParameterError(f"face class {unknown[0]!r} is not one of this design's{f' ({hint})' if hint else ''}: "
-                             f"{', '.join(classes)}", param=f"faces.{unknown[0]}")
+        raise ParameterError(
+            f"face class {unknown[0]!r} is not one of this design's{f' ({hint})' if hint else ''}: "
+            f"{', '.join(classes)}",
+            param=f"faces.{unknown[0]}",
+        )
     base = pal.base if base is None else parse_colour(base, param="base", palette=pal)
     band = pal.band if band is None else parse_colour(band, param="band", palette=pal)
     parts = {"band": band, "base": base}
@@ -322,6 +390,7 @@ def colouring(*, palette_name: str = PALETTE_NAMES[0], band=None, base=None, fac
         first = owner.setdefault(c.name, c.hex)
         names[c.hex] = c.name if first == c.hex else f"{c.name}-{c.hex[1:]}"
         return Colour(c.hex, names[c.hex])
+
     base, band = named(base), named(band)
     return Colouring(band=band, base=base, faces=tuple((k, named(c)) for k, c in chosen))
 
@@ -330,9 +399,12 @@ def check_materials(colours, *, what: str = "print") -> None:
     """Refuse more than :data:`MAX_MATERIALS` distinct colours, saying how to share materials."""
     colours = tuple(colours)
     if len(colours) > MAX_MATERIALS:
-        raise ParameterError(f"the {what} has {len(colours)} distinct colours, more than the {MAX_MATERIALS} "
-                             f"filaments a slicer takes; give some face classes the same colour in [colour.faces] "
-                             f"(classes of one colour share a filament)", param="faces")
+        raise ParameterError(
+            f"the {what} has {len(colours)} distinct colours, more than the {MAX_MATERIALS} "
+            f"filaments a slicer takes; give some face classes the same colour in [colour.faces] "
+            f"(classes of one colour share a filament)",
+            param="faces",
+        )
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -370,8 +442,9 @@ class Colours:
         pairs = []
         for letter, value in faces:
             if not (isinstance(letter, str) and re.fullmatch(r"[A-Z]{1,2}", letter)):
-                raise ParameterError(f"key {letter!r} must be a class letter (A, B, ... as fabtiles check "
-                                     f"lists them)", param="faces")
+                raise ParameterError(
+                    f"key {letter!r} must be a class letter (A, B, ... as fabtiles check lists them)", param="faces"
+                )
             if not (isinstance(value, str) and value.strip().lower() in PART_COLOURS):
                 parse_colour(value, param=letter)
             pairs.append((letter, value))
@@ -379,8 +452,13 @@ class Colours:
 
     def colouring(self, classes=("A",)) -> Colouring:
         """The colours of a tile whose face classes are ``classes`` (:func:`colouring`)."""
-        return colouring(palette_name=self.palette, band=self.band_colour, base=self.base_colour,
-                         faces=dict(self.faces), classes=classes)
+        return colouring(
+            palette_name=self.palette,
+            band=self.band_colour,
+            base=self.base_colour,
+            faces=dict(self.faces),
+            classes=classes,
+        )
 
 
 # The schema names no module above it: the values and checks of its keys are registered from here.

@@ -63,10 +63,10 @@ else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 from ..core import schema as _schema
-from .colour import Colours
 from ..core.errors import DesignError, FabtilesError, did_you_mean
 from ..pattern.packing import PACKINGS
 from ..pattern.star import Star
+from .colour import Colours
 
 FORMATS = _schema.key("output.formats").choice_values()
 """Output formats a design may ask for."""
@@ -80,12 +80,16 @@ MOTIF_KEYS = _schema.names("motif")
 PACKING_KEYS = _schema.names("packing")
 HANKIN_KEYS = tuple(k.name for k in _schema.section_keys("packing") if k.requires == 'method = "hankin"')
 """The ``[packing]`` keys of ``method = "hankin"`` alone (the contact angle and gap)."""
-ARCHIMEDEAN_KEYS = tuple(k.name for k in _schema.section_keys("packing")
-                         if k.requires == 'kind = "archimedean"') + HANKIN_KEYS
+ARCHIMEDEAN_KEYS = (
+    tuple(k.name for k in _schema.section_keys("packing") if k.requires == 'kind = "archimedean"') + HANKIN_KEYS
+)
 """The ``[packing]`` keys of ``kind = "archimedean"`` alone (it has no ``radius``)."""
 TILE_KEYS = _schema.names("tile")
-HEIGHT_KEYS = tuple(k.name for k in _schema.section_keys("output")
-                    if k.option is not None and k.option.families == ("print",) and k.unit == "mm")
+HEIGHT_KEYS = tuple(
+    k.name
+    for k in _schema.section_keys("output")
+    if k.option is not None and k.option.families == ("print",) and k.unit == "mm"
+)
 """The ``[output]`` keys overriding the printer profile's heights (mm)."""
 
 OUTPUT_KEYS = _schema.names("output")
@@ -207,8 +211,9 @@ def profile_of(design: Design, which: str):
     key = f"{which}_profile"
     name = getattr(design.output, key)
     try:
-        return load_profile(name or (DEFAULT_CUTTER_PROFILE if which == "laser" else DEFAULT_PRINTER_PROFILE),
-                            kind=which)
+        return load_profile(
+            name or (DEFAULT_CUTTER_PROFILE if which == "laser" else DEFAULT_PRINTER_PROFILE), kind=which
+        )
     except ProfileError as exc:
         raise ProfileError(f"{design.source}: [output] {key}: {exc}", param=f"output.{key}") from None
 
@@ -270,9 +275,14 @@ def _blame_overrides(exc: DesignError, original: dict, overrides: tuple, *, name
     keys = {item: parse_override(item)[0] for item in overrides}
     param = exc.key or ""
     # The error's key names the override; an error naming no key (or a bare parameter) is matched by its words.
-    guilty = [item for item, parts in keys.items() if param == ".".join(parts) or param.startswith(".".join(parts) + ".")]
-    guilty = guilty or [item for item, parts in keys.items()
-                        if re.search(rf"(?<![\w]){re.escape(parts[-1])}(?![\w])", message)] or list(overrides)
+    guilty = [
+        item for item, parts in keys.items() if param == ".".join(parts) or param.startswith(".".join(parts) + ".")
+    ]
+    guilty = (
+        guilty
+        or [item for item, parts in keys.items() if re.search(rf"(?<![\w]){re.escape(parts[-1])}(?![\w])", message)]
+        or list(overrides)
+    )
     return DesignError(f"{' '.join(f'--set {item}' for item in guilty)}: {message}", param=exc.param, key=exc.key)
 
 
@@ -329,8 +339,10 @@ def design_notes(design: Design) -> list[str]:
     p = design.packing
     notes = list(design.fitted)
     if p is not None and p.kind == "archimedean" and p.method == "hankin" and design.motif is not None:
-        notes.append('[motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take '
-                     "Hankin's rays (name a motif there for a kind, or remove [motif])")
+        notes.append(
+            '[motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take '
+            "Hankin's rays (name a motif there for a kind, or remove [motif])"
+        )
     return notes
 
 
@@ -396,7 +408,7 @@ def apply_override(data: dict, item: str, *, source: str = "<design>") -> None:
     for k, p in enumerate(parts[:-1]):
         nxt = node.setdefault(p, {})
         if not isinstance(nxt, dict):
-            raise DesignError(f"{source}: --set {'.'.join(parts)}: {'.'.join(parts[:k + 1])} is not a table")
+            raise DesignError(f"{source}: --set {'.'.join(parts)}: {'.'.join(parts[: k + 1])} is not a table")
         node = nxt
     node[parts[-1]] = value
 
@@ -419,8 +431,9 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
     output = _output_spec(data.get("output", {}), source)
     colour = _colour_spec(data["colour"], source) if "colour" in data else Colours(given=False)
     name = output.name or name
-    design = Design(name=name, motif=motif, tile_spec=tile_spec, packing=packing, output=output,
-                    source=source, colour=colour)
+    design = Design(
+        name=name, motif=motif, tile_spec=tile_spec, packing=packing, output=output, source=source, colour=colour
+    )
     # Values: build the pieces, turning their ParameterError into a DesignError naming the key.
     try:
         star = motif.star() if motif is not None else None
@@ -451,9 +464,19 @@ def build_tile(design: Design, *, tile_cls=None):
     star = design.motif.star() if design.motif is not None else None
     pattern = star if design.packing is None else _build_packing(design.packing, star)
     t = design.tile_spec
-    return tile_cls(t.outline, t.size, pattern, frame=t.frame, stroke=t.stroke, join=t.join,
-                    miter_limit=t.miter_limit, corner_radius=t.corner_radius, interlace=t.interlace,
-                    interlace_gap_mm=t.interlace_gap_mm, interlace_cut=t.interlace_cut)
+    return tile_cls(
+        t.outline,
+        t.size,
+        pattern,
+        frame=t.frame,
+        stroke=t.stroke,
+        join=t.join,
+        miter_limit=t.miter_limit,
+        corner_radius=t.corner_radius,
+        interlace=t.interlace,
+        interlace_gap_mm=t.interlace_gap_mm,
+        interlace_cut=t.interlace_cut,
+    )
 
 
 def _fit_seamless(design: Design) -> Design:
@@ -489,13 +512,17 @@ def _fit_lines(key: str, asked: float, fit, t) -> tuple[str, ...]:
     lines = []
     across = "width" if t.outline == "rectangle" else "tile"
     if abs(fit.radius - asked) > 1e-9:
-        lines.append(f"packing.seamless: {key} {asked:g} mm fitted to {fit.radius:.5g} mm "
-                     f"({fit.repeats[0]} period{'s' if fit.repeats[0] != 1 else ''} across the "
-                     f"{fit.size[0]:g} mm {across})")
+        lines.append(
+            f"packing.seamless: {key} {asked:g} mm fitted to {fit.radius:.5g} mm "
+            f"({fit.repeats[0]} period{'s' if fit.repeats[0] != 1 else ''} across the "
+            f"{fit.size[0]:g} mm {across})"
+        )
     h = t.size[1] if isinstance(t.size, (tuple, list)) else t.size
     if abs(fit.size[1] - h) > 1e-9:
-        lines.append(f"packing.seamless: tile height {h:g} mm moved to {fit.size[1]:.6g} mm "
-                     f"({fit.size[1] - h:+.5g} mm, {fit.repeats[1]} whole period{'s' if fit.repeats[1] != 1 else ''} up)")
+        lines.append(
+            f"packing.seamless: tile height {h:g} mm moved to {fit.size[1]:.6g} mm "
+            f"({fit.size[1] - h:+.5g} mm, {fit.repeats[1]} whole period{'s' if fit.repeats[1] != 1 else ''} up)"
+        )
     return tuple(lines)
 
 
@@ -508,14 +535,21 @@ def _build_packing(p: PackingSpec, star: Star | None):
         assert p.tiling is not None  # the design's check: an archimedean packing names its tiling
         motifs = {sides: spec.star() for sides, spec in p.motifs}
         if p.method == "hankin":  # the kinds [packing.motifs] leaves out take Hankin's rays
-            return ArchimedeanPacking(p.tiling, p.edge, motifs, gap, outline_circles=p.outline_circles,
-                                      fill=p.fill, method="hankin", contact_angle=p.contact_angle,
-                                      contact_gap=p.contact_gap)
+            return ArchimedeanPacking(
+                p.tiling,
+                p.edge,
+                motifs,
+                gap,
+                outline_circles=p.outline_circles,
+                fill=p.fill,
+                method="hankin",
+                contact_angle=p.contact_angle,
+                contact_gap=p.contact_gap,
+            )
         if star is not None:  # [motif] fills the kinds [packing.motifs] leaves out
             kinds = set(unit_cell(p.tiling).sides.tolist())
-            motifs = {**{k: star for k in kinds - set(motifs)}, **motifs}
-        return ArchimedeanPacking(p.tiling, p.edge, motifs, gap, outline_circles=p.outline_circles,
-                                  fill=p.fill)
+            motifs = {**dict.fromkeys(kinds - set(motifs), star), **motifs}
+        return ArchimedeanPacking(p.tiling, p.edge, motifs, gap, outline_circles=p.outline_circles, fill=p.fill)
     return PACKINGS[p.kind](p.radius, star, gap, outline_circles=p.outline_circles, fill=p.fill)  # type: ignore[arg-type]  # a None motif is refused by the packing, by name
 
 
@@ -525,8 +559,7 @@ def _check_keys(table: dict, valid, where: str, source: str, what: str = "key") 
         if key not in valid:
             hint = did_you_mean(key, valid)
             hint = f"; {hint}" if hint else ""
-            raise DesignError(f"{source}: unknown {what} {key!r} in {where}{hint} "
-                              f"(valid {what}s: {', '.join(valid)})")
+            raise DesignError(f"{source}: unknown {what} {key!r} in {where}{hint} (valid {what}s: {', '.join(valid)})")
 
 
 def _motif_spec(table, source: str, where: str) -> MotifSpec:
@@ -542,8 +575,9 @@ def _motif_spec(table, source: str, where: str) -> MotifSpec:
     if preset is None:
         missing = [k for k in _schema.MOTIF_REQUIRED if k not in params]
         if missing:
-            raise DesignError(f"{source}: {where} needs preset = \"...\" or the parameters n and radii "
-                              f"(missing: {', '.join(missing)})")
+            raise DesignError(
+                f'{source}: {where} needs preset = "..." or the parameters n and radii (missing: {", ".join(missing)})'
+            )
     if "radii" in params and isinstance(params["radii"], list):
         params["radii"] = tuple(params["radii"])
     spec = MotifSpec(preset=preset, params=tuple(sorted(params.items())))
@@ -560,8 +594,9 @@ def _wrapped(exc: FabtilesError, source: str, where: str) -> DesignError:
     ``param`` is the design key of the library's parameter; ``key`` the most precise key the
     error names (a motif of ``[packing.motifs]``: ``packing.motifs.6``).
     """
-    return DesignError(f"{source}: {where} {exc}", param=_key(where, exc),
-                       key=_key(where, key=getattr(exc, "key", None) or exc.param))
+    return DesignError(
+        f"{source}: {where} {exc}", param=_key(where, exc), key=_key(where, key=getattr(exc, "key", None) or exc.param)
+    )
 
 
 def _key(where: str, exc=None, *, key=None) -> str | None:
@@ -581,15 +616,19 @@ def _value(table, section: str, name: str, source: str, where: str, default=None
     or ``default``."""
     if name not in table:
         return default
-    return _schema.key(f"{section}.{name}").check(table[name], prefix=f"{source}: {where} ", error=DesignError,
-                                                   param=_key(where, key=name))
+    return _schema.key(f"{section}.{name}").check(
+        table[name], prefix=f"{source}: {where} ", error=DesignError, param=_key(where, key=name)
+    )
 
 
 def _section(table, section: str, source: str, where: str, *, skip=()) -> dict:
     """The scalar keys of ``section`` given in ``table``, checked, with the schema's defaults for the rest."""
     scalar = ("string", "integer", "number", "boolean", "choice")
-    return {k.name: _value(table, section, k.name, source, where, k.default)
-            for k in _schema.section_keys(section) if k.type in scalar and k.name not in skip}
+    return {
+        k.name: _value(table, section, k.name, source, where, k.default)
+        for k in _schema.section_keys(section)
+        if k.type in scalar and k.name not in skip
+    }
 
 
 def _packing_spec(table: dict, source: str) -> PackingSpec:
@@ -601,18 +640,24 @@ def _packing_spec(table: dict, source: str) -> PackingSpec:
     if kind != "archimedean":
         wrong = [k for k in ARCHIMEDEAN_KEYS if k in table]
         if wrong and wrong[0] == "method":
-            raise DesignError(f"{source}: {where} method = {table['method']!r} is not valid with kind = {kind!r}: "
-                              f"method (one of: {', '.join(_schema.key('packing.method').choice_values())}) is a key "
-                              f"of kind = \"archimedean\", whose polygons may take Hankin's rays, while a {kind} "
-                              f"packing holds motifs in circles; set kind = \"archimedean\" and a tiling, or remove "
-                              f"method", param=_key(where, key="method"))
+            raise DesignError(
+                f"{source}: {where} method = {table['method']!r} is not valid with kind = {kind!r}: "
+                f"method (one of: {', '.join(_schema.key('packing.method').choice_values())}) is a key "
+                f'of kind = "archimedean", whose polygons may take Hankin\'s rays, while a {kind} '
+                f'packing holds motifs in circles; set kind = "archimedean" and a tiling, or remove '
+                f"method",
+                param=_key(where, key="method"),
+            )
         if wrong:
-            raise DesignError(f"{source}: {where} {wrong[0]} is a key of kind = \"archimedean\", "
-                              f"not of kind = {kind!r}; set kind = \"archimedean\" or remove it",
-                              param=_key(where, key=wrong[0]))
+            raise DesignError(
+                f'{source}: {where} {wrong[0]} is a key of kind = "archimedean", '
+                f'not of kind = {kind!r}; set kind = "archimedean" or remove it',
+                param=_key(where, key=wrong[0]),
+            )
     values = _section(table, "packing", source, where, skip=("kind",) + ARCHIMEDEAN_KEYS)
-    return PackingSpec(kind=kind, **extra, **values,
-                       gap_motif=None if gap is None else _motif_spec(gap, source, "[packing] gap_motif"))
+    return PackingSpec(
+        kind=kind, **extra, **values, gap_motif=None if gap is None else _motif_spec(gap, source, "[packing] gap_motif")
+    )
 
 
 def _archimedean_spec(table: dict, source: str) -> dict:
@@ -620,34 +665,48 @@ def _archimedean_spec(table: dict, source: str) -> dict:
 
     where = "[packing]"
     if "radius" in table:
-        raise DesignError(f"{source}: {where} kind = \"archimedean\" has no radius: give the tiling's "
-                          f"edge (mm) instead, like edge = {table['radius']!r}", param=_key(where, key="radius"))
+        raise DesignError(
+            f'{source}: {where} kind = "archimedean" has no radius: give the tiling\'s '
+            f"edge (mm) instead, like edge = {table['radius']!r}",
+            param=_key(where, key="radius"),
+        )
     if "tiling" not in table:
-        raise DesignError(f"{source}: {where} kind = \"archimedean\" needs tiling = one of: "
-                          f"{', '.join(TILINGS)}", param=_key(where, key="tiling"))
+        raise DesignError(
+            f'{source}: {where} kind = "archimedean" needs tiling = one of: {", ".join(TILINGS)}',
+            param=_key(where, key="tiling"),
+        )
     tiling = _value(table, "packing", "tiling", source, where)
     edge = _value(table, "packing", "edge", source, where, _schema.key("packing.edge").default)
     raw = table.get("motifs", {})
     if not isinstance(raw, dict):
-        raise DesignError(f"{source}: [packing.motifs] must be a table keyed by polygon sides "
-                          f"(8 = \"table3-3\"), got {raw!r}", param=_key(where, key="motifs"))
+        raise DesignError(
+            f'{source}: [packing.motifs] must be a table keyed by polygon sides (8 = "table3-3"), got {raw!r}',
+            param=_key(where, key="motifs"),
+        )
     method = _value(table, "packing", "method", source, where, _schema.key("packing.method").default)
     if method not in _schema.key("packing.method").choice_values():
         valid = _schema.key("packing.method").choice_values()
         hint = did_you_mean(method, valid)
-        raise DesignError(f"{source}: {where} method = {method!r} is not valid{f' ({hint})' if hint else ''}, "
-                          f"must be one of: {', '.join(valid)}", param=_key(where, key="method"))
-    contact = {k: _value(table, "packing", k, source, where, _schema.key(f"packing.{k}").default)
-               for k in HANKIN_KEYS}
+        raise DesignError(
+            f"{source}: {where} method = {method!r} is not valid{f' ({hint})' if hint else ''}, "
+            f"must be one of: {', '.join(valid)}",
+            param=_key(where, key="method"),
+        )
+    contact = {k: _value(table, "packing", k, source, where, _schema.key(f"packing.{k}").default) for k in HANKIN_KEYS}
     if method != "hankin" and any(k in table for k in HANKIN_KEYS):
         first = next(k for k in HANKIN_KEYS if k in table)
-        raise DesignError(f"{source}: {where} {first} is a key of method = \"hankin\", not of method = "
-                          f"{method!r}; set method = \"hankin\" or remove it", param=_key(where, key=first))
+        raise DesignError(
+            f'{source}: {where} {first} is a key of method = "hankin", not of method = '
+            f'{method!r}; set method = "hankin" or remove it',
+            param=_key(where, key=first),
+        )
     motifs = []
     for key, value in raw.items():
         if not str(key).isdigit():
-            raise DesignError(f"{source}: [packing.motifs] key {key!r} must be a polygon's number of "
-                              f"sides, like 8 = \"table3-3\"", param=_key(where, key="motifs"))
+            raise DesignError(
+                f'{source}: [packing.motifs] key {key!r} must be a polygon\'s number of sides, like 8 = "table3-3"',
+                param=_key(where, key="motifs"),
+            )
         motifs.append((int(key), _motif_spec(value, source, f"[packing.motifs] {key}")))
     return dict(tiling=tiling, edge=edge, motifs=tuple(sorted(motifs)), method=method, **contact)
 
@@ -673,19 +732,27 @@ def _colour_spec(table: dict, source: str) -> Colours:
     where = "[colour]"
     _check_keys(table, COLOUR_KEYS, where, source)
     values = _section(table, "colour", source, where)
-    values.update({k.name: _value(table, "colour", k.name, source, where)
-                   for k in _schema.section_keys("colour") if k.type == "colour"})
+    values.update(
+        {
+            k.name: _value(table, "colour", k.name, source, where)
+            for k in _schema.section_keys("colour")
+            if k.type == "colour"
+        }
+    )
     faces = table.get("faces", {})
     if not isinstance(faces, dict):
-        raise DesignError(f"{source}: [colour.faces] must be a table of class letters to colours "
-                          f"(A = \"navy\"), got {faces!r}", param="colour.faces")
+        raise DesignError(
+            f'{source}: [colour.faces] must be a table of class letters to colours (A = "navy"), got {faces!r}',
+            param="colour.faces",
+        )
     try:
         return Colours(**values, faces=faces, given=True)
     except FabtilesError as exc:
         # a bad colour names its class (the web app's face_<letter> parameter): colour.faces.A
         letter = exc.param if re.fullmatch(r"[A-Z]{1,2}", str(getattr(exc, "param", None))) else None
-        raise DesignError(f"{source}: [colour.faces] {exc}",
-                          param=f"colour.faces.{letter}" if letter else "colour.faces") from None
+        raise DesignError(
+            f"{source}: [colour.faces] {exc}", param=f"colour.faces.{letter}" if letter else "colour.faces"
+        ) from None
 
 
 def _output_spec(table: dict, source: str) -> OutputSpec:
@@ -695,15 +762,22 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
     if isinstance(formats, str):
         formats = [formats]
     if not isinstance(formats, list) or not formats:
-        raise DesignError(f"{source}: {where} formats must be a non-empty list of: {', '.join(FORMATS)}",
-                          param="output.formats")
+        raise DesignError(
+            f"{source}: {where} formats must be a non-empty list of: {', '.join(FORMATS)}", param="output.formats"
+        )
     for f in formats:
         if f not in FORMATS:
             hint = did_you_mean(f, FORMATS)
-            raise DesignError(f"{source}: {where} formats: {f!r} is not a valid format{f' ({hint})' if hint else ''}, "
-                              f"must be one of: {', '.join(FORMATS)}", param="output.formats")
+            raise DesignError(
+                f"{source}: {where} formats: {f!r} is not a valid format{f' ({hint})' if hint else ''}, "
+                f"must be one of: {', '.join(FORMATS)}",
+                param="output.formats",
+            )
     name = _value(table, "output", "name", source, where)
     if name is not None and not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9._ -]*", name):
-        raise DesignError(f"{source}: {where} name must be a plain file name (letters, digits, . _ - "
-                          f"and spaces, no folders), got {name!r}", param="output.name")
+        raise DesignError(
+            f"{source}: {where} name must be a plain file name (letters, digits, . _ - "
+            f"and spaces, no folders), got {name!r}",
+            param="output.name",
+        )
     return OutputSpec(formats=tuple(dict.fromkeys(formats)), **_section(table, "output", source, where))

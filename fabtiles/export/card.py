@@ -20,12 +20,12 @@ import numpy as np
 
 from ..core.errors import ParameterError
 from ..core.files import atomic_write
-from ..machines.profiles import DXF_VERSIONS, load_profile
 from ..core.report import Report
 from ..core.validate import check_choice
 from ..geometry.calibration import calibration_card
 from ..geometry.contours import laser_contours
-from ..geometry.cut_plan import CutPlan, make_plan
+from ..geometry.cut_plan import make_plan
+from ..machines.profiles import DXF_VERSIONS, load_profile
 
 CARD_FORMATS = ("dxf", "svg")
 
@@ -34,12 +34,12 @@ def card_job(profile, *, dxf_version=None):
     """The card of ``profile`` as a :class:`~fabtiles.geometry.cut_plan.CutPlan`, and the card."""
     profile = load_profile(profile, kind="laser")
     profile.cutter.check_card(profile)  # its rows measure a kerf, bridges and holes as a laser burns them
-    version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
-                           DXF_VERSIONS)
+    version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version, DXF_VERSIONS)
     card = calibration_card(profile)
     kx, ky = profile.kerf_xy_mm
-    inner, outer = laser_contours(card.region, card.outline, kerf_mm=kx, kerf_y_mm=ky,
-                                  tolerance_mm=profile.tolerance_mm)
+    inner, outer = laser_contours(
+        card.region, card.outline, kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm
+    )
     score = [np.asarray(p, dtype=float) for p in card.labels]
     return make_plan(profile, "pierced", version, kx, {"inner": inner, "outer": outer, "score": score}), card
 
@@ -60,7 +60,13 @@ def write_card(path, profile, *, dxf_version=None) -> Report:
     job, card = card_job(profile, dxf_version=dxf_version)
     atomic_write(path, FORMATS[fmt].bytes_of(job))
     report = Report(path=str(path), format=fmt)
-    report.stats.update(profile=job.profile.name, kerf_mm=job.kerf_mm, size_mm=[card.width_mm, card.height_mm],
-                        features=len(card.features), inner_contours=len(job.paths("inner")),
-                        outer_contours=len(job.paths("outer")), score_paths=len(job.paths("score")))
+    report.stats.update(
+        profile=job.profile.name,
+        kerf_mm=job.kerf_mm,
+        size_mm=[card.width_mm, card.height_mm],
+        features=len(card.features),
+        inner_contours=len(job.paths("inner")),
+        outer_contours=len(job.paths("outer")),
+        score_paths=len(job.paths("score")),
+    )
     return report

@@ -23,15 +23,25 @@ from __future__ import annotations
 
 import threading
 from contextlib import contextmanager
-from pathlib import Path
 
 from ..core.files import atomic_write
 from ..core.report import Report
 from ..geometry.cut_plan import CutPlan, plan_cut
 
 
-def write_dxf(path, *, region, outline, centrelines=None, profile, mode=None, dxf_version=None,
-              kerf_mm=None, fill_small_holes: bool = False, stroke=None) -> Report:
+def write_dxf(
+    path,
+    *,
+    region,
+    outline,
+    centrelines=None,
+    profile,
+    mode=None,
+    dxf_version=None,
+    kerf_mm=None,
+    fill_small_holes: bool = False,
+    stroke=None,
+) -> Report:
     """Write the laser DXF of a tile's material ``region`` to ``path``.
 
     Parameters
@@ -71,8 +81,19 @@ def write_dxf(path, *, region, outline, centrelines=None, profile, mode=None, dx
     >>> r.stats["inner_contours"], r.stats["outer_contours"], r.ok
     (1, 1, True)
     """
-    plan = plan_cut(region, outline, centrelines=centrelines, profile=profile, mode=mode, dxf_version=dxf_version,
-                    kerf_mm=kerf_mm, fill_small_holes=fill_small_holes, stroke=stroke, path=str(path), fmt="dxf")
+    plan = plan_cut(
+        region,
+        outline,
+        centrelines=centrelines,
+        profile=profile,
+        mode=mode,
+        dxf_version=dxf_version,
+        kerf_mm=kerf_mm,
+        fill_small_holes=fill_small_holes,
+        stroke=stroke,
+        path=str(path),
+        fmt="dxf",
+    )
     atomic_write(path, dxf_bytes(plan))
     plan.report.stats.update(figures(plan))
     return plan.report
@@ -174,20 +195,28 @@ def entities_text(job: CutPlan, first_handle: int, owner: str) -> tuple[str, int
             # an arc: the bulge (group code 42, tan(sweep / 4)) of the vertex it leaves from
             bulges = [f" 42\n{b!r}\n" if b else "" for b in bulge.tolist()] if bulge.any() else None
             if r12:
-                out.append(f"  0\nPOLYLINE\n  5\n{h:X}\n{common} 66\n1\n 10\n0.0\n 20\n0.0\n 30\n0.0\n"
-                           f" 70\n{flag}\n")
+                out.append(f"  0\nPOLYLINE\n  5\n{h:X}\n{common} 66\n1\n 10\n0.0\n 20\n0.0\n 30\n0.0\n 70\n{flag}\n")
                 if bulges is None:
-                    vtx = "".join(f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{layer.name}\n 10\n%r\n 20\n%r\n"
-                                  " 30\n0.0\n 70\n0\n" for k in range(n))
+                    vtx = "".join(
+                        f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{layer.name}\n 10\n%r\n 20\n%r\n 30\n0.0\n 70\n0\n"
+                        for k in range(n)
+                    )
                     out.append(vtx % tuple(xy))
                 else:
-                    out.append("".join(f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{layer.name}\n 10\n{xy[2 * k]!r}\n"
-                                       f" 20\n{xy[2 * k + 1]!r}\n 30\n0.0\n{bulges[k]} 70\n0\n" for k in range(n)))
+                    out.append(
+                        "".join(
+                            f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{layer.name}\n 10\n{xy[2 * k]!r}\n"
+                            f" 20\n{xy[2 * k + 1]!r}\n 30\n0.0\n{bulges[k]} 70\n0\n"
+                            for k in range(n)
+                        )
+                    )
                 out.append(f"  0\nSEQEND\n  5\n{h + 1:X}\n  8\n{layer.name}\n")
                 h += n + 2
             else:
-                out.append(f"  0\nLWPOLYLINE\n  5\n{h:X}\n330\n{owner}\n100\nAcDbEntity\n{common}"
-                           f"100\nAcDbPolyline\n 90\n{n}\n 70\n{flag}\n")
+                out.append(
+                    f"  0\nLWPOLYLINE\n  5\n{h:X}\n330\n{owner}\n100\nAcDbEntity\n{common}"
+                    f"100\nAcDbPolyline\n 90\n{n}\n 70\n{flag}\n"
+                )
                 if bulges is None:
                     out.append((" 10\n%r\n 20\n%r\n" * n) % tuple(xy))
                 else:

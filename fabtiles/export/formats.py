@@ -20,9 +20,9 @@ A new format is one module with its ``*_bytes`` function and one row here
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 from ..core.errors import ParameterError
 
@@ -137,16 +137,27 @@ def _glb_figures(model, options):
     return figures(model)
 
 
-FORMATS = {f.name: f for f in (
-    Format("dxf", "cut", "image/vnd.dxf", "DXF for laser, router and waterjet software", _dxf, _dxf_figures),
-    Format("svg", "cut", "image/svg+xml", "laser SVG, true millimetres, one group per layer", _svg, _none),
-    Format("lbrn2", "cut", "application/xml", "LightBurn project with the profile's cut settings", _lbrn2, _none),
-    Format("stl", "print", "model/stl", "binary STL, one watertight body", _stl, _stl_figures),
-    Format("3mf", "print", "model/3mf", "3MF, one object of named parts, one filament each", _3mf, _3mf_figures),
-    Format("step", "print", "model/step", "STEP AP214, planes and cylinders, one solid per piece", _step, _step_figures),
-    Format("glb", "print", "model/gltf-binary", "binary glTF of the print's parts in colour (the 3D view)",
-           _glb, _glb_figures),
-)}
+FORMATS = {
+    f.name: f
+    for f in (
+        Format("dxf", "cut", "image/vnd.dxf", "DXF for laser, router and waterjet software", _dxf, _dxf_figures),
+        Format("svg", "cut", "image/svg+xml", "laser SVG, true millimetres, one group per layer", _svg, _none),
+        Format("lbrn2", "cut", "application/xml", "LightBurn project with the profile's cut settings", _lbrn2, _none),
+        Format("stl", "print", "model/stl", "binary STL, one watertight body", _stl, _stl_figures),
+        Format("3mf", "print", "model/3mf", "3MF, one object of named parts, one filament each", _3mf, _3mf_figures),
+        Format(
+            "step", "print", "model/step", "STEP AP214, planes and cylinders, one solid per piece", _step, _step_figures
+        ),
+        Format(
+            "glb",
+            "print",
+            "model/gltf-binary",
+            "binary glTF of the print's parts in colour (the 3D view)",
+            _glb,
+            _glb_figures,
+        ),
+    )
+}
 """Every output format by name (= file suffix without the dot)."""
 
 FILE_FORMATS = ("dxf", "svg", "lbrn2", "stl", "3mf", "step")

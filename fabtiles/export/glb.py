@@ -28,9 +28,15 @@ def glb_bytes(parts: dict) -> bytes:
     scene = trimesh.Scene()
     for name, (vertices, faces, colour) in parts.items():
         material = trimesh.visual.material.PBRMaterial(
-            name=name, baseColorFactor=[*colour, 1.0], metallicFactor=0.0, roughnessFactor=0.8)
-        mesh = trimesh.Trimesh(np.asarray(vertices, dtype=np.float32), faces, process=False, validate=False,
-                               visual=trimesh.visual.TextureVisuals(material=material))
+            name=name, baseColorFactor=[*colour, 1.0], metallicFactor=0.0, roughnessFactor=0.8
+        )
+        mesh = trimesh.Trimesh(
+            np.asarray(vertices, dtype=np.float32),
+            faces,
+            process=False,
+            validate=False,
+            visual=trimesh.visual.TextureVisuals(material=material),
+        )
         scene.add_geometry(mesh, node_name=name, geom_name=name)
     return scene.export(file_type="glb", include_normals=False)
 
@@ -43,11 +49,15 @@ def model_glb_bytes(model) -> bytes:
 def figures(model, data: bytes | None = None) -> dict:
     """What the 3D view reports: each part's triangles, mesh volume and colour, the totals."""
     parts = model.parts
-    out = dict(model.stats(),
-               parts={n: {"triangles": len(p.mesh.faces), "volume_mm3": p.mesh.mesh_volume_mm3, "colour": p.colour}
-                      for n, p in parts.items()},
-               triangles=int(sum(len(p.mesh.faces) for p in parts.values())),
-               volume_mm3=float(sum(p.mesh.mesh_volume_mm3 for p in parts.values())))
+    out = dict(
+        model.stats(),
+        parts={
+            n: {"triangles": len(p.mesh.faces), "volume_mm3": p.mesh.mesh_volume_mm3, "colour": p.colour}
+            for n, p in parts.items()
+        },
+        triangles=int(sum(len(p.mesh.faces) for p in parts.values())),
+        volume_mm3=float(sum(p.mesh.mesh_volume_mm3 for p in parts.values())),
+    )
     if data is not None:
         out["bytes"] = len(data)
     return out

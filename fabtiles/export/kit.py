@@ -44,12 +44,29 @@ def kit_files(plans: KitPlans, path) -> list:
     """``[(path, plan), ...]``: the kit's files beside ``path`` and the plan each is written from (a kit
     with no piece, its lattice alone: see :meth:`~fabtiles.geometry.cut_plan.KitPlans.files_of`)."""
     kept = {suffix for suffix, _ in plans.files_of("")}
-    return [(p, getattr(plans, which)) for p, (suffix, which) in zip(kit_paths(path), KIT_FILES, strict=True) if suffix in kept]
+    return [
+        (p, getattr(plans, which))
+        for p, (suffix, which) in zip(kit_paths(path), KIT_FILES, strict=True)
+        if suffix in kept
+    ]
 
 
-def write_kit(path, *, region, outline, profile, inlay_fit_mm=None, inlay_base: str = "pierced", kerf_mm=None,
-              dxf_version=None, stroke=None, centrelines=None, fill_small_holes=None, tab_mm=None,
-              tabs_per_part=None) -> Report:
+def write_kit(
+    path,
+    *,
+    region,
+    outline,
+    profile,
+    inlay_fit_mm=None,
+    inlay_base: str = "pierced",
+    kerf_mm=None,
+    dxf_version=None,
+    stroke=None,
+    centrelines=None,
+    fill_small_holes=None,
+    tab_mm=None,
+    tabs_per_part=None,
+) -> Report:
     """Write the inlay kit of a tile's material ``region``: the lattice and the pieces files.
 
     A convenience for scripts (:func:`~fabtiles.geometry.cut_plan.plan_kit`, then both
@@ -62,9 +79,20 @@ def write_kit(path, *, region, outline, profile, inlay_fit_mm=None, inlay_base: 
     as the design keys of the same names do.
     """
     fmt = format_of(path, allowed=KIT_FORMATS)
-    plans = plan_kit(region, outline, profile=profile, inlay_fit_mm=inlay_fit_mm, inlay_base=inlay_base,
-                     kerf_mm=kerf_mm, dxf_version=dxf_version, stroke=stroke, path=str(kit_paths(path)[0]),
-                     fmt=fmt.name, tab_mm=tab_mm, tabs_per_part=tabs_per_part)
+    plans = plan_kit(
+        region,
+        outline,
+        profile=profile,
+        inlay_fit_mm=inlay_fit_mm,
+        inlay_base=inlay_base,
+        kerf_mm=kerf_mm,
+        dxf_version=dxf_version,
+        stroke=stroke,
+        path=str(kit_paths(path)[0]),
+        fmt=fmt.name,
+        tab_mm=tab_mm,
+        tabs_per_part=tabs_per_part,
+    )
     files = [(p, fmt.bytes_of(plan)) for p, plan in kit_files(plans, path)]  # both made before either is written
     for p, data in files:
         atomic_write(p, data)

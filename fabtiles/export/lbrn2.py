@@ -41,13 +41,26 @@ APP_VERSION = "1.7.03"
 """The LightBurn version the project says it is for (a recent one: older LightBurn opens newer files too)."""
 
 # LightBurn's palette (its layers 00-29), RGB: 00 black, 01 blue, 02 red, 03 green, ...
-PALETTE = ("000000 0000FF FF0000 00E000 D0D000 FF8000 00E0E0 FF00FF B4B4B4 0000A0 A00000 00A000 A0A000 "
-           "C08000 00A0FF A000A0 808080 7D87B9 BB7784 4A6FE3 D33F6A 8CD78C F0B98D F6C4E1 FA9ED4 500A78 "
-           "B45A00 004754 86FA88 FFDB66").split()
+PALETTE = (
+    "000000 0000FF FF0000 00E000 D0D000 FF8000 00E0E0 FF00FF B4B4B4 0000A0 A00000 00A000 A0A000 "
+    "C08000 00A0FF A000A0 808080 7D87B9 BB7784 4A6FE3 D33F6A 8CD78C F0B98D F6C4E1 FA9ED4 500A78 "
+    "B45A00 004754 86FA88 FFDB66"
+).split()
 
 
-def write_lbrn2(path, *, region, outline, centrelines=None, profile, mode=None, kerf_mm=None,
-                fill_small_holes: bool = False, stroke=None, dxf_version=None) -> Report:
+def write_lbrn2(
+    path,
+    *,
+    region,
+    outline,
+    centrelines=None,
+    profile,
+    mode=None,
+    kerf_mm=None,
+    fill_small_holes: bool = False,
+    stroke=None,
+    dxf_version=None,
+) -> Report:
     """Write the LightBurn project of a tile's material ``region`` to ``path``.
 
     Parameters as :func:`~fabtiles.export.dxf.write_dxf` (``dxf_version`` is accepted
@@ -61,8 +74,18 @@ def write_lbrn2(path, *, region, outline, centrelines=None, profile, mode=None, 
     >>> out.read_text().count('<Shape Type="Path"'), r.stats["inner_contours"], r.stats["outer_contours"]
     (2, 1, 1)
     """
-    plan = plan_cut(region, outline, centrelines=centrelines, profile=profile, mode=mode, kerf_mm=kerf_mm,
-                    fill_small_holes=fill_small_holes, stroke=stroke, path=str(path), fmt="lbrn2")
+    plan = plan_cut(
+        region,
+        outline,
+        centrelines=centrelines,
+        profile=profile,
+        mode=mode,
+        kerf_mm=kerf_mm,
+        fill_small_holes=fill_small_holes,
+        stroke=stroke,
+        path=str(path),
+        fmt="lbrn2",
+    )
     atomic_write(path, lbrn2_bytes(plan))
     return plan.report
 
@@ -73,8 +96,8 @@ def palette_index(color_rgb: str, taken) -> int:
     >>> palette_index("FF0000", set()), palette_index("FF0000", {2}), palette_index("0000FF", set())
     (2, 10, 1)
     """
-    target = np.array([int(color_rgb[i:i + 2], 16) for i in (0, 2, 4)], float)
-    rgb = np.array([[int(c[i:i + 2], 16) for i in (0, 2, 4)] for c in PALETTE], float)
+    target = np.array([int(color_rgb[i : i + 2], 16) for i in (0, 2, 4)], float)
+    rgb = np.array([[int(c[i : i + 2], 16) for i in (0, 2, 4)] for c in PALETTE], float)
     order = np.argsort(np.linalg.norm(rgb - target, axis=1), kind="stable")
     return int(next(i for i in order if int(i) not in taken))
 
@@ -111,11 +134,13 @@ def _paths(rings, index: int, closed: bool) -> list:
             verts, prims = _bezier_path(r, closed)
         else:
             n = len(r)
-            verts, prims = "V".join(records[at:at + n]), _prims(n, closed)
+            verts, prims = "V".join(records[at : at + n]), _prims(n, closed)
             at += n
-        out.append(f'    <Shape Type="Path" CutIndex="{index}">\n        <XForm>1 0 0 1 0 0</XForm>\n'
-                   f'        <VertList>V{verts}</VertList>\n'
-                   f'        <PrimList>{prims}</PrimList>\n    </Shape>\n')
+        out.append(
+            f'    <Shape Type="Path" CutIndex="{index}">\n        <XForm>1 0 0 1 0 0</XForm>\n'
+            f"        <VertList>V{verts}</VertList>\n"
+            f"        <PrimList>{prims}</PrimList>\n    </Shape>\n"
+        )
     return out
 
 
@@ -145,9 +170,15 @@ def _bezier_path(path: Beziers, closed: bool) -> tuple[str, str]:
 def _cut_setting(layer, index: int, priority: int, kind: str) -> str:
     from xml.sax.saxutils import quoteattr
 
-    rows = [("index", index), ("name", layer.name), ("minPower", _num(layer.power_pct)),
-            ("maxPower", _num(layer.power_pct)), ("speed", _num(layer.speed_mm_s)),
-            ("numPasses", layer.passes), ("priority", priority)]
+    rows = [
+        ("index", index),
+        ("name", layer.name),
+        ("minPower", _num(layer.power_pct)),
+        ("maxPower", _num(layer.power_pct)),
+        ("speed", _num(layer.speed_mm_s)),
+        ("numPasses", layer.passes),
+        ("priority", priority),
+    ]
     if kind == "Scan":
         rows.append(("interval", _num(layer.line_interval_mm)))
     body = "".join(f"        <{k} Value={quoteattr(str(v))}/>\n" for k, v in rows)
@@ -167,7 +198,9 @@ def layer_groups(job: CutPlan):
         curves = cut.curves_or_paths()
         bent = [k for k, c in enumerate(curves) if c.bulge.any()]
         paths = [c.xy for c in curves]
-        for k, b in zip(bent, beziers_many([curves[k] for k in bent], tolerance_mm=tol, closed=cut.closed), strict=True):
+        for k, b in zip(
+            bent, beziers_many([curves[k] for k in bent], tolerance_mm=tol, closed=cut.closed), strict=True
+        ):
             paths[k] = b
         out.append((cut.key, cut.layer, paths, cut.closed, "Scan" if cut.fill else "Cut"))
     return out
@@ -182,9 +215,11 @@ def lbrn2_text(job: CutPlan) -> str:
     """The ``.lbrn2`` XML of a cut plan."""
     from .laser_svg import aci_to_hex
 
-    head = ['<?xml version="1.0" encoding="UTF-8"?>\n',
-            f'<LightBurnProject AppVersion="{APP_VERSION}" FormatVersion="1" MaterialHeight="0" '
-            'MirrorX="False" MirrorY="False">\n']
+    head = [
+        '<?xml version="1.0" encoding="UTF-8"?>\n',
+        f'<LightBurnProject AppVersion="{APP_VERSION}" FormatVersion="1" MaterialHeight="0" '
+        'MirrorX="False" MirrorY="False">\n',
+    ]
     settings: list = []
     shapes: list = []
     taken: set = set()

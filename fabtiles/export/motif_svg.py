@@ -29,13 +29,17 @@ def segments_path_data(segments: np.ndarray, *, flip_y: float | None = None) -> 
     if flip_y is not None:
         seg = seg.copy()
         seg[..., 1] = flip_y - seg[..., 1]
-    return "".join(
-        f"M{_num(a[0])} {_num(a[1])}L{_num(b[0])} {_num(b[1])}" for a, b in seg
-    )
+    return "".join(f"M{_num(a[0])} {_num(a[1])}L{_num(b[0])} {_num(b[1])}" for a, b in seg)
 
 
-def motif_svg(segments: np.ndarray, *, size_mm: float = 100.0, stroke: float | None = None,
-              color: str = "#1f3b73", title: str = "") -> str:
+def motif_svg(
+    segments: np.ndarray,
+    *,
+    size_mm: float = 100.0,
+    stroke: float | None = None,
+    color: str = "#1f3b73",
+    title: str = "",
+) -> str:
     """An SVG picture of a motif's centre-lines, scaled to ``size_mm`` across.
 
     >>> svg = motif_svg(np.array([[[-1.0, 0.0], [1.0, 0.0]]]), size_mm=10)

@@ -34,15 +34,19 @@ def svg_text(drawing) -> str:
     """
     x0, y0, x1, y1 = drawing.bounds
     w, h = x1 - x0, y1 - y0
-    out = ['<?xml version="1.0" encoding="UTF-8"?>',
-           f'<svg xmlns="http://www.w3.org/2000/svg" '
-           f'xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" width="{_num(w)}mm" '
-           f'height="{_num(h)}mm" viewBox="0 0 {_num(w)} {_num(h)}">']
+    out = [
+        '<?xml version="1.0" encoding="UTF-8"?>',
+        f'<svg xmlns="http://www.w3.org/2000/svg" '
+        f'xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" width="{_num(w)}mm" '
+        f'height="{_num(h)}mm" viewBox="0 0 {_num(w)} {_num(h)}">',
+    ]
     for k, layer in enumerate(drawing.layers, start=1):
         name = layer.name.replace("&", "&amp;").replace("<", "&lt;").replace('"', "&quot;")
-        out.append(f'<g id="layer{k}" inkscape:groupmode="layer" inkscape:label="{name}" fill="none" '
-                   f'stroke="{layer.colour}" stroke-width="{_num(drawing.pen_mm)}" stroke-linecap="round" '
-                   f'stroke-linejoin="round">')
+        out.append(
+            f'<g id="layer{k}" inkscape:groupmode="layer" inkscape:label="{name}" fill="none" '
+            f'stroke="{layer.colour}" stroke-width="{_num(drawing.pen_mm)}" stroke-linecap="round" '
+            f'stroke-linejoin="round">'
+        )
         for p in layer.paths:
             pts = [f"{_num(x - x0)} {_num(y1 - y)}" for x, y in p.tolist()]
             out.append(f'<path d="M{pts[0]} L{" ".join(pts[1:])}"/>')
@@ -60,8 +64,9 @@ def need_vpype(what: str):
     try:
         import vpype
     except ImportError:
-        raise ParameterError(f"{what} needs vpype, which is not installed: pip install 'fabtiles[vpype]'",
-                             param="format") from None
+        raise ParameterError(
+            f"{what} needs vpype, which is not installed: pip install 'fabtiles[vpype]'", param="format"
+        ) from None
     return vpype
 
 
@@ -74,10 +79,14 @@ def vpype_document(drawing, document=None):
     doc = vp.Document() if document is None else document
     x0, y0, x1, y1 = drawing.bounds
     for layer in drawing.layers:
-        lines = vp.LineCollection([((p[:, 0] - x0) + 1j * (y1 - p[:, 1])) * PX_PER_MM for p in layer.paths],
-                                  metadata={vp.METADATA_FIELD_NAME: layer.name,
-                                            vp.METADATA_FIELD_COLOR: vp.Color(layer.colour),
-                                            vp.METADATA_FIELD_PEN_WIDTH: drawing.pen_mm * PX_PER_MM})
+        lines = vp.LineCollection(
+            [((p[:, 0] - x0) + 1j * (y1 - p[:, 1])) * PX_PER_MM for p in layer.paths],
+            metadata={
+                vp.METADATA_FIELD_NAME: layer.name,
+                vp.METADATA_FIELD_COLOR: vp.Color(layer.colour),
+                vp.METADATA_FIELD_PEN_WIDTH: drawing.pen_mm * PX_PER_MM,
+            },
+        )
         doc.add(lines, doc.free_id(), with_metadata=True)
     if doc.page_size is None:
         doc.page_size = ((x1 - x0) * PX_PER_MM, (y1 - y0) * PX_PER_MM)
@@ -96,6 +105,14 @@ def hpgl_bytes(drawing, *, device: str = HPGL_DEVICE, page: str = "a4") -> bytes
 
     doc = vpype_document(drawing)
     buf = io.StringIO()
-    vp.write_hpgl(buf, doc, page_size=page, landscape=doc.page_size[0] > doc.page_size[1], center=False,
-                  device=device, velocity=None, quiet=True)
+    vp.write_hpgl(
+        buf,
+        doc,
+        page_size=page,
+        landscape=doc.page_size[0] > doc.page_size[1],
+        center=False,
+        device=device,
+        velocity=None,
+        quiet=True,
+    )
     return buf.getvalue().encode()

@@ -43,8 +43,13 @@ def region_path_data(region, height: float) -> str:
     return "".join(out)
 
 
-MARK_COLOURS = {"small_hole": "#ff8c00", "thin_bridge": "#e6007e", "thin_wall": "#e6007e",
-                "loose_part": "#00a651", "uncut_slit": "#00b7eb"}
+MARK_COLOURS = {
+    "small_hole": "#ff8c00",
+    "thin_bridge": "#e6007e",
+    "thin_wall": "#e6007e",
+    "loose_part": "#00a651",
+    "uncut_slit": "#00b7eb",
+}
 """Stroke colour of each finding's marks (others: :data:`MARK_COLOUR`)."""
 MARK_COLOUR = "#ffd400"
 
@@ -78,19 +83,33 @@ def findings_overlay(findings, height: float, *, mark_mm: float = 1.5) -> str:
         unit = "mm²" if f.unit == "mm^2" else f.unit
         for k, (x, y) in enumerate(f.locations):
             size = f", {f.sizes[k]:.3g} {unit}" if k < len(f.sizes) else ""
-            out.append(f'<circle class="finding {_attr(f.code)}" data-where="{_attr(where)}" '
-                       f'cx="{_num(x)}" cy="{_num(height - y)}" r="{_num(mark_mm)}" stroke="{colour}">'
-                       f"<title>{_escape(what)}{size} ({_escape(where)})</title></circle>")
+            out.append(
+                f'<circle class="finding {_attr(f.code)}" data-where="{_attr(where)}" '
+                f'cx="{_num(x)}" cy="{_num(height - y)}" r="{_num(mark_mm)}" stroke="{colour}">'
+                f"<title>{_escape(what)}{size} ({_escape(where)})</title></circle>"
+            )
     out.append("</g>")
     return "\n".join(out)
 
 
 INK = "#1f3b73"
-"""The bands' colour in a picture of a design given no colours (the print's second filament, as the 3D view shows it)."""
+"""The bands' colour in a picture of a design given no colours.
+
+The print's second filament, as the 3D view shows it.
+"""
 
 
-def tile_svg(tile, *, fill: str = INK, outline_color: str = "#c0392b",
-             background: str = "#ffffff", title: str | None = None, findings=None, region=None, faces=()) -> str:
+def tile_svg(
+    tile,
+    *,
+    fill: str = INK,
+    outline_color: str = "#c0392b",
+    background: str = "#ffffff",
+    title: str | None = None,
+    findings=None,
+    region=None,
+    faces=(),
+) -> str:
     """An SVG picture of ``tile`` at true size: material filled, outline stroked.
 
     An interlaced tile is drawn woven: each band outlined, and stopped short
@@ -134,8 +153,12 @@ def tile_svg(tile, *, fill: str = INK, outline_color: str = "#c0392b",
     band_edge = f'stroke="{_BAND_EDGE}" stroke-width="{_num(tile.stroke / 10)}"' if woven else 'stroke="none"'
 
     outline = region_path_data(tile.outline_shape(), h)
-    coloured = "".join(f'<path class="face-{_attr(letter)}" d="{region_path_data(g, h)}" fill="{_attr(colour)}" '
-                       f'fill-rule="evenodd"/>\n' for letter, g, colour in faces if not g.is_empty)
+    coloured = "".join(
+        f'<path class="face-{_attr(letter)}" d="{region_path_data(g, h)}" fill="{_attr(colour)}" '
+        f'fill-rule="evenodd"/>\n'
+        for letter, g, colour in faces
+        if not g.is_empty
+    )
     title = repr(tile) if title is None else title
     line = max(0.1, min(w, h) / 500)
     # marks 1 % of the tile's smaller side (1.5 mm on 150 mm), never under 0.5 mm
@@ -209,22 +232,31 @@ def kit_svg(kit, outline, *, title: str = "inlay kit", colours=KIT_COLOURS) -> s
     rim = region_path_data(outline, ymax + ymin)
     frame = f'<path d="{rim}" fill="none" stroke="#999" stroke-width="0.2" stroke-dasharray="1 1"/>'
     total = 4 * w + 3 * gap
-    body = "".join([
-        panel(0, fill(kit.lattice, "lattice", light)),
-        panel(1, frame + fill(pieces, "pieces", dark)),
-        panel(2, fill(kit.lattice, "lattice", light) + fill(pieces, "pieces", dark)),
-        panel(3, fill(kit.lattice, "lattice", dark) + fill(pieces, "pieces", light)),  # the materials swapped
-    ])
-    return ('<?xml version="1.0" encoding="UTF-8"?>\n'
-            f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(total)}mm" height="{_num(h)}mm" '
-            f'viewBox="0 0 {_num(total)} {_num(h)}">\n'
-            f'<title>{_escape(title)}: lattice, pieces, assembled, reverse</title>\n'
-            f"{body}\n</svg>\n")
+    body = "".join(
+        [
+            panel(0, fill(kit.lattice, "lattice", light)),
+            panel(1, frame + fill(pieces, "pieces", dark)),
+            panel(2, fill(kit.lattice, "lattice", light) + fill(pieces, "pieces", dark)),
+            panel(3, fill(kit.lattice, "lattice", dark) + fill(pieces, "pieces", light)),  # the materials swapped
+        ]
+    )
+    return (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(total)}mm" height="{_num(h)}mm" '
+        f'viewBox="0 0 {_num(total)} {_num(h)}">\n'
+        f"<title>{_escape(title)}: lattice, pieces, assembled, reverse</title>\n"
+        f"{body}\n</svg>\n"
+    )
 
 
-
-NEST_COLOURS = {"sheet": "#f3ead8", "part": "#d8b98a", "outer": "#b03a2e", "inner": "#1f3b73", "score": "#2e7d32",
-                "engrave": "#555555"}
+NEST_COLOURS = {
+    "sheet": "#f3ead8",
+    "part": "#d8b98a",
+    "outer": "#b03a2e",
+    "inner": "#1f3b73",
+    "score": "#2e7d32",
+    "engrave": "#555555",
+}
 """The nested sheet's picture: the sheet, each part's outline, and its cut paths by role."""
 
 
@@ -253,14 +285,18 @@ def nested_sheet_svg(plan, parts, sheet_mm, *, title: str = "nested sheet") -> s
     (1, True)
     """
     w, h = (float(v) for v in sheet_mm)
-    out = ['<?xml version="1.0" encoding="UTF-8"?>\n'
-           f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(w)}mm" height="{_num(h)}mm" '
-           f'viewBox="0 0 {_num(w)} {_num(h)}">\n<title>{_escape(title)}</title>\n',
-           f'<rect class="sheet" x="0" y="0" width="{_num(w)}" height="{_num(h)}" fill="{NEST_COLOURS["sheet"]}" '
-           'stroke="#888" stroke-width="1" vector-effect="non-scaling-stroke"/>\n']
+    out = [
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(w)}mm" height="{_num(h)}mm" '
+        f'viewBox="0 0 {_num(w)} {_num(h)}">\n<title>{_escape(title)}</title>\n',
+        f'<rect class="sheet" x="0" y="0" width="{_num(w)}" height="{_num(h)}" fill="{NEST_COLOURS["sheet"]}" '
+        'stroke="#888" stroke-width="1" vector-effect="non-scaling-stroke"/>\n',
+    ]
     for name, outline in parts:
-        out.append(f'<path class="part" data-part="{_attr(name)}" d="{region_path_data(outline, h)}" '
-                   f'fill="{NEST_COLOURS["part"]}" stroke="none"><title>{_escape(name)}</title></path>\n')
+        out.append(
+            f'<path class="part" data-part="{_attr(name)}" d="{region_path_data(outline, h)}" '
+            f'fill="{NEST_COLOURS["part"]}" stroke="none"><title>{_escape(name)}</title></path>\n'
+        )
     for layer in plan.layers:
         colour = NEST_COLOURS.get(layer.role, NEST_COLOURS["inner"])
         if layer.fill:

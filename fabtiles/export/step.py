@@ -70,8 +70,8 @@ def read_step_solids(path):
     is the file itself, not a repaired copy (1.2 s for the 200 x 200 mm tile).
     """
     from OCP.IFSelect import IFSelect_RetDone
-    from OCP.StepShape import StepShape_ManifoldSolidBrep
     from OCP.STEPControl import STEPControl_Reader
+    from OCP.StepShape import StepShape_ManifoldSolidBrep
     from OCP.StepToTopoDS import StepToTopoDS_Builder
     from OCP.Transfer import Transfer_TransientProcess
 
@@ -122,8 +122,8 @@ def _big_face_valid(face) -> bool:
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
     from OCP.BRepCheck import BRepCheck_Analyzer
     from OCP.BRepTools import BRepTools, BRepTools_WireExplorer
-    from OCP.GeomAdaptor import GeomAdaptor_Surface
     from OCP.GeomAbs import GeomAbs_Plane
+    from OCP.GeomAdaptor import GeomAdaptor_Surface
     from OCP.TopoDS import TopoDS
 
     geom = BRep_Tool.Surface_s(face)
@@ -231,8 +231,7 @@ def check_solids(solids, *, volume: float, parts: int, name: str = "STEP file re
         faces = TopExp_Explorer(solid, TopAbs_FACE)
         while faces.More():
             face = TopoDS.Face(faces.Current())
-            ok = (_big_face_valid(face) if len(_wires(face)) > BIG_FACE_WIRES
-                  else BRepCheck_Analyzer(face).IsValid())
+            ok = _big_face_valid(face) if len(_wires(face)) > BIG_FACE_WIRES else BRepCheck_Analyzer(face).IsValid()
             if not ok:
                 fail(f"has an invalid face (solid {k}, BRepCheck_Analyzer)")
             faces.Next()
@@ -242,8 +241,10 @@ def check_solids(solids, *, volume: float, parts: int, name: str = "STEP file re
             fail(f"has a solid of volume {props.Mass():.6g} mm^3 (solid {k}): inside out")
         total += props.Mass()
     if abs(total - volume) > STEP_VOLUME_TOLERANCE * abs(volume):
-        fail(f"has a volume of {total:.6g} mm^3 (OCCT), not the mesh's {volume:.6g} mm^3 "
-             f"({STEP_VOLUME_TOLERANCE:.2%} allowed)")
+        fail(
+            f"has a volume of {total:.6g} mm^3 (OCCT), not the mesh's {volume:.6g} mm^3 "
+            f"({STEP_VOLUME_TOLERANCE:.2%} allowed)"
+        )
     return total
 
 
@@ -284,20 +285,44 @@ def step_bytes(model, *, name: str = "tile") -> bytes:
             f"printer profile {model.profile.name!r}: tolerance_mm = {tol:g} mm is too coarse for the round "
             f"walls of this tile's STEP: the arcs found within it change the solid's volume by "
             f"{abs(exact - volume) / volume:.2%} (at most {ARC_VOLUME_LIMIT:.1%}); set printer.tolerance_mm "
-            f"to {finer} or finer", param="tolerance_mm", key="printer.tolerance_mm")
+            f"to {finer} or finer",
+            param="tolerance_mm",
+            key="printer.tolerance_mm",
+        )
     return step_text([brep], name=name).encode("ascii")
 
 
 def figures(model) -> dict:
     """What a STEP file adds to its model's report."""
     brep, volume, parts = model.brep
-    return dict(material=filament({"solid": volume}, model.profile).as_stats(), style=model.stack.style,
-                solids=parts, volume_mm3=brep_volume(brep), grid_mm=QUANTUM, faces=len(brep.faces),
-                cylinders=sum(f.radius > 0 for f in brep.faces), edges=len(brep.edges))
+    return dict(
+        material=filament({"solid": volume}, model.profile).as_stats(),
+        style=model.stack.style,
+        solids=parts,
+        volume_mm3=brep_volume(brep),
+        grid_mm=QUANTUM,
+        faces=len(brep.faces),
+        cylinders=sum(f.radius > 0 for f in brep.faces),
+        edges=len(brep.edges),
+    )
 
 
-def write_step(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
-               pierced_mm=None, deboss_mm=None, fill_small_holes=False, dips=None, name=None):
+def write_step(
+    path,
+    *,
+    region,
+    outline,
+    profile,
+    style=None,
+    stroke=None,
+    base_mm=None,
+    relief_mm=None,
+    pierced_mm=None,
+    deboss_mm=None,
+    fill_small_holes=False,
+    dips=None,
+    name=None,
+):
     """Write a STEP file (AP214, mm) of the printed tile: planes and cylinders, one solid per piece.
 
     A convenience for scripts: the print model (:func:`~fabtiles.solid.print_model.print_model`)
@@ -315,9 +340,21 @@ def write_step(path, *, region, outline, profile, style=None, stroke=None, base_
 
     from ..solid.print_model import print_model
 
-    model = print_model(region, outline, profile=profile, style=style, stroke=stroke, base_mm=base_mm,
-                        relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm,
-                        fill_small_holes=fill_small_holes, dips=dips, path=str(path), fmt="step")
+    model = print_model(
+        region,
+        outline,
+        profile=profile,
+        style=style,
+        stroke=stroke,
+        base_mm=base_mm,
+        relief_mm=relief_mm,
+        pierced_mm=pierced_mm,
+        deboss_mm=deboss_mm,
+        fill_small_holes=fill_small_holes,
+        dips=dips,
+        path=str(path),
+        fmt="step",
+    )
     atomic_write(path, step_bytes(model, name=name or Path(path).stem))
     model.report.stats.update(figures(model))
     return model.report

@@ -32,7 +32,6 @@ import numpy as np
 
 from ..solid.brep import Brep, seam_direction
 
-
 TIME_STAMP = "2000-01-01T00:00:00"
 """The ``FILE_NAME`` time stamp of every STEP file (ISO 8601, as the standard asks): the same bytes every run."""
 
@@ -189,8 +188,10 @@ def _pcurve(w: _Writer, surface: int, face, start, arc) -> int:
     parametrised as their edge.
     """
     if w.context_2d is None:
-        w.context_2d = w.add("( GEOMETRIC_REPRESENTATION_CONTEXT(2) PARAMETRIC_REPRESENTATION_CONTEXT() "
-                             "REPRESENTATION_CONTEXT('2D SPACE','') )")
+        w.context_2d = w.add(
+            "( GEOMETRIC_REPRESENTATION_CONTEXT(2) PARAMETRIC_REPRESENTATION_CONTEXT() "
+            "REPRESENTATION_CONTEXT('2D SPACE','') )"
+        )
     ref = np.asarray(face.ref[:2], float)
     height = float(start[2] - face.origin[2])
     if arc[2] > 0:
@@ -252,8 +253,12 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
             surface = w.add(f"PLANE('',#{w.placement(*placed[f])})")
         bounds = []
         for i, loop in enumerate(face.loops):
-            oes = w.extend([f"ORIENTED_EDGE('',*,*,#{edges[e]},.T.)" if e >= 0
-                            else f"ORIENTED_EDGE('',*,*,#{edges[~e]},.F.)" for e in loop])
+            oes = w.extend(
+                [
+                    f"ORIENTED_EDGE('',*,*,#{edges[e]},.T.)" if e >= 0 else f"ORIENTED_EDGE('',*,*,#{edges[~e]},.F.)"
+                    for e in loop
+                ]
+            )
             el = w.add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oes) + "))")
             kind = "FACE_OUTER_BOUND" if i == 0 else "FACE_BOUND"
             bounds.append(w.add(f"{kind}('',#{el},.T.)"))
@@ -282,20 +287,32 @@ def step_text(breps, *, name: str = "tile") -> str:
     mm = w.add("( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) )")
     rad = w.add("( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) )")
     sr = w.add("( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() )")
-    unc = w.add(f"UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-06),#{mm},'distance_accuracy_value',"
-                "'confusion accuracy')")
-    ctx = w.add(f"( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc})) "
-                f"GLOBAL_UNIT_ASSIGNED_CONTEXT((#{mm},#{rad},#{sr})) REPRESENTATION_CONTEXT('','3D') )")
+    unc = w.add(
+        f"UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-06),#{mm},'distance_accuracy_value','confusion accuracy')"
+    )
+    ctx = w.add(
+        f"( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc})) "
+        f"GLOBAL_UNIT_ASSIGNED_CONTEXT((#{mm},#{rad},#{sr})) REPRESENTATION_CONTEXT('','3D') )"
+    )
     axis = w.placement((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0))
     solids = []
     for brep in breps:
         solids.extend(_brep_entities(w, brep, name))
-    rep = w.add("ADVANCED_BREP_SHAPE_REPRESENTATION(" + _name(name) + ",(#" + str(axis) + ","
-                + ",".join(f"#{s}" for s in solids) + f"),#{ctx})")
+    rep = w.add(
+        "ADVANCED_BREP_SHAPE_REPRESENTATION("
+        + _name(name)
+        + ",(#"
+        + str(axis)
+        + ","
+        + ",".join(f"#{s}" for s in solids)
+        + f"),#{ctx})"
+    )
     w.add(f"SHAPE_DEFINITION_REPRESENTATION(#{pshape},#{rep})")
-    head = ("ISO-10303-21;\nHEADER;\n"
-            f"FILE_DESCRIPTION(({_name('fabtiles tile')}),'2;1');\n"
-            f"FILE_NAME({_name(name + '.step')},{_name(TIME_STAMP)},(''),(''),'fabtiles','fabtiles','');\n"
-            "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n")
+    head = (
+        "ISO-10303-21;\nHEADER;\n"
+        f"FILE_DESCRIPTION(({_name('fabtiles tile')}),'2;1');\n"
+        f"FILE_NAME({_name(name + '.step')},{_name(TIME_STAMP)},(''),(''),'fabtiles','fabtiles','');\n"
+        "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n"
+    )
     body = "\n".join([f"#{i}={line};" for i, line in enumerate(w.lines, 1)])
     return head + body + "\nENDSEC;\nEND-ISO-10303-21;\n"

@@ -16,8 +16,21 @@ from ..geometry.material import filament
 from ..solid.mesh_check import cross_rows
 
 
-def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
-              pierced_mm=None, deboss_mm=None, fill_small_holes=False, dips=None) -> Report:
+def write_stl(
+    path,
+    *,
+    region,
+    outline,
+    profile,
+    style=None,
+    stroke=None,
+    base_mm=None,
+    relief_mm=None,
+    pierced_mm=None,
+    deboss_mm=None,
+    fill_small_holes=False,
+    dips=None,
+) -> Report:
     """Write a binary STL (mm) of the tile, one watertight body (a relief's plate and pattern fused).
 
     A convenience for scripts: the print model (:func:`~fabtiles.solid.print_model.print_model`)
@@ -32,9 +45,21 @@ def write_stl(path, *, region, outline, profile, style=None, stroke=None, base_m
     """
     from ..solid.print_model import print_model
 
-    model = print_model(region, outline, profile=profile, style=style, stroke=stroke, base_mm=base_mm,
-                        relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm,
-                        fill_small_holes=fill_small_holes, dips=dips, path=str(path), fmt="stl")
+    model = print_model(
+        region,
+        outline,
+        profile=profile,
+        style=style,
+        stroke=stroke,
+        base_mm=base_mm,
+        relief_mm=relief_mm,
+        pierced_mm=pierced_mm,
+        deboss_mm=deboss_mm,
+        fill_small_holes=fill_small_holes,
+        dips=dips,
+        path=str(path),
+        fmt="stl",
+    )
     atomic_write(path, model_stl_bytes(model))
     model.report.stats.update(figures(model))
     return model.report
@@ -55,15 +80,24 @@ def figures(model) -> dict:
     if len(split) > 1:
         parts = {m.fused_name: m.fused for _, m in split}
         allv = np.concatenate([p.vertices for p in parts.values()])
-        return dict(model.stats(), bodies=list(parts), triangles=int(sum(len(p.faces) for p in parts.values())),
-                    volume_mm3=float(sum(p.mesh_volume_mm3 for p in parts.values())),
-                    material=filament({n: p.mesh_volume_mm3 for n, p in parts.items()}, model.profile).as_stats(),
-                    bounds_mm=[allv.min(axis=0).tolist(), allv.max(axis=0).tolist()])
+        return dict(
+            model.stats(),
+            bodies=list(parts),
+            triangles=int(sum(len(p.faces) for p in parts.values())),
+            volume_mm3=float(sum(p.mesh_volume_mm3 for p in parts.values())),
+            material=filament({n: p.mesh_volume_mm3 for n, p in parts.items()}, model.profile).as_stats(),
+            bounds_mm=[allv.min(axis=0).tolist(), allv.max(axis=0).tolist()],
+        )
     fused, name = model.fused, model.fused_name
     volume = fused.mesh_volume_mm3
-    return dict(model.stats(), bodies=[name], triangles=len(fused.faces), volume_mm3=volume,
-                material=filament({name: volume}, model.profile).as_stats(),
-                bounds_mm=[fused.vertices.min(axis=0).tolist(), fused.vertices.max(axis=0).tolist()])
+    return dict(
+        model.stats(),
+        bodies=[name],
+        triangles=len(fused.faces),
+        volume_mm3=volume,
+        material=filament({name: volume}, model.profile).as_stats(),
+        bounds_mm=[fused.vertices.min(axis=0).tolist(), fused.vertices.max(axis=0).tolist()],
+    )
 
 
 def stl_bytes(vertices, faces) -> bytes:
@@ -82,7 +116,6 @@ def stl_bytes(vertices, faces) -> bytes:
     rec["v"] = tris
     header = b"fabtiles binary STL, units mm".ljust(80, b" ")
     return header + np.uint32(len(tris)).tobytes() + rec.tobytes()
-
 
 
 def read_stl_triangles(data: bytes) -> np.ndarray:

@@ -181,11 +181,13 @@ def _numbers(fmt: str, values: np.ndarray) -> str:
 
 def _mesh_xml(vertices: np.ndarray, faces: np.ndarray, indent: str) -> list:
     """A ``<mesh>`` element's text: float32-exact vertices with 9 significant digits, then triangles."""
-    return [f'{indent}<mesh>\n{indent} <vertices>\n',
-            _numbers(f'{indent}  <vertex x="%.9g" y="%.9g" z="%.9g"/>\n', vertices),
-            f'{indent} </vertices>\n{indent} <triangles>\n',
-            _numbers(f'{indent}  <triangle v1="%d" v2="%d" v3="%d"/>\n', faces),
-            f'{indent} </triangles>\n{indent}</mesh>\n']
+    return [
+        f"{indent}<mesh>\n{indent} <vertices>\n",
+        _numbers(f'{indent}  <vertex x="%.9g" y="%.9g" z="%.9g"/>\n', vertices),
+        f"{indent} </vertices>\n{indent} <triangles>\n",
+        _numbers(f'{indent}  <triangle v1="%d" v2="%d" v3="%d"/>\n', faces),
+        f"{indent} </triangles>\n{indent}</mesh>\n",
+    ]
 
 
 def _exact(vertices) -> np.ndarray:
@@ -221,12 +223,15 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles", layout: str 
     """
     check_layout(layout)
     _check_parts(parts)
-    head = ['<?xml version="1.0" encoding="UTF-8"?>\n',
-            f'<model unit="millimeter" xml:lang="en-US" xmlns="{_CORE_NS}"'
-            + (f' xmlns:cura="{_CURA_NS}"' if layout == "components" else "") + '>\n',
-            f' <metadata name="Application">{_text(application)}</metadata>\n',
-            f' <metadata name="Title">{_text(name)}</metadata>\n',
-            ' <resources>\n']
+    head = [
+        '<?xml version="1.0" encoding="UTF-8"?>\n',
+        f'<model unit="millimeter" xml:lang="en-US" xmlns="{_CORE_NS}"'
+        + (f' xmlns:cura="{_CURA_NS}"' if layout == "components" else "")
+        + ">\n",
+        f' <metadata name="Application">{_text(application)}</metadata>\n',
+        f' <metadata name="Title">{_text(name)}</metadata>\n',
+        " <resources>\n",
+    ]
     if layout == "volumes":
         body, files = _volumes(parts, name)
     else:
@@ -234,8 +239,12 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles", layout: str 
     model = "".join(head + body)
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as zf:
-        for arcname, text in (("[Content_Types].xml", _CONTENT_TYPES), ("_rels/.rels", _RELS),
-                              (MODEL_PATH, model), *files):
+        for arcname, text in (
+            ("[Content_Types].xml", _CONTENT_TYPES),
+            ("_rels/.rels", _RELS),
+            (MODEL_PATH, model),
+            *files,
+        ):
             info = zip_entry(arcname)  # dated 1980-01-01: the same bytes every run
             # level 1: the 600 x 400 mm sheet's model packs to 5.7 MB in 0.3 s; the default
             # level 6 gives 4.7 MB in 0.9 s (measured)
@@ -246,15 +255,17 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles", layout: str 
 def _check_parts(parts) -> None:
     """A :class:`~fabtiles.ParameterError` unless there are parts, each on an extruder 1..MAX_EXTRUDERS."""
     if not len(parts):
-        raise ParameterError("a 3MF needs at least one part, got none: give the print model's parts",
-                             param="parts")
+        raise ParameterError("a 3MF needs at least one part, got none: give the print model's parts", param="parts")
     for p in parts:
         e = p.extruder
         if isinstance(e, bool) or not isinstance(e, (int, np.integer)) or not 1 <= e <= MAX_EXTRUDERS:
-            raise ParameterError(f"part {p.name!r} has extruder={e!r}, must be an integer from 1 to "
-                                 f"{MAX_EXTRUDERS} (Bambu Studio and OrcaSlicer add filaments up to 16 only): "
-                                 "merge colours so that "
-                                 f"at most {MAX_EXTRUDERS} remain", param="extruder")
+            raise ParameterError(
+                f"part {p.name!r} has extruder={e!r}, must be an integer from 1 to "
+                f"{MAX_EXTRUDERS} (Bambu Studio and OrcaSlicer add filaments up to 16 only): "
+                "merge colours so that "
+                f"at most {MAX_EXTRUDERS} remain",
+                param="extruder",
+            )
 
 
 def _volumes(parts, name):
@@ -267,31 +278,39 @@ def _volumes(parts, name):
         ranges.append((nt, nt + len(p.faces) - 1))
         nv += len(p.vertices)
         nt += len(p.faces)
-    body = [f'  <object id="1" type="model" name={quoteattr(name)}>\n',
-            *_mesh_xml(_exact(np.concatenate(verts)), np.concatenate(faces), "   "),
-            '  </object>\n </resources>\n',
-            # no transform: their importers give a lone instance's transform to the first volume only
-            ' <build>\n  <item objectid="1"/>\n </build>\n</model>\n']
-    return body, ((PRUSA_CONFIG_PATH, _prusa_config(parts, ranges, name)),
-                  (BAMBU_CONFIG_PATH, _bambu_config(parts, ranges, name)))
+    body = [
+        f'  <object id="1" type="model" name={quoteattr(name)}>\n',
+        *_mesh_xml(_exact(np.concatenate(verts)), np.concatenate(faces), "   "),
+        "  </object>\n </resources>\n",
+        # no transform: their importers give a lone instance's transform to the first volume only
+        ' <build>\n  <item objectid="1"/>\n </build>\n</model>\n',
+    ]
+    return body, (
+        (PRUSA_CONFIG_PATH, _prusa_config(parts, ranges, name)),
+        (BAMBU_CONFIG_PATH, _bambu_config(parts, ranges, name)),
+    )
 
 
 def _components(parts, name):
     """Each part its own mesh object (ids 1..k, Cura's extruder on each), then object k+1 of components."""
     body = []
     for i, p in enumerate(parts, start=1):
-        body += [f'  <object id="{i}" type="model" name={quoteattr(p.name)}>\n',
-                 '   <metadatagroup>\n',
-                 # Cura's extruders count from 0, the slicers' filaments from 1
-                 f'    <metadata name="cura:extruder_nr" preserve="1" type="xs:string">{p.extruder - 1}</metadata>\n',
-                 '   </metadatagroup>\n',
-                 *_mesh_xml(_exact(p.vertices), np.asarray(p.faces, np.int64), "   "),
-                 '  </object>\n']
+        body += [
+            f'  <object id="{i}" type="model" name={quoteattr(p.name)}>\n',
+            "   <metadatagroup>\n",
+            # Cura's extruders count from 0, the slicers' filaments from 1
+            f'    <metadata name="cura:extruder_nr" preserve="1" type="xs:string">{p.extruder - 1}</metadata>\n',
+            "   </metadatagroup>\n",
+            *_mesh_xml(_exact(p.vertices), np.asarray(p.faces, np.int64), "   "),
+            "  </object>\n",
+        ]
     k = len(parts) + 1
-    body += [f'  <object id="{k}" type="model" name={quoteattr(name)}>\n   <components>\n',
-             *(f'    <component objectid="{i}"/>\n' for i in range(1, k)),
-             '   </components>\n  </object>\n </resources>\n',
-             f' <build>\n  <item objectid="{k}"/>\n </build>\n</model>\n']
+    body += [
+        f'  <object id="{k}" type="model" name={quoteattr(name)}>\n   <components>\n',
+        *(f'    <component objectid="{i}"/>\n' for i in range(1, k)),
+        "   </components>\n  </object>\n </resources>\n",
+        f' <build>\n  <item objectid="{k}"/>\n </build>\n</model>\n',
+    ]
     return body, ((BAMBU_CONFIG_PATH, _bambu_components_config(parts, name)),)
 
 
@@ -301,50 +320,61 @@ def _text(s: str) -> str:
 
 def _prusa_config(parts, ranges, name) -> str:
     """PrusaSlicer's per-object config: the volumes as triangle ranges, named, with extruders."""
-    out = ['<?xml version="1.0" encoding="UTF-8"?>\n<config>\n <object id="1" instances_count="1">\n',
-           f'  <metadata type="object" key="name" value={quoteattr(name)}/>\n',
-           '  <metadata type="object" key="extruder" value="1"/>\n']
+    out = [
+        '<?xml version="1.0" encoding="UTF-8"?>\n<config>\n <object id="1" instances_count="1">\n',
+        f'  <metadata type="object" key="name" value={quoteattr(name)}/>\n',
+        '  <metadata type="object" key="extruder" value="1"/>\n',
+    ]
     for p, (first, last) in zip(parts, ranges, strict=True):
-        out += [f'  <volume firstid="{first}" lastid="{last}">\n',
-                f'   <metadata type="volume" key="name" value={quoteattr(p.name)}/>\n',
-                '   <metadata type="volume" key="volume_type" value="ModelPart"/>\n',
-                f'   <metadata type="volume" key="extruder" value="{p.extruder}"/>\n',
-                '   <mesh edges_fixed="0" degenerate_facets="0" facets_removed="0" facets_reversed="0" '
-                'backwards_edges="0"/>\n',
-                '  </volume>\n']
-    out.append(' </object>\n</config>\n')
+        out += [
+            f'  <volume firstid="{first}" lastid="{last}">\n',
+            f'   <metadata type="volume" key="name" value={quoteattr(p.name)}/>\n',
+            '   <metadata type="volume" key="volume_type" value="ModelPart"/>\n',
+            f'   <metadata type="volume" key="extruder" value="{p.extruder}"/>\n',
+            '   <mesh edges_fixed="0" degenerate_facets="0" facets_removed="0" facets_reversed="0" '
+            'backwards_edges="0"/>\n',
+            "  </volume>\n",
+        ]
+    out.append(" </object>\n</config>\n")
     return "".join(out)
 
 
 def _bambu_part(part_id, p, extra: str = "") -> list:
-    return [f'  <part id="{part_id}" subtype="normal_part"{extra}>\n',
-            f'   <metadata key="name" value={quoteattr(p.name)}/>\n',
-            '   <metadata key="matrix" value="1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"/>\n',
-            f'   <metadata key="extruder" value="{p.extruder}"/>\n',
-            '   <mesh_stat edges_fixed="0" degenerate_facets="0" facets_removed="0" facets_reversed="0" '
-            'backwards_edges="0"/>\n',
-            '  </part>\n']
+    return [
+        f'  <part id="{part_id}" subtype="normal_part"{extra}>\n',
+        f'   <metadata key="name" value={quoteattr(p.name)}/>\n',
+        '   <metadata key="matrix" value="1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1"/>\n',
+        f'   <metadata key="extruder" value="{p.extruder}"/>\n',
+        '   <mesh_stat edges_fixed="0" degenerate_facets="0" facets_removed="0" facets_reversed="0" '
+        'backwards_edges="0"/>\n',
+        "  </part>\n",
+    ]
 
 
 def _bambu_config(parts, ranges, name) -> str:
     """Bambu Studio / OrcaSlicer's model settings: the object and its parts, names and filaments."""
-    out = ['<?xml version="1.0" encoding="UTF-8"?>\n<config>\n <object id="1">\n',
-           f'  <metadata key="name" value={quoteattr(name)}/>\n',
-           '  <metadata key="extruder" value="1"/>\n']
+    out = [
+        '<?xml version="1.0" encoding="UTF-8"?>\n<config>\n <object id="1">\n',
+        f'  <metadata key="name" value={quoteattr(name)}/>\n',
+        '  <metadata key="extruder" value="1"/>\n',
+    ]
     for i, (p, (first, last)) in enumerate(zip(parts, ranges, strict=True), start=1):
         out += _bambu_part(i, p, f' firstid="{first}" lastid="{last}"')
-    out.append(' </object>\n</config>\n')
+    out.append(" </object>\n</config>\n")
     return "".join(out)
 
 
 def _bambu_components_config(parts, name) -> str:
     """The model settings of the components layout: the assembly (id k+1), each part by its object's id."""
-    out = ['<?xml version="1.0" encoding="UTF-8"?>\n<config>\n', f' <object id="{len(parts) + 1}">\n',
-           f'  <metadata key="name" value={quoteattr(name)}/>\n',
-           '  <metadata key="extruder" value="1"/>\n']
+    out = [
+        '<?xml version="1.0" encoding="UTF-8"?>\n<config>\n',
+        f' <object id="{len(parts) + 1}">\n',
+        f'  <metadata key="name" value={quoteattr(name)}/>\n',
+        '  <metadata key="extruder" value="1"/>\n',
+    ]
     for i, p in enumerate(parts, start=1):
         out += _bambu_part(i, p)
-    out.append(' </object>\n</config>\n')
+    out.append(" </object>\n</config>\n")
     return "".join(out)
 
 
@@ -361,7 +391,7 @@ def _block(model: bytes, block: bytes, tag: bytes, fields: tuple, dtype) -> np.n
     start, end = model.find(b"<" + block + b">"), model.find(b"</" + block + b">")
     if start < 0 or end < start:
         raise FabricationError(f"the 3MF model has no <{block.decode()}> block")
-    text = model[start + len(block) + 2:end]
+    text = model[start + len(block) + 2 : end]
     records = text.count(b"<" + tag + b" ")
     text = text.replace(b"<" + tag + b" " + fields[0] + b'="', b" ")
     for f in fields[1:]:
@@ -374,8 +404,10 @@ def _block(model: bytes, block: bytes, tag: bytes, fields: tuple, dtype) -> np.n
     except ValueError:  # numpy 2.4 raises there
         values = np.empty(0)
     if len(values) != 3 * records:
-        raise FabricationError(f"the 3MF model's <{tag.decode()}> records do not parse: {len(values)} numbers "
-                               f"read for {records} records of 3")
+        raise FabricationError(
+            f"the 3MF model's <{tag.decode()}> records do not parse: {len(values)} numbers "
+            f"read for {records} records of 3"
+        )
     return values.reshape(-1, 3)
 
 
@@ -409,13 +441,16 @@ def read_3mf(source) -> dict:
     for vol in config.iter("volume"):
         first, last = int(vol.get("firstid", "")), int(vol.get("lastid", ""))
         meta = {m.get("key"): m.get("value") for m in vol.iter("metadata")}
-        f = tris[first:last + 1]
+        f = tris[first : last + 1]
         if not len(f) or last < first or last >= len(tris) or f.min() < 0 or f.max() >= len(verts):
-            raise FabricationError(f"the 3MF volume {meta.get('name')!r} has an invalid triangle range "
-                                   f"{first}..{last} ({len(tris)} triangles, {len(verts)} vertices)")
+            raise FabricationError(
+                f"the 3MF volume {meta.get('name')!r} has an invalid triangle range "
+                f"{first}..{last} ({len(tris)} triangles, {len(verts)} vertices)"
+            )
         lo, hi = int(f.min()), int(f.max())
-        parts[meta.get("name") or ""] = Part(meta.get("name") or "", int(meta.get("extruder") or 0),
-                                           verts[lo:hi + 1], f - lo)
+        parts[meta.get("name") or ""] = Part(
+            meta.get("name") or "", int(meta.get("extruder") or 0), verts[lo : hi + 1], f - lo
+        )
     return parts
 
 
@@ -431,15 +466,15 @@ def _read_components(model: bytes) -> dict:
     bodies = {}
     for m in heads:
         end = model.find(b"</object>", m.end())
-        bodies[int(m.group(1))] = (unescape(m.group(2)[1:-1].decode("utf-8"), {"&quot;": '"'}),
-                                   model[m.end():end])
+        bodies[int(m.group(1))] = (unescape(m.group(2)[1:-1].decode("utf-8"), {"&quot;": '"'}), model[m.end() : end])
     item = re.search(rb'<item objectid="(\d+)"', model)
     if item is None or int(item.group(1)) not in bodies:
         raise FabricationError("the 3MF model has no build item naming one of its objects")
     ids = [int(i) for i in re.findall(rb'<component objectid="(\d+)"', bodies[int(item.group(1))][1])]
     if not ids or any(i not in bodies for i in ids):
-        raise FabricationError(f"the 3MF build object's components {ids} are not objects of the model "
-                               f"(objects {sorted(bodies)})")
+        raise FabricationError(
+            f"the 3MF build object's components {ids} are not objects of the model (objects {sorted(bodies)})"
+        )
     parts = {}
     for i in ids:
         name, text = bodies[i]
@@ -447,8 +482,7 @@ def _read_components(model: bytes) -> dict:
         verts = _block(text, b"vertices", b"vertex", (b"x", b"y", b"z"), np.float32)
         faces = _block(text, b"triangles", b"triangle", (b"v1", b"v2", b"v3"), np.int64)
         if len(faces) and (faces.min() < 0 or faces.max() >= len(verts)):
-            raise FabricationError(f"the 3MF object {name!r} has triangles indexing past its "
-                                   f"{len(verts)} vertices")
+            raise FabricationError(f"the 3MF object {name!r} has triangles indexing past its {len(verts)} vertices")
         parts[name] = Part(name, int(nr.group(1)) + 1 if nr else 0, verts, faces)
     return parts
 
@@ -456,9 +490,24 @@ def _read_components(model: bytes) -> dict:
 # --------------------------------------------------------------------------- writer
 
 
-def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_mm=None, relief_mm=None,
-              pierced_mm=None, deboss_mm=None, fill_small_holes=False, inlay=False, layout="volumes", name=None,
-              dips=None):
+def write_3mf(
+    path,
+    *,
+    region,
+    outline,
+    profile,
+    style=None,
+    stroke=None,
+    base_mm=None,
+    relief_mm=None,
+    pierced_mm=None,
+    deboss_mm=None,
+    fill_small_holes=False,
+    inlay=False,
+    layout="volumes",
+    name=None,
+    dips=None,
+):
     """Write a 3MF (unit millimetre) of the tile: one object of named parts, one filament each.
 
     A convenience for scripts: the print model (:func:`~fabtiles.solid.print_model.print_model`)
@@ -489,9 +538,22 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
     from ..solid.print_model import print_model
 
     check_layout(layout)
-    model = print_model(region, outline, profile=profile, style=style, stroke=stroke, base_mm=base_mm,
-                        relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm,
-                        fill_small_holes=fill_small_holes, inlay=inlay, dips=dips, path=str(path), fmt="3mf")
+    model = print_model(
+        region,
+        outline,
+        profile=profile,
+        style=style,
+        stroke=stroke,
+        base_mm=base_mm,
+        relief_mm=relief_mm,
+        pierced_mm=pierced_mm,
+        deboss_mm=deboss_mm,
+        fill_small_holes=fill_small_holes,
+        inlay=inlay,
+        dips=dips,
+        path=str(path),
+        fmt="3mf",
+    )
     atomic_write(path, model_3mf_bytes(model, name=name if name is not None else _stem(path), layout=layout))
     model.report.stats.update(figures(model, layout=layout))
     return model.report
@@ -500,8 +562,9 @@ def write_3mf(path, *, region, outline, profile, style=None, stroke=None, base_m
 def check_layout(layout) -> str:
     """``layout`` if it is one of :data:`LAYOUTS`, else a :class:`~fabtiles.ParameterError` listing them."""
     if layout not in LAYOUTS:
-        raise ParameterError(f"layout={layout!r} is not a valid 3MF layout, must be one of: {', '.join(LAYOUTS)}",
-                             param="layout")
+        raise ParameterError(
+            f"layout={layout!r} is not a valid 3MF layout, must be one of: {', '.join(LAYOUTS)}", param="layout"
+        )
     return layout
 
 
@@ -525,7 +588,7 @@ def figures(model, *, layout: str = "volumes") -> dict:
     return dict(
         model.stats(),
         bodies=list(checked),
-        parts={n: {"extruder": p.material, "triangles": int(len(p.mesh.faces))} for n, p in checked.items()},
+        parts={n: {"extruder": p.material, "triangles": len(p.mesh.faces)} for n, p in checked.items()},
         layout=layout,
         triangles=int(sum(len(p.mesh.faces) for p in checked.values())),
         volume_mm3=float(sum(p.mesh.mesh_volume_mm3 for p in checked.values())),
@@ -538,4 +601,3 @@ def _stem(path) -> str:
     from pathlib import Path
 
     return Path(str(path)).stem or "tile"
-

@@ -86,8 +86,7 @@ class ArcRuns(NamedTuple):
 
 
 def _empty() -> ArcRuns:
-    return ArcRuns(np.zeros(0, dtype=int), np.zeros(0, dtype=int), np.zeros((0, 2)), np.zeros(0), False,
-                   np.zeros(0))
+    return ArcRuns(np.zeros(0, dtype=int), np.zeros(0, dtype=int), np.zeros((0, 2)), np.zeros(0), False, np.zeros(0))
 
 
 def fit_distance(tolerance_mm: float) -> float:
@@ -147,8 +146,9 @@ def _sweep(pts: np.ndarray, centre: np.ndarray) -> float:
     return float(ang.sum())
 
 
-def arc_runs(ring: np.ndarray, *, tolerance_mm: float, closed: bool = True, link_slack: float = 1.0,
-             radii=()) -> ArcRuns:
+def arc_runs(
+    ring: np.ndarray, *, tolerance_mm: float, closed: bool = True, link_slack: float = 1.0, radii=()
+) -> ArcRuns:
     """The arcs of a flattened ``ring``: runs of >= 3 chords on one circle.
 
     ``ring`` is (n, 2), as the cut plan keeps its paths: a closed ring WITHOUT its
@@ -168,8 +168,7 @@ def arc_runs(ring: np.ndarray, *, tolerance_mm: float, closed: bool = True, link
     return arc_runs_many([ring], tolerance_mm=tolerance_mm, closed=closed, link_slack=link_slack, radii=radii)[0]
 
 
-def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack: float = 1.0,
-                  radii=()) -> list:
+def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack: float = 1.0, radii=()) -> list:
     """:func:`arc_runs` of each of ``rings`` (a list of (n, 2) arrays), in one vectorised pass.
 
     ``link_slack``: how much farther than :func:`fit_distance` the vertex after three may lie off
@@ -221,16 +220,20 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
     # triple i (vertices prev[i], i, nxt[i]) is a piece of arc when it turns and both its
     # chords stand within the tolerance off its circle
     with np.errstate(invalid="ignore"):
-        r2 = radius ** 2
-        sag_next = radius - np.sqrt(np.maximum(r2 - chord ** 2 / 4, 0.0))
+        r2 = radius**2
+        sag_next = radius - np.sqrt(np.maximum(r2 - chord**2 / 4, 0.0))
         sag_prev = radius - np.sqrt(np.maximum(r2 - chord[prev] ** 2 / 4, 0.0))
         ok = np.isfinite(radius) & (cross != 0) & (sag_next <= tolerance_mm) & (sag_prev <= tolerance_mm)
         if not closed:
             ok &= (local > 0) & (local < n_of - 1)
         # link i: triples i and i + 1 on one circle (the vertex after triple i's on its circle, turning alike)
         n2 = nxt[nxt]
-        link = ok & ok[nxt] & (np.abs(np.hypot(*(p[n2] - centre).T) - radius) <= link_slack * eps) & \
-            (np.sign(cross) == np.sign(cross[nxt]))
+        link = (
+            ok
+            & ok[nxt]
+            & (np.abs(np.hypot(*(p[n2] - centre).T) - radius) <= link_slack * eps)
+            & (np.sign(cross) == np.sign(cross[nxt]))
+        )
     if not closed:
         link &= local < n_of - 2
     # each closed ring is rotated to start just after a break in its links, so no run wraps
@@ -244,7 +247,7 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
     whole = np.minimum.reduceat(turns.view(np.int8), start).astype(bool) if closed else unbroken
     results = {}
     for j in np.flatnonzero(unbroken | whole).tolist():  # a circle (or an ellipse, split below)
-        pts = p[start[j]:start[j] + cnt[j]]
+        pts = p[start[j] : start[j] + cnt[j]]
         c, r = _full_fit(pts)
         if np.abs(np.hypot(*(pts - c).T) - r).max() <= eps:
             sweep = 2 * np.pi * np.sign(cross[start[j]])
@@ -304,16 +307,20 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
             h = np.hypot(*d.T) / 2
             u = np.column_stack([-d[:, 1], d[:, 0]]) / (2 * h)[:, None]
             side = np.sign(((centre[t] - mid) * u).sum(axis=1))
-            c_rho = mid + (side * np.sqrt(np.maximum(rho ** 2 - h ** 2, 0.0)))[:, None] * u
+            c_rho = mid + (side * np.sqrt(np.maximum(rho**2 - h**2, 0.0)))[:, None] * u
             # (a radius given; one that recurs among the arcs found is itself a fit, the triple's as good)
-            fits = np.isin(rho, np.asarray(radii, dtype=float)) & (rho > h) & \
-                (np.abs(np.hypot(*(p[t] - c_rho).T) - rho) <= link_slack * eps)
+            fits = (
+                np.isin(rho, np.asarray(radii, dtype=float))
+                & (rho > h)
+                & (np.abs(np.hypot(*(p[t] - c_rho).T) - rho) <= link_slack * eps)
+            )
             cen = np.where(fits[:, None], c_rho, centre[t])
             rad = np.where(fits, rho, radius[t])
             va, vb = p[prev[t]] - cen, p[t] - cen
             vc = p[nxt[t]] - cen
-            turn = (np.arctan2(va[:, 0] * vb[:, 1] - va[:, 1] * vb[:, 0], (va * vb).sum(axis=1))
-                    + np.arctan2(vb[:, 0] * vc[:, 1] - vb[:, 1] * vc[:, 0], (vb * vc).sum(axis=1)))
+            turn = np.arctan2(va[:, 0] * vb[:, 1] - va[:, 1] * vb[:, 0], (va * vb).sum(axis=1)) + np.arctan2(
+                vb[:, 0] * vc[:, 1] - vb[:, 1] * vc[:, 0], (vb * vc).sum(axis=1)
+            )
             # positions in the rotated ring, as _fit_runs gives them
             rot = (local[t] - shift[rid[t]]) % n_of[t]
             j, a, b = np.r_[j, rid[t]], np.r_[a, rot - 1], np.r_[b, rot + 1]
@@ -373,12 +380,14 @@ def _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps) -> tuple:
     extra = []
     for i in np.flatnonzero(~straight & (res > eps)).tolist():  # rare: an ellipse (an anisotropic kerf)
         j = int(ring_of[i])
-        ring_pts = p[order[start[j]:start[j] + cnt[j]]]
+        ring_pts = p[order[start[j] : start[j] + cnt[j]]]
         extra += [(j, *piece) for piece in _verified(ring_pts, int(v0[i]), int(v1[i]), eps)]
     if extra:
         more = list(zip(*extra, strict=True))
-        cols = [np.concatenate([col, np.array(m, dtype=col.dtype).reshape(-1, *col.shape[1:])])
-                for col, m in zip(cols, more, strict=True)]
+        cols = [
+            np.concatenate([col, np.array(m, dtype=col.dtype).reshape(-1, *col.shape[1:])])
+            for col, m in zip(cols, more, strict=True)
+        ]
     return tuple(cols)
 
 
@@ -493,8 +502,12 @@ def curves(rings, *, tolerance_mm: float, closed: bool = True, max_sweep: float 
     >>> [len(c.xy) for c in curves([np.asarray(box(0, 0, 1, 1).buffer(0.5).exterior.coords)[:-1]], tolerance_mm=0.01)]
     [8]
     """
-    return [bulge_path(r, runs, closed=closed, max_sweep=max_sweep)
-            for r, runs in zip(rings, arc_runs_many(rings, tolerance_mm=tolerance_mm, closed=closed, radii=radii), strict=True)]
+    return [
+        bulge_path(r, runs, closed=closed, max_sweep=max_sweep)
+        for r, runs in zip(
+            rings, arc_runs_many(rings, tolerance_mm=tolerance_mm, closed=closed, radii=radii), strict=True
+        )
+    ]
 
 
 def piece_lengths(curve: Curve, closed: bool = True) -> np.ndarray:
@@ -505,8 +518,8 @@ def piece_lengths(curve: Curve, closed: bool = True) -> np.ndarray:
     """
     xy = np.asarray(curve.xy, dtype=float)
     nxt = np.roll(xy, -1, axis=0) if closed else xy[1:]
-    b = np.asarray(curve.bulge, dtype=float)[:len(nxt)]
-    chord = np.hypot(*(nxt - xy[:len(nxt)]).T)
+    b = np.asarray(curve.bulge, dtype=float)[: len(nxt)]
+    chord = np.hypot(*(nxt - xy[: len(nxt)]).T)
     half = 2 * np.arctan(np.abs(b))  # half the sweep
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(b != 0, chord * half / np.sin(half), chord)
@@ -662,8 +675,9 @@ def beziers_many(curves_, *, tolerance_mm: float, closed: bool = True) -> list:
         while (short := bezier_error(sweep / m, r) > target).any():
             m[short] += 1
         count[arc] = m
-        out_sizes = np.bincount(np.repeat(np.arange(len(sizes)), sizes), weights=count,
-                                minlength=len(sizes)).astype(np.int64)
+        out_sizes = np.bincount(np.repeat(np.arange(len(sizes)), sizes), weights=count, minlength=len(sizes)).astype(
+            np.int64
+        )
     at = np.concatenate([[0], np.cumsum(count)[:-1]])  # where each old vertex lands
     total = int(count.sum())
     out = np.empty((total, 2))
@@ -681,16 +695,22 @@ def beziers_many(curves_, *, tolerance_mm: float, closed: bool = True) -> list:
         idx = at[arc][which] + k  # the piece's start vertex in the output
         inner = k > 0
         out[idx[inner]] = c[which][inner] + r[which][inner, None] * np.column_stack(
-            [np.cos(alpha0[inner]), np.sin(alpha0[inner])])
+            [np.cos(alpha0[inner]), np.sin(alpha0[inner])]
+        )
         h = (4 / 3) * np.tan(step / 4) * r[which]
         bez[idx] = True
         c0[idx] = out[idx] + h[:, None] * np.column_stack([-np.sin(alpha0), np.cos(alpha0)])
-        end_pt = np.where((k == m[which] - 1)[:, None], z[which], c[which] + r[which][:, None] *
-                          np.column_stack([np.cos(alpha1), np.sin(alpha1)]))
+        end_pt = np.where(
+            (k == m[which] - 1)[:, None],
+            z[which],
+            c[which] + r[which][:, None] * np.column_stack([np.cos(alpha1), np.sin(alpha1)]),
+        )
         c1[idx] = end_pt - h[:, None] * np.column_stack([-np.sin(alpha1), np.cos(alpha1)])
     cuts = np.cumsum(out_sizes)[:-1]
-    return [Beziers(*parts) for parts in zip(np.split(out, cuts), np.split(bez, cuts), np.split(c0, cuts),
-                                              np.split(c1, cuts), strict=True)]
+    return [
+        Beziers(*parts)
+        for parts in zip(np.split(out, cuts), np.split(bez, cuts), np.split(c0, cuts), np.split(c1, cuts), strict=True)
+    ]
 
 
 def subdivide(curve: Curve, *, max_sweep: float, closed: bool = True) -> Curve:

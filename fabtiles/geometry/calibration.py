@@ -44,8 +44,8 @@ import shapely
 from shapely.geometry import Point, box
 
 from ..core.errors import ParameterError
-from ..machines.profiles import load_profile
 from ..core.schema import key
+from ..machines.profiles import load_profile
 from .inlay import piece_of_hole
 from .stroke_font import text_paths, text_width
 
@@ -79,8 +79,15 @@ def inlay_fits(profile) -> tuple[float, ...]:
     >>> inlay_fits(load_profile("laser-3mm-plywood"))
     (0.05, 0.1, 0.15, 0.2, 0.25)
     """
-    fits = (round(FIT.range.clamp(  # type: ignore[union-attr]  # the schema gives the fit a range
-profile.inlay_fit_mm + d), 3) for d in INLAY_STEPS_MM)
+    fits = (
+        round(
+            FIT.range.clamp(  # type: ignore[union-attr]  # the schema gives the fit a range
+                profile.inlay_fit_mm + d
+            ),
+            3,
+        )
+        for d in INLAY_STEPS_MM
+    )
     return tuple(dict.fromkeys(fits))
 
 
@@ -154,16 +161,17 @@ def calibration_card(profile) -> Card:
     cut.append(box(hole_x, y + c, hole_x + s, y + c + s))
     mid = y + c + s / 2
     labels.extend(text_paths(_label(s), height_mm=LETTER_MM, x=x0 + c + s / 2, y=mid - LETTER_MM / 2, centre=True))
-    labels.extend(text_paths(_label(s), height_mm=LABEL_MM, x=hole_x + s / 2, y=y + c - LABEL_MM - 1.0,
-                             centre=True))
+    labels.extend(text_paths(_label(s), height_mm=LABEL_MM, x=hole_x + s / 2, y=y + c - LABEL_MM - 1.0, centre=True))
     kx, ky = profile.kerf_xy_mm
     if kx == ky:
         labels.extend(text_paths(_label(kerf), height_mm=LABEL_MM, x=hole_x + s + 4.0, y=mid - LABEL_MM / 2))
     else:  # the kerf along X above the one along Y
         labels.extend(text_paths(_label(kx), height_mm=LABEL_MM, x=hole_x + s + 4.0, y=mid + 1.0))
         labels.extend(text_paths(_label(ky), height_mm=LABEL_MM, x=hole_x + s + 4.0, y=mid - LABEL_MM - 1.0))
-    features += [Feature("kerf_part", s, _label(s), (x0 + c + s / 2, mid)),
-                 Feature("kerf_hole", s, _label(s), (hole_x + s / 2, mid))]
+    features += [
+        Feature("kerf_part", s, _label(s), (x0 + c + s / 2, mid)),
+        Feature("kerf_hole", s, _label(s), (hole_x + s / 2, mid)),
+    ]
     letter("K", mid)
     right = hole_x + s + 4.0 + max(text_width(_label(k), height_mm=LABEL_MM) for k in (kerf, kx, ky))
     y += s + 2 * c + 3.0
@@ -212,8 +220,10 @@ def calibration_card(profile) -> Card:
         parts.append(piece_of_hole(piece, fit_mm=fit, kerf_mm=max(profile.kerf_xy_mm)))  # as a kit's pieces
         cut.append(box(cx - INLAY_MM / 2, hy, cx + INLAY_MM / 2, hy + INLAY_MM))
         labels.extend(text_paths(_label(fit), height_mm=LABEL_MM, x=cx, y=y, centre=True))
-        features += [Feature("inlay_piece", fit, _label(fit), (cx, wy + window / 2)),
-                     Feature("inlay_hole", INLAY_MM, "", (cx, hy + INLAY_MM / 2))]  # not labelled
+        features += [
+            Feature("inlay_piece", fit, _label(fit), (cx, wy + window / 2)),
+            Feature("inlay_hole", INLAY_MM, "", (cx, hy + INLAY_MM / 2)),
+        ]  # not labelled
     letter("I", (wy + hy + INLAY_MM) / 2)
     right = max(right, x0 + len(inlay_fits(profile)) * pitch)
     top = hy + INLAY_MM
@@ -223,7 +233,8 @@ def calibration_card(profile) -> Card:
         raise ParameterError(
             f"the test card of laser profile {profile.name!r} would be {width:.0f} x {height:.0f} mm, larger "
             f"than {MAX_CARD_MM:g} x {MAX_CARD_MM:g} mm: its min_feature_mm ({profile.min_feature_mm:g}) or "
-            f"min_hole_mm ({profile.min_hole_mm:g}) is too large for a test card; measure with a larger part")
+            f"min_hole_mm ({profile.min_hole_mm:g}) is too large for a test card; measure with a larger part"
+        )
     outline = box(0, 0, width, height)
     region = shapely.union_all([outline.difference(shapely.union_all(cut)), *parts])
     return Card(region, outline, tuple(labels), tuple(features), kerf)

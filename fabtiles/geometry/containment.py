@@ -18,7 +18,6 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-
 MAX_CELLS = 4_000_000
 """At most this many grid cells (a few quads spread over a huge area get larger cells)."""
 
@@ -125,15 +124,22 @@ def edges_meet_quads(a, b, quads) -> np.ndarray:
     p_key, p_id = np.concatenate(keys), np.concatenate(ids)
     count = in_cell[p_key]
     piece = np.repeat(p_id, count)
-    quad = q_id[np.repeat(cell_start[p_key], count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)]
+    quad = q_id[
+        np.repeat(cell_start[p_key], count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
+    ]
     # boxes overlapping, x then y (each test on fewer pairs)
     keep = (plo[piece, 0] <= qhi[quad, 0]) & (phi[piece, 0] >= qlo[quad, 0])
     piece, quad = piece[keep], quad[keep]
     keep = (plo[piece, 1] <= qhi[quad, 1]) & (phi[piece, 1] >= qlo[quad, 1])
     piece, quad = piece[keep], quad[keep]
     ccw = quads.copy()  # every quad counter-clockwise, its edge vectors: once
-    cw = np.sum(quads[:, :, 0] * np.roll(quads[:, :, 1], -1, axis=1)
-                - np.roll(quads[:, :, 0], -1, axis=1) * quads[:, :, 1], axis=1) < 0
+    cw = (
+        np.sum(
+            quads[:, :, 0] * np.roll(quads[:, :, 1], -1, axis=1) - np.roll(quads[:, :, 0], -1, axis=1) * quads[:, :, 1],
+            axis=1,
+        )
+        < 0
+    )
     ccw[cw] = quads[cw, ::-1]
     edge = np.roll(ccw, -1, axis=1) - ccw
     hit = _segment_meets_quad(pa[piece], pb[piece], ccw[quad], edge[quad])

@@ -55,8 +55,9 @@ def polygon_parts(region, name: str = "region") -> np.ndarray:
     2
     """
     if not isinstance(region, shapely.Geometry):
-        raise ParameterError(f"{name} must be a shapely Polygon or MultiPolygon, got {type(region).__name__}",
-                             param=name)
+        raise ParameterError(
+            f"{name} must be a shapely Polygon or MultiPolygon, got {type(region).__name__}", param=name
+        )
     parts = shapely.get_parts(region)
     if len(parts) == 0 or region.is_empty:
         raise ParameterError(f"{name} is empty: there is nothing to cut", param=name)
@@ -215,10 +216,12 @@ def clean_rings(rings, *, min_area: float = 0.0, ccw=None):
     ring_ids = idx[starts]
     ok = (counts >= 3) & (np.abs(area2) / 2 > min_area)
     out = []
-    for s, c, a, r, good in zip(starts.tolist(), counts.tolist(), area2.tolist(), ring_ids.tolist(), ok.tolist(), strict=True):
+    for s, c, a, r, good in zip(
+        starts.tolist(), counts.tolist(), area2.tolist(), ring_ids.tolist(), ok.tolist(), strict=True
+    ):
         if not good:
             continue
-        ring = coords[s:s + c]
+        ring = coords[s : s + c]
         if ccw is not None and (a > 0) != bool(ccw[r]):
             ring = ring[::-1]
         out.append(ring)
@@ -253,8 +256,9 @@ def _anisotropic(kerf_mm: float, kerf_y_mm):
         return 1.0, float(kerf_mm)
     kx, ky = float(kerf_mm), float(kerf_y_mm)
     if kx < 1e-9 or ky < 1e-9:
-        raise ParameterError(f"kerf_x_mm and kerf_y_mm must both be > 0 or both equal, got {kx:g} and {ky:g}",
-                             param="kerf_y_mm")
+        raise ParameterError(
+            f"kerf_x_mm and kerf_y_mm must both be > 0 or both equal, got {kx:g} and {ky:g}", param="kerf_y_mm"
+        )
     return kx / ky, kx
 
 
@@ -262,10 +266,15 @@ def _scaled(geoms, sy: float):
     return geoms if sy == 1.0 else shapely.transform(geoms, lambda c: c * [1.0, sy])
 
 
-
-
-def laser_contours(region, outline=None, *, kerf_mm: float, kerf_y_mm: float | None = None,
-                   tolerance_mm: float = 0.01, validate: bool = True):
+def laser_contours(
+    region,
+    outline=None,
+    *,
+    kerf_mm: float,
+    kerf_y_mm: float | None = None,
+    tolerance_mm: float = 0.01,
+    validate: bool = True,
+):
     """Kerf-offset closed contours of ``region`` in cut order: ``(inner, outer)``.
 
     Parameters
@@ -313,8 +322,7 @@ def laser_contours(region, outline=None, *, kerf_mm: float, kerf_y_mm: float | N
     return inner, outer
 
 
-def outline_contours(outline, *, kerf_mm: float, kerf_y_mm: float | None = None,
-                     tolerance_mm: float = 0.01) -> list:
+def outline_contours(outline, *, kerf_mm: float, kerf_y_mm: float | None = None, tolerance_mm: float = 0.01) -> list:
     """The outer rings of ``outline`` grown by ``kerf_mm / 2``: the cut of the score mode.
 
     >>> from shapely.geometry import box
@@ -324,8 +332,7 @@ def outline_contours(outline, *, kerf_mm: float, kerf_y_mm: float | None = None,
     parts = polygon_parts(outline, "outline")
     sy, kerf = _anisotropic(kerf_mm, kerf_y_mm)
     filled = _scaled(shapely.polygons(shapely.get_exterior_ring(parts)), sy)
-    grown = shapely.get_parts(shapely.buffer(filled, kerf / 2, join_style="mitre",
-                                             mitre_limit=MITRE_LIMIT))
+    grown = shapely.get_parts(shapely.buffer(filled, kerf / 2, join_style="mitre", mitre_limit=MITRE_LIMIT))
     rings = _scaled(shapely.get_exterior_ring(grown), 1.0 / sy)
     cleaned, _ = clean_rings(rings, min_area=float(tolerance_mm) ** 2, ccw=np.ones(len(rings), bool))
     return _order(cleaned)
@@ -359,8 +366,9 @@ def score_paths(centrelines, outline, *, tolerance_mm: float = 0.01) -> list:
     """
     seg = np.asarray(centrelines, dtype=float)
     if seg.ndim != 3 or seg.shape[1:] != (2, 2):
-        raise ParameterError(f"centrelines must be an array of shape (k, 2, 2), got shape {seg.shape}",
-                             param="centrelines")
+        raise ParameterError(
+            f"centrelines must be an array of shape (k, 2, 2), got shape {seg.shape}", param="centrelines"
+        )
     if not np.all(np.isfinite(seg)):
         raise ParameterError("centrelines must be finite numbers, got NaN or infinite values", param="centrelines")
     seg = unique_segments(seg)

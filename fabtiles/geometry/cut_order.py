@@ -116,8 +116,7 @@ def order_paths(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0), tho
     polished by :func:`_polish` (a pen's strokes, see :mod:`.pen`).
     """
     out = dict(paths)
-    for role, (order, flipped) in path_orders(paths, outer_closed=outer_closed, start=start,
-                                              thorough=thorough).items():
+    for role, (order, flipped) in path_orders(paths, outer_closed=outer_closed, start=start, thorough=thorough).items():
         rings = [np.asarray(r, float) for r in paths[role]]
         out[role] = [rings[i][::-1] if f else rings[i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)]
     return out
@@ -141,11 +140,19 @@ def path_orders(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0), tho
         last = first if closed else np.array([r[-1] for r in rings], float)
         pairs = enclosing_pairs(rings) if role == "inner" else np.zeros((0, 2), np.int64)
         # the next layer's one closed contour (a tile's outline) starts where it starts: go there
-        after = [r for r in roles[k + 1:] if len(paths.get(r, ()))]
-        fixed = after and len(paths[after[0]]) == 1 and (after[0] == "inner" or after[0] == "outer" and outer_closed)
+        after = [r for r in roles[k + 1 :] if len(paths.get(r, ()))]
+        fixed = after and len(paths[after[0]]) == 1 and (after[0] == "inner" or (after[0] == "outer" and outer_closed))
         end = np.asarray(paths[after[0]][0][0], float) if fixed else None
-        order, flipped = _order(first, last, start=here, end=end, flip=role == "score", pairs=pairs,
-                                two_opt=closed or role == "score", thorough=thorough and role == "score")
+        order, flipped = _order(
+            first,
+            last,
+            start=here,
+            end=end,
+            flip=role == "score",
+            pairs=pairs,
+            two_opt=closed or role == "score",
+            thorough=thorough and role == "score",
+        )
         out[role] = (order, flipped)
         end = rings[order[-1]][::-1] if flipped[-1] else rings[order[-1]]
         here = end[0] if closed else end[-1]
@@ -211,7 +218,7 @@ def _polish(first, last, order, flipped, start, max_rounds: int = 50):
         for lo in range(n):  # 2-opt: the stretch lo..hi reversed
             p = s if lo == 0 else x[lo - 1]
             gain = np.abs(e[lo] - p) - np.abs(x[lo:] - p)
-            gain[:-1] += np.abs(e[lo + 1:] - x[lo:-1]) - np.abs(e[lo + 1:] - e[lo])
+            gain[:-1] += np.abs(e[lo + 1 :] - x[lo:-1]) - np.abs(e[lo + 1 :] - e[lo])
             k = int(np.argmax(gain))
             if gain[k] > 1e-9:
                 r = slice(lo, lo + k + 1)
@@ -229,7 +236,7 @@ def _polish(first, last, order, flipped, start, max_rounds: int = 50):
                 saved = abs(a - p) + (abs(e[j + 1] - b) - abs(e[j + 1] - p) if j + 1 < n else 0.0)
                 ahead = np.abs(a - before) + np.abs(after - b) * tail - link
                 back = np.abs(b - before) + np.abs(after - a) * tail - link
-                ahead[i:j + 2] = back[i:j + 2] = np.inf  # its own place, and inside the run
+                ahead[i : j + 2] = back[i : j + 2] = np.inf  # its own place, and inside the run
                 fa, fb = int(np.argmin(ahead)), int(np.argmin(back))
                 cost, at, rev = (ahead[fa], fa, False) if ahead[fa] <= back[fb] else (back[fb], fb, True)
                 if saved - cost > 1e-9:
@@ -237,7 +244,7 @@ def _polish(first, last, order, flipped, start, max_rounds: int = 50):
                     re, rx, ri, rf = e[run].copy(), x[run].copy(), idx[run].copy(), fl[run].copy()
                     if rev:
                         re, rx, ri, rf = rx[::-1], re[::-1], ri[::-1], ~rf[::-1]
-                    rest = np.r_[0:i, j + 1:n]
+                    rest = np.r_[0:i, j + 1 : n]
                     cut = at if at < i else at - size  # the place among the paths left
                     e = np.concatenate([e[rest[:cut]], re, e[rest[cut:]]])
                     x = np.concatenate([x[rest[:cut]], rx, x[rest[cut:]]])
@@ -398,10 +405,10 @@ def _two_opt(first, last, order, flipped, nodes, start, end, flip, pairs):
                 pi, pa = pos[inside], pos[around]
                 if np.any((np.minimum(pi, pa) >= lo) & (np.maximum(pi, pa) <= hi)):
                     continue
-            order[lo:hi + 1] = order[lo:hi + 1][::-1].copy()
+            order[lo : hi + 1] = order[lo : hi + 1][::-1].copy()
             if flip:
-                fl[lo:hi + 1] = ~fl[lo:hi + 1][::-1]
-            pos[order[lo:hi + 1]] = np.arange(lo, hi + 1)
+                fl[lo : hi + 1] = ~fl[lo : hi + 1][::-1]
+            pos[order[lo : hi + 1]] = np.arange(lo, hi + 1)
             for p in (lo - 1, lo, hi, hi + 1):
                 if 0 <= p < n:
                     node = int(order[p])

@@ -29,19 +29,25 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from ..machines.cutters import cutter_kind
 from ..core.errors import ParameterError
-from ..machines.profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, Layer, load_profile
 from ..core.report import Report, distinct
 from ..core.validate import check_choice, check_float
+from ..machines.cutters import cutter_kind
+from ..machines.profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, Layer, load_profile
 from .arcs import Curve, curve_bounds, curves
-from .cut_order import path_orders
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
-from .job_time import JobEstimate
+from .cut_order import path_orders
+from .job_time import JobEstimate, travel_mm
 from .job_time import estimate as job_estimate
-from .job_time import travel_mm
-from .laser_checks import check_cut_pattern, check_engrave, check_fits_bed, check_laser, check_layers, engrave_layer, \
-    fits_bed
+from .laser_checks import (
+    check_cut_pattern,
+    check_engrave,
+    check_fits_bed,
+    check_laser,
+    check_layers,
+    engrave_layer,
+    fits_bed,
+)
 from .material import sheet
 from .narrow import check_pattern_kept
 from .narrow import fill_small_holes as _fill_small_holes
@@ -131,9 +137,21 @@ class CutPlan:
         return cutter_kind(self.profile)
 
 
-def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict, *, report: Report | None = None,
-              part=None, groups=(), engrave_area_mm2: float = 0.0, bounds=None, like: CutPlan | None = None,
-              outer_closed: bool = True) -> CutPlan:
+def make_plan(
+    profile,
+    mode: str,
+    dxf_version: str,
+    kerf_mm: float,
+    paths: dict,
+    *,
+    report: Report | None = None,
+    part=None,
+    groups=(),
+    engrave_area_mm2: float = 0.0,
+    bounds=None,
+    like: CutPlan | None = None,
+    outer_closed: bool = True,
+) -> CutPlan:
     """A :class:`CutPlan` of ``paths`` (role -> list of arrays), its layers, bounds and estimate.
 
     For plans made without the tile pipeline too (the calibration card, a kit's pieces).
@@ -158,8 +176,10 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
     closed_of = {role: outer_closed if role == "outer" else role != "score" for role in ROLES}
     # the arcs in the paths, for the writers, the lengths and the bounds (see .arcs: fitted on the
     # flattened paths, whatever made them; the panel's 238,772 vertices: 0.2 s)
-    arcs = {role: curves(rings, tolerance_mm=profile.tolerance_mm, closed=closed_of[role]) if rings else []
-            for role, rings in moved.items()}
+    arcs = {
+        role: curves(rings, tolerance_mm=profile.tolerance_mm, closed=closed_of[role]) if rings else []
+        for role, rings in moved.items()
+    }
     allr = [r for rings in moved.values() for r in rings]
     if like is not None:
         offset, bounds = like.offset, like.bounds
@@ -188,24 +208,54 @@ def make_plan(profile, mode: str, dxf_version: str, kerf_mm: float, paths: dict,
     # the head's travel made short (.cut_order), from the file's origin; the arcs go with their paths
     travel_before = travel_mm(profile, **moved, outer_closed=outer_closed)
     for role, (order, flipped) in path_orders(moved, outer_closed=outer_closed).items():
-        moved[role] = [moved[role][i][::-1] if f else moved[role][i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)]
-        arcs[role] = [_reversed(arcs[role][i]) if f else arcs[role][i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)]
+        moved[role] = [
+            moved[role][i][::-1] if f else moved[role][i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)
+        ]
+        arcs[role] = [
+            _reversed(arcs[role][i]) if f else arcs[role][i]
+            for i, f in zip(order.tolist(), flipped.tolist(), strict=True)
+        ]
     layers = []
     for role in ROLES:
         rings = moved[role]
         if not rings:
             continue
         layer = getattr(layers_of, PROFILE_KEYS[role])
-        layers.append(CutLayer(role, layer, tuple(rings), closed=closed_of[role], fill=role == "engrave",
-                               groups=tuple(groups) if role == "engrave" else (), curves=tuple(arcs[role])))
+        layers.append(
+            CutLayer(
+                role,
+                layer,
+                tuple(rings),
+                closed=closed_of[role],
+                fill=role == "engrave",
+                groups=tuple(groups) if role == "engrave" else (),
+                curves=tuple(arcs[role]),
+            )
+        )
     # a router or waterjet file has its two profiles' layers only; the engrave layer only when it engraves
     declared = [getattr(layers_of, key) for key in kind.layers if key != "engrave" or paths.get("engrave")]
-    est = job_estimate(profile, **{role: [c.xy for c in arcs[role]] for role in ROLES},
-                       engrave_area_mm2=engrave_area_mm2, outer_closed=outer_closed, curves=arcs)
+    est = job_estimate(
+        profile,
+        **{role: [c.xy for c in arcs[role]] for role in ROLES},
+        engrave_area_mm2=engrave_area_mm2,
+        outer_closed=outer_closed,
+        curves=arcs,
+    )
     est = replace(est, travel_before_mm=travel_before)
-    return CutPlan(profile, mode, dxf_version, kerf_mm, tuple(layers), tuple(declared), tuple(bounds), est,
-                   report if report is not None else Report(path="", format=""), part, engrave_area_mm2,
-                   tuple(float(v) for v in offset))
+    return CutPlan(
+        profile,
+        mode,
+        dxf_version,
+        kerf_mm,
+        tuple(layers),
+        tuple(declared),
+        tuple(bounds),
+        est,
+        report if report is not None else Report(path="", format=""),
+        part,
+        engrave_area_mm2,
+        tuple(float(v) for v in offset),
+    )
 
 
 def _reversed(curve: Curve) -> Curve:
@@ -259,7 +309,7 @@ def _engrave_paths(region, profile, report: Report):
     exterior = np.zeros(len(rings), dtype=bool)
     starts = np.concatenate([[0], np.cumsum(shapely.get_num_interior_rings(parts) + 1)[:-1]])
     exterior[starts] = True
-    cleaned, kept = clean_rings(rings, min_area=profile.tolerance_mm ** 2, ccw=exterior)
+    cleaned, kept = clean_rings(rings, min_area=profile.tolerance_mm**2, ccw=exterior)
     area = float(shapely.area(parts).sum())
     report.stats.update(area_mm2=round(area, 3), engrave_rings=len(cleaned))
     return cleaned, part[kept].tolist(), area
@@ -278,9 +328,22 @@ def split_at_tabs(paths: dict, tab_mm: float, tabs_per_part: int, report: Report
     return False
 
 
-def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_version=None, kerf_mm=None,
-             fill_small_holes: bool = False, stroke=None, tab_mm=None, tabs_per_part=None, path: str = "",
-             fmt: str = "") -> CutPlan:
+def plan_cut(
+    region,
+    outline,
+    *,
+    profile,
+    centrelines=None,
+    mode=None,
+    dxf_version=None,
+    kerf_mm=None,
+    fill_small_holes: bool = False,
+    stroke=None,
+    tab_mm=None,
+    tabs_per_part=None,
+    path: str = "",
+    fmt: str = "",
+) -> CutPlan:
     """Validate the options, run the checks and build the contours: the tile's :class:`CutPlan`.
 
     Parameters
@@ -327,13 +390,14 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
         kind.check_format(profile, fmt)
     mode = profile.mode if mode is None else mode
     if mode == "inlay":
-        raise ParameterError("the inlay mode writes a kit of two files (lattice and pieces): export it with "
-                             "fabtiles.export.kit.write_kit, Tile.export(..., mode='inlay') or fabtiles build",
-                             param="mode")
+        raise ParameterError(
+            "the inlay mode writes a kit of two files (lattice and pieces): export it with "
+            "fabtiles.export.kit.write_kit, Tile.export(..., mode='inlay') or fabtiles build",
+            param="mode",
+        )
     mode = check_choice("mode", mode, LASER_MODES)
     kind.check_mode(profile, mode)
-    dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version,
-                               DXF_VERSIONS)
+    dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version, DXF_VERSIONS)
     if kerf_mm is None:  # the profile's kerf, along X and along Y
         kerf, kerf_y = profile.kerf_xy_mm
     else:
@@ -343,14 +407,20 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
     if stroke is not None:
         stroke = check_float("stroke", stroke, low=0, low_open=True)
         if stroke < profile.min_feature_mm:
-            raise ParameterError(f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of {profile.kind} "
-                                 f"profile {profile.name!r}, got {distinct(stroke, profile.min_feature_mm)}", param="stroke")
+            raise ParameterError(
+                f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of {profile.kind} "
+                f"profile {profile.name!r}, got {distinct(stroke, profile.min_feature_mm)}",
+                param="stroke",
+            )
         if max(kerf, kerf_y) > stroke:
-            raise ParameterError(f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {distinct(max(kerf, kerf_y), stroke)}",
-                                 param="kerf_mm")
+            raise ParameterError(
+                f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {distinct(max(kerf, kerf_y), stroke)}",
+                param="kerf_mm",
+            )
     if not isinstance(fill_small_holes, bool):
-        raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}",
-                             param="fill_small_holes")
+        raise ParameterError(
+            f"fill_small_holes must be True or False, got {fill_small_holes!r}", param="fill_small_holes"
+        )
     parts = polygon_parts(region)
     outline_parts = polygon_parts(outline, "outline")
     check_fits_bed(outline, profile)
@@ -372,16 +442,21 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
             report.stats["filled_holes"] = filled + tool_filled
             parts = shapely.get_parts(region)
             if tool_filled:
-                report.note(f"filled {tool_filled:,} hole{'s' if tool_filled != 1 else ''} that "
-                            f"{kind.tool_name(profile)} cannot enter")
+                report.note(
+                    f"filled {tool_filled:,} hole{'s' if tool_filled != 1 else ''} that "
+                    f"{kind.tool_name(profile)} cannot enter"
+                )
             if filled:
-                report.note(f"filled {filled:,} hole{'s' if filled != 1 else ''} narrower than min_hole_mm = "
-                            f"{profile.min_hole_mm:g} mm of {profile.kind} profile {profile.name!r}")
+                report.note(
+                    f"filled {filled:,} hole{'s' if filled != 1 else ''} narrower than min_hole_mm = "
+                    f"{profile.min_hole_mm:g} mm of {profile.kind} profile {profile.name!r}"
+                )
         check_laser(region, outline, profile, stroke=stroke, report=report, validate=False)
         check_cut_pattern(designed, region, outline, profile, stroke=stroke, report=report)
         report.raise_if_strict(profile.strict)
-        paths["inner"], paths["outer"] = laser_contours(region, outline, kerf_mm=kerf, kerf_y_mm=kerf_y,
-                                                        tolerance_mm=profile.tolerance_mm, validate=False)
+        paths["inner"], paths["outer"] = laser_contours(
+            region, outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm, validate=False
+        )
         report.stats["area_mm2"] = round(float(shapely.area(parts).sum()), 3)
         part = region
     elif mode == "engrave":
@@ -390,8 +465,9 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
         paths["engrave"], groups, engrave_area = _engrave_paths(region, profile, report)
     else:
         if centrelines is None or len(np.asarray(centrelines)) == 0:
-            raise ParameterError("the score mode needs centrelines (an array of shape (k, 2, 2)), got none",
-                                 param="centrelines")
+            raise ParameterError(
+                "the score mode needs centrelines (an array of shape (k, 2, 2)), got none", param="centrelines"
+            )
         paths["outer"] = outline_contours(outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
         paths["score"] = score_paths(centrelines, outline, tolerance_mm=profile.tolerance_mm)
         report.stats["area_mm2"] = round(float(shapely.area(outline_parts).sum()), 3)
@@ -400,14 +476,27 @@ def plan_cut(region, outline, *, profile, centrelines=None, mode=None, dxf_versi
         part = outline
     outer_rings = len(paths["outer"])
     closed = split_at_tabs(paths, *tabs, report)
-    plan = make_plan(profile, mode, dxf_version, kerf, paths, report=report, part=part, groups=groups,
-                     engrave_area_mm2=engrave_area, outer_closed=closed)
+    plan = make_plan(
+        profile,
+        mode,
+        dxf_version,
+        kerf,
+        paths,
+        report=report,
+        part=part,
+        groups=groups,
+        engrave_area_mm2=engrave_area,
+        outer_closed=closed,
+    )
     files = [c for layer in plan.layers for c in layer.curves_or_paths()]
     cut = plan.estimate.cut_mm
-    report.stats.update(inner_contours=len(plan.paths("inner")), outer_contours=outer_rings,
-                        vertices=int(sum(len(c.xy) for c in files)),
-                        arcs=int(sum(np.count_nonzero(c.bulge) for c in files)),
-                        cut_length_mm=round(cut.get("inner_cut", 0.0) + cut.get("outer_cut", 0.0), 3))
+    report.stats.update(
+        inner_contours=len(plan.paths("inner")),
+        outer_contours=outer_rings,
+        vertices=int(sum(len(c.xy) for c in files)),
+        arcs=int(sum(np.count_nonzero(c.bulge) for c in files)),
+        cut_length_mm=round(cut.get("inner_cut", 0.0) + cut.get("outer_cut", 0.0), 3),
+    )
     report.stats["job"] = plan.estimate.as_stats()
     report.stats["sheet"] = sheet(outline, profile)
     _note_bed_edge(plan, profile, report)
@@ -437,9 +526,11 @@ def _note_bed_edge(plan: CutPlan, profile, report: Report) -> None:
     if fits_bed(w, h, profile.bed_mm):
         return
     bw, bh = profile.bed_mm
-    report.note(f"the cut paths span {w:.2f} x {h:.2f} mm, beyond the {bw:g} x {bh:g} mm bed by the cut's width "
-                f"outside the tile: the outline is cut at the sheet's edges (most machines travel a little beyond "
-                f"the nominal bed; if yours does not, make the tile smaller)")
+    report.note(
+        f"the cut paths span {w:.2f} x {h:.2f} mm, beyond the {bw:g} x {bh:g} mm bed by the cut's width "
+        f"outside the tile: the outline is cut at the sheet's edges (most machines travel a little beyond "
+        f"the nominal bed; if yours does not, make the tile smaller)"
+    )
 
 
 INLAY_BASES = ("pierced", "pocket")
@@ -473,9 +564,22 @@ class KitPlans:
         return self.lattice.report
 
 
-def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "pierced", kerf_mm=None,
-             dxf_version=None, stroke=None, colours=(), tab_mm=None, tabs_per_part=None, path: str = "",
-             fmt: str = "") -> KitPlans:
+def plan_kit(
+    region,
+    outline,
+    *,
+    profile,
+    inlay_fit_mm=None,
+    inlay_base: str = "pierced",
+    kerf_mm=None,
+    dxf_version=None,
+    stroke=None,
+    colours=(),
+    tab_mm=None,
+    tabs_per_part=None,
+    path: str = "",
+    fmt: str = "",
+) -> KitPlans:
     """The inlay kit of a tile's material ``region`` as two cut plans: the lattice and the pieces.
 
     The lattice is a pierced tile (holes cut with the kerf into them, the outline
@@ -501,25 +605,64 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
     fit = check_fit(profile.inlay_fit_mm if inlay_fit_mm is None else inlay_fit_mm)
     kx, ky = profile.kerf_xy_mm if kerf_mm is None else (kerf_mm, kerf_mm)
     tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kx, ky))  # only a laser cuts kits, and leaves tabs
-    kit = inlay_kit(region, outline, fit_mm=fit, min_piece_mm=profile.min_piece_or_default_mm,
-                    kerf_mm=max(kx, ky), tolerance_mm=profile.tolerance_mm)
+    kit = inlay_kit(
+        region,
+        outline,
+        fit_mm=fit,
+        min_piece_mm=profile.min_piece_or_default_mm,
+        kerf_mm=max(kx, ky),
+        tolerance_mm=profile.tolerance_mm,
+    )
     if base == "pierced":
-        lattice = plan_cut(kit.lattice, outline, profile=profile, mode="pierced", dxf_version=dxf_version,
-                           kerf_mm=kerf_mm, stroke=stroke, tab_mm=tabs[0], tabs_per_part=tabs[1], path=path, fmt=fmt)
+        lattice = plan_cut(
+            kit.lattice,
+            outline,
+            profile=profile,
+            mode="pierced",
+            dxf_version=dxf_version,
+            kerf_mm=kerf_mm,
+            stroke=stroke,
+            tab_mm=tabs[0],
+            tabs_per_part=tabs[1],
+            path=path,
+            fmt=fmt,
+        )
     else:
         if not len(kit.holes):
             raise ParameterError("the tile has no hole large enough for a piece; nothing to pocket", param="region")
-        lattice = plan_cut(shapely.union_all(kit.holes), outline, profile=profile, mode="engrave",
-                           dxf_version=dxf_version, kerf_mm=kerf_mm, tab_mm=tabs[0], tabs_per_part=tabs[1],
-                           path=path, fmt=fmt)
+        lattice = plan_cut(
+            shapely.union_all(kit.holes),
+            outline,
+            profile=profile,
+            mode="engrave",
+            dxf_version=dxf_version,
+            kerf_mm=kerf_mm,
+            tab_mm=tabs[0],
+            tabs_per_part=tabs[1],
+            path=path,
+            fmt=fmt,
+        )
     paths = {}
     if len(kit.pieces):
-        paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(kit.pieces))),
-                                                        kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
+        paths["inner"], paths["outer"] = laser_contours(
+            shapely.multipolygons(list(shapely.get_parts(kit.pieces))),
+            kerf_mm=kx,
+            kerf_y_mm=ky,
+            tolerance_mm=profile.tolerance_mm,
+        )
     pieces_report = Report(path="", format="")
     closed = split_at_tabs(paths, *tabs, pieces_report)
-    pieces = make_plan(profile, "pierced", lattice.dxf_version, kx, paths, like=lattice, part=kit.pieces,
-                       outer_closed=closed, report=pieces_report)
+    pieces = make_plan(
+        profile,
+        "pierced",
+        lattice.dxf_version,
+        kx,
+        paths,
+        like=lattice,
+        part=kit.pieces,
+        outer_closed=closed,
+        report=pieces_report,
+    )
     report = lattice.report
     stats = kit.stats()
     report.stats.update(stats, inlay_fit_mm=fit, inlay_base=base, pieces_job=pieces.estimate.as_stats())
@@ -528,26 +671,46 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
         report.note("pieces' " + pieces_report.stats["notes"][0])
     if kit.necks:
         widths = [w for _, _, w in kit.necks]
-        report.note(f"widened {len(kit.necks):,} neck{'s' if len(kit.necks) != 1 else ''} of holes narrower than the "
-                    f"kerf (narrowest {min(widths):.3g} mm) so each hole is cut as one opening for its piece")
+        report.note(
+            f"widened {len(kit.necks):,} neck{'s' if len(kit.necks) != 1 else ''} of holes narrower than the "
+            f"kerf (narrowest {min(widths):.3g} mm) so each hole is cut as one opening for its piece"
+        )
     if kit.split:
         n = len(kit.split)
         where = ", ".join(f"({x:.4g}, {y:.4g})" for x, y in kit.split[:3]) + (f" and {n - 3:,} more" if n > 3 else "")
-        report.add("uncut_slit", f"{n:,} part{'s' if n != 1 else ''} of holes beyond a slit narrower than the kerf "
-                   f"(no straight cut inside the hole reaches {'them' if n != 1 else 'it'}) left as lattice and "
-                   f"cut off {'their pieces' if n != 1 else 'its piece'} (at {where}); make the stroke narrower "
-                   f"or the kerf smaller to keep {'them' if n != 1 else 'it'}", count=n, locations=kit.split)
+        report.add(
+            "uncut_slit",
+            f"{n:,} part{'s' if n != 1 else ''} of holes beyond a slit narrower than the kerf "
+            f"(no straight cut inside the hole reaches {'them' if n != 1 else 'it'}) left as lattice and "
+            f"cut off {'their pieces' if n != 1 else 'its piece'} (at {where}); make the stroke narrower "
+            f"or the kerf smaller to keep {'them' if n != 1 else 'it'}",
+            count=n,
+            locations=kit.split,
+        )
     if len(kit.pieces):
-        report.note(f"pieces: {stats['pieces']:,} pieces of {kit.kinds} shapes, fit {fit:+g} mm, "
-                    f"{kit.filled_holes:,} holes too small filled; laser job {pieces.estimate.line()}")
+        report.note(
+            f"pieces: {stats['pieces']:,} pieces of {kit.kinds} shapes, fit {fit:+g} mm, "
+            f"{kit.filled_holes:,} holes too small filled; laser job {pieces.estimate.line()}"
+        )
     else:
-        report.note(f"pieces: none, every one of the {kit.filled_holes:,} holes is too small for a piece (filled): "
-                    "the kit is its lattice alone, and no pieces file is written")
+        report.note(
+            f"pieces: none, every one of the {kit.filled_holes:,} holes is too small for a piece (filled): "
+            "the kit is its lattice alone, and no pieces file is written"
+        )
     # a kit fills the holes too small for a piece: say so when that leaves little of the pattern
-    check_pattern_kept(report, region, kit.lattice, outline, limit_mm=profile.min_piece_or_default_mm,
-                       limit=f"the smallest piece ({profile.min_piece_or_default_mm:g} mm, min_piece_mm of laser "
-                             f"profile {profile.name!r})", stroke=stroke, min_stroke_mm=profile.min_feature_mm,
-                       tool="a profile with min_piece_mm <= {w} mm", tolerance_mm=profile.tolerance_mm)
+    check_pattern_kept(
+        report,
+        region,
+        kit.lattice,
+        outline,
+        limit_mm=profile.min_piece_or_default_mm,
+        limit=f"the smallest piece ({profile.min_piece_or_default_mm:g} mm, min_piece_mm of laser "
+        f"profile {profile.name!r})",
+        stroke=stroke,
+        min_stroke_mm=profile.min_feature_mm,
+        tool="a profile with min_piece_mm <= {w} mm",
+        tolerance_mm=profile.tolerance_mm,
+    )
     report.raise_if_strict(profile.strict)
     by_colour = _pieces_by_colour(kit, colours, profile, lattice, kx, ky, tabs) if colours else ()
     if by_colour:
@@ -557,10 +720,15 @@ def plan_kit(region, outline, *, profile, inlay_fit_mm=None, inlay_base: str = "
             n = len(shapely.get_parts(part)) if part is not None and not part.is_empty else 0
             area = float(part.area) if n else 0.0
             x0, y0, x1, y1 = part.bounds if n else (0.0, 0.0, 0.0, 0.0)
-            report.stats["pieces_by_colour"][name] = {"pieces": n, "area_mm2": round(area, 3),
-                                                      "sheet_mm": [round(x1 - x0, 3), round(y1 - y0, 3)]}
-            report.note(f"pieces in {name}: {n:,} piece{'s' if n != 1 else ''}, {area:,.1f} mm^2, on a sheet of at least "
-                        f"{x1 - x0:.1f} x {y1 - y0:.1f} mm (laid like the lattice); laser job {plan.estimate.line()}")
+            report.stats["pieces_by_colour"][name] = {
+                "pieces": n,
+                "area_mm2": round(area, 3),
+                "sheet_mm": [round(x1 - x0, 3), round(y1 - y0, 3)],
+            }
+            report.note(
+                f"pieces in {name}: {n:,} piece{'s' if n != 1 else ''}, {area:,.1f} mm^2, on a sheet of at least "
+                f"{x1 - x0:.1f} x {y1 - y0:.1f} mm (laid like the lattice); laser job {plan.estimate.line()}"
+            )
     return KitPlans(lattice, pieces, kit, by_colour)
 
 
@@ -582,12 +750,22 @@ def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: fl
             continue  # a colour whose faces were all too small for a piece (filled): no sheet, no file
         paths = {}
         if len(mine):
-            paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(mine))),
-                                                            kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
+            paths["inner"], paths["outer"] = laser_contours(
+                shapely.multipolygons(list(shapely.get_parts(mine))),
+                kerf_mm=kx,
+                kerf_y_mm=ky,
+                tolerance_mm=profile.tolerance_mm,
+            )
         part = shapely.union_all(mine) if len(mine) else shapely.Polygon()
         closed = split_at_tabs(paths, tabs[0], tabs[1], None)
-        out.append((name, make_plan(profile, "pierced", lattice.dxf_version, kx, paths, like=lattice, part=part,
-                                    outer_closed=closed)))
+        out.append(
+            (
+                name,
+                make_plan(
+                    profile, "pierced", lattice.dxf_version, kx, paths, like=lattice, part=part, outer_closed=closed
+                ),
+            )
+        )
     return tuple(out)
 
 

@@ -68,8 +68,17 @@ MIN_FACE_AREA_MM2 = 1e-9
 MAX_SIDES = 24
 """Faces of more sides (not stars) are described as "": no polygon a reader would count."""
 
-_NAMES = {3: "triangle", 4: "quadrilateral", 5: "pentagon", 6: "hexagon", 7: "heptagon", 8: "octagon",
-          9: "nonagon", 10: "decagon", 12: "dodecagon"}
+_NAMES = {
+    3: "triangle",
+    4: "quadrilateral",
+    5: "pentagon",
+    6: "hexagon",
+    7: "heptagon",
+    8: "octagon",
+    9: "nonagon",
+    10: "decagon",
+    12: "dodecagon",
+}
 
 
 @dataclass(frozen=True)
@@ -106,7 +115,9 @@ class FaceClasses:
         if letter not in letters:
             raise ParameterError(
                 f"face class {letter!r} is not one of this tile's classes ({', '.join(letters) or 'none'}); "
-                f"use a letter of face_classes(...).classes", param="letter")
+                f"use a letter of face_classes(...).classes",
+                param="letter",
+            )
         return shapely.multipolygons(self.faces[self.labels == letters.index(letter)])
 
     def stats(self) -> list[dict]:
@@ -115,8 +126,10 @@ class FaceClasses:
         >>> FaceClasses(np.empty(0, object), np.empty(0, int), (FaceClass("A", 2, "kite", 1.23456),)).stats()
         [{'letter': 'A', 'count': 2, 'description': 'kite', 'area_mm2': 1.235}]
         """
-        return [{"letter": c.letter, "count": c.count, "description": c.description,
-                 "area_mm2": round(c.area_mm2, 3)} for c in self.classes]
+        return [
+            {"letter": c.letter, "count": c.count, "description": c.description, "area_mm2": round(c.area_mm2, 3)}
+            for c in self.classes
+        ]
 
 
 def letter(index: int) -> str:
@@ -170,8 +183,9 @@ def face_classes(tile, *, by: str = "shape", region=None) -> FaceClasses:
 
     check_choice("by", by, BY)
     if not isinstance(tile, TileGeometry):
-        raise ParameterError(f"tile must be a TileGeometry (e.g. design.build_tile()), got {type(tile).__name__}",
-                             param="tile")
+        raise ParameterError(
+            f"tile must be a TileGeometry (e.g. design.build_tile()), got {type(tile).__name__}", param="tile"
+        )
     outline = tile.outline_shape()
     # a region passed in is checked; the tile's own is valid by construction (the check, GEOS's
     # is_valid, took 0.057 s of the sheet's 0.12 s)
@@ -206,8 +220,16 @@ def face_classes(tile, *, by: str = "shape", region=None) -> FaceClasses:
     desc = ["" if free[i] else _describe(rings[i], len(shapes[i].interiors)) for i in first]
     # ties (equal total areas within 1e-9 relative) broken by description, then the shape's
     # own area and vertex count, then its vertices: the same design always gets the same letters
-    order = sorted(range(ngroups), key=lambda g: (-_rounded(float(total[g])), desc[g], -_rounded(shapes[first[g]].area),
-                                                  len(rings[first[g]]), _vertex_key(rings[first[g]])))
+    order = sorted(
+        range(ngroups),
+        key=lambda g: (
+            -_rounded(float(total[g])),
+            desc[g],
+            -_rounded(shapes[first[g]].area),
+            len(rings[first[g]]),
+            _vertex_key(rings[first[g]]),
+        ),
+    )
     rank = np.empty(ngroups, int)
     rank[order] = np.arange(ngroups)
     classes = tuple(FaceClass(letter(k), int(count[g]), desc[g], float(total[g])) for k, g in enumerate(order))
@@ -251,8 +273,12 @@ def _faces(region, outline) -> np.ndarray:
         # sides) the two differ by a rounding, and the difference joined up to nine pieces of
         # faces along the edge by slivers 2e-9 mm wide into one "face" of 76 mm^2. An opening
         # by SLIVER_MM cuts the slivers and moves no other edge (mitred corners stay put).
-        opened = shapely.buffer(shapely.buffer(open_, -SLIVER_MM, join_style="mitre", mitre_limit=1e6),
-                                SLIVER_MM, join_style="mitre", mitre_limit=1e6)
+        opened = shapely.buffer(
+            shapely.buffer(open_, -SLIVER_MM, join_style="mitre", mitre_limit=1e6),
+            SLIVER_MM,
+            join_style="mitre",
+            mitre_limit=1e6,
+        )
         faces.append(shapely.get_parts(opened))
     if not faces:
         return np.empty(0, object)
@@ -286,8 +312,9 @@ def _whole_faces(tile, faces):
     # background of stars whose tips never meet), and no window would hold it.
     margin = max(px, py) / 2
     while True:
-        window = tile.replace(outline="rectangle", size=(px + 2 * margin, py + 2 * margin), frame=0.0,
-                              corner_radius=0.0, interlace=False)
+        window = tile.replace(
+            outline="rectangle", size=(px + 2 * margin, py + 2 * margin), frame=0.0, corner_radius=0.0, interlace=False
+        )
         wholes = _faces(window.region(), window.outline_shape())
         wx, wy = window.centre
         b = shapely.bounds(wholes)
@@ -407,8 +434,9 @@ def _congruent(a: np.ndarray, b: np.ndarray) -> bool:
         # b mirrored in x and read backwards: still counter-clockwise
         bb = b[::-1] * (-1.0, 1.0) if mirrored else b
         lb, tb = _edges_turns(bb)
-        fits = ((np.abs(lb[idx] - la).max(axis=1) <= 2 * TOLERANCE_MM)
-                & (np.abs(tb[idx] - ta).max(axis=1) <= 4 * TOLERANCE_MM / max(la.min(), TOLERANCE_MM)))
+        fits = (np.abs(lb[idx] - la).max(axis=1) <= 2 * TOLERANCE_MM) & (
+            np.abs(tb[idx] - ta).max(axis=1) <= 4 * TOLERANCE_MM / max(la.min(), TOLERANCE_MM)
+        )
         for s in np.flatnonzero(fits):
             q = bb[idx[s]]
             if _fit_distance(a, q) <= TOLERANCE_MM * max(1.0, size / 1000):
@@ -446,15 +474,18 @@ def _congruence_groups(shapes: np.ndarray, rings: list) -> np.ndarray:
     start = 0
     while start < n:
         end = start + 1
-        while (end < n and verts[order[end]] == verts[order[start]] and nisl[order[end]] == nisl[order[start]]
-               and area[order[end]] - area[order[end - 1]] <= AREA_TOLERANCE * area[order[end]]):
+        while (
+            end < n
+            and verts[order[end]] == verts[order[start]]
+            and nisl[order[end]] == nisl[order[start]]
+            and area[order[end]] - area[order[end - 1]] <= AREA_TOLERANCE * area[order[end]]
+        ):
             end += 1
         run_reps: list[int] = []
         for i in order[start:end].tolist():
             for g in run_reps:
                 r = reps[g]
-                if (abs(hole_area[i] - hole_area[r]) <= AREA_TOLERANCE * area[r]
-                        and _congruent(rings[r], rings[i])):
+                if abs(hole_area[i] - hole_area[r]) <= AREA_TOLERANCE * area[r] and _congruent(rings[r], rings[i]):
                     group[i] = g
                     break
             else:
@@ -509,13 +540,19 @@ def _describe(ring: np.ndarray, islands: int = 0) -> str:
                 return "rectangle"
             near = lambda x, y: abs(x - y) <= 1e-4 * size + TOLERANCE_MM  # noqa: E731
             # a kite: two pairs of adjacent equal edges (edge i runs from vertex i to i + 1)
-            if any(near(length[k], length[(k + 1) % 4]) and near(length[(k + 2) % 4], length[(k + 3) % 4])
-                   for k in range(2)):
+            if any(
+                near(length[k], length[(k + 1) % 4]) and near(length[(k + 2) % 4], length[(k + 3) % 4])
+                for k in range(2)
+            ):
                 return "kite"
             return "quadrilateral"
         return _NAMES.get(n, f"{n}-gon") if n <= MAX_SIDES else ""
-    if n >= 6 and n % 2 == 0 and same_len and (convex[::2].all() and not convex[1::2].any()
-                                              or convex[1::2].all() and not convex[::2].any()):
+    if (
+        n >= 6
+        and n % 2 == 0
+        and same_len
+        and ((convex[::2].all() and not convex[1::2].any()) or (convex[1::2].all() and not convex[::2].any()))
+    ):
         return f"{n // 2}-point star"
     if n == 4:
         return "dart"  # the kite's concave partner, as Penrose named it

@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from ..core.errors import FabricationError, ParameterError
+from ..core.errors import FabricationError
 from ..core.report import distinct
 from ..core.schema import key
 from .contours import MITRE_LIMIT, polygon_parts
@@ -73,8 +73,13 @@ class InlayKit:
 
     def stats(self) -> dict:
         area = float(shapely.area(self.pieces).sum()) if len(self.pieces) else 0.0
-        return {"pieces": len(self.pieces), "filled_holes": self.filled_holes, "piece_kinds": self.kinds,
-                "lattice_area_mm2": round(float(self.lattice.area), 3), "pieces_area_mm2": round(area, 3)}
+        return {
+            "pieces": len(self.pieces),
+            "filled_holes": self.filled_holes,
+            "piece_kinds": self.kinds,
+            "lattice_area_mm2": round(float(self.lattice.area), 3),
+            "pieces_area_mm2": round(area, 3),
+        }
 
 
 def check_fit(fit_mm) -> float:
@@ -88,8 +93,9 @@ def check_fit(fit_mm) -> float:
     return _FIT.check(fit_mm, required=True)
 
 
-def inlay_kit(region, outline, *, fit_mm: float, min_piece_mm: float, kerf_mm: float,
-              tolerance_mm: float = 0.01) -> InlayKit:
+def inlay_kit(
+    region, outline, *, fit_mm: float, min_piece_mm: float, kerf_mm: float, tolerance_mm: float = 0.01
+) -> InlayKit:
     """Split ``region`` (the tile's material) into an inlay kit; see the module text.
 
     Raises :class:`~fabtiles.FabricationError` when two pieces stand no more than the
@@ -104,7 +110,7 @@ def inlay_kit(region, outline, *, fit_mm: float, min_piece_mm: float, kerf_mm: f
     owner = np.repeat(np.arange(len(parts)), nholes)
     index = np.concatenate([np.arange(k) for k in nholes]) if len(parts) else np.empty(0, int)
     holes = shapely.polygons(shapely.get_interior_ring(parts[owner], index))
-    holes = holes[shapely.area(holes) > tolerance_mm ** 2]
+    holes = holes[shapely.area(holes) > tolerance_mm**2]
     keep = holes[~small_hole_mask(holes, min_piece_mm)] if len(holes) else holes
     # the lattice: the material with the holes too small for a piece filled
     lattice, filled = fill_small_holes(region, min_piece_mm, tolerance_mm=tolerance_mm)
@@ -140,8 +146,9 @@ def inlay_kit(region, outline, *, fit_mm: float, min_piece_mm: float, kerf_mm: f
     # the kinds counted on the holes: each piece is made from its hole alone, so congruent holes give
     # congruent pieces, and a hole's few vertices compare fast (the round-grown pieces' hundreds took 7.2 s
     # for the sample's 247 pieces)
-    return InlayKit(lattice, np.asarray(pieces, dtype=object), keep, int(filled), distinct_shapes(cut),
-                    tuple(necks), tuple(split))
+    return InlayKit(
+        lattice, np.asarray(pieces, dtype=object), keep, int(filled), distinct_shapes(cut), tuple(necks), tuple(split)
+    )
 
 
 def piece_of_hole(hole, *, fit_mm: float, kerf_mm: float):
@@ -193,7 +200,7 @@ def _cut_whole(holes, d: float, tolerance_mm: float):
     shrunk = shapely.buffer(holes, -d, join_style="mitre", mitre_limit=MITRE_LIMIT)
     holes = holes.copy()
     for k in np.flatnonzero(shapely.get_num_geometries(shrunk) > 1).tolist():
-        parts = [p for p in shapely.get_parts(shrunk[k]) if p.area > tolerance_mm ** 2]
+        parts = [p for p in shapely.get_parts(shrunk[k]) if p.area > tolerance_mm**2]
         parts.sort(key=lambda p: -p.area)
         joined, rest, mine = parts[0] if parts else None, parts[1:], []
         inside = shapely.buffer(holes[k], tolerance_mm)
@@ -243,7 +250,8 @@ def _check_apart(pieces, holes, fit: float, kerf: float) -> None:
             f"pieces is {distinct(gaps[k], kerf)} mm (at ({where[0]:.4g}, {where[1]:.4g}), where the band of "
             f"lattice between their holes is {band:.3g} mm), and pieces must stand more than the kerf = "
             f"{kerf:g} mm apart, so bands must be wider than kerf + 2 x fit = {kerf + 2 * fit:g} mm; make the "
-            f"stroke wider or inlay_fit_mm smaller")
+            f"stroke wider or inlay_fit_mm smaller"
+        )
 
 
 def shape_key(poly, decimals: int = 3) -> tuple:

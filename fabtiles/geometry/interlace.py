@@ -27,7 +27,6 @@ from ..pattern.interlace import Weave
 from .containment import quads_inside
 from .stack import QUANTUM
 
-
 INSET_MM = 0.02
 """The relief's dips stop this far (20 microns, far below a nozzle's width) inside the bands' edges.
 
@@ -259,7 +258,9 @@ def checked_weave(tile) -> Weave:
             raise ParameterError(
                 f"interlace_gap_mm must be >= 0 and <= {limit:.3g} mm for this pattern and stroke "
                 f"(a larger gap hides a whole strand under its crossings), got {given:g}; "
-                "make it smaller, or leave it out for the default", param="interlace_gap_mm")
+                "make it smaller, or leave it out for the default",
+                param="interlace_gap_mm",
+            )
     return w
 
 
@@ -277,8 +278,9 @@ def tile_dips(tile):
     if not tile.interlace:
         return shapely.Polygon()
     within = _within(tile)
-    return dips(tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile),
-                tile.outline_shape() if within is None else within)
+    return dips(
+        tile.region(), tile.weave(), tile.stroke / 2, tile_gap(tile), tile.outline_shape() if within is None else within
+    )
 
 
 def tile_drawing(tile):
@@ -298,7 +300,7 @@ def tile_score_lines(tile) -> np.ndarray:
     seg = w.broken_pieces(tile.stroke / 2, tile_gap(tile))
     all_seg = tile.segments()
     if len(all_seg) > len(w.strand):  # the outline circles follow the motifs: scored whole
-        seg = np.concatenate([seg, all_seg[len(w.strand):]])
+        seg = np.concatenate([seg, all_seg[len(w.strand) :]])
     return clip_segments(seg, tile.outline_shape())
 
 

@@ -68,11 +68,15 @@ class JobEstimate:
 
     def as_stats(self) -> dict:
         """The report's ``job`` entry (plain numbers, rounded)."""
-        return {"cut_mm": {k: round(v, 3) for k, v in self.cut_mm.items()},
-                "cut_total_mm": round(self.cut_total_mm, 3), "pierces": self.pierces,
-                "engrave_area_mm2": round(self.engrave_area_mm2, 3), "travel_mm": round(self.travel_mm, 3),
-                "seconds": round(self.seconds, 1), "line": self.line()} | (
-            {} if self.travel_before_mm is None else {"travel_before_mm": round(self.travel_before_mm, 3)})
+        return {
+            "cut_mm": {k: round(v, 3) for k, v in self.cut_mm.items()},
+            "cut_total_mm": round(self.cut_total_mm, 3),
+            "pierces": self.pierces,
+            "engrave_area_mm2": round(self.engrave_area_mm2, 3),
+            "travel_mm": round(self.travel_mm, 3),
+            "seconds": round(self.seconds, 1),
+            "line": self.line(),
+        } | ({} if self.travel_before_mm is None else {"travel_before_mm": round(self.travel_before_mm, 3)})
 
     def travel_line(self) -> str:
         """The head's travel between cuts, and what the cut order saved, in words a newcomer reads.
@@ -84,8 +88,10 @@ class JobEstimate:
         if self.travel_before_mm:
             saved = 100 * (1 - self.travel_mm / self.travel_before_mm)
             more_or_less = "less" if saved >= 0 else "more"
-            line += (f", {abs(saved):.0f} % {more_or_less} than the {self.travel_before_mm / 1000:.3g} m in the order "
-                     "the contours were drawn")
+            line += (
+                f", {abs(saved):.0f} % {more_or_less} than the {self.travel_before_mm / 1000:.3g} m in the order "
+                "the contours were drawn"
+            )
         return line
 
 
@@ -130,9 +136,12 @@ def _travel(groups) -> float:
 def _layer_groups(profile, inner, outer, score, engrave, outer_closed: bool) -> list:
     """``(key, layer, rings, closed, role)`` of each layer in cut order: engrave, score, inner, outer."""
     layers = profile.layers
-    return [("engrave", layers.engrave, engrave, True, "engrave"), ("score", layers.score, score, False, "score"),
-            ("inner_cut", layers.inner_cut, inner, True, "inner"),
-            ("outer_cut", layers.outer_cut, outer, outer_closed, "outer")]
+    return [
+        ("engrave", layers.engrave, engrave, True, "engrave"),
+        ("score", layers.score, score, False, "score"),
+        ("inner_cut", layers.inner_cut, inner, True, "inner"),
+        ("outer_cut", layers.outer_cut, outer, outer_closed, "outer"),
+    ]
 
 
 def travel_mm(profile, *, inner=(), outer=(), score=(), engrave=(), outer_closed: bool = True) -> float:
@@ -143,13 +152,26 @@ def travel_mm(profile, *, inner=(), outer=(), score=(), engrave=(), outer_closed
     >>> round(travel_mm(load_profile("laser-3mm-plywood"), inner=[square + 5], outer=[square * 3]), 6)  # 2 x 5 sqrt 2
     14.142136
     """
-    return _travel([(_flat(rings), closed, layer.passes)
-                    for _, layer, rings, closed, _ in _layer_groups(profile, inner, outer, score, engrave, outer_closed)
-                    if len(rings) and layer is not None])
+    return _travel(
+        [
+            (_flat(rings), closed, layer.passes)
+            for _, layer, rings, closed, _ in _layer_groups(profile, inner, outer, score, engrave, outer_closed)
+            if len(rings) and layer is not None
+        ]
+    )
 
 
-def estimate(profile, *, inner=(), outer=(), score=(), engrave=(), engrave_area_mm2: float = 0.0,
-             outer_closed: bool = True, curves: dict | None = None) -> JobEstimate:
+def estimate(
+    profile,
+    *,
+    inner=(),
+    outer=(),
+    score=(),
+    engrave=(),
+    engrave_area_mm2: float = 0.0,
+    outer_closed: bool = True,
+    curves: dict | None = None,
+) -> JobEstimate:
     """The :class:`JobEstimate` of a laser job: its paths by layer, in cut order.
 
     ``inner``, ``outer`` and ``engrave`` are closed rings, ``score`` open paths
@@ -204,6 +226,11 @@ def total(estimates) -> JobEstimate:
         for k, v in e.cut_mm.items():
             cut[k] = cut.get(k, 0.0) + v
     before = [e.travel_before_mm for e in estimates]
-    return JobEstimate(cut, sum(e.pierces for e in estimates), float(sum(e.engrave_area_mm2 for e in estimates)),
-                       float(sum(e.travel_mm for e in estimates)), float(sum(e.seconds for e in estimates)),
-                       None if None in before else float(sum(before)))
+    return JobEstimate(
+        cut,
+        sum(e.pierces for e in estimates),
+        float(sum(e.engrave_area_mm2 for e in estimates)),
+        float(sum(e.travel_mm for e in estimates)),
+        float(sum(e.seconds for e in estimates)),
+        None if None in before else float(sum(before)),
+    )

@@ -113,35 +113,52 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
         sheet = (max(float(profile.bed_mm[0]), 4 * tile[0]), tile[1])
         result = nest(parts, sheet_mm=sheet, gap_mm=GAP_MM, rotations=ROTATIONS, time_s=time_s)
         if result.sheets > 1:
-            raise FabricationError(f"the kit's {len(mine):,} pieces{f' in {name}' if name else ''} do not fit on "
-                                   f"one {sheet[0]:g} x {sheet[1]:g} mm bed when nested {GAP_MM:g} mm apart; "
-                                   f"set inlay_pieces = \"registration\"", param="inlay_pieces")
-        placed = np.array([p.place(pieces[p.id]) for p in sorted(result.placements, key=lambda p: p.id)],
-                          dtype=object)
+            raise FabricationError(
+                f"the kit's {len(mine):,} pieces{f' in {name}' if name else ''} do not fit on "
+                f"one {sheet[0]:g} x {sheet[1]:g} mm bed when nested {GAP_MM:g} mm apart; "
+                f'set inlay_pieces = "registration"',
+                param="inlay_pieces",
+            )
+        placed = np.array([p.place(pieces[p.id]) for p in sorted(result.placements, key=lambda p: p.id)], dtype=object)
         ids = sorted(p.id for p in result.placements)
         paths = {}
-        paths["inner"], paths["outer"] = laser_contours(shapely.multipolygons(list(shapely.get_parts(placed))),
-                                                        kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm)
+        paths["inner"], paths["outer"] = laser_contours(
+            shapely.multipolygons(list(shapely.get_parts(placed))),
+            kerf_mm=kx,
+            kerf_y_mm=ky,
+            tolerance_mm=profile.tolerance_mm,
+        )
         score, small = _letter_paths([letters[i] for i in ids], placed)
         if score:
             paths["score"] = score
         closed = split_at_tabs(paths, *tabs, None)
         box = shapely.union_all(placed).bounds
         sheet = (box[2] + d, sheet[1])  # the sheet the pieces take: up to the last one's cut
-        new = make_plan(profile, "pierced", lattice.dxf_version, kx, paths, bounds=(0.0, 0.0, *sheet),
-                        part=shapely.union_all(placed), outer_closed=closed)
+        new = make_plan(
+            profile,
+            "pierced",
+            lattice.dxf_version,
+            kx,
+            paths,
+            bounds=(0.0, 0.0, *sheet),
+            part=shapely.union_all(placed),
+            outer_closed=closed,
+        )
         nested.append((name, new))
         width, height = box[2] - box[0] + 2 * d, box[3] - box[1] + 2 * d
-        report.note(f"pieces{f' in {name}' if name else ''} nested: {len(ids):,} on a {sheet[0]:.0f} x "
-                    f"{sheet[1]:.0f} mm sheet, within {width:.1f} x {height:.1f} mm "
-                    f"({width * height / (tile[0] * tile[1]):.0%} of the tile's area), {GAP_MM:g} mm apart, "
-                    f"half turns only (the grain); "
-                    + (f"{len(ids) - small:,} letters scored" + (f", {small:,} pieces too small for one"
-                                                                  if small else "")))
+        report.note(
+            f"pieces{f' in {name}' if name else ''} nested: {len(ids):,} on a {sheet[0]:.0f} x "
+            f"{sheet[1]:.0f} mm sheet, within {width:.1f} x {height:.1f} mm "
+            f"({width * height / (tile[0] * tile[1]):.0%} of the tile's area), {GAP_MM:g} mm apart, "
+            f"half turns only (the grain); "
+            + (f"{len(ids) - small:,} letters scored" + (f", {small:,} pieces too small for one" if small else ""))
+        )
         report.stats.setdefault("nested_pieces", {})[name or "pieces"] = {
-            "pieces": len(ids), "sheet_mm": [round(sheet[0], 3), round(sheet[1], 3)],
+            "pieces": len(ids),
+            "sheet_mm": [round(sheet[0], 3), round(sheet[1], 3)],
             "bbox_mm": [round(width, 3), round(height, 3)],
-            "bbox_of_tile": round(width * height / (tile[0] * tile[1]), 4)}
+            "bbox_of_tile": round(width * height / (tile[0] * tile[1]), 4),
+        }
     # the lattice: each hole's letter scored inside it (on the slug, cut after the scoring)
     hole_score, _ = _letter_paths(letters, np.asarray(kit.holes, dtype=object))
     # the lattice's paths back in the tile's coordinates (the holes' letters are), then moved as before
@@ -150,10 +167,19 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
     lattice_paths["score"] = lattice_paths.get("score", []) + hole_score
     groups_of = next((layer.groups for layer in lattice.layers if layer.fill), ())
     outer_closed = next((layer.closed for layer in lattice.layers if layer.role == "outer"), True)
-    new_lattice = make_plan(profile, lattice.mode, lattice.dxf_version, lattice.kerf_mm, lattice_paths,
-                            report=lattice.report, part=lattice.part, groups=groups_of,
-                            engrave_area_mm2=lattice.engrave_area_mm2, like=lattice,
-                            outer_closed=outer_closed)
+    new_lattice = make_plan(
+        profile,
+        lattice.mode,
+        lattice.dxf_version,
+        lattice.kerf_mm,
+        lattice_paths,
+        report=lattice.report,
+        part=lattice.part,
+        groups=groups_of,
+        engrave_area_mm2=lattice.engrave_area_mm2,
+        like=lattice,
+        outer_closed=outer_closed,
+    )
     if plans.by_colour:
         return replace(plans, lattice=new_lattice, by_colour=tuple(nested))
     return replace(plans, lattice=new_lattice, pieces=nested[0][1] if nested else plans.pieces)

@@ -38,11 +38,18 @@ import numpy as np
 import shapely
 
 from ..core.errors import FabricationError, ProfileError
-from ..machines.profiles import LaserProfile, load_profile
 from ..core.report import Report, distinct
+from ..machines.profiles import LaserProfile, load_profile
 from .contours import polygon_parts
-from .narrow import MAX_LOCATIONS, add_small_holes, check_pattern_kept, hole_polygons, locations, narrow_places, \
-    small_hole_mask
+from .narrow import (
+    MAX_LOCATIONS,
+    add_small_holes,
+    check_pattern_kept,
+    hole_polygons,
+    locations,
+    narrow_places,
+    small_hole_mask,
+)
 
 
 def fits_bed(width: float, height: float, bed_mm) -> bool:
@@ -77,8 +84,9 @@ def check_fits_bed(outline, profile: LaserProfile) -> None:
     )
 
 
-def check_laser(region, outline, profile, *, stroke=None, report: Report | None = None,
-                validate: bool = True) -> Report:
+def check_laser(
+    region, outline, profile, *, stroke=None, report: Report | None = None, validate: bool = True
+) -> Report:
     """Run the fabrication checks of the pierced mode on ``region``; findings go into ``report``.
 
     Parameters
@@ -99,18 +107,24 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
     report = report if report is not None else Report(path="", format="laser")
     parts = polygon_parts(region) if validate else shapely.get_parts(region)
     holes, owner = hole_polygons(parts)
-    tol2 = profile.tolerance_mm ** 2
+    tol2 = profile.tolerance_mm**2
     real = shapely.area(holes) > tol2
     holes, owner = holes[real], owner[real]
 
     if len(holes):
         small = small_hole_mask(holes, profile.min_hole_mm)
         if small.any():
-            add_small_holes(report, holes[small], tolerance_mm=profile.tolerance_mm, message=lambda n, w: (
-                f"{n:,} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
-                f"(narrowest {distinct(w, profile.min_hole_mm)} mm; they burn away or char shut; fill them with "
-                "fill_small_holes=True, or fill_small_holes = true in a design's [output])"),
-                limit_mm=profile.min_hole_mm)
+            add_small_holes(
+                report,
+                holes[small],
+                tolerance_mm=profile.tolerance_mm,
+                message=lambda n, w: (
+                    f"{n:,} hole{'s' if n > 1 else ''} narrower than min_hole_mm = {profile.min_hole_mm:g} mm "
+                    f"(narrowest {distinct(w, profile.min_hole_mm)} mm; they burn away or char shut; fill them with "
+                    "fill_small_holes=True, or fill_small_holes = true in a design's [output])"
+                ),
+                limit_mm=profile.min_hole_mm,
+            )
 
     # thin bridges: two rings of the same part closer than the minimum feature (within the
     # profile's tolerance: a band exactly min_feature_mm wide is fine to cut)
@@ -118,11 +132,16 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
     count, width, mids, widths = narrow_places(region, f, tolerance=profile.tolerance_mm)
     if count:
         extra = f"; the stroke is {stroke:g} mm" if stroke is not None else ""
-        report.add("thin_bridge",
-                   f"{count:,} bridge{'s' if count > 1 else ''} narrower than min_feature_mm = {f:g} mm "
-                   f"(narrowest {distinct(width, f)} mm{extra}): they may burn through or break",
-                   count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
-                   worst=round(width, 3), limit=f)
+        report.add(
+            "thin_bridge",
+            f"{count:,} bridge{'s' if count > 1 else ''} narrower than min_feature_mm = {f:g} mm "
+            f"(narrowest {distinct(width, f)} mm{extra}): they may burn through or break",
+            count=count,
+            locations=locations(mids),
+            sizes=widths[:MAX_LOCATIONS].round(3),
+            worst=round(width, 3),
+            limit=f,
+        )
 
     # loose parts: all but the largest piece inside each outline polygon
     if len(parts) > 1:
@@ -138,12 +157,16 @@ def check_laser(region, outline, profile, *, stroke=None, report: Report | None 
             loose[members[np.argmax(area[members])]] = False
         if loose.any():
             n = int(loose.sum())
-            report.add("loose_part",
-                       f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
-                       f"(they fall out; largest {area[loose].max():.3g} mm^2)",
-                       count=n, locations=locations(shapely.point_on_surface(parts[loose])),
-                       sizes=area[loose][:MAX_LOCATIONS].round(3), worst=round(float(area[loose].max()), 3),
-                       unit="mm^2")
+            report.add(
+                "loose_part",
+                f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
+                f"(they fall out; largest {area[loose].max():.3g} mm^2)",
+                count=n,
+                locations=locations(shapely.point_on_surface(parts[loose])),
+                sizes=area[loose][:MAX_LOCATIONS].round(3),
+                worst=round(float(area[loose].max()), 3),
+                unit="mm^2",
+            )
     return report
 
 
@@ -163,7 +186,7 @@ def check_cut_pattern(before, after, outline, profile, *, stroke=None, report: R
     0.0
     >>> print(r.findings[0].message)  # doctest: +ELLIPSIS
     filling the holes narrower than min_hole_mm = 1.2 mm of laser profile 'laser-3mm-plywood' left none of ... or a profile with min_hole_mm <= 1 mm
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     kind = profile.cutter
     m = profile.min_hole_mm
     limit = f"min_hole_mm = {m:g} mm of {profile.kind} profile {profile.name!r}"
@@ -171,8 +194,18 @@ def check_cut_pattern(before, after, outline, profile, *, stroke=None, report: R
     if kind.opens_holes and 2 * kind.tool_radius(profile) > m:
         m = 2 * kind.tool_radius(profile)
         limit, tool = kind.tool_name(profile), f"a {kind.tool} of {{w}} mm or narrower"
-    return check_pattern_kept(report, before, after, outline, limit_mm=m, limit=limit, stroke=stroke,
-                              min_stroke_mm=profile.min_feature_mm, tool=tool, tolerance_mm=profile.tolerance_mm)
+    return check_pattern_kept(
+        report,
+        before,
+        after,
+        outline,
+        limit_mm=m,
+        limit=limit,
+        stroke=stroke,
+        min_stroke_mm=profile.min_feature_mm,
+        tool=tool,
+        tolerance_mm=profile.tolerance_mm,
+    )
 
 
 def check_layers(profile: LaserProfile) -> None:
@@ -180,11 +213,15 @@ def check_layers(profile: LaserProfile) -> None:
     for key in ("inner_cut", "outer_cut", "score"):
         layer = getattr(profile.layers, key)
         if isinstance(layer.color, bool) or not isinstance(layer.color, int) or not 1 <= layer.color <= 255:
-            raise ProfileError(f"profile {profile.name!r}: layers.{key}.color must be an AutoCAD Color "
-                               f"Index 1..255, got {layer.color!r}")
-        if not isinstance(layer.name, str) or not layer.name or any(c in layer.name for c in '<>/\\":;?*|=\''):
-            raise ProfileError(f"profile {profile.name!r}: layers.{key}.name must be a non-empty DXF layer "
-                               f"name without <>/\\\":;?*|=', got {layer.name!r}")
+            raise ProfileError(
+                f"profile {profile.name!r}: layers.{key}.color must be an AutoCAD Color "
+                f"Index 1..255, got {layer.color!r}"
+            )
+        if not isinstance(layer.name, str) or not layer.name or any(c in layer.name for c in "<>/\\\":;?*|='"):
+            raise ProfileError(
+                f"profile {profile.name!r}: layers.{key}.name must be a non-empty DXF layer "
+                f"name without <>/\\\":;?*|=', got {layer.name!r}"
+            )
 
 
 def engrave_layer(profile: LaserProfile):
@@ -193,7 +230,8 @@ def engrave_layer(profile: LaserProfile):
         raise ProfileError(
             f"laser profile {profile.name!r} has no engrave layer, which the engrave mode fills: add "
             'engrave = { name = "FILL", color = 6, speed_mm_s = 250, power_pct = 20, line_interval_mm = 0.1 } '
-            "to its [layers]")
+            "to its [layers]"
+        )
     return profile.layers.engrave
 
 
@@ -207,12 +245,15 @@ def check_engrave(region, profile: LaserProfile, report: Report) -> Report:
     width = 2 * layer.line_interval_mm
     count, worst, mids, widths = narrow_places(region, width, tolerance=profile.tolerance_mm)
     if count:
-        report.add("thin_fill",
-                   f"{count} band{'s' if count > 1 else ''} of the engraving narrower than two fill lines "
-                   f"({width:g} mm at line_interval_mm = {layer.line_interval_mm:g}; narrowest {distinct(worst, width)} mm): "
-                   "they engrave as one line or vanish",
-                   count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
-                   worst=round(worst, 3), limit=width)
+        report.add(
+            "thin_fill",
+            f"{count} band{'s' if count > 1 else ''} of the engraving narrower than two fill lines "
+            f"({width:g} mm at line_interval_mm = {layer.line_interval_mm:g}; narrowest {distinct(worst, width)} mm): "
+            "they engrave as one line or vanish",
+            count=count,
+            locations=locations(mids),
+            sizes=widths[:MAX_LOCATIONS].round(3),
+            worst=round(worst, 3),
+            limit=width,
+        )
     return report
-
-

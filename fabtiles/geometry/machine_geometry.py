@@ -55,8 +55,14 @@ def print_geometry(tile, *, profile=None, style=None):
     not interlaced or the style, the given one or the printer profile's, is not a relief).
     """
     dips = None
-    if getattr(tile, "interlace", False) and (style or load_profile(
-            profile if profile is not None else DEFAULT_PRINTER_PROFILE, kind="printer").print_style) == "relief":
+    if (
+        getattr(tile, "interlace", False)
+        and (
+            style
+            or load_profile(profile if profile is not None else DEFAULT_PRINTER_PROFILE, kind="printer").print_style
+        )
+        == "relief"
+    ):
         from . import interlace
 
         dips = interlace.tile_dips(tile)

@@ -41,9 +41,14 @@ class Filament:
         return text
 
     def as_stats(self) -> dict:
-        return {"volume_mm3": round(self.volume_mm3, 3), "mass_g": round(self.mass_g, 3),
-                "length_m": round(self.length_m, 4), "parts": self.parts,
-                "cost": None if self.cost is None else round(self.cost, 4), "line": self.line()}
+        return {
+            "volume_mm3": round(self.volume_mm3, 3),
+            "mass_g": round(self.mass_g, 3),
+            "length_m": round(self.length_m, 4),
+            "parts": self.parts,
+            "cost": None if self.cost is None else round(self.cost, 4),
+            "line": self.line(),
+        }
 
 
 def filament(volumes: dict, profile) -> Filament:

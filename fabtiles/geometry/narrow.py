@@ -9,9 +9,8 @@ it (:func:`small_hole_mask`); :func:`fill_small_holes` fills such holes.
 
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import math
+from typing import NamedTuple
 
 import numpy as np
 import shapely
@@ -69,8 +68,15 @@ def add_small_holes(report, holes: np.ndarray, *, tolerance_mm: float, message, 
     """
     centres, widths = hole_widths(holes, tolerance_mm=tolerance_mm)
     n = len(widths)
-    report.add("small_hole", message(n, float(widths.min())), count=n, locations=locations(centres),
-               sizes=widths[:MAX_LOCATIONS].round(3), worst=round(float(widths.min()), 3), limit=limit_mm)
+    report.add(
+        "small_hole",
+        message(n, float(widths.min())),
+        count=n,
+        locations=locations(centres),
+        sizes=widths[:MAX_LOCATIONS].round(3),
+        worst=round(float(widths.min()), 3),
+        limit=limit_mm,
+    )
 
 
 def hole_polygons(parts: np.ndarray):
@@ -98,13 +104,13 @@ def small_hole_mask(holes: np.ndarray, min_hole_mm: float) -> np.ndarray:
         return np.zeros(len(holes), bool)
     r = min_hole_mm / 2
     b = shapely.bounds(holes)
-    small = (np.minimum(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1]) < min_hole_mm) | (
-        shapely.area(holes) < math.pi * r * r)
+    small = (np.minimum(b[:, 2] - b[:, 0], b[:, 3] - b[:, 1]) < min_hole_mm) | (shapely.area(holes) < math.pi * r * r)
     todo = np.flatnonzero(~small)
     if len(todo):
         c = shapely.centroid(holes[todo])
         roomy = shapely.contains_properly(holes[todo], c) & (
-            shapely.distance(c, shapely.get_exterior_ring(holes[todo])) >= r)
+            shapely.distance(c, shapely.get_exterior_ring(holes[todo])) >= r
+        )
         todo = todo[~roomy]
     if len(todo):
         # eroded by 0.2 % more than r: the offset's arcs of 16 chords a quarter lie up to 0.12 %
@@ -131,7 +137,7 @@ def fill_small_holes(region, min_hole_mm: float, *, tolerance_mm: float = 0.0):
     if not len(holes):
         return region, 0
     small = small_hole_mask(holes, min_hole_mm)
-    degenerate = shapely.area(holes) <= tolerance_mm ** 2
+    degenerate = shapely.area(holes) <= tolerance_mm**2
     drop = small | degenerate
     if not drop.any():
         return region, 0
@@ -163,9 +169,22 @@ changes little of what one sees (the samples keep 84 % to 100 % of their open ar
 profiles while keeping 14 % to 97 % of their holes)."""
 
 
-def check_pattern_kept(report, before, after, outline, *, limit_mm: float, limit: str, openings: str = "holes",
-                       stroke=None, min_stroke_mm: float = 0.0, scale: bool = True, tool: str = "",
-                       deboss: bool = False, tolerance_mm: float = 0.01) -> float:
+def check_pattern_kept(
+    report,
+    before,
+    after,
+    outline,
+    *,
+    limit_mm: float,
+    limit: str,
+    openings: str = "holes",
+    stroke=None,
+    min_stroke_mm: float = 0.0,
+    scale: bool = True,
+    tool: str = "",
+    deboss: bool = False,
+    tolerance_mm: float = 0.01,
+) -> float:
     """Report ``filled_pattern`` when filling small openings left less than :data:`PATTERN_KEPT` of the pattern.
 
     The pattern's open area is the tile's area without material (``outline`` less
@@ -192,15 +211,14 @@ def check_pattern_kept(report, before, after, outline, *, limit_mm: float, limit
     0.0
     >>> print(r.findings[0].message)
     filling the holes narrower than min_hole_mm = 1.2 mm left none of the pattern (all 2 holes filled): to keep at least 50 % of the pattern's open area, the holes of 1 mm must be 1.2 mm wide or wider: a stroke of at most 1.8 mm (it is 2 mm), a packing at least 1.07x larger (its edge or radius), or a profile with min_hole_mm <= 1 mm
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     o_area, b_area = float(shapely.area(outline)), float(shapely.area(before))
     # only a deboss's filling takes material (groove) away; elsewhere it only adds
     gone = float(shapely.area(shapely.difference(before, after))) if deboss else 0.0
     phases = [(o_area - b_area, float(shapely.area(after)) - b_area + gone, False)]
     if deboss:
         phases.append((b_area, gone, True))
-    shares = [(max(0.0, 1.0 - lost / area), area, grooves) for area, lost, grooves in phases
-              if area > tolerance_mm ** 2]
+    shares = [(max(0.0, 1.0 - lost / area), area, grooves) for area, lost, grooves in phases if area > tolerance_mm**2]
     if not shares:
         return 1.0
     kept, open_before, grooves = min(shares, key=lambda x: x[0])
@@ -212,7 +230,7 @@ def check_pattern_kept(report, before, after, outline, *, limit_mm: float, limit
     openings = "grooves" if grooves else openings
     # the openings before, and those the filling closed (their inside is material now; plate, for grooves)
     pieces = shapely.get_parts(before if grooves else shapely.difference(outline, before))
-    pieces = pieces[shapely.area(pieces) > tolerance_mm ** 2]
+    pieces = pieces[shapely.area(pieces) > tolerance_mm**2]
     shapely.prepare(after)
     inside = shapely.contains(after, shapely.point_on_surface(pieces))
     filled = pieces[inside != grooves]
@@ -241,10 +259,19 @@ def check_pattern_kept(report, before, after, outline, *, limit_mm: float, limit
         if tool:
             ways.append(tool.format(w=f"{_down(w):g}"))
         ways = ", ".join(ways[:-1]) + ", or " + ways[-1] if len(ways) > 1 else "".join(ways)
-        message += (f": to keep at least {100 * PATTERN_KEPT:.0f} % of {area_of}, the {openings} of {w:.3g} mm "
-                    f"must be {m:g} mm wide or wider: {ways}")
-    report.add("filled_pattern", message, count=n, locations=locations(centres), worst=round(100 * kept, 1),
-               unit="%", limit=100 * PATTERN_KEPT)
+        message += (
+            f": to keep at least {100 * PATTERN_KEPT:.0f} % of {area_of}, the {openings} of {w:.3g} mm "
+            f"must be {m:g} mm wide or wider: {ways}"
+        )
+    report.add(
+        "filled_pattern",
+        message,
+        count=n,
+        locations=locations(centres),
+        worst=round(100 * kept, 1),
+        unit="%",
+        limit=100 * PATTERN_KEPT,
+    )
     return kept
 
 

@@ -118,8 +118,9 @@ class Nesting:
     def material_use(self) -> tuple[float, ...]:
         """Per sheet, the area its parts' outer boundaries enclose over the sheet's area."""
         w, h = self.sheet_mm
-        return tuple(round(sum(self.outlines[i].area for i in self.on_sheet(k)) / (w * h), 4)
-                     for k in range(self.sheets))
+        return tuple(
+            round(sum(self.outlines[i].area for i in self.on_sheet(k)) / (w * h), 4) for k in range(self.sheets)
+        )
 
 
 def _check_parts(parts) -> tuple[list, list]:
@@ -127,14 +128,21 @@ def _check_parts(parts) -> tuple[list, list]:
     if isinstance(parts, dict):
         parts = list(parts.items())
     if not isinstance(parts, (list, tuple)) or not parts:
-        raise ParameterError(f"parts must be a non-empty list of (id, shapely Polygon) pairs, got {parts!r:.60}",
-                             param="parts")
+        raise ParameterError(
+            f"parts must be a non-empty list of (id, shapely Polygon) pairs, got {parts!r:.60}", param="parts"
+        )
     ids, shapes = [], []
     for k, pair in enumerate(parts):
-        if not isinstance(pair, (list, tuple)) or len(pair) != 2 or not isinstance(pair[1], Polygon) \
-                or pair[1].is_empty or pair[1].area <= 0:
-            raise ParameterError(f"parts[{k}] must be an (id, shapely Polygon of area > 0) pair, got {pair!r:.80}",
-                                 param="parts")
+        if (
+            not isinstance(pair, (list, tuple))
+            or len(pair) != 2
+            or not isinstance(pair[1], Polygon)
+            or pair[1].is_empty
+            or pair[1].area <= 0
+        ):
+            raise ParameterError(
+                f"parts[{k}] must be an (id, shapely Polygon of area > 0) pair, got {pair!r:.80}", param="parts"
+            )
         ids.append(pair[0])
         shapes.append(shapely.geometry.polygon.orient(Polygon(pair[1].exterior), 1.0))  # holes not used
     seen = set()
@@ -175,8 +183,9 @@ def _packing_shapes(shapes) -> list:
     spyrrow's time grows with the vertices: a sample kit's 247 round-grown pieces (52,739 vertices) took
     10 s of a 1 s budget, simplified (about a fifth of the vertices) 1.5 s.
     """
-    simple = shapely.buffer(shapely.simplify(np.asarray(shapes, dtype=object), SIMPLIFY_MM), SIMPLIFY_MM,
-                            join_style="mitre")
+    simple = shapely.buffer(
+        shapely.simplify(np.asarray(shapes, dtype=object), SIMPLIFY_MM), SIMPLIFY_MM, join_style="mitre"
+    )
     out = []
     for original, s in zip(shapes, simple, strict=True):
         s = shapely.geometry.polygon.orient(Polygon(s.exterior), 1.0) if s.geom_type == "Polygon" else original
@@ -201,19 +210,28 @@ def _solve(shapes, idx, height, gap, angles, seconds, on_tick):
         corner[i] = ring.min(axis=0)
         key = np.round(ring - corner[i], 6).tobytes()
         groups.setdefault(key, []).append(i)
-    items = [spyrrow.Item(str(g), [(float(p[0]), float(p[1])) for p in np.asarray(shapes[members[0]].exterior.coords)[:-1]
-                                   - corner[members[0]]],
-                          demand=len(members), allowed_orientations=None if angles is None else list(angles))
-             for g, members in enumerate(groups.values())]
+    items = [
+        spyrrow.Item(
+            str(g),
+            [
+                (float(p[0]), float(p[1]))
+                for p in np.asarray(shapes[members[0]].exterior.coords)[:-1] - corner[members[0]]
+            ],
+            demand=len(members),
+            allowed_orientations=None if angles is None else list(angles),
+        )
+        for g, members in enumerate(groups.values())
+    ]
     instance = spyrrow.StripPackingInstance("fabtiles", float(height), items)
-    config = spyrrow.StripPackingConfig(early_termination=True, total_computation_time=int(seconds),
-                                        min_items_separation=gap, num_workers=2, seed=0)
+    config = spyrrow.StripPackingConfig(
+        early_termination=True, total_computation_time=int(seconds), min_items_separation=gap, num_workers=2, seed=0
+    )
     out: dict = {}
 
     def run():
         try:
             out["solution"] = instance.solve(config)
-        except BaseException as exc:  # noqa: BLE001 - re-raised in the caller's thread
+        except BaseException as exc:
             out["error"] = exc
 
     worker = threading.Thread(target=run, daemon=True)
@@ -231,12 +249,15 @@ def _solve(shapes, idx, height, gap, angles, seconds, on_tick):
         a = math.radians(rot)
         cx, cy = corner[i]
         tx, ty = map(float, item.translation)
-        placed.append((i, rot, (tx - (math.cos(a) * cx - math.sin(a) * cy), ty - (math.sin(a) * cx + math.cos(a) * cy))))
+        placed.append(
+            (i, rot, (tx - (math.cos(a) * cx - math.sin(a) * cy), ty - (math.sin(a) * cx + math.cos(a) * cy)))
+        )
     return placed
 
 
-def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float = DEFAULT_TIME_S,
-         progress=None) -> Nesting:
+def nest(
+    parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float = DEFAULT_TIME_S, progress=None
+) -> Nesting:
     """Place ``parts`` on as few ``sheet_mm`` sheets as the packer finds, ``gap_mm`` apart.
 
     Parameters
@@ -274,21 +295,20 @@ def nest(parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float
     h = check_float("sheet_mm[1]", sheet_mm[1], low=0, low_open=True)
     gap = check_float("gap_mm", gap_mm, low=0)
     if not isinstance(rotations, str) or rotations not in ROTATIONS:
-        raise ParameterError(f"rotations must be one of: {', '.join(ROTATIONS)}, got {rotations!r}",
-                             param="rotations")
+        raise ParameterError(f"rotations must be one of: {', '.join(ROTATIONS)}, got {rotations!r}", param="rotations")
     budget = check_float("time_s", time_s, low=0, low_open=True)
     ids, shapes = _check_parts(parts)
     angles = ROTATIONS[rotations]
     for i, shape in zip(ids, shapes, strict=True):
         if not _fits(shape, w, h, angles):
             x0, y0, x1, y1 = shape.bounds
-            turn = "either way round" if angles is None or 90.0 in angles else "unturned (rotations " \
-                f"{rotations!r})"
+            turn = "either way round" if angles is None or 90.0 in angles else f"unturned (rotations {rotations!r})"
             raise FabricationError(
                 f"part {i!r} ({x1 - x0:.4g} x {y1 - y0:.4g} mm) does not fit on the {w:g} x {h:g} mm sheet "
                 f"{turn}; use a larger sheet, a smaller part"
                 f"{'' if angles is None or 90.0 in angles else ' or --rotate 90'}",
-                param="sheet_mm")
+                param="sheet_mm",
+            )
 
     start = time.monotonic()
     placements: dict = {}

@@ -85,7 +85,7 @@ def strokes(segments) -> list:
     # the index pairs of each degree, made once (np.triu_indices per vertex was half of this function's time, profiled)
     pairs_of: dict = {}
     for v in np.flatnonzero(counts > 2).tolist():  # crossings and knots: the straightest pairs first
-        es = by_node[first[v]:first[v] + counts[v]]
+        es = by_node[first[v] : first[v] + counts[v]]
         d = out_dir[es]
         cos = d @ d.T  # -1: opposite, the strand going straight on
         i, j = pairs_of.get(len(es)) or pairs_of.setdefault(len(es), np.triu_indices(len(es), 1))

@@ -49,12 +49,22 @@ import numpy as np
 import shapely
 
 from ..core.errors import FabricationError, ProfileError
-from ..machines.profiles import PrinterProfile, load_profile
 from ..core.report import Report, distinct
-from .narrow import MAX_LOCATIONS, add_small_holes, check_pattern_kept, hole_polygons, hole_widths, locations, \
-    narrow_places, neck_pieces, small_hole_mask, without_holes
+from ..machines.profiles import PrinterProfile, load_profile
 from .contours import polygon_parts
 from .laser_checks import fits_bed
+from .narrow import (
+    MAX_LOCATIONS,
+    add_small_holes,
+    check_pattern_kept,
+    hole_polygons,
+    hole_widths,
+    locations,
+    narrow_places,
+    neck_pieces,
+    small_hole_mask,
+    without_holes,
+)
 
 WALL_TOLERANCE_MM = 0.01
 """A wall this much thinner than the minimum still counts as the minimum (rounding)."""
@@ -198,15 +208,23 @@ def check_print_pattern(before, after, outline, profile, style: str, *, stroke=N
     0.0
     >>> print(r.findings[0].message)  # doctest: +ELLIPSIS
     filling the openings narrower than min_hole_mm = 0.8 mm of printer profile 'fdm-0.4mm' left none of ... or a printer profile with min_hole_mm <= 0.5 mm (a finer nozzle)
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     profile = load_profile(profile, kind="printer")
     deboss = style == "deboss"
-    return check_pattern_kept(report, before, after, outline, limit_mm=profile.min_hole_mm,
-                              limit=f"min_hole_mm = {profile.min_hole_mm:g} mm of printer profile {profile.name!r}",
-                              openings="islands of the plate" if deboss else "openings", stroke=stroke,
-                              min_stroke_mm=profile.min_wall_mm, deboss=deboss,
-                              tool="a printer profile with min_hole_mm <= {w} mm (a finer nozzle)",
-                              tolerance_mm=PRINT_TOLERANCE_MM)
+    return check_pattern_kept(
+        report,
+        before,
+        after,
+        outline,
+        limit_mm=profile.min_hole_mm,
+        limit=f"min_hole_mm = {profile.min_hole_mm:g} mm of printer profile {profile.name!r}",
+        openings="islands of the plate" if deboss else "openings",
+        stroke=stroke,
+        min_stroke_mm=profile.min_wall_mm,
+        deboss=deboss,
+        tool="a printer profile with min_hole_mm <= {w} mm (a finer nozzle)",
+        tolerance_mm=PRINT_TOLERANCE_MM,
+    )
 
 
 def check_min_hole(profile: PrinterProfile, outline) -> None:
@@ -221,19 +239,21 @@ def check_min_hole(profile: PrinterProfile, outline) -> None:
     """  # noqa: E501 - a doctest's lines are as Python prints them
     m = profile.min_hole_mm
     if isinstance(m, bool) or not isinstance(m, (int, float)) or not np.isfinite(m) or m < 0:
-        raise ProfileError(f"printer profile {profile.name!r}: min_hole_mm must be a finite number of mm >= 0, "
-                           f"got {m!r}")
+        raise ProfileError(
+            f"printer profile {profile.name!r}: min_hole_mm must be a finite number of mm >= 0, got {m!r}"
+        )
     xmin, ymin, xmax, ymax = outline.bounds
     w, h = xmax - xmin, ymax - ymin
     if m > min(w, h):
         raise ProfileError(
             f"printer profile {profile.name!r}: min_hole_mm = {m:g} mm is larger than the tile ({w:g} x {h:g} mm); "
             f"give the narrowest hole the printer makes, about two widths of its {profile.nozzle_mm:g} mm nozzle, "
-            "or 0 for no limit")
+            "or 0 for no limit"
+        )
 
 
 def _real(polys: np.ndarray) -> np.ndarray:
-    return polys[shapely.area(polys) > PRINT_TOLERANCE_MM ** 2]
+    return polys[shapely.area(polys) > PRINT_TOLERANCE_MM**2]
 
 
 def plate_pieces(region, outline) -> np.ndarray:
@@ -289,12 +309,12 @@ def _judge(openings: np.ndarray, min_hole_mm: float) -> _Judged:
     """Judge each opening by its pieces either side of its necks (:func:`~fabtiles.geometry.narrow.neck_pieces`)."""
     openings = np.asarray(openings, dtype=object)
     pieces, owner = neck_pieces(openings, NECK_MM)
-    tiny = shapely.area(pieces) <= PRINT_TOLERANCE_MM ** 2
+    tiny = shapely.area(pieces) <= PRINT_TOLERANCE_MM**2
     small = (small_hole_mask(pieces, min_hole_mm) & ~tiny) if len(pieces) else tiny
     gone = small | tiny
     n = len(openings)
     whole = np.bincount(owner, weights=~gone, minlength=n) == 0
-    real = shapely.area(openings) > PRINT_TOLERANCE_MM ** 2
+    real = shapely.area(openings) > PRINT_TOLERANCE_MM**2
     mixed = ~whole & (np.bincount(owner, weights=small, minlength=n) > 0)
     partial = np.empty(0, object)
     if mixed.any():
@@ -357,7 +377,8 @@ def fill_print_holes(region, outline, profile, style: str):
         raise FabricationError(
             f"every groove of this deboss is narrower than min_hole_mm = {profile.min_hole_mm:g} mm of printer "
             f"profile {profile.name!r}, so filling them leaves a blank plate; make the stroke wider, or set "
-            "fill_small_holes = false")
+            "fill_small_holes = false"
+        )
     return region, total
 
 
@@ -399,7 +420,7 @@ def _fill_once(region, outline, m: float, style: str):
 def _polygons(geometry):
     """The polygons of an overlay's result of real area, as a Polygon or MultiPolygon."""
     parts = shapely.get_parts(geometry)
-    parts = parts[(shapely.get_type_id(parts) == 3) & (shapely.area(parts) > PRINT_TOLERANCE_MM ** 2)]
+    parts = parts[(shapely.get_type_id(parts) == 3) & (shapely.area(parts) > PRINT_TOLERANCE_MM**2)]
     if not len(parts):
         return shapely.Polygon()
     return parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
@@ -415,20 +436,41 @@ def _report_small_openings(report: Report, found: SmallOpenings, profile: Printe
         if style != "deboss":
             one, many = OPENINGS[style]
             it = "it" if n == 1 else "them"
-            return (f"{n:,} {one if n == 1 else many} {where} {width}: the plastic laid around {it} squeezes {it} "
-                    f"shut while the slicer traces {it}, slowly; fill_small_holes fills {it}")
+            return (
+                f"{n:,} {one if n == 1 else many} {where} {width}: the plastic laid around {it} squeezes {it} "
+                f"shut while the slicer traces {it}, slowly; fill_small_holes fills {it}"
+            )
         g, i = len(found.holes), len(found.islands)
         kinds = ([f"{g:,} groove{'s' if g != 1 else ''} too narrow to stay open"] if g else []) + (
-            [f"{i:,} island{'s' if i != 1 else ''} of the plate too small to print among the grooves"] if i else [])
-        return (f"{' and '.join(kinds)}, {where} {width}: the slicer traces each one, slowly; "
-                "fill_small_holes fills them")
+            [f"{i:,} island{'s' if i != 1 else ''} of the plate too small to print among the grooves"] if i else []
+        )
+        return (
+            f"{' and '.join(kinds)}, {where} {width}: the slicer traces each one, slowly; fill_small_holes fills them"
+        )
 
-    add_small_holes(report, np.concatenate([found.holes, found.islands]), tolerance_mm=WALL_TOLERANCE_MM,
-                    message=message, limit_mm=m)
+    add_small_holes(
+        report,
+        np.concatenate([found.holes, found.islands]),
+        tolerance_mm=WALL_TOLERANCE_MM,
+        message=message,
+        limit_mm=m,
+    )
 
 
-def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=None, relief_mm=None,
-                pierced_mm=None, deboss_mm=None, mosaic_inset_mm=None, report: Report | None = None) -> Report:
+def check_print(
+    region,
+    outline,
+    profile,
+    *,
+    stroke=None,
+    style=None,
+    base_mm=None,
+    relief_mm=None,
+    pierced_mm=None,
+    deboss_mm=None,
+    mosaic_inset_mm=None,
+    report: Report | None = None,
+) -> Report:
     """Run the printability checks; findings go into ``report`` (see the module text).
 
     Parameters
@@ -459,17 +501,25 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
 
     if stack.style == "deboss":  # the walls are the plate's islands among the grooves
         islands = plate_pieces(region, outline)
-        thin = islands[small_hole_mask(islands, wall) & ~small_hole_mask(islands, profile.min_hole_mm)] \
-            if len(islands) else islands
+        thin = (
+            islands[small_hole_mask(islands, wall) & ~small_hole_mask(islands, profile.min_hole_mm)]
+            if len(islands)
+            else islands
+        )
         if len(thin):
             centres, widths = hole_widths(thin, tolerance_mm=WALL_TOLERANCE_MM)
             n = len(thin)
-            report.add("thin_wall",
-                       f"{n:,} island{'s' if n > 1 else ''} of the plate among the grooves narrower than "
-                       f"min_wall_mm = {wall:g} mm (narrowest {distinct(float(widths.min()), wall)} mm): they "
-                       "print thin or not at all",
-                       count=n, locations=locations(centres), sizes=widths[:MAX_LOCATIONS].round(3),
-                       worst=round(float(widths.min()), 3), limit=wall)
+            report.add(
+                "thin_wall",
+                f"{n:,} island{'s' if n > 1 else ''} of the plate among the grooves narrower than "
+                f"min_wall_mm = {wall:g} mm (narrowest {distinct(float(widths.min()), wall)} mm): they "
+                "print thin or not at all",
+                count=n,
+                locations=locations(centres),
+                sizes=widths[:MAX_LOCATIONS].round(3),
+                worst=round(float(widths.min()), 3),
+                limit=wall,
+            )
     else:
         count, narrowest, mids, widths = narrow_places(region, wall, tolerance=WALL_TOLERANCE_MM)
         # pieces no wall fits in anywhere: one ring each, so no pair of rings finds them
@@ -483,42 +533,62 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
             mids, widths = np.concatenate([mids, centres]), np.concatenate([widths, sizes])
         if stroke is not None and stroke < wall * (1 - 1e-9):
             # the whole pattern is thin; the places come from the geometry, for the overlay
-            report.add("thin_wall",
-                       f"the stroke is {distinct(stroke, wall)} mm, narrower than min_wall_mm = {wall:g} mm "
-                       f"(about two line widths of the {profile.nozzle_mm:g} mm nozzle): walls print thin or not at all",
-                       count=max(count, 1), locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
-                       worst=round(min(stroke, narrowest), 3), limit=wall)
+            report.add(
+                "thin_wall",
+                f"the stroke is {distinct(stroke, wall)} mm, narrower than min_wall_mm = {wall:g} mm "
+                f"(about two line widths of the {profile.nozzle_mm:g} mm nozzle): walls print thin or not at all",
+                count=max(count, 1),
+                locations=locations(mids),
+                sizes=widths[:MAX_LOCATIONS].round(3),
+                worst=round(min(stroke, narrowest), 3),
+                limit=wall,
+            )
         elif count:
-            extra = f"; the stroke is {stroke:g} mm, so they are slivers the outline or a join cut" \
-                if stroke is not None else ""
-            report.add("thin_wall",
-                       f"{count:,} wall{'s' if count > 1 else ''} narrower than min_wall_mm = {wall:g} mm "
-                       f"(narrowest {distinct(narrowest, wall)} mm{extra}): they print thin or not at all",
-                       count=count, locations=locations(mids), sizes=widths[:MAX_LOCATIONS].round(3),
-                       worst=round(narrowest, 3), limit=wall)
+            extra = (
+                f"; the stroke is {stroke:g} mm, so they are slivers the outline or a join cut"
+                if stroke is not None
+                else ""
+            )
+            report.add(
+                "thin_wall",
+                f"{count:,} wall{'s' if count > 1 else ''} narrower than min_wall_mm = {wall:g} mm "
+                f"(narrowest {distinct(narrowest, wall)} mm{extra}): they print thin or not at all",
+                count=count,
+                locations=locations(mids),
+                sizes=widths[:MAX_LOCATIONS].round(3),
+                worst=round(narrowest, 3),
+                limit=wall,
+            )
 
     layers = 2 * profile.layer_height_mm
     heights = {
         "relief": (("base_mm", stack.base, "the plate"), ("relief_mm", stack.relief, "the relief")),
         "pierced": (("pierced_mm", stack.pierced, "the tile"),),
-        "mosaic": (("base_mm", stack.base, "the plate"),
-                   ("relief_mm - mosaic_inset_mm", stack.relief - stack.inset, "the faces over the plate")),
-        "deboss": (("deboss_mm", stack.deboss, "the groove depth"),
-                   ("base_mm - deboss_mm", stack.base - stack.deboss, "the floor under the grooves")),
+        "mosaic": (
+            ("base_mm", stack.base, "the plate"),
+            ("relief_mm - mosaic_inset_mm", stack.relief - stack.inset, "the faces over the plate"),
+        ),
+        "deboss": (
+            ("deboss_mm", stack.deboss, "the groove depth"),
+            ("base_mm - deboss_mm", stack.base - stack.deboss, "the floor under the grooves"),
+        ),
     }[stack.style]
     for key, value, what in heights:
         if value < layers * (1 - 1e-9):
-            report.add("thin_layer",
-                       f"{what} ({key} = {value:g} mm) is thinner than two layers "
-                       f"(2 x layer_height_mm = {layers:g} mm)")
+            report.add(
+                "thin_layer",
+                f"{what} ({key} = {value:g} mm) is thinner than two layers (2 x layer_height_mm = {layers:g} mm)",
+            )
 
     xmin, ymin, xmax, ymax = outline.bounds
     w, h = xmax - xmin, ymax - ymin
     bw, bh = profile.bed_mm
     if not fits_bed(w, h, profile.bed_mm):
-        report.add("bed_size",
-                   f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of printer profile "
-                   f"{profile.name!r} (either way round)")
+        report.add(
+            "bed_size",
+            f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of printer profile "
+            f"{profile.name!r} (either way round)",
+        )
 
     if stack.style == "pierced":
         parts = shapely.get_parts(region)
@@ -528,10 +598,14 @@ def check_print(region, outline, profile, *, stroke=None, style=None, base_mm=No
             loose = np.ones(len(parts), bool)
             loose[np.argmax(area)] = False
             n = int(loose.sum())
-            report.add("loose_part",
-                       f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
-                       f"(a pierced tile falls apart; largest {area[loose].max():.3g} mm^2)",
-                       count=n, locations=locations(shapely.point_on_surface(parts[loose])),
-                       sizes=area[loose][:MAX_LOCATIONS].round(3), worst=round(float(area[loose].max()), 3),
-                       unit="mm^2")
+            report.add(
+                "loose_part",
+                f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
+                f"(a pierced tile falls apart; largest {area[loose].max():.3g} mm^2)",
+                count=n,
+                locations=locations(shapely.point_on_surface(parts[loose])),
+                sizes=area[loose][:MAX_LOCATIONS].round(3),
+                worst=round(float(area[loose].max()), 3),
+                unit="mm^2",
+            )
     return report

@@ -95,20 +95,29 @@ def seamless_fit(outline, size, radius, *, packing="hex") -> SeamlessFit:
     if isinstance(packing, str) and packing not in ("hex", "square") and packing[:1].isdigit():
         return _tiling_fit(outline, size, radius, canonical(packing))
     if not isinstance(packing, str) or packing not in ("hex", "square"):
-        raise ParameterError(f"{packing!r} is not a valid packing, must be one of: hex, square, "
-                             f"or a tiling ({', '.join(TILINGS)})", param="packing")
+        raise ParameterError(
+            f"{packing!r} is not a valid packing, must be one of: hex, square, or a tiling ({', '.join(TILINGS)})",
+            param="packing",
+        )
     w, h = check_tile_size(outline, size)
     radius = check_float("radius", radius, low=0, low_open=True)
     if outline == "circle":
-        raise ParameterError("a circle outline cannot be seamless (circles do not tile the plane); "
-                             "use a rectangle, square or hexagon", param="outline")
+        raise ParameterError(
+            "a circle outline cannot be seamless (circles do not tile the plane); use a rectangle, square or hexagon",
+            param="outline",
+        )
     if outline == "square" and packing == "hex":
-        raise ParameterError("a square tile cannot be seamless with the hex packing (periods 2R and "
-                             "2*sqrt(3)*R are incommensurable); use outline 'rectangle' or 'hexagon'",
-                             param="outline")
+        raise ParameterError(
+            "a square tile cannot be seamless with the hex packing (periods 2R and "
+            "2*sqrt(3)*R are incommensurable); use outline 'rectangle' or 'hexagon'",
+            param="outline",
+        )
     if outline == "hexagon" and packing == "square":
-        raise ParameterError("a hexagon tile cannot be seamless with the square packing; "
-                             "use the hex packing or a square/rectangle outline", param="outline")
+        raise ParameterError(
+            "a hexagon tile cannot be seamless with the square packing; "
+            "use the hex packing or a square/rectangle outline",
+            param="outline",
+        )
     m = max(1, round(w / (2 * radius)))
     r = w / (2 * m)
     if outline == "rectangle":
@@ -125,16 +134,23 @@ def _tiling_fit(outline, size, edge, tiling) -> SeamlessFit:
     lat = unit_cell(tiling).lattice
     hexagonal = abs(lat[1, 0] - px / 2) < 1e-9 and abs(lat[1, 1] - px * math.sqrt(3) / 2) < 1e-9
     if outline == "circle":
-        raise ParameterError("a circle outline cannot be seamless (circles do not tile the plane); "
-                             "use a rectangle, square or hexagon", param="outline")
+        raise ParameterError(
+            "a circle outline cannot be seamless (circles do not tile the plane); use a rectangle, square or hexagon",
+            param="outline",
+        )
     if outline == "square" and abs(px - py) > 1e-9:
-        raise ParameterError(f"a square tile cannot be seamless with the tiling {tiling} (its periods "
-                             f"{px:.4g}a and {py:.4g}a are incommensurable); use outline 'rectangle'"
-                             + (" or 'hexagon'" if hexagonal else ""), param="outline")
+        raise ParameterError(
+            f"a square tile cannot be seamless with the tiling {tiling} (its periods "
+            f"{px:.4g}a and {py:.4g}a are incommensurable); use outline 'rectangle'"
+            + (" or 'hexagon'" if hexagonal else ""),
+            param="outline",
+        )
     if outline == "hexagon" and not hexagonal:
-        raise ParameterError(f"a hexagon tile cannot be seamless with the tiling {tiling} (its lattice "
-                             f"is not triangular); use outline 'rectangle'"
-                             + (" or 'square'" if abs(px - py) < 1e-9 else ""), param="outline")
+        raise ParameterError(
+            f"a hexagon tile cannot be seamless with the tiling {tiling} (its lattice "
+            f"is not triangular); use outline 'rectangle'" + (" or 'square'" if abs(px - py) < 1e-9 else ""),
+            param="outline",
+        )
     m = max(1, round(w / (px * edge)))
     a = w / (px * m)
     if outline == "rectangle":

@@ -24,8 +24,8 @@ import numpy as np
 import shapely
 
 from ..core.errors import FabricationError, ParameterError
-from ..machines.profiles import load_profile
 from ..core.validate import check_float, check_int
+from ..machines.profiles import load_profile
 
 if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
@@ -45,8 +45,9 @@ class Sheet:
     size: tuple[float, float]
 
 
-def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None,
-                 centrelines=None, fill: bool = False) -> Sheet:
+def layout_sheet(
+    tiles, profile, *, copies: int = 1, gap_mm: float | None = None, centrelines=None, fill: bool = False
+) -> Sheet:
     """Lay ``tiles`` on the bed of ``profile`` in rows; every tile ``copies`` times.
 
     Parameters
@@ -77,8 +78,9 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
     cut = max(profile.kerf_mm, 2 * profile.tool_radius_mm)
     gap = check_float("gap_mm", cut + GAP_EXTRA_MM if gap_mm is None else gap_mm, low=cut, low_open=True)
     if centrelines is not None and len(centrelines) != len(tiles):
-        raise ParameterError(f"centrelines must hold one array per tile ({len(tiles)}), got {len(centrelines)}",
-                             param="centrelines")
+        raise ParameterError(
+            f"centrelines must hold one array per tile ({len(tiles)}), got {len(centrelines)}", param="centrelines"
+        )
     bed_w, bed_h = profile.bed_mm
     sizes = []
     for k, pair in enumerate(tiles):
@@ -101,7 +103,8 @@ def layout_sheet(tiles, profile, *, copies: int = 1, gap_mm: float | None = None
                 raise FabricationError(
                     f"not even one tile fits on the {bed_w:g} x {bed_h:g} mm bed of {profile.kind} profile "
                     f"{profile.name!r} (tile {i} is {w:g} x {h:g} mm); use smaller tiles or a profile "
-                    f"with a larger bed_mm")
+                    f"with a larger bed_mm"
+                )
             raise FabricationError(
                 f"{len(order)} tiles do not fit on the {bed_w:g} x {bed_h:g} mm bed of {profile.kind} profile "
                 f"{profile.name!r} with a gap of {gap:g} mm (tile {i} is {w:g} x {h:g} mm, "

@@ -14,9 +14,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..core.errors import ParameterError
-from ..machines.profiles import PRINT_STYLES, PrinterProfile, load_profile
 from ..core.schema import key, register_check
 from ..core.validate import check_choice, check_float
+from ..machines.profiles import PRINT_STYLES, PrinterProfile, load_profile
 
 QUANTUM = 2.0**-10
 """Grid of every x, y coordinate of a printed part (mm): about 1 micron, exact in float32 up to
@@ -47,8 +47,12 @@ class Stack:
     @property
     def top(self) -> float:
         """Height of the highest point of the part."""
-        return {"relief": self.base + self.relief, "pierced": self.pierced, "deboss": self.base,
-                "mosaic": self.base + self.relief}[self.style]
+        return {
+            "relief": self.base + self.relief,
+            "pierced": self.pierced,
+            "deboss": self.base,
+            "mosaic": self.base + self.relief,
+        }[self.style]
 
     def expected_volume(self, region_area: float, outline_area: float) -> float:
         """Volume of the part from the areas of the material region and the outline."""
@@ -61,8 +65,9 @@ class Stack:
         return outline_area * self.base - region_area * self.deboss
 
 
-def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None, deboss_mm=None,
-                  mosaic_inset_mm=None) -> Stack:
+def resolve_stack(
+    profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None, deboss_mm=None, mosaic_inset_mm=None
+) -> Stack:
     """The style and heights of a part: the call's values, else the profile's.
 
     Parameters
@@ -93,8 +98,12 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
     assert isinstance(profile, PrinterProfile)
     style = check_choice("style", profile.print_style if style is None else style, PRINT_STYLES)
     values = {}
-    for name, given in (("base_mm", base_mm), ("relief_mm", relief_mm),
-                        ("pierced_mm", pierced_mm), ("deboss_mm", deboss_mm)):
+    for name, given in (
+        ("base_mm", base_mm),
+        ("relief_mm", relief_mm),
+        ("pierced_mm", pierced_mm),
+        ("deboss_mm", deboss_mm),
+    ):
         value = getattr(profile, name) if given is None else given
         values[name] = check_float(name, value, low=0, low_open=True, high=MAX_HEIGHT_MM)
     if style == "deboss" and values["deboss_mm"] >= values["base_mm"]:
@@ -103,14 +112,23 @@ def resolve_stack(profile, style=None, base_mm=None, relief_mm=None, pierced_mm=
             f"got {values['deboss_mm']:g}",
             param="deboss_mm",
         )
-    inset = check_float("mosaic_inset_mm", 0.0 if mosaic_inset_mm is None else mosaic_inset_mm, low=0,
-                        high=MAX_HEIGHT_MM)
+    inset = check_float(
+        "mosaic_inset_mm", 0.0 if mosaic_inset_mm is None else mosaic_inset_mm, low=0, high=MAX_HEIGHT_MM
+    )
     if style == "mosaic" and inset >= values["relief_mm"]:
         raise ParameterError(
             f"mosaic_inset_mm must be smaller than relief_mm (the bands stand {values['relief_mm']:g} mm above the "
-            f"plate), got {inset:g}", param="mosaic_inset_mm")
-    return Stack(style, values["base_mm"], values["relief_mm"], values["pierced_mm"], values["deboss_mm"],
-                 inset if style == "mosaic" else 0.0)
+            f"plate), got {inset:g}",
+            param="mosaic_inset_mm",
+        )
+    return Stack(
+        style,
+        values["base_mm"],
+        values["relief_mm"],
+        values["pierced_mm"],
+        values["deboss_mm"],
+        inset if style == "mosaic" else 0.0,
+    )
 
 
 # The schema names no module above it: the values and checks of its keys are registered from here.

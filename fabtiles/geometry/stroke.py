@@ -226,7 +226,7 @@ def stroke_cross_section(segments, width, *, join="miter", miter_limit=4.0, tole
         # bands for the motif edges only; joins only where a motif edge ends
         n = len(verts)
         ids = np.sort(seg_ids, axis=1)
-        chord_key = np.unique(ids[len(seg):, 0] * n + ids[len(seg):, 1])
+        chord_key = np.unique(ids[len(seg) :, 0] * n + ids[len(seg) :, 1])
         band_edges = edges[~np.isin(edges[:, 0] * n + edges[:, 1], chord_key)]
         at = np.zeros(n, bool)
         at[band_edges.ravel()] = True
@@ -238,8 +238,11 @@ def stroke_cross_section(segments, width, *, join="miter", miter_limit=4.0, tole
     span = verts.max(axis=0) - verts.min(axis=0) + 2.0 * half
     if contours and band_area > _DENSE * float(span[0] * span[1]):
         bands = _bucketed_union(contours)
-        return m3d.CrossSection.batch_boolean([bands, m3d.CrossSection(rings, m3d.FillRule.Positive)],
-                                              m3d.OpType.Add) if rings else bands
+        return (
+            m3d.CrossSection.batch_boolean([bands, m3d.CrossSection(rings, m3d.FillRule.Positive)], m3d.OpType.Add)
+            if rings
+            else bands
+        )
     # An annulus's hole (clockwise) is nested in its own shell, so the positive fill
     # rule unions shells, holes and bands correctly in one batch.
     return m3d.CrossSection(contours + rings, m3d.FillRule.Positive)
@@ -294,8 +297,7 @@ def _bucketed_union(contours, per_bucket: int = 128):
     order = np.argsort(key, kind="stable")
     sorted_keys = key[order]
     cuts = np.flatnonzero(np.r_[True, sorted_keys[1:] != sorted_keys[:-1], True])
-    parts = [m3d.CrossSection([contours[i] for i in order[a:b]], m3d.FillRule.Positive)
-             for a, b in pairwise(cuts)]
+    parts = [m3d.CrossSection([contours[i] for i in order[a:b]], m3d.FillRule.Positive) for a, b in pairwise(cuts)]
     return m3d.CrossSection.batch_boolean(parts, m3d.OpType.Add)
 
 
@@ -338,8 +340,8 @@ def to_shapely(cs) -> Polygon | MultiPolygon:
     dup = (r[1:] == r[:-1]) & (c[1:] == c[:-1]).all(axis=1)
     for k in sorted(set(r[1:][dup].tolist()), reverse=True):
         pieces = _split_pinched(rings[k])
-        rings[k:k + 1] = pieces
-        part_of[k:k + 1] = [part_of[k]] * len(pieces)
+        rings[k : k + 1] = pieces
+        part_of[k : k + 1] = [part_of[k]] * len(pieces)
     lens = np.array([len(r) for r in rings])
     lr = shapely.linearrings(np.concatenate(rings), indices=np.repeat(np.arange(len(rings)), lens))
     ccw = shapely.is_ccw(lr)
@@ -438,9 +440,9 @@ def _split_pinched(ring: np.ndarray) -> list[np.ndarray]:
             loop = path[i:]
             if len(loop) >= 3:
                 out.append(np.array(loop))
-            for q in path[i + 1:]:
+            for q in path[i + 1 :]:
                 del where[q]
-            del path[i + 1:]
+            del path[i + 1 :]
         else:
             where[p] = len(path)
             path.append(p)

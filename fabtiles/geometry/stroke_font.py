@@ -71,8 +71,10 @@ CHARACTERS = "".join(_GLYPHS) + " "
 def _check(text: str) -> None:
     bad = sorted({c for c in text if c not in CHARACTERS})
     if bad:
-        raise ParameterError(f"label {text!r} has characters the stroke font cannot draw: {''.join(bad)!r}; "
-                             f"use only: {CHARACTERS.strip()} and spaces")
+        raise ParameterError(
+            f"label {text!r} has characters the stroke font cannot draw: {''.join(bad)!r}; "
+            f"use only: {CHARACTERS.strip()} and spaces"
+        )
 
 
 def text_width(text: str, *, height_mm: float) -> float:

@@ -35,9 +35,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..machines.cutters import cutter_kind
 from ..core.errors import ParameterError
 from ..core.schema import key
+from ..machines.cutters import cutter_kind
 from .contours import ROUND_DECIMALS
 
 CORNER_DEG = 20.0
@@ -83,20 +83,29 @@ class Tabs:
         n, parts = self.count, len(self.per_ring)
         shown = ", ".join(f"({x:.4g}, {y:.4g})" for x, y in self.midpoints[:4].tolist())
         more = f" and {n - 4:,} more" if n > 4 else ""
-        text = (f"holding tabs: {n:,} tab{'s' if n != 1 else ''} of {self.tab_mm:g} mm in {parts:,} "
-                f"part{'s' if parts != 1 else ''} ({self.tabs_per_part} per part) at {shown}{more}; the outer cut "
-                f"is {len(self.pieces):,} open path{'s' if len(self.pieces) != 1 else ''}")
+        text = (
+            f"holding tabs: {n:,} tab{'s' if n != 1 else ''} of {self.tab_mm:g} mm in {parts:,} "
+            f"part{'s' if parts != 1 else ''} ({self.tabs_per_part} per part) at {shown}{more}; the outer cut "
+            f"is {len(self.pieces):,} open path{'s' if len(self.pieces) != 1 else ''}"
+        )
         if len(self.short):
             k = len(self.short)
-            text += (f"; {k:,} part{'s' if k != 1 else ''} shorter round than {PIECES_PER_TAB:g} x tab_mm per tab "
-                     f"got fewer tabs")
+            text += (
+                f"; {k:,} part{'s' if k != 1 else ''} shorter round than {PIECES_PER_TAB:g} x tab_mm per tab "
+                f"got fewer tabs"
+            )
         return text
 
     def as_stats(self) -> dict:
         """The report's ``tabs`` entry."""
-        return {"length_mm": self.tab_mm, "per_part": self.tabs_per_part, "tabs": self.count,
-                "outer_pieces": len(self.pieces), "short_parts": len(self.short),
-                "midpoints": np.round(self.midpoints[:20], 3).tolist()}
+        return {
+            "length_mm": self.tab_mm,
+            "per_part": self.tabs_per_part,
+            "tabs": self.count,
+            "outer_pieces": len(self.pieces),
+            "short_parts": len(self.short),
+            "midpoints": np.round(self.midpoints[:20], 3).tolist(),
+        }
 
 
 def check_tabs(tab_mm, tabs_per_part, *, kerf_mm: float = 0.0, profile=None) -> tuple[float, int]:
@@ -119,9 +128,12 @@ def check_tabs(tab_mm, tabs_per_part, *, kerf_mm: float = 0.0, profile=None) -> 
     if profile is not None:
         cutter_kind(profile).check_tabs(profile, tab)
     if 0 < tab <= kerf_mm:
-        raise ParameterError(f"tab_mm must be 0 (no tabs) or more than the kerf ({kerf_mm:g} mm), got {tab:g}: "
-                             "the beam eats half a kerf at each end of a gap, so the bridge left is tab_mm - "
-                             "kerf_mm wide; make tab_mm larger", param="tab_mm")
+        raise ParameterError(
+            f"tab_mm must be 0 (no tabs) or more than the kerf ({kerf_mm:g} mm), got {tab:g}: "
+            "the beam eats half a kerf at each end of a gap, so the bridge left is tab_mm - "
+            "kerf_mm wide; make tab_mm larger",
+            param="tab_mm",
+        )
     return tab, int(per)
 
 
@@ -154,8 +166,13 @@ def _phase(arcs: np.ndarray, corners: np.ndarray, n: int) -> float:
 def _cut(pts: np.ndarray, s: np.ndarray, a: float, b: float) -> np.ndarray:
     """The stretch from arc position ``a`` to ``b`` of a ring gone round twice (``pts``, their arc positions ``s``)."""
     ab = np.array([a, b])
-    out = np.concatenate([np.column_stack([np.interp(ab, s, pts[:, 0]), np.interp(ab, s, pts[:, 1])])[:1],
-                          pts[(s > a) & (s < b)], [[np.interp(b, s, pts[:, 0]), np.interp(b, s, pts[:, 1])]]])
+    out = np.concatenate(
+        [
+            np.column_stack([np.interp(ab, s, pts[:, 0]), np.interp(ab, s, pts[:, 1])])[:1],
+            pts[(s > a) & (s < b)],
+            [[np.interp(b, s, pts[:, 0]), np.interp(b, s, pts[:, 1])]],
+        ]
+    )
     out = np.round(out, ROUND_DECIMALS) + 0.0
     keep = np.ones(len(out), dtype=bool)
     keep[1:] = np.any(out[1:] != out[:-1], axis=1)
@@ -206,5 +223,6 @@ def tab_paths(rings, *, tab_mm: float, tabs_per_part: int) -> Tabs:
             pieces.append(_cut(twice, s, a, a + length - tab_mm))
         mids.append(np.column_stack([np.interp(centre, arcs, closed[:, 0]), np.interp(centre, arcs, closed[:, 1])]))
     midpoints = np.round(np.concatenate(mids), ROUND_DECIMALS) + 0.0 if mids else np.zeros((0, 2))
-    return Tabs(pieces, midpoints, np.asarray(per, dtype=int), np.asarray(short, dtype=int), float(tab_mm),
-                int(tabs_per_part))
+    return Tabs(
+        pieces, midpoints, np.asarray(per, dtype=int), np.asarray(short, dtype=int), float(tab_mm), int(tabs_per_part)
+    )

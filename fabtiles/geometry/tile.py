@@ -39,8 +39,9 @@ def _segments_for(radius: float, sweep: float = 2 * math.pi, multiple: int = 1) 
     return multiple * math.ceil(k / multiple)
 
 
-def outline_polygon(outline: str, width: float, height: float, corner_radius: float = 0.0,
-                    centre=(0.0, 0.0)) -> Polygon:
+def outline_polygon(
+    outline: str, width: float, height: float, corner_radius: float = 0.0, centre=(0.0, 0.0)
+) -> Polygon:
     """The outline as a shapely Polygon centred at ``centre``.
 
     ``width``/``height`` are the bounding box of the outline (for a pointy-top
@@ -56,16 +57,23 @@ def outline_polygon(outline: str, width: float, height: float, corner_radius: fl
     elif outline == "hexagon":
         # Pointy-top: vertical sides at cx +- width/2, points at cy +- height/2 (exact).
         hw, hh = width / 2, height / 2
-        poly = Polygon([(cx + hw, cy - hh / 2), (cx + hw, cy + hh / 2), (cx, cy + hh),
-                        (cx - hw, cy + hh / 2), (cx - hw, cy - hh / 2), (cx, cy - hh)])
+        poly = Polygon(
+            [
+                (cx + hw, cy - hh / 2),
+                (cx + hw, cy + hh / 2),
+                (cx, cy + hh),
+                (cx - hw, cy + hh / 2),
+                (cx - hw, cy - hh / 2),
+                (cx, cy - hh),
+            ]
+        )
     else:  # circle
         k = _segments_for(width / 2, multiple=24)
         t = np.linspace(0.0, 2 * math.pi, k, endpoint=False)
         return Polygon(np.stack([cx + width / 2 * np.cos(t), cy + width / 2 * np.sin(t)], axis=1))
     if corner_radius > 0:
         quad = max(1, _segments_for(corner_radius, math.pi / 2))
-        poly = poly.buffer(-corner_radius, join_style="mitre").buffer(
-            corner_radius, quad_segs=quad, join_style="round")
+        poly = poly.buffer(-corner_radius, join_style="mitre").buffer(corner_radius, quad_segs=quad, join_style="round")
     return shapely.geometry.polygon.orient(poly, 1.0)
 
 
@@ -119,15 +127,29 @@ class TileGeometry:
     fabtiles.core.errors.ParameterError: 'zigzag' is not a valid join, must be one of: miter, round, bevel
     """
 
-    def __init__(self, outline, size, pattern, *, frame=0.0, stroke=1.0, join="miter",
-                 miter_limit=4.0, corner_radius=0.0, interlace=False, interlace_gap_mm=None,
-                 interlace_cut=False):
+    def __init__(
+        self,
+        outline,
+        size,
+        pattern,
+        *,
+        frame=0.0,
+        stroke=1.0,
+        join="miter",
+        miter_limit=4.0,
+        corner_radius=0.0,
+        interlace=False,
+        interlace_gap_mm=None,
+        interlace_cut=False,
+    ):
         self._outline = check_choice("outline", outline, OUTLINES)
         self._size = check_tile_size(self._outline, size)
         if not isinstance(pattern, (Packing, ArchimedeanPacking, Star)):
             raise ParameterError(
                 f"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking or Star, "
-                f"got {type(pattern).__name__}", param="pattern")
+                f"got {type(pattern).__name__}",
+                param="pattern",
+            )
         self._pattern = pattern
         self._frame = check_float("frame", frame, low=0)
         self._stroke = check_float("stroke", stroke, low=0, low_open=True)
@@ -141,24 +163,34 @@ class TileGeometry:
         if across <= 2 * self._frame:
             raise ParameterError(
                 f"tile size {_fmt_size(self._size)} mm is too small for frame {self._frame:g} mm: "
-                f"the {self._outline} must be wider than twice the frame ({2 * self._frame:g} mm)", param="frame")
+                f"the {self._outline} must be wider than twice the frame ({2 * self._frame:g} mm)",
+                param="frame",
+            )
         if self._corner_radius > 0:
             if self._outline == "circle":
                 raise ParameterError(
-                    f"corner_radius must be 0 for a circle outline, got {self._corner_radius:g}", param="corner_radius")
+                    f"corner_radius must be 0 for a circle outline, got {self._corner_radius:g}", param="corner_radius"
+                )
             if self._corner_radius > across / 2:
                 raise ParameterError(
                     f"corner_radius must be >= 0 and <= {across / 2:g} (half the tile's "
-                    f"narrowest width), got {self._corner_radius:g}", param="corner_radius")
-        limit, what = ((self.motif_radius, "the motif circle's radius") if isinstance(pattern, Star)
-                       else (pattern.radius, "the packing radius"))
+                    f"narrowest width), got {self._corner_radius:g}",
+                    param="corner_radius",
+                )
+        limit, what = (
+            (self.motif_radius, "the motif circle's radius")
+            if isinstance(pattern, Star)
+            else (pattern.radius, "the packing radius")
+        )
         if self._stroke > limit:
             raise ParameterError(
-                f"stroke must be > 0 and <= {limit:g} mm ({what}), got {distinct(self._stroke, limit)}", param="stroke")
+                f"stroke must be > 0 and <= {limit:g} mm ({what}), got {distinct(self._stroke, limit)}", param="stroke"
+            )
         self._interlace = _check_bool("interlace", interlace)
         self._interlace_cut = _check_bool("interlace_cut", interlace_cut)
-        self._interlace_gap = (None if interlace_gap_mm is None
-                               else check_float("interlace_gap_mm", interlace_gap_mm, low=0))
+        self._interlace_gap = (
+            None if interlace_gap_mm is None else check_float("interlace_gap_mm", interlace_gap_mm, low=0)
+        )
         self._segments = None
         self._region = None
         self._centrelines = None
@@ -178,10 +210,19 @@ class TileGeometry:
 
     def params(self) -> dict:
         """The constructor arguments, so ``TileGeometry(**tile.params())`` rebuilds the tile."""
-        return dict(outline=self._outline, size=self._size, pattern=self._pattern, frame=self._frame,
-                    stroke=self._stroke, join=self._join, miter_limit=self._miter_limit,
-                    corner_radius=self._corner_radius, interlace=self._interlace,
-                    interlace_gap_mm=self._interlace_gap, interlace_cut=self._interlace_cut)
+        return dict(
+            outline=self._outline,
+            size=self._size,
+            pattern=self._pattern,
+            frame=self._frame,
+            stroke=self._stroke,
+            join=self._join,
+            miter_limit=self._miter_limit,
+            corner_radius=self._corner_radius,
+            interlace=self._interlace,
+            interlace_gap_mm=self._interlace_gap,
+            interlace_cut=self._interlace_cut,
+        )
 
     interlace = property(lambda self: self._interlace, doc="Whether the strands are woven.")
     interlace_cut = property(lambda self: self._interlace_cut, doc="Cut the under gaps (laser, pierced).")
@@ -205,7 +246,7 @@ class TileGeometry:
             self._weave = checked_weave(self)
         return self._weave
 
-    def replace(self, **changes) -> "TileGeometry":
+    def replace(self, **changes) -> TileGeometry:
         """A copy (of the same class) with some parameters changed, validated again.
 
         >>> t = TileGeometry("circle", 50, Star.preset("table2-left"), frame=2)
@@ -215,8 +256,10 @@ class TileGeometry:
         return type(self)(**{**self.params(), **changes})
 
     def __repr__(self) -> str:
-        return (f"{type(self).__name__}({self._outline!r}, {_fmt_size(self._size)}, {self._pattern!r}, "
-                f"frame={self._frame:g}, stroke={self._stroke:g}, join={self._join!r})")
+        return (
+            f"{type(self).__name__}({self._outline!r}, {_fmt_size(self._size)}, {self._pattern!r}, "
+            f"frame={self._frame:g}, stroke={self._stroke:g}, join={self._join!r})"
+        )
 
     @property
     def centre(self) -> tuple[float, float]:
@@ -231,8 +274,7 @@ class TileGeometry:
     # -- geometry -------------------------------------------------------------
     def outline_shape(self) -> Polygon:
         """The outline as a shapely Polygon in file coordinates (bbox lower-left at (0, 0))."""
-        return outline_polygon(self._outline, self._width, self._height, self._corner_radius,
-                               self.centre)
+        return outline_polygon(self._outline, self._width, self._height, self._corner_radius, self.centre)
 
     def inner_shape(self) -> Polygon:
         """The outline inset by the frame (the patterned area), file coordinates."""
@@ -301,15 +343,20 @@ class TileGeometry:
                 segments = self._pattern.motif_segments(self._window()) + centre
                 centres, radii = self._pattern.circles(self._window())
                 circles = (centres + centre, radii)
-            bands = stroke_cross_section(segments, self._stroke, join=self._join,
-                                         miter_limit=self._miter_limit, tolerance=TOLERANCE, circles=circles)
+            bands = stroke_cross_section(
+                segments,
+                self._stroke,
+                join=self._join,
+                miter_limit=self._miter_limit,
+                tolerance=TOLERANCE,
+                circles=circles,
+            )
             outline = self.outline_shape()
             parts = [bands]
             if self._frame > 0:
                 parts.append(to_cross_section(outline.difference(self.inner_shape())))
             material = m3d.CrossSection.batch_boolean(parts, m3d.OpType.Add) if len(parts) > 1 else bands
-            clipped = m3d.CrossSection.batch_boolean([material, to_cross_section(outline)],
-                                                     m3d.OpType.Intersect)
+            clipped = m3d.CrossSection.batch_boolean([material, to_cross_section(outline)], m3d.OpType.Intersect)
             self._region = to_shapely(clipped)
         return self._region
 
@@ -338,15 +385,17 @@ def _fmt_size(size) -> str:
 def check_tile_size(outline: str, size) -> tuple[float, float]:
     if isinstance(size, numbers.Real) and not isinstance(size, bool):
         if outline == "rectangle":
-            raise ParameterError(f"size of a rectangle must be a pair (width, height) in mm, got {size!r}",
-                                 param="size")
+            raise ParameterError(
+                f"size of a rectangle must be a pair (width, height) in mm, got {size!r}", param="size"
+            )
         s = check_float("size", size, low=0, low_open=True)
         return (s, s)
     try:
         pair = list(size)
     except TypeError:
-        raise ParameterError(f"size must be a number or a (width, height) pair in mm, got {size!r}",
-                             param="size") from None
+        raise ParameterError(
+            f"size must be a number or a (width, height) pair in mm, got {size!r}", param="size"
+        ) from None
     if len(pair) != 2:
         raise ParameterError(f"size must be a number or a (width, height) pair in mm, got {size!r}", param="size")
     w = check_float("size[0]", pair[0], low=0, low_open=True)
@@ -355,12 +404,16 @@ def check_tile_size(outline: str, size) -> tuple[float, float]:
         what = {"square": "side", "hexagon": "width across flats", "circle": "diameter"}[outline]
         raise ParameterError(
             f"size of a {outline} is one number (its {what}) or an equal pair, got ({w:g}, {h:g}); "
-            f"use outline 'rectangle' for unequal sides" if outline == "square" else
-            f"size of a {outline} is one number (its {what}) or an equal pair, got ({w:g}, {h:g})", param="size")
+            f"use outline 'rectangle' for unequal sides"
+            if outline == "square"
+            else f"size of a {outline} is one number (its {what}) or an equal pair, got ({w:g}, {h:g})",
+            param="size",
+        )
     return (w, h)
 
 
 # The schema names no module above it: the values and checks of its keys are registered from here.
 register_check(check_tile_size, "tile.size")
-register_check(TileGeometry, "tile.frame", "tile.stroke", "tile.miter_limit", "tile.corner_radius",
-               "tile.interlace_gap_mm")
+register_check(
+    TileGeometry, "tile.frame", "tile.stroke", "tile.miter_limit", "tile.corner_radius", "tile.interlace_gap_mm"
+)

@@ -195,8 +195,7 @@ def open_region(region, *, radius_mm: float, tolerance_mm: float = 0.01) -> Open
         points = np.concatenate([points, spoints])
         moved = np.concatenate([moved, _moved(spoints, made_shells[concave][sat], boundary=True)])
     corners, moved = _corners(points, moved)
-    return OpenedRegion(out, r, int(len(holes)), int(gone.sum()), holes[gone], corners, moved,
-                        int(concave.sum()))
+    return OpenedRegion(out, r, len(holes), int(gone.sum()), holes[gone], corners, moved, int(concave.sum()))
 
 
 def _corners(points: np.ndarray, moved: np.ndarray):
@@ -252,7 +251,7 @@ def _open_general(region, parts, r, q, tolerance_mm) -> OpenedRegion:
     points = shapely.points(coords)
     moved = shapely.distance(points, shapely.boundary(made)) if len(points) else np.empty(0)
     corners, moved = _corners(points, moved)
-    return OpenedRegion(made, r, int(len(holes)), int(gone.sum()), holes[gone], corners, moved, 0)
+    return OpenedRegion(made, r, len(holes), int(gone.sum()), holes[gone], corners, moved, 0)
 
 
 def check_tool(region, profile, *, fill_small_holes: bool = False, report: Report | None = None):
@@ -278,25 +277,38 @@ def check_tool(region, profile, *, fill_small_holes: bool = False, report: Repor
             f"design (the widest is {distinct(widths.max(), 2 * r)} mm): the tool can cut none of its {made.holes:,} "
             f"holes; use a tool narrower than {distinct(widths.max(), 2 * r)} mm, or a larger packing radius or "
             "thinner stroke",
-            param=key)
+            param=key,
+        )
     filled = 0
     if made.vanished:
         if fill_small_holes:
             filled = made.vanished
         else:
-            add_small_holes(report, made.vanished_holes, tolerance_mm=profile.tolerance_mm, message=lambda n, w: (
-                f"{n:,} hole{'s' if n > 1 else ''} narrower than {cutter.tool_name(profile)} (narrowest "
-                f"{distinct(w, 2 * r)} mm): the tool cannot enter them, so they stay material; "
-                "fill_small_holes = true counts them as filled"), limit_mm=2 * r)
+            add_small_holes(
+                report,
+                made.vanished_holes,
+                tolerance_mm=profile.tolerance_mm,
+                message=lambda n, w: (
+                    f"{n:,} hole{'s' if n > 1 else ''} narrower than {cutter.tool_name(profile)} (narrowest "
+                    f"{distinct(w, 2 * r)} mm): the tool cannot enter them, so they stay material; "
+                    "fill_small_holes = true counts them as filled"
+                ),
+                limit_mm=2 * r,
+            )
     if len(made.corners):
         n = len(made.corners)
-        report.add("rounded_corner",
-                   f"{n:,} corner{'s' if n > 1 else ''} rounded to the tool's radius r = {r:g} mm by "
-                   f"{cutter.tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm "
-                   f"(up to {distinct(made.moved.max(), VISIBLE_MM)} "
-                   "mm); the file holds the rounded part",
-                   count=n, locations=locations(made.corners), sizes=made.moved[:MAX_LOCATIONS].round(3),
-                   worst=round(float(made.moved.max()), 3), limit=VISIBLE_MM)
+        report.add(
+            "rounded_corner",
+            f"{n:,} corner{'s' if n > 1 else ''} rounded to the tool's radius r = {r:g} mm by "
+            f"{cutter.tool_name(profile)}, moved by more than {VISIBLE_MM:g} mm "
+            f"(up to {distinct(made.moved.max(), VISIBLE_MM)} "
+            "mm); the file holds the rounded part",
+            count=n,
+            locations=locations(made.corners),
+            sizes=made.moved[:MAX_LOCATIONS].round(3),
+            worst=round(float(made.moved.max()), 3),
+            limit=VISIBLE_MM,
+        )
     report.stats["tool_radius_mm"] = r
     report.stats["tool_removed_holes"] = made.vanished
     return made.region, report, filled

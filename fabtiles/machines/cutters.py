@@ -117,8 +117,10 @@ class CutterKind:
         >>> p.cutter.tool_name(p)
         "the 1 mm jet (kerf_mm of waterjet profile 'waterjet-1mm-aluminium')"
         """
-        return f"the {2 * self.tool_radius(profile):g} mm {self.tool} ({self.tool_key} of {self.name} profile " \
-               f"{profile.name!r})"
+        return (
+            f"the {2 * self.tool_radius(profile):g} mm {self.tool} ({self.tool_key} of {self.name} profile "
+            f"{profile.name!r})"
+        )
 
     def check_profile(self, profile) -> None:
         """A router's bit and a waterjet's jet must be wider than 0: a :class:`~fabtiles.ProfileError` otherwise."""
@@ -126,8 +128,11 @@ class CutterKind:
             return
         d = self.tool_diameter(profile)
         if d is None or isinstance(d, bool) or not math.isfinite(d) or d <= 0:
-            raise ProfileError(f"{self.name} profile {profile.name!r}: {self.tool_key} must be > 0 (the "
-                               f"{self.tool}'s diameter in mm), got {d!r}", param=self.tool_key)
+            raise ProfileError(
+                f"{self.name} profile {profile.name!r}: {self.tool_key} must be > 0 (the "
+                f"{self.tool}'s diameter in mm), got {d!r}",
+                param=self.tool_key,
+            )
 
     def check_mode(self, profile, mode) -> None:
         """A ``mode`` it does not cut (None: the profile's own) is a :class:`~fabtiles.ParameterError`.
@@ -145,9 +150,12 @@ class CutterKind:
             check_choice("mode", mode, self.modes)
         others = [m for m in LASER_MODES if m not in self.modes]
         listed = ", ".join(others[:-1]) + " and " + others[-1] if len(others) > 1 else others[0]
-        raise ParameterError(f"mode must be {' or '.join(map(repr, self.modes))} for {self.name} profile "
-                             f"{profile.name!r} (a {self.name} cuts through; {listed} are laser modes), "
-                             f"got {mode!r}", param="mode")
+        raise ParameterError(
+            f"mode must be {' or '.join(map(repr, self.modes))} for {self.name} profile "
+            f"{profile.name!r} (a {self.name} cuts through; {listed} are laser modes), "
+            f"got {mode!r}",
+            param="mode",
+        )
 
     def check_kerf(self, profile, kerf: float) -> None:
         """A kerf passed to an export, by the kind's kerf rule: a router's must be 0, a waterjet's > 0.
@@ -155,11 +163,17 @@ class CutterKind:
         (Below 0 is every cutter's error, raised where the option is read.)
         """
         if self.kerf == "none" and kerf != 0:
-            raise ParameterError(f"kerf_mm must be 0 for {self.name} profile {profile.name!r}, got {kerf:g}: a "
-                                 f"{self.name} file holds the part contour and CAM offsets the tool", param="kerf_mm")
+            raise ParameterError(
+                f"kerf_mm must be 0 for {self.name} profile {profile.name!r}, got {kerf:g}: a "
+                f"{self.name} file holds the part contour and CAM offsets the tool",
+                param="kerf_mm",
+            )
         if self.kerf == "jet" and kerf <= 0:
-            raise ParameterError(f"kerf_mm must be > 0 for {self.name} profile {profile.name!r} (the {self.tool}'s "
-                                 f"diameter), got {kerf:g}", param="kerf_mm")
+            raise ParameterError(
+                f"kerf_mm must be > 0 for {self.name} profile {profile.name!r} (the {self.tool}'s "
+                f"diameter), got {kerf:g}",
+                param="kerf_mm",
+            )
 
     def check_tabs(self, profile, tab_mm: float) -> None:
         """Holding tabs (``tab_mm`` > 0) asked of a cutter whose CAM adds them: a ParameterError.
@@ -173,22 +187,30 @@ class CutterKind:
         fabtiles.core.errors.ParameterError: tab_mm must be 0 for router profile 'router-6mm-mdf', got 0.5: a router file holds the part whole and CAM adds the holding tabs (with its lead-ins); set tab_mm = 0 and add tabs in CAM
         """  # noqa: E501 - a doctest's lines are as Python prints them
         if tab_mm and not self.tabs:
-            raise ParameterError(f"tab_mm must be 0 for {self.name} profile {profile.name!r}, got {tab_mm:g}: a "
-                                 f"{self.name} file holds the part whole and CAM adds the holding tabs (with its "
-                                 "lead-ins); set tab_mm = 0 and add tabs in CAM", param="tab_mm")
+            raise ParameterError(
+                f"tab_mm must be 0 for {self.name} profile {profile.name!r}, got {tab_mm:g}: a "
+                f"{self.name} file holds the part whole and CAM adds the holding tabs (with its "
+                "lead-ins); set tab_mm = 0 and add tabs in CAM",
+                param="tab_mm",
+            )
 
     def check_format(self, profile, fmt: str) -> None:
         """A file format it does not write (a LightBurn project for a router) is a ParameterError."""
         if fmt == "lbrn2" and not self.lightburn:
-            raise ParameterError(f"a LightBurn project (.lbrn2) is for lasers; {self.name} profile {profile.name!r} "
-                                 "writes .dxf or .svg for its CAM", param="formats")
+            raise ParameterError(
+                f"a LightBurn project (.lbrn2) is for lasers; {self.name} profile {profile.name!r} "
+                "writes .dxf or .svg for its CAM",
+                param="formats",
+            )
 
     def check_card(self, profile) -> None:
         """The calibration card of a cutter it is not for is a ParameterError."""
         if not self.card:
-            raise ParameterError(f"the test card is for lasers; {self.name} profile {profile.name!r} has no kerf "
-                                 "or hole size to measure this way: cut a test piece from the panel's own DXF",
-                                 param="profile")
+            raise ParameterError(
+                f"the test card is for lasers; {self.name} profile {profile.name!r} has no kerf "
+                "or hole size to measure this way: cut a test piece from the panel's own DXF",
+                param="profile",
+            )
 
     def report_stats(self) -> dict:
         """What a report's stats say of the cutter: ``{"cutter": "router"}``, nothing for a laser."""
@@ -207,9 +229,11 @@ class CutterKind:
             return ()
         what = self.dxf_note.format(**self._values(profile, "", kerf_mm))
         layers = profile.layers
-        return (f"fabtiles {self.name} profile {profile.name}: {what}",
-                f"layers: {layers.inner_cut.name} (inside profiles, cut first), {layers.outer_cut.name} "
-                "(outside profile, cut last); millimetres")
+        return (
+            f"fabtiles {self.name} profile {profile.name}: {what}",
+            f"layers: {layers.inner_cut.name} (inside profiles, cut first), {layers.outer_cut.name} "
+            "(outside profile, cut last); millimetres",
+        )
 
     def title(self, profile, mode: str, kerf_mm: float, *, num=None, escape=None) -> str:
         """Its SVG's title: the laser's mode and kerf, or what a router's or waterjet's file holds.
@@ -231,30 +255,76 @@ class CutterKind:
 
 LASER = CutterKind(
     "laser",
-    keys=("kerf_mm", "kerf_x_mm", "kerf_y_mm", "min_feature_mm", "min_hole_mm", "tolerance_mm", "bed_mm", "mode",
-          "strict", "dxf_version", "pierce_s", "travel_mm_s", "inlay_fit_mm", "min_piece_mm", "price_per_m2"),
-    modes=LASER_MODES, kerf="offset", zero_keys=("kerf_mm", "kerf_x_mm", "kerf_y_mm"),
-    lightburn=True, card=True, named_in_reports=False, tabs=True,
+    keys=(
+        "kerf_mm",
+        "kerf_x_mm",
+        "kerf_y_mm",
+        "min_feature_mm",
+        "min_hole_mm",
+        "tolerance_mm",
+        "bed_mm",
+        "mode",
+        "strict",
+        "dxf_version",
+        "pierce_s",
+        "travel_mm_s",
+        "inlay_fit_mm",
+        "min_piece_mm",
+        "price_per_m2",
+    ),
+    modes=LASER_MODES,
+    kerf="offset",
+    zero_keys=("kerf_mm", "kerf_x_mm", "kerf_y_mm"),
+    lightburn=True,
+    card=True,
+    named_in_reports=False,
+    tabs=True,
     layers=("inner_cut", "outer_cut", "score", "engrave"),
     svg_title="fabtiles laser {mode}, profile {name}, kerf {kerf} mm",
 )
 ROUTER = CutterKind(
     "router",
-    keys=("tool_diameter_mm", "min_feature_mm", "tolerance_mm", "bed_mm", "mode", "strict", "dxf_version",
-          "pierce_s", "travel_mm_s", "price_per_m2"),
-    kerf="none", fixed=(("kerf_mm", 0.0), ("min_hole_mm", 0.0)), tool="bit", tool_key="tool_diameter_mm",
+    keys=(
+        "tool_diameter_mm",
+        "min_feature_mm",
+        "tolerance_mm",
+        "bed_mm",
+        "mode",
+        "strict",
+        "dxf_version",
+        "pierce_s",
+        "travel_mm_s",
+        "price_per_m2",
+    ),
+    kerf="none",
+    fixed=(("kerf_mm", 0.0), ("min_hole_mm", 0.0)),
+    tool="bit",
+    tool_key="tool_diameter_mm",
     dxf_note="the part as the {d} mm bit makes it (hole corners rounded to {r} mm), NO tool compensation: "
-             "CAM offsets the tool",
+    "CAM offsets the tool",
     svg_title="fabtiles router, profile {name}: the part as the {d} mm bit makes it, no tool compensation "
-              "(CAM offsets the tool)",
+    "(CAM offsets the tool)",
 )
 WATERJET = CutterKind(
     "waterjet",
-    keys=("kerf_mm", "min_feature_mm", "min_hole_mm", "tolerance_mm", "bed_mm", "mode", "strict", "dxf_version",
-          "pierce_s", "travel_mm_s", "price_per_m2"),
-    kerf="jet", tool="jet", tool_key="kerf_mm",
+    keys=(
+        "kerf_mm",
+        "min_feature_mm",
+        "min_hole_mm",
+        "tolerance_mm",
+        "bed_mm",
+        "mode",
+        "strict",
+        "dxf_version",
+        "pierce_s",
+        "travel_mm_s",
+        "price_per_m2",
+    ),
+    kerf="jet",
+    tool="jet",
+    tool_key="kerf_mm",
     dxf_note="the {d} mm jet's centre path (corners rounded to {r} mm, kerf {kerf} mm compensated: contours half "
-             "a kerf off the part); no CAM offset",
+    "a kerf off the part); no CAM offset",
     svg_title="fabtiles waterjet, profile {name}: corners rounded to {r} mm, kerf {kerf} mm compensated",
 )
 
@@ -274,8 +344,10 @@ def cutter_kind(profile) -> CutterKind:
     try:
         return KINDS[profile.kind]
     except (KeyError, TypeError):
-        raise ProfileError(f"profile {profile.name!r}: kind must be one of: {', '.join(CUTTER_KINDS)}, "
-                           f"got {profile.kind!r}", param="kind") from None
+        raise ProfileError(
+            f"profile {profile.name!r}: kind must be one of: {', '.join(CUTTER_KINDS)}, got {profile.kind!r}",
+            param="kind",
+        ) from None
 
 
 def family(kind: str) -> str:

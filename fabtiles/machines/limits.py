@@ -115,8 +115,13 @@ def check_nest(parts: int, time_s: float, limits: Limits) -> None:
     fabtiles.core.errors.LimitError: the nest has 61 parts, more than the limit of 60; nest fewer copies
     """
     if parts > limits.max_nest_parts:
-        raise LimitError(f"the nest has {parts:,} parts, more than the limit of {limits.max_nest_parts:,}; "
-                         "nest fewer copies", param="count")
+        raise LimitError(
+            f"the nest has {parts:,} parts, more than the limit of {limits.max_nest_parts:,}; nest fewer copies",
+            param="count",
+        )
     if time_s > limits.max_nest_time_s:
-        raise LimitError(f"time_s must be at most {limits.max_nest_time_s:g} s here, got {time_s:g}; "
-                         f"give a time of at most {limits.max_nest_time_s:g}", param="time_s")
+        raise LimitError(
+            f"time_s must be at most {limits.max_nest_time_s:g} s here, got {time_s:g}; "
+            f"give a time of at most {limits.max_nest_time_s:g}",
+            param="time_s",
+        )

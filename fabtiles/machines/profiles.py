@@ -21,10 +21,10 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from .cutters import CUTTER_KINDS, KINDS, LASER_MODES, cutter_kind, family, members
 from ..core.errors import ProfileError, did_you_mean
 from ..core.schema import key as schema_key
 from ..core.schema import register_choices
+from .cutters import CUTTER_KINDS, KINDS, LASER_MODES, cutter_kind, family, members
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -138,8 +138,10 @@ class CutterProfile:
     @property
     def kerf_xy_mm(self) -> tuple[float, float]:
         """The kerf along X and along Y (mm): ``kerf_x_mm`` and ``kerf_y_mm``, each ``kerf_mm`` unless given."""
-        return (self.kerf_mm if self.kerf_x_mm is None else self.kerf_x_mm,
-                self.kerf_mm if self.kerf_y_mm is None else self.kerf_y_mm)
+        return (
+            self.kerf_mm if self.kerf_x_mm is None else self.kerf_x_mm,
+            self.kerf_mm if self.kerf_y_mm is None else self.kerf_y_mm,
+        )
 
 
 LaserProfile = CutterProfile
@@ -283,7 +285,7 @@ def _unknown_profile(name: str, kind: str | None) -> str:
     .toml file"
     >>> _unknown_profile("laser-3mm-plywod", "printer")
     "profile 'laser-3mm-plywod' does not exist; bundled printer profiles: fdm-0.4mm, fdm-0.6mm; or give the path of a .toml file"
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     slot = bundled_profiles(kind) if kind is not None else bundled_profiles()
     kinds = {n: kind_of(n) for n in slot}
     typed = name.split("-", 1)[0]
@@ -304,7 +306,9 @@ def _unknown_profile(name: str, kind: str | None) -> str:
     for n in slot:
         by_kind.setdefault(kinds[n], []).append(n)
     if len(by_kind) > 1:
-        listed = f"bundled profiles{' for this slot' if kind else ''}: " + ", ".join(f"{', '.join(v)} ({k})" for k, v in by_kind.items())
+        listed = f"bundled profiles{' for this slot' if kind else ''}: " + ", ".join(
+            f"{', '.join(v)} ({k})" for k, v in by_kind.items()
+        )
     else:
         listed = f"bundled {kind + ' ' if kind else ''}profiles: {', '.join(slot)}"
     return f"profile {name!r} does not exist{hint_text}; {listed}; or give the path of a .toml file"
@@ -331,9 +335,7 @@ def _unknown(source, where, keys, allowed):
         if key not in allowed:
             hint = did_you_mean(key, allowed)
             hint_text = f" ({hint})" if hint else ""
-            raise ProfileError(
-                f"{source}: unknown key {where}{key!r}{hint_text}; valid keys: {', '.join(allowed)}"
-            )
+            raise ProfileError(f"{source}: unknown key {where}{key!r}{hint_text}; valid keys: {', '.join(allowed)}")
 
 
 def _positive(source, key, value, *, allow_zero=False):
@@ -358,8 +360,7 @@ def _parse(data: dict, source: str, name: str):
     if not isinstance(description, str):
         raise ProfileError(f"{source}: description must be text, got {description!r}")
     cutter = KINDS.get(kind)  # None for a printer
-    others = [k for k in kinds if k != kind and k in data] + (["layers"] if cutter is None and "layers" in data
-                                                               else [])
+    others = [k for k in kinds if k != kind and k in data] + (["layers"] if cutter is None and "layers" in data else [])
     if others:
         raise ProfileError(f"{source}: a {kind} profile cannot have a [{others[0]}] section")
     cls = CutterProfile if cutter else PrinterProfile
@@ -372,8 +373,9 @@ def _parse(data: dict, source: str, name: str):
     _unknown(source, f"{kind}.", section, allowed)
     for key in cutter.required if cutter else ():
         if cutter and key not in section:
-            raise ProfileError(f"{source}: a {kind} profile needs {kind}.{key} "
-                               f"(the {cutter.tool}'s diameter in mm, > 0)")
+            raise ProfileError(
+                f"{source}: a {kind} profile needs {kind}.{key} (the {cutter.tool}'s diameter in mm, > 0)"
+            )
     values: dict[str, Any] = {}
     for key, value in section.items():
         full = f"{kind}.{key}"
@@ -386,20 +388,27 @@ def _parse(data: dict, source: str, name: str):
                 raise ProfileError(f"{source}: {full} must be true or false, got {value!r}")
             values[key] = value
         elif key == "inlay_fit_mm":
-            values[key] = schema_key("output.inlay_fit_mm").check(value, name=full, prefix=f"{source}: ",
-                                                                 error=ProfileError, param=full, note=False)
+            values[key] = schema_key("output.inlay_fit_mm").check(
+                value, name=full, prefix=f"{source}: ", error=ProfileError, param=full, note=False
+            )
         elif key in ("mode", "print_style", "dxf_version"):
-            choices = {"mode": cutter.modes if cutter else LASER_MODES, "print_style": PRINT_STYLES,
-                       "dxf_version": DXF_VERSIONS}[key]
+            choices = {
+                "mode": cutter.modes if cutter else LASER_MODES,
+                "print_style": PRINT_STYLES,
+                "dxf_version": DXF_VERSIONS,
+            }[key]
             if value not in choices:
                 hint = did_you_mean(value, choices)
-                raise ProfileError(f"{source}: {full} = {value!r} is not valid{f' ({hint})' if hint else ''}, "
-                                   f"must be one of: {', '.join(choices)}")
+                raise ProfileError(
+                    f"{source}: {full} = {value!r} is not valid{f' ({hint})' if hint else ''}, "
+                    f"must be one of: {', '.join(choices)}"
+                )
             values[key] = value
         else:
             zero_ok = key in (cutter.zero_keys if cutter else PRINTER_ZERO_KEYS)
-            values[key] = _positive(source, full, value, allow_zero=zero_ok or key in ("pierce_s", "price_per_kg",
-                                                                                         "price_per_m2"))
+            values[key] = _positive(
+                source, full, value, allow_zero=zero_ok or key in ("pierce_s", "price_per_kg", "price_per_m2")
+            )
     if cutter:
         values["layers"] = _parse_layers(data.get("layers", {}), source)
         values["kind"] = kind
@@ -416,8 +425,12 @@ def _renamed_style(section: dict, source: str) -> dict:
 
     if "print_style" in section:
         raise ProfileError(f"{source}: printer.style and printer.print_style are one setting; keep print_style")
-    warnings.warn(f"{source}: printer.style is now printer.print_style (the design key's name); rename it, "
-                  f"the old name will stop loading", FabtilesDeprecationWarning, stacklevel=4)
+    warnings.warn(
+        f"{source}: printer.style is now printer.print_style (the design key's name); rename it, "
+        f"the old name will stop loading",
+        FabtilesDeprecationWarning,
+        stacklevel=4,
+    )
     return {("print_style" if k == "style" else k): v for k, v in section.items()}
 
 
@@ -430,14 +443,17 @@ def _parse_layers(section, source) -> LaserLayers:
     for key, value in section.items():
         full = f"layers.{key}"
         if not isinstance(value, dict):
-            raise ProfileError(f"{source}: {full} must be a table like {{ name = \"CUT\", color = 1 }}")
+            raise ProfileError(f'{source}: {full} must be a table like {{ name = "CUT", color = 1 }}')
         _unknown(source, f"{full}.", value, LAYER_KEYS)
-        default = getattr(LaserLayers(), key) or Layer("FILL", 6, speed_mm_s=200.0, power_pct=20.0,
-                                                        line_interval_mm=0.1)
+        default = getattr(LaserLayers(), key) or Layer(
+            "FILL", 6, speed_mm_s=200.0, power_pct=20.0, line_interval_mm=0.1
+        )
         lname = value.get("name", default.name)
         color = value.get("color", default.color)
-        if not isinstance(lname, str) or not lname or any(c in lname for c in '<>/\\":;?*|=\''):
-            raise ProfileError(f"{source}: {full}.name must be a non-empty DXF layer name without <>/\\\":;?*|=', got {lname!r}")
+        if not isinstance(lname, str) or not lname or any(c in lname for c in "<>/\\\":;?*|='"):
+            raise ProfileError(
+                f"{source}: {full}.name must be a non-empty DXF layer name without <>/\\\":;?*|=', got {lname!r}"
+            )
         if isinstance(color, bool) or not isinstance(color, int) or not 1 <= color <= 255:
             raise ProfileError(f"{source}: {full}.color must be an AutoCAD Color Index 1..255, got {color!r}")
         layers[key] = Layer(lname, color, **_layer_settings(value, default, source, full))

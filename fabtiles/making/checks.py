@@ -25,10 +25,9 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 from ..core.errors import FabricationError
-from ..machines.profiles import load_profile
 from ..core.report import Finding, Report
-from ..machines.profiles import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE
 from ..geometry.machine_geometry import cut_geometry as laser_geometry
+from ..machines.profiles import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
 
 if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
@@ -69,8 +68,17 @@ class CheckResult:
         return self.laser.ok and self.print.ok
 
 
-def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=None, fill_small_holes=False,
-               print_style=None, heights=None, job: bool = False) -> CheckResult:
+def check_tile(
+    tile,
+    *,
+    laser_profile=None,
+    printer_profile=None,
+    laser_mode=None,
+    fill_small_holes=False,
+    print_style=None,
+    heights=None,
+    job: bool = False,
+) -> CheckResult:
     """Run the laser and print checks of ``tile`` (see the module text).
 
     Parameters
@@ -125,20 +133,35 @@ def check_tile(tile, *, laser_profile=None, printer_profile=None, laser_mode=Non
         check_cut_pattern(cut_region, cut, outline, laser, stroke=tile.stroke, report=laser_report)
     elif (laser_mode or laser.mode) == "engrave" and not cut_region.is_empty:
         check_engrave(cut_region, laser, laser_report)
-    style = print_style or printer.print_style  # the print's region as its files hold it (an interlaced relief unthinned)
-    designed, _ = made_print_region(region, outline, printer, style,
-                                    flatten=not (getattr(tile, "interlace", False) and style == "relief"))
-    print_region, print_filled = made_print_region(designed, outline, printer, style, fill_small_holes=fill_small_holes,
-                                                   flatten=False)
-    print_report = check_print(print_region, outline, printer, stroke=tile.stroke, style=print_style,
-                               report=Report(path="", format="print"), **(heights or {}))
+    style = (
+        print_style or printer.print_style
+    )  # the print's region as its files hold it (an interlaced relief unthinned)
+    designed, _ = made_print_region(
+        region, outline, printer, style, flatten=not (getattr(tile, "interlace", False) and style == "relief")
+    )
+    print_region, print_filled = made_print_region(
+        designed, outline, printer, style, fill_small_holes=fill_small_holes, flatten=False
+    )
+    print_report = check_print(
+        print_region,
+        outline,
+        printer,
+        stroke=tile.stroke,
+        style=print_style,
+        report=Report(path="", format="print"),
+        **(heights or {}),
+    )
     if print_filled:
         check_print_pattern(designed, print_region, outline, printer, style, stroke=tile.stroke, report=print_report)
-    estimate = _job(tile, cut_region, laser, laser_mode, fill_small_holes) if job and "bed_size" not in {
-        f.code for f in laser_report.findings} else None
+    estimate = (
+        _job(tile, cut_region, laser, laser_mode, fill_small_holes)
+        if job and "bed_size" not in {f.code for f in laser_report.findings}
+        else None
+    )
     material = _filament(print_region, outline, printer, print_style, heights) if job else None
-    return CheckResult(laser_report, print_report, filled, estimate, material, made, laser.kind, print_filled,
-                       print_region)
+    return CheckResult(
+        laser_report, print_report, filled, estimate, material, made, laser.kind, print_filled, print_region
+    )
 
 
 def _filament(region, outline, printer, style, heights):
@@ -161,8 +184,15 @@ def _job(tile, cut_region, laser, mode, fill_small_holes):
     region, lines = cut_region, None
     if (mode or laser.mode) == "score":
         region, lines = laser_geometry(tile, profile=laser, mode=mode)
-    plan = plan_cut(region, tile.outline_shape(), centrelines=lines, profile=replace(laser, strict=False), mode=mode,
-                    fill_small_holes=fill_small_holes, fmt="check")
+    plan = plan_cut(
+        region,
+        tile.outline_shape(),
+        centrelines=lines,
+        profile=replace(laser, strict=False),
+        mode=mode,
+        fill_small_holes=fill_small_holes,
+        fmt="check",
+    )
     return plan.estimate
 
 
@@ -172,6 +202,13 @@ def check_design(design, tile=None, *, job: bool = False) -> CheckResult:
     tile = tile if tile is not None else design.build_tile()
     from ..designs.design_file import profile_of
 
-    return check_tile(tile, laser_profile=profile_of(design, "laser"), printer_profile=profile_of(design, "printer"),
-                      laser_mode=out.laser_mode, fill_small_holes=out.fill_small_holes,
-                      print_style=out.print_style, heights=out.heights(), job=job)
+    return check_tile(
+        tile,
+        laser_profile=profile_of(design, "laser"),
+        printer_profile=profile_of(design, "printer"),
+        laser_mode=out.laser_mode,
+        fill_small_holes=out.fill_small_holes,
+        print_style=out.print_style,
+        heights=out.heights(),
+        job=job,
+    )

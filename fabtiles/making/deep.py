@@ -20,8 +20,8 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..machines import limits as _limits
 from ..core.errors import FabricationError
+from ..machines import limits as _limits
 
 DEEP_FORMATS = ("stl", "3mf", "step")
 """The formats the deep check reads back, when a design names none of them."""
@@ -47,8 +47,10 @@ class ReadBack:
         'step read back by OCCT: 1 solid, 12,345.7 mm^3, as written'
         """
         one, many = ("solid", "solids") if self.fmt == "step" else ("mesh", "meshes")
-        return f"{self.fmt} read back by {self.reader}: {self.bodies} {one if self.bodies == 1 else many}, " \
-               f"{self.volume_mm3:,.1f} mm^3, as written"
+        return (
+            f"{self.fmt} read back by {self.reader}: {self.bodies} {one if self.bodies == 1 else many}, "
+            f"{self.volume_mm3:,.1f} mm^3, as written"
+        )
 
 
 def _mesh_read_back(path, fmt: str, report) -> ReadBack:
@@ -61,8 +63,9 @@ def _mesh_read_back(path, fmt: str, report) -> ReadBack:
         # and pattern meet along the outline in edges of four faces (the file is right, the check not)
         from ..export.threemf import read_3mf
 
-        meshes: list[trimesh.Trimesh] = [trimesh.Trimesh(p.vertices.astype(np.float64), p.faces, process=False)
-                  for p in read_3mf(str(path)).values()]
+        meshes: list[trimesh.Trimesh] = [
+            trimesh.Trimesh(p.vertices.astype(np.float64), p.faces, process=False) for p in read_3mf(str(path)).values()
+        ]
     else:
         loaded = trimesh.load(str(path), file_type=fmt, force="scene", process=False)
         # force="scene" gives a Scene, whose dump() is its meshes (the other branch is a fallback)
@@ -77,8 +80,10 @@ def _mesh_read_back(path, fmt: str, report) -> ReadBack:
         volume += float(mesh.volume)
     expected = float(report.stats["volume_mm3"])
     if not np.isclose(volume, expected, rtol=MESH_VOLUME_REL):
-        raise FabricationError(f"the {fmt.upper()} file read back by trimesh holds {volume:.6g} mm^3, not the "
-                               f"{expected:.6g} mm^3 it was written with")
+        raise FabricationError(
+            f"the {fmt.upper()} file read back by trimesh holds {volume:.6g} mm^3, not the "
+            f"{expected:.6g} mm^3 it was written with"
+        )
     return ReadBack(fmt, "trimesh", len(meshes), volume)
 
 
@@ -108,6 +113,8 @@ def read_back(design, *, limits: _limits.Limits = _limits.CLI_LIMITS) -> list[Re
                 else:
                     out.append(_mesh_read_back(path, report.format, report))
             except FabricationError as exc:
-                raise FabricationError(f"the deep check found a file the writer's checks passed: {exc} "
-                                       "(a bug in fabtiles, please report it with the design)") from None
+                raise FabricationError(
+                    f"the deep check found a file the writer's checks passed: {exc} "
+                    "(a bug in fabtiles, please report it with the design)"
+                ) from None
     return out

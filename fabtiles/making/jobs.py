@@ -2,8 +2,8 @@
 
 ``fabtiles batch`` and ``fabtiles sweep`` hand their designs here as :class:`Job`\\ s;
 each is built by :func:`fabtiles.making.run_job` (through a staging folder: each
-format written or refused on its own, never a partial file), locally in a process pool or on the workers of a ``dask.distributed``
-scheduler. A job never raises: a failure comes back as a failed
+format written or refused on its own, never a partial file), locally in a process pool or on
+the workers of a ``dask.distributed`` scheduler. A job never raises: a failure comes back as a failed
 :class:`~fabtiles.making.Outcome` and the others go on. A cluster worker lost in the
 middle of a task leaves no partial file (the staging folder never becomes an
 output) and the scheduler runs the task again elsewhere.
@@ -99,9 +99,11 @@ def connect(scheduler: str):
         reason = str(exc) or type(exc).__name__
         if isinstance(exc, MemoryError):  # a server that answered with something else
             reason = "it does not answer as a Dask scheduler"
-        raise FabtilesError(f"cannot reach the Dask scheduler at {scheduler!r} within "
-                            f"{CONNECT_TIMEOUT_S:g} s ({reason}); check the address (tcp://host:8786) "
-                            f"and that `dask scheduler` is running there") from None
+        raise FabtilesError(
+            f"cannot reach the Dask scheduler at {scheduler!r} within "
+            f"{CONNECT_TIMEOUT_S:g} s ({reason}); check the address (tcp://host:8786) "
+            f"and that `dask scheduler` is running there"
+        ) from None
 
 
 def _run_dask(jobs: Sequence[Job], scheduler: str) -> Iterator[Outcome]:

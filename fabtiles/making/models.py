@@ -61,15 +61,19 @@ class BuildOptions:
     """The design's ``[colour]`` or the call's ``colours`` (:class:`~fabtiles.Colours`), or None: none given."""
 
     @classmethod
-    def of_design(cls, design) -> "BuildOptions":
+    def of_design(cls, design) -> BuildOptions:
         """The options a validated design's ``[output]`` gives."""
         out = design.output
         keys = {k.name: k for family in FAMILIES for k in option_keys(family)}  # the design keys that are options
         values = {k.option.name: getattr(out, name) for name, k in keys.items()}  # type: ignore[union-attr]  # option keys have an option
         from ..designs.design_file import profile_of
 
-        return cls(cutter=profile_of(design, "laser"), printer=profile_of(design, "printer"),
-                   colours=design.colour, **cls.fields_of(values, *FAMILIES))
+        return cls(
+            cutter=profile_of(design, "laser"),
+            printer=profile_of(design, "printer"),
+            colours=design.colour,
+            **cls.fields_of(values, *FAMILIES),
+        )
 
     @staticmethod
     def fields_of(options: dict, *families: str) -> dict:
@@ -118,16 +122,17 @@ def _colours(value):
     ...
     fabtiles.core.errors.ParameterError: colours must be a fabtiles.Colours (or a dict of its keys: by, palette, band_colour, base_colour, faces), got 'iznik'
     """  # noqa: E501 - a doctest's lines are as Python prints them
-    from ..designs.colour import Colours
     from ..core.schema import names
+    from ..designs.colour import Colours
 
     if isinstance(value, Colours):
         return value
     keys = names("colour")
     if isinstance(value, dict) and set(value) <= set(keys):
         return Colours(**value)
-    raise ParameterError(f"colours must be a fabtiles.Colours (or a dict of its keys: {', '.join(keys)}), "
-                         f"got {value!r}", param="colours")
+    raise ParameterError(
+        f"colours must be a fabtiles.Colours (or a dict of its keys: {', '.join(keys)}), got {value!r}", param="colours"
+    )
 
 
 class Models:
@@ -157,7 +162,8 @@ class Models:
         if region is None or region.is_empty:
             raise FabricationError(
                 "the tile holds no material: every stroke of its pattern falls outside the outline; "
-                "add a frame, make the tile larger, or make the packing radius smaller")
+                "add a frame, make the tile larger, or make the packing radius smaller"
+            )
         return region
 
     # ------------------------------------------------------------------ the cutter
@@ -185,45 +191,82 @@ class Models:
         self._material(self.tile.region() if self.sheet is None else region)
         outline = self.sheet.outline if self.sheet is not None else self.tile.outline_shape()
         if o.kit and self.checking:  # the check looks at the lattice as a pierced tile
-            return plan_cut(region, outline, profile=o.cutter, mode="pierced", kerf_mm=o.kerf_mm,
-                            fill_small_holes=o.fill_small_holes, stroke=self.tile.stroke, tab_mm=o.tab_mm,
-                            tabs_per_part=o.tabs_per_part)
+            return plan_cut(
+                region,
+                outline,
+                profile=o.cutter,
+                mode="pierced",
+                kerf_mm=o.kerf_mm,
+                fill_small_holes=o.fill_small_holes,
+                stroke=self.tile.stroke,
+                tab_mm=o.tab_mm,
+                tabs_per_part=o.tabs_per_part,
+            )
         if o.kit and self.sheet is None:
-            kit = plan_kit(region, outline, profile=o.cutter, inlay_fit_mm=o.inlay_fit_mm,
-                            inlay_base=o.inlay_base or "pierced", kerf_mm=o.kerf_mm, dxf_version=o.dxf_version,
-                            stroke=self.tile.stroke, colours=self.kit_colours() if self.coloured else (),
-                            tab_mm=o.tab_mm, tabs_per_part=o.tabs_per_part)
+            kit = plan_kit(
+                region,
+                outline,
+                profile=o.cutter,
+                inlay_fit_mm=o.inlay_fit_mm,
+                inlay_base=o.inlay_base or "pierced",
+                kerf_mm=o.kerf_mm,
+                dxf_version=o.dxf_version,
+                stroke=self.tile.stroke,
+                colours=self.kit_colours() if self.coloured else (),
+                tab_mm=o.tab_mm,
+                tabs_per_part=o.tabs_per_part,
+            )
             if self.coloured:
                 from ..geometry.kit_nesting import class_letters
 
                 # a class none of whose faces became a piece (all too small: filled) is cut in no wood
                 classes = self.face_classes
-                cut = set(class_letters(kit.kit.holes, classes.faces, classes.labels,
-                                        [c.letter for c in classes.classes]))
+                cut = set(
+                    class_letters(kit.kit.holes, classes.faces, classes.labels, [c.letter for c in classes.classes])
+                )
                 filled = frozenset(c.letter for c in classes.classes if c.letter not in cut)
                 kit.report.stats["face_classes"] = self.face_class_stats(filled)
                 kit.report.note(f"lattice in {self.colouring.band.name} (the band colour)")
             if (o.inlay_pieces or "registration") == "nested":
                 from ..geometry.kit_nesting import class_letters, nest_kit
 
-                classes = self.face_classes if self.options.colours is not None and \
-                    self.options.colours.by == "shape" else self._shape_classes
-                letters = class_letters(kit.kit.holes, classes.faces, classes.labels,
-                                        [c.letter for c in classes.classes])
+                classes = (
+                    self.face_classes
+                    if self.options.colours is not None and self.options.colours.by == "shape"
+                    else self._shape_classes
+                )
+                letters = class_letters(
+                    kit.kit.holes, classes.faces, classes.labels, [c.letter for c in classes.classes]
+                )
                 kit = nest_kit(kit, letters_of_holes=letters, tabs=(o.tab_mm, o.tabs_per_part))
             return kit
         if o.kit:
-            raise ParameterError("a sheet of inlay kits is not laid out; write the kit of one tile (drop --sheet "
-                                 "and --copies) or choose laser_mode = \"pierced\"", param="laser_mode")
-        plan = plan_cut(region, outline, profile=o.cutter, centrelines=centrelines, mode=o.laser_mode,
-                        dxf_version=o.dxf_version, kerf_mm=o.kerf_mm, fill_small_holes=o.fill_small_holes,
-                        stroke=self.tile.stroke, tab_mm=o.tab_mm, tabs_per_part=o.tabs_per_part)
+            raise ParameterError(
+                "a sheet of inlay kits is not laid out; write the kit of one tile (drop --sheet "
+                'and --copies) or choose laser_mode = "pierced"',
+                param="laser_mode",
+            )
+        plan = plan_cut(
+            region,
+            outline,
+            profile=o.cutter,
+            centrelines=centrelines,
+            mode=o.laser_mode,
+            dxf_version=o.dxf_version,
+            kerf_mm=o.kerf_mm,
+            fill_small_holes=o.fill_small_holes,
+            stroke=self.tile.stroke,
+            tab_mm=o.tab_mm,
+            tabs_per_part=o.tabs_per_part,
+        )
         if self.sheet is not None:  # how many tiles, which the files' summary does not show otherwise
             n = len(self.sheet.offsets)
             bed = " x ".join(f"{v:g}" for v in o.cutter.bed_mm)
             used = " x ".join(f"{v:.1f}" for v in self.sheet.size)
-            plan.report.note(f"laid {n} {'tile' if n == 1 else 'tiles'} on the {bed} mm bed of {o.cutter.kind} "
-                             f"profile {o.cutter.name!r} ({used} mm used)")
+            plan.report.note(
+                f"laid {n} {'tile' if n == 1 else 'tiles'} on the {bed} mm bed of {o.cutter.kind} "
+                f"profile {o.cutter.name!r} ({used} mm used)"
+            )
         return plan
 
     # ------------------------------------------------------------------ the colours
@@ -253,8 +296,10 @@ class Models:
         try:
             return spec.colouring(tuple(c.letter for c in self.face_classes.classes) or ("A",))
         except ParameterError as exc:
-            raise ParameterError(f"[colour.faces] {exc}" if (exc.param or "").startswith("faces") else f"[colour] {exc}",
-                                 param=f"colour.{exc.param}") from None
+            raise ParameterError(
+                f"[colour.faces] {exc}" if (exc.param or "").startswith("faces") else f"[colour] {exc}",
+                param=f"colour.{exc.param}",
+            ) from None
 
     @property
     def coloured(self) -> bool:
@@ -267,8 +312,10 @@ class Models:
         if not self.coloured:
             return {}
         classes, colours = self.face_classes, self.colouring
-        return dict(fill=colours.band.hex,
-                    faces=tuple((c.letter, classes.of(c.letter), colours.face(c.letter).hex) for c in classes.classes))
+        return dict(
+            fill=colours.band.hex,
+            faces=tuple((c.letter, classes.of(c.letter), colours.face(c.letter).hex) for c in classes.classes),
+        )
 
     def filled_classes(self, region) -> frozenset:
         """The letters of the classes none of whose faces is an opening of ``region``: every face filled
@@ -287,8 +334,12 @@ class Models:
     def face_class_stats(self, filled=frozenset()) -> list:
         """The face classes for a report: letter, count, description, area and colour name; a class of
         ``filled`` (:meth:`filled_classes`) says so in place of a colour."""
-        return [dict(c, colour=None, filled=True) if c["letter"] in filled
-                else dict(c, colour=self.colouring.face(c["letter"]).name) for c in self.face_classes.stats()]
+        return [
+            dict(c, colour=None, filled=True)
+            if c["letter"] in filled
+            else dict(c, colour=self.colouring.face(c["letter"]).name)
+            for c in self.face_classes.stats()
+        ]
 
     def kit_colours(self) -> tuple:
         """A coloured kit's woods: ``((colour name, faces), ...)``, one per distinct face colour, in class order."""
@@ -317,8 +368,9 @@ class Models:
             holds = (["base"] if colours.base.hex == c.hex else []) + (["bands"] if colours.band.hex == c.hex else [])
             index = [i for i, fc in enumerate(classes.classes) if fc.letter in letters]
             faces = tuple(classes.faces[np.isin(classes.labels, index)]) if index else ()
-            specs.append(MosaicPart(f"{c.name} ({', '.join(holds + letters)})", "base" in holds, "bands" in holds,
-                                    faces, c))
+            specs.append(
+                MosaicPart(f"{c.name} ({', '.join(holds + letters)})", "base" in holds, "bands" in holds, faces, c)
+            )
         return tuple(specs)
 
     def print_parts_line(self, region, style: str) -> str:
@@ -339,8 +391,10 @@ class Models:
             n_fil = len({colours[n].hex for n in names})
         else:
             shown, n_fil = names, len({PART_MATERIALS[n].extruder for n in names}) if len(names) > 1 else 1
-        return (f"print: {len(names)} part{'s' if len(names) != 1 else ''} ({', '.join(shown)}), "
-                f"{n_fil} filament{'s' if n_fil != 1 else ''}")
+        return (
+            f"print: {len(names)} part{'s' if len(names) != 1 else ''} ({', '.join(shown)}), "
+            f"{n_fil} filament{'s' if n_fil != 1 else ''}"
+        )
 
     # ------------------------------------------------------------------ the printer
 
@@ -362,10 +416,18 @@ class Models:
         self._material(region)
         style = o.print_style or o.printer.print_style
         given = self.coloured
-        model = print_model(region, self.tile.outline_shape(), profile=o.printer, style=o.print_style,
-                            stroke=self.tile.stroke, fill_small_holes=o.fill_small_holes, inlay=o.inlay,
-                            dips=dips, colours=self.colouring if given or style == "mosaic" else None,
-                            **o.heights)
+        model = print_model(
+            region,
+            self.tile.outline_shape(),
+            profile=o.printer,
+            style=o.print_style,
+            stroke=self.tile.stroke,
+            fill_small_holes=o.fill_small_holes,
+            inlay=o.inlay,
+            dips=dips,
+            colours=self.colouring if given or style == "mosaic" else None,
+            **o.heights,
+        )
         if style != "mosaic" and not given:
             return model
         filled = self.filled_classes(model.region) if o.fill_small_holes else frozenset()

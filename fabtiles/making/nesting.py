@@ -17,10 +17,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from ..machines import limits as _limits
 from ..core.errors import ParameterError
 from ..core.report import Report
 from ..core.validate import check_float, check_int
+from ..machines import limits as _limits
 from .models import BuildOptions
 
 if TYPE_CHECKING:
@@ -126,11 +126,21 @@ def _sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf):
     w, h = nesting.sheet_mm
     report = Report(path="", format="")
     used = nesting.material_use()[k]
-    report.stats.update(profile=profile.name, sheet=k + 1, sheet_mm=[w, h], parts=len(nesting.on_sheet(k)),
-                        material_use=used)
-    sheet = make_plan(profile, mode, dxf_version, kerf, paths, report=report,
-                      part=shapely.union_all(parts) if parts else None, groups=groups,
-                      engrave_area_mm2=engrave_area, bounds=(0.0, 0.0, w, h))
+    report.stats.update(
+        profile=profile.name, sheet=k + 1, sheet_mm=[w, h], parts=len(nesting.on_sheet(k)), material_use=used
+    )
+    sheet = make_plan(
+        profile,
+        mode,
+        dxf_version,
+        kerf,
+        paths,
+        report=report,
+        part=shapely.union_all(parts) if parts else None,
+        groups=groups,
+        engrave_area_mm2=engrave_area,
+        bounds=(0.0, 0.0, w, h),
+    )
     report.stats["job"] = sheet.estimate.as_stats()
     return sheet
 
@@ -163,9 +173,16 @@ class NestJob:
         nesting, out = self.model.nesting, []
         for k, plan in enumerate(self.model.plans):
             names = [self.designs[self.shapes[i]][0].name for i in nesting.on_sheet(k)]
-            out.append(dict(sheet=k + 1, parts=len(names), designs={n: names.count(n) for n in dict.fromkeys(names)},
-                            material_use=nesting.material_use()[k], job=plan.estimate.as_stats(),
-                            files=[f"{self.stem}{NEST_SUFFIX}{k + 1}.{fmt}" for fmt in self.formats]))
+            out.append(
+                dict(
+                    sheet=k + 1,
+                    parts=len(names),
+                    designs={n: names.count(n) for n in dict.fromkeys(names)},
+                    material_use=nesting.material_use()[k],
+                    job=plan.estimate.as_stats(),
+                    files=[f"{self.stem}{NEST_SUFFIX}{k + 1}.{fmt}" for fmt in self.formats],
+                )
+            )
         return out
 
     def picture(self, k: int) -> str:
@@ -175,14 +192,28 @@ class NestJob:
         nesting = self.model.nesting
         on = nesting.on_sheet(k)
         parts = [(self.designs[self.shapes[i]][0].name, nesting.outlines[i]) for i in on]
-        return nested_sheet_svg(self.model.plans[k], parts, nesting.sheet_mm,
-                                title=f"sheet {k + 1}: {len(on)} part{'s' if len(on) != 1 else ''}, "
-                                      f"material use {nesting.material_use()[k]:.0%}")
+        return nested_sheet_svg(
+            self.model.plans[k],
+            parts,
+            nesting.sheet_mm,
+            title=f"sheet {k + 1}: {len(on)} part{'s' if len(on) != 1 else ''}, "
+            f"material use {nesting.material_use()[k]:.0%}",
+        )
 
 
-def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=None, gap_mm: float | None = None,
-              rotations: str = "90", time_s: float | None = None, name: str | None = None, progress=None,
-              limits: _limits.Limits = _limits.CLI_LIMITS) -> NestJob:
+def plan_nest(
+    designs,
+    formats=("dxf",),
+    *,
+    count: int | None = None,
+    sheet_mm=None,
+    gap_mm: float | None = None,
+    rotations: str = "90",
+    time_s: float | None = None,
+    name: str | None = None,
+    progress=None,
+    limits: _limits.Limits = _limits.CLI_LIMITS,
+) -> NestJob:
     """Nest tiles of ``designs`` onto sheets: each sheet's cut plan, checked, nothing written.
 
     The parameters and errors are :func:`nest_designs`'s (which writes the job).
@@ -199,18 +230,27 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
     formats = tuple(dict.fromkeys(formats))
     cut, printed = sheet_formats(formats)
     if printed or not cut:
-        raise ParameterError(f"nested sheets are written in the cutter formats (dxf, svg, lbrn2) only, got "
-                             f"{', '.join(formats) or 'none'}; use --format dxf, svg or lbrn2", param="formats")
+        raise ParameterError(
+            f"nested sheets are written in the cutter formats (dxf, svg, lbrn2) only, got "
+            f"{', '.join(formats) or 'none'}; use --format dxf, svg or lbrn2",
+            param="formats",
+        )
     options = [BuildOptions.of_design(d) for d, _ in designs]
     profile = options[0].cutter
     for (d, _), o in zip(designs, options, strict=True):
         if o.cutter.name != profile.name:
-            raise ParameterError(f"every nested design must use one cutter profile (one material): "
-                                 f"{designs[0][0].name} uses {profile.name!r}, {d.name} uses {o.cutter.name!r}; "
-                                 f"set [output] laser_profile alike", param="laser_profile")
+            raise ParameterError(
+                f"every nested design must use one cutter profile (one material): "
+                f"{designs[0][0].name} uses {profile.name!r}, {d.name} uses {o.cutter.name!r}; "
+                f"set [output] laser_profile alike",
+                param="laser_profile",
+            )
         if o.kit:
-            raise ParameterError(f"{d.name} is an inlay kit (laser_mode = \"inlay\"), which is not nested; "
-                                 f"choose laser_mode = \"pierced\", \"score\" or \"engrave\"", param="laser_mode")
+            raise ParameterError(
+                f'{d.name} is an inlay kit (laser_mode = "inlay"), which is not nested; '
+                f'choose laser_mode = "pierced", "score" or "engrave"',
+                param="laser_mode",
+            )
         for fmt in cut:  # the cutter's kind allows the format (a LightBurn project is for lasers)
             cutter_kind(o.cutter).check_format(o.cutter, fmt)
     bed_w, bed_h = profile.bed_mm
@@ -221,12 +261,18 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
     w = check_float("sheet width", sheet_mm[0], low=0, low_open=True)
     h = check_float("sheet height", sheet_mm[1], low=0, low_open=True)
     if w > bed_w + 1e-9 or h > bed_h + 1e-9:
-        raise ParameterError(f"the sheet {w:g} x {h:g} mm is larger than the {bed_w:g} x {bed_h:g} mm bed of "
-                             f"{profile.kind} profile {profile.name!r}; use a sheet of at most the bed "
-                             f"(--sheet {bed_w:g}x{bed_h:g})", param="sheet_mm")
+        raise ParameterError(
+            f"the sheet {w:g} x {h:g} mm is larger than the {bed_w:g} x {bed_h:g} mm bed of "
+            f"{profile.kind} profile {profile.name!r}; use a sheet of at most the bed "
+            f"(--sheet {bed_w:g}x{bed_h:g})",
+            param="sheet_mm",
+        )
     tiles = [prepare_tile(d, limits=limits) for d, _ in designs]
-    _limits.check_segments(sum(len(t.segments()) * n for t, (_, n) in zip(tiles, designs, strict=True)), limits,
-                           what=f"the nest of {sum(n for _, n in designs)} tiles")
+    _limits.check_segments(
+        sum(len(t.segments()) * n for t, (_, n) in zip(tiles, designs, strict=True)),
+        limits,
+        what=f"the nest of {sum(n for _, n in designs)} tiles",
+    )
     from .models import Models
 
     plans = [Models(t, o).cut for t, o in zip(tiles, options, strict=True)]
@@ -234,14 +280,20 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
     least = max(kerf, 2 * profile.tool_radius_mm)  # a router's bit must pass between two parts
     gap = least + GAP_EXTRA_MM if gap_mm is None else check_float("gap_mm", gap_mm)
     if gap < least:
-        raise ParameterError(f"gap_mm must be >= the cut's width ({least:g} mm, the kerf of {profile.kind} "
-                             f"profile {profile.name!r}) so the cuts of two parts stay apart, got {gap:g}; "
-                             f"use --gap {least + GAP_EXTRA_MM:g}", param="gap_mm")
+        raise ParameterError(
+            f"gap_mm must be >= the cut's width ({least:g} mm, the kerf of {profile.kind} "
+            f"profile {profile.name!r}) so the cuts of two parts stay apart, got {gap:g}; "
+            f"use --gap {least + GAP_EXTRA_MM:g}",
+            param="gap_mm",
+        )
     turns = rotations in ("90", "free")
     if turns and any("kerf_y_mm" in p.report.stats for p in plans):  # a quarter turn swaps the two kerfs
-        raise ParameterError(f"{profile.kind} profile {profile.name!r} has a kerf along Y unlike along X "
-                             f"(kerf_x_mm, kerf_y_mm): a part turned by a quarter would be cut to the wrong size; "
-                             f"use --rotate 180 or --rotate none, got {rotations!r}", param="rotations")
+        raise ParameterError(
+            f"{profile.kind} profile {profile.name!r} has a kerf along Y unlike along X "
+            f"(kerf_x_mm, kerf_y_mm): a part turned by a quarter would be cut to the wrong size; "
+            f"use --rotate 180 or --rotate none, got {rotations!r}",
+            param="rotations",
+        )
     outlines = [part_outline(p) for p in plans]
     parts, shapes = [], []
     for k, ((d, n), outline) in enumerate(zip(designs, outlines, strict=True)):
@@ -250,11 +302,19 @@ def plan_nest(designs, formats=("dxf",), *, count: int | None = None, sheet_mm=N
             shapes.append(k)
     nesting = nest(parts, sheet_mm=(w, h), gap_mm=gap, rotations=rotations, time_s=time_s, progress=progress)
     mode, dxf_version = plans[0].mode, plans[0].dxf_version
-    sheets = tuple(_sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf)
-                   for k in range(nesting.sheets))
+    sheets = tuple(
+        _sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf) for k in range(nesting.sheets)
+    )
     report = Report(path="", format="")
-    report.stats.update(profile=profile.name, sheets=nesting.sheets, sheet_mm=[w, h], gap_mm=gap,
-                        rotations=rotations, parts=len(parts), material_use=list(nesting.material_use()))
+    report.stats.update(
+        profile=profile.name,
+        sheets=nesting.sheets,
+        sheet_mm=[w, h],
+        gap_mm=gap,
+        rotations=rotations,
+        parts=len(parts),
+        material_use=list(nesting.material_use()),
+    )
     labels = [(f"{profile.kind} {profile.name}: {d.name}", p.report) for (d, _), p in zip(designs, plans, strict=True)]
     stem = name if name is not None else default_stem([d for d, _ in designs])
     return NestJob(NestedSheets(sheets, nesting, report), options[0], labels, designs, shapes, cut, stem)
@@ -272,9 +332,20 @@ def default_stem(designs) -> str:
     return names.pop() if len(names) == 1 else "nest"
 
 
-def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None, sheet_mm=None,
-                 gap_mm: float | None = None, rotations: str = "90", time_s: float | None = None,
-                 name: str | None = None, progress=None, limits: _limits.Limits = _limits.CLI_LIMITS) -> NestResult:
+def nest_designs(
+    designs,
+    outdir,
+    formats=("dxf",),
+    *,
+    count: int | None = None,
+    sheet_mm=None,
+    gap_mm: float | None = None,
+    rotations: str = "90",
+    time_s: float | None = None,
+    name: str | None = None,
+    progress=None,
+    limits: _limits.Limits = _limits.CLI_LIMITS,
+) -> NestResult:
     """Nest tiles of ``designs`` onto sheets and write ``OUTDIR/<name>-sheet-<k>.<format>``, each format on its own.
 
     Parameters
@@ -310,8 +381,18 @@ def nest_designs(designs, outdir, formats=("dxf",), *, count: int | None = None,
     """
     from .pipeline import write_files
 
-    job = plan_nest(designs, formats, count=count, sheet_mm=sheet_mm, gap_mm=gap_mm, rotations=rotations,
-                    time_s=time_s, name=name, progress=progress, limits=limits)
+    job = plan_nest(
+        designs,
+        formats,
+        count=count,
+        sheet_mm=sheet_mm,
+        gap_mm=gap_mm,
+        rotations=rotations,
+        time_s=time_s,
+        name=name,
+        progress=progress,
+        limits=limits,
+    )
     # a nest's models stand in for Models by the members the writers read
     result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)  # type: ignore[arg-type]
     return NestResult(result, job.nesting, job.sheets())
@@ -348,6 +429,9 @@ def nest_bytes(designs, formats=("dxf",), **options) -> NestedFiles:
 
     job = plan_nest(designs, formats, **options)
     opts = FileOptions(name=job.stem, layout=job.options.threemf_layout)
-    files = [(f"{job.stem}{suffix}.{fmt}", FORMATS[fmt].write(plan, opts))
-             for fmt in job.formats for suffix, plan in job.model.files_of(fmt)]
+    files = [
+        (f"{job.stem}{suffix}.{fmt}", FORMATS[fmt].write(plan, opts))
+        for fmt in job.formats
+        for suffix, plan in job.model.files_of(fmt)
+    ]
     return NestedFiles(job, files)

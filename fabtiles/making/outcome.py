@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import traceback
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..core.errors import FabtilesError
@@ -62,6 +61,7 @@ def _files(n: int, replaced: int) -> str:
     >>> _files(5, 0), _files(1, 1), _files(5, 3)
     ('wrote 5 files', 'replaced 1 file', 'wrote 2 files, replaced 3')
     """
+
     def files(k):
         return f"{k} file{'s' if k != 1 else ''}"
 
@@ -87,6 +87,7 @@ def _findings(findings) -> str:
 
 def _figures(reports) -> dict:
     """The laser job, sheet and filament of a build's first laser and first print file, flat (sweep columns)."""
+
     def first(key):
         return next((r.stats[key] for r in reports if key in r.stats), {})
 
@@ -97,8 +98,12 @@ def _figures(reports) -> dict:
     if sheet:
         figures.update(sheet_m2=sheet["sheet_m2"], sheet_cost=sheet["cost"])
     if material:
-        figures.update(filament_mass_g=material["mass_g"], filament_length_m=material["length_m"],
-                       filament_cost=material["cost"], filament_line=material["line"])
+        figures.update(
+            filament_mass_g=material["mass_g"],
+            filament_length_m=material["length_m"],
+            filament_cost=material["cost"],
+            filament_line=material["line"],
+        )
     return figures
 
 

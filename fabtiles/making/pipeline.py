@@ -38,11 +38,11 @@ import tempfile
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from ..machines import limits as _limits
 from ..core.errors import FabricationError, FabtilesError, ParameterError
-from ..machines.profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
 from ..core.report import Report
 from ..core.schema import build_options, option_keys
+from ..machines import limits as _limits
+from ..machines.profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
 from .models import BuildOptions, Models
 from .staging import StagingFolder
 
@@ -130,8 +130,9 @@ def check_format_limits(tile, formats, limits: _limits.Limits) -> None:
         _limits.check_export(tile, fmt, limits)
 
 
-def layout_tile_sheet(tile, options: BuildOptions, *, copies=None, gap_mm=None,
-                      limits: _limits.Limits = _limits.CLI_LIMITS):
+def layout_tile_sheet(
+    tile, options: BuildOptions, *, copies=None, gap_mm=None, limits: _limits.Limits = _limits.CLI_LIMITS
+):
     """Copies of ``tile`` on the bed of the cutter profile of ``options``.
 
     ``copies``: exactly this many (default: as many as fit on the bed); ``gap_mm``:
@@ -148,8 +149,9 @@ def layout_tile_sheet(tile, options: BuildOptions, *, copies=None, gap_mm=None,
     outline = tile.outline_shape()
     # Place the outlines alone first (cheap), to refuse an oversized job before any work.
     placed = layout_sheet([(outline, outline)], profile, **fill)
-    _limits.check_segments(len(tile.segments()) * len(placed.offsets), limits,
-                           what=f"the sheet of {len(placed.offsets)} tiles")
+    _limits.check_segments(
+        len(tile.segments()) * len(placed.offsets), limits, what=f"the sheet of {len(placed.offsets)} tiles"
+    )
     # the tile as its own cutter file holds it (an interlaced tile's score lines broken, its cuts made)
     region, centrelines = cut_geometry(tile, profile=profile, mode=options.laser_mode)
     return layout_sheet([(region, outline)], profile, centrelines=[centrelines], **fill)
@@ -157,8 +159,9 @@ def layout_tile_sheet(tile, options: BuildOptions, *, copies=None, gap_mm=None,
 
 def _file_report(model_report: Report, path, fmt: str, figures: dict) -> Report:
     """A file's report: its model's statistics and findings, plus what the format adds."""
-    return Report(path=str(path), format=fmt, stats={**model_report.stats, **figures},
-                  findings=list(model_report.findings))
+    return Report(
+        path=str(path), format=fmt, stats={**model_report.stats, **figures}, findings=list(model_report.findings)
+    )
 
 
 def _planned_files(model, fmt: str, name: str, *, layout: str):
@@ -189,8 +192,7 @@ def _made(models: Models, f, name: str, file_name: str | None, failed: dict):
     files, options = _planned_files(model, f.name, name, layout=models.options.threemf_layout)
     if file_name is not None:  # one format: its file (or a kit's two) named after file_name
         stem = Path(file_name).stem
-        files = [(file_name, files[0][1])] if len(files) == 1 else \
-            [(f"{stem}{n[len(name):]}", m) for n, m in files]
+        files = [(file_name, files[0][1])] if len(files) == 1 else [(f"{stem}{n[len(name) :]}", m) for n, m in files]
         options = replace(options, name=stem)
     contents = [(fname, f.write(m, options)) for fname, m in files]
     # a print's figures are its model's (a mosaic's STLs: every colour's), a kit's its first file's
@@ -208,8 +210,9 @@ def refusal_error(refused: list[Refused]) -> FabtilesError:
     return FabricationError("formats refused: " + "; ".join(f"{r.format}: {r.reason}" for r in refused))
 
 
-def write_files(models: Models, formats, outdir, name: str, *, file_name: str | None = None,
-                preview_svg: str | None = None) -> BuildResult:
+def write_files(
+    models: Models, formats, outdir, name: str, *, file_name: str | None = None, preview_svg: str | None = None
+) -> BuildResult:
     """Make the files of ``formats`` from ``models``, each format on its own, and move them into ``outdir``.
 
     A format whose model or writer raises a :class:`~fabtiles.FabtilesError` is refused
@@ -275,9 +278,18 @@ def earlier_files(outdir, name: str, written) -> list[str]:
     return [str(folder / n) for n in names if n not in written and (folder / n).is_file()]
 
 
-def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: int | None = None,
-                 gap_mm: float | None = None, file_name: str | None = None, preview: bool = False,
-                 limits: _limits.Limits = _limits.CLI_LIMITS) -> BuildResult:
+def build_design(
+    design,
+    outdir,
+    formats=None,
+    *,
+    sheet: bool = False,
+    copies: int | None = None,
+    gap_mm: float | None = None,
+    file_name: str | None = None,
+    preview: bool = False,
+    limits: _limits.Limits = _limits.CLI_LIMITS,
+) -> BuildResult:
     """Write ``OUTDIR/<design name>.<format>`` for each format, each written or refused on its own.
 
     Parameters
@@ -327,10 +339,12 @@ def build_design(design, outdir, formats=None, *, sheet: bool = False, copies: i
         if not formats:
             raise FabtilesError(
                 f"a sheet is laid out for the laser formats (dxf, svg) only, but the formats asked "
-                f"for are: {', '.join(skipped)}; add --format dxf or --format svg")
+                f"for are: {', '.join(skipped)}; add --format dxf or --format svg"
+            )
     if file_name is not None and len(formats) != 1:
-        raise ParameterError(f"file_name {file_name!r} names one file, but {len(formats)} formats are asked "
-                             f"for: {', '.join(formats)}")
+        raise ParameterError(
+            f"file_name {file_name!r} names one file, but {len(formats)} formats are asked for: {', '.join(formats)}"
+        )
     tile = prepare_tile(design, limits=limits)
     check_format_limits(tile, formats, limits)
     options = BuildOptions.of_design(design)
@@ -378,7 +392,6 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
     checks); an inlay kit's two files come as one zip archive.
     """
     from ..core.files import zip_entry
-
     from ..export.formats import FORMATS
 
     name = Path(file_name).stem if file_name else design.name
@@ -412,20 +425,25 @@ def _options_for(fmt, profile, options: dict) -> BuildOptions:
     allowed = _CUT_OPTIONS if fmt.family == "cut" else _3MF_OPTIONS if fmt.name == "3mf" else _PRINT_OPTIONS
     for key in options:
         if key not in allowed:
-            raise ParameterError(f"{key!r} is not a valid option for .{fmt.name} files, must be one of: "
-                                 f"{', '.join(allowed)}", param=key)
+            raise ParameterError(
+                f"{key!r} is not a valid option for .{fmt.name} files, must be one of: {', '.join(allowed)}", param=key
+            )
     o = {k: v for k, v in options.items() if v is not None}
-    cutter = load_profile(profile if (profile is not None and fmt.family == "cut") else DEFAULT_CUTTER_PROFILE,
-                          kind="laser")
-    printer = load_profile(profile if (profile is not None and fmt.family == "print") else DEFAULT_PRINTER_PROFILE,
-                           kind="printer")
+    cutter = load_profile(
+        profile if (profile is not None and fmt.family == "cut") else DEFAULT_CUTTER_PROFILE, kind="laser"
+    )
+    printer = load_profile(
+        profile if (profile is not None and fmt.family == "print") else DEFAULT_PRINTER_PROFILE, kind="printer"
+    )
     if fmt.family == "cut":
         mode = o.get("mode")
         given = [k for k in _INLAY_OPTIONS if k in o]
         if (mode or cutter.mode) != "inlay" and given:
-            raise ParameterError(f"{', '.join(_INLAY_OPTIONS[:-1])} and {_INLAY_OPTIONS[-1]} are options of the inlay "
-                                 f"mode; pass mode='inlay'",
-                                 param=given[0])
+            raise ParameterError(
+                f"{', '.join(_INLAY_OPTIONS[:-1])} and {_INLAY_OPTIONS[-1]} are options of the inlay "
+                f"mode; pass mode='inlay'",
+                param=given[0],
+            )
         from ..machines.cutters import cutter_kind
 
         kind = cutter_kind(cutter)
@@ -482,8 +500,9 @@ def export_tile(tile, path, *, profile=None, **options) -> Report:
     return _write_one(Models(tile, _options_for(fmt, profile, options)), path)
 
 
-def export_region(path, *, region, outline, centrelines=None, stroke=None, profile=None, dips=None,
-                  **options) -> Report:
+def export_region(
+    path, *, region, outline, centrelines=None, stroke=None, profile=None, dips=None, **options
+) -> Report:
     """Write a bare ``region`` (material, file coordinates in mm) in the format of ``path``.
 
     As :func:`export_tile` for a region and outline of one's own (``centrelines`` for

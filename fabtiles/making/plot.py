@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..machines import limits as _limits
 from ..core.validate import check_choice, check_float
+from ..machines import limits as _limits
 
 WHATS = ("centrelines", "cut")
 """What a plot draws: the strands for a pen, or the cutter's contours."""
@@ -64,10 +64,21 @@ def plot_drawing(design, *, what: str = "centrelines", pen_mm=None, limits: _lim
 
         plan = models.cut
         plan = getattr(plan, "lattice", plan)  # an inlay kit: its lattice
-        layers = [(layer.layer.name, aci_to_hex(layer.layer.color),
-                   [np.vstack([p, p[:1]]) if layer.closed else p for p in layer.paths]) for layer in plan.layers]
-        return pen_drawing(layers, bounds=plan.bounds, pen_mm=pen, order=False,
-                           stats={"what": what, "cut_travel_mm": round(plan.estimate.travel_mm, 3)})
+        layers = [
+            (
+                layer.layer.name,
+                aci_to_hex(layer.layer.color),
+                [np.vstack([p, p[:1]]) if layer.closed else p for p in layer.paths],
+            )
+            for layer in plan.layers
+        ]
+        return pen_drawing(
+            layers,
+            bounds=plan.bounds,
+            pen_mm=pen,
+            order=False,
+            stats={"what": what, "cut_travel_mm": round(plan.estimate.travel_mm, 3)},
+        )
     from ..geometry.interlace import tile_score_lines
     from ..geometry.pen import strokes
 

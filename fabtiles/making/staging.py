@@ -72,7 +72,7 @@ def remove_stale_staging(outdir) -> int:
     if not outdir.is_dir():
         return 0
     for path in outdir.glob(f"{STAGING_PREFIX}*"):
-        parts = path.name[len(STAGING_PREFIX):].rsplit("-", 2)  # host (may hold "-"), pid, random
+        parts = path.name[len(STAGING_PREFIX) :].rsplit("-", 2)  # host (may hold "-"), pid, random
         if len(parts) != 3 or parts[0] != host or not parts[1].isdigit() or _alive(int(parts[1])):
             continue
         shutil.rmtree(path, ignore_errors=True)

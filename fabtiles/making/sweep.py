@@ -86,14 +86,18 @@ def parse_vary(text: str) -> Vary:
     key, spec = (s.strip() for s in text.split("=", 1))
     section, _, name = key.rpartition(".")
     if section not in VARY_KEYS:
-        raise ParameterError(f"--vary {text}: {key!r} is not a design key section.key, the sections are: "
-                             f"{', '.join(VARY_KEYS)}", param="vary")
+        raise ParameterError(
+            f"--vary {text}: {key!r} is not a design key section.key, the sections are: {', '.join(VARY_KEYS)}",
+            param="vary",
+        )
     valid = VARY_KEYS[section]
     if name not in valid:
         hint = did_you_mean(name, valid)
         hint = f"; {hint}" if hint else ""
-        raise ParameterError(f"--vary {text}: unknown key {name!r} in [{section}]{hint} "
-                             f"(keys that can vary: {', '.join(valid)})", param="vary")
+        raise ParameterError(
+            f"--vary {text}: unknown key {name!r} in [{section}]{hint} (keys that can vary: {', '.join(valid)})",
+            param="vary",
+        )
     if not spec:
         raise ParameterError(f"--vary {text}: no values; give a:b:n or a list x,y,z", param="vary")
     if re.fullmatch(r"[^,\[\]]*:[^,\[\]]*:[^,\[\]]*", spec):
@@ -113,7 +117,9 @@ def _range(text: str, a: str, b: str, n: str) -> tuple:
     try:
         count = int(n)
     except ValueError:
-        raise ParameterError(f"--vary {text}: n in a:b:n must be a whole number >= 1, got {n!r}", param="vary") from None
+        raise ParameterError(
+            f"--vary {text}: n in a:b:n must be a whole number >= 1, got {n!r}", param="vary"
+        ) from None
     if count < 1:
         raise ParameterError(f"--vary {text}: n in a:b:n must be a whole number >= 1, got {count}", param="vary")
     if count == 1:
@@ -167,19 +173,25 @@ def variants(varies, name: str, *, yes: bool = False) -> list[Variant]:
     """  # noqa: E501 - a doctest's lines are as Python prints them
     varies = list(varies)
     if not varies:
-        raise ParameterError("a sweep needs at least one --vary KEY=SPEC (like --vary packing.radius=8:16:5)",
-                             param="vary")
+        raise ParameterError(
+            "a sweep needs at least one --vary KEY=SPEC (like --vary packing.radius=8:16:5)", param="vary"
+        )
     keys = [v.key for v in varies]
     twice = sorted({k for k in keys if keys.count(k) > 1})
     if twice:
         raise ParameterError(f"--vary {twice[0]} is given twice; give each key once", param="vary")
     total = math.prod(len(v.values) for v in varies)
     if total > MAX_VARIANTS and not yes:
-        raise ParameterError(f"the sweep has {total:,} variants, more than {MAX_VARIANTS:,}; pass --yes to "
-                             f"build them all, or vary fewer values", param="vary")
+        raise ParameterError(
+            f"the sweep has {total:,} variants, more than {MAX_VARIANTS:,}; pass --yes to "
+            f"build them all, or vary fewer values",
+            param="vary",
+        )
     width = max(3, len(str(total)))
-    return [Variant(f"{name}-{k + 1:0{width}d}", tuple(zip(keys, combo, strict=True)))
-            for k, combo in enumerate(itertools.product(*(v.values for v in varies)))]
+    return [
+        Variant(f"{name}-{k + 1:0{width}d}", tuple(zip(keys, combo, strict=True)))
+        for k, combo in enumerate(itertools.product(*(v.values for v in varies)))
+    ]
 
 
 def make_jobs(design_file, variants_, outdir, formats=(), overrides=()):
@@ -189,10 +201,18 @@ def make_jobs(design_file, variants_, outdir, formats=(), overrides=()):
 
     path = Path(design_file)
     text = _read(path)
-    return [Job(v.name, functools.partial(design_from_text, text, name=path.stem, source=str(path),
-                                          overrides=tuple(overrides) + v.overrides()),
-                str(outdir), tuple(formats), preview=True)
-            for v in variants_]
+    return [
+        Job(
+            v.name,
+            functools.partial(
+                design_from_text, text, name=path.stem, source=str(path), overrides=tuple(overrides) + v.overrides()
+            ),
+            str(outdir),
+            tuple(formats),
+            preview=True,
+        )
+        for v in variants_
+    ]
 
 
 def _read(path: Path) -> str:
@@ -214,9 +234,18 @@ def explain(outcome, variant: Variant) -> str:
     return message
 
 
-JOB_COLUMNS = {"cut_length_mm": "cut_total_mm", "pierces": "pierces", "engrave_area_mm2": "engrave_area_mm2",
-               "travel_mm": "travel_mm", "laser_time_s": "seconds", "sheet_m2": "sheet_m2", "sheet_cost": "sheet_cost",
-               "filament_g": "filament_mass_g", "filament_m": "filament_length_m", "filament_cost": "filament_cost"}
+JOB_COLUMNS = {
+    "cut_length_mm": "cut_total_mm",
+    "pierces": "pierces",
+    "engrave_area_mm2": "engrave_area_mm2",
+    "travel_mm": "travel_mm",
+    "laser_time_s": "seconds",
+    "sheet_m2": "sheet_m2",
+    "sheet_cost": "sheet_cost",
+    "filament_g": "filament_mass_g",
+    "filament_m": "filament_length_m",
+    "filament_cost": "filament_cost",
+}
 """``index.csv``'s laser job, sheet and filament columns (empty where a variant has no such file, or no price)
 and the keys they hold."""
 
@@ -233,15 +262,21 @@ def write_index(outdir, varies, variants_, outcomes) -> tuple[Path, Path]:
         o = by_name[v.name]
         files = [Path(p).name for p in o.paths]
         figures = o.figures if o.ok else {}
-        rows.append(dict(variant=v.name, status=("part" if o.refused else "ok") if o.ok else "failed",
-                         **{k: _text(val) for k, val in v.values},
-                         files=" ".join(files), findings=len(o.findings),
-                         **{c: "" if figures.get(k) is None else figures[k] for c, k in JOB_COLUMNS.items()},
-                         details=" | ".join([f"refused {r}" for r in o.refused] + o.findings) if o.ok
-                         else explain(o, v)))
+        rows.append(
+            dict(
+                variant=v.name,
+                status=("part" if o.refused else "ok") if o.ok else "failed",
+                **{k: _text(val) for k, val in v.values},
+                files=" ".join(files),
+                findings=len(o.findings),
+                **{c: "" if figures.get(k) is None else figures[k] for c, k in JOB_COLUMNS.items()},
+                details=" | ".join([f"refused {r}" for r in o.refused] + o.findings) if o.ok else explain(o, v),
+            )
+        )
     buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=["variant", "status", *keys, "files", "findings", *JOB_COLUMNS,
-                                             "details"], lineterminator="\n")
+    writer = csv.DictWriter(
+        buf, fieldnames=["variant", "status", *keys, "files", "findings", *JOB_COLUMNS, "details"], lineterminator="\n"
+    )
     writer.writeheader()
     writer.writerows(rows)
     csv_path = atomic_write(outdir / "index.csv", buf.getvalue())
@@ -258,18 +293,25 @@ def _contact_sheet(varies, variants_, by_name) -> str:
         o = by_name[v.name]
         label = "".join(f"<div><b>{esc(k)}</b> = {esc(_text(val))}</div>" for k, val in v.values)
         if o.ok:
-            picture = (f'<a href="{esc(Path(o.preview).name)}"><img src="{esc(Path(o.preview).name)}" '
-                       f'alt="{esc(v.name)}"></a>' if o.preview else "")
+            picture = (
+                f'<a href="{esc(Path(o.preview).name)}"><img src="{esc(Path(o.preview).name)}" alt="{esc(v.name)}"></a>'
+                if o.preview
+                else ""
+            )
             links = " ".join(f'<a href="{esc(Path(p).name)}">{esc(Path(p).suffix[1:])}</a>' for p in o.paths)
             notes = "".join(f"<li>refused {esc(r)}</li>" for r in o.refused)
             notes += "".join(f"<li>{esc(f)}</li>" for f in o.findings) if o.findings else "<li>no findings</li>"
-            cards.append(f'<figure class="ok" id="{esc(v.name)}">{picture}<figcaption>{_figures_html(o.figures)}'
-                         f'<div class="name">{esc(v.name)}</div>{label}<div class="files">{links}</div>'
-                         f'<ul class="findings">{notes}</ul></figcaption></figure>')
+            cards.append(
+                f'<figure class="ok" id="{esc(v.name)}">{picture}<figcaption>{_figures_html(o.figures)}'
+                f'<div class="name">{esc(v.name)}</div>{label}<div class="files">{links}</div>'
+                f'<ul class="findings">{notes}</ul></figcaption></figure>'
+            )
         else:
-            cards.append(f'<figure class="failed" id="{esc(v.name)}"><div class="error">failed: '
-                         f'{esc(explain(o, v))}</div><figcaption><div class="name">{esc(v.name)}</div>'
-                         f"{label}</figcaption></figure>")
+            cards.append(
+                f'<figure class="failed" id="{esc(v.name)}"><div class="error">failed: '
+                f'{esc(explain(o, v))}</div><figcaption><div class="name">{esc(v.name)}</div>'
+                f"{label}</figcaption></figure>"
+            )
     return f"""<!DOCTYPE html>
 <html lang="en">
 <head>

@@ -8,8 +8,8 @@ kit's lattice and pieces (:func:`inlay_kit_of`); the 3D view the print model's p
 
 from __future__ import annotations
 
-from ..machines import limits as _limits
 from ..core.report import Report
+from ..machines import limits as _limits
 from .models import BuildOptions, Models
 from .pipeline import check_format_limits, prepare_tile
 
@@ -27,9 +27,9 @@ def made_region(tile, design, *, models: Models | None = None):
     None for a laser (the picture draws the tile's own region). With the build's
     ``models``, the part of its cut plan when that plan is made anyway.
     """
-    from ..machines.cutters import cutter_kind
     from ..geometry.machine_geometry import cut_geometry
     from ..geometry.tool_opening import open_region
+    from ..machines.cutters import cutter_kind
 
     options = models.options if models is not None else BuildOptions.of_design(design)
     profile = options.cutter
@@ -43,8 +43,9 @@ def made_region(tile, design, *, models: Models | None = None):
     return open_region(region, radius_mm=profile.tool_radius_mm, tolerance_mm=profile.tolerance_mm).region
 
 
-def tile_picture(tile, design, *, models: Models | None = None, title: str | None = None, findings=None,
-                 made=False) -> str:
+def tile_picture(
+    tile, design, *, models: Models | None = None, title: str | None = None, findings=None, made=False
+) -> str:
     """The tile's picture (SVG, true size): a router's part as its tool makes it, and with the design's
     colours its faces filled in their classes' colours and its bands in the band colour.
 
@@ -55,8 +56,13 @@ def tile_picture(tile, design, *, models: Models | None = None, title: str | Non
 
     models = models if models is not None else Models(tile, BuildOptions.of_design(design))
     region = made_region(tile, design, models=models) if made is False else made
-    return tile_svg(tile, title=design.name if title is None else title, findings=findings, region=region,
-                    **models.picture_colours())
+    return tile_svg(
+        tile,
+        title=design.name if title is None else title,
+        findings=findings,
+        region=region,
+        **models.picture_colours(),
+    )
 
 
 def inlay_kit_of(tile, design):
@@ -68,8 +74,14 @@ def inlay_kit_of(tile, design):
     profile = BuildOptions.of_design(design).cutter
     region, _ = cut_geometry(tile, profile=profile, mode="pierced", lines=False)
     fit = profile.inlay_fit_mm if out.inlay_fit_mm is None else out.inlay_fit_mm
-    return inlay_kit(region, tile.outline_shape(), fit_mm=fit, min_piece_mm=profile.min_piece_or_default_mm,
-                     kerf_mm=max(profile.kerf_xy_mm), tolerance_mm=profile.tolerance_mm)
+    return inlay_kit(
+        region,
+        tile.outline_shape(),
+        fit_mm=fit,
+        min_piece_mm=profile.min_piece_or_default_mm,
+        kerf_mm=max(profile.kerf_xy_mm),
+        tolerance_mm=profile.tolerance_mm,
+    )
 
 
 def print_view(design, *, limits: _limits.Limits, max_segments: int = VIEW_SEGMENTS) -> tuple[bytes, Report]:
@@ -105,14 +117,20 @@ def print_view(design, *, limits: _limits.Limits, max_segments: int = VIEW_SEGME
     glb = FORMATS["glb"]
     model = models.print
     data = glb.write(model, FileOptions())
-    report = Report(path="", format="glb", stats={**model.report.stats, **glb.figures(model, FileOptions())},
-                    findings=list(model.report.findings))
+    report = Report(
+        path="",
+        format="glb",
+        stats={**model.report.stats, **glb.figures(model, FileOptions())},
+        findings=list(model.report.findings),
+    )
     report.stats["bytes"] = len(data)
     size = f"{tile.width_mm:g} x {tile.height_mm:g} mm"
     if window is not None:
         report.stats["window_mm"] = window
-        report.stats["view"] = (f"the centre {window[2] - window[0]:.0f} x {window[3] - window[1]:.0f} mm of the "
-                                f"{size} tile, a lighter preview (the files hold all of it)")
+        report.stats["view"] = (
+            f"the centre {window[2] - window[0]:.0f} x {window[3] - window[1]:.0f} mm of the "
+            f"{size} tile, a lighter preview (the files hold all of it)"
+        )
     else:
         report.stats["view"] = f"the whole {size} tile"
     return data, report

@@ -29,13 +29,15 @@ from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, defaul
 from .star import Star
 from .tilings import NAMES, TILINGS, UnitCell, inradius, unit_cell
 
-DEFAULT_MOTIFS: Mapping[int, dict[str, Any]] = MappingProxyType({
-    3: dict(n=6, radii=(0.5, 1.0)),
-    4: dict(n=8, radii=(0.55, 1.0)),
-    6: dict(n=12, radii=(123, 85, 178), alpha=23, spr=-7, special=2),  # preset table3-3
-    8: dict(n=8, radii=(51, 70, 172)),  # preset table1-part1
-    12: dict(n=12, radii=(123, 85, 178), alpha=23, spr=-7, special=2),
-})
+DEFAULT_MOTIFS: Mapping[int, dict[str, Any]] = MappingProxyType(
+    {
+        3: dict(n=6, radii=(0.5, 1.0)),
+        4: dict(n=8, radii=(0.55, 1.0)),
+        6: dict(n=12, radii=(123, 85, 178), alpha=23, spr=-7, special=2),  # preset table3-3
+        8: dict(n=8, radii=(51, 70, 172)),  # preset table1-part1
+        12: dict(n=12, radii=(123, 85, 178), alpha=23, spr=-7, special=2),
+    }
+)
 """Polygon sides -> Star parameters of the motif used when ``motifs`` names no motif for that kind."""
 
 
@@ -141,8 +143,11 @@ class ArchimedeanPacking:
         motifs = self.motifs
         if motifs is not None:
             if not hasattr(motifs, "items"):
-                raise ParameterError(f"motifs must be a mapping from polygon sides to a Star or preset "
-                                     f"name, like {{8: 'table3-3'}}, got {motifs!r}", param="motifs")
+                raise ParameterError(
+                    f"motifs must be a mapping from polygon sides to a Star or preset "
+                    f"name, like {{8: 'table3-3'}}, got {motifs!r}",
+                    param="motifs",
+                )
             for key, star in motifs.items():
                 given[_kind(key, kinds, cell.name)] = _motif(f"motifs[{key!r}]", star)
         method = check_method(self.method)
@@ -152,8 +157,9 @@ class ArchimedeanPacking:
             full = tuple((p, given.get(p) or Star(**DEFAULT_MOTIFS[p])) for p in kinds)
         gap = default_gap_motif() if self.gap_motif is None else _motif("gap_motif", self.gap_motif)
         if not isinstance(self.outline_circles, bool):
-            raise ParameterError(f"outline_circles must be true or false, got {self.outline_circles!r}",
-                                 param="outline_circles")
+            raise ParameterError(
+                f"outline_circles must be true or false, got {self.outline_circles!r}", param="outline_circles"
+            )
         init = object.__setattr__  # the frozen dataclass's own way to set a field in __post_init__
         init(self, "tiling", cell.name)
         edge = check_float("edge", self.edge, low=0, low_open=True)
@@ -162,9 +168,10 @@ class ArchimedeanPacking:
             rays = [p for p in kinds if p not in given]
             contact = check_contact(self.contact_angle, self.contact_gap, edge, rays, cell.name)
         else:  # unused, but kept (and checked) so replace(method="hankin") takes them
-            contact = (check_float("contact_angle", self.contact_angle, low=0, high=90, low_open=True,
-                                   high_open=True),
-                       check_float("contact_gap", self.contact_gap, low=0))
+            contact = (
+                check_float("contact_angle", self.contact_angle, low=0, high=90, low_open=True, high_open=True),
+                check_float("contact_gap", self.contact_gap, low=0),
+            )
         init(self, "method", method)
         init(self, "contact_angle", contact[0])
         init(self, "contact_gap", contact[1])
@@ -227,11 +234,19 @@ class ArchimedeanPacking:
 
     def params(self) -> dict:
         """The constructor arguments."""
-        return dict(tiling=self.tiling, edge=self.edge, motifs=self.motifs, gap_motif=self.gap_motif,
-                    outline_circles=self.outline_circles, fill=self.fill, method=self.method,
-                    contact_angle=self.contact_angle, contact_gap=self.contact_gap)
+        return dict(
+            tiling=self.tiling,
+            edge=self.edge,
+            motifs=self.motifs,
+            gap_motif=self.gap_motif,
+            outline_circles=self.outline_circles,
+            fill=self.fill,
+            method=self.method,
+            contact_angle=self.contact_angle,
+            contact_gap=self.contact_gap,
+        )
 
-    def replace(self, **changes) -> "ArchimedeanPacking":
+    def replace(self, **changes) -> ArchimedeanPacking:
         """A copy with some parameters changed (validated again).
 
         >>> ArchimedeanPacking("3.6.3.6", 10).replace(edge=5).edge
@@ -244,10 +259,11 @@ class ArchimedeanPacking:
         extra = ", outline_circles=True" if self.outline_circles else ""
         extra += f", fill={self.fill:g}" if self.fill != 1.0 else ""
         if self.method == "hankin":
-            extra += (f", method='hankin', contact_angle={self.contact_angle:g}, "
-                      f"contact_gap={self.contact_gap:g}")
-        return (f"ArchimedeanPacking({self.tiling!r}, edge={self.edge:g}, motifs={{{motifs}}}, "
-                f"gap_motif={self.gap_motif!r}{extra})")
+            extra += f", method='hankin', contact_angle={self.contact_angle:g}, contact_gap={self.contact_gap:g}"
+        return (
+            f"ArchimedeanPacking({self.tiling!r}, edge={self.edge:g}, motifs={{{motifs}}}, "
+            f"gap_motif={self.gap_motif!r}{extra})"
+        )
 
     # -- circles --------------------------------------------------------------
     def _entries(self):
@@ -279,7 +295,8 @@ class ArchimedeanPacking:
             raise LimitError(
                 f"the window holds about {count:.3g} circles, more than the limit of "
                 f"{MAX_CIRCLES_IN_WINDOW}; use a larger edge (got {self.edge:g} mm) or a smaller tile",
-                param="edge")
+                param="edge",
+            )
         jj, ii = np.meshgrid(np.arange(lo[1], hi[1] + 1), np.arange(lo[0], hi[0] + 1), indexing="ij")
         lattice = ii.reshape(-1, 1) * basis[0] + jj.reshape(-1, 1) * basis[1]
         for e, (off, m) in enumerate(zip(offsets, margins, strict=True)):
@@ -334,8 +351,12 @@ class ArchimedeanPacking:
         if self.method != "hankin":
             return radii
         units = self._unit_motifs()
-        return np.array([max(r, float(np.hypot(*u.reshape(-1, 2).T).max()) if len(u) else 0.0)
-                         for r, u in zip(radii, units, strict=True)])
+        return np.array(
+            [
+                max(r, float(np.hypot(*u.reshape(-1, 2).T).max()) if len(u) else 0.0)
+                for r, u in zip(radii, units, strict=True)
+            ]
+        )
 
     def _hankin_units(self) -> list:
         """Per polygon of the unit cell: its Hankin rays (None for a kind that keeps a motif), centred at 0.
@@ -348,8 +369,10 @@ class ArchimedeanPacking:
         stars = dict(self._motifs)
         centres = cell.centres * a
         hankin = [int(p) not in stars for p in cell.sides]
-        rays: list[Any] = [polygon_rays(int(p), a, angle, gap, t) if h else None
-                for p, t, h in zip(cell.sides, cell.angles, hankin, strict=True)]
+        rays: list[Any] = [
+            polygon_rays(int(p), a, angle, gap, t) if h else None
+            for p, t, h in zip(cell.sides, cell.angles, hankin, strict=True)
+        ]
         # the snub hexagonal cell's polygons lie up to 2.5 lattice steps from its origin
         shifts = np.array([(i, j) for i in range(-4, 5) for j in range(-4, 5)], dtype=float) @ self.lattice
         near = (centres[None] + shifts[:, None]).reshape(-1, 2)  # every polygon near the cell
@@ -478,8 +501,11 @@ def _kind(key, kinds, tiling) -> int:
         key = int(key)
     if isinstance(key, bool) or not isinstance(key, numbers.Integral) or int(key) not in kinds:
         entry = f"motifs.{key}" if isinstance(key, numbers.Integral) and not isinstance(key, bool) else "motifs"
-        raise ParameterError(f"motifs key {key!r} is not a polygon of the tiling {tiling}, "
-                             f"must be one of: {text}", param="motifs", key=entry)
+        raise ParameterError(
+            f"motifs key {key!r} is not a polygon of the tiling {tiling}, must be one of: {text}",
+            param="motifs",
+            key=entry,
+        )
     return int(key)
 
 
@@ -490,8 +516,7 @@ def _motif(name, star) -> Star:
         except ParameterError as exc:
             raise ParameterError(str(exc), param=name.split("[")[0]) from None
     if not isinstance(star, Star):
-        raise ParameterError(f"{name} must be a Star or a preset name, got {star!r}",
-                             param=name.split("[")[0])
+        raise ParameterError(f"{name} must be a Star or a preset name, got {star!r}", param=name.split("[")[0])
     return star
 
 
@@ -501,8 +526,9 @@ def _check_window(window):
     except (TypeError, ValueError):
         raise ParameterError(f"window must be (xmin, ymin, xmax, ymax), got {window!r}", param="window") from None
     if not all(math.isfinite(v) for v in (x0, y0, x1, y1)) or x1 < x0 or y1 < y0:
-        raise ParameterError(f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}",
-                             param="window")
+        raise ParameterError(
+            f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}", param="window"
+        )
     return x0, y0, x1, y1
 
 

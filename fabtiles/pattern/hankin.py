@@ -53,8 +53,7 @@ def check_method(method) -> str:
     fabtiles.core.errors.ParameterError: method = 'kaplan' is not valid, must be one of: motifs, hankin
     """
     if method not in METHODS:
-        raise ParameterError(f"method = {method!r} is not valid, must be one of: {', '.join(METHODS)}",
-                             param="method")
+        raise ParameterError(f"method = {method!r} is not valid, must be one of: {', '.join(METHODS)}", param="method")
     return method
 
 
@@ -84,8 +83,10 @@ def check_contact(angle, gap, edge: float, kinds, tiling: str) -> tuple[float, f
     angle = check_float("contact_angle", angle, low=0, high=90, low_open=True, high_open=True)
     gap = check_float("contact_gap", gap, low=0)
     if gap >= edge:
-        raise ParameterError(f"contact_gap must be >= 0 and < the edge ({edge:g} mm) so both rays start on "
-                             f"the edge, got {gap:g} mm", param="contact_gap")
+        raise ParameterError(
+            f"contact_gap must be >= 0 and < the edge ({edge:g} mm) so both rays start on the edge, got {gap:g} mm",
+            param="contact_gap",
+        )
     for p in sorted(kinds):  # the triangles' limit is the smallest
         top = max_contact_angle(p, edge, gap)
         if angle > top * (1 + 1e-12):
@@ -93,7 +94,9 @@ def check_contact(angle, gap, edge: float, kinds, tiling: str) -> tuple[float, f
             raise ParameterError(
                 f"contact_angle {angle:g} has no pattern on the tiling {tiling} with contact_gap {gap:g} mm: "
                 f"the rays of its {p}-gons would meet past their centres; with this gap contact_angle must be "
-                f"> 0 and <= {top:.6g}, or contact_gap <= {most:.6g} mm for this angle", param="contact_angle")
+                f"> 0 and <= {top:.6g}, or contact_gap <= {most:.6g} mm for this angle",
+                param="contact_angle",
+            )
     return angle, gap
 
 

@@ -225,10 +225,12 @@ class Weave:
         extra_lo = np.where(lo < 0, lo + total, np.where(hi > total, 0.0, np.nan))
         extra_hi = np.where(lo < 0, total, np.where(hi > total, hi - total, np.nan))
         wrap = closed & np.isfinite(extra_lo)
-        g_lo = np.concatenate([np.clip(lo, 0, total), extra_lo[wrap]]) + np.concatenate([offset[ustrand],
-                                                                                     offset[ustrand[wrap]]])
-        g_hi = np.concatenate([np.clip(hi, 0, total), extra_hi[wrap]]) + np.concatenate([offset[ustrand],
-                                                                                     offset[ustrand[wrap]]])
+        g_lo = np.concatenate([np.clip(lo, 0, total), extra_lo[wrap]]) + np.concatenate(
+            [offset[ustrand], offset[ustrand[wrap]]]
+        )
+        g_hi = np.concatenate([np.clip(hi, 0, total), extra_hi[wrap]]) + np.concatenate(
+            [offset[ustrand], offset[ustrand[wrap]]]
+        )
         order = np.argsort(g_lo)
         g_lo, g_hi = g_lo[order], np.maximum.accumulate(g_hi[order])
         # merge overlapping gaps into disjoint intervals
@@ -257,10 +259,12 @@ class Weave:
         join = (seg[1:] == seg[:-1]) & (np.abs(s0[1:] - s1[:-1]) <= MERGE)
         head = np.flatnonzero(np.r_[True, ~join])
         tail = np.r_[head[1:], len(pid)] - 1
-        start = self.pieces[pid[head], 0] + ((s0[head] - a[pid[head]]) / length[pid[head]])[:, None] \
-            * (self.pieces[pid[head], 1] - self.pieces[pid[head], 0])
-        end = self.pieces[pid[tail], 0] + ((s1[tail] - a[pid[tail]]) / length[pid[tail]])[:, None] \
-            * (self.pieces[pid[tail], 1] - self.pieces[pid[tail], 0])
+        start = self.pieces[pid[head], 0] + ((s0[head] - a[pid[head]]) / length[pid[head]])[:, None] * (
+            self.pieces[pid[head], 1] - self.pieces[pid[head], 0]
+        )
+        end = self.pieces[pid[tail], 0] + ((s1[tail] - a[pid[tail]]) / length[pid[tail]])[:, None] * (
+            self.pieces[pid[tail], 1] - self.pieces[pid[tail], 0]
+        )
         return np.stack([start, end], axis=1)
 
 
@@ -300,8 +304,9 @@ def _candidate_pairs(seg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     # each pair once, in the first cell both boxes share (no np.unique of the 180,000
     # pairs of the 600 x 400 mm sheet: 0.045 s), and only if the boxes themselves overlap
     c = key[a]
-    first = (c // (int(i1[:, 1].max()) + 2) == np.maximum(i0[i, 0], i0[j, 0])) & \
-        (c % (int(i1[:, 1].max()) + 2) == np.maximum(i0[i, 1], i0[j, 1]))
+    first = (c // (int(i1[:, 1].max()) + 2) == np.maximum(i0[i, 0], i0[j, 0])) & (
+        c % (int(i1[:, 1].max()) + 2) == np.maximum(i0[i, 1], i0[j, 1])
+    )
     i, j = i[first], j[first]
     meet = np.all((lo[i] <= hi[j]) & (lo[j] <= hi[i]), axis=1)
     return i[meet], j[meet]
@@ -488,8 +493,9 @@ def weave(segments) -> Weave:
     is_cross[cross_v] = True
     plen = np.linalg.norm(verts[piece_v[:, 1]] - verts[piece_v[:, 0]], axis=1)
 
-    strand_of, flip, start_pos, strand_len, strand_closed, v_strand, v_pos, v_vertex, v_piece = \
-        _walk(partner, piece_v, plen, is_cross)
+    strand_of, flip, start_pos, strand_len, strand_closed, v_strand, v_pos, v_vertex, v_piece = _walk(
+        partner, piece_v, plen, is_cross
+    )
     # index of each visit along its strand (visits are in walk order)
     first_visit = np.r_[True, v_strand[1:] != v_strand[:-1]] if len(v_strand) else np.zeros(0, bool)
     idx = np.arange(len(v_strand)) - np.maximum.accumulate(np.where(first_visit, np.arange(len(v_strand)), 0))
@@ -519,11 +525,26 @@ def weave(segments) -> Weave:
     seg_strand = np.full(k, -1)
     seg_strand[piece_seg] = strand_of
     return Weave(
-        points=verts[cvert], over=piece_seg[v_piece[over_visit]], under=piece_seg[v_piece[under_visit]],
-        over_dir=odir, under_dir=udir, sin=np.abs(_cross(odir, udir)), strand=seg_strand,
-        knots=verts[knot_v], ends=verts[piece_v.ravel()[partner < 0]], conflicts=conflicts, pieces=pieces, piece_strand=strand_of, piece_segment=piece_seg,
-        piece_start=start_pos, strand_length=np.array(strand_len), strand_closed=np.array(strand_closed, bool),
-        visit_strand=v_strand, visit_pos=v_pos, visit_crossing=visit_crossing, visit_over=visit_over,
+        points=verts[cvert],
+        over=piece_seg[v_piece[over_visit]],
+        under=piece_seg[v_piece[under_visit]],
+        over_dir=odir,
+        under_dir=udir,
+        sin=np.abs(_cross(odir, udir)),
+        strand=seg_strand,
+        knots=verts[knot_v],
+        ends=verts[piece_v.ravel()[partner < 0]],
+        conflicts=conflicts,
+        pieces=pieces,
+        piece_strand=strand_of,
+        piece_segment=piece_seg,
+        piece_start=start_pos,
+        strand_length=np.array(strand_len),
+        strand_closed=np.array(strand_closed, bool),
+        visit_strand=v_strand,
+        visit_pos=v_pos,
+        visit_crossing=visit_crossing,
+        visit_over=visit_over,
     )
 
 
@@ -586,8 +607,17 @@ def _walk(partner, piece_v, plen, is_cross):
     strand_len[ends] = reach[(first + count - 1)[ends]]
     vertex = piece_v[piece, 1 - (entry & 1)]  # where each piece is left
     visit = np.flatnonzero(is_cross[vertex])
-    return (strand_of, flip, start_pos, strand_len, ~is_open[order], sid[visit], reach[visit],
-            vertex[visit], piece[visit])
+    return (
+        strand_of,
+        flip,
+        start_pos,
+        strand_len,
+        ~is_open[order],
+        sid[visit],
+        reach[visit],
+        vertex[visit],
+        piece[visit],
+    )
 
 
 def _cumulative(values, count) -> np.ndarray:

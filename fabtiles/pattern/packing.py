@@ -109,11 +109,13 @@ class Packing:
         if self.gap_motif is None:
             init(self, "gap_motif", default_gap_motif())
         if not isinstance(self.gap_motif, Star):
-            raise ParameterError(f"gap_motif must be a Star or None (the default), got {self.gap_motif!r}",
-                                 param="gap_motif")
+            raise ParameterError(
+                f"gap_motif must be a Star or None (the default), got {self.gap_motif!r}", param="gap_motif"
+            )
         if not isinstance(self.outline_circles, bool):
-            raise ParameterError(f"outline_circles must be true or false, got {self.outline_circles!r}",
-                                 param="outline_circles")
+            raise ParameterError(
+                f"outline_circles must be true or false, got {self.outline_circles!r}", param="outline_circles"
+            )
         init(self, "fill", check_float("fill", self.fill, low=0, high=1, low_open=True))
 
     # -- lattice ------------------------------------------------------------
@@ -240,8 +242,13 @@ class Packing:
 
     def params(self) -> dict:
         """The constructor arguments."""
-        return dict(radius=self.radius, motif=self.motif, gap_motif=self.gap_motif,
-                    outline_circles=self.outline_circles, fill=self.fill)
+        return dict(
+            radius=self.radius,
+            motif=self.motif,
+            gap_motif=self.gap_motif,
+            outline_circles=self.outline_circles,
+            fill=self.fill,
+        )
 
     def replace(self, **changes):
         """A copy with some parameters changed (validated again).
@@ -254,8 +261,9 @@ class Packing:
     def __repr__(self) -> str:
         extra = ", outline_circles=True" if self.outline_circles else ""
         extra += f", fill={self.fill:g}" if self.fill != 1.0 else ""
-        return (f"{type(self).__name__}(radius={self.radius:g}, motif={self.motif!r}, "
-                f"gap_motif={self.gap_motif!r}{extra})")
+        return (
+            f"{type(self).__name__}(radius={self.radius:g}, motif={self.motif!r}, gap_motif={self.gap_motif!r}{extra})"
+        )
 
 
 @dataclass(frozen=True, slots=True, repr=False)

@@ -28,7 +28,9 @@ _ROWS = {
     "table3-3": (dict(n=12, radii=(123, 85, 178), alpha=23, spr=-7, special=2), ""),
 }
 
-PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType({name: MappingProxyType(params) for name, (params, _) in _ROWS.items()})
+PRESETS: Mapping[str, Mapping[str, Any]] = MappingProxyType(
+    {name: MappingProxyType(params) for name, (params, _) in _ROWS.items()}
+)
 """Preset name -> read-only mapping of Star parameters."""
 
 PRESET_NOTES = MappingProxyType({name: note for name, (_, note) in _ROWS.items()})

@@ -92,7 +92,7 @@ class Star:
 
     # -- construction -------------------------------------------------------
     @classmethod
-    def preset(cls, name: str, *, rotation: float = 0.0) -> "Star":
+    def preset(cls, name: str, *, rotation: float = 0.0) -> Star:
         """The motif of one row of the paper's tables.
 
         >>> Star.preset("table1-part1").n
@@ -106,7 +106,8 @@ class Star:
             hint = did_you_mean(name, PRESETS)
             raise ParameterError(
                 f"preset {name!r} is unknown{'; ' + hint if hint else ''} (presets: {', '.join(PRESETS)}; "
-                "`fabtiles presets` lists them)", param="preset"
+                "`fabtiles presets` lists them)",
+                param="preset",
             )
         return cls(**PRESETS[name], rotation=rotation)
 
@@ -130,7 +131,7 @@ class Star:
             rotation=self.rotation,
         )
 
-    def replace(self, **changes) -> "Star":
+    def replace(self, **changes) -> Star:
         """A copy with some parameters changed (validated again).
 
         >>> Star(n=8, radii=(1, 2)).replace(rotation=22.5).rotation

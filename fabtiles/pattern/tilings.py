@@ -33,16 +33,33 @@ from ..core.schema import register_check, register_choices
 
 S3 = math.sqrt(3.0)
 
-TILINGS = ("3.3.3.3.3.3", "4.4.4.4", "6.6.6", "3.6.3.6", "3.12.12", "4.6.12", "4.8.8",
-           "3.3.3.3.6", "3.3.3.4.4", "3.3.4.3.4", "3.4.6.4")
+TILINGS = (
+    "3.3.3.3.3.3",
+    "4.4.4.4",
+    "6.6.6",
+    "3.6.3.6",
+    "3.12.12",
+    "4.6.12",
+    "4.8.8",
+    "3.3.3.3.6",
+    "3.3.3.4.4",
+    "3.3.4.3.4",
+    "3.4.6.4",
+)
 """The 11 Archimedean tilings by vertex configuration (the regular ones first)."""
 
 NAMES = {
-    "3.3.3.3.3.3": "triangular", "4.4.4.4": "square", "6.6.6": "hexagonal",
-    "3.6.3.6": "trihexagonal", "3.12.12": "truncated hexagonal",
-    "4.6.12": "truncated trihexagonal", "4.8.8": "truncated square",
-    "3.3.3.3.6": "snub hexagonal", "3.3.3.4.4": "elongated triangular",
-    "3.3.4.3.4": "snub square", "3.4.6.4": "rhombitrihexagonal",
+    "3.3.3.3.3.3": "triangular",
+    "4.4.4.4": "square",
+    "6.6.6": "hexagonal",
+    "3.6.3.6": "trihexagonal",
+    "3.12.12": "truncated hexagonal",
+    "4.6.12": "truncated trihexagonal",
+    "4.8.8": "truncated square",
+    "3.3.3.3.6": "snub hexagonal",
+    "3.3.3.4.4": "elongated triangular",
+    "3.3.4.3.4": "snub square",
+    "3.4.6.4": "rhombitrihexagonal",
 }
 """Vertex configuration -> common name of the tiling."""
 
@@ -97,8 +114,11 @@ def canonical(tiling) -> str:
         name = None
     if name is None:
         hint = did_you_mean(tiling, TILINGS)
-        raise ParameterError(f"tiling {tiling!r} is unknown{'; ' + hint if hint else ''} (tilings: "
-                             f"{', '.join(TILINGS)}; exponent forms such as 3^4.6 also work)", param="tiling")
+        raise ParameterError(
+            f"tiling {tiling!r} is unknown{'; ' + hint if hint else ''} (tilings: "
+            f"{', '.join(TILINGS)}; exponent forms such as 3^4.6 also work)",
+            param="tiling",
+        )
     return name
 
 
@@ -160,24 +180,46 @@ def _cells() -> dict:
         "6.6.6": ([(S3, 0), (S3 / 2, 1.5)], [(0, 0, 6, 0)]),
         # Hexagons meeting corner to corner along x, triangles between them.
         "3.6.3.6": ([(2, 0), tri(1)], [(0, 0, 6, 30), (1, S3 / 3, 3, 90), (0, 2 * S3 / 3, 3, -90)]),
-        "3.12.12": ([(d12, 0), tri(d12 / 2)],
-                    [(0, 0, 12, 0), (d12 / 2, d12 * S3 / 6, 3, 90), (d12 / 2, -d12 * S3 / 6, 3, -90)]),
-        "4.6.12": ([(d6, 0), tri(d6 / 2)],
-                   [(0, 0, 12, 0), (d6 / 2, 0, 4, 0), (d6 / 4, d6 * S3 / 4, 4, 60),
-                    (-d6 / 4, d6 * S3 / 4, 4, 120), (d6 / 2, d6 * S3 / 6, 6, 30),
-                    (d6 / 2, -d6 * S3 / 6, 6, 30)]),
+        "3.12.12": (
+            [(d12, 0), tri(d12 / 2)],
+            [(0, 0, 12, 0), (d12 / 2, d12 * S3 / 6, 3, 90), (d12 / 2, -d12 * S3 / 6, 3, -90)],
+        ),
+        "4.6.12": (
+            [(d6, 0), tri(d6 / 2)],
+            [
+                (0, 0, 12, 0),
+                (d6 / 2, 0, 4, 0),
+                (d6 / 4, d6 * S3 / 4, 4, 60),
+                (-d6 / 4, d6 * S3 / 4, 4, 120),
+                (d6 / 2, d6 * S3 / 6, 6, 30),
+                (d6 / 2, -d6 * S3 / 6, 6, 30),
+            ],
+        ),
         "4.8.8": ([(s8, 0), (0, s8)], [(0, 0, 8, 0), (s8 / 2, s8 / 2, 4, 45)]),
-        "3.3.3.4.4": ([(1, 0), (0.5, 1 + S3 / 2)],
-                      [(0, 0, 4, 0), (0, 0.5 + S3 / 6, 3, -90), (0.5, 0.5 + S3 / 3, 3, 90)]),
+        "3.3.3.4.4": (
+            [(1, 0), (0.5, 1 + S3 / 2)],
+            [(0, 0, 4, 0), (0, 0.5 + S3 / 6, 3, -90), (0.5, 0.5 + S3 / 3, 3, 90)],
+        ),
         # Squares turned by +-15 degrees, each edge shared with a triangle.
-        "3.3.4.3.4": ([(ls, 0), (0, ls)],
-                      [(0, 0, 4, 15), (ls / 2, ls / 2, 4, 75)]
-                      + [(ts * math.cos(math.radians(a)), ts * math.sin(math.radians(a)), 3, a + 180)
-                         for a in (15, 105, 195, 285)]),
-        "3.4.6.4": ([(d4, 0), tri(d4 / 2)],
-                    [(0, 0, 6, 0), (d4 / 2, 0, 4, 0), (d4 / 4, d4 * S3 / 4, 4, 60),
-                     (-d4 / 4, d4 * S3 / 4, 4, 120), (d4 / 2, d4 * S3 / 6, 3, 30),
-                     (d4 / 2, -d4 * S3 / 6, 3, 90)]),
+        "3.3.4.3.4": (
+            [(ls, 0), (0, ls)],
+            [(0, 0, 4, 15), (ls / 2, ls / 2, 4, 75)]
+            + [
+                (ts * math.cos(math.radians(a)), ts * math.sin(math.radians(a)), 3, a + 180)
+                for a in (15, 105, 195, 285)
+            ],
+        ),
+        "3.4.6.4": (
+            [(d4, 0), tri(d4 / 2)],
+            [
+                (0, 0, 6, 0),
+                (d4 / 2, 0, 4, 0),
+                (d4 / 4, d4 * S3 / 4, 4, 60),
+                (-d4 / 4, d4 * S3 / 4, 4, 120),
+                (d4 / 2, d4 * S3 / 6, 3, 30),
+                (d4 / 2, -d4 * S3 / 6, 3, 90),
+            ],
+        ),
     }
     cells["3.3.3.3.6"] = _snub_hexagonal()
     return cells
@@ -195,8 +237,10 @@ def _snub_hexagonal():
     for k in range(7):  # the coset representatives a + 0 w, a = 0..6
         a, b = k, 0
         v = np.array([a, 0.0]) + b * w
-        for centroid, corners, ang in ((v + [0.5, S3 / 6], [(0, 0), (1, 0), (0, 1)], -90.0),
-                                       (v + [1.0, S3 / 3], [(1, 0), (0, 1), (1, 1)], 90.0)):
+        for centroid, corners, ang in (
+            (v + [0.5, S3 / 6], [(0, 0), (1, 0), (0, 1)], -90.0),
+            (v + [1.0, S3 / 3], [(1, 0), (0, 1), (1, 1)], 90.0),
+        ):
             in_hexagon = any((a + i - 2 * (b + j)) % 7 == 0 for i, j in corners)
             if not in_hexagon:
                 polys.append((*centroid, 3, ang))
@@ -207,7 +251,7 @@ def _snub_hexagonal():
     return [tuple(v) for v in lattice], polys
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def unit_cell(tiling) -> UnitCell:
     """The :class:`UnitCell` of a tiling (any form :func:`canonical` accepts), edge 1."""
     name = canonical(tiling)
@@ -278,14 +322,14 @@ def apollonius_outer(c, r):
     if abs(np.linalg.det(a)) < 1e-12:
         return np.empty((0, 2)), np.empty(0)
     # a @ x = k + m * rad
-    k = (c[1:] ** 2).sum(1) - (c[0] ** 2).sum() - (r[1:] ** 2 - r1 ** 2)
+    k = (c[1:] ** 2).sum(1) - (c[0] ** 2).sum() - (r[1:] ** 2 - r1**2)
     m = -2 * (r[1:] - r1)
     inv = np.linalg.inv(a)
     p0, p1 = inv @ k, inv @ m  # x = p0 + p1 * rad
     d0 = p0 - c[0]
     qa = p1 @ p1 - 1
     qb = 2 * (d0 @ p1) - 2 * r1
-    qc = d0 @ d0 - r1 ** 2
+    qc = d0 @ d0 - r1**2
     if abs(qa) < 1e-12:
         roots = [-qc / qb] if abs(qb) > 1e-12 else []
     else:

@@ -52,7 +52,10 @@ def check_shapes(region, outline):
     import shapely
     from shapely.geometry import MultiPolygon, Polygon
 
-    for name, geom, kinds in (("region", region, (Polygon, MultiPolygon)), ("outline", outline, (Polygon, MultiPolygon))):
+    for name, geom, kinds in (
+        ("region", region, (Polygon, MultiPolygon)),
+        ("outline", outline, (Polygon, MultiPolygon)),
+    ):
         if not isinstance(geom, kinds):
             raise ParameterError(f"{name} must be a shapely Polygon or MultiPolygon, got {type(geom).__name__}")
         if geom.is_empty or geom.area <= 0:
@@ -61,7 +64,9 @@ def check_shapes(region, outline):
         if not np.isfinite(coords).all():
             raise ParameterError(f"{name} must have finite coordinates, got NaN or infinite values")
         if np.abs(coords).max() > 16000:
-            raise ParameterError(f"{name} must lie within 16 m of the origin (coordinates in mm), got {np.abs(coords).max():g}")
+            raise ParameterError(
+                f"{name} must lie within 16 m of the origin (coordinates in mm), got {np.abs(coords).max():g}"
+            )
         if not geom.is_valid:
             raise ParameterError(f"{name} is not a valid polygon ({shapely.is_valid_reason(geom)})")
     return region, outline
@@ -328,8 +333,7 @@ class Coverage:
     ys: np.ndarray | None = None
 
 
-def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES, shift: int = 0,
-             cells=None) -> Coverage:
+def coverage(layers, *, bottom: float, cell_vertices: int = CELL_VERTICES, shift: int = 0, cells=None) -> Coverage:
     """Cut a stack into small pieces for meshing.
 
     Parameters
@@ -438,15 +442,14 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
             if ring_len[r0:r1].min() >= 3:
                 base = np.arange(starts[r0], starts[r1])
                 ij = grid[base]
-                tris = ear_clip(ij, starts, part_off[multi_off[k]:multi_off[k + 1] + 1], nxt[base] - starts[r0])
+                tris = ear_clip(ij, starts, part_off[multi_off[k] : multi_off[k + 1] + 1], nxt[base] - starts[r0])
             if tris is None:
-                rings = [pts[starts[r]:starts[r + 1]] for r in range(r0, r1) if ring_len[r] >= 3]
+                rings = [pts[starts[r] : starts[r + 1]] for r in range(r0, r1) if ring_len[r] >= 3]
                 if not rings:
                     continue
                 tris = np.asarray(m3.triangulate(rings), dtype=np.int64).reshape(-1, 3)
                 # the triangulator numbers the points of the rings it was given, in order
-                base = np.concatenate([np.arange(starts[r], starts[r + 1]) for r in range(r0, r1)
-                                       if ring_len[r] >= 3])
+                base = np.concatenate([np.arange(starts[r], starts[r + 1]) for r in range(r0, r1) if ring_len[r] >= 3])
                 ij = grid[base]
             tris = flip_degenerate(tris, ij)
             if flat(tris, ij).any():
@@ -491,8 +494,15 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
     twin[a] = b
     twin[b] = a
     return Topology(
-        xy=xy, vid=inv, nxt=nxt, level=edge_lvl, out_level=out_lvl, twin=twin, ring_start=starts,
-        piece_rings=poly_off, piece_level=plevel,
+        xy=xy,
+        vid=inv,
+        nxt=nxt,
+        level=edge_lvl,
+        out_level=out_lvl,
+        twin=twin,
+        ring_start=starts,
+        piece_rings=poly_off,
+        piece_level=plevel,
         tris=np.concatenate(tri_idx) if tri_idx else None,
         tri_level=np.concatenate(tri_lvl) if tri_lvl else None,
     )
@@ -578,8 +588,17 @@ def _ladder_walls(u, v, out_level, level, nl: int, n_vertices: int) -> np.ndarra
     return np.concatenate(out) if out else np.empty((0, 3), np.int64)
 
 
-def coverage_pair(region, outline, *, region_z: float, rest_z: float, bottom: float,
-                  cell_vertices: int = CELL_VERTICES, shift: int = 0, cells=None) -> Coverage:
+def coverage_pair(
+    region,
+    outline,
+    *,
+    region_z: float,
+    rest_z: float,
+    bottom: float,
+    cell_vertices: int = CELL_VERTICES,
+    shift: int = 0,
+    cells=None,
+) -> Coverage:
     """Cut an outline into the region (top at ``region_z``) and the rest (``rest_z``).
 
     Both inputs must be on the quantum grid. Cells fully inside the outline are

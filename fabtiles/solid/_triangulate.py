@@ -40,7 +40,7 @@ def ear_clip(ij, starts, part_rings, nxt):
     n = len(ij)
     # polygons without holes whose every corner turns left: a fan from their first point
     # (the interlaced sheet's 10,000 dips; one earcut call each cost 0.1 s)
-    ring_start = starts[part_rings[0]:part_rings[-1] + 1] - first
+    ring_start = starts[part_rings[0] : part_rings[-1] + 1] - first
     prev = np.empty(n, np.int64)
     prev[nxt] = np.arange(n)
     turn = turns(ij[prev], ij, ij[nxt])
@@ -55,7 +55,7 @@ def ear_clip(ij, starts, part_rings, nxt):
     xy = ij.astype(np.float64)  # integers below 2**26: exact in earcut's arithmetic
     for p in np.flatnonzero(~fan).tolist():
         a, b = starts[part_rings[p]] - first, starts[part_rings[p + 1]] - first
-        ends = (starts[part_rings[p] + 1:part_rings[p + 1] + 1] - first - a).astype(np.uint32)
+        ends = (starts[part_rings[p] + 1 : part_rings[p + 1] + 1] - first - a).astype(np.uint32)
         t = mapbox_earcut.triangulate_float64(xy[a:b], ends)
         out.append(np.asarray(t, np.int64).reshape(-1, 3) + a)
     tris = np.concatenate(out)
@@ -166,8 +166,12 @@ def edges_pair_up(u, v, n: int) -> bool:
         return False
     key = np.sort((np.minimum(u, v) * n + np.maximum(u, v)) * 2 + (u > v))
     edge = key >> 1
-    return bool(np.all(key[0::2] & 1 == 0) and np.all(key[1::2] & 1 == 1)
-                and np.array_equal(edge[0::2], edge[1::2]) and np.all(edge[2::2] != edge[1:-1:2]))
+    return bool(
+        np.all(key[0::2] & 1 == 0)
+        and np.all(key[1::2] & 1 == 1)
+        and np.array_equal(edge[0::2], edge[1::2])
+        and np.all(edge[2::2] != edge[1:-1:2])
+    )
 
 
 def twice_areas(ij, tris):
@@ -204,7 +208,7 @@ def cdt(piece, ij):
     Traceback (most recent call last):
     ...
     fabtiles.core.errors.FabricationError: cannot triangulate the region near (2, 0) mm: GEOS stops there (IllegalStateException: Unable to find a convex corner; its ring touches itself)
-    """
+    """  # noqa: E501 - a doctest's lines are as Python prints them
     import shapely
 
     try:

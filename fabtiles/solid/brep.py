@@ -33,9 +33,9 @@ Example: a 10 x 10 mm plate 2 mm thick is 6 faces, 12 edges and 8 vertices.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 from itertools import pairwise
 from math import gcd
+from typing import Any
 
 import numpy as np
 
@@ -149,7 +149,7 @@ def _ring_polygons(topo, k):
     """Rings of piece k grouped into polygons: [[outer ring, hole rings...], ...]."""
     polys: list = []
     for r in range(topo.piece_rings[k], topo.piece_rings[k + 1]):
-        xy = topo.xy[topo.vid[topo.ring_start[r]:topo.ring_start[r + 1]]]
+        xy = topo.xy[topo.vid[topo.ring_start[r] : topo.ring_start[r + 1]]]
         area = 0.5 * np.sum(xy[:, 0] * np.roll(xy[:, 1], -1) - np.roll(xy[:, 0], -1) * xy[:, 1])
         if area > 0 or not polys:
             polys.append([r])
@@ -226,8 +226,7 @@ def _onto_sides(xy, sides, outer):
         a, d = sides[k, :2], sides[k, 2:] - sides[k, :2]
         # runs start at points with no predecessor along this side
         preds = {v for (kk, _), v in succ.items() if kk == k}
-        starts = [u for (kk, u) in succ if kk == k and u not in preds] or \
-                 [u for (kk, u) in succ if kk == k][:1]
+        starts = [u for (kk, u) in succ if kk == k and u not in preds] or [u for (kk, u) in succ if kk == k][:1]
         for u in starts:
             last, p, seen = -1.0, u, set()
             while p is not None and p not in seen:
@@ -281,7 +280,7 @@ def _piece_polygons(topo, k, xy):
 
     out = []
     for rings in _ring_polygons(topo, k):
-        ids = [topo.vid[topo.ring_start[r]:topo.ring_start[r + 1]] for r in rings]
+        ids = [topo.vid[topo.ring_start[r] : topo.ring_start[r + 1]] for r in rings]
         shells = [xy[i] for i in ids]
         out.append((shapely.Polygon(shells[0], shells[1:]), np.concatenate(ids).tolist()))
     return out
@@ -308,8 +307,16 @@ def _side_of_wall(pa, pb, side_of, xy, sides, whole):
     return k if np.dot(xy[pb] - xy[pa], b - a) > 0 else -1  # xy: the moved points
 
 
-def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", tolerance_mm: float = 0.0,
-                radii=(), cells: bool = False, chords=frozenset()) -> Brep:
+def planar_brep(
+    cov: Coverage,
+    *,
+    sides=None,
+    what: str = "STEP solid",
+    tolerance_mm: float = 0.0,
+    radii=(),
+    cells: bool = False,
+    chords=frozenset(),
+) -> Brep:
     """The B-rep of a stack coverage (one closed shell per connected part).
 
     ``cov`` should hold one piece per level (a single meshing cell), so that each
@@ -332,7 +339,7 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     pieces = []
     for lvl, geoms in sorted(by_level.items()):
         # one piece per level (a flat region one face whatever the coverage's cells), or each cell's own
-        for merged in (geoms if cells else [geoms[0] if len(geoms) == 1 else shapely.coverage_union_all(geoms)]):
+        for merged in geoms if cells else [geoms[0] if len(geoms) == 1 else shapely.coverage_union_all(geoms)]:
             if merged.geom_type == "Polygon":  # one polygon (a flush mosaic's whole top): as the others, a multi
                 merged = shapely.MultiPolygon([merged])
             pieces.append((shapely.orient_polygons(merged), lvl))
@@ -368,8 +375,9 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     on_grid = np.all(ij * QUANTUM == topo.xy, axis=1)
     outer = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
     vxy, side_of = _onto_sides(topo.xy, sides, np.column_stack([u_all[outer], v_all[outer]]))
-    outer_loops = [[int(u_all[outer[i]]) for i in lp]
-                   for lp in _chain([(int(u_all[e]), int(v_all[e]), e) for e in outer], what)]
+    outer_loops = [
+        [int(u_all[outer[i]]) for i in lp] for lp in _chain([(int(u_all[e]), int(v_all[e]), e) for e in outer], what)
+    ]
     _keep_pieces_valid(topo, vxy, side_of, outer_loops)
     sides_arr: Any = None if sides is None else np.asarray(sides, float)  # read only where sides are given
     whole = None if sides is None else {tuple(row): k for k, row in enumerate(sides_arr.tolist())}
@@ -402,8 +410,16 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
         loop = [signed[lo]] + [e for _, _, e in side(chain[-1], lo, hi, up=True)]
         loop += [~signed[hi]] + [e for _, _, e in side(chain[0], lo, hi, up=False)]
         ref = seam_direction(vxy[a_vid] - centre, abs(sweep))
-        faces.append(Face((float(centre[0]), float(centre[1]), float(z[lo])), (0.0, 0.0, 1.0),
-                          (float(ref[0]), float(ref[1]), 0.0), (tuple(loop),), radius=float(radius), inward=not ccw))
+        faces.append(
+            Face(
+                (float(centre[0]), float(centre[1]), float(z[lo])),
+                (0.0, 0.0, 1.0),
+                (float(ref[0]), float(ref[1]), 0.0),
+                (tuple(loop),),
+                radius=float(radius),
+                inward=not ccw,
+            )
+        )
     if arcs:  # the other walls stay planar
         keep = np.flatnonzero(~in_arc[w])
         wu, wv = [wu[i] for i in keep], [wv[i] for i in keep]
@@ -433,8 +449,9 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
     for i, loop in enumerate(wall_edges):
         for _, _, e in loop:
             users.setdefault(e if e >= 0 else ~e, []).append(i)
-    groups = _groups(len(wall_edges), (us for us in users.values()
-                                       if len(us) == 2 and us[0] != us[1] and keys[us[0]] == keys[us[1]]))
+    groups = _groups(
+        len(wall_edges), (us for us in users.values() if len(us) == 2 and us[0] != us[1] and keys[us[0]] == keys[us[1]])
+    )
 
     pts = _node_xyz(ed, vxy, z)  # every wall node exists by now
     for members in groups:
@@ -475,7 +492,9 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             for r in rings:
                 idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
                 uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
-                loops.append(_collapse([ed.horizontal_or_arc(a, b, lvl) for a, b in zip(uu, vv, strict=True) if a != b]))
+                loops.append(
+                    _collapse([ed.horizontal_or_arc(a, b, lvl) for a, b in zip(uu, vv, strict=True) if a != b])
+                )
             faces.append(Face((0.0, 0.0, float(z[lvl])), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), tuple(loops)))
 
     if cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
@@ -485,14 +504,18 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
                 for r in rings:
                     idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])[::-1]
                     uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
-                    loops.append(_collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu, vv, strict=True) if a != b]))
+                    loops.append(
+                        _collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu, vv, strict=True) if a != b])
+                    )
                 faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops)))
         return _finish(ed, vxy, z, faces, what)
 
     # --- bottoms: the ring edges with nothing beside them, run backwards
     b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
     # (an arc's chords give one edge: its ends from the edge itself)
-    signed = dict.fromkeys(ed.horizontal_or_arc(vv, uu, 0) for uu, vv in zip(u_all[b].tolist(), v_all[b].tolist(), strict=True))
+    signed = dict.fromkeys(
+        ed.horizontal_or_arc(vv, uu, 0) for uu, vv in zip(u_all[b].tolist(), v_all[b].tolist(), strict=True)
+    )
     directed = [(*(ed.list[e] if e >= 0 else ed.list[~e][::-1]), e) for e in signed]
     loops = _chain(directed, what)
     pts = _node_xyz(ed, vxy, z)
@@ -509,8 +532,9 @@ def planar_brep(cov: Coverage, *, sides=None, what: str = "STEP solid", toleranc
             probe = shapely.Point(xy[0])
             hits = [j for j in tree.query(probe) if polys[j].covers(probe)]
             if not hits:
-                raise FabricationError(f"the B-rep of the {what} has a bottom hole outside every part; "
-                                       "nothing was written")
+                raise FabricationError(
+                    f"the B-rep of the {what} has a bottom hole outside every part; nothing was written"
+                )
             j = min(hits, key=lambda j: polys[j].area)
             bottom_loops[j].append(tuple(directed[i][2] for i in lp))
     for loops_ in bottom_loops:
@@ -557,7 +581,9 @@ def _unpinched(pieces: list) -> list:
     for i, poly in enumerate(flat):
         for g in fixed.get(i, [poly]):
             out[owner[i]].append(_with_points_on_edges(g, pins))
-    return [(shapely.orient_polygons(shapely.MultiPolygon(polys)), lvl) for polys, (_, lvl) in zip(out, pieces)]
+    return [
+        (shapely.orient_polygons(shapely.MultiPolygon(polys)), lvl) for polys, (_, lvl) in zip(out, pieces, strict=True)
+    ]
 
 
 def _with_points_on_edges(poly, pins):
@@ -580,7 +606,7 @@ def _with_points_on_edges(poly, pins):
             # exactly on the segment (integer grid coordinates), strictly between its ends
             t = rel @ d
             on = (rel[:, 0] * d[1] - rel[:, 1] * d[0] == 0) & (t > 0) & (t < d @ d)
-            out.append(xy[k:k + 1])
+            out.append(xy[k : k + 1])
             if on.any():
                 out.append(pins[on][np.argsort(t[on])])
         rings.append(np.concatenate(out))
@@ -610,13 +636,22 @@ def _compact(brep: Brep, what: str) -> Brep:
                 uses[e if e >= 0 else ~e, int(e < 0)] += 1
     used = uses.any(axis=1)
     if np.any(uses[used] != 1):
-        raise FabricationError(f"the B-rep of the {what} has an edge joining more than two faces "
-                               "(the region touches itself at a point); nothing was written")
+        raise FabricationError(
+            f"the B-rep of the {what} has an edge joining more than two faces "
+            "(the region touches itself at a point); nothing was written"
+        )
     new = np.cumsum(used) - 1
-    faces = tuple(Face(f.origin, f.normal, f.ref,
-                       tuple(tuple(int(new[e]) if e >= 0 else ~int(new[~e]) for e in loop) for loop in f.loops),
-                       f.radius, f.inward)
-                  for f in brep.faces)
+    faces = tuple(
+        Face(
+            f.origin,
+            f.normal,
+            f.ref,
+            tuple(tuple(int(new[e]) if e >= 0 else ~int(new[~e]) for e in loop) for loop in f.loops),
+            f.radius,
+            f.inward,
+        )
+        for f in brep.faces
+    )
     edges = brep.edges[used]
     keep = np.zeros(len(brep.points), bool)
     keep[edges.ravel()] = True
@@ -638,8 +673,11 @@ def _loop_points(loop, edges, arcs, pts) -> np.ndarray:
     """
     loop = np.asarray(loop, np.int64)
     index = np.where(loop >= 0, loop, ~loop)
-    is_arc = (np.fromiter((e in arcs for e in index.tolist()), bool, len(index)) if isinstance(arcs, dict)
-              else np.asarray(arcs)[index, 2] > 0)
+    is_arc = (
+        np.fromiter((e in arcs for e in index.tolist()), bool, len(index))
+        if isinstance(arcs, dict)
+        else np.asarray(arcs)[index, 2] > 0
+    )
     if not is_arc.any():  # straight edges only (most loops): their starts
         ends = np.asarray(edges)[index] if not isinstance(edges, list) else np.array([edges[e] for e in index])
         return pts[np.where(loop >= 0, ends[:, 0], ends[:, 1]), :2]
@@ -743,7 +781,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
             m = len(at) // 2
             i = int(np.argmin(off[:m]))
             lo = i + m // 2  # at least a quarter of the ring away on either side
-            j = lo + int(np.argmin(off[lo:min(i + m + m // 2 + 1, len(at) - m // 2 + i + 1, len(at))]))
+            j = lo + int(np.argmin(off[lo : min(i + m + m // 2 + 1, len(at) - m // 2 + i + 1, len(at))]))
             if max(off[i], off[j]) > ON_LINE_MM:
                 return  # moved onto the circle they would change the faces: the ring stays planar
             for a, b in ((at[i], at[j]), (at[j], at[i] + n)):
@@ -753,8 +791,9 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
                 sweep = ((t[1] - t[0]) * turn) % (2 * np.pi)
                 out.append((part, runs.centre[0], float(runs.radius[0]), float(turn * sweep), True))
             return
-        for first, last, c, rad, sw in zip(runs.first.tolist(), runs.last.tolist(), runs.centre,
-                                           runs.radius.tolist(), runs.sweep.tolist(), strict=True):
+        for first, last, c, rad, sw in zip(
+            runs.first.tolist(), runs.last.tolist(), runs.centre, runs.radius.tolist(), runs.sweep.tolist(), strict=True
+        ):
             a, b = at[first], at[last]
             if b <= a:
                 b += n
@@ -779,8 +818,10 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
     if not jobs:
         return out
     # the vertices searched: those Douglas-Peucker keeps within ON_LINE_MM, all rings in one GEOS call
-    lines = np.array([shapely.linearrings(xy[verts]) if closed else shapely.linestrings(xy[verts])
-                      for _, verts, closed in jobs], dtype=object)
+    lines = np.array(
+        [shapely.linearrings(xy[verts]) if closed else shapely.linestrings(xy[verts]) for _, verts, closed in jobs],
+        dtype=object,
+    )
     kept_xy, kept_of = shapely.get_coordinates(shapely.simplify(lines, ON_LINE_MM), return_index=True)
     # a vertex is kept when its job and point are among the kept ones: one exact key each (grid points,
     # each job's x shifted by a whole multiple of the extent)
@@ -793,14 +834,19 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
     offsets = np.concatenate([[0], np.cumsum(lengths)])
     searched = []
     for k, (_, _verts, closed) in enumerate(jobs):
-        keep = keep_all[offsets[k]:offsets[k + 1]]
+        keep = keep_all[offsets[k] : offsets[k + 1]]
         if not closed:
             keep[[0, -1]] = True
         searched.append(np.flatnonzero(keep))
     for closed in (True, False):
         ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
-        found = arc_runs_many([xy[jobs[k][1][searched[k]]] for k in ks], tolerance_mm=tolerance_mm, closed=closed,
-                              link_slack=GRID_LINK_SLACK, radii=radii)
+        found = arc_runs_many(
+            [xy[jobs[k][1][searched[k]]] for k in ks],
+            tolerance_mm=tolerance_mm,
+            closed=closed,
+            link_slack=GRID_LINK_SLACK,
+            radii=radii,
+        )
         for k, runs in zip(ks, found, strict=True):
             if len(runs.first):
                 collect(jobs[k][0], jobs[k][1], searched[k], runs)
@@ -983,6 +1029,7 @@ def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0, ra
 
 CHORD_ROUNDS = 4
 """How many times a B-rep is made again with the arcs that crossed another loop left as chords."""
+
 
 def _circle_key(centre, radius) -> tuple:
     """A circle found by :func:`_wall_arcs`, as a key that the same search finds again."""
@@ -1184,8 +1231,9 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     if not total > 0:
         fail(f"has a volume of {total:.6g} mm^3: inside out")
     if abs(chords - volume) > BREP_VOLUME_TOLERANCE * abs(volume):
-        fail(f"has a volume of {chords:.6g} mm^3, not the mesh's {volume:.6g} mm^3 "
-             f"({BREP_VOLUME_TOLERANCE:.2%} allowed)")
+        fail(
+            f"has a volume of {chords:.6g} mm^3, not the mesh's {volume:.6g} mm^3 ({BREP_VOLUME_TOLERANCE:.2%} allowed)"
+        )
     # horizontal faces: their loops, in x, y, must make a valid polygon
     polys = []
     for face in brep.faces:

@@ -57,7 +57,9 @@ def dip_level(dips, region=None):
     holed = shapely.get_num_interior_rings(parts) > 0
     if holed.any() and region is not None:
         for i in np.flatnonzero(holed).tolist():
-            holes = shapely.polygons(shapely.get_interior_ring(parts[i], range(shapely.get_num_interior_rings(parts[i]))))
+            holes = shapely.polygons(
+                shapely.get_interior_ring(parts[i], range(shapely.get_num_interior_rings(parts[i])))
+            )
             if not shapely.covers(region, holes).all():  # an opening of the region in the hole
                 holed[i] = False  # it rings an opening: no dip here
                 parts[i] = None
@@ -326,8 +328,16 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
     """
     import shapely
 
-    from ._mesh_build import CELL_VERTICES, Coverage, cells_for, coverage, coverage_from_cells, coverage_pair
-    from ._mesh_build import node_polygons, split_cells
+    from ._mesh_build import (
+        CELL_VERTICES,
+        Coverage,
+        cells_for,
+        coverage,
+        coverage_from_cells,
+        coverage_pair,
+        node_polygons,
+        split_cells,
+    )
 
     if kind not in ("relief", "pattern"):
         raise ValueError(f"{kind!r} has no dips, must be one of: relief, pattern")
@@ -438,7 +448,10 @@ def _inner_dips(pieces, top, low, coords, lengths):
     out += [(g, top) for g in shapely.multipolygons(holed, indices=piece_of)]
     # the dips themselves, all one piece: the piece's polygons are meshed one by one anyway
     # (fanned, these quads), and one piece instead of one a cell saved 0.018 s on the sheet
-    dip_polys = shapely.from_ragged_array(shapely.GeometryType.POLYGON, _reversed(coords, lengths, ~ccw),
-                                          (np.concatenate([[0], np.cumsum(lengths)]), np.arange(len(lengths) + 1)))
+    dip_polys = shapely.from_ragged_array(
+        shapely.GeometryType.POLYGON,
+        _reversed(coords, lengths, ~ccw),
+        (np.concatenate([[0], np.cumsum(lengths)]), np.arange(len(lengths) + 1)),
+    )
     out.append((shapely.multipolygons(dip_polys), low))
     return out

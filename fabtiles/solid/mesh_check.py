@@ -30,8 +30,12 @@ def _merge_points32(flat: np.ndarray):
     """
     flat = np.ascontiguousarray(flat, dtype=np.float32) + np.float32(0)  # -0.0 -> 0.0
     bits = flat.view(np.uint32).astype(np.uint64)
-    key = (bits[:, 0] * np.uint64(0x9E3779B97F4A7C15)) ^ (bits[:, 1] * np.uint64(0xC2B2AE3D27D4EB4F)) \
-        ^ (bits[:, 2] * np.uint64(0x165667B19E3779F9)) ^ (bits[:, 2] << np.uint64(32))
+    key = (
+        (bits[:, 0] * np.uint64(0x9E3779B97F4A7C15))
+        ^ (bits[:, 1] * np.uint64(0xC2B2AE3D27D4EB4F))
+        ^ (bits[:, 2] * np.uint64(0x165667B19E3779F9))
+        ^ (bits[:, 2] << np.uint64(32))
+    )
     _, first, inv = np.unique(key, return_index=True, return_inverse=True)
     inv = inv.ravel()
     if not np.array_equal(flat[first][inv], flat):  # a hash collision: merge exactly instead
@@ -197,13 +201,15 @@ def _check_merged(verts, faces, *, name, volume, bodies):
     if not vol > 0:
         _fail(name, f"has a volume of {vol:g} mm^3 (it must be positive: faces point inward)", merged)
     if volume is not None and abs(vol - volume) > VOLUME_TOLERANCE * abs(volume):
-        _fail(name, f"has a volume of {vol:.6g} mm^3, not the {volume:.6g} mm^3 of area x height (0.5 % allowed)",
-              merged)
+        _fail(
+            name, f"has a volume of {vol:.6g} mm^3, not the {volume:.6g} mm^3 of area x height (0.5 % allowed)", merged
+        )
     if bodies is not None:
         found = count_bodies(n, faces[:, [0, 1, 1, 2]].reshape(-1, 2))  # two edges join a face's corners
         if found != bodies:
-            _fail(name, f"has {found} separate bodies where {bodies} {'was' if bodies == 1 else 'were'} expected",
-                  merged)
+            _fail(
+                name, f"has {found} separate bodies where {bodies} {'was' if bodies == 1 else 'were'} expected", merged
+            )
     return verts, faces, vol
 
 

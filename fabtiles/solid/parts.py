@@ -31,8 +31,8 @@ from typing import TYPE_CHECKING, NamedTuple, Protocol
 import numpy as np
 
 from ..core.errors import FabricationError, ParameterError
-from ..machines.profiles import load_profile
 from ..core.report import Report
+from ..machines.profiles import load_profile
 from ._mesh_build import (
     QUANTUM,
     Stack,
@@ -50,12 +50,22 @@ if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
 
 
-
 # --------------------------------------------------------------------------- building
 
 
-def prepare_print(region, outline, profile, style, heights, stroke=None, *, fill_small_holes: bool = False,
-                  flatten: bool = True, path="", fmt=""):
+def prepare_print(
+    region,
+    outline,
+    profile,
+    style,
+    heights,
+    stroke=None,
+    *,
+    fill_small_holes: bool = False,
+    flatten: bool = True,
+    path="",
+    fmt="",
+):
     """Validate everything, make the region to print and run the printability checks; nothing is built yet.
 
     Returns ``(profile, stack, report, region)``: ``region`` is the material to build
@@ -69,21 +79,35 @@ def prepare_print(region, outline, profile, style, heights, stroke=None, *, fill
     profile = load_profile(profile, kind="printer")
     stack = resolve_stack(profile, style, **heights)
     if not isinstance(fill_small_holes, (bool, np.bool_)):
-        raise ParameterError(f"fill_small_holes must be True or False, got {fill_small_holes!r}",
-                             param="fill_small_holes")
+        raise ParameterError(
+            f"fill_small_holes must be True or False, got {fill_small_holes!r}", param="fill_small_holes"
+        )
     region, outline = check_shapes(region, outline)
     report = Report(path=str(path), format=fmt)
     designed, _ = print_region(region, outline, profile, stack.style, flatten=flatten)
-    region, filled = print_region(designed, outline, profile, stack.style, fill_small_holes=bool(fill_small_holes),
-                                  flatten=False)
+    region, filled = print_region(
+        designed, outline, profile, stack.style, fill_small_holes=bool(fill_small_holes), flatten=False
+    )
     if fill_small_holes:
         report.stats["filled_holes"] = filled
         if filled:
-            report.note(f"filled {filled:,} opening{'s' if filled != 1 else ''} narrower than min_hole_mm = "
-                        f"{profile.min_hole_mm:g} mm of printer profile {profile.name!r}")
-    check_print(region, outline, profile, stroke=stroke, style=stack.style, base_mm=stack.base,
-                relief_mm=stack.relief, pierced_mm=stack.pierced, deboss_mm=stack.deboss,
-                mosaic_inset_mm=stack.inset, report=report)
+            report.note(
+                f"filled {filled:,} opening{'s' if filled != 1 else ''} narrower than min_hole_mm = "
+                f"{profile.min_hole_mm:g} mm of printer profile {profile.name!r}"
+            )
+    check_print(
+        region,
+        outline,
+        profile,
+        stroke=stroke,
+        style=stack.style,
+        base_mm=stack.base,
+        relief_mm=stack.relief,
+        pierced_mm=stack.pierced,
+        deboss_mm=stack.deboss,
+        mosaic_inset_mm=stack.inset,
+        report=report,
+    )
     if filled:
         check_print_pattern(designed, region, outline, profile, stack.style, stroke=stroke, report=report)
     report.raise_if_strict(profile.strict)
@@ -187,9 +211,10 @@ def _bridge_pinches(r):
     import shapely
 
     parts = shapely.get_parts(r)
-    rings = np.concatenate([shapely.get_exterior_ring(parts)]
-                           + [shapely.get_interior_ring(p, np.arange(shapely.get_num_interior_rings(p)))
-                              for p in parts])
+    rings = np.concatenate(
+        [shapely.get_exterior_ring(parts)]
+        + [shapely.get_interior_ring(p, np.arange(shapely.get_num_interior_rings(p))) for p in parts]
+    )
     coords, ring = shapely.get_coordinates(rings, return_index=True)
     closing = np.r_[ring[1:] != ring[:-1], True]  # each ring's repeated first point
     coords, ring = coords[~closing], ring[~closing]
@@ -289,13 +314,15 @@ def _checked_body(kind, name, r, o, stack, dips=None):
                     continue
                 if isinstance(exc, FabricationError):
                     raise _named(exc, name) from None
-                raise FabricationError(f"the {name} mesh could not be cut into cells ({exc}); "
-                                       "nothing was written") from None
+                raise FabricationError(
+                    f"the {name} mesh could not be cut into cells ({exc}); nothing was written"
+                ) from None
             try:
                 volume, bodies = _expected(kind, g, o, stack, dips)
                 # an STL of these holds verts[faces] in float32: checked merged from the vertices
-                mverts, mfaces, vol = check_indexed(verts, faces, name=name, volume=volume, bodies=bodies,
-                                                    with_volume=True)
+                mverts, mfaces, vol = check_indexed(
+                    verts, faces, name=name, volume=volume, bodies=bodies, with_volume=True
+                )
             except FabricationError as exc:
                 mesh = getattr(exc, "mesh", None)
                 if mesh is not None and shift + 1 < GRID_SHIFTS and _on_cell_lines(_nonmanifold_points(*mesh), lines):
@@ -397,16 +424,16 @@ def relief_parts(fused: CheckedPart, stack: Stack) -> dict:
     volume, bodies = _expected("base", used, o, stack)
     out = {"base": CheckedPart(base_verts, base_faces, float(volume), int(bodies), used, o, float(base_found))}
     volume, bodies = _expected("pattern", r, o, stack)
-    mverts, mfaces, found = check_indexed(np.concatenate([verts, lowered]), tris, name="pattern", volume=volume,
-                                          bodies=bodies, with_volume=True)
+    mverts, mfaces, found = check_indexed(
+        np.concatenate([verts, lowered]), tris, name="pattern", volume=volume, bodies=bodies, with_volume=True
+    )
     out["pattern"] = CheckedPart(mverts, mfaces, float(volume), int(bodies), r, o, float(found))
     return out
 
 
 def splits_fused(stack: Stack, single: bool, inlay: bool, dips) -> bool:
     """True when the parts are cut from the fused body (:func:`relief_parts`): a plain relief's parts."""
-    return stack.style == "relief" and not single and not inlay and dips is None and stack.base > 0 \
-        and stack.relief > 0
+    return stack.style == "relief" and not single and not inlay and dips is None and stack.base > 0 and stack.relief > 0
 
 
 def checked_parts(region, outline, stack: Stack, *, single: bool = False, inlay: bool = False, dips=None):
@@ -440,12 +467,15 @@ def _build(region, outline, stack: Stack, *, single: bool, inlay: bool = False):
     """Checked trimesh bodies by name; ``single`` fuses a relief into one body (STL)."""
     import trimesh
 
-    return {name: trimesh.Trimesh(vertices=p.vertices, faces=p.faces, process=False, validate=False)
-            for name, p in checked_parts(region, outline, stack, single=single, inlay=inlay).items()}
+    return {
+        name: trimesh.Trimesh(vertices=p.vertices, faces=p.faces, process=False, validate=False)
+        for name, p in checked_parts(region, outline, stack, single=single, inlay=inlay).items()
+    }
 
 
-def build_meshes(*, region, outline, profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None,
-                 deboss_mm=None, inlay=False):
+def build_meshes(
+    *, region, outline, profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None, deboss_mm=None, inlay=False
+):
     """The named, checked bodies of a printed tile, as trimesh meshes (mm).
 
     Parameters
@@ -488,8 +518,10 @@ def check_inlay(stack: Stack, inlay) -> None:
     if not isinstance(inlay, (bool, np.bool_)):
         raise ParameterError(f"inlay must be True or False, got {inlay!r}")
     if inlay and stack.style != "deboss":
-        raise ParameterError(f"inlay=True needs style='deboss' (the inlay fills the deboss grooves), "
-                             f"got style={stack.style!r}; pass style='deboss' or drop inlay")
+        raise ParameterError(
+            f"inlay=True needs style='deboss' (the inlay fills the deboss grooves), "
+            f"got style={stack.style!r}; pass style='deboss' or drop inlay"
+        )
 
 
 def fused_body(region, outline, stack: Stack, *, dips=None):
@@ -544,8 +576,9 @@ def mosaic_parts(region, outline, stack: Stack, specs) -> dict:
     try:
         faces = np.asarray(polygons_of(shapely.difference(o, r, grid_size=QUANTUM)), dtype=object)
     except shapely.errors.GEOSException as exc:
-        raise FabricationError(f"the mosaic's faces could not be cut from the outline ({exc}); "
-                               "nothing was written") from None
+        raise FabricationError(
+            f"the mosaic's faces could not be cut from the outline ({exc}); nothing was written"
+        ) from None
     faces = faces[~_slivers(faces)]
     owner = np.full(len(faces), -1)
     spec_faces = [(np.asarray(s.faces, dtype=object), k) for k, s in enumerate(specs) if len(s.faces)]
@@ -661,11 +694,17 @@ def _mosaic_mesh(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
     name = f"part {spec.name!r}"
     geoms = [g for g, _ in layers]
     try:
-        top = shapely.Polygon() if not geoms else geoms[0] if len(geoms) == 1 else \
-            shapely.coverage_union_all(np.concatenate([shapely.get_parts(g) for g in geoms]))
+        top = (
+            shapely.Polygon()
+            if not geoms
+            else geoms[0]
+            if len(geoms) == 1
+            else shapely.coverage_union_all(np.concatenate([shapely.get_parts(g) for g in geoms]))
+        )
     except shapely.errors.GEOSException as exc:
-        raise FabricationError(f"the {name} mesh could not be made: its bands and faces do not join ({exc}); "
-                               "nothing was written") from None
+        raise FabricationError(
+            f"the {name} mesh could not be made: its bands and faces do not join ({exc}); nothing was written"
+        ) from None
     if spec.base:
         volume = o.area * b + sum(g.area * (z - b) for g, z in layers)
         bodies = len(polygons_of(o))
@@ -688,15 +727,17 @@ def _mosaic_mesh(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
                 cov = coverage(layers, bottom=b, shift=shift)
             verts, faces = mesh_coverage(cov)
         except shapely.errors.GEOSException as exc:
-            error = error or FabricationError(f"the {name} mesh could not be cut into cells ({exc}); "
-                                              "nothing was written")
+            error = error or FabricationError(
+                f"the {name} mesh could not be cut into cells ({exc}); nothing was written"
+            )
             continue
         except FabricationError as exc:  # a piece the lines cut that cannot be triangulated or paired
             error = error or _named(exc, name)
             continue
         try:
-            mverts, mfaces, found = check_indexed(verts, faces, name=name, volume=volume, bodies=bodies,
-                                                  with_volume=True)
+            mverts, mfaces, found = check_indexed(
+                verts, faces, name=name, volume=volume, bodies=bodies, with_volume=True
+            )
         except FabricationError as exc:
             error = error or exc
             if exc.mesh is not None and _on_cell_lines(_nonmanifold_points(*exc.mesh), (cov.xs, cov.ys)):
@@ -711,7 +752,11 @@ def stack_stats(stack):
     """The report statistics naming a stack's style and its heights (mm)."""
     if stack.style == "mosaic":
         return dict(style="mosaic", heights_mm={"base": stack.base, "relief": stack.relief, "inset": stack.inset})
-    return dict(style=stack.style,
-                heights_mm={"relief": {"base": stack.base, "relief": stack.relief},
-                            "pierced": {"pierced": stack.pierced},
-                            "deboss": {"base": stack.base, "deboss": stack.deboss}}[stack.style])
+    return dict(
+        style=stack.style,
+        heights_mm={
+            "relief": {"base": stack.base, "relief": stack.relief},
+            "pierced": {"pierced": stack.pierced},
+            "deboss": {"base": stack.base, "deboss": stack.deboss},
+        }[stack.style],
+    )

@@ -28,10 +28,20 @@ from __future__ import annotations
 from functools import cached_property
 from typing import NamedTuple
 
-from ..core.report import Report
 from ..core.errors import ParameterError
-from .parts import (CheckedPart, MosaicPart, check_inlay, checked_parts, mosaic_parts, part_kinds, prepare_print,
-                    relief_parts, splits_fused, stack_stats)
+from ..core.report import Report
+from .parts import (
+    CheckedPart,
+    MosaicPart,
+    check_inlay,
+    checked_parts,
+    mosaic_parts,
+    part_kinds,
+    prepare_print,
+    relief_parts,
+    splits_fused,
+    stack_stats,
+)
 
 
 class Material(NamedTuple):
@@ -73,8 +83,20 @@ class PrintModel:
     Made by :func:`print_model`; see the module text.
     """
 
-    def __init__(self, *, profile, stack, region, outline, report: Report, dips=None, inlay: bool = False,
-                 colours=None, mosaic=(), arc_radii_mm=()):
+    def __init__(
+        self,
+        *,
+        profile,
+        stack,
+        region,
+        outline,
+        report: Report,
+        dips=None,
+        inlay: bool = False,
+        colours=None,
+        mosaic=(),
+        arc_radii_mm=(),
+    ):
         self.profile = profile
         self.stack = stack
         self.region = region
@@ -103,8 +125,10 @@ class PrintModel:
             specs = self.mosaic or (MosaicPart("body", True, True, ()),)
             checked = mosaic_parts(self.region, self.outline, self.stack, specs)
             colour = {s.name: s.colour for s in specs}
-            return {name: PrintPart(name, k + 1, colour[name].linear if colour[name] is not None else OTHER.colour,
-                                    mesh) for k, (name, mesh) in enumerate(checked.items())}
+            return {
+                name: PrintPart(name, k + 1, colour[name].linear if colour[name] is not None else OTHER.colour, mesh)
+                for k, (name, mesh) in enumerate(checked.items())
+            }
         if splits_fused(self.stack, False, self.inlay, self.dips):
             checked = relief_parts(self.fused, self.stack)  # one meshing for the STL and the 3MF
         else:
@@ -154,17 +178,35 @@ class PrintModel:
         """``(brep, mesh volume, solids)``: the B-rep of the fused body (:mod:`.brep`), for STEP."""
         from .brep import brep_of_part
 
-        return brep_of_part(self.fused, self.stack, self.dips, tolerance_mm=self.profile.tolerance_mm,
-                            radii=self.arc_radii_mm)
+        return brep_of_part(
+            self.fused, self.stack, self.dips, tolerance_mm=self.profile.tolerance_mm, radii=self.arc_radii_mm
+        )
 
     def stats(self) -> dict:
         """The stack's style and heights, for a file's report."""
         return stack_stats(self.stack)
 
 
-def print_model(region, outline, *, profile, style=None, base_mm=None, relief_mm=None, pierced_mm=None,
-                deboss_mm=None, mosaic_inset_mm=None, stroke=None, fill_small_holes: bool = False,
-                inlay: bool = False, dips=None, colours=None, mosaic=(), path: str = "", fmt: str = "") -> PrintModel:
+def print_model(
+    region,
+    outline,
+    *,
+    profile,
+    style=None,
+    base_mm=None,
+    relief_mm=None,
+    pierced_mm=None,
+    deboss_mm=None,
+    mosaic_inset_mm=None,
+    stroke=None,
+    fill_small_holes: bool = False,
+    inlay: bool = False,
+    dips=None,
+    colours=None,
+    mosaic=(),
+    path: str = "",
+    fmt: str = "",
+) -> PrintModel:
     """Validate, make the region to print and run the printability checks: the tile's :class:`PrintModel`.
 
     Parameters as :func:`~fabtiles.export.stl.write_stl`; ``inlay`` (deboss only) adds
@@ -175,18 +217,42 @@ def print_model(region, outline, *, profile, style=None, base_mm=None, relief_mm
     the plate, the bands and which faces. No mesh is built here: the model
     makes each on first use. A strict profile with findings raises.
     """
-    heights = dict(base_mm=base_mm, relief_mm=relief_mm, pierced_mm=pierced_mm, deboss_mm=deboss_mm,
-                   mosaic_inset_mm=mosaic_inset_mm)
-    profile, stack, report, region = prepare_print(region, outline, profile, style, heights, stroke,
-                                                   fill_small_holes=fill_small_holes, flatten=dips is None,
-                                                   path=path, fmt=fmt)
+    heights = dict(
+        base_mm=base_mm,
+        relief_mm=relief_mm,
+        pierced_mm=pierced_mm,
+        deboss_mm=deboss_mm,
+        mosaic_inset_mm=mosaic_inset_mm,
+    )
+    profile, stack, report, region = prepare_print(
+        region,
+        outline,
+        profile,
+        style,
+        heights,
+        stroke,
+        fill_small_holes=fill_small_holes,
+        flatten=dips is None,
+        path=path,
+        fmt=fmt,
+    )
     check_inlay(stack, inlay)
     if mosaic and stack.style != "mosaic":
         raise ParameterError(f"mosaic parts need style='mosaic', got style={stack.style!r}", param="style")
     # the strokes' round joins have half the stroke's radius (the STEP's cylinders find them by it)
     radii = () if stroke is None else (float(stroke) / 2,)
-    return PrintModel(profile=profile, stack=stack, region=region, outline=outline, report=report, dips=dips,
-                      inlay=inlay, colours=colours, mosaic=mosaic, arc_radii_mm=radii)
+    return PrintModel(
+        profile=profile,
+        stack=stack,
+        region=region,
+        outline=outline,
+        report=report,
+        dips=dips,
+        inlay=inlay,
+        colours=colours,
+        mosaic=mosaic,
+        arc_radii_mm=radii,
+    )
 
 
 def _slug(name: str) -> str:

@@ -19,26 +19,39 @@ import os
 
 from fastapi import FastAPI
 
-from ..machines import limits as _limits
 from ..core.errors import FabtilesError
+from ..machines import limits as _limits
 from .building import error_response, fabrication_checks, field_of_param, tile_from_dict
 from .routes import catalogue, nest, pages, tile
 from .routes.pages import STATIC
 from .routes.tile import MEDIA_TYPES
 
-__all__ = ["MEDIA_TYPES", "STATIC", "create_app", "fabrication_checks", "field_of_param", "local_server", "serve",
-           "tile_from_dict"]
+__all__ = [
+    "MEDIA_TYPES",
+    "STATIC",
+    "create_app",
+    "fabrication_checks",
+    "field_of_param",
+    "local_server",
+    "serve",
+    "tile_from_dict",
+]
 
 
 def create_app(*, limits: _limits.Limits | None = None) -> FastAPI:
     """Build the FastAPI application (see ``fabtiles serve``) with ``limits`` (default: the web's)."""
     limits = limits or _limits.WEB_LIMITS
     # the API's pages under /api, and no others: no ReDoc copy, no OAuth (the app has no login)
-    app = FastAPI(title="fabtiles", docs_url="/api/docs", openapi_url="/api/openapi.json", redoc_url=None,
-                  swagger_ui_oauth2_redirect_url=None)
+    app = FastAPI(
+        title="fabtiles",
+        docs_url="/api/docs",
+        openapi_url="/api/openapi.json",
+        redoc_url=None,
+        swagger_ui_oauth2_redirect_url=None,
+    )
 
     @app.exception_handler(FabtilesError)
-    async def fabtiles_error(request, exc):  # noqa: ARG001
+    async def fabtiles_error(request, exc):
         return error_response(exc)
 
     app.include_router(pages.router())

@@ -16,7 +16,6 @@ from fastapi.responses import JSONResponse
 from ..machines import limits as _limits
 from .params import DEFAULTS, FIELDS, design_from_query
 
-
 SOURCE = "query"
 """What a design error of the web names as its source; :func:`user_message` takes it out again."""
 
@@ -36,8 +35,8 @@ def design_name(design: dict) -> str:
 
 def tile_from_dict(design: dict, *, limits: _limits.Limits):
     """Validate a design dictionary and build its tile (no geometry yet) within the work limits."""
-    from ..making import prepare_tile
     from ..designs.design_file import design_from_dict
+    from ..making import prepare_tile
 
     spec = design_from_dict(design, name=design_name(design), source=SOURCE)
     return spec, prepare_tile(spec, limits=limits)
@@ -68,20 +67,38 @@ def fabrication_checks(tile, spec) -> dict:
     from ..making.checks import check_design
 
     result = check_design(spec, tile, job=True)
-    findings = [{"where": where, "code": f.code, "message": f.message, "count": f.count, "worst": f.worst,
-                 "limit": f.limit, "unit": f.unit} for where, f in result.findings()]
+    findings = [
+        {
+            "where": where,
+            "code": f.code,
+            "message": f.message,
+            "count": f.count,
+            "worst": f.worst,
+            "limit": f.limit,
+            "unit": f.unit,
+        }
+        for where, f in result.findings()
+    ]
     region = tile.region()
     holes = sum(len(p.interiors) for p in getattr(region, "geoms", [region]))
     too_small = [f"{result.filled_holes:,} too small to cut"] if result.filled_holes else []
     too_small += [f"{result.print_filled_holes:,} too small to print"] if result.print_filled_holes else []
     filled = f" ({' and '.join(too_small)}, filled)" if too_small else ""
-    summary = (f"{len(tile.segments()):,} segments, material {region.area:,.0f} mm², {holes:,} holes{filled}; "
-               f"{len(findings)} finding{'s' if len(findings) != 1 else ''}")
+    summary = (
+        f"{len(tile.segments()):,} segments, material {region.area:,.0f} mm², {holes:,} holes{filled}; "
+        f"{len(findings)} finding{'s' if len(findings) != 1 else ''}"
+    )
     job = result.job.as_stats() if result.job is not None else None
     material = result.filament.as_stats() if result.filament is not None else None
-    return {"findings": findings, "summary": summary, "filled_holes": result.filled_holes,
-            "print_filled_holes": result.print_filled_holes, "job": job, "material": material,
-            "cutter": result.cutter}
+    return {
+        "findings": findings,
+        "summary": summary,
+        "filled_holes": result.filled_holes,
+        "print_filled_holes": result.print_filled_holes,
+        "job": job,
+        "material": material,
+        "cutter": result.cutter,
+    }
 
 
 def field_of_param(param: str | None) -> str | None:
@@ -139,17 +156,16 @@ def user_message(exc: Exception, field: str | None) -> str:
     text = str(exc).removeprefix(f"{SOURCE}: ")
     where = _WHERE.match(text)
     if where:
-        text = text[where.end():]
+        text = text[where.end() :]
         if where["sub"] and field:  # the gap motif's or a polygon kind's: the parameter names the key
             name = field.removeprefix("gap_")
-            text = (field + text[len(name):] if re.match(rf"{re.escape(name)}[ \[]", text)
-                    else f"{field}: {text}")
+            text = field + text[len(name) :] if re.match(rf"{re.escape(name)}[ \[]", text) else f"{field}: {text}"
     letter = field.removeprefix("face_") if field and field.startswith("face_") else None
     if letter and text.startswith(f"{letter} "):  # a face class's colour: its parameter names it
-        text = f"{field}{text[len(letter):]}"
+        text = f"{field}{text[len(letter) :]}"
     for size, name in _SIZE.items():
         if text.startswith(size):
-            text = name + text[len(size):]
+            text = name + text[len(size) :]
     return text
 
 

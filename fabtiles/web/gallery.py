@@ -32,14 +32,25 @@ from ..pattern.presets import PRESET_NOTES, PRESETS
 from ..pattern.tilings import NAMES, TILINGS
 
 # preset -> the palette its gallery entry is coloured in (by shape): each palette shown at least once
-_PRESET_PALETTES = {"table1-part1": "zellige", "table1-part2": "iznik", "table2-left": "mamluk",
-                    "table2-right": "alhambra", "table3-1": "haft-rangi", "table3-2": "iznik", "table3-3": "zellige"}
+_PRESET_PALETTES = {
+    "table1-part1": "zellige",
+    "table1-part2": "iznik",
+    "table2-left": "mamluk",
+    "table2-right": "alhambra",
+    "table3-1": "haft-rangi",
+    "table3-2": "iznik",
+    "table3-3": "zellige",
+}
 
 # preset -> packing radius and stroke (mm) where it differs from 15 and 1: each entry opens with no finding
 # on the default profiles (a stroke of 1 leaves bridges under 1 mm where these presets' bands meet at a
 # sharp angle; table2-left's long thin points need a smaller packing as well)
-_PRESET_TILES = {"table1-part2": ("15", 1.5), "table2-left": ("10", 2), "table2-right": ("15", 1.5),
-                 "table3-2": ("15", 1.5)}
+_PRESET_TILES = {
+    "table1-part2": ("15", 1.5),
+    "table2-left": ("10", 2),
+    "table2-right": ("15", 1.5),
+    "table3-2": ("15", 1.5),
+}
 
 _GAP_STAR: dict[str, Any] = {"n": 6, "radii": (0.5, 1)}  # a six-point star of radii 0.5 and 1, the tilings' small motif
 
@@ -91,30 +102,61 @@ def entries() -> tuple[Entry, ...]:
     out = []
     for name in PRESETS:
         radius, stroke = _PRESET_TILES.get(name, ("15", 1))
-        out.append(Entry(name, f"Preset {name}", PRESET_NOTES[name] or "the paper's parameters, as printed",
-                         {"preset": name, "packing": "hex", "radius": radius, **_tile_query(stroke),
-                          "colour_by": "shape", "palette": _PRESET_PALETTES[name]}))
+        out.append(
+            Entry(
+                name,
+                f"Preset {name}",
+                PRESET_NOTES[name] or "the paper's parameters, as printed",
+                {
+                    "preset": name,
+                    "packing": "hex",
+                    "radius": radius,
+                    **_tile_query(stroke),
+                    "colour_by": "shape",
+                    "palette": _PRESET_PALETTES[name],
+                },
+            )
+        )
     for tiling, (edge, motifs, main, gap_n, stroke) in _TILINGS.items():
         query = {"packing": "archimedean", "tiling": tiling, "edge": f"{edge:g}"}
         if main is None:
             query["preset"] = "table3-3"  # not shown: every polygon kind has its own preset
         else:
-            query.update(n=str(main["n"]), radii=",".join(f"{r:g}" for r in main["radii"]), alpha="0", spr="0",
-                         special="none", rotation="0")
+            query.update(
+                n=str(main["n"]),
+                radii=",".join(f"{r:g}" for r in main["radii"]),
+                alpha="0",
+                spr="0",
+                special="none",
+                rotation="0",
+            )
         query.update({f"motif_{p}": name for p, name in motifs.items()})
         if gap_n is not None:
             query.update(gap_n=str(gap_n), gap_radii="0.5,1")
-        out.append(Entry(tiling, f"Tiling {tiling}", f"the {NAMES[tiling]} tiling", {**query, **_tile_query(stroke)},
-                         "tiling"))
+        out.append(
+            Entry(tiling, f"Tiling {tiling}", f"the {NAMES[tiling]} tiling", {**query, **_tile_query(stroke)}, "tiling")
+        )
     for tiling, (angle, gap) in _HANKIN.items():
-        query = {"preset": "table3-3", "packing": "archimedean", "tiling": tiling, "edge": "14", "method": "hankin",
-                 "contact_angle": f"{angle:g}"}
+        query = {
+            "preset": "table3-3",
+            "packing": "archimedean",
+            "tiling": tiling,
+            "edge": "14",
+            "method": "hankin",
+            "contact_angle": f"{angle:g}",
+        }
         if gap:
             query["contact_gap"] = f"{gap:g}"
         gap_words = f", {gap:g} mm apart" if gap else ""
-        out.append(Entry(f"hankin-{tiling}", f"Hankin {tiling}",
-                         f"the {NAMES[tiling]} tiling by Hankin's polygons in contact, rays at {angle:g} degrees"
-                         f"{gap_words}", {**query, **_tile_query(1)}, "hankin"))
+        out.append(
+            Entry(
+                f"hankin-{tiling}",
+                f"Hankin {tiling}",
+                f"the {NAMES[tiling]} tiling by Hankin's polygons in contact, rays at {angle:g} degrees{gap_words}",
+                {**query, **_tile_query(1)},
+                "hankin",
+            )
+        )
     assert set(_TILINGS) == set(TILINGS), "a tiling is missing from the gallery"
     assert set(_PRESET_PALETTES) == set(PRESETS), "a preset has no palette in the gallery"
     return tuple(out)
@@ -125,8 +167,9 @@ def entry(key: str) -> Entry:
     for e in entries():
         if e.key == key:
             return e
-    raise ParameterError(f"{key!r} is not a gallery entry, must be one of: {', '.join(e.key for e in entries())}",
-                         param="key")
+    raise ParameterError(
+        f"{key!r} is not a gallery entry, must be one of: {', '.join(e.key for e in entries())}", param="key"
+    )
 
 
 @functools.lru_cache(maxsize=64)

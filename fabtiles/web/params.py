@@ -156,9 +156,7 @@ def design_from_query(query) -> dict:
     motifs: dict = {}  # packing=archimedean: a preset per polygon kind (motif_8=table3-3)
     for key, raw in query.items():
         if key not in FIELDS:
-            raise QueryError(
-                f"{key!r} is not a valid parameter, must be one of: {', '.join(FIELDS)}", key
-            )
+            raise QueryError(f"{key!r} is not a valid parameter, must be one of: {', '.join(FIELDS)}", key)
         section, name, parse = FIELDS[key]
         value = parse(key, raw)
         if section == "motifs":
@@ -180,13 +178,17 @@ def design_from_query(query) -> dict:
     if design["packing"].get("kind", "hex") == "none":
         if gap or motifs or len(design["packing"]) > 1:
             extra = sorted(k for k in query if FIELDS[k][0] in ("packing", "gap_motif", "motifs") and k != "packing")
-            raise QueryError(f"{extra[0]} has no meaning with packing=none; remove it or choose packing=hex or square", extra[0])
+            raise QueryError(
+                f"{extra[0]} has no meaning with packing=none; remove it or choose packing=hex or square", extra[0]
+            )
         del design["packing"]
     if motifs and "packing" in design:
         if design["packing"].get("kind") != "archimedean":
             first = f"motif_{next(iter(motifs))}"
-            raise QueryError(f"{first} is a motif per polygon kind of packing=archimedean; remove it or "
-                             f"choose packing=archimedean", first)
+            raise QueryError(
+                f"{first} is a motif per polygon kind of packing=archimedean; remove it or choose packing=archimedean",
+                first,
+            )
         design["packing"]["motifs"] = motifs
     if "packing" in design and gap:
         if "preset" not in gap:  # one of n / radii alone: the other from the default gap motif

@@ -16,8 +16,16 @@ from .params import FIELDS
 
 
 def _key_json(k: _schema.Key, widget: _schema.Widget | None) -> dict:
-    entry = {"key": k.path, "type": k.type, "unit": k.unit, "help": k.help, "default": k.default,
-             "range": asdict(k.range) if k.range is not None else None, "widget": None, "choices": None}
+    entry = {
+        "key": k.path,
+        "type": k.type,
+        "unit": k.unit,
+        "help": k.help,
+        "default": k.default,
+        "range": asdict(k.range) if k.range is not None else None,
+        "widget": None,
+        "choices": None,
+    }
     if widget is not None:
         entry["widget"] = {n: v for n, v in asdict(widget).items() if n not in ("labels", "extra")}
     if k.type == "choice" and k.choices is not None:

@@ -57,8 +57,7 @@ def installed(folder: Path | None = None) -> bool:
     """Whether every module of the view is in ``folder`` (default :data:`VENDOR`) at the pinned version."""
     folder = VENDOR if folder is None else folder
     stamp = folder / "VERSION"
-    return stamp.is_file() and stamp.read_text().split()[0] == VERSION and all(
-        (folder / m).is_file() for m in MODULES)
+    return stamp.is_file() and stamp.read_text().split()[0] == VERSION and all((folder / m).is_file() for m in MODULES)
 
 
 def check_integrity(data: bytes, integrity: str | None = None) -> None:
@@ -76,7 +75,8 @@ def check_integrity(data: bytes, integrity: str | None = None) -> None:
         raise ViewerFilesError(
             f"the three.js tarball's {algorithm} is not npm's integrity for three {VERSION} (a changed or "
             f"truncated download); nothing was installed: fetch it again, or give the tarball of "
-            f"`npm pack three@{VERSION}` with --tarball")
+            f"`npm pack three@{VERSION}` with --tarball"
+        )
 
 
 def download(url: str = TARBALL_URL, *, timeout_s: float = 60.0) -> bytes:
@@ -85,8 +85,10 @@ def download(url: str = TARBALL_URL, *, timeout_s: float = 60.0) -> bytes:
         with urllib.request.urlopen(url, timeout=timeout_s) as response:  # a fixed https URL, never from a request
             return response.read()
     except OSError as exc:
-        raise ViewerFilesError(f"could not download {url} ({exc}); on a machine without the internet, "
-                               f"run `npm pack three@{VERSION}` elsewhere and pass the file with --tarball") from None
+        raise ViewerFilesError(
+            f"could not download {url} ({exc}); on a machine without the internet, "
+            f"run `npm pack three@{VERSION}` elsewhere and pass the file with --tarball"
+        ) from None
 
 
 def install(tarball: bytes | None = None, folder: Path | None = None) -> list[Path]:
@@ -112,7 +114,9 @@ def install(tarball: bytes | None = None, folder: Path | None = None) -> list[Pa
             path.parent.mkdir(parents=True, exist_ok=True)
             atomic_write(path, member.read())
             written.append(path)
-    note = (f"{VERSION} three.js (npm package three, {TARBALL_URL}), MIT licence: see LICENSE.\n"
-            f"Installed by `fabtiles install-viewer`; integrity {INTEGRITY}.\n")
+    note = (
+        f"{VERSION} three.js (npm package three, {TARBALL_URL}), MIT licence: see LICENSE.\n"
+        f"Installed by `fabtiles install-viewer`; integrity {INTEGRITY}.\n"
+    )
     atomic_write(folder / "VERSION", note.encode())
     return [*written, folder / "VERSION"]

@@ -8,19 +8,26 @@ from pathlib import Path
 SAMPLES = Path(__file__).resolve().parents[2] / "samples"
 
 BROKEN = {
-    "bad-n.toml": ('[motif]\nn = 2\nradii = [1, 2]\n[tile]\noutline = "square"\nsize = 50\n',
-                   "[motif] n must be an integer >= 3"),
-    "typo.toml": ('[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsise = 50\n',
-                  "unknown key 'sise' in [tile]"),
+    "bad-n.toml": (
+        '[motif]\nn = 2\nradii = [1, 2]\n[tile]\noutline = "square"\nsize = 50\n',
+        "[motif] n must be an integer >= 3",
+    ),
+    "typo.toml": (
+        '[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsise = 50\n',
+        "unknown key 'sise' in [tile]",
+    ),
     "not-toml.toml": ("[motif\n", "not valid TOML"),
-    "frame.toml": ('[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 20\nframe = 15\n',
-                   "too small for frame 15 mm"),
+    "frame.toml": (
+        '[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 20\nframe = 15\n',
+        "too small for frame 15 mm",
+    ),
 }
 
 
 def run_batch(*args):
-    return subprocess.run([sys.executable, "-m", "fabtiles", "batch", *map(str, args)],
-                          capture_output=True, text=True, timeout=600)
+    return subprocess.run(
+        [sys.executable, "-m", "fabtiles", "batch", *map(str, args)], capture_output=True, text=True, timeout=600
+    )
 
 
 def test_batch_builds_good_designs_and_reports_broken_ones(tmp_path):
@@ -56,17 +63,37 @@ def test_batch_refuses_clashing_names(tmp_path):
 
 
 def test_batch_prints_one_line_per_design_and_the_findings_with_verbose(tmp_path):
-    args = (SAMPLES / "table3-3.toml", SAMPLES / "rosette.toml", "-o", tmp_path, "--format", "dxf", "--format", "svg",
-            "--format", "stl", "--set", "output.fill_small_holes=false", "--jobs", "1")
+    args = (
+        SAMPLES / "table3-3.toml",
+        SAMPLES / "rosette.toml",
+        "-o",
+        tmp_path,
+        "--format",
+        "dxf",
+        "--format",
+        "svg",
+        "--format",
+        "stl",
+        "--set",
+        "output.fill_small_holes=false",
+        "--jobs",
+        "1",
+    )
     proc = run_batch(*args)
     assert proc.returncode == 0, proc.stderr
     # one line per design: its files and each machine's findings by code and count, once whatever the formats
     lines = proc.stdout.splitlines()
     assert len(lines) == 3 and lines[2] == "2 of 2 designs built"
-    assert re.fullmatch(rf"ok     {re.escape(str(SAMPLES / 'table3-3.toml'))}: wrote 3 files; "
-                        r"laser: 1 finding \(small_hole [\d,]+\); printer: 1 finding \(small_hole [\d,]+\)", lines[0])
-    assert re.fullmatch(rf"ok     {re.escape(str(SAMPLES / 'rosette.toml'))}: wrote 3 files; "
-                        r"laser: 1 finding \(small_hole [\d,]+\); printer: nothing found", lines[1])
+    assert re.fullmatch(
+        rf"ok     {re.escape(str(SAMPLES / 'table3-3.toml'))}: wrote 3 files; "
+        r"laser: 1 finding \(small_hole [\d,]+\); printer: 1 finding \(small_hole [\d,]+\)",
+        lines[0],
+    )
+    assert re.fullmatch(
+        rf"ok     {re.escape(str(SAMPLES / 'rosette.toml'))}: wrote 3 files; "
+        r"laser: 1 finding \(small_hole [\d,]+\); printer: nothing found",
+        lines[1],
+    )
     proc = run_batch(*args, "-v")  # the same files again: replaced, as fabtiles build says
     assert proc.returncode == 0, proc.stderr
     lines = proc.stdout.splitlines()

@@ -1,7 +1,6 @@
 """``fabtiles build``: outputs, overrides, errors (exit 2, nothing written), refused formats (exit 3),
 golden renders."""
 
-import sys
 from dataclasses import replace
 from pathlib import Path
 
@@ -10,8 +9,8 @@ from click.testing import CliRunner
 from designs import design_toml
 
 from fabtiles import FabtilesError
-from fabtiles.export.formats import FORMATS
 from fabtiles.cli.main import cli
+from fabtiles.export.formats import FORMATS
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
@@ -45,8 +44,18 @@ def test_build_writes_the_svg(design, tmp_path):
 
 def test_set_overrides_and_output_name(design, tmp_path):
     out = tmp_path / "out"
-    result = run("build", design, "-o", out, "--set", "tile.size=[80, 40]", "--set",
-                 "tile.outline=rectangle", "--set", 'output.name="wide"')
+    result = run(
+        "build",
+        design,
+        "-o",
+        out,
+        "--set",
+        "tile.size=[80, 40]",
+        "--set",
+        "tile.outline=rectangle",
+        "--set",
+        'output.name="wide"',
+    )
     assert result.exit_code == 0, result.output
     assert 'width="80.15mm" height="40.15mm"' in (out / "wide.svg").read_text()
 
@@ -62,10 +71,20 @@ def test_set_overrides_and_output_name(design, tmp_path):
         (["--set", "output.tab_mm=-0.5"], r"\[output\] tab_mm must be a number of mm from 0 to 5 "),
         (["--set", "output.tabs_per_part=0"], r"\[output\] tabs_per_part must be an integer >= 1 and <= 64, got 0"),
         (["--set", "output.tab_mm=0.1"], r"tab_mm must be 0 \(no tabs\) or more than the kerf \(0\.15 mm\), got 0\.1"),
-        (["--set", "output.tab_mm=0.5", "--set", 'output.laser_profile="router-6mm-mdf"', "--set", "tile.stroke=5",
-          "--set", "packing.radius=12"],
-         r"tab_mm must be 0 for router profile 'router-6mm-mdf', got 0\.5: a router file holds the part whole and "
-         r"CAM adds the holding tabs"),
+        (
+            [
+                "--set",
+                "output.tab_mm=0.5",
+                "--set",
+                'output.laser_profile="router-6mm-mdf"',
+                "--set",
+                "tile.stroke=5",
+                "--set",
+                "packing.radius=12",
+            ],
+            r"tab_mm must be 0 for router profile 'router-6mm-mdf', got 0\.5: a router file holds the part whole and "
+            r"CAM adds the holding tabs",
+        ),
     ],
 )
 def test_bad_input_exits_2_and_writes_nothing(design, tmp_path, extra, match):
@@ -80,8 +99,9 @@ def test_bad_input_exits_2_and_writes_nothing(design, tmp_path, extra, match):
 
 
 def test_holding_tabs_are_reported(design, tmp_path):
-    result = run("build", design, "-o", tmp_path / "out", "--set", "output.tab_mm=0.5", "--set",
-                 "output.tabs_per_part=3")
+    result = run(
+        "build", design, "-o", tmp_path / "out", "--set", "output.tab_mm=0.5", "--set", "output.tabs_per_part=3"
+    )
     assert result.exit_code == 0, result.output
     assert "holding tabs: 3 tabs of 0.5 mm in 1 part (3 per part) at (" in result.output
     import xml.etree.ElementTree as ET
@@ -127,8 +147,10 @@ def test_a_refused_format_is_named_and_the_others_written_exit_3(design, tmp_pat
     result = run("build", design, "-o", out, "--format", "svg", "--format", "stl")
     assert result.exit_code == 3, result.output
     assert f"replaced {out / 'small.svg'} (svg)" in result.output
-    assert (f"fabtiles: refused {out / 'small.stl'} (stl): mesh is not watertight ({out / 'small.stl'}, from an "
-            f"earlier build, was left as it was)") in result.output
+    assert (
+        f"fabtiles: refused {out / 'small.stl'} (stl): mesh is not watertight ({out / 'small.stl'}, from an "
+        f"earlier build, was left as it was)"
+    ) in result.output
     assert "add --format stl" not in result.output  # rebuilding would not help: it was refused
     assert (out / "small.svg").read_text() != "old" and (out / "small.stl").read_text() == "old"
     assert sorted(p.name for p in out.iterdir()) == ["small.stl", "small.svg"]
@@ -181,14 +203,25 @@ def test_design_heights_reach_the_mesh(design, tmp_path):
 
     from fabtiles.export.stl import read_stl_triangles
 
-    res = run("build", design, "-o", tmp_path, "--format", "stl",
-              "--set", "output.base_mm=3", "--set", "output.relief_mm=0.6")
+    res = run(
+        "build", design, "-o", tmp_path, "--format", "stl", "--set", "output.base_mm=3", "--set", "output.relief_mm=0.6"
+    )
     assert res.exit_code == 0, res.output
     z = read_stl_triangles((tmp_path / "small.stl").read_bytes())[..., 2]
     assert np.unique(z).tolist() == pytest.approx([0.0, 3.0, 3.6])
     # a deboss deeper than the plate: refused, nothing written
-    res = run("build", design, "-o", tmp_path / "d", "--format", "stl", "--set", 'output.print_style="deboss"',
-              "--set", "output.deboss_mm=2.5")
+    res = run(
+        "build",
+        design,
+        "-o",
+        tmp_path / "d",
+        "--format",
+        "stl",
+        "--set",
+        'output.print_style="deboss"',
+        "--set",
+        "output.deboss_mm=2.5",
+    )
     assert res.exit_code == 2
     assert "deboss_mm must be smaller than base_mm (the plate is 2 mm thick), got 2.5" in res.output
     assert not (tmp_path / "d").exists()
@@ -206,14 +239,28 @@ def test_a_build_says_which_files_it_replaced(design, tmp_path):
 
 
 def test_set_says_what_it_changed(design, tmp_path):
-    result = run("build", design, "-o", tmp_path / "out", "--set", "tile.size=[80,80]", "--set", "tile.stroke=1.0",
-                 "--set", "tile.join=round", "--set", "packing.radius=9")
+    result = run(
+        "build",
+        design,
+        "-o",
+        tmp_path / "out",
+        "--set",
+        "tile.size=[80,80]",
+        "--set",
+        "tile.stroke=1.0",
+        "--set",
+        "tile.join=round",
+        "--set",
+        "packing.radius=9",
+    )
     assert result.exit_code == 0, result.output
     notes = [line for line in result.stderr.splitlines() if line.startswith("fabtiles: note: --set ")]
-    assert notes == ["fabtiles: note: --set tile.size=[80,80] (was 60)",
-                     "fabtiles: note: --set tile.stroke=1.0 (as the file has it)",
-                     'fabtiles: note: --set tile.join=round (not in the file: the default was "miter")',
-                     "fabtiles: note: --set packing.radius=9 (was 8)"]
+    assert notes == [
+        "fabtiles: note: --set tile.size=[80,80] (was 60)",
+        "fabtiles: note: --set tile.stroke=1.0 (as the file has it)",
+        'fabtiles: note: --set tile.join=round (not in the file: the default was "miter")',
+        "fabtiles: note: --set packing.radius=9 (was 8)",
+    ]
     plain = run("build", design, "-o", tmp_path / "plain")
     assert plain.exit_code == 0 and "--set" not in plain.stderr
 
@@ -229,8 +276,10 @@ def test_files_of_other_formats_left_from_an_earlier_build_are_named(tmp_path):
     assert result.exit_code == 0, result.output
     assert "fabtiles: note: --set tile.size=[200,200] (was [150, 150])" in result.stderr
     earlier = ", ".join(str(out / n) for n in ("table3-3-lattice.svg", "table3-3.stl", "table3-3.3mf"))
-    assert (f"fabtiles: note: {earlier} are from an earlier build and were not rewritten (this build wrote dxf); "
-            f"add --format svg --format stl --format 3mf to rebuild them, or delete them") in result.stderr
+    assert (
+        f"fabtiles: note: {earlier} are from an earlier build and were not rewritten (this build wrote dxf); "
+        f"add --format svg --format stl --format 3mf to rebuild them, or delete them"
+    ) in result.stderr
     assert (out / "table3-3.stl").read_text() == "from an earlier build"
     # one file left, and a build of every format it has: no note
     (out / "table3-3.3mf").unlink()
@@ -243,8 +292,8 @@ def test_files_of_other_formats_left_from_an_earlier_build_are_named(tmp_path):
 
 
 def test_build_result_lists_replaced_and_earlier_files(tmp_path):
-    from fabtiles.making import build_design
     from fabtiles.designs.design_file import design_from_text
+    from fabtiles.making import build_design
 
     d = design_from_text(SMALL, name="small")
     first = build_design(d, tmp_path, ["svg", "dxf"])
@@ -257,11 +306,14 @@ def test_build_result_lists_replaced_and_earlier_files(tmp_path):
 
 def test_a_seamless_fit_says_what_it_changed(tmp_path):
     design = tmp_path / "seam.toml"
-    design.write_text('[motif]\npreset = "table3-3"\n[packing]\nkind = "hex"\nradius = 14\nseamless = true\n'
-                      '[tile]\noutline = "rectangle"\nsize = [120, 120]\nframe = 0.0\n[output]\nformats = ["svg"]\n')
-    notes = ["fabtiles: note: packing.seamless: radius 14 mm fitted to 15 mm (4 periods across the 120 mm width)",
-             "fabtiles: note: packing.seamless: tile height 120 mm moved to 103.923 mm (-16.077 mm, 2 whole "
-             "periods up)"]
+    design.write_text(
+        '[motif]\npreset = "table3-3"\n[packing]\nkind = "hex"\nradius = 14\nseamless = true\n'
+        '[tile]\noutline = "rectangle"\nsize = [120, 120]\nframe = 0.0\n[output]\nformats = ["svg"]\n'
+    )
+    notes = [
+        "fabtiles: note: packing.seamless: radius 14 mm fitted to 15 mm (4 periods across the 120 mm width)",
+        "fabtiles: note: packing.seamless: tile height 120 mm moved to 103.923 mm (-16.077 mm, 2 whole periods up)",
+    ]
     result = CliRunner().invoke(cli, ["build", str(design), "-o", str(tmp_path / "out")])
     assert result.exit_code == 0, result.output
     assert result.stderr.splitlines() == notes

@@ -13,8 +13,10 @@ def design(tmp_path):
     return path
 
 
-@pytest.mark.parametrize("name, magic", [("tile.dxf", b"  0\nSECTION"), ("tile.SVG", b"<?xml"),
-                                         ("tile.Stl", b"fabtiles"), ("tile.3mf", b"PK")])
+@pytest.mark.parametrize(
+    "name, magic",
+    [("tile.dxf", b"  0\nSECTION"), ("tile.SVG", b"<?xml"), ("tile.Stl", b"fabtiles"), ("tile.3mf", b"PK")],
+)
 def test_output_file_is_written_in_its_format(design, tmp_path, name, magic):
     out = tmp_path / "sub" / name
     result = run("build", design, "-o", out)
@@ -42,10 +44,13 @@ def test_sheet_to_one_file(design, tmp_path):
     assert sum(e.dxf.layer == "OUTER" for e in ezdxf.readfile(out).modelspace()) == 3
 
 
-@pytest.mark.parametrize("formats, match", [
-    (["--format", "svg"], r"-o .*tile\.dxf writes one \.dxf file, but --format asks for svg"),
-    (["--format", "dxf", "--format", "svg"], r"--format asks for dxf, svg"),
-])
+@pytest.mark.parametrize(
+    "formats, match",
+    [
+        (["--format", "svg"], r"-o .*tile\.dxf writes one \.dxf file, but --format asks for svg"),
+        (["--format", "dxf", "--format", "svg"], r"--format asks for dxf, svg"),
+    ],
+)
 def test_output_file_with_other_formats_is_an_error(design, tmp_path, formats, match):
     import re
 
@@ -83,8 +88,10 @@ def test_a_file_type_fabtiles_does_not_write_is_an_error(design, tmp_path, name)
     result = run("build", design, "-o", out)
     assert result.exit_code == 2 and result.output.count("\n") == 1, result.output
     suffix = name.rsplit(".", 1)[1]
-    assert f"fabtiles does not write .{suffix.lower()} files; name the file with a format's suffix (.dxf, .svg, " \
-           f".lbrn2, .stl, .3mf, .step) or give a folder" in result.output
+    assert (
+        f"fabtiles does not write .{suffix.lower()} files; name the file with a format's suffix (.dxf, .svg, "
+        f".lbrn2, .stl, .3mf, .step) or give a folder" in result.output
+    )
     assert list(tmp_path.iterdir()) == [design]
 
 

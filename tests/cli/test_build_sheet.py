@@ -3,25 +3,25 @@
 from __future__ import annotations
 
 import re
-from dataclasses import replace
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "export"))
-from dxf_helpers import check_laser_dxf, is_closed, read_checked, vertices  # noqa: E402
-from test_build import SMALL as BUILD_SMALL  # noqa: E402  (the same small design)
-from test_build import run  # noqa: E402
+from dxf_helpers import check_laser_dxf, is_closed, read_checked, vertices
+from test_build import SMALL as BUILD_SMALL
+from test_build import run
 
-import fabtiles  # noqa: E402
-from fabtiles import FabtilesError  # noqa: E402
-from fabtiles.machines.profiles import load_profile  # noqa: E402
-from fabtiles.making import BuildOptions, layout_tile_sheet  # noqa: E402
-from fabtiles.export.formats import FORMATS  # noqa: E402
-from fabtiles.designs.design_file import load_design  # noqa: E402
-from fabtiles.geometry.narrow import fill_small_holes  # noqa: E402
+import fabtiles
+from fabtiles import FabtilesError
+from fabtiles.designs.design_file import load_design
+from fabtiles.export.formats import FORMATS
+from fabtiles.geometry.narrow import fill_small_holes
+from fabtiles.machines.profiles import load_profile
+from fabtiles.making import BuildOptions, layout_tile_sheet
 
 ROOT = Path(__file__).resolve().parents[2]
 PLY = load_profile("laser-3mm-plywood")
@@ -90,8 +90,9 @@ def test_sheet_fills_the_bed_and_skips_print_formats(tmp_path):
 
 def test_score_mode_sheet_and_gap(design, tmp_path):
     out = tmp_path / "out"
-    result = run("build", design, "-o", out, "--copies", 2, "--gap", 10, "--format", "dxf",
-                 "--set", "output.laser_mode=score")
+    result = run(
+        "build", design, "-o", out, "--copies", 2, "--gap", 10, "--format", "dxf", "--set", "output.laser_mode=score"
+    )
     assert result.exit_code == 0, result.output
     ents = list(read_checked(out / "small-sheet.dxf").modelspace())
     outer = sorted((vertices(e) for e in ents if e.dxf.layer == OUTER), key=lambda v: v[:, 0].min())  # in cut order
@@ -103,8 +104,10 @@ def test_score_mode_sheet_and_gap(design, tmp_path):
 
 def test_a_bed_sized_tile_is_one_copy(tmp_path):
     big = tmp_path / "big.toml"
-    big.write_text('[motif]\npreset = "table2-left"\n[tile]\noutline = "rectangle"\nsize = [600, 400]\n'
-                   'frame = 5\nstroke = 1.5\n[output]\nformats = ["dxf"]\n')
+    big.write_text(
+        '[motif]\npreset = "table2-left"\n[tile]\noutline = "rectangle"\nsize = [600, 400]\n'
+        'frame = 5\nstroke = 1.5\n[output]\nformats = ["dxf"]\n'
+    )
     result = run("build", big, "-o", tmp_path / "out", "--sheet")
     assert result.exit_code == 0, result.output
     doc = read_checked(tmp_path / "out" / "big-sheet.dxf")
@@ -133,8 +136,11 @@ def test_help_documents_sheets():
         (["--copies", 55], r"55 tiles do not fit on the 600 x 400 mm bed of laser profile 'laser-3mm-plywood'"),
         (["--copies", 0], r"copies must be an integer"),
         (["--sheet", "--gap", 0.1], r"gap_mm must be a finite number > 0.15"),
-        (["--sheet", "--format", "stl"], r"a sheet is laid out for the laser formats \(dxf, svg\) only, "
-                                         r"but the formats asked for are: stl; add --format dxf"),
+        (
+            ["--sheet", "--format", "stl"],
+            r"a sheet is laid out for the laser formats \(dxf, svg\) only, "
+            r"but the formats asked for are: stl; add --format dxf",
+        ),
         (["--sheet", "--set", "tile.size=700"], r"not even one tile fits on the 600 x 400 mm bed"),
         (["--copies", 2, "--set", 'output.laser_profile="fdm-0.4mm"'], r"printer profile, but a laser profile"),
     ],
@@ -163,14 +169,17 @@ def test_a_refused_sheet_format_keeps_its_existing_file(design, tmp_path, monkey
             if fmt == "svg":
                 raise FabtilesError("disk on fire")
             return b"new"
+
         return write
 
     for fmt in ("dxf", "svg"):
         monkeypatch.setitem(FORMATS, fmt, replace(FORMATS[fmt], write=boom(fmt)))
     result = run("build", design, "-o", out, "--copies", 2, "--format", "dxf", "--format", "svg")
     assert result.exit_code == 3
-    assert result.stderr == (f"fabtiles: refused {out / 'small-sheet.svg'} (svg): disk on fire "
-                             f"({out / 'small-sheet.svg'}, from an earlier build, was left as it was)\n")
+    assert result.stderr == (
+        f"fabtiles: refused {out / 'small-sheet.svg'} (svg): disk on fire "
+        f"({out / 'small-sheet.svg'}, from an earlier build, was left as it was)\n"
+    )
     assert calls == ["dxf", "svg"]
     assert sorted(p.name for p in out.iterdir()) == ["small-sheet.dxf", "small-sheet.svg"]
     assert (out / "small-sheet.svg").read_text() == "old" and (out / "small-sheet.dxf").read_text() == "new"

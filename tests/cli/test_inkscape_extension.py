@@ -42,8 +42,14 @@ def as_inkscape_runs_it(installed, tmp_path, *args):
     blank = tmp_path / "blank.svg"
     blank.write_text(BLANK)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(INKSCAPE_EXTENSIONS), str(ROOT)]))
-    return subprocess.run([python, str(installed / "fabtiles_render.py"), *args, str(blank)], capture_output=True,
-                          text=True, env=env, cwd=installed, timeout=300)
+    return subprocess.run(
+        [python, str(installed / "fabtiles_render.py"), *args, str(blank)],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=installed,
+        timeout=300,
+    )
 
 
 def test_install_copies_the_pair_and_records_this_python(installed):
@@ -72,16 +78,19 @@ def test_the_readme_sample_at_true_size_in_named_layers(installed, tmp_path):
     assert [g.get(INK + "label") for g in layers] == ["INNER", "OUTER"]  # the laser SVG's layers
     # inkex reads it back
     python = inkscape_python()
-    check = ("import inkex, sys; svg = inkex.load_svg(sys.argv[1]).getroot(); "
-             "print([g.label for g in svg.descendants().filter(inkex.Layer)])")
+    check = (
+        "import inkex, sys; svg = inkex.load_svg(sys.argv[1]).getroot(); "
+        "print([g.label for g in svg.descendants().filter(inkex.Layer)])"
+    )
     env = dict(os.environ, PYTHONPATH=str(INKSCAPE_EXTENSIONS))
     assert run([python, "-c", check, out], env=env).stdout.strip() == "['INNER', 'OUTER']"
     # Inkscape measures it: the outer cut is the 150 mm tile plus the kerf (0.15 mm), its hairline included
     inkscape = program("inkscape", "apt-get install inkscape")
     rows = run([inkscape, "--query-all", out], env=dict(os.environ, HOME=str(tmp_path))).stdout.splitlines()
     ids = {g.get("id"): g.get(INK + "label") for g in layers}
-    boxes = {ids[r.split(",")[0]]: [float(v) / PX_PER_MM for v in r.split(",")[1:]] for r in rows
-             if r.split(",")[0] in ids}
+    boxes = {
+        ids[r.split(",")[0]]: [float(v) / PX_PER_MM for v in r.split(",")[1:]] for r in rows if r.split(",")[0] in ids
+    }
     x, y, w, h = boxes["OUTER"]
     assert (x, y) == pytest.approx((-0.0125, -0.0125), abs=0.01)
     assert (w, h) == pytest.approx((150.15 + 0.025, 150.15 + 0.025), abs=0.01)

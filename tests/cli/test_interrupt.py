@@ -7,15 +7,18 @@ import sys
 import time
 
 import pytest
-from dxf_helpers import assert_same_file
 from designs import design_toml
+from dxf_helpers import assert_same_file
 
 DESIGN = design_toml(outline="rectangle", size=[300, 200], frame=5, output={"formats": ["dxf", "svg", "stl"]})
 
 
 def _start(design, out):
-    return subprocess.Popen([sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(out)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    return subprocess.Popen(
+        [sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
 
 
 @pytest.mark.slow

@@ -12,8 +12,9 @@ from designs import design_toml
 from fabtiles.cli.main import cli
 
 DESIGN = design_toml(stroke=None, output={"formats": ["dxf", "lbrn2"], "fill_small_holes": True})
-JOB = re.compile(r"^  laser job: ([0-9.]+) m of cut, ([0-9,]+) pierces?, (?:([0-9.]+) cm\^2 engraved, )?about ([0-9,]+) min$",
-                 re.M)
+JOB = re.compile(
+    r"^  laser job: ([0-9.]+) m of cut, ([0-9,]+) pierces?, (?:([0-9.]+) cm\^2 engraved, )?about ([0-9,]+) min$", re.M
+)
 
 
 def run(*args):

@@ -12,15 +12,15 @@ import shapely
 from click.testing import CliRunner
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "export"))
-from dxf_helpers import bulges, raw_vertices, vertices  # noqa: E402
-from test_laser_programs import burns, meerk40t  # noqa: E402
+from dxf_helpers import bulges, raw_vertices, vertices
+from test_laser_programs import burns, meerk40t
 
-from fabtiles import FabtilesError, ParameterError  # noqa: E402
-from fabtiles.machines.profiles import load_profile  # noqa: E402
-from fabtiles.making import BuildOptions, Models, prepare_tile  # noqa: E402
-from fabtiles.making.nesting import nest_designs, part_outline  # noqa: E402
-from fabtiles.cli.main import cli  # noqa: E402
-from fabtiles.designs.design_file import load_design  # noqa: E402
+from fabtiles import FabtilesError, ParameterError
+from fabtiles.cli.main import cli
+from fabtiles.designs.design_file import load_design
+from fabtiles.machines.profiles import load_profile
+from fabtiles.making import BuildOptions, Models, prepare_tile
+from fabtiles.making.nesting import nest_designs, part_outline
 
 PLY = load_profile("laser-3mm-plywood")
 OUTER = PLY.layers.outer_cut.name
@@ -68,8 +68,15 @@ def bulged(path, layer):
 def test_nested_files_hold_every_part_once_moved_rigidly_inside_and_apart(designs, tmp_path):
     out = tmp_path / "out"
     gap = 1.15
-    result = nest_designs([(load_design(designs[0]), 5), (load_design(designs[1]), None)], out, ("dxf", "svg"),
-                          count=4, sheet_mm=(150, 100), gap_mm=gap, time_s=1)
+    result = nest_designs(
+        [(load_design(designs[0]), 5), (load_design(designs[1]), None)],
+        out,
+        ("dxf", "svg"),
+        count=4,
+        sheet_mm=(150, 100),
+        gap_mm=gap,
+        time_s=1,
+    )
     n = result.nesting
     assert len(n.placements) == 9 and len({p.id for p in n.placements}) == 9
     assert n.sheets >= 2  # 9 tiles of 40 mm do not go on one 150 x 100 mm sheet
@@ -86,7 +93,7 @@ def test_nested_files_hold_every_part_once_moved_rigidly_inside_and_apart(design
         on = n.on_sheet(k)
         assert len(outer) == len(on)
         for i, a in enumerate(outer):  # no two parts' cut paths closer than the gap (nor overlapping)
-            for b in outer[i + 1:]:
+            for b in outer[i + 1 :]:
                 assert shapely.distance(a, b) >= gap - 1e-6
         # each placed part is its source tile's cut moved rigidly: its outer path in the file (vertices and
         # arcs as written), turned and moved back, is the tile's own (vertices within 1 um, the same arcs);
@@ -112,8 +119,27 @@ def test_nested_files_hold_every_part_once_moved_rigidly_inside_and_apart(design
 
 def test_the_command_writes_a_file_per_sheet_and_reports_each(designs, tmp_path):
     out = tmp_path / "out"
-    result = run("nest", f"{designs[0]}:3", designs[1], "--count", "2", "-o", out, "--sheet", "100x100",
-                 "--time", "1", "--format", "lbrn2", "--format", "dxf", "--name", "kit", "--rotate", "180")
+    result = run(
+        "nest",
+        f"{designs[0]}:3",
+        designs[1],
+        "--count",
+        "2",
+        "-o",
+        out,
+        "--sheet",
+        "100x100",
+        "--time",
+        "1",
+        "--format",
+        "lbrn2",
+        "--format",
+        "dxf",
+        "--name",
+        "kit",
+        "--rotate",
+        "180",
+    )
     assert result.exit_code == 0, result.output
     files = sorted(p.name for p in out.iterdir())
     sheets = len(files) // 2
@@ -133,15 +159,18 @@ def test_the_files_are_named_after_the_one_design_or_nest_and_no_bar_off_a_termi
     assert [p.name for p in (tmp_path / "one").iterdir()] == ["circle-sheet-1.dxf"]
 
 
-@pytest.mark.parametrize("args, match", [
-    (["--count", "0"], r"count must be an integer >= 1 and <= 10000, got 0"),
-    (["--gap", "0.1"], r"gap_mm must be >= the cut's width \(0.15 mm.*got 0.1; use --gap 1.15"),
-    (["--time", "0"], r"time_s must be .*> 0, got 0"),
-    (["--sheet", "700x400"], r"the sheet 700 x 400 mm is larger than the 600 x 400 mm bed.*--sheet 600x400"),
-    (["--sheet", "30x30"], r"part 'square#0:1' \(40.15 x 40.15 mm\) does not fit on the 30 x 30 mm sheet"),
-    (["--sheet", "big"], r"expected WIDTHxHEIGHT in mm like 600x400, got 'big'"),
-    (["--rotate", "45"], r"'45' is not one of '90', '180', 'free', 'none'|Invalid value for '--rotate'"),
-])
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (["--count", "0"], r"count must be an integer >= 1 and <= 10000, got 0"),
+        (["--gap", "0.1"], r"gap_mm must be >= the cut's width \(0.15 mm.*got 0.1; use --gap 1.15"),
+        (["--time", "0"], r"time_s must be .*> 0, got 0"),
+        (["--sheet", "700x400"], r"the sheet 700 x 400 mm is larger than the 600 x 400 mm bed.*--sheet 600x400"),
+        (["--sheet", "30x30"], r"part 'square#0:1' \(40.15 x 40.15 mm\) does not fit on the 30 x 30 mm sheet"),
+        (["--sheet", "big"], r"expected WIDTHxHEIGHT in mm like 600x400, got 'big'"),
+        (["--rotate", "45"], r"'45' is not one of '90', '180', 'free', 'none'|Invalid value for '--rotate'"),
+    ],
+)
 def test_bad_input_is_one_line_exit_2_and_no_file(designs, tmp_path, args, match):
     import re
 
@@ -180,7 +209,9 @@ def test_a_quarter_turn_is_refused_when_the_kerf_differs_along_x_and_y(designs, 
     profile = tmp_path / "aniso.toml"
     profile.write_text(text.replace("kerf_mm = 0.15 ", "kerf_mm = 0.15\nkerf_y_mm = 0.2 "), encoding="utf-8")
     d = load_design(designs[0], overrides=[f'output.laser_profile="{profile}"'])
-    with pytest.raises(ParameterError, match=r"kerf along Y unlike along X.*use --rotate 180 or --rotate none, got '90'"):
+    with pytest.raises(
+        ParameterError, match=r"kerf along Y unlike along X.*use --rotate 180 or --rotate none, got '90'"
+    ):
         nest_designs([(d, 1)], tmp_path / "out")
     nest_designs([(d, 2)], tmp_path / "out", rotations="180", time_s=1)
     assert (tmp_path / "out" / "square-sheet-1.dxf").is_file()
@@ -222,8 +253,9 @@ def test_the_public_nest_takes_files_and_designs(tmp_path):
 
     small = tmp_path / "a.toml"
     small.write_text('[motif]\npreset = "table3-3"\n[tile]\noutline = "circle"\nsize = 40\nframe = 3\n')
-    other = design_from_text('[motif]\npreset = "table3-1"\n[tile]\noutline = "square"\nsize = 40\nframe = 3\n',
-                             name="b")
+    other = design_from_text(
+        '[motif]\npreset = "table3-1"\n[tile]\noutline = "square"\nsize = 40\nframe = 3\n', name="b"
+    )
     result = ft.nest([small, (other, 2)], tmp_path / "out", sheet_mm=(200, 150), time_s=1)
     files = sorted(p.name for p in (tmp_path / "out").iterdir())
     assert files == ["nest-sheet-1.dxf"]  # several designs: named after none of them

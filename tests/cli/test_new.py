@@ -21,8 +21,7 @@ def test_the_starter_builds_as_written_with_no_warning(tmp_path):
     assert result.exit_code == 0, result.output
     assert result.output == f"wrote {design}: build it with fabtiles build {design} -o out/\n"
     text = design.read_text()
-    for section in ("[motif]", "[packing]", "[tile]", "[output]", "laser_profile", "printer_profile",
-                    "# [colour]"):
+    for section in ("[motif]", "[packing]", "[tile]", "[output]", "laser_profile", "printer_profile", "# [colour]"):
         assert section in text
     result = run("build", design, "-o", tmp_path / "out")
     assert result.exit_code == 0, result.output
@@ -55,11 +54,14 @@ def test_an_existing_file_is_kept_unless_force(tmp_path):
     assert "[motif]" in design.read_text()
 
 
-@pytest.mark.parametrize("name, match", [
-    ("t.txt", "the design must be a .toml file, got '{tmp}/t.txt'"),
-    ("missing/t.toml", "the folder '{tmp}/missing' of '{tmp}/missing/t.toml' does not exist"),
-    ("d.toml", "'{tmp}/d.toml' is a folder; give the design's file name"),
-])
+@pytest.mark.parametrize(
+    "name, match",
+    [
+        ("t.txt", "the design must be a .toml file, got '{tmp}/t.txt'"),
+        ("missing/t.toml", "the folder '{tmp}/missing' of '{tmp}/missing/t.toml' does not exist"),
+        ("d.toml", "'{tmp}/d.toml' is a folder; give the design's file name"),
+    ],
+)
 def test_a_bad_path_is_one_line_exit_2(tmp_path, name, match):
     (tmp_path / "d.toml").mkdir()
     result = run("new", f"{tmp_path}/{name}")

@@ -6,9 +6,9 @@ import pytest
 from click.testing import CliRunner
 
 import fabtiles as ft
-from fabtiles.machines.profiles import bundled_profiles, kind_of
 from fabtiles.cli.main import cli
 from fabtiles.designs.design_file import design_from_text, profile_of
+from fabtiles.machines.profiles import bundled_profiles, kind_of
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -27,7 +27,7 @@ def test_list_groups_every_bundled_profile_by_kind_with_its_description():
         (line,) = [line for line in lines if line.split()[:1] == [name]]
         assert ft.load_profile(name).description in line
         # listed under its kind's heading
-        head = [h for h in lines[:lines.index(line)] if h in heads][-1]
+        head = [h for h in lines[: lines.index(line)] if h in heads][-1]
         assert head == f"{kind_of(name)}:"
     assert "fabtiles profile copy NAME" in result.output
 
@@ -63,8 +63,9 @@ def test_copy_writes_a_profile_that_loads_and_says_how_to_use_it(tmp_path):
     assert (ROOT / "profiles" / "laser-3mm-plywood.toml").read_text(encoding="utf-8") in path.read_text()
     # the user edits the copy and a design uses it by path
     path.write_text(path.read_text().replace("kerf_mm = 0.15", "kerf_mm = 0.21"), encoding="utf-8")
-    design = design_from_text(f'[motif]\npreset = "table3-1"\n[tile]\nsize = 40\n[output]\n'
-                              f'laser_profile = "{path.as_posix()}"\n')
+    design = design_from_text(
+        f'[motif]\npreset = "table3-1"\n[tile]\nsize = 40\n[output]\nlaser_profile = "{path.as_posix()}"\n'
+    )
     assert profile_of(design, "laser").kerf_mm == pytest.approx(0.21)
 
 
@@ -88,11 +89,17 @@ def test_copy_refuses_to_overwrite_unless_forced(tmp_path):
     assert ft.load_profile(path).kind == "printer"
 
 
-@pytest.mark.parametrize("args, match", [
-    (["laser-3mm-plywood", "{tmp}/my-laser"], "the copy must be a .toml file"),
-    (["laser-3mm-plywod", "{tmp}/x.toml"], "profile 'laser-3mm-plywod' does not exist (did you mean 'laser-3mm-plywood'?)"),
-    (["laser-3mm-plywood", "{tmp}/no-folder/x.toml/y.toml"], "cannot write"),
-])
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (["laser-3mm-plywood", "{tmp}/my-laser"], "the copy must be a .toml file"),
+        (
+            ["laser-3mm-plywod", "{tmp}/x.toml"],
+            "profile 'laser-3mm-plywod' does not exist (did you mean 'laser-3mm-plywood'?)",
+        ),
+        (["laser-3mm-plywood", "{tmp}/no-folder/x.toml/y.toml"], "cannot write"),
+    ],
+)
 def test_copy_errors_write_nothing(tmp_path, args, match):
     (tmp_path / "no-folder").write_text("a file, not a folder")
     result = run("profile", "copy", *(a.format(tmp=tmp_path) for a in args))

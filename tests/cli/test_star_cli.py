@@ -81,7 +81,8 @@ def test_usage_errors_exit_2(tmp_path):
 def test_real_process_exit_status_and_stderr(tmp_path):
     proc = subprocess.run(
         [sys.executable, "-m", "fabtiles", "star", "--n", "1", "--radii", "1,2", "-o", str(tmp_path / "s.svg")],
-        capture_output=True, text=True,
+        capture_output=True,
+        text=True,
     )
     assert proc.returncode == 2
     assert proc.stderr.strip() == "fabtiles: error: n must be an integer >= 3 and <= 120, got 1"

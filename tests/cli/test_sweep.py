@@ -21,25 +21,58 @@ def design(tmp_path):
 
 def test_sweep_writes_every_variant_the_sheet_and_the_csv(design, tmp_path):
     out = tmp_path / "sweep"
-    res = run("sweep", design, "--vary", "packing.radius=6:10:3", "--vary", "tile.stroke=1.2,20",
-              "--format", "svg", "--format", "dxf", "-o", out, "--jobs", "1")
+    res = run(
+        "sweep",
+        design,
+        "--vary",
+        "packing.radius=6:10:3",
+        "--vary",
+        "tile.stroke=1.2,20",
+        "--format",
+        "svg",
+        "--format",
+        "dxf",
+        "-o",
+        out,
+        "--jobs",
+        "1",
+    )
     assert res.exit_code == 2, res.output  # the stroke of 20 mm is wider than every radius
     built = [f"small-{k:03d}" for k in (1, 3, 5)]
     failed = [f"small-{k:03d}" for k in (2, 4, 6)]
     names = sorted(p.name for p in out.iterdir())
-    assert names == sorted(["index.csv", "index.html"] + [f"{n}{ext}" for n in built
-                                                          for ext in (".svg", ".dxf", ".preview.svg")])
+    assert names == sorted(
+        ["index.csv", "index.html"] + [f"{n}{ext}" for n in built for ext in (".svg", ".dxf", ".preview.svg")]
+    )
     assert "3 of 6 variants built, 3 failed" in res.output
     assert all(f"FAILED {n} (" in res.output for n in failed)
     assert "ok     small-001 (packing.radius=6, tile.stroke=1.2): wrote 2 files" in res.output
-    assert re.search(r"FAILED small-002 \(packing\.radius=6, tile\.stroke=20\): .*tile\.stroke=20: \[tile\] "
-                     r"stroke must be > 0 and <= 6 mm", res.output)
+    assert re.search(
+        r"FAILED small-002 \(packing\.radius=6, tile\.stroke=20\): .*tile\.stroke=20: \[tile\] "
+        r"stroke must be > 0 and <= 6 mm",
+        res.output,
+    )
     # the variant's files are the variant's design, built as `fabtiles build` would
     want = design_from_text(SMALL, name="small", overrides=["packing.radius=8", "tile.stroke=1.2"])
     assert want.packing.radius == 8
     other = tmp_path / "one"
-    assert run("build", design, "-o", other, "--format", "svg", "--set", "packing.radius=8",
-               "--set", "tile.stroke=1.2", "--set", 'output.name="small-003"').exit_code == 0
+    assert (
+        run(
+            "build",
+            design,
+            "-o",
+            other,
+            "--format",
+            "svg",
+            "--set",
+            "packing.radius=8",
+            "--set",
+            "tile.stroke=1.2",
+            "--set",
+            'output.name="small-003"',
+        ).exit_code
+        == 0
+    )
     assert (out / "small-003.svg").read_bytes() == (other / "small-003.svg").read_bytes()
 
     rows = list(csv.DictReader((out / "index.csv").open()))
@@ -60,8 +93,9 @@ def test_sweep_writes_every_variant_the_sheet_and_the_csv(design, tmp_path):
 def test_sweep_lists_findings_in_the_sheet(tmp_path):
     sample = Path(__file__).resolve().parents[2] / "samples" / "table3-3.toml"
     out = tmp_path / "s"
-    res = run("sweep", sample, "--vary", "output.fill_small_holes=true,false", "--format", "dxf", "-o", out,
-              "--jobs", "1")
+    res = run(
+        "sweep", sample, "--vary", "output.fill_small_holes=true,false", "--format", "dxf", "-o", out, "--jobs", "1"
+    )
     assert res.exit_code == 0, res.output
     rows = list(csv.DictReader((out / "index.csv").open()))
     assert [r["findings"] for r in rows] == ["0", "1"] and "small_hole" in rows[1]["details"]
@@ -71,14 +105,15 @@ def test_sweep_lists_findings_in_the_sheet(tmp_path):
 
 def test_the_contact_sheet_shows_each_variants_cut_job_and_filament(design, tmp_path):
     out = tmp_path / "s"
-    res = run("sweep", design, "--vary", "packing.radius=6,8", "--format", "dxf", "--format", "stl", "-o", out,
-              "--jobs", "1")
+    res = run(
+        "sweep", design, "--vary", "packing.radius=6,8", "--format", "dxf", "--format", "stl", "-o", out, "--jobs", "1"
+    )
     assert res.exit_code == 0, res.output
     rows = {r["variant"]: r for r in csv.DictReader((out / "index.csv").open())}
     page = (out / "index.html").read_text()
     for name, row in rows.items():
-        card = page[page.index(f'<figure class="ok" id="{name}">'):]
-        card = card[:card.index("</figure>")]
+        card = page[page.index(f'<figure class="ok" id="{name}">') :]
+        card = card[: card.index("</figure>")]
         # under the picture: the laser job (its time) and the filament, as the CSV has them
         job = re.search(r"<div>laser job: ([\d.]+) m of cut, ([\d,]+) pierces?, about (\d+) min</div>", card)
         assert job, card
@@ -92,15 +127,20 @@ def test_the_contact_sheet_shows_each_variants_cut_job_and_filament(design, tmp_
         assert card.index('class="figures"') > card.index("<img")
 
 
-@pytest.mark.parametrize("args, match", [
-    (["--vary", "tile.sise=1,2"], r"unknown key 'sise' in \[tile\]; did you mean 'size'\?"),
-    (["--vary", "packing.radius=8:1:0"], r"n in a:b:n must be a whole number >= 1, got 0"),
-    (["--vary", "packing.radius=x:1:3"], r"a:b:n needs numbers a and b"),
-    (["--vary", "packing.radius=1:2:101", "--vary", "tile.stroke=0.1:0.2:100"],
-     r"the sweep has 10,100 variants, more than 10,000; pass --yes"),
-    ([], r"a sweep needs at least one --vary"),
-    (["--vary", "tile.stroke=1", "--set", "tile.frame=99"], r"--set tile\.frame=99: \[tile\] tile size"),
-])
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (["--vary", "tile.sise=1,2"], r"unknown key 'sise' in \[tile\]; did you mean 'size'\?"),
+        (["--vary", "packing.radius=8:1:0"], r"n in a:b:n must be a whole number >= 1, got 0"),
+        (["--vary", "packing.radius=x:1:3"], r"a:b:n needs numbers a and b"),
+        (
+            ["--vary", "packing.radius=1:2:101", "--vary", "tile.stroke=0.1:0.2:100"],
+            r"the sweep has 10,100 variants, more than 10,000; pass --yes",
+        ),
+        ([], r"a sweep needs at least one --vary"),
+        (["--vary", "tile.stroke=1", "--set", "tile.frame=99"], r"--set tile\.frame=99: \[tile\] tile size"),
+    ],
+)
 def test_bad_sweeps_exit_2_and_write_nothing(design, tmp_path, args, match):
     out = tmp_path / "out"
     res = run("sweep", design, "-o", out, *args)
@@ -117,9 +157,26 @@ def test_progress_bar_on_a_terminal(design, tmp_path):
     import sys
 
     master, slave = pty.openpty()
-    proc = subprocess.run([sys.executable, "-m", "fabtiles", "sweep", str(design), "--vary", "tile.frame=2,3",
-                           "--format", "svg", "-o", str(tmp_path / "out"), "--jobs", "1"],
-                          stdout=subprocess.PIPE, stderr=slave, timeout=300)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "fabtiles",
+            "sweep",
+            str(design),
+            "--vary",
+            "tile.frame=2,3",
+            "--format",
+            "svg",
+            "-o",
+            str(tmp_path / "out"),
+            "--jobs",
+            "1",
+        ],
+        stdout=subprocess.PIPE,
+        stderr=slave,
+        timeout=300,
+    )
     os.close(slave)
     chunks = []
     while True:
@@ -137,8 +194,18 @@ def test_progress_bar_on_a_terminal(design, tmp_path):
 
 
 def test_jobs_and_scheduler_together_is_a_usage_error(design, tmp_path):
-    res = run("sweep", design, "--vary", "tile.frame=1,2", "-o", tmp_path / "o", "--jobs", "2",
-              "--scheduler", "tcp://127.0.0.1:1")
+    res = run(
+        "sweep",
+        design,
+        "--vary",
+        "tile.frame=1,2",
+        "-o",
+        tmp_path / "o",
+        "--jobs",
+        "2",
+        "--scheduler",
+        "tcp://127.0.0.1:1",
+    )
     assert res.exit_code == 2 and "--jobs sets local processes" in res.output
     assert not (tmp_path / "o").exists()
 
@@ -154,10 +221,14 @@ def test_a_variant_with_formats_refused_is_built_in_part_exit_3(design, tmp_path
 
     monkeypatch.setitem(FORMATS, "stl", replace(FORMATS["stl"], write=refuse))  # --jobs 1: built in this process
     out = tmp_path / "sweep"
-    res = run("sweep", design, "--vary", "packing.radius=6,8", "--format", "svg", "--format", "stl", "-o", out,
-              "--jobs", "1")
+    res = run(
+        "sweep", design, "--vary", "packing.radius=6,8", "--format", "svg", "--format", "stl", "-o", out, "--jobs", "1"
+    )
     assert res.exit_code == 3, res.output
-    assert "part   small-001 (packing.radius=6): wrote 1 file; laser: 1 finding (filled_pattern 465); printer: nothing found; refused stl" in res.output
+    assert (
+        "part   small-001 (packing.radius=6): wrote 1 file; laser: 1 finding (filled_pattern 465); "
+        "printer: nothing found; refused stl" in res.output
+    )
     assert "refused stl: the mesh is bad" in res.output
     assert "0 of 2 variants built, 2 in part (formats refused)" in res.output
     rows = list(csv.DictReader((out / "index.csv").open()))

@@ -43,12 +43,18 @@ def test_build_an_archimedean_design(tmp_path):
     assert (tmp_path / "out" / "t.svg").stat().st_size > 1000
 
 
-@pytest.mark.parametrize("override, match", [
-    ('packing.tiling="3.3.3"', "[packing] tiling '3.3.3' is unknown; did you mean '3.3.4.3.4'? (tilings: 3.3.3.3.3.3, 4.4.4.4"),
-    ("packing.edge=-1", "edge must be a finite number > 0, got -1"),
-    ("packing.motifs.8=table3-3", "motifs key 8 is not a polygon of the tiling 3.4.6.4, must be one of: 3, 4, 6"),
-    ("packing.edge=0.05", "stroke must be > 0 and <= 0.0144338 mm (the packing radius), got 1"),
-])
+@pytest.mark.parametrize(
+    "override, match",
+    [
+        (
+            'packing.tiling="3.3.3"',
+            "[packing] tiling '3.3.3' is unknown; did you mean '3.3.4.3.4'? (tilings: 3.3.3.3.3.3, 4.4.4.4",
+        ),
+        ("packing.edge=-1", "edge must be a finite number > 0, got -1"),
+        ("packing.motifs.8=table3-3", "motifs key 8 is not a polygon of the tiling 3.4.6.4, must be one of: 3, 4, 6"),
+        ("packing.edge=0.05", "stroke must be > 0 and <= 0.0144338 mm (the packing radius), got 1"),
+    ],
+)
 def test_bad_tiling_input_exits_2_and_writes_nothing(tmp_path, override, match):
     path = tmp_path / "t.toml"
     path.write_text(DESIGN, encoding="utf-8")

@@ -11,15 +11,15 @@ import os
 import re
 import subprocess
 import sys
-import tomllib
 from pathlib import Path
 
 import pytest
+import tomllib
 from lxml import etree
 
-from fabtiles.making.plot import plot_drawing
 from fabtiles.designs.design_file import load_design
 from fabtiles.export.plot_svg import PX_PER_MM
+from fabtiles.making.plot import plot_drawing
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLE = ROOT / "samples" / "table3-3.toml"
@@ -82,11 +82,14 @@ def test_options_set_and_cut(vpype):
     assert "vp_name: 'INNER'" in out and "vp_name: 'OUTER'" in out
 
 
-@pytest.mark.parametrize("args, message", [
-    (["nothere.toml"], "fabtiles: cannot read design file 'nothere.toml'"),
-    (["--set", "tile.size=-3", SAMPLE], "[tile] size must be"),
-    (["--pen", "0", SAMPLE], "pen_mm must be"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["nothere.toml"], "fabtiles: cannot read design file 'nothere.toml'"),
+        (["--set", "tile.size=-3", SAMPLE], "[tile] size must be"),
+        (["--pen", "0", SAMPLE], "pen_mm must be"),
+    ],
+)
 def test_errors_are_one_line(vpype, args, message):
     code, _out, err = vpype("fabtiles", *args, "stat")
     assert code != 0

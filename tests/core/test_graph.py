@@ -35,7 +35,7 @@ def test_chain_ranks_walk_each_chain(lengths, seed):
     want_head, want_rank = np.empty(n, np.int64), np.empty(n, np.int64)
     at = 0
     for length in lengths:
-        chain = node[at:at + length]
+        chain = node[at : at + length]
         at += length
         pred[chain[1:]] = chain[:-1]
         want_head[chain] = chain[0]

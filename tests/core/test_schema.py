@@ -61,16 +61,22 @@ def test_the_javascript_lists_no_key():
     import re
 
     text = (PACKAGE / "web" / "static" / "app.js").read_text(encoding="utf-8")
-    lists = [m.group(0) for m in re.finditer(r"\[[^\[\]]*\]", text)
-             if len(set(re.findall(r'"(\w+)"', m.group(0))) & NAMES) >= 2]
+    lists = [
+        m.group(0)
+        for m in re.finditer(r"\[[^\[\]]*\]", text)
+        if len(set(re.findall(r'"(\w+)"', m.group(0))) & NAMES) >= 2
+    ]
     # the menus with code of their own; the parameters the page always sends (the others only when set)
-    assert lists == ['["preset", "special", "tiling"]', '["frame", "stroke", "corner_radius", "join", "laser_profile", "laser_mode",\n'
-                     '                   "printer_profile", "print_style", "colour_by", "palette"]']
+    assert lists == [
+        '["preset", "special", "tiling"]',
+        '["frame", "stroke", "corner_radius", "join", "laser_profile", "laser_mode",\n'
+        '                   "printer_profile", "print_style", "colour_by", "palette"]',
+    ]
 
 
 def test_the_validated_sections_hold_the_schemas_keys():
-    from fabtiles.making.models import BuildOptions
     from fabtiles.designs.design_file import OutputSpec, PackingSpec, TileSpec
+    from fabtiles.making.models import BuildOptions
 
     for cls, section in ((PackingSpec, "packing"), (TileSpec, "tile"), (OutputSpec, "output")):
         assert {f.name for f in dataclasses.fields(cls)} == set(_schema.names(section)), section
@@ -107,8 +113,11 @@ def test_the_inlay_fit_range_is_declared_once():
 
     fit = _schema.key("output.inlay_fit_mm")
     assert inlay.FIT_RANGE_MM == (fit.range.min, fit.range.max) == (-0.5, 0.5)
-    with pytest.raises(ParameterError, match=r"inlay_fit_mm must be a number of mm from -0\.5 to 0\.5 "
-                                             r"\(positive: a press fit, negative: play\), got None") as info:
+    with pytest.raises(
+        ParameterError,
+        match=r"inlay_fit_mm must be a number of mm from -0\.5 to 0\.5 "
+        r"\(positive: a press fit, negative: play\), got None",
+    ) as info:
         inlay.check_fit(None)
     assert info.value.key == "inlay_fit_mm"
     assert calibration.FIT is fit and fit.range.clamp(-0.7) == -0.5
@@ -118,10 +127,12 @@ def test_design_errors_carry_their_key():
     from fabtiles.designs.design_file import design_from_text
 
     base = '[motif]\npreset = "table3-3"\n[tile]\nsize = 100\n'
-    for extra, key in (("[output]\ninlay_fit_mm = 0.8", "output.inlay_fit_mm"),
-                       ("[output]\nbase_mm = 0", "output.base_mm"),
-                       ("[output]\nformats = []", "output.formats"),
-                       ("[output]\nname = '../x'", "output.name")):
+    for extra, key in (
+        ("[output]\ninlay_fit_mm = 0.8", "output.inlay_fit_mm"),
+        ("[output]\nbase_mm = 0", "output.base_mm"),
+        ("[output]\nformats = []", "output.formats"),
+        ("[output]\nname = '../x'", "output.name"),
+    ):
         with pytest.raises(DesignError, match=key.split(".")[1]) as info:
             design_from_text(base + extra)
         assert info.value.key == key
@@ -139,8 +150,18 @@ def test_profile_fit_error_names_the_profile_key(tmp_path):
 def test_build_options_are_the_schemas():
     from fabtiles.making import pipeline
 
-    assert pipeline._CUT_OPTIONS == ("mode", "dxf_version", "kerf_mm", "fill_small_holes", "inlay_fit_mm",
-                                     "inlay_pieces", "inlay_base", "tab_mm", "tabs_per_part", "colours")
+    assert pipeline._CUT_OPTIONS == (
+        "mode",
+        "dxf_version",
+        "kerf_mm",
+        "fill_small_holes",
+        "inlay_fit_mm",
+        "inlay_pieces",
+        "inlay_base",
+        "tab_mm",
+        "tabs_per_part",
+        "colours",
+    )
     assert pipeline._3MF_OPTIONS == pipeline._PRINT_OPTIONS[:-1] + ("inlay", "layout", "colours")
     assert "mosaic_inset_mm" in pipeline._PRINT_OPTIONS
 
@@ -159,13 +180,19 @@ def test_range_checks_its_ends():
 
 
 def test_widget_checks_its_kind():
-    with pytest.raises(ParameterError, match=r"a widget's kind must be one of: slider, number, select, checkbox, "
-                                             r"text, colour, got 'knob'"):
+    with pytest.raises(
+        ParameterError,
+        match=r"a widget's kind must be one of: slider, number, select, checkbox, "
+        r"text, colour, got 'knob'",
+    ):
         Widget(kind="knob")
     with pytest.raises(ParameterError, match=r"a slider needs min, max and step"):
         Widget(kind="slider", min=0, max=1)
-    with pytest.raises(ParameterError, match=r"a widget's when must hold \(parameter, \(value, \.\.\.\)\) pairs, "
-                                             r"got \('outline', 'rectangle'\)"):
+    with pytest.raises(
+        ParameterError,
+        match=r"a widget's when must hold \(parameter, \(value, \.\.\.\)\) pairs, "
+        r"got \('outline', 'rectangle'\)",
+    ):
         Widget(kind="number", when=(("outline", "rectangle"),))
 
 
@@ -195,16 +222,22 @@ def test_every_condition_of_a_control_names_a_form_parameter_and_its_values():
 
 
 def test_build_option_checks_its_families():
-    with pytest.raises(ParameterError, match=r"a build option's families must be some of: cut, print, 3mf, "
-                                             r"got \('plot',\)"):
+    with pytest.raises(
+        ParameterError,
+        match=r"a build option's families must be some of: cut, print, 3mf, "
+        r"got \('plot',\)",
+    ):
         BuildOption(name="pen", families=("plot",))
     with pytest.raises(ParameterError, match=r"a build option's families must be some of"):
         BuildOption(name="pen", families=())
 
 
 def test_key_checks_its_section_and_type():
-    with pytest.raises(ParameterError, match=r"a key's section must be one of: motif, packing, tile, output, "
-                                             r"colour, got 'finish'"):
+    with pytest.raises(
+        ParameterError,
+        match=r"a key's section must be one of: motif, packing, tile, output, "
+        r"colour, got 'finish'",
+    ):
         Key(section="finish", name="x", type="string", help="")
     with pytest.raises(ParameterError, match=r"a key's type must be one of: string, integer, .*, got 'date'"):
         Key(section="tile", name="x", type="date", help="")
@@ -216,8 +249,11 @@ def test_key_check():
     assert stroke.check(-1) == -1.0  # the tile checks the stroke's range (it depends on the radius)
     with pytest.raises(ParameterError, match=r"stroke must be a number of mm > 0, got True"):
         stroke.check(True)
-    with pytest.raises(DesignError, match=r"^f: \[tile\] join = 'zigzag' is not valid, must be one of: miter, round, "
-                                          r"bevel$") as info:
+    with pytest.raises(
+        DesignError,
+        match=r"^f: \[tile\] join = 'zigzag' is not valid, must be one of: miter, round, "
+        r"bevel$",
+    ) as info:
         _schema.key("tile.join").check("zigzag", prefix="f: [tile] ", error=DesignError, param="tile.join")
     assert info.value.key == "tile.join"
     with pytest.raises(ParameterError, match=r"tiling must be one of: 3\.3\.3\.3\.3\.3.*, got 488"):
@@ -241,11 +277,17 @@ def test_key_lookup():
     assert _schema.key("packing.motifs.alpha") is _schema.key("motif.alpha")
     with pytest.raises(ParameterError, match=r"'tile\.colour' is not a design key, must be one of: motif\.preset"):
         _schema.key("tile.colour")
-    with pytest.raises(ParameterError, match=r"'finish' is not a section, must be one of: motif, packing, tile, "
-                                             r"output, colour"):
+    with pytest.raises(
+        ParameterError,
+        match=r"'finish' is not a section, must be one of: motif, packing, tile, "
+        r"output, colour",
+    ):
         _schema.section_keys("finish")
-    with pytest.raises(ParameterError, match=r"'plot' is not a family of build options, must be one of: cut, print, "
-                                             r"3mf"):
+    with pytest.raises(
+        ParameterError,
+        match=r"'plot' is not a family of build options, must be one of: cut, print, "
+        r"3mf",
+    ):
         _schema.build_options("plot")
     with pytest.raises(ParameterError, match=r"'plot' is not a family of build options"):
         _schema.option_keys("plot")
@@ -262,8 +304,8 @@ def test_every_key_is_documented_and_typed():
 
 def test_what_belongs_to_a_layer_above_is_registered_by_it():
     """A key's values and range checks that a layer owns are registered by a module of that layer, when imported."""
-    import fabtiles.geometry.stack  # noqa: F401  (the layers the root package does not import: shapely's)
-    import fabtiles.geometry.tile  # noqa: F401
+    import fabtiles.geometry.stack
+    import fabtiles.geometry.tile
 
     layered = [k for k in _schema.KEYS if isinstance(k.choices, str)]
     assert {k.choices for k in layered} == {"pattern", "machines", "designs"}
@@ -280,10 +322,16 @@ def test_what_belongs_to_a_layer_above_is_registered_by_it():
 def test_a_layers_values_not_registered_are_an_error(monkeypatch):
     """A key whose values no imported layer registered says so (a programming error, not a user's)."""
     unregistered = Key(section="tile", name="finish", type="choice", choices="geometry", help="a finish")
-    with pytest.raises(LookupError, match=r"the values of tile\.finish are registered by the geometry layer, "
-                                          r"which is not imported"):
+    with pytest.raises(
+        LookupError,
+        match=r"the values of tile\.finish are registered by the geometry layer, "
+        r"which is not imported",
+    ):
         unregistered.choice_values()
     monkeypatch.delitem(_schema._TYPE_CHECKS, "colour")
-    with pytest.raises(LookupError, match=r"the colour values of colour\.band_colour are checked by a layer that "
-                                          r"registers the check, and none is imported"):
+    with pytest.raises(
+        LookupError,
+        match=r"the colour values of colour\.band_colour are checked by a layer that "
+        r"registers the check, and none is imported",
+    ):
         _schema.key("colour.band_colour").check("navy")

@@ -20,15 +20,24 @@ import shapely
 import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from mesh_helpers import B, D, H, T, VOLUME_REL, assert_section, assert_solid, assert_touch_without_overlap, load_3mf_parts
+from mesh_helpers import (
+    VOLUME_REL,
+    B,
+    D,
+    H,
+    T,
+    assert_section,
+    assert_solid,
+    assert_touch_without_overlap,
+    load_3mf_parts,
+)
 
 from fabtiles import FabricationError, ParameterError, Star
 from fabtiles import Tile as PublicTile
 from fabtiles.export import stl, threemf
-from fabtiles.solid import parts
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
-
+from fabtiles.solid import parts
 
 PRUSA = shutil.which("prusa-slicer") or "/usr/bin/prusa-slicer"
 REQUIRED = bool(os.environ.get("CI")) or os.environ.get("FABTILES_REQUIRE_PRUSA") == "1"
@@ -60,8 +69,10 @@ def shapes():
 def prusa():
     if not os.path.exists(PRUSA):
         if REQUIRED:
-            pytest.fail(f"PrusaSlicer is required here (CI or FABTILES_REQUIRE_PRUSA=1) but {PRUSA} is not "
-                        "installed: apt-get install prusa-slicer")
+            pytest.fail(
+                f"PrusaSlicer is required here (CI or FABTILES_REQUIRE_PRUSA=1) but {PRUSA} is not "
+                "installed: apt-get install prusa-slicer"
+            )
         pytest.skip(f"{PRUSA} is not installed")
     return PRUSA
 
@@ -91,8 +102,10 @@ def prusa_volumes(tmp_path, path) -> list[list[dict]]:
     out = tmp_path / "prusa-saved.3mf"
     run_prusa(tmp_path, "--export-3mf", "--output", out, path)
     config = ET.fromstring(zipfile.ZipFile(out).read("Metadata/Slic3r_PE_model.config"))
-    return [[{m.get("key"): m.get("value") for m in vol.iter("metadata")} for vol in obj.iter("volume")]
-            for obj in config.iter("object")]
+    return [
+        [{m.get("key"): m.get("value") for m in vol.iter("metadata")} for vol in obj.iter("volume")]
+        for obj in config.iter("object")
+    ]
 
 
 def layers(gcode: str) -> list[float]:
@@ -130,8 +143,18 @@ def test_relief_slices_like_its_stl_with_the_pattern_on_the_second_filament(tmp_
     stl.write_stl(tmp_path / "tile.stl", region=region, outline=outline, profile="fdm-0.4mm")
     got = {}
     for fmt in ("3mf", "stl"):
-        run_prusa(tmp_path, "--load", ini, "--export-gcode", "--dont-arrange", "--center", "100,100",
-                  "--output", tmp_path / f"{fmt}.gcode", tmp_path / f"tile.{fmt}")
+        run_prusa(
+            tmp_path,
+            "--load",
+            ini,
+            "--export-gcode",
+            "--dont-arrange",
+            "--center",
+            "100,100",
+            "--output",
+            tmp_path / f"{fmt}.gcode",
+            tmp_path / f"tile.{fmt}",
+        )
         got[fmt] = (tmp_path / f"{fmt}.gcode").read_text()
     z3, zs = layers(got["3mf"]), layers(got["stl"])
     assert z3 == zs and len(z3) == round((B + H) / 0.2)
@@ -147,7 +170,8 @@ def test_deboss_inlay_fills_the_grooves_flush(tmp_path, shapes, prusa):
     region, outline = shapes
     path = tmp_path / "inlay.3mf"
     report = PublicTile("square", 40, HexPacking(10, Star.preset("table3-3")), frame=3, stroke=1.0).export(
-        path, style="deboss", inlay=True, fill_small_holes=False)
+        path, style="deboss", inlay=True, fill_small_holes=False
+    )
     assert report.stats["bodies"] == ["plate", "inlay"]
     parts = load_3mf_parts(path)
     assert list(parts) == ["plate", "inlay"]
@@ -203,8 +227,10 @@ def test_slicer_metadata_agree_with_the_model(tmp_path, shapes):
         assert o.get("id") == obj.get("id")
         meta = {m.get("key"): m.get("value") for m in o.findall("metadata")}
         assert meta["name"] == "My tile"
-        return [(int(v.get("firstid")), int(v.get("lastid")),
-                 {m.get("key"): m.get("value") for m in v.findall("metadata")}) for v in o.findall(tag)]
+        return [
+            (int(v.get("firstid")), int(v.get("lastid")), {m.get("key"): m.get("value") for m in v.findall("metadata")})
+            for v in o.findall(tag)
+        ]
 
     prusa = parts_of(ET.fromstring(zf.read("Metadata/Slic3r_PE_model.config")), "volume", "type")
     bambu = parts_of(ET.fromstring(zf.read("Metadata/model_settings.config")), "part", "key")
@@ -213,12 +239,14 @@ def test_slicer_metadata_agree_with_the_model(tmp_path, shapes):
         # the ranges tile the triangles in order
         assert ranges[0][0] == 0 and ranges[0][1] + 1 == ranges[1][0] and ranges[1][1] == ntri - 1
     assert [r[:2] for r in prusa] == [r[:2] for r in bambu]
-    assert all(p.get("subtype") == "normal_part" for p in ET.fromstring(zf.read("Metadata/model_settings.config"))
-               .iter("part"))
+    assert all(
+        p.get("subtype") == "normal_part" for p in ET.fromstring(zf.read("Metadata/model_settings.config")).iter("part")
+    )
     # every part closed on its own vertices: no vertex index shared between parts
     parts = threemf.read_3mf(path)
     assert len(parts["base"].vertices) + len(parts["pattern"].vertices) == len(
-        obj.findall("m:mesh/m:vertices/m:vertex", ns))
+        obj.findall("m:mesh/m:vertices/m:vertex", ns)
+    )
 
 
 def test_the_same_bytes_every_run(tmp_path, shapes):
@@ -251,11 +279,14 @@ def test_vertices_read_back_are_the_checked_float32_values(shapes):
 # --------------------------------------------------------------------------- bad input
 
 
-@pytest.mark.parametrize("kwargs,msg", [
-    (dict(inlay=True), r"inlay=True needs style='deboss' .* got style='relief'"),
-    (dict(inlay=True, style="pierced"), r"inlay=True needs style='deboss' .* got style='pierced'"),
-    (dict(inlay="yes", style="deboss"), r"inlay must be True or False, got 'yes'"),
-])
+@pytest.mark.parametrize(
+    "kwargs,msg",
+    [
+        (dict(inlay=True), r"inlay=True needs style='deboss' .* got style='relief'"),
+        (dict(inlay=True, style="pierced"), r"inlay=True needs style='deboss' .* got style='pierced'"),
+        (dict(inlay="yes", style="deboss"), r"inlay must be True or False, got 'yes'"),
+    ],
+)
 def test_bad_inlay_no_file(tmp_path, shapes, kwargs, msg):
     region, outline = shapes
     with pytest.raises(ParameterError, match=msg):
@@ -268,15 +299,23 @@ def test_bad_inlay_no_file(tmp_path, shapes, kwargs, msg):
 def test_inlay_is_a_3mf_option_only(tmp_path):
     tile = PublicTile("square", 40, HexPacking(10, Star.preset("table3-3")), frame=3, stroke=1.0)
     for fmt in ("stl", "step"):
-        with pytest.raises(ParameterError, match=rf"'inlay' is not a valid option for .{fmt} files, must be one of: "
-                                                 r"style, base_mm, relief_mm, pierced_mm, deboss_mm, mosaic_inset_mm, fill_small_holes, colours$"):
+        with pytest.raises(
+            ParameterError,
+            match=rf"'inlay' is not a valid option for .{fmt} files, must be one of: "
+            r"style, base_mm, relief_mm, pierced_mm, deboss_mm, mosaic_inset_mm, fill_small_holes, colours$",
+        ):
             tile.export(tmp_path / f"t.{fmt}", style="deboss", inlay=True)
     assert list(tmp_path.iterdir()) == []
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.lists(st.floats(width=32, allow_nan=False, allow_infinity=False, min_value=-1e4, max_value=1e4),
-                min_size=9, max_size=60).filter(lambda xs: len(xs) % 3 == 0))
+@given(
+    st.lists(
+        st.floats(width=32, allow_nan=False, allow_infinity=False, min_value=-1e4, max_value=1e4),
+        min_size=9,
+        max_size=60,
+    ).filter(lambda xs: len(xs) % 3 == 0)
+)
 def test_nine_digits_read_back_as_the_float32_written(values):
     """Why the export need not read its package back: "%.9g" of any float32 reads back as that float32
     (signed zero made 0, as the writer does), so every vertex the slicer reads is the checked one.
@@ -311,10 +350,12 @@ def test_read_3mf_refuses_other_files(tmp_path, shapes):
     path = tmp_path / "t.3mf"
     threemf.write_3mf(path, region=region, outline=outline, profile="fdm-0.4mm")
     files = {n: zipfile.ZipFile(path).read(n) for n in zipfile.ZipFile(path).namelist()}
-    files["Metadata/Slic3r_PE_model.config"] = re.sub(rb'lastid="\d+">\s*<metadata type="volume" key="name" '
-                                                      rb'value="pattern"', b'lastid="99999999"><metadata '
-                                                      b'type="volume" key="name" value="pattern"',
-                                                      files["Metadata/Slic3r_PE_model.config"])
+    files["Metadata/Slic3r_PE_model.config"] = re.sub(
+        rb'lastid="\d+">\s*<metadata type="volume" key="name" '
+        rb'value="pattern"',
+        b'lastid="99999999"><metadata type="volume" key="name" value="pattern"',
+        files["Metadata/Slic3r_PE_model.config"],
+    )
     bad = tmp_path / "bad.3mf"
     with zipfile.ZipFile(bad, "w") as zf:
         for n, data in files.items():
@@ -323,11 +364,14 @@ def test_read_3mf_refuses_other_files(tmp_path, shapes):
         threemf.read_3mf(bad)
 
 
-@pytest.mark.parametrize("old,new,msg", [
-    (b"<vertices>", b"<points>", r"the 3MF model has no <vertices> block"),
-    (b'y="', b'y="y', r"the 3MF model's <vertex> records do not parse: \d+ numbers read for \d+ records of 3"),
-    (b' v3="', b' v4="', r"the 3MF model's <triangle> records do not parse"),
-])
+@pytest.mark.parametrize(
+    "old,new,msg",
+    [
+        (b"<vertices>", b"<points>", r"the 3MF model has no <vertices> block"),
+        (b'y="', b'y="y', r"the 3MF model's <vertex> records do not parse: \d+ numbers read for \d+ records of 3"),
+        (b' v3="', b' v4="', r"the 3MF model's <triangle> records do not parse"),
+    ],
+)
 def test_read_3mf_refuses_a_broken_model(tmp_path, shapes, old, new, msg):
     region, outline = shapes
     path = tmp_path / "t.3mf"

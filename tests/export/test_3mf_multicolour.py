@@ -36,15 +36,45 @@ from fabtiles.solid.print_model import PrintPart
 
 CURA = "http://software.ultimaker.com/xml/cura/3mf/2015/10"
 
-COLOURS = ["#1f3b73", "#e6d6b8", "#c0392b", "#27ae60", "#f1c40f", "#8e44ad", "#16a085", "#d35400",
-           "#2c3e50", "#7f8c8d", "#e84393", "#00cec9", "#6c5ce7", "#fdcb6e", "#b33939", "#218c74"]
+COLOURS = [
+    "#1f3b73",
+    "#e6d6b8",
+    "#c0392b",
+    "#27ae60",
+    "#f1c40f",
+    "#8e44ad",
+    "#16a085",
+    "#d35400",
+    "#2c3e50",
+    "#7f8c8d",
+    "#e84393",
+    "#00cec9",
+    "#6c5ce7",
+    "#fdcb6e",
+    "#b33939",
+    "#218c74",
+]
 
 LAYER = 0.2
 
 # the box's corners and its 12 triangles, wound outward
 _CORNERS = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float)
-_FACES = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
-                   [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]])
+_FACES = np.array(
+    [
+        [0, 2, 1],
+        [0, 3, 2],
+        [4, 5, 6],
+        [4, 6, 7],
+        [0, 1, 5],
+        [0, 5, 4],
+        [1, 2, 6],
+        [1, 6, 5],
+        [2, 3, 7],
+        [2, 7, 6],
+        [3, 0, 4],
+        [3, 4, 7],
+    ]
+)
 
 
 def name(k: int) -> str:
@@ -59,14 +89,16 @@ def height(k: int) -> float:
 
 def boxes(n: int) -> list:
     """N closed boxes side by side, box k on extruder k + 1."""
-    return [threemf.Part(name(k), k + 1, _CORNERS * [8, 8, height(k)] + [10 * k, 0, 0], _FACES)
-            for k in range(n)]
+    return [threemf.Part(name(k), k + 1, _CORNERS * [8, 8, height(k)] + [10 * k, 0, 0], _FACES) for k in range(n)]
 
 
 def write(tmp_path, n: int, layout: str):
     path = tmp_path / f"mosaic-{n}-{layout}.3mf"
-    path.write_bytes(threemf.package_3mf(boxes(n), name="mosaic & co", layout=layout,
-                                         application=threemf.application_name(layout, "test")))
+    path.write_bytes(
+        threemf.package_3mf(
+            boxes(n), name="mosaic & co", layout=layout, application=threemf.application_name(layout, "test")
+        )
+    )
     return path
 
 
@@ -96,7 +128,8 @@ def test_the_volumes_configs_give_every_volume_its_extruder(tmp_path, n):
     (obj,) = ET.fromstring(pkg[threemf.PRUSA_CONFIG_PATH]).iter("object")
     volumes = [{m.get("key"): m.get("value") for m in v.iter("metadata")} for v in obj.iter("volume")]
     assert [(v["name"], v["extruder"], v["volume_type"]) for v in volumes] == [
-        (name(k), str(k + 1), "ModelPart") for k in range(n)]
+        (name(k), str(k + 1), "ModelPart") for k in range(n)
+    ]
     ranges = [(int(v.get("firstid")), int(v.get("lastid"))) for v in obj.iter("volume")]
     assert ranges == [(12 * k, 12 * k + 11) for k in range(n)]  # contiguous, in order
     # Bambu Studio / OrcaSlicer's model settings: the same parts, names and filaments
@@ -115,14 +148,14 @@ def test_the_components_layout_gives_cura_extruders_0_to_n_minus_1(tmp_path, n):
     (item,) = model.iter(f"{core}item")
     ids = [c.get("objectid") for c in objects[item.get("objectid")].iter(f"{core}component")]
     assert ids == [str(k) for k in range(1, n + 1)] and item.get("objectid") == str(n + 1)
-    got = [(objects[i].get("name"), {m.get("name"): m.text for m in objects[i].iter(f"{core}metadata")})
-           for i in ids]
+    got = [(objects[i].get("name"), {m.get("name"): m.text for m in objects[i].iter(f"{core}metadata")}) for i in ids]
     assert got == [(name(k), {"cura:extruder_nr": str(k)}) for k in range(n)]
     (obj,) = ET.fromstring(pkg[threemf.BAMBU_CONFIG_PATH]).iter("object")
     assert obj.get("id") == str(n + 1)
     parts = {p.get("id"): {m.get("key"): m.get("value") for m in p.iter("metadata")} for p in obj.iter("part")}
     assert [(i, parts[i]["name"], parts[i]["extruder"]) for i in ids] == [
-        (str(k + 1), name(k), str(k + 1)) for k in range(n)]
+        (str(k + 1), name(k), str(k + 1)) for k in range(n)
+    ]
     assert not threemf.takes_prusa_path(pkg)
 
 
@@ -152,9 +185,12 @@ def test_a_print_model_of_n_parts_is_written_in_its_order_and_extruders():
 def test_a_part_off_the_extruders_is_refused(extruder):
     parts = boxes(2)
     parts[1] = parts[1]._replace(extruder=extruder)
-    with pytest.raises(ParameterError, match=r"part 'B #e6d6b8' has extruder=.*, must be an integer from 1 to 16 "
-                                             r"\(Bambu Studio and OrcaSlicer add filaments up to 16 only\): merge colours so "
-                                             r"that at most 16 remain"):
+    with pytest.raises(
+        ParameterError,
+        match=r"part 'B #e6d6b8' has extruder=.*, must be an integer from 1 to 16 "
+        r"\(Bambu Studio and OrcaSlicer add filaments up to 16 only\): merge colours so "
+        r"that at most 16 remain",
+    ):
         threemf.package_3mf(parts, name="t")
 
 
@@ -182,17 +218,24 @@ def printer_ini(tmp_path, n: int):
     ini = tmp_path / f"printer-{n}.ini"
     each = lambda value, sep=",": sep.join([value] * n)  # noqa: E731 - one value per extruder
     blank = '""'
-    ini.write_text(f"nozzle_diameter = {each('0.4')}\nextruder_colour = {each(blank, ';')}\n"
-                   f"extruder_offset = {each('0x0')}\nretract_length = {each('2')}\nretract_lift = {each('0')}\n"
-                   f"wipe_tower = 0\nskirts = 0\nbrim_width = 0\nuse_relative_e_distances = 1\n"
-                   f"layer_height = {LAYER}\nfirst_layer_height = {LAYER}\nextra_perimeters = 0\n"
-                   "bed_shape = 0x0,250x0,250x210,0x210\n")
+    ini.write_text(
+        f"nozzle_diameter = {each('0.4')}\nextruder_colour = {each(blank, ';')}\n"
+        f"extruder_offset = {each('0x0')}\nretract_length = {each('2')}\nretract_lift = {each('0')}\n"
+        f"wipe_tower = 0\nskirts = 0\nbrim_width = 0\nuse_relative_e_distances = 1\n"
+        f"layer_height = {LAYER}\nfirst_layer_height = {LAYER}\nextra_perimeters = 0\n"
+        "bed_shape = 0x0,250x0,250x210,0x210\n"
+    )
     return ini
 
 
 def prusa_cmd(tmp_path) -> list:
-    return [program("prusa-slicer", "apt-get install prusa-slicer"), "--loglevel", "1",
-            "--datadir", tmp_path / "prusa-data"]
+    return [
+        program("prusa-slicer", "apt-get install prusa-slicer"),
+        "--loglevel",
+        "1",
+        "--datadir",
+        tmp_path / "prusa-data",
+    ]
 
 
 CENTRE = (125.0, 100.0)
@@ -200,8 +243,21 @@ CENTRE = (125.0, 100.0)
 
 def slice_gcode(tmp_path, path, extruders: int) -> str:
     out = tmp_path / f"{path.stem}-{extruders}.gcode"
-    run([*prusa_cmd(tmp_path), "--load", printer_ini(tmp_path, extruders), "--export-gcode", "--dont-arrange",
-         "--center", f"{CENTRE[0]},{CENTRE[1]}", "--output", out, path], cwd=tmp_path)
+    run(
+        [
+            *prusa_cmd(tmp_path),
+            "--load",
+            printer_ini(tmp_path, extruders),
+            "--export-gcode",
+            "--dont-arrange",
+            "--center",
+            f"{CENTRE[0]},{CENTRE[1]}",
+            "--output",
+            out,
+            path,
+        ],
+        cwd=tmp_path,
+    )
     return out.read_text()
 
 
@@ -276,7 +332,8 @@ def test_cura_sees_n_children_on_extruders_0_to_n_minus_1(tmp_path, n):
     (group,) = got["nodes"]
     assert group["faces"] == 0
     assert [(c["name"], c["settings"], c["faces"]) for c in group["children"]] == [
-        (name(k), {"extruder_nr": str(k)}, 12) for k in range(n)]
+        (name(k), {"extruder_nr": str(k)}, 12) for k in range(n)
+    ]
 
 
 @pytest.mark.parametrize("layout", threemf.LAYOUTS)
@@ -292,4 +349,5 @@ def test_lib3mf_strict_reads_n_parts(tmp_path, n, layout):
         ((assembly, ids),) = got["components"].items()
         assert got["items"] == [assembly] and ids == list(range(1, n + 1))
         assert [(got["meshes"][i][0], got["meshes"][i][1], got["meshes"][i][3]) for i in ids] == [
-            (name(k), 12, {(CURA, "extruder_nr"): str(k)}) for k in range(n)]
+            (name(k), 12, {(CURA, "extruder_nr"): str(k)}) for k in range(n)
+        ]

@@ -84,7 +84,9 @@ def test_volumes_layout_takes_the_prusaslicer_importer_of_bambu_and_orca(files, 
     volumes = [{m.get("key"): m.get("value") for m in v.iter("metadata")} for v in obj.iter("volume")]
     names = ["base", "pattern"] if kind == "relief" else ["plate", "inlay"]
     assert [(v["name"], v["extruder"], v["volume_type"]) for v in volumes] == [
-        (names[0], "1", "ModelPart"), (names[1], "2", "ModelPart")]
+        (names[0], "1", "ModelPart"),
+        (names[1], "2", "ModelPart"),
+    ]
 
 
 @pytest.mark.parametrize("kind", ["relief", "inlay"])
@@ -131,8 +133,10 @@ def lib3mf_read(path):
     while it.MoveNext():
         o = it.GetCurrentMeshObject()
         group = o.GetMetaDataGroup()
-        meta = {(group.GetMetaData(i).GetNameSpace(), group.GetMetaData(i).GetName()): group.GetMetaData(i).GetValue()
-                for i in range(group.GetMetaDataCount())}
+        meta = {
+            (group.GetMetaData(i).GetNameSpace(), group.GetMetaData(i).GetName()): group.GetMetaData(i).GetValue()
+            for i in range(group.GetMetaDataCount())
+        }
         meshes[o.GetResourceID()] = (o.GetName(), o.GetTriangleCount(), o.IsManifoldAndOriented(), meta)
     it = model.GetComponentsObjects()
     while it.MoveNext():
@@ -141,8 +145,14 @@ def lib3mf_read(path):
     it = model.GetBuildItems()
     while it.MoveNext():
         items.append(it.GetCurrent().GetObjectResourceID())
-    return dict(warnings=warnings, unit=model.GetUnit(), mm=lib3mf.ModelUnit.MilliMeter, meshes=meshes,
-                components=comps, items=items)
+    return dict(
+        warnings=warnings,
+        unit=model.GetUnit(),
+        mm=lib3mf.ModelUnit.MilliMeter,
+        meshes=meshes,
+        components=comps,
+        items=items,
+    )
 
 
 @pytest.mark.parametrize("layout", threemf.LAYOUTS)
@@ -162,7 +172,8 @@ def test_lib3mf_strict_reads_both_layouts_without_a_warning(files, layout, kind)
         assert got["items"] == [assembly]
         cura = "http://software.ultimaker.com/xml/cura/3mf/2015/10"
         assert [(got["meshes"][i][0], got["meshes"][i][1], got["meshes"][i][3][cura, "extruder_nr"]) for i in ids] == [
-            (n, len(p.faces), str(p.extruder - 1)) for n, p in written.items()]
+            (n, len(p.faces), str(p.extruder - 1)) for n, p in written.items()
+        ]
 
 
 # --------------------------------------------------------------------------- Cura's parser, libSavitar
@@ -193,7 +204,8 @@ def test_cura_sees_the_components_layout_as_one_group_of_parts_with_their_extrud
     assert group["faces"] == 0  # the group holds no mesh of its own
     written = threemf.read_3mf(files[1][kind, "components"])
     assert [(c["name"], c["settings"], c["faces"], c["children"]) for c in group["children"]] == [
-        (n, {"extruder_nr": str(p.extruder - 1)}, len(p.faces), []) for n, p in written.items()]
+        (n, {"extruder_nr": str(p.extruder - 1)}, len(p.faces), []) for n, p in written.items()
+    ]
     assert [c["settings"]["extruder_nr"] for c in group["children"]] == ["0", "1"]
 
 
@@ -221,8 +233,9 @@ def info(cmd, path, tmp_path) -> list[dict]:
 def test_prusaslicer_opens_the_components_layout_as_one_object_per_part(files, tmp_path):
     prusa = program("prusa-slicer", "apt-get install prusa-slicer")
     _tile, paths = files
-    base, pattern = info([prusa, "--loglevel", "1", "--datadir", tmp_path / "data"], paths["relief", "components"],
-                         tmp_path)
+    base, pattern = info(
+        [prusa, "--loglevel", "1", "--datadir", tmp_path / "data"], paths["relief", "components"], tmp_path
+    )
     assert (float(base["min_z"]), float(base["max_z"])) == pytest.approx((0, B), abs=1e-5)
     assert (float(pattern["min_z"]), float(pattern["max_z"])) == pytest.approx((B, B + H), abs=1e-5)
 
@@ -258,11 +271,13 @@ def test_both_layouts_hold_the_same_parts(files):
 
 
 def test_the_design_key_picks_the_layout(tmp_path):
-    from fabtiles.making import build_design
     from fabtiles.designs.design_file import design_from_text
+    from fabtiles.making import build_design
 
-    text = ('[motif]\npreset = "table3-3"\n[packing]\nradius = 10\n[tile]\noutline = "square"\nsize = 40\n'
-            'frame = 3\n[output]\nformats = ["3mf"]\nthreemf_layout = "components"\n')
+    text = (
+        '[motif]\npreset = "table3-3"\n[packing]\nradius = 10\n[tile]\noutline = "square"\nsize = 40\n'
+        'frame = 3\n[output]\nformats = ["3mf"]\nthreemf_layout = "components"\n'
+    )
     build_design(design_from_text(text, name="t"), tmp_path)
     pkg = package(tmp_path / "t.3mf")
     assert "Metadata/Slic3r_PE_model.config" not in pkg and b"<components>" in pkg["3D/3dmodel.model"]
@@ -273,13 +288,20 @@ def test_the_design_key_picks_the_layout(tmp_path):
 def test_a_bad_layout_names_the_valid_ones(tmp_path):
     from fabtiles.designs.design_file import design_from_text
 
-    text = ('[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 40\n'
-            '[output]\nthreemf_layout = "assembly"\n')
-    with pytest.raises(DesignError, match=r"\[output\] threemf_layout = 'assembly' is not valid, must be one of: "
-                                          r"volumes, components"):
+    text = (
+        '[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 40\n[output]\nthreemf_layout = "assembly"\n'
+    )
+    with pytest.raises(
+        DesignError,
+        match=r"\[output\] threemf_layout = 'assembly' is not valid, must be one of: "
+        r"volumes, components",
+    ):
         design_from_text(text)
-    with pytest.raises(ParameterError, match=r"layout='assembly' is not a valid 3MF layout, must be one of: "
-                                             r"volumes, components"):
+    with pytest.raises(
+        ParameterError,
+        match=r"layout='assembly' is not a valid 3MF layout, must be one of: "
+        r"volumes, components",
+    ):
         small_tile().export(tmp_path / "t.3mf", layout="assembly")
     with pytest.raises(ParameterError, match=r"layout='assembly' is not a valid 3MF layout"):
         threemf.package_3mf([], name="t", layout="assembly")
@@ -294,21 +316,32 @@ def test_cli_refuses_a_bad_layout_with_one_line_and_no_file(tmp_path):
     from fabtiles.cli.main import cli
 
     design = tmp_path / "d.toml"
-    design.write_text('[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 40\n'
-                      '[output]\nformats = ["3mf"]\n')
-    result = CliRunner().invoke(cli, ["build", str(design), "-o", str(tmp_path / "out"),
-                                      "--set", "output.threemf_layout=groups"], catch_exceptions=False)
+    design.write_text(
+        '[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 40\n[output]\nformats = ["3mf"]\n'
+    )
+    result = CliRunner().invoke(
+        cli,
+        ["build", str(design), "-o", str(tmp_path / "out"), "--set", "output.threemf_layout=groups"],
+        catch_exceptions=False,
+    )
     assert result.exit_code == 2
     assert result.output.startswith("fabtiles: error: ") and result.output.count("\n") == 1
     assert "threemf_layout = 'groups' is not valid, must be one of: volumes, components" in result.output
     assert not (tmp_path / "out").exists()
 
 
-@pytest.mark.parametrize("old,new,msg", [
-    (b'<item objectid="3"', b'<item objectid="9"', r"has no build item naming one of its objects"),
-    (b'<component objectid="2"', b'<component objectid="7"', r"components \[1, 7\] are not objects of the model"),
-    (b'<triangle v1="0"', b'<triangle v1="99999"', r"the 3MF object 'base' has triangles indexing past its 8 vertices"),
-])
+@pytest.mark.parametrize(
+    "old,new,msg",
+    [
+        (b'<item objectid="3"', b'<item objectid="9"', r"has no build item naming one of its objects"),
+        (b'<component objectid="2"', b'<component objectid="7"', r"components \[1, 7\] are not objects of the model"),
+        (
+            b'<triangle v1="0"',
+            b'<triangle v1="99999"',
+            r"the 3MF object 'base' has triangles indexing past its 8 vertices",
+        ),
+    ],
+)
 def test_read_3mf_refuses_a_broken_components_model(files, tmp_path, old, new, msg):
     pkg = package(files[1]["relief", "components"])
     assert old in pkg["3D/3dmodel.model"]

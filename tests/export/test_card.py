@@ -1,6 +1,5 @@
 """The laser test card (``fabtiles calibrate``): DXF and SVG read back, features measured."""
 
-import re
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -8,11 +7,11 @@ import pytest
 from click.testing import CliRunner
 
 from fabtiles import ParameterError
-from fabtiles.machines.profiles import load_profile
 from fabtiles.cli.main import cli
 from fabtiles.export.card import write_card
 from fabtiles.geometry.calibration import INLAY_MM, MAX_CARD_MM, calibration_card, inlay_fits
 from fabtiles.geometry.stroke_font import text_paths
+from fabtiles.machines.profiles import load_profile
 
 PROFILES = ["laser-3mm-plywood", "laser-3mm-acrylic"]
 
@@ -56,8 +55,12 @@ def labels_present(score, card):
         height = 3.0 if f.kind == "kerf_part" else 2.0
         want = text_paths(f.label, height_mm=height, x=f.at[0], y=0, centre=True)
         # the label's baseline: any drawn path shaped like its first stroke, at the same x
-        dys = {round(q[0, 1] - want[0][0, 1], 3) for p in score for q in (p, p[::-1])
-               if q.shape == want[0].shape and np.allclose(q[:, 0], want[0][:, 0], atol=1e-3)}
+        dys = {
+            round(q[0, 1] - want[0][0, 1], 3)
+            for p in score
+            for q in (p, p[::-1])
+            if q.shape == want[0].shape and np.allclose(q[:, 0], want[0][:, 0], atol=1e-3)
+        }
         assert any(all(tuple(np.round(w + [0, dy], 3).ravel()) in drawn for w in want) for dy in dys), f
 
 
@@ -85,8 +88,10 @@ def test_card_dxf_reads_back_with_measured_features(tmp_path, name):
     # as drawn: the holes are circles, two arcs each, flattened by ezdxf (within 0.001 mm)
     from dxf_helpers import vertices
 
-    rings = {k: [vertices(e) - shift for e in ents if e.dxf.layer == k]
-             for k in (lay.inner_cut.name, lay.outer_cut.name, lay.score.name)}
+    rings = {
+        k: [vertices(e) - shift for e in ents if e.dxf.layer == k]
+        for k in (lay.inner_cut.name, lay.outer_cut.name, lay.score.name)
+    }
     outer = rings[lay.outer_cut.name][0]
     assert (outer + shift).min(axis=0).tolist() == [0.0, 0.0]
     w, h = np.ptp(outer, axis=0)
@@ -157,12 +162,15 @@ def test_calibrate_command(tmp_path):
     assert "test card" in res.output and "laser-3mm-acrylic" in res.output and out.exists()
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--profile", "fdm-0.4mm", "-o", "{tmp}/card.dxf"], "is a printer profile"),
-    (["--profile", "laser-3mm-plywood", "-o", "{tmp}/card.png"], "the card must be a .dxf or .svg file"),
-    (["--profile", "nope", "-o", "{tmp}/card.dxf"], "nope"),
-    (["--profile", "laser-3mm-plywood", "--dxf-version", "R9", "-o", "{tmp}/card.dxf"], "'R9' is not a valid"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--profile", "fdm-0.4mm", "-o", "{tmp}/card.dxf"], "is a printer profile"),
+        (["--profile", "laser-3mm-plywood", "-o", "{tmp}/card.png"], "the card must be a .dxf or .svg file"),
+        (["--profile", "nope", "-o", "{tmp}/card.dxf"], "nope"),
+        (["--profile", "laser-3mm-plywood", "--dxf-version", "R9", "-o", "{tmp}/card.dxf"], "'R9' is not a valid"),
+    ],
+)
 def test_calibrate_bad_input_exits_2_and_writes_nothing(tmp_path, args, message):
     args = [a.format(tmp=tmp_path) for a in args]
     res = CliRunner().invoke(cli, ["calibrate", *args])

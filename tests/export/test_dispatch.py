@@ -1,8 +1,8 @@
 import pytest
 
 import fabtiles as ft
-from fabtiles.making import export_region
 from fabtiles.export.formats import format_of
+from fabtiles.making import export_region
 
 
 def _empty_tile():
@@ -21,11 +21,18 @@ def test_a_tile_without_material_is_an_error_not_a_file(tmp_path, fmt):
 
 def test_unknown_suffix_and_option(tmp_path):
     tile = ft.Tile("square", 30, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")), frame=2)
-    with pytest.raises(ft.ParameterError, match=r"'png' is not a valid output format .* must be one of: dxf, svg, lbrn2, stl, 3mf, step"):
+    with pytest.raises(
+        ft.ParameterError,
+        match=r"'png' is not a valid output format .* must be one of: dxf, svg, lbrn2, stl, 3mf, step",
+    ):
         tile.export(tmp_path / "t.png")
-    with pytest.raises(ft.ParameterError, match=r"'style' is not a valid option for .dxf files, must be one of: mode, dxf_version"):
+    with pytest.raises(
+        ft.ParameterError, match=r"'style' is not a valid option for .dxf files, must be one of: mode, dxf_version"
+    ):
         tile.export(tmp_path / "t.dxf", style="relief")
-    with pytest.raises(ft.ParameterError, match=r"'kerf_mm' is not a valid option for .stl files, must be one of: style"):
+    with pytest.raises(
+        ft.ParameterError, match=r"'kerf_mm' is not a valid option for .stl files, must be one of: style"
+    ):
         tile.export(tmp_path / "t.stl", kerf_mm=0.1)
     with pytest.raises(ft.ProfileError, match=r"'fdm-0.4mm' is a printer profile, but a laser profile is needed"):
         tile.export(tmp_path / "t.dxf", profile="fdm-0.4mm")

@@ -28,9 +28,9 @@ from dxf_helpers import (
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError
-from fabtiles.machines.profiles import Layer, LaserLayers, load_profile
 from fabtiles.export.dxf import build_document, dxf_text, write_dxf
 from fabtiles.geometry.cut_plan import plan_cut
+from fabtiles.machines.profiles import LaserLayers, Layer, load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 INNER, OUTER, SCORE = PLY.layers.inner_cut, PLY.layers.outer_cut, PLY.layers.score
@@ -46,8 +46,10 @@ def test_star_plate_round_trip(tmp_path, version, kerf):
     assert report.ok, report.summary()
     assert report.stats["inner_contours"] == 9 and report.stats["outer_contours"] == 1
     assert report.stats["dxf_version"] == version
-    xmin, ymin, xmax, ymax = (np.vstack([vertices(e) for e in doc.modelspace()]).min(0).tolist()
-                              + np.vstack([vertices(e) for e in doc.modelspace()]).max(0).tolist())
+    xmin, ymin, xmax, ymax = (
+        np.vstack([vertices(e) for e in doc.modelspace()]).min(0).tolist()
+        + np.vstack([vertices(e) for e in doc.modelspace()]).max(0).tolist()
+    )
     # the plate grown by half the kerf, moved by half the kerf into the positive quadrant
     assert (xmin, ymin) == (0.0, 0.0) and (xmax, ymax) == pytest.approx((60 + kerf, 60 + kerf))
     assert report.stats["file_offset_mm"] == pytest.approx([kerf / 2, kerf / 2], abs=1e-9)
@@ -105,9 +107,11 @@ def test_score_mode_r12(tmp_path):
 def test_layers_from_profile_file(tmp_path):
     prof = tmp_path / "prof" / "my-laser.toml"
     prof.parent.mkdir()
-    prof.write_text('kind = "laser"\n[laser]\nkerf_mm = 0.1\n[layers]\n'
-                    'inner_cut = { name = "HOLES", color = 6 }\nouter_cut = { name = "OUTLINE", color = 2 }\n'
-                    'score = { name = "ETCH", color = 4 }\n')
+    prof.write_text(
+        'kind = "laser"\n[laser]\nkerf_mm = 0.1\n[layers]\n'
+        'inner_cut = { name = "HOLES", color = 6 }\nouter_cut = { name = "OUTLINE", color = 2 }\n'
+        'score = { name = "ETCH", color = 4 }\n'
+    )
     region, outline = star_plate()
     path = tmp_path / "out" / "p.dxf"
     write_dxf(path, region=region, outline=outline, profile=prof)
@@ -174,15 +178,22 @@ BAD = [
     (dict(stroke=0.5), ParameterError, r"stroke must be >= min_feature_mm = 1 mm .*, got 0.5"),
     (dict(profile="laser-9mm-unobtainium"), ProfileError, r"profile 'laser-9mm-unobtainium' does not exist"),
     (dict(profile="fdm-0.4mm"), ProfileError, r"printer profile, but a laser profile is needed"),
-    (dict(profile=replace(PLY, layers=LaserLayers(inner_cut=Layer("INNER", 300)))), ProfileError,
-     r"layers.inner_cut.color must be an AutoCAD Color Index 1..255, got 300"),
+    (
+        dict(profile=replace(PLY, layers=LaserLayers(inner_cut=Layer("INNER", 300)))),
+        ProfileError,
+        r"layers.inner_cut.color must be an AutoCAD Color Index 1..255, got 300",
+    ),
     (dict(mode="etch"), ParameterError, r"'etch' is not a valid mode, must be one of: pierced, score, engrave"),
     (dict(dxf_version="R14"), ParameterError, r"'R14' is not a valid dxf_version"),
     (dict(mode="score"), ParameterError, r"score mode needs centrelines"),
     (dict(region=box(0, 0, 1, 1).boundary), ParameterError, r"region must be a shapely Polygon or MultiPolygon"),
     (dict(region=shapely.Polygon()), ParameterError, r"region is empty"),
     (dict(region=shapely.Polygon([(0, 0), (10, 10), (10, 0), (0, 10)])), ParameterError, r"region is not a valid"),
-    (dict(outline=box(0, 0, 700, 300)), FabricationError, r"the tile is 700 x 300 mm, larger than the 600 x 400 mm bed"),
+    (
+        dict(outline=box(0, 0, 700, 300)),
+        FabricationError,
+        r"the tile is 700 x 300 mm, larger than the 600 x 400 mm bed",
+    ),
     (dict(fill_small_holes="yes"), ParameterError, r"fill_small_holes must be True or False"),
 ]
 
@@ -218,11 +229,11 @@ def test_fast_writer_matches_ezdxf(version, mode):
 
     def body(text):
         start = text.index("ENTITIES")
-        return text[start:text.index("ENDSEC", start)]
+        return text[start : text.index("ENDSEC", start)]
 
     def handseed(text):
         at = text.find("$HANDSEED")
-        return text[at:at + 30] if at >= 0 else None
+        return text[at : at + 30] if at >= 0 else None
 
     assert body(fast) == body(ref)
     assert handseed(fast) == handseed(ref)
@@ -235,9 +246,10 @@ def test_sheet_sized_tile_and_bed_turned(tmp_path):
     assert write_dxf(tmp_path / "b.dxf", region=tall, outline=tall, profile=PLY).ok
 
 
-@pytest.mark.parametrize("name, mode, version", [("star_plate", "pierced", "R2000"),
-                                                 ("star_plate_r12", "pierced", "R12"),
-                                                 ("motif_score", "score", "R2000")])
+@pytest.mark.parametrize(
+    "name, mode, version",
+    [("star_plate", "pierced", "R2000"), ("star_plate_r12", "pierced", "R12"), ("motif_score", "score", "R2000")],
+)
 def test_golden(tmp_path, name, mode, version):
     if name.startswith("star_plate"):
         region, outline = star_plate(grid=2)
@@ -277,8 +289,17 @@ def test_header_extents_are_the_entities_bounding_box(tmp_path, version, kerf, m
 
     region, outline, lines = motif_tile()
     path = tmp_path / "motif.dxf"
-    write_dxf(path, region=region, outline=outline, centrelines=lines, profile=PLY, kerf_mm=kerf,
-              dxf_version=version, mode=mode, stroke=1.2)
+    write_dxf(
+        path,
+        region=region,
+        outline=outline,
+        centrelines=lines,
+        profile=PLY,
+        kerf_mm=kerf,
+        dxf_version=version,
+        mode=mode,
+        stroke=1.2,
+    )
     doc = ezdxf.readfile(path)
     xmin, ymin, xmax, ymax = _entity_extents(doc)
     assert tuple(doc.header["$EXTMIN"]) == pytest.approx((xmin, ymin, 0.0), abs=1e-9)
@@ -400,10 +421,11 @@ def test_the_classes_do_not_follow_the_order_of_a_set(monkeypatch, version):
     in_use = EntityDB.dxf_types_in_use
     texts = []
     for reverse in (False, True):
-        monkeypatch.setattr(EntityDB, "dxf_types_in_use",
-                            lambda self, r=reverse: dict.fromkeys(sorted(in_use(self), reverse=r)).keys())
+        monkeypatch.setattr(
+            EntityDB, "dxf_types_in_use", lambda self, r=reverse: dict.fromkeys(sorted(in_use(self), reverse=r)).keys()
+        )
         texts.append(dxf_text(_plate_plan(version))[0])
     assert texts[0] == texts[1]
     at = texts[0].index("\nCLASSES\n")
-    classes = texts[0][at:texts[0].index("\nENDSEC\n", at)].split("\n")
+    classes = texts[0][at : texts[0].index("\nENDSEC\n", at)].split("\n")
     assert "LAYOUT" in classes and "ACDBPLACEHOLDER" in classes

@@ -23,12 +23,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
 
-from fabtiles.machines.profiles import load_profile
 from fabtiles.designs.design_file import design_from_text, load_design
 from fabtiles.export.dxf import dxf_bytes
 from fabtiles.geometry import tile as tile_module
 from fabtiles.geometry.contours import MITRE_LIMIT
 from fabtiles.geometry.cut_plan import plan_cut
+from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 FINE = 1e-4
@@ -57,8 +57,8 @@ def _dxf_polygons(data: bytes):
 
 def _arc_middles(data: bytes) -> np.ndarray:
     """The middle point of every arc of a DXF: ezdxf's own arc of each bulge (``bulge_to_arc``)."""
-    from ezdxf.math import bulge_to_arc
     from dxf_helpers import is_closed, raw_vertices
+    from ezdxf.math import bulge_to_arc
 
     out = []
     for e in ezdxf.read(io.StringIO(data.decode("cp1252"))).modelspace():
@@ -98,8 +98,10 @@ def check_against_geos(design, monkeypatch, *, kerf: float, min_arcs: int = 1, r
     return plan, area, fine.area
 
 
-CIRCLES = ('[packing]\nkind = "archimedean"\ntiling = "{tiling}"\noutline_circles = {circles}\n'
-           '[tile]\noutline = "circle"\nsize = {size}\nstroke = {stroke}\njoin = "round"\n')
+CIRCLES = (
+    '[packing]\nkind = "archimedean"\ntiling = "{tiling}"\noutline_circles = {circles}\n'
+    '[tile]\noutline = "circle"\nsize = {size}\nstroke = {stroke}\njoin = "round"\n'
+)
 
 
 @pytest.mark.parametrize("sample", ["rosette"])
@@ -121,8 +123,12 @@ def test_a_circle_tile_like_the_issues(monkeypatch):
 
 
 @settings(max_examples=examples(2), deadline=None)
-@given(st.sampled_from(["3.3.3.4.4", "4.8.8", "3.6.3.6", "3.12.12"]), st.integers(60, 90),
-       st.sampled_from([0.8, 1.0, 1.6]), st.sampled_from([0.0, 0.15]))
+@given(
+    st.sampled_from(["3.3.3.4.4", "4.8.8", "3.6.3.6", "3.12.12"]),
+    st.integers(60, 90),
+    st.sampled_from([0.8, 1.0, 1.6]),
+    st.sampled_from([0.0, 0.15]),
+)
 def test_random_designs_with_curves_agree_with_geos(tiling, size, stroke, kerf):
     # circle tiles with outline circles and round joins, large enough to hold several polygons of the
     # default 20 mm edge (under 60 mm a tile may hold no hole, or a few whose area is all corners)
@@ -140,8 +146,9 @@ def test_cut_length_and_time_measure_the_arcs():
     design = design_from_text(CIRCLES.format(tiling="3.3.3.4.4", circles="true", size=100, stroke=1.0), name="c")
     tile = design.build_tile()
     plan = plan_cut(tile.region(), tile.outline_shape(), profile=PLY)
-    chords = sum(float(np.hypot(*np.diff(np.vstack([p, p[:1]]), axis=0).T).sum())
-                 for layer in plan.layers for p in layer.paths)
+    chords = sum(
+        float(np.hypot(*np.diff(np.vstack([p, p[:1]]), axis=0).T).sum()) for layer in plan.layers for p in layer.paths
+    )
     arcs = plan.report.stats["cut_length_mm"]
     assert chords < arcs < chords * 1.001
     data = dxf_bytes(plan)

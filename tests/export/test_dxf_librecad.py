@@ -20,16 +20,21 @@ import numpy as np
 import pytest
 from dxf_helpers import bulges, motif_tile, star_plate, vertices
 
-from fabtiles.machines.profiles import LaserLayers, Layer, load_profile
 from fabtiles.export.dxf import write_dxf
+from fabtiles.machines.profiles import LaserLayers, Layer, load_profile
 
 LIBRECAD = shutil.which("librecad")
 DEFAULT = load_profile("laser-3mm-plywood")
 # The bundled profiles draw both cuts red (docs/laser-programs.md); these tests tell the layers
 # apart by colour, so they give each layer its own: inner red, outer blue, score green.
-PLY = replace(DEFAULT, layers=LaserLayers(inner_cut=Layer(DEFAULT.layers.inner_cut.name, 1),
-                                          outer_cut=Layer(DEFAULT.layers.outer_cut.name, 5),
-                                          score=Layer(DEFAULT.layers.score.name, 3)))
+PLY = replace(
+    DEFAULT,
+    layers=LaserLayers(
+        inner_cut=Layer(DEFAULT.layers.inner_cut.name, 1),
+        outer_cut=Layer(DEFAULT.layers.outer_cut.name, 5),
+        score=Layer(DEFAULT.layers.score.name, 3),
+    ),
+)
 # ACI colours as LibreCAD prints them (RGB 0..1)
 RGB = {1: (1.0, 0.0, 0.0), 3: (0.0, 1.0, 0.0), 5: (0.0, 0.0, 1.0)}
 
@@ -46,8 +51,9 @@ def librecad():
 def _print_pdf(librecad, dxf, tmp_path):
     # LibreCAD 2.2 ignores -o for one file: it prints <name>.dxf to <name>.pdf beside it
     env = dict(os.environ, QT_QPA_PLATFORM="offscreen", XDG_RUNTIME_DIR=str(tmp_path))
-    subprocess.run([librecad, "dxf2pdf", "-a", str(dxf)], env=env, check=True,
-                   capture_output=True, timeout=120, cwd=tmp_path)
+    subprocess.run(
+        [librecad, "dxf2pdf", "-a", str(dxf)], env=env, check=True, capture_output=True, timeout=120, cwd=tmp_path
+    )
     return dxf.with_suffix(".pdf").read_bytes()
 
 
@@ -199,12 +205,20 @@ def test_librecad_draws_a_nested_sheet(librecad, tmp_path):
     # issue 34: a sheet of two designs nested, turned copies and all, drawn whole and in proportion
     import ezdxf
 
-    from fabtiles.making.nesting import nest_designs
     from fabtiles.designs.design_file import design_from_text
+    from fabtiles.making.nesting import nest_designs
 
-    designs = [(design_from_text(f'[motif]\npreset = "table3-{k}"\n[packing]\nradius = 8\n[tile]\noutline = '
-                                 f'"{outline}"\nsize = 40\nframe = 3\nstroke = 1.0\n', name=outline), 3)
-               for k, outline in ((1, "hexagon"), (3, "circle"))]
+    designs = [
+        (
+            design_from_text(
+                f'[motif]\npreset = "table3-{k}"\n[packing]\nradius = 8\n[tile]\noutline = '
+                f'"{outline}"\nsize = 40\nframe = 3\nstroke = 1.0\n',
+                name=outline,
+            ),
+            3,
+        )
+        for k, outline in ((1, "hexagon"), (3, "circle"))
+    ]
     nest_designs(designs, tmp_path, ("dxf",), sheet_mm=(150, 100), time_s=1)
     dxf = tmp_path / "nest-sheet-1.dxf"  # a sheet of several designs is named after none of them
     drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
@@ -221,17 +235,26 @@ def test_librecad_draws_a_nested_sheet(librecad, tmp_path):
 @pytest.mark.parametrize("version", ["R12", "R2000"])
 def test_librecad_draws_the_arcs(librecad, tmp_path, version):
     # issue 35: a circle tile with round joins and outline circles, its curves as arcs (bulges)
-    from fabtiles.making.models import BuildOptions, Models
     from fabtiles.designs.design_file import design_from_text
+    from fabtiles.making.models import BuildOptions, Models
 
-    design = design_from_text('[packing]\nkind = "archimedean"\ntiling = "3.3.3.4.4"\noutline_circles = true\n'
-                              '[tile]\noutline = "circle"\nsize = 60\njoin = "round"\n', name="circles")
+    design = design_from_text(
+        '[packing]\nkind = "archimedean"\ntiling = "3.3.3.4.4"\noutline_circles = true\n'
+        '[tile]\noutline = "circle"\nsize = 60\njoin = "round"\n',
+        name="circles",
+    )
     plan = Models(design.build_tile(), BuildOptions.of_design(design)).cut
     assert plan.report.stats["arcs"] > 100
     dxf = tmp_path / "circles.dxf"
-    write_dxf(dxf, region=design.build_tile().region(), outline=design.build_tile().outline_shape(),
-              profile=DEFAULT, dxf_version=version)
+    write_dxf(
+        dxf,
+        region=design.build_tile().region(),
+        outline=design.build_tile().outline_shape(),
+        profile=DEFAULT,
+        dxf_version=version,
+    )
     drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
     assert set(drawn) == {RGB[1]}
-    assert_draws_the_curves(drawn[RGB[1]], dxf, {DEFAULT.layers.inner_cut.name, DEFAULT.layers.outer_cut.name},
-                            tol_mm=0.2)
+    assert_draws_the_curves(
+        drawn[RGB[1]], dxf, {DEFAULT.layers.inner_cut.name, DEFAULT.layers.outer_cut.name}, tol_mm=0.2
+    )

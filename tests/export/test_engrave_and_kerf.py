@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import replace
 
@@ -15,10 +16,9 @@ from shapely.geometry import Polygon, box
 from test_laser_programs import meerk40t
 
 from fabtiles import HexPacking, ParameterError, ProfileError, Star, Tile
-from fabtiles.machines.profiles import LaserLayers, load_profile
 from fabtiles.export.card import write_card
 from fabtiles.geometry.contours import laser_contours, outline_contours
-import itertools
+from fabtiles.machines.profiles import LaserLayers, load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 ANISO = replace(PLY, kerf_x_mm=0.12, kerf_y_mm=0.3)
@@ -87,10 +87,14 @@ def test_a_band_narrower_than_two_fill_lines_is_a_finding(tmp_path):
 
 
 def test_engrave_needs_an_engrave_layer(tmp_path):
-    bare = replace(PLY, layers=LaserLayers(inner_cut=PLY.layers.inner_cut, outer_cut=PLY.layers.outer_cut,
-                                           score=PLY.layers.score))
-    with pytest.raises(ProfileError, match=r"has no engrave layer, which the engrave mode fills: add engrave = "
-                                           r"\{ name = \"FILL\", color = 6"):
+    bare = replace(
+        PLY, layers=LaserLayers(inner_cut=PLY.layers.inner_cut, outer_cut=PLY.layers.outer_cut, score=PLY.layers.score)
+    )
+    with pytest.raises(
+        ProfileError,
+        match=r"has no engrave layer, which the engrave mode fills: add engrave = "
+        r"\{ name = \"FILL\", color = 6",
+    ):
         tile().export(tmp_path / "e.dxf", mode="engrave", profile=bare)
     assert list(tmp_path.iterdir()) == []
 
@@ -103,8 +107,10 @@ def test_cli_engrave_with_a_profile_without_the_layer_exits_2(tmp_path):
     profile = tmp_path / "bare.toml"
     profile.write_text('kind = "laser"\n[laser]\nmode = "engrave"\n')
     design = tmp_path / "d.toml"
-    design.write_text(f'[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 40\n'
-                      f'[output]\nformats = ["dxf"]\nlaser_profile = "{profile}"\n')
+    design.write_text(
+        f'[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 40\n'
+        f'[output]\nformats = ["dxf"]\nlaser_profile = "{profile}"\n'
+    )
     result = CliRunner().invoke(cli, ["build", str(design), "-o", str(tmp_path / "out")], catch_exceptions=False)
     assert result.exit_code == 2 and "has no engrave layer" in result.output
     assert result.output.count("\n") == 1 and not (tmp_path / "out").exists()
@@ -148,8 +154,7 @@ def test_an_edge_moves_by_the_kerf_across_it(n, turn, kx, ky):
     for a, b in itertools.pairwise(pts):
         edge = b - a
         normal = np.array([edge[1], -edge[0]]) / np.hypot(*edge)  # outward: the ring runs counter-clockwise
-        assert support(ring, normal) == pytest.approx(support(pts, normal) + ellipse_support(normal, kx, ky),
-                                                      abs=2e-6)
+        assert support(ring, normal) == pytest.approx(support(pts, normal) + ellipse_support(normal, kx, ky), abs=2e-6)
 
 
 def test_the_gauge_measures_nominal_plus_and_minus_half_the_kerf_on_each_axis(tmp_path):

@@ -14,16 +14,16 @@ from pathlib import Path
 import ezdxf
 import pytest
 from mesh_helpers import assert_solid, expected_volume, load_stl, top
+from real_programs import program
 from test_3mf_multicolour import extrusions_by_tool, slice_gcode
 from test_dxf_librecad import _dxf_edges, _print_pdf, _segments_by_colour
 from test_tiling_samples import SAMPLES as TILING_SAMPLES
 
 import fabtiles
+from fabtiles.designs.design_file import load_design
 from fabtiles.machines.profiles import load_profile
 from fabtiles.making import build_design
-from fabtiles.designs.design_file import load_design
 from fabtiles.pattern.tilings import TILINGS
-from real_programs import program
 
 SAMPLES = Path(__file__).resolve().parents[2] / "samples" / "hankin"
 SAMPLE = SAMPLES / "4.8.8.toml"
@@ -86,8 +86,7 @@ def test_every_laser_mode(tmp_path, mode):
 
 
 def test_the_router(tmp_path):
-    _, result = _build(tmp_path, ("dxf",), 'output.laser_profile="router-6mm-mdf"', "tile.stroke=7",
-                       "packing.edge=40")
+    _, result = _build(tmp_path, ("dxf",), 'output.laser_profile="router-6mm-mdf"', "tile.stroke=7", "packing.edge=40")
     assert len(result.paths) == 1 and ezdxf.readfile(result.paths[0]).modelspace()
 
 

@@ -9,11 +9,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
+from dxf_helpers import dxf_entities
 from shapely.geometry import Point
 
 import fabtiles as ft
-from dxf_helpers import dxf_entities
-from fabtiles import FabricationError, ParameterError
+from fabtiles import ParameterError
 
 ROSETTES = ["table1-part2", "table2-left", "table2-right", "table3-1", "table3-2", "table3-3"]
 BASE, RELIEF = 2.0, 1.2  # fdm-0.4mm
@@ -49,7 +49,7 @@ def score_segments(path):
     segs = []
     for e in doc.modelspace().query("LWPOLYLINE[layer=='SCORE']"):
         pts = np.array([v[:2] for v in e.get_points("xy")], float)
-        segs += [pts[k:k + 2] for k in range(len(pts) - 1)]
+        segs += [pts[k : k + 2] for k in range(len(pts) - 1)]
     return np.array(segs)
 
 
@@ -58,7 +58,7 @@ def covered(segs, p, d, half_len):
     a, b = segs[:, 0], segs[:, 1]
     ab = b - a
     length = np.linalg.norm(ab, axis=1)
-    along = np.abs((ab[:, 0] * d[1] - ab[:, 1] * d[0])) < 1e-6 * length
+    along = np.abs(ab[:, 0] * d[1] - ab[:, 1] * d[0]) < 1e-6 * length
     dist = np.abs((p - a)[:, 0] * ab[:, 1] - (p - a)[:, 1] * ab[:, 0]) / length
     t = np.einsum("ij,ij->i", p - a, ab) / length**2
     return bool(np.any(along & (dist < 1e-4) & (t * length > half_len) & ((1 - t) * length > half_len)))
@@ -184,12 +184,15 @@ def test_interlace_flags_must_be_bools(value):
 
 def test_cli_bad_gap_exits_2_and_writes_nothing(tmp_path):
     design = tmp_path / "woven.toml"
-    design.write_text('[motif]\npreset = "table3-1"\n[packing]\nradius = 12\n'
-                      '[tile]\noutline = "square"\nsize = 50\nframe = 2\ninterlace = true\n'
-                      'interlace_gap_mm = 40\n[output]\nformats = ["stl"]\n')
+    design.write_text(
+        '[motif]\npreset = "table3-1"\n[packing]\nradius = 12\n'
+        '[tile]\noutline = "square"\nsize = 50\nframe = 2\ninterlace = true\n'
+        'interlace_gap_mm = 40\n[output]\nformats = ["stl"]\n'
+    )
     out = tmp_path / "out"
-    run = subprocess.run([sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(out)],
-                         capture_output=True, text=True)
+    run = subprocess.run(
+        [sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(out)], capture_output=True, text=True
+    )
     assert run.returncode == 2, run.stderr
     assert "interlace_gap_mm" in run.stderr and "40" in run.stderr
     assert not list(out.glob("*.stl")) if out.exists() else True
@@ -198,8 +201,10 @@ def test_cli_bad_gap_exits_2_and_writes_nothing(tmp_path):
 def test_design_file_keys(tmp_path):
     from fabtiles.designs.design_file import design_from_text
 
-    d = design_from_text('[motif]\npreset = "table3-1"\n[tile]\nsize = 50\ninterlace = true\n'
-                         'interlace_gap_mm = 0.2\ninterlace_cut = true\n')
+    d = design_from_text(
+        '[motif]\npreset = "table3-1"\n[tile]\nsize = 50\ninterlace = true\n'
+        "interlace_gap_mm = 0.2\ninterlace_cut = true\n"
+    )
     tile = d.build_tile()
     assert (tile.interlace, tile.interlace_gap_mm, tile.interlace_cut) == (True, 0.2, True)
     with pytest.raises(ft.DesignError, match=r"interlace must be true or false, got 'yes'"):
@@ -251,7 +256,7 @@ def test_outline_circles_are_scored_whole_and_not_woven(tmp_path):
 
     lines = tile_score_lines(tile)
     # every circle chord inside the outline is still there, whole
-    circles = tile.segments()[len(tile.motif_segments()):]
+    circles = tile.segments()[len(tile.motif_segments()) :]
     mid = circles.mean(axis=1)
     inside = (mid > 0.5).all(axis=1) & (mid < 49.5).all(axis=1)
     lmid = lines.mean(axis=1)

@@ -15,9 +15,9 @@ from real_programs import program, run
 from test_laser_programs import burns, meerk40t
 
 from fabtiles import DesignError, FabricationError, HexPacking, ParameterError, ProfileError, Star, Tile
-from fabtiles.machines.profiles import LaserLayers, load_profile
 from fabtiles.cli.main import cli
 from fabtiles.geometry.inlay import inlay_kit, shape_key
+from fabtiles.machines.profiles import LaserLayers, load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 KERF, FIT = PLY.kerf_mm, PLY.inlay_fit_mm
@@ -41,8 +41,9 @@ def kit(tmp_path_factory):
     out = tmp_path_factory.mktemp("kit")
     t = tile()
     report = t.export(out / "t.dxf", mode="inlay")
-    expected = inlay_kit(t.region(), t.outline_shape(), fit_mm=FIT, min_piece_mm=PLY.min_piece_or_default_mm,
-                         kerf_mm=KERF)
+    expected = inlay_kit(
+        t.region(), t.outline_shape(), fit_mm=FIT, min_piece_mm=PLY.min_piece_or_default_mm, kerf_mm=KERF
+    )
     return t, report, out / "t-lattice.dxf", out / "t-pieces.dxf", expected
 
 
@@ -179,8 +180,9 @@ def test_librecad_and_meerk40t_open_both_files_at_true_size(kit, tmp_path):
     # MeerK40t moved a file reaching past the bed's origin (the lattice's kerf at -0.075 mm, before
     # every file was moved into the positive quadrant) 87.5 mm to the bed's centre and left the pieces
     # where they lay; now it leaves both where they lie, the lattice's corner at (0, 0): they register
-    lattice_drawn = np.concatenate([r for e in (PLY.layers.inner_cut.name, PLY.layers.outer_cut.name)
-                                    for r in rings(lattice, e)])
+    lattice_drawn = np.concatenate(
+        [r for e in (PLY.layers.inner_cut.name, PLY.layers.outer_cut.name) for r in rings(lattice, e)]
+    )
     assert lattice_drawn.min(axis=0).tolist() == [0.0, 0.0]
     assert lat.min(axis=0) == pytest.approx(lattice_drawn.min(axis=0), abs=0.05)
     assert pcs.min(axis=0) == pytest.approx(drawn.min(axis=0), abs=0.05)
@@ -191,30 +193,43 @@ def test_librecad_and_meerk40t_open_both_files_at_true_size(kit, tmp_path):
 
 def test_a_fit_that_makes_pieces_touch_names_the_narrowest_band(tmp_path):
     t = tile(stroke=0.9)
-    with pytest.raises(FabricationError, match=r"pairs of inlay pieces would touch on the pieces sheet: the narrowest "
-                                               r"gap between two pieces is 0 mm \(at .*, where the band of lattice "
-                                               r"between their holes is 0\.9\d+ mm\), and pieces must stand more than "
-                                               r"the kerf = 0\.15 mm apart, so bands must be wider than "
-                                               r"kerf \+ 2 x fit = 1\.15 mm"):
+    with pytest.raises(
+        FabricationError,
+        match=r"pairs of inlay pieces would touch on the pieces sheet: the narrowest "
+        r"gap between two pieces is 0 mm \(at .*, where the band of lattice "
+        r"between their holes is 0\.9\d+ mm\), and pieces must stand more than "
+        r"the kerf = 0\.15 mm apart, so bands must be wider than "
+        r"kerf \+ 2 x fit = 1\.15 mm",
+    ):
         t.export(tmp_path / "t.dxf", mode="inlay", inlay_fit_mm=0.5)
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.parametrize("options,error,msg", [
-    (dict(inlay_fit_mm=0.6), ParameterError, r"inlay_fit_mm must be a number of mm from -0\.5 to 0\.5"),
-    (dict(inlay_base="glued"), ParameterError, r"'glued' is not a valid inlay_base, must be one of: pierced, pocket"),
-])
+@pytest.mark.parametrize(
+    "options,error,msg",
+    [
+        (dict(inlay_fit_mm=0.6), ParameterError, r"inlay_fit_mm must be a number of mm from -0\.5 to 0\.5"),
+        (
+            dict(inlay_base="glued"),
+            ParameterError,
+            r"'glued' is not a valid inlay_base, must be one of: pierced, pocket",
+        ),
+    ],
+)
 def test_bad_kit_options(tmp_path, options, error, msg):
     with pytest.raises(error, match=msg):
         tile().export(tmp_path / "t.dxf", mode="inlay", **options)
-    with pytest.raises(ParameterError, match=r"inlay_fit_mm, inlay_pieces and inlay_base are options of the inlay mode"):
+    with pytest.raises(
+        ParameterError, match=r"inlay_fit_mm, inlay_pieces and inlay_base are options of the inlay mode"
+    ):
         tile().export(tmp_path / "t.dxf", inlay_fit_mm=0.1)
     assert list(tmp_path.iterdir()) == []
 
 
 def test_pocket_needs_an_engrave_layer(tmp_path):
-    bare = replace(PLY, layers=LaserLayers(inner_cut=PLY.layers.inner_cut, outer_cut=PLY.layers.outer_cut,
-                                           score=PLY.layers.score))
+    bare = replace(
+        PLY, layers=LaserLayers(inner_cut=PLY.layers.inner_cut, outer_cut=PLY.layers.outer_cut, score=PLY.layers.score)
+    )
     with pytest.raises(ProfileError, match=r"has no engrave layer"):
         tile().export(tmp_path / "t.dxf", mode="inlay", inlay_base="pocket", profile=bare)
     assert list(tmp_path.iterdir()) == []
@@ -226,7 +241,9 @@ def test_design_and_cli_errors(tmp_path):
     text = '[motif]\npreset = "table3-3"\n[tile]\noutline = "square"\nsize = 40\n[output]\nlaser_mode = "inlay"\n'
     with pytest.raises(DesignError, match=r"\[output\] inlay_fit_mm must be a number of mm from -0\.5 to 0\.5"):
         design_from_text(text + "inlay_fit_mm = 0.7\n")
-    with pytest.raises(DesignError, match=r"\[output\] inlay_base = 'glued' is not valid, must be one of: pierced, pocket"):
+    with pytest.raises(
+        DesignError, match=r"\[output\] inlay_base = 'glued' is not valid, must be one of: pierced, pocket"
+    ):
         design_from_text(text + 'inlay_base = "glued"\n')
     profile = tmp_path / "p.toml"
     profile.write_text('kind = "laser"\n[laser]\ninlay_fit_mm = 0.8\n')
@@ -240,13 +257,16 @@ def test_design_and_cli_errors(tmp_path):
 
 def test_cli_builds_a_kit_in_every_laser_format(tmp_path):
     design = tmp_path / "d.toml"
-    design.write_text('[motif]\npreset = "table3-3"\n[packing]\nradius = 10\n[tile]\noutline = "square"\n'
-                      'size = 60\nframe = 3\n[output]\nformats = ["dxf", "svg", "lbrn2"]\nlaser_mode = "inlay"\n'
-                      'inlay_fit_mm = 0.1\n')
+    design.write_text(
+        '[motif]\npreset = "table3-3"\n[packing]\nradius = 10\n[tile]\noutline = "square"\n'
+        'size = 60\nframe = 3\n[output]\nformats = ["dxf", "svg", "lbrn2"]\nlaser_mode = "inlay"\n'
+        "inlay_fit_mm = 0.1\n"
+    )
     result = CliRunner().invoke(cli, ["build", str(design), "-o", str(tmp_path / "out")], catch_exceptions=False)
     assert result.exit_code == 0, result.output
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == sorted(
-        f"d-{part}.{fmt}" for part in ("lattice", "pieces") for fmt in ("dxf", "svg", "lbrn2"))
+        f"d-{part}.{fmt}" for part in ("lattice", "pieces") for fmt in ("dxf", "svg", "lbrn2")
+    )
     assert "laser laser-3mm-plywood (inlay kit): ok\n" in result.output
     assert re.search(r"^  pieces: \d+ pieces of \d+ shapes, fit \+0\.1 mm", result.output, re.M), result.output
 
@@ -278,7 +298,8 @@ def test_the_kit_picture_of_the_sample_is_up_to_date(tmp_path):
     spec.loader.exec_module(module)
     out = module.render(root / "samples" / "table3-3.toml", tmp_path / "kit.svg")
     assert out.read_bytes() == (root / "samples" / "pictures" / "kit-table3-3.svg").read_bytes(), (
-        "run python samples/render_kit.py")
+        "run python samples/render_kit.py"
+    )
     assert out.read_text().count('class="pieces"') == 3
 
 
@@ -298,8 +319,9 @@ def test_write_kit_leaves_holding_tabs_as_the_design_keys_do(tmp_path):
     from fabtiles.export.kit import write_kit
 
     t = tile()
-    report = write_kit(tmp_path / "t.dxf", region=t.region(), outline=t.outline_shape(), profile=PLY,
-                       tab_mm=1.0, tabs_per_part=2)
+    report = write_kit(
+        tmp_path / "t.dxf", region=t.region(), outline=t.outline_shape(), profile=PLY, tab_mm=1.0, tabs_per_part=2
+    )
     # the lattice's outline: two open pieces around two 1 mm gaps, not one closed ring
     doc = ezdxf.readfile(tmp_path / "t-lattice.dxf")
     outer = [e for e in doc.modelspace() if e.dxf.layer == PLY.layers.outer_cut.name]

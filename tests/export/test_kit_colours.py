@@ -13,12 +13,18 @@ import shapely
 from designs import design_toml
 from dxf_helpers import read_checked, ring_polygons
 
+from fabtiles.designs.design_file import design_from_text
 from fabtiles.machines.profiles import load_profile
 from fabtiles.making import build_design
 from fabtiles.making.models import BuildOptions, Models
-from fabtiles.designs.design_file import design_from_text
 
-DESIGN = design_toml(radius=12.5, size=80, stroke=1.5, output={"formats": ["dxf"], "laser_mode": "inlay"}, colour={"by": "shape", "palette": "alhambra"})
+DESIGN = design_toml(
+    radius=12.5,
+    size=80,
+    stroke=1.5,
+    output={"formats": ["dxf"], "laser_mode": "inlay"},
+    colour={"by": "shape", "palette": "alhambra"},
+)
 
 
 @pytest.fixture(scope="module")
@@ -35,8 +41,9 @@ def test_a_pieces_file_per_face_colour(kit):
     # class C (6-point stars) is too small for a piece anywhere: no blue sheet
     assert names == ["kit-lattice.dxf", "kit-pieces-green.dxf", "kit-pieces-ochre.dxf"]
     (report,) = result.reports
-    assert report.stats["files"] == [str(out / n) for n in ("kit-lattice.dxf", "kit-pieces-green.dxf",
-                                                            "kit-pieces-ochre.dxf")]
+    assert report.stats["files"] == [
+        str(out / n) for n in ("kit-lattice.dxf", "kit-pieces-green.dxf", "kit-pieces-ochre.dxf")
+    ]
     by_colour = report.stats["pieces_by_colour"]
     assert {k: v["pieces"] for k, v in by_colour.items()} == {"green": 68, "ochre": 11}
 
@@ -64,8 +71,9 @@ def test_each_pieces_file_holds_exactly_its_colours_faces(kit, colour, letter):
         assert face.buffer(fit + kerf / 2 + 0.01).contains(cut)
         assert cut.area == pytest.approx(face.buffer(fit + kerf / 2).area, rel=0.03)
     # nothing of another colour on this sheet
-    others = shapely.union_all([models.face_classes.of(c.letter) for c in models.face_classes.classes
-                                if c.letter != letter])
+    others = shapely.union_all(
+        [models.face_classes.of(c.letter) for c in models.face_classes.classes if c.letter != letter]
+    )
     assert all(shapely.intersection(c, others).area < 1e-6 for c in cuts)
 
 
@@ -82,10 +90,13 @@ def test_an_uncoloured_kit_keeps_its_two_files(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["kit-lattice.dxf", "kit-pieces.dxf"]
 
 
-@pytest.mark.parametrize("colour, files", [
-    ('[colour]\nby = "none"\n', ["kit-lattice.dxf", "kit-pieces-cobalt.dxf"]),
-    ('[colour]\nby = "none"\n[colour.faces]\nA = "teal"\n', ["kit-lattice.dxf", "kit-pieces-teal.dxf"]),
-])
+@pytest.mark.parametrize(
+    "colour, files",
+    [
+        ('[colour]\nby = "none"\n', ["kit-lattice.dxf", "kit-pieces-cobalt.dxf"]),
+        ('[colour]\nby = "none"\n[colour.faces]\nA = "teal"\n', ["kit-lattice.dxf", "kit-pieces-teal.dxf"]),
+    ],
+)
 def test_any_colour_section_names_the_pieces_by_colour(tmp_path, colour, files):
     """One rule: with a [colour] section, every pieces file is -pieces-<colour>, one class or many."""
     design = design_from_text(DESIGN.split("[colour]")[0] + colour, name="kit")
@@ -94,9 +105,14 @@ def test_any_colour_section_names_the_pieces_by_colour(tmp_path, colour, files):
 
 
 # every hole of this tile is narrower than 1.2 mm, so none is large enough for a piece (2.4 mm)
-NO_PIECES = design_toml(preset="table3-2", packing={"kind": "archimedean", "tiling": "3.3.3.3.3.3", "edge": 10.14},
-                        radius=None, size=[89.5, 89.5], stroke=2.0,
-                        output={"formats": ["dxf"], "laser_mode": "inlay"})
+NO_PIECES = design_toml(
+    preset="table3-2",
+    packing={"kind": "archimedean", "tiling": "3.3.3.3.3.3", "edge": 10.14},
+    radius=None,
+    size=[89.5, 89.5],
+    stroke=2.0,
+    output={"formats": ["dxf"], "laser_mode": "inlay"},
+)
 
 
 @pytest.mark.parametrize("colour", ["", '[colour]\nby = "shape"\n', '[colour]\nby = "none"\n'])
@@ -113,7 +129,8 @@ def test_the_kit_api_writes_no_empty_pieces_file(tmp_path):
     from fabtiles.export.kit import write_kit
 
     tile = design_from_text(NO_PIECES, name="kit").build_tile()
-    report = write_kit(tmp_path / "k.dxf", region=tile.region(), outline=tile.outline_shape(),
-                       profile="laser-3mm-plywood", stroke=2.0)
+    report = write_kit(
+        tmp_path / "k.dxf", region=tile.region(), outline=tile.outline_shape(), profile="laser-3mm-plywood", stroke=2.0
+    )
     assert report.stats["files"] == [str(tmp_path / "k-lattice.dxf")]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["k-lattice.dxf"]

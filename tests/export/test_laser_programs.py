@@ -33,9 +33,11 @@ SIZE = 60.0  # inside MeerK40t's default 235 mm bed, which it would otherwise sc
 GRBL_STEP = 0.0254  # MeerK40t works in 1/1000 inch
 
 
-PATTERNS = {"hex": lambda: HexPacking(10, Star.preset("table3-3")),
-            # issue 36: Hankin's polygons in contact go through the programs as the paper's motifs do
-            "hankin": lambda: ArchimedeanPacking("4.8.8", 8, method="hankin", contact_angle=67.5)}
+PATTERNS = {
+    "hex": lambda: HexPacking(10, Star.preset("table3-3")),
+    # issue 36: Hankin's polygons in contact go through the programs as the paper's motifs do
+    "hankin": lambda: ArchimedeanPacking("4.8.8", 8, method="hankin", contact_angle=67.5),
+}
 
 
 @pytest.fixture(scope="module", params=sorted(PATTERNS))
@@ -74,12 +76,32 @@ def meerk40t(path, tmp_path, listing: str = "tree list") -> dict:
     gcode = tmp_path / f"{Path(path).stem}.gcode"
     env = {**os.environ, "HOME": str(home), "XDG_CONFIG_HOME": str(home / ".config")}
     extra = ["-e", listing] if listing != "tree list" else []
-    done = run([exe, "-Z", "-X", "-A", "-e", "device add grbl-diode", "-e", f"load {path}", "-e", "tree list", *extra,
-                "-e", "plan copy preprocess validate blob preopt optimize", "-e", f"plan save_job {gcode}",
-                "-e", "quit"], env=env, timeout=180)
+    done = run(
+        [
+            exe,
+            "-Z",
+            "-X",
+            "-A",
+            "-e",
+            "device add grbl-diode",
+            "-e",
+            f"load {path}",
+            "-e",
+            "tree list",
+            *extra,
+            "-e",
+            "plan copy preprocess validate blob preopt optimize",
+            "-e",
+            f"plan save_job {gcode}",
+            "-e",
+            "quit",
+        ],
+        env=env,
+        timeout=180,
+    )
     out = re.sub(r"\x1b\[[0-9;]*m", "", done.stdout + done.stderr)
     added = int(re.search(r"Elements before: 0, after: \d+, added: (\d+)", out).group(1))
-    tree = out[out.index("Tree:"):]
+    tree = out[out.index("Tree:") :]
     ops = []  # (kind, references) of each operation, in the tree's order
     for line in tree.splitlines():
         m = re.search(r"\s(\d+)\.(\d+)(\.\d+)?\s+: (op (\w+)|reference)", line)
@@ -167,40 +189,52 @@ def test_inkscape_measures_the_svg_in_true_millimetres(files):
 @pytest.mark.parametrize("mode", ["pierced", "score"])
 def test_inkscape_imports_the_dxf_with_every_layer_and_contour(files, tmp_path, mode):
     python = require(os.path.exists(SYSTEM_PYTHON) and SYSTEM_PYTHON, SYSTEM_PYTHON, "apt-get install python3")
-    extension = require((INKSCAPE_EXTENSIONS / "dxf_input.py").exists() and INKSCAPE_EXTENSIONS / "dxf_input.py",
-                        "Inkscape's dxf_input.py", "apt-get install inkscape")
+    extension = require(
+        (INKSCAPE_EXTENSIONS / "dxf_input.py").exists() and INKSCAPE_EXTENSIONS / "dxf_input.py",
+        "Inkscape's dxf_input.py",
+        "apt-get install inkscape",
+    )
     dxf = files[mode, "dxf"]
     svg = run([python, extension, dxf], cwd=INKSCAPE_EXTENSIONS).stdout
     root = ET.fromstring(svg)
     ns = {"s": "http://www.w3.org/2000/svg", "i": "http://www.inkscape.org/namespaces/inkscape"}
     label = "{{{}}}label".format(ns["i"])
-    imported = {g.get(label): g.findall("s:path", ns) for g in root.iter("{{{}}}g".format(ns["s"]))
-                if g.get("{{{}}}groupmode".format(ns["i"])) == "layer" and g.findall("s:path", ns)}
+    imported = {
+        g.get(label): g.findall("s:path", ns)
+        for g in root.iter("{{{}}}g".format(ns["s"]))
+        if g.get("{{{}}}groupmode".format(ns["i"])) == "layer" and g.findall("s:path", ns)
+    }
     layers = dxf_layers(dxf)
     assert {k: len(v) for k, v in imported.items()} == {k: len(v) for k, v in layers.items()}
-    colours = {PLY.layers.inner_cut.name: "#FF0000", PLY.layers.outer_cut.name: "#FF0000",
-               PLY.layers.score.name: "#0000FF"}
+    colours = {
+        PLY.layers.inner_cut.name: "#FF0000",
+        PLY.layers.outer_cut.name: "#FF0000",
+        PLY.layers.score.name: "#0000FF",
+    }
     for name, paths in imported.items():
         for p, closed in zip(paths, layers[name], strict=True):
             assert p.get("d").strip().lower().endswith("z") == closed
             assert f"stroke:{colours[name]}" in p.get("style")
     # millimetres: Inkscape's default import scale reads one DXF unit as 1 mm (96 px per inch)
-    xs = np.array([float(v) for p in imported[PLY.layers.outer_cut.name]
-                   for v in re.findall(r"-?\d+\.?\d*", p.get("d"))[0::2]])
+    xs = np.array(
+        [float(v) for p in imported[PLY.layers.outer_cut.name] for v in re.findall(r"-?\d+\.?\d*", p.get("d"))[0::2]]
+    )
     assert (xs.max() - xs.min()) * 25.4 / 96 == pytest.approx(SIZE + PLY.kerf_mm, abs=0.002)
 
 
 # --------------------------------------------------------------------------- arcs (issue 35)
 
-CIRCLES = ('[packing]\nkind = "archimedean"\ntiling = "3.3.3.4.4"\noutline_circles = true\n'
-           '[tile]\noutline = "circle"\nsize = 60\njoin = "round"\n')
+CIRCLES = (
+    '[packing]\nkind = "archimedean"\ntiling = "3.3.3.4.4"\noutline_circles = true\n'
+    '[tile]\noutline = "circle"\nsize = 60\njoin = "round"\n'
+)
 
 
 @pytest.fixture(scope="module")
 def arc_files(tmp_path_factory):
     """The 60 mm circle tile with round joins and outline circles: its DXF and SVG, curves as arcs."""
-    from fabtiles.making import build_design
     from fabtiles.designs.design_file import design_from_text
+    from fabtiles.making import build_design
 
     out = tmp_path_factory.mktemp("arcs")
     design = design_from_text(CIRCLES + '[output]\nformats = ["dxf", "svg"]\n', name="circles")
@@ -244,17 +278,25 @@ def test_meerk40t_cuts_the_arcs_as_arcs(arc_files, tmp_path, fmt):
 
 def test_inkscape_imports_the_dxf_arcs(arc_files):
     python = require(os.path.exists(SYSTEM_PYTHON) and SYSTEM_PYTHON, SYSTEM_PYTHON, "apt-get install python3")
-    extension = require((INKSCAPE_EXTENSIONS / "dxf_input.py").exists() and INKSCAPE_EXTENSIONS / "dxf_input.py",
-                        "Inkscape's dxf_input.py", "apt-get install inkscape")
+    extension = require(
+        (INKSCAPE_EXTENSIONS / "dxf_input.py").exists() and INKSCAPE_EXTENSIONS / "dxf_input.py",
+        "Inkscape's dxf_input.py",
+        "apt-get install inkscape",
+    )
     dxf = arc_files["dxf"]
     svg = run([python, extension, dxf], cwd=INKSCAPE_EXTENSIONS).stdout
     root = ET.fromstring(svg)
     ns = {"s": "http://www.w3.org/2000/svg", "i": "http://www.inkscape.org/namespaces/inkscape"}
-    paths = [p.get("d") for g in root.iter("{{{}}}g".format(ns["s"])) if g.get("{{{}}}groupmode".format(ns["i"])) == "layer"
-             for p in g.findall("s:path", ns)]
+    paths = [
+        p.get("d")
+        for g in root.iter("{{{}}}g".format(ns["s"]))
+        if g.get("{{{}}}groupmode".format(ns["i"])) == "layer"
+        for p in g.findall("s:path", ns)
+    ]
     assert len(paths) == sum(len(v) for v in dxf_layers(dxf).values())
-    bulged = sum(int((np.array([p[2] for p in e.get_points("xyb")]) != 0).sum())
-                 for e in ezdxf.readfile(dxf).modelspace())
+    bulged = sum(
+        int((np.array([p[2] for p in e.get_points("xyb")]) != 0).sum()) for e in ezdxf.readfile(dxf).modelspace()
+    )
     # Inkscape draws each bulge as an SVG arc ("A")
     assert sum(d.count("A") for d in paths) == bulged
 

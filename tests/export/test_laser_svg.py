@@ -11,9 +11,9 @@ from dxf_helpers import dxf_entities, motif_tile, star_plate
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError, ProfileError
-from fabtiles.machines.profiles import load_profile
 from fabtiles.export.dxf import write_dxf
 from fabtiles.export.laser_svg import aci_to_hex, write_laser_svg
+from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 NS = {"s": "http://www.w3.org/2000/svg"}
@@ -29,8 +29,9 @@ def test_same_contours_as_dxf(tmp_path):
     svg, dxf = tmp_path / "p.svg", tmp_path / "p.dxf"
     r1 = write_laser_svg(svg, region=region, outline=outline, profile=PLY)
     r2 = write_dxf(dxf, region=region, outline=outline, profile=PLY)
-    assert r1.format == "svg" and {k: v for k, v in r1.stats.items() if k != "dxf_version"} == \
-        {k: v for k, v in r2.stats.items() if k != "dxf_version"}
+    assert r1.format == "svg" and {k: v for k, v in r1.stats.items() if k != "dxf_version"} == {
+        k: v for k, v in r2.stats.items() if k != "dxf_version"
+    }
     root = ET.parse(svg).getroot()
     k = PLY.kerf_mm / 2
     assert root.get("width") == f"{60 + 2 * k:g}mm" and root.get("height") == f"{60 + 2 * k:g}mm"
@@ -74,14 +75,24 @@ def test_reproducible_byte_for_byte(tmp_path):
 
 def test_aci_colours():
     assert [aci_to_hex(c) for c in (1, 2, 3, 4, 5, 6, 7)] == [
-        "#FF0000", "#FFFF00", "#00FF00", "#00FFFF", "#0000FF", "#FF00FF", "#FFFFFF"]
+        "#FF0000",
+        "#FFFF00",
+        "#00FF00",
+        "#00FFFF",
+        "#0000FF",
+        "#FF00FF",
+        "#FFFFFF",
+    ]
 
 
-@pytest.mark.parametrize("change, error", [
-    (dict(kerf_mm=-1), ParameterError),
-    (dict(profile="nope"), ProfileError),
-    (dict(outline=box(0, 0, 601, 401)), FabricationError),
-])
+@pytest.mark.parametrize(
+    "change, error",
+    [
+        (dict(kerf_mm=-1), ParameterError),
+        (dict(profile="nope"), ProfileError),
+        (dict(outline=box(0, 0, 601, 401)), FabricationError),
+    ],
+)
 def test_bad_input_no_file(tmp_path, change, error):
     region, outline = star_plate()
     with pytest.raises(error):

@@ -22,9 +22,9 @@ from real_programs import program, require, run
 from test_laser_programs import burns, meerk40t
 
 from fabtiles import ArchimedeanPacking, HexPacking, ProfileError, Star, Tile
-from fabtiles.machines.profiles import load_profile
 from fabtiles.export import lbrn2
 from fabtiles.geometry.job_time import path_lengths
+from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 HERE = Path(__file__).parent
@@ -36,8 +36,9 @@ def tile(size=60):
 
 def hankin_tile(size=60):
     """Issue 36: Hankin's polygons in contact, through LightBurn's project as the paper's motifs."""
-    return Tile("square", size, ArchimedeanPacking("4.8.8", 8, method="hankin", contact_angle=67.5), frame=3,
-                stroke=1.0)
+    return Tile(
+        "square", size, ArchimedeanPacking("4.8.8", 8, method="hankin", contact_angle=67.5), frame=3, stroke=1.0
+    )
 
 
 @pytest.fixture(scope="module", params=["hex", "hankin"])
@@ -62,8 +63,9 @@ def read_lbrn2(path) -> dict:
     shapes = []
     for s in root.findall("Shape"):
         assert s.get("Type") == "Path" and s.find("XForm").text == "1 0 0 1 0 0"
-        verts = np.array([[float(x), float(y)] for x, y in
-                          re.findall(r"V(-?[0-9.]+) (-?[0-9.]+)c0x1c1x1", s.find("VertList").text)])
+        verts = np.array(
+            [[float(x), float(y)] for x, y in re.findall(r"V(-?[0-9.]+) (-?[0-9.]+)c0x1c1x1", s.find("VertList").text)]
+        )
         prims = [tuple(map(int, p)) for p in re.findall(r"L(\d+) (\d+)", s.find("PrimList").text)]
         n = len(verts)
         closed = prims == [(i, (i + 1) % n) for i in range(n)]
@@ -74,8 +76,10 @@ def read_lbrn2(path) -> dict:
 
 def dxf_paths(path) -> list:
     """``(layer, closed, vertices)`` of every DXF polyline, in file order."""
-    return [(e.dxf.layer, bool(e.closed), np.array([p[:2] for p in e.get_points("xy")]))
-            for e in ezdxf.readfile(path).modelspace()]
+    return [
+        (e.dxf.layer, bool(e.closed), np.array([p[:2] for p in e.get_points("xy")]))
+        for e in ezdxf.readfile(path).modelspace()
+    ]
 
 
 # --------------------------------------------------------------------------- our own reader
@@ -102,7 +106,12 @@ def test_every_layer_carries_the_profiles_settings_and_runs_inner_before_outer(f
         for c, key in zip(by_priority, keys, strict=True):
             layer = getattr(PLY.layers, key)
             assert (c["type"], c["name"], float(c["speed"]), float(c["maxPower"]), int(c["numPasses"])) == (
-                "Cut", layer.name, layer.speed_mm_s, layer.power_pct, layer.passes)
+                "Cut",
+                layer.name,
+                layer.speed_mm_s,
+                layer.power_pct,
+                layer.passes,
+            )
         assert [c["name"] for c in by_priority] == [getattr(PLY.layers, k).name for k in keys]
         assert len({int(i) for i in cuts}) == len(cuts)  # one LightBurn layer each
 
@@ -133,7 +142,8 @@ def test_meerk40t_loads_the_project_with_its_speeds_and_powers(files, tmp_path, 
     keys = ["inner_cut", "outer_cut"] if mode == "pierced" else ["score", "outer_cut"]
     ops = re.findall(r"\d+: Cut ([0-9.]+)mm/s @([0-9.]+)", project["listing"])
     assert [(float(s), float(p)) for s, p in ops] == [
-        (getattr(PLY.layers, k).speed_mm_s, getattr(PLY.layers, k).power_pct * 10) for k in keys]
+        (getattr(PLY.layers, k).speed_mm_s, getattr(PLY.layers, k).power_pct * 10) for k in keys
+    ]
     # the G-code burns what the DXF's G-code burns, to the same extent
     dxf_job = meerk40t(paths[mode, "dxf"], tmp_path / "dxf")
 
@@ -152,7 +162,9 @@ def test_the_time_estimate_against_a_simulation_of_the_same_job(files, tmp_path)
     """
     import importlib.util
 
-    require(importlib.util.find_spec("gcode_simulator"), "gcode-simulator", 'pip install gcode-simulator (the "test" extra)')
+    require(
+        importlib.util.find_spec("gcode_simulator"), "gcode-simulator", 'pip install gcode-simulator (the "test" extra)'
+    )
     import gcode_simulator as sim
 
     rapid = 200.0
@@ -176,8 +188,11 @@ def lbrnts(path) -> dict:
     folder = os.environ.get("FABTILES_LBRNTS_DIR", "")
     node = program("node", "apt-get install nodejs")
     found = folder and (Path(folder) / "node_modules" / "lbrnts").exists()
-    require(found, "lbrnts", "npm install lbrnts svgson transformation-matrix in a folder, then "
-                             "FABTILES_LBRNTS_DIR=that folder")
+    require(
+        found,
+        "lbrnts",
+        "npm install lbrnts svgson transformation-matrix in a folder, then FABTILES_LBRNTS_DIR=that folder",
+    )
     return json.loads(run([node, HERE / "lbrnts_read.mjs", path], cwd=folder).stdout)
 
 
@@ -189,9 +204,11 @@ def test_lbrnts_reads_every_cut_setting_and_shape(files):
         assert got["formatVersion"] == "1"
         assert [(c["index"], c["name"], c["type"], c["speed"], c["maxPower"], c["numPasses"]) for c in got["cuts"]] == [
             (i, c["name"], c["type"], float(c["speed"]), float(c["maxPower"]), int(c["numPasses"]))
-            for i, c in ours["cuts"].items()]
+            for i, c in ours["cuts"].items()
+        ]
         assert [(s["cutIndex"], s["vertices"]) for s in got["shapes"]] == [
-            (s["index"], len(s["vertices"])) for s in ours["shapes"]]
+            (s["index"], len(s["vertices"])) for s in ours["shapes"]
+        ]
         # lbrnts 0.0.17 calls a path open only when its primitives are LightBurn's shorthand
         # "LineOpen" (MeerK40t then burns nothing of it): the closed contours it reads right
         assert all(s["closed"] for s, o in zip(got["shapes"], ours["shapes"], strict=True) if o["closed"])
@@ -200,13 +217,16 @@ def test_lbrnts_reads_every_cut_setting_and_shape(files):
 # --------------------------------------------------------------------------- settings
 
 
-@pytest.mark.parametrize("entry,msg", [
-    ("speed_mm_s = 0", r"layers.inner_cut.speed_mm_s must be > 0, got 0"),
-    ("power_pct = 0", r"layers.inner_cut.power_pct must be a percentage > 0 and <= 100, got 0"),
-    ("power_pct = 120", r"layers.inner_cut.power_pct must be a percentage > 0 and <= 100, got 120"),
-    ("passes = 0", r"layers.inner_cut.passes must be a whole number >= 1, got 0"),
-    ("passes = 1.5", r"layers.inner_cut.passes must be a whole number >= 1, got 1.5"),
-])
+@pytest.mark.parametrize(
+    "entry,msg",
+    [
+        ("speed_mm_s = 0", r"layers.inner_cut.speed_mm_s must be > 0, got 0"),
+        ("power_pct = 0", r"layers.inner_cut.power_pct must be a percentage > 0 and <= 100, got 0"),
+        ("power_pct = 120", r"layers.inner_cut.power_pct must be a percentage > 0 and <= 100, got 120"),
+        ("passes = 0", r"layers.inner_cut.passes must be a whole number >= 1, got 0"),
+        ("passes = 1.5", r"layers.inner_cut.passes must be a whole number >= 1, got 1.5"),
+    ],
+)
 def test_bad_layer_settings_name_the_profile_key_and_value(tmp_path, entry, msg):
     p = tmp_path / "bad.toml"
     p.write_text(f'kind = "laser"\n[layers]\ninner_cut = {{ name = "IN", color = 1, {entry} }}\n')
@@ -214,12 +234,18 @@ def test_bad_layer_settings_name_the_profile_key_and_value(tmp_path, entry, msg)
         load_profile(p)
 
 
-@pytest.mark.parametrize("text,msg", [
-    ('[layers]\nengrave = { name = "F", color = 6, line_interval_mm = 0 }', r"layers.engrave.line_interval_mm must be > 0"),
-    ('[laser]\nkerf_x_mm = -0.1', r"laser.kerf_x_mm must be >= 0, got -0.1"),
-    ('[laser]\npierce_s = -1', r"laser.pierce_s must be >= 0, got -1"),
-    ('[laser]\ntravel_mm_s = 0', r"laser.travel_mm_s must be > 0, got 0"),
-])
+@pytest.mark.parametrize(
+    "text,msg",
+    [
+        (
+            '[layers]\nengrave = { name = "F", color = 6, line_interval_mm = 0 }',
+            r"layers.engrave.line_interval_mm must be > 0",
+        ),
+        ("[laser]\nkerf_x_mm = -0.1", r"laser.kerf_x_mm must be >= 0, got -0.1"),
+        ("[laser]\npierce_s = -1", r"laser.pierce_s must be >= 0, got -1"),
+        ("[laser]\ntravel_mm_s = 0", r"laser.travel_mm_s must be > 0, got 0"),
+    ],
+)
 def test_bad_machine_settings(tmp_path, text, msg):
     p = tmp_path / "bad.toml"
     p.write_text(f'kind = "laser"\n{text}\n')
@@ -240,8 +266,8 @@ def test_the_palette_index_of_each_layer():
 def arc_files(tmp_path_factory):
     from test_laser_programs import CIRCLES
 
-    from fabtiles.making import build_design
     from fabtiles.designs.design_file import design_from_text
+    from fabtiles.making import build_design
 
     out = tmp_path_factory.mktemp("lbrn2-arcs")
     build_design(design_from_text(CIRCLES + '[output]\nformats = ["dxf", "lbrn2"]\n', name="circles"), out)
@@ -258,7 +284,7 @@ def _drawn(verts, prims, closed) -> np.ndarray:
         p0, p3 = np.array(a[:2]), np.array(z[:2])
         if kind == 1:
             p1, p2 = np.array(a[2:4]), np.array(z[4:6])
-            out.append((1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t ** 2 * p2 + t ** 3 * p3)
+            out.append((1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t**2 * p2 + t**3 * p3)
         else:
             out.append(p0 + (p3 - p0) * t)
     return np.vstack(out)
@@ -292,7 +318,6 @@ def test_meerk40t_burns_the_projects_beziers_as_the_dxfs_arcs(arc_files, tmp_pat
     assert a.max(axis=0) - a.min(axis=0) == pytest.approx(b.max(axis=0) - b.min(axis=0), abs=0.05)
 
 
-
 def read_beziers(path) -> list:
     """Every Path of a project as points along it: each straight line's end, and each Bezier (``B i j``:
     vertex i's ``c0`` handle, vertex j's ``c1``) at 256 points, as a reader of the format draws it."""
@@ -301,15 +326,17 @@ def read_beziers(path) -> list:
     t = np.linspace(0, 1, 257)[1:, None]
     out = []
     for s in ET.parse(path).getroot().findall("Shape"):
-        v = np.array([[np.nan if x is None else float(x) for x in m.groups()]
-                      for m in vertex.finditer(s.find("VertList").text)])
+        v = np.array(
+            [[np.nan if x is None else float(x) for x in m.groups()] for m in vertex.finditer(s.find("VertList").text)]
+        )
         pts = [v[:1, :2]]
         for kind, i, j in re.findall(r"([LB])(\d+) (\d+)", s.find("PrimList").text):
             a, z = v[int(i)], v[int(j)]
             if kind == "B":
                 assert not np.isnan(a[2:4]).any() and not np.isnan(z[4:6]).any()
-                pts.append((1 - t) ** 3 * a[:2] + 3 * (1 - t) ** 2 * t * a[2:4] + 3 * (1 - t) * t ** 2 * z[4:6]
-                           + t ** 3 * z[:2])
+                pts.append(
+                    (1 - t) ** 3 * a[:2] + 3 * (1 - t) ** 2 * t * a[2:4] + 3 * (1 - t) * t**2 * z[4:6] + t**3 * z[:2]
+                )
             else:
                 pts.append(z[None, :2])
         out.append(np.vstack(pts))
@@ -334,7 +361,7 @@ def dxf_exact_paths(path, sagitta_mm: float = 1e-5) -> list:
             sweep, start = 4 * np.arctan(b), np.arctan2(y - c[1], x - c[0])
             k = max(8, int(np.ceil(abs(sweep) * r / np.sqrt(8 * sagitta_mm * r))))
             a = start + sweep * np.arange(1, k) / k
-            ring += list(zip(c[0] + r * np.cos(a), c[1] + r * np.sin(a)))
+            ring += list(zip(c[0] + r * np.cos(a), c[1] + r * np.sin(a), strict=True))
         if e.closed:
             ring.append(ring[0])
         out.append(np.array(ring))
@@ -354,16 +381,19 @@ def test_a_large_circles_beziers_lie_on_the_dxfs_arcs_within_the_tolerance(tmp_p
     """A 140 mm circle tile: every Bezier, drawn, stands within a tenth of the profile's tolerance of the
     DXF's exact arcs (a quarter turn as one cubic would stand 0.019 mm off on this radius), and every
     point of the DXF's arcs within as much of the project's curves."""
-    from fabtiles.making import build_design
     from fabtiles.designs.design_file import load_design
+    from fabtiles.making import build_design
 
     sample = HERE.parents[1] / "samples" / "table3-3.toml"
-    design = load_design(sample, overrides=('tile.outline="circle"', "tile.size=140",
-                                            'output.formats=["dxf", "lbrn2"]'))
+    design = load_design(
+        sample, overrides=('tile.outline="circle"', "tile.size=140", 'output.formats=["dxf", "lbrn2"]')
+    )
     build_design(design, tmp_path)
     drawn = read_beziers(tmp_path / "table3-3.lbrn2")
     exact = dxf_exact_paths(tmp_path / "table3-3.dxf")
     assert len(drawn) == len(exact)
     assert max(np.ptp(p[:, 0]) for p in exact) == pytest.approx(140.15, abs=1e-3)  # the outline, kerf outside
-    worst = max(max(_farthest(ours, theirs), _farthest(theirs, ours)) for ours, theirs in zip(drawn, exact))
+    worst = max(
+        max(_farthest(ours, theirs), _farthest(theirs, ours)) for ours, theirs in zip(drawn, exact, strict=True)
+    )
     assert worst <= 0.1 * PLY.tolerance_mm + 2e-4  # a tenth of the tolerance, and the file's 4 decimals

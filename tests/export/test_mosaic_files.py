@@ -16,15 +16,15 @@ import numpy as np
 import pytest
 import shapely
 import trimesh
-from test_3mf_multicolour import extrusions_by_tool, prusa_cmd, slice_gcode
+from test_3mf_multicolour import extrusions_by_tool, slice_gcode
 from test_3mf_readers import lib3mf_read, savitar
 
-from fabtiles.machines.profiles import load_profile
-from fabtiles.making import build_design
-from fabtiles.making.models import BuildOptions, Models
 from fabtiles.designs.design_file import design_from_text, load_design
 from fabtiles.export import threemf
 from fabtiles.export.step import check_step_file
+from fabtiles.machines.profiles import load_profile
+from fabtiles.making import build_design
+from fabtiles.making.models import BuildOptions, Models
 
 SAMPLE = Path(__file__).resolve().parents[2] / "samples" / "mosaic-iznik.toml"
 PARTS = ["navy (base)", "white (bands)", "cobalt (A)", "turquoise (B)"]
@@ -37,8 +37,7 @@ def built(tmp_path_factory):
     result = build_design(design, out, formats=("3mf", "stl", "step"))
     models = Models(design.build_tile(), BuildOptions.of_design(design))
     components = tmp_path_factory.mktemp("components")
-    build_design(load_design(SAMPLE, overrides=("output.threemf_layout=\"components\"",)), components,
-                 formats=("3mf",))
+    build_design(load_design(SAMPLE, overrides=('output.threemf_layout="components"',)), components, formats=("3mf",))
     return out, result, models, components / "mosaic-iznik.3mf"
 
 
@@ -55,8 +54,9 @@ def test_the_3mf_holds_a_part_per_colour_on_extruders_1_to_n(built):
     volumes = {n: trimesh.Trimesh(p.vertices, p.faces).volume for n, p in parts.items()}
     assert volumes["navy (base)"] == pytest.approx(model.outline.area * s.base, rel=1e-3)
     assert volumes["white (bands)"] == pytest.approx(region.area * s.relief, rel=1e-3)
-    assert volumes["cobalt (A)"] + volumes["turquoise (B)"] == pytest.approx(faces.area * (s.relief - s.inset),
-                                                                             rel=1e-3)
+    assert volumes["cobalt (A)"] + volumes["turquoise (B)"] == pytest.approx(
+        faces.area * (s.relief - s.inset), rel=1e-3
+    )
     classes = models.face_classes
     for name, letter in (("cobalt (A)", "A"), ("turquoise (B)", "B")):
         # the class's faces, as printed (a face the fill closed is no longer one)
@@ -84,7 +84,8 @@ def test_cura_and_lib3mf_read_the_four_parts(built):
     *_, components = built
     (group,) = savitar(components)["nodes"]
     assert [(c["name"], c["settings"]) for c in group["children"]] == [
-        (n, {"extruder_nr": str(k)}) for k, n in enumerate(PARTS)]
+        (n, {"extruder_nr": str(k)}) for k, n in enumerate(PARTS)
+    ]
     got = lib3mf_read(components)
     assert got["warnings"] == [] and len(got["components"]) == 1
     assert all(manifold for _, _, manifold, _ in got["meshes"].values())
@@ -171,8 +172,8 @@ def test_the_hexagon_mosaic_writes_every_part_watertight(hexagon):
         assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0, colour
     # the faces and the bands share the hexagon's top: their footprints' areas add up to the outline's
     volumes = {n: trimesh.Trimesh(p.vertices, p.faces).volume for n, p in parts.items()}
-    side = 149.8 / 3 ** 0.5  # a pointy-top hexagon 149.8 mm across its flats
-    area = 3 * 3 ** 0.5 / 2 * side ** 2
+    side = 149.8 / 3**0.5  # a pointy-top hexagon 149.8 mm across its flats
+    area = 3 * 3**0.5 / 2 * side**2
     relief = load_profile("fdm-0.6mm").relief_mm  # the faces flush with the bands (no inset)
     assert volumes["white (bands)"] + volumes["cobalt (A)"] == pytest.approx(area * relief, rel=1e-3)
 

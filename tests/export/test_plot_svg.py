@@ -11,9 +11,9 @@ import vpype as vp
 from lxml import etree
 
 from fabtiles import ParameterError
-from fabtiles.making.plot import plot_drawing
 from fabtiles.designs.design_file import load_design
 from fabtiles.export.plot_svg import PX_PER_MM, hpgl_bytes, need_vpype, svg_bytes, vpype_document
+from fabtiles.making.plot import plot_drawing
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -46,7 +46,9 @@ def test_vpype_document_names_colours_and_pen(drawing):
     doc = vpype_document(drawing)
     assert [lc.property("vp_name") for lc in doc.layers.values()] == [layer.name for layer in drawing.layers]
     assert [str(lc.property("vp_color")) for lc in doc.layers.values()] == [layer.colour for layer in drawing.layers]
-    assert [lc.property("vp_pen_width") for lc in doc.layers.values()] == pytest.approx([0.4 * PX_PER_MM] * len(drawing.layers))
+    assert [lc.property("vp_pen_width") for lc in doc.layers.values()] == pytest.approx(
+        [0.4 * PX_PER_MM] * len(drawing.layers)
+    )
     assert doc.length() / PX_PER_MM == pytest.approx(drawing.length_mm, rel=1e-9)
     # y down: the drawing's top edge at y = 0
     ys = np.concatenate([np.concatenate([line.imag for line in lc]) for lc in doc.layers.values()])

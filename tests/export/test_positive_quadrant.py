@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 import shapely
 
-from fabtiles.making import build_design
 from fabtiles.designs.design_file import load_design
+from fabtiles.making import build_design
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = ROOT / "samples"
@@ -36,8 +36,17 @@ CASES = {
     "circle": ("rosette", [], False),
     "hexagon": ("table3-3", ['tile.outline="hexagon"'], False),
     "seamless": ("seamless-hexagon", [], False),
-    "router": ("table3-3", ['output.laser_profile="router-6mm-mdf"', "tile.stroke=12", "packing.radius=60",
-                            "tile.frame=20", "tile.size=[300,300]"], False),
+    "router": (
+        "table3-3",
+        [
+            'output.laser_profile="router-6mm-mdf"',
+            "tile.stroke=12",
+            "packing.radius=60",
+            "tile.frame=20",
+            "tile.size=[300,300]",
+        ],
+        False,
+    ),
     "waterjet": ("table3-3", ['output.laser_profile="waterjet-1mm-aluminium"', "tile.stroke=3"], False),
     "sheet": ("table3-3", [], True),
 }
@@ -72,17 +81,23 @@ def svg_read(path):
     root = ET.parse(path).getroot()
     x, y, w, h = map(float, root.get("viewBox").split())
     size = [float(root.get(k).removesuffix("mm")) for k in ("width", "height")]
-    pts = np.array([(float(a), -float(b)) for p in root.iter("{http://www.w3.org/2000/svg}path")
-                    for a, b in re.findall(r"(?:[ML]|A\S+ \S+ 0 [01] [01] )(-?[0-9.]+) (-?[0-9.]+)", p.get("d"))])
+    pts = np.array(
+        [
+            (float(a), -float(b))
+            for p in root.iter("{http://www.w3.org/2000/svg}path")
+            for a, b in re.findall(r"(?:[ML]|A\S+ \S+ 0 [01] [01] )(-?[0-9.]+) (-?[0-9.]+)", p.get("d"))
+        ]
+    )
     return pts, np.array([x, -(y + h)]), np.array([x + w, -y]), np.array(size)
 
 
 def lbrn2_shapes(path) -> list:
     """The vertices of each shape of a LightBurn project, as written."""
     root = ET.parse(path).getroot()
-    return [np.array([(float(a), float(b)) for a, b in re.findall(r"V(-?[0-9.]+) (-?[0-9.]+)c",
-                                                                     s.find("VertList").text)])
-            for s in root.findall("Shape")]
+    return [
+        np.array([(float(a), float(b)) for a, b in re.findall(r"V(-?[0-9.]+) (-?[0-9.]+)c", s.find("VertList").text)])
+        for s in root.findall("Shape")
+    ]
 
 
 @pytest.fixture(scope="module", params=list(CASES))
@@ -148,9 +163,14 @@ def test_a_kits_pieces_lie_in_their_lattice_holes_read_back(tmp_path, fmt):
     design = load_design(SAMPLES / "table3-3.toml", overrides=['output.laser_mode="inlay"'])
     build_design(design, tmp_path, [fmt])
     if fmt == "dxf":
+
         def contours(path, layer):
-            return [np.array([p[:2] for p in e.get_points("xy")]) for e in ezdxf.readfile(path).modelspace()
-                    if e.dxf.layer == layer]
+            return [
+                np.array([p[:2] for p in e.get_points("xy")])
+                for e in ezdxf.readfile(path).modelspace()
+                if e.dxf.layer == layer
+            ]
+
         holes = contours(tmp_path / "table3-3-lattice.dxf", "INNER")
         pieces = contours(tmp_path / "table3-3-pieces.dxf", "OUTER")
     else:

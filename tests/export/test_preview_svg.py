@@ -22,8 +22,9 @@ def test_tile_svg_true_size_and_reproducible(tmp_path):
     svg = tile_svg(tile, title="t")
     assert re.search(r'width="50mm" height="30mm" viewBox="0 0 50 30"', svg)
     assert "<title>t</title>" in svg and 'fill-rule="evenodd"' in svg
-    again = tile_svg(TileGeometry("rectangle", (50, 30), HexPacking(radius=6, motif=Star.preset("table3-2")),
-                          frame=2), title="t")
+    again = tile_svg(
+        TileGeometry("rectangle", (50, 30), HexPacking(radius=6, motif=Star.preset("table3-2")), frame=2), title="t"
+    )
     assert svg == again
     write_tile_svg(tmp_path / "t.svg", tile, title="t")
     assert (tmp_path / "t.svg").read_text() == svg

@@ -24,8 +24,8 @@ from mesh_helpers import B, assert_section, load_stl, mid_heights, section_regio
 from real_programs import program
 
 import fabtiles as ft
-from fabtiles.making import build_design
 from fabtiles.designs.design_file import design_from_text
+from fabtiles.making import build_design
 from fabtiles.pattern.tilings import TILINGS
 
 MIN_HOLE = ft.load_profile("fdm-0.4mm").min_hole_mm
@@ -127,8 +127,7 @@ def test_the_issue_design_filled_has_no_hole_narrower_than_the_nozzle(issue_buil
     (report,) = result.reports
     assert report.ok
     assert report.stats["filled_holes"] == 2396
-    assert "filled 2,396 openings narrower than min_hole_mm = 0.8 mm of printer profile 'fdm-0.4mm'" in \
-        report.summary()
+    assert "filled 2,396 openings narrower than min_hole_mm = 0.8 mm of printer profile 'fdm-0.4mm'" in report.summary()
     holes = openings(section_region(load_stl(path), mid_heights("pierced")), "pierced", issue_builds["outline"])
     assert len(holes) > 600  # the real holes stay
     assert widths(holes).min() >= MIN_HOLE - SNAP
@@ -155,8 +154,21 @@ def test_prusaslicer_slices_the_issue_design_filled_within_two_minutes(tmp_path)
     ini = tmp_path / "printer.ini"
     ini.write_text(PRUSA_CONFIG)
     gcode = tmp_path / "tile.gcode"
-    cmd = [prusa, "--loglevel", "1", "--datadir", tmp_path / "prusa-data", "--load", ini, "--export-gcode",
-           "--center", "125,125", "--output", gcode, tmp_path / "half.stl"]
+    cmd = [
+        prusa,
+        "--loglevel",
+        "1",
+        "--datadir",
+        tmp_path / "prusa-data",
+        "--load",
+        ini,
+        "--export-gcode",
+        "--center",
+        "125,125",
+        "--output",
+        gcode,
+        tmp_path / "half.stl",
+    ]
     done = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr[-2000:]
     zs = [float(z) for z in re.findall(r"^;Z:([0-9.]+)$", gcode.read_text(), flags=re.M)]
@@ -164,6 +176,7 @@ def test_prusaslicer_slices_the_issue_design_filled_within_two_minutes(tmp_path)
 
 
 # --------------------------------------------------------------------------- random designs
+
 
 @st.composite
 def designs(draw):
@@ -173,16 +186,24 @@ def designs(draw):
     motif = draw(st.sampled_from(presets))
     outline = draw(st.sampled_from(["square", "circle", "hexagon"]))
     return dict(
-        tiling=tiling, motif=motif, outline=outline, size=draw(st.floats(30, 50)), edge=draw(st.floats(6, 14)),
-        stroke=draw(st.floats(0.8, 1.6)), join=draw(st.sampled_from(["miter", "round", "bevel"])),
-        circles=draw(st.booleans()), style=draw(st.sampled_from(["relief", "pierced", "deboss"])),
-        frame=draw(st.sampled_from([1.0, 2.0, 3.0])))
+        tiling=tiling,
+        motif=motif,
+        outline=outline,
+        size=draw(st.floats(30, 50)),
+        edge=draw(st.floats(6, 14)),
+        stroke=draw(st.floats(0.8, 1.6)),
+        join=draw(st.sampled_from(["miter", "round", "bevel"])),
+        circles=draw(st.booleans()),
+        style=draw(st.sampled_from(["relief", "pierced", "deboss"])),
+        frame=draw(st.sampled_from([1.0, 2.0, 3.0])),
+    )
 
 
 def _tile(d):
     pack = ft.ArchimedeanPacking(d["tiling"], edge=d["edge"], motifs={}, outline_circles=d["circles"])
-    pack = ft.ArchimedeanPacking(d["tiling"], edge=d["edge"], motifs={k: d["motif"] for k in pack.kinds},
-                                 outline_circles=d["circles"])
+    pack = ft.ArchimedeanPacking(
+        d["tiling"], edge=d["edge"], motifs=dict.fromkeys(pack.kinds, d["motif"]), outline_circles=d["circles"]
+    )
     return ft.Tile(d["outline"], d["size"], pack, frame=d["frame"], stroke=d["stroke"], join=d["join"])
 
 
@@ -200,7 +221,10 @@ def test_random_designs_filled_leave_no_opening_narrower_than_the_nozzle(tmp_pat
         return
     assert "small_hole" not in {f.code for f in report.findings}
     mesh = load_stl(path)
-    section, outline = section_region(mesh, mid_heights(d["style"])), mesh_outline(mesh, d["style"], tile.outline_shape())
+    section, outline = (
+        section_region(mesh, mid_heights(d["style"])),
+        mesh_outline(mesh, d["style"], tile.outline_shape()),
+    )
     assert widths(openings(section, d["style"], outline)).min(initial=np.inf) >= MIN_HOLE - SNAP
     # as the slicer traces it; a side as wide as the closing's own limit may go either way
     w = widths(openings(as_sliced(section), d["style"], outline))
@@ -217,7 +241,10 @@ def test_random_designs_unfilled_count_what_the_slicer_faces(tmp_path, d):
     report = tile.export(path, profile="fdm-0.4mm", style=d["style"])
     found = next((f.count for f in report.findings if f.code == "small_hole"), 0)
     mesh = load_stl(path)
-    section, outline = section_region(mesh, mid_heights(d["style"])), mesh_outline(mesh, d["style"], tile.outline_shape())
+    section, outline = (
+        section_region(mesh, mid_heights(d["style"])),
+        mesh_outline(mesh, d["style"], tile.outline_shape()),
+    )
     raw = measured(openings(section, d["style"], outline, min_area=0.5e-4))
     sliced = measured(openings(as_sliced(section), d["style"], outline, min_area=0.5e-4))
     # every opening narrower than the nozzle counts once; a roomy opening's small side behind a neck
@@ -230,11 +257,14 @@ def test_random_designs_unfilled_count_what_the_slicer_faces(tmp_path, d):
 # --------------------------------------------------------------------------- bad input
 
 
-@pytest.mark.parametrize("line,match", [
-    ("min_hole_mm = -0.5", r"printer.min_hole_mm must be >= 0, got -0.5"),
-    ("min_hole_mm = nan", r"printer.min_hole_mm must be a finite number, got nan"),
-    ("min_hole_mm = 200", r"printer profile 'tall': min_hole_mm = 200 mm is larger than the tile \(60 x 60 mm\)"),
-])
+@pytest.mark.parametrize(
+    "line,match",
+    [
+        ("min_hole_mm = -0.5", r"printer.min_hole_mm must be >= 0, got -0.5"),
+        ("min_hole_mm = nan", r"printer.min_hole_mm must be a finite number, got nan"),
+        ("min_hole_mm = 200", r"printer profile 'tall': min_hole_mm = 200 mm is larger than the tile \(60 x 60 mm\)"),
+    ],
+)
 def test_bad_min_hole_is_one_line_exit_2_and_no_file(tmp_path, line, match):
     from click.testing import CliRunner
 
@@ -243,8 +273,10 @@ def test_bad_min_hole_is_one_line_exit_2_and_no_file(tmp_path, line, match):
     profile = tmp_path / "tall.toml"
     profile.write_text(f'kind = "printer"\n[printer]\n{line}\n')
     design = tmp_path / "d.toml"
-    design.write_text('[motif]\npreset = "table3-1"\n[packing]\nradius = 8\n[tile]\nsize = 60\nframe = 3\n'
-                      f'[output]\nformats = ["stl"]\nprinter_profile = "{profile}"\nfill_small_holes = true\n')
+    design.write_text(
+        '[motif]\npreset = "table3-1"\n[packing]\nradius = 8\n[tile]\nsize = 60\nframe = 3\n'
+        f'[output]\nformats = ["stl"]\nprinter_profile = "{profile}"\nfill_small_holes = true\n'
+    )
     out = tmp_path / "out"
     result = CliRunner().invoke(cli, ["build", str(design), "-o", str(out)], catch_exceptions=False)
     assert result.exit_code == 2 and re.search(match, result.output), result.output
@@ -258,8 +290,13 @@ def test_fill_small_holes_must_be_a_bool(tmp_path):
     from fabtiles.export import stl
 
     with pytest.raises(ft.ParameterError, match="fill_small_holes must be True or False, got 'yes'"):
-        stl.write_stl(tmp_path / "t.stl", region=box(0, 0, 9, 9), outline=box(0, 0, 9, 9), profile="fdm-0.4mm",
-                      fill_small_holes="yes")
+        stl.write_stl(
+            tmp_path / "t.stl",
+            region=box(0, 0, 9, 9),
+            outline=box(0, 0, 9, 9),
+            profile="fdm-0.4mm",
+            fill_small_holes="yes",
+        )
     assert not (tmp_path / "t.stl").exists()
 
 
@@ -267,8 +304,20 @@ def test_tolerance_mm_thins_hole_edges_within_it(tmp_path):
     """A print's hole edges move by at most the profile's tolerance_mm, and its outline not at all."""
     from dataclasses import replace
 
-    tile = _tile(dict(tiling="4.8.8", motif="table3-3", outline="circle", size=60, edge=12, stroke=1.0,
-                      join="round", circles=True, style="pierced", frame=2.0))
+    tile = _tile(
+        dict(
+            tiling="4.8.8",
+            motif="table3-3",
+            outline="circle",
+            size=60,
+            edge=12,
+            stroke=1.0,
+            join="round",
+            circles=True,
+            style="pierced",
+            frame=2.0,
+        )
+    )
     for tol in (0.0, 0.02):
         profile = replace(ft.load_profile("fdm-0.4mm"), tolerance_mm=tol)
         report = tile.export(tmp_path / f"t{tol}.stl", profile=profile, style="pierced", fill_small_holes=False)

@@ -22,7 +22,6 @@ from dxf_helpers import (
     check_router_dxf,
     dxf_entities,
     even_odd_area,
-    motif_tile,
     opened_reference,
     raw_vertices,
     read_checked,
@@ -33,13 +32,13 @@ from real_programs import program, run
 from shapely.geometry import Polygon
 
 import fabtiles as ft
-from fabtiles.machines.profiles import load_profile
-from fabtiles.making import build_design
 from fabtiles.cli.main import cli
 from fabtiles.designs.design_file import load_design
 from fabtiles.export.dxf import write_dxf
 from fabtiles.export.laser_svg import write_laser_svg
 from fabtiles.geometry.contours import MITRE_LIMIT
+from fabtiles.machines.profiles import load_profile
+from fabtiles.making import build_design
 
 ROOT = Path(__file__).resolve().parents[2]
 PANEL = ROOT / "samples" / "panel-2440x1220.toml"
@@ -73,8 +72,9 @@ def panel_dxf(tmp_path_factory):
 
 
 def tile_region(size=150.0, radius=20.0, stroke=3.0, frame=8.0):
-    tile = ft.Tile("square", size, ft.HexPacking(radius=radius, motif=ft.Star.preset("table3-3")), frame=frame,
-                   stroke=stroke)
+    tile = ft.Tile(
+        "square", size, ft.HexPacking(radius=radius, motif=ft.Star.preset("table3-3")), frame=frame, stroke=stroke
+    )
     return tile.region(), tile.outline_shape()
 
 
@@ -89,8 +89,7 @@ def test_the_router_dxf_is_geos_own_opening(tmp_path):
     doc = check_router_dxf(path, region, ROUTER)
     r = ROUTER.tool_radius_mm
     reference, ref_holes = opened_reference(region, r)
-    got = shapely.union_all(ring_polygons(doc, ("OUTSIDE",))).difference(
-        shapely.union_all(file_holes(doc, "INSIDE")))
+    got = shapely.union_all(ring_polygons(doc, ("OUTSIDE",))).difference(shapely.union_all(file_holes(doc, "INSIDE")))
     assert shapely.symmetric_difference(got, reference).area <= 0.001 * reference.area
     mine = file_holes(doc, "INSIDE")
     assert len(mine) == len(ref_holes) == report.stats["inner_contours"]
@@ -187,20 +186,38 @@ def test_the_laser_files_are_unchanged_by_the_kind_field(tmp_path):
     assert text.startswith("  0\nSECTION\n") and "999" not in codes
 
 
-@pytest.mark.parametrize("options, error, match", [
-    (dict(profile=ROUTER, mode="score"), ft.ParameterError, r"mode must be 'pierced' for router profile"),
-    (dict(profile=ROUTER, kerf_mm=0.2), ft.ParameterError,
-     r"kerf_mm must be 0 for router profile 'router-3.175mm-plywood', got 0.2: "
-     r"a router file holds the part contour"),
-    (dict(profile=WATERJET, kerf_mm=0), ft.ParameterError,
-     r"kerf_mm must be > 0 for waterjet profile 'waterjet-1mm-aluminium' \(the jet's diameter\), got 0"),
-    (dict(profile=replace(ROUTER, tool_diameter_mm=-1.0)), ft.ProfileError,
-     r"tool_diameter_mm must be > 0 \(the bit's diameter in mm\), got -1"),
-    (dict(profile=replace(ROUTER, tool_diameter_mm=60.0)), ft.ParameterError,
-     r"tool_diameter_mm = 60 mm of router profile 'router-3.175mm-plywood' is wider than every hole"),
-    (dict(profile=replace(ROUTER, bed_mm=(100.0, 100.0))), ft.FabricationError,
-     r"the tile is 150 x 150 mm, larger than the 100 x 100 mm bed of router profile 'router-3.175mm-plywood'"),
-])
+@pytest.mark.parametrize(
+    "options, error, match",
+    [
+        (dict(profile=ROUTER, mode="score"), ft.ParameterError, r"mode must be 'pierced' for router profile"),
+        (
+            dict(profile=ROUTER, kerf_mm=0.2),
+            ft.ParameterError,
+            r"kerf_mm must be 0 for router profile 'router-3.175mm-plywood', got 0.2: "
+            r"a router file holds the part contour",
+        ),
+        (
+            dict(profile=WATERJET, kerf_mm=0),
+            ft.ParameterError,
+            r"kerf_mm must be > 0 for waterjet profile 'waterjet-1mm-aluminium' \(the jet's diameter\), got 0",
+        ),
+        (
+            dict(profile=replace(ROUTER, tool_diameter_mm=-1.0)),
+            ft.ProfileError,
+            r"tool_diameter_mm must be > 0 \(the bit's diameter in mm\), got -1",
+        ),
+        (
+            dict(profile=replace(ROUTER, tool_diameter_mm=60.0)),
+            ft.ParameterError,
+            r"tool_diameter_mm = 60 mm of router profile 'router-3.175mm-plywood' is wider than every hole",
+        ),
+        (
+            dict(profile=replace(ROUTER, bed_mm=(100.0, 100.0))),
+            ft.FabricationError,
+            r"the tile is 150 x 150 mm, larger than the 100 x 100 mm bed of router profile 'router-3.175mm-plywood'",
+        ),
+    ],
+)
 def test_bad_router_and_waterjet_input_writes_nothing(tmp_path, options, error, match):
     region, outline = tile_region()
     with pytest.raises(error, match=match):
@@ -217,16 +234,21 @@ def test_lightburn_and_laser_modes_are_refused_for_a_router(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.parametrize("text, match", [
-    ('kind = "router"\n[router]\ntool_diameter_mm = 0\n', r"p.toml: router.tool_diameter_mm must be > 0, got 0"),
-    ('kind = "router"\n[router]\nmin_feature_mm = 2\n', r"p.toml: a router profile needs router.tool_diameter_mm"),
-    ('kind = "router"\n[router]\ntool_diameter_mm = 6\nkerf_mm = 0.2\n', r"p.toml: unknown key router.'kerf_mm'"),
-    ('kind = "router"\n[router]\ntool_diameter_mm = 6\nmode = "score"\n',
-     r"router.mode = 'score' is not valid, must be one of: pierced"),
-    ('kind = "waterjet"\n[waterjet]\nkerf_mm = 0\n', r"p.toml: waterjet.kerf_mm must be > 0, got 0"),
-    ('kind = "waterjet"\n[waterjet]\nmin_hole_mm = 2\n', r"a waterjet profile needs waterjet.kerf_mm"),
-    ('kind = "router"\n[laser]\nkerf_mm = 0.1\n', r"a router profile cannot have a \[laser\] section"),
-])
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        ('kind = "router"\n[router]\ntool_diameter_mm = 0\n', r"p.toml: router.tool_diameter_mm must be > 0, got 0"),
+        ('kind = "router"\n[router]\nmin_feature_mm = 2\n', r"p.toml: a router profile needs router.tool_diameter_mm"),
+        ('kind = "router"\n[router]\ntool_diameter_mm = 6\nkerf_mm = 0.2\n', r"p.toml: unknown key router.'kerf_mm'"),
+        (
+            'kind = "router"\n[router]\ntool_diameter_mm = 6\nmode = "score"\n',
+            r"router.mode = 'score' is not valid, must be one of: pierced",
+        ),
+        ('kind = "waterjet"\n[waterjet]\nkerf_mm = 0\n', r"p.toml: waterjet.kerf_mm must be > 0, got 0"),
+        ('kind = "waterjet"\n[waterjet]\nmin_hole_mm = 2\n', r"a waterjet profile needs waterjet.kerf_mm"),
+        ('kind = "router"\n[laser]\nkerf_mm = 0.1\n', r"a router profile cannot have a \[laser\] section"),
+    ],
+)
 def test_bad_router_and_waterjet_profiles_name_the_key(tmp_path, text, match):
     path = tmp_path / "p.toml"
     path.write_text(text)
@@ -238,12 +260,17 @@ def cli_run(*args):
     return CliRunner().invoke(cli, list(map(str, args)), catch_exceptions=False)
 
 
-@pytest.mark.parametrize("profile_text, match", [
-    ('kind = "router"\n[router]\ntool_diameter_mm = 40\n', r"tool_diameter_mm = 40 mm of router profile"),
-    ('kind = "router"\n[router]\ntool_diameter_mm = 3\nbed_mm = [100, 100]\n',
-     r"larger than the 100 x 100 mm bed of router profile"),
-    ('kind = "waterjet"\n[waterjet]\nkerf_mm = -1\n', r"waterjet.kerf_mm must be > 0, got -1"),
-])
+@pytest.mark.parametrize(
+    "profile_text, match",
+    [
+        ('kind = "router"\n[router]\ntool_diameter_mm = 40\n', r"tool_diameter_mm = 40 mm of router profile"),
+        (
+            'kind = "router"\n[router]\ntool_diameter_mm = 3\nbed_mm = [100, 100]\n',
+            r"larger than the 100 x 100 mm bed of router profile",
+        ),
+        ('kind = "waterjet"\n[waterjet]\nkerf_mm = -1\n', r"waterjet.kerf_mm must be > 0, got -1"),
+    ],
+)
 def test_the_cli_exits_2_on_bad_router_input_and_writes_nothing(tmp_path, profile_text, match):
     (tmp_path / "bad.toml").write_text(profile_text)
     design = tmp_path / "d.toml"
@@ -276,8 +303,9 @@ def test_the_web_app_lists_the_routers_and_reports_their_findings():
 
     client = TestClient(create_app())
     assert "router-6mm-mdf" in client.get("/api/profiles").json()["laser"]
-    r = client.get("/api/checks?preset=table3-3&width=150&radius=20&frame=8&stroke=3"
-                   "&laser_profile=router-3.175mm-plywood")
+    r = client.get(
+        "/api/checks?preset=table3-3&width=150&radius=20&frame=8&stroke=3&laser_profile=router-3.175mm-plywood"
+    )
     assert r.status_code == 200
     assert "rounded_corner" in {f["code"] for f in r.json()["findings"]}
 
@@ -303,8 +331,9 @@ def test_librecad_draws_the_panel(panel_dxf, tmp_path):
     # red and nothing else; the bit's 10,368 corner arcs drawn as arcs (their middles on the drawing),
     # within the page's resolution (the 2440 mm panel on one page: 0.12 mm a PDF unit)
     assert set(drawn) == {RGB[1]}
-    assert_draws_the_curves(drawn[RGB[1]], dxf, {profile.layers.inner_cut.name, profile.layers.outer_cut.name},
-                            tol_mm=0.3)
+    assert_draws_the_curves(
+        drawn[RGB[1]], dxf, {profile.layers.inner_cut.name, profile.layers.outer_cut.name}, tol_mm=0.3
+    )
     pts = drawn[RGB[1]].reshape(-1, 2)
     w, h = pts.max(0) - pts.min(0)
     assert w / h == pytest.approx(2440 / 1220, rel=1e-3)
@@ -339,7 +368,8 @@ def test_the_rounding_picture_is_up_to_date(tmp_path):
     spec.loader.exec_module(module)
     out = module.render(tmp_path / "router.svg")
     assert out.read_bytes() == (ROOT / "samples" / "pictures" / "router-rounding.svg").read_bytes(), (
-        "run python samples/render_router.py")
+        "run python samples/render_router.py"
+    )
     assert out.read_text().count('class="left"') == 1
 
 
@@ -353,8 +383,11 @@ def test_the_calibration_card_is_for_lasers(tmp_path):
 
 def test_a_stroke_thinner_than_the_routers_min_feature_is_refused(tmp_path):
     region, outline = tile_region()
-    with pytest.raises(ft.ParameterError, match=r"stroke must be >= min_feature_mm = 4 mm of router profile "
-                                                r"'router-6mm-mdf', got 3"):
+    with pytest.raises(
+        ft.ParameterError,
+        match=r"stroke must be >= min_feature_mm = 4 mm of router profile "
+        r"'router-6mm-mdf', got 3",
+    ):
         write_dxf(tmp_path / "x.dxf", region=region, outline=outline, profile="router-6mm-mdf", stroke=3.0)
 
 

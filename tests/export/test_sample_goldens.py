@@ -33,13 +33,11 @@ from dxf_helpers import (
 )
 
 import fabtiles
-from fabtiles.machines.profiles import load_profile
-from fabtiles.making import build_design
 from fabtiles.designs.design_file import load_design
-from fabtiles.machines.profiles import DEFAULT_LASER_PROFILE
-from fabtiles.making import export_tile
 from fabtiles.export.dxf import write_dxf
 from fabtiles.geometry.narrow import fill_small_holes
+from fabtiles.machines.profiles import DEFAULT_LASER_PROFILE, load_profile
+from fabtiles.making import build_design, export_tile
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
@@ -75,8 +73,9 @@ def test_sample_dxf_is_golden(sample, tmp_path):
         check_router_dxf(path, tile.region(), profile)
     else:
         fill = load_design(sample).output.fill_small_holes
-        check_laser_dxf(path, laser_region(tile, profile, fill), kerf=profile.kerf_mm, version=profile.dxf_version,
-                        profile=profile)
+        check_laser_dxf(
+            path, laser_region(tile, profile, fill), kerf=profile.kerf_mm, version=profile.dxf_version, profile=profile
+        )
     if sample.stem in LARGE:  # the panel's entities are long (rounded corners): fewer of them sampled
         assert_golden_summary(path, f"sample-{sample.stem}", samples=10 if profile.kind == "router" else 40)
     else:

@@ -42,7 +42,6 @@ from fabtiles.designs.design_file import load_design
 from fabtiles.geometry.stack import resolve_stack
 from fabtiles.machines.profiles import DEFAULT_PRINTER_PROFILE
 
-
 ROOT = Path(__file__).resolve().parents[2]
 SKIP = {"sheet-600x400", "panel-2440x1220"}
 """The benchmark sheet and the router's panel: far too big for a test of every format and style."""
@@ -55,7 +54,7 @@ STEP_FULL = ("rosette", "relief")
 """The one sample and style written as STEP at full size."""
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def sample_tile(path: Path, shrink: bool = False):
     """``(tile, printer profile)`` of a sample, optionally shrunk for STEP."""
     design = load_design(path)
@@ -117,8 +116,9 @@ def test_sample_3mf(tmp_path, sample, style):
     assert list(got) == ["base", "pattern"]
     base, pattern = got["base"], got["pattern"]
     assert_solid(base, outline.area * s.base, outline.bounds, s.base, bodies=parts)
-    assert_solid(pattern, region.area * s.relief, outline.bounds, zmax, zmin=s.base,
-                 bodies=len(shapely.get_parts(region)))
+    assert_solid(
+        pattern, region.area * s.relief, outline.bounds, zmax, zmin=s.base, bodies=len(shapely.get_parts(region))
+    )
     assert_section(base, s.base / 2, outline)
     assert_section(pattern, s.base + s.relief / 2, region)
     assert base.volume + pattern.volume == pytest.approx(volume, rel=VOLUME_REL)

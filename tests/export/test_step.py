@@ -76,11 +76,11 @@ def assert_no_coplanar_neighbours(shape):
     """Every edge joins two faces in different planes: each flat region is one face (cylinders: see
     tests/export/test_step_cylinders.py)."""
     from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as EdgeFaces
     from OCP.GeomAbs import GeomAbs_Plane
     from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
     from OCP.TopExp import TopExp
     from OCP.TopoDS import TopoDS
-    from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as EdgeFaces
 
     owners = EdgeFaces()
     TopExp.MapShapesAndAncestors_s(shape, TopAbs_EDGE, TopAbs_FACE, owners)
@@ -103,8 +103,15 @@ def assert_no_coplanar_neighbours(shape):
 def _write(tmp_path, tile, style="relief", **kw):
     path = tmp_path / "t.step"
     path.unlink(missing_ok=True)
-    report = step.write_step(path, region=tile.region(), outline=tile.outline_shape(), profile="fdm-0.4mm",
-                             style=style, stroke=tile.stroke, **kw)
+    report = step.write_step(
+        path,
+        region=tile.region(),
+        outline=tile.outline_shape(),
+        profile="fdm-0.4mm",
+        style=style,
+        stroke=tile.stroke,
+        **kw,
+    )
     return path, report
 
 
@@ -131,10 +138,14 @@ def test_relief_is_modelled_with_planar_faces_one_per_flat_region(tmp_path, outl
     ring = shapely.get_coordinates(tile.outline_shape().exterior)[:-1]
     for a, b in zip(ring, [*ring[1:], ring[0]], strict=True):
         d = (b - a) / math.hypot(*(b - a))
-        on_side = [f for n, p, f in planes if abs(n[2]) < 1e-9
-                   and abs(n[0] * d[0] + n[1] * d[1]) < 1e-4
-                   and abs((p[0] - a[0]) * d[1] - (p[1] - a[1]) * d[0]) < 2e-3
-                   and (n[0] * d[1] - n[1] * d[0]) > 0]
+        on_side = [
+            f
+            for n, p, f in planes
+            if abs(n[2]) < 1e-9
+            and abs(n[0] * d[0] + n[1] * d[1]) < 1e-4
+            and abs((p[0] - a[0]) * d[1] - (p[1] - a[1]) * d[0]) < 2e-3
+            and (n[0] * d[1] - n[1] * d[0]) > 0
+        ]
         assert len(on_side) == 1, (a, b)
     # one face per flat region: no two faces that meet along an edge lie in one plane
     assert_no_coplanar_neighbours(back)
@@ -142,29 +153,41 @@ def test_relief_is_modelled_with_planar_faces_one_per_flat_region(tmp_path, outl
     assert len(tops) == len(shapely.get_parts(tile.region()))
     assert report.stats["faces"] == len(planes)
     # vertical edges at the outline's corners, from the bottom to the top of the side there
-    vertical = [a for kind, a, b in _edges(back)
-                if abs(a[0] - b[0]) < 1e-9 and abs(a[1] - b[1]) < 1e-9 and abs(a[2] - b[2]) > 1e-3]
+    vertical = [
+        a
+        for kind, a, b in _edges(back)
+        if abs(a[0] - b[0]) < 1e-9 and abs(a[1] - b[1]) < 1e-9 and abs(a[2] - b[2]) > 1e-3
+    ]
     for x, y in ring:
         assert any(math.hypot(x - v[0], y - v[1]) < 1e-3 for v in vertical), (x, y)
 
 
-@pytest.mark.parametrize("style,preset,outline", [
-    ("relief", "table3-3", "square"), ("pierced", "table3-1", "hexagon"), ("deboss", "table2-left", "square"),
-    ("pierced", "table3-3", "hexagon"), ("relief", "table1-part1", "circle"),
-])
+@pytest.mark.parametrize(
+    "style,preset,outline",
+    [
+        ("relief", "table3-3", "square"),
+        ("pierced", "table3-1", "hexagon"),
+        ("deboss", "table2-left", "square"),
+        ("pierced", "table3-3", "hexagon"),
+        ("relief", "table1-part1", "circle"),
+    ],
+)
 def test_occt_volume_is_the_mesh_volume_within_005_percent(tmp_path, style, preset, outline):
     """OCCT's own volume (what FreeCAD shows): was up to 16.5 % off on a pierced hexagon."""
     tile = _tile(outline, size=60, frame=3.0, radius=12, preset=preset)
     path, report = _write(tmp_path, tile, style)
     back = step.read_step(path)
     assert occt_volume(back) == pytest.approx(report.stats["volume_mm3"], rel=0.0005)
-    expected = {"relief": tile.outline_shape().area * B + tile.region().area * H,
-                "pierced": tile.region().area * T,
-                "deboss": tile.outline_shape().area * B - tile.region().area * D}[style]
+    expected = {
+        "relief": tile.outline_shape().area * B + tile.region().area * H,
+        "pierced": tile.region().area * T,
+        "deboss": tile.outline_shape().area * B - tile.region().area * D,
+    }[style]
     assert occt_volume(back) == pytest.approx(expected, rel=0.005)
     _x0, _y0, z0, _x1, _y1, z1 = step_bounds(back)
-    assert z0 == pytest.approx(0, abs=1e-3) and z1 == pytest.approx({"relief": B + H, "pierced": T, "deboss": B}[style],
-                                                                     abs=1e-3)
+    assert z0 == pytest.approx(0, abs=1e-3) and z1 == pytest.approx(
+        {"relief": B + H, "pierced": T, "deboss": B}[style], abs=1e-3
+    )
 
 
 def test_cad_fillets_the_corners_and_drills_a_hole(tmp_path):
@@ -175,9 +198,12 @@ def test_cad_fillets_the_corners_and_drills_a_hole(tmp_path):
     path, _ = _write(tmp_path, tile)
     part = bd.import_step(str(path))
     solid = part.solids()[0]
-    corners = [e for e in solid.edges().filter_by(bd.Axis.Z)
-               if min(abs(e.center().X), abs(e.center().X - 40)) < 1e-6
-               and min(abs(e.center().Y), abs(e.center().Y - 40)) < 1e-6]
+    corners = [
+        e
+        for e in solid.edges().filter_by(bd.Axis.Z)
+        if min(abs(e.center().X), abs(e.center().X - 40)) < 1e-6
+        and min(abs(e.center().Y), abs(e.center().Y - 40)) < 1e-6
+    ]
     assert len(corners) == 4
     filleted = solid.fillet(2.0, corners)
     assert filleted.is_valid and len(filleted.solids()) == 1
@@ -191,10 +217,9 @@ def test_cad_fillets_the_corners_and_drills_a_hole(tmp_path):
 def test_interlaced_relief_dips_in_the_step_too(tmp_path):
     """A woven relief on a seamless hexagon: valid, planes and cylinders, the dips' level present, the mesh's
     volume (its round parts as arcs, within 0.05 %)."""
-    from fabtiles.solid.levels import dip_z
-    from fabtiles.geometry.stack import resolve_stack
-
     import fabtiles as ft
+    from fabtiles.geometry.stack import resolve_stack
+    from fabtiles.solid.levels import dip_z
 
     tile = ft.Tile("hexagon", 50, HexPacking(12, Star.preset("table3-3")), frame=0.0, stroke=1.5, interlace=True)
     path = tmp_path / "t.step"
@@ -338,11 +363,18 @@ def test_big_faces_are_checked_wire_by_wire(tmp_path, monkeypatch):
 
 @pytest.mark.slow
 @settings(max_examples=examples(6), suppress_health_check=[HealthCheck.function_scoped_fixture], deadline=None)
-@given(size=st.floats(20, 50), radius=st.floats(4, 15), preset=st.sampled_from(Star.presets()),
-       style=st.sampled_from(["relief", "pierced", "deboss"]), outline=st.sampled_from(["square", "hexagon", "circle"]),
-       frame=st.sampled_from([0.0, 2.0]))
+@given(
+    size=st.floats(20, 50),
+    radius=st.floats(4, 15),
+    preset=st.sampled_from(Star.presets()),
+    style=st.sampled_from(["relief", "pierced", "deboss"]),
+    outline=st.sampled_from(["square", "hexagon", "circle"]),
+    frame=st.sampled_from([0.0, 2.0]),
+)
 def test_any_design_step_volume_is_occts(tmp_path, size, radius, preset, style, outline, frame):
-    tile = TileGeometry(outline, size, HexPacking(radius, Star.preset(preset), outline_circles=True), frame=frame, stroke=1.0)
+    tile = TileGeometry(
+        outline, size, HexPacking(radius, Star.preset(preset), outline_circles=True), frame=frame, stroke=1.0
+    )
     path, report = _write(tmp_path, tile, style)
     back = step.read_step(path)
     assert solids_of(back) == report.stats["solids"]
@@ -351,11 +383,14 @@ def test_any_design_step_volume_is_occts(tmp_path, size, radius, preset, style, 
     assert_no_coplanar_neighbours(back)
 
 
-@pytest.mark.parametrize("kwargs,exc,msg", [
-    (dict(base_mm=0), ParameterError, "base_mm must be a finite number > 0"),
-    (dict(style="deboss", deboss_mm=2.5), ParameterError, "deboss_mm must be smaller than base_mm"),
-    (dict(profile="no-such-printer"), ProfileError, "does not exist"),
-])
+@pytest.mark.parametrize(
+    "kwargs,exc,msg",
+    [
+        (dict(base_mm=0), ParameterError, "base_mm must be a finite number > 0"),
+        (dict(style="deboss", deboss_mm=2.5), ParameterError, "deboss_mm must be smaller than base_mm"),
+        (dict(profile="no-such-printer"), ProfileError, "does not exist"),
+    ],
+)
 def test_step_bad_input_no_file(tmp_path, kwargs, exc, msg):
     tile = TileGeometry("square", 24, HexPacking(8, Star.preset("table3-3")), frame=2, stroke=1.0)
     kwargs = {"profile": "fdm-0.4mm", **kwargs}
@@ -379,8 +414,9 @@ def test_a_brep_the_check_refuses_is_never_written(tmp_path, monkeypatch):
     good = path.read_bytes()
 
     def refuse(*a, **k):
-        raise FabricationError("the STEP solid has an open shell or an edge joining more than two faces; "
-                               "nothing was written")
+        raise FabricationError(
+            "the STEP solid has an open shell or an edge joining more than two faces; nothing was written"
+        )
 
     monkeypatch.setattr(step, "check_brep", refuse)
     with pytest.raises(FabricationError, match="open shell"):
@@ -417,8 +453,11 @@ def test_check_solids_refuses_an_empty_solid_a_hollow_one_and_one_inside_out():
 
 
 @settings(max_examples=examples(60), deadline=None)
-@given(st.lists(st.tuples(*[st.floats(-3000, 3000, allow_subnormal=False)] * 3), min_size=1, max_size=100),
-       st.sampled_from([9, 12]), st.integers(0, 100))
+@given(
+    st.lists(st.tuples(*[st.floats(-3000, 3000, allow_subnormal=False)] * 3), min_size=1, max_size=100),
+    st.sampled_from([9, 12]),
+    st.integers(0, 100),
+)
 def test_the_rows_formatted_at_once_are_each_number_as_real_writes_it(rows, decimals, repeats):
     """The writer formats points and directions an array at a time (each distinct row once, past 64
     rows); each number must read as the one STEP REAL that _real gives it (a point shared by text is
@@ -433,7 +472,7 @@ def test_the_rows_formatted_at_once_are_each_number_as_real_writes_it(rows, deci
     assert got == ["(" + ",".join(_real(x, decimals) for x in row) + ")" for row in rows]
     back = np.array([[float(t.replace("E", "e")) for t in text[1:-1].split(",")] for text in got])
     given = np.array(rows)  # within half the last decimal, and the doubles' own spacing
-    assert (np.abs(back - given) <= 0.5 * 10.0 ** -decimals + 4 * np.spacing(np.abs(given))).all()
+    assert (np.abs(back - given) <= 0.5 * 10.0**-decimals + 4 * np.spacing(np.abs(given))).all()
     assert all("." in t for text in got for t in text[1:-1].split(","))  # every number a REAL
 
 

@@ -101,8 +101,9 @@ def test_a_relief_whose_outline_wall_steps_between_levels(tmp_path):
 
 
 def test_a_pierced_circle_tile_with_outline_circles_and_round_joins(tmp_path):
-    tile = Tile("circle", 40, HexPacking(8, Star.preset("table3-3"), outline_circles=True), frame=2.0,
-                stroke=1.2, join="round")
+    tile = Tile(
+        "circle", 40, HexPacking(8, Star.preset("table3-3"), outline_circles=True), frame=2.0, stroke=1.2, join="round"
+    )
     path = tmp_path / "t.step"
     report = tile.export(path, profile="fdm-0.4mm", style="pierced")
     part = _read(path)
@@ -127,8 +128,9 @@ def test_narrow_round_joins_in_two_chords_are_cylinders_of_half_the_stroke(tmp_p
     joins = {}
     for stroke in (None, 1.2):
         out = tmp_path / f"{stroke}.step"
-        report = step.write_step(out, region=band, outline=outline, profile="fdm-0.4mm", style="relief",
-                                 stroke=stroke, name="t")
+        report = step.write_step(
+            out, region=band, outline=outline, profile="fdm-0.4mm", style="relief", stroke=stroke, name="t"
+        )
         part = _read(out)
         joins[stroke] = sorted(round(_radius(f), 4) for f in _cylinders(part) if _radius(f) < 1)
         assert part.volume == pytest.approx(outline.area * B + fine.area * H, rel=0.0005)
@@ -174,8 +176,11 @@ def test_a_tolerance_too_coarse_for_the_arcs_is_refused_with_no_file(tmp_path):
     """At 5 mm the hexagonal holes pass for circles: the solid would lose its shape."""
     profile = tmp_path / "coarse.toml"
     profile.write_text('kind = "printer"\n[printer]\ntolerance_mm = 5\n')
-    hexagons = [shapely.Polygon([(x + 4 * math.cos(k * math.pi / 3), y + 4 * math.sin(k * math.pi / 3))
-                                 for k in range(6)]) for x in (10, 30) for y in (10, 30)]
+    hexagons = [
+        shapely.Polygon([(x + 4 * math.cos(k * math.pi / 3), y + 4 * math.sin(k * math.pi / 3)) for k in range(6)])
+        for x in (10, 30)
+        for y in (10, 30)
+    ]
     plate = box(0, 0, 40, 40)
     with pytest.raises(ProfileError, match=r"tolerance_mm = 5 mm is too coarse .* set printer.tolerance_mm"):
         _write(tmp_path, plate.difference(shapely.union_all(hexagons)), plate, profile=profile)
@@ -244,8 +249,11 @@ def test_a_face_of_many_holes_is_cut_into_cells_that_opencascade_reads_fast(tmp_
     assert len(bottoms) == (len(tops) if style == "pierced" else 1)  # a relief's bottom is the whole outline
     radii = [_radius(f) for f in _cylinders(part)]
     assert len(radii) >= 2 * n * n and radii == pytest.approx([1.0] * len(radii), rel=0.01)
-    fine = outline.difference(shapely.union_all([Point(6 * (i + 0.5), 6 * (j + 0.5)).buffer(1.0, quad_segs=FINE)
-                                                 for i in range(n) for j in range(n)]))
+    fine = outline.difference(
+        shapely.union_all(
+            [Point(6 * (i + 0.5), 6 * (j + 0.5)).buffer(1.0, quad_segs=FINE) for i in range(n) for j in range(n)]
+        )
+    )
     true = fine.area * T if style == "pierced" else outline.area * B + fine.intersection(clip).area * H
     assert part.volume == pytest.approx(true, rel=0.0005)
     _check_unhealed(path, report)
@@ -267,7 +275,7 @@ def test_up_to_max_face_holes_keep_one_face():
 
     plate = box(0, 0, 100, 100)
     holes = [box(i * 3 + 1, j * 3 + 1, i * 3 + 2, j * 3 + 2) for i in range(33) for j in range(33)]
-    many = plate.difference(shp.union_all(holes[:MAX_FACE_HOLES + 1]))
+    many = plate.difference(shp.union_all(holes[: MAX_FACE_HOLES + 1]))
     few = plate.difference(shp.union_all(holes[:MAX_FACE_HOLES]))
     assert _cells_for_faces([(few, 3.0)]) == SINGLE_CELL
     assert _cells_for_faces([(many, 3.0)]) < SINGLE_CELL

@@ -20,8 +20,9 @@ DATA;
 def test_a_solid_occt_cannot_translate_is_refused(tmp_path):
     path = tmp_path / "bad.step"
     # a solid whose outer shell is a point: OCCT parses the file but cannot build the solid
-    path.write_text(HEADER + "#1=MANIFOLD_SOLID_BREP('',#2);\n#2=CARTESIAN_POINT('',(0.,0.,0.));\n"
-                    "ENDSEC;\nEND-ISO-10303-21;\n")
+    path.write_text(
+        HEADER + "#1=MANIFOLD_SOLID_BREP('',#2);\n#2=CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n"
+    )
     with pytest.raises(FabricationError, match=r"^OCCT cannot translate solid #1 of the STEP file '.*bad\.step'$"):
         step.read_step_solids(path)
 

@@ -9,8 +9,21 @@ import numpy as np
 import pytest
 import shapely
 import trimesh
-from mesh_helpers import (B, H, STYLES, T, VOLUME_REL, assert_section, assert_solid, assert_style_sections,
-                          assert_touch_without_overlap, expected_volume, load_3mf_parts, load_stl, top)
+from mesh_helpers import (
+    STYLES,
+    VOLUME_REL,
+    B,
+    H,
+    T,
+    assert_section,
+    assert_solid,
+    assert_style_sections,
+    assert_touch_without_overlap,
+    expected_volume,
+    load_3mf_parts,
+    load_stl,
+    top,
+)
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star, load_profile
@@ -37,8 +50,7 @@ def test_stl_every_preset_and_style(tmp_path, preset, style):
     tile = small_tile(preset)
     region, outline = tile.region(), tile.outline_shape()
     path = tmp_path / "t.stl"
-    report = stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", style=style,
-                            stroke=tile.stroke)
+    report = stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", style=style, stroke=tile.stroke)
     assert report.format == "stl" and report.stats["style"] == style
     data = path.read_bytes()
     assert len(data) == 84 + 50 * int(np.frombuffer(data, "<u4", 1, 80)[0])  # binary STL
@@ -73,8 +85,7 @@ def test_3mf_relief_two_named_bodies_that_touch_without_overlap(tmp_path, preset
     assert list(parts) == ["base", "pattern"]
     base, pattern = parts["base"], parts["pattern"]
     assert_solid(base, outline.area * B, outline.bounds, B)
-    assert_solid(pattern, region.area * H, outline.bounds, B + H, zmin=B,
-                 bodies=len(shapely.get_parts(region)))
+    assert_solid(pattern, region.area * H, outline.bounds, B + H, zmin=B, bodies=len(shapely.get_parts(region)))
     assert_section(base, B / 2, outline)
     assert_section(pattern, B + H / 2, region)
     # they touch at z = b and do not overlap
@@ -104,8 +115,9 @@ def test_build_meshes_bodies(shapes):
 
 def test_heights_override_profile(tmp_path, shapes):
     region, outline = shapes
-    report = stl.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm",
-                            base_mm=3, relief_mm=2.5)
+    report = stl.write_stl(
+        tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm", base_mm=3, relief_mm=2.5
+    )
     m = load_stl(tmp_path / "t.stl")
     assert m.bounds[1][2] == pytest.approx(5.5)
     assert m.volume == pytest.approx(outline.area * 3 + region.area * 2.5, rel=VOLUME_REL)
@@ -197,8 +209,9 @@ def test_strict_profile_with_findings_writes_nothing(tmp_path, shapes):
 
 def test_findings_are_reported(tmp_path, shapes):
     region, outline = shapes
-    report = stl.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm",
-                            stroke=0.5, relief_mm=0.3)
+    report = stl.write_stl(
+        tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm", stroke=0.5, relief_mm=0.3
+    )
     assert [f.code for f in report.findings] == ["small_hole", "thin_wall", "thin_layer"]
     assert (tmp_path / "t.stl").exists()
 
@@ -207,9 +220,11 @@ def test_no_heavy_imports_at_import_time():
     import subprocess
     import sys
 
-    code = ("import sys, fabtiles.export.stl, fabtiles.export.threemf, fabtiles.export.step, "
-            "fabtiles.geometry.print_checks; "
-            "print([m for m in ('trimesh', 'manifold3d', 'OCP', 'build123d') if m in sys.modules])")
+    code = (
+        "import sys, fabtiles.export.stl, fabtiles.export.threemf, fabtiles.export.step, "
+        "fabtiles.geometry.print_checks; "
+        "print([m for m in ('trimesh', 'manifold3d', 'OCP', 'build123d') if m in sys.modules])"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
 

@@ -25,16 +25,29 @@ LAYER_MM = 0.3
 def slice_stl(tmp_path, stl, **settings):
     engine = program("CuraEngine", "apt-get install cura-engine")
     definitions = cura_definitions()
-    cmd = [engine, "slice", "-v", "-j", definitions / "fdmprinter.def.json",
-           "-s", f"layer_height={LAYER_MM}", "-s", f"layer_height_0={LAYER_MM}", "-s", "adhesion_type=none"]
+    cmd = [
+        engine,
+        "slice",
+        "-v",
+        "-j",
+        definitions / "fdmprinter.def.json",
+        "-s",
+        f"layer_height={LAYER_MM}",
+        "-s",
+        f"layer_height_0={LAYER_MM}",
+        "-s",
+        "adhesion_type=none",
+    ]
     for key, value in settings.items():
         cmd += ["-s", f"{key}={value}"]
     done = run([*cmd, "-l", stl, "-o", tmp_path / "out.gcode"], timeout=120)
     err = done.stderr
-    summary = err[err.index("Gcode header after slicing:"):]
-    return dict(layers=int(re.search(r"^Layer count: (\d+)$", err, re.M).group(1)),
-                max_z=float(re.search(r"^;MAXZ:([0-9.]+)$", summary, re.M).group(1)),
-                filament_mm3=float(re.search(r"^Filament \(mm\^3\): ([0-9.]+)$", err, re.M).group(1)))
+    summary = err[err.index("Gcode header after slicing:") :]
+    return dict(
+        layers=int(re.search(r"^Layer count: (\d+)$", err, re.M).group(1)),
+        max_z=float(re.search(r"^;MAXZ:([0-9.]+)$", summary, re.M).group(1)),
+        filament_mm3=float(re.search(r"^Filament \(mm\^3\): ([0-9.]+)$", err, re.M).group(1)),
+    )
 
 
 @pytest.mark.parametrize("style,height", [("relief", B + H), ("pierced", T), ("deboss", B)])

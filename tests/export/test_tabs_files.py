@@ -3,7 +3,6 @@ read back and measured with GEOS against the same tile's file without tabs; Meer
 
 from __future__ import annotations
 
-import re
 import xml.etree.ElementTree as ET
 
 import ezdxf
@@ -88,7 +87,7 @@ def test_a_frameless_tiles_jagged_outline_gets_its_tabs_on_its_straight_stretche
     pieces = [v for layer, _, v in tabbed if layer == OUTER]
     assert len(pieces) == 4 * len(rings)
     for k, ring in enumerate(rings):
-        mine = pieces[4 * k:4 * k + 4]
+        mine = pieces[4 * k : 4 * k + 4]
         assert max(ring.distance(LineString(p)) for p in mine) < 1e-6
         assert gap_lengths(ring, mine) == pytest.approx([TAB] * 4, abs=0.01)
         # each gap on one straight edge of the outline: its ends a straight tab_mm apart
@@ -102,7 +101,8 @@ def test_the_report_and_the_job_estimate_count_the_pieces(tmp_path):
     report = t.export(tmp_path / "tabbed.dxf", tab_mm=TAB, tabs_per_part=4)
     assert report.stats["job"]["pierces"] == plain.stats["job"]["pierces"] + 3
     assert report.stats["job"]["cut_mm"]["outer_cut"] == pytest.approx(
-        plain.stats["job"]["cut_mm"]["outer_cut"] - 4 * TAB, abs=1e-3)
+        plain.stats["job"]["cut_mm"]["outer_cut"] - 4 * TAB, abs=1e-3
+    )
     read = [LineString(v).length for layer, _, v in dxf_paths(tmp_path / "tabbed.dxf") if layer == OUTER]
     assert sum(read) == pytest.approx(report.stats["job"]["cut_mm"]["outer_cut"], abs=1e-3)
     note = next(n for n in report.stats["notes"] if n.startswith("holding tabs"))
@@ -114,8 +114,11 @@ def test_the_svgs_outer_paths_are_open_and_its_holes_closed(tmp_path):
     path = tmp_path / "t.svg"
     tile().export(path, tab_mm=TAB, tabs_per_part=3)
     ns = "{http://www.w3.org/2000/svg}"
-    groups = {g.get("id"): [p.get("d") for p in g.iter(f"{ns}path")] for g in ET.parse(path).getroot().iter(f"{ns}g")
-              if g.get("id")}
+    groups = {
+        g.get("id"): [p.get("d") for p in g.iter(f"{ns}path")]
+        for g in ET.parse(path).getroot().iter(f"{ns}g")
+        if g.get("id")
+    }
     assert len(groups[OUTER]) == 3 and not any(d.endswith("Z") for d in groups[OUTER])
     assert groups[INNER] and all(d.endswith("Z") for d in groups[INNER])
 
@@ -143,8 +146,11 @@ def test_an_inlay_kits_pieces_file_holds_each_pieces_tabs(tmp_path):
 
 def test_a_routers_export_with_tabs_is_refused(tmp_path):
     t = Tile("square", 150, HexPacking(20, Star.preset("table3-3")), frame=5, stroke=5.0)
-    with pytest.raises(ParameterError, match=r"tab_mm must be 0 for router profile 'router-6mm-mdf', got 0\.5: a "
-                                             r"router file holds the part whole and CAM adds the holding tabs"):
+    with pytest.raises(
+        ParameterError,
+        match=r"tab_mm must be 0 for router profile 'router-6mm-mdf', got 0\.5: a "
+        r"router file holds the part whole and CAM adds the holding tabs",
+    ):
         t.export(tmp_path / "r.dxf", profile="router-6mm-mdf", tab_mm=0.5)
     assert list(tmp_path.iterdir()) == []
 

@@ -18,7 +18,6 @@ import fabtiles
 from fabtiles.designs.design_file import load_design
 from fabtiles.pattern.tilings import TILINGS
 
-
 SAMPLES = Path(__file__).resolve().parents[2] / "samples" / "tilings"
 
 

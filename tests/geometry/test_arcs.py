@@ -2,16 +2,26 @@
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from hypothesis_scale import examples
 from shapely.geometry import LineString, Point, Polygon, box
 
-from fabtiles.geometry.arcs import (Curve, arc_runs, arc_runs_many, beziers, bezier_error, bulge_path, curves,
-                                    fit_distance, piece_lengths)
-from hypothesis_scale import examples
-import itertools
+from fabtiles.geometry.arcs import (
+    Curve,
+    arc_runs,
+    arc_runs_many,
+    bezier_error,
+    beziers,
+    bulge_path,
+    curves,
+    fit_distance,
+    piece_lengths,
+)
 
 
 def _ring(geom) -> np.ndarray:
@@ -43,7 +53,12 @@ def test_an_arc_between_straight_edges_is_found_exactly(r, start, sweep, pieces,
     # an arc of `pieces` chords, then two long straight edges closing the ring
     ang = start + np.linspace(0, sweep, pieces + 1) * (1 if ccw else -1)
     arc = np.column_stack([10 + r * np.cos(ang), 20 + r * np.sin(ang)])
-    far = 10 + np.array([np.cos(start + sweep / 2 * (1 if ccw else -1)), np.sin(start + sweep / 2 * (1 if ccw else -1))]) * -5 * r
+    far = (
+        10
+        + np.array([np.cos(start + sweep / 2 * (1 if ccw else -1)), np.sin(start + sweep / 2 * (1 if ccw else -1))])
+        * -5
+        * r
+    )
     far[1] += 10
     ring = np.vstack([arc, far])
     tol = r * (1 - np.cos(sweep / pieces / 2)) * 1.01 + 1e-9
@@ -70,8 +85,11 @@ def test_a_square_and_a_subdivided_straight_edge_have_no_arcs():
 
 
 @settings(max_examples=examples(30), deadline=None)
-@given(st.lists(st.tuples(st.floats(-50, 50), st.floats(-50, 50)), min_size=3, max_size=6, unique=True),
-       st.floats(0.2, 3), st.integers(3, 16))
+@given(
+    st.lists(st.tuples(st.floats(-50, 50), st.floats(-50, 50)), min_size=3, max_size=6, unique=True),
+    st.floats(0.2, 3),
+    st.integers(3, 16),
+)
 def test_round_joins_of_a_stroked_path_are_arcs_exactly_at_the_joins(points, r, quad_segs):
     pts = np.asarray(points)
     seg = np.diff(pts, axis=0)
@@ -188,9 +206,17 @@ def _flatten(curve, closed=True, step=0.01):
 
 
 @settings(max_examples=examples(25), deadline=None)
-@given(st.lists(st.tuples(st.integers(0, 80).map(lambda v: v / 2), st.integers(0, 80).map(lambda v: v / 2)),
-                min_size=2, max_size=6, unique=True),
-       st.floats(0.3, 4), st.sampled_from([np.pi, np.pi / 2]), st.integers(0, 50))
+@given(
+    st.lists(
+        st.tuples(st.integers(0, 80).map(lambda v: v / 2), st.integers(0, 80).map(lambda v: v / 2)),
+        min_size=2,
+        max_size=6,
+        unique=True,
+    ),
+    st.floats(0.3, 4),
+    st.sampled_from([np.pi, np.pi / 2]),
+    st.integers(0, 50),
+)
 def test_a_bulge_path_draws_the_ring_within_the_tolerance(points, r, max_sweep, roll):
     from shapely.geometry import Polygon as P
 
@@ -227,8 +253,13 @@ def test_an_open_arc_keeps_its_ends_and_a_full_circle_is_two_half_turns():
 
 
 @settings(max_examples=examples(30), deadline=None)
-@given(st.floats(0.1, 500), st.floats(-np.pi, np.pi), st.floats(0.05, np.pi), st.booleans(),
-       st.sampled_from([0.001, 0.01, 0.1]))
+@given(
+    st.floats(0.1, 500),
+    st.floats(-np.pi, np.pi),
+    st.floats(0.05, np.pi),
+    st.booleans(),
+    st.sampled_from([0.001, 0.01, 0.1]),
+)
 def test_beziers_stay_within_a_tenth_of_the_tolerance_of_the_arc(r, start, sweep, ccw, tol):
     s = sweep if ccw else -sweep
     ends = np.array([[np.cos(start), np.sin(start)], [np.cos(start + s), np.sin(start + s)]]) * r
@@ -238,7 +269,7 @@ def test_beziers_stay_within_a_tenth_of_the_tolerance_of_the_arc(r, start, sweep
     t = np.linspace(0, 1, 41)[:, None]
     for i in np.flatnonzero(b.bezier):
         p0, p1, p2, p3 = b.xy[i], b.c0[i], b.c1[i], b.xy[i + 1]
-        pts = (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t ** 2 * p2 + t ** 3 * p3
+        pts = (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t**2 * p2 + t**3 * p3
         assert np.abs(np.hypot(*pts.T) - r).max() <= 0.1 * tol + 1e-9 * r
         # turning the arc's way
         cross = (p3 - p0)[0] * (p1 - p0)[1] - (p3 - p0)[1] * (p1 - p0)[0]
@@ -252,7 +283,7 @@ def test_bezier_error_bounds_the_cubics_distance_from_its_arc(sweep):
     p0, p3 = np.array([r, 0.0]), r * np.array([np.cos(sweep), np.sin(sweep)])
     p1, p2 = p0 + [0, h], p3 - h * np.array([-np.sin(sweep), np.cos(sweep)])
     t = np.linspace(0, 1, 20001)[:, None]
-    pts = (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t ** 2 * p2 + t ** 3 * p3
+    pts = (1 - t) ** 3 * p0 + 3 * (1 - t) ** 2 * t * p1 + 3 * (1 - t) * t**2 * p2 + t**3 * p3
     largest = np.abs(np.hypot(*pts.T) - r).max()
     assert 0.99 * bezier_error(sweep, r) <= largest <= bezier_error(sweep, r) + 1e-12  # a bound, within 1 %
 

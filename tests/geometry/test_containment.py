@@ -46,9 +46,14 @@ def test_quads_inside_is_geos_contains_properly(seed):
 
 def test_a_quad_sharing_an_edge_or_a_corner_with_the_boundary_is_not_inside():
     square = shapely.box(0, 0, 10, 10)
-    q = np.array([[[0, 4], [2, 4], [2, 6], [0, 6]],  # an edge on the boundary
-                  [[8, 8], [10, 10], [8, 9.5], [7, 8.5]],  # a corner on the boundary's corner
-                  [[1, 1], [9, 1], [9, 9], [1, 9]]], float)  # inside, far from it
+    q = np.array(
+        [
+            [[0, 4], [2, 4], [2, 6], [0, 6]],  # an edge on the boundary
+            [[8, 8], [10, 10], [8, 9.5], [7, 8.5]],  # a corner on the boundary's corner
+            [[1, 1], [9, 1], [9, 9], [1, 9]],
+        ],
+        float,
+    )  # inside, far from it
     assert quads_inside(square, q).tolist() == [False, False, True]
     assert quads_inside(shapely.Polygon(), q).tolist() == [False] * 3
     assert quads_inside(square, np.empty((0, 4, 2))).tolist() == []

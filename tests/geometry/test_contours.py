@@ -83,8 +83,12 @@ def test_parts_closer_than_kerf_merge():
 
 
 def test_nested_parts_order():
-    region = box(0, 0, 50, 50).difference(box(10, 10, 40, 40)).union(
-        box(15, 15, 35, 35).difference(box(20, 20, 30, 30))).union(box(22, 22, 28, 28))
+    region = (
+        box(0, 0, 50, 50)
+        .difference(box(10, 10, 40, 40))
+        .union(box(15, 15, 35, 35).difference(box(20, 20, 30, 30)))
+        .union(box(22, 22, 28, 28))
+    )
     inner, outer = laser_contours(region, kerf_mm=0)
     assert [r[:, 0].min() for r in inner] == [22, 20, 15, 10]  # deepest first
     assert [r[:, 0].min() for r in outer] == [0]
@@ -109,8 +113,10 @@ def test_hilbert_order_is_a_permutation():
 
 
 def test_clean_rings_drops_repeats_and_degenerate():
-    rings = [LinearRing([(0, 0), (1, 0), (1, 0), (1, 1), (0, 1), (0, 0)]),
-             LinearRing([(0, 0), (1e-4, 0), (1e-4, 1e-4)])]
+    rings = [
+        LinearRing([(0, 0), (1, 0), (1, 0), (1, 1), (0, 1), (0, 0)]),
+        LinearRing([(0, 0), (1e-4, 0), (1e-4, 1e-4)]),
+    ]
     out, kept = clean_rings(rings, min_area=1e-6, ccw=np.array([False, True]))
     assert kept.tolist() == [0]
     assert out[0].tolist() == [[0, 1], [1, 1], [1, 0], [0, 0]]  # clockwise, no repeats
@@ -124,8 +130,20 @@ def test_outline_contours_circle_keeps_vertices():
 
 
 def test_score_paths_merge_clip_and_dedupe():
-    seg = np.array([[[0, 0], [5, 0]], [[5, 0], [10, 0]], [[10, 0], [5, 0]], [[10, 0], [10, 5]],
-                    [[3, 3], [3, 3]], [[-5, 8], [5, 8]], [[2, 2], [4, 4]], [[4, 4], [2, 6]], [[4, 4], [6, 4]]], float)
+    seg = np.array(
+        [
+            [[0, 0], [5, 0]],
+            [[5, 0], [10, 0]],
+            [[10, 0], [5, 0]],
+            [[10, 0], [10, 5]],
+            [[3, 3], [3, 3]],
+            [[-5, 8], [5, 8]],
+            [[2, 2], [4, 4]],
+            [[4, 4], [2, 6]],
+            [[4, 4], [6, 4]],
+        ],
+        float,
+    )
     paths = score_paths(seg, box(0, 0, 10, 10))
     lengths = sorted(round(float(np.hypot(*np.diff(p, axis=0).T).sum()), 6) for p in paths)
     # chain through degree-2 vertices merged; duplicate and dot dropped; clipped; the Y split at its node
@@ -148,8 +166,13 @@ def test_kerf_area_property(kerf, n, rot, ri):
 @pytest.mark.parametrize("kerf", [0.0, 0.2, 0.5])
 def test_island_close_to_its_hole_merges_exactly(kerf):
     # islands 0.1 mm from the hole's edge and from each other: under the kerf they join the plate
-    region = box(0, 0, 50, 50).difference(box(10, 10, 40, 40)).union(box(10.1, 12, 20, 20)).union(
-        box(20.1, 12, 30, 20)).union(box(25, 25, 30, 30).difference(box(26, 26, 29, 29)))
+    region = (
+        box(0, 0, 50, 50)
+        .difference(box(10, 10, 40, 40))
+        .union(box(10.1, 12, 20, 20))
+        .union(box(20.1, 12, 30, 20))
+        .union(box(25, 25, 30, 30).difference(box(26, 26, 29, 29)))
+    )
     inner, outer = laser_contours(region, kerf_mm=kerf)
     grown = region.buffer(kerf / 2, join_style="mitre", mitre_limit=MITRE_LIMIT) if kerf else region
     assert even_odd(inner + outer) == pytest.approx(grown.area, rel=1e-7)

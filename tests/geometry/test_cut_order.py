@@ -12,11 +12,11 @@ from hypothesis import strategies as st
 from hypothesis_scale import examples
 from shapely.geometry import box
 
-from fabtiles.making.models import BuildOptions, Models
-from fabtiles.making.pipeline import prepare_tile
 from fabtiles.designs.design_file import load_design
 from fabtiles.geometry.cut_order import enclosing_pairs, order_paths, order_rings, travel
 from fabtiles.geometry.cut_plan import plan_cut
+from fabtiles.making.models import BuildOptions, Models
+from fabtiles.making.pipeline import prepare_tile
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
@@ -54,7 +54,9 @@ def test_no_contour_after_one_around_it_on_every_sample(sample):
 
 def test_islands_in_holes_are_cut_before_their_holes():
     # a plate with a hole; in the hole an island with its own hole; the island nearer the start
-    plate = box(0, 0, 100, 100).difference(box(10, 10, 90, 90)).union(box(20, 20, 80, 80).difference(box(40, 40, 60, 60)))
+    plate = (
+        box(0, 0, 100, 100).difference(box(10, 10, 90, 90)).union(box(20, 20, 80, 80).difference(box(40, 40, 60, 60)))
+    )
     plan = plan_cut(plate, box(0, 0, 100, 100), profile="laser-3mm-plywood")
     inner = plan.paths("inner")
     assert len(inner) == 3
@@ -64,12 +66,17 @@ def test_islands_in_holes_are_cut_before_their_holes():
 
 
 @settings(max_examples=examples(25), deadline=None)
-@given(st.dictionaries(st.tuples(st.integers(0, 25), st.integers(0, 25)), st.integers(0, 3), min_size=2, max_size=80),
-       st.integers(0, 2 ** 31))
+@given(
+    st.dictionaries(st.tuples(st.integers(0, 25), st.integers(0, 25)), st.integers(0, 3), min_size=2, max_size=80),
+    st.integers(0, 2**31),
+)
 def test_order_keeps_nesting_and_shortens_travel(cells, seed):
     # squares on a 20 mm grid, each with up to three squares nested inside it
-    rings = [square(20 * x + 2 * d, 20 * y + 2 * d, 16 - 4 * d, ccw=d % 2 == 1)
-             for (x, y), depth in cells.items() for d in range(depth + 1)]
+    rings = [
+        square(20 * x + 2 * d, 20 * y + 2 * d, 16 - 4 * d, ccw=d % 2 == 1)
+        for (x, y), depth in cells.items()
+        for d in range(depth + 1)
+    ]
     # shuffled, then the deepest first: an order that keeps the nesting, the one to beat
     shuffled = [rings[i] for i in np.random.default_rng(seed).permutation(len(rings))]
     shuffled.sort(key=lambda r: np.ptp(r[:, 0]))
@@ -84,7 +91,11 @@ def test_order_keeps_nesting_and_shortens_travel(cells, seed):
 def test_nested_squares_have_their_pairs():
     rings = [square(0, 0, 10), square(2, 2, 6, ccw=False), square(4, 4, 2), square(20, 0, 5)]
     assert sorted(map(tuple, enclosing_pairs(rings).tolist())) == [(1, 0), (2, 0), (2, 1)]
-    assert order_rings(rings).tolist().index(2) < order_rings(rings).tolist().index(1) < order_rings(rings).tolist().index(0)
+    assert (
+        order_rings(rings).tolist().index(2)
+        < order_rings(rings).tolist().index(1)
+        < order_rings(rings).tolist().index(0)
+    )
 
 
 def test_score_lines_may_run_backwards_closed_rings_never():
@@ -118,8 +129,9 @@ def test_travel_of_nothing_and_one():
 
 
 def test_the_estimate_reports_both_travels():
-    plate = box(0, 0, 200, 200).difference(shapely.union_all([box(x, y, x + 5, y + 5)
-                                                              for x in range(10, 190, 20) for y in (10, 180)]))
+    plate = box(0, 0, 200, 200).difference(
+        shapely.union_all([box(x, y, x + 5, y + 5) for x in range(10, 190, 20) for y in (10, 180)])
+    )
     plan = plan_cut(plate, box(0, 0, 200, 200), profile="laser-3mm-plywood")
     stats = plan.report.stats["job"]
     assert stats["travel_mm"] <= stats["travel_before_mm"]

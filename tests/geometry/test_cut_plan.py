@@ -10,23 +10,29 @@ import shapely
 from shapely.geometry import box
 
 from fabtiles import ParameterError
-from fabtiles.machines.profiles import load_profile
 from fabtiles.geometry.cut_plan import make_plan, plan_cut, plan_kit
+from fabtiles.machines.profiles import load_profile
 
 PLATE = box(0, 0, 40, 40)
 
 
 def test_the_inlay_mode_is_a_kit_not_one_plan():
-    with pytest.raises(ParameterError, match=r"^the inlay mode writes a kit of two files \(lattice and pieces\): "
-                                             r"export it with fabtiles\.export\.kit\.write_kit") as err:
+    with pytest.raises(
+        ParameterError,
+        match=r"^the inlay mode writes a kit of two files \(lattice and pieces\): "
+        r"export it with fabtiles\.export\.kit\.write_kit",
+    ) as err:
         plan_cut(PLATE.difference(box(10, 10, 30, 30)), PLATE, profile="laser-3mm-plywood", mode="inlay")
     assert err.value.param == "mode"
 
 
 @pytest.mark.parametrize("centrelines", [None, []])
 def test_the_score_mode_needs_centrelines(centrelines):
-    with pytest.raises(ParameterError, match=r"^the score mode needs centrelines \(an array of shape \(k, 2, 2\)\), "
-                                             r"got none$") as err:
+    with pytest.raises(
+        ParameterError,
+        match=r"^the score mode needs centrelines \(an array of shape \(k, 2, 2\)\), "
+        r"got none$",
+    ) as err:
         plan_cut(PLATE, PLATE, profile="laser-3mm-plywood", mode="score", centrelines=centrelines)
     assert err.value.param == "centrelines"
 
@@ -35,7 +41,9 @@ def test_a_pocket_kit_needs_a_hole_large_enough_for_a_piece():
     # holes of 0.5 mm: far under the profile's smallest piece (twice min_hole_mm, 2.4 mm)
     holes = [box(x, y, x + 0.5, y + 0.5) for x in range(5, 35, 5) for y in range(5, 35, 5)]
     region = PLATE.difference(shapely.union_all(holes))
-    with pytest.raises(ParameterError, match=r"^the tile has no hole large enough for a piece; nothing to pocket$") as err:
+    with pytest.raises(
+        ParameterError, match=r"^the tile has no hole large enough for a piece; nothing to pocket$"
+    ) as err:
         plan_kit(region, PLATE, profile="laser-3mm-plywood", inlay_base="pocket")
     assert err.value.param == "region"
 
@@ -47,11 +55,14 @@ def _low(plan):
     return np.concatenate([r for layer in plan.layers for r in layer.paths]).min(axis=0)
 
 
-@pytest.mark.parametrize("outline, kerf_y, want", [
-    (PLATE, None, (0.075, 0.075)),                     # a square's kerf: exactly half the 0.15 mm kerf
-    (PLATE, 0.25, (0.075, 0.125)),                     # kerf_y_mm: half of it in y
-    (shapely.Point(20, 20).buffer(20, quad_segs=64).normalize(), None, (0.075, 0.075)),  # a circle: a little more
-])
+@pytest.mark.parametrize(
+    "outline, kerf_y, want",
+    [
+        (PLATE, None, (0.075, 0.075)),  # a square's kerf: exactly half the 0.15 mm kerf
+        (PLATE, 0.25, (0.075, 0.125)),  # kerf_y_mm: half of it in y
+        (shapely.Point(20, 20).buffer(20, quad_segs=64).normalize(), None, (0.075, 0.075)),  # a circle: a little more
+    ],
+)
 def test_the_paths_are_moved_by_their_own_lower_left(outline, kerf_y, want):
     outline = shapely.transform(outline, lambda c: c - shapely.bounds(outline)[:2])
     region = outline.difference(box(15, 15, 25, 25))

@@ -94,8 +94,12 @@ def test_counts_areas_and_letters(classed):
     for c in cls:
         assert fc.of(c.letter).area == pytest.approx(c.area_mm2, rel=1e-9)
         assert len(shapely.get_parts(fc.of(c.letter))) == c.count
-    assert fc.stats()[0] == {"letter": "A", "count": cls[0].count, "description": cls[0].description,
-                             "area_mm2": round(cls[0].area_mm2, 3)}
+    assert fc.stats()[0] == {
+        "letter": "A",
+        "count": cls[0].count,
+        "description": cls[0].description,
+        "area_mm2": round(cls[0].area_mm2, 3),
+    }
 
 
 def test_every_uncut_face_is_congruent_to_its_class_first(classed):
@@ -165,8 +169,7 @@ def test_pieces_cut_by_the_frame_keep_their_whole_face_class():
     cut = _cut(tile, fc.faces)
     # the 150 mm tile's frame cuts faces of the large classes: they have uncut members
     assert cut.sum() > 20
-    assert all((fc.labels[~cut] == fc.labels[i]).any() for i in np.flatnonzero(cut)
-               if shapely.area(fc.faces[i]) > 1.0)
+    assert all((fc.labels[~cut] == fc.labels[i]).any() for i in np.flatnonzero(cut) if shapely.area(fc.faces[i]) > 1.0)
 
 
 def test_stable_letters_across_calls_and_tiles():
@@ -271,7 +274,7 @@ def test_close_shapes_are_told_apart_and_congruent_ones_not():
     fc = face_classes(MOTIF_TILE, region=_material(sq, aff.rotate(sq, 0.1), bigger, tiny)[0])
     assert sorted(c.count for c in fc.classes) == [1, 3]
     assert [(c.count, c.description) for c in fc.classes] == [(3, "square"), (1, "square")]
-    assert fc.classes[1].area_mm2 == pytest.approx(6.01 ** 2)
+    assert fc.classes[1].area_mm2 == pytest.approx(6.01**2)
 
 
 def test_a_face_round_an_island():
@@ -286,14 +289,27 @@ def test_a_face_round_an_island():
 
 
 # -- property: random motifs on a packing ------------------------------------------------
-@given(n=st.integers(5, 12), r1=st.floats(0.3, 0.9), r2=st.floats(0.3, 1.0), stroke=st.floats(0.4, 1.2),
-       frame=st.sampled_from([0.0, 3.0]), join=st.sampled_from(["miter", "bevel", "round"]),
-       outline=st.sampled_from(["square", "hexagon", "circle"]), packing=st.sampled_from([HexPacking, SquarePacking]),
-       circles=st.booleans())
+@given(
+    n=st.integers(5, 12),
+    r1=st.floats(0.3, 0.9),
+    r2=st.floats(0.3, 1.0),
+    stroke=st.floats(0.4, 1.2),
+    frame=st.sampled_from([0.0, 3.0]),
+    join=st.sampled_from(["miter", "bevel", "round"]),
+    outline=st.sampled_from(["square", "hexagon", "circle"]),
+    packing=st.sampled_from([HexPacking, SquarePacking]),
+    circles=st.booleans(),
+)
 @settings(max_examples=examples(8), deadline=None)
 def test_random_motifs_on_a_packing(n, r1, r2, stroke, frame, join, outline, packing, circles):
-    tile = TileGeometry(outline, 70, packing(radius=10, motif=Star(n=n, radii=(r1, r2, 1.0)), outline_circles=circles),
-                        frame=frame, stroke=stroke, join=join)
+    tile = TileGeometry(
+        outline,
+        70,
+        packing(radius=10, motif=Star(n=n, radii=(r1, r2, 1.0)), outline_circles=circles),
+        frame=frame,
+        stroke=stroke,
+        join=join,
+    )
     fc = face_classes(tile)
     outline, region = tile.outline_shape(), tile.region()
     total = shapely.area(fc.faces).sum()

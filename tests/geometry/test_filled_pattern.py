@@ -9,15 +9,15 @@ import shapely
 from shapely.geometry import box
 
 from fabtiles import FabricationError
-from fabtiles.machines.profiles import load_profile
 from fabtiles.core.report import Report
-from fabtiles.making.models import BuildOptions, Models
-from fabtiles.making.checks import check_design
 from fabtiles.designs.design_file import build_tile, design_from_text
 from fabtiles.geometry.cut_plan import plan_cut
 from fabtiles.geometry.laser_checks import check_cut_pattern
 from fabtiles.geometry.narrow import PATTERN_KEPT, check_pattern_kept
 from fabtiles.geometry.print_checks import check_print_pattern, fill_print_holes
+from fabtiles.machines.profiles import load_profile
+from fabtiles.making.checks import check_design
+from fabtiles.making.models import BuildOptions, Models
 
 # every one of its 247 holes is narrower than laser-3mm-plywood's min_hole_mm = 1.2 mm (the widest 0.897 mm)
 ALL_FILLED = """
@@ -80,8 +80,9 @@ def test_strict_profile_refuses_the_plain_tile(all_filled):
     with pytest.raises(FabricationError, match="filled_pattern: filling the holes narrower than min_hole_mm"):
         plan_cut(tile.region(), tile.outline_shape(), profile=strict, fill_small_holes=True, stroke=2.0)
     # kept holes: nothing filled, nothing to say (the small holes are reported instead)
-    plan = plan_cut(tile.region(), tile.outline_shape(), profile="laser-3mm-plywood", fill_small_holes=False,
-                    stroke=2.0)
+    plan = plan_cut(
+        tile.region(), tile.outline_shape(), profile="laser-3mm-plywood", fill_small_holes=False, stroke=2.0
+    )
     assert codes(plan.report) == ["small_hole"]
 
 
@@ -90,7 +91,9 @@ def test_fabtiles_check_reports_it_for_both_machines(all_filled):
     design = replace(design, output=replace(design.output, printer_profile="fdm-0.6mm"))
     result = check_design(design, tile)
     assert [(where, f.code, f.count) for where, f in result.findings()] == [
-        ("laser", "filled_pattern", 247), ("print", "filled_pattern", 247)]
+        ("laser", "filled_pattern", 247),
+        ("print", "filled_pattern", 247),
+    ]
     # the 0.4 mm nozzle keeps holes of 0.8 mm: most of the pattern stays
     design = replace(design, output=replace(design.output, printer_profile="fdm-0.4mm"))
     assert [where for where, _ in check_design(design, tile).findings()] == ["laser"]
@@ -101,15 +104,15 @@ def test_a_print_with_every_opening_filled_says_so(all_filled, style):
     from fabtiles.solid.print_model import print_model
 
     _, tile = all_filled
-    model = print_model(tile.region(), tile.outline_shape(), profile="fdm-0.6mm", style=style, stroke=2.0,
-                        fill_small_holes=True)
+    model = print_model(
+        tile.region(), tile.outline_shape(), profile="fdm-0.6mm", style=style, stroke=2.0, fill_small_holes=True
+    )
     (f,) = [f for f in model.report.findings if f.code == "filled_pattern"]
     assert f.worst == 0 and f.count == 247
     assert "a printer profile with min_hole_mm <= 0.89 mm (a finer nozzle)" in f.message
     strict = replace(load_profile("fdm-0.6mm"), strict=True)
     with pytest.raises(FabricationError, match="filled_pattern"):
-        print_model(tile.region(), tile.outline_shape(), profile=strict, style=style, stroke=2.0,
-                    fill_small_holes=True)
+        print_model(tile.region(), tile.outline_shape(), profile=strict, style=style, stroke=2.0, fill_small_holes=True)
 
 
 def test_a_deboss_whose_grooves_are_mostly_filled():
@@ -123,8 +126,7 @@ def test_a_deboss_whose_grooves_are_mostly_filled():
     assert kept == pytest.approx(1 / 8.5)
     (f,) = report.findings
     assert "left 12 % of its grooves' area (15 of 16 grooves filled)" in f.message
-    assert "the grooves of 0.5 mm must be 0.8 mm wide or wider: a stroke of at least 0.8 mm (it is 0.5 mm)" \
-        in f.message
+    assert "the grooves of 0.5 mm must be 0.8 mm wide or wider: a stroke of at least 0.8 mm (it is 0.5 mm)" in f.message
     assert "packing" not in f.message  # a larger packing does not widen a groove
 
 

@@ -10,10 +10,10 @@ from click.testing import CliRunner
 from dxf_helpers import vertices
 
 from fabtiles import FabricationError
-from fabtiles.machines.profiles import load_profile
 from fabtiles.cli.main import cli
 from fabtiles.designs.design_file import design_from_text
 from fabtiles.geometry.inlay import inlay_kit
+from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 KERF, FIT = PLY.kerf_mm, PLY.inlay_fit_mm
@@ -136,8 +136,9 @@ def test_necks_narrower_than_the_kerf_are_widened(tmp_path):
 
 def _kit(text, fit):
     tile = design_from_text(text).build_tile()
-    return inlay_kit(tile.region(), tile.outline_shape(), fit_mm=fit, min_piece_mm=PLY.min_piece_or_default_mm,
-                     kerf_mm=KERF)
+    return inlay_kit(
+        tile.region(), tile.outline_shape(), fit_mm=fit, min_piece_mm=PLY.min_piece_or_default_mm, kerf_mm=KERF
+    )
 
 
 def test_the_five_point_stars_tips_reach_no_more_than_the_fit_past_their_holes():
@@ -158,10 +159,13 @@ def test_the_five_point_stars_tips_reach_no_more_than_the_fit_past_their_holes()
 
 def test_a_fit_past_the_band_names_the_pieces_gap_and_the_band():
     # bands of 0.8 mm: a fit of 0.42 mm leaves under the 0.15 mm kerf between the pieces
-    with pytest.raises(FabricationError, match=r"the narrowest gap between two pieces is 0\.\d+ mm \(at \(.*\), "
-                                               r"where the band of lattice between their holes is 0\.8 mm\), and "
-                                               r"pieces must stand more than the kerf = 0\.15 mm apart, so bands must "
-                                               r"be wider than kerf \+ 2 x fit = 0\.99 mm"):
+    with pytest.raises(
+        FabricationError,
+        match=r"the narrowest gap between two pieces is 0\.\d+ mm \(at \(.*\), "
+        r"where the band of lattice between their holes is 0\.8 mm\), and "
+        r"pieces must stand more than the kerf = 0\.15 mm apart, so bands must "
+        r"be wider than kerf \+ 2 x fit = 0\.99 mm",
+    ):
         _kit(STARS, 0.42)
 
 

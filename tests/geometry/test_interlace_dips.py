@@ -9,12 +9,15 @@ from fabtiles.geometry import interlace as gi
 from fabtiles.geometry.stack import QUANTUM
 
 TILES = {
-    "table3-3 hex": lambda: ft.Tile("square", 60, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")),
-                                    frame=3, stroke=1.0, interlace=True),
-    "table3-1 no frame": lambda: ft.Tile("hexagon", 50, ft.HexPacking(radius=12, motif=ft.Star.preset("table3-1")),
-                                         frame=0, stroke=1.2, interlace=True),
-    "4.8.8": lambda: ft.Tile("square", 60, ft.ArchimedeanPacking("4.8.8", edge=14), frame=3, stroke=1.0,
-                             interlace=True),
+    "table3-3 hex": lambda: ft.Tile(
+        "square", 60, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")), frame=3, stroke=1.0, interlace=True
+    ),
+    "table3-1 no frame": lambda: ft.Tile(
+        "hexagon", 50, ft.HexPacking(radius=12, motif=ft.Star.preset("table3-1")), frame=0, stroke=1.2, interlace=True
+    ),
+    "4.8.8": lambda: ft.Tile(
+        "square", 60, ft.ArchimedeanPacking("4.8.8", edge=14), frame=3, stroke=1.0, interlace=True
+    ),
 }
 
 

@@ -12,17 +12,23 @@ import math
 import numpy as np
 import pytest
 
-from fabtiles.machines.profiles import CutterProfile, LaserLayers, Layer
 from fabtiles.geometry.job_time import JobEstimate, estimate, path_lengths, total, travel_mm
+from fabtiles.machines.profiles import CutterProfile, LaserLayers, Layer
 
 
 def profile(*, inner=(10.0, 1), outer=(5.0, 1), score=(20.0, 1), engrave=None, pierce_s=0.5, travel_mm_s=100.0):
     """A laser profile whose layers run at ``(speed_mm_s, passes)``; ``engrave`` is ``(speed, passes, interval)``."""
-    fill = None if engrave is None else Layer("FILL", 6, speed_mm_s=engrave[0], passes=engrave[1],
-                                              line_interval_mm=engrave[2])
-    layers = LaserLayers(inner_cut=Layer("INNER", 1, speed_mm_s=inner[0], passes=inner[1]),
-                         outer_cut=Layer("OUTER", 1, speed_mm_s=outer[0], passes=outer[1]),
-                         score=Layer("SCORE", 5, speed_mm_s=score[0], passes=score[1]), engrave=fill)
+    fill = (
+        None
+        if engrave is None
+        else Layer("FILL", 6, speed_mm_s=engrave[0], passes=engrave[1], line_interval_mm=engrave[2])
+    )
+    layers = LaserLayers(
+        inner_cut=Layer("INNER", 1, speed_mm_s=inner[0], passes=inner[1]),
+        outer_cut=Layer("OUTER", 1, speed_mm_s=outer[0], passes=outer[1]),
+        score=Layer("SCORE", 5, speed_mm_s=score[0], passes=score[1]),
+        engrave=fill,
+    )
     return CutterProfile("test", pierce_s=pierce_s, travel_mm_s=travel_mm_s, layers=layers)
 
 
@@ -85,10 +91,19 @@ def test_engrave_is_its_swept_lines_without_pierces():
 
 def test_the_cut_order_is_engrave_score_inner_outer():
     p = profile(engrave=(250.0, 1, 0.5))
-    job = estimate(p, outer=[square(0, 40)], inner=[square(30, 0)], score=[np.array([[0, 20], [5, 20]], float)],
-                   engrave=[square(0, 10)], engrave_area_mm2=50.0)
-    assert job.cut_mm == {"score": pytest.approx(5.0), "inner_cut": pytest.approx(40.0),
-                          "outer_cut": pytest.approx(40.0)}
+    job = estimate(
+        p,
+        outer=[square(0, 40)],
+        inner=[square(30, 0)],
+        score=[np.array([[0, 20], [5, 20]], float)],
+        engrave=[square(0, 10)],
+        engrave_area_mm2=50.0,
+    )
+    assert job.cut_mm == {
+        "score": pytest.approx(5.0),
+        "inner_cut": pytest.approx(40.0),
+        "outer_cut": pytest.approx(40.0),
+    }
     assert job.pierces == 3 and job.engrave_area_mm2 == 50.0
     # (0, 0) -> engrave (0, 10) -> score (0, 20), ends (5, 20) -> inner (30, 0) -> outer (0, 40)
     travel = 10 + 10 + math.hypot(25, 20) + math.hypot(30, 40)
@@ -103,9 +118,12 @@ def test_travel_alone_is_the_estimates_travel(passes, outer_closed):
     """The cut plan measures the travel before its cut order with travel_mm, not a whole estimate."""
     p = profile(engrave=(250.0, 1, 0.5), inner=(10.0, passes))
     rng = np.random.default_rng(passes)
-    paths = dict(outer=[square(*rng.uniform(0, 90, 2)) for _ in range(3)],
-                 inner=[square(*rng.uniform(0, 90, 2), side=2) for _ in range(5)],
-                 score=[rng.uniform(0, 90, (3, 2))], engrave=[square(0, 10)])
+    paths = dict(
+        outer=[square(*rng.uniform(0, 90, 2)) for _ in range(3)],
+        inner=[square(*rng.uniform(0, 90, 2), side=2) for _ in range(5)],
+        score=[rng.uniform(0, 90, (3, 2))],
+        engrave=[square(0, 10)],
+    )
     job = estimate(p, **paths, engrave_area_mm2=50.0, outer_closed=outer_closed)
     assert travel_mm(p, **paths, outer_closed=outer_closed) == pytest.approx(job.travel_mm, rel=1e-12)
     assert job.travel_mm > 0
@@ -129,9 +147,15 @@ def test_an_empty_job():
 def test_the_report_entry_rounds_the_figures():
     job = estimate(profile(), inner=[square(20, 20)])
     stats = job.as_stats()
-    assert stats == {"cut_mm": {"inner_cut": 40.0}, "cut_total_mm": 40.0, "pierces": 1, "engrave_area_mm2": 0.0,
-                     "travel_mm": round(20 * math.sqrt(2), 3), "seconds": 4.8,
-                     "line": "0.04 m of cut, 1 pierce, about 1 min"}
+    assert stats == {
+        "cut_mm": {"inner_cut": 40.0},
+        "cut_total_mm": 40.0,
+        "pierces": 1,
+        "engrave_area_mm2": 0.0,
+        "travel_mm": round(20 * math.sqrt(2), 3),
+        "seconds": 4.8,
+        "line": "0.04 m of cut, 1 pierce, about 1 min",
+    }
 
 
 def test_path_lengths_of_open_and_closed_paths():
@@ -145,8 +169,11 @@ def test_total_sums_every_figure():
     a = estimate(profile(), inner=[square(20, 20)])
     b = estimate(profile(), outer=[square(0, 0)], score=[np.array([[0, 0], [0, 7]], float)])
     both = total([a, b])
-    assert both.cut_mm == {"inner_cut": pytest.approx(40.0), "outer_cut": pytest.approx(40.0),
-                           "score": pytest.approx(7.0)}
+    assert both.cut_mm == {
+        "inner_cut": pytest.approx(40.0),
+        "outer_cut": pytest.approx(40.0),
+        "score": pytest.approx(7.0),
+    }
     assert both.pierces == 3
     assert both.travel_mm == pytest.approx(a.travel_mm + b.travel_mm)
     assert both.seconds == pytest.approx(a.seconds + b.seconds)

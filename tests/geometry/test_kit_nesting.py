@@ -13,15 +13,18 @@ import shapely
 from designs import design_toml
 from dxf_helpers import read_checked, vertices
 
-from fabtiles.making import build_design
-from fabtiles.making.models import BuildOptions, Models
 from fabtiles.designs.design_file import design_from_text
 from fabtiles.geometry.faces import face_classes
 from fabtiles.geometry.kit_nesting import GAP_MM
 from fabtiles.geometry.stroke_font import text_paths
+from fabtiles.making import build_design
+from fabtiles.making.models import BuildOptions, Models
+
 
 def design_text(pieces: str) -> str:
-    return design_toml(radius=12.5, stroke=1.5, output={"formats": ["dxf"], "laser_mode": "inlay", "inlay_pieces": pieces})
+    return design_toml(
+        radius=12.5, stroke=1.5, output={"formats": ["dxf"], "laser_mode": "inlay", "inlay_pieces": pieces}
+    )
 
 
 @pytest.fixture(scope="module")
@@ -42,8 +45,11 @@ def _closed(e) -> bool:
 def _cuts(path):
     """The closed cut paths as polygons, and the document."""
     doc = read_checked(path)
-    return [shapely.Polygon(vertices(e)) for e in doc.modelspace()
-            if e.dxftype() in ("LWPOLYLINE", "POLYLINE") and _closed(e)], doc
+    return [
+        shapely.Polygon(vertices(e))
+        for e in doc.modelspace()
+        if e.dxftype() in ("LWPOLYLINE", "POLYLINE") and _closed(e)
+    ], doc
 
 
 def _scores(doc):

@@ -11,10 +11,10 @@ import shapely
 from shapely.geometry import Polygon, box
 
 from fabtiles import FabricationError, ParameterError
-from fabtiles.machines.profiles import load_profile
 from fabtiles.geometry.cut_plan import plan_cut
 from fabtiles.geometry.laser_checks import check_fits_bed, check_laser
 from fabtiles.geometry.narrow import fill_small_holes, small_hole_mask
+from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 
@@ -124,8 +124,7 @@ def test_prepare_validates_before_work():
     with pytest.raises(ParameterError, match="stroke must be >= min_feature_mm"):
         plan_cut(stroke=0.9, **kw)
     with pytest.raises(FabricationError, match="small_hole"):
-        plan_cut(**(kw | dict(region=plate.difference(box(0.5, 0.5, 1, 1)),
-                                                profile=replace(PLY, strict=True))))
+        plan_cut(**(kw | dict(region=plate.difference(box(0.5, 0.5, 1, 1)), profile=replace(PLY, strict=True))))
     job = plan_cut(kerf_mm=0, **kw)
     report = job.report
     assert job.bounds == (0, 0, 10, 10) and report.stats["cut_length_mm"] == pytest.approx(64)

@@ -13,10 +13,10 @@ from hypothesis import strategies as st
 from shapely.geometry import Point, box
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from hypothesis_scale import examples  # noqa: E402
+from hypothesis_scale import examples
 
-from fabtiles import FabricationError, ParameterError  # noqa: E402
-from fabtiles.geometry.nest import ROTATIONS, Nesting, Placement, nest  # noqa: E402
+from fabtiles import FabricationError, ParameterError
+from fabtiles.geometry.nest import ROTATIONS, Nesting, Placement, nest
 
 HEX = shapely.Polygon([(30 * np.cos(a), 30 * np.sin(a)) for a in np.arange(6) * np.pi / 3])
 
@@ -30,8 +30,10 @@ def check_nesting(n: Nesting, parts, gap: float) -> None:
         assert shapely.hausdorff_distance(moved, outline) < 1e-3 * 1e-3  # under 1 um
         # the inverse: turned back and moved back, the outline is the part
         a = np.radians(p.rotation)
-        back = shapely.transform(outline, lambda xy, p=p, a=a: (xy - p.translation) @ np.array(
-            [[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]))
+        back = shapely.transform(
+            outline,
+            lambda xy, p=p, a=a: (xy - p.translation) @ np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]),
+        )
         assert shapely.hausdorff_distance(back, shapely.Polygon(shape.exterior)) < 1e-6
         x0, y0, x1, y1 = outline.bounds
         assert x0 >= 0 and y0 >= 0 and x1 <= w and y1 <= h
@@ -99,8 +101,11 @@ def test_placement_moves_points_rigidly():
 
 
 @settings(max_examples=examples(3), deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.lists(st.tuples(st.floats(5, 60), st.floats(5, 60), st.integers(3, 8)), min_size=1, max_size=8),
-       st.sampled_from(tuple(ROTATIONS)), st.floats(0, 3))
+@given(
+    st.lists(st.tuples(st.floats(5, 60), st.floats(5, 60), st.integers(3, 8)), min_size=1, max_size=8),
+    st.sampled_from(tuple(ROTATIONS)),
+    st.floats(0, 3),
+)
 def test_any_parts_are_placed_once_inside_and_apart(sizes, rotations, gap):
     # rectangles and regular polygons of any size that fits, any rotation mode and gap
     parts = []
@@ -114,28 +119,42 @@ def test_any_parts_are_placed_once_inside_and_apart(sizes, rotations, gap):
     check_nesting(n, parts, gap)
 
 
-@pytest.mark.parametrize("kwargs, error, match", [
-    (dict(sheet_mm=(90, 90)), FabricationError, r"part 'big' \(100 x 20 mm\) does not fit on the 90 x 90 mm sheet either way round"),
-    (dict(sheet_mm=(30, 120), rotations="none"), FabricationError, r"does not fit on the 30 x 120 mm sheet unturned.*--rotate 90"),
-    (dict(sheet_mm=(30, 120), rotations="180"), FabricationError, r"unturned \(rotations '180'\)"),
-    (dict(gap_mm=-1), ParameterError, r"gap_mm must be .*>= 0, got -1"),
-    (dict(rotations="45"), ParameterError, r"rotations must be one of: none, 180, 90, free, got '45'"),
-    (dict(time_s=0), ParameterError, r"time_s must be .*> 0, got 0"),
-    (dict(time_s=-2), ParameterError, r"time_s must be .*> 0, got -2"),
-    (dict(sheet_mm=(600,)), ParameterError, r"sheet_mm must be \(width, height\) in mm, got \(600,\)"),
-    (dict(sheet_mm=(600, 0)), ParameterError, r"sheet_mm\[1\] must be .*> 0, got 0"),
-])
+@pytest.mark.parametrize(
+    "kwargs, error, match",
+    [
+        (
+            dict(sheet_mm=(90, 90)),
+            FabricationError,
+            r"part 'big' \(100 x 20 mm\) does not fit on the 90 x 90 mm sheet either way round",
+        ),
+        (
+            dict(sheet_mm=(30, 120), rotations="none"),
+            FabricationError,
+            r"does not fit on the 30 x 120 mm sheet unturned.*--rotate 90",
+        ),
+        (dict(sheet_mm=(30, 120), rotations="180"), FabricationError, r"unturned \(rotations '180'\)"),
+        (dict(gap_mm=-1), ParameterError, r"gap_mm must be .*>= 0, got -1"),
+        (dict(rotations="45"), ParameterError, r"rotations must be one of: none, 180, 90, free, got '45'"),
+        (dict(time_s=0), ParameterError, r"time_s must be .*> 0, got 0"),
+        (dict(time_s=-2), ParameterError, r"time_s must be .*> 0, got -2"),
+        (dict(sheet_mm=(600,)), ParameterError, r"sheet_mm must be \(width, height\) in mm, got \(600,\)"),
+        (dict(sheet_mm=(600, 0)), ParameterError, r"sheet_mm\[1\] must be .*> 0, got 0"),
+    ],
+)
 def test_bad_input_is_refused_naming_the_value(kwargs, error, match):
     args = dict(sheet_mm=(200, 200), gap_mm=1, time_s=1) | kwargs
     with pytest.raises(error, match=match):
         nest([("big", box(0, 0, 100, 20))], **args)
 
 
-@pytest.mark.parametrize("parts, match", [
-    ([], r"parts must be a non-empty list of \(id, shapely Polygon\) pairs"),
-    ([("a", box(0, 0, 1, 1).boundary)], r"parts\[0\] must be an \(id, shapely Polygon of area > 0\) pair"),
-    ([("a", box(0, 0, 1, 1)), ("a", box(0, 0, 2, 2))], r"ids must be distinct, got 'a' twice"),
-])
+@pytest.mark.parametrize(
+    "parts, match",
+    [
+        ([], r"parts must be a non-empty list of \(id, shapely Polygon\) pairs"),
+        ([("a", box(0, 0, 1, 1).boundary)], r"parts\[0\] must be an \(id, shapely Polygon of area > 0\) pair"),
+        ([("a", box(0, 0, 1, 1)), ("a", box(0, 0, 2, 2))], r"ids must be distinct, got 'a' twice"),
+    ],
+)
 def test_bad_parts_are_refused(parts, match):
     with pytest.raises(ParameterError, match=match):
         nest(parts, sheet_mm=(100, 100), gap_mm=1, time_s=1)

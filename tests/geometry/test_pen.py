@@ -28,13 +28,15 @@ def test_a_cross_is_two_strokes_and_a_star_crossing_four():
 
 def test_strokes_keep_every_segment_once():
     rng = np.random.default_rng(3)
-    grid = np.array([[[x, y], [x + 1, y]] for x in range(6) for y in range(6)] +
-                    [[[x, y], [x, y + 1]] for x in range(6) for y in range(6)], float)
+    grid = np.array(
+        [[[x, y], [x + 1, y]] for x in range(6) for y in range(6)]
+        + [[[x, y], [x, y + 1]] for x in range(6) for y in range(6)],
+        float,
+    )
     seg = np.concatenate([grid, grid[rng.permutation(len(grid))][:10]])  # with repeats
     out = strokes(seg)
     assert total(out) == pytest.approx(len(grid))
-    assert shapely.union_all([shapely.LineString(p) for p in out]).equals(
-        shapely.union_all(shapely.linestrings(grid)))
+    assert shapely.union_all([shapely.LineString(p) for p in out]).equals(shapely.union_all(shapely.linestrings(grid)))
     assert len(out) == 11  # six rows and six columns straight through every crossing; the corner (0, 0) joins two
 
 

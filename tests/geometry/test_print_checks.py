@@ -43,13 +43,16 @@ def test_star_tips_are_not_narrow_places():
     assert narrow_places(tip, 0.8)[0] == 0
 
 
-@pytest.mark.parametrize("style,kw,what", [
-    ("relief", dict(relief_mm=0.3), "the relief (relief_mm = 0.3 mm)"),
-    ("relief", dict(base_mm=0.2), "the plate (base_mm = 0.2 mm)"),
-    ("pierced", dict(pierced_mm=0.35), "the tile (pierced_mm = 0.35 mm)"),
-    ("deboss", dict(deboss_mm=0.2), "the groove depth"),
-    ("deboss", dict(base_mm=1.0, deboss_mm=0.8), "the floor under the grooves"),
-])
+@pytest.mark.parametrize(
+    "style,kw,what",
+    [
+        ("relief", dict(relief_mm=0.3), "the relief (relief_mm = 0.3 mm)"),
+        ("relief", dict(base_mm=0.2), "the plate (base_mm = 0.2 mm)"),
+        ("pierced", dict(pierced_mm=0.35), "the tile (pierced_mm = 0.35 mm)"),
+        ("deboss", dict(deboss_mm=0.2), "the groove depth"),
+        ("deboss", dict(base_mm=1.0, deboss_mm=0.8), "the floor under the grooves"),
+    ],
+)
 def test_thinner_than_two_layers(style, kw, what):
     r = check_print(box(0, 0, 10, 10), box(0, 0, 10, 10), "fdm-0.4mm", stroke=1.0, style=style, **kw)
     assert codes(r) == ["thin_layer"]
@@ -111,8 +114,9 @@ def test_min_hole_defaults_to_two_nozzle_widths():
     assert load_profile("fdm-0.6mm").min_hole_mm == 1.2
 
 
-@pytest.mark.parametrize("style,what", [("pierced", "holes through the tile"),
-                                        ("relief", "gaps in the raised pattern")])
+@pytest.mark.parametrize(
+    "style,what", [("pierced", "holes through the tile"), ("relief", "gaps in the raised pattern")]
+)
 def test_small_holes_are_found_counted_and_placed(style, what):
     plate = _holed((5, 5, 0.3, 0.3), (10, 5, 0.35, 4), (15, 5, 0.9, 0.9), (20, 5, 3, 3))
     r = check_print(plate, box(0, 0, 30, 30), FDM, stroke=1.0, style=style)
@@ -121,8 +125,10 @@ def test_small_holes_are_found_counted_and_placed(style, what):
     assert "fill_small_holes" in f.message
     assert sorted(f.sizes) == pytest.approx([0.3, 0.35], abs=0.01) and f.worst == pytest.approx(0.3, abs=0.01)
     # each place is inside its hole
-    assert sorted(f.locations) == [pytest.approx((5.15, 5.15), abs=0.02), (pytest.approx(10.175, abs=0.02),
-                                                                          pytest.approx(7.0, abs=2.0))]
+    assert sorted(f.locations) == [
+        pytest.approx((5.15, 5.15), abs=0.02),
+        (pytest.approx(10.175, abs=0.02), pytest.approx(7.0, abs=2.0)),
+    ]
 
 
 def test_narrowest_is_shown_with_the_digits_that_tell_it_from_the_limit():
@@ -184,11 +190,14 @@ def test_slivers_are_thin_walls_whatever_the_stroke():
     assert f.worst == pytest.approx(0.3)
 
 
-@pytest.mark.parametrize("value,match", [
-    (-0.1, r"printer profile 'fdm-0.4mm': min_hole_mm must be a finite number of mm >= 0, got -0.1"),
-    (float("nan"), r"min_hole_mm must be a finite number of mm >= 0, got nan"),
-    (31.0, r"min_hole_mm = 31 mm is larger than the tile \(30 x 30 mm\); give the narrowest hole"),
-])
+@pytest.mark.parametrize(
+    "value,match",
+    [
+        (-0.1, r"printer profile 'fdm-0.4mm': min_hole_mm must be a finite number of mm >= 0, got -0.1"),
+        (float("nan"), r"min_hole_mm must be a finite number of mm >= 0, got nan"),
+        (31.0, r"min_hole_mm = 31 mm is larger than the tile \(30 x 30 mm\); give the narrowest hole"),
+    ],
+)
 def test_bad_min_hole(value, match):
     with pytest.raises(ProfileError, match=match):
         check_min_hole(replace(FDM, min_hole_mm=value), box(0, 0, 30, 30))
@@ -202,9 +211,24 @@ def test_small_hole_mask_handles_no_limit():
     assert small_hole_mask(np.array([box(0, 0, 0.1, 0.1)]), 0.0).tolist() == [False]
 
 
-ARC_HOLE = [(14.1857, 4.0252), (13.4944, 4.294), (12.8155, 4.5928), (12.1503, 4.9208), (11.5, 5.2776),
-            (10.8659, 5.6623), (10.2492, 6.0744), (9.6511, 6.513), (9.0726, 6.9772), (8.6858, 7.3164), (10.0, 7.3939),
-            (11.503, 7.3053), (12.7711, 6.4936), (13.935, 5.5384), (14.4837, 4.1363), (14.5445, 3.9034)]
+ARC_HOLE = [
+    (14.1857, 4.0252),
+    (13.4944, 4.294),
+    (12.8155, 4.5928),
+    (12.1503, 4.9208),
+    (11.5, 5.2776),
+    (10.8659, 5.6623),
+    (10.2492, 6.0744),
+    (9.6511, 6.513),
+    (9.0726, 6.9772),
+    (8.6858, 7.3164),
+    (10.0, 7.3939),
+    (11.503, 7.3053),
+    (12.7711, 6.4936),
+    (13.935, 5.5384),
+    (14.4837, 4.1363),
+    (14.5445, 3.9034),
+]
 """A hole along the inner edge of a 40 mm circle tile's frame, that GEOS's ring simplification by 0.02 mm
 leaves 0.026 mm off (it drops the ring's first point after the rest)."""
 

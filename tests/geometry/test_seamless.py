@@ -50,9 +50,17 @@ def test_fit_is_an_exact_period_nearest_the_radius(w, h, r):
     "args, kwargs, match",
     [
         (("circle", 100, 10), {}, r"a circle outline cannot be seamless"),
-        (("square", 100, 10), {}, r"a square tile cannot be seamless with the hex packing .* use outline 'rectangle' or 'hexagon'"),
+        (
+            ("square", 100, 10),
+            {},
+            r"a square tile cannot be seamless with the hex packing .* use outline 'rectangle' or 'hexagon'",
+        ),
         (("hexagon", 100, 10), dict(packing="square"), r"a hexagon tile cannot be seamless with the square packing"),
-        (("square", 100, 10), dict(packing="triangle"), r"'triangle' is not a valid packing, must be one of: hex, square"),
+        (
+            ("square", 100, 10),
+            dict(packing="triangle"),
+            r"'triangle' is not a valid packing, must be one of: hex, square",
+        ),
         (("oval", 100, 10), {}, r"'oval' is not a valid outline"),
         (("rectangle", (100, 50), 0), {}, r"radius must be a finite number > 0, got 0"),
     ],
@@ -101,8 +109,9 @@ def test_seamless_hexagon_neighbours_continue_the_pattern():
 
 def test_seamless_square_with_square_packing():
     fit = seamless_fit("square", 50, 6, packing="square")
-    tile = TileGeometry("square", fit.size, SquarePacking(radius=fit.radius, motif=Star.preset("table1-part1")),
-                stroke=0.8)
+    tile = TileGeometry(
+        "square", fit.size, SquarePacking(radius=fit.radius, motif=Star.preset("table1-part1")), stroke=0.8
+    )
     assert _neighbours_continue(tile, [(50, 0), (0, 50), (50, 50)]) < 1e-4
 
 

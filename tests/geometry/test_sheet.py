@@ -9,9 +9,9 @@ from dxf_helpers import read_checked, star_plate
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError
-from fabtiles.machines.profiles import load_profile
 from fabtiles.export.dxf import write_dxf
 from fabtiles.geometry.sheet import layout_sheet
+from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 
@@ -20,8 +20,11 @@ def test_rows_and_gap():
     tile = star_plate(size=100)
     sheet = layout_sheet([tile], PLY, copies=8)
     gap = PLY.kerf_mm + 2
-    assert np.array(sheet.offsets[:6]) == pytest.approx(np.array(
-        [(0, 0), (100 + gap, 0), (2 * (100 + gap), 0), (3 * (100 + gap), 0), (4 * (100 + gap), 0), (0, 100 + gap)]))
+    assert np.array(sheet.offsets[:6]) == pytest.approx(
+        np.array(
+            [(0, 0), (100 + gap, 0), (2 * (100 + gap), 0), (3 * (100 + gap), 0), (4 * (100 + gap), 0), (0, 100 + gap)]
+        )
+    )
     outlines = shapely.get_parts(sheet.outline)
     assert len(outlines) == 8
     d = shapely.distance(outlines[:, None], outlines[None, :])

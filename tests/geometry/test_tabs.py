@@ -10,10 +10,10 @@ from hypothesis import strategies as st
 from shapely.geometry import Point, box
 
 from fabtiles import ParameterError
-from fabtiles.machines.profiles import load_profile
 from fabtiles.geometry.cut_plan import plan_cut, plan_kit
 from fabtiles.geometry.job_time import path_lengths
 from fabtiles.geometry.tabs import PIECES_PER_TAB, check_tabs, tab_paths
+from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 
@@ -75,8 +75,13 @@ def test_a_short_ring_gets_fewer_tabs_and_a_tiny_one_none():
 
 
 @settings(max_examples=60, deadline=None)
-@given(points=st.integers(3, 12), outer=st.floats(5, 80), ratio=st.floats(0.2, 0.95),
-       tab=st.floats(0.1, 3.0), per=st.integers(1, 10))
+@given(
+    points=st.integers(3, 12),
+    outer=st.floats(5, 80),
+    ratio=st.floats(0.2, 0.95),
+    tab=st.floats(0.1, 3.0),
+    per=st.integers(1, 10),
+)
 def test_pieces_and_gaps_make_the_ring(points, outer, ratio, tab, per):
     """Every piece lies on the ring; the gaps are tab_mm long along it; pieces and gaps add up to its length."""
     ring = star(points, outer, outer * ratio)
@@ -106,16 +111,14 @@ def test_plan_cut_tabs_the_outer_cut_only_and_the_estimate_follows():
     stats = plan.report.stats
     assert stats["outer_contours"] == 1 and stats["tabs"]["tabs"] == 4 and stats["tabs"]["outer_pieces"] == 4
     assert stats["cut_length_mm"] == pytest.approx(plain.report.stats["cut_length_mm"] - 2.4, abs=1e-3)
-    assert any(n.startswith("holding tabs: 4 tabs of 0.6 mm in 1 part (4 per part) at (")
-               for n in stats["notes"])
+    assert any(n.startswith("holding tabs: 4 tabs of 0.6 mm in 1 part (4 per part) at (") for n in stats["notes"])
 
 
 @pytest.mark.parametrize("mode", ["score", "engrave"])
 def test_the_outline_cut_of_the_other_modes_gets_tabs(mode):
     plate = box(0, 0, 30, 30).difference(box(10, 10, 20, 20))
     lines = np.array([[[0, 15], [30, 15]]], float)
-    plan = plan_cut(plate, box(0, 0, 30, 30), profile=PLY, mode=mode, centrelines=lines, tab_mm=0.5,
-                    tabs_per_part=2)
+    plan = plan_cut(plate, box(0, 0, 30, 30), profile=PLY, mode=mode, centrelines=lines, tab_mm=0.5, tabs_per_part=2)
     assert len(plan.paths("outer")) == 2 and plan.report.stats["tabs"]["tabs"] == 2
 
 
@@ -128,13 +131,16 @@ def test_an_inlay_kits_lattice_and_pieces_get_tabs():
     assert any(n.startswith("pieces' holding tabs: 6 tabs") for n in kit.report.stats["notes"])
 
 
-@pytest.mark.parametrize(("tab", "per", "msg"), [
-    (-0.5, 4, r"tab_mm must be a number of mm from 0 to 5 \(0: no tabs; else more than the kerf\), got -0\.5"),
-    (6, 4, r"tab_mm must be a number of mm from 0 to 5 .*, got 6"),
-    (0.5, 0, r"tabs_per_part must be an integer >= 1 and <= 64, got 0"),
-    (0.5, 2.5, r"tabs_per_part must be an integer >= 1 and <= 64, got 2\.5"),
-    (0.1, 4, r"tab_mm must be 0 \(no tabs\) or more than the kerf \(0\.15 mm\), got 0\.1: .* make tab_mm larger"),
-])
+@pytest.mark.parametrize(
+    ("tab", "per", "msg"),
+    [
+        (-0.5, 4, r"tab_mm must be a number of mm from 0 to 5 \(0: no tabs; else more than the kerf\), got -0\.5"),
+        (6, 4, r"tab_mm must be a number of mm from 0 to 5 .*, got 6"),
+        (0.5, 0, r"tabs_per_part must be an integer >= 1 and <= 64, got 0"),
+        (0.5, 2.5, r"tabs_per_part must be an integer >= 1 and <= 64, got 2\.5"),
+        (0.1, 4, r"tab_mm must be 0 \(no tabs\) or more than the kerf \(0\.15 mm\), got 0\.1: .* make tab_mm larger"),
+    ],
+)
 def test_bad_tabs_are_parameter_errors(tab, per, msg):
     with pytest.raises(ParameterError, match=msg):
         plan_cut(box(0, 0, 10, 10), box(0, 0, 10, 10), profile=PLY, tab_mm=tab, tabs_per_part=per)
@@ -149,12 +155,16 @@ def test_no_tabs_by_default():
 @pytest.mark.parametrize("profile", ["router-6mm-mdf", "waterjet-1mm-aluminium"])
 def test_routers_and_waterjets_leave_tabs_to_cam(profile):
     p = load_profile(profile)
-    with pytest.raises(ParameterError, match=rf"tab_mm must be 0 for {p.kind} profile '{profile}', got 0\.5: a "
-                                             rf"{p.kind} file holds the part whole and CAM adds the holding tabs"):
+    with pytest.raises(
+        ParameterError,
+        match=rf"tab_mm must be 0 for {p.kind} profile '{profile}', got 0\.5: a "
+        rf"{p.kind} file holds the part whole and CAM adds the holding tabs",
+    ):
         plan_cut(box(0, 0, 100, 100), box(0, 0, 100, 100), profile=p, tab_mm=0.5)
 
 
 def test_a_kits_tab_no_wider_than_the_kerf_is_refused():
     with pytest.raises(ParameterError, match=r"tab_mm must be 0 \(no tabs\) or more than the kerf \(0\.3 mm\)"):
-        plan_kit(box(0, 0, 40, 40).difference(box(5, 5, 15, 15)), box(0, 0, 40, 40), profile=PLY, kerf_mm=0.3,
-                 tab_mm=0.2)
+        plan_kit(
+            box(0, 0, 40, 40).difference(box(5, 5, 15, 15)), box(0, 0, 40, 40), profile=PLY, kerf_mm=0.3, tab_mm=0.2
+        )

@@ -72,16 +72,28 @@ def test_corner_radius_rounds_the_outline():
 @pytest.mark.parametrize(
     "args, kwargs, match",
     [
-        (("triangle", 100), {}, r"'triangle' is not a valid outline, must be one of: square, rectangle, hexagon, circle"),
+        (
+            ("triangle", 100),
+            {},
+            r"'triangle' is not a valid outline, must be one of: square, rectangle, hexagon, circle",
+        ),
         (("rectangle", 100), {}, r"size of a rectangle must be a pair \(width, height\) in mm, got 100"),
-        (("square", (100, 80)), {}, r"size of a square is one number \(its side\) or an equal pair, got \(100, 80\); use outline 'rectangle'"),
+        (
+            ("square", (100, 80)),
+            {},
+            r"size of a square is one number \(its side\) or an equal pair, got \(100, 80\); use outline 'rectangle'",
+        ),
         (("hexagon", (100, 80)), {}, r"size of a hexagon is one number \(its width across flats\)"),
         (("circle", (1, 2, 3)), {}, r"size must be a number or a \(width, height\) pair in mm"),
         (("square", "big"), {}, r"size must be a number or a \(width, height\) pair in mm, got 'big'"),
         (("square", -5), {}, r"size must be a finite number > 0, got -5"),
         (("rectangle", (10, float("inf"))), {}, r"size\[1\] must be a finite number > 0, got inf"),
-        (("square", 9), dict(frame=5), r"tile size \(9, 9\) mm is too small for frame 5 mm: "
-                                        r"the square must be wider than twice the frame \(10 mm\)"),
+        (
+            ("square", 9),
+            dict(frame=5),
+            r"tile size \(9, 9\) mm is too small for frame 5 mm: "
+            r"the square must be wider than twice the frame \(10 mm\)",
+        ),
         (("rectangle", (100, 10)), dict(frame=5), r"too small for frame 5 mm"),
         (("square", 100), dict(frame=-1), r"frame must be a finite number >= 0, got -1"),
         (("square", 100), dict(stroke=0), r"stroke must be a finite number > 0, got 0"),
@@ -89,7 +101,11 @@ def test_corner_radius_rounds_the_outline():
         (("square", 100), dict(join="zigzag"), r"^'zigzag' is not a valid join, must be one of: miter, round, bevel$"),
         (("square", 100), dict(miter_limit=0.5), r"miter_limit must be a finite number >= 1, got 0.5"),
         (("square", 100), dict(corner_radius=-1), r"corner_radius must be a finite number >= 0, got -1"),
-        (("square", 100), dict(corner_radius=51), r"corner_radius must be >= 0 and <= 50 \(half the tile's narrowest width\), got 51"),
+        (
+            ("square", 100),
+            dict(corner_radius=51),
+            r"corner_radius must be >= 0 and <= 50 \(half the tile's narrowest width\), got 51",
+        ),
         (("circle", 100), dict(corner_radius=2), r"corner_radius must be 0 for a circle outline, got 2"),
     ],
 )
@@ -99,7 +115,9 @@ def test_bad_tiles(args, kwargs, match):
 
 
 def test_bad_pattern_and_single_star_stroke():
-    with pytest.raises(ParameterError, match=r"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking or Star, got str"):
+    with pytest.raises(
+        ParameterError, match=r"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking or Star, got str"
+    ):
         TileGeometry("square", 100, "table3-3")
     with pytest.raises(ParameterError, match=r"stroke must be > 0 and <= 5 mm \(the motif circle's radius\), got 6"):
         TileGeometry("square", 20, Star.preset("table1-part1"), frame=5, stroke=6)
@@ -120,8 +138,10 @@ def test_segments_cover_the_outline(square_tile):
     assert pts[:, 0].max() > 80 and pts[:, 1].max() > 80
 
 
-@pytest.mark.parametrize("outline, size, frame, radius", [
-    ("square", 100, 5, 45), ("rectangle", (100, 60), 2, 28), ("hexagon", 80, 0, 40), ("circle", 50, 1, 24)])
+@pytest.mark.parametrize(
+    "outline, size, frame, radius",
+    [("square", 100, 5, 45), ("rectangle", (100, 60), 2, 28), ("hexagon", 80, 0, 40), ("circle", 50, 1, 24)],
+)
 def test_single_star_fills_the_circle_inside_the_frame(outline, size, frame, radius):
     star = Star.preset("table2-left")
     t = TileGeometry(outline, size, star, frame=frame)
@@ -152,7 +172,8 @@ def test_region_stays_within_the_miter_reach(square_tile):
     reach = square_tile.segments()
     limit = square_tile.miter_limit * square_tile.stroke / 2
     bound = shapely.union_all(shapely.buffer(shapely.linestrings(reach), limit)).union(
-        square_tile.outline_shape().difference(square_tile.inner_shape()))
+        square_tile.outline_shape().difference(square_tile.inner_shape())
+    )
     assert square_tile.region().difference(bound).area < 1e-9
 
 
@@ -165,8 +186,7 @@ def test_frame_is_kept(square_tile):
 def test_round_join_equals_the_geos_round_buffer():
     # Round joins and round caps make the region the Minkowski sum of the segments
     # and a disc: exactly what a GEOS round buffer gives (up to arc flattening).
-    t = TileGeometry("square", 50, SquarePacking(radius=8, motif=Star.preset("table1-part1")), stroke=1.2,
-             join="round")
+    t = TileGeometry("square", 50, SquarePacking(radius=8, motif=Star.preset("table1-part1")), stroke=1.2, join="round")
     ref = shapely.union_all(shapely.buffer(shapely.linestrings(t.segments()), 0.6, quad_segs=32))
     ref = ref.intersection(t.outline_shape())
     region = t.region()
@@ -226,13 +246,19 @@ def test_centrelines_are_clipped_to_the_outline():
     assert shapely.multilinestrings(cl).length == pytest.approx(ref.length, rel=1e-9)
 
 
-@given(outline=st.sampled_from(["square", "hexagon", "circle"]), size=st.floats(30, 90),
-       frame=st.floats(0, 6), stroke=st.floats(0.3, 2.0), join=st.sampled_from(["miter", "round", "bevel"]),
-       motif=st.sampled_from(Star.presets()))
+@given(
+    outline=st.sampled_from(["square", "hexagon", "circle"]),
+    size=st.floats(30, 90),
+    frame=st.floats(0, 6),
+    stroke=st.floats(0.3, 2.0),
+    join=st.sampled_from(["miter", "round", "bevel"]),
+    motif=st.sampled_from(Star.presets()),
+)
 @settings(max_examples=examples(12), deadline=None)
 def test_region_is_always_valid_and_contained(outline, size, frame, stroke, join, motif):
-    t = TileGeometry(outline, size, HexPacking(radius=9, motif=Star.preset(motif)), frame=frame, stroke=stroke,
-             join=join)
+    t = TileGeometry(
+        outline, size, HexPacking(radius=9, motif=Star.preset(motif)), frame=frame, stroke=stroke, join=join
+    )
     region = t.region()
     assert region.is_valid
     # Clipper works on a fine integer grid: the region may stick out by ~1e-7 mm

@@ -14,8 +14,8 @@ from hypothesis import strategies as st
 from shapely.geometry import Polygon, box
 
 from fabtiles import ParameterError, ProfileError
-from fabtiles.machines.profiles import load_profile
 from fabtiles.geometry.tool_opening import VISIBLE_MM, check_tool, open_region, quad_segs_for
+from fabtiles.machines.profiles import load_profile
 
 ROUTER = load_profile("router-3.175mm-plywood")
 R = ROUTER.tool_radius_mm
@@ -118,18 +118,24 @@ def test_check_tool_reports_every_removed_hole_and_can_fill_them():
 def test_a_tool_wider_than_every_hole_is_refused():
     plate, _ = star_plate(size=60, grid=3, r_out=7, r_in=3.5)
     big = replace(ROUTER, tool_diameter_mm=20.0)
-    with pytest.raises(ParameterError, match=r"tool_diameter_mm = 20 mm of router profile 'router-3.175mm-plywood' "
-                                             r"is wider than every hole of the design \(the widest is 7(\.\d+)? mm\)"):
+    with pytest.raises(
+        ParameterError,
+        match=r"tool_diameter_mm = 20 mm of router profile 'router-3.175mm-plywood' "
+        r"is wider than every hole of the design \(the widest is 7(\.\d+)? mm\)",
+    ):
         check_tool(plate, big)
     with pytest.raises(ParameterError, match=r"kerf_mm = 40 mm of waterjet profile"):
         check_tool(plate, replace(load_profile("waterjet-1mm-aluminium"), kerf_mm=40.0))
 
 
-@pytest.mark.parametrize("profile,match", [
-    (replace(ROUTER, tool_diameter_mm=0.0), r"tool_diameter_mm must be > 0 \(the bit's diameter in mm\), got 0\.0"),
-    (replace(ROUTER, tool_diameter_mm=None), r"tool_diameter_mm must be > 0 .*got None"),
-    (replace(load_profile("waterjet-1mm-aluminium"), kerf_mm=0.0), r"kerf_mm must be > 0 \(the jet's diameter"),
-])
+@pytest.mark.parametrize(
+    "profile,match",
+    [
+        (replace(ROUTER, tool_diameter_mm=0.0), r"tool_diameter_mm must be > 0 \(the bit's diameter in mm\), got 0\.0"),
+        (replace(ROUTER, tool_diameter_mm=None), r"tool_diameter_mm must be > 0 .*got None"),
+        (replace(load_profile("waterjet-1mm-aluminium"), kerf_mm=0.0), r"kerf_mm must be > 0 \(the jet's diameter"),
+    ],
+)
 def test_bad_tools_are_profile_errors(profile, match):
     with pytest.raises(ProfileError, match=match):
         profile.cutter.check_profile(profile)

@@ -20,8 +20,15 @@ def write(tmp_path, text, name="p.toml"):
 
 
 def test_bundled_profiles_load_and_have_the_issue_beds():
-    assert set(bundled_profiles()) == {"laser-3mm-plywood", "laser-3mm-acrylic", "fdm-0.4mm", "fdm-0.6mm",
-                                       "router-6mm-mdf", "router-3.175mm-plywood", "waterjet-1mm-aluminium"}
+    assert set(bundled_profiles()) == {
+        "laser-3mm-plywood",
+        "laser-3mm-acrylic",
+        "fdm-0.4mm",
+        "fdm-0.6mm",
+        "router-6mm-mdf",
+        "router-3.175mm-plywood",
+        "waterjet-1mm-aluminium",
+    }
     for name in ("laser-3mm-plywood", "laser-3mm-acrylic"):
         p = load_profile(name, kind="laser")
         assert isinstance(p, CutterProfile) and p.bed_mm[0] >= 600 and p.bed_mm[1] >= 400
@@ -48,23 +55,50 @@ def test_profiles_are_frozen():
 @pytest.mark.parametrize(
     "text, match",
     [
-        ('kind = "laser"\n[laser]\nkerf = 0.1\n', r"p.toml: unknown key laser.'kerf' \(did you mean 'kerf_mm'\?\); valid keys: kerf_mm"),
+        (
+            'kind = "laser"\n[laser]\nkerf = 0.1\n',
+            r"p.toml: unknown key laser.'kerf' \(did you mean 'kerf_mm'\?\); valid keys: kerf_mm",
+        ),
         ('kind = "laser"\ncolour = 1\n', r"p.toml: unknown key 'colour'; valid keys: kind"),
         ('kind = "plasma"\n', r"p.toml: kind must be one of: laser, router, waterjet, printer, got 'plasma'"),
         ('kind = "laser"\n[laser]\nkerf_mm = -0.1\n', r"p.toml: laser.kerf_mm must be >= 0, got -0.1"),
         ('kind = "laser"\n[laser]\nmin_hole_mm = 0\n', r"p.toml: laser.min_hole_mm must be > 0, got 0"),
-        ('kind = "laser"\n[laser]\ntolerance_mm = "fine"\n', r"p.toml: laser.tolerance_mm must be a finite number, got 'fine'"),
-        ('kind = "laser"\n[laser]\ntolerance_mm = nan\n', r"p.toml: laser.tolerance_mm must be a finite number, got nan"),
+        (
+            'kind = "laser"\n[laser]\ntolerance_mm = "fine"\n',
+            r"p.toml: laser.tolerance_mm must be a finite number, got 'fine'",
+        ),
+        (
+            'kind = "laser"\n[laser]\ntolerance_mm = nan\n',
+            r"p.toml: laser.tolerance_mm must be a finite number, got nan",
+        ),
         ('kind = "laser"\n[laser]\nbed_mm = [600]\n', r"p.toml: laser.bed_mm must be \[width, height\] in mm"),
         ('kind = "laser"\n[laser]\nstrict = "yes"\n', r"p.toml: laser.strict must be true or false"),
-        ('kind = "laser"\n[laser]\nmode = "etch"\n', r"p.toml: laser.mode = 'etch' is not valid, must be one of: pierced, score, engrave"),
-        ('kind = "laser"\n[laser]\ndxf_version = "R14"\n', r"laser.dxf_version = 'R14' is not valid \(did you mean 'R12'\?\), must be one of: R12, R2000"),
-        ('kind = "printer"\n[printer]\nprint_style = "emboss"\n', r"printer.print_style = 'emboss' is not valid "
-                                                                   r"\(did you mean 'deboss'\?\), must be one of: relief, pierced, deboss"),
+        (
+            'kind = "laser"\n[laser]\nmode = "etch"\n',
+            r"p.toml: laser.mode = 'etch' is not valid, must be one of: pierced, score, engrave",
+        ),
+        (
+            'kind = "laser"\n[laser]\ndxf_version = "R14"\n',
+            r"laser.dxf_version = 'R14' is not valid \(did you mean 'R12'\?\), must be one of: R12, R2000",
+        ),
+        (
+            'kind = "printer"\n[printer]\nprint_style = "emboss"\n',
+            r"printer.print_style = 'emboss' is not valid "
+            r"\(did you mean 'deboss'\?\), must be one of: relief, pierced, deboss",
+        ),
         ('kind = "printer"\n[printer]\nbase_mm = -2\n', r"printer.base_mm must be > 0, got -2"),
-        ('kind = "laser"\n[layers]\nscore = { name = "S", color = 300 }\n', r"layers.score.color must be an AutoCAD Color Index 1..255, got 300"),
-        ('kind = "laser"\n[layers]\nscore = { name = "S", colour = 3 }\n', r"unknown key layers.score.'colour' \(did you mean 'color'\?\)"),
-        ('kind = "laser"\n[layers]\nscore = { name = "A/B" }\n', r"layers.score.name must be a non-empty DXF layer name"),
+        (
+            'kind = "laser"\n[layers]\nscore = { name = "S", color = 300 }\n',
+            r"layers.score.color must be an AutoCAD Color Index 1..255, got 300",
+        ),
+        (
+            'kind = "laser"\n[layers]\nscore = { name = "S", colour = 3 }\n',
+            r"unknown key layers.score.'colour' \(did you mean 'color'\?\)",
+        ),
+        (
+            'kind = "laser"\n[layers]\nscore = { name = "A/B" }\n',
+            r"layers.score.name must be a non-empty DXF layer name",
+        ),
         ('kind = "laser"\n[layers]\nscore = "S"\n', r"layers.score must be a table"),
         ('kind = "laser"\n[layers]\nstencil = { name = "S" }\n', r"unknown key layers.'stencil'"),
         ('kind = "laser"\n[layers]\nscore = { name = "OUTER" }\n', r"layers need three different names"),
@@ -81,22 +115,31 @@ def test_bad_profiles_name_file_and_key(tmp_path, text, match):
 
 
 def test_unknown_bundled_profile_suggests_and_lists():
-    with pytest.raises(ft.ProfileError, match=r"profile 'laser-3mm-plywod' does not exist "
-                                              r"\(did you mean 'laser-3mm-plywood'\?\); bundled profiles: fdm-0.4mm, "
-                                              r"fdm-0.6mm \(printer\), laser-3mm-acrylic"):
+    with pytest.raises(
+        ft.ProfileError,
+        match=r"profile 'laser-3mm-plywod' does not exist "
+        r"\(did you mean 'laser-3mm-plywood'\?\); bundled profiles: fdm-0.4mm, "
+        r"fdm-0.6mm \(printer\), laser-3mm-acrylic",
+    ):
         load_profile("laser-3mm-plywod")
 
 
 def test_an_unknown_profile_is_matched_among_the_slots_kind():
     # meant as a laser's: a laser profile is suggested, the router's near name said apart with its kind
-    with pytest.raises(ft.ProfileError, match=r"profile 'laser-5mm-mdf' does not exist \(did you mean "
-                                              r"'laser-3mm-plywood'\?; a router profile is near: 'router-6mm-mdf'\); "
-                                              r"bundled profiles for this slot: laser-3mm-acrylic, laser-3mm-plywood "
-                                              r"\(laser\), router-3.175mm-plywood, router-6mm-mdf \(router\)"):
+    with pytest.raises(
+        ft.ProfileError,
+        match=r"profile 'laser-5mm-mdf' does not exist \(did you mean "
+        r"'laser-3mm-plywood'\?; a router profile is near: 'router-6mm-mdf'\); "
+        r"bundled profiles for this slot: laser-3mm-acrylic, laser-3mm-plywood "
+        r"\(laser\), router-3.175mm-plywood, router-6mm-mdf \(router\)",
+    ):
         load_profile("laser-5mm-mdf", kind="laser")
     # a printer slot names no cutter, however near
-    with pytest.raises(ft.ProfileError, match=r"profile 'laser-3mm-plywod' does not exist; bundled printer "
-                                              r"profiles: fdm-0.4mm, fdm-0.6mm; or give the path"):
+    with pytest.raises(
+        ft.ProfileError,
+        match=r"profile 'laser-3mm-plywod' does not exist; bundled printer "
+        r"profiles: fdm-0.4mm, fdm-0.6mm; or give the path",
+    ):
         load_profile("laser-3mm-plywod", kind="printer")
 
 
@@ -106,9 +149,12 @@ def test_unreadable_file(tmp_path):
 
 
 def test_wrong_kind_is_named():
-    with pytest.raises(ft.ProfileError, match=r"'fdm-0.4mm' is a printer profile, but a laser profile is needed here "
-                                              r"\(or a router or waterjet one\); bundled laser profiles: laser-3mm-acrylic, "
-                                              r"laser-3mm-plywood, router-3.175mm-plywood, router-6mm-mdf, waterjet-1mm-aluminium"):
+    with pytest.raises(
+        ft.ProfileError,
+        match=r"'fdm-0.4mm' is a printer profile, but a laser profile is needed here "
+        r"\(or a router or waterjet one\); bundled laser profiles: laser-3mm-acrylic, "
+        r"laser-3mm-plywood, router-3.175mm-plywood, router-6mm-mdf, waterjet-1mm-aluminium",
+    ):
         load_profile("fdm-0.4mm", kind="laser")
 
 
@@ -117,12 +163,15 @@ def test_bad_profile_argument_type():
         load_profile(3)
 
 
-@pytest.mark.parametrize("line,match", [
-    ("min_hole_mm = -0.2", r"p.toml: printer.min_hole_mm must be >= 0, got -0.2"),
-    ("min_hole_mm = nan", r"p.toml: printer.min_hole_mm must be a finite number, got nan"),
-    ("min_hole_mm = inf", r"p.toml: printer.min_hole_mm must be a finite number, got inf"),
-    ("min_hole_mm = true", r"p.toml: printer.min_hole_mm must be a finite number, got True"),
-])
+@pytest.mark.parametrize(
+    "line,match",
+    [
+        ("min_hole_mm = -0.2", r"p.toml: printer.min_hole_mm must be >= 0, got -0.2"),
+        ("min_hole_mm = nan", r"p.toml: printer.min_hole_mm must be a finite number, got nan"),
+        ("min_hole_mm = inf", r"p.toml: printer.min_hole_mm must be a finite number, got inf"),
+        ("min_hole_mm = true", r"p.toml: printer.min_hole_mm must be a finite number, got True"),
+    ],
+)
 def test_bad_printer_min_hole(tmp_path, line, match):
     with pytest.raises(ft.ProfileError, match=match):
         load_profile(write(tmp_path, f'kind = "printer"\n[printer]\n{line}\n'))
@@ -142,8 +191,11 @@ def test_a_printers_old_style_key_loads_with_a_note_naming_print_style(tmp_path)
     with pytest.warns(FabtilesDeprecationWarning, match=r"p.toml: printer.style is now printer.print_style"):
         assert load_profile(path).print_style == "deboss"
     both = write(tmp_path, 'kind = "printer"\n[printer]\nstyle = "deboss"\nprint_style = "relief"\n')
-    with pytest.raises(ft.ProfileError, match=r"printer.style and printer.print_style are one setting; keep "
-                                              r"print_style"):
+    with pytest.raises(
+        ft.ProfileError,
+        match=r"printer.style and printer.print_style are one setting; keep "
+        r"print_style",
+    ):
         load_profile(both)
 
 
@@ -156,5 +208,7 @@ def test_the_cli_prints_the_renamed_key_as_one_note(tmp_path):
     path.write_text('kind = "printer"\n[printer]\nstyle = "pierced"\n')
     result = CliRunner().invoke(cli, ["profile", "show", str(path)])
     assert result.exit_code == 0, result.output
-    assert result.stderr == (f"fabtiles: note: {path}: printer.style is now printer.print_style (the design "
-                             f"key's name); rename it, the old name will stop loading\n")
+    assert result.stderr == (
+        f"fabtiles: note: {path}: printer.style is now printer.print_style (the design "
+        f"key's name); rename it, the old name will stop loading\n"
+    )

@@ -12,8 +12,8 @@ from designs import design_toml
 
 from fabtiles import DesignError, LimitError, ParameterError
 from fabtiles import making as pipeline
-from fabtiles.machines.limits import CLI_LIMITS, Limits, estimate_segments
 from fabtiles.designs.design_file import design_from_text, load_design
+from fabtiles.machines.limits import CLI_LIMITS, Limits, estimate_segments
 
 SMALL = design_toml(preset="table3-1", radius=8, outline=None)
 ROOT = Path(__file__).resolve().parents[2]
@@ -25,8 +25,10 @@ def small(**kw):
 
 def test_step_limit_applies_to_every_front_end(tmp_path):
     """The STEP limit the web app applies holds for `fabtiles build` too, before any geometry."""
-    big = load_design(ROOT / "samples" / "table3-3.toml",
-                      overrides=["tile.size=[400,400]", "packing.radius=6", "tile.stroke=0.5", "tile.frame=3"])
+    big = load_design(
+        ROOT / "samples" / "table3-3.toml",
+        overrides=["tile.size=[400,400]", "packing.radius=6", "tile.stroke=0.5", "tile.frame=3"],
+    )
     tile = pipeline.prepare_tile(big)
     count = estimate_segments(tile.pattern, tile.width_mm, tile.height_mm)
     assert CLI_LIMITS.max_step_segments < count < CLI_LIMITS.max_segments
@@ -37,9 +39,25 @@ def test_step_limit_applies_to_every_front_end(tmp_path):
 
     from fabtiles.cli.main import cli
 
-    res = CliRunner().invoke(cli, ["build", str(ROOT / "samples" / "table3-3.toml"), "-o", str(tmp_path / "c"),
-                                   "--format", "step", "--set", "tile.size=[400,400]", "--set",
-                                   "packing.radius=6", "--set", "tile.stroke=0.5", "--set", "tile.frame=3"])
+    res = CliRunner().invoke(
+        cli,
+        [
+            "build",
+            str(ROOT / "samples" / "table3-3.toml"),
+            "-o",
+            str(tmp_path / "c"),
+            "--format",
+            "step",
+            "--set",
+            "tile.size=[400,400]",
+            "--set",
+            "packing.radius=6",
+            "--set",
+            "tile.stroke=0.5",
+            "--set",
+            "tile.frame=3",
+        ],
+    )
     assert res.exit_code == 2 and "STEP export of about" in res.output
     assert not (tmp_path / "c").exists()
 
@@ -114,12 +132,18 @@ def test_outcome_lists_findings(tmp_path):
     assert len(out.findings) == 1 and out.findings[0].startswith("laser laser-3mm-plywood: small_hole: ")
 
 
-@pytest.mark.parametrize("overrides, match", [
-    (["tile.stroke=50"], r"^--set tile\.stroke=50: \[tile\] stroke must be > 0 and <= 8 mm"),
-    (["tile.frame=1", "tile.size=[80,40]"], r"^--set tile\.size=\[80,40\]: \[tile\] size of a square is one number"),
-    (["motif.n=2"], r"^--set motif\.n=2: \[motif\] n must be an integer >= 3"),
-    (["tile.sise=3"], r"^--set tile\.sise=3: unknown key 'sise' in \[tile\]"),
-])
+@pytest.mark.parametrize(
+    "overrides, match",
+    [
+        (["tile.stroke=50"], r"^--set tile\.stroke=50: \[tile\] stroke must be > 0 and <= 8 mm"),
+        (
+            ["tile.frame=1", "tile.size=[80,40]"],
+            r"^--set tile\.size=\[80,40\]: \[tile\] size of a square is one number",
+        ),
+        (["motif.n=2"], r"^--set motif\.n=2: \[motif\] n must be an integer >= 3"),
+        (["tile.sise=3"], r"^--set tile\.sise=3: unknown key 'sise' in \[tile\]"),
+    ],
+)
 def test_a_bad_set_value_names_the_set_option(overrides, match):
     with pytest.raises(DesignError, match=match):
         small(overrides=overrides, source="small.toml")
@@ -127,14 +151,12 @@ def test_a_bad_set_value_names_the_set_option(overrides, match):
 
 def test_a_bad_file_is_still_named_with_overrides():
     with pytest.raises(DesignError, match=r"^small\.toml: \[tile\] stroke must be"):
-        design_from_text(SMALL.replace("stroke = 1.0", "stroke = 50"), source="small.toml",
-                         overrides=["tile.frame=2"])
+        design_from_text(SMALL.replace("stroke = 1.0", "stroke = 50"), source="small.toml", overrides=["tile.frame=2"])
 
 
 def test_a_disk_error_is_a_fabtiles_error_and_leaves_nothing(tmp_path, monkeypatch):
-    from fabtiles import FabtilesError
-
     import fabtiles.core.files
+    from fabtiles import FabtilesError
 
     def full(path, data):
         raise OSError(28, "No space left on device")
@@ -207,7 +229,11 @@ def test_a_format_its_writer_refuses_is_named_and_the_others_are_written(tmp_pat
     assert [Path(p).name for p in result.paths] == ["small.svg", "small.stl"]
     assert [r.format for r in result.reports] == ["svg", "stl"]
     (refused,) = result.refused
-    assert (refused.format, refused.path, refused.reason) == ("step", str(tmp_path / "small.step"), "the STEP solid is bad")
+    assert (refused.format, refused.path, refused.reason) == (
+        "step",
+        str(tmp_path / "small.step"),
+        "the STEP solid is bad",
+    )
     assert refused.line() == f"refused {tmp_path / 'small.step'} (step): the STEP solid is bad"
     # the refused file is absent, and nothing else (no staging folder) is left
     assert sorted(p.name for p in tmp_path.iterdir()) == ["small.stl", "small.svg"]
@@ -256,7 +282,9 @@ def test_a_build_whose_every_format_is_refused_raises_and_writes_nothing(tmp_pat
     assert err.value.param == "tolerance_mm"
     # several reasons: each format named with its own
     _refusing("svg", "the SVG is bad", monkeypatch)
-    with pytest.raises(FabricationError, match=r"^formats refused: svg: the SVG is bad; step: tolerance_mm is too coarse$"):
+    with pytest.raises(
+        FabricationError, match=r"^formats refused: svg: the SVG is bad; step: tolerance_mm is too coarse$"
+    ):
         pipeline.build_design(small(), tmp_path / "c", ["svg", "step"])
     assert not (tmp_path / "b").exists() and not (tmp_path / "c").exists()
 
@@ -272,7 +300,11 @@ def test_a_refused_format_leaves_the_file_of_an_earlier_build_as_it_was(tmp_path
 def test_an_outcome_names_the_formats_refused(tmp_path, monkeypatch):
     _refusing("stl", "the mesh is bad", monkeypatch)
     out = pipeline.run_job("t", small, str(tmp_path), ("svg", "stl"))
-    assert out.ok and out.message == "wrote 1 file; laser: nothing found; printer: nothing found; refused stl" and out.refused == ["stl: the mesh is bad"]
+    assert (
+        out.ok
+        and out.message == "wrote 1 file; laser: nothing found; printer: nothing found; refused stl"
+        and out.refused == ["stl: the mesh is bad"]
+    )
 
 
 def test_the_deep_check_fails_on_a_refused_print_file(tmp_path, monkeypatch):
@@ -281,5 +313,5 @@ def test_the_deep_check_fails_on_a_refused_print_file(tmp_path, monkeypatch):
 
     _refusing("stl", "the mesh is bad", monkeypatch)
     design = small(overrides=['output.formats=["stl", "3mf"]'])
-    with pytest.raises(FabricationError, match="^the mesh is bad$"):
+    with pytest.raises(FabricationError, match=r"^the mesh is bad$"):
         read_back(design)

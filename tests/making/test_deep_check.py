@@ -10,13 +10,15 @@ from click.testing import CliRunner
 from designs import design_toml
 
 from fabtiles import FabricationError
-from fabtiles.making.deep import ReadBack, read_back
 from fabtiles.cli.main import cli
 from fabtiles.designs.design_file import design_from_text
 from fabtiles.export.formats import FORMATS
 from fabtiles.export.stl import stl_bytes
+from fabtiles.making.deep import ReadBack, read_back
 
-SMALL = design_toml(preset="table3-1", radius=8, size=40, output={"formats": ["dxf", "stl", "3mf", "step"], "fill_small_holes": False})
+SMALL = design_toml(
+    preset="table3-1", radius=8, size=40, output={"formats": ["dxf", "stl", "3mf", "step"], "fill_small_holes": False}
+)
 # fill_small_holes = false: the holes kept (the filled case is its own test below)
 
 
@@ -48,11 +50,17 @@ def _tetrahedron(flip=False, drop=False):
     return stl_bytes(v, f[:-1] if drop else f)
 
 
-@pytest.mark.parametrize("kw, match", [
-    (dict(drop=True), r"the STL file read back by trimesh has a body that is not watertight"),
-    (dict(flip=True), r"the STL file read back by trimesh has a body turned inside out"),
-    (dict(), r"the STL file read back by trimesh holds 166\.667 mm\^3, not the [0-9.e+]+ mm\^3 it was written with"),
-])
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        (dict(drop=True), r"the STL file read back by trimesh has a body that is not watertight"),
+        (dict(flip=True), r"the STL file read back by trimesh has a body turned inside out"),
+        (
+            dict(),
+            r"the STL file read back by trimesh holds 166\.667 mm\^3, not the [0-9.e+]+ mm\^3 it was written with",
+        ),
+    ],
+)
 def test_a_mesh_file_the_reader_disagrees_with_is_a_bug_reported(monkeypatch, kw, match):
     monkeypatch.setitem(FORMATS, "stl", replace(FORMATS["stl"], write=lambda model, options: _tetrahedron(**kw)))
     design = design_from_text(SMALL.replace('"stl", "3mf", "step"', '"stl"'), name="s")
@@ -68,13 +76,18 @@ def test_a_step_file_occt_cannot_read_is_a_bug_reported(monkeypatch):
 
 
 def test_a_read_back_line_says_what_was_read():
-    assert ReadBack("3mf", "trimesh", 2, 1000.0).line() == "3mf read back by trimesh: 2 meshes, 1,000.0 mm^3, as written"
+    assert (
+        ReadBack("3mf", "trimesh", 2, 1000.0).line() == "3mf read back by trimesh: 2 meshes, 1,000.0 mm^3, as written"
+    )
 
 
 def test_a_relief_whose_pattern_meets_the_outline_reads_back_part_by_part():
     """Filled, the pattern's outer ring is the outline's: the 3MF's plate and pattern meet along it in
     edges of four faces, and each part must be checked on its own."""
-    design = design_from_text(SMALL.replace('"stl", "3mf", "step"', '"3mf"').replace("fill_small_holes = false", "")
-                              + "fill_small_holes = true\nprint_style = \"relief\"\n", name="s")
+    design = design_from_text(
+        SMALL.replace('"stl", "3mf", "step"', '"3mf"').replace("fill_small_holes = false", "")
+        + 'fill_small_holes = true\nprint_style = "relief"\n',
+        name="s",
+    )
     (back,) = read_back(design)
     assert back.fmt == "3mf" and back.bodies == 2

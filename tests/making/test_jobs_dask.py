@@ -42,13 +42,37 @@ class Cluster:
         port = self.address.rsplit(":", 1)[1]
         env = dict(os.environ, PYTHONDONTWRITEBYTECODE="1", DASK_DISTRIBUTED__WORKER__DAEMON="False")
         log = (tmp / "cluster.log").open("ab")
-        self.scheduler = subprocess.Popen([DASK, "scheduler", "--host", "127.0.0.1", "--port", port,
-                                           "--no-dashboard"], stdout=log, stderr=log, env=env, cwd=tmp)
-        self.workers = [subprocess.Popen([DASK, "worker", self.address, "--host", "127.0.0.1", "--nthreads", "1",
-                                          "--no-nanny", "--no-dashboard", "--name", f"w{k}",
-                                          "--local-directory", str(tmp / f"w{k}")],
-                                         stdout=log, stderr=log, env=env, cwd=tmp)
-                        for k in range(n)]
+        self.scheduler = subprocess.Popen(
+            [DASK, "scheduler", "--host", "127.0.0.1", "--port", port, "--no-dashboard"],
+            stdout=log,
+            stderr=log,
+            env=env,
+            cwd=tmp,
+        )
+        self.workers = [
+            subprocess.Popen(
+                [
+                    DASK,
+                    "worker",
+                    self.address,
+                    "--host",
+                    "127.0.0.1",
+                    "--nthreads",
+                    "1",
+                    "--no-nanny",
+                    "--no-dashboard",
+                    "--name",
+                    f"w{k}",
+                    "--local-directory",
+                    str(tmp / f"w{k}"),
+                ],
+                stdout=log,
+                stderr=log,
+                env=env,
+                cwd=tmp,
+            )
+            for k in range(n)
+        ]
         with Client(self.address, timeout=60, set_as_default=False) as client:
             client.wait_for_workers(n, timeout=120)
 
@@ -75,8 +99,9 @@ def cluster(tmp_path_factory):
 
 
 def fabtiles(*args, **kw):
-    return subprocess.run([sys.executable, "-m", "fabtiles", *map(str, args)], capture_output=True, text=True,
-                          timeout=900, **kw)
+    return subprocess.run(
+        [sys.executable, "-m", "fabtiles", *map(str, args)], capture_output=True, text=True, timeout=900, **kw
+    )
 
 
 def files(folder: Path) -> dict:
@@ -117,8 +142,12 @@ def test_a_worker_killed_mid_run_still_gives_every_output(tmp_path):
     c = Cluster(tmp_path)
     try:
         out = tmp_path / "dask"
-        run = subprocess.Popen([sys.executable, "-m", "fabtiles", *map(str, args), "-o", str(out),
-                                "--scheduler", c.address], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        run = subprocess.Popen(
+            [sys.executable, "-m", "fabtiles", *map(str, args), "-o", str(out), "--scheduler", c.address],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         # Kill a worker in the middle of a task: while it is writing into its staging folder
         # (named with its process id), so that task must be run again on the other worker.
         victim = c.workers[0]
@@ -143,13 +172,22 @@ def test_unreachable_scheduler_is_a_clear_error(tmp_path):
     from fabtiles.making.jobs import CONNECT_TIMEOUT_S
 
     assert CONNECT_TIMEOUT_S < 10
-    proc = fabtiles("batch", SAMPLES / "rosette.toml", "-o", tmp_path / "out", "--scheduler",
-                    f"tcp://127.0.0.1:{_free_port()}")
+    proc = fabtiles(
+        "batch", SAMPLES / "rosette.toml", "-o", tmp_path / "out", "--scheduler", f"tcp://127.0.0.1:{_free_port()}"
+    )
     assert proc.returncode == 2
     assert proc.stderr.startswith("fabtiles: error: cannot reach the Dask scheduler at 'tcp://127.0.0.1:")
     assert proc.stderr.count("\n") == 1 and not (tmp_path / "out").exists()
-    bad = fabtiles("sweep", SAMPLES / "rosette.toml", "--vary", "tile.stroke=1,2", "-o", tmp_path / "s",
-                   "--scheduler", "not-an-address")
+    bad = fabtiles(
+        "sweep",
+        SAMPLES / "rosette.toml",
+        "--vary",
+        "tile.stroke=1,2",
+        "-o",
+        tmp_path / "s",
+        "--scheduler",
+        "not-an-address",
+    )
     assert bad.returncode == 2 and "missing port number in address 'not-an-address'" in bad.stderr
 
 

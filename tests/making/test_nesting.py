@@ -8,9 +8,9 @@ import zipfile
 import pytest
 
 from fabtiles import LimitError
+from fabtiles.designs.design_file import design_from_text
 from fabtiles.machines.limits import CLI_LIMITS, WEB_LIMITS, check_nest
 from fabtiles.making.nesting import nest_bytes, nest_designs, plan_nest
-from fabtiles.designs.design_file import design_from_text
 
 DESIGN = """
 [motif]
@@ -31,8 +31,7 @@ def design():
 def test_nest_bytes_are_the_files_nest_designs_writes(design, tmp_path):
     made = nest_bytes([(design, 2)], ("dxf", "svg"), sheet_mm=(100, 60), rotations="none", time_s=1, name="n")
     assert [n for n, _ in made.files] == ["n-sheet-1.dxf", "n-sheet-1.svg"]
-    written = nest_designs([(design, 2)], tmp_path, ("svg",), sheet_mm=(100, 60), rotations="none", time_s=1,
-                           name="n")
+    written = nest_designs([(design, 2)], tmp_path, ("svg",), sheet_mm=(100, 60), rotations="none", time_s=1, name="n")
     # the packer's placements may differ between two runs; the sheets' count and parts do not
     assert len(written.sheets) == len(made.job.sheets()) == 1
     assert written.sheets[0]["designs"] == made.job.sheets()[0]["designs"] == {"square": 2}

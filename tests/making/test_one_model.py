@@ -17,17 +17,23 @@ from click.testing import CliRunner
 from designs import design_toml
 
 import fabtiles
-from fabtiles.making import build_design
 from fabtiles.cli.main import cli
 from fabtiles.designs.design_file import design_from_text
+from fabtiles.making import build_design
 
 PACKAGE = Path(fabtiles.__file__).resolve().parent
 
-LASER = design_toml(output={"laser_profile": "laser-3mm-plywood", "printer_profile": "fdm-0.4mm",
-                            "fill_small_holes": False})
+LASER = design_toml(
+    output={"laser_profile": "laser-3mm-plywood", "printer_profile": "fdm-0.4mm", "fill_small_holes": False}
+)
 
-ROUTER = design_toml(radius=40, size=200, frame=12, stroke=8.0,
-                     output={"laser_profile": "router-6mm-mdf", "printer_profile": "fdm-0.4mm", "fill_small_holes": False})
+ROUTER = design_toml(
+    radius=40,
+    size=200,
+    frame=12,
+    stroke=8.0,
+    output={"laser_profile": "router-6mm-mdf", "printer_profile": "fdm-0.4mm", "fill_small_holes": False},
+)
 
 
 def calls(run) -> dict[str, int]:
@@ -71,11 +77,31 @@ def test_a_router_build_with_its_picture_opens_the_holes_once(tmp_path):
 def test_each_finding_is_printed_once_whatever_the_formats(tmp_path):
     path = tmp_path / "d.toml"
     path.write_text(LASER)
-    one = CliRunner().invoke(cli, ["build", str(path), "-o", str(tmp_path / "a"), "--format", "dxf",
-                                   "--format", "stl"], catch_exceptions=False)
-    five = CliRunner().invoke(cli, ["build", str(path), "-o", str(tmp_path / "b"), "--format", "dxf",
-                                    "--format", "svg", "--format", "lbrn2", "--format", "stl", "--format", "3mf"],
-                              catch_exceptions=False)
+    one = CliRunner().invoke(
+        cli,
+        ["build", str(path), "-o", str(tmp_path / "a"), "--format", "dxf", "--format", "stl"],
+        catch_exceptions=False,
+    )
+    five = CliRunner().invoke(
+        cli,
+        [
+            "build",
+            str(path),
+            "-o",
+            str(tmp_path / "b"),
+            "--format",
+            "dxf",
+            "--format",
+            "svg",
+            "--format",
+            "lbrn2",
+            "--format",
+            "stl",
+            "--format",
+            "3mf",
+        ],
+        catch_exceptions=False,
+    )
     assert one.exit_code == 0 and five.exit_code == 0, one.output + five.output
 
     def findings(output):

@@ -5,8 +5,6 @@ Hard cases are drawn on purpose: radii in any order, alpha beyond half a step, n
 spr, strokes that merge everything, tiles smaller than one motif.
 """
 
-import math
-
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
@@ -24,8 +22,10 @@ def motifs(draw, max_n=16):
     radii = draw(st.lists(st.floats(0.1, 10), min_size=2, max_size=4))  # any order
     special = draw(st.none() | st.integers(2, len(radii)))
     return ft.Star(
-        n=n, radii=radii, special=special,
-        alpha=draw(st.floats(-2, 2) .map(lambda k: k * 180 / n)),  # up to two half-steps either way
+        n=n,
+        radii=radii,
+        special=special,
+        alpha=draw(st.floats(-2, 2).map(lambda k: k * 180 / n)),  # up to two half-steps either way
         spr=draw(st.floats(-10, 10)),
         rotation=draw(st.floats(-180, 180)),
     )
@@ -41,9 +41,9 @@ def tiles(draw):
     motif = draw(motifs())
     if draw(st.booleans()):
         radius = draw(st.floats(2, 30))  # up to tiles smaller than one motif
-        pattern = ft.HexPacking(radius=radius, motif=motif,
-                                gap_motif=draw(st.none() | motifs(max_n=8)),
-                                outline_circles=draw(st.booleans()))
+        pattern = ft.HexPacking(
+            radius=radius, motif=motif, gap_motif=draw(st.none() | motifs(max_n=8)), outline_circles=draw(st.booleans())
+        )
         max_stroke = radius
     else:
         pattern = motif
@@ -72,8 +72,10 @@ def test_any_valid_tile_has_a_valid_region_inside_its_outline(tile):
 def _profile(tmp_path, stroke):
     """A laser profile whose minimum feature admits the drawn stroke."""
     path = tmp_path / "laser.toml"
-    path.write_text(f'kind = "laser"\n[laser]\nkerf_mm = {min(0.1, stroke / 2):.4f}\n'
-                    f'min_feature_mm = {stroke * 0.99:.4f}\nbed_mm = [600, 400]\n')
+    path.write_text(
+        f'kind = "laser"\n[laser]\nkerf_mm = {min(0.1, stroke / 2):.4f}\n'
+        f"min_feature_mm = {stroke * 0.99:.4f}\nbed_mm = [600, 400]\n"
+    )
     return path
 
 
@@ -84,8 +86,11 @@ def test_any_valid_tile_writes_a_clean_dxf(tmp_path, tile, r12, score):
 
     path = tmp_path / "t.dxf"
     path.unlink(missing_ok=True)  # tmp_path is shared by the examples of one test
-    options = dict(profile=_profile(tmp_path, tile.stroke), dxf_version="R12" if r12 else None,
-                   mode="score" if score else "pierced")
+    options = dict(
+        profile=_profile(tmp_path, tile.stroke),
+        dxf_version="R12" if r12 else None,
+        mode="score" if score else "pierced",
+    )
     if tile.region().is_empty:
         with pytest.raises(ft.FabricationError, match="the tile holds no material"):
             tile.export(path, **options)
@@ -161,8 +166,12 @@ def test_any_valid_tile_writes_one_step_solid(tmp_path, tile):
 # -- invalid input: a FabtilesError and nothing else ----------------------------------
 
 anything = st.one_of(
-    st.none(), st.booleans(), st.integers(-5, 200), st.floats(allow_nan=True, allow_infinity=True),
-    st.text(max_size=5), st.lists(st.floats(allow_nan=True, allow_infinity=True), max_size=30),
+    st.none(),
+    st.booleans(),
+    st.integers(-5, 200),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.text(max_size=5),
+    st.lists(st.floats(allow_nan=True, allow_infinity=True), max_size=30),
     st.tuples(st.integers(-3, 3), st.integers(-3, 3)),
 )
 
@@ -180,9 +189,15 @@ def test_star_accepts_or_raises_fabtiles_error(n, radii, alpha, spr, special, ro
 
 
 @settings(max_examples=examples(200))
-@given(outline=st.one_of(st.sampled_from(OUTLINES), anything), size=anything, frame=anything,
-       stroke=anything, join=st.one_of(st.sampled_from(["miter", "round", "bevel"]), anything),
-       radius=anything, corner=anything)
+@given(
+    outline=st.one_of(st.sampled_from(OUTLINES), anything),
+    size=anything,
+    frame=anything,
+    stroke=anything,
+    join=st.one_of(st.sampled_from(["miter", "round", "bevel"]), anything),
+    radius=anything,
+    corner=anything,
+)
 def test_tile_accepts_or_raises_fabtiles_error(outline, size, frame, stroke, join, radius, corner):
     motif = ft.Star.preset("table3-3")
     try:
@@ -198,10 +213,11 @@ def test_tile_accepts_or_raises_fabtiles_error(outline, size, frame, stroke, joi
 @settings(max_examples=examples(60), suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(kerf=anything, mode=anything, version=anything, style=anything, base=anything, relief=anything)
 def test_export_options_accept_or_raise_fabtiles_error(tmp_path, kerf, mode, version, style, base, relief):
-    tile = ft.Tile("square", 30, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")), frame=2,
-                   stroke=1.2)
-    for path, options in ((tmp_path / "t.dxf", dict(kerf_mm=kerf, mode=mode, dxf_version=version)),
-                          (tmp_path / "t.stl", dict(style=style, base_mm=base, relief_mm=relief))):
+    tile = ft.Tile("square", 30, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")), frame=2, stroke=1.2)
+    for path, options in (
+        (tmp_path / "t.dxf", dict(kerf_mm=kerf, mode=mode, dxf_version=version)),
+        (tmp_path / "t.stl", dict(style=style, base_mm=base, relief_mm=relief)),
+    ):
         try:
             tile.export(path, **options)
         except ft.FabtilesError as exc:

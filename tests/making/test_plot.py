@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from fabtiles import ParameterError
-from fabtiles.making.plot import plot_drawing
 from fabtiles.designs.design_file import load_design
 from fabtiles.geometry.interlace import tile_score_lines
 from fabtiles.making.pipeline import prepare_tile
+from fabtiles.making.plot import plot_drawing
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -49,8 +49,14 @@ def test_cut_is_the_cut_plan_in_cut_order():
     assert d.pen_mm == 0.5 and all(np.array_equal(p[0], p[-1]) for layer in d.layers for p in layer.paths)
 
 
-@pytest.mark.parametrize("kw, match", [({"what": "engrave"}, "not a valid what, must be one of: centrelines, cut"),
-                                       ({"pen_mm": 0}, "pen_mm must be"), ({"pen_mm": 11}, "pen_mm must be")])
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        ({"what": "engrave"}, "not a valid what, must be one of: centrelines, cut"),
+        ({"pen_mm": 0}, "pen_mm must be"),
+        ({"pen_mm": 11}, "pen_mm must be"),
+    ],
+)
 def test_bad_options(kw, match):
     with pytest.raises(ParameterError, match=match):
         plot_drawing(load_design(ROOT / "samples" / "rosette.toml"), **kw)

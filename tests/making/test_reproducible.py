@@ -26,11 +26,11 @@ import pytest
 
 from fabtiles.core.errors import FabtilesError
 from fabtiles.core.files import ZIP_TIME
+from fabtiles.designs.design_file import design_from_text, load_design
+from fabtiles.export.formats import FILE_FORMATS, FORMATS, FileOptions
 from fabtiles.making import build_bytes
 from fabtiles.making.models import BuildOptions, Models
 from fabtiles.making.pipeline import prepare_tile
-from fabtiles.designs.design_file import design_from_text, load_design
-from fabtiles.export.formats import FILE_FORMATS, FORMATS, FileOptions
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
@@ -89,31 +89,40 @@ def first_difference(a: bytes, b: bytes) -> str:
             if ma != mb:
                 return f"zip member {ia.filename}: {first_difference(ma, mb)}"
         return "the zip's members are the same, its other bytes differ"
-    at = next((i for i, (x, y) in enumerate(zip(a, b, strict=False)) if x != y), min(len(a), len(b)))  # the first difference
+    at = next(
+        (i for i, (x, y) in enumerate(zip(a, b, strict=False)) if x != y), min(len(a), len(b))
+    )  # the first difference
     line = a.count(b"\n", 0, at) + 1
 
     def line_of(data):
         start = data.rfind(b"\n", 0, at) + 1
         end = data.find(b"\n", at)
-        return data[start:end if end >= 0 else len(data)][:120]
+        return data[start : end if end >= 0 else len(data)][:120]
 
-    return (f"first difference at byte {at} ({len(a)} and {len(b)} bytes), line {line}: "
-            f"{line_of(a)!r} against {line_of(b)!r}")
+    return (
+        f"first difference at byte {at} ({len(a)} and {len(b)} bytes), line {line}: "
+        f"{line_of(a)!r} against {line_of(b)!r}"
+    )
 
 
 def assert_same_files(first: Path, second: Path) -> int:
     """Every file under ``first`` and ``second`` byte-identical; returns how many were compared."""
     names = sorted(str(p.relative_to(first)) for p in first.rglob("*") if p.is_file())
     assert names == sorted(str(p.relative_to(second)) for p in second.rglob("*") if p.is_file())
-    differ = [f"{name}: {first_difference((first / name).read_bytes(), (second / name).read_bytes())}"
-              for name in names if (first / name).read_bytes() != (second / name).read_bytes()]
+    differ = [
+        f"{name}: {first_difference((first / name).read_bytes(), (second / name).read_bytes())}"
+        for name in names
+        if (first / name).read_bytes() != (second / name).read_bytes()
+    ]
     assert not differ, "files differ between two builds of the same design:\n" + "\n".join(differ)
     return len(names)
 
 
 def test_first_difference_names_the_line_and_the_zip_member():
-    assert first_difference(b"a\nbc\n", b"a\nbd\n") == \
-        "first difference at byte 3 (5 and 5 bytes), line 2: b'bc' against b'bd'"
+    assert (
+        first_difference(b"a\nbc\n", b"a\nbd\n")
+        == "first difference at byte 3 (5 and 5 bytes), line 2: b'bc' against b'bd'"
+    )
 
     def zipped(text, when=ZIP_TIME):
         buf = io.BytesIO()
@@ -122,9 +131,11 @@ def test_first_difference_names_the_line_and_the_zip_member():
         return buf.getvalue()
 
     assert first_difference(zipped("x\ny"), zipped("x\nz")).startswith(
-        "zip member model.xml: first difference at byte 2 (3 and 3 bytes), line 2")
+        "zip member model.xml: first difference at byte 2 (3 and 3 bytes), line 2"
+    )
     assert first_difference(zipped("x"), zipped("x", (2024, 5, 6, 7, 8, 10))).startswith(
-        "zip member model.xml: date_time (1980, 1, 1, 0, 0, 0) against (2024, 5, 6, 7, 8, 10)")
+        "zip member model.xml: date_time (1980, 1, 1, 0, 0, 0) against (2024, 5, 6, 7, 8, 10)"
+    )
 
 
 def test_the_samples_formats_cover_every_file_format():
@@ -133,8 +144,11 @@ def test_the_samples_formats_cover_every_file_format():
     assert "lbrn2" not in formats_of(ROOT / "samples" / "panel-2440x1220.toml")  # a router's
 
 
-@pytest.mark.parametrize("sample", [pytest.param(s, marks=pytest.mark.slow) if s.stem in LEFT_OUT else s
-                                    for s in SAMPLES], ids=[s.stem for s in SAMPLES])
+@pytest.mark.parametrize(
+    "sample",
+    [pytest.param(s, marks=pytest.mark.slow) if s.stem in LEFT_OUT else s for s in SAMPLES],
+    ids=[s.stem for s in SAMPLES],
+)
 def test_two_builds_of_a_sample_are_byte_identical(tmp_path, sample):
     formats = [f for f in formats_of(sample) if f not in LEFT_OUT.get(sample.stem, ())]
     argv = ["-m", "fabtiles", "build", sample, "-o", "{out}"]
@@ -165,13 +179,41 @@ def test_kits_sheets_cards_and_downloads_are_byte_identical(tmp_path):
     cut = ["--format", "dxf", "--format", "svg", "--format", "lbrn2"]
     commands = [
         (["-m", "fabtiles", "build", table, "-o", "{out}", "--set", "output.laser_mode=inlay", *cut], "kit"),
-        (["-m", "fabtiles", "build", ROOT / "samples" / "rosette.toml", "-o", "{out}", "--copies", "3", *cut],
-         "sheet"),
-        (["-m", "fabtiles", "build", table, "-o", "{out}", "--set", "output.print_style=deboss",
-          "--set", "output.inlay=true", "--set", "output.threemf_layout=components", "--format", "3mf"], "inlay"),
+        (["-m", "fabtiles", "build", ROOT / "samples" / "rosette.toml", "-o", "{out}", "--copies", "3", *cut], "sheet"),
+        (
+            [
+                "-m",
+                "fabtiles",
+                "build",
+                table,
+                "-o",
+                "{out}",
+                "--set",
+                "output.print_style=deboss",
+                "--set",
+                "output.inlay=true",
+                "--set",
+                "output.threemf_layout=components",
+                "--format",
+                "3mf",
+            ],
+            "inlay",
+        ),
         # R2004 and later have the CLASSES section whose order followed the hash seed
-        (["-m", "fabtiles", "calibrate", "--profile", "laser-3mm-plywood", "--dxf-version", "R2018",
-          "-o", "{out}/card.dxf"], "card"),
+        (
+            [
+                "-m",
+                "fabtiles",
+                "calibrate",
+                "--profile",
+                "laser-3mm-plywood",
+                "--dxf-version",
+                "R2018",
+                "-o",
+                "{out}/card.dxf",
+            ],
+            "card",
+        ),
         (["-c", _WEB_DOWNLOADS, "{out}"], "web"),
     ]
     first, second = run_twice(tmp_path, commands)

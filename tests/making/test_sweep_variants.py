@@ -8,42 +8,48 @@ from fabtiles import ParameterError
 from fabtiles.making.sweep import MAX_VARIANTS, Vary, parse_vary, variants
 
 
-@pytest.mark.parametrize("text, values", [
-    ("packing.radius=8:16:5", (8, 10, 12, 14, 16)),
-    ("packing.radius=16:8:3", (16, 12, 8)),
-    ("tile.stroke=0.1:0.3:3", (0.1, 0.2, 0.3)),
-    ("tile.stroke=1:2:3", (1.0, 1.5, 2.0)),
-    ("tile.frame=3:9:1", (3,)),
-    ("tile.stroke=0.8,1.2", (0.8, 1.2)),
-    ("tile.outline=square,hexagon", ("square", "hexagon")),
-    ("motif.preset=table3-1, table3-3", ("table3-1", "table3-3")),
-    ("motif.radii=[51,70,172],[60,80,170]", ([51, 70, 172], [60, 80, 170])),
-    ("packing.gap_motif.n=6,8", (6, 8)),
-    ("output.fill_small_holes=true,false", (True, False)),
-    ('tile.join="round"', ("round",)),
-])
+@pytest.mark.parametrize(
+    "text, values",
+    [
+        ("packing.radius=8:16:5", (8, 10, 12, 14, 16)),
+        ("packing.radius=16:8:3", (16, 12, 8)),
+        ("tile.stroke=0.1:0.3:3", (0.1, 0.2, 0.3)),
+        ("tile.stroke=1:2:3", (1.0, 1.5, 2.0)),
+        ("tile.frame=3:9:1", (3,)),
+        ("tile.stroke=0.8,1.2", (0.8, 1.2)),
+        ("tile.outline=square,hexagon", ("square", "hexagon")),
+        ("motif.preset=table3-1, table3-3", ("table3-1", "table3-3")),
+        ("motif.radii=[51,70,172],[60,80,170]", ([51, 70, 172], [60, 80, 170])),
+        ("packing.gap_motif.n=6,8", (6, 8)),
+        ("output.fill_small_holes=true,false", (True, False)),
+        ('tile.join="round"', ("round",)),
+    ],
+)
 def test_parse_vary(text, values):
     vary = parse_vary(text)
     assert vary == Vary(text.split("=", 1)[0], values)
     assert [type(v) for v in vary.values] == [type(v) for v in values]
 
 
-@pytest.mark.parametrize("text, match", [
-    ("packing.radius", r"--vary expects KEY=SPEC \(like packing\.radius=8:16:5\), got 'packing\.radius'"),
-    ("tile.sise=1,2", r"--vary tile\.sise=1,2: unknown key 'sise' in \[tile\]; did you mean 'size'\?"),
-    ("radius=1,2", r"'radius' is not a design key section\.key, the sections are: motif, packing"),
-    ("colour.red=1,2", r"'colour\.red' is not a design key"),
-    ("output.name=a,b", r"unknown key 'name' in \[output\]"),
-    ("output.formats=svg,dxf", r"unknown key 'formats' in \[output\]"),
-    ("packing.radius=a:b:3", r"a:b:n needs numbers a and b, got 'a' and 'b'"),
-    ("packing.radius=1:inf:3", r"a and b must be finite numbers"),
-    ("packing.radius=1:5:0", r"n in a:b:n must be a whole number >= 1, got 0"),
-    ("packing.radius=1:5:-2", r"n in a:b:n must be a whole number >= 1, got -2"),
-    ("packing.radius=1:5:2.5", r"n in a:b:n must be a whole number >= 1, got '2\.5'"),
-    ("packing.radius=", r"no values; give a:b:n or a list x,y,z"),
-    ("packing.radius=1,,2", r"an empty value in the list"),
-    ("packing.radius=1,{bad", r"'\{bad' is not a TOML value"),
-])
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        ("packing.radius", r"--vary expects KEY=SPEC \(like packing\.radius=8:16:5\), got 'packing\.radius'"),
+        ("tile.sise=1,2", r"--vary tile\.sise=1,2: unknown key 'sise' in \[tile\]; did you mean 'size'\?"),
+        ("radius=1,2", r"'radius' is not a design key section\.key, the sections are: motif, packing"),
+        ("colour.red=1,2", r"'colour\.red' is not a design key"),
+        ("output.name=a,b", r"unknown key 'name' in \[output\]"),
+        ("output.formats=svg,dxf", r"unknown key 'formats' in \[output\]"),
+        ("packing.radius=a:b:3", r"a:b:n needs numbers a and b, got 'a' and 'b'"),
+        ("packing.radius=1:inf:3", r"a and b must be finite numbers"),
+        ("packing.radius=1:5:0", r"n in a:b:n must be a whole number >= 1, got 0"),
+        ("packing.radius=1:5:-2", r"n in a:b:n must be a whole number >= 1, got -2"),
+        ("packing.radius=1:5:2.5", r"n in a:b:n must be a whole number >= 1, got '2\.5'"),
+        ("packing.radius=", r"no values; give a:b:n or a list x,y,z"),
+        ("packing.radius=1,,2", r"an empty value in the list"),
+        ("packing.radius=1,{bad", r"'\{bad' is not a TOML value"),
+    ],
+)
 def test_bad_vary(text, match):
     with pytest.raises(ParameterError, match=match) as info:
         parse_vary(text)

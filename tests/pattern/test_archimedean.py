@@ -17,9 +17,19 @@ from fabtiles.pattern.archimedean import rectangular_period
 from fabtiles.pattern.tilings import TILINGS, apollonius_outer, canonical, circumradius, unit_cell
 
 TOL = 1e-7
-EXPONENT_FORMS = {"3^6": "3.3.3.3.3.3", "4^4": "4.4.4.4", "6^3": "6.6.6", "(3.6)^2": None,
-                  "3.12^2": "3.12.12", "4.8^2": "4.8.8", "3^4.6": "3.3.3.3.6", "3^3.4^2": "3.3.3.4.4",
-                  "3^2.4.3.4": "3.3.4.3.4", "3.4.6.4": "3.4.6.4", "3.6.3.6": "3.6.3.6"}
+EXPONENT_FORMS = {
+    "3^6": "3.3.3.3.3.3",
+    "4^4": "4.4.4.4",
+    "6^3": "6.6.6",
+    "(3.6)^2": None,
+    "3.12^2": "3.12.12",
+    "4.8^2": "4.8.8",
+    "3^4.6": "3.3.3.3.6",
+    "3^3.4^2": "3.3.3.4.4",
+    "3^2.4.3.4": "3.3.4.3.4",
+    "3.4.6.4": "3.4.6.4",
+    "3.6.3.6": "3.6.3.6",
+}
 
 
 def config(name):
@@ -54,8 +64,11 @@ def test_eleven_tilings_and_their_names():
 
 @pytest.mark.parametrize("bad", ["5.5.5", "3.3.3", "hex", "", "3^x", 666, None])
 def test_unknown_tiling_lists_the_valid_ones(bad):
-    with pytest.raises(ParameterError, match=r"is unknown(; did you mean '[0-9.]+'\?)? \(tilings: 3\.3\.3\.3\.3\.3, "
-                                             r"4\.4\.4\.4, 6\.6\.6, .*3\.4\.6\.4"):
+    with pytest.raises(
+        ParameterError,
+        match=r"is unknown(; did you mean '[0-9.]+'\?)? \(tilings: 3\.3\.3\.3\.3\.3, "
+        r"4\.4\.4\.4, 6\.6\.6, .*3\.4\.6\.4",
+    ):
         ArchimedeanPacking(bad, 10)
 
 
@@ -66,11 +79,17 @@ def test_bad_edge(edge):
 
 
 def test_bad_motifs():
-    with pytest.raises(ParameterError, match=r"motifs key 6 is not a polygon of the tiling 4\.8\.8, "
-                                             r"must be one of: 4, 8"):
+    with pytest.raises(
+        ParameterError,
+        match=r"motifs key 6 is not a polygon of the tiling 4\.8\.8, "
+        r"must be one of: 4, 8",
+    ):
         ArchimedeanPacking("4.8.8", 10, {6: Star(n=6, radii=(1, 2))})
-    with pytest.raises(ParameterError, match=r"motifs key 'x' is not a polygon of the tiling 3\.4\.6\.4, "
-                                             r"must be one of: 3, 4, 6"):
+    with pytest.raises(
+        ParameterError,
+        match=r"motifs key 'x' is not a polygon of the tiling 3\.4\.6\.4, "
+        r"must be one of: 3, 4, 6",
+    ):
         ArchimedeanPacking("3.4.6.4", 10, {"x": "table3-3"})
     with pytest.raises(ParameterError, match=r"motifs must be a mapping"):
         ArchimedeanPacking("4.8.8", 10, ["table3-3"])
@@ -216,31 +235,35 @@ def test_666_is_the_hex_packing_and_4444_the_square(edge, corners, preset):
     w = (x0, y0, x1, y1)
     hexp = HexPacking(radius=edge * math.sqrt(3) / 2, motif=Star.preset(preset))
     arch = ArchimedeanPacking("6.6.6", edge=edge, motifs={6: preset})
-    for a, b in ((hexp.circles(w), arch.circles(w)),
-                 (SquarePacking(edge / 2, Star.preset(preset)).circles(w),
-                  ArchimedeanPacking("4.4.4.4", edge).circles(w))):
+    for a, b in (
+        (hexp.circles(w), arch.circles(w)),
+        (SquarePacking(edge / 2, Star.preset(preset)).circles(w), ArchimedeanPacking("4.4.4.4", edge).circles(w)),
+    ):
         assert a[0].shape == b[0].shape
         assert np.allclose(a[0], b[0], atol=1e-9) and np.allclose(a[1], b[1], atol=1e-12)
     assert hexp.period == pytest.approx(arch.period)
     # The motifs too, when the motif's largest circle has points at angle 0 (all presets but one).
     if preset != "table1-part2":
+
         def canon(s):
             s = np.round(s, 6).reshape(-1, 4) + 0.0
             return s[np.lexsort(s.T[::-1])]
+
         assert np.array_equal(canon(hexp.segments(w)), canon(arch.segments(w)))
 
 
 def test_motifs_turned_to_the_tangency_points():
     # A 12-point motif in the dodecagons of 4.6.12 and 8 points in the squares: the
     # points of each motif's largest circle lie on its polygon's edge midpoints.
-    p = ArchimedeanPacking("4.6.12", 10, {12: Star(n=12, radii=(0.5, 1)), 4: Star(n=8, radii=(1, 0.5)),
-                                          6: Star(n=6, radii=(1, 0.4))})
+    p = ArchimedeanPacking(
+        "4.6.12", 10, {12: Star(n=12, radii=(0.5, 1)), 4: Star(n=8, radii=(1, 0.5)), 6: Star(n=6, radii=(1, 0.4))}
+    )
     c, r, sides = window_circles(p, 60)
     seg = p.motif_segments((-60, -60, 60, 60)).reshape(-1, 2)
     ends = np.unique(np.round(seg, 6), axis=0)
     inc = sides > 0
     touch = np.abs(pair_gaps(c[inc], r[inc])) < TOL
-    k = np.flatnonzero((np.abs(c[inc]).max(axis=1) < 30))
+    k = np.flatnonzero(np.abs(c[inc]).max(axis=1) < 30)
     for i in k:
         for j in np.flatnonzero(touch[i]):
             tangency = c[inc][i] + (c[inc][j] - c[inc][i]) * r[inc][i] / (r[inc][i] + r[inc][j])
@@ -252,8 +275,9 @@ def test_apollonius_degenerate_cases():
     assert len(apollonius_outer(c, np.ones(3))[1]) == 0  # centres on a line
     far = np.array([[0.0, 0], [10, 0], [0, 10]])
     centre, rad = apollonius_outer(far, np.array([1.0, 1, 1]))
-    assert len(rad) and np.allclose(np.hypot(*(far[None] - centre[:, None]).transpose(2, 0, 1)).T - 1,
-                                    rad[:, None] * np.ones(3))
+    assert len(rad) and np.allclose(
+        np.hypot(*(far[None] - centre[:, None]).transpose(2, 0, 1)).T - 1, rad[:, None] * np.ones(3)
+    )
 
 
 @pytest.mark.parametrize("tiling", TILINGS)
@@ -280,15 +304,18 @@ def test_segment_count_matches_segments():
             assert p.segment_count(w) == len(p.segments(w))
 
 
-@pytest.mark.parametrize("call, param", [
-    (lambda: ArchimedeanPacking("5.5.5", 10), "tiling"),
-    (lambda: ArchimedeanPacking("4.8.8", 0), "edge"),
-    (lambda: ArchimedeanPacking("4.8.8", 10, {6: "table3-3"}), "motifs"),
-    (lambda: ArchimedeanPacking("4.8.8", 10, {8: "nope"}), "motifs"),
-    (lambda: ArchimedeanPacking("4.8.8", 10, gap_motif="nope"), "gap_motif"),
-    (lambda: ArchimedeanPacking("4.8.8", 10).circles(None), "window"),
-    (lambda: ArchimedeanPacking("4.8.8", 0.01).circles((0, 0, 900, 900)), "edge"),
-])
+@pytest.mark.parametrize(
+    "call, param",
+    [
+        (lambda: ArchimedeanPacking("5.5.5", 10), "tiling"),
+        (lambda: ArchimedeanPacking("4.8.8", 0), "edge"),
+        (lambda: ArchimedeanPacking("4.8.8", 10, {6: "table3-3"}), "motifs"),
+        (lambda: ArchimedeanPacking("4.8.8", 10, {8: "nope"}), "motifs"),
+        (lambda: ArchimedeanPacking("4.8.8", 10, gap_motif="nope"), "gap_motif"),
+        (lambda: ArchimedeanPacking("4.8.8", 10).circles(None), "window"),
+        (lambda: ArchimedeanPacking("4.8.8", 0.01).circles((0, 0, 900, 900)), "edge"),
+    ],
+)
 def test_errors_name_their_parameter(call, param):
     with pytest.raises((ParameterError, LimitError)) as info:
         call()

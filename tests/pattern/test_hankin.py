@@ -135,9 +135,16 @@ def test_segments_equal_the_reference_construction(tiling, angle):
     np.testing.assert_allclose(canonical(ours), canonical(ref), atol=1e-9)
 
 
-@pytest.mark.parametrize(("tiling", "angle", "gap"), [("4.4.4.4", 60.0, 2.0), ("6.6.6", 45.0, 3.0),
-                                                      ("4.8.8", 67.5, 1.5), ("3.12.12", 30.0, 4.0),
-                                                      ("3.4.6.4", 50.0, 1.0)])
+@pytest.mark.parametrize(
+    ("tiling", "angle", "gap"),
+    [
+        ("4.4.4.4", 60.0, 2.0),
+        ("6.6.6", 45.0, 3.0),
+        ("4.8.8", 67.5, 1.5),
+        ("3.12.12", 30.0, 4.0),
+        ("3.4.6.4", 50.0, 1.0),
+    ],
+)
 def test_with_a_gap_segments_equal_the_reference_construction(tiling, angle, gap):
     ours = inside(hankin(tiling, angle, gap).segments((-HALF, -HALF, HALF, HALF)), HALF)
     ref = inside(reference_segments(tiling, angle, gap, HALF + 6 * EDGE), HALF)
@@ -245,8 +252,11 @@ def test_an_angle_with_no_pattern_names_the_tilings_valid_range():
     top = max_contact_angle(3, EDGE, 3.0)
     assert 0 < top < 90
     hankin("3.12.12", top - 0.01, 3.0)
-    with pytest.raises(ParameterError, match=r"contact_angle 70 has no pattern on the tiling 3\.12\.12 with "
-                                             r"contact_gap 3 mm: .*3-gons.* must be > 0 and <= 62\.5"):
+    with pytest.raises(
+        ParameterError,
+        match=r"contact_angle 70 has no pattern on the tiling 3\.12\.12 with "
+        r"contact_gap 3 mm: .*3-gons.* must be > 0 and <= 62\.5",
+    ):
         hankin("3.12.12", 70.0, 3.0)
     # the same angle is fine where the triangles keep a motif
     hankin("3.12.12", 70.0, 3.0, motifs={3: "table3-3"})
@@ -258,8 +268,7 @@ def test_an_unknown_method_is_refused():
 
 
 @settings(max_examples=examples(25), deadline=None)
-@given(tiling=st.sampled_from(TILINGS), angle=st.floats(1, 89), gap_fraction=st.floats(0, 0.9),
-       edge=st.floats(2, 30))
+@given(tiling=st.sampled_from(TILINGS), angle=st.floats(1, 89), gap_fraction=st.floats(0, 0.9), edge=st.floats(2, 30))
 # the case this property found: a gap of float dust, whose two ray starts are one point
 @example(tiling="4.8.8", angle=30.0, gap_fraction=1e-12, edge=10.0)
 @example(tiling="3.6.3.6", angle=45.0, gap_fraction=5e-324, edge=2.0)
@@ -285,5 +294,9 @@ def test_any_valid_angle_and_gap_closes_every_strand(tiling, angle, gap_fraction
 def near_count(points, among, tol=1e-7):
     """How many of ``among`` lie within ``tol`` of each of ``points`` (no rounding: a tie at the 6th
     decimal splits two equal points that rounding would)."""
-    return np.concatenate([(np.abs(chunk[:, None] - among[None]).max(axis=2) < tol).sum(axis=1)
-                           for chunk in np.array_split(points, max(1, len(points) // 256))])
+    return np.concatenate(
+        [
+            (np.abs(chunk[:, None] - among[None]).max(axis=2) < tol).sum(axis=1)
+            for chunk in np.array_split(points, max(1, len(points) // 256))
+        ]
+    )

@@ -15,8 +15,10 @@ STAR = Star(n=8, radii=(51, 70, 172), alpha=10, spr=5, special=2, rotation=3)
 
 
 def packings():
-    return [HexPacking(radius=10, motif=Star.preset("table3-3")),
-            SquarePacking(radius=7, motif=STAR, gap_motif=Star(n=4, radii=(1, 2)), outline_circles=True, fill=0.9)]
+    return [
+        HexPacking(radius=10, motif=Star.preset("table3-3")),
+        SquarePacking(radius=7, motif=STAR, gap_motif=Star(n=4, radii=(1, 2)), outline_circles=True, fill=0.9),
+    ]
 
 
 # A name that is not a field: before Python 3.13 a frozen dataclass with slots refuses it with a

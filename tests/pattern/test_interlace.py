@@ -170,8 +170,14 @@ def motifs(draw):
     n = draw(st.integers(3, 16))
     radii = draw(st.lists(radius, min_size=2, max_size=4))
     special = draw(st.none() | st.integers(2, len(radii)))
-    return ft.Star(n=n, radii=radii, alpha=draw(st.floats(-80, 80)), spr=draw(st.floats(-100, 100)),
-                   special=special, rotation=draw(st.floats(0, 360)))
+    return ft.Star(
+        n=n,
+        radii=radii,
+        alpha=draw(st.floats(-80, 80)),
+        spr=draw(st.floats(-100, 100)),
+        special=special,
+        rotation=draw(st.floats(0, 360)),
+    )
 
 
 @settings(max_examples=examples(60), deadline=None)
@@ -215,8 +221,7 @@ def test_straight_reach_runs_along_the_under_strand():
 
 
 @settings(max_examples=examples(60), deadline=None)
-@given(st.lists(st.tuples(st.floats(-3e3, 3e3), st.floats(-3e3, 3e3)), min_size=1, max_size=12),
-       st.booleans())
+@given(st.lists(st.tuples(st.floats(-3e3, 3e3), st.floats(-3e3, 3e3)), min_size=1, max_size=12), st.booleans())
 def test_point_keys_are_the_rounded_rows(points, huge):
     from fabtiles.pattern.interlace import MERGE, _point_keys
 
@@ -281,7 +286,7 @@ def test_running_sums_along_strands_are_a_loops_floats(count, seed):
     want, at = [], 0
     for c in count:
         pos = 0.0
-        for x in values[at:at + c].tolist():
+        for x in values[at : at + c].tolist():
             pos += x
             want.append(pos)
         at += c

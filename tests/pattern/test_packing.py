@@ -114,7 +114,7 @@ def test_segments_are_motifs_translated_to_every_centre():
     kb, kg = len(p.placed_motif("big")), len(p.placed_motif("gap"))
     assert seg.shape == (len(big) * kb + len(gap) * kg, 2, 2)
     np.testing.assert_allclose(seg[:kb], p.placed_motif("big") + big[0])
-    np.testing.assert_allclose(seg[len(big) * kb:len(big) * kb + kg], p.placed_motif("gap") + gap[0])
+    np.testing.assert_allclose(seg[len(big) * kb : len(big) * kb + kg], p.placed_motif("gap") + gap[0])
 
 
 def test_outline_circles_are_fine_chords_through_the_tangency_points():
@@ -122,7 +122,7 @@ def test_outline_circles_are_fine_chords_through_the_tangency_points():
     window = (-1, -1, 16, 1)
     plain = HexPacking(radius=15, motif=MOTIF).segments(window)
     seg = p.segments(window)
-    chords = seg[len(plain):]
+    chords = seg[len(plain) :]
     centres, radii = p.circles(window)
     assert len(chords) > 0
     # Every chord end lies on one of the circles, and sagitta <= 0.005 mm.
@@ -142,8 +142,7 @@ def test_circle_segments_tolerance():
     assert (50 - np.sqrt(50**2 - half**2)).max() <= 0.001
 
 
-@given(R=st.floats(0.5, 30), x0=st.floats(-100, 100), y0=st.floats(-100, 100),
-       w=st.floats(0, 80), h=st.floats(0, 80))
+@given(R=st.floats(0.5, 30), x0=st.floats(-100, 100), y0=st.floats(-100, 100), w=st.floats(0, 80), h=st.floats(0, 80))
 @settings(max_examples=examples(40), deadline=None)
 def test_every_circle_meeting_the_window_is_listed(R, x0, y0, w, h):
     p = HexPacking(radius=R, motif=MOTIF)

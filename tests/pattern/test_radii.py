@@ -43,7 +43,10 @@ def test_first_points_are_collinear(n, r1, ratio, count):
 def test_unreachable_circle_is_named():
     # n = 4: circle 3's ray is at 90 degrees; the line from (1, 0) through P(2,1) heading
     # away from the centre meets it behind the centre.
-    with pytest.raises(ft.ParameterError, match=r"circle 4 cannot be reached: .* only behind the centre; use fewer circles \(count <= 3\)"):
+    with pytest.raises(
+        ft.ParameterError,
+        match=r"circle 4 cannot be reached: .* only behind the centre; use fewer circles \(count <= 3\)",
+    ):
         ft.straight_radii(n=8, r1=51, r2=70, count=4)
 
 

@@ -90,8 +90,9 @@ def test_table1_part1_hand_computed_coordinates():
     c, s = math.cos(math.radians(22.5)), math.sin(math.radians(22.5))
     # First point of circle 1 to first point of circle 2, and its mirror partner.
     np.testing.assert_allclose(seg[0], [[51, 0], [70 * c, 70 * s]], atol=1e-12)
-    assert any(np.allclose(sg, [[51 * math.cos(math.pi / 4), 51 * math.sin(math.pi / 4)], [70 * c, 70 * s]])
-               for sg in seg)
+    assert any(
+        np.allclose(sg, [[51 * math.cos(math.pi / 4), 51 * math.sin(math.pi / 4)], [70 * c, 70 * s]]) for sg in seg
+    )
     # Outer tip of the star: P(3,1) at 45 degrees, radius 172.
     tip = [172 * math.cos(math.pi / 4), 172 * math.sin(math.pi / 4)]
     assert (np.abs(seg - tip).max(axis=-1) < 1e-9).sum() == 2
@@ -226,6 +227,7 @@ def test_extent_is_max_endpoint_radius(star):
 
 # -- bad input ----------------------------------------------------------------
 
+
 @pytest.mark.parametrize(
     "kwargs, match",
     [
@@ -256,8 +258,11 @@ def test_bad_parameters_name_the_parameter_and_range(kwargs, match):
 
 
 def test_unknown_preset_lists_the_valid_ones():
-    with pytest.raises(ft.ParameterError, match=r"preset 'table4' is unknown; did you mean 'table3-3'\? "
-                                             r"\(presets: table1-part1, "):
+    with pytest.raises(
+        ft.ParameterError,
+        match=r"preset 'table4' is unknown; did you mean 'table3-3'\? "
+        r"\(presets: table1-part1, ",
+    ):
         ft.Star.preset("table4")
 
 

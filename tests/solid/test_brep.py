@@ -67,8 +67,10 @@ def test_relief_frame_with_a_hole_and_one_step_on_a_side():
     outline = box(0, 0, 20, 10)
     region = box(0, 0, 20, 10).difference(box(2, 2, 18, 8)).difference(box(5, 0, 8, 1))
     rest = outline.difference(region)
-    b = planar_brep(coverage([(region, 3.0), (rest, 2.0)], bottom=0.0),
-                    sides=np.array([[0, 0, 20, 0], [20, 0, 20, 10], [20, 10, 0, 10], [0, 10, 0, 0]], float))
+    b = planar_brep(
+        coverage([(region, 3.0), (rest, 2.0)], bottom=0.0),
+        sides=np.array([[0, 0, 20, 0], [20, 0, 20, 10], [20, 10, 0, 10], [0, 10, 0, 0]], float),
+    )
     check_brep(b)
     assert _signed_volume(b) == pytest.approx(200 * 2 + region.area)
     side_faces = [f for f in b.faces if f.normal[2] == 0 and f.origin[1] == 0 and f.normal[1] < 0]
@@ -97,8 +99,9 @@ def stacks(draw):
             w, h = draw(st.integers(1, 30 - x0)), draw(st.integers(1, 20 - y0))
             rects.append(box(x0 + draw(st.sampled_from([0, 0.25])), y0, x0 + w, y0 + h))
         geom = snap(shapely.difference(shapely.union_all(rects), taken))
-        geom = shapely.MultiPolygon([p for p in getattr(geom, "geoms", [geom])
-                                     if isinstance(p, shapely.Polygon) and p.area > 0])
+        geom = shapely.MultiPolygon(
+            [p for p in getattr(geom, "geoms", [geom]) if isinstance(p, shapely.Polygon) and p.area > 0]
+        )
         if not geom.is_empty:
             layers.append((geom, z))
             taken = shapely.union(taken, geom)
@@ -175,12 +178,15 @@ def test_a_sliver_under_a_quantum_wide_joins_its_neighbour():
 
 def _holed_plate(tolerance_mm=0.02):
     hole = shapely.Point(10, 10).buffer(4.0, quad_segs=64)
-    return planar_brep(coverage([(box(0, 0, 20, 20).difference(hole), 3.0)], bottom=0.0, cell_vertices=1 << 40),
-                       tolerance_mm=tolerance_mm)
+    return planar_brep(
+        coverage([(box(0, 0, 20, 20).difference(hole), 3.0)], bottom=0.0, cell_vertices=1 << 40),
+        tolerance_mm=tolerance_mm,
+    )
 
 
 def test_a_round_hole_is_two_half_cylinders_sharing_their_circles_with_the_flat_faces():
-    from fabtiles.solid.brep import brep_volume, check_brep as check
+    from fabtiles.solid.brep import brep_volume
+    from fabtiles.solid.brep import check_brep as check
 
     b = _holed_plate()
     assert (_edge_uses(b) == 1).all()

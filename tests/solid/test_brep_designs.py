@@ -21,9 +21,9 @@ from hypothesis_scale import examples
 from shapely.geometry import MultiPolygon, Polygon, box
 
 from fabtiles import DesignError, ProfileError
+from fabtiles.designs.design_file import design_from_text
 from fabtiles.making.models import BuildOptions, Models
 from fabtiles.making.pipeline import prepare_tile
-from fabtiles.designs.design_file import design_from_text
 from fabtiles.solid._mesh_build import Coverage
 from fabtiles.solid.brep import check_brep, planar_brep
 
@@ -99,8 +99,10 @@ def designs(draw):
     if draw(st.booleans()):
         packing = f'kind = "hex"\nradius = {draw(st.floats(6, 16)):.2f}\noutline_circles = {circles}'
     else:
-        packing = (f'kind = "archimedean"\ntiling = "{draw(st.sampled_from(TILINGS))}"\n'
-                   f'edge = {draw(st.floats(8, 16)):.2f}\noutline_circles = {circles}')
+        packing = (
+            f'kind = "archimedean"\ntiling = "{draw(st.sampled_from(TILINGS))}"\n'
+            f"edge = {draw(st.floats(8, 16)):.2f}\noutline_circles = {circles}"
+        )
     return f"""
 [motif]
 preset = "{draw(st.sampled_from(PRESETS))}"
@@ -144,22 +146,100 @@ fill_small_holes = {str(fill).lower()}
 @settings(max_examples=examples(6), deadline=None)
 @given(designs())
 # dips ringing an outline circle: filled, they overlapped the opening (an edge of three faces)
-@example(_example("table3-3", 'kind = "archimedean"\ntiling = "3.6.3.6"\nedge = 13.01\noutline_circles = true',
-                  "rectangle", "[57.8, 43.9]", 5.0, 1.24, "miter", True, "fdm-0.6mm", "relief", False))
-@example(_example("table3-1", 'kind = "archimedean"\ntiling = "6.6.6"\nedge = 10.93\noutline_circles = false',
-                  "circle", 52.9, 2.0, 1.8, "round", True, "fdm-0.6mm", "relief", False))
+@example(
+    _example(
+        "table3-3",
+        'kind = "archimedean"\ntiling = "3.6.3.6"\nedge = 13.01\noutline_circles = true',
+        "rectangle",
+        "[57.8, 43.9]",
+        5.0,
+        1.24,
+        "miter",
+        True,
+        "fdm-0.6mm",
+        "relief",
+        False,
+    )
+)
+@example(
+    _example(
+        "table3-1",
+        'kind = "archimedean"\ntiling = "6.6.6"\nedge = 10.93\noutline_circles = false',
+        "circle",
+        52.9,
+        2.0,
+        1.8,
+        "round",
+        True,
+        "fdm-0.6mm",
+        "relief",
+        False,
+    )
+)
 # a dip crossing a cell line left a cell's rest without a polygon: a traceback numbering the rest's pieces
-@example(_example("table2-left", 'kind = "archimedean"\ntiling = "4.4.4.4"\nedge = 12.92\noutline_circles = false',
-                  "square", 46.5, 2.0, 2.24, "round", True, "fdm-0.6mm", "relief", False))
+@example(
+    _example(
+        "table2-left",
+        'kind = "archimedean"\ntiling = "4.4.4.4"\nedge = 12.92\noutline_circles = false',
+        "square",
+        46.5,
+        2.0,
+        2.24,
+        "round",
+        True,
+        "fdm-0.6mm",
+        "relief",
+        False,
+    )
+)
 # a dip ringing an opening and an island of the region at once
-@example(_example("table1-part2", 'kind = "archimedean"\ntiling = "6.6.6"\nedge = 9.86\noutline_circles = false',
-                  "rectangle", "[46.2, 55.1]", 2.0, 2.48, "miter", True, "fdm-0.6mm", "relief", False))
+@example(
+    _example(
+        "table1-part2",
+        'kind = "archimedean"\ntiling = "6.6.6"\nedge = 9.86\noutline_circles = false',
+        "rectangle",
+        "[46.2, 55.1]",
+        2.0,
+        2.48,
+        "miter",
+        True,
+        "fdm-0.6mm",
+        "relief",
+        False,
+    )
+)
 # GEOS could not clip a ring noded at a cell line, wherever the lines were: the flat faces stay whole
-@example(_example("table1-part2", 'kind = "archimedean"\ntiling = "6.6.6"\nedge = 13.77\noutline_circles = false',
-                  "hexagon", 62.4, 0.0, 1.09, "round", True, "fdm-0.6mm", "relief", True))
+@example(
+    _example(
+        "table1-part2",
+        'kind = "archimedean"\ntiling = "6.6.6"\nedge = 13.77\noutline_circles = false',
+        "hexagon",
+        62.4,
+        0.0,
+        1.09,
+        "round",
+        True,
+        "fdm-0.6mm",
+        "relief",
+        True,
+    )
+)
 # round joins' arcs between holes closer than the tolerance: each arc bulged across the next hole
-@example(_example("table2-left", 'kind = "hex"\nradius = 14.27\noutline_circles = false', "circle", 49.4, 2.0,
-                  1.81, "round", False, "fdm-0.4mm", "pierced", True))
+@example(
+    _example(
+        "table2-left",
+        'kind = "hex"\nradius = 14.27\noutline_circles = false',
+        "circle",
+        49.4,
+        2.0,
+        1.81,
+        "round",
+        False,
+        "fdm-0.4mm",
+        "pierced",
+        True,
+    )
+)
 def test_any_design_builds_its_step(text):
     try:
         design = design_from_text(text, name="t")

@@ -1,23 +1,23 @@
 """The levels of a printed body (solid/levels.py): the layer list and the fast coverage agree."""
 
-import numpy as np
 import pytest
 import shapely
 from shapely.geometry import box
 
 import fabtiles as ft
+from fabtiles.geometry.interlace import tile_dips
 from fabtiles.solid import mesh_check as sc
 from fabtiles.solid import parts
 from fabtiles.solid._mesh_build import Stack, coverage, mesh_coverage
 from fabtiles.solid.levels import APART_MM, body_coverage, body_layers, dip_z, split_region
-from fabtiles.geometry.interlace import tile_dips
 
 STACK = Stack("relief", base=2.0, relief=1.2, pierced=3.0, deboss=0.8)
 
 
 def woven():
-    tile = ft.Tile("square", 40, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")), frame=2,
-                   stroke=1.0, interlace=True)
+    tile = ft.Tile(
+        "square", 40, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")), frame=2, stroke=1.0, interlace=True
+    )
     r, o = parts._snapped(tile.region(), tile.outline_shape())
     return r, o, tile_dips(tile)
 
@@ -56,14 +56,18 @@ def test_dips_crossed_by_cell_lines_are_cut_with_the_region(kind, monkeypatch):
     r, o, d = woven()
     xs, ys, _ = mb.cells_for([r, o], 60)
     parts = shapely.get_parts(d)
-    crossed = [p for p in parts if any(p.bounds[0] <= x <= p.bounds[2] for x in xs)
-               or any(p.bounds[1] <= y <= p.bounds[3] for y in ys)]
+    crossed = [
+        p
+        for p in parts
+        if any(p.bounds[0] <= x <= p.bounds[2] for x in xs) or any(p.bounds[1] <= y <= p.bounds[3] for y in ys)
+    ]
     assert len(crossed) > 10 and len(crossed) < len(parts)
     cov = body_coverage(kind, r, o, STACK, d)
     # the same cells (kept off the dips' vertices too), no dips
     cells_for = mb.cells_for
-    monkeypatch.setattr(mb, "cells_for", lambda geoms, *args, avoid=(), **kwargs: cells_for(geoms, *args, avoid=[d],
-                                                                                            **kwargs))
+    monkeypatch.setattr(
+        mb, "cells_for", lambda geoms, *args, avoid=(), **kwargs: cells_for(geoms, *args, avoid=[d], **kwargs)
+    )
     plain = body_coverage(kind, r, o, STACK, shapely.Polygon())
     fast = areas_by_level([(p, cov.levels[lvl]) for p, lvl in cov.pieces])
     without = areas_by_level([(p, plain.levels[lvl]) for p, lvl in plain.pieces])
@@ -73,7 +77,8 @@ def test_dips_crossed_by_cell_lines_are_cut_with_the_region(kind, monkeypatch):
     assert fast[top] + fast[low] == pytest.approx(without[top], abs=1e-6)
     assert fast[low] == pytest.approx(d.area, abs=1e-4 * len(crossed))
     assert {z: a for z, a in fast.items() if z not in (top, low)} == pytest.approx(
-        {z: a for z, a in without.items() if z != top}, abs=1e-6)
+        {z: a for z, a in without.items() if z != top}, abs=1e-6
+    )
     v, f = mesh_coverage(cov)
     sc.check_mesh(v, f, bodies=1 if kind == "relief" else None)
 
@@ -82,8 +87,10 @@ def test_dips_are_holes_of_the_full_level():
     r, _o, d = woven()
     full, dip = split_region(r, d)
     assert full.is_valid and full.area + dip.area == pytest.approx(r.area)
-    assert shapely.get_num_interior_rings(shapely.get_parts(full)).sum() > \
-        shapely.get_num_interior_rings(shapely.get_parts(r)).sum()
+    assert (
+        shapely.get_num_interior_rings(shapely.get_parts(full)).sum()
+        > shapely.get_num_interior_rings(shapely.get_parts(r)).sum()
+    )
 
 
 def test_no_dips_is_the_plain_body():
@@ -130,12 +137,14 @@ def test_an_island_ringed_by_dips_dips_too():
 
     ring = box(1.25, 1.25, 2.75, 2.75).difference(box(1.75, 1.75, 2.25, 2.25))
     leveled = dip_level(ring)
-    assert leveled.area == pytest.approx(1.5 ** 2) and shapely.get_num_interior_rings(shapely.get_parts(leveled)).sum() == 0
+    assert (
+        leveled.area == pytest.approx(1.5**2) and shapely.get_num_interior_rings(shapely.get_parts(leveled)).sum() == 0
+    )
     r, o = box(1, 1, 3, 3), box(0, 0, 4, 4)
     for kind in ("relief", "pattern"):
         cov = body_coverage(kind, r, o, STACK, ring)
         by_level = areas_by_level([(p, cov.levels[lvl]) for p, lvl in cov.pieces])
-        assert by_level[dip_z(STACK)] == pytest.approx(1.5 ** 2)
+        assert by_level[dip_z(STACK)] == pytest.approx(1.5**2)
         v, f = mesh_coverage(cov)
         sc.check_mesh(v, f, bodies=1 if kind == "relief" else None)
 
@@ -180,6 +189,6 @@ def test_dips_touching_at_a_point_mesh_watertight(kind):
     cov = body_coverage(kind, r, o, STACK, dips)
     v, f = mesh_coverage(cov)
     depth = STACK.base + STACK.relief - dip_z(STACK)
-    cut = APART_MM ** 2  # a quarter of the diamond off each of the two dips
+    cut = APART_MM**2  # a quarter of the diamond off each of the two dips
     full = {"relief": o.area * STACK.base + r.area * STACK.relief, "pattern": r.area * STACK.relief}[kind]
     sc.check_mesh(v, f, volume=full - (32 - cut) * depth, bodies=1)

@@ -35,17 +35,20 @@ def _triangle_with_corner(x: float):
 
 
 @pytest.mark.parametrize("name", ["region", "outline"])
-@pytest.mark.parametrize("bad,match", [
-    ("square", "must be a shapely Polygon or MultiPolygon, got str"),
-    (box(0, 0, 1, 1).boundary, "must be a shapely Polygon or MultiPolygon, got LineString"),
-    (shapely.Polygon(), "must have an area > 0, got an empty Polygon"),
-    (shapely.Polygon([(0, 0), (1, 0), (2, 0)]), "must have an area > 0, got an empty Polygon"),
-    (_triangle_with_corner(math.nan), "must have finite coordinates, got NaN or infinite values"),
-    (_triangle_with_corner(math.inf), "must have finite coordinates, got NaN or infinite values"),
-    (box(0, 0, 16001, 1), r"must lie within 16 m of the origin \(coordinates in mm\), got 16001"),
-    (box(-20000, 0, -19990, 1), r"must lie within 16 m of the origin \(coordinates in mm\), got 20000"),
-    (shapely.Polygon([(0, 0), (4, 4), (4, 0), (0, 1)]), r"is not a valid polygon \(Self-intersection"),
-])
+@pytest.mark.parametrize(
+    "bad,match",
+    [
+        ("square", "must be a shapely Polygon or MultiPolygon, got str"),
+        (box(0, 0, 1, 1).boundary, "must be a shapely Polygon or MultiPolygon, got LineString"),
+        (shapely.Polygon(), "must have an area > 0, got an empty Polygon"),
+        (shapely.Polygon([(0, 0), (1, 0), (2, 0)]), "must have an area > 0, got an empty Polygon"),
+        (_triangle_with_corner(math.nan), "must have finite coordinates, got NaN or infinite values"),
+        (_triangle_with_corner(math.inf), "must have finite coordinates, got NaN or infinite values"),
+        (box(0, 0, 16001, 1), r"must lie within 16 m of the origin \(coordinates in mm\), got 16001"),
+        (box(-20000, 0, -19990, 1), r"must lie within 16 m of the origin \(coordinates in mm\), got 20000"),
+        (shapely.Polygon([(0, 0), (4, 4), (4, 0), (0, 1)]), r"is not a valid polygon \(Self-intersection"),
+    ],
+)
 def test_check_shapes_refuses(name, bad, match):
     shapes = {"region": box(1, 1, 9, 9), "outline": OUTLINE, name: bad}
     with pytest.raises(ParameterError, match=f"^{name} {match}"):
@@ -64,8 +67,11 @@ def test_topology_of_no_pieces_is_refused():
 
 def test_topology_refuses_overlapping_pieces():
     square = MultiPolygon([box(0, 0, 1, 1)])
-    with pytest.raises(FabricationError, match=r"^cannot mesh the region: two pieces overlap \(the region is not a "
-                                               r"clean coverage\)$"):
+    with pytest.raises(
+        FabricationError,
+        match=r"^cannot mesh the region: two pieces overlap \(the region is not a "
+        r"clean coverage\)$",
+    ):
         topology(Coverage(pieces=[(square, 1), (square, 1)], levels=np.array([0.0, 1.0])), triangulate=False)
 
 
@@ -75,8 +81,7 @@ def test_topology_refuses_an_edge_of_three_pieces():
     left, right = MultiPolygon([box(0, 0, 1, 1)]), MultiPolygon([box(1, 0, 2, 1)])
     third = MultiPolygon([shapely.Polygon([(1, 0), (1, 1), (3, 0.5)])])
     with pytest.raises(FabricationError, match=r"^cannot mesh the region: an edge is shared by more than two pieces$"):
-        topology(Coverage(pieces=[(left, 1), (right, 1), (third, 1)], levels=np.array([0.0, 1.0])),
-                 triangulate=False)
+        topology(Coverage(pieces=[(left, 1), (right, 1), (third, 1)], levels=np.array([0.0, 1.0])), triangulate=False)
 
 
 LOBES = shapely.Polygon([(0, 0), (4, 0), (4, 2), (2, 0), (0, 2)])
@@ -85,8 +90,11 @@ LOBES = shapely.Polygon([(0, 0), (4, 0), (4, 2), (2, 0), (0, 2)])
 
 def test_a_piece_geos_cannot_triangulate_is_a_fabrication_error_at_its_place():
     cov = coverage_from_cells([(LOBES, 1)], [0.0, 1.0])
-    with pytest.raises(FabricationError, match=r"^cannot triangulate the region near \(2, 0\) mm: GEOS stops there "
-                                               r"\(IllegalStateException: .*; its ring touches itself\)$") as info:
+    with pytest.raises(
+        FabricationError,
+        match=r"^cannot triangulate the region near \(2, 0\) mm: GEOS stops there "
+        r"\(IllegalStateException: .*; its ring touches itself\)$",
+    ) as info:
         mesh_coverage(cov)
     assert info.value.points.tolist() == [[2.0, 0.0]]
 
@@ -97,17 +105,24 @@ def test_a_valid_piece_geos_cannot_triangulate_is_refused_at_a_point_of_it(monke
 
     monkeypatch.setattr(shapely, "constrained_delaunay_triangles", broken)
     ij = np.array([[0, 0], [4, 0], [4, 2]]) * 1024
-    with pytest.raises(FabricationError, match=r"^cannot triangulate the region near \(3, 1\) mm: "
-                                               r"GEOS stops \(IllegalStateException: Unable to find a convex corner\)$"):
+    with pytest.raises(
+        FabricationError,
+        match=r"^cannot triangulate the region near \(3, 1\) mm: "
+        r"GEOS stops \(IllegalStateException: Unable to find a convex corner\)$",
+    ):
         cdt(shapely.Polygon([(0, 0), (4, 0), (4, 2)]), ij)
 
 
 def test_a_triangle_corner_off_the_rings_is_refused(monkeypatch):
-    monkeypatch.setattr(shapely, "constrained_delaunay_triangles",
-                        lambda geom, **kwargs: shapely.Polygon([(0, 0), (4, 0), (3, 1)]))
+    monkeypatch.setattr(
+        shapely, "constrained_delaunay_triangles", lambda geom, **kwargs: shapely.Polygon([(0, 0), (4, 0), (3, 1)])
+    )
     ij = np.array([[0, 0], [4, 0], [4, 2]]) * 1024
-    with pytest.raises(FabricationError, match=r"^cannot triangulate the region near \(3, 1\) mm: GEOS gives a point "
-                                               r"not on its rings$"):
+    with pytest.raises(
+        FabricationError,
+        match=r"^cannot triangulate the region near \(3, 1\) mm: GEOS gives a point "
+        r"not on its rings$",
+    ):
         cdt(shapely.Polygon([(0, 0), (4, 0), (4, 2)]), ij)
 
 

@@ -20,10 +20,10 @@ from hypothesis_scale import examples
 from shapely.geometry import box
 
 from fabtiles import FabricationError
+from fabtiles.export import stl
 from fabtiles.solid import _mesh_build as mb
 from fabtiles.solid import _triangulate as tr
 from fabtiles.solid import mesh_check as sc
-from fabtiles.export import stl
 
 
 def corners32(v, f):
@@ -52,8 +52,13 @@ def defects():
         ("inward", cube.vertices, cube.faces[:, ::-1], {}, "volume of -1 mm.3 .it must be positive"),
         ("volume", cube.vertices, cube.faces, {"volume": 2.0}, "not the 2 mm.3 of area x height"),
         ("bodies", two.vertices, two.faces, {"bodies": 1}, "2 separate bodies where 1 was expected"),
-        ("flat", np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 0, 1.0]]), np.array([[0, 1, 2], [0, 1, 3]]), {},
-         "zero-area faces in float32"),
+        (
+            "flat",
+            np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 0, 1.0]]),
+            np.array([[0, 1, 2], [0, 1, 3]]),
+            {},
+            "zero-area faces in float32",
+        ),
     ]
 
 

@@ -37,23 +37,38 @@ def _footprint(part):
 def _specs(faces_a, faces_b, *, shared=False):
     c = COLOURS
     if shared:  # the plate, the bands and class B in one colour
-        return (MosaicPart("white (base, bands, B)", True, True, tuple(faces_b), c.band),
-                MosaicPart("cobalt (A)", False, False, tuple(faces_a), c.face("A")))
-    return (MosaicPart("black (base)", True, False, (), c.base),
-            MosaicPart("white (bands)", False, True, (), c.band),
+        return (
+            MosaicPart("white (base, bands, B)", True, True, tuple(faces_b), c.band),
             MosaicPart("cobalt (A)", False, False, tuple(faces_a), c.face("A")),
-            MosaicPart("green (B)", False, False, tuple(faces_b), c.face("B")))
+        )
+    return (
+        MosaicPart("black (base)", True, False, (), c.base),
+        MosaicPart("white (bands)", False, True, (), c.band),
+        MosaicPart("cobalt (A)", False, False, tuple(faces_a), c.face("A")),
+        MosaicPart("green (B)", False, False, tuple(faces_b), c.face("B")),
+    )
 
 
 @settings(max_examples=examples(12), deadline=None)
-@given(st.lists(st.tuples(st.floats(5, 35), st.floats(5, 25), st.floats(1.0, 3.0)), min_size=2, max_size=5),
-       st.sampled_from([0.0, 0.4]), st.booleans())
+@given(
+    st.lists(st.tuples(st.floats(5, 35), st.floats(5, 25), st.floats(1.0, 3.0)), min_size=2, max_size=5),
+    st.sampled_from([0.0, 0.4]),
+    st.booleans(),
+)
 def test_the_parts_tile_the_outline_and_weigh_their_areas(holes, inset, shared):
     region, _faces = _tile(holes)
     parts_geom = shapely.get_parts(OUTLINE.difference(region))
     a, b = parts_geom[::2], parts_geom[1::2]
-    model = print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=_specs(a, b, shared=shared),
-                        colours=COLOURS, mosaic_inset_mm=inset, fill_small_holes=False)
+    model = print_model(
+        region,
+        OUTLINE,
+        profile="fdm-0.4mm",
+        style="mosaic",
+        mosaic=_specs(a, b, shared=shared),
+        colours=COLOURS,
+        mosaic_inset_mm=inset,
+        fill_small_holes=False,
+    )
     s = model.stack
     top = s.base + s.relief
     parts = model.parts
@@ -82,8 +97,15 @@ def test_the_parts_tile_the_outline_and_weigh_their_areas(holes, inset, shared):
 def test_a_faces_part_stands_on_the_plate_at_its_height():
     region, _ = _tile([(10, 10, 3), (30, 20, 3)])
     faces = shapely.get_parts(OUTLINE.difference(region))
-    model = print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=_specs(faces[:1], faces[1:]),
-                        colours=COLOURS, mosaic_inset_mm=0.4)
+    model = print_model(
+        region,
+        OUTLINE,
+        profile="fdm-0.4mm",
+        style="mosaic",
+        mosaic=_specs(faces[:1], faces[1:]),
+        colours=COLOURS,
+        mosaic_inset_mm=0.4,
+    )
     s = model.stack
     cobalt = model.parts["cobalt (A)"].mesh.vertices
     assert cobalt[:, 2].min() == pytest.approx(s.base) and cobalt[:, 2].max() == pytest.approx(s.base + s.relief - 0.4)
@@ -95,8 +117,9 @@ def test_a_faces_part_stands_on_the_plate_at_its_height():
 def test_each_colour_is_its_own_stl_named_by_colour():
     region, _ = _tile([(10, 10, 3), (30, 20, 3)])
     faces = shapely.get_parts(OUTLINE.difference(region))
-    model = print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=_specs(faces[:1], faces[1:]),
-                        colours=COLOURS)
+    model = print_model(
+        region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=_specs(faces[:1], faces[1:]), colours=COLOURS
+    )
     files = model.files_of("stl")
     assert [s for s, _ in files] == ["-black", "-white", "-cobalt", "-green"]
     assert [m.fused_name for _, m in files] == list(model.parts)
@@ -106,8 +129,7 @@ def test_each_colour_is_its_own_stl_named_by_colour():
 def test_a_colour_no_face_took_is_no_part():
     region, _ = _tile([(10, 10, 3)])
     faces = shapely.get_parts(OUTLINE.difference(region))
-    model = print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=_specs(faces, []),
-                        colours=COLOURS)
+    model = print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=_specs(faces, []), colours=COLOURS)
     assert list(model.parts) == ["black (base)", "white (bands)", "cobalt (A)"]
 
 
@@ -123,10 +145,20 @@ PINCH = [box(10, 10, 15, 15), box(15, 15, 20, 20)]
 
 def _pinched(**kwargs):
     region = OUTLINE.difference(shapely.union_all(PINCH))
-    specs = (MosaicPart("black (base, bands)", True, True, (), COLOURS.base),
-             MosaicPart("cobalt (A)", False, False, tuple(PINCH), COLOURS.face("A")))
-    return print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=specs, colours=COLOURS,
-                       fill_small_holes=False, **kwargs)
+    specs = (
+        MosaicPart("black (base, bands)", True, True, (), COLOURS.base),
+        MosaicPart("cobalt (A)", False, False, tuple(PINCH), COLOURS.face("A")),
+    )
+    return print_model(
+        region,
+        OUTLINE,
+        profile="fdm-0.4mm",
+        style="mosaic",
+        mosaic=specs,
+        colours=COLOURS,
+        fill_small_holes=False,
+        **kwargs,
+    )
 
 
 @pytest.mark.parametrize("inset", [0.0, 0.4])
@@ -139,10 +171,10 @@ def test_two_faces_touching_at_a_point_are_cut_apart_there(inset):
     mesh = trimesh.Trimesh(cobalt.vertices, cobalt.faces, process=True)
     assert mesh.is_watertight and mesh.is_winding_consistent and mesh.body_count == 2
     # the faces less a diamond of APART_MM about the point (a quarter of it from each face)
-    cut = APART_MM ** 2  # two quarters of a diamond of area 2 * APART_MM ** 2
+    cut = APART_MM**2  # two quarters of a diamond of area 2 * APART_MM ** 2
     assert mesh.volume == pytest.approx((50 - cut) * height, rel=1e-6)
     footprint = _footprint(model.parts["cobalt (A)"])
-    assert footprint.distance(shapely.Point(15, 15)) == pytest.approx(APART_MM / 2 ** 0.5, abs=2e-3)
+    assert footprint.distance(shapely.Point(15, 15)) == pytest.approx(APART_MM / 2**0.5, abs=2e-3)
     # the bands touch themselves at the point too (the faces' corners): cut there the same way
     black = model.parts["black (base, bands)"].mesh
     mesh = trimesh.Trimesh(black.vertices, black.faces, process=True)
@@ -154,8 +186,11 @@ def test_a_part_that_cannot_be_meshed_is_refused(monkeypatch):
     """Without the cut at the point of contact, the part is refused: an error, not a file."""
     monkeypatch.setattr(parts, "_apart", lambda layers, points: layers)
     model = _pinched()
-    with pytest.raises(FabricationError, match=r"^the part '[a-z]+ \([a-zA-Z, ]+\)' mesh is not watertight as a "
-                                               r"slicer reads it"):
+    with pytest.raises(
+        FabricationError,
+        match=r"^the part '[a-z]+ \([a-zA-Z, ]+\)' mesh is not watertight as a "
+        r"slicer reads it",
+    ):
         _ = model.parts
 
 
@@ -169,12 +204,27 @@ def _geos_failure(*args, **kwargs):
     raise shapely.errors.GEOSException("TopologyException: side location conflict at 15 15")
 
 
-@pytest.mark.parametrize("target, broken, match", [
-    ("mesh_coverage", _cdt_failure, (r"could not be made: cannot triangulate the region near \(15, 15\) mm: GEOS "
-                                     r"stops there; nothing was written$")),
-    ("coverage", _geos_failure, (r"could not be cut into cells \(TopologyException: side location conflict at 15 "
-                                 r"15\); nothing was written$")),
-])
+@pytest.mark.parametrize(
+    "target, broken, match",
+    [
+        (
+            "mesh_coverage",
+            _cdt_failure,
+            (
+                r"could not be made: cannot triangulate the region near \(15, 15\) mm: GEOS "
+                r"stops there; nothing was written$"
+            ),
+        ),
+        (
+            "coverage",
+            _geos_failure,
+            (
+                r"could not be cut into cells \(TopologyException: side location conflict at 15 "
+                r"15\); nothing was written$"
+            ),
+        ),
+    ],
+)
 def test_a_part_whose_cut_fails_is_refused_by_name_after_moved_lines(monkeypatch, target, broken, match):
     calls = []
 
@@ -185,29 +235,38 @@ def test_a_part_whose_cut_fails_is_refused_by_name_after_moved_lines(monkeypatch
     model = _pinched()
     monkeypatch.setattr(parts, target, spy)
     with pytest.raises(FabricationError, match=r"^the part '[a-z]+ \([a-zA-Z, ]+\)' mesh " + match):
-        model.parts
+        _ = model.parts
     assert len(calls) == parts.GRID_SHIFTS  # every cut of lines tried, then refused
 
 
 def test_bands_and_faces_that_do_not_join_are_refused(monkeypatch):
     region, _ = _tile([(10, 10, 3)])
     faces = shapely.get_parts(OUTLINE.difference(region))
-    specs = (MosaicPart("black (base)", True, False, (), COLOURS.base),
-             MosaicPart("white (bands, A)", False, True, tuple(faces), COLOURS.band))
-    model = print_model(region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=specs, colours=COLOURS,
-                        mosaic_inset_mm=0.0)
+    specs = (
+        MosaicPart("black (base)", True, False, (), COLOURS.base),
+        MosaicPart("white (bands, A)", False, True, tuple(faces), COLOURS.band),
+    )
+    model = print_model(
+        region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=specs, colours=COLOURS, mosaic_inset_mm=0.0
+    )
     monkeypatch.setattr(shapely, "coverage_union_all", _geos_failure)
-    with pytest.raises(FabricationError, match=r"^the part 'white \(bands, A\)' mesh could not be made: its bands and "
-                                               r"faces do not join \(TopologyException"):
-        model.parts
+    with pytest.raises(
+        FabricationError,
+        match=r"^the part 'white \(bands, A\)' mesh could not be made: its bands and "
+        r"faces do not join \(TopologyException",
+    ):
+        _ = model.parts
 
 
 def test_faces_that_cannot_be_cut_from_the_outline_are_refused(monkeypatch):
     region, faces = _tile([(10, 10, 3)])
     stack = resolve_stack("fdm-0.4mm", "mosaic")
     monkeypatch.setattr(shapely, "difference", _geos_failure)
-    with pytest.raises(FabricationError, match=r"^the mosaic's faces could not be cut from the outline "
-                                               r"\(TopologyException"):
+    with pytest.raises(
+        FabricationError,
+        match=r"^the mosaic's faces could not be cut from the outline "
+        r"\(TopologyException",
+    ):
         parts.mosaic_parts(region, OUTLINE, stack, _specs(faces, []))
 
 
@@ -220,8 +279,10 @@ def _slanted():
     y = 20 * 1024 + (40 * 1024 - x) // 2 - np.where(np.arange(len(x)) % 2, 1, 0)
     edge = np.stack([x, y], axis=1) * QUANTUM
     region = shapely.Polygon([(0, 0), (40, 0), (40, 20), *edge.tolist(), (0, 40)], [list(inner.exterior.coords)])
-    specs = (MosaicPart("black (base, bands)", True, True, (), COLOURS.base),
-             MosaicPart("cobalt (A)", False, False, (inner,), COLOURS.face("A")))
+    specs = (
+        MosaicPart("black (base, bands)", True, True, (), COLOURS.base),
+        MosaicPart("cobalt (A)", False, False, (inner,), COLOURS.face("A")),
+    )
     return region, outline, inner, specs
 
 
@@ -232,8 +293,9 @@ def test_slivers_along_a_slanted_outline_are_no_faces():
     faces = np.asarray(polygons_of(shapely.difference(outline, region, grid_size=QUANTUM)), dtype=object)
     slivers = parts._slivers(faces)
     assert slivers.sum() > 100 and list(shapely.area(faces[~slivers])) == [inner.area]
-    model = print_model(region, outline, profile="fdm-0.4mm", style="mosaic", mosaic=specs, colours=COLOURS,
-                        fill_small_holes=False)
+    model = print_model(
+        region, outline, profile="fdm-0.4mm", style="mosaic", mosaic=specs, colours=COLOURS, fill_small_holes=False
+    )
     cobalt = model.parts["cobalt (A)"].mesh
     mesh = trimesh.Trimesh(cobalt.vertices, cobalt.faces, process=True)
     assert mesh.is_watertight and mesh.body_count == 1

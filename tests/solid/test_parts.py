@@ -66,12 +66,15 @@ def test_the_model_and_the_api_make_the_same_parts():
         np.testing.assert_array_equal(part.mesh.faces, api[name].faces)
 
 
-@pytest.mark.parametrize("style, inlay, dips, expected", [
-    ("relief", False, None, True),
-    ("relief", False, shapely.box(0, 0, 1, 1), False),  # an interlaced relief has more heights
-    ("deboss", True, None, False),
-    ("pierced", False, None, False),
-])
+@pytest.mark.parametrize(
+    "style, inlay, dips, expected",
+    [
+        ("relief", False, None, True),
+        ("relief", False, shapely.box(0, 0, 1, 1), False),  # an interlaced relief has more heights
+        ("deboss", True, None, False),
+        ("pierced", False, None, False),
+    ],
+)
 def test_only_a_plain_relief_is_cut_from_its_fused_body(style, inlay, dips, expected):
     assert splits_fused(resolve_stack("fdm-0.4mm", style), False, inlay, dips) is expected
     assert splits_fused(resolve_stack("fdm-0.4mm", style), True, inlay, dips) is False
@@ -96,8 +99,11 @@ def test_a_piece_that_cannot_be_triangulated_is_refused_by_name_after_moved_line
 
     monkeypatch.setattr(solid_parts, "_body_arrays", broken)
     region, outline = _region([(10, 10, 3)])
-    with pytest.raises(FabricationError, match=r"^the body mesh could not be made: cannot triangulate the region "
-                                               r"near \(1, 2\) mm: GEOS stops there; nothing was written$") as info:
+    with pytest.raises(
+        FabricationError,
+        match=r"^the body mesh could not be made: cannot triangulate the region "
+        r"near \(1, 2\) mm: GEOS stops there; nothing was written$",
+    ) as info:
         checked_parts(region, outline, STACK, single=True)
     assert shifts[:3] == [0, 1, 2]  # every cut of lines tried before the refusal
     assert info.value.points.tolist() == [[1.0, 2.0]]

@@ -17,10 +17,10 @@ from hypothesis import strategies as st
 from hypothesis_scale import examples
 
 from fabtiles import DesignError, FabricationError
-from fabtiles.machines.profiles import PRINT_STYLES
-from fabtiles.making.models import BuildOptions, Models
 from fabtiles.designs.design_file import design_from_dict
 from fabtiles.export.stl import read_stl_triangles, stl_bytes
+from fabtiles.machines.profiles import PRINT_STYLES
+from fabtiles.making.models import BuildOptions, Models
 from fabtiles.pattern.tilings import TILINGS
 from fabtiles.solid.mesh_check import check_triangles
 
@@ -44,12 +44,19 @@ def designs(draw, styles=PRINT_STYLES):
     """A design as its TOML tables: a small tile, its packing, strokes, colours and a print of ``styles``."""
     data = {"motif": draw(motifs())}
     if draw(st.booleans()):
-        data["packing"] = {"kind": "hex", "radius": draw(st.floats(6, 15).map(lambda r: round(r, 2))),
-                           "outline_circles": draw(st.booleans())}
+        data["packing"] = {
+            "kind": "hex",
+            "radius": draw(st.floats(6, 15).map(lambda r: round(r, 2))),
+            "outline_circles": draw(st.booleans()),
+        }
     else:
         tiling = draw(st.sampled_from(TILINGS))
-        packing = {"kind": "archimedean", "tiling": tiling, "edge": draw(st.floats(6, 15).map(lambda e: round(e, 2))),
-                   "outline_circles": draw(st.booleans())}
+        packing = {
+            "kind": "archimedean",
+            "tiling": tiling,
+            "edge": draw(st.floats(6, 15).map(lambda e: round(e, 2))),
+            "outline_circles": draw(st.booleans()),
+        }
         if draw(st.booleans()):  # one kind of polygon with a motif of its own
             sides = draw(st.sampled_from(sorted({int(s) for s in tiling.split(".")})))
             packing["motifs"] = {str(sides): draw(st.sampled_from(PRESETS))}
@@ -57,20 +64,31 @@ def designs(draw, styles=PRINT_STYLES):
     outline = draw(st.sampled_from(["square", "rectangle", "hexagon", "circle"]))
     w = round(draw(st.floats(40, 80)), 1)
     h = round(draw(st.floats(40, 80)), 1) if outline == "rectangle" else w
-    data["tile"] = {"outline": outline, "size": [w, h], "frame": draw(st.sampled_from([0.0, 1.5, 3.0])),
-                    "stroke": round(draw(st.floats(0.6, 2.0)), 2), "join": draw(st.sampled_from(["miter", "round", "bevel"])),
-                    "interlace": draw(st.booleans())}
+    data["tile"] = {
+        "outline": outline,
+        "size": [w, h],
+        "frame": draw(st.sampled_from([0.0, 1.5, 3.0])),
+        "stroke": round(draw(st.floats(0.6, 2.0)), 2),
+        "join": draw(st.sampled_from(["miter", "round", "bevel"])),
+        "interlace": draw(st.booleans()),
+    }
     style = draw(st.sampled_from(styles))
-    output = {"formats": ["stl", "3mf"], "printer_profile": draw(st.sampled_from(["fdm-0.4mm", "fdm-0.6mm"])),
-              "print_style": style, "fill_small_holes": draw(st.booleans())}
+    output = {
+        "formats": ["stl", "3mf"],
+        "printer_profile": draw(st.sampled_from(["fdm-0.4mm", "fdm-0.6mm"])),
+        "print_style": style,
+        "fill_small_holes": draw(st.booleans()),
+    }
     if style == "mosaic":
         output["mosaic_inset_mm"] = draw(st.sampled_from([0.0, 0.4]))
     if style == "deboss":
         output["inlay"] = draw(st.booleans())
     data["output"] = output
     if draw(st.booleans()):
-        data["colour"] = {"by": draw(st.sampled_from(["none", "shape"])),
-                          "palette": draw(st.sampled_from(["zellige", "iznik", "mamluk", "alhambra", "haft-rangi"]))}
+        data["colour"] = {
+            "by": draw(st.sampled_from(["none", "shape"])),
+            "palette": draw(st.sampled_from(["zellige", "iznik", "mamluk", "alhambra", "haft-rangi"])),
+        }
     return data
 
 
@@ -82,8 +100,12 @@ def _read_back(vertices, faces, *, name, volume, bodies):
 
 def _design(motif, packing, tile, style, **output):
     """A design's tables as :func:`designs` draws them (the pinned cases below)."""
-    return {"motif": motif, "packing": packing, "tile": tile,
-            "output": {"formats": ["stl", "3mf"], "printer_profile": "fdm-0.4mm", "print_style": style, **output}}
+    return {
+        "motif": motif,
+        "packing": packing,
+        "tile": tile,
+        "output": {"formats": ["stl", "3mf"], "printer_profile": "fdm-0.4mm", "print_style": style, **output},
+    }
 
 
 EDGE_BAND_TIP = {"outline": "hexagon", "frame": 0.0, "join": "bevel", "interlace": True}
@@ -105,8 +127,7 @@ def _check(data):
         assert any(why in str(exc) for why in REFUSED), exc
         return
     for name, part in parts.items():
-        _read_back(part.mesh.vertices, part.mesh.faces, name=name, volume=part.mesh.volume_mm3,
-                   bodies=part.mesh.bodies)
+        _read_back(part.mesh.vertices, part.mesh.faces, name=name, volume=part.mesh.volume_mm3, bodies=part.mesh.bodies)
     _read_back(fused.vertices, fused.faces, name="fused", volume=fused.volume_mm3, bodies=fused.bodies)
 
 
@@ -120,20 +141,51 @@ def test_every_mesh_of_a_random_design_passes_its_slicer_check(style, data):
 @settings(phases=[Phase.explicit])
 @given(designs())
 # two faces of a class meeting at a band's tip on the edge: a vertical edge of four walls in their part
-@example(_design({"n": 9, "radii": [150.0, 195.3]}, {"kind": "hex", "radius": 10.41, "outline_circles": False},
-                 {"size": [59.5, 59.5], "stroke": 1.2, **EDGE_BAND_TIP}, "mosaic", fill_small_holes=False,
-                 mosaic_inset_mm=0.0))
-@example(_design({"n": 9, "radii": [119.7, 90.0, 199.0]},
-                 {"kind": "archimedean", "tiling": "3.4.6.4", "edge": 6.19, "outline_circles": False,
-                  "motifs": {"4": "table1-part1"}},
-                 {"size": [66.1, 66.1], "stroke": 1.32, **EDGE_BAND_TIP}, "mosaic", fill_small_holes=False,
-                 mosaic_inset_mm=0.0))
+@example(
+    _design(
+        {"n": 9, "radii": [150.0, 195.3]},
+        {"kind": "hex", "radius": 10.41, "outline_circles": False},
+        {"size": [59.5, 59.5], "stroke": 1.2, **EDGE_BAND_TIP},
+        "mosaic",
+        fill_small_holes=False,
+        mosaic_inset_mm=0.0,
+    )
+)
+@example(
+    _design(
+        {"n": 9, "radii": [119.7, 90.0, 199.0]},
+        {
+            "kind": "archimedean",
+            "tiling": "3.4.6.4",
+            "edge": 6.19,
+            "outline_circles": False,
+            "motifs": {"4": "table1-part1"},
+        },
+        {"size": [66.1, 66.1], "stroke": 1.32, **EDGE_BAND_TIP},
+        "mosaic",
+        fill_small_holes=False,
+        mosaic_inset_mm=0.0,
+    )
+)
 # the under strands dipping all round a small face: filled, the dip nested the face's hole in the region
-@example(_design({"preset": "table3-1"}, {"kind": "hex", "radius": 10.92, "outline_circles": False},
-                 {"size": [57.0, 57.0], "stroke": 1.42, **EDGE_BAND_TIP}, "relief", fill_small_holes=False))
+@example(
+    _design(
+        {"preset": "table3-1"},
+        {"kind": "hex", "radius": 10.92, "outline_circles": False},
+        {"size": [57.0, 57.0], "stroke": 1.42, **EDGE_BAND_TIP},
+        "relief",
+        fill_small_holes=False,
+    )
+)
 # two dips touching at a point: the full height's walls and theirs on one vertical edge
-@example(_design({"n": 7, "radii": [117.0, 43.4, 30.0, 150.0]}, {"kind": "hex", "radius": 6.96, "outline_circles": False},
-                 {"outline": "rectangle", "size": [60.0, 67.1], "frame": 0.0, "stroke": 0.9, "join": "miter",
-                  "interlace": True}, "relief", fill_small_holes=True))
+@example(
+    _design(
+        {"n": 7, "radii": [117.0, 43.4, 30.0, 150.0]},
+        {"kind": "hex", "radius": 6.96, "outline_circles": False},
+        {"outline": "rectangle", "size": [60.0, 67.1], "frame": 0.0, "stroke": 0.9, "join": "miter", "interlace": True},
+        "relief",
+        fill_small_holes=True,
+    )
+)
 def test_the_random_designs_that_broke_pass(data):
     _check(data)

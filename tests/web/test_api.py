@@ -5,7 +5,6 @@ import json
 import re
 
 import pytest
-
 from asgi_client import TestClient
 
 from fabtiles.machines.limits import Limits
@@ -30,13 +29,26 @@ def test_index_and_static(client):
 
 def test_presets_and_profiles(client):
     presets = client.get("/api/presets").json()
-    assert list(presets) == ["table1-part1", "table1-part2", "table2-left", "table2-right",
-                             "table3-1", "table3-2", "table3-3"]
-    assert presets["table3-3"] == {"n": 12, "radii": [123, 85, 178], "alpha": 23, "spr": -7,
-                                   "special": 2, "note": ""}
+    assert list(presets) == [
+        "table1-part1",
+        "table1-part2",
+        "table2-left",
+        "table2-right",
+        "table3-1",
+        "table3-2",
+        "table3-3",
+    ]
+    assert presets["table3-3"] == {"n": 12, "radii": [123, 85, 178], "alpha": 23, "spr": -7, "special": 2, "note": ""}
     assert client.get("/api/profiles").json() == {
-        "laser": ["laser-3mm-acrylic", "laser-3mm-plywood", "router-3.175mm-plywood", "router-6mm-mdf",
-                  "waterjet-1mm-aluminium"], "printer": ["fdm-0.4mm", "fdm-0.6mm"]}
+        "laser": [
+            "laser-3mm-acrylic",
+            "laser-3mm-plywood",
+            "router-3.175mm-plywood",
+            "router-6mm-mdf",
+            "waterjet-1mm-aluminium",
+        ],
+        "printer": ["fdm-0.4mm", "fdm-0.6mm"],
+    }
 
 
 def test_preview_svg_default_and_changes(client):
@@ -146,7 +158,11 @@ BAD = [
     ("gap_n=2", "gap_n", "gap_n must be an integer >= 3"),
     ("gap_radii=0.5,-1", "gap_radii", "gap_radii[1] must be a finite number > 0"),
     ("gap_preset=table9", "gap_preset", "gap_preset 'table9' is unknown; did you mean 'table3-3'?"),
-    ("packing=archimedean&tiling=4.8.8&motif_8=table9", "motif_8", "motif_8: preset 'table9' is unknown; did you mean 'table3-3'?"),
+    (
+        "packing=archimedean&tiling=4.8.8&motif_8=table9",
+        "motif_8",
+        "motif_8: preset 'table9' is unknown; did you mean 'table3-3'?",
+    ),
     ("outline_circles=perhaps", "outline_circles", "outline_circles must be true or false"),
     ("outline=oval", "outline", "'oval' is not valid, must be one of: square, rectangle, hexagon, circle"),
     ("width=0", "width", "width must be a finite number > 0"),
@@ -184,13 +200,16 @@ def test_bad_input_is_said_in_the_forms_words(client, query, field, message):
     assert "[motif]" not in error and "[output]" not in error and "gap_motif" not in error, error
 
 
-@pytest.mark.parametrize("query, name", [
-    ("preset=table1-part1", "table1-part1"),
-    ("preset=table3-3&stroke=2", "table3-3"),  # the motif is the preset's: the page names an edited design
-    ("n=8&radii=1,2", "custom"),
-    ("preset=table3-3&rotation=10", "custom"),
-    ("preset=table3-3&name=my tile", "my tile"),
-])
+@pytest.mark.parametrize(
+    "query, name",
+    [
+        ("preset=table1-part1", "table1-part1"),
+        ("preset=table3-3&stroke=2", "table3-3"),  # the motif is the preset's: the page names an edited design
+        ("n=8&radii=1,2", "custom"),
+        ("preset=table3-3&rotation=10", "custom"),
+        ("preset=table3-3&name=my tile", "my tile"),
+    ],
+)
 def test_downloads_are_named_after_the_design(client, query, name):
     for fmt in ("dxf", "stl"):
         r = client.get(f"/api/export/{fmt}?{SMALL}&{query}")
@@ -203,7 +222,9 @@ def test_downloads_are_named_after_the_design(client, query, name):
 def test_unknown_format_is_422(client):
     r = client.get("/api/export/png")
     assert r.status_code == 422 and r.json() == {
-        "error": "'png' is not a valid format, must be one of: dxf, svg, lbrn2, stl, 3mf, step", "field": "format"}
+        "error": "'png' is not a valid format, must be one of: dxf, svg, lbrn2, stl, 3mf, step",
+        "field": "format",
+    }
 
 
 def test_work_limits_refuse_before_work():
@@ -224,9 +245,9 @@ def test_openapi_lists_the_api(client):
 def test_router_preview_draws_the_part_its_bit_makes(client):
     from fabtiles.export.preview_svg import tile_svg
     from fabtiles.geometry.tool_opening import open_region
+    from fabtiles.machines.limits import WEB_LIMITS
     from fabtiles.web.app import tile_from_dict
     from fabtiles.web.params import DEFAULTS, design_from_query
-    from fabtiles.machines.limits import WEB_LIMITS
 
     q = "width=80&frame=4&radius=15&stroke=2&fill_small_holes=false&laser_profile=router-3.175mm-plywood"
     query = {**DEFAULTS, **dict(p.split("=") for p in q.split("&"))}

@@ -15,8 +15,8 @@ def _preview_version(page):
 
 def _wait_new_preview(page, old):
     page.wait_for_function(
-        "old => { const v = document.querySelector('#preview').dataset.version; return v && v !== old; }",
-        arg=old)
+        "old => { const v = document.querySelector('#preview').dataset.version; return v && v !== old; }", arg=old
+    )
 
 
 def test_page_slider_preset_and_download(page, server, tmp_path):
@@ -131,8 +131,9 @@ def test_gap_motif_controls_reach_the_url_and_the_design(page, server):
     assert "gap_rotation=30" in page.url
     design = page.get_attribute("#download-design", "href")
     assert "gap_special=2" in design and "gap_rotation=30" in design
-    import tomllib
     import urllib.request
+
+    import tomllib
 
     with urllib.request.urlopen(server + design if design.startswith("/") else design) as resp:
         gap = tomllib.loads(resp.read().decode())["packing"]["gap_motif"]
@@ -150,7 +151,9 @@ def test_the_inlay_kit_mode_shows_the_kit(page, server):
     v = _preview_version(page)
     page.select_option("#laser_mode", "inlay")
     _wait_new_preview(page, v)
-    page.wait_for_function("() => document.querySelector('#kit').complete && document.querySelector('#kit').naturalWidth > 0")
+    page.wait_for_function(
+        "() => document.querySelector('#kit').complete && document.querySelector('#kit').naturalWidth > 0"
+    )
     assert page.is_visible("#kit-box") and "laser_mode=inlay" in page.url
     with page.expect_download() as info:
         page.click("#downloads a[data-format=dxf]")
@@ -159,7 +162,9 @@ def test_the_inlay_kit_mode_shows_the_kit(page, server):
 
 def _label(page):
     """The Preset menu's shown text."""
-    return page.evaluate("() => { const s = document.querySelector('#preset'); return s.options[s.selectedIndex].text; }")
+    return page.evaluate(
+        "() => { const s = document.querySelector('#preset'); return s.options[s.selectedIndex].text; }"
+    )
 
 
 def _set(page, selector, value):
@@ -199,7 +204,7 @@ def test_the_preset_menu_says_custom_once_edited_and_downloads_are_named(page, s
     page.select_option("#preset", "table1-part1")
     _wait_new_preview(page, v)
     assert _label(page) == "table1-part1"
-    assert page.get_attribute("#downloads a[data-format=\"3mf\"]", "download") == "table1-part1.3mf"
+    assert page.get_attribute('#downloads a[data-format="3mf"]', "download") == "table1-part1.3mf"
     _set(page, "#name", "my tile")
     assert _label(page) == "table1-part1"  # a file name is no edit of the design
     with page.expect_download() as info:

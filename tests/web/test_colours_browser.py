@@ -16,8 +16,8 @@ SMALL = "preset=table3-3&width=60&radius=10&frame=3"
 
 def _wait_new_preview(page, old):
     page.wait_for_function(
-        "old => { const v = document.querySelector('#preview').dataset.version; return v && v !== old; }",
-        arg=old)
+        "old => { const v = document.querySelector('#preview').dataset.version; return v && v !== old; }", arg=old
+    )
 
 
 def _changed(page, action):
@@ -35,8 +35,10 @@ def _fills(page) -> dict:
 
 
 def _wait_faces(page, letter, colour):
-    page.wait_for_function("([l, c]) => { const p = document.querySelector(`#face_${l}`); return p && p.value === c; }",
-                           arg=[letter, colour])
+    page.wait_for_function(
+        "([l, c]) => { const p = document.querySelector(`#face_${l}`); return p && p.value === c; }",
+        arg=[letter, colour],
+    )
 
 
 def test_palette_and_pickers_fill_the_faces(page, server):

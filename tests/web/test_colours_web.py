@@ -2,7 +2,6 @@
 palettes, and a bad colour named by its parameter."""
 
 import pytest
-
 from asgi_client import TestClient
 
 from fabtiles.designs.colour import PALETTES
@@ -39,8 +38,9 @@ def test_faces_by_shape_in_the_palettes_colours(client):
 
 
 def test_faces_given_colours_override_the_palettes(client):
-    data = client.get(f"/api/faces?{SMALL}&colour_by=shape&palette=iznik&face_B=navy&band_colour=%23ffd400"
-                      f"&base_colour=black").json()
+    data = client.get(
+        f"/api/faces?{SMALL}&colour_by=shape&palette=iznik&face_B=navy&band_colour=%23ffd400&base_colour=black"
+    ).json()
     # navy and black are Iznik's own colours of those names (its base's navy, its black), not CSS's
     assert data["classes"][1]["colour"] == "#1e2a5a" and data["classes"][1]["name"] == "navy"
     assert data["classes"][0]["colour"] == PALETTES["iznik"].faces[0].hex  # the others keep the palette's
@@ -50,7 +50,9 @@ def test_faces_given_colours_override_the_palettes(client):
 def test_faces_without_colours_is_one_class(client):
     data = client.get(f"/api/faces?{SMALL}").json()
     zellige = PALETTES["zellige"]
-    assert [(c["letter"], c["description"], c["colour"]) for c in data["classes"]] == [("A", "faces", zellige.faces[0].hex)]
+    assert [(c["letter"], c["description"], c["colour"]) for c in data["classes"]] == [
+        ("A", "faces", zellige.faces[0].hex)
+    ]
     assert data["classes"][0]["count"] == 191
 
 
@@ -65,7 +67,11 @@ BAD_COLOURS = [
     ("palette=persian", "palette", "'persian' is not valid, must be one of: zellige, iznik"),
     ("band_colour=nope", "band_colour", "band_colour 'nope' is not a CSS or palette colour name"),
     ("base_colour=%2312345", "base_colour", "base_colour must be #rrggbb or a CSS colour name"),
-    ("colour_by=shape&face_A=reddish", "face_A", "face_A 'reddish' is not a CSS or palette colour name (did you mean 'red'?)"),
+    (
+        "colour_by=shape&face_A=reddish",
+        "face_A",
+        "face_A 'reddish' is not a CSS or palette colour name (did you mean 'red'?)",
+    ),
     ("colour_by=shape&face_Q=red", "face_Q", "face class 'Q' is not one of this design's: A, B, C, D"),
 ]
 
@@ -93,7 +99,7 @@ def test_a_design_given_no_colours_says_so_and_what_the_pictures_show(client):
     plain = client.get(f"/api/faces?{SMALL}").json()["plain"]
     assert plain["band"] == {"colour": "#1f3b73", "name": "ink"} and plain["face"]["colour"] == "#ffffff"
     # the plate as the 3D view draws it: the base material's linear colour in sRGB
-    linear = [int(plain["base"]["colour"][i:i + 2], 16) / 255 for i in (1, 3, 5)]
+    linear = [int(plain["base"]["colour"][i : i + 2], 16) / 255 for i in (1, 3, 5)]
     linear = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in linear]
     assert linear == pytest.approx(PART_MATERIALS["base"].colour, abs=0.005)
     assert client.get(f"/api/preview.svg?{SMALL}").headers["X-Fabtiles-Coloured"] == "false"

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import pytest
-
 from asgi_client import TestClient
 from test_api import BAD
 

@@ -6,15 +6,16 @@ import re
 import numpy as np
 import pytest
 import shapely
-
 from asgi_client import TestClient
 
 from fabtiles.machines.profiles import load_profile
 from fabtiles.web.app import create_app
 
 SMALL = "width=60&frame=3&radius=10"
-MARK = re.compile(r'<circle class="finding (\w+)" data-where="(\w+)" cx="([-\d.]+)" cy="([-\d.]+)" r="[\d.]+" '
-                  r'stroke="#\w+"><title>([^<]+)</title></circle>')
+MARK = re.compile(
+    r'<circle class="finding (\w+)" data-where="(\w+)" cx="([-\d.]+)" cy="([-\d.]+)" r="[\d.]+" '
+    r'stroke="#\w+"><title>([^<]+)</title></circle>'
+)
 
 
 @pytest.fixture(scope="module")
@@ -42,8 +43,10 @@ def test_default_dxf_has_no_hole_or_bridge_under_the_limits(client, tmp_path):
     path = tmp_path / "tile.dxf"
     path.write_bytes(client.get("/api/export/dxf").content)
     msp = ezdxf.readfile(path).modelspace()
-    rings = {name: [shapely.Polygon(e.get_points("xy")) for e in msp if e.dxf.layer == name]
-             for name in (lay.inner_cut.name, lay.outer_cut.name)}
+    rings = {
+        name: [shapely.Polygon(e.get_points("xy")) for e in msp if e.dxf.layer == name]
+        for name in (lay.inner_cut.name, lay.outer_cut.name)
+    }
     inner, (outer,) = rings[lay.inner_cut.name], rings[lay.outer_cut.name]
     assert len(inner) > 100
     # Every hole as cut (its contour grown back by kerf/2) holds a disc of min_hole_mm.

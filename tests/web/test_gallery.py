@@ -3,11 +3,10 @@
 from pathlib import Path
 
 import pytest
-
 from asgi_client import TestClient
 
-from fabtiles.machines.limits import WEB_LIMITS
 from fabtiles.designs.design_file import load_design
+from fabtiles.machines.limits import WEB_LIMITS
 from fabtiles.pattern.presets import PRESETS
 from fabtiles.pattern.tilings import TILINGS
 from fabtiles.web import gallery
@@ -25,7 +24,7 @@ def client():
 def test_presets_then_tilings_then_hankin():
     keys = [e.key for e in gallery.entries()]
     hankin = [f"hankin-{t}" for t in gallery._HANKIN]
-    assert keys == [*PRESETS, *gallery._TILINGS, *hankin] and set(keys[len(PRESETS):-len(hankin)]) == set(TILINGS)
+    assert keys == [*PRESETS, *gallery._TILINGS, *hankin] and set(keys[len(PRESETS) : -len(hankin)]) == set(TILINGS)
     assert len(keys) == 22
 
 
@@ -57,16 +56,22 @@ def test_preset_entry_is_the_editor_default_with_that_preset_in_a_palette():
         query = gallery.entry(name).query
         palettes.add(query["palette"])
         radius, stroke = gallery._PRESET_TILES.get(name, (DEFAULTS["radius"], 1))
-        assert query == {**DEFAULTS, "preset": name, "colour_by": "shape", "palette": query["palette"],
-                         "radius": radius, "stroke": f"{stroke:g}"}
+        assert query == {
+            **DEFAULTS,
+            "preset": name,
+            "colour_by": "shape",
+            "palette": query["palette"],
+            "radius": radius,
+            "stroke": f"{stroke:g}",
+        }
     assert palettes == set(PALETTE_NAMES)  # every palette shown
 
 
 @pytest.mark.parametrize("key", [e.key for e in gallery.entries()])
 def test_every_entry_opens_with_no_finding(key):
     """A place to start from is one that cuts and prints on the default profiles as it opens."""
-    from fabtiles.making.checks import check_design
     from fabtiles.designs.design_file import design_from_dict
+    from fabtiles.making.checks import check_design
     from fabtiles.web.params import design_from_query
 
     result = check_design(design_from_dict(design_from_query(gallery.entry(key).query)))
@@ -142,8 +147,11 @@ def test_every_gallery_value_is_inside_its_slider(key):
 @pytest.mark.parametrize("name", list(PRESETS))
 def test_every_preset_value_is_inside_its_slider(name):
     preset = PRESETS[name]
-    query = {k: ",".join(f"{r:g}" for r in v) if k == "radii" else v for k, v in preset.items()
-             if k in ("n", "radii", "alpha", "spr")}
+    query = {
+        k: ",".join(f"{r:g}" for r in v) if k == "radii" else v
+        for k, v in preset.items()
+        if k in ("n", "radii", "alpha", "spr")
+    }
     values = _slider_values(query)
     assert len(values) == 3 + len(preset["radii"])
     for param, value in values:

@@ -1,7 +1,6 @@
 """The web app's interlace controls: the woven preview, the gap, a bad gap named by its field."""
 
 import pytest
-
 from asgi_client import TestClient
 
 from fabtiles.web.app import create_app
@@ -33,8 +32,9 @@ def test_woven_relief_downloads(client):
     assert r.status_code == 200 and len(r.content) > 84
 
 
-@pytest.mark.parametrize("gap, message", [("-1", "must be a finite number >= 0, got -1"),
-                                          ("30", "must be >= 0 and <= ")])
+@pytest.mark.parametrize(
+    "gap, message", [("-1", "must be a finite number >= 0, got -1"), ("30", "must be >= 0 and <= ")]
+)
 def test_bad_gap_names_its_field(client, gap, message):
     r = client.get("/api/preview.svg", params={**SMALL, "interlace": "true", "interlace_gap_mm": gap})
     assert r.status_code == 422

@@ -17,8 +17,13 @@ from fabtiles.web.routes.nest import KEPT, NestError, nest_files, read_body
 
 SQUARE = "preset=table3-1&width=40&radius=8&frame=3"
 CIRCLE = "preset=table3-3&outline=circle&width=40&radius=8&frame=3"
-BODY = {"designs": [{"query": SQUARE, "count": 3}, {"query": CIRCLE, "count": 2}], "sheet": [120, 80],
-        "rotate": "90", "time_s": 1, "format": "dxf"}
+BODY = {
+    "designs": [{"query": SQUARE, "count": 3}, {"query": CIRCLE, "count": 2}],
+    "sheet": [120, 80],
+    "rotate": "90",
+    "time_s": 1,
+    "format": "dxf",
+}
 
 
 @pytest.fixture(scope="module")
@@ -72,7 +77,7 @@ def test_the_pictures_parts_are_inside_the_sheet_and_apart(answer):
         for k, a in enumerate(outlines):
             x0, y0, x1, y1 = a.bounds
             assert x0 >= -1e-3 and y0 >= -1e-3 and x1 <= 120 + 1e-3 and y1 <= 80 + 1e-3
-            for b in outlines[k + 1:]:
+            for b in outlines[k + 1 :]:
                 assert a.distance(b) >= 1.15 - 2e-3  # the picture's coordinates are rounded to 1 um
 
 
@@ -91,32 +96,50 @@ def test_a_nest_no_longer_kept_is_404(client):
 
 
 def test_two_edited_designs_of_one_name_stay_apart():
-    asked = read_body({"designs": [{"query": "n=8&radii=1,2&packing=none&width=30"},
-                                   {"query": "n=6&radii=1,2&packing=none&width=30"}]}, limits=WEB_LIMITS)
+    asked = read_body(
+        {
+            "designs": [
+                {"query": "n=8&radii=1,2&packing=none&width=30"},
+                {"query": "n=6&radii=1,2&packing=none&width=30"},
+            ]
+        },
+        limits=WEB_LIMITS,
+    )
     assert [d.name for d, _ in asked["designs"]] == ["custom", "custom-2"]
     assert asked["time_s"] == pytest.approx(3.0) and asked["sheet_mm"] is None and asked["rotations"] == "90"
 
 
-@pytest.mark.parametrize("change, field, match", [
-    ({"designs": [{"query": SQUARE, "count": 0}]}, "designs[0].count", r"designs\[0\]\.count must be a whole number >= 1, got 0"),
-    ({"designs": [{"query": SQUARE, "count": 1.5}]}, "designs[0].count", r"got 1\.5"),
-    ({"designs": [{"query": SQUARE}, {"query": SQUARE + "&stroke=0"}]}, "designs[1].stroke", r"design 2: stroke must be"),
-    ({"designs": [{"query": "preset=nope"}]}, "designs[0].preset", r"design 1: .*preset"),
-    ({"designs": []}, "designs", r"at least one design"),
-    ({"designs": ["preset=table3-1"]}, "designs[0]", r"designs\[0\] must be"),
-    ({"designs": [{"query": SQUARE, "count": 61}]}, "designs", r"61 parts, more than the limit of 60"),
-    ({"rotate": "45"}, "rotate", r"rotate must be one of: none, 180, 90, free, got '45'"),
-    ({"format": "stl"}, "format", r"format must be one of: dxf, svg, lbrn2, got 'stl'"),
-    ({"time_s": 0}, "time_s", r"time_s must be > 0 and at most 10 s here, got 0"),
-    ({"time_s": 11}, "time_s", r"at most 10 s here, got 11"),
-    ({"time_s": "fast"}, "time_s", r"time_s must be a finite number, got 'fast'"),
-    ({"sheet": [120]}, "sheet", r"sheet must be \[width, height\]"),
-    ({"sheet": [0, 80]}, "sheet", r"each > 0"),
-    ({"gap_mm": 0.05}, "gap_mm", r"gap_mm must be >= the cut's width \(0\.15 mm"),
-    ({"sheet": [30, 30]}, "sheet", r"does not fit on the 30 x 30 mm sheet"),
-    ({"sheet": [5000, 80]}, "sheet", r"larger than the .* bed"),
-    ({"speed": 3}, "speed", r"'speed' is not a nest field"),
-])
+@pytest.mark.parametrize(
+    "change, field, match",
+    [
+        (
+            {"designs": [{"query": SQUARE, "count": 0}]},
+            "designs[0].count",
+            r"designs\[0\]\.count must be a whole number >= 1, got 0",
+        ),
+        ({"designs": [{"query": SQUARE, "count": 1.5}]}, "designs[0].count", r"got 1\.5"),
+        (
+            {"designs": [{"query": SQUARE}, {"query": SQUARE + "&stroke=0"}]},
+            "designs[1].stroke",
+            r"design 2: stroke must be",
+        ),
+        ({"designs": [{"query": "preset=nope"}]}, "designs[0].preset", r"design 1: .*preset"),
+        ({"designs": []}, "designs", r"at least one design"),
+        ({"designs": ["preset=table3-1"]}, "designs[0]", r"designs\[0\] must be"),
+        ({"designs": [{"query": SQUARE, "count": 61}]}, "designs", r"61 parts, more than the limit of 60"),
+        ({"rotate": "45"}, "rotate", r"rotate must be one of: none, 180, 90, free, got '45'"),
+        ({"format": "stl"}, "format", r"format must be one of: dxf, svg, lbrn2, got 'stl'"),
+        ({"time_s": 0}, "time_s", r"time_s must be > 0 and at most 10 s here, got 0"),
+        ({"time_s": 11}, "time_s", r"at most 10 s here, got 11"),
+        ({"time_s": "fast"}, "time_s", r"time_s must be a finite number, got 'fast'"),
+        ({"sheet": [120]}, "sheet", r"sheet must be \[width, height\]"),
+        ({"sheet": [0, 80]}, "sheet", r"each > 0"),
+        ({"gap_mm": 0.05}, "gap_mm", r"gap_mm must be >= the cut's width \(0\.15 mm"),
+        ({"sheet": [30, 30]}, "sheet", r"does not fit on the 30 x 30 mm sheet"),
+        ({"sheet": [5000, 80]}, "sheet", r"larger than the .* bed"),
+        ({"speed": 3}, "speed", r"'speed' is not a nest field"),
+    ],
+)
 def test_bad_input_is_422_naming_the_field(client, change, field, match):
     body = {**BODY, **change}
     res = client.post("/api/nest", json=body)

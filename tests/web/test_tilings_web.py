@@ -16,20 +16,36 @@ def client():
 
 
 def test_query_to_design():
-    d = design_from_query({"preset": "table3-3", "packing": "archimedean", "tiling": "3.4.6.4", "edge": "9",
-                           "motif_6": "table3-1", "motif_4": "", "motif_3": "default", "width": "80"})
-    assert d["packing"] == {"kind": "archimedean", "tiling": "3.4.6.4", "edge": 9.0,
-                            "motifs": {"6": "table3-1"}}
+    d = design_from_query(
+        {
+            "preset": "table3-3",
+            "packing": "archimedean",
+            "tiling": "3.4.6.4",
+            "edge": "9",
+            "motif_6": "table3-1",
+            "motif_4": "",
+            "motif_3": "default",
+            "width": "80",
+        }
+    )
+    assert d["packing"] == {"kind": "archimedean", "tiling": "3.4.6.4", "edge": 9.0, "motifs": {"6": "table3-1"}}
     spec = design_from_dict(d, source="query")
     pack = spec.build_tile().pattern
     assert pack.tiling == "3.4.6.4" and pack.motifs[6].n == 12 and pack.motifs[4] == pack.motifs[3]
 
 
-@pytest.mark.parametrize("query, field, match", [
-    ({"packing": "hex", "motif_8": "table3-3"}, "motif_8", r"motif_8 is a motif per polygon kind of packing=archimedean"),
-    ({"packing": "none", "motif_8": "table3-3"}, "motif_8", r"motif_8 has no meaning with packing=none"),
-    ({"packing": "archimedean", "edge": "x"}, "edge", r"edge must be a number, got 'x'"),
-])
+@pytest.mark.parametrize(
+    "query, field, match",
+    [
+        (
+            {"packing": "hex", "motif_8": "table3-3"},
+            "motif_8",
+            r"motif_8 is a motif per polygon kind of packing=archimedean",
+        ),
+        ({"packing": "none", "motif_8": "table3-3"}, "motif_8", r"motif_8 has no meaning with packing=none"),
+        ({"packing": "archimedean", "edge": "x"}, "edge", r"edge must be a number, got 'x'"),
+    ],
+)
 def test_bad_tiling_query(query, field, match):
     with pytest.raises(QueryError, match=match) as info:
         design_from_query(query)
@@ -39,17 +55,29 @@ def test_bad_tiling_query(query, field, match):
 def test_api_tilings_and_preview(client):
     info = client.get("/api/tilings").json()
     assert list(info) == list(TILINGS) and info["4.6.12"] == {"name": "truncated trihexagonal", "kinds": [4, 6, 12]}
-    r = client.get("/api/preview.svg", params={"preset": "table3-3", "packing": "archimedean", "tiling": "4.8.8",
-                                                "edge": "15", "motif_4": "table1-part1", "width": "80"})
+    r = client.get(
+        "/api/preview.svg",
+        params={
+            "preset": "table3-3",
+            "packing": "archimedean",
+            "tiling": "4.8.8",
+            "edge": "15",
+            "motif_4": "table1-part1",
+            "width": "80",
+        },
+    )
     assert r.status_code == 200 and r.text.startswith("<?xml")
 
 
-@pytest.mark.parametrize("params, field, match", [
-    ({"tiling": "5.5.5"}, "tiling", "tiling '5.5.5' is unknown"),
-    ({"motif_6": "table3-3"}, "motif_6", "motifs key 6 is not a polygon of the tiling 4.8.8"),
-    ({"motif_8": "nope"}, "motif_8", "preset 'nope' is unknown"),
-    ({"edge": "-2"}, "edge", "edge must be a finite number > 0"),
-])
+@pytest.mark.parametrize(
+    "params, field, match",
+    [
+        ({"tiling": "5.5.5"}, "tiling", "tiling '5.5.5' is unknown"),
+        ({"motif_6": "table3-3"}, "motif_6", "motifs key 6 is not a polygon of the tiling 4.8.8"),
+        ({"motif_8": "nope"}, "motif_8", "preset 'nope' is unknown"),
+        ({"edge": "-2"}, "edge", "edge must be a finite number > 0"),
+    ],
+)
 def test_api_errors_name_the_field(client, params, field, match):
     base = {"preset": "table3-3", "packing": "archimedean", "tiling": "4.8.8", "edge": "15", "width": "80"}
     r = client.get("/api/preview.svg", params={**base, **params})
@@ -82,9 +110,17 @@ def test_page_tiling_menu_and_motif_per_kind(page, server):  # noqa: F811 - fixt
 
 
 def test_too_much_work_points_at_the_edge(client):
-    r = client.get("/api/preview.svg", params={"preset": "table3-3", "packing": "archimedean",
-                                                "tiling": "3.3.3.3.6", "edge": "3", "width": "1000",
-                                                "stroke": "0.5"})
+    r = client.get(
+        "/api/preview.svg",
+        params={
+            "preset": "table3-3",
+            "packing": "archimedean",
+            "tiling": "3.3.3.3.6",
+            "edge": "3",
+            "width": "1000",
+            "stroke": "0.5",
+        },
+    )
     assert r.status_code == 422 and r.json()["field"] == "edge"
     assert "the packing edge larger" in r.json()["error"]
 
@@ -92,8 +128,7 @@ def test_too_much_work_points_at_the_edge(client):
 def test_design_toml_download_builds_the_same_packing(client):
     from fabtiles.designs.design_file import design_from_text
 
-    params = {"packing": "archimedean", "tiling": "4.6.12", "edge": "12", "motif_4": "table1-part1",
-              "width": "150"}
+    params = {"packing": "archimedean", "tiling": "4.6.12", "edge": "12", "motif_4": "table1-part1", "width": "150"}
     text = client.get("/api/design.toml", params=params).text
     assert "[packing.motifs]" in text and '4 = "table1-part1"' in text
     pack = design_from_text(text).build_tile().pattern
@@ -103,8 +138,15 @@ def test_design_toml_download_builds_the_same_packing(client):
 def test_hankin_design_toml_download_builds_the_same_packing(client):
     from fabtiles.designs.design_file import design_from_text
 
-    params = {"packing": "archimedean", "tiling": "6.6.6", "edge": "14", "method": "hankin",
-              "contact_angle": "60", "contact_gap": "1.5", "width": "150"}
+    params = {
+        "packing": "archimedean",
+        "tiling": "6.6.6",
+        "edge": "14",
+        "method": "hankin",
+        "contact_angle": "60",
+        "contact_gap": "1.5",
+        "width": "150",
+    }
     text = client.get("/api/design.toml", params=params).text
     assert 'method = "hankin"' in text and "contact_gap = 1.5" in text
     pack = design_from_text(text).build_tile().pattern
@@ -120,28 +162,61 @@ def load_design_pattern(name):
 
 
 def test_hankin_query_to_design_and_preview(client):
-    d = design_from_query({"preset": "table3-3", "packing": "archimedean", "tiling": "4.8.8", "edge": "14",
-                           "method": "hankin", "contact_angle": "67.5", "contact_gap": "0.5", "motif_8": "table3-3",
-                           "width": "80"})
+    d = design_from_query(
+        {
+            "preset": "table3-3",
+            "packing": "archimedean",
+            "tiling": "4.8.8",
+            "edge": "14",
+            "method": "hankin",
+            "contact_angle": "67.5",
+            "contact_gap": "0.5",
+            "motif_8": "table3-3",
+            "width": "80",
+        }
+    )
     assert d["packing"]["method"] == "hankin" and d["packing"]["contact_angle"] == 67.5
     pack = design_from_dict(d, source="query").build_tile().pattern
     assert pack.method == "hankin" and pack.contact_gap == 0.5 and dict(pack.motifs).keys() == {8}
-    r = client.get("/api/preview.svg", params={"preset": "table3-3", "packing": "archimedean", "tiling": "3.12.12",
-                                                "edge": "15", "method": "hankin", "contact_angle": "70", "width": "80"})
+    r = client.get(
+        "/api/preview.svg",
+        params={
+            "preset": "table3-3",
+            "packing": "archimedean",
+            "tiling": "3.12.12",
+            "edge": "15",
+            "method": "hankin",
+            "contact_angle": "70",
+            "width": "80",
+        },
+    )
     assert r.status_code == 200 and r.text.startswith("<?xml")
 
 
-@pytest.mark.parametrize("params, field, match", [
-    ({"method": "kaplan"}, "method", "method = 'kaplan' is not valid, must be one of: motifs, hankin"),
-    ({"method": "hankin", "contact_angle": "95"}, "contact_angle", "contact_angle must be a finite number > 0 and < 90"),
-    ({"method": "hankin", "contact_gap": "-1"}, "contact_gap", "contact_gap must be a finite number >= 0"),
-    ({"method": "hankin", "contact_gap": "15"}, "contact_gap", "contact_gap must be >= 0 and < the edge (15 mm)"),
-    ({"method": "hankin", "contact_angle": "85", "contact_gap": "6"}, "contact_angle",
-     "contact_angle 85 has no pattern on the tiling 4.8.8"),
-    ({"contact_angle": "50"}, "contact_angle", "contact_angle is a key of method = \"hankin\""),
-    ({"packing": "hex", "radius": "10", "tiling": None, "edge": None, "method": "hankin"}, "method",
-     "is a key of kind = \"archimedean\""),
-])
+@pytest.mark.parametrize(
+    "params, field, match",
+    [
+        ({"method": "kaplan"}, "method", "method = 'kaplan' is not valid, must be one of: motifs, hankin"),
+        (
+            {"method": "hankin", "contact_angle": "95"},
+            "contact_angle",
+            "contact_angle must be a finite number > 0 and < 90",
+        ),
+        ({"method": "hankin", "contact_gap": "-1"}, "contact_gap", "contact_gap must be a finite number >= 0"),
+        ({"method": "hankin", "contact_gap": "15"}, "contact_gap", "contact_gap must be >= 0 and < the edge (15 mm)"),
+        (
+            {"method": "hankin", "contact_angle": "85", "contact_gap": "6"},
+            "contact_angle",
+            "contact_angle 85 has no pattern on the tiling 4.8.8",
+        ),
+        ({"contact_angle": "50"}, "contact_angle", 'contact_angle is a key of method = "hankin"'),
+        (
+            {"packing": "hex", "radius": "10", "tiling": None, "edge": None, "method": "hankin"},
+            "method",
+            'is a key of kind = "archimedean"',
+        ),
+    ],
+)
 def test_api_hankin_errors_name_the_field(client, params, field, match):
     base = {"preset": "table3-3", "packing": "archimedean", "tiling": "4.8.8", "edge": "15", "width": "80"}
     query = {k: v for k, v in {**base, **params}.items() if v is not None}

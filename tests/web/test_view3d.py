@@ -5,7 +5,6 @@ import json
 
 import numpy as np
 import pytest
-
 import trimesh
 from asgi_client import TestClient
 
@@ -31,8 +30,9 @@ def _stl_volume(client, query) -> float:
     return trimesh.load(io.BytesIO(r.content), file_type="stl").volume
 
 
-@pytest.mark.parametrize("style, names", [("relief", ["base", "pattern"]), ("pierced", ["pattern"]),
-                                          ("deboss", ["plate"])])
+@pytest.mark.parametrize(
+    "style, names", [("relief", ["base", "pattern"]), ("pierced", ["pattern"]), ("deboss", ["plate"])]
+)
 def test_parts_watertight_and_as_the_stl(client, style, names):
     q = f"{SMALL}&print_style={style}"
     r = client.get(f"/api/view.glb?{q}")
@@ -92,13 +92,19 @@ def test_a_big_tile_shows_its_centre(client):
 
 
 def test_print_view_window_figures():
+    from fabtiles.designs.design_file import design_from_dict
     from fabtiles.machines.limits import WEB_LIMITS
     from fabtiles.making import VIEW_SEGMENTS, print_view
-    from fabtiles.designs.design_file import design_from_dict
 
     def design(size):
-        return design_from_dict({"motif": {"preset": "table3-3"}, "packing": {"radius": 15},
-                                 "tile": {"outline": "square", "size": size, "frame": 5}}, name="t")
+        return design_from_dict(
+            {
+                "motif": {"preset": "table3-3"},
+                "packing": {"radius": 15},
+                "tile": {"outline": "square", "size": size, "frame": 5},
+            },
+            name="t",
+        )
 
     _, whole = print_view(design(150), limits=WEB_LIMITS)  # 4,032 segments
     assert "window_mm" not in whole.stats and whole.stats["view"] == "the whole 150 x 150 mm tile"

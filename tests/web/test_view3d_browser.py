@@ -27,7 +27,9 @@ def _version(page):
 def _wait_model(page, old=None):
     page.wait_for_function(
         "old => { const v = document.querySelector('#view3d-canvas').dataset.version; return v && v !== old; }",
-        arg=old, timeout=60_000)
+        arg=old,
+        timeout=60_000,
+    )
 
 
 def _pixels(page) -> np.ndarray:
@@ -40,7 +42,7 @@ def _pixels(page) -> np.ndarray:
 def _colour_counts(rgb: np.ndarray) -> dict:
     """Pixels of the background, the light base (warm: red over blue) and the dark blue pattern."""
     r, _g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
-    background = (np.abs(rgb - [0xEE, 0xF1, 0xF5]).sum(axis=-1) < 12)
+    background = np.abs(rgb - [0xEE, 0xF1, 0xF5]).sum(axis=-1) < 12
     base = ~background & (r > 150) & (r > b + 12)
     pattern = ~background & (b > r + 40) & (r < 120)
     return {"background": int(background.sum()), "base": int(base.sum()), "pattern": int(pattern.sum())}
@@ -142,7 +144,7 @@ def test_a_deboss_inlay_shows_both_parts(page, server):
 
 
 def _close(a: str, b: str, tol: int = 2) -> bool:
-    return all(abs(int(a[i:i + 2], 16) - int(b[i:i + 2], 16)) <= tol for i in (1, 3, 5))
+    return all(abs(int(a[i : i + 2], 16) - int(b[i : i + 2], 16)) <= tol for i in (1, 3, 5))
 
 
 def test_a_mosaic_shows_its_parts_in_their_colours(page, server):
@@ -164,7 +166,10 @@ def test_a_mosaic_shows_its_parts_in_their_colours(page, server):
     _wait_model(page)
     assert page.get_attribute("#view3d", "data-parts") == ",".join(parts)
     shown = page.get_attribute("#view3d", "data-colours").split(",")
-    assert len(shown) == len(parts) and all(_close(a, b) for a, b in zip(shown, expected, strict=True)), (shown, expected)
+    assert len(shown) == len(parts) and all(_close(a, b) for a, b in zip(shown, expected, strict=True)), (
+        shown,
+        expected,
+    )
     caption = page.text_content("#view3d-caption")
     assert all(p in caption for p in parts)
 
@@ -180,8 +185,10 @@ def test_one_colour_mode_shows_the_pictures_colours_in_the_colours_box(page, ser
     base = page.get_attribute("#view3d", "data-colours").split(",")[0]  # the relief's base, its first part
     assert page.get_attribute("#view3d", "data-parts").split(",")[0] == "base"
     assert _close(page.input_value("#base_colour"), base), (page.input_value("#base_colour"), base)
-    assert page.locator("#face-classes .swatch").first.evaluate("e => getComputedStyle(e).backgroundColor") == \
-        "rgb(255, 255, 255)"  # the faces are open: the picture's white
+    assert (
+        page.locator("#face-classes .swatch").first.evaluate("e => getComputedStyle(e).backgroundColor")
+        == "rgb(255, 255, 255)"
+    )  # the faces are open: the picture's white
     # colours asked for: the pickers show the palette's, as the pictures then do
     old = page.get_attribute("#preview", "data-version")
     page.select_option("#colour_by", "shape")
@@ -200,8 +207,11 @@ def test_the_gallery_opens_a_tiling_in_the_editor(page, server):
     # the header counts what the page shows
     counts = [int(n) for n in __import__("re").findall(r"\d+", page.text_content("#gallery-intro"))]
     assert counts == [7, 11, 4] and sum(counts) == page.locator("#gallery a").count()
-    page.wait_for_function("() => { const i = document.querySelector('#gallery a[data-key=\"4.8.8\"] img');"
-                           " return i.complete && i.naturalWidth > 0; }", timeout=60_000)
+    page.wait_for_function(
+        "() => { const i = document.querySelector('#gallery a[data-key=\"4.8.8\"] img');"
+        " return i.complete && i.naturalWidth > 0; }",
+        timeout=60_000,
+    )
     page.click('#gallery a[data-key="4.8.8"]')
     page.wait_for_url("**/?*tiling=4.8.8*")
     page.wait_for_function("() => document.querySelector('#preview').dataset.version")
@@ -212,7 +222,9 @@ def test_the_gallery_opens_a_tiling_in_the_editor(page, server):
     assert float(page.input_value("#r1-range")) == 0.55 and float(page.input_value("#r2-range")) == 1
     assert float(page.get_attribute("#r1-range", "min")) < 0.55
     # the design is named after the entry: the Preset menu, the downloads, the shared link
-    label = page.evaluate("() => { const s = document.querySelector('#preset'); return s.options[s.selectedIndex].text; }")
+    label = page.evaluate(
+        "() => { const s = document.querySelector('#preset'); return s.options[s.selectedIndex].text; }"
+    )
     assert label == "4.8.8 (gallery)"
     assert page.get_attribute("#downloads a[data-format=dxf]", "download") == "4.8.8.dxf"
     assert "gallery=4.8.8" in page.url

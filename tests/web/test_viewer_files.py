@@ -32,7 +32,8 @@ def test_install_extracts_only_the_modules(tmp_path, monkeypatch):
     monkeypatch.setattr(viewer_files, "INTEGRITY", _integrity(data))
     written = viewer_files.install(data, tmp_path / "three")
     assert sorted(p.relative_to(tmp_path / "three").as_posix() for p in written) == sorted(
-        [*viewer_files.MODULES, "VERSION"])
+        [*viewer_files.MODULES, "VERSION"]
+    )
     assert (tmp_path / "three" / "build" / "three.module.js").read_bytes() == b"// build/three.module.js\n"
     assert not (tmp_path / "evil.js").exists() and not (tmp_path / "three" / "src").exists()
     assert viewer_files.installed(tmp_path / "three")
@@ -42,7 +43,7 @@ def test_install_extracts_only_the_modules(tmp_path, monkeypatch):
 
 
 def test_changed_tarball_is_refused(tmp_path):
-    data = _tarball({m: b"" for m in viewer_files.MODULES})
+    data = _tarball(dict.fromkeys(viewer_files.MODULES, b""))
     with pytest.raises(viewer_files.ViewerFilesError, match=r"sha512 is not npm's integrity for three 0\.187\.0"):
         viewer_files.install(data, tmp_path / "three")
     assert not (tmp_path / "three").exists()
@@ -60,7 +61,9 @@ def test_no_internet_says_what_to_do(monkeypatch):
         raise OSError("network is unreachable")
 
     monkeypatch.setattr(viewer_files.urllib.request, "urlopen", offline)
-    with pytest.raises(viewer_files.ViewerFilesError, match=r"could not download .*npm pack three@0\.187\.0.*--tarball"):
+    with pytest.raises(
+        viewer_files.ViewerFilesError, match=r"could not download .*npm pack three@0\.187\.0.*--tarball"
+    ):
         viewer_files.download()
 
 
@@ -73,11 +76,12 @@ def test_cli_bad_tarball_is_one_line_exit_2(tmp_path):
         "fabtiles: error: the three.js tarball's sha512 is not npm's integrity for three 0.187.0 "
         "(a changed or truncated "
         "download); nothing was installed: fetch it again, or give the tarball of `npm pack three@0.187.0` "
-        "with --tarball"]
+        "with --tarball"
+    ]
 
 
 def test_cli_installs_from_a_tarball(tmp_path, monkeypatch):
-    data = _tarball({m: b"//" for m in viewer_files.MODULES})
+    data = _tarball(dict.fromkeys(viewer_files.MODULES, b"//"))
     (tmp_path / "three.tgz").write_bytes(data)
     monkeypatch.setattr(viewer_files, "INTEGRITY", _integrity(data))
     monkeypatch.setattr(viewer_files, "VENDOR", tmp_path / "vendor")

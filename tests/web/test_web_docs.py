@@ -3,16 +3,16 @@
 from __future__ import annotations
 
 import re
-import tomllib
 from pathlib import Path
 
 import pytest
+import tomllib
 
 pytest.importorskip("fastapi")
 
-from fabtiles.export.formats import FILE_FORMATS  # noqa: E402
-from fabtiles.web.app import create_app  # noqa: E402
-from fabtiles.web.params import DEFAULTS  # noqa: E402
+from fabtiles.export.formats import FILE_FORMATS
+from fabtiles.web.app import create_app
+from fabtiles.web.params import DEFAULTS
 
 ROOT = Path(__file__).resolve().parents[2]
 PAGE = (ROOT / "docs" / "web-app.md").read_text(encoding="utf-8")
@@ -76,7 +76,10 @@ def test_the_3d_views_size_and_figures_stated_are_the_apps():
     assert view.status_code == 200
     triangles = sum(p["triangles"] for p in json.loads(view.headers["X-Fabtiles-Parts"]).values())
     kb = f"{len(view.content) / 1000:.0f} kB"
-    assert re.search(rf"^\| default 150 mm square, relief \| [\d,]+ \| {kb} \| {triangles:,} \|$", PAGE, re.M), (kb, triangles)
+    assert re.search(rf"^\| default 150 mm square, relief \| [\d,]+ \| {kb} \| {triangles:,} \|$", PAGE, re.M), (
+        kb,
+        triangles,
+    )
     readme = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
     assert f"{triangles:,} triangles, {kb} for the 150 mm default tile" in readme
     material = client.get("/api/checks").json()["material"]["line"]

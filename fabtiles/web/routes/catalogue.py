@@ -24,8 +24,7 @@ def router(*, limits: _limits.Limits) -> APIRouter:
 
     @api.get("/api/presets")
     def presets():
-        return {name: {**dict(p), "radii": list(p["radii"]), "note": PRESET_NOTES[name]}
-                for name, p in PRESETS.items()}
+        return {name: {**dict(p), "radii": list(p["radii"]), "note": PRESET_NOTES[name]} for name, p in PRESETS.items()}
 
     @api.get("/api/tilings")
     def tilings():
@@ -48,15 +47,15 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         """The gallery: the paper's presets and the tilings' samples, each with its editor query."""
         from ..gallery import entries
 
-        return [{"key": e.key, "title": e.title, "note": e.note, "query": e.query, "group": e.group}
-                for e in entries()]
+        return [{"key": e.key, "title": e.title, "note": e.note, "query": e.query, "group": e.group} for e in entries()]
 
     @api.get("/api/gallery/{key}.svg")
     def gallery_thumbnail(key: str):
         """One gallery entry drawn by the preview code (cached: drawn once per process)."""
         from ..gallery import thumbnail
 
-        return Response(thumbnail(key, limits=limits), media_type="image/svg+xml",
-                        headers={"Cache-Control": "public, max-age=3600"})
+        return Response(
+            thumbnail(key, limits=limits), media_type="image/svg+xml", headers={"Cache-Control": "public, max-age=3600"}
+        )
 
     return api

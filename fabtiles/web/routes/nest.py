@@ -23,9 +23,9 @@ from fastapi import APIRouter, Request
 from fastapi.responses import JSONResponse, Response
 from starlette.concurrency import run_in_threadpool
 
-from ...machines import limits as _limits
 from ...core.errors import FabtilesError
 from ...geometry.nest import ROTATIONS
+from ...machines import limits as _limits
 from ..building import design_of_query, field_of_param, user_message
 
 NEST_FORMATS = ("dxf", "svg", "lbrn2")
@@ -37,8 +37,14 @@ DEFAULT_TIME_S = 3.0
 KEPT = 8
 """How many nests' zips the process keeps for ``GET /api/nest/{key}.zip`` (the oldest go first)."""
 
-_FIELDS = {"sheet_mm": "sheet", "gap_mm": "gap_mm", "rotations": "rotate", "time_s": "time_s", "count": "designs",
-           "formats": "format"}
+_FIELDS = {
+    "sheet_mm": "sheet",
+    "gap_mm": "gap_mm",
+    "rotations": "rotate",
+    "time_s": "time_s",
+    "count": "designs",
+    "formats": "format",
+}
 """An error's ``param`` in :func:`~fabtiles.making.nesting.plan_nest` -> the body's field it is about."""
 
 
@@ -73,12 +79,17 @@ def read_body(body, *, limits: _limits.Limits) -> dict:
     fabtiles.web.routes.nest.NestError: designs[0].count must be a whole number >= 1, got 0
     """
     if not isinstance(body, dict):
-        raise NestError(f"the body must be a JSON object with designs, sheet, gap_mm, rotate, time_s and format, "
-                        f"got {type(body).__name__}", "designs")
+        raise NestError(
+            f"the body must be a JSON object with designs, sheet, gap_mm, rotate, time_s and format, "
+            f"got {type(body).__name__}",
+            "designs",
+        )
     unknown = sorted(set(body) - {"designs", "sheet", "gap_mm", "rotate", "time_s", "format"})
     if unknown:
-        raise NestError(f"{unknown[0]!r} is not a nest field, must be one of: designs, sheet, gap_mm, rotate, "
-                        f"time_s, format", unknown[0])
+        raise NestError(
+            f"{unknown[0]!r} is not a nest field, must be one of: designs, sheet, gap_mm, rotate, time_s, format",
+            unknown[0],
+        )
     entries = body.get("designs")
     if not isinstance(entries, list) or not entries:
         raise NestError("designs must be a non-empty list of {query, count}: give at least one design", "designs")
@@ -87,19 +98,20 @@ def read_body(body, *, limits: _limits.Limits) -> dict:
     for k, entry in enumerate(entries):
         where = f"designs[{k}]"
         if not isinstance(entry, dict) or not isinstance(entry.get("query", ""), str):
-            raise NestError(f"{where} must be {{\"query\": \"<the editor's query>\", \"count\": N}}, got {entry!r:.80}",
-                            where)
+            raise NestError(
+                f'{where} must be {{"query": "<the editor\'s query>", "count": N}}, got {entry!r:.80}', where
+            )
         count = entry.get("count", 1)
-        if isinstance(count, bool) or not isinstance(count, (int, float)) or not float(count).is_integer() \
-                or count < 1:
+        if isinstance(count, bool) or not isinstance(count, (int, float)) or not float(count).is_integer() or count < 1:
             raise NestError(f"{where}.count must be a whole number >= 1, got {count!r}", f"{where}.count")
         query = dict(parse_qsl(entry.get("query", "").lstrip("?"), keep_blank_values=True))
         try:
             _, spec, _ = design_of_query(query, limits=limits)
         except FabtilesError as exc:
             field = getattr(exc, "field", None) or field_of_param(getattr(exc, "key", None))
-            raise NestError(f"design {k + 1}: {user_message(exc, field)}",
-                            f"{where}.{field}" if field else f"{where}.query") from exc
+            raise NestError(
+                f"design {k + 1}: {user_message(exc, field)}", f"{where}.{field}" if field else f"{where}.query"
+            ) from exc
         # two designs of one name (two edited ones, "custom") stay apart in the sheets' counts
         names[spec.name] = names.get(spec.name, 0) + 1
         if names[spec.name] > 1:
@@ -107,11 +119,17 @@ def read_body(body, *, limits: _limits.Limits) -> dict:
         designs.append((spec, int(count)))
     sheet = body.get("sheet")
     if sheet is not None:
-        if not isinstance(sheet, list) or len(sheet) != 2 or any(
-                isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0
-                for v in sheet):
-            raise NestError(f"sheet must be [width, height] in mm, each > 0 (or null: the cutter profile's bed), "
-                            f"got {sheet!r}", "sheet")
+        if (
+            not isinstance(sheet, list)
+            or len(sheet) != 2
+            or any(
+                isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0 for v in sheet
+            )
+        ):
+            raise NestError(
+                f"sheet must be [width, height] in mm, each > 0 (or null: the cutter profile's bed), got {sheet!r}",
+                "sheet",
+            )
         sheet = (float(sheet[0]), float(sheet[1]))
     rotate = body.get("rotate", "90")
     if rotate not in ROTATIONS:
@@ -121,14 +139,20 @@ def read_body(body, *, limits: _limits.Limits) -> dict:
         raise NestError(f"format must be one of: {', '.join(NEST_FORMATS)}, got {fmt!r}", "format")
     time_s = _number(body, "time_s", default=DEFAULT_TIME_S)
     if time_s <= 0 or time_s > limits.max_nest_time_s:
-        raise NestError(f"time_s must be > 0 and at most {limits.max_nest_time_s:g} s here, got {time_s:g}; "
-                        f"give a time within that", "time_s")
+        raise NestError(
+            f"time_s must be > 0 and at most {limits.max_nest_time_s:g} s here, got {time_s:g}; "
+            f"give a time within that",
+            "time_s",
+        )
     parts = sum(n for _, n in designs)
     if parts > limits.max_nest_parts:
-        raise NestError(f"the nest has {parts} parts, more than the limit of {limits.max_nest_parts} here; "
-                        f"lower the counts", "designs")
-    return dict(designs=designs, sheet_mm=sheet, gap_mm=_number(body, "gap_mm"), rotations=rotate, time_s=time_s,
-                format=fmt)
+        raise NestError(
+            f"the nest has {parts} parts, more than the limit of {limits.max_nest_parts} here; lower the counts",
+            "designs",
+        )
+    return dict(
+        designs=designs, sheet_mm=sheet, gap_mm=_number(body, "gap_mm"), rotations=rotate, time_s=time_s, format=fmt
+    )
 
 
 def nest_files(body, *, limits: _limits.Limits):
@@ -142,8 +166,16 @@ def nest_files(body, *, limits: _limits.Limits):
     asked = read_body(body, limits=limits)
     stem = "nest"  # the zip's files: nest-sheet-1.dxf, ... (the designs are several)
     try:
-        return nest_bytes(asked["designs"], (asked["format"],), sheet_mm=asked["sheet_mm"], gap_mm=asked["gap_mm"],
-                          rotations=asked["rotations"], time_s=asked["time_s"], name=stem, limits=limits)
+        return nest_bytes(
+            asked["designs"],
+            (asked["format"],),
+            sheet_mm=asked["sheet_mm"],
+            gap_mm=asked["gap_mm"],
+            rotations=asked["rotations"],
+            time_s=asked["time_s"],
+            name=stem,
+            limits=limits,
+        )
     except FabtilesError as exc:
         field = getattr(exc, "field", None)
         if field is None:
@@ -156,13 +188,28 @@ def _answer(files, key: str) -> dict:
     job = files.job
     sheets = []
     for k, s in enumerate(job.sheets()):
-        sheets.append({"sheet": s["sheet"], "svg": job.picture(k), "material_use": s["material_use"],
-                       "parts": s["designs"], "count": s["parts"], "job": s["job"].get("line"),
-                       "files": s["files"]})
+        sheets.append(
+            {
+                "sheet": s["sheet"],
+                "svg": job.picture(k),
+                "material_use": s["material_use"],
+                "parts": s["designs"],
+                "count": s["parts"],
+                "job": s["job"].get("line"),
+                "files": s["files"],
+            }
+        )
     n = job.nesting
-    return {"sheets": sheets, "files": [name for name, _ in files.files], "download": f"/api/nest/{key}.zip",
-            "sheet_mm": list(n.sheet_mm), "gap_mm": n.gap_mm, "rotate": n.rotations,
-            "parts": len(n.placements), "profile": job.options.cutter.name}
+    return {
+        "sheets": sheets,
+        "files": [name for name, _ in files.files],
+        "download": f"/api/nest/{key}.zip",
+        "sheet_mm": list(n.sheet_mm),
+        "gap_mm": n.gap_mm,
+        "rotate": n.rotations,
+        "parts": len(n.placements),
+        "profile": job.options.cutter.name,
+    }
 
 
 def router(*, limits: _limits.Limits) -> APIRouter:
@@ -175,8 +222,9 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         try:
             return await request.json()
         except ValueError:
-            raise NestError("the body must be JSON: {\"designs\": [{\"query\": ..., \"count\": N}], ...}",
-                            "designs") from None
+            raise NestError(
+                'the body must be JSON: {"designs": [{"query": ..., "count": N}], ...}', "designs"
+            ) from None
 
     @api.post("/api/nest")
     async def nest(request: Request):
@@ -195,8 +243,11 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         """Nest the designs (the body of ``POST /api/nest``) and answer the sheets' files as one zip."""
         body = await body_of(request)
         files = await run_in_threadpool(nest_files, body, limits=limits)
-        return Response(files.zip_bytes(), media_type="application/zip",
-                        headers={"Content-Disposition": 'attachment; filename="nest.zip"'})
+        return Response(
+            files.zip_bytes(),
+            media_type="application/zip",
+            headers={"Content-Disposition": 'attachment; filename="nest.zip"'},
+        )
 
     @api.get("/api/nest/{key}.zip")
     def nest_download(key: str):
@@ -204,9 +255,12 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         with lock:
             data = kept.get(key)
         if data is None:
-            return JSONResponse({"error": f"no nest {key!r} here (the app keeps the last {KEPT}); press Nest again",
-                                 "field": None}, status_code=404)
-        return Response(data, media_type="application/zip",
-                        headers={"Content-Disposition": 'attachment; filename="nest.zip"'})
+            return JSONResponse(
+                {"error": f"no nest {key!r} here (the app keeps the last {KEPT}); press Nest again", "field": None},
+                status_code=404,
+            )
+        return Response(
+            data, media_type="application/zip", headers={"Content-Disposition": 'attachment; filename="nest.zip"'}
+        )
 
     return api

@@ -12,8 +12,17 @@ STATIC = Path(__file__).resolve().parents[1] / "static"
 
 def media_type(name: str) -> str | None:
     """The media type of a static file, by its name."""
-    return ("text/javascript" if name.endswith(".js") else "text/css" if name.endswith(".css")
-            else "text/html" if name.endswith(".html") else "text/plain" if name.isupper() else None)
+    return (
+        "text/javascript"
+        if name.endswith(".js")
+        else "text/css"
+        if name.endswith(".css")
+        else "text/html"
+        if name.endswith(".html")
+        else "text/plain"
+        if name.isupper()
+        else None
+    )
 
 
 def router() -> APIRouter:
@@ -49,10 +58,12 @@ def router() -> APIRouter:
         from ..viewer_files import MODULES, VENDOR
 
         if name not in MODULES or not (VENDOR / name).is_file():
-            return JSONResponse({"error": f"no viewer file {name!r}: run `fabtiles install-viewer`",
-                                 "field": None}, status_code=404)
-        return FileResponse(VENDOR / name, media_type=media_type(name),
-                            headers={"Cache-Control": "public, max-age=86400"})
+            return JSONResponse(
+                {"error": f"no viewer file {name!r}: run `fabtiles install-viewer`", "field": None}, status_code=404
+            )
+        return FileResponse(
+            VENDOR / name, media_type=media_type(name), headers={"Cache-Control": "public, max-age=86400"}
+        )
 
     @api.get("/api/viewer")
     def viewer():

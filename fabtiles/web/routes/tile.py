@@ -5,8 +5,8 @@ from __future__ import annotations
 from fastapi import APIRouter, Request
 from fastapi.responses import Response
 
-from ...machines import limits as _limits
 from ...export.formats import FILE_FORMATS as FORMATS
+from ...machines import limits as _limits
 from ..building import build, fabrication_checks
 from ..params import QueryError, parse_flag
 
@@ -21,9 +21,11 @@ def _plain() -> dict:
 
     linear = PART_MATERIALS["base"].colour
     srgb = [12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055 for c in linear]
-    return {"band": {"colour": INK, "name": "ink"},
-            "base": {"colour": "#" + "".join(f"{round(255 * c):02x}" for c in srgb), "name": "plate"},
-            "face": {"colour": "#ffffff", "name": "open"}}
+    return {
+        "band": {"colour": INK, "name": "ink"},
+        "base": {"colour": "#" + "".join(f"{round(255 * c):02x}" for c in srgb), "name": "plate"},
+        "face": {"colour": "#ffffff", "name": "open"},
+    }
 
 
 PLAIN = _plain()
@@ -51,9 +53,11 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         # a router's or waterjet's part is drawn as its tool makes it (None: a laser's, the tile's own);
         # a coloured design's faces in their colours
         # whether the pictures are in the design's colours (else the plain ink and plate: /api/faces "plain")
-        return Response(tile_picture(tile, spec, title=repr(tile), findings=findings, made=made),
-                        media_type="image/svg+xml",
-                        headers={"X-Fabtiles-Coloured": "true" if spec.colour.given else "false"})
+        return Response(
+            tile_picture(tile, spec, title=repr(tile), findings=findings, made=made),
+            media_type="image/svg+xml",
+            headers={"X-Fabtiles-Coloured": "true" if spec.colour.given else "false"},
+        )
 
     @api.get("/api/faces")
     def faces(request: Request):
@@ -77,18 +81,24 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         classes = [{**c, **named(colours.face(c["letter"]))} for c in models.face_classes.stats()]
         from ...designs.colour import palette_names
 
-        return {"band": named(colours.band), "base": named(colours.base), "classes": classes, "plain": PLAIN,
-                "names": palette_names(spec.colour.palette)}
+        return {
+            "band": named(colours.band),
+            "base": named(colours.base),
+            "classes": classes,
+            "plain": PLAIN,
+            "names": palette_names(spec.colour.palette),
+        }
 
     @api.get("/api/kit.svg")
     def kit_picture(request: Request):
         """The design's inlay kit: the lattice, the pieces and the tile assembled, in two materials."""
-        from ...making import inlay_kit_of
         from ...export.preview_svg import kit_svg
+        from ...making import inlay_kit_of
 
         _, spec, tile = build(request, limits=limits)
-        return Response(kit_svg(inlay_kit_of(tile, spec), tile.outline_shape(), title=spec.name),
-                        media_type="image/svg+xml")
+        return Response(
+            kit_svg(inlay_kit_of(tile, spec), tile.outline_shape(), title=spec.name), media_type="image/svg+xml"
+        )
 
     @api.get("/api/view.glb")
     def view_glb(request: Request):
@@ -103,11 +113,19 @@ def router(*, limits: _limits.Limits) -> APIRouter:
 
         _, spec, _ = build(request, limits=limits)
         data, report = print_view(spec, limits=limits)
-        parts = {n: {"triangles": p["triangles"], "volume_mm3": round(p["volume_mm3"], 3)}
-                 for n, p in report.stats["parts"].items()}
-        return Response(data, media_type="model/gltf-binary",
-                        headers={"X-Fabtiles-View": report.stats["view"], "X-Fabtiles-Parts": json.dumps(parts),
-                                 "Cache-Control": "no-store"})
+        parts = {
+            n: {"triangles": p["triangles"], "volume_mm3": round(p["volume_mm3"], 3)}
+            for n, p in report.stats["parts"].items()
+        }
+        return Response(
+            data,
+            media_type="model/gltf-binary",
+            headers={
+                "X-Fabtiles-View": report.stats["view"],
+                "X-Fabtiles-Parts": json.dumps(parts),
+                "Cache-Control": "no-store",
+            },
+        )
 
     @api.get("/api/checks")
     def checks(request: Request):
@@ -123,8 +141,11 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         # named after the design, as its files are: the file's stem is their name when [output] name is unset
         text = f"# fabtiles design: build it with  fabtiles build {spec.name}.toml -o out\n"
         text += tomli_w.dumps(design)
-        return Response(text, media_type=MEDIA_TYPES["toml"],
-                        headers={"Content-Disposition": f'attachment; filename="{spec.name}.toml"'})
+        return Response(
+            text,
+            media_type=MEDIA_TYPES["toml"],
+            headers={"Content-Disposition": f'attachment; filename="{spec.name}.toml"'},
+        )
 
     @api.get("/api/export/{fmt}")
     def export(fmt: str, request: Request):
@@ -135,7 +156,10 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         _, spec, _ = build(request, limits=limits)
         # The build pipeline, as `fabtiles build`: the design's profiles and options, the limits.
         download = build_bytes(spec, fmt, limits=limits)  # an inlay kit's two files come as one zip
-        return Response(download.data, media_type=download.media_type,
-                        headers={"Content-Disposition": f'attachment; filename="{download.file_name}"'})
+        return Response(
+            download.data,
+            media_type=download.media_type,
+            headers={"Content-Disposition": f'attachment; filename="{download.file_name}"'},
+        )
 
     return api
