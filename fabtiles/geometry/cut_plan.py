@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from ..core.errors import ParameterError
+from ..core.errors import FabricationError, ParameterError
 from ..core.report import Report, distinct
 from ..core.validate import check_choice, check_float
 from ..machines.cutters import cutter_kind
@@ -464,9 +464,15 @@ def plan_cut(
         paths["outer"] = outline_contours(outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
         paths["engrave"], groups, engrave_area = _engrave_paths(region, profile, report)
     else:
-        if centrelines is None or len(np.asarray(centrelines)) == 0:
+        if centrelines is None:
             raise ParameterError(
                 "the score mode needs centrelines (an array of shape (k, 2, 2)), got none", param="centrelines"
+            )
+        if len(np.asarray(centrelines)) == 0:
+            # only the strokes' edges reach into the outline: there is no line to score
+            raise FabricationError(
+                "the score mode has no line to score: every centre-line of the pattern lies outside the outline "
+                "(only the edges of strokes reach in); make the tile larger or the packing smaller, or cut it pierced"
             )
         paths["outer"] = outline_contours(outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
         paths["score"] = score_paths(centrelines, outline, tolerance_mm=profile.tolerance_mm)

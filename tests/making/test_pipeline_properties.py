@@ -96,6 +96,11 @@ def test_any_valid_tile_writes_a_clean_dxf(tmp_path, tile, r12, score):
             tile.export(path, **options)
         assert not path.exists()
         return
+    if score and not len(tile.centrelines()):
+        with pytest.raises(ft.FabricationError, match="the score mode has no line to score"):
+            tile.export(path, **options)
+        assert not path.exists()
+        return
     tile.export(path, **options)
     doc = ezdxf.readfile(path)
     assert not doc.audit().has_errors
@@ -235,3 +240,12 @@ def test_a_deboss_of_only_unprintable_grooves_is_refused_with_no_file(tmp_path):
     with pytest.raises(ft.FabricationError, match=r"every groove of this deboss is narrower than min_hole_mm = 0.8 mm"):
         tile.export(tmp_path / "t.stl", style="deboss")
     assert not (tmp_path / "t.stl").exists()
+
+
+def test_a_score_tile_with_no_centre_line_inside_is_refused_saying_so(tmp_path):
+    """Only the edges of strokes reach into a tile smaller than its packing's motifs: nothing to score."""
+    tile = ft.Tile("square", 6, ft.HexPacking(radius=7, motif=ft.Star(n=3, radii=(2, 3))), frame=0, stroke=1)
+    assert not tile.region().is_empty and not len(tile.centrelines())
+    with pytest.raises(ft.FabricationError, match="every centre-line of the pattern lies outside the outline"):
+        tile.export(tmp_path / "t.dxf", profile=_profile(tmp_path, 1.0), mode="score")
+    assert not (tmp_path / "t.dxf").exists()
