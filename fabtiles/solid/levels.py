@@ -72,7 +72,10 @@ def dip_level(dips, region=None):
 
 
 APART_MM = 8 * 2.0**-10
-"""How far around the point where two dips touch :func:`_apart_dips` cuts them back."""
+"""How far around the point where two dips touch :func:`_apart_dips` first cuts them back."""
+
+APART_ROUNDS = 6
+"""Rounds of :func:`_apart_dips`, each cutting twice as far around the points still in contact."""
 
 
 def _apart_dips(parts):
@@ -80,7 +83,12 @@ def _apart_dips(parts):
 
     Two dips meeting at a point (the under strands' ends of two crossings) would share
     the vertical edge there with the full height's walls: four walls on one edge. Cut
-    back, the full height fills the speck between them.
+    back, the full height fills the speck between them. Two dips within a grid step
+    of each other count as touching: the STEP writer nodes the levels on the grid,
+    which joins them. Two dips leaving their point at a small angle are still within
+    a grid step of each other where the cut ends (snapped, they touch there again):
+    they are cut again around that point, twice as far, a few rounds
+    (:data:`APART_ROUNDS`).
 
     >>> from shapely.geometry import box
     >>> out = _apart_dips(np.array([box(0, 0, 1, 1), box(1, 1, 2, 2), box(3, 3, 4, 4)]))
@@ -93,17 +101,32 @@ def _apart_dips(parts):
 
     if len(parts) < 2:
         return parts
-    a, b = shapely.STRtree(parts).query(parts, predicate="touches")
-    a, b = a[a < b], b[a < b]
-    if not len(a):
-        return parts
-    points = shapely.get_coordinates(shapely.intersection(parts[a], parts[b]))
-    cut = shapely.union_all(shapely.buffer(shapely.points(points), APART_MM, quad_segs=1))
-    hit = np.unique(np.concatenate([a, b]))
-    cut_parts = [polygons_of(shapely.difference(p, cut, grid_size=QUANTUM)) for p in parts[hit]]
-    keep = np.ones(len(parts), bool)
-    keep[hit] = False
-    return np.concatenate([parts[keep], np.asarray([q for qs in cut_parts for q in qs], dtype=object)])
+    test, radius = np.arange(len(parts)), APART_MM
+    for _ in range(APART_ROUNDS):
+        # the parts cut last round (all of them at first) against all: pairs within a grid step
+        q, other = shapely.STRtree(parts).query(parts[test], predicate="dwithin", distance=QUANTUM)
+        pairs = np.unique(np.sort(np.stack([test[q], other], axis=1), axis=1), axis=0)
+        a, b = pairs[:, 0], pairs[:, 1]
+        # overlapping dips are no contact (dip_level makes none)
+        contact = (a != b) & (~shapely.intersects(parts[a], parts[b]) | shapely.touches(parts[a], parts[b]))
+        a, b = a[contact], b[contact]
+        if not len(a):
+            break
+        # every point where two touch, and the nearest points of two apart
+        points = np.concatenate(
+            [
+                shapely.get_coordinates(shapely.intersection(parts[a], parts[b])),
+                shapely.get_coordinates(shapely.shortest_line(parts[a], parts[b])),
+            ]
+        )
+        cut = shapely.union_all(shapely.buffer(shapely.points(points), radius, quad_segs=1))
+        hit = np.unique(np.concatenate([a, b]))
+        cut_parts = [q for p in parts[hit] for q in polygons_of(shapely.difference(p, cut, grid_size=QUANTUM))]
+        keep = np.ones(len(parts), bool)
+        keep[hit] = False
+        parts = np.concatenate([parts[keep], np.asarray(cut_parts, dtype=object)])
+        test, radius = np.arange(len(parts) - len(cut_parts), len(parts)), 2 * radius
+    return parts
 
 
 def split_region(r, dips, *, holes: bool = True, leveled: bool = False):

@@ -2,14 +2,23 @@
 
 import pytest
 import shapely
-from shapely.geometry import box
+from shapely.geometry import Polygon, box
 
 import fabtiles as ft
 from fabtiles.geometry.interlace import tile_dips
 from fabtiles.solid import mesh_check as sc
 from fabtiles.solid import parts
-from fabtiles.solid._mesh_build import Stack, coverage, mesh_coverage
-from fabtiles.solid.levels import APART_MM, body_coverage, body_layers, dip_z, split_region
+from fabtiles.solid._mesh_build import QUANTUM, Stack, coverage, mesh_coverage
+from fabtiles.solid.brep import build_brep
+from fabtiles.solid.levels import (
+    APART_MM,
+    body_coverage,
+    body_layers,
+    dip_level,
+    dip_z,
+    dips_volume,
+    split_region,
+)
 
 STACK = Stack("relief", base=2.0, relief=1.2, pierced=3.0, deboss=0.8)
 
@@ -192,3 +201,35 @@ def test_dips_touching_at_a_point_mesh_watertight(kind):
     cut = APART_MM**2  # a quarter of the diamond off each of the two dips
     full = {"relief": o.area * STACK.base + r.area * STACK.relief, "pattern": r.area * STACK.relief}[kind]
     sc.check_mesh(v, f, volume=full - (32 - cut) * depth, bodies=1)
+
+
+@pytest.mark.parametrize("kind", ["relief", "pattern"])
+def test_dips_leaving_a_point_at_a_small_angle_mesh_watertight(kind):
+    """Two dips leaving their point at 0.064 rad to each other: cut back once, they still touch
+    on the grid where the cut ends; they are cut again until apart."""
+    o = box(0, 0, 20, 20)
+    r = box(2, 2, 18, 18)
+    low = Polygon([(10, 10), (4, 10.5), (4, 7), (10, 7)])
+    high = Polygon([(10, 10), (10, 13), (4, 13), (4, 10.875)])
+    dips = shapely.MultiPolygon([low, high])
+    a, b = shapely.get_parts(dip_level(dips, r))
+    assert shapely.distance(a, b) > QUANTUM
+    v, f = mesh_coverage(body_coverage(kind, r, o, STACK, dips))
+    full = {"relief": o.area * STACK.base + r.area * STACK.relief, "pattern": r.area * STACK.relief}[kind]
+    sc.check_mesh(v, f, volume=full - dips_volume(r, dips, STACK), bodies=1)
+
+
+def test_dips_a_fraction_of_a_grid_step_apart_are_cut_back():
+    """A dip's corner a third of a grid step from another dip's side: the STEP writer's noding on
+    the grid joins them (four walls on one edge of the B-rep) unless they are cut back there."""
+    o = box(0, 0, 20, 20)
+    r = box(2, 2, 18, 18)
+    side = Polygon([(6, 6), (6 + 1000 * QUANTUM, 6 + 1001 * QUANTUM), (6, 8)])
+    corner = Polygon([(6 + 500 * QUANTUM, 6 + 500 * QUANTUM), (9, 6), (9, 6.3)])
+    assert 0 < shapely.distance(side, corner) < QUANTUM / 2
+    dips = shapely.MultiPolygon([side, corner])
+    a, b = shapely.get_parts(dip_level(dips, r))
+    assert shapely.distance(a, b) > QUANTUM
+    _, volume, solids = build_brep(region=r, outline=o, stack=STACK, dips=dips)
+    full = o.area * STACK.base + r.area * STACK.relief
+    assert solids == 1 and volume == pytest.approx(full - dips_volume(r, dips, STACK), rel=1e-6)
