@@ -229,6 +229,24 @@ class Key:
         """``"section.name"``, as ``--set`` and the errors' ``param`` name it."""
         return f"{self.section}.{self.name}"
 
+    @property
+    def bounds(self) -> Range:
+        """The key's :class:`Range`, for code that reads the range of a key declared with one.
+
+        >>> key("output.inlay_fit_mm").bounds.max
+        0.5
+        """
+        if self.range is None:
+            raise LookupError(f"the key {self.path} is declared without a range")
+        return self.range
+
+    @property
+    def build(self) -> BuildOption:
+        """The key's :class:`BuildOption`, for code that reads the build option of a key declared with one."""
+        if self.option is None:
+            raise LookupError(f"the key {self.path} is no build option")
+        return self.option
+
     def choice_values(self) -> tuple:
         """The valid values of a ``choice`` (or a ``formats`` list), looked up when named by ``"module:NAME"``."""
         if not isinstance(self.choices, str):

@@ -81,9 +81,7 @@ def inlay_fits(profile) -> tuple[float, ...]:
     """
     fits = (
         round(
-            FIT.range.clamp(  # type: ignore[union-attr]  # the schema gives the fit a range
-                profile.inlay_fit_mm + d
-            ),
+            FIT.bounds.clamp(profile.inlay_fit_mm + d),
             3,
         )
         for d in INLAY_STEPS_MM

@@ -49,7 +49,7 @@ if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
 
 _FIT = key("output.inlay_fit_mm")
-FIT_RANGE_MM = (_FIT.range.min, _FIT.range.max)  # type: ignore[union-attr]  # the schema gives the fit a range
+FIT_RANGE_MM = (_FIT.bounds.min, _FIT.bounds.max)
 """The fits accepted (the schema's range of ``inlay_fit_mm``): beyond half a millimetre a piece no longer fits."""
 
 

@@ -23,7 +23,7 @@ QUANTUM = 2.0**-10
 16 m, so a binary STL stores the very vertices the mesh was checked with (see
 :mod:`fabtiles.solid._mesh_build`); the STEP writer's vertices sit on the same grid."""
 
-MAX_HEIGHT_MM = key("output.base_mm").range.max  # type: ignore[union-attr]  # the schema's range of every print height
+MAX_HEIGHT_MM = key("output.base_mm").bounds.max  # the schema's range of every print height
 """Largest base, relief, pierced or deboss height accepted (mm)."""
 
 

@@ -67,9 +67,8 @@ def _mesh_read_back(path, fmt: str, report) -> ReadBack:
             trimesh.Trimesh(p.vertices.astype(np.float64), p.faces, process=False) for p in read_3mf(str(path)).values()
         ]
     else:
-        loaded = trimesh.load(str(path), file_type=fmt, force="scene", process=False)
-        # force="scene" gives a Scene, whose dump() is its meshes (the other branch is a fallback)
-        meshes = list(loaded.dump()) if hasattr(loaded, "dump") else [loaded]  # type: ignore[list-item]
+        scene = trimesh.load_scene(str(path), file_type=fmt, process=False)
+        meshes = [g for g in scene.dump() if isinstance(g, trimesh.Trimesh)]
     volume = 0.0
     for mesh in meshes:
         mesh.merge_vertices()

@@ -65,7 +65,7 @@ class BuildOptions:
         """The options a validated design's ``[output]`` gives."""
         out = design.output
         keys = {k.name: k for family in FAMILIES for k in option_keys(family)}  # the design keys that are options
-        values = {k.option.name: getattr(out, name) for name, k in keys.items()}  # type: ignore[union-attr]  # option keys have an option
+        values = {k.build.name: getattr(out, name) for name, k in keys.items()}
         from ..designs.design_file import profile_of
 
         return cls(
@@ -92,7 +92,7 @@ class BuildOptions:
             out["colours"] = _colours(out["colours"])
         for family in families:
             for k in option_keys(family):
-                value = options.get(k.option.name)  # type: ignore[union-attr]  # option keys have an option
+                value = options.get(k.build.name)
                 if value is None:
                     continue  # not given: the field's default (the profile's)
                 if k.name in HEIGHT_FIELDS:

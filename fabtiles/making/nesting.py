@@ -394,7 +394,7 @@ def nest_designs(
         limits=limits,
     )
     # a nest's models stand in for Models by the members the writers read
-    result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)  # type: ignore[arg-type]
+    result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)  # type: ignore[arg-type]  # a nest's models stand in for Models by shape
     return NestResult(result, job.nesting, job.sheets())
 
 

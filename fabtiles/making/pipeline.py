@@ -417,7 +417,7 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
 _CUT_OPTIONS = build_options("cut")
 _PRINT_OPTIONS = build_options("print")
 _3MF_OPTIONS = build_options("3mf")
-_INLAY_OPTIONS = tuple(k.option.name for k in option_keys("cut") if k.requires == 'laser_mode = "inlay"')  # type: ignore[union-attr]  # option keys have an option
+_INLAY_OPTIONS = tuple(k.build.name for k in option_keys("cut") if k.requires == 'laser_mode = "inlay"')
 
 
 def _options_for(fmt, profile, options: dict) -> BuildOptions:

@@ -335,3 +335,13 @@ def test_a_layers_values_not_registered_are_an_error(monkeypatch):
         r"registers the check, and none is imported",
     ):
         _schema.key("colour.band_colour").check("navy")
+
+
+def test_a_keys_bounds_and_build_option_are_its_declared_ones_and_never_none():
+    fit = _schema.key("output.inlay_fit_mm")
+    assert fit.bounds is fit.range and fit.build is fit.option
+    bare = Key(section="tile", name="x", type="number", help="")
+    with pytest.raises(LookupError, match=r"^the key tile\.x is declared without a range$"):
+        _ = bare.bounds
+    with pytest.raises(LookupError, match=r"^the key tile\.x is no build option$"):
+        _ = bare.build
