@@ -1,4 +1,4 @@
-"""The browser tests' helpers: the app on a loopback port (fixture ``server``), headless Chromium pages.
+"""The browser tests' helpers: headless Chromium pages (the fixtures are in ``conftest.py``).
 
 Chromium is Debian's package, driven by Playwright; `.ci/run` installs both and sets
 FABTILES_REQUIRE_BROWSER=1, so there a missing browser fails instead of skipping.
@@ -24,14 +24,6 @@ def need(ok, why):
         if REQUIRED:
             pytest.fail(f"browser test required but {why}")
         pytest.skip(why)
-
-
-@pytest.fixture(scope="module")
-def server():
-    from fabtiles.web.app import local_server
-
-    with local_server() as url:
-        yield url
 
 
 @contextlib.contextmanager
@@ -60,10 +52,3 @@ def chromium_page(extra_args):
         pg.set_default_timeout(30_000)
         yield pg
         browser.close()
-
-
-@pytest.fixture(scope="module")
-def page(server):
-    """A page in headless Chromium without a GPU, one per test module (import it with ``server``)."""
-    with chromium_page(NO_GPU_ARGS) as pg:
-        yield pg

@@ -4,7 +4,6 @@ Needs /usr/bin/chromium and the playwright package (see browser_helpers.py).
 """
 
 import pytest
-from browser_helpers import page, server  # noqa: F401 - page and server are fixtures
 
 pytestmark = pytest.mark.browser
 

@@ -5,7 +5,6 @@ import re
 from urllib.parse import unquote
 
 import pytest
-from browser_helpers import page, server  # noqa: F401 - page and server are fixtures
 
 from fabtiles.designs.colour import PALETTES
 

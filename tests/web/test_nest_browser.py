@@ -8,7 +8,6 @@ import re
 import zipfile
 
 import pytest
-from browser_helpers import page, server  # noqa: F401 - page and server are fixtures
 
 pytestmark = pytest.mark.browser
 

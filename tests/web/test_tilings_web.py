@@ -2,7 +2,7 @@
 
 import pytest
 from asgi_client import TestClient
-from test_browser import _preview_version, _wait_new_preview, page, server  # noqa: F401 - fixtures
+from test_browser import _preview_version, _wait_new_preview
 
 from fabtiles.designs.design_file import design_from_dict
 from fabtiles.pattern.tilings import TILINGS
@@ -86,7 +86,7 @@ def test_api_errors_name_the_field(client, params, field, match):
     assert body["field"] == field and match in body["error"]
 
 
-def test_page_tiling_menu_and_motif_per_kind(page, server):  # noqa: F811 - fixture
+def test_page_tiling_menu_and_motif_per_kind(page, server):
     page.goto(f"{server}/?preset=table3-3&width=60&frame=3")
     page.wait_for_function("() => document.querySelector('#preview').dataset.version")
     assert page.is_hidden("#tiling-controls") and page.is_hidden("#edge-row")
@@ -226,7 +226,7 @@ def test_api_hankin_errors_name_the_field(client, params, field, match):
     assert body["field"] == field and match in body["error"]
 
 
-def test_page_hankin_method_and_its_sliders(page, server):  # noqa: F811 - fixture
+def test_page_hankin_method_and_its_sliders(page, server):
     page.goto(f"{server}/?preset=table3-3&width=60&frame=3&packing=archimedean&tiling=4.8.8&edge=14")
     page.wait_for_function("() => document.querySelector('#preview').dataset.version")
     assert page.is_visible("#method") and page.input_value("#method") == "motifs"

@@ -4,7 +4,7 @@ import io
 
 import numpy as np
 import pytest
-from browser_helpers import WEBGL_ARGS, chromium_page, need, server  # noqa: F401 - server is a fixture
+from browser_helpers import WEBGL_ARGS, chromium_page, need
 
 pytestmark = pytest.mark.browser
 
@@ -12,7 +12,7 @@ SMALL = "preset=table3-3&width=60&radius=10&frame=3&stroke=1.5"
 
 
 @pytest.fixture(scope="module")
-def page(server):
+def page(_served):
     from fabtiles.web.viewer_files import installed
 
     need(installed(), "three.js is not installed in the package: run `fabtiles install-viewer`")

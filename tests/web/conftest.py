@@ -1,0 +1,81 @@
+"""The browser tests' fixtures: the web app served by ``fabtiles serve`` in a process of its own.
+
+The app runs apart from the test process, as a user runs it: a crash in the server (native code
+under its thread pool) fails the test that met it and shows the server's last output, instead of
+taking the test worker down with it; and Playwright's greenlets never share a process with the
+server's threads.
+"""
+
+import contextlib
+import os
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+
+import pytest
+from browser_helpers import NO_GPU_ARGS, chromium_page
+
+START_TIMEOUT_S = 60.0
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _tail(path, lines=30) -> str:
+    with contextlib.suppress(OSError):
+        return "\n".join(path.read_text(errors="replace").splitlines()[-lines:])
+    return ""
+
+
+@pytest.fixture(scope="session")
+def _served(tmp_path_factory):
+    """``fabtiles serve`` on a free loopback port: (process, URL, its log file)."""
+    log = tmp_path_factory.mktemp("server") / "serve.log"
+    env = {**os.environ, "PYTHONFAULTHANDLER": "1"}  # a native crash prints its Python stacks
+    with open(log, "w") as out:
+        port = _free_port()
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "fabtiles", "serve", "--port", str(port)], stdout=out, stderr=out, env=env
+        )
+    url = f"http://127.0.0.1:{port}"
+    deadline = time.monotonic() + START_TIMEOUT_S
+    while True:
+        if proc.poll() is not None:
+            pytest.fail(f"fabtiles serve exited ({proc.returncode}) before answering:\n{_tail(log)}")
+        with contextlib.suppress(OSError):
+            with urllib.request.urlopen(f"{url}/api/schema", timeout=5) as reply:
+                if reply.status == 200:
+                    break
+        if time.monotonic() > deadline:
+            proc.kill()
+            pytest.fail(f"fabtiles serve did not answer in {START_TIMEOUT_S:.0f} s:\n{_tail(log)}")
+        time.sleep(0.1)
+    yield proc, url, log
+    proc.terminate()
+    try:
+        proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+
+
+@pytest.fixture
+def server(_served):
+    """The app's URL; a test during which the server died fails, showing the server's output."""
+    proc, url, log = _served
+    if proc.poll() is not None:
+        pytest.fail(f"fabtiles serve died earlier ({proc.returncode}):\n{_tail(log)}")
+    yield url
+    if proc.poll() is not None:
+        pytest.fail(f"fabtiles serve died during this test ({proc.returncode}):\n{_tail(log)}")
+
+
+@pytest.fixture(scope="module")
+def page(_served):
+    """A page in headless Chromium without a GPU, one per test module."""
+    with chromium_page(NO_GPU_ARGS) as pg:
+        yield pg
