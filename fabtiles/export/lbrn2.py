@@ -36,6 +36,7 @@ from ..core.files import atomic_write
 from ..core.report import Report
 from ..geometry.arcs import Beziers, beziers_many
 from ..geometry.cut_plan import CutPlan, plan_cut
+from ._text import number as _num
 
 APP_VERSION = "1.7.03"
 """The LightBurn version the project says it is for (a recent one: older LightBurn opens newer files too)."""
@@ -100,11 +101,6 @@ def palette_index(color_rgb: str, taken) -> int:
     rgb = np.array([[int(c[i : i + 2], 16) for i in (0, 2, 4)] for c in PALETTE], float)
     order = np.argsort(np.linalg.norm(rgb - target, axis=1), kind="stable")
     return int(next(i for i in order if int(i) not in taken))
-
-
-def _num(x: float) -> str:
-    s = f"{x:.4f}".rstrip("0").rstrip(".")
-    return "0" if s in ("-0", "") else s
 
 
 @functools.lru_cache(maxsize=4096)

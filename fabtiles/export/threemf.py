@@ -99,6 +99,7 @@ import numpy as np
 from ..core.errors import FabricationError, ParameterError
 from ..core.files import atomic_write, zip_entry
 from ..geometry.material import filament
+from ._text import escape
 
 MAX_EXTRUDERS = 16
 """The most extruders a package may name: Bambu Studio and OrcaSlicer add filaments up to a file's
@@ -228,8 +229,8 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles", layout: str 
         f'<model unit="millimeter" xml:lang="en-US" xmlns="{_CORE_NS}"'
         + (f' xmlns:cura="{_CURA_NS}"' if layout == "components" else "")
         + ">\n",
-        f' <metadata name="Application">{_text(application)}</metadata>\n',
-        f' <metadata name="Title">{_text(name)}</metadata>\n',
+        f' <metadata name="Application">{escape(application)}</metadata>\n',
+        f' <metadata name="Title">{escape(name)}</metadata>\n',
         " <resources>\n",
     ]
     if layout == "volumes":
@@ -312,10 +313,6 @@ def _components(parts, name):
         f' <build>\n  <item objectid="{k}"/>\n </build>\n</model>\n',
     ]
     return body, ((BAMBU_CONFIG_PATH, _bambu_components_config(parts, name)),)
-
-
-def _text(s: str) -> str:
-    return s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
 def _prusa_config(parts, ranges, name) -> str:
