@@ -156,10 +156,8 @@ class PrinterProfile:
     in is a ``small_hole`` finding, and ``fill_small_holes`` fills it. Without it, two
     nozzle widths, as the minimum wall: the lines the slicer lays either side of a
     narrower hole, squeezed flat, close it or leave a slit, while the slicer still
-    traces each one as a loop of its own. Measured on a 150 mm pierced tile in
-    PrusaSlicer 2.5: 3,017 holes (2,022 under 0.4 mm) took 12 min 48 s to slice, its
-    995 holes of 0.4 mm and wider 6 min 29 s, its 621 of 0.8 mm and wider 2 min 11 s.
-    ``0`` turns the check off.
+    traces each one as a loop of its own, so the holes too small to print cost most of
+    the slicing time (``docs/speed.md``). ``0`` turns the check off.
 
     >>> load_profile("fdm-0.4mm").min_hole_mm, PrinterProfile("p", nozzle_mm=0.6).min_hole_mm
     (0.8, 1.2)
