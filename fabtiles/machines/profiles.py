@@ -220,6 +220,17 @@ def load_profile(profile, *, kind: str | None = None):
     kind : {"laser", "printer"}, optional
         The kind the caller needs; a profile of the other kind is an error. ``"laser"``
         means a 2D cutter: a laser, router or waterjet profile (all :class:`CutterProfile`).
+
+    Returns
+    -------
+    CutterProfile or PrinterProfile
+        The profile, frozen, every key checked (``profile`` itself when it is loaded already).
+
+    Raises
+    ------
+    ProfileError
+        An unknown name, a file that cannot be read or is not TOML, an unknown key or a bad
+        value (the message names the file and the key), or a profile of the other kind.
     """
     if isinstance(profile, (CutterProfile, PrinterProfile)):
         result = profile
