@@ -66,8 +66,8 @@ def merge_indexed32(vertices, faces):
     (:func:`fabtiles.export.stl.stl_bytes`); every corner of one vertex has the same bits, so merging
     the used vertices by float32 position gives exactly what merging the file's
     3m corners gives (:func:`_merge_float32`), array for array, from about a
-    sixth of the points, and in a fraction of the time. Vertices distinct in float64 that round to one
-    float32 point merge, as in the file.
+    sixth of the points, in a fraction of the time. Vertices distinct in float64
+    that round to one float32 point merge, as in the file.
 
     >>> v = np.array([[0, 0, 0], [1, 0, 0], [1 + 1e-9, 0, 0], [0, 1, 0]], float)
     >>> merged, f = merge_indexed32(v, np.array([[0, 1, 3], [0, 2, 3]]))
