@@ -21,8 +21,24 @@ class Tile(TileGeometry):
 
     See :class:`fabtiles.geometry.tile.TileGeometry` for the geometry. Construction also
     checks the work limits (:data:`fabtiles.machines.limits.CLI_LIMITS`) from the
-    parameters alone, before any geometry is built.
+    parameters alone, before any geometry is built, so a tile too large to make is refused
+    at once rather than after minutes of work.
 
+    Parameters
+    ----------
+    *args, **kwargs
+        Those of :class:`~fabtiles.geometry.tile.TileGeometry`: ``outline``, ``size``,
+        ``pattern``, ``frame``, ``stroke``, ``join`` and the keyword-only options.
+
+    Raises
+    ------
+    ParameterError
+        A parameter out of its range (the message names it, its value and the range).
+    LimitError
+        A tile larger than the work limits allow (its size, or its pattern's segments).
+
+    Examples
+    --------
     >>> import fabtiles as ft
     >>> tile = ft.Tile("square", 60, ft.HexPacking(radius=10, motif=ft.Star.preset("table3-3")),
     ...                frame=3, stroke=1.0)

@@ -15,8 +15,8 @@ def components(n: int, u, v) -> np.ndarray:
 
     Each round hooks the larger root of every edge onto the smaller one and jumps
     pointers to the roots; edges inside one component drop out. Five or six rounds
-    on the sheets' meshes (scipy's ``connected_components`` is as fast, but costs
-    0.24 s to import in every command).
+    on the sheets' meshes (scipy's ``connected_components`` is as fast, but importing
+    scipy would slow every command's start).
 
     >>> components(6, np.array([0, 1, 4]), np.array([1, 2, 3])).tolist()
     [0, 0, 0, 3, 3, 5]

@@ -231,6 +231,12 @@ def load_design(path, overrides=()) -> Design:
         ``tile.outline=hexagon`` -- a bare word is taken as a string). Applied
         before validation.
 
+    Returns
+    -------
+    Design
+        The design, frozen: its sections as dataclasses, every key checked against the schema
+        (``docs/design-files.md``), the defaults filled in.
+
     Raises
     ------
     DesignError

@@ -179,8 +179,8 @@ def entities_text(job: CutPlan, first_handle: int, owner: str) -> tuple[str, int
     """The ENTITIES section body of ``job`` as DXF text, and the next free handle.
 
     Byte for byte what ezdxf writes for the same polylines (the tests compare the
-    two), without ezdxf's per-entity and per-vertex Python objects: about ten times
-    faster on a sheet of 10,000 holes. LWPOLYLINE for R2000+, POLYLINE/VERTEX/SEQEND
+    two), without ezdxf's per-entity and per-vertex Python objects, which cost most
+    of a sheet's DXF. LWPOLYLINE for R2000+, POLYLINE/VERTEX/SEQEND
     for R12.
     """
     out = []

@@ -4,8 +4,8 @@ The parts are the 3MF's (the same :class:`~fabtiles.solid.print_model.PrintModel
 after the same printability checks), so what the view turns is what the slicer gets: a
 relief's ``base`` and ``pattern``, a pierced ``pattern``, a deboss ``plate`` and
 its ``inlay``, an interlaced relief's dips. GLB is indexed float32 vertices and
-uint32 triangles: 530 KB for the 150 mm default tile's 30,544 triangles, against
-1.5 MB as binary STL, and three.js reads it with its own loader. trimesh writes
+uint32 triangles, about a third of a binary STL of the same triangles, and three.js
+reads it with its own loader. trimesh writes
 it (a dependency already); no normals are stored, the view shades the faces flat.
 """
 

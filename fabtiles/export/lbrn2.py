@@ -36,6 +36,7 @@ from ..core.files import atomic_write
 from ..core.report import Report
 from ..geometry.arcs import Beziers, beziers_many
 from ..geometry.cut_plan import CutPlan, plan_cut
+from ._text import number as _num
 
 APP_VERSION = "1.7.03"
 """The LightBurn version the project says it is for (a recent one: older LightBurn opens newer files too)."""
@@ -102,11 +103,6 @@ def palette_index(color_rgb: str, taken) -> int:
     return int(next(i for i in order if int(i) not in taken))
 
 
-def _num(x: float) -> str:
-    s = f"{x:.4f}".rstrip("0").rstrip(".")
-    return "0" if s in ("-0", "") else s
-
-
 @functools.lru_cache(maxsize=4096)
 def _prims(n: int, closed: bool) -> str:
     """``L0 1L1 2...``: straight lines through ``n`` vertices in order, closing back to the first if ``closed``."""
@@ -119,8 +115,7 @@ def _paths(rings, index: int, closed: bool) -> list:
     ``rings`` are (n, 2) arrays (straight lines) or :class:`~fabtiles.geometry.arcs.Beziers`.
     Every coordinate of every ring formatted by one ``%`` with 4 decimals (trailing
     zeros kept: cutting them by regular expression cost more than the rest of the
-    file): the 600 x 400 mm sheet's 67,800 vertices in about 0.06 s, where a number
-    at a time took 0.2 s.
+    file), a few times quicker than a number at a time.
     """
     if not len(rings):
         return []

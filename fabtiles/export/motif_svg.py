@@ -10,11 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.files import atomic_write
-
-
-def _num(x: float) -> str:
-    s = f"{x:.4f}".rstrip("0").rstrip(".")
-    return "0" if s in ("-0", "") else s
+from ._text import escape as _escape
+from ._text import number as _num
 
 
 def segments_path_data(segments: np.ndarray, *, flip_y: float | None = None) -> str:
@@ -67,7 +64,3 @@ def motif_svg(
 def write_motif_svg(path, segments: np.ndarray, **options) -> None:
     """Write :func:`motif_svg` to ``path`` atomically."""
     atomic_write(path, motif_svg(segments, **options))
-
-
-def _escape(text: str) -> str:
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")

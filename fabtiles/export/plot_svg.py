@@ -13,14 +13,11 @@ it with vpype's own HPGL writer; both need vpype (``pip install 'fabtiles[vpype]
 from __future__ import annotations
 
 from ..core.errors import ParameterError
+from ._text import attribute
+from ._text import number as _num
 
 PX_PER_MM = 96 / 25.4
 """vpype's unit is the CSS pixel, 1/96 inch."""
-
-
-def _num(x: float) -> str:
-    s = f"{x:.4f}".rstrip("0").rstrip(".")
-    return "0" if s in ("-0", "") else s
 
 
 def svg_text(drawing) -> str:
@@ -41,7 +38,7 @@ def svg_text(drawing) -> str:
         f'height="{_num(h)}mm" viewBox="0 0 {_num(w)} {_num(h)}">',
     ]
     for k, layer in enumerate(drawing.layers, start=1):
-        name = layer.name.replace("&", "&amp;").replace("<", "&lt;").replace('"', "&quot;")
+        name = attribute(layer.name)
         out.append(
             f'<g id="layer{k}" inkscape:groupmode="layer" inkscape:label="{name}" fill="none" '
             f'stroke="{layer.colour}" stroke-width="{_num(drawing.pen_mm)}" stroke-linecap="round" '

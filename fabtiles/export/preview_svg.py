@@ -10,13 +10,15 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.files import atomic_write
+from ._text import attribute as _attr
+from ._text import escape as _escape
+from ._text import number
 
 _DIGITS = 3  # 1 micrometre
 
 
 def _num(x: float) -> str:
-    s = f"{x:.{_DIGITS}f}".rstrip("0").rstrip(".")
-    return "0" if s in ("-0", "", "-") else s
+    return number(x, _DIGITS)
 
 
 def _ring_path(coords, height: float) -> str:
@@ -183,14 +185,6 @@ _BAND_EDGE = "#0b1a3a"
 def write_tile_svg(path, tile, **options) -> None:
     """Write :func:`tile_svg` to ``path`` atomically."""
     atomic_write(path, tile_svg(tile, **options))
-
-
-def _escape(text: str) -> str:
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-
-
-def _attr(text: str) -> str:
-    return _escape(text).replace('"', "&quot;")
 
 
 KIT_COLOURS = ("#e9c58f", "#6b3e1f")

@@ -48,8 +48,8 @@ def _quiet():
 def read_step(path):
     """Read a STEP file as CAD programs do (OCCT's reader, shape healing on): one shape.
 
-    Healing runs per wire over the whole face, so a top face with 1,573 holes
-    (the 200 x 200 mm tile) takes OCCT 30-40 s to read this way.
+    Healing runs per wire over the whole face, so a top face with a thousand holes
+    or more takes OCCT long to read this way (``docs/speed.md``).
     """
     from OCP.IFSelect import IFSelect_RetDone
     from OCP.STEPControl import STEPControl_Reader
@@ -67,7 +67,7 @@ def read_step_solids(path):
 
     OCCT parses the file and builds each ``MANIFOLD_SOLID_BREP`` with its STEP
     translator, skipping the healing that :func:`read_step` adds: what is checked
-    is the file itself, not a repaired copy (1.2 s for the 200 x 200 mm tile).
+    is the file itself, not a repaired copy, and far quicker.
     """
     from OCP.IFSelect import IFSelect_RetDone
     from OCP.STEPControl import STEPControl_Reader
@@ -110,8 +110,8 @@ def _wires(face):
 def _big_face_valid(face) -> bool:
     """A face with many holes: each wire by OCCT, how the wires lie together by GEOS.
 
-    ``BRepCheck_Analyzer`` checks every vertex of a face against all its edges:
-    21-39 s for the 200 x 200 mm tile's top face (1,573 holes) alone. Checked
+    ``BRepCheck_Analyzer`` checks every vertex of a face against all its edges, which
+    takes tens of seconds on a face of a thousand holes (``docs/speed.md``). Checked
     instead: each wire as the boundary of a face of its own on the same plane
     (OCCT: edges, vertices, closure, self-intersection), and the wires' vertices,
     in the plane's coordinates, as one polygon that GEOS must find valid (no
@@ -164,8 +164,8 @@ def _edge_uses(shell):
     A shell is closed when every edge bounds exactly two faces, and consistently
     oriented when they run it in opposite senses (the sum is 0). Read from OCCT's
     own topology of the file. ``BRepCheck_Shell.Orientation`` answers the same but
-    grows with the square of the faces: 230 s for the 600 x 400 mm sheet's 74,932
-    faces, where this takes 1.9 s (0.3 s for the 200 x 200 mm tile).
+    grows with the square of the faces, minutes on a sheet's tens of thousands where
+    this takes seconds (``docs/speed.md``).
     """
     from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
     from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED
@@ -263,7 +263,7 @@ def check_step_file(path, *, volume: float, parts: int) -> float:
 ARC_VOLUME_LIMIT = 0.005
 """Largest relative difference between the STEP's volume, its round walls true arcs, and the flattened
 mesh's (0.5 %). Arcs recovered within a fine ``tolerance_mm`` stay far inside it (0.02 mm, the profiles'
-default: 0.04 % on the 100 mm pierced circle of issue 35, 0.17 % on the 3.3.3.4.4 sample as a 100 mm
+default: 0.04 % on a 100 mm pierced circle tile, 0.17 % on the 3.3.3.4.4 sample as a 100 mm
 pierced circle with round joins); a coarse one takes polygons for circles."""
 
 

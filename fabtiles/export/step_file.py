@@ -1,11 +1,11 @@
 """A planar B-rep written as a STEP file (ISO 10303-21, AP214, millimetres).
 
 The entities are written as text, as the DXF writer writes its polylines. OCCT's
-STEP writer costs the square of a face's edges: the 200 x 200 mm relief tile's top
-face alone has 1,573 holes, and writing one such face through OCCT took 47 s
-(measured, see the README's speed section); this writer takes well under a second
-for the whole file. The file is then read back with OCCT and checked
-(:mod:`fabtiles.export.step`), so OCCT still has the last word on it.
+STEP writer costs the square of a face's edges, and a 200 x 200 mm relief tile's top
+face alone has more than a thousand holes: through OCCT such a face took most of a
+minute (``docs/speed.md``), where this writer takes well under a second for the whole
+file. The B-rep is checked before it is written (:func:`fabtiles.solid.brep.check_brep`),
+and ``fabtiles check --deep`` reads the file back with OCCT (:mod:`fabtiles.export.step`).
 
 Each solid is a ``MANIFOLD_SOLID_BREP`` of one ``CLOSED_SHELL`` of
 ``ADVANCED_FACE``s on ``PLANE``s and ``CYLINDRICAL_SURFACE``s, bounded by
@@ -39,8 +39,8 @@ TIME_STAMP = "2000-01-01T00:00:00"
 LENGTH_DECIMALS = 9
 """Decimals of every length and coordinate written (mm): a nanometre, a thousandth of the file's
 ``distance_accuracy_value`` (1e-6 mm), so rounding moves no vertex off its curve or surface as
-OCCT measures them. Shortest-repr doubles took 17 digits each: the 100 mm circle tile's file was
-3.31 MB, 2.8 MB with the points and placements below shared as well."""
+OCCT measures them; shortest-repr doubles need up to 17 digits each, a larger file
+(``docs/speed.md``)."""
 
 DIRECTION_DECIMALS = 12
 """Decimals of the components of a direction: a unit vector's error of 1e-12 moves a point 2.4 m
@@ -85,8 +85,8 @@ def _rows(a, decimals: int, unit: bool = False) -> list:
     ``unit``: the rows made unit vectors first.
 
     Rounded in one numpy pass and written by one ``repr`` of all the rows, the shortest text of
-    each double as :func:`_real` has it: the sheet's 85,000 edges number by number cost 0.4 s
-    more than the file's other entities.
+    each double as :func:`_real` has it: a sheet's tens of thousands of edges number by number
+    cost more than the file's other entities.
 
     >>> _rows([[3.0, 4.0, 0.0]], 12, unit=True), _rows([[0.1 + 0.2, -0.0, 2e-5], [10.0, 1.0, 0.5]], 9)
     (['(0.6,0.8,0.)'], ['(0.3,0.,2.E-05)', '(10.,1.,0.5)'])

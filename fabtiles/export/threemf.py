@@ -75,13 +75,12 @@ libSavitar, run here through Debian's ``python3-savitar``):
 The package is a few small XML texts and the meshes, written with the standard
 library: trimesh writes neither the slicers' metadata nor several volumes in one
 mesh, and lib3mf (a native library, which the tests use as the strict reader) would add a dependency for what one ``%``
-over the whole vertex array does in 0.3 to 0.7 s on the 600 x 400 mm sheet
-(154,000 vertices, 349,000 triangles, zip included; measured on a shared machine). Coordinates get 9 significant digits,
+over the whole vertex array does (``docs/speed.md``). Coordinates get 9 significant digits,
 which read back as exactly the float32 values the mesh was checked with (9 significant
 digits round-trip any float32; ``tests/export/test_3mf.py`` proves it for random values
 and reads every part of real packages back bit for bit), so the package holds the checked
-meshes and the export does not read its own package back: that read-back cost 1.2 s of
-the 600 x 400 mm sheet's 2.5 s 3MF (measured). ``read_3mf`` reads a package the way the
+meshes and the export does not read its own package back (that read-back was about half
+of a sheet's 3MF). ``read_3mf`` reads a package the way the
 slicers read it (volume ranges or components, float32 vertices), for the tests.
 """
 
@@ -99,6 +98,7 @@ import numpy as np
 from ..core.errors import FabricationError, ParameterError
 from ..core.files import atomic_write, zip_entry
 from ..geometry.material import filament
+from ._text import escape
 
 MAX_EXTRUDERS = 16
 """The most extruders a package may name: Bambu Studio and OrcaSlicer add filaments up to a file's
@@ -228,8 +228,8 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles", layout: str 
         f'<model unit="millimeter" xml:lang="en-US" xmlns="{_CORE_NS}"'
         + (f' xmlns:cura="{_CURA_NS}"' if layout == "components" else "")
         + ">\n",
-        f' <metadata name="Application">{_text(application)}</metadata>\n',
-        f' <metadata name="Title">{_text(name)}</metadata>\n',
+        f' <metadata name="Application">{escape(application)}</metadata>\n',
+        f' <metadata name="Title">{escape(name)}</metadata>\n',
         " <resources>\n",
     ]
     if layout == "volumes":
@@ -246,8 +246,8 @@ def package_3mf(parts, *, name: str, application: str = "fabtiles", layout: str 
             *files,
         ):
             info = zip_entry(arcname)  # dated 1980-01-01: the same bytes every run
-            # level 1: the 600 x 400 mm sheet's model packs to 5.7 MB in 0.3 s; the default
-            # level 6 gives 4.7 MB in 0.9 s (measured)
+            # level 1: the default level 6 packs a fifth smaller in three times as long
+            # (docs/speed.md)
             zf.writestr(info, text.encode("utf-8"), compresslevel=1)
     return buf.getvalue()
 
@@ -312,10 +312,6 @@ def _components(parts, name):
         f' <build>\n  <item objectid="{k}"/>\n </build>\n</model>\n',
     ]
     return body, ((BAMBU_CONFIG_PATH, _bambu_components_config(parts, name)),)
-
-
-def _text(s: str) -> str:
-    return s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
 def _prusa_config(parts, ranges, name) -> str:
@@ -385,8 +381,7 @@ def _block(model: bytes, block: bytes, tag: bytes, fields: tuple, dtype) -> np.n
     """The numbers of every ``<tag f1="" f2="" f3=""/>`` in the model's ``<block>``, as an (n, 3) array.
 
     Our own record format is stripped with ``bytes.replace`` and the numbers parsed
-    by numpy in one call: on the 600 x 400 mm sheet 0.3 s where a regular
-    expression took 1.4 s (measured).
+    by numpy in one call, several times quicker than a regular expression.
     """
     start, end = model.find(b"<" + block + b">"), model.find(b"</" + block + b">")
     if start < 0 or end < start:

@@ -180,13 +180,12 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
     corners whose circle has one of them (within :data:`RADIUS_MATCH`) are an arc too, on a
     radius given exactly that radius: a round join that meets other bands within 60 degrees is
     flattened within the printer's 0.02 mm in two chords, and three points on an arbitrary
-    circle prove nothing, while three on the join's own radius do (measured on issue 35's
-    100 mm tile: 280 such joins, all of radius 0.6 mm within 0.2 %). One chord is no arc
+    circle prove nothing, while three on the join's own radius do (on a 100 mm pierced circle
+    tile every such join had its radius within 0.2 %). One chord is no arc
     whatever its length: a bevel's is the same chord.
 
     The sheets' and panels' cut plans hold thousands of rings: one pass over all their
-    vertices instead of a pass per ring (the 2440 x 1220 mm panel's 2,812 rings and
-    238,772 vertices: 1.1 s ring by ring, see ``benchmarks/bench_arcs.py`` for the pass).
+    vertices instead of a pass per ring (``benchmarks/bench_arcs.py`` measures the pass).
 
     >>> from shapely.geometry import Point, box
     >>> rings = [np.asarray(g.exterior.coords)[:-1] for g in (Point(0, 0).buffer(5.0), box(0, 0, 1, 1))]
@@ -643,8 +642,8 @@ def beziers(curve: Curve, *, tolerance_mm: float, closed: bool = True) -> Bezier
 
 
 def beziers_many(curves_, *, tolerance_mm: float, closed: bool = True) -> list:
-    """:func:`beziers` of every curve of ``curves_`` in one vectorised pass (a call per curve cost
-    0.1 ms each: 27 of the 32 ms of a 100 mm circle tile's LightBurn project, 268 curves).
+    """:func:`beziers` of every curve of ``curves_`` in one vectorised pass (a call per curve was
+    most of a LightBurn project's time).
 
     >>> half = Curve(np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([1.0, 0.0]))
     >>> [b.bezier.tolist() for b in beziers_many([half, half], tolerance_mm=0.01, closed=False)]

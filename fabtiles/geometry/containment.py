@@ -8,9 +8,9 @@ join of the boundary edges and the quads on a uniform grid of about a quad's
 size, then a separating-axis test per candidate pair (in floating point: only a
 touch closer than about 1e-12 mm could be judged otherwise than GEOS judges it);
 the second is GEOS's point in polygon (:func:`shapely.contains_xy`) for one point
-of each quad no edge meets. 0.07 s on that sheet; probing the quads' four corners
-with GEOS instead, and every boundary vertex against them, took 0.15 s, GEOS's
-containment test of each quad 0.6 s.
+of each quad no edge meets. Quicker than probing the quads' four corners with GEOS
+and every boundary vertex against them, and than GEOS's containment test of each quad
+(``docs/speed.md``).
 """
 
 from __future__ import annotations

@@ -17,11 +17,9 @@ keep their start and direction (the writers' kerf side and the tabs' places rely
 on them); open score lines may be reversed; open pieces between holding tabs keep
 their direction and are only chained by the nearest neighbour.
 
-On the 600 x 400 mm sheet (``samples/sheet-600x400.toml``, 2,203 inner contours and
-the outline) the travel falls from 27.00 m (the Hilbert-curve order of :mod:`.contours`) to
-20.33 m in 0.21 s of CPU, 1.5 % shorter than vpype's ``linesort --two-opt`` on the same
-layers (20.64 m, 0.66 s); ``benchmarks/bench_cut_order.py`` measures it, ``docs/speed.md``
-keeps the figures.
+On the samples the travel is about a quarter shorter than in the Hilbert-curve order of
+:mod:`.contours`, and a little shorter than vpype's ``linesort --two-opt`` in a third of its
+time; ``benchmarks/bench_cut_order.py`` measures it, ``docs/speed.md`` keeps the figures.
 
 >>> square = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
 >>> rings = [square + 30, square + 10, square + 20]
@@ -40,9 +38,9 @@ import numpy as np
 import shapely
 
 NEIGHBOURS = 8
-"""Paths each path tries 2-opt exchanges with (its nearest by start point). On the 600 x 400 mm
-sheet's inner layer (CPU, best of 3): 4 gave 20.76 m in 0.12 s, 8 20.30 m in 0.17 s, 16 20.34 m in
-0.30 s (more neighbours, other exchanges first: not always shorter)."""
+"""Paths each path tries 2-opt exchanges with (its nearest by start point): fewer leave travel,
+more cost time and are not always shorter (other exchanges are made first); ``docs/speed.md``
+has the figures."""
 
 
 def travel(paths, *, start=(0.0, 0.0), closed: bool = True) -> float:
@@ -191,9 +189,9 @@ def _order(first, last, *, start, end=None, flip: bool, pairs, two_opt: bool = T
 
 
 POLISH_MAX = 1500
-"""The most paths :func:`_polish` takes on: its rounds are O(n^2) (in numpy); the 150 mm samples'
-300 to 600 strokes take 0.05 to 0.2 s, the 600 x 400 mm sheet's 4,205 took 9 s (its travel 11.2 m
-to 4.7 m), too long for a plot: larger drawings keep the neighbour-list 2-opt."""
+"""The most paths :func:`_polish` takes on: its rounds are O(n^2) (in numpy), quick for a 150 mm
+tile's few hundred strokes and too long for a sheet's thousands (``docs/speed.md``): larger drawings
+keep the neighbour-list 2-opt."""
 
 
 def _polish(first, last, order, flipped, start, max_rounds: int = 50):
@@ -282,7 +280,7 @@ def _near(ends, exits, k: int) -> list:
 
     GEOS's R-tree and its ``dwithin`` query with the radius that holds about ``2 k`` points
     at the points' mean density, then the ``k`` nearest of those. (scipy's cKDTree does it
-    in one call, but importing scipy.spatial costs 0.5 s, more than the whole order.)
+    in one call, but importing scipy.spatial costs more than the whole order.)
     """
     m = len(ends)
     lo, hi = ends.min(axis=0), ends.max(axis=0)

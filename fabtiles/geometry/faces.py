@@ -1,4 +1,4 @@
-"""Face classes: the faces of a tile's pattern grouped by shape, for colouring (issue 33).
+"""Face classes: the faces of a tile's pattern grouped by shape, for colouring.
 
 A **face** is a part of the outline left open by the material: a hole of the region, or
 with a frame of 0 a part open to the tile's edge. :func:`face_classes` groups the faces
@@ -187,8 +187,8 @@ def face_classes(tile, *, by: str = "shape", region=None) -> FaceClasses:
             f"tile must be a TileGeometry (e.g. design.build_tile()), got {type(tile).__name__}", param="tile"
         )
     outline = tile.outline_shape()
-    # a region passed in is checked; the tile's own is valid by construction (the check, GEOS's
-    # is_valid, took 0.057 s of the sheet's 0.12 s)
+    # a region passed in is checked; the tile's own is valid by construction (GEOS's is_valid
+    # would be half the work on a sheet)
     faces = _faces(tile.region(), outline) if region is None else _faces(polygon_parts(region), outline)
     areas = shapely.area(faces)
     if not len(faces):
@@ -247,8 +247,8 @@ def _faces(region, outline) -> np.ndarray:
     lying in them) and the parts of the outline outside every piece of material.
     ``region``: a valid Polygon or MultiPolygon, or its parts (an array of Polygons).
 
-    Read from the region's rings rather than by one GEOS difference: 0.03 s against
-    0.12 s for the 600 x 400 mm sheet's 9,947 faces.
+    Read from the region's rings rather than by one GEOS difference, which is several
+    times slower on a sheet's thousands of faces.
     """
     parts = region if isinstance(region, np.ndarray) else shapely.get_parts(region)
     parts = parts[~shapely.is_empty(parts)]

@@ -129,7 +129,7 @@ def inlay_kit(
     # Each piece is its hole as the lattice's cut opens it, grown by the fit: the cut path
     # (the hole shrunk by half the kerf, mitred, as laser_contours cuts it) swept by the
     # round beam. The beam rounds every tip of a hole (radius kerf/2), so a piece grown
-    # from the designed hole overhung its opening: the 5-point star tile of issue 33 had
+    # from the designed hole overhung its opening: a 5-point star tile had
     # tips of about 32 degrees whose mitred fit reached 0.55 mm past the hole (0.15 mm
     # fit) into a lattice cut 0.2 mm short of the tip, and the pieces' cuts met 0.002 mm
     # apart; pieces of the interlaced 4.6.12 tile lay up to 0.42 mm over uncut lattice at
@@ -144,8 +144,7 @@ def inlay_kit(
     pieces = shapely.buffer(opening, fit) if fit else opening
     _check_apart(pieces, keep, fit, kerf_mm)
     # the kinds counted on the holes: each piece is made from its hole alone, so congruent holes give
-    # congruent pieces, and a hole's few vertices compare fast (the round-grown pieces' hundreds took 7.2 s
-    # for the sample's 247 pieces)
+    # congruent pieces, and a hole's few vertices compare fast (a round-grown piece has hundreds)
     return InlayKit(
         lattice, np.asarray(pieces, dtype=object), keep, int(filled), distinct_shapes(cut), tuple(necks), tuple(split)
     )
@@ -174,7 +173,7 @@ def _cut_whole(holes, d: float, tolerance_mm: float):
     The lattice's cut path of a hole is the hole shrunk by ``d`` (half the kerf); where
     the hole has a neck narrower than the kerf the shrunk hole falls into several parts,
     the laser cuts several holes and leaves a sliver of lattice at the neck under the
-    one piece (issue 33: 0.45 x 0.35 mm slivers; 8 pieces over 24 openings on a 4.6.12
+    one piece (slivers of about 0.45 x 0.35 mm; 8 pieces over 24 openings on a 4.6.12
     tile). Each neck is widened instead: the parts are joined by the shortest lines
     between them (a spanning tree, each line through its neck), and the hole grows by
     the corridor the beam sweeps along each line (``d`` plus ``tolerance_mm`` each side,

@@ -119,10 +119,9 @@ def dips(region, w: Weave, half: float, gap: float, within=None):
     ``contains_properly``, built from the crossings alone: slivers along a straight
     run of their under strand lie in its band; the others are tested by
     :func:`~fabtiles.geometry.containment.quads_inside` (no edge of the region
-    meets the sliver, its centre inside). 0.17 s for the 14,736 slivers of the
-    600 x 400 mm sheet (corner probes and region vertices through GEOS took 0.2 s,
-    and passed a gap crossing a sliver whole; GEOS's containment test of each
-    polygon took 0.6 s, an overlay of the region with the slivers 16 s). Only
+    meets the sliver, its centre inside). Corner probes and region vertices through
+    GEOS passed a gap crossing a sliver whole; GEOS's containment test of each polygon
+    and an overlay of the region with the slivers are slower (``docs/speed.md``). Only
     slivers that overlap another (crossings closer than a gap) are merged.
     """
     e = INSET_MM

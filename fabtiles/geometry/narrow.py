@@ -54,8 +54,7 @@ def hole_widths(holes: np.ndarray, *, tolerance_mm: float = 0.01):
     ([[0.5, 0.5]], [1.0])
     """
     holes = np.asarray(holes, dtype=object)
-    # GEOS's maximum inscribed circle: about 20 us a hole at 0.01 mm (680 holes of the
-    # default web tile in 14 ms).
+    # GEOS's maximum inscribed circle, each hole at once: quick enough for the web's preview
     lines = shapely.maximum_inscribed_circle(holes, max(tolerance_mm, 1e-4))
     return shapely.get_point(lines, 0), 2 * shapely.length(lines)
 
@@ -115,8 +114,7 @@ def small_hole_mask(holes: np.ndarray, min_hole_mm: float) -> np.ndarray:
     if len(todo):
         # eroded by 0.2 % more than r: the offset's arcs of 16 chords a quarter lie up to 0.12 %
         # inside the true circle, so no hole narrower than the limit survives (a hole up to
-        # 0.2 % wider may count as small); 10 times faster than GEOS's largest inscribed
-        # circle (0.03 s against 0.29 s for the 600 x 400 mm sheet's 3,538 undecided holes)
+        # 0.2 % wider may count as small); far quicker than GEOS's largest inscribed circle
         small[todo] = shapely.is_empty(shapely.buffer(holes[todo], -r * 1.002, quad_segs=16))
     return small
 
@@ -299,7 +297,7 @@ def neck_pieces(polygons: np.ndarray, neck_mm: float):
     ([1.0, 4.0, 0.3], [0, 1, 1])
     """
     polygons = np.asarray(polygons, dtype=object)
-    # an erosion by a hair splits at every neck; 0.15 s for the 600 x 400 mm sheet's 9,947 holes
+    # an erosion by a hair splits at every neck, all holes in one call
     inner = shapely.buffer(polygons, -neck_mm / 2, quad_segs=2)
     split = np.flatnonzero(shapely.get_num_geometries(inner) > 1)
     if not len(split):
@@ -315,9 +313,8 @@ def split_long_rings(rings: np.ndarray, max_points: int = 64, *, min_size: float
 
     Only rings whose bounding box is larger than ``min_size`` (width plus height) are cut:
     a small ring with many points (a hole with rounded corners) is one item already, and
-    cut into segments each would overlap dozens of its neighbours' boxes (the router panel's
-    1,613 rounded holes, 176,000 points, made 570 MB of candidate pairs and took 2.9 s; kept
-    whole, 2 MB and 0.17 s).
+    cut into segments each would overlap dozens of its neighbours' boxes, and the candidate
+    pairs of a panel's rounded holes would fill the memory (``docs/speed.md``).
 
     Returns the pieces and, for each, the index of its ring.
     """

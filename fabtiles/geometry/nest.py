@@ -12,14 +12,12 @@ strip of fixed height and minimal width. Sheets are filled one after another: th
 remaining parts are packed in a strip of the sheet's height, the parts that fall
 within the sheet's width make the sheet, the rest are packed again.
 
-Why Sparrow and not a bounding-box packing (``benchmarks/bench_nest.py``: 30 tiles of 100 mm,
-ten each of table3-1 in a square, table3-2 in a hexagon and table3-3 in a circle, 0.266 m^2 of
-parts, 600 x 400 mm sheets, gap 1.15 mm): Sparrow puts them on 2 sheets (material use 0.73 and
-0.37) in 4.6 s of the 5 s default budget, the fewest their area allows; a max-rects packing of
-their bounding boxes (``rectpack``, turns allowed) needs 3 (0.53, 0.54, 0.04) and ``--sheet``'s
-grid of one design per sheet 3 (0.42, 0.36, 0.33). Sparrow fits the circles and hexagons into
-each other's corners, which no packing of boxes can; on rectangles alone the two would tie, so a
-shelf packer of our own would add code and save no sheet.
+Why Sparrow and not a bounding-box packing: on tiles of mixed outlines (squares, hexagons,
+circles) Sparrow takes the fewest sheets their area allows, where a max-rects packing of their
+bounding boxes (``rectpack``) or ``--sheet``'s grid takes one more (``benchmarks/bench_nest.py``;
+the figures in ``docs/speed.md``). Sparrow fits the circles and hexagons into each other's
+corners, which no packing of boxes can; on rectangles alone the two would tie, so a shelf packer
+of our own would add code and save no sheet.
 
 >>> from shapely.geometry import box
 >>> n = nest([("a", box(0, 0, 50, 30)), ("b", box(0, 0, 50, 30))], sheet_mm=(60, 70), gap_mm=2, time_s=1,
@@ -180,8 +178,8 @@ def _packing_shapes(shapes) -> list:
     """The outlines handed to the packer: each part simplified within :data:`SIMPLIFY_MM` and grown by it
     (mitred), so it holds the part and the part keeps the gap; the placements move the parts themselves.
 
-    spyrrow's time grows with the vertices: a sample kit's 247 round-grown pieces (52,739 vertices) took
-    10 s of a 1 s budget, simplified (about a fifth of the vertices) 1.5 s.
+    spyrrow's time grows with the vertices, and round-grown pieces have many: simplified, they keep
+    about a fifth, and the packer its time budget (``docs/speed.md``).
     """
     simple = shapely.buffer(
         shapely.simplify(np.asarray(shapes, dtype=object), SIMPLIFY_MM), SIMPLIFY_MM, join_style="mitre"
@@ -324,7 +322,7 @@ def nest(
     while remaining:
         left = max(0.0, budget - (time.monotonic() - start))
         need = max(1, math.ceil(sum(shapes[i].area for i in remaining) / (sheet_area * _DENSITY_GUESS)))
-        seconds = max(1, int(left / need))  # whole seconds, rounded down: spyrrow overruns by ~0.3 s a solve
+        seconds = max(1, int(left / need))  # whole seconds, rounded down: spyrrow overruns a solve a little
         # spyrrow keeps the separation from the strip's edges too: the strip is taller by it on both
         # sides, and the placements move back by it, so parts may reach the sheet's edges
         sep = gap + MARGIN_MM
@@ -338,7 +336,7 @@ def nest(
                 continue  # beyond this sheet's width: packed again for the next
             candidates.append((i, p, outline))
         # spyrrow's separation, checked in 64 bits (it never failed in the tests; a part too close waits):
-        # the pairs closer than the gap from one tree query (pairwise distances took 3.5 s for 247 kit pieces)
+        # the pairs closer than the gap from one tree query (not the distances of every pair)
         outlines = np.array([c[2] for c in candidates], dtype=object)
         close: dict = {}
         if len(outlines) > 1:

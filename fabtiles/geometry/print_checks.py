@@ -105,12 +105,10 @@ def flatten_holes(region, tolerance_mm: float):
 
     The pattern's round joins and circles are flattened for the laser's 0.005 mm; a
     print needs no finer than its ``tolerance_mm``, and a slicer's time grows with the
-    points of every slice (PrusaSlicer took 131 s on a 150 mm pierced tile of 621
-    holes, 93 s with them simplified by 0.02 mm). Outer rings are kept as they are, so
-    the material still meets the outline exactly. Ring by ring is about 50 times faster
-    than GEOS's topology-preserving simplification of the whole region (0.05 s against
-    2.0 s for the 600 x 400 mm sheet's 9,947 holes); should simplified rings cross,
-    the region is returned unchanged.
+    points of every slice. Outer rings are kept as they are, so the material still meets
+    the outline exactly. Ring by ring, far quicker than GEOS's topology-preserving
+    simplification of the whole region (``docs/speed.md``); should simplified rings
+    cross, the region is returned unchanged.
 
     >>> import shapely
     >>> hole = shapely.Point(5, 5).buffer(2, quad_segs=64)
@@ -264,7 +262,7 @@ def plate_pieces(region, outline) -> np.ndarray:
     >>> sorted(shapely.area(pieces).round(3).tolist())
     [16.0, 20.0, 20.0, 25.0]
     """
-    # one GEOS overlay: 0.19 s for the 600 x 400 mm sheet's 9,947 holes
+    # one GEOS overlay for all the holes
     return _real(shapely.get_parts(shapely.difference(outline, region)))
 
 

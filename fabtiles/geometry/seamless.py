@@ -73,6 +73,11 @@ def seamless_fit(outline, size, radius, *, packing="hex") -> SeamlessFit:
     packing : {"hex", "square"} or str
         Or a tiling of :meth:`~fabtiles.ArchimedeanPacking.tilings` (any form it takes).
 
+    Returns
+    -------
+    SeamlessFit
+        The radius (or edge), the tile size to use and the periods across and up.
+
     Raises
     ------
     ParameterError
@@ -162,6 +167,18 @@ def _tiling_fit(outline, size, edge, tiling) -> SeamlessFit:
 def seamless_radius(outline, size, radius, *, packing="hex") -> float:
     """Just the radius of :func:`seamless_fit` (the rectangle's height may need moving too).
 
+    Parameters
+    ----------
+    outline, size, radius, packing
+        As for :func:`seamless_fit`.
+
+    Returns
+    -------
+    float
+        ``seamless_fit(...).radius``, mm.
+
+    Examples
+    --------
     >>> seamless_radius("square", 100, 7, packing="square")
     7.142857142857143
     """

@@ -2,8 +2,8 @@
 
 Why this is hand-written instead of ``shapely.MultiLineString(...).buffer(...)`` or
 one ``shapely.union_all`` of the stroked bands: a 600 x 400 mm sheet with R = 15 mm
-has ~40,000 segments, and one GEOS union of all stroked bands takes ~6 s on the
-project's 2-core reference box (see ``benchmarks/bench_region.py``). Here every
+has tens of thousands of segments, and one GEOS union of all stroked bands takes
+seconds (``benchmarks/bench_region.py``, ``docs/speed.md``). Here every
 segment becomes a plain quad, every vertex where segments meet gets a small join
 polygon (miter, bevel or round) filling the outer corners only, and everything is
 unioned in one batch by Clipper2 (through ``manifold3d.CrossSection``, positive fill
@@ -201,9 +201,8 @@ def stroke_cross_section(segments, width, *, join="miter", miter_limit=4.0, tole
         chords' miter-joined bands would give (round and bevel joins differ from it
         by at most ``2 * 0.005 * half / r`` mm, under the chords' own 0.005 mm
         flattening), at a fraction of the cost: one ring pair per circle instead of
-        a band and a join per chord (measured, 150 mm table3-3 tile, R = 15 mm,
-        outline circles: the region in 100 ms instead of 200 ms; same holes, the
-        boundaries within 2e-3 mm). Joins where ``segments`` meet a circle are
+        a band and a join per chord (the same holes, the boundaries within 2e-3 mm,
+        in about half the time). Joins where ``segments`` meet a circle are
         computed with the chords, so motif tips on a circle keep their shape.
     """
     m3d = _cs()
@@ -281,11 +280,10 @@ def _bucketed_union(contours, per_bucket: int = 128):
     """Union in two levels: small spatial buckets first, then the buckets' results.
 
     When strokes are as wide as the pattern's features, every band overlaps dozens of
-    others and one Clipper2 batch spends its time on edge intersections (measured: a
-    55 mm circle tile at R = 2 mm, stroke 1.9 mm, outline circles: 7.0 s in one batch,
-    1.4 s bucketed). Each bucket's union drops the interior edges before the final
-    union. On sparse patterns (the 600 x 400 mm sheet) one batch is faster (0.27 s
-    against 0.45 s), hence the density test in :func:`stroke_cross_section`.
+    others and one Clipper2 batch spends its time on edge intersections, several times
+    longer than in buckets. Each bucket's union drops the interior edges before the final
+    union. On sparse patterns (a sheet) one batch is faster, hence the density test in
+    :func:`stroke_cross_section` (``docs/speed.md`` has both figures).
     """
     m3d = _cs()
     centres = np.array([c.mean(axis=0) for c in contours])

@@ -215,7 +215,7 @@ def tab_paths(rings, *, tab_mm: float, tabs_per_part: int) -> Tabs:
         centre = (_phase(arcs, _corner_arcs(ring, arcs), n) + np.arange(n) * step) % perimeter
         centre.sort()
         # the ring twice round, made once for its pieces, so a piece across its first point is one slice
-        # (3,000 rings of 16 points, 4 tabs each: 0.64 s; 1.16 s when each piece made its own with np.r_)
+        # (not a new array per piece)
         twice, s = np.concatenate([closed, closed[1:]]), np.concatenate([arcs, arcs[1:] + perimeter])
         for k in range(n):
             a = (centre[k] + tab_mm / 2) % perimeter

@@ -156,10 +156,8 @@ class PrinterProfile:
     in is a ``small_hole`` finding, and ``fill_small_holes`` fills it. Without it, two
     nozzle widths, as the minimum wall: the lines the slicer lays either side of a
     narrower hole, squeezed flat, close it or leave a slit, while the slicer still
-    traces each one as a loop of its own. Measured on a 150 mm pierced tile in
-    PrusaSlicer 2.5: 3,017 holes (2,022 under 0.4 mm) took 12 min 48 s to slice, its
-    995 holes of 0.4 mm and wider 6 min 29 s, its 621 of 0.8 mm and wider 2 min 11 s.
-    ``0`` turns the check off.
+    traces each one as a loop of its own, so the holes too small to print cost most of
+    the slicing time (``docs/speed.md``). ``0`` turns the check off.
 
     >>> load_profile("fdm-0.4mm").min_hole_mm, PrinterProfile("p", nozzle_mm=0.6).min_hole_mm
     (0.8, 1.2)
@@ -222,6 +220,17 @@ def load_profile(profile, *, kind: str | None = None):
     kind : {"laser", "printer"}, optional
         The kind the caller needs; a profile of the other kind is an error. ``"laser"``
         means a 2D cutter: a laser, router or waterjet profile (all :class:`CutterProfile`).
+
+    Returns
+    -------
+    CutterProfile or PrinterProfile
+        The profile, frozen, every key checked (``profile`` itself when it is loaded already).
+
+    Raises
+    ------
+    ProfileError
+        An unknown name, a file that cannot be read or is not TOML, an unknown key or a bad
+        value (the message names the file and the key), or a profile of the other kind.
     """
     if isinstance(profile, (CutterProfile, PrinterProfile)):
         result = profile

@@ -2,8 +2,8 @@
 
 An export checks its models in memory (the STEP writer its B-rep,
 :func:`~fabtiles.solid.brep.check_brep`; the mesh writers their checked meshes) and
-does not read its own file back: that cost an export of the 200 x 200 mm relief
-5.2 s of 7.4 s. The deep check does it on request: the design's print files are
+does not read its own file back, which was most of an export's time. The deep check
+does it on request: the design's print files are
 written into a temporary folder through the same pipeline, then
 
 - a STEP file is read back by OCCT (the kernel of FreeCAD and build123d), without

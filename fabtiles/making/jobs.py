@@ -24,7 +24,7 @@ from . import Outcome, remove_stale_staging, run_job
 
 CONNECT_TIMEOUT_S = 6.0
 """How long to wait for a Dask scheduler before giving up: with Python's start-up the CLI answers
-within 10 s (6.6 s measured for a refused 127.0.0.1 port)."""
+within 10 s."""
 
 
 @dataclass(frozen=True)
@@ -78,7 +78,7 @@ def connect(scheduler: str):
 
     The address is first tried with one bare connection and handshake: a refused,
     silent or wrong address fails there within :data:`CONNECT_TIMEOUT_S`, and leaves
-    no half-made client behind (whose clean-up alone takes 16 s).
+    no half-made client behind (whose clean-up alone takes longer than the timeout).
     """
     import asyncio
 

@@ -14,10 +14,10 @@ from .models import BuildOptions, Models
 from .pipeline import check_format_limits, prepare_tile
 
 VIEW_SEGMENTS = 8_000
-"""Most centre-line segments the 3D view shows whole: twice the 150 mm default tile's 4,032
-(30,544 triangles, 530 KB of GLB, 0.23 s). A bigger tile's view is its centre window holding
-about this many segments, a lighter preview that says so: a 300 mm square shown whole was
-290,788 triangles, 5.1 MB and 2.9 s (benchmarks/bench_web.py), more than a view should carry."""
+"""Most centre-line segments the 3D view shows whole: about twice the 150 mm default tile's. A
+bigger tile's view is its centre window holding about this many segments, a lighter preview that
+says so: a 300 mm square shown whole is ten times the triangles, more than a view should carry
+(``benchmarks/bench_web.py``; the figures in ``docs/speed.md``)."""
 
 
 def made_region(tile, design, *, models: Models | None = None):

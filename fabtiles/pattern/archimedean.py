@@ -311,10 +311,25 @@ class ArchimedeanPacking:
     def circles(self, window) -> tuple[np.ndarray, np.ndarray]:
         """Centres ``(m, 2)`` and radii ``(m,)`` of every circle that may meet ``window``.
 
-        ``window`` is ``(xmin, ymin, xmax, ymax)`` in the packing's frame (a polygon
-        centred on the origin); a circle is kept when its bounding box meets it.
-        Incircles first, then gap circles, each rows bottom to top, left to right.
+        A circle is kept when its bounding box meets the window, so every circle a tile can
+        show is there and the caller clips. Incircles first, then gap circles, each rows
+        bottom to top, left to right.
 
+        Parameters
+        ----------
+        window : (float, float, float, float)
+            ``(xmin, ymin, xmax, ymax)`` in the packing's frame (a polygon centred on the
+            origin), mm.
+
+        Returns
+        -------
+        centres : ndarray, shape (m, 2)
+            mm.
+        radii : ndarray, shape (m,)
+            mm.
+
+        Examples
+        --------
         >>> c, r = ArchimedeanPacking("6.6.6", edge=10).circles((0, 0, 8, 6))
         >>> c.round(3).tolist(), r.round(3).tolist()
         ([[0.0, 0.0], [8.66, 5.0]], [8.66, 1.34])
@@ -453,9 +468,21 @@ class ArchimedeanPacking:
         return np.concatenate(parts)
 
     def segments(self, window) -> np.ndarray:
-        """Centre-lines of every motif whose circle meets ``window``, ``(k, 2, 2)`` mm; with
-        ``outline_circles`` the circles follow as chords (:func:`~fabtiles.pattern.packing.circle_segments`).
+        """Centre-lines of every motif whose circle meets ``window``; with ``outline_circles``
+        the circles follow as chords (:func:`~fabtiles.pattern.packing.circle_segments`).
 
+        Parameters
+        ----------
+        window : (float, float, float, float)
+            ``(xmin, ymin, xmax, ymax)`` in the packing's frame, mm (as :meth:`circles`).
+
+        Returns
+        -------
+        ndarray, shape (k, 2, 2)
+            Each segment's two end points, mm.
+
+        Examples
+        --------
         >>> ArchimedeanPacking("4.4.4.4", edge=10).segments((0, 0, 6, 6)).shape
         (76, 2, 2)
         """

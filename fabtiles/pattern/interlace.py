@@ -301,8 +301,8 @@ def _candidate_pairs(seg: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     a = np.repeat(pos, n_after)
     b = a + 1 + (np.arange(n_after.sum()) - np.repeat(np.cumsum(n_after) - n_after, n_after))
     i, j = sid[a], sid[b]  # i < j: sorted by segment within a cell
-    # each pair once, in the first cell both boxes share (no np.unique of the 180,000
-    # pairs of the 600 x 400 mm sheet: 0.045 s), and only if the boxes themselves overlap
+    # each pair once, in the first cell both boxes share (no np.unique over the pairs, which a
+    # sheet has by the hundred thousand), and only if the boxes themselves overlap
     c = key[a]
     first = (c // (int(i1[:, 1].max()) + 2) == np.maximum(i0[i, 0], i0[j, 0])) & (
         c % (int(i1[:, 1].max()) + 2) == np.maximum(i0[i, 1], i0[j, 1])
@@ -316,8 +316,8 @@ def _point_keys(pts) -> np.ndarray:
     """One key per point rounded to :data:`MERGE`: equal keys for equal rounded points.
 
     An int64 made of the two rounded coordinates when they fit (a pattern a few
-    metres across; ``np.unique`` over rows took 0.045 s of the 600 x 400 mm
-    sheet's weave, over these 0.01 s), else the rows themselves as a void view.
+    metres across; ``np.unique`` over int64 keys is several times quicker than over
+    rows), else the rows themselves as a void view.
     """
     key = np.round(np.asarray(pts) / MERGE).astype(np.int64)
     if not len(key):
@@ -445,9 +445,8 @@ def _pair_knots(partner, ends, d) -> None:
     greedily, the straightest pair first (ties by end number), only pairs within
     :data:`BEND_DEG` of straight, each end at most once.
 
-    Three or four ends (every knot of the samples: 5,475 on the 600 x 400 mm
-    sheet, a Python loop over them took 0.04 s) hold at most the best pair and its
-    complement: numpy; more, a loop.
+    Three or four ends (every knot of the samples, thousands on a sheet) hold at most
+    the best pair and its complement: numpy, all knots at once; more, a loop.
     """
     g = ends.shape[1]
     xs, ys = np.triu_indices(g, 1)
@@ -558,9 +557,9 @@ def _walk(partner, piece_v, plen, is_cross):
     length and whether it is a loop; per visit of a crossing (in walk order), the
     strand, how far along, the vertex and the piece arriving there.
 
-    In numpy (:func:`fabtiles.core.graph.chain_ranks`, 0.01 s for the 600 x 400 mm
-    sheet's 64,000 pieces; a Python walk took 0.05 s). Positions are summed along
-    each strand one piece after the other, as a walk would.
+    In numpy (:func:`fabtiles.core.graph.chain_ranks`), not a Python walk over a sheet's
+    tens of thousands of pieces. Positions are summed along each strand one piece after
+    the other, as a walk would.
     """
     from ..core.graph import chain_ranks, components
 

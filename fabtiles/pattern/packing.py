@@ -310,6 +310,12 @@ class SquarePacking(Packing):
     """Square packing of tangent circles, a gap circle in each cell (same parameters as
     :class:`HexPacking`; gap circle radius ``(sqrt(2) - 1) R``).
 
+    Parameters
+    ----------
+    radius, motif, gap_motif, outline_circles, fill
+        As for :class:`HexPacking`; the gap motif fills the circle in the middle of each
+        square of four big circles.
+
     Examples
     --------
     >>> p = SquarePacking(radius=10, motif=Star.preset("table1-part1"))

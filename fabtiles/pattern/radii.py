@@ -25,6 +25,11 @@ def straight_radii(n, r1, r2, count) -> tuple[float, ...]:
     count : int
         Number of radii to return, 2 to 24.
 
+    Returns
+    -------
+    tuple of float
+        ``count`` radii, mm, starting with ``r1`` and ``r2``.
+
     Raises
     ------
     ParameterError

@@ -95,6 +95,25 @@ class Star:
     def preset(cls, name: str, *, rotation: float = 0.0) -> Star:
         """The motif of one row of the paper's tables.
 
+        Parameters
+        ----------
+        name : str
+            A preset's name (:meth:`presets`; ``fabtiles presets`` lists them with their values).
+        rotation : float, keyword-only
+            Added to every angle, degrees.
+
+        Returns
+        -------
+        Star
+            The row's motif, its radii in the paper's units (a packing scales it to its circles).
+
+        Raises
+        ------
+        ParameterError
+            An unknown name; the message suggests the nearest and lists them all.
+
+        Examples
+        --------
         >>> Star.preset("table1-part1").n
         8
         >>> Star.preset("table3-33")

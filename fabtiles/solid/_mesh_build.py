@@ -11,8 +11,8 @@ stack directly, without mesh booleans:
    was checked with: no two vertices collapse and no face turns degenerate when a
    slicer reads the file back.
 2. Cut the plane into square cells along grid lines. Triangulating one polygon
-   with thousands of holes is quadratic in the number of holes (36 s for a
-   600 x 400 mm sheet); cells of a few hundred vertices keep it linear. The lines
+   with thousands of holes is quadratic in the number of holes (half a minute for
+   a sheet); cells of a few hundred vertices keep it linear. The lines
    keep clear of every vertex (:func:`_off_vertices`), and rings are first noded
    at them (crossing points inserted, snapped), so the pieces of neighbouring
    cells share their seam vertices exactly.

@@ -5,9 +5,8 @@ polygon by polygon: a convex polygon without holes is fanned from its first
 point; any other by mapbox's earcut, whose triangles are kept only when they tile
 the piece exactly (:func:`tiles_exactly`), if need be once split where an edge runs
 through collinear ring points (:func:`restore_collinear`), else by manifold3d's
-triangulator (the caller's: no piece of the samples since). Earcut is 4x faster here: 0.07 s against 0.29 s for the
-600 x 400 mm
-sheet's pieces, 0.18 s against 0.59 s interlaced, where every dip is a hole.
+triangulator (the caller's; no piece of the samples needs it). Earcut is several times faster here
+than manifold3d's triangulator (``docs/speed.md``), interlaced too, where every dip is a hole.
 Flat triangles (three collinear grid points) are flipped away
 (:func:`flip_degenerate`), or the piece goes to GEOS's constrained Delaunay
 triangulation (:func:`cdt`), which refuses a piece it cannot triangulate, naming
@@ -39,7 +38,7 @@ def ear_clip(ij, starts, part_rings, nxt):
     first = starts[part_rings[0]]
     n = len(ij)
     # polygons without holes whose every corner turns left: a fan from their first point
-    # (the interlaced sheet's 10,000 dips; one earcut call each cost 0.1 s)
+    # (an interlaced sheet's thousands of dips, with no earcut call each)
     ring_start = starts[part_rings[0] : part_rings[-1] + 1] - first
     prev = np.empty(n, np.int64)
     prev[nxt] = np.arange(n)
@@ -71,9 +70,9 @@ def restore_collinear(ij, tris, nxt, *, rounds: int = 8):
     Earcut leaves a triangle edge running through points of the rings where they
     are collinear: a point it dropped between its neighbours, or holes whose edges
     lie on one straight line, the triangle edge running along them from hole to
-    hole. There the edges do not pair up (a T-junction; 20 pieces of the
-    600 x 400 mm sheet, on the straight lines the cells cut; manifold3d's
-    triangulator redid them in 0.07 s, 0.14 s interlaced). Each such edge
+    hole. There the edges do not pair up (a T-junction; a few pieces of a sheet,
+    on the straight lines the cells cut, which manifold3d's triangulator would
+    otherwise redo). Each such edge
     ``a -> b`` of a triangle ``(a, b, c)`` over points ``m1 ... mk`` (exact integer
     test) becomes the fan ``(a, m1, c), ..., (mk, b, c)``, a few rounds; the caller
     checks the result (:func:`tiles_exactly`). None when nothing was split.
@@ -311,7 +310,7 @@ def flip_degenerate(tris: np.ndarray, ij: np.ndarray) -> np.ndarray:
 BOTTOM_RINGS = 64
 BOTTOM_POINTS = 20_000
 """A bottom outlined by at most ``BOTTOM_RINGS`` rings of ``BOTTOM_POINTS`` points in all is
-triangulated on its own (a 600 x 416 mm seamless relief's: 734 points, 5 ms); a bigger one (a
+triangulated on its own (a seamless relief sheet's has a few hundred points); a bigger one (a
 pierced tile's bottom is its whole pattern) takes the top's triangles, turned over."""
 
 
@@ -324,7 +323,7 @@ def bottom_triangles(u, v, out_level, xy):
     The bottom of a relief, a plate or a base is its outline: triangulated from
     the vertices on the outline's edges (every one, so that the walls meet it
     edge to edge), it takes a few hundred triangles where the top's, turned over,
-    took a third of the mesh (154,000 of the 600 x 400 mm relief sheet's 463,000).
+    would be a third of a relief sheet's mesh.
     None when the outline has more than :data:`BOTTOM_RINGS` rings, a ring
     passes a vertex twice, or the triangles do not tile it exactly (then the
     caller turns the top's over).

@@ -290,8 +290,8 @@ def _side_of_wall(pa, pb, side_of, xy, sides, whole):
     """The side a wall from point pa to pb runs along (same direction), or -1.
 
     ``whole``: ``{(x0, y0, x1, y1): k}`` of the sides (a wall from corner to corner is one), made
-    once: a loop over the sides for every wall took 3.96 s of issue 35's 100 mm circle tile's
-    4.7 s STEP (its circle outline has 240 sides).
+    once: a loop over the sides for every wall was most of a circle tile's STEP (its outline
+    has hundreds of sides).
     """
     ks = {int(side_of[pa]), int(side_of[pb])} - {-1}
     if len(ks) != 1:
@@ -763,7 +763,7 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
 
     u, v = topo.vid, topo.vid[topo.nxt]
     real = u != v
-    # each boundary edge once, as one int64 key (np.unique of rows sorted them lexically: 30 ms of the sheet's)
+    # each boundary edge once, as one int64 key (np.unique of rows sorts them lexically, more slowly)
     lo_v, hi_v = np.minimum(u, v)[real].astype(np.int64), np.maximum(u, v)[real].astype(np.int64)
     edge_keys = np.unique(lo_v * len(xy) + hi_v)
     degree = np.bincount(np.r_[edge_keys // len(xy), edge_keys % len(xy)], minlength=len(xy))
@@ -864,8 +864,8 @@ def _node_xyz(ed: _Edges, xy, z):
 
 def _groups(n, pairs):
     """The numbers 0..n-1 grouped by the pairs that join them, each group in order, the groups in
-    the order of their smallest member (:func:`fabtiles.core.graph.components`; networkx's union-find
-    cost 0.22 s to import in every STEP export).
+    the order of their smallest member (:func:`fabtiles.core.graph.components`; importing networkx's
+    union-find would slow every STEP export).
 
     >>> _groups(5, [(3, 1), (4, 2)])
     [[0], [1, 3], [2, 4]]
@@ -905,9 +905,9 @@ MAX_FACE_HOLES = 300
 grid, a face each (and a pierced tile's bottom likewise). OCCT's STEP reader heals each wire
 of a face against the whole face (``ShapeFix_IntersectionTool::FixSelfIntersectWire`` applies
 its context to the face once per wire), so its time grows as the holes times the face's edges:
-issue 35's 200 mm pierced tile, its top and bottom each one face of 1,133 holes, took 67.5 s
-to import; in cells, 12.3 s (CPU). The seams show on the face in a CAD program, so a tile of up
-to about 100 mm (259 holes on issue 35's design) keeps its one face."""
+cells make a 200 mm pierced tile's import several times quicker (``docs/speed.md``). The seams
+show on the face in a CAD program, so a tile of up to about 100 mm (a few hundred holes) keeps
+its one face."""
 
 
 def _cells_for_faces(layers) -> int:
@@ -1139,7 +1139,7 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     """Check a B-rep in memory before it is written: closed, oriented, valid faces, the mesh's volume.
 
     What OCCT's reading back of the written file checked, in a fraction of its time
-    (the 200 x 200 mm relief: the read-back and its checks took 5.2 s of a 7.4 s export):
+    (the read-back and its checks were most of an export's time):
 
     - every edge bounds exactly two faces, run once each way (a closed shell,
       consistently oriented), and the faces fall into ``parts`` shells;

@@ -48,8 +48,8 @@ def dip_level(dips, region=None):
 
     if dips is None or dips.is_empty:
         return shapely.Polygon()
-    # :func:`fabtiles.geometry.interlace.dips` makes them on the grid already (snapping
-    # them again, validity check included, took 0.035 s for the 600 x 400 mm sheet)
+    # :func:`fabtiles.geometry.interlace.dips` makes them on the grid already (no snapping
+    # again, nor its validity check)
     coords = shapely.get_coordinates(dips)
     on_grid = np.array_equal(np.round(coords / QUANTUM) * QUANTUM, coords)
     parts = shapely.get_parts(dips if on_grid else snap(dips))
@@ -232,8 +232,7 @@ def add_holes(polys, owner, coords, lengths):
     counts; they are added as given (a caller orienting its polygons passes them
     clockwise). The holes must lie strictly inside their owners, apart from each
     other and the owners' own holes: nothing is checked or overlaid. Built as one
-    ragged array, no shapely object per ring (0.18 s for the 600 x 400 mm sheet's
-    20,000 rings made one by one, this 0.02 s).
+    ragged array, no shapely object per ring (a sheet has tens of thousands).
 
     >>> import shapely
     >>> ring = np.array([[1, 1], [1, 2], [2, 2], [2, 1], [1, 1]], float)
@@ -264,8 +263,8 @@ def _thin(parts):
     """Parts no point of which is farther than :data:`THIN_MM` from their edge (at most).
 
     Twice the area over the perimeter bounds the largest inscribed disc's radius
-    from above, so a part below :data:`THIN_MM` by it is thin (no buffer: 0.15 s
-    for the 10,287 dips of the 600 x 400 mm sheet).
+    from above, so a part below :data:`THIN_MM` by it is thin (no buffer of each of a
+    sheet's thousands of dips).
     """
     import shapely
 
@@ -338,8 +337,8 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
     the cell lines with it, and their own pieces noded there the same way. Every
     other dip lies inside one cell, strictly inside the region's piece there, and
     is added to that piece as a hole, as arrays (:func:`add_holes`): no overlay at
-    all. 0.47 s for the sheet with one overlay a cell (12 s for ``coverage`` of the
-    three layers), this 0.29 s (0.19 s without dips). ``leveled`` says ``dips``
+    all, quicker than one overlay a cell and far quicker than ``coverage`` of the three
+    layers (``docs/speed.md``). ``leveled`` says ``dips``
     already is :func:`dip_level`'s.
 
     >>> from shapely.geometry import box
@@ -470,7 +469,7 @@ def _inner_dips(pieces, top, low, coords, lengths):
     out = [p for k, p in enumerate(pieces) if not is_top[k]]
     out += [(g, top) for g in shapely.multipolygons(holed, indices=piece_of)]
     # the dips themselves, all one piece: the piece's polygons are meshed one by one anyway
-    # (fanned, these quads), and one piece instead of one a cell saved 0.018 s on the sheet
+    # (fanned, these quads), and one piece is less bookkeeping than one a cell
     dip_polys = shapely.from_ragged_array(
         shapely.GeometryType.POLYGON,
         _reversed(coords, lengths, ~ccw),

@@ -5,9 +5,9 @@ is rounded to float32, merged (:func:`merge_indexed32` from its vertices,
 :func:`check_triangles` from an STL's corners: the same arrays), then it must have
 no collapsed or flat face, every edge used once each way (watertight, 2-manifold,
 consistently wound), a positive volume (within 0.5 % of the expected one when
-given) and the expected number of bodies. numpy throughout: importing trimesh alone
-cost 0.75 s and its checks 3-7 s on the 600 x 400 mm sheet; the tests check every
-file with trimesh independently.
+given) and the expected number of bodies. numpy throughout: importing trimesh and
+running its checks would take longer than building a sheet's mesh (``docs/speed.md``);
+the tests check every file with trimesh independently.
 """
 
 from __future__ import annotations
@@ -66,9 +66,8 @@ def merge_indexed32(vertices, faces):
     (:func:`fabtiles.export.stl.stl_bytes`); every corner of one vertex has the same bits, so merging
     the used vertices by float32 position gives exactly what merging the file's
     3m corners gives (:func:`_merge_float32`), array for array, from about a
-    sixth of the points (0.5 s to 0.06 s for the 716,000 triangles of the
-    interlaced 600 x 400 mm sheet). Vertices distinct in float64 that round to one
-    float32 point merge, as in the file.
+    sixth of the points, in a fraction of the time. Vertices distinct in float64
+    that round to one float32 point merge, as in the file.
 
     >>> v = np.array([[0, 0, 0], [1, 0, 0], [1 + 1e-9, 0, 0], [0, 1, 0]], float)
     >>> merged, f = merge_indexed32(v, np.array([[0, 1, 3], [0, 2, 3]]))
@@ -152,7 +151,7 @@ def check_indexed(vertices, faces, *, name="mesh", volume=None, bodies=None, wit
     The same check as :func:`check_triangles` on the file's triangles, merged from
     the vertices (:func:`merge_indexed32`). Returns the merged ``(vertices, faces)``,
     and with ``with_volume`` the volume (mm^3) the check found (the writers report
-    it: a second pass took 0.05 s on the interlaced 600 x 400 mm sheet).
+    it, without a second pass over the mesh).
     """
     faces = np.asarray(faces)
     if not len(faces):

@@ -399,10 +399,10 @@ def relief_parts(fused: CheckedPart, stack: Stack) -> dict:
     The pattern is the fused body's triangles at or over the base's top (the
     pattern's top and walls), closed underneath by its top triangulation lowered
     to the base's top and turned over: one meshing of the region serves the STL and
-    the 3MF (meshing the pattern again cost 0.2 s of the 600 x 400 mm sheet's 1.6 s
-    STL build). The base is the outline's slab, meshed on its own: its top taken
-    from the fused body would hold the pattern's every triangle again (the sheet's
-    3MF grew from 1.8 to 2.6 MB). Each part is checked as a slicer reads it. Only
+    the 3MF (meshing the pattern again would be an eighth of a sheet's STL build). The
+    base is the outline's slab, meshed on its own: its top taken from the fused body
+    would hold the pattern's every triangle again (a sheet's 3MF would grow by
+    almost half). Each part is checked as a slicer reads it. Only
     for a relief of three heights (0, base, base + relief), which every plain
     relief is.
     """
@@ -598,8 +598,8 @@ def mosaic_parts(region, outline, stack: Stack, specs) -> dict:
     out = {}
     for k, spec in enumerate(specs):
         mine = faces[owner == k]
-        # the faces are disjoint parts of one overlay: a MultiPolygon of them is their union (a GEOS
-        # union of the sheet's 10,000 faces took 2 s)
+        # the faces are disjoint parts of one overlay: a MultiPolygon of them is their union (no GEOS
+        # union of a sheet's thousands of faces)
         face_geom = shapely.MultiPolygon(list(mine)) if len(mine) else shapely.Polygon()
         layers = []
         if spec.bands:

@@ -43,7 +43,7 @@ MODULES = (
     "examples/jsm/utils/SkeletonUtils.js",  # imported by GLTFLoader
     "LICENSE",
 )
-"""The files the view needs, by their path in the npm package (2.3 MB of the 30 MB package)."""
+"""The files the view needs, by their path in the npm package (a small part of it)."""
 
 VENDOR = Path(__file__).with_name("static") / "vendor" / "three"
 """Where they go: served by the app under ``/static/vendor/three/``."""
