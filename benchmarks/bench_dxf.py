@@ -92,11 +92,10 @@ def tile_region(*, cache=TILE_CACHE):
 
 
 def main(argv=None):
-    from fabtiles.export.dxf import write_dxf
-    from fabtiles.export.laser_svg import write_laser_svg
     from fabtiles.geometry.contours import laser_contours
     from fabtiles.geometry.laser_checks import check_laser
     from fabtiles.machines.profiles import load_profile
+    from fabtiles.making import export_region
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)
@@ -135,23 +134,36 @@ def main(argv=None):
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "sheet.dxf"
         report, total = best(
-            "write_dxf end to end",
-            lambda: write_dxf(path, region=region, outline=outline, profile=profile, stroke=STROKE),
+            "DXF end to end",
+            lambda: export_region(
+                path, region=region, outline=outline, profile=profile, stroke=STROKE, fill_small_holes=False
+            ),
         )
         print(f"  {path.stat().st_size / 1e6:.1f} MB; stats: {report.stats}")
         print("  " + report.summary().replace("\n", "\n  "))
         if args.r12:
             best(
-                "write_dxf R12",
-                lambda: write_dxf(
-                    path, region=region, outline=outline, profile=profile, stroke=STROKE, dxf_version="R12"
+                "DXF R12",
+                lambda: export_region(
+                    path,
+                    region=region,
+                    outline=outline,
+                    profile=profile,
+                    stroke=STROKE,
+                    fill_small_holes=False,
+                    dxf_version="R12",
                 ),
             )
         if args.svg:
             best(
-                "write_laser_svg",
-                lambda: write_laser_svg(
-                    Path(tmp) / "sheet.svg", region=region, outline=outline, profile=profile, stroke=STROKE
+                "laser SVG",
+                lambda: export_region(
+                    Path(tmp) / "sheet.svg",
+                    region=region,
+                    outline=outline,
+                    profile=profile,
+                    stroke=STROKE,
+                    fill_small_holes=False,
                 ),
             )
     verdict = "PASS" if total < 2.0 else "FAIL"

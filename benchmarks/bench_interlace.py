@@ -37,7 +37,7 @@ def best(fn, repeat: int) -> float:
 
 
 def stl_stages(woven: bool) -> dict:
-    """Seconds of each stage of the relief STL of the sheet, as ``write_stl`` runs them."""
+    """Seconds of each stage of the relief STL of the sheet, as the STL's print model runs them."""
     from fabtiles.export import stl
     from fabtiles.geometry import interlace
     from fabtiles.solid import _mesh_build as mb

@@ -28,14 +28,21 @@ def main(argv=None):
     ap.add_argument("--out", default=None)
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
-    from fabtiles.export import stl, threemf
+    from fabtiles.making import export_region
 
     tile = sheet_tile()
     region, outline = tile.region(), tile.outline_shape()
     t1 = time.perf_counter()
     out = Path(args.out or tempfile.mkdtemp()) / f"sheet.{args.format}"
-    writer = stl.write_stl if args.format == "stl" else threemf.write_3mf
-    report = writer(out, region=region, outline=outline, profile="fdm-0.4mm", style=args.style, stroke=tile.stroke)
+    report = export_region(
+        out,
+        region=region,
+        outline=outline,
+        profile="fdm-0.4mm",
+        style=args.style,
+        stroke=tile.stroke,
+        fill_small_holes=False,
+    )
     t2 = time.perf_counter()
     print(
         f"region {t1 - t0:.2f} s, {args.format} {t2 - t1:.2f} s, total {t2 - t0:.2f} s; "

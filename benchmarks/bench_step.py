@@ -19,8 +19,8 @@ def main(argv=None):
     ap.add_argument("--out", default=None)
     args = ap.parse_args(argv)
     from fabtiles import Star
-    from fabtiles.export import step
     from fabtiles.geometry.tile import TileGeometry
+    from fabtiles.making import export_region
     from fabtiles.pattern.packing import HexPacking
 
     t0 = time.perf_counter()
@@ -28,7 +28,15 @@ def main(argv=None):
     region, outline = tile.region(), tile.outline_shape()
     t1 = time.perf_counter()
     out = Path(args.out or tempfile.mkdtemp()) / "tile.step"
-    step.write_step(out, region=region, outline=outline, profile="fdm-0.4mm", style=args.style, stroke=tile.stroke)
+    export_region(
+        out,
+        region=region,
+        outline=outline,
+        profile="fdm-0.4mm",
+        style=args.style,
+        stroke=tile.stroke,
+        fill_small_holes=False,
+    )
     t2 = time.perf_counter()
     print(
         f"region {t1 - t0:.2f} s, step {t2 - t1:.2f} s, total {t2 - t0:.2f} s; "

@@ -10,6 +10,6 @@ model, :mod:`fabtiles.solid.print_model`). Each imports its heavy library only w
 used. Pictures: :mod:`~fabtiles.export.motif_svg` (one motif),
 :mod:`~fabtiles.export.preview_svg` (a tile, its findings marked);
 :mod:`~fabtiles.export.card` the laser calibration card; :mod:`~fabtiles.export.kit`
-an inlay kit's files. The ``write_*`` functions of the modules are conveniences for
-scripts; the build pipeline (:mod:`fabtiles.making`) writes every file of a build.
+an inlay kit's files. The build pipeline (:mod:`fabtiles.making`) writes every file of
+a model: ``Tile.export``, :func:`fabtiles.making.export_region`, ``fabtiles build``.
 """

@@ -24,79 +24,7 @@ from __future__ import annotations
 import threading
 from contextlib import contextmanager
 
-from ..core.files import atomic_write
-from ..core.report import Report
-from ..geometry.cut_plan import CutPlan, plan_cut
-
-
-def write_dxf(
-    path,
-    *,
-    region,
-    outline,
-    centrelines=None,
-    profile,
-    mode=None,
-    dxf_version=None,
-    kerf_mm=None,
-    fill_small_holes: bool = False,
-    stroke=None,
-) -> Report:
-    """Write the laser DXF of a tile's material ``region`` to ``path``.
-
-    Parameters
-    ----------
-    path : str or Path
-        Output file, written atomically (nothing is left behind on error).
-    region : shapely Polygon or MultiPolygon
-        The material in file coordinates (mm; the outline's lower-left at (0, 0)).
-    outline : shapely Polygon or MultiPolygon
-        The tile outline (one polygon per tile on a sheet).
-    centrelines : ndarray (k, 2, 2), optional
-        Centre-line segments in file coordinates; needed by the score mode.
-    profile : str, Path or CutterProfile
-        Laser profile (kerf, limits, bed, layers, defaults of the options below).
-    mode : {"pierced", "score"}, optional
-        Pierced: cut every boundary of the material. Score: cut the outline, score
-        the centre-lines. Default: the profile's.
-    dxf_version : {"R12", "R2000", ...}, optional
-        Default: the profile's. R12 writes POLYLINE entities instead of LWPOLYLINE.
-    kerf_mm : float, optional
-        Width of the cut (>= 0, <= stroke); default: the profile's. 0 gives the nominal contours.
-    fill_small_holes : bool
-        Fill the holes narrower than the profile's ``min_hole_mm`` instead of cutting them.
-    stroke : float, optional
-        The pattern's stroke width, to check kerf and ``min_feature_mm`` against.
-
-    Returns
-    -------
-    Report
-        Statistics (contour counts, cut length, area) and fabrication findings.
-
-    >>> import tempfile, pathlib
-    >>> from shapely.geometry import box
-    >>> plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
-    >>> out = pathlib.Path(tempfile.mkdtemp()) / "plate.dxf"
-    >>> r = write_dxf(out, region=plate, outline=box(0, 0, 40, 40), profile="laser-3mm-plywood")
-    >>> r.stats["inner_contours"], r.stats["outer_contours"], r.ok
-    (1, 1, True)
-    """
-    plan = plan_cut(
-        region,
-        outline,
-        centrelines=centrelines,
-        profile=profile,
-        mode=mode,
-        dxf_version=dxf_version,
-        kerf_mm=kerf_mm,
-        fill_small_holes=fill_small_holes,
-        stroke=stroke,
-        path=str(path),
-        fmt="dxf",
-    )
-    atomic_write(path, dxf_bytes(plan))
-    plan.report.stats.update(figures(plan))
-    return plan.report
+from ..geometry.cut_plan import CutPlan
 
 
 def figures(plan: CutPlan) -> dict:
@@ -114,7 +42,7 @@ def build_document(job: CutPlan, *, entities: bool = True):
     """The ezdxf document of a :class:`~fabtiles.geometry.cut_plan.CutPlan`.
 
     With ``entities=False`` only the header, units, layers and empty model space:
-    :func:`write_dxf` writes the (many) polylines itself, see :func:`entities_text`.
+    :func:`dxf_text` writes the (many) polylines itself, see :func:`entities_text`.
     """
     import ezdxf
     from ezdxf import units

@@ -14,10 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.files import atomic_write
-from ..core.report import Report
 from ..geometry.arcs import subdivide
-from ..geometry.cut_plan import CutPlan, plan_cut
+from ..geometry.cut_plan import CutPlan
 from ._text import attribute as _escape
 from ._text import number as _num
 
@@ -164,46 +162,3 @@ def _title(job: CutPlan) -> str:
     """The picture's title: the laser's mode and kerf, or what a router's or waterjet's file holds."""
     p = job.profile
     return p.cutter.title(p, job.mode, job.kerf_mm, num=_num, escape=_escape)
-
-
-def write_laser_svg(
-    path,
-    *,
-    region,
-    outline,
-    centrelines=None,
-    profile,
-    mode=None,
-    kerf_mm=None,
-    fill_small_holes: bool = False,
-    stroke=None,
-    dxf_version=None,
-) -> Report:
-    """Write the laser SVG of a tile's material ``region`` to ``path``.
-
-    Same parameters, checks, contours and cut order as
-    :func:`fabtiles.export.dxf.write_dxf` (``dxf_version`` is accepted and ignored).
-
-    >>> import tempfile, pathlib
-    >>> from shapely.geometry import box
-    >>> plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
-    >>> out = pathlib.Path(tempfile.mkdtemp()) / "plate.svg"
-    >>> r = write_laser_svg(out, region=plate, outline=box(0, 0, 40, 40), profile="laser-3mm-plywood", kerf_mm=0)
-    >>> 'width="40mm"' in out.read_text(), r.stats["inner_contours"]
-    (True, 1)
-    """
-    plan = plan_cut(
-        region,
-        outline,
-        centrelines=centrelines,
-        profile=profile,
-        mode=mode,
-        dxf_version=dxf_version,
-        kerf_mm=kerf_mm,
-        fill_small_holes=fill_small_holes,
-        stroke=stroke,
-        path=str(path),
-        fmt="svg",
-    )
-    atomic_write(path, svg_bytes(plan))
-    return plan.report

@@ -32,10 +32,8 @@ import functools
 
 import numpy as np
 
-from ..core.files import atomic_write
-from ..core.report import Report
 from ..geometry.arcs import Beziers, beziers_many
-from ..geometry.cut_plan import CutPlan, plan_cut
+from ..geometry.cut_plan import CutPlan
 from ._text import number as _num
 
 APP_VERSION = "1.7.03"
@@ -47,48 +45,6 @@ PALETTE = (
     "C08000 00A0FF A000A0 808080 7D87B9 BB7784 4A6FE3 D33F6A 8CD78C F0B98D F6C4E1 FA9ED4 500A78 "
     "B45A00 004754 86FA88 FFDB66"
 ).split()
-
-
-def write_lbrn2(
-    path,
-    *,
-    region,
-    outline,
-    centrelines=None,
-    profile,
-    mode=None,
-    kerf_mm=None,
-    fill_small_holes: bool = False,
-    stroke=None,
-    dxf_version=None,
-) -> Report:
-    """Write the LightBurn project of a tile's material ``region`` to ``path``.
-
-    Parameters as :func:`~fabtiles.export.dxf.write_dxf` (``dxf_version`` is accepted
-    and ignored, as by the laser SVG).
-
-    >>> import tempfile, pathlib
-    >>> from shapely.geometry import box
-    >>> plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
-    >>> out = pathlib.Path(tempfile.mkdtemp()) / "plate.lbrn2"
-    >>> r = write_lbrn2(out, region=plate, outline=box(0, 0, 40, 40), profile="laser-3mm-plywood")
-    >>> out.read_text().count('<Shape Type="Path"'), r.stats["inner_contours"], r.stats["outer_contours"]
-    (2, 1, 1)
-    """
-    plan = plan_cut(
-        region,
-        outline,
-        centrelines=centrelines,
-        profile=profile,
-        mode=mode,
-        kerf_mm=kerf_mm,
-        fill_small_holes=fill_small_holes,
-        stroke=stroke,
-        path=str(path),
-        fmt="lbrn2",
-    )
-    atomic_write(path, lbrn2_bytes(plan))
-    return plan.report
 
 
 def palette_index(color_rgb: str, taken) -> int:

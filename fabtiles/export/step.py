@@ -22,7 +22,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.errors import FabricationError, ProfileError
-from ..core.files import atomic_write
 from ..geometry.material import filament
 from ..geometry.stack import QUANTUM
 from ..solid.brep import brep_volume, check_brep
@@ -305,56 +304,3 @@ def figures(model) -> dict:
         cylinders=sum(f.radius > 0 for f in brep.faces),
         edges=len(brep.edges),
     )
-
-
-def write_step(
-    path,
-    *,
-    region,
-    outline,
-    profile,
-    style=None,
-    stroke=None,
-    base_mm=None,
-    relief_mm=None,
-    pierced_mm=None,
-    deboss_mm=None,
-    fill_small_holes=False,
-    dips=None,
-    name=None,
-):
-    """Write a STEP file (AP214, mm) of the printed tile: planes and cylinders, one solid per piece.
-
-    A convenience for scripts: the print model (:func:`~fabtiles.solid.print_model.print_model`)
-    and :func:`step_bytes`, written atomically. A pierced tile in several pieces gives
-    one solid per piece (and a ``loose_part`` finding). Parameters as
-    :func:`fabtiles.export.stl.write_stl`; ``dips`` lowers an interlaced relief's under
-    strands (:mod:`fabtiles.solid.levels`); ``name`` labels the product and its solids
-    (default: the file's stem).
-
-    Returns
-    -------
-    Report
-    """
-    from pathlib import Path
-
-    from ..solid.print_model import print_model
-
-    model = print_model(
-        region,
-        outline,
-        profile=profile,
-        style=style,
-        stroke=stroke,
-        base_mm=base_mm,
-        relief_mm=relief_mm,
-        pierced_mm=pierced_mm,
-        deboss_mm=deboss_mm,
-        fill_small_holes=fill_small_holes,
-        dips=dips,
-        path=str(path),
-        fmt="step",
-    )
-    atomic_write(path, step_bytes(model, name=name or Path(path).stem))
-    model.report.stats.update(figures(model))
-    return model.report

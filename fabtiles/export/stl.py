@@ -10,59 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.errors import FabricationError
-from ..core.files import atomic_write
-from ..core.report import Report
 from ..geometry.material import filament
 from ..solid.mesh_check import cross_rows
-
-
-def write_stl(
-    path,
-    *,
-    region,
-    outline,
-    profile,
-    style=None,
-    stroke=None,
-    base_mm=None,
-    relief_mm=None,
-    pierced_mm=None,
-    deboss_mm=None,
-    fill_small_holes=False,
-    dips=None,
-) -> Report:
-    """Write a binary STL (mm) of the tile, one watertight body (a relief's plate and pattern fused).
-
-    A convenience for scripts: the print model (:func:`~fabtiles.solid.print_model.print_model`)
-    and :func:`model_stl_bytes`, written atomically. The mesh is checked as a slicer
-    reads the file (float32 corners merged by position) and that merged mesh is what
-    is written. Parameters as :func:`~fabtiles.solid.parts.build_meshes`, plus
-    ``stroke`` (mm, named by the thin-wall check), ``fill_small_holes`` (fill the
-    openings no disc of the printer profile's ``min_hole_mm`` fits in, see
-    :func:`~fabtiles.geometry.print_checks.fill_print_holes`) and ``dips`` (an
-    interlaced relief's, see :mod:`fabtiles.solid.levels`). Strict profile with
-    findings, or a bad mesh: :class:`~fabtiles.FabricationError` and no file.
-    """
-    from ..solid.print_model import print_model
-
-    model = print_model(
-        region,
-        outline,
-        profile=profile,
-        style=style,
-        stroke=stroke,
-        base_mm=base_mm,
-        relief_mm=relief_mm,
-        pierced_mm=pierced_mm,
-        deboss_mm=deboss_mm,
-        fill_small_holes=fill_small_holes,
-        dips=dips,
-        path=str(path),
-        fmt="stl",
-    )
-    atomic_write(path, model_stl_bytes(model))
-    model.report.stats.update(figures(model))
-    return model.report
 
 
 def model_stl_bytes(model) -> bytes:

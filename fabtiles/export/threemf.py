@@ -96,7 +96,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from ..core.errors import FabricationError, ParameterError
-from ..core.files import atomic_write, zip_entry
+from ..core.files import zip_entry
 from ..geometry.material import filament
 from ._text import escape
 
@@ -485,75 +485,6 @@ def _read_components(model: bytes) -> dict:
 # --------------------------------------------------------------------------- writer
 
 
-def write_3mf(
-    path,
-    *,
-    region,
-    outline,
-    profile,
-    style=None,
-    stroke=None,
-    base_mm=None,
-    relief_mm=None,
-    pierced_mm=None,
-    deboss_mm=None,
-    fill_small_holes=False,
-    inlay=False,
-    layout="volumes",
-    name=None,
-    dips=None,
-):
-    """Write a 3MF (unit millimetre) of the tile: one object of named parts, one filament each.
-
-    A convenience for scripts: the print model (:func:`~fabtiles.solid.print_model.print_model`)
-    and :func:`model_3mf_bytes`, written atomically. Parameters as
-    :func:`~fabtiles.export.stl.write_stl`, plus:
-
-    inlay : bool, optional
-        Deboss only: a second part ``"inlay"`` filling the grooves flush with the
-        plate's top (filament 2), for a two-colour inlay print.
-    layout : {"volumes", "components"}
-        ``"volumes"`` (default): one mesh object cut into parts by PrusaSlicer's
-        config (PrusaSlicer, Bambu Studio, OrcaSlicer); ``"components"``: one object
-        of components, each part its own mesh object (UltiMaker Cura; Bambu Studio,
-        OrcaSlicer; PrusaSlicer makes each part its own object). See the module.
-    name : str, optional
-        The object's name in the slicer (default: the file name without suffix).
-    dips : shapely geometry, optional
-        An interlaced relief's dipping under strands (see :mod:`fabtiles.solid.levels`).
-
-    A relief is parts ``"base"`` (filament 1) and ``"pattern"`` (filament 2);
-    pierced is ``"pattern"``, deboss ``"plate"`` (materials:
-    :data:`~fabtiles.solid.print_model.PART_MATERIALS`).
-
-    Returns
-    -------
-    Report
-    """
-    from ..solid.print_model import print_model
-
-    check_layout(layout)
-    model = print_model(
-        region,
-        outline,
-        profile=profile,
-        style=style,
-        stroke=stroke,
-        base_mm=base_mm,
-        relief_mm=relief_mm,
-        pierced_mm=pierced_mm,
-        deboss_mm=deboss_mm,
-        fill_small_holes=fill_small_holes,
-        inlay=inlay,
-        dips=dips,
-        path=str(path),
-        fmt="3mf",
-    )
-    atomic_write(path, model_3mf_bytes(model, name=name if name is not None else _stem(path), layout=layout))
-    model.report.stats.update(figures(model, layout=layout))
-    return model.report
-
-
 def check_layout(layout) -> str:
     """``layout`` if it is one of :data:`LAYOUTS`, else a :class:`~fabtiles.ParameterError` listing them."""
     if layout not in LAYOUTS:
@@ -590,9 +521,3 @@ def figures(model, *, layout: str = "volumes") -> dict:
         material=filament({n: p.mesh.mesh_volume_mm3 for n, p in checked.items()}, model.profile).as_stats(),
         bounds_mm=[allv.min(axis=0).tolist(), allv.max(axis=0).tolist()],
     )
-
-
-def _stem(path) -> str:
-    from pathlib import Path
-
-    return Path(str(path)).stem or "tile"

@@ -392,7 +392,7 @@ def plan_cut(
     if mode == "inlay":
         raise ParameterError(
             "the inlay mode writes a kit of two files (lattice and pieces): export it with "
-            "fabtiles.export.kit.write_kit, Tile.export(..., mode='inlay') or fabtiles build",
+            "Tile.export(..., mode='inlay'), fabtiles.making.export_region(..., mode='inlay') or fabtiles build",
             param="mode",
         )
     mode = check_choice("mode", mode, LASER_MODES)

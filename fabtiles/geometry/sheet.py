@@ -36,7 +36,7 @@ GAP_EXTRA_MM = 2.0
 
 @dataclass(frozen=True)
 class Sheet:
-    """Tiles laid out on a sheet: inputs for :func:`~fabtiles.export.dxf.write_dxf`."""
+    """Tiles laid out on a sheet: inputs for :func:`~fabtiles.geometry.cut_plan.plan_cut`."""
 
     region: BaseGeometry
     outline: BaseGeometry

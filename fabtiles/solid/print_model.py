@@ -209,9 +209,12 @@ def print_model(
 ) -> PrintModel:
     """Validate, make the region to print and run the printability checks: the tile's :class:`PrintModel`.
 
-    Parameters as :func:`~fabtiles.export.stl.write_stl`; ``inlay`` (deboss only) adds
-    the grooves' filling as a second part; ``dips`` lowers an interlaced relief's
-    under strands (:mod:`fabtiles.solid.levels`); ``colours`` (a
+    Parameters as :func:`~fabtiles.solid.parts.build_meshes`, plus ``stroke`` (mm, named
+    by the thin-wall check), ``fill_small_holes`` (fill the openings no disc of the
+    printer profile's ``min_hole_mm`` fits in, see
+    :func:`~fabtiles.geometry.print_checks.fill_print_holes`) and ``path``, ``fmt`` (what
+    the report names); ``inlay`` (deboss only) adds the grooves' filling as a second
+    part; ``dips`` lowers an interlaced relief's under strands (:mod:`fabtiles.solid.levels`); ``colours`` (a
     :class:`~fabtiles.designs.colour.Colouring`) colours the parts, and a mosaic's ``mosaic``
     (:class:`~fabtiles.solid.parts.MosaicPart`, one per colour) says which part holds
     the plate, the bands and which faces. No mesh is built here: the model

@@ -31,10 +31,11 @@ from mesh_helpers import (
     assert_touch_without_overlap,
     load_3mf_parts,
 )
+from model_files import write_print
 
 from fabtiles import FabricationError, ParameterError, Star
 from fabtiles import Tile as PublicTile
-from fabtiles.export import stl, threemf
+from fabtiles.export import threemf
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 from fabtiles.solid import parts
@@ -119,7 +120,7 @@ def layers(gcode: str) -> list[float]:
 def test_relief_is_one_object_of_two_parts_in_prusaslicer(tmp_path, shapes, prusa):
     region, outline = shapes
     path = tmp_path / "tile.3mf"
-    report = threemf.write_3mf(path, region=region, outline=outline, profile="fdm-0.4mm")
+    report = write_print(path, region=region, outline=outline, profile="fdm-0.4mm")
     assert {n: p["extruder"] for n, p in report.stats["parts"].items()} == {"base": 1, "pattern": 2}
     (info,) = prusa_info(tmp_path, path)  # one object, not one per part
     # number_of_parts counts the object's shells: the base plate and the pattern (one piece with its frame)
@@ -139,8 +140,8 @@ def test_relief_slices_like_its_stl_with_the_pattern_on_the_second_filament(tmp_
     region, outline = shapes
     ini = tmp_path / "two-extruders.ini"
     ini.write_text(TWO_EXTRUDERS)
-    threemf.write_3mf(tmp_path / "tile.3mf", region=region, outline=outline, profile="fdm-0.4mm")
-    stl.write_stl(tmp_path / "tile.stl", region=region, outline=outline, profile="fdm-0.4mm")
+    write_print(tmp_path / "tile.3mf", region=region, outline=outline, profile="fdm-0.4mm")
+    write_print(tmp_path / "tile.stl", region=region, outline=outline, profile="fdm-0.4mm")
     got = {}
     for fmt in ("3mf", "stl"):
         run_prusa(
@@ -198,7 +199,7 @@ def test_deboss_inlay_fills_the_grooves_flush(tmp_path, shapes, prusa):
 def test_single_body_styles_are_one_object_of_one_part(tmp_path, shapes, prusa, style, name, top):
     region, outline = shapes
     path = tmp_path / "t.3mf"
-    threemf.write_3mf(path, region=region, outline=outline, profile="fdm-0.4mm", style=style)
+    write_print(path, region=region, outline=outline, profile="fdm-0.4mm", style=style)
     assert list(load_3mf_parts(path)) == [name]
     (info,) = prusa_info(tmp_path, path)
     assert float(info["max_z"]) == pytest.approx(top, abs=1e-5)
@@ -212,7 +213,7 @@ def test_single_body_styles_are_one_object_of_one_part(tmp_path, shapes, prusa, 
 def test_slicer_metadata_agree_with_the_model(tmp_path, shapes):
     region, outline = shapes
     path = tmp_path / "My tile.3mf"
-    threemf.write_3mf(path, region=region, outline=outline, profile="fdm-0.4mm")
+    write_print(path, region=region, outline=outline, profile="fdm-0.4mm")
     zf = zipfile.ZipFile(path)
     ns = {"m": "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"}
     model = ET.fromstring(zf.read("3D/3dmodel.model"))
@@ -252,14 +253,14 @@ def test_slicer_metadata_agree_with_the_model(tmp_path, shapes):
 def test_the_same_bytes_every_run(tmp_path, shapes):
     region, outline = shapes
     for name in ("a", "b"):
-        threemf.write_3mf(tmp_path / name / "t.3mf", region=region, outline=outline, profile="fdm-0.4mm")
+        write_print(tmp_path / name / "t.3mf", region=region, outline=outline, profile="fdm-0.4mm")
     assert (tmp_path / "a" / "t.3mf").read_bytes() == (tmp_path / "b" / "t.3mf").read_bytes()
 
 
 def test_trimesh_reads_the_object(tmp_path, shapes):
     region, outline = shapes
     path = tmp_path / "tile.3mf"
-    threemf.write_3mf(path, region=region, outline=outline, profile="fdm-0.4mm")
+    write_print(path, region=region, outline=outline, profile="fdm-0.4mm")
     scene = trimesh.load(path, file_type="3mf")
     assert list(scene.geometry) == ["tile"]
     assert scene.geometry["tile"].volume == pytest.approx(outline.area * B + region.area * H, rel=VOLUME_REL)
@@ -290,7 +291,7 @@ def test_vertices_read_back_are_the_checked_float32_values(shapes):
 def test_bad_inlay_no_file(tmp_path, shapes, kwargs, msg):
     region, outline = shapes
     with pytest.raises(ParameterError, match=msg):
-        threemf.write_3mf(tmp_path / "t.3mf", region=region, outline=outline, profile="fdm-0.4mm", **kwargs)
+        write_print(tmp_path / "t.3mf", region=region, outline=outline, profile="fdm-0.4mm", **kwargs)
     with pytest.raises(ParameterError, match=msg):
         parts.build_meshes(region=region, outline=outline, profile="fdm-0.4mm", **kwargs)
     assert list(tmp_path.iterdir()) == []
@@ -348,7 +349,7 @@ def test_read_3mf_refuses_other_files(tmp_path, shapes):
         threemf.read_3mf(b"solid not a zip")
     region, outline = shapes
     path = tmp_path / "t.3mf"
-    threemf.write_3mf(path, region=region, outline=outline, profile="fdm-0.4mm")
+    write_print(path, region=region, outline=outline, profile="fdm-0.4mm")
     files = {n: zipfile.ZipFile(path).read(n) for n in zipfile.ZipFile(path).namelist()}
     files["Metadata/Slic3r_PE_model.config"] = re.sub(
         rb'lastid="\d+">\s*<metadata type="volume" key="name" '
@@ -375,7 +376,7 @@ def test_read_3mf_refuses_other_files(tmp_path, shapes):
 def test_read_3mf_refuses_a_broken_model(tmp_path, shapes, old, new, msg):
     region, outline = shapes
     path = tmp_path / "t.3mf"
-    threemf.write_3mf(path, region=region, outline=outline, profile="fdm-0.4mm")
+    write_print(path, region=region, outline=outline, profile="fdm-0.4mm")
     files = {n: zipfile.ZipFile(path).read(n) for n in zipfile.ZipFile(path).namelist()}
     files["3D/3dmodel.model"] = files["3D/3dmodel.model"].replace(old, new, 1)
     bad = tmp_path / "bad.3mf"

@@ -25,10 +25,11 @@ from dxf_helpers import (
     tiny_hole_region,
     vertices,
 )
+from model_files import write_cut
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError
-from fabtiles.export.dxf import build_document, dxf_text, write_dxf
+from fabtiles.export.dxf import build_document, dxf_text
 from fabtiles.geometry.cut_plan import plan_cut
 from fabtiles.machines.profiles import LaserLayers, Layer, load_profile
 
@@ -41,7 +42,7 @@ INNER, OUTER, SCORE = PLY.layers.inner_cut, PLY.layers.outer_cut, PLY.layers.sco
 def test_star_plate_round_trip(tmp_path, version, kerf):
     region, outline = star_plate()
     path = tmp_path / "plate.dxf"
-    report = write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=kerf, dxf_version=version)
+    report = write_cut(path, region=region, outline=outline, profile=PLY, kerf_mm=kerf, dxf_version=version)
     doc = check_laser_dxf(path, region, kerf=kerf, version=version)
     assert report.ok, report.summary()
     assert report.stats["inner_contours"] == 9 and report.stats["outer_contours"] == 1
@@ -59,7 +60,7 @@ def test_star_plate_round_trip(tmp_path, version, kerf):
 def test_motif_tile_round_trip(tmp_path, kerf):
     region, outline, _ = motif_tile()
     path = tmp_path / "motif.dxf"
-    report = write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=kerf, stroke=1.2)
+    report = write_cut(path, region=region, outline=outline, profile=PLY, kerf_mm=kerf, stroke=1.2)
     check_laser_dxf(path, region, kerf=kerf)
     assert report.stats["inner_contours"] > 20
     assert report.stats["cut_length_mm"] > 400
@@ -69,7 +70,7 @@ def test_motif_tile_round_trip(tmp_path, kerf):
 def test_kerf_keeps_star_tips_sharp(tmp_path):
     region, outline = star_plate(grid=1)
     path = tmp_path / "p.dxf"
-    write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=0.3)
+    write_cut(path, region=region, outline=outline, profile=PLY, kerf_mm=0.3)
     inner = [vertices(e) for e in read_checked(path).modelspace() if e.dxf.layer == INNER.name]
     assert len(inner) == 1 and len(inner[0]) == 16  # 8 tips and 8 notches: no rounding, no bevel
 
@@ -77,7 +78,7 @@ def test_kerf_keeps_star_tips_sharp(tmp_path):
 def test_score_mode(tmp_path):
     region, outline, seg = motif_tile()
     path = tmp_path / "score.dxf"
-    report = write_dxf(path, region=region, outline=outline, centrelines=seg, profile=PLY, mode="score")
+    report = write_cut(path, region=region, outline=outline, centrelines=seg, profile=PLY, mode="score")
     doc = read_checked(path)
     ents = list(doc.modelspace())
     score = [e for e in ents if e.dxf.layer == SCORE.name]
@@ -98,7 +99,7 @@ def test_score_mode(tmp_path):
 def test_score_mode_r12(tmp_path):
     region, outline, seg = motif_tile()
     path = tmp_path / "score12.dxf"
-    write_dxf(path, region=region, outline=outline, centrelines=seg, profile=PLY, mode="score", dxf_version="R12")
+    write_cut(path, region=region, outline=outline, centrelines=seg, profile=PLY, mode="score", dxf_version="R12")
     ents = list(read_checked(path).modelspace())
     assert {e.dxftype() for e in ents} == {"POLYLINE"}
     assert [is_closed(e) for e in ents if e.dxf.layer == SCORE.name] == [False] * (len(ents) - 1)
@@ -114,7 +115,7 @@ def test_layers_from_profile_file(tmp_path):
     )
     region, outline = star_plate()
     path = tmp_path / "out" / "p.dxf"
-    write_dxf(path, region=region, outline=outline, profile=prof)
+    write_cut(path, region=region, outline=outline, profile=prof)
     check_laser_dxf(path, region, kerf=0.1, profile=load_profile(prof))
     names = {e[0] for e in dxf_entities(path)}
     assert names == {"HOLES", "OUTLINE"}
@@ -123,7 +124,7 @@ def test_layers_from_profile_file(tmp_path):
 def test_island_and_loose_parts(tmp_path):
     region, outline = island_region()
     path = tmp_path / "i.dxf"
-    report = write_dxf(path, region=region, outline=outline, profile=PLY)
+    report = write_cut(path, region=region, outline=outline, profile=PLY)
     assert [f.code for f in report.findings] == ["loose_part"]
     assert report.findings[0].locations == ((25.0, 25.0),)
     doc = check_laser_dxf(path, region, kerf=PLY.kerf_mm)
@@ -141,10 +142,10 @@ def test_island_and_loose_parts(tmp_path):
 def test_fill_small_holes(tmp_path):
     region, outline = tiny_hole_region()
     path = tmp_path / "t.dxf"
-    report = write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=0.1)
+    report = write_cut(path, region=region, outline=outline, profile=PLY, kerf_mm=0.1)
     assert [f.code for f in report.findings] == ["small_hole"]
     assert report.stats["inner_contours"] == 2
-    report = write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=0.1, fill_small_holes=True)
+    report = write_cut(path, region=region, outline=outline, profile=PLY, kerf_mm=0.1, fill_small_holes=True)
     assert report.ok and report.stats["filled_holes"] == 1 and report.stats["inner_contours"] == 1
     assert report.summary().splitlines()[0].endswith("ok")
 
@@ -154,19 +155,19 @@ def test_strict_profile_refuses_and_writes_nothing(tmp_path):
     region, outline = thin_bridge_region()
     path = tmp_path / "out.dxf"
     with pytest.raises(FabricationError, match=r"thin_bridge.*strict"):
-        write_dxf(path, region=region, outline=outline, profile=strict)
+        write_cut(path, region=region, outline=outline, profile=strict)
     assert list(tmp_path.iterdir()) == []
     region, outline = star_plate()
-    assert write_dxf(path, region=region, outline=outline, profile=strict).ok
+    assert write_cut(path, region=region, outline=outline, profile=strict).ok
 
 
 def test_failure_keeps_existing_file(tmp_path):
     region, outline = star_plate()
     path = tmp_path / "keep.dxf"
-    write_dxf(path, region=region, outline=outline, profile=PLY)
+    write_cut(path, region=region, outline=outline, profile=PLY)
     before = path.read_bytes()
     with pytest.raises(ParameterError):
-        write_dxf(path, region=region, outline=outline, profile=PLY, kerf_mm=-1)
+        write_cut(path, region=region, outline=outline, profile=PLY, kerf_mm=-1)
     assert path.read_bytes() == before
     assert [p.name for p in tmp_path.iterdir()] == ["keep.dxf"]
 
@@ -203,7 +204,7 @@ def test_bad_input_is_an_error_and_no_file(tmp_path, change, error, message):
     region, outline = star_plate()
     args = dict(region=region, outline=outline, profile=PLY) | change
     with pytest.raises(error, match=message) as info:
-        write_dxf(tmp_path / "bad.dxf", **args)
+        write_cut(tmp_path / "bad.dxf", **args)
     assert isinstance(info.value, FabtilesError)
     assert list(tmp_path.iterdir()) == []
 
@@ -213,7 +214,7 @@ def test_bad_profile_colour_in_file(tmp_path):
     prof.write_text('kind = "laser"\n[layers]\nscore = { name = "S", color = 0 }\n')
     region, outline = star_plate()
     with pytest.raises(ProfileError, match=r"layers.score.color must be an AutoCAD Color Index 1..255, got 0"):
-        write_dxf(tmp_path / "out.dxf", region=region, outline=outline, profile=prof)
+        write_cut(tmp_path / "out.dxf", region=region, outline=outline, profile=prof)
     assert [p.name for p in tmp_path.iterdir()] == ["p.toml"]
 
 
@@ -241,9 +242,9 @@ def test_fast_writer_matches_ezdxf(version, mode):
 
 def test_sheet_sized_tile_and_bed_turned(tmp_path):
     region, outline = star_plate(size=400, grid=4)  # 400 x 400: fits the 600 x 400 bed
-    assert write_dxf(tmp_path / "a.dxf", region=region, outline=outline, profile=PLY).ok
+    assert write_cut(tmp_path / "a.dxf", region=region, outline=outline, profile=PLY).ok
     tall = box(0, 0, 400, 600)  # fits turned by 90 degrees
-    assert write_dxf(tmp_path / "b.dxf", region=tall, outline=tall, profile=PLY).ok
+    assert write_cut(tmp_path / "b.dxf", region=tall, outline=tall, profile=PLY).ok
 
 
 @pytest.mark.parametrize(
@@ -257,7 +258,7 @@ def test_golden(tmp_path, name, mode, version):
     else:
         region, outline, seg = motif_tile(size=50, stroke=1.2, preset="table2-left")
     path = tmp_path / f"{name}.dxf"
-    write_dxf(path, region=region, outline=outline, centrelines=seg, profile=PLY, mode=mode, dxf_version=version)
+    write_cut(path, region=region, outline=outline, centrelines=seg, profile=PLY, mode=mode, dxf_version=version)
     assert_golden(path, name)
 
 
@@ -289,7 +290,7 @@ def test_header_extents_are_the_entities_bounding_box(tmp_path, version, kerf, m
 
     region, outline, lines = motif_tile()
     path = tmp_path / "motif.dxf"
-    write_dxf(
+    write_cut(
         path,
         region=region,
         outline=outline,
@@ -319,7 +320,7 @@ def test_sheet_header_extents(tmp_path):
 
     sheet = layout_sheet([star_plate(size=100)], PLY, copies=5)
     path = tmp_path / "sheet.dxf"
-    write_dxf(path, region=sheet.region, outline=sheet.outline, profile=PLY)
+    write_cut(path, region=sheet.region, outline=sheet.outline, profile=PLY)
     doc = ezdxf.readfile(path)
     xmin, ymin, xmax, ymax = _entity_extents(doc)
     kerf = PLY.kerf_mm
@@ -429,3 +430,9 @@ def test_the_classes_do_not_follow_the_order_of_a_set(monkeypatch, version):
     at = texts[0].index("\nCLASSES\n")
     classes = texts[0][at : texts[0].index("\nENDSEC\n", at)].split("\n")
     assert "LAYOUT" in classes and "ACDBPLACEHOLDER" in classes
+
+
+def test_a_plate_with_one_hole_is_one_inner_and_one_outer_contour(tmp_path):
+    plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
+    r = write_cut(tmp_path / "plate.dxf", region=plate, outline=box(0, 0, 40, 40), profile="laser-3mm-plywood")
+    assert (r.stats["inner_contours"], r.stats["outer_contours"], r.ok) == (1, 1, True)

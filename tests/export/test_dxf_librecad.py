@@ -19,8 +19,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from dxf_helpers import bulges, motif_tile, star_plate, vertices
+from model_files import write_cut
 
-from fabtiles.export.dxf import write_dxf
 from fabtiles.machines.profiles import LaserLayers, Layer, load_profile
 
 LIBRECAD = shutil.which("librecad")
@@ -163,7 +163,7 @@ def _densify(points: np.ndarray, step: float = 0.01) -> np.ndarray:
 def test_librecad_draws_the_cut_contours(librecad, tmp_path, version):
     region, outline = star_plate()
     dxf = tmp_path / "plate.dxf"
-    write_dxf(dxf, region=region, outline=outline, profile=PLY, dxf_version=version)
+    write_cut(dxf, region=region, outline=outline, profile=PLY, dxf_version=version)
     drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
     inner, outer = drawn[RGB[PLY.layers.inner_cut.color]], drawn[RGB[PLY.layers.outer_cut.color]]
     assert len(inner) == _dxf_edges(dxf, PLY.layers.inner_cut)  # 9 stars of 16 edges
@@ -182,7 +182,7 @@ def test_librecad_draws_the_bundled_profiles_cuts_red_and_score_blue(librecad, t
     region, outline, lines = motif_tile()
     for mode in ("pierced", "score"):
         dxf = tmp_path / f"{mode}.dxf"
-        write_dxf(dxf, region=region, outline=outline, centrelines=lines, profile=DEFAULT, mode=mode, stroke=1.2)
+        write_cut(dxf, region=region, outline=outline, centrelines=lines, profile=DEFAULT, mode=mode, stroke=1.2)
         drawn = {c: len(s) for c, s in _segments_by_colour(_print_pdf(librecad, dxf, tmp_path)).items()}
         cuts = _dxf_edges(dxf, DEFAULT.layers.inner_cut) + _dxf_edges(dxf, DEFAULT.layers.outer_cut)
         want = {RGB[1]: cuts}
@@ -194,7 +194,7 @@ def test_librecad_draws_the_bundled_profiles_cuts_red_and_score_blue(librecad, t
 def test_librecad_draws_the_score_paths(librecad, tmp_path):
     region, outline, lines = motif_tile()
     dxf = tmp_path / "score.dxf"
-    write_dxf(dxf, region=region, outline=outline, centrelines=lines, profile=PLY, mode="score", stroke=1.2)
+    write_cut(dxf, region=region, outline=outline, centrelines=lines, profile=PLY, mode="score", stroke=1.2)
     drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
     assert len(drawn[RGB[PLY.layers.score.color]]) == _dxf_edges(dxf, PLY.layers.score)
     assert len(drawn[RGB[PLY.layers.outer_cut.color]]) == 4
@@ -246,7 +246,7 @@ def test_librecad_draws_the_arcs(librecad, tmp_path, version):
     plan = Models(design.build_tile(), BuildOptions.of_design(design)).cut
     assert plan.report.stats["arcs"] > 100
     dxf = tmp_path / "circles.dxf"
-    write_dxf(
+    write_cut(
         dxf,
         region=design.build_tile().region(),
         outline=design.build_tile().outline_shape(),

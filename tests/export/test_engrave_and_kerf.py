@@ -78,9 +78,9 @@ def test_engrave_svg_is_filled_even_odd_and_the_project_a_fill_layer(tmp_path):
 
 def test_a_band_narrower_than_two_fill_lines_is_a_finding(tmp_path):
     plate = box(0, 0, 40, 40).difference(box(5, 5, 20, 35)).difference(box(20.15, 5, 35, 35))
-    from fabtiles.export.dxf import write_dxf
+    from model_files import write_cut
 
-    report = write_dxf(tmp_path / "t.dxf", region=plate, outline=box(0, 0, 40, 40), profile=PLY, mode="engrave")
+    report = write_cut(tmp_path / "t.dxf", region=plate, outline=box(0, 0, 40, 40), profile=PLY, mode="engrave")
     (finding,) = report.findings
     assert finding.code == "thin_fill" and finding.worst == pytest.approx(0.15, abs=0.01)
     assert "narrower than two fill lines (0.2 mm at line_interval_mm = 0.1" in finding.message

@@ -316,7 +316,7 @@ def test_the_web_app_draws_the_kit():
 
 
 def test_write_kit_leaves_holding_tabs_as_the_design_keys_do(tmp_path):
-    from fabtiles.export.kit import write_kit
+    from model_files import write_kit
 
     t = tile()
     report = write_kit(

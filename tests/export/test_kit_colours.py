@@ -126,7 +126,7 @@ def test_a_kit_with_no_piece_writes_no_pieces_file(tmp_path, colour):
 
 
 def test_the_kit_api_writes_no_empty_pieces_file(tmp_path):
-    from fabtiles.export.kit import write_kit
+    from model_files import write_kit
 
     tile = design_from_text(NO_PIECES, name="kit").build_tile()
     report = write_kit(

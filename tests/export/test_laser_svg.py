@@ -8,11 +8,11 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 from dxf_helpers import dxf_entities, motif_tile, star_plate
+from model_files import write_cut
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError, ProfileError
-from fabtiles.export.dxf import write_dxf
-from fabtiles.export.laser_svg import aci_to_hex, write_laser_svg
+from fabtiles.export.laser_svg import aci_to_hex
 from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
@@ -27,8 +27,8 @@ def parse_path(d: str) -> np.ndarray:
 def test_same_contours_as_dxf(tmp_path):
     region, outline = star_plate()
     svg, dxf = tmp_path / "p.svg", tmp_path / "p.dxf"
-    r1 = write_laser_svg(svg, region=region, outline=outline, profile=PLY)
-    r2 = write_dxf(dxf, region=region, outline=outline, profile=PLY)
+    r1 = write_cut(svg, region=region, outline=outline, profile=PLY)
+    r2 = write_cut(dxf, region=region, outline=outline, profile=PLY)
     assert r1.format == "svg" and {k: v for k, v in r1.stats.items() if k != "dxf_version"} == {
         k: v for k, v in r2.stats.items() if k != "dxf_version"
     }
@@ -54,7 +54,7 @@ def test_same_contours_as_dxf(tmp_path):
 def test_score_mode_and_colours(tmp_path):
     region, outline, seg = motif_tile()
     svg = tmp_path / "s.svg"
-    write_laser_svg(svg, region=region, outline=outline, centrelines=seg, profile=PLY, mode="score", kerf_mm=0)
+    write_cut(svg, region=region, outline=outline, centrelines=seg, profile=PLY, mode="score", kerf_mm=0)
     root = ET.parse(svg).getroot()
     groups = {g.get("id"): g for g in root.findall("s:g", NS)}
     assert list(groups) == ["SCORE", "OUTER"]
@@ -66,8 +66,8 @@ def test_score_mode_and_colours(tmp_path):
 def test_reproducible_byte_for_byte(tmp_path):
     region, outline, _ = motif_tile()
     a, b = tmp_path / "a.svg", tmp_path / "b.svg"
-    write_laser_svg(a, region=region, outline=outline, profile=PLY)
-    write_laser_svg(b, region=region, outline=outline, profile=PLY)
+    write_cut(a, region=region, outline=outline, profile=PLY)
+    write_cut(b, region=region, outline=outline, profile=PLY)
     assert a.read_bytes() == b.read_bytes()
     text = a.read_text()
     assert not re.search(r"[ ML]-0[ LZ\"]", text) and not re.search(r"\de[-+]?\d", text)
@@ -96,5 +96,12 @@ def test_aci_colours():
 def test_bad_input_no_file(tmp_path, change, error):
     region, outline = star_plate()
     with pytest.raises(error):
-        write_laser_svg(tmp_path / "x.svg", **(dict(region=region, outline=outline, profile=PLY) | change))
+        write_cut(tmp_path / "x.svg", **(dict(region=region, outline=outline, profile=PLY) | change))
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_plate_with_one_hole_is_drawn_at_its_size(tmp_path):
+    plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
+    out = tmp_path / "plate.svg"
+    r = write_cut(out, region=plate, outline=box(0, 0, 40, 40), profile="laser-3mm-plywood", kerf_mm=0)
+    assert ('width="40mm"' in out.read_text(), r.stats["inner_contours"]) == (True, 1)

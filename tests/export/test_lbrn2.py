@@ -18,7 +18,9 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 import pytest
+from model_files import write_cut
 from real_programs import program, require, run
+from shapely.geometry import box
 from test_laser_programs import burns, meerk40t
 
 from fabtiles import ArchimedeanPacking, HexPacking, ProfileError, Star, Tile
@@ -397,3 +399,11 @@ def test_a_large_circles_beziers_lie_on_the_dxfs_arcs_within_the_tolerance(tmp_p
         max(_farthest(ours, theirs), _farthest(theirs, ours)) for ours, theirs in zip(drawn, exact, strict=True)
     )
     assert worst <= 0.1 * PLY.tolerance_mm + 2e-4  # a tenth of the tolerance, and the file's 4 decimals
+
+
+def test_a_plate_with_one_hole_is_two_path_shapes(tmp_path):
+    plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
+    out = tmp_path / "plate.lbrn2"
+    r = write_cut(out, region=plate, outline=box(0, 0, 40, 40), profile="laser-3mm-plywood")
+    shapes = out.read_text().count('<Shape Type="Path"')
+    assert (shapes, r.stats["inner_contours"], r.stats["outer_contours"]) == (2, 1, 1)

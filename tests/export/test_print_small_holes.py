@@ -21,6 +21,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
 from mesh_helpers import B, assert_section, load_stl, mid_heights, section_region, widths
+from model_files import write_print
 from real_programs import program
 
 import fabtiles as ft
@@ -287,10 +288,8 @@ def test_bad_min_hole_is_one_line_exit_2_and_no_file(tmp_path, line, match):
 def test_fill_small_holes_must_be_a_bool(tmp_path):
     from shapely.geometry import box
 
-    from fabtiles.export import stl
-
     with pytest.raises(ft.ParameterError, match="fill_small_holes must be True or False, got 'yes'"):
-        stl.write_stl(
+        write_print(
             tmp_path / "t.stl",
             region=box(0, 0, 9, 9),
             outline=box(0, 0, 9, 9),

@@ -28,14 +28,13 @@ from dxf_helpers import (
     ring_polygons,
     vertices,
 )
+from model_files import write_cut
 from real_programs import program, run
 from shapely.geometry import Polygon
 
 import fabtiles as ft
 from fabtiles.cli.main import cli
 from fabtiles.designs.design_file import load_design
-from fabtiles.export.dxf import write_dxf
-from fabtiles.export.laser_svg import write_laser_svg
 from fabtiles.geometry.contours import MITRE_LIMIT
 from fabtiles.machines.profiles import load_profile
 from fabtiles.making import build_design
@@ -85,7 +84,7 @@ def file_holes(doc, layer):
 def test_the_router_dxf_is_geos_own_opening(tmp_path):
     region, outline = tile_region()
     path = tmp_path / "t.dxf"
-    report = write_dxf(path, region=region, outline=outline, profile=ROUTER, stroke=3.0)
+    report = write_cut(path, region=region, outline=outline, profile=ROUTER, stroke=3.0)
     doc = check_router_dxf(path, region, ROUTER)
     r = ROUTER.tool_radius_mm
     reference, ref_holes = opened_reference(region, r)
@@ -105,7 +104,7 @@ def test_the_router_dxf_is_geos_own_opening(tmp_path):
 def test_no_hole_corner_in_the_file_is_sharper_than_the_bit(tmp_path):
     region, outline = tile_region()
     path = tmp_path / "t.dxf"
-    write_dxf(path, region=region, outline=outline, profile=ROUTER)
+    write_cut(path, region=region, outline=outline, profile=ROUTER)
     doc = read_checked(path)
     for hole in file_holes(doc, "INSIDE"):
         assert_no_corner_sharper_than(hole, ROUTER.tool_radius_mm)
@@ -116,7 +115,7 @@ def test_every_removed_hole_is_reported_and_fill_small_holes_counts_them(tmp_pat
     r = ROUTER.tool_radius_mm
     want = sum(Polygon(h).buffer(-r, quad_segs=64).is_empty for h in region.interiors)
     assert want > 0
-    report = write_dxf(tmp_path / "a.dxf", region=region, outline=outline, profile=ROUTER)
+    report = write_cut(tmp_path / "a.dxf", region=region, outline=outline, profile=ROUTER)
     [small] = [f for f in report.findings if f.code == "small_hole"]
     assert small.count == want == report.stats["tool_removed_holes"] == len(small.locations)
     assert "the tool cannot enter them" in small.message
@@ -125,7 +124,7 @@ def test_every_removed_hole_is_reported_and_fill_small_holes_counts_them(tmp_pat
     for (x, y), width in zip(small.locations, small.sizes, strict=True):  # each mark inside a removed hole
         near = tree.query(shapely.Point(x, y), predicate="intersects")
         assert len(near) == 1 and width < 2 * r
-    filled = write_dxf(tmp_path / "b.dxf", region=region, outline=outline, profile=ROUTER, fill_small_holes=True)
+    filled = write_cut(tmp_path / "b.dxf", region=region, outline=outline, profile=ROUTER, fill_small_holes=True)
     assert filled.stats["filled_holes"] == want and "small_hole" not in {f.code for f in filled.findings}
     assert dxf_entities(tmp_path / "a.dxf") == dxf_entities(tmp_path / "b.dxf")  # the bit makes the same part
     [corners] = [f for f in report.findings if f.code == "rounded_corner"]
@@ -135,7 +134,7 @@ def test_every_removed_hole_is_reported_and_fill_small_holes_counts_them(tmp_pat
 def test_the_waterjet_rounds_to_the_jet_then_offsets_half_a_kerf(tmp_path):
     region, outline = tile_region()
     path = tmp_path / "w.dxf"
-    report = write_dxf(path, region=region, outline=outline, profile=WATERJET, stroke=3.0)
+    report = write_cut(path, region=region, outline=outline, profile=WATERJET, stroke=3.0)
     doc = read_checked(path)
     head = path.read_text()[:400]
     assert head.startswith("999\n") and "kerf 1 mm compensated" in head
@@ -157,7 +156,7 @@ def test_inkscape_measures_the_router_svg_as_the_part(tmp_path):
 
     inkscape = program("inkscape", "apt-get install inkscape")
     region, outline = tile_region()
-    write_laser_svg(tmp_path / "t.svg", region=region, outline=outline, profile=ROUTER)
+    write_cut(tmp_path / "t.svg", region=region, outline=outline, profile=ROUTER)
     rows = [line.split(",") for line in run([inkscape, "--query-all", tmp_path / "t.svg"]).stdout.splitlines()]
     boxes = {r[0]: np.array([float(v) for v in r[1:]]) * 25.4 / 96 for r in rows}  # px at 96 per inch -> mm
     stroke = float(ET.parse(tmp_path / "t.svg").getroot().find("{http://www.w3.org/2000/svg}g").get("stroke-width"))
@@ -170,8 +169,8 @@ def test_inkscape_measures_the_router_svg_as_the_part(tmp_path):
 
 def test_the_router_svg_holds_the_dxfs_contours_and_says_there_is_no_compensation(tmp_path):
     region, outline = tile_region()
-    write_dxf(tmp_path / "t.dxf", region=region, outline=outline, profile=ROUTER)
-    write_laser_svg(tmp_path / "t.svg", region=region, outline=outline, profile=ROUTER)
+    write_cut(tmp_path / "t.dxf", region=region, outline=outline, profile=ROUTER)
+    write_cut(tmp_path / "t.svg", region=region, outline=outline, profile=ROUTER)
     svg = (tmp_path / "t.svg").read_text()
     assert "no tool compensation (CAM offsets the tool)" in svg
     assert svg.count("<path") == len(list(read_checked(tmp_path / "t.dxf").modelspace()))
@@ -180,7 +179,7 @@ def test_the_router_svg_holds_the_dxfs_contours_and_says_there_is_no_compensatio
 
 def test_the_laser_files_are_unchanged_by_the_kind_field(tmp_path):
     region, outline = tile_region()
-    write_dxf(tmp_path / "l.dxf", region=region, outline=outline, profile="laser-3mm-plywood")
+    write_cut(tmp_path / "l.dxf", region=region, outline=outline, profile="laser-3mm-plywood")
     text = (tmp_path / "l.dxf").read_text()
     codes = [line.strip() for line in text.split("ENTITIES")[0].splitlines()[::2]]  # the group codes
     assert text.startswith("  0\nSECTION\n") and "999" not in codes
@@ -221,7 +220,7 @@ def test_the_laser_files_are_unchanged_by_the_kind_field(tmp_path):
 def test_bad_router_and_waterjet_input_writes_nothing(tmp_path, options, error, match):
     region, outline = tile_region()
     with pytest.raises(error, match=match):
-        write_dxf(tmp_path / "x.dxf", region=region, outline=outline, **options)
+        write_cut(tmp_path / "x.dxf", region=region, outline=outline, **options)
     assert not (tmp_path / "x.dxf").exists()
 
 
@@ -388,7 +387,7 @@ def test_a_stroke_thinner_than_the_routers_min_feature_is_refused(tmp_path):
         match=r"stroke must be >= min_feature_mm = 4 mm of router profile "
         r"'router-6mm-mdf', got 3",
     ):
-        write_dxf(tmp_path / "x.dxf", region=region, outline=outline, profile="router-6mm-mdf", stroke=3.0)
+        write_cut(tmp_path / "x.dxf", region=region, outline=outline, profile="router-6mm-mdf", stroke=3.0)
 
 
 def test_a_router_sheet_leaves_room_for_the_bit_between_tiles(tmp_path):

@@ -31,10 +31,10 @@ from dxf_helpers import (
     star_plate,
     vertices,
 )
+from model_files import write_cut
 
 import fabtiles
 from fabtiles.designs.design_file import load_design
-from fabtiles.export.dxf import write_dxf
 from fabtiles.geometry.narrow import fill_small_holes
 from fabtiles.machines.profiles import DEFAULT_LASER_PROFILE, load_profile
 from fabtiles.making import build_design, export_tile
@@ -131,7 +131,7 @@ def test_summary_golden_catches_a_changed_entity(tmp_path, monkeypatch):
 
     region, outline = star_plate(grid=4)
     path = tmp_path / "p.dxf"
-    write_dxf(path, region=region, outline=outline, profile="laser-3mm-plywood")
+    write_cut(path, region=region, outline=outline, profile="laser-3mm-plywood")
     monkeypatch.setattr(dxf_helpers, "GOLDEN", tmp_path / "golden")
     monkeypatch.setenv("FABTILES_UPDATE_GOLDEN", "1")
     assert_golden_summary(path, "plate", samples=5)

@@ -14,6 +14,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
 from mesh_helpers import B, D, H, T, occt_volume, solids_of, step_bounds
+from model_files import write_print
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError, ProfileError, Star
@@ -103,7 +104,7 @@ def assert_no_coplanar_neighbours(shape):
 def _write(tmp_path, tile, style="relief", **kw):
     path = tmp_path / "t.step"
     path.unlink(missing_ok=True)
-    report = step.write_step(
+    report = write_print(
         path,
         region=tile.region(),
         outline=tile.outline_shape(),
@@ -237,7 +238,7 @@ def test_interlaced_relief_dips_in_the_step_too(tmp_path):
 def test_pierced_in_pieces_gives_one_solid_each(tmp_path):
     region = shapely.MultiPolygon([box(1, 1, 4, 4), box(6, 6, 9, 9)])
     path = tmp_path / "t.step"
-    report = step.write_step(path, region=region, outline=box(0, 0, 10, 10), profile="fdm-0.4mm", style="pierced")
+    report = write_print(path, region=region, outline=box(0, 0, 10, 10), profile="fdm-0.4mm", style="pierced")
     assert report.stats["solids"] == 2
     assert [f.code for f in report.findings] == ["loose_part"]
     back = step.read_step(path)
@@ -395,7 +396,7 @@ def test_step_bad_input_no_file(tmp_path, kwargs, exc, msg):
     tile = TileGeometry("square", 24, HexPacking(8, Star.preset("table3-3")), frame=2, stroke=1.0)
     kwargs = {"profile": "fdm-0.4mm", **kwargs}
     with pytest.raises(exc, match=msg):
-        step.write_step(tmp_path / "t.step", region=tile.region(), outline=tile.outline_shape(), **kwargs)
+        write_print(tmp_path / "t.step", region=tile.region(), outline=tile.outline_shape(), **kwargs)
     assert list(tmp_path.iterdir()) == []
 
 
@@ -403,7 +404,7 @@ def test_step_strict_findings_no_file(tmp_path):
     strict = tmp_path / "strict.toml"
     strict.write_text('kind = "printer"\n[printer]\nstrict = true\nbed_mm = [10, 10]\n')
     with pytest.raises(FabricationError, match="bed_size"):
-        step.write_step(tmp_path / "t.step", region=box(1, 1, 19, 19), outline=box(0, 0, 20, 20), profile=strict)
+        write_print(tmp_path / "t.step", region=box(1, 1, 19, 19), outline=box(0, 0, 20, 20), profile=strict)
     assert [p.name for p in tmp_path.iterdir()] == ["strict.toml"]
 
 
@@ -420,7 +421,7 @@ def test_a_brep_the_check_refuses_is_never_written(tmp_path, monkeypatch):
 
     monkeypatch.setattr(step, "check_brep", refuse)
     with pytest.raises(FabricationError, match="open shell"):
-        step.write_step(path, region=tile.region(), outline=tile.outline_shape(), profile="fdm-0.4mm")
+        write_print(path, region=tile.region(), outline=tile.outline_shape(), profile="fdm-0.4mm")
     assert path.read_bytes() == good
     assert sorted(p.name for p in tmp_path.iterdir()) == ["t.step"]
 
@@ -480,7 +481,7 @@ def test_the_file_writes_each_point_direction_and_placement_once(tmp_path):
     """Entities shared, not repeated: a vertex's point is its wall's plane origin and its line's start."""
     plate = box(0, 0, 30, 30).difference(shapely.Point(15, 15).buffer(4.0, quad_segs=64))
     path = tmp_path / "p.step"
-    step.write_step(path, region=plate, outline=box(0, 0, 30, 30), profile="fdm-0.4mm", style="pierced")
+    write_print(path, region=plate, outline=box(0, 0, 30, 30), profile="fdm-0.4mm", style="pierced")
     lines = path.read_text().splitlines()
     for kind in ("CARTESIAN_POINT(", "DIRECTION(", "AXIS2_PLACEMENT_3D(", "VECTOR("):
         bodies = [line.split("=", 1)[1] for line in lines if kind in line]

@@ -13,6 +13,7 @@ import math
 import pytest
 import shapely
 from mesh_helpers import B, H, T, occt_volume
+from model_files import write_print
 from shapely.geometry import Point, box
 
 from fabtiles import ProfileError, Star, Tile
@@ -25,7 +26,7 @@ FINE = 1024
 
 def _write(tmp_path, region, outline, style="pierced", profile="fdm-0.4mm", name="t.step"):
     path = tmp_path / name
-    report = step.write_step(path, region=region, outline=outline, profile=profile, style=style, name="t")
+    report = write_print(path, region=region, outline=outline, profile=profile, style=style, name="t")
     return path, report
 
 
@@ -128,7 +129,7 @@ def test_narrow_round_joins_in_two_chords_are_cylinders_of_half_the_stroke(tmp_p
     joins = {}
     for stroke in (None, 1.2):
         out = tmp_path / f"{stroke}.step"
-        report = step.write_step(
+        report = write_print(
             out, region=band, outline=outline, profile="fdm-0.4mm", style="relief", stroke=stroke, name="t"
         )
         part = _read(out)

@@ -24,10 +24,11 @@ from mesh_helpers import (
     load_stl,
     top,
 )
+from model_files import write_print
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star, load_profile
-from fabtiles.export import stl, threemf
+from fabtiles.export import stl
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 from fabtiles.solid import mesh_check as sc
@@ -50,7 +51,7 @@ def test_stl_every_preset_and_style(tmp_path, preset, style):
     tile = small_tile(preset)
     region, outline = tile.region(), tile.outline_shape()
     path = tmp_path / "t.stl"
-    report = stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", style=style, stroke=tile.stroke)
+    report = write_print(path, region=region, outline=outline, profile="fdm-0.4mm", style=style, stroke=tile.stroke)
     assert report.format == "stl" and report.stats["style"] == style
     data = path.read_bytes()
     assert len(data) == 84 + 50 * int(np.frombuffer(data, "<u4", 1, 80)[0])  # binary STL
@@ -66,7 +67,7 @@ def test_stl_every_preset_and_style(tmp_path, preset, style):
 def test_stl_other_outlines(tmp_path, outline, style):
     tile = small_tile(outline=outline, preset="table2-right")
     region, shape = tile.region(), tile.outline_shape()
-    stl.write_stl(tmp_path / "t.stl", region=region, outline=shape, profile="fdm-0.4mm", style=style)
+    write_print(tmp_path / "t.stl", region=region, outline=shape, profile="fdm-0.4mm", style=style)
     m = load_stl(tmp_path / "t.stl")
     assert m.is_watertight and m.is_winding_consistent
     assert m.volume == pytest.approx(expected_volume(style, region, shape), rel=VOLUME_REL)
@@ -78,7 +79,7 @@ def test_3mf_relief_two_named_bodies_that_touch_without_overlap(tmp_path, preset
     tile = small_tile(preset)
     region, outline = tile.region(), tile.outline_shape()
     path = tmp_path / "t.3mf"
-    threemf.write_3mf(path, region=region, outline=outline, profile="fdm-0.4mm")
+    write_print(path, region=region, outline=outline, profile="fdm-0.4mm")
     model = zipfile.ZipFile(path).read("3D/3dmodel.model").decode()
     assert 'unit="millimeter"' in model
     parts = load_3mf_parts(path)
@@ -95,7 +96,7 @@ def test_3mf_relief_two_named_bodies_that_touch_without_overlap(tmp_path, preset
 @pytest.mark.parametrize("style,names", [("pierced", ["pattern"]), ("deboss", ["plate"])])
 def test_3mf_other_styles(tmp_path, shapes, style, names):
     region, outline = shapes
-    threemf.write_3mf(tmp_path / "t.3mf", region=region, outline=outline, profile="fdm-0.4mm", style=style)
+    write_print(tmp_path / "t.3mf", region=region, outline=outline, profile="fdm-0.4mm", style=style)
     parts = load_3mf_parts(tmp_path / "t.3mf")
     assert list(parts) == names
     m = parts[names[0]]
@@ -115,7 +116,7 @@ def test_build_meshes_bodies(shapes):
 
 def test_heights_override_profile(tmp_path, shapes):
     region, outline = shapes
-    report = stl.write_stl(
+    report = write_print(
         tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm", base_mm=3, relief_mm=2.5
     )
     m = load_stl(tmp_path / "t.stl")
@@ -155,7 +156,7 @@ def test_pinched_region_is_bridged(tmp_path):
     # two squares touching at one corner: four faces would share the corner's edge
     region = box(1, 1, 5, 5).union(box(5, 5, 9, 9))
     outline = box(0, 0, 10, 10)
-    stl.write_stl(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm", style="pierced")
+    write_print(tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm", style="pierced")
     m = load_stl(tmp_path / "t.stl")
     assert m.is_watertight and m.volume == pytest.approx(32 * T, rel=1e-3)
 
@@ -175,14 +176,14 @@ BAD = [
 ]
 
 
-@pytest.mark.parametrize("writer", ["write_stl", "write_3mf"])
+@pytest.mark.parametrize("fmt", ["stl", "3mf"])
 @pytest.mark.parametrize("kwargs,exc,msg", BAD)
-def test_bad_input_no_file(tmp_path, shapes, writer, kwargs, exc, msg):
+def test_bad_input_no_file(tmp_path, shapes, fmt, kwargs, exc, msg):
     region, outline = shapes
     kwargs = {"profile": "fdm-0.4mm", **kwargs}
-    path = tmp_path / "t.out"
+    path = tmp_path / f"t.{fmt}"
     with pytest.raises(exc, match=msg):
-        getattr(threemf if writer == "write_3mf" else stl, writer)(path, region=region, outline=outline, **kwargs)
+        write_print(path, region=region, outline=outline, **kwargs)
     assert list(tmp_path.iterdir()) == []
     assert issubclass(exc, FabtilesError)
 
@@ -190,9 +191,9 @@ def test_bad_input_no_file(tmp_path, shapes, writer, kwargs, exc, msg):
 def test_bad_geometry(tmp_path, shapes):
     _region, outline = shapes
     with pytest.raises(ParameterError, match="region must be a shapely Polygon"):
-        stl.write_stl(tmp_path / "t.stl", region="square", outline=outline, profile="fdm-0.4mm")
+        write_print(tmp_path / "t.stl", region="square", outline=outline, profile="fdm-0.4mm")
     with pytest.raises(ParameterError, match="region must have an area > 0"):
-        stl.write_stl(tmp_path / "t.stl", region=shapely.Polygon(), outline=outline, profile="fdm-0.4mm")
+        write_print(tmp_path / "t.stl", region=shapely.Polygon(), outline=outline, profile="fdm-0.4mm")
     assert list(tmp_path.iterdir()) == []
 
 
@@ -203,13 +204,13 @@ def test_strict_profile_with_findings_writes_nothing(tmp_path, shapes):
     good = tmp_path / "t.stl"
     good.write_bytes(b"keep me")
     with pytest.raises(FabricationError, match="thin_wall"):
-        stl.write_stl(good, region=region, outline=outline, profile=strict, stroke=1.0)
+        write_print(good, region=region, outline=outline, profile=strict, stroke=1.0)
     assert good.read_bytes() == b"keep me"
 
 
 def test_findings_are_reported(tmp_path, shapes):
     region, outline = shapes
-    report = stl.write_stl(
+    report = write_print(
         tmp_path / "t.stl", region=region, outline=outline, profile="fdm-0.4mm", stroke=0.5, relief_mm=0.3
     )
     assert [f.code for f in report.findings] == ["small_hole", "thin_wall", "thin_layer"]
@@ -234,7 +235,7 @@ def test_sheet_600x400_relief_stl(tmp_path):
     tile = TileGeometry("rectangle", (600, 400), HexPacking(15, Star.preset("table3-3")), frame=5, stroke=1.0)
     region, outline = tile.region(), tile.outline_shape()
     path = tmp_path / "sheet.stl"
-    stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
+    write_print(path, region=region, outline=outline, profile="fdm-0.4mm", stroke=1.0)
     tris = stl.read_stl_triangles(path.read_bytes())
     verts, faces = sc.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
     m = trimesh.Trimesh(verts, faces, process=False)
@@ -273,7 +274,7 @@ def test_defect_on_a_cell_line_is_meshed_again_with_moved_lines(tmp_path, monkey
     path = tmp_path / "sheet.stl"
     # the holes as drawn (tolerance_mm = 0): the defect is on their unthinned rings
     drawn = replace(load_profile("fdm-0.4mm"), tolerance_mm=0.0)
-    stl.write_stl(path, region=region, outline=outline, profile=drawn, stroke=1.0)
+    write_print(path, region=region, outline=outline, profile=drawn, stroke=1.0)
     assert shifts[:2] == [0, 1], f"this sheet no longer exercises the moved-lines retry: {shifts}"
     tris = stl.read_stl_triangles(path.read_bytes())
     verts, _faces = sc.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
@@ -289,7 +290,7 @@ def test_geos_failure_while_cutting_cells_is_a_fabrication_error(tmp_path, shape
     monkeypatch.setattr(parts, "coverage_pair", broken)
     path = tmp_path / "t.stl"
     with pytest.raises(FabricationError, match=r"the body mesh could not be cut into cells \(TopologyException"):
-        stl.write_stl(path, region=region, outline=outline, profile="fdm-0.4mm")
+        write_print(path, region=region, outline=outline, profile="fdm-0.4mm")
     assert not path.exists()
 
 

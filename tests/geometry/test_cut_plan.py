@@ -20,7 +20,8 @@ def test_the_inlay_mode_is_a_kit_not_one_plan():
     with pytest.raises(
         ParameterError,
         match=r"^the inlay mode writes a kit of two files \(lattice and pieces\): "
-        r"export it with fabtiles\.export\.kit\.write_kit",
+        r"export it with Tile\.export\(\.\.\., mode='inlay'\), fabtiles\.making\.export_region\(\.\.\., "
+        r"mode='inlay'\) or fabtiles build$",
     ) as err:
         plan_cut(PLATE.difference(box(10, 10, 30, 30)), PLATE, profile="laser-3mm-plywood", mode="inlay")
     assert err.value.param == "mode"

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 import shapely
 from dxf_helpers import read_checked, star_plate
+from model_files import write_cut
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError
-from fabtiles.export.dxf import write_dxf
 from fabtiles.geometry.sheet import layout_sheet
 from fabtiles.machines.profiles import load_profile
 
@@ -57,7 +57,7 @@ def test_too_many_copies():
 def test_sheet_dxf_has_no_loose_part_findings(tmp_path):
     sheet = layout_sheet([star_plate(size=100)], PLY, copies=6)
     path = tmp_path / "sheet.dxf"
-    report = write_dxf(path, region=sheet.region, outline=sheet.outline, profile=PLY)
+    report = write_cut(path, region=sheet.region, outline=sheet.outline, profile=PLY)
     assert report.ok, report.summary()
     assert report.stats["outer_contours"] == 6 and report.stats["inner_contours"] == 54
     layers = [e.dxf.layer for e in read_checked(path).modelspace()]

@@ -264,19 +264,19 @@ PLATE = box(0, 0, 60, 60).difference(shapely.union_all([box(10, 10, 25, 25), box
 
 
 def test_a_lightburn_project_of_a_router_is_refused(tmp_path):
-    from fabtiles.export.lbrn2 import write_lbrn2
+    from model_files import write_cut
 
     with pytest.raises(
         ParameterError,
         match=r"^a LightBurn project \(\.lbrn2\) is for lasers; router profile "
         r"'router-6mm-mdf' writes \.dxf or \.svg for its CAM$",
     ):
-        write_lbrn2(tmp_path / "t.lbrn2", region=PLATE, outline=box(0, 0, 60, 60), profile="router-6mm-mdf")
+        write_cut(tmp_path / "t.lbrn2", region=PLATE, outline=box(0, 0, 60, 60), profile="router-6mm-mdf")
     assert list(tmp_path.iterdir()) == []
 
 
 def test_an_inlay_kit_of_a_router_is_refused(tmp_path):
-    from fabtiles.export.kit import write_kit
+    from model_files import write_kit
 
     with pytest.raises(
         ParameterError,
