@@ -26,7 +26,7 @@ from contextlib import contextmanager
 
 from ..core.files import atomic_write
 from ..core.report import Report
-from ..geometry.cut_plan import CutPlan, plan_cut
+from ..geometry.cut_plan import CutOptions, CutPlan, plan_cut
 
 
 def write_dxf(
@@ -84,15 +84,17 @@ def write_dxf(
     plan = plan_cut(
         region,
         outline,
+        CutOptions.of(
+            profile=profile,
+            mode=mode,
+            dxf_version=dxf_version,
+            kerf_mm=kerf_mm,
+            fill_small_holes=fill_small_holes,
+            stroke=stroke,
+            path=str(path),
+            fmt="dxf",
+        ),
         centrelines=centrelines,
-        profile=profile,
-        mode=mode,
-        dxf_version=dxf_version,
-        kerf_mm=kerf_mm,
-        fill_small_holes=fill_small_holes,
-        stroke=stroke,
-        path=str(path),
-        fmt="dxf",
     )
     atomic_write(path, dxf_bytes(plan))
     plan.report.stats.update(figures(plan))

@@ -20,7 +20,7 @@ from pathlib import Path
 
 from ..core.files import atomic_write
 from ..core.report import Report
-from ..geometry.cut_plan import INLAY_BASES, KitPlans, plan_kit  # noqa: F401  (INLAY_BASES: public here too)
+from ..geometry.cut_plan import INLAY_BASES, KitOptions, KitPlans, plan_kit  # noqa: F401  (INLAY_BASES: public here too)
 from .formats import CUT_FORMATS, FORMATS, format_of
 
 KIT_FORMATS = CUT_FORMATS
@@ -82,16 +82,18 @@ def write_kit(
     plans = plan_kit(
         region,
         outline,
-        profile=profile,
-        inlay_fit_mm=inlay_fit_mm,
-        inlay_base=inlay_base,
-        kerf_mm=kerf_mm,
-        dxf_version=dxf_version,
-        stroke=stroke,
-        path=str(kit_paths(path)[0]),
-        fmt=fmt.name,
-        tab_mm=tab_mm,
-        tabs_per_part=tabs_per_part,
+        KitOptions.of(
+            profile=profile,
+            inlay_fit_mm=inlay_fit_mm,
+            inlay_base=inlay_base,
+            kerf_mm=kerf_mm,
+            dxf_version=dxf_version,
+            stroke=stroke,
+            path=str(kit_paths(path)[0]),
+            fmt=fmt.name,
+            tab_mm=tab_mm,
+            tabs_per_part=tabs_per_part,
+        ),
     )
     files = [(p, fmt.bytes_of(plan)) for p, plan in kit_files(plans, path)]  # both made before either is written
     for p, data in files:

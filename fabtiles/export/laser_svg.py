@@ -17,7 +17,7 @@ import numpy as np
 from ..core.files import atomic_write
 from ..core.report import Report
 from ..geometry.arcs import subdivide
-from ..geometry.cut_plan import CutPlan, plan_cut
+from ..geometry.cut_plan import CutOptions, CutPlan, plan_cut
 
 _QUARTER = np.tan(np.pi / 8) + 1e-12
 """The bulge of a quarter turn."""
@@ -203,15 +203,17 @@ def write_laser_svg(
     plan = plan_cut(
         region,
         outline,
+        CutOptions.of(
+            profile=profile,
+            mode=mode,
+            dxf_version=dxf_version,
+            kerf_mm=kerf_mm,
+            fill_small_holes=fill_small_holes,
+            stroke=stroke,
+            path=str(path),
+            fmt="svg",
+        ),
         centrelines=centrelines,
-        profile=profile,
-        mode=mode,
-        dxf_version=dxf_version,
-        kerf_mm=kerf_mm,
-        fill_small_holes=fill_small_holes,
-        stroke=stroke,
-        path=str(path),
-        fmt="svg",
     )
     atomic_write(path, svg_bytes(plan))
     return plan.report

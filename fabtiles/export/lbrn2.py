@@ -35,7 +35,7 @@ import numpy as np
 from ..core.files import atomic_write
 from ..core.report import Report
 from ..geometry.arcs import Beziers, beziers_many
-from ..geometry.cut_plan import CutPlan, plan_cut
+from ..geometry.cut_plan import CutOptions, CutPlan, plan_cut
 
 APP_VERSION = "1.7.03"
 """The LightBurn version the project says it is for (a recent one: older LightBurn opens newer files too)."""
@@ -77,14 +77,16 @@ def write_lbrn2(
     plan = plan_cut(
         region,
         outline,
+        CutOptions.of(
+            profile=profile,
+            mode=mode,
+            kerf_mm=kerf_mm,
+            fill_small_holes=fill_small_holes,
+            stroke=stroke,
+            path=str(path),
+            fmt="lbrn2",
+        ),
         centrelines=centrelines,
-        profile=profile,
-        mode=mode,
-        kerf_mm=kerf_mm,
-        fill_small_holes=fill_small_holes,
-        stroke=stroke,
-        path=str(path),
-        fmt="lbrn2",
     )
     atomic_write(path, lbrn2_bytes(plan))
     return plan.report

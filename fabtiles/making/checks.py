@@ -179,7 +179,7 @@ def _job(tile, cut_region, laser, mode, fill_small_holes):
     ``cut_region`` is the laser files' material, already made by :func:`check_tile`; only
     the score mode needs the score lines as well.
     """
-    from ..geometry.cut_plan import plan_cut
+    from ..geometry.cut_plan import CutOptions, plan_cut
 
     region, lines = cut_region, None
     if (mode or laser.mode) == "score":
@@ -187,11 +187,8 @@ def _job(tile, cut_region, laser, mode, fill_small_holes):
     plan = plan_cut(
         region,
         tile.outline_shape(),
+        CutOptions.of(profile=replace(laser, strict=False), mode=mode, fill_small_holes=fill_small_holes, fmt="check"),
         centrelines=lines,
-        profile=replace(laser, strict=False),
-        mode=mode,
-        fill_small_holes=fill_small_holes,
-        fmt="check",
     )
     return plan.estimate
 

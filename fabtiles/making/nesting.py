@@ -79,8 +79,8 @@ def part_outline(plan):
     convex hull of every path (so every cut of the part stays inside its outline).
 
     >>> from shapely.geometry import box
-    >>> from fabtiles.geometry.cut_plan import plan_cut
-    >>> plan = plan_cut(box(0, 0, 40, 40).difference(box(10, 10, 30, 30)), box(0, 0, 40, 40), profile="laser-3mm-plywood")
+    >>> from fabtiles.geometry.cut_plan import CutOptions, plan_cut
+    >>> plan = plan_cut(box(0, 0, 40, 40).difference(box(10, 10, 30, 30)), box(0, 0, 40, 40), CutOptions.of(profile="laser-3mm-plywood"))
     >>> [round(v, 3) for v in part_outline(plan).bounds]
     [0.0, 0.0, 40.15, 40.15]
     """  # noqa: E501 - a doctest's lines are as Python prints them

@@ -10,7 +10,7 @@ import shapely
 from shapely.geometry import box
 
 from fabtiles import FabricationError, ParameterError
-from fabtiles.geometry.cut_plan import make_plan, plan_cut, plan_kit
+from fabtiles.geometry.cut_plan import CutOptions, KitOptions, make_plan, plan_cut, plan_kit
 from fabtiles.machines.profiles import load_profile
 
 PLATE = box(0, 0, 40, 40)
@@ -22,7 +22,7 @@ def test_the_inlay_mode_is_a_kit_not_one_plan():
         match=r"^the inlay mode writes a kit of two files \(lattice and pieces\): "
         r"export it with fabtiles\.export\.kit\.write_kit",
     ) as err:
-        plan_cut(PLATE.difference(box(10, 10, 30, 30)), PLATE, profile="laser-3mm-plywood", mode="inlay")
+        plan_cut(PLATE.difference(box(10, 10, 30, 30)), PLATE, CutOptions.of(profile="laser-3mm-plywood", mode="inlay"))
     assert err.value.param == "mode"
 
 
@@ -31,13 +31,13 @@ def test_the_score_mode_needs_centrelines():
         ParameterError,
         match=r"^the score mode needs centrelines \(an array of shape \(k, 2, 2\)\), got none$",
     ) as err:
-        plan_cut(PLATE, PLATE, profile="laser-3mm-plywood", mode="score", centrelines=None)
+        plan_cut(PLATE, PLATE, CutOptions.of(profile="laser-3mm-plywood", mode="score"), centrelines=None)
     assert err.value.param == "centrelines"
 
 
 def test_the_score_mode_with_no_centre_line_in_the_outline_is_refused():
     with pytest.raises(FabricationError, match=r"^the score mode has no line to score: every centre-line"):
-        plan_cut(PLATE, PLATE, profile="laser-3mm-plywood", mode="score", centrelines=[])
+        plan_cut(PLATE, PLATE, CutOptions.of(profile="laser-3mm-plywood", mode="score"), centrelines=[])
 
 
 def test_a_pocket_kit_needs_a_hole_large_enough_for_a_piece():
@@ -47,7 +47,7 @@ def test_a_pocket_kit_needs_a_hole_large_enough_for_a_piece():
     with pytest.raises(
         ParameterError, match=r"^the tile has no hole large enough for a piece; nothing to pocket$"
     ) as err:
-        plan_kit(region, PLATE, profile="laser-3mm-plywood", inlay_base="pocket")
+        plan_kit(region, PLATE, KitOptions.of(profile="laser-3mm-plywood", inlay_base="pocket"))
     assert err.value.param == "region"
 
 
@@ -69,7 +69,9 @@ def _low(plan):
 def test_the_paths_are_moved_by_their_own_lower_left(outline, kerf_y, want):
     outline = shapely.transform(outline, lambda c: c - shapely.bounds(outline)[:2])
     region = outline.difference(box(15, 15, 25, 25))
-    plan = plan_cut(region, outline, profile=replace(load_profile("laser-3mm-plywood"), kerf_y_mm=kerf_y))
+    plan = plan_cut(
+        region, outline, CutOptions.of(profile=replace(load_profile("laser-3mm-plywood"), kerf_y_mm=kerf_y))
+    )
     assert _low(plan).tolist() == [0.0, 0.0] and plan.bounds[:2] == (0.0, 0.0)
     assert plan.offset == pytest.approx(want, abs=1e-5) and min(np.subtract(plan.offset, want)) >= 0
     assert plan.report.stats["file_offset_mm"] == pytest.approx(list(plan.offset), abs=1e-6)
@@ -78,7 +80,7 @@ def test_the_paths_are_moved_by_their_own_lower_left(outline, kerf_y, want):
 
 def test_a_kits_plans_share_the_lattices_offset_and_bounds():
     plate = PLATE.difference(box(10, 10, 30, 30))
-    kit = plan_kit(plate, PLATE, profile="laser-3mm-plywood")
+    kit = plan_kit(plate, PLATE, KitOptions.of(profile="laser-3mm-plywood"))
     assert kit.lattice.offset == kit.pieces.offset == pytest.approx((0.075, 0.075))
     assert kit.pieces.bounds == kit.lattice.bounds
     # the piece (the 20 mm hole grown by the fit and half the kerf) at its hole's place, moved alike
@@ -103,7 +105,9 @@ def test_bounds_given_frame_the_file_and_an_empty_plan_is_not_moved():
 def test_a_tile_of_the_beds_size_is_noted_where_its_cut_runs_past_the_bed(size, noted):
     # the cut path lies half the 0.15 mm kerf outside the tile: 600.15 x 400.15 mm for a 600 x 400 tile
     tile = box(0, 0, *size)
-    plan = plan_cut(tile.difference(box(100, 100, 200, 200)), tile, profile=load_profile("laser-3mm-plywood"))
+    plan = plan_cut(
+        tile.difference(box(100, 100, 200, 200)), tile, CutOptions.of(profile=load_profile("laser-3mm-plywood"))
+    )
     notes = [n for n in plan.report.stats.get("notes", []) if "beyond the 600 x 400 mm bed" in n]
     assert bool(notes) is noted
     if noted:
