@@ -277,7 +277,8 @@ class KitOptions:
     ``lattice`` is the lattice's plan's options (pierced, or engrave for pockets);
     ``inlay_fit_mm`` how much each piece grows from its hole; ``inlay_base`` how the lattice
     holds the pieces (:data:`INLAY_BASES`); ``stroke_mm`` the pattern's stroke width (what
-    the kept-pattern check names).
+    the kept-pattern check names; a pierced lattice checks it against the kerf once the kit
+    is made, so that the kit's own findings come first).
     """
 
     lattice: CutOptions
@@ -315,7 +316,6 @@ class KitOptions:
             mode="pierced" if base == "pierced" else "engrave",
             dxf_version=dxf_version,
             kerf_mm=kerf_mm,
-            stroke=stroke if base == "pierced" else None,
             tab_mm=tabs[0],
             tabs_per_part=tabs[1],
             path=path,
@@ -774,6 +774,9 @@ def plan_kit(region, outline, options: KitOptions, *, colours=()) -> KitPlans:
         tolerance_mm=profile.tolerance_mm,
     )
     if options.inlay_base == "pierced":
+        stroke = options.stroke_mm
+        if stroke is not None:
+            lo = replace(lo, stroke_mm=_checked_stroke(profile, stroke, max(lo.kerf_mm, lo.kerf_y_mm)))
         lattice = plan_cut(kit.lattice, outline, lo)
     else:
         if not len(kit.holes):
