@@ -867,8 +867,8 @@ def _note_kit(kit: InlayKit, stats: dict, fit: float, pieces: CutPlan, report: R
 
 def _note_colour_sheet(name: str, plan: CutPlan, report: Report) -> None:
     """The report told one colour's pieces: how many, their area and the sheet they need."""
-    part = plan.part
-    n = len(shapely.get_parts(part)) if part is not None and not part.is_empty else 0
+    part = plan.part if plan.part is not None else shapely.Polygon()
+    n = 0 if part.is_empty else len(shapely.get_parts(part))
     area = float(part.area) if n else 0.0
     x0, y0, x1, y1 = part.bounds if n else (0.0, 0.0, 0.0, 0.0)
     report.stats["pieces_by_colour"][name] = {

@@ -109,7 +109,9 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
     return replace(plans, lattice=new_lattice, pieces=nested[0][1] if nested else plans.pieces)
 
 
-def _nested_plan(name: str, mine, pieces, letters: list, lattice, kerf_xy: tuple, tabs: tuple, time_s) -> CutPlan:
+def _nested_plan(
+    name: str, mine, pieces, letters: list, lattice, kerf_xy: tuple, tabs: tuple[float, int], time_s
+) -> CutPlan:
     """The cut plan of one colour's pieces (``mine``, indices into ``pieces``) nested on a strip of the
     tile's height, each scored with its hole's letter; the lattice's report told of it."""
     from .cut_plan import split_at_tabs
