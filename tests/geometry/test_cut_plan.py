@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import FrozenInstanceError, replace
 
 import numpy as np
 import pytest
@@ -14,6 +14,39 @@ from fabtiles.geometry.cut_plan import CutOptions, KitOptions, make_plan, plan_c
 from fabtiles.machines.profiles import load_profile
 
 PLATE = box(0, 0, 40, 40)
+
+
+def test_the_options_take_the_profiles_defaults_once_and_are_frozen():
+    ply = load_profile("laser-3mm-plywood")
+    o = CutOptions.of(profile="laser-3mm-plywood")
+    assert (o.profile, o.mode, o.dxf_version, (o.kerf_mm, o.kerf_y_mm)) == (
+        ply,
+        ply.mode,
+        ply.dxf_version,
+        ply.kerf_xy_mm,
+    )
+    assert (o.stroke_mm, o.fill_small_holes, o.tab_mm, o.tabs_per_part, o.path, o.fmt) == (None, False, 0.0, 4, "", "")
+    given = CutOptions.of(profile=ply, mode="engrave", kerf_mm=0.2, stroke=1.5, tab_mm=0.5, tabs_per_part=2)
+    assert (given.mode, given.kerf_mm, given.kerf_y_mm, given.stroke_mm, given.tab_mm, given.tabs_per_part) == (
+        "engrave",
+        0.2,
+        0.2,
+        1.5,
+        0.5,
+        2,
+    )
+    with pytest.raises(FrozenInstanceError):
+        o.kerf_mm = 0.3
+    with pytest.raises(TypeError):
+        CutOptions(ply, "pierced", "R2000", 0.15, 0.15)  # keyword-only fields
+    kit = KitOptions.of(profile=ply, inlay_base="pocket", stroke=0.5)
+    assert (kit.lattice.mode, kit.inlay_fit_mm, kit.inlay_base, kit.stroke_mm) == (
+        "engrave",
+        ply.inlay_fit_mm,
+        "pocket",
+        0.5,
+    )
+    assert KitOptions.of(profile=ply).lattice.mode == "pierced"
 
 
 def test_the_inlay_mode_is_a_kit_not_one_plan():
