@@ -752,9 +752,8 @@ def plan_kit(region, outline, options: KitOptions, *, colours=()) -> KitPlans:
     by half the kerf so they come out at their nominal size, at their holes' places,
     on the outer-cut layer, with the lattice's bounds: cut from a sheet laid like the
     lattice's, they drop out where they belong. ``inlay_fit_mm`` grows each piece from
-    its hole. The lattice's report carries the kit's
-    figures (``pieces``, ``filled_holes``, ``piece_kinds``, both areas, the pieces'
-    ``pieces_job``). ``colours``, ``((colour name, faces), ...)``, splits the pieces
+    its hole. The lattice's report carries the kit's figures (``pieces``,
+    ``filled_holes``, ``piece_kinds``, both areas, the pieces' ``pieces_job``). ``colours``, ``((colour name, faces), ...)``, splits the pieces
     into a plan per colour: each piece goes with the colour of the face holding its
     hole (a piece no face names goes with the first colour), each plan with the
     lattice's bounds, so every wood's sheet is laid like the lattice's. ``tab_mm`` and
