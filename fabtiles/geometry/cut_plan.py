@@ -753,12 +753,14 @@ def plan_kit(region, outline, options: KitOptions, *, colours=()) -> KitPlans:
     on the outer-cut layer, with the lattice's bounds: cut from a sheet laid like the
     lattice's, they drop out where they belong. ``inlay_fit_mm`` grows each piece from
     its hole. The lattice's report carries the kit's figures (``pieces``,
-    ``filled_holes``, ``piece_kinds``, both areas, the pieces' ``pieces_job``). ``colours``, ``((colour name, faces), ...)``, splits the pieces
-    into a plan per colour: each piece goes with the colour of the face holding its
-    hole (a piece no face names goes with the first colour), each plan with the
-    lattice's bounds, so every wood's sheet is laid like the lattice's. ``tab_mm`` and
-    ``tabs_per_part`` leave holding tabs in the lattice's outer cut and in every piece's
-    (the pieces' report: the ``pieces_tabs`` entry). ``options``: :meth:`KitOptions.of`.
+    ``filled_holes``, ``piece_kinds``, both areas, the pieces' ``pieces_job``).
+    ``colours``, ``((colour name, faces), ...)``, splits the pieces into a plan per
+    colour: each piece goes with the colour of the face holding its hole (a piece no
+    face names goes with the first colour), each plan with the lattice's bounds, so
+    every wood's sheet is laid like the lattice's. The options' ``tab_mm`` and
+    ``tabs_per_part`` leave holding tabs in the lattice's outer cut and in every
+    piece's (the pieces' report: the ``pieces_tabs`` entry). ``options``:
+    :meth:`KitOptions.of`.
     """
     from .inlay import inlay_kit
 
