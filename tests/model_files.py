@@ -21,12 +21,13 @@ from fabtiles.core.report import Report
 from fabtiles.export.formats import CUT_FORMATS, FileOptions, format_of
 
 
-def write_cut(path, *, region, outline, **options) -> Report:
+def write_cut(path, *, region, outline, centrelines=None, **options) -> Report:
     """The cutter file (``.dxf``, ``.svg``, ``.lbrn2``) of ``region``: :func:`plan_cut` with ``options``."""
-    from fabtiles.geometry.cut_plan import plan_cut
+    from fabtiles.geometry.cut_plan import CutOptions, plan_cut
 
     fmt = format_of(path, allowed=CUT_FORMATS)
-    plan = plan_cut(region, outline, path=str(path), fmt=fmt.name, **options)
+    checked = CutOptions.of(path=str(path), fmt=fmt.name, **options)
+    plan = plan_cut(region, outline, checked, centrelines=centrelines)
     file_options = FileOptions(name=Path(path).stem)
     atomic_write(path, fmt.write(plan, file_options))
     plan.report.stats.update(fmt.figures(plan, file_options))
@@ -50,18 +51,18 @@ def write_print(path, *, region, outline, name=None, layout="volumes", **options
     return model.report
 
 
-def write_kit(path, *, region, outline, **options) -> Report:
+def write_kit(path, *, region, outline, colours=(), **options) -> Report:
     """The inlay kit of ``region`` (:func:`plan_kit` with ``options``): ``<stem>-lattice`` and ``<stem>-pieces``
     beside ``path``, in its suffix's format, both made before either is written.
 
     The report is the kit's, with the lattice file's figures and both paths in ``files``.
     """
-    from fabtiles.geometry.cut_plan import plan_kit
+    from fabtiles.geometry.cut_plan import KitOptions, plan_kit
 
     path = Path(path)
     fmt = format_of(path, allowed=CUT_FORMATS)
     lattice = path.with_name(f"{path.stem}-lattice{path.suffix}")
-    plans = plan_kit(region, outline, path=str(lattice), fmt=fmt.name, **options)
+    plans = plan_kit(region, outline, KitOptions.of(path=str(lattice), fmt=fmt.name, **options), colours=colours)
     file_options = FileOptions(name=path.stem)
     files = [
         (path.with_name(f"{path.stem}{suffix}{path.suffix}"), fmt.write(plan, file_options))

@@ -15,19 +15,19 @@ def _param(make):
 
 
 def test_laser_options():
-    from fabtiles.geometry.cut_plan import plan_cut
+    from fabtiles.geometry.cut_plan import CutOptions, plan_cut
 
     plate = box(0, 0, 40, 40)
 
     def laser(**kw):
-        return lambda: plan_cut(region=plate, outline=plate, profile="laser-3mm-plywood", **kw)
+        return lambda: plan_cut(plate, plate, CutOptions.of(profile="laser-3mm-plywood", **kw))
 
     assert _param(laser(stroke=0.5)) == "stroke"
     assert _param(laser(stroke=1.5, kerf_mm=2)) == "kerf_mm"
     assert _param(laser(fill_small_holes=1)) == "fill_small_holes"
     assert _param(laser(mode="score")) == "centrelines"
     assert _param(laser(mode="etch")) == "mode"
-    assert _param(lambda: plan_cut(region="plate", outline=plate, profile="laser-3mm-plywood")) == "region"
+    assert _param(lambda: plan_cut("plate", plate, CutOptions.of(profile="laser-3mm-plywood"))) == "region"
 
 
 def test_export_and_sheet_options():

@@ -109,12 +109,7 @@ def command(design_files, outdir, jobs, scheduler, overrides, formats, verbose):
     from ..designs.design_file import load_design
     from ..making.jobs import Job
 
-    stems: dict = {}
-    for f in design_files:
-        stem = Path(f).stem
-        if stem in stems and stems[stem] != f:
-            raise click.UsageError(f"two designs would write the same files: {stems[stem]} and {f}; rename one")
-        stems[stem] = f
+    _check_stems(design_files)
     if scheduler is not None and jobs is not None:
         raise click.UsageError("--jobs sets local processes; with --scheduler the cluster's workers build")
     design_files = list(dict.fromkeys(design_files))
@@ -130,12 +125,29 @@ def command(design_files, outdir, jobs, scheduler, overrides, formats, verbose):
         keys=design_files,
         verbose=verbose,
     )
+    finish(outcomes, "designs")
+
+
+def _check_stems(design_files) -> None:
+    """Refuse two design files of one stem (they would write the same files)."""
+    stems: dict = {}
+    for f in design_files:
+        stem = Path(f).stem
+        if stem in stems and stems[stem] != f:
+            raise click.UsageError(f"two designs would write the same files: {stems[stem]} and {f}; rename one")
+        stems[stem] = f
+
+
+def finish(outcomes, what: str, tail: str = "") -> None:
+    """The line saying how many of the ``what`` were built (in part, failed), then the exit: 2 when one failed,
+    :data:`~fabtiles.cli.main.REFUSED_EXIT` when one was built in part."""
     failed = [o for o in outcomes if not o.ok]
     part = [o for o in outcomes if o.ok and o.refused]
     click.echo(
-        f"{len(outcomes) - len(failed) - len(part)} of {len(outcomes)} designs built"
+        f"{len(outcomes) - len(failed) - len(part)} of {len(outcomes)} {what} built"
         + (f", {len(part)} in part (formats refused)" if part else "")
         + (f", {len(failed)} failed" if failed else "")
+        + tail
     )
     if failed:
         sys.exit(2)

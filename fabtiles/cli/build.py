@@ -185,8 +185,15 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
     # what this build changed from the file, and what the file says that the tile does not show
     for line in override_notes(design_file, overrides) + design_notes(design):
         click.echo(f"fabtiles: note: {line}", err=True)
+    _echo_files(result)
+    _note_earlier(result)
+    report_refused(result.refused, result.earlier)
+
+
+def _echo_files(result) -> None:
+    """The files written (or replaced), then each model's figures and findings once, and the formats skipped."""
     replaced = set(result.replaced)
-    for report in result.reports:  # the files, then each model's figures and findings once
+    for report in result.reports:
         for path in report.stats.get("files", [report.path]):
             click.echo(f"{'replaced' if str(path) in replaced else 'wrote'} {path} ({report.format})")
     for label, report in result.models:
@@ -197,19 +204,23 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
             f"fabtiles: note: skipped {', '.join(skipped)}: a sheet is laid out for the laser formats (dxf, svg) only",
             err=True,
         )
+
+
+def _note_earlier(result) -> None:
+    """A note naming the files of an earlier build in the folder that this build did not rewrite."""
     refused = {r.path for r in result.refused}
     earlier = [p for p in result.earlier if p not in refused]
-    if earlier:
-        one = len(earlier) == 1
-        it = "it" if one else "them"
-        others = " ".join(f"--format {f}" for f in dict.fromkeys(Path(p).suffix[1:] for p in earlier))
-        click.echo(
-            f"fabtiles: note: {', '.join(earlier)} {'is' if one else 'are'} from an earlier build and "
-            f"{'was' if one else 'were'} not rewritten (this build wrote "
-            f"{', '.join(r.format for r in result.reports)}); add {others} to rebuild {it}, or delete {it}",
-            err=True,
-        )
-    report_refused(result.refused, result.earlier)
+    if not earlier:
+        return
+    one = len(earlier) == 1
+    it = "it" if one else "them"
+    others = " ".join(f"--format {f}" for f in dict.fromkeys(Path(p).suffix[1:] for p in earlier))
+    click.echo(
+        f"fabtiles: note: {', '.join(earlier)} {'is' if one else 'are'} from an earlier build and "
+        f"{'was' if one else 'were'} not rewritten (this build wrote "
+        f"{', '.join(r.format for r in result.reports)}); add {others} to rebuild {it}, or delete {it}",
+        err=True,
+    )
 
 
 def report_refused(refused, earlier=()) -> None:

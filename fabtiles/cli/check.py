@@ -79,7 +79,7 @@ def command(design_file, output, overrides, deep):
     import fabtiles
 
     from ..designs.design_file import load_design
-    from ..making.checks import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE, check_design
+    from ..making.checks import check_design
 
     if output is not None and Path(output).suffix.lower() != ".svg":
         raise ParameterError(f"the overlay (-o) must be an .svg file, got {output!r}")
@@ -91,39 +91,14 @@ def command(design_file, output, overrides, deep):
     tile = design.build_tile(tile_cls=fabtiles.Tile)  # checks the work limits first
     out = design.output
     style = out.print_style or profile_of(design, "printer").print_style
-    models = None
-    if design.colour.given or style == "mosaic":
-        from ..making.models import BuildOptions, Models
-
-        models = Models(tile, BuildOptions.of_design(design))
-        try:  # the build's classes and colours; a letter the design lacks is refused before anything is printed
-            _ = models.colouring
-        except ParameterError as exc:
-            raise ParameterError(f"{design_file}: {exc}", param=exc.param) from None
+    models = _colour_models(design, design_file, tile, style)
     result = check_design(design, tile, job=True)
-    class_lines = []
-    if models is not None:  # the classes as the print makes them: those filled with the bands print no colour
-        from ..core.report import face_class_lines
-
-        filled = models.filled_classes(result.print_region) if out.fill_small_holes else frozenset()
-        class_lines = [models.print_parts_line(result.print_region, style)]
-        class_lines += face_class_lines(models.face_class_stats(filled))
-    laser = f"{cutter} profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
-    if result.filled_holes:
-        laser += f" ({result.filled_holes:,} small holes filled)"
-    printer = f"printer profile {out.printer_profile or DEFAULT_PRINTER_PROFILE}"
-    if result.print_filled_holes:
-        printer += f" ({result.print_filled_holes:,} small holes filled)"
+    class_lines = _class_lines(models, result, style, out.fill_small_holes)
+    laser, printer = _profile_words(result, cutter, out)
     for line in design_notes(design):  # what the checked tile has that the file does not say (a seamless fit)
         click.echo(f"fabtiles: note: {line}", err=True)
     click.echo(f"{design_file}: {laser}, {printer}")
-    if result.job is not None:
-        click.echo(f"  {cutter} job: {result.job.line()}")
-        click.echo(f"  {cutter} {result.job.travel_line()}")
-    if result.filament is not None:
-        click.echo(f"  print material: {result.filament.line()} (print time: ask the slicer)")
-    for line in class_lines:
-        click.echo("  " + line)
+    _echo_figures(result, cutter, class_lines)
     findings = result.findings()
     for where, f in findings:
         click.echo("  " + finding_line(where, f))
@@ -148,3 +123,54 @@ def command(design_file, output, overrides, deep):
     click.echo(f"{n} finding{'s' if n != 1 else ''}" if n else "ok: nothing found")
     if n:
         click.get_current_context().exit(1)
+
+
+def _colour_models(design, design_file, tile, style: str):
+    """The build's models when the tile is coloured (or a mosaic print), its colouring made so that a class
+    letter the design lacks is refused before anything is printed; None otherwise."""
+    if not (design.colour.given or style == "mosaic"):
+        return None
+    from ..making.models import BuildOptions, Models
+
+    models = Models(tile, BuildOptions.of_design(design))
+    try:
+        _ = models.colouring
+    except ParameterError as exc:
+        raise ParameterError(f"{design_file}: {exc}", param=exc.param) from None
+    return models
+
+
+def _class_lines(models, result, style: str, fill_small_holes: bool) -> list:
+    """The print's parts and face classes as the print makes them (classes filled with the bands print no
+    colour), one line each; none without models."""
+    if models is None:
+        return []
+    from ..core.report import face_class_lines
+
+    filled = models.filled_classes(result.print_region) if fill_small_holes else frozenset()
+    lines = [models.print_parts_line(result.print_region, style)]
+    return lines + face_class_lines(models.face_class_stats(filled))
+
+
+def _profile_words(result, cutter: str, out) -> tuple[str, str]:
+    """The cutter's and the printer's profile as the summary names them, with the holes filled for each."""
+    from ..making.checks import DEFAULT_LASER_PROFILE, DEFAULT_PRINTER_PROFILE
+
+    laser = f"{cutter} profile {out.laser_profile or DEFAULT_LASER_PROFILE}"
+    if result.filled_holes:
+        laser += f" ({result.filled_holes:,} small holes filled)"
+    printer = f"printer profile {out.printer_profile or DEFAULT_PRINTER_PROFILE}"
+    if result.print_filled_holes:
+        printer += f" ({result.print_filled_holes:,} small holes filled)"
+    return laser, printer
+
+
+def _echo_figures(result, cutter: str, class_lines: list) -> None:
+    """The check's figures: the cutter's job and travel, the print's material, the classes."""
+    if result.job is not None:
+        click.echo(f"  {cutter} job: {result.job.line()}")
+        click.echo(f"  {cutter} {result.job.travel_line()}")
+    if result.filament is not None:
+        click.echo(f"  print material: {result.filament.line()} (print time: ask the slicer)")
+    for line in class_lines:
+        click.echo("  " + line)

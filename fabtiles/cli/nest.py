@@ -125,19 +125,7 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
     state: dict = {"done": 0, "bar": None}
 
     def progress(p):
-        # a bar on a terminal only (elsewhere click would print its label as a stray line); opened at
-        # the packer's first report, so an error before it is still one line on stderr
-        if not sys.stderr.isatty():
-            return
-        if state["bar"] is None:
-            state["bar"] = click.progressbar(
-                length=1000, label="nesting", file=sys.stderr, show_eta=False, show_percent=True
-            ).__enter__()
-        # the budget's fraction spent, and all of it once every part is placed
-        done = 1000 if p.placed == p.parts else min(999, int(1000 * p.elapsed_s / p.budget_s))
-        if done > state["done"]:
-            state["bar"].update(done - state["done"])
-            state["done"] = done
+        _show_progress(p, state)
 
     try:
         result = nest_designs(
@@ -157,6 +145,36 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
             state["bar"].__exit__(None, None, None)
     for path in result.build.paths:
         click.echo(f"{'replaced' if path in result.build.replaced else 'wrote'} {path}")
+    _echo_sheets(result)
+    for label, report in result.build.models:
+        if report.findings:
+            click.echo(report.summary(label))
+    from .build import report_refused
+
+    report_refused(result.build.refused)
+
+
+def _show_progress(p, state: dict) -> None:
+    """The nesting's progress bar moved on to ``p`` (:class:`~fabtiles.geometry.nest.NestProgress`).
+
+    A bar on a terminal only (elsewhere click would print its label as a stray line); opened at
+    the packer's first report, so an error before it is still one line on stderr.
+    """
+    if not sys.stderr.isatty():
+        return
+    if state["bar"] is None:
+        state["bar"] = click.progressbar(
+            length=1000, label="nesting", file=sys.stderr, show_eta=False, show_percent=True
+        ).__enter__()
+    # the budget's fraction spent, and all of it once every part is placed
+    done = 1000 if p.placed == p.parts else min(999, int(1000 * p.elapsed_s / p.budget_s))
+    if done > state["done"]:
+        state["bar"].update(done - state["done"])
+        state["done"] = done
+
+
+def _echo_sheets(result) -> None:
+    """The nest's summary: parts, sheets, gap and rotation, then each sheet's parts, material use and job."""
     n = result.nesting
     w, h = n.sheet_mm
     parts = len(n.placements)
@@ -170,9 +188,3 @@ def command(design_files, outdir, count, sheet, gap_mm, rotations, time_s, forma
             f"sheet {s['sheet']}: {s['parts']} parts ({parts}), material use {s['material_use']:.0%}, "
             f"{s['job']['line']}"
         )
-    for label, report in result.build.models:
-        if report.findings:
-            click.echo(report.summary(label))
-    from .build import report_refused
-
-    report_refused(result.build.refused)

@@ -7,7 +7,6 @@ index files, :mod:`fabtiles.making.jobs` builds them (local processes or a Dask 
 from __future__ import annotations
 
 import os
-import sys
 
 import click
 
@@ -80,7 +79,7 @@ def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, ye
     fabtiles sweep samples/rosette.toml --vary motif.preset=table3-1,table3-2,table3-3 -o presets/ --format svg
     """
     from ..making.sweep import explain, make_jobs, parse_vary, variants, write_index
-    from .batch import run_and_report
+    from .batch import finish, run_and_report
 
     if scheduler is not None and jobs is not None:
         raise click.UsageError("--jobs sets local processes; with --scheduler the cluster's workers build")
@@ -102,17 +101,4 @@ def command(design_file, varies, outdir, formats, overrides, jobs, scheduler, ye
         verbose=verbose,
     )
     csv_path, html_path = write_index(outdir, parsed, todo, outcomes)
-    failed = [o for o in outcomes if not o.ok]
-    part = [o for o in outcomes if o.ok and o.refused]
-    click.echo(
-        f"{len(outcomes) - len(failed) - len(part)} of {len(outcomes)} variants built"
-        + (f", {len(part)} in part (formats refused)" if part else "")
-        + (f", {len(failed)} failed" if failed else "")
-        + f"; contact sheet {html_path}, table {csv_path}"
-    )
-    if failed:
-        sys.exit(2)
-    if part:
-        from .main import REFUSED_EXIT
-
-        sys.exit(REFUSED_EXIT)
+    finish(outcomes, "variants", f"; contact sheet {html_path}, table {csv_path}")

@@ -152,17 +152,22 @@ class Widget:
         if self.kind == "slider" and (self.min is None or self.max is None or self.step is None):
             raise ParameterError("a slider needs min, max and step", param="kind")
         for pair in self.when:
-            if not (
-                isinstance(pair, tuple)
-                and len(pair) == 2
-                and isinstance(pair[0], str)
-                and isinstance(pair[1], tuple)
-                and pair[1]
-                and all(isinstance(v, str) for v in pair[1])
-            ):
+            if not _is_condition(pair):
                 raise ParameterError(
                     f"a widget's when must hold (parameter, (value, ...)) pairs, got {pair!r}", param="when"
                 )
+
+
+def _is_condition(pair) -> bool:
+    """Whether ``pair`` is one of a widget's conditions: ``(parameter, (value, ...))``, all text."""
+    return (
+        isinstance(pair, tuple)
+        and len(pair) == 2
+        and isinstance(pair[0], str)
+        and isinstance(pair[1], tuple)
+        and bool(pair[1])
+        and all(isinstance(v, str) for v in pair[1])
+    )
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -307,35 +312,12 @@ class Key:
         param = param or self.name
         if value is None and not required:
             return None
-        if self.type == "boolean":
-            ok = isinstance(value, bool)
-        elif self.type in ("integer", "number"):
-            kinds = numbers.Integral if self.type == "integer" else numbers.Real
-            ok = isinstance(value, kinds) and not isinstance(value, bool)
-            if ok and self.range is not None and self.checked_by is None:
-                ok = value in self.range
-        elif self.type == "string":
-            ok = isinstance(value, str)
-        elif self.type == "choice":
-            ok = isinstance(value, str) if self.checked_by else isinstance(value, (str, int, float))
-            if ok and self.checked_by is None and value not in self.choice_values():
-                hint = did_you_mean(value, self.choice_values())
-                raise error(
-                    f"{prefix}{name} = {value!r} is not valid{f' ({hint})' if hint else ''}, must be one of: "
-                    f"{', '.join(self.choice_values())}",
-                    param=param,
-                )
-        elif self.type == "colour":
-            if self.type not in _TYPE_CHECKS:
-                raise LookupError(
-                    f"the {self.type} values of {self.path} are checked by a layer that "
-                    f"registers the check, and none is imported"
-                )
-            try:
-                _TYPE_CHECKS[self.type](value, param=name)
-            except ParameterError as exc:
-                raise error(f"{prefix}{exc}", param=param) from None
-            return value
+        if self.type == "colour":
+            return self._check_colour(value, name=name, prefix=prefix, error=error, param=param)
+        if self.type == "choice":
+            ok = self._choice_ok(value, name=name, prefix=prefix, error=error, param=param)
+        elif self.type in ("boolean", "integer", "number", "string"):
+            ok = self._type_ok(value)
         else:
             raise ParameterError(
                 f"{self.path} is a {self.type}: its value is checked where it is read, not by Key.check",
@@ -344,6 +326,45 @@ class Key:
         if not ok:
             raise error(f"{prefix}{name} must be {self.describe(note=note)}, got {value!r}", param=param)
         return float(value) if self.type == "number" else value
+
+    def _type_ok(self, value) -> bool:
+        """Whether ``value`` is of the key's plain type (boolean, integer, number, string), a number in its range
+        (unless ``checked_by``)."""
+        if self.type == "boolean":
+            return isinstance(value, bool)
+        if self.type == "string":
+            return isinstance(value, str)
+        kinds = numbers.Integral if self.type == "integer" else numbers.Real
+        ok = isinstance(value, kinds) and not isinstance(value, bool)
+        if ok and self.range is not None and self.checked_by is None:
+            ok = value in self.range
+        return ok
+
+    def _choice_ok(self, value, *, name: str, prefix: str, error, param: str) -> bool:
+        """Whether ``value`` is of a choice's type; a value not among the choices (unless ``checked_by``) raises,
+        with the nearest."""
+        ok = isinstance(value, str) if self.checked_by else isinstance(value, (str, int, float))
+        if ok and self.checked_by is None and value not in self.choice_values():
+            hint = did_you_mean(value, self.choice_values())
+            raise error(
+                f"{prefix}{name} = {value!r} is not valid{f' ({hint})' if hint else ''}, must be one of: "
+                f"{', '.join(self.choice_values())}",
+                param=param,
+            )
+        return ok
+
+    def _check_colour(self, value, *, name: str, prefix: str, error, param: str):
+        """A colour value checked by the check its layer registered."""
+        if self.type not in _TYPE_CHECKS:
+            raise LookupError(
+                f"the {self.type} values of {self.path} are checked by a layer that "
+                f"registers the check, and none is imported"
+            )
+        try:
+            _TYPE_CHECKS[self.type](value, param=name)
+        except ParameterError as exc:
+            raise error(f"{prefix}{exc}", param=param) from None
+        return value
 
 
 MOTIF_REQUIRED = ("n", "radii")

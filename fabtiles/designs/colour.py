@@ -85,67 +85,98 @@ def parse_colour(value, *, param: str = "colour", palette=None) -> Colour:
     >>> parse_colour("mamluk.lapis"), parse_colour("bole", palette="zellige").hex
     (Colour(hex='#26428b', name='lapis'), '#b8322a')
     """
-    import webcolors
-
     if isinstance(value, Colour):
         return value
     pal = palette if isinstance(palette, Palette) or palette is None else PALETTES.get(palette)
     if isinstance(value, str) and _HEX.fullmatch(value):
-        hex_ = value.lower()
-        own = {c.hex: c.name for c in _colours_of(pal)} if pal is not None else {}
-        if hex_ in own:
-            return Colour(hex_, own[hex_])
-        try:
-            name = webcolors.hex_to_name(hex_)
-        except ValueError:
-            name = hex_[1:]
-        return Colour(hex_, name)
+        return _hex_colour(value.lower(), pal)
     if isinstance(value, str) and value.strip() and not value.startswith("#"):
-        name = value.strip().lower()
-        if name in PART_COLOURS:
-            raise ParameterError(
-                f"{param} {value!r} names a part's colour, which only a face class takes "
-                f'([colour.faces] C = "band"); give #rrggbb or a colour name',
-                param=param,
-            )
-        if "." in name:  # a colour of a palette named first: "iznik.cobalt"
-            pname, _, cname = name.partition(".")
-            if pname in PALETTES:
-                found = _named(PALETTES[pname], cname)
-                if found is not None:
-                    return found
-                hint = did_you_mean(cname, [c.name for c in _colours_of(PALETTES[pname])])
-                raise ParameterError(
-                    f"{param} {value!r}: palette {pname!r} has no colour {cname!r}"
-                    f"{f' ({hint})' if hint else ''}; its colours: "
-                    f"{', '.join(_names_of(PALETTES[pname]))}",
-                    param=param,
-                )
-        if pal is not None and _named(pal, name) is not None:
-            return _named(pal, name)
-        try:
-            return Colour(webcolors.name_to_hex(name), name)
-        except ValueError:
-            pass
-        others = {p.name: _named(p, name) for p in PALETTES.values() if _named(p, name) is not None}
-        values = {c.hex for c in others.values()}
-        if len(values) == 1 or (others and pal is None):
-            return next(iter(others.values()))
-        if others:
-            where = ", ".join(f"{p}.{name}" for p in others)
-            raise ParameterError(
-                f"{param} {value!r} is a colour of several palettes, not of this design's "
-                f"({pal.name if pal else None}); name one: {where} (or give #rrggbb)",
-                param=param,
-            )
-        known = list(webcolors.names("css3")) + sorted({c.name for p in PALETTES.values() for c in _colours_of(p)})
-        hint = did_you_mean(name, known)
+        return _named_colour(value, pal, param)
+    raise ParameterError(f'{param} must be #rrggbb or a CSS colour name (like "navy"), got {value!r}', param=param)
+
+
+def _hex_colour(hex_: str, pal) -> Colour:
+    """A ``#rrggbb`` colour named by the palette, else by CSS, else by its hex digits."""
+    import webcolors
+
+    own = {c.hex: c.name for c in _colours_of(pal)} if pal is not None else {}
+    if hex_ in own:
+        return Colour(hex_, own[hex_])
+    try:
+        name = webcolors.hex_to_name(hex_)
+    except ValueError:
+        name = hex_[1:]
+    return Colour(hex_, name)
+
+
+def _named_colour(value: str, pal, param: str) -> Colour:
+    """The colour a name means: a qualified palette name, the design's palette's, CSS's, or one other palette's."""
+    import webcolors
+
+    name = value.strip().lower()
+    if name in PART_COLOURS:
         raise ParameterError(
-            f"{param} {value!r} is not a CSS or palette colour name{f' ({hint})' if hint else ''}; "
-            f'give #rrggbb, a CSS name like "navy" or a palette\'s like "cobalt"',
+            f"{param} {value!r} names a part's colour, which only a face class takes "
+            f'([colour.faces] C = "band"); give #rrggbb or a colour name',
             param=param,
         )
-    raise ParameterError(f'{param} must be #rrggbb or a CSS colour name (like "navy"), got {value!r}', param=param)
+    if "." in name:  # a colour of a palette named first: "iznik.cobalt"
+        found = _qualified(value, name, param)
+        if found is not None:
+            return found
+    if pal is not None and _named(pal, name) is not None:
+        return _named(pal, name)
+    try:
+        return Colour(webcolors.name_to_hex(name), name)
+    except ValueError:
+        pass
+    return _other_palettes(value, name, pal, param)
+
+
+def _qualified(value: str, name: str, param: str) -> Colour | None:
+    """The colour ``"palette.colour"`` names, None when the part before the dot is no palette."""
+    pname, _, cname = name.partition(".")
+    if pname not in PALETTES:
+        return None
+    found = _named(PALETTES[pname], cname)
+    if found is not None:
+        return found
+    hint = did_you_mean(cname, [c.name for c in _colours_of(PALETTES[pname])])
+    raise ParameterError(
+        f"{param} {value!r}: palette {pname!r} has no colour {cname!r}"
+        f"{f' ({hint})' if hint else ''}; its colours: "
+        f"{', '.join(_names_of(PALETTES[pname]))}",
+        param=param,
+    )
+
+
+def _other_palettes(value: str, name: str, pal, param: str) -> Colour:
+    """The colour of that name in the other palettes: one value, or any without a design's palette."""
+    others = {p.name: _named(p, name) for p in PALETTES.values() if _named(p, name) is not None}
+    values = {c.hex for c in others.values()}
+    if len(values) == 1 or (others and pal is None):
+        return next(iter(others.values()))
+    if others:
+        where = ", ".join(f"{p}.{name}" for p in others)
+        raise ParameterError(
+            f"{param} {value!r} is a colour of several palettes, not of this design's "
+            f"({pal.name if pal else None}); name one: {where} (or give #rrggbb)",
+            param=param,
+        )
+    raise _unknown(value, name, param)
+
+
+def _unknown(value: str, name: str, param: str) -> ParameterError:
+    """The error for a name no CSS colour or palette has, with the nearest one."""
+    import webcolors
+
+    known = list(webcolors.names("css3")) + sorted({c.name for p in PALETTES.values() for c in _colours_of(p)})
+    hint = did_you_mean(name, known)
+    return ParameterError(
+        f"{param} {value!r} is not a CSS or palette colour name{f' ({hint})' if hint else ''}; "
+        f'give #rrggbb, a CSS name like "navy" or a palette\'s like "cobalt"',
+        param=param,
+    )
 
 
 def palette_names(palette_name: str) -> dict:

@@ -424,14 +424,7 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
 
     Every value is checked by building the tile (cheap: no geometry is computed).
     """
-    _check_keys(data, SECTIONS, "the design", source, what="section")
-    for sec in SECTIONS:
-        if sec in data and not isinstance(data[sec], dict):
-            raise DesignError(f"{source}: [{sec}] must be a table, got {data[sec]!r}")
-    packing = _packing_spec(data["packing"], source) if "packing" in data else None
-    for sec in ("motif", "tile"):
-        if sec not in data and not (sec == "motif" and packing is not None and packing.kind == "archimedean"):
-            raise DesignError(f"{source}: the design needs a [{sec}] section")
+    packing = _sections(data, source)
     motif = _motif_spec(data["motif"], source, "[motif]") if "motif" in data else None
     tile_spec = _tile_spec(data["tile"], source)
     output = _output_spec(data.get("output", {}), source)
@@ -440,7 +433,26 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
     design = Design(
         name=name, motif=motif, tile_spec=tile_spec, packing=packing, output=output, source=source, colour=colour
     )
-    # Values: build the pieces, turning their ParameterError into a DesignError naming the key.
+    return _built(design, source)
+
+
+def _sections(data: dict, source: str):
+    """The design's sections checked (known, tables, motif and tile given); its packing's spec, or None."""
+    _check_keys(data, SECTIONS, "the design", source, what="section")
+    for sec in SECTIONS:
+        if sec in data and not isinstance(data[sec], dict):
+            raise DesignError(f"{source}: [{sec}] must be a table, got {data[sec]!r}")
+    packing = _packing_spec(data["packing"], source) if "packing" in data else None
+    for sec in ("motif", "tile"):
+        if sec not in data and not (sec == "motif" and packing is not None and packing.kind == "archimedean"):
+            raise DesignError(f"{source}: the design needs a [{sec}] section")
+    return packing
+
+
+def _built(design: Design, source: str) -> Design:
+    """The design with its pieces built once, so their values are checked: a ParameterError becomes a
+    DesignError naming the key (a seamless tile's fitted size in place)."""
+    motif, packing = design.motif, design.packing
     try:
         star = motif.star() if motif is not None else None
     except FabtilesError as exc:
@@ -579,11 +591,7 @@ def _motif_spec(table, source: str, where: str) -> MotifSpec:
         raise DesignError(f"{source}: {where} preset must be a string, got {preset!r}")
     params = {k: v for k, v in table.items() if k != "preset"}
     if preset is None:
-        missing = [k for k in _schema.MOTIF_REQUIRED if k not in params]
-        if missing:
-            raise DesignError(
-                f'{source}: {where} needs preset = "..." or the parameters n and radii (missing: {", ".join(missing)})'
-            )
+        _check_required(params, source, where)
     if "radii" in params and isinstance(params["radii"], list):
         params["radii"] = tuple(params["radii"])
     spec = MotifSpec(preset=preset, params=tuple(sorted(params.items())))
@@ -592,6 +600,15 @@ def _motif_spec(table, source: str, where: str) -> MotifSpec:
     except FabtilesError as exc:
         raise _wrapped(exc, source, where) from None
     return spec
+
+
+def _check_required(params: dict, source: str, where: str) -> None:
+    """Refuse a motif with no preset that lacks a parameter the star needs."""
+    missing = [k for k in _schema.MOTIF_REQUIRED if k not in params]
+    if missing:
+        raise DesignError(
+            f'{source}: {where} needs preset = "..." or the parameters n and radii (missing: {", ".join(missing)})'
+        )
 
 
 def _wrapped(exc: FabtilesError, source: str, where: str) -> DesignError:
@@ -689,6 +706,20 @@ def _archimedean_spec(table: dict, source: str) -> dict:
             f'{source}: [packing.motifs] must be a table keyed by polygon sides (8 = "table3-3"), got {raw!r}',
             param=_key(where, key="motifs"),
         )
+    method, contact = _method(table, source, where)
+    motifs = []
+    for key, value in raw.items():
+        if not str(key).isdigit():
+            raise DesignError(
+                f'{source}: [packing.motifs] key {key!r} must be a polygon\'s number of sides, like 8 = "table3-3"',
+                param=_key(where, key="motifs"),
+            )
+        motifs.append((int(key), _motif_spec(value, source, f"[packing.motifs] {key}")))
+    return dict(tiling=tiling, edge=edge, motifs=tuple(sorted(motifs)), method=method, **contact)
+
+
+def _method(table: dict, source: str, where: str) -> tuple[str, dict]:
+    """The packing's construction method and its contact keys (Hankin's method's only)."""
     method = _value(table, "packing", "method", source, where, _schema.key("packing.method").default)
     if method not in _schema.key("packing.method").choice_values():
         valid = _schema.key("packing.method").choice_values()
@@ -706,15 +737,7 @@ def _archimedean_spec(table: dict, source: str) -> dict:
             f'{method!r}; set method = "hankin" or remove it',
             param=_key(where, key=first),
         )
-    motifs = []
-    for key, value in raw.items():
-        if not str(key).isdigit():
-            raise DesignError(
-                f'{source}: [packing.motifs] key {key!r} must be a polygon\'s number of sides, like 8 = "table3-3"',
-                param=_key(where, key="motifs"),
-            )
-        motifs.append((int(key), _motif_spec(value, source, f"[packing.motifs] {key}")))
-    return dict(tiling=tiling, edge=edge, motifs=tuple(sorted(motifs)), method=method, **contact)
+    return method, contact
 
 
 def _tile_spec(table: dict, source: str) -> TileSpec:

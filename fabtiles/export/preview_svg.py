@@ -272,8 +272,9 @@ def nested_sheet_svg(plan, parts, sheet_mm, *, title: str = "nested sheet") -> s
         The picture's title.
 
     >>> import shapely
-    >>> from fabtiles.geometry.cut_plan import plan_cut
-    >>> plan = plan_cut(shapely.box(0, 0, 40, 40), shapely.box(0, 0, 40, 40), profile="laser-3mm-plywood")
+    >>> from fabtiles.geometry.cut_plan import CutOptions, plan_cut
+    >>> plate = shapely.box(0, 0, 40, 40)
+    >>> plan = plan_cut(plate, plate, CutOptions.of(profile="laser-3mm-plywood"))
     >>> svg = nested_sheet_svg(plan, [("a", shapely.box(0, 0, 40, 40))], (100, 50))
     >>> svg.count('class="part"'), 'viewBox="0 0 100 50"' in svg
     (1, True)

@@ -8,13 +8,13 @@ bounds, its fabrication findings, its job estimate and the part as the tool make
 it. The writers (:mod:`fabtiles.export.formats`) are pure functions of a plan: a
 build makes the plan once, whatever formats it writes.
 
-:func:`plan_cut` validates the options, runs the checks (:mod:`.laser_checks`,
-:mod:`.tool_opening`) and builds the contours (:mod:`.contours`); :func:`plan_kit`
-makes an inlay kit's two plans, the lattice and the pieces.
+:class:`CutOptions` holds the options, checked once (:meth:`CutOptions.of`); :func:`plan_cut`
+runs the checks (:mod:`.laser_checks`, :mod:`.tool_opening`) and builds the contours
+(:mod:`.contours`); :func:`plan_kit` makes an inlay kit's two plans, the lattice and the pieces.
 
 >>> from shapely.geometry import box
 >>> plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
->>> plan = plan_cut(plate, box(0, 0, 40, 40), profile="laser-3mm-plywood")
+>>> plan = plan_cut(plate, box(0, 0, 40, 40), CutOptions.of(profile="laser-3mm-plywood"))
 >>> [(layer.role, layer.layer.name, len(layer.paths)) for layer in plan.layers]
 [('inner', 'INNER', 1), ('outer', 'OUTER', 1)]
 >>> plan.report.ok, plan.estimate.pierces
@@ -137,6 +137,193 @@ class CutPlan:
         return cutter_kind(self.profile)
 
 
+@dataclass(frozen=True, slots=True, kw_only=True)
+class CutOptions:
+    """A cut plan's options, checked against each other and the profile: made by :meth:`of`.
+
+    ``kerf_mm`` and ``kerf_y_mm`` are the cut's width along X and along Y (the profile's
+    unless one kerf was given); ``stroke_mm`` the pattern's stroke width, checked against the
+    kerf and the profile's ``min_feature_mm`` (None: not checked); ``path`` and ``fmt`` what
+    the report names (a strict profile's error names the file).
+    """
+
+    profile: LaserProfile
+    mode: str
+    dxf_version: str
+    kerf_mm: float
+    kerf_y_mm: float
+    stroke_mm: float | None = None
+    fill_small_holes: bool = False
+    tab_mm: float = 0.0
+    tabs_per_part: int = 4
+    path: str = ""
+    fmt: str = ""
+
+    @classmethod
+    def of(
+        cls,
+        *,
+        profile,
+        mode=None,
+        dxf_version=None,
+        kerf_mm=None,
+        fill_small_holes: bool = False,
+        stroke=None,
+        tab_mm=None,
+        tabs_per_part=None,
+        path: str = "",
+        fmt: str = "",
+    ) -> CutOptions:
+        """The options checked, the profile's defaults in place of the Nones.
+
+        Parameters
+        ----------
+        profile : str, Path or CutterProfile
+            The cutter profile (kerf, limits, bed, layers, defaults of the options below).
+        mode : {"pierced", "score", "engrave"}, optional
+            Default: the profile's. The inlay mode is two plans: :func:`plan_kit`.
+        dxf_version : str, optional
+            Default: the profile's.
+        kerf_mm : float, optional
+            Width of the cut; default: the profile's (along X and along Y).
+        fill_small_holes : bool
+            Fill the holes narrower than the profile's ``min_hole_mm`` (or that a
+            router's bit cannot enter) instead of cutting them.
+        stroke : float, optional
+            The pattern's stroke width, to check kerf and ``min_feature_mm`` against.
+        tab_mm : float, optional
+            Holding tabs: each outer cut is left open at ``tabs_per_part`` gaps this long
+            (mm along the cut; default 0, none; a laser's only). See :mod:`.tabs`.
+        tabs_per_part : int, optional
+            Gaps per part when ``tab_mm`` > 0 (default 4).
+        path, fmt : str
+            What the report names (a strict profile's error names the file).
+
+        Raises :class:`~fabtiles.ParameterError` for a bad option (naming it, its value and
+        its range) and :class:`~fabtiles.ProfileError` for a bad profile.
+        """
+        profile = load_profile(profile, kind="laser")
+        kind = cutter_kind(profile)
+        kind.check_profile(profile)
+        check_layers(profile)
+        if fmt:
+            kind.check_format(profile, fmt)
+        mode = _checked_mode(profile, mode)
+        dxf_version = check_choice(
+            "dxf_version", profile.dxf_version if dxf_version is None else dxf_version, DXF_VERSIONS
+        )
+        if kerf_mm is None:  # the profile's kerf, along X and along Y
+            kerf, kerf_y = profile.kerf_xy_mm
+        else:
+            kerf = kerf_y = check_float("kerf_mm", kerf_mm, low=0)
+            kind.check_kerf(profile, kerf)
+        tab, per = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kerf, kerf_y), profile=profile)
+        if stroke is not None:
+            stroke = _checked_stroke(profile, stroke, max(kerf, kerf_y))
+        if not isinstance(fill_small_holes, bool):
+            raise ParameterError(
+                f"fill_small_holes must be True or False, got {fill_small_holes!r}", param="fill_small_holes"
+            )
+        return cls(
+            profile=profile,
+            mode=mode,
+            dxf_version=dxf_version,
+            kerf_mm=kerf,
+            kerf_y_mm=kerf_y,
+            stroke_mm=stroke,
+            fill_small_holes=fill_small_holes,
+            tab_mm=tab,
+            tabs_per_part=per,
+            path=str(path),
+            fmt=fmt,
+        )
+
+
+def _checked_mode(profile: LaserProfile, mode) -> str:
+    """The plan's mode (the profile's when None), one the cutter runs; the inlay mode is refused (two plans)."""
+    mode = profile.mode if mode is None else mode
+    if mode == "inlay":
+        raise ParameterError(
+            "the inlay mode writes a kit of two files (lattice and pieces): export it with "
+            "Tile.export(..., mode='inlay'), fabtiles.making.export_region(..., mode='inlay') or fabtiles build",
+            param="mode",
+        )
+    mode = check_choice("mode", mode, LASER_MODES)
+    cutter_kind(profile).check_mode(profile, mode)
+    return mode
+
+
+def _checked_stroke(profile: LaserProfile, stroke, kerf_mm: float) -> float:
+    """The stroke width checked: above the profile's smallest feature, and no narrower than the kerf."""
+    stroke = check_float("stroke", stroke, low=0, low_open=True)
+    if stroke < profile.min_feature_mm:
+        raise ParameterError(
+            f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of {profile.kind} "
+            f"profile {profile.name!r}, got {distinct(stroke, profile.min_feature_mm)}",
+            param="stroke",
+        )
+    if kerf_mm > stroke:
+        raise ParameterError(
+            f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {distinct(kerf_mm, stroke)}",
+            param="kerf_mm",
+        )
+    return stroke
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class KitOptions:
+    """An inlay kit's options, checked: made by :meth:`of`.
+
+    ``lattice`` is the lattice's plan's options (pierced, or engrave for pockets);
+    ``inlay_fit_mm`` how much each piece grows from its hole; ``inlay_base`` how the lattice
+    holds the pieces (:data:`INLAY_BASES`); ``stroke_mm`` the pattern's stroke width (what
+    the kept-pattern check names; a pierced lattice checks it against the kerf once the kit
+    is made, so that the kit's own findings come first).
+    """
+
+    lattice: CutOptions
+    inlay_fit_mm: float
+    inlay_base: str = "pierced"
+    stroke_mm: float | None = None
+
+    @classmethod
+    def of(
+        cls,
+        *,
+        profile,
+        inlay_fit_mm=None,
+        inlay_base: str = "pierced",
+        kerf_mm=None,
+        dxf_version=None,
+        stroke=None,
+        tab_mm=None,
+        tabs_per_part=None,
+        path: str = "",
+        fmt: str = "",
+    ) -> KitOptions:
+        """The options checked, the profile's defaults in place of the Nones (see :meth:`CutOptions.of`;
+        ``inlay_fit_mm``: default the profile's)."""
+        from .inlay import check_fit
+
+        profile = load_profile(profile, kind="laser")
+        cutter_kind(profile).check_mode(profile, "inlay")
+        base = check_choice("inlay_base", inlay_base, INLAY_BASES)
+        fit = check_fit(profile.inlay_fit_mm if inlay_fit_mm is None else inlay_fit_mm)
+        kx, ky = profile.kerf_xy_mm if kerf_mm is None else (kerf_mm, kerf_mm)
+        tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kx, ky))  # only a laser cuts kits, and leaves tabs
+        lattice = CutOptions.of(
+            profile=profile,
+            mode="pierced" if base == "pierced" else "engrave",
+            dxf_version=dxf_version,
+            kerf_mm=kerf_mm,
+            tab_mm=tabs[0],
+            tabs_per_part=tabs[1],
+            path=path,
+            fmt=fmt,
+        )
+        return cls(lattice=lattice, inlay_fit_mm=fit, inlay_base=base, stroke_mm=stroke)
+
+
 def make_plan(
     profile,
     mode: str,
@@ -174,64 +361,12 @@ def make_plan(
     kind = cutter_kind(profile)
     moved = {role: [np.asarray(r, dtype=float) for r in paths.get(role, ())] for role in ROLES}
     closed_of = {role: outer_closed if role == "outer" else role != "score" for role in ROLES}
-    # the arcs in the paths, for the writers, the lengths and the bounds (see .arcs: fitted on the
-    # flattened paths, whatever made them)
-    arcs = {
-        role: curves(rings, tolerance_mm=profile.tolerance_mm, closed=closed_of[role]) if rings else []
-        for role, rings in moved.items()
-    }
-    allr = [r for rings in moved.values() for r in rings]
-    if like is not None:
-        offset, bounds = like.offset, like.bounds
-    else:
-        # The shift is the paths' true lower-left, not a fixed half kerf: a square's kerf
-        # reaches exactly -kerf/2 (-0.075 mm at the 0.15 mm kerf), but a circle's flattened
-        # offset reaches -0.075004 mm, a pointy-top hexagon's mitred tip -0.086603 mm
-        # (kerf/2 / sin 60 deg) and a kerf_y_mm of 0.25 mm -0.125 mm in y: a half-kerf shift
-        # would leave those below 0, and MeerK40t moves such a file to the bed's centre.
-        box = [_extent(allr, arcs, closed_of)[0]] if allr else []
-        box += [np.asarray(bounds[:2], dtype=float)] if bounds is not None else []
-        low = np.min(box, axis=0) if box else np.zeros(2)
-        offset = tuple((0.0 - low).tolist())
-    shift = np.asarray(offset, dtype=float)
-    if shift.any():
-        moved = {role: [r + shift for r in rings] for role, rings in moved.items()}
-        arcs = {role: [Curve(c.xy + shift, c.bulge) for c in cs] for role, cs in arcs.items()}
-        allr = [r for rings in moved.values() for r in rings]
-    if like is None:
-        frame = [np.asarray(bounds, dtype=float).reshape(2, 2) + shift] if bounds is not None else []
-        frame += [np.array(_extent(allr, arcs, closed_of))] if allr else []
-        flat = np.concatenate(frame) if frame else np.zeros((1, 2))
-        # an arc's extreme, moved to 0, comes back as -7e-15 or so: the file's corner is (0, 0)
-        low = np.where(np.abs(flat.min(axis=0)) < 1e-9, 0.0, flat.min(axis=0))
-        bounds = (*low.tolist(), *flat.max(axis=0).tolist())
+    arcs = _arcs(moved, closed_of, profile.tolerance_mm)
+    moved, arcs, offset, bounds = _into_file(moved, arcs, closed_of, bounds, like)
     # the head's travel made short (.cut_order), from the file's origin; the arcs go with their paths
     travel_before = travel_mm(profile, **moved, outer_closed=outer_closed)
-    for role, (order, flipped) in path_orders(moved, outer_closed=outer_closed).items():
-        moved[role] = [
-            moved[role][i][::-1] if f else moved[role][i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)
-        ]
-        arcs[role] = [
-            _reversed(arcs[role][i]) if f else arcs[role][i]
-            for i, f in zip(order.tolist(), flipped.tolist(), strict=True)
-        ]
-    layers = []
-    for role in ROLES:
-        rings = moved[role]
-        if not rings:
-            continue
-        layer = getattr(layers_of, PROFILE_KEYS[role])
-        layers.append(
-            CutLayer(
-                role,
-                layer,
-                tuple(rings),
-                closed=closed_of[role],
-                fill=role == "engrave",
-                groups=tuple(groups) if role == "engrave" else (),
-                curves=tuple(arcs[role]),
-            )
-        )
+    _in_cut_order(moved, arcs, outer_closed)
+    layers = _layers(layers_of, moved, arcs, closed_of, groups)
     # a router or waterjet file has its two profiles' layers only; the engrave layer only when it engraves
     declared = [getattr(layers_of, key) for key in kind.layers if key != "engrave" or paths.get("engrave")]
     est = job_estimate(
@@ -256,6 +391,81 @@ def make_plan(
         engrave_area_mm2,
         tuple(float(v) for v in offset),
     )
+
+
+def _arcs(moved: dict, closed_of: dict, tolerance_mm: float) -> dict:
+    """The arcs in each role's paths, for the writers, the lengths and the bounds.
+
+    Fitted on the flattened paths, whatever made them (see :mod:`.arcs`).
+    """
+    return {
+        role: curves(rings, tolerance_mm=tolerance_mm, closed=closed_of[role]) if rings else []
+        for role, rings in moved.items()
+    }
+
+
+def _layers(layers_of, moved: dict, arcs: dict, closed_of: dict, groups) -> list:
+    """The plan's layers in cut order, the roles with paths only, each with the profile's settings."""
+    return [
+        CutLayer(
+            role,
+            getattr(layers_of, PROFILE_KEYS[role]),
+            tuple(moved[role]),
+            closed=closed_of[role],
+            fill=role == "engrave",
+            groups=tuple(groups) if role == "engrave" else (),
+            curves=tuple(arcs[role]),
+        )
+        for role in ROLES
+        if moved[role]
+    ]
+
+
+def _into_file(moved: dict, arcs: dict, closed_of: dict, bounds, like: CutPlan | None) -> tuple:
+    """The paths and arcs moved into the file's positive quadrant: ``(moved, arcs, offset, bounds)``.
+
+    ``like``: another plan's offset and bounds, else the paths' own (see :func:`make_plan`).
+    """
+    offset = like.offset if like is not None else _offset(moved, arcs, closed_of, bounds)
+    shift = np.asarray(offset, dtype=float)
+    if shift.any():
+        moved = {role: [r + shift for r in rings] for role, rings in moved.items()}
+        arcs = {role: [Curve(c.xy + shift, c.bulge) for c in cs] for role, cs in arcs.items()}
+    bounds = like.bounds if like is not None else _file_bounds(moved, arcs, closed_of, bounds, shift)
+    return moved, arcs, offset, bounds
+
+
+def _offset(moved: dict, arcs: dict, closed_of: dict, bounds) -> tuple:
+    """The move that puts the paths' lower-left (or ``bounds``', when lower) at (0, 0)."""
+    allr = [r for rings in moved.values() for r in rings]
+    # The shift is the paths' true lower-left, not a fixed half kerf: a square's kerf
+    # reaches exactly -kerf/2, but a circle's flattened offset reaches a little further,
+    # a pointy-top hexagon's mitred tip kerf/2 / sin 60 deg and a larger kerf_y_mm further
+    # in y: a half-kerf shift would leave those below 0, and MeerK40t moves such a file to
+    # the bed's centre.
+    box = [_extent(allr, arcs, closed_of)[0]] if allr else []
+    box += [np.asarray(bounds[:2], dtype=float)] if bounds is not None else []
+    low = np.min(box, axis=0) if box else np.zeros(2)
+    return tuple((0.0 - low).tolist())
+
+
+def _file_bounds(moved: dict, arcs: dict, closed_of: dict, bounds, shift: np.ndarray) -> tuple:
+    """The extents of the moved paths and of ``bounds`` (moved too), the lower-left snapped to (0, 0)."""
+    allr = [r for rings in moved.values() for r in rings]
+    frame = [np.asarray(bounds, dtype=float).reshape(2, 2) + shift] if bounds is not None else []
+    frame += [np.array(_extent(allr, arcs, closed_of))] if allr else []
+    flat = np.concatenate(frame) if frame else np.zeros((1, 2))
+    # an arc's extreme, moved to 0, comes back as -7e-15 or so: the file's corner is (0, 0)
+    low = np.where(np.abs(flat.min(axis=0)) < 1e-9, 0.0, flat.min(axis=0))
+    return (*low.tolist(), *flat.max(axis=0).tolist())
+
+
+def _in_cut_order(moved: dict, arcs: dict, outer_closed: bool) -> None:
+    """Each role's paths (and their arcs, in place) put in the order and direction that keep the travel short."""
+    for role, (order, flipped) in path_orders(moved, outer_closed=outer_closed).items():
+        pairs = list(zip(order.tolist(), flipped.tolist(), strict=True))
+        moved[role] = [moved[role][i][::-1] if f else moved[role][i] for i, f in pairs]
+        arcs[role] = [_reversed(arcs[role][i]) if f else arcs[role][i] for i, f in pairs]
 
 
 def _reversed(curve: Curve) -> Curve:
@@ -328,23 +538,8 @@ def split_at_tabs(paths: dict, tab_mm: float, tabs_per_part: int, report: Report
     return False
 
 
-def plan_cut(
-    region,
-    outline,
-    *,
-    profile,
-    centrelines=None,
-    mode=None,
-    dxf_version=None,
-    kerf_mm=None,
-    fill_small_holes: bool = False,
-    stroke=None,
-    tab_mm=None,
-    tabs_per_part=None,
-    path: str = "",
-    fmt: str = "",
-) -> CutPlan:
-    """Validate the options, run the checks and build the contours: the tile's :class:`CutPlan`.
+def plan_cut(region, outline, options: CutOptions, *, centrelines=None) -> CutPlan:
+    """Run the checks and build the contours: the tile's :class:`CutPlan`.
 
     Parameters
     ----------
@@ -352,141 +547,44 @@ def plan_cut(
         The material in file coordinates (mm; the outline's lower-left at (0, 0)).
     outline : shapely Polygon or MultiPolygon
         The tile outline (one polygon per tile on a sheet).
-    profile : str, Path or CutterProfile
-        The cutter profile (kerf, limits, bed, layers, defaults of the options below).
+    options : CutOptions
+        The profile, mode, kerf, tabs and the rest, checked (:meth:`CutOptions.of`).
     centrelines : ndarray (k, 2, 2), optional
         Centre-line segments in file coordinates; needed by the score mode.
-    mode : {"pierced", "score", "engrave"}, optional
-        Default: the profile's. The inlay mode is two plans: :func:`plan_kit`.
-    dxf_version : str, optional
-        Default: the profile's.
-    kerf_mm : float, optional
-        Width of the cut; default: the profile's (along X and along Y).
-    fill_small_holes : bool
-        Fill the holes narrower than the profile's ``min_hole_mm`` (or that a
-        router's bit cannot enter) instead of cutting them.
-    stroke : float, optional
-        The pattern's stroke width, to check kerf and ``min_feature_mm`` against.
-    tab_mm : float, optional
-        Holding tabs: each outer cut is left open at ``tabs_per_part`` gaps this long
-        (mm along the cut; default 0, none; a laser's only). See :mod:`.tabs`.
-    tabs_per_part : int, optional
-        Gaps per part when ``tab_mm`` > 0 (default 4).
-    path, fmt : str
-        What the report names (a strict profile's error names the file).
 
-    Raises before any contour is made: :class:`~fabtiles.ParameterError` for bad
-    options, :class:`~fabtiles.ProfileError` for a bad profile,
-    :class:`~fabtiles.FabricationError` for a tile larger than the bed or, with a
-    strict profile, any finding.
+    Raises before any contour is made: :class:`~fabtiles.ParameterError` for a bad
+    region or outline, :class:`~fabtiles.FabricationError` for a tile larger than the
+    bed or, with a strict profile, any finding.
     """
-    from .tool_opening import check_tool
-
-    profile = load_profile(profile, kind="laser")
-    kind = cutter_kind(profile)
-    kind.check_profile(profile)
-    check_layers(profile)
-    if fmt:
-        kind.check_format(profile, fmt)
-    mode = profile.mode if mode is None else mode
-    if mode == "inlay":
-        raise ParameterError(
-            "the inlay mode writes a kit of two files (lattice and pieces): export it with "
-            "Tile.export(..., mode='inlay'), fabtiles.making.export_region(..., mode='inlay') or fabtiles build",
-            param="mode",
-        )
-    mode = check_choice("mode", mode, LASER_MODES)
-    kind.check_mode(profile, mode)
-    dxf_version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version, DXF_VERSIONS)
-    if kerf_mm is None:  # the profile's kerf, along X and along Y
-        kerf, kerf_y = profile.kerf_xy_mm
-    else:
-        kerf = kerf_y = check_float("kerf_mm", kerf_mm, low=0)
-        kind.check_kerf(profile, kerf)
-    tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kerf, kerf_y), profile=profile)
-    if stroke is not None:
-        stroke = check_float("stroke", stroke, low=0, low_open=True)
-        if stroke < profile.min_feature_mm:
-            raise ParameterError(
-                f"stroke must be >= min_feature_mm = {profile.min_feature_mm:g} mm of {profile.kind} "
-                f"profile {profile.name!r}, got {distinct(stroke, profile.min_feature_mm)}",
-                param="stroke",
-            )
-        if max(kerf, kerf_y) > stroke:
-            raise ParameterError(
-                f"kerf_mm must be >= 0 and <= the stroke ({stroke:g} mm), got {distinct(max(kerf, kerf_y), stroke)}",
-                param="kerf_mm",
-            )
-    if not isinstance(fill_small_holes, bool):
-        raise ParameterError(
-            f"fill_small_holes must be True or False, got {fill_small_holes!r}", param="fill_small_holes"
-        )
+    o = options
+    profile, kind = o.profile, cutter_kind(o.profile)
     parts = polygon_parts(region)
     outline_parts = polygon_parts(outline, "outline")
     check_fits_bed(outline, profile)
 
-    report = Report(path=str(path), format=fmt)
-    report.stats.update(profile=profile.name, mode=mode, kerf_mm=kerf)
-    if kerf_y != kerf:
-        report.stats["kerf_y_mm"] = kerf_y
+    report = Report(path=o.path, format=o.fmt)
+    report.stats.update(profile=profile.name, mode=o.mode, kerf_mm=o.kerf_mm)
+    if o.kerf_y_mm != o.kerf_mm:
+        report.stats["kerf_y_mm"] = o.kerf_y_mm
     report.stats.update(kind.report_stats())
-    paths: dict = {}
-    groups, engrave_area, part = (), 0.0, region
-    if mode == "pierced":
-        designed, tool_filled = region, 0
-        if kind.opens_holes:  # the part as the bit or the jet makes it: holes opened by its radius
-            region, _, tool_filled = check_tool(region, profile, fill_small_holes=fill_small_holes, report=report)
-            parts = shapely.get_parts(region)
-        if fill_small_holes:
-            region, filled = _fill_small_holes(region, profile.min_hole_mm, tolerance_mm=profile.tolerance_mm)
-            report.stats["filled_holes"] = filled + tool_filled
-            parts = shapely.get_parts(region)
-            if tool_filled:
-                report.note(
-                    f"filled {tool_filled:,} hole{'s' if tool_filled != 1 else ''} that "
-                    f"{kind.tool_name(profile)} cannot enter"
-                )
-            if filled:
-                report.note(
-                    f"filled {filled:,} hole{'s' if filled != 1 else ''} narrower than min_hole_mm = "
-                    f"{profile.min_hole_mm:g} mm of {profile.kind} profile {profile.name!r}"
-                )
-        check_laser(region, outline, profile, stroke=stroke, report=report, validate=False)
-        check_cut_pattern(designed, region, outline, profile, stroke=stroke, report=report)
-        report.raise_if_strict(profile.strict)
-        paths["inner"], paths["outer"] = laser_contours(
-            region, outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm, validate=False
-        )
-        report.stats["area_mm2"] = round(float(shapely.area(parts).sum()), 3)
-        part = region
-    elif mode == "engrave":
+    groups, engrave_area = (), 0.0
+    if o.mode == "pierced":
+        paths, part = _pierced_paths(region, parts, outline, o, report)
+    elif o.mode == "engrave":
         engrave_layer(profile)
-        paths["outer"] = outline_contours(outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
+        paths = {"outer": _outline_paths(outline, o)}
         paths["engrave"], groups, engrave_area = _engrave_paths(region, profile, report)
+        part = region
     else:
-        if centrelines is None:
-            raise ParameterError(
-                "the score mode needs centrelines (an array of shape (k, 2, 2)), got none", param="centrelines"
-            )
-        if len(np.asarray(centrelines)) == 0:
-            # only the strokes' edges reach into the outline: there is no line to score
-            raise FabricationError(
-                "the score mode has no line to score: every centre-line of the pattern lies outside the outline "
-                "(only the edges of strokes reach in); make the tile larger or the packing smaller, or cut it pierced"
-            )
-        paths["outer"] = outline_contours(outline, kerf_mm=kerf, kerf_y_mm=kerf_y, tolerance_mm=profile.tolerance_mm)
-        paths["score"] = score_paths(centrelines, outline, tolerance_mm=profile.tolerance_mm)
-        report.stats["area_mm2"] = round(float(shapely.area(outline_parts).sum()), 3)
-        report.stats["score_paths"] = len(paths["score"])
-        report.stats["score_length_mm"] = round(_length(paths["score"], False), 3)
+        paths = _score_mode_paths(outline, outline_parts, centrelines, o, report)
         part = outline
     outer_rings = len(paths["outer"])
-    closed = split_at_tabs(paths, *tabs, report)
+    closed = split_at_tabs(paths, o.tab_mm, o.tabs_per_part, report)
     plan = make_plan(
         profile,
-        mode,
-        dxf_version,
-        kerf,
+        o.mode,
+        o.dxf_version,
+        o.kerf_mm,
         paths,
         report=report,
         part=part,
@@ -494,6 +592,82 @@ def plan_cut(
         engrave_area_mm2=engrave_area,
         outer_closed=closed,
     )
+    _plan_stats(plan, outline, outer_rings, report)
+    return plan
+
+
+def _outline_paths(outline, o: CutOptions) -> list:
+    """The outline's cut paths, outside it by half the kerf."""
+    return outline_contours(outline, kerf_mm=o.kerf_mm, kerf_y_mm=o.kerf_y_mm, tolerance_mm=o.profile.tolerance_mm)
+
+
+def _pierced_paths(region, parts, outline, o: CutOptions, report: Report) -> tuple[dict, BaseGeometry]:
+    """The pierced mode: the part as the tool makes it checked, its inner and outer contours.
+
+    Returns the paths (role -> rings) and the part as cut (holes opened by a router's bit,
+    small holes filled).
+    """
+    from .tool_opening import check_tool
+
+    profile, kind = o.profile, cutter_kind(o.profile)
+    designed, tool_filled = region, 0
+    if kind.opens_holes:  # the part as the bit or the jet makes it: holes opened by its radius
+        region, _, tool_filled = check_tool(region, profile, fill_small_holes=o.fill_small_holes, report=report)
+        parts = shapely.get_parts(region)
+    if o.fill_small_holes:
+        region = _filled(region, tool_filled, o, report)
+        parts = shapely.get_parts(region)
+    check_laser(region, outline, profile, stroke=o.stroke_mm, report=report, validate=False)
+    check_cut_pattern(designed, region, outline, profile, stroke=o.stroke_mm, report=report)
+    report.raise_if_strict(profile.strict)
+    paths: dict = {}
+    paths["inner"], paths["outer"] = laser_contours(
+        region, outline, kerf_mm=o.kerf_mm, kerf_y_mm=o.kerf_y_mm, tolerance_mm=profile.tolerance_mm, validate=False
+    )
+    report.stats["area_mm2"] = round(float(shapely.area(parts).sum()), 3)
+    return paths, region
+
+
+def _filled(region, tool_filled: int, o: CutOptions, report: Report):
+    """``region`` with its holes narrower than ``min_hole_mm`` filled, the report told how many of each kind."""
+    profile = o.profile
+    region, filled = _fill_small_holes(region, profile.min_hole_mm, tolerance_mm=profile.tolerance_mm)
+    report.stats["filled_holes"] = filled + tool_filled
+    if tool_filled:
+        report.note(
+            f"filled {tool_filled:,} hole{'s' if tool_filled != 1 else ''} that "
+            f"{cutter_kind(profile).tool_name(profile)} cannot enter"
+        )
+    if filled:
+        report.note(
+            f"filled {filled:,} hole{'s' if filled != 1 else ''} narrower than min_hole_mm = "
+            f"{profile.min_hole_mm:g} mm of {profile.kind} profile {profile.name!r}"
+        )
+    return region
+
+
+def _score_mode_paths(outline, outline_parts, centrelines, o: CutOptions, report: Report) -> dict:
+    """The score mode: the outline cut, the pattern's centre-lines inside it scored."""
+    if centrelines is None:
+        raise ParameterError(
+            "the score mode needs centrelines (an array of shape (k, 2, 2)), got none", param="centrelines"
+        )
+    if len(np.asarray(centrelines)) == 0:
+        # only the strokes' edges reach into the outline: there is no line to score
+        raise FabricationError(
+            "the score mode has no line to score: every centre-line of the pattern lies outside the outline "
+            "(only the edges of strokes reach in); make the tile larger or the packing smaller, or cut it pierced"
+        )
+    paths = {"outer": _outline_paths(outline, o)}
+    paths["score"] = score_paths(centrelines, outline, tolerance_mm=o.profile.tolerance_mm)
+    report.stats["area_mm2"] = round(float(shapely.area(outline_parts).sum()), 3)
+    report.stats["score_paths"] = len(paths["score"])
+    report.stats["score_length_mm"] = round(_length(paths["score"], False), 3)
+    return paths
+
+
+def _plan_stats(plan: CutPlan, outline, outer_rings: int, report: Report) -> None:
+    """The report told the plan's figures: contours, vertices, arcs, cut length, job, sheet, file offset."""
     files = [c for layer in plan.layers for c in layer.curves_or_paths()]
     cut = plan.estimate.cut_mm
     report.stats.update(
@@ -504,11 +678,10 @@ def plan_cut(
         cut_length_mm=round(cut.get("inner_cut", 0.0) + cut.get("outer_cut", 0.0), 3),
     )
     report.stats["job"] = plan.estimate.as_stats()
-    report.stats["sheet"] = sheet(outline, profile)
-    _note_bed_edge(plan, profile, report)
+    report.stats["sheet"] = sheet(outline, plan.profile)
+    _note_bed_edge(plan, plan.profile, report)
     # the findings' locations are the tile's coordinates; the files' are these plus the offset
     report.stats["file_offset_mm"] = [round(v, 6) + 0.0 for v in plan.offset]
-    return plan
 
 
 def _note_bed_edge(plan: CutPlan, profile, report: Report) -> None:
@@ -570,22 +743,7 @@ class KitPlans:
         return self.lattice.report
 
 
-def plan_kit(
-    region,
-    outline,
-    *,
-    profile,
-    inlay_fit_mm=None,
-    inlay_base: str = "pierced",
-    kerf_mm=None,
-    dxf_version=None,
-    stroke=None,
-    colours=(),
-    tab_mm=None,
-    tabs_per_part=None,
-    path: str = "",
-    fmt: str = "",
-) -> KitPlans:
+def plan_kit(region, outline, options: KitOptions, *, colours=()) -> KitPlans:
     """The inlay kit of a tile's material ``region`` as two cut plans: the lattice and the pieces.
 
     The lattice is a pierced tile (holes cut with the kerf into them, the outline
@@ -593,67 +751,44 @@ def plan_kit(
     pieces glued into a solid board) and the outline cut. The pieces are each grown
     by half the kerf so they come out at their nominal size, at their holes' places,
     on the outer-cut layer, with the lattice's bounds: cut from a sheet laid like the
-    lattice's, they drop out where they belong. ``inlay_fit_mm`` (default: the
-    profile's) grows each piece from its hole. The lattice's report carries the kit's
-    figures (``pieces``, ``filled_holes``, ``piece_kinds``, both areas, the pieces'
-    ``pieces_job``). ``colours``, ``((colour name, faces), ...)``, splits the pieces
-    into a plan per colour: each piece goes with the colour of the face holding its
-    hole (a piece no face names goes with the first colour), each plan with the
-    lattice's bounds, so every wood's sheet is laid like the lattice's. ``tab_mm`` and
-    ``tabs_per_part`` leave holding tabs in the lattice's outer cut and in every piece's
-    (the pieces' report: the ``pieces_tabs`` entry).
+    lattice's, they drop out where they belong. ``inlay_fit_mm`` grows each piece from
+    its hole. The lattice's report carries the kit's figures (``pieces``,
+    ``filled_holes``, ``piece_kinds``, both areas, the pieces' ``pieces_job``).
+    ``colours``, ``((colour name, faces), ...)``, splits the pieces into a plan per
+    colour: each piece goes with the colour of the face holding its hole (a piece no
+    face names goes with the first colour), each plan with the lattice's bounds, so
+    every wood's sheet is laid like the lattice's. The options' ``tab_mm`` and
+    ``tabs_per_part`` leave holding tabs in the lattice's outer cut and in every
+    piece's (the pieces' report: the ``pieces_tabs`` entry). ``options``:
+    :meth:`KitOptions.of`.
     """
-    from .inlay import check_fit, inlay_kit
+    from .inlay import inlay_kit
 
-    profile = load_profile(profile, kind="laser")
-    cutter_kind(profile).check_mode(profile, "inlay")
-    base = check_choice("inlay_base", inlay_base, INLAY_BASES)
-    fit = check_fit(profile.inlay_fit_mm if inlay_fit_mm is None else inlay_fit_mm)
-    kx, ky = profile.kerf_xy_mm if kerf_mm is None else (kerf_mm, kerf_mm)
-    tabs = check_tabs(tab_mm, tabs_per_part, kerf_mm=max(kx, ky))  # only a laser cuts kits, and leaves tabs
+    lo = options.lattice
+    profile, fit, tabs = lo.profile, options.inlay_fit_mm, (lo.tab_mm, lo.tabs_per_part)
     kit = inlay_kit(
         region,
         outline,
         fit_mm=fit,
         min_piece_mm=profile.min_piece_or_default_mm,
-        kerf_mm=max(kx, ky),
+        kerf_mm=max(lo.kerf_mm, lo.kerf_y_mm),
         tolerance_mm=profile.tolerance_mm,
     )
-    if base == "pierced":
-        lattice = plan_cut(
-            kit.lattice,
-            outline,
-            profile=profile,
-            mode="pierced",
-            dxf_version=dxf_version,
-            kerf_mm=kerf_mm,
-            stroke=stroke,
-            tab_mm=tabs[0],
-            tabs_per_part=tabs[1],
-            path=path,
-            fmt=fmt,
-        )
+    if options.inlay_base == "pierced":
+        stroke = options.stroke_mm
+        if stroke is not None:
+            lo = replace(lo, stroke_mm=_checked_stroke(profile, stroke, max(lo.kerf_mm, lo.kerf_y_mm)))
+        lattice = plan_cut(kit.lattice, outline, lo)
     else:
         if not len(kit.holes):
             raise ParameterError("the tile has no hole large enough for a piece; nothing to pocket", param="region")
-        lattice = plan_cut(
-            shapely.union_all(kit.holes),
-            outline,
-            profile=profile,
-            mode="engrave",
-            dxf_version=dxf_version,
-            kerf_mm=kerf_mm,
-            tab_mm=tabs[0],
-            tabs_per_part=tabs[1],
-            path=path,
-            fmt=fmt,
-        )
+        lattice = plan_cut(shapely.union_all(kit.holes), outline, lo)
     paths = {}
     if len(kit.pieces):
         paths["inner"], paths["outer"] = laser_contours(
             shapely.multipolygons(list(shapely.get_parts(kit.pieces))),
-            kerf_mm=kx,
-            kerf_y_mm=ky,
+            kerf_mm=lo.kerf_mm,
+            kerf_y_mm=lo.kerf_y_mm,
             tolerance_mm=profile.tolerance_mm,
         )
     pieces_report = Report(path="", format="")
@@ -662,7 +797,7 @@ def plan_kit(
         profile,
         "pierced",
         lattice.dxf_version,
-        kx,
+        lo.kerf_mm,
         paths,
         like=lattice,
         part=kit.pieces,
@@ -671,10 +806,36 @@ def plan_kit(
     )
     report = lattice.report
     stats = kit.stats()
-    report.stats.update(stats, inlay_fit_mm=fit, inlay_base=base, pieces_job=pieces.estimate.as_stats())
+    report.stats.update(stats, inlay_fit_mm=fit, inlay_base=options.inlay_base, pieces_job=pieces.estimate.as_stats())
     if "tabs" in pieces_report.stats:
         report.stats["pieces_tabs"] = pieces_report.stats["tabs"]
         report.note("pieces' " + pieces_report.stats["notes"][0])
+    _note_kit(kit, stats, fit, pieces, report)
+    # a kit fills the holes too small for a piece: say so when that leaves little of the pattern
+    check_pattern_kept(
+        report,
+        region,
+        kit.lattice,
+        outline,
+        limit_mm=profile.min_piece_or_default_mm,
+        limit=f"the smallest piece ({profile.min_piece_or_default_mm:g} mm, min_piece_mm of laser "
+        f"profile {profile.name!r})",
+        stroke=options.stroke_mm,
+        min_stroke_mm=profile.min_feature_mm,
+        tool="a profile with min_piece_mm <= {w} mm",
+        tolerance_mm=profile.tolerance_mm,
+    )
+    report.raise_if_strict(profile.strict)
+    by_colour = _pieces_by_colour(kit, colours, profile, lattice, lo.kerf_mm, lo.kerf_y_mm, tabs) if colours else ()
+    if by_colour:
+        report.stats["pieces_by_colour"] = {}
+        for name, plan in by_colour:
+            _note_colour_sheet(name, plan, report)
+    return KitPlans(lattice, pieces, kit, by_colour)
+
+
+def _note_kit(kit: InlayKit, stats: dict, fit: float, pieces: CutPlan, report: Report) -> None:
+    """The report told what the kit did to the holes (necks widened, parts beyond slits cut off) and its pieces."""
     if kit.necks:
         widths = [w for _, _, w in kit.necks]
         report.note(
@@ -703,39 +864,23 @@ def plan_kit(
             f"pieces: none, every one of the {kit.filled_holes:,} holes is too small for a piece (filled): "
             "the kit is its lattice alone, and no pieces file is written"
         )
-    # a kit fills the holes too small for a piece: say so when that leaves little of the pattern
-    check_pattern_kept(
-        report,
-        region,
-        kit.lattice,
-        outline,
-        limit_mm=profile.min_piece_or_default_mm,
-        limit=f"the smallest piece ({profile.min_piece_or_default_mm:g} mm, min_piece_mm of laser "
-        f"profile {profile.name!r})",
-        stroke=stroke,
-        min_stroke_mm=profile.min_feature_mm,
-        tool="a profile with min_piece_mm <= {w} mm",
-        tolerance_mm=profile.tolerance_mm,
+
+
+def _note_colour_sheet(name: str, plan: CutPlan, report: Report) -> None:
+    """The report told one colour's pieces: how many, their area and the sheet they need."""
+    part = plan.part if plan.part is not None else shapely.Polygon()
+    n = 0 if part.is_empty else len(shapely.get_parts(part))
+    area = float(part.area) if n else 0.0
+    x0, y0, x1, y1 = part.bounds if n else (0.0, 0.0, 0.0, 0.0)
+    report.stats["pieces_by_colour"][name] = {
+        "pieces": n,
+        "area_mm2": round(area, 3),
+        "sheet_mm": [round(x1 - x0, 3), round(y1 - y0, 3)],
+    }
+    report.note(
+        f"pieces in {name}: {n:,} piece{'s' if n != 1 else ''}, {area:,.1f} mm^2, on a sheet of at least "
+        f"{x1 - x0:.1f} x {y1 - y0:.1f} mm (laid like the lattice); laser job {plan.estimate.line()}"
     )
-    report.raise_if_strict(profile.strict)
-    by_colour = _pieces_by_colour(kit, colours, profile, lattice, kx, ky, tabs) if colours else ()
-    if by_colour:
-        report.stats["pieces_by_colour"] = {}
-        for name, plan in by_colour:
-            part = plan.part
-            n = len(shapely.get_parts(part)) if part is not None and not part.is_empty else 0
-            area = float(part.area) if n else 0.0
-            x0, y0, x1, y1 = part.bounds if n else (0.0, 0.0, 0.0, 0.0)
-            report.stats["pieces_by_colour"][name] = {
-                "pieces": n,
-                "area_mm2": round(area, 3),
-                "sheet_mm": [round(x1 - x0, 3), round(y1 - y0, 3)],
-            }
-            report.note(
-                f"pieces in {name}: {n:,} piece{'s' if n != 1 else ''}, {area:,.1f} mm^2, on a sheet of at least "
-                f"{x1 - x0:.1f} x {y1 - y0:.1f} mm (laid like the lattice); laser job {plan.estimate.line()}"
-            )
-    return KitPlans(lattice, pieces, kit, by_colour)
 
 
 def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: float, tabs=(0.0, 1)) -> tuple:

@@ -121,25 +121,7 @@ def inlay_kit(
     if len(corridors):
         lattice = shapely.difference(lattice, shapely.union_all(corridors))
     # the material lying in a hole (an island of the lattice) is cut out of the hole's cut path
-    islands = np.full(len(keep), None, dtype=object)
-    if len(keep) and len(parts) > 1:
-        a, b = shapely.STRtree(keep).query(shapely.point_on_surface(parts), predicate="within")
-        for k in np.unique(b).tolist():
-            islands[k] = shapely.union_all(parts[a[b == k]])
-    # Each piece is its hole as the lattice's cut opens it, grown by the fit: the cut path
-    # (the hole shrunk by half the kerf, mitred, as laser_contours cuts it) swept by the
-    # round beam. The beam rounds every tip of a hole (radius kerf/2), so a piece grown
-    # from the designed hole overhung its opening: a 5-point star tile had
-    # tips of about 32 degrees whose mitred fit reached 0.55 mm past the hole (0.15 mm
-    # fit) into a lattice cut 0.2 mm short of the tip, and the pieces' cuts met 0.002 mm
-    # apart; pieces of the interlaced 4.6.12 tile lay up to 0.42 mm over uncut lattice at
-    # its 17-degree tips. Grown round from the opening, a piece reaches the fit past its
-    # opening everywhere (never more than the fit past its hole) and its tips are rounded
-    # with radius kerf/2 + fit (0.225 mm on the plywood profile) like the hole's.
-    cut = shapely.buffer(keep, -d, join_style="mitre", mitre_limit=MITRE_LIMIT) if d else keep.copy()
-    for k in np.flatnonzero(islands != None).tolist():  # noqa: E711  (an object array)
-        grown = shapely.buffer(islands[k], d, join_style="mitre", mitre_limit=MITRE_LIMIT) if d else islands[k]
-        cut[k] = shapely.difference(cut[k], grown)
+    cut = _cut_paths(keep, _islands(keep, parts), d)
     opening = shapely.buffer(cut, d) if d else cut
     pieces = shapely.buffer(opening, fit) if fit else opening
     _check_apart(pieces, keep, fit, kerf_mm)
@@ -148,6 +130,34 @@ def inlay_kit(
     return InlayKit(
         lattice, np.asarray(pieces, dtype=object), keep, int(filled), distinct_shapes(cut), tuple(necks), tuple(split)
     )
+
+
+def _islands(holes, parts) -> np.ndarray:
+    """The lattice's material lying in each hole (its islands, the union of those parts), or None."""
+    islands = np.full(len(holes), None, dtype=object)
+    if len(holes) and len(parts) > 1:
+        a, b = shapely.STRtree(holes).query(shapely.point_on_surface(parts), predicate="within")
+        for k in np.unique(b).tolist():
+            islands[k] = shapely.union_all(parts[a[b == k]])
+    return islands
+
+
+def _cut_paths(holes, islands: np.ndarray, d: float) -> np.ndarray:
+    """The lattice's cut path of each hole: the hole shrunk by ``d`` (half the kerf), mitred, its islands
+    (grown likewise) cut out.
+
+    Each piece is its hole as the lattice's cut opens it, grown by the fit: this cut path
+    swept by the round beam. The beam rounds every tip of a hole (radius kerf/2), so a
+    piece grown from the designed hole would overhang its opening at sharp tips, over
+    uncut lattice, and two pieces' cuts could meet; grown round from the opening, a piece
+    reaches the fit past its opening everywhere (never more than the fit past its hole)
+    and its tips are rounded with radius kerf/2 + fit like the hole's.
+    """
+    cut = shapely.buffer(holes, -d, join_style="mitre", mitre_limit=MITRE_LIMIT) if d else holes.copy()
+    for k in np.flatnonzero(islands != None).tolist():  # noqa: E711  (an object array)
+        grown = shapely.buffer(islands[k], d, join_style="mitre", mitre_limit=MITRE_LIMIT) if d else islands[k]
+        cut[k] = shapely.difference(cut[k], grown)
+    return cut
 
 
 def piece_of_hole(hole, *, fit_mm: float, kerf_mm: float):
@@ -201,18 +211,7 @@ def _cut_whole(holes, d: float, tolerance_mm: float):
     for k in np.flatnonzero(shapely.get_num_geometries(shrunk) > 1).tolist():
         parts = [p for p in shapely.get_parts(shrunk[k]) if p.area > tolerance_mm**2]
         parts.sort(key=lambda p: -p.area)
-        joined, rest, mine = parts[0] if parts else None, parts[1:], []
-        inside = shapely.buffer(holes[k], tolerance_mm)
-        while rest:  # Prim's spanning tree: the nearest part whose shortest line stays in the hole
-            lines = shapely.shortest_line(joined, rest)
-            ok = np.flatnonzero(shapely.within(lines, inside))
-            if not len(ok):
-                break
-            j = int(ok[np.argmin(shapely.length(lines[ok]))])
-            mid = shapely.line_interpolate_point(lines[j], 0.5, normalized=True)
-            mine.append(shapely.buffer(lines[j], d + tolerance_mm))
-            necks.append((mid.x, mid.y, 2 * shapely.distance(mid, holes[k].exterior)))
-            joined = shapely.union_all([joined, rest.pop(j), mine[-1]])
+        joined, rest, mine = _join_parts(holes[k], parts, d, tolerance_mm, necks)
         if rest:
             # parts no straight line reaches (past a curved neck): left as lattice, with the
             # slit leading to them, so the lattice cuts one opening and the piece follows it
@@ -225,6 +224,25 @@ def _cut_whole(holes, d: float, tolerance_mm: float):
             corridors.extend(mine)
             holes[k] = shapely.union_all([holes[k], *mine])
     return holes, np.asarray(corridors, dtype=object), np.asarray(fills, dtype=object), necks, split
+
+
+def _join_parts(hole, parts: list, d: float, tolerance_mm: float, necks: list) -> tuple:
+    """The parts of a hole's shrunk cut path (largest first) joined by a spanning tree of the shortest lines
+    inside the hole (Prim's: the nearest part first): ``(joined, parts left unreached, corridors)``; each
+    neck crossed is appended to ``necks`` as ``(x, y, width)``."""
+    joined, rest, mine = parts[0] if parts else None, parts[1:], []
+    inside = shapely.buffer(hole, tolerance_mm)
+    while rest:
+        lines = shapely.shortest_line(joined, rest)
+        ok = np.flatnonzero(shapely.within(lines, inside))
+        if not len(ok):
+            break
+        j = int(ok[np.argmin(shapely.length(lines[ok]))])
+        mid = shapely.line_interpolate_point(lines[j], 0.5, normalized=True)
+        mine.append(shapely.buffer(lines[j], d + tolerance_mm))
+        necks.append((mid.x, mid.y, 2 * shapely.distance(mid, hole.exterior)))
+        joined = shapely.union_all([joined, rest.pop(j), mine[-1]])
+    return joined, rest, mine
 
 
 def _check_apart(pieces, holes, fit: float, kerf: float) -> None:

@@ -20,7 +20,7 @@ import shapely
 
 from ..core.errors import FabricationError
 from .contours import laser_contours
-from .cut_plan import KitPlans, make_plan
+from .cut_plan import CutPlan, KitPlans, make_plan
 from .nest import nest
 from .stroke_font import text_paths
 
@@ -86,7 +86,6 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
     was planned with (the nested pieces keep their holding tabs). Returns new
     :class:`KitPlans`; the report says how the pieces were packed.
     """
-    from .cut_plan import split_at_tabs
     from .tabs import check_tabs
 
     kit, lattice = plans.kit, plans.lattice
@@ -94,71 +93,95 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
     kx, ky = profile.kerf_xy_mm
     if lattice.kerf_mm != kx:  # the call's own kerf, the same both ways
         kx = ky = lattice.kerf_mm
-    d = max(kx, ky) / 2
     tabs = check_tabs(*tabs, kerf_mm=max(kx, ky))
     pieces = np.asarray(kit.pieces, dtype=object)
     letters = list(letters_of_holes)
-    x0, y0, x1, y1 = lattice.bounds
-    tile = (x1 - x0, y1 - y0)
     groups = plans.by_colour or (("", plans.pieces),)
-    report = lattice.report
     nested = []
     for name, plan in groups:
         mine = _pieces_of(plan, pieces)
         if not len(mine):
             continue
-        parts = [(int(i), shapely.buffer(pieces[i], d)) for i in mine]  # the cut paths' outlines
-        # a strip of the tile's height, as long as it must be (the packer makes it as short as it can):
-        # one sheet whose used width is what the pieces take
-        sheet = (max(float(profile.bed_mm[0]), 4 * tile[0]), tile[1])
-        result = nest(parts, sheet_mm=sheet, gap_mm=GAP_MM, rotations=ROTATIONS, time_s=time_s)
-        if result.sheets > 1:
-            raise FabricationError(
-                f"the kit's {len(mine):,} pieces{f' in {name}' if name else ''} do not fit on "
-                f"one {sheet[0]:g} x {sheet[1]:g} mm bed when nested {GAP_MM:g} mm apart; "
-                f'set inlay_pieces = "registration"',
-                param="inlay_pieces",
-            )
-        placed = np.array([p.place(pieces[p.id]) for p in sorted(result.placements, key=lambda p: p.id)], dtype=object)
-        ids = sorted(p.id for p in result.placements)
-        paths = {}
-        paths["inner"], paths["outer"] = laser_contours(
-            shapely.multipolygons(list(shapely.get_parts(placed))),
-            kerf_mm=kx,
-            kerf_y_mm=ky,
-            tolerance_mm=profile.tolerance_mm,
+        nested.append((name, _nested_plan(name, mine, pieces, letters, lattice, (kx, ky), tabs, time_s)))
+    new_lattice = _lettered_lattice(lattice, letters, kit)
+    if plans.by_colour:
+        return replace(plans, lattice=new_lattice, by_colour=tuple(nested))
+    return replace(plans, lattice=new_lattice, pieces=nested[0][1] if nested else plans.pieces)
+
+
+def _nested_plan(
+    name: str, mine, pieces, letters: list, lattice, kerf_xy: tuple, tabs: tuple[float, int], time_s
+) -> CutPlan:
+    """The cut plan of one colour's pieces (``mine``, indices into ``pieces``) nested on a strip of the
+    tile's height, each scored with its hole's letter; the lattice's report told of it."""
+    from .cut_plan import split_at_tabs
+
+    profile, report = lattice.profile, lattice.report
+    kx, ky = kerf_xy
+    d = max(kx, ky) / 2
+    x0, y0, x1, y1 = lattice.bounds
+    tile = (x1 - x0, y1 - y0)
+    parts = [(int(i), shapely.buffer(pieces[i], d)) for i in mine]  # the cut paths' outlines
+    # a strip of the tile's height, as long as it must be (the packer makes it as short as it can):
+    # one sheet whose used width is what the pieces take
+    sheet = (max(float(profile.bed_mm[0]), 4 * tile[0]), tile[1])
+    result = nest(parts, sheet_mm=sheet, gap_mm=GAP_MM, rotations=ROTATIONS, time_s=time_s)
+    if result.sheets > 1:
+        raise FabricationError(
+            f"the kit's {len(mine):,} pieces{f' in {name}' if name else ''} do not fit on "
+            f"one {sheet[0]:g} x {sheet[1]:g} mm bed when nested {GAP_MM:g} mm apart; "
+            f'set inlay_pieces = "registration"',
+            param="inlay_pieces",
         )
-        score, small = _letter_paths([letters[i] for i in ids], placed)
-        if score:
-            paths["score"] = score
-        closed = split_at_tabs(paths, *tabs, None)
-        box = shapely.union_all(placed).bounds
-        sheet = (box[2] + d, sheet[1])  # the sheet the pieces take: up to the last one's cut
-        new = make_plan(
-            profile,
-            "pierced",
-            lattice.dxf_version,
-            kx,
-            paths,
-            bounds=(0.0, 0.0, *sheet),
-            part=shapely.union_all(placed),
-            outer_closed=closed,
-        )
-        nested.append((name, new))
-        width, height = box[2] - box[0] + 2 * d, box[3] - box[1] + 2 * d
-        report.note(
-            f"pieces{f' in {name}' if name else ''} nested: {len(ids):,} on a {sheet[0]:.0f} x "
-            f"{sheet[1]:.0f} mm sheet, within {width:.1f} x {height:.1f} mm "
-            f"({width * height / (tile[0] * tile[1]):.0%} of the tile's area), {GAP_MM:g} mm apart, "
-            f"half turns only (the grain); "
-            + (f"{len(ids) - small:,} letters scored" + (f", {small:,} pieces too small for one" if small else ""))
-        )
-        report.stats.setdefault("nested_pieces", {})[name or "pieces"] = {
-            "pieces": len(ids),
-            "sheet_mm": [round(sheet[0], 3), round(sheet[1], 3)],
-            "bbox_mm": [round(width, 3), round(height, 3)],
-            "bbox_of_tile": round(width * height / (tile[0] * tile[1]), 4),
-        }
+    placed = np.array([p.place(pieces[p.id]) for p in sorted(result.placements, key=lambda p: p.id)], dtype=object)
+    ids = sorted(p.id for p in result.placements)
+    paths = {}
+    paths["inner"], paths["outer"] = laser_contours(
+        shapely.multipolygons(list(shapely.get_parts(placed))),
+        kerf_mm=kx,
+        kerf_y_mm=ky,
+        tolerance_mm=profile.tolerance_mm,
+    )
+    score, small = _letter_paths([letters[i] for i in ids], placed)
+    if score:
+        paths["score"] = score
+    closed = split_at_tabs(paths, *tabs, None)
+    box = shapely.union_all(placed).bounds
+    sheet = (box[2] + d, sheet[1])  # the sheet the pieces take: up to the last one's cut
+    new = make_plan(
+        profile,
+        "pierced",
+        lattice.dxf_version,
+        kx,
+        paths,
+        bounds=(0.0, 0.0, *sheet),
+        part=shapely.union_all(placed),
+        outer_closed=closed,
+    )
+    _note_nested(report, name, ids, small, box, sheet, tile, d)
+    return new
+
+
+def _note_nested(report, name: str, ids: list, small: int, box: tuple, sheet: tuple, tile: tuple, d: float) -> None:
+    """The report told of one colour's nested pieces: how many, their sheet, the room they take, the letters."""
+    width, height = box[2] - box[0] + 2 * d, box[3] - box[1] + 2 * d
+    report.note(
+        f"pieces{f' in {name}' if name else ''} nested: {len(ids):,} on a {sheet[0]:.0f} x "
+        f"{sheet[1]:.0f} mm sheet, within {width:.1f} x {height:.1f} mm "
+        f"({width * height / (tile[0] * tile[1]):.0%} of the tile's area), {GAP_MM:g} mm apart, "
+        f"half turns only (the grain); "
+        + (f"{len(ids) - small:,} letters scored" + (f", {small:,} pieces too small for one" if small else ""))
+    )
+    report.stats.setdefault("nested_pieces", {})[name or "pieces"] = {
+        "pieces": len(ids),
+        "sheet_mm": [round(sheet[0], 3), round(sheet[1], 3)],
+        "bbox_mm": [round(width, 3), round(height, 3)],
+        "bbox_of_tile": round(width * height / (tile[0] * tile[1]), 4),
+    }
+
+
+def _lettered_lattice(lattice, letters: list, kit) -> CutPlan:
+    """The lattice's plan again with each hole's letter scored inside it, laid as before."""
     # the lattice: each hole's letter scored inside it (on the slug, cut after the scoring)
     hole_score, _ = _letter_paths(letters, np.asarray(kit.holes, dtype=object))
     # the lattice's paths back in the tile's coordinates (the holes' letters are), then moved as before
@@ -167,8 +190,8 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
     lattice_paths["score"] = lattice_paths.get("score", []) + hole_score
     groups_of = next((layer.groups for layer in lattice.layers if layer.fill), ())
     outer_closed = next((layer.closed for layer in lattice.layers if layer.role == "outer"), True)
-    new_lattice = make_plan(
-        profile,
+    return make_plan(
+        lattice.profile,
         lattice.mode,
         lattice.dxf_version,
         lattice.kerf_mm,
@@ -180,9 +203,6 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
         like=lattice,
         outer_closed=outer_closed,
     )
-    if plans.by_colour:
-        return replace(plans, lattice=new_lattice, by_colour=tuple(nested))
-    return replace(plans, lattice=new_lattice, pieces=nested[0][1] if nested else plans.pieces)
 
 
 def _pieces_of(plan, pieces) -> np.ndarray:

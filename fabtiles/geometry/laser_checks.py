@@ -145,29 +145,34 @@ def check_laser(
 
     # loose parts: all but the largest piece inside each outline polygon
     if len(parts) > 1:
-        group = np.full(len(parts), -1)
-        if outline is not None:
-            tiles = polygon_parts(outline, "outline")
-            pa, pb = shapely.STRtree(tiles).query(shapely.point_on_surface(parts), predicate="within")
-            group[pa] = pb
-        area = shapely.area(parts)
-        loose = np.ones(len(parts), dtype=bool)
-        for g in np.unique(group):
-            members = np.flatnonzero(group == g)
-            loose[members[np.argmax(area[members])]] = False
-        if loose.any():
-            n = int(loose.sum())
-            report.add(
-                "loose_part",
-                f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
-                f"(they fall out; largest {area[loose].max():.3g} mm^2)",
-                count=n,
-                locations=locations(shapely.point_on_surface(parts[loose])),
-                sizes=area[loose][:MAX_LOCATIONS].round(3),
-                worst=round(float(area[loose].max()), 3),
-                unit="mm^2",
-            )
+        _check_loose(parts, outline, report)
     return report
+
+
+def _check_loose(parts, outline, report: Report) -> None:
+    """The report told of the pieces of material not joined to the largest in their outline polygon."""
+    group = np.full(len(parts), -1)
+    if outline is not None:
+        tiles = polygon_parts(outline, "outline")
+        pa, pb = shapely.STRtree(tiles).query(shapely.point_on_surface(parts), predicate="within")
+        group[pa] = pb
+    area = shapely.area(parts)
+    loose = np.ones(len(parts), dtype=bool)
+    for g in np.unique(group):
+        members = np.flatnonzero(group == g)
+        loose[members[np.argmax(area[members])]] = False
+    if loose.any():
+        n = int(loose.sum())
+        report.add(
+            "loose_part",
+            f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
+            f"(they fall out; largest {area[loose].max():.3g} mm^2)",
+            count=n,
+            locations=locations(shapely.point_on_surface(parts[loose])),
+            sizes=area[loose][:MAX_LOCATIONS].round(3),
+            worst=round(float(area[loose].max()), 3),
+            unit="mm^2",
+        )
 
 
 def check_cut_pattern(before, after, outline, profile, *, stroke=None, report: Report) -> float:

@@ -287,26 +287,10 @@ def nest(
     FabricationError
         For a part larger than the sheet either way round (in the allowed rotations).
     """
-    if not isinstance(sheet_mm, (list, tuple)) or len(sheet_mm) != 2:
-        raise ParameterError(f"sheet_mm must be (width, height) in mm, got {sheet_mm!r}", param="sheet_mm")
-    w = check_float("sheet_mm[0]", sheet_mm[0], low=0, low_open=True)
-    h = check_float("sheet_mm[1]", sheet_mm[1], low=0, low_open=True)
-    gap = check_float("gap_mm", gap_mm, low=0)
-    if not isinstance(rotations, str) or rotations not in ROTATIONS:
-        raise ParameterError(f"rotations must be one of: {', '.join(ROTATIONS)}, got {rotations!r}", param="rotations")
-    budget = check_float("time_s", time_s, low=0, low_open=True)
+    w, h, gap, budget = _checked(sheet_mm, gap_mm, rotations, time_s)
     ids, shapes = _check_parts(parts)
     angles = ROTATIONS[rotations]
-    for i, shape in zip(ids, shapes, strict=True):
-        if not _fits(shape, w, h, angles):
-            x0, y0, x1, y1 = shape.bounds
-            turn = "either way round" if angles is None or 90.0 in angles else f"unturned (rotations {rotations!r})"
-            raise FabricationError(
-                f"part {i!r} ({x1 - x0:.4g} x {y1 - y0:.4g} mm) does not fit on the {w:g} x {h:g} mm sheet "
-                f"{turn}; use a larger sheet, a smaller part"
-                f"{'' if angles is None or 90.0 in angles else ' or --rotate 90'}",
-                param="sheet_mm",
-            )
+    _check_fit(ids, shapes, (w, h), angles, rotations)
 
     start = time.monotonic()
     placements: dict = {}
@@ -327,43 +311,98 @@ def nest(
         # sides, and the placements move back by it, so parts may reach the sheet's edges
         sep = gap + MARGIN_MM
         placed = _solve(packed, remaining, h - 2 * MARGIN_MM + 2 * sep, sep, angles, seconds, tick)
-        candidates = []
-        for i, rot, (dx, dy) in sorted(placed, key=lambda p: p[2][0]):
-            p = Placement(ids[i], sheet, rot, (dx - sep + MARGIN_MM, dy - sep + MARGIN_MM))
-            outline = p.place(shapes[i])
-            x0, y0, x1, y1 = outline.bounds
-            if x0 < 0 or y0 < 0 or x1 > w or y1 > h:
-                continue  # beyond this sheet's width: packed again for the next
-            candidates.append((i, p, outline))
-        # spyrrow's separation, checked in 64 bits (it never failed in the tests; a part too close waits):
-        # the pairs closer than the gap from one tree query (not the distances of every pair)
-        outlines = np.array([c[2] for c in candidates], dtype=object)
-        close: dict = {}
-        if len(outlines) > 1:
-            a, b = shapely.STRtree(outlines).query(outlines, predicate="dwithin", distance=gap * (1 - 1e-12))
-            for x, y in zip(a.tolist(), b.tolist(), strict=True):
-                if x != y:
-                    close.setdefault(x, set()).add(y)
-        kept: list = []
-        taken: set = set()
-        for k, (i, p, _) in enumerate(candidates):
-            if close.get(k, set()) & taken:
-                continue
-            kept.append((i, p))
-            taken.add(k)
+        candidates = _on_sheet(placed, ids, shapes, sheet, sep, (w, h))
+        kept = _apart(candidates, gap)
         if not kept:  # nothing within the sheet (a free turn made the first part too wide): one part alone
             i = remaining[0]
             rot, shift = _fallback(shapes[i], w, h, angles)
             kept = [(i, Placement(ids[i], sheet, rot, shift))]
         # the strip packer leaves the parts anywhere up the sheet's height: slid as one block to the sheet's
         # corner (a lone tile at the origin, not half-way up the edge), their gaps unchanged
-        x0, y0 = np.min([p.place(shapes[i]).bounds[:2] for i, p in kept], axis=0)
-        for i, p in kept:
-            tx, ty = p.translation
-            placements[i] = Placement(p.id, p.sheet, p.rotation, (tx - x0, ty - y0))
+        placements.update(_to_corner(kept, shapes))
         done = {i for i, _ in kept}
         remaining = [i for i in remaining if i not in done]
         sheet += 1
         tick()
     ordered = tuple(placements[i] for i in range(len(shapes)))
     return Nesting(ordered, tuple(p.place(s) for p, s in zip(ordered, shapes, strict=True)), (w, h), gap, rotations)
+
+
+def _checked(sheet_mm, gap_mm, rotations, time_s) -> tuple[float, float, float, float]:
+    """The sheet's width and height, the gap and the time budget, checked (and the rotation mode)."""
+    if not isinstance(sheet_mm, (list, tuple)) or len(sheet_mm) != 2:
+        raise ParameterError(f"sheet_mm must be (width, height) in mm, got {sheet_mm!r}", param="sheet_mm")
+    w = check_float("sheet_mm[0]", sheet_mm[0], low=0, low_open=True)
+    h = check_float("sheet_mm[1]", sheet_mm[1], low=0, low_open=True)
+    gap = check_float("gap_mm", gap_mm, low=0)
+    if not isinstance(rotations, str) or rotations not in ROTATIONS:
+        raise ParameterError(f"rotations must be one of: {', '.join(ROTATIONS)}, got {rotations!r}", param="rotations")
+    budget = check_float("time_s", time_s, low=0, low_open=True)
+    return w, h, gap, budget
+
+
+def _check_fit(ids, shapes, sheet_mm: tuple[float, float], angles, rotations: str) -> None:
+    """Refuse a part larger than the sheet in every allowed turn."""
+    w, h = sheet_mm
+    for i, shape in zip(ids, shapes, strict=True):
+        if not _fits(shape, w, h, angles):
+            x0, y0, x1, y1 = shape.bounds
+            turn = "either way round" if angles is None or 90.0 in angles else f"unturned (rotations {rotations!r})"
+            raise FabricationError(
+                f"part {i!r} ({x1 - x0:.4g} x {y1 - y0:.4g} mm) does not fit on the {w:g} x {h:g} mm sheet "
+                f"{turn}; use a larger sheet, a smaller part"
+                f"{'' if angles is None or 90.0 in angles else ' or --rotate 90'}",
+                param="sheet_mm",
+            )
+
+
+def _on_sheet(placed, ids, shapes, sheet: int, sep: float, sheet_mm: tuple[float, float]) -> list:
+    """The packer's placements moved back by the separation, ``[(index, Placement, outline), ...]`` left to
+    right, those within the sheet only (the rest are packed again for the next)."""
+    w, h = sheet_mm
+    candidates = []
+    for i, rot, (dx, dy) in sorted(placed, key=lambda p: p[2][0]):
+        p = Placement(ids[i], sheet, rot, (dx - sep + MARGIN_MM, dy - sep + MARGIN_MM))
+        outline = p.place(shapes[i])
+        x0, y0, x1, y1 = outline.bounds
+        if x0 < 0 or y0 < 0 or x1 > w or y1 > h:
+            continue
+        candidates.append((i, p, outline))
+    return candidates
+
+
+def _apart(candidates: list, gap: float) -> list:
+    """The candidates kept in turn unless closer than ``gap`` to one kept before: ``[(index, Placement), ...]``.
+
+    spyrrow's separation, checked in 64 bits (a part too close waits for the next sheet); the
+    pairs closer than the gap come from one tree query.
+    """
+    outlines = np.array([c[2] for c in candidates], dtype=object)
+    close: dict = {}
+    if len(outlines) > 1:
+        a, b = shapely.STRtree(outlines).query(outlines, predicate="dwithin", distance=gap * (1 - 1e-12))
+        for x, y in zip(a.tolist(), b.tolist(), strict=True):
+            if x != y:
+                close.setdefault(x, set()).add(y)
+    kept: list = []
+    taken: set = set()
+    for k, (i, p, _) in enumerate(candidates):
+        if close.get(k, set()) & taken:
+            continue
+        kept.append((i, p))
+        taken.add(k)
+    return kept
+
+
+def _to_corner(kept: list, shapes) -> dict:
+    """The sheet's placements slid as one block to the sheet's corner, their gaps unchanged: ``{index: Placement}``.
+
+    The strip packer leaves the parts anywhere up the sheet's height; a lone tile goes to the
+    origin, not half-way up the edge.
+    """
+    x0, y0 = np.min([p.place(shapes[i]).bounds[:2] for i, p in kept], axis=0)
+    out = {}
+    for i, p in kept:
+        tx, ty = p.translation
+        out[i] = Placement(p.id, p.sheet, p.rotation, (tx - x0, ty - y0))
+    return out

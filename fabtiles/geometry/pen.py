@@ -82,20 +82,7 @@ def strokes(segments) -> list:
     two = np.flatnonzero(counts == 2)  # most vertices: a strand's bend, its two segments joined
     a, b = by_node[first[two]], by_node[first[two] + 1]
     mate[a], mate[b] = b, a
-    # the index pairs of each degree, made once (np.triu_indices per vertex was half of this function's time, profiled)
-    pairs_of: dict = {}
-    for v in np.flatnonzero(counts > 2).tolist():  # crossings and knots: the straightest pairs first
-        es = by_node[first[v] : first[v] + counts[v]]
-        d = out_dir[es]
-        cos = d @ d.T  # -1: opposite, the strand going straight on
-        i, j = pairs_of.get(len(es)) or pairs_of.setdefault(len(es), np.triu_indices(len(es), 1))
-        free = np.ones(len(es), bool)
-        for p in np.argsort(cos[i, j], kind="stable").tolist():
-            if cos[i[p], j[p]] > -0.5:  # sharper than 120 degrees: not one strand
-                break
-            if free[i[p]] and free[j[p]]:
-                free[i[p]] = free[j[p]] = False
-                mate[es[i[p]]], mate[es[j[p]]] = es[j[p]], es[i[p]]
+    _mate_crossings(mate, np.flatnonzero(counts > 2).tolist(), by_node, first, counts, out_dir)
     done = np.zeros(k, bool)
     out = []
     mate_l, node_l = mate.tolist(), node.tolist()
@@ -120,6 +107,27 @@ def strokes(segments) -> list:
         if not done[s]:
             out.append(walk(2 * s))
     return [verts[np.array([node_l[e] for e in chain])] for chain in out]
+
+
+def _mate_crossings(mate: np.ndarray, crossings: list, by_node, first, counts, out_dir: np.ndarray) -> None:
+    """At each crossing or knot, the ends that go straight on paired in ``mate`` (in place), the straightest first.
+
+    Two ends turning sharper than 120 degrees are not one strand: they stay unpaired.
+    """
+    # the index pairs of each degree, made once (np.triu_indices per vertex was half of the time, profiled)
+    pairs_of: dict = {}
+    for v in crossings:
+        es = by_node[first[v] : first[v] + counts[v]]
+        d = out_dir[es]
+        cos = d @ d.T  # -1: opposite, the strand going straight on
+        i, j = pairs_of.get(len(es)) or pairs_of.setdefault(len(es), np.triu_indices(len(es), 1))
+        free = np.ones(len(es), bool)
+        for p in np.argsort(cos[i, j], kind="stable").tolist():
+            if cos[i[p], j[p]] > -0.5:  # sharper than 120 degrees: not one strand
+                break
+            if free[i[p]] and free[j[p]]:
+                free[i[p]] = free[j[p]] = False
+                mate[es[i[p]]], mate[es[j[p]]] = es[j[p]], es[i[p]]
 
 
 def pen_drawing(layers, *, bounds, pen_mm: float, stats=None, order: bool = True) -> PenDrawing:

@@ -491,73 +491,102 @@ def check_print(
     stack = resolve_stack(profile, style, base_mm, relief_mm, pierced_mm, deboss_mm, mosaic_inset_mm)
     check_min_hole(profile, outline)
     report = report if report is not None else Report(path="", format="print")
-    wall = profile.min_wall_mm
 
     found = small_openings(region, outline, profile, stack.style)
     if found.count:
         _report_small_openings(report, found, profile, stack.style)
 
     if stack.style == "deboss":  # the walls are the plate's islands among the grooves
-        islands = plate_pieces(region, outline)
-        thin = (
-            islands[small_hole_mask(islands, wall) & ~small_hole_mask(islands, profile.min_hole_mm)]
-            if len(islands)
-            else islands
-        )
-        if len(thin):
-            centres, widths = hole_widths(thin, tolerance_mm=WALL_TOLERANCE_MM)
-            n = len(thin)
-            report.add(
-                "thin_wall",
-                f"{n:,} island{'s' if n > 1 else ''} of the plate among the grooves narrower than "
-                f"min_wall_mm = {wall:g} mm (narrowest {distinct(float(widths.min()), wall)} mm): they "
-                "print thin or not at all",
-                count=n,
-                locations=locations(centres),
-                sizes=widths[:MAX_LOCATIONS].round(3),
-                worst=round(float(widths.min()), 3),
-                limit=wall,
-            )
+        _check_islands(region, outline, profile, report)
     else:
-        count, narrowest, mids, widths = narrow_places(region, wall, tolerance=WALL_TOLERANCE_MM)
-        # pieces no wall fits in anywhere: one ring each, so no pair of rings finds them
-        pieces = _real(polygon_parts(region))
-        pieces = pieces[shapely.get_num_interior_rings(pieces) == 0]
-        slivers = pieces[small_hole_mask(pieces, wall * (1 - 1e-9) - WALL_TOLERANCE_MM)]
-        if len(slivers):
-            centres, sizes = hole_widths(slivers, tolerance_mm=WALL_TOLERANCE_MM)
-            count += len(slivers)
-            narrowest = min(narrowest, float(sizes.min()))
-            mids, widths = np.concatenate([mids, centres]), np.concatenate([widths, sizes])
-        if stroke is not None and stroke < wall * (1 - 1e-9):
-            # the whole pattern is thin; the places come from the geometry, for the overlay
-            report.add(
-                "thin_wall",
-                f"the stroke is {distinct(stroke, wall)} mm, narrower than min_wall_mm = {wall:g} mm "
-                f"(about two line widths of the {profile.nozzle_mm:g} mm nozzle): walls print thin or not at all",
-                count=max(count, 1),
-                locations=locations(mids),
-                sizes=widths[:MAX_LOCATIONS].round(3),
-                worst=round(min(stroke, narrowest), 3),
-                limit=wall,
-            )
-        elif count:
-            extra = (
-                f"; the stroke is {stroke:g} mm, so they are slivers the outline or a join cut"
-                if stroke is not None
-                else ""
-            )
-            report.add(
-                "thin_wall",
-                f"{count:,} wall{'s' if count > 1 else ''} narrower than min_wall_mm = {wall:g} mm "
-                f"(narrowest {distinct(narrowest, wall)} mm{extra}): they print thin or not at all",
-                count=count,
-                locations=locations(mids),
-                sizes=widths[:MAX_LOCATIONS].round(3),
-                worst=round(narrowest, 3),
-                limit=wall,
-            )
+        _check_walls(region, profile, stroke, report)
+    _check_layers(stack, profile, report)
 
+    xmin, ymin, xmax, ymax = outline.bounds
+    w, h = xmax - xmin, ymax - ymin
+    bw, bh = profile.bed_mm
+    if not fits_bed(w, h, profile.bed_mm):
+        report.add(
+            "bed_size",
+            f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of printer profile "
+            f"{profile.name!r} (either way round)",
+        )
+
+    if stack.style == "pierced":
+        _check_loose(region, report)
+    return report
+
+
+def _check_islands(region, outline, profile, report: Report) -> None:
+    """A debossed plate's walls: its islands among the grooves narrower than ``min_wall_mm``."""
+    wall = profile.min_wall_mm
+    islands = plate_pieces(region, outline)
+    thin = (
+        islands[small_hole_mask(islands, wall) & ~small_hole_mask(islands, profile.min_hole_mm)]
+        if len(islands)
+        else islands
+    )
+    if len(thin):
+        centres, widths = hole_widths(thin, tolerance_mm=WALL_TOLERANCE_MM)
+        n = len(thin)
+        report.add(
+            "thin_wall",
+            f"{n:,} island{'s' if n > 1 else ''} of the plate among the grooves narrower than "
+            f"min_wall_mm = {wall:g} mm (narrowest {distinct(float(widths.min()), wall)} mm): they "
+            "print thin or not at all",
+            count=n,
+            locations=locations(centres),
+            sizes=widths[:MAX_LOCATIONS].round(3),
+            worst=round(float(widths.min()), 3),
+            limit=wall,
+        )
+
+
+def _check_walls(region, profile, stroke, report: Report) -> None:
+    """The walls narrower than ``min_wall_mm``: between two rings, or whole pieces no wall fits in."""
+    wall = profile.min_wall_mm
+    count, narrowest, mids, widths = narrow_places(region, wall, tolerance=WALL_TOLERANCE_MM)
+    # pieces no wall fits in anywhere: one ring each, so no pair of rings finds them
+    pieces = _real(polygon_parts(region))
+    pieces = pieces[shapely.get_num_interior_rings(pieces) == 0]
+    slivers = pieces[small_hole_mask(pieces, wall * (1 - 1e-9) - WALL_TOLERANCE_MM)]
+    if len(slivers):
+        centres, sizes = hole_widths(slivers, tolerance_mm=WALL_TOLERANCE_MM)
+        count += len(slivers)
+        narrowest = min(narrowest, float(sizes.min()))
+        mids, widths = np.concatenate([mids, centres]), np.concatenate([widths, sizes])
+    if stroke is not None and stroke < wall * (1 - 1e-9):
+        # the whole pattern is thin; the places come from the geometry, for the overlay
+        report.add(
+            "thin_wall",
+            f"the stroke is {distinct(stroke, wall)} mm, narrower than min_wall_mm = {wall:g} mm "
+            f"(about two line widths of the {profile.nozzle_mm:g} mm nozzle): walls print thin or not at all",
+            count=max(count, 1),
+            locations=locations(mids),
+            sizes=widths[:MAX_LOCATIONS].round(3),
+            worst=round(min(stroke, narrowest), 3),
+            limit=wall,
+        )
+    elif count:
+        extra = (
+            f"; the stroke is {stroke:g} mm, so they are slivers the outline or a join cut"
+            if stroke is not None
+            else ""
+        )
+        report.add(
+            "thin_wall",
+            f"{count:,} wall{'s' if count > 1 else ''} narrower than min_wall_mm = {wall:g} mm "
+            f"(narrowest {distinct(narrowest, wall)} mm{extra}): they print thin or not at all",
+            count=count,
+            locations=locations(mids),
+            sizes=widths[:MAX_LOCATIONS].round(3),
+            worst=round(narrowest, 3),
+            limit=wall,
+        )
+
+
+def _check_layers(stack, profile, report: Report) -> None:
+    """The style's heights thinner than two layers."""
     layers = 2 * profile.layer_height_mm
     heights = {
         "relief": (("base_mm", stack.base, "the plate"), ("relief_mm", stack.relief, "the relief")),
@@ -578,32 +607,23 @@ def check_print(
                 f"{what} ({key} = {value:g} mm) is thinner than two layers (2 x layer_height_mm = {layers:g} mm)",
             )
 
-    xmin, ymin, xmax, ymax = outline.bounds
-    w, h = xmax - xmin, ymax - ymin
-    bw, bh = profile.bed_mm
-    if not fits_bed(w, h, profile.bed_mm):
-        report.add(
-            "bed_size",
-            f"the tile is {w:g} x {h:g} mm, larger than the {bw:g} x {bh:g} mm bed of printer profile "
-            f"{profile.name!r} (either way round)",
-        )
 
-    if stack.style == "pierced":
-        parts = shapely.get_parts(region)
-        parts = parts[shapely.area(parts) > 0]
-        if len(parts) > 1:
-            area = shapely.area(parts)
-            loose = np.ones(len(parts), bool)
-            loose[np.argmax(area)] = False
-            n = int(loose.sum())
-            report.add(
-                "loose_part",
-                f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
-                f"(a pierced tile falls apart; largest {area[loose].max():.3g} mm^2)",
-                count=n,
-                locations=locations(shapely.point_on_surface(parts[loose])),
-                sizes=area[loose][:MAX_LOCATIONS].round(3),
-                worst=round(float(area[loose].max()), 3),
-                unit="mm^2",
-            )
-    return report
+def _check_loose(region, report: Report) -> None:
+    """A pierced tile's pieces not joined to the largest (it falls apart)."""
+    parts = shapely.get_parts(region)
+    parts = parts[shapely.area(parts) > 0]
+    if len(parts) > 1:
+        area = shapely.area(parts)
+        loose = np.ones(len(parts), bool)
+        loose[np.argmax(area)] = False
+        n = int(loose.sum())
+        report.add(
+            "loose_part",
+            f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
+            f"(a pierced tile falls apart; largest {area[loose].max():.3g} mm^2)",
+            count=n,
+            locations=locations(shapely.point_on_surface(parts[loose])),
+            sizes=area[loose][:MAX_LOCATIONS].round(3),
+            worst=round(float(area[loose].max()), 3),
+            unit="mm^2",
+        )

@@ -106,6 +106,18 @@ def seamless_fit(outline, size, radius, *, packing="hex") -> SeamlessFit:
         )
     w, h = check_tile_size(outline, size)
     radius = check_float("radius", radius, low=0, low_open=True)
+    _check_outline(outline, packing)
+    m = max(1, round(w / (2 * radius)))
+    r = w / (2 * m)
+    if outline == "rectangle":
+        up = 2 * math.sqrt(3) * r if packing == "hex" else 2 * r
+        k = max(1, round(h / up))
+        return SeamlessFit(radius=r, size=(w, k * up), repeats=(m, k))
+    return SeamlessFit(radius=r, size=(w, w), repeats=(m, m))
+
+
+def _check_outline(outline: str, packing: str) -> None:
+    """Refuse an outline that cannot repeat with the packing's periods."""
     if outline == "circle":
         raise ParameterError(
             "a circle outline cannot be seamless (circles do not tile the plane); use a rectangle, square or hexagon",
@@ -123,13 +135,6 @@ def seamless_fit(outline, size, radius, *, packing="hex") -> SeamlessFit:
             "use the hex packing or a square/rectangle outline",
             param="outline",
         )
-    m = max(1, round(w / (2 * radius)))
-    r = w / (2 * m)
-    if outline == "rectangle":
-        up = 2 * math.sqrt(3) * r if packing == "hex" else 2 * r
-        k = max(1, round(h / up))
-        return SeamlessFit(radius=r, size=(w, k * up), repeats=(m, k))
-    return SeamlessFit(radius=r, size=(w, w), repeats=(m, m))
 
 
 def _tiling_fit(outline, size, edge, tiling) -> SeamlessFit:

@@ -81,15 +81,31 @@ def layout_sheet(
         raise ParameterError(
             f"centrelines must hold one array per tile ({len(tiles)}), got {len(centrelines)}", param="centrelines"
         )
-    bed_w, bed_h = profile.bed_mm
+    sizes = _tile_sizes(tiles)
+    order = list(range(len(tiles))) * (copies if not fill else 10_000)
+    placed = _rows(sizes, order, gap, profile, fill=fill)
+    return _sheet(tiles, centrelines, sizes, placed)
+
+
+def _tile_sizes(tiles) -> list:
+    """Each tile's outline's width, height and lower-left, ``[(w, h, x0, y0), ...]``, the pairs checked."""
     sizes = []
     for k, pair in enumerate(tiles):
         if not isinstance(pair, (list, tuple)) or len(pair) != 2:
             raise ParameterError(f"tiles[{k}] must be a (region, outline) pair, got {pair!r}", param="tiles")
         xmin, ymin, xmax, ymax = pair[1].bounds
         sizes.append((xmax - xmin, ymax - ymin, xmin, ymin))
-    order = list(range(len(tiles))) * (copies if not fill else 10_000)
-    placed: list = []  # (tile index, dx, dy)
+    return sizes
+
+
+def _rows(sizes: list, order: list, gap: float, profile, *, fill: bool) -> list:
+    """The tiles of ``order`` laid in rows on the bed, ``gap`` apart: ``[(tile index, dx, dy), ...]``.
+
+    ``fill``: as many as fit (at least one); else all of them or a
+    :class:`~fabtiles.FabricationError`.
+    """
+    bed_w, bed_h = profile.bed_mm
+    placed: list = []
     x = y = row_h = 0.0
     eps = 1e-6
     for i in order:
@@ -99,20 +115,15 @@ def layout_sheet(
         if x + w > bed_w + eps or y + h > bed_h + eps:
             if fill and placed:
                 break
-            if fill:
-                raise FabricationError(
-                    f"not even one tile fits on the {bed_w:g} x {bed_h:g} mm bed of {profile.kind} profile "
-                    f"{profile.name!r} (tile {i} is {w:g} x {h:g} mm); use smaller tiles or a profile "
-                    f"with a larger bed_mm"
-                )
-            raise FabricationError(
-                f"{len(order)} tiles do not fit on the {bed_w:g} x {bed_h:g} mm bed of {profile.kind} profile "
-                f"{profile.name!r} with a gap of {gap:g} mm (tile {i} is {w:g} x {h:g} mm, "
-                f"{len(placed)} placed); use fewer copies, smaller tiles or a profile with a larger bed_mm"
-            )
+            raise _too_large(profile, i, (w, h), fill=fill, gap=gap, tiles=len(order), placed=len(placed))
         placed.append((i, x - x0, y - y0))
         x += w + gap
         row_h = max(row_h, h)
+    return placed
+
+
+def _sheet(tiles, centrelines, sizes: list, placed: list) -> Sheet:
+    """The :class:`Sheet` of the tiles moved to their places (``placed``: ``[(tile index, dx, dy), ...]``)."""
     regions, outlines, lines = [], [], []
     for i, dx, dy in placed:
         region, outline = tiles[i]
@@ -128,4 +139,21 @@ def layout_sheet(
         centrelines=np.concatenate(lines) if lines else None,
         offsets=tuple((round(dx, 9), round(dy, 9)) for _, dx, dy in placed),
         size=(round(used_w, 9), round(used_h, 9)),
+    )
+
+
+def _too_large(profile, i: int, size: tuple, *, fill: bool, gap: float, tiles: int, placed: int) -> FabricationError:
+    """The error for tiles that do not fit on the bed (with ``fill``: not even one)."""
+    bed_w, bed_h = profile.bed_mm
+    w, h = size
+    if fill:
+        return FabricationError(
+            f"not even one tile fits on the {bed_w:g} x {bed_h:g} mm bed of {profile.kind} profile "
+            f"{profile.name!r} (tile {i} is {w:g} x {h:g} mm); use smaller tiles or a profile "
+            f"with a larger bed_mm"
+        )
+    return FabricationError(
+        f"{tiles} tiles do not fit on the {bed_w:g} x {bed_h:g} mm bed of {profile.kind} profile "
+        f"{profile.name!r} with a gap of {gap:g} mm (tile {i} is {w:g} x {h:g} mm, "
+        f"{placed} placed); use fewer copies, smaller tiles or a profile with a larger bed_mm"
     )

@@ -297,20 +297,7 @@ def _unknown_profile(name: str, kind: str | None) -> str:
     """  # noqa: E501 - a doctest's lines are as Python prints them
     slot = bundled_profiles(kind) if kind is not None else bundled_profiles()
     kinds = {n: kind_of(n) for n in slot}
-    typed = name.split("-", 1)[0]
-    meant = [n for n in slot if kinds[n] == typed] if typed in kinds.values() else list(slot)
-    import difflib
-
-    def closest(candidates):
-        near = difflib.get_close_matches(name, candidates, n=1)
-        return (near[0], difflib.SequenceMatcher(None, name, near[0]).ratio()) if near else (None, 0.0)
-
-    mine, mine_score = closest(meant)
-    other, other_score = closest([n for n in slot if n not in meant])
-    hints = [f"did you mean {mine!r}?" if mine else ""]
-    if other and other_score >= mine_score:  # as near as any of the kind meant: said apart, with its kind
-        hints.append(f"a {kinds[other]} profile is near: {other!r}")
-    hint_text = f" ({'; '.join(h for h in hints if h)})" if any(hints) else ""
+    hint_text = _near_names(name, slot, kinds)
     by_kind: dict[str, list[str]] = {}
     for n in slot:
         by_kind.setdefault(kinds[n], []).append(n)
@@ -321,6 +308,26 @@ def _unknown_profile(name: str, kind: str | None) -> str:
     else:
         listed = f"bundled {kind + ' ' if kind else ''}profiles: {', '.join(slot)}"
     return f"profile {name!r} does not exist{hint_text}; {listed}; or give the path of a .toml file"
+
+
+def _near_names(name: str, slot, kinds: dict) -> str:
+    """The suggestion for a profile name not bundled, in brackets (or nothing): the nearest of the kind the
+    name starts with, and a profile of another kind named apart when it is as near."""
+    import difflib
+
+    typed = name.split("-", 1)[0]
+    meant = [n for n in slot if kinds[n] == typed] if typed in kinds.values() else list(slot)
+
+    def closest(candidates):
+        near = difflib.get_close_matches(name, candidates, n=1)
+        return (near[0], difflib.SequenceMatcher(None, name, near[0]).ratio()) if near else (None, 0.0)
+
+    mine, mine_score = closest(meant)
+    other, other_score = closest([n for n in slot if n not in meant])
+    hints = [f"did you mean {mine!r}?" if mine else ""]
+    if other and other_score >= mine_score:  # as near as any of the kind meant: said apart, with its kind
+        hints.append(f"a {kinds[other]} profile is near: {other!r}")
+    return f" ({'; '.join(h for h in hints if h)})" if any(hints) else ""
 
 
 def _read(profile, kind: str | None = None) -> tuple[str, str, str]:
@@ -360,6 +367,20 @@ PRINTER_ZERO_KEYS = ("min_hole_mm", "tolerance_mm")
 
 
 def _parse(data: dict, source: str, name: str):
+    """A profile of the parsed TOML ``data``: its kind's section read and checked, a cutter's layers too."""
+    kind, description, cutter = _kind_of(data, source)
+    cls = CutterProfile if cutter else PrinterProfile
+    section = _section(data, kind, cutter, cls, source)
+    values: dict[str, Any] = {key: _value(source, kind, cutter, key, value) for key, value in section.items()}
+    if cutter:
+        values["layers"] = _parse_layers(data.get("layers", {}), source)
+        values["kind"] = kind
+        values.update(cutter.fixed)  # a router's file holds the part contour: no kerf; the bit decides the holes
+    return cls(name=name, description=description, **values)
+
+
+def _kind_of(data: dict, source: str) -> tuple:
+    """The profile's kind, description and cutter kind (None for a printer), its top-level keys checked."""
     kinds = CUTTER_KINDS + (PRINTER,)
     _unknown(source, "", data, ("kind", "description") + kinds + ("layers",))
     kind = data.get("kind")
@@ -372,7 +393,11 @@ def _parse(data: dict, source: str, name: str):
     others = [k for k in kinds if k != kind and k in data] + (["layers"] if cutter is None and "layers" in data else [])
     if others:
         raise ProfileError(f"{source}: a {kind} profile cannot have a [{others[0]}] section")
-    cls = CutterProfile if cutter else PrinterProfile
+    return kind, description, cutter
+
+
+def _section(data: dict, kind: str, cutter, cls, source: str) -> dict:
+    """The profile's ``[kind]`` table: a table of known keys, with the keys its kind requires."""
     section = data.get(kind, {})
     if not isinstance(section, dict):
         raise ProfileError(f"{source}: [{kind}] must be a table")
@@ -381,48 +406,48 @@ def _parse(data: dict, source: str, name: str):
         section = _renamed_style(section, source)
     _unknown(source, f"{kind}.", section, allowed)
     for key in cutter.required if cutter else ():
-        if cutter and key not in section:
+        if key not in section:
             raise ProfileError(
                 f"{source}: a {kind} profile needs {kind}.{key} (the {cutter.tool}'s diameter in mm, > 0)"
             )
-    values: dict[str, Any] = {}
-    for key, value in section.items():
-        full = f"{kind}.{key}"
-        if key == "bed_mm":
-            if not isinstance(value, list) or len(value) != 2:
-                raise ProfileError(f"{source}: {full} must be [width, height] in mm, got {value!r}")
-            values[key] = tuple(_positive(source, full, v) for v in value)
-        elif key == "strict":
-            if not isinstance(value, bool):
-                raise ProfileError(f"{source}: {full} must be true or false, got {value!r}")
-            values[key] = value
-        elif key == "inlay_fit_mm":
-            values[key] = schema_key("output.inlay_fit_mm").check(
-                value, name=full, prefix=f"{source}: ", error=ProfileError, param=full, note=False
-            )
-        elif key in ("mode", "print_style", "dxf_version"):
-            choices = {
-                "mode": cutter.modes if cutter else LASER_MODES,
-                "print_style": PRINT_STYLES,
-                "dxf_version": DXF_VERSIONS,
-            }[key]
-            if value not in choices:
-                hint = did_you_mean(value, choices)
-                raise ProfileError(
-                    f"{source}: {full} = {value!r} is not valid{f' ({hint})' if hint else ''}, "
-                    f"must be one of: {', '.join(choices)}"
-                )
-            values[key] = value
-        else:
-            zero_ok = key in (cutter.zero_keys if cutter else PRINTER_ZERO_KEYS)
-            values[key] = _positive(
-                source, full, value, allow_zero=zero_ok or key in ("pierce_s", "price_per_kg", "price_per_m2")
-            )
-    if cutter:
-        values["layers"] = _parse_layers(data.get("layers", {}), source)
-        values["kind"] = kind
-        values.update(cutter.fixed)  # a router's file holds the part contour: no kerf; the bit decides the holes
-    return cls(name=name, description=description, **values)
+    return section
+
+
+def _value(source: str, kind: str, cutter, key: str, value):
+    """One key of the profile's section, checked and converted."""
+    full = f"{kind}.{key}"
+    if key == "bed_mm":
+        if not isinstance(value, list) or len(value) != 2:
+            raise ProfileError(f"{source}: {full} must be [width, height] in mm, got {value!r}")
+        return tuple(_positive(source, full, v) for v in value)
+    if key == "strict":
+        if not isinstance(value, bool):
+            raise ProfileError(f"{source}: {full} must be true or false, got {value!r}")
+        return value
+    if key == "inlay_fit_mm":
+        return schema_key("output.inlay_fit_mm").check(
+            value, name=full, prefix=f"{source}: ", error=ProfileError, param=full, note=False
+        )
+    if key in ("mode", "print_style", "dxf_version"):
+        return _choice(source, cutter, key, full, value)
+    zero_ok = key in (cutter.zero_keys if cutter else PRINTER_ZERO_KEYS)
+    return _positive(source, full, value, allow_zero=zero_ok or key in ("pierce_s", "price_per_kg", "price_per_m2"))
+
+
+def _choice(source: str, cutter, key: str, full: str, value) -> str:
+    """A profile's mode, print style or DXF version, one of its choices."""
+    choices = {
+        "mode": cutter.modes if cutter else LASER_MODES,
+        "print_style": PRINT_STYLES,
+        "dxf_version": DXF_VERSIONS,
+    }[key]
+    if value not in choices:
+        hint = did_you_mean(value, choices)
+        raise ProfileError(
+            f"{source}: {full} = {value!r} is not valid{f' ({hint})' if hint else ''}, "
+            f"must be one of: {', '.join(choices)}"
+        )
+    return value
 
 
 def _renamed_style(section: dict, source: str) -> dict:
@@ -448,24 +473,7 @@ def _parse_layers(section, source) -> LaserLayers:
         raise ProfileError(f"{source}: [layers] must be a table")
     allowed = [f.name for f in fields(LaserLayers)]
     _unknown(source, "layers.", section, allowed)
-    layers = {}
-    for key, value in section.items():
-        full = f"layers.{key}"
-        if not isinstance(value, dict):
-            raise ProfileError(f'{source}: {full} must be a table like {{ name = "CUT", color = 1 }}')
-        _unknown(source, f"{full}.", value, LAYER_KEYS)
-        default = getattr(LaserLayers(), key) or Layer(
-            "FILL", 6, speed_mm_s=200.0, power_pct=20.0, line_interval_mm=0.1
-        )
-        lname = value.get("name", default.name)
-        color = value.get("color", default.color)
-        if not isinstance(lname, str) or not lname or any(c in lname for c in "<>/\\\":;?*|='"):
-            raise ProfileError(
-                f"{source}: {full}.name must be a non-empty DXF layer name without <>/\\\":;?*|=', got {lname!r}"
-            )
-        if isinstance(color, bool) or not isinstance(color, int) or not 1 <= color <= 255:
-            raise ProfileError(f"{source}: {full}.color must be an AutoCAD Color Index 1..255, got {color!r}")
-        layers[key] = Layer(lname, color, **_layer_settings(value, default, source, full))
+    layers = {key: _layer(source, key, value) for key, value in section.items()}
     result = LaserLayers(**layers)
     names = [result.inner_cut.name, result.outer_cut.name, result.score.name]
     names += [result.engrave.name] if result.engrave is not None else []
@@ -473,6 +481,24 @@ def _parse_layers(section, source) -> LaserLayers:
         count = {3: "three", 4: "four"}[len(names)]
         raise ProfileError(f"{source}: layers need {count} different names, got {', '.join(names)}")
     return result
+
+
+def _layer(source: str, key: str, value) -> Layer:
+    """One ``[layers]`` entry checked: its DXF name, its colour index and its settings."""
+    full = f"layers.{key}"
+    if not isinstance(value, dict):
+        raise ProfileError(f'{source}: {full} must be a table like {{ name = "CUT", color = 1 }}')
+    _unknown(source, f"{full}.", value, LAYER_KEYS)
+    default = getattr(LaserLayers(), key) or Layer("FILL", 6, speed_mm_s=200.0, power_pct=20.0, line_interval_mm=0.1)
+    lname = value.get("name", default.name)
+    color = value.get("color", default.color)
+    if not isinstance(lname, str) or not lname or any(c in lname for c in "<>/\\\":;?*|='"):
+        raise ProfileError(
+            f"{source}: {full}.name must be a non-empty DXF layer name without <>/\\\":;?*|=', got {lname!r}"
+        )
+    if isinstance(color, bool) or not isinstance(color, int) or not 1 <= color <= 255:
+        raise ProfileError(f"{source}: {full}.color must be an AutoCAD Color Index 1..255, got {color!r}")
+    return Layer(lname, color, **_layer_settings(value, default, source, full))
 
 
 LAYER_KEYS = ("name", "color", "speed_mm_s", "power_pct", "passes", "line_interval_mm")

@@ -100,10 +100,7 @@ def check_tile(
         for the laser files): ``CheckResult.job``. None when the tile cannot be cut
         (larger than the bed).
     """
-    from ..geometry.laser_checks import check_cut_pattern, check_engrave, check_fits_bed, check_laser
-    from ..geometry.narrow import fill_small_holes as fill
-    from ..geometry.print_checks import check_print, check_print_pattern
-    from ..geometry.print_checks import print_region as made_print_region
+    from ..geometry.laser_checks import check_fits_bed
 
     laser = load_profile(laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
     printer = load_profile(printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")
@@ -117,6 +114,28 @@ def check_tile(
         check_fits_bed(outline, laser)
     except FabricationError as exc:
         laser_report.add("bed_size", str(exc))
+    filled, made = _check_cut(tile, cut_region, outline, laser, laser_mode, fill_small_holes, laser_report)
+    print_report, print_filled, print_region = _check_printed(
+        tile, region, outline, printer, print_style, heights, fill_small_holes
+    )
+    estimate = (
+        _job(tile, cut_region, laser, laser_mode, fill_small_holes)
+        if job and "bed_size" not in {f.code for f in laser_report.findings}
+        else None
+    )
+    material = _filament(print_region, outline, printer, print_style, heights) if job else None
+    return CheckResult(
+        laser_report, print_report, filled, estimate, material, made, laser.kind, print_filled, print_region
+    )
+
+
+def _check_cut(tile, cut_region, outline, laser, laser_mode, fill_small_holes: bool, report: Report) -> tuple:
+    """The cutter's checks of the laser files' material, into ``report``: ``(holes filled, part as the tool
+    makes it or None)``. A pierced part is checked as the tool makes it (holes opened by a router's bit,
+    small holes filled when asked); an engraved one for its engraving."""
+    from ..geometry.laser_checks import check_cut_pattern, check_engrave, check_laser
+    from ..geometry.narrow import fill_small_holes as fill
+
     filled = 0
     made = None
     if (laser_mode or laser.mode) == "pierced" and not cut_region.is_empty:
@@ -124,18 +143,25 @@ def check_tile(
         if laser.cutter.opens_holes:  # a router's or waterjet's part: holes opened by the tool's radius
             from ..geometry.tool_opening import check_tool
 
-            cut, _, filled = check_tool(cut, laser, fill_small_holes=fill_small_holes, report=laser_report)
+            cut, _, filled = check_tool(cut, laser, fill_small_holes=fill_small_holes, report=report)
             made = cut
         if fill_small_holes:
             cut, more = fill(cut, laser.min_hole_mm, tolerance_mm=laser.tolerance_mm)
             filled += more
-        check_laser(cut, outline, laser, stroke=tile.stroke, report=laser_report, validate=False)
-        check_cut_pattern(cut_region, cut, outline, laser, stroke=tile.stroke, report=laser_report)
+        check_laser(cut, outline, laser, stroke=tile.stroke, report=report, validate=False)
+        check_cut_pattern(cut_region, cut, outline, laser, stroke=tile.stroke, report=report)
     elif (laser_mode or laser.mode) == "engrave" and not cut_region.is_empty:
-        check_engrave(cut_region, laser, laser_report)
-    style = (
-        print_style or printer.print_style
-    )  # the print's region as its files hold it (an interlaced relief unthinned)
+        check_engrave(cut_region, laser, report)
+    return filled, made
+
+
+def _check_printed(tile, region, outline, printer, print_style, heights, fill_small_holes: bool) -> tuple:
+    """The printer's checks of the print's region as its files hold it: ``(report, openings filled, region)``."""
+    from ..geometry.print_checks import check_print, check_print_pattern
+    from ..geometry.print_checks import print_region as made_print_region
+
+    # the print's region as its files hold it (an interlaced relief unthinned)
+    style = print_style or printer.print_style
     designed, _ = made_print_region(
         region, outline, printer, style, flatten=not (getattr(tile, "interlace", False) and style == "relief")
     )
@@ -153,15 +179,7 @@ def check_tile(
     )
     if print_filled:
         check_print_pattern(designed, print_region, outline, printer, style, stroke=tile.stroke, report=print_report)
-    estimate = (
-        _job(tile, cut_region, laser, laser_mode, fill_small_holes)
-        if job and "bed_size" not in {f.code for f in laser_report.findings}
-        else None
-    )
-    material = _filament(print_region, outline, printer, print_style, heights) if job else None
-    return CheckResult(
-        laser_report, print_report, filled, estimate, material, made, laser.kind, print_filled, print_region
-    )
+    return print_report, print_filled, print_region
 
 
 def _filament(region, outline, printer, style, heights):
@@ -179,7 +197,7 @@ def _job(tile, cut_region, laser, mode, fill_small_holes):
     ``cut_region`` is the laser files' material, already made by :func:`check_tile`; only
     the score mode needs the score lines as well.
     """
-    from ..geometry.cut_plan import plan_cut
+    from ..geometry.cut_plan import CutOptions, plan_cut
 
     region, lines = cut_region, None
     if (mode or laser.mode) == "score":
@@ -187,11 +205,8 @@ def _job(tile, cut_region, laser, mode, fill_small_holes):
     plan = plan_cut(
         region,
         tile.outline_shape(),
+        CutOptions.of(profile=replace(laser, strict=False), mode=mode, fill_small_holes=fill_small_holes, fmt="check"),
         centrelines=lines,
-        profile=replace(laser, strict=False),
-        mode=mode,
-        fill_small_holes=fill_small_holes,
-        fmt="check",
     )
     return plan.estimate
 

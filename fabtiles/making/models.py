@@ -184,7 +184,7 @@ class Models:
     def cut(self):
         """The cut plan (:class:`~fabtiles.geometry.cut_plan.CutPlan`), or an inlay kit's two
         (:class:`~fabtiles.geometry.cut_plan.KitPlans`)."""
-        from ..geometry.cut_plan import plan_cut, plan_kit
+        from ..geometry.cut_plan import CutOptions, KitOptions, plan_cut, plan_kit
 
         o = self.options
         region, centrelines = self.cut_region
@@ -194,27 +194,31 @@ class Models:
             return plan_cut(
                 region,
                 outline,
-                profile=o.cutter,
-                mode="pierced",
-                kerf_mm=o.kerf_mm,
-                fill_small_holes=o.fill_small_holes,
-                stroke=self.tile.stroke,
-                tab_mm=o.tab_mm,
-                tabs_per_part=o.tabs_per_part,
+                CutOptions.of(
+                    profile=o.cutter,
+                    mode="pierced",
+                    kerf_mm=o.kerf_mm,
+                    fill_small_holes=o.fill_small_holes,
+                    stroke=self.tile.stroke,
+                    tab_mm=o.tab_mm,
+                    tabs_per_part=o.tabs_per_part,
+                ),
             )
         if o.kit and self.sheet is None:
             kit = plan_kit(
                 region,
                 outline,
-                profile=o.cutter,
-                inlay_fit_mm=o.inlay_fit_mm,
-                inlay_base=o.inlay_base or "pierced",
-                kerf_mm=o.kerf_mm,
-                dxf_version=o.dxf_version,
-                stroke=self.tile.stroke,
+                KitOptions.of(
+                    profile=o.cutter,
+                    inlay_fit_mm=o.inlay_fit_mm,
+                    inlay_base=o.inlay_base or "pierced",
+                    kerf_mm=o.kerf_mm,
+                    dxf_version=o.dxf_version,
+                    stroke=self.tile.stroke,
+                    tab_mm=o.tab_mm,
+                    tabs_per_part=o.tabs_per_part,
+                ),
                 colours=self.kit_colours() if self.coloured else (),
-                tab_mm=o.tab_mm,
-                tabs_per_part=o.tabs_per_part,
             )
             if self.coloured:
                 from ..geometry.kit_nesting import class_letters
@@ -249,15 +253,17 @@ class Models:
         plan = plan_cut(
             region,
             outline,
-            profile=o.cutter,
+            CutOptions.of(
+                profile=o.cutter,
+                mode=o.laser_mode,
+                dxf_version=o.dxf_version,
+                kerf_mm=o.kerf_mm,
+                fill_small_holes=o.fill_small_holes,
+                stroke=self.tile.stroke,
+                tab_mm=o.tab_mm,
+                tabs_per_part=o.tabs_per_part,
+            ),
             centrelines=centrelines,
-            mode=o.laser_mode,
-            dxf_version=o.dxf_version,
-            kerf_mm=o.kerf_mm,
-            fill_small_holes=o.fill_small_holes,
-            stroke=self.tile.stroke,
-            tab_mm=o.tab_mm,
-            tabs_per_part=o.tabs_per_part,
         )
         if self.sheet is not None:  # how many tiles, which the files' summary does not show otherwise
             n = len(self.sheet.offsets)

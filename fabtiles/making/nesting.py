@@ -79,8 +79,8 @@ def part_outline(plan):
     convex hull of every path (so every cut of the part stays inside its outline).
 
     >>> from shapely.geometry import box
-    >>> from fabtiles.geometry.cut_plan import plan_cut
-    >>> plan = plan_cut(box(0, 0, 40, 40).difference(box(10, 10, 30, 30)), box(0, 0, 40, 40), profile="laser-3mm-plywood")
+    >>> from fabtiles.geometry.cut_plan import CutOptions, plan_cut
+    >>> plan = plan_cut(box(0, 0, 40, 40).difference(box(10, 10, 30, 30)), box(0, 0, 40, 40), CutOptions.of(profile="laser-3mm-plywood"))
     >>> [round(v, 3) for v in part_outline(plan).bounds]
     [0.0, 0.0, 40.15, 40.15]
     """  # noqa: E501 - a doctest's lines are as Python prints them
@@ -218,88 +218,22 @@ def plan_nest(
 
     The parameters and errors are :func:`nest_designs`'s (which writes the job).
     """
-    from ..geometry.nest import DEFAULT_TIME_S, nest
-    from ..machines.cutters import cutter_kind
-    from .pipeline import prepare_tile, sheet_formats
+    from ..geometry.nest import nest
 
-    if not designs:
-        raise ParameterError("give at least one design to nest", param="designs")
-    designs = parse_counts(designs, count)
-    time_s = DEFAULT_TIME_S if time_s is None else check_float("time_s", time_s, low=0, low_open=True)
-    _limits.check_nest(sum(n for _, n in designs), time_s, limits)
-    formats = tuple(dict.fromkeys(formats))
-    cut, printed = sheet_formats(formats)
-    if printed or not cut:
-        raise ParameterError(
-            f"nested sheets are written in the cutter formats (dxf, svg, lbrn2) only, got "
-            f"{', '.join(formats) or 'none'}; use --format dxf, svg or lbrn2",
-            param="formats",
-        )
-    options = [BuildOptions.of_design(d) for d, _ in designs]
+    designs, time_s = _counted(designs, count, time_s, limits)
+    cut = _cut_formats(formats)
+    options = _nest_options(designs, cut)
     profile = options[0].cutter
-    for (d, _), o in zip(designs, options, strict=True):
-        if o.cutter.name != profile.name:
-            raise ParameterError(
-                f"every nested design must use one cutter profile (one material): "
-                f"{designs[0][0].name} uses {profile.name!r}, {d.name} uses {o.cutter.name!r}; "
-                f"set [output] laser_profile alike",
-                param="laser_profile",
-            )
-        if o.kit:
-            raise ParameterError(
-                f'{d.name} is an inlay kit (laser_mode = "inlay"), which is not nested; '
-                f'choose laser_mode = "pierced", "score" or "engrave"',
-                param="laser_mode",
-            )
-        for fmt in cut:  # the cutter's kind allows the format (a LightBurn project is for lasers)
-            cutter_kind(o.cutter).check_format(o.cutter, fmt)
-    bed_w, bed_h = profile.bed_mm
-    if sheet_mm is None:
-        sheet_mm = (bed_w, bed_h)
-    if not isinstance(sheet_mm, (list, tuple)) or len(sheet_mm) != 2:
-        raise ParameterError(f"sheet_mm must be (width, height) in mm, got {sheet_mm!r}", param="sheet_mm")
-    w = check_float("sheet width", sheet_mm[0], low=0, low_open=True)
-    h = check_float("sheet height", sheet_mm[1], low=0, low_open=True)
-    if w > bed_w + 1e-9 or h > bed_h + 1e-9:
-        raise ParameterError(
-            f"the sheet {w:g} x {h:g} mm is larger than the {bed_w:g} x {bed_h:g} mm bed of "
-            f"{profile.kind} profile {profile.name!r}; use a sheet of at most the bed "
-            f"(--sheet {bed_w:g}x{bed_h:g})",
-            param="sheet_mm",
-        )
-    tiles = [prepare_tile(d, limits=limits) for d, _ in designs]
-    _limits.check_segments(
-        sum(len(t.segments()) * n for t, (_, n) in zip(tiles, designs, strict=True)),
-        limits,
-        what=f"the nest of {sum(n for _, n in designs)} tiles",
-    )
+    w, h = _sheet_size(sheet_mm, profile)
+    tiles = _tiles(designs, limits)
     from .models import Models
 
     plans = [Models(t, o).cut for t, o in zip(tiles, options, strict=True)]
     kerf = max(p.kerf_mm for p in plans)
-    least = max(kerf, 2 * profile.tool_radius_mm)  # a router's bit must pass between two parts
-    gap = least + GAP_EXTRA_MM if gap_mm is None else check_float("gap_mm", gap_mm)
-    if gap < least:
-        raise ParameterError(
-            f"gap_mm must be >= the cut's width ({least:g} mm, the kerf of {profile.kind} "
-            f"profile {profile.name!r}) so the cuts of two parts stay apart, got {gap:g}; "
-            f"use --gap {least + GAP_EXTRA_MM:g}",
-            param="gap_mm",
-        )
-    turns = rotations in ("90", "free")
-    if turns and any("kerf_y_mm" in p.report.stats for p in plans):  # a quarter turn swaps the two kerfs
-        raise ParameterError(
-            f"{profile.kind} profile {profile.name!r} has a kerf along Y unlike along X "
-            f"(kerf_x_mm, kerf_y_mm): a part turned by a quarter would be cut to the wrong size; "
-            f"use --rotate 180 or --rotate none, got {rotations!r}",
-            param="rotations",
-        )
+    gap = _gap(gap_mm, kerf, profile)
+    _check_rotations(rotations, plans, profile)
     outlines = [part_outline(p) for p in plans]
-    parts, shapes = [], []
-    for k, ((d, n), outline) in enumerate(zip(designs, outlines, strict=True)):
-        for c in range(n):
-            parts.append((f"{d.name}#{k}:{c + 1}", outline))
-            shapes.append(k)
+    parts, shapes = _parts(designs, outlines)
     nesting = nest(parts, sheet_mm=(w, h), gap_mm=gap, rotations=rotations, time_s=time_s, progress=progress)
     mode, dxf_version = plans[0].mode, plans[0].dxf_version
     sheets = tuple(
@@ -318,6 +252,126 @@ def plan_nest(
     labels = [(f"{profile.kind} {profile.name}: {d.name}", p.report) for (d, _), p in zip(designs, plans, strict=True)]
     stem = name if name is not None else default_stem([d for d, _ in designs])
     return NestJob(NestedSheets(sheets, nesting, report), options[0], labels, designs, shapes, cut, stem)
+
+
+def _counted(designs, count, time_s, limits: _limits.Limits) -> tuple[list, float]:
+    """The designs with their counts and the nest's time, checked against the limits."""
+    from ..geometry.nest import DEFAULT_TIME_S
+
+    if not designs:
+        raise ParameterError("give at least one design to nest", param="designs")
+    designs = parse_counts(designs, count)
+    time_s = DEFAULT_TIME_S if time_s is None else check_float("time_s", time_s, low=0, low_open=True)
+    _limits.check_nest(sum(n for _, n in designs), time_s, limits)
+    return designs, time_s
+
+
+def _cut_formats(formats) -> tuple:
+    """The nest's formats, cutter formats only."""
+    from .pipeline import sheet_formats
+
+    formats = tuple(dict.fromkeys(formats))
+    cut, printed = sheet_formats(formats)
+    if printed or not cut:
+        raise ParameterError(
+            f"nested sheets are written in the cutter formats (dxf, svg, lbrn2) only, got "
+            f"{', '.join(formats) or 'none'}; use --format dxf, svg or lbrn2",
+            param="formats",
+        )
+    return cut
+
+
+def _tiles(designs, limits: _limits.Limits) -> list:
+    """Each design's tile, the nest's segments checked against the limits."""
+    from .pipeline import prepare_tile
+
+    tiles = [prepare_tile(d, limits=limits) for d, _ in designs]
+    _limits.check_segments(
+        sum(len(t.segments()) * n for t, (_, n) in zip(tiles, designs, strict=True)),
+        limits,
+        what=f"the nest of {sum(n for _, n in designs)} tiles",
+    )
+    return tiles
+
+
+def _nest_options(designs, cut) -> list:
+    """Each design's build options, checked for a nest: one cutter profile, no inlay kit, formats it takes."""
+    from ..machines.cutters import cutter_kind
+
+    options = [BuildOptions.of_design(d) for d, _ in designs]
+    profile = options[0].cutter
+    for (d, _), o in zip(designs, options, strict=True):
+        if o.cutter.name != profile.name:
+            raise ParameterError(
+                f"every nested design must use one cutter profile (one material): "
+                f"{designs[0][0].name} uses {profile.name!r}, {d.name} uses {o.cutter.name!r}; "
+                f"set [output] laser_profile alike",
+                param="laser_profile",
+            )
+        if o.kit:
+            raise ParameterError(
+                f'{d.name} is an inlay kit (laser_mode = "inlay"), which is not nested; '
+                f'choose laser_mode = "pierced", "score" or "engrave"',
+                param="laser_mode",
+            )
+        for fmt in cut:  # the cutter's kind allows the format (a LightBurn project is for lasers)
+            cutter_kind(o.cutter).check_format(o.cutter, fmt)
+    return options
+
+
+def _sheet_size(sheet_mm, profile) -> tuple[float, float]:
+    """The sheet's width and height in mm, checked to fit the bed (None: the bed's)."""
+    bed_w, bed_h = profile.bed_mm
+    if sheet_mm is None:
+        sheet_mm = (bed_w, bed_h)
+    if not isinstance(sheet_mm, (list, tuple)) or len(sheet_mm) != 2:
+        raise ParameterError(f"sheet_mm must be (width, height) in mm, got {sheet_mm!r}", param="sheet_mm")
+    w = check_float("sheet width", sheet_mm[0], low=0, low_open=True)
+    h = check_float("sheet height", sheet_mm[1], low=0, low_open=True)
+    if w > bed_w + 1e-9 or h > bed_h + 1e-9:
+        raise ParameterError(
+            f"the sheet {w:g} x {h:g} mm is larger than the {bed_w:g} x {bed_h:g} mm bed of "
+            f"{profile.kind} profile {profile.name!r}; use a sheet of at most the bed "
+            f"(--sheet {bed_w:g}x{bed_h:g})",
+            param="sheet_mm",
+        )
+    return w, h
+
+
+def _gap(gap_mm, kerf: float, profile) -> float:
+    """The gap between parts in mm, checked to keep two parts' cuts apart (None: the cut's width and a margin)."""
+    least = max(kerf, 2 * profile.tool_radius_mm)  # a router's bit must pass between two parts
+    gap = least + GAP_EXTRA_MM if gap_mm is None else check_float("gap_mm", gap_mm)
+    if gap < least:
+        raise ParameterError(
+            f"gap_mm must be >= the cut's width ({least:g} mm, the kerf of {profile.kind} "
+            f"profile {profile.name!r}) so the cuts of two parts stay apart, got {gap:g}; "
+            f"use --gap {least + GAP_EXTRA_MM:g}",
+            param="gap_mm",
+        )
+    return gap
+
+
+def _check_rotations(rotations: str, plans, profile) -> None:
+    """Refuse quarter turns when the cutter's kerf along Y differs from along X (a quarter turn swaps them)."""
+    turns = rotations in ("90", "free")
+    if turns and any("kerf_y_mm" in p.report.stats for p in plans):
+        raise ParameterError(
+            f"{profile.kind} profile {profile.name!r} has a kerf along Y unlike along X "
+            f"(kerf_x_mm, kerf_y_mm): a part turned by a quarter would be cut to the wrong size; "
+            f"use --rotate 180 or --rotate none, got {rotations!r}",
+            param="rotations",
+        )
+
+
+def _parts(designs, outlines) -> tuple[list, list]:
+    """The nest's parts, ``[(name, outline), ...]``, each design's copies in turn, and each part's design index."""
+    parts, shapes = [], []
+    for k, ((d, n), outline) in enumerate(zip(designs, outlines, strict=True)):
+        for c in range(n):
+            parts.append((f"{d.name}#{k}:{c + 1}", outline))
+            shapes.append(k)
+    return parts, shapes
 
 
 def default_stem(designs) -> str:

@@ -108,12 +108,32 @@ def parse_vary(text: str) -> Vary:
 
 
 def _range(text: str, a: str, b: str, n: str) -> tuple:
+    """The ``n`` values from ``a`` to ``b`` of ``--vary KEY=a:b:n``, whole numbers when ``a``, ``b`` and every
+    value are."""
+    lo, hi = _ends(text, a, b)
+    count = _count(text, n)
+    if count == 1:
+        values = [lo]
+    else:
+        values = [lo + (hi - lo) * k / (count - 1) for k in range(count)]
+    whole = all(re.fullmatch(r"[+-]?\d+", s.strip()) for s in (a, b)) and all(v.is_integer() for v in values)
+    # 12 significant digits: 0.1 + 0.2 stays 0.3 in file names and labels
+    return tuple(int(v) if whole else float(f"{v:.12g}") for v in values)
+
+
+def _ends(text: str, a: str, b: str) -> tuple[float, float]:
+    """The ends ``a`` and ``b`` of a range, finite numbers."""
     try:
         lo, hi = float(a), float(b)
     except ValueError:
         raise ParameterError(f"--vary {text}: a:b:n needs numbers a and b, got {a!r} and {b!r}", param="vary") from None
     if not (math.isfinite(lo) and math.isfinite(hi)):
         raise ParameterError(f"--vary {text}: a and b must be finite numbers, got {a!r} and {b!r}", param="vary")
+    return lo, hi
+
+
+def _count(text: str, n: str) -> int:
+    """The ``n`` of a range, a whole number >= 1."""
     try:
         count = int(n)
     except ValueError:
@@ -122,13 +142,7 @@ def _range(text: str, a: str, b: str, n: str) -> tuple:
         ) from None
     if count < 1:
         raise ParameterError(f"--vary {text}: n in a:b:n must be a whole number >= 1, got {count}", param="vary")
-    if count == 1:
-        values = [lo]
-    else:
-        values = [lo + (hi - lo) * k / (count - 1) for k in range(count)]
-    whole = all(re.fullmatch(r"[+-]?\d+", s.strip()) for s in (a, b)) and all(v.is_integer() for v in values)
-    # 12 significant digits: 0.1 + 0.2 stays 0.3 in file names and labels
-    return tuple(int(v) if whole else float(f"{v:.12g}") for v in values)
+    return count
 
 
 def _split(spec: str) -> list[str]:
@@ -257,22 +271,7 @@ def write_index(outdir, varies, variants_, outcomes) -> tuple[Path, Path]:
     outdir = Path(outdir)
     by_name = {o.key: o for o in outcomes}
     keys = [v.key for v in varies]
-    rows = []
-    for v in variants_:
-        o = by_name[v.name]
-        files = [Path(p).name for p in o.paths]
-        figures = o.figures if o.ok else {}
-        rows.append(
-            dict(
-                variant=v.name,
-                status=("part" if o.refused else "ok") if o.ok else "failed",
-                **{k: _text(val) for k, val in v.values},
-                files=" ".join(files),
-                findings=len(o.findings),
-                **{c: "" if figures.get(k) is None else figures[k] for c, k in JOB_COLUMNS.items()},
-                details=" | ".join([f"refused {r}" for r in o.refused] + o.findings) if o.ok else explain(o, v),
-            )
-        )
+    rows = [_index_row(v, by_name[v.name]) for v in variants_]
     buf = io.StringIO()
     writer = csv.DictWriter(
         buf, fieldnames=["variant", "status", *keys, "files", "findings", *JOB_COLUMNS, "details"], lineterminator="\n"
@@ -282,6 +281,21 @@ def write_index(outdir, varies, variants_, outcomes) -> tuple[Path, Path]:
     csv_path = atomic_write(outdir / "index.csv", buf.getvalue())
     html_path = atomic_write(outdir / "index.html", _contact_sheet(varies, variants_, by_name))
     return csv_path, html_path
+
+
+def _index_row(v, o) -> dict:
+    """One variant's row of ``index.csv``: its values, status, files, findings, job figures and details."""
+    files = [Path(p).name for p in o.paths]
+    figures = o.figures if o.ok else {}
+    return dict(
+        variant=v.name,
+        status=("part" if o.refused else "ok") if o.ok else "failed",
+        **{k: _text(val) for k, val in v.values},
+        files=" ".join(files),
+        findings=len(o.findings),
+        **{c: "" if figures.get(k) is None else figures[k] for c, k in JOB_COLUMNS.items()},
+        details=" | ".join([f"refused {r}" for r in o.refused] + o.findings) if o.ok else explain(o, v),
+    )
 
 
 def _contact_sheet(varies, variants_, by_name) -> str:

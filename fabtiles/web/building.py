@@ -118,10 +118,14 @@ def field_of_param(param: str | None) -> str | None:
         named = [key for key, (_, name, _) in FIELDS.items() if name == param]
         return named[0] if len(named) == 1 else None
     parts = (param or "").split(".")
-    if len(parts) == 3 and parts[:2] == ["colour", "faces"]:  # a face class's colour: face_<letter>
-        return f"face_{parts[2]}" if f"face_{parts[2]}" in FIELDS else None
-    if len(parts) >= 3 and parts[:2] == ["packing", "motifs"]:  # a motif of a polygon kind: its menu
-        return f"motif_{parts[2]}" if f"motif_{parts[2]}" in FIELDS else None
+    menu = _menu_field(parts)
+    if menu is not None:
+        return menu if menu in FIELDS else None
+    return _section_field(parts)
+
+
+def _section_field(parts: list) -> str | None:
+    """The field of a ``section.name`` key (the gap motif's keys are their own section's), or None."""
     if len(parts) == 3 and parts[:2] == ["packing", "gap_motif"]:
         parts = parts[1:]
     if len(parts) != 2:
@@ -129,6 +133,16 @@ def field_of_param(param: str | None) -> str | None:
     if parts == ["tile", "size"]:
         return "width"
     return next((key for key, (section, name, _) in FIELDS.items() if [section, name] == parts), None)
+
+
+def _menu_field(parts: list) -> str | None:
+    """The field a face class's colour (``face_<letter>``) or a polygon kind's motif (``motif_<sides>``)
+    would have, for a key of those; None for any other key."""
+    if len(parts) == 3 and parts[:2] == ["colour", "faces"]:
+        return f"face_{parts[2]}"
+    if len(parts) >= 3 and parts[:2] == ["packing", "motifs"]:
+        return f"motif_{parts[2]}"
+    return None
 
 
 _WHERE = re.compile(r"\[[\w.]+\](?: (?P<sub>gap_motif|\d+))? ")

@@ -96,6 +96,26 @@ def _tile_query(stroke=1) -> dict:
     return {"outline": "square", "width": "150", "frame": "5", "stroke": f"{stroke:g}", "fill_small_holes": "true"}
 
 
+def _tiling_query(tiling: str, edge: float, motifs: dict, main, gap_n) -> dict:
+    """The query of a tiling's entry: its edge, its main motif (or the preset per polygon kind), the gap motif."""
+    query = {"packing": "archimedean", "tiling": tiling, "edge": f"{edge:g}"}
+    if main is None:
+        query["preset"] = "table3-3"  # not shown: every polygon kind has its own preset
+    else:
+        query.update(
+            n=str(main["n"]),
+            radii=",".join(f"{r:g}" for r in main["radii"]),
+            alpha="0",
+            spr="0",
+            special="none",
+            rotation="0",
+        )
+    query.update({f"motif_{p}": name for p, name in motifs.items()})
+    if gap_n is not None:
+        query.update(gap_n=str(gap_n), gap_radii="0.5,1")
+    return query
+
+
 @functools.cache
 def entries() -> tuple[Entry, ...]:
     """The gallery's entries: the presets, then the tilings, then the tilings by Hankin's method."""
@@ -118,21 +138,7 @@ def entries() -> tuple[Entry, ...]:
             )
         )
     for tiling, (edge, motifs, main, gap_n, stroke) in _TILINGS.items():
-        query = {"packing": "archimedean", "tiling": tiling, "edge": f"{edge:g}"}
-        if main is None:
-            query["preset"] = "table3-3"  # not shown: every polygon kind has its own preset
-        else:
-            query.update(
-                n=str(main["n"]),
-                radii=",".join(f"{r:g}" for r in main["radii"]),
-                alpha="0",
-                spr="0",
-                special="none",
-                rotation="0",
-            )
-        query.update({f"motif_{p}": name for p, name in motifs.items()})
-        if gap_n is not None:
-            query.update(gap_n=str(gap_n), gap_radii="0.5,1")
+        query = _tiling_query(tiling, edge, motifs, main, gap_n)
         out.append(
             Entry(tiling, f"Tiling {tiling}", f"the {NAMES[tiling]} tiling", {**query, **_tile_query(stroke)}, "tiling")
         )

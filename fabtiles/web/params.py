@@ -151,9 +151,31 @@ def design_from_query(query) -> dict:
 
     Unknown parameters are an error naming the parameter and the valid ones.
     """
+    design, gap, motifs = _sections(query)
+    motif = design["motif"]
+    if "preset" in motif and motif["preset"] == "":
+        del motif["preset"]
+    if motif.get("special", 0) is None:
+        del motif["special"]
+    if gap.get("special", 0) is None:
+        del gap["special"]
+    _packing(design, gap, motifs, query)
+    _check_profiles(design["output"])
+    # colours are asked for when a [colour] key differs from its default (the page always sends its menus)
+    colour = {k: v for k, v in design["colour"].items() if k == "faces" or v != _schema.key(f"colour.{k}").default}
+    design["colour"] = colour
+    _tile_size(design["tile"])
+    return {k: v for k, v in design.items() if v or k == "tile"}
+
+
+def _sections(query) -> tuple[dict, dict, dict]:
+    """The parameters parsed and sorted into the design's sections: ``(design, gap motif, motifs)``.
+
+    ``motifs`` are packing=archimedean's presets per polygon kind (``motif_8=table3-3``).
+    """
     design: dict = {"motif": {}, "packing": {}, "tile": {}, "output": {}, "colour": {}}
     gap: dict = {}
-    motifs: dict = {}  # packing=archimedean: a preset per polygon kind (motif_8=table3-3)
+    motifs: dict = {}
     for key, raw in query.items():
         if key not in FIELDS:
             raise QueryError(f"{key!r} is not a valid parameter, must be one of: {', '.join(FIELDS)}", key)
@@ -168,19 +190,14 @@ def design_from_query(query) -> dict:
                 design["colour"].setdefault("faces", {})[name] = value
             continue
         (gap if section == "gap_motif" else design[section])[name] = value
-    motif = design["motif"]
-    if "preset" in motif and motif["preset"] == "":
-        del motif["preset"]
-    if motif.get("special", 0) is None:
-        del motif["special"]
-    if gap.get("special", 0) is None:
-        del gap["special"]
+    return design, gap, motifs
+
+
+def _packing(design: dict, gap: dict, motifs: dict, query) -> None:
+    """The packing section completed in place: dropped for packing=none (refusing its other keys), given
+    its motifs per polygon kind (archimedean only) and its gap motif."""
     if design["packing"].get("kind", "hex") == "none":
-        if gap or motifs or len(design["packing"]) > 1:
-            extra = sorted(k for k in query if FIELDS[k][0] in ("packing", "gap_motif", "motifs") and k != "packing")
-            raise QueryError(
-                f"{extra[0]} has no meaning with packing=none; remove it or choose packing=hex or square", extra[0]
-            )
+        _refuse_with_no_packing(design["packing"], gap, motifs, query)
         del design["packing"]
     if motifs and "packing" in design:
         if design["packing"].get("kind") != "archimedean":
@@ -194,18 +211,30 @@ def design_from_query(query) -> dict:
         if "preset" not in gap:  # one of n / radii alone: the other from the default gap motif
             gap = {**{k: list(v) if isinstance(v, tuple) else v for k, v in _schema.GAP_MOTIF.items()}, **gap}
         design["packing"]["gap_motif"] = gap
+
+
+def _refuse_with_no_packing(packing: dict, gap: dict, motifs: dict, query) -> None:
+    """Refuse a packing, gap motif or motif key given with packing=none, naming the first."""
+    if gap or motifs or len(packing) > 1:
+        extra = sorted(k for k in query if FIELDS[k][0] in ("packing", "gap_motif", "motifs") and k != "packing")
+        raise QueryError(
+            f"{extra[0]} has no meaning with packing=none; remove it or choose packing=hex or square", extra[0]
+        )
+
+
+def _check_profiles(output: dict) -> None:
+    """Refuse a laser or printer profile that is not bundled."""
     for key, family in (("laser_profile", "laser"), ("printer_profile", "printer")):
-        name = design["output"].get(key)
+        name = output.get(key)
         if name is not None and name not in (names := bundled_profiles(family)):
             # Profiles are chosen by bundled name only: no file path ever comes from a request.
             raise QueryError(f"{key} {name!r} is not a bundled profile, must be one of: {', '.join(names)}", key)
-    # colours are asked for when a [colour] key differs from its default (the page always sends its menus)
-    colour = {k: v for k, v in design["colour"].items() if k == "faces" or v != _schema.key(f"colour.{k}").default}
-    design["colour"] = colour
-    tile = design["tile"]
+
+
+def _tile_size(tile: dict) -> None:
+    """``width`` and ``height`` made the tile's ``size`` in place (a square when the height is missing)."""
     width, height = tile.pop("width", None), tile.pop("height", None)
     if width is not None or height is not None:
         if width is None:
             raise QueryError("width is missing: give width (and height for a rectangle)", "width")
         tile["size"] = [width, height if height is not None else width]
-    return {k: v for k, v in design.items() if v or k == "tile"}

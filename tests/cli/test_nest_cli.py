@@ -220,10 +220,10 @@ def test_a_quarter_turn_is_refused_when_the_kerf_differs_along_x_and_y(designs, 
 def test_part_outline_of_loose_parts_is_their_convex_hull():
     from shapely.geometry import box
 
-    from fabtiles.geometry.cut_plan import plan_cut
+    from fabtiles.geometry.cut_plan import CutOptions, plan_cut
 
     two = shapely.union_all([box(0, 0, 10, 10), box(20, 0, 30, 10)])
-    plan = plan_cut(two, box(0, 0, 30, 10), profile=PLY)
+    plan = plan_cut(two, box(0, 0, 30, 10), CutOptions.of(profile=PLY))
     assert part_outline(plan).area == pytest.approx(30.15 * 10.15, rel=1e-3)
 
 

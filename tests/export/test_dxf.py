@@ -30,7 +30,7 @@ from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError
 from fabtiles.export.dxf import build_document, dxf_text
-from fabtiles.geometry.cut_plan import plan_cut
+from fabtiles.geometry.cut_plan import CutOptions, plan_cut
 from fabtiles.machines.profiles import LaserLayers, Layer, load_profile
 
 PLY = load_profile("laser-3mm-plywood")
@@ -222,7 +222,7 @@ def test_bad_profile_colour_in_file(tmp_path):
 @pytest.mark.parametrize("mode", ["pierced", "score"])
 def test_fast_writer_matches_ezdxf(version, mode):
     region, outline, seg = motif_tile(size=60, stroke=1.5)
-    job = plan_cut(region=region, outline=outline, centrelines=seg, profile=PLY, dxf_version=version, mode=mode)
+    job = plan_cut(region, outline, CutOptions.of(profile=PLY, dxf_version=version, mode=mode), centrelines=seg)
     fast, _ = dxf_text(job)
     stream = io.StringIO()
     build_document(job).write(stream)
@@ -343,7 +343,7 @@ def _header_value(text: str, name: str) -> str:
 
 def _plate_plan(version="R2000", size=60.0):
     region, outline = star_plate(size=size)
-    return plan_cut(region=region, outline=outline, profile=PLY, dxf_version=version)
+    return plan_cut(region, outline, CutOptions.of(profile=PLY, dxf_version=version))
 
 
 @pytest.mark.parametrize("version", ["R12", "R2000", "R2018"])

@@ -27,7 +27,7 @@ from fabtiles.designs.design_file import design_from_text, load_design
 from fabtiles.export.dxf import dxf_bytes
 from fabtiles.geometry import tile as tile_module
 from fabtiles.geometry.contours import MITRE_LIMIT
-from fabtiles.geometry.cut_plan import plan_cut
+from fabtiles.geometry.cut_plan import CutOptions, plan_cut
 from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
@@ -74,7 +74,7 @@ def check_against_geos(design, monkeypatch, *, kerf: float, min_arcs: int = 1, r
     """The DXF of ``design`` (the pierced cut at ``kerf``) against GEOS's fine region grown by kerf / 2."""
     tile = design.build_tile()
     profile = replace(PLY, bed_mm=(2000.0, 2000.0))
-    plan = plan_cut(tile.region(), tile.outline_shape(), profile=profile, kerf_mm=kerf)
+    plan = plan_cut(tile.region(), tile.outline_shape(), CutOptions.of(profile=profile, kerf_mm=kerf))
     data = dxf_bytes(plan)
     polygons, arcs = _dxf_polygons(data)
     assert arcs >= min_arcs
@@ -145,7 +145,7 @@ def test_cut_length_and_time_measure_the_arcs():
     """The report's cut length is the arcs' length: longer than the chords by a little (measured)."""
     design = design_from_text(CIRCLES.format(tiling="3.3.3.4.4", circles="true", size=100, stroke=1.0), name="c")
     tile = design.build_tile()
-    plan = plan_cut(tile.region(), tile.outline_shape(), profile=PLY)
+    plan = plan_cut(tile.region(), tile.outline_shape(), CutOptions.of(profile=PLY))
     chords = sum(
         float(np.hypot(*np.diff(np.vstack([p, p[:1]]), axis=0).T).sum()) for layer in plan.layers for p in layer.paths
     )

@@ -14,7 +14,7 @@ from shapely.geometry import box
 
 from fabtiles.designs.design_file import load_design
 from fabtiles.geometry.cut_order import enclosing_pairs, order_paths, order_rings, travel
-from fabtiles.geometry.cut_plan import plan_cut
+from fabtiles.geometry.cut_plan import CutOptions, plan_cut
 from fabtiles.making.models import BuildOptions, Models
 from fabtiles.making.pipeline import prepare_tile
 
@@ -57,7 +57,7 @@ def test_islands_in_holes_are_cut_before_their_holes():
     plate = (
         box(0, 0, 100, 100).difference(box(10, 10, 90, 90)).union(box(20, 20, 80, 80).difference(box(40, 40, 60, 60)))
     )
-    plan = plan_cut(plate, box(0, 0, 100, 100), profile="laser-3mm-plywood")
+    plan = plan_cut(plate, box(0, 0, 100, 100), CutOptions.of(profile="laser-3mm-plywood"))
     inner = plan.paths("inner")
     assert len(inner) == 3
     assert late_enclosures(inner + plan.paths("outer")) == []
@@ -110,7 +110,7 @@ def test_score_lines_may_run_backwards_closed_rings_never():
 
 def test_tab_pieces_keep_their_direction():
     plate = box(0, 0, 50, 50).union(box(60, 0, 110, 50))
-    plan = plan_cut(plate, plate, profile="laser-3mm-plywood", tab_mm=1.0)
+    plan = plan_cut(plate, plate, CutOptions.of(profile="laser-3mm-plywood", tab_mm=1.0))
     pieces = plan.paths("outer")
     assert len(pieces) == 8
     for p in pieces:  # every piece still runs counter-clockwise around its square
@@ -132,7 +132,7 @@ def test_the_estimate_reports_both_travels():
     plate = box(0, 0, 200, 200).difference(
         shapely.union_all([box(x, y, x + 5, y + 5) for x in range(10, 190, 20) for y in (10, 180)])
     )
-    plan = plan_cut(plate, box(0, 0, 200, 200), profile="laser-3mm-plywood")
+    plan = plan_cut(plate, box(0, 0, 200, 200), CutOptions.of(profile="laser-3mm-plywood"))
     stats = plan.report.stats["job"]
     assert stats["travel_mm"] <= stats["travel_before_mm"]
     assert "head travel" in plan.estimate.travel_line()

@@ -11,7 +11,7 @@ from shapely.geometry import box
 from fabtiles import FabricationError
 from fabtiles.core.report import Report
 from fabtiles.designs.design_file import build_tile, design_from_text
-from fabtiles.geometry.cut_plan import plan_cut
+from fabtiles.geometry.cut_plan import CutOptions, plan_cut
 from fabtiles.geometry.laser_checks import check_cut_pattern
 from fabtiles.geometry.narrow import PATTERN_KEPT, check_pattern_kept
 from fabtiles.geometry.print_checks import check_print_pattern, fill_print_holes
@@ -78,10 +78,12 @@ def test_strict_profile_refuses_the_plain_tile(all_filled):
     _, tile = all_filled
     strict = replace(load_profile("laser-3mm-plywood"), strict=True)
     with pytest.raises(FabricationError, match="filled_pattern: filling the holes narrower than min_hole_mm"):
-        plan_cut(tile.region(), tile.outline_shape(), profile=strict, fill_small_holes=True, stroke=2.0)
+        plan_cut(tile.region(), tile.outline_shape(), CutOptions.of(profile=strict, fill_small_holes=True, stroke=2.0))
     # kept holes: nothing filled, nothing to say (the small holes are reported instead)
     plan = plan_cut(
-        tile.region(), tile.outline_shape(), profile="laser-3mm-plywood", fill_small_holes=False, stroke=2.0
+        tile.region(),
+        tile.outline_shape(),
+        CutOptions.of(profile="laser-3mm-plywood", fill_small_holes=False, stroke=2.0),
     )
     assert codes(plan.report) == ["small_hole"]
 

@@ -11,7 +11,7 @@ import shapely
 from shapely.geometry import Polygon, box
 
 from fabtiles import FabricationError, ParameterError
-from fabtiles.geometry.cut_plan import plan_cut
+from fabtiles.geometry.cut_plan import CutOptions, plan_cut
 from fabtiles.geometry.laser_checks import check_fits_bed, check_laser
 from fabtiles.geometry.narrow import fill_small_holes, small_hole_mask
 from fabtiles.machines.profiles import load_profile
@@ -118,13 +118,13 @@ def test_bed():
 
 def test_prepare_validates_before_work():
     plate = box(0, 0, 10, 10).difference(box(2, 2, 8, 8))
-    kw = dict(region=plate, outline=box(0, 0, 10, 10), profile=PLY)
+    outline = box(0, 0, 10, 10)
     with pytest.raises(ParameterError, match="kerf_mm must be >= 0 and <= the stroke"):
-        plan_cut(kerf_mm=1.2, stroke=1.1, **kw)
+        plan_cut(plate, outline, CutOptions.of(profile=PLY, kerf_mm=1.2, stroke=1.1))
     with pytest.raises(ParameterError, match="stroke must be >= min_feature_mm"):
-        plan_cut(stroke=0.9, **kw)
+        plan_cut(plate, outline, CutOptions.of(profile=PLY, stroke=0.9))
     with pytest.raises(FabricationError, match="small_hole"):
-        plan_cut(**(kw | dict(region=plate.difference(box(0.5, 0.5, 1, 1)), profile=replace(PLY, strict=True))))
-    job = plan_cut(kerf_mm=0, **kw)
+        plan_cut(plate.difference(box(0.5, 0.5, 1, 1)), outline, CutOptions.of(profile=replace(PLY, strict=True)))
+    job = plan_cut(plate, outline, CutOptions.of(profile=PLY, kerf_mm=0))
     report = job.report
     assert job.bounds == (0, 0, 10, 10) and report.stats["cut_length_mm"] == pytest.approx(64)

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from shapely.geometry import Point, box
 
 from fabtiles import ParameterError
-from fabtiles.geometry.cut_plan import plan_cut, plan_kit
+from fabtiles.geometry.cut_plan import CutOptions, KitOptions, plan_cut, plan_kit
 from fabtiles.geometry.job_time import path_lengths
 from fabtiles.geometry.tabs import PIECES_PER_TAB, check_tabs, tab_paths
 from fabtiles.machines.profiles import load_profile
@@ -99,8 +99,8 @@ def test_pieces_and_gaps_make_the_ring(points, outer, ratio, tab, per):
 
 def test_plan_cut_tabs_the_outer_cut_only_and_the_estimate_follows():
     plate = box(0, 0, 60, 40).difference(box(10, 10, 20, 20)).difference(box(30, 10, 50, 30))
-    plain = plan_cut(plate, box(0, 0, 60, 40), profile=PLY)
-    plan = plan_cut(plate, box(0, 0, 60, 40), profile=PLY, tab_mm=0.6, tabs_per_part=4)
+    plain = plan_cut(plate, box(0, 0, 60, 40), CutOptions.of(profile=PLY))
+    plan = plan_cut(plate, box(0, 0, 60, 40), CutOptions.of(profile=PLY, tab_mm=0.6, tabs_per_part=4))
     outer = next(layer for layer in plan.layers if layer.role == "outer")
     inner = next(layer for layer in plan.layers if layer.role == "inner")
     assert not outer.closed and inner.closed and len(inner.paths) == 2
@@ -118,13 +118,15 @@ def test_plan_cut_tabs_the_outer_cut_only_and_the_estimate_follows():
 def test_the_outline_cut_of_the_other_modes_gets_tabs(mode):
     plate = box(0, 0, 30, 30).difference(box(10, 10, 20, 20))
     lines = np.array([[[0, 15], [30, 15]]], float)
-    plan = plan_cut(plate, box(0, 0, 30, 30), profile=PLY, mode=mode, centrelines=lines, tab_mm=0.5, tabs_per_part=2)
+    plan = plan_cut(
+        plate, box(0, 0, 30, 30), CutOptions.of(profile=PLY, mode=mode, tab_mm=0.5, tabs_per_part=2), centrelines=lines
+    )
     assert len(plan.paths("outer")) == 2 and plan.report.stats["tabs"]["tabs"] == 2
 
 
 def test_an_inlay_kits_lattice_and_pieces_get_tabs():
     plate = box(0, 0, 40, 40).difference(box(5, 5, 15, 15)).difference(box(20, 20, 35, 35))
-    kit = plan_kit(plate, box(0, 0, 40, 40), profile=PLY, tab_mm=0.5, tabs_per_part=3)
+    kit = plan_kit(plate, box(0, 0, 40, 40), KitOptions.of(profile=PLY, tab_mm=0.5, tabs_per_part=3))
     assert len(kit.lattice.paths("outer")) == 3
     assert len(kit.pieces.paths("outer")) == 6 and kit.pieces.estimate.pierces == 6
     assert kit.report.stats["pieces_tabs"]["tabs"] == 6
@@ -143,12 +145,12 @@ def test_an_inlay_kits_lattice_and_pieces_get_tabs():
 )
 def test_bad_tabs_are_parameter_errors(tab, per, msg):
     with pytest.raises(ParameterError, match=msg):
-        plan_cut(box(0, 0, 10, 10), box(0, 0, 10, 10), profile=PLY, tab_mm=tab, tabs_per_part=per)
+        plan_cut(box(0, 0, 10, 10), box(0, 0, 10, 10), CutOptions.of(profile=PLY, tab_mm=tab, tabs_per_part=per))
 
 
 def test_no_tabs_by_default():
     assert check_tabs(None, None) == (0.0, 4)
-    plan = plan_cut(box(0, 0, 10, 10), box(0, 0, 10, 10), profile=PLY, tab_mm=0.0)
+    plan = plan_cut(box(0, 0, 10, 10), box(0, 0, 10, 10), CutOptions.of(profile=PLY, tab_mm=0.0))
     assert plan.layers[-1].closed and "tabs" not in plan.report.stats
 
 
@@ -160,11 +162,13 @@ def test_routers_and_waterjets_leave_tabs_to_cam(profile):
         match=rf"tab_mm must be 0 for {p.kind} profile '{profile}', got 0\.5: a "
         rf"{p.kind} file holds the part whole and CAM adds the holding tabs",
     ):
-        plan_cut(box(0, 0, 100, 100), box(0, 0, 100, 100), profile=p, tab_mm=0.5)
+        plan_cut(box(0, 0, 100, 100), box(0, 0, 100, 100), CutOptions.of(profile=p, tab_mm=0.5))
 
 
 def test_a_kits_tab_no_wider_than_the_kerf_is_refused():
     with pytest.raises(ParameterError, match=r"tab_mm must be 0 \(no tabs\) or more than the kerf \(0\.3 mm\)"):
         plan_kit(
-            box(0, 0, 40, 40).difference(box(5, 5, 15, 15)), box(0, 0, 40, 40), profile=PLY, kerf_mm=0.3, tab_mm=0.2
+            box(0, 0, 40, 40).difference(box(5, 5, 15, 15)),
+            box(0, 0, 40, 40),
+            KitOptions.of(profile=PLY, kerf_mm=0.3, tab_mm=0.2),
         )

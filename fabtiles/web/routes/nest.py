@@ -78,59 +78,9 @@ def read_body(body, *, limits: _limits.Limits) -> dict:
     ...
     fabtiles.web.routes.nest.NestError: designs[0].count must be a whole number >= 1, got 0
     """
-    if not isinstance(body, dict):
-        raise NestError(
-            f"the body must be a JSON object with designs, sheet, gap_mm, rotate, time_s and format, "
-            f"got {type(body).__name__}",
-            "designs",
-        )
-    unknown = sorted(set(body) - {"designs", "sheet", "gap_mm", "rotate", "time_s", "format"})
-    if unknown:
-        raise NestError(
-            f"{unknown[0]!r} is not a nest field, must be one of: designs, sheet, gap_mm, rotate, time_s, format",
-            unknown[0],
-        )
-    entries = body.get("designs")
-    if not isinstance(entries, list) or not entries:
-        raise NestError("designs must be a non-empty list of {query, count}: give at least one design", "designs")
-    designs: list = []
-    names: dict = {}
-    for k, entry in enumerate(entries):
-        where = f"designs[{k}]"
-        if not isinstance(entry, dict) or not isinstance(entry.get("query", ""), str):
-            raise NestError(
-                f'{where} must be {{"query": "<the editor\'s query>", "count": N}}, got {entry!r:.80}', where
-            )
-        count = entry.get("count", 1)
-        if isinstance(count, bool) or not isinstance(count, (int, float)) or not float(count).is_integer() or count < 1:
-            raise NestError(f"{where}.count must be a whole number >= 1, got {count!r}", f"{where}.count")
-        query = dict(parse_qsl(entry.get("query", "").lstrip("?"), keep_blank_values=True))
-        try:
-            _, spec, _ = design_of_query(query, limits=limits)
-        except FabtilesError as exc:
-            field = getattr(exc, "field", None) or field_of_param(getattr(exc, "key", None))
-            raise NestError(
-                f"design {k + 1}: {user_message(exc, field)}", f"{where}.{field}" if field else f"{where}.query"
-            ) from exc
-        # two designs of one name (two edited ones, "custom") stay apart in the sheets' counts
-        names[spec.name] = names.get(spec.name, 0) + 1
-        if names[spec.name] > 1:
-            spec = dataclasses.replace(spec, name=f"{spec.name}-{names[spec.name]}")
-        designs.append((spec, int(count)))
-    sheet = body.get("sheet")
-    if sheet is not None:
-        if (
-            not isinstance(sheet, list)
-            or len(sheet) != 2
-            or any(
-                isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0 for v in sheet
-            )
-        ):
-            raise NestError(
-                f"sheet must be [width, height] in mm, each > 0 (or null: the cutter profile's bed), got {sheet!r}",
-                "sheet",
-            )
-        sheet = (float(sheet[0]), float(sheet[1]))
+    _check_fields(body)
+    designs = _designs(body.get("designs"), limits)
+    sheet = _sheet_mm(body.get("sheet"))
     rotate = body.get("rotate", "90")
     if rotate not in ROTATIONS:
         raise NestError(f"rotate must be one of: {', '.join(ROTATIONS)}, got {rotate!r}", "rotate")
@@ -153,6 +103,73 @@ def read_body(body, *, limits: _limits.Limits) -> dict:
     return dict(
         designs=designs, sheet_mm=sheet, gap_mm=_number(body, "gap_mm"), rotations=rotate, time_s=time_s, format=fmt
     )
+
+
+def _check_fields(body) -> None:
+    """Refuse a body that is not a JSON object, or that has a field the nest does not know."""
+    if not isinstance(body, dict):
+        raise NestError(
+            f"the body must be a JSON object with designs, sheet, gap_mm, rotate, time_s and format, "
+            f"got {type(body).__name__}",
+            "designs",
+        )
+    unknown = sorted(set(body) - {"designs", "sheet", "gap_mm", "rotate", "time_s", "format"})
+    if unknown:
+        raise NestError(
+            f"{unknown[0]!r} is not a nest field, must be one of: designs, sheet, gap_mm, rotate, time_s, format",
+            unknown[0],
+        )
+
+
+def _designs(entries, limits: _limits.Limits) -> list:
+    """The body's designs, ``[(spec, count), ...]``: each entry's query made a design, two of one name told apart."""
+    if not isinstance(entries, list) or not entries:
+        raise NestError("designs must be a non-empty list of {query, count}: give at least one design", "designs")
+    designs: list = []
+    names: dict = {}
+    for k, entry in enumerate(entries):
+        spec, count = _design_entry(k, entry, limits)
+        # two designs of one name (two edited ones, "custom") stay apart in the sheets' counts
+        names[spec.name] = names.get(spec.name, 0) + 1
+        if names[spec.name] > 1:
+            spec = dataclasses.replace(spec, name=f"{spec.name}-{names[spec.name]}")
+        designs.append((spec, count))
+    return designs
+
+
+def _design_entry(k: int, entry, limits: _limits.Limits) -> tuple:
+    """Entry ``k`` of the body's designs checked: its design and its count."""
+    where = f"designs[{k}]"
+    if not isinstance(entry, dict) or not isinstance(entry.get("query", ""), str):
+        raise NestError(f'{where} must be {{"query": "<the editor\'s query>", "count": N}}, got {entry!r:.80}', where)
+    count = entry.get("count", 1)
+    if isinstance(count, bool) or not isinstance(count, (int, float)) or not float(count).is_integer() or count < 1:
+        raise NestError(f"{where}.count must be a whole number >= 1, got {count!r}", f"{where}.count")
+    query = dict(parse_qsl(entry.get("query", "").lstrip("?"), keep_blank_values=True))
+    try:
+        _, spec, _ = design_of_query(query, limits=limits)
+    except FabtilesError as exc:
+        field = getattr(exc, "field", None) or field_of_param(getattr(exc, "key", None))
+        raise NestError(
+            f"design {k + 1}: {user_message(exc, field)}", f"{where}.{field}" if field else f"{where}.query"
+        ) from exc
+    return spec, int(count)
+
+
+def _sheet_mm(sheet) -> tuple | None:
+    """The body's sheet, ``(width, height)`` mm, checked (None: the cutter profile's bed)."""
+    if sheet is None:
+        return None
+    if (
+        not isinstance(sheet, list)
+        or len(sheet) != 2
+        or any(isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0 for v in sheet)
+    ):
+        raise NestError(
+            f"sheet must be [width, height] in mm, each > 0 (or null: the cutter profile's bed), got {sheet!r}",
+            "sheet",
+        )
+    return (float(sheet[0]), float(sheet[1]))
 
 
 def nest_files(body, *, limits: _limits.Limits):
