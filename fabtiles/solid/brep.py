@@ -330,6 +330,39 @@ def planar_brep(
     of the coverage (a cell of its grid) is a face of its own, and a one-level body's bottom too
     (see :data:`MAX_FACE_HOLES`); else the pieces at one level are merged first. ``chords``: the
     circles ``(cx, cy, r)`` (:func:`_circle_key`) whose arcs stay chords (see :func:`brep_of_part`).
+
+    The faces are made in the order walls (arcs first), tops, bottoms: the edges are
+    numbered as they are first met, so the order fixes the file written.
+    """
+    cov = Coverage(_unpinched(_level_pieces(cov, cells)), cov.levels)
+    topo = topology(cov, triangulate=False, exact=True)
+    z = np.asarray(cov.levels, float)
+    ed = _Edges()
+    walls = _walls(topo)
+    vxy, side_of = _outline_points(topo, sides, what)
+
+    arcs = _wall_arcs(topo, vxy, tolerance_mm, radii) if tolerance_mm > 0 else []
+    if chords:
+        arcs = [a for a in arcs if _circle_key(a[1], a[2]) not in chords]
+    _ends_onto_circles(topo, vxy, arcs)
+    faces, in_arc = _arc_faces(ed, topo, vxy, z, arcs, walls.splits)
+    if arcs:  # the other walls stay planar
+        walls = walls.without(in_arc)
+    wall_edges, keys = _plain_walls(ed, topo, walls, vxy, side_of, sides)
+    faces += _wall_faces(ed, walls, wall_edges, keys, vxy, z, sides, what)
+    faces += _top_faces(ed, topo, z, reverse=False)
+    if cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
+        faces += _top_faces(ed, topo, z, reverse=True)
+    else:
+        faces += _bottom_faces(ed, topo, vxy, z, what)
+    return _finish(ed, vxy, z, faces, what)
+
+
+def _level_pieces(cov: Coverage, cells: bool) -> list:
+    """The coverage's pieces as ``[(MultiPolygon, level), ...]``, by level, oriented.
+
+    The pieces at one level are merged, so that a flat region is one face whatever
+    the coverage's cells; with ``cells`` each cell keeps its own piece (a face each).
     """
     import shapely
 
@@ -338,18 +371,44 @@ def planar_brep(
         by_level.setdefault(int(lvl), []).append(geom)
     pieces = []
     for lvl, geoms in sorted(by_level.items()):
-        # one piece per level (a flat region one face whatever the coverage's cells), or each cell's own
         for merged in geoms if cells else [geoms[0] if len(geoms) == 1 else shapely.coverage_union_all(geoms)]:
             if merged.geom_type == "Polygon":  # one polygon (a flush mosaic's whole top): as the others, a multi
                 merged = shapely.MultiPolygon([merged])
             pieces.append((shapely.orient_polygons(merged), lvl))
-    cov = Coverage(_unpinched(pieces), cov.levels)
-    topo = topology(cov, triangulate=False, exact=True)
-    z = np.asarray(cov.levels, float)
-    ed = _Edges()
-    faces = []
+    return pieces
 
-    # --- walls: one per ring edge whose neighbour across it is lower
+
+@dataclass(frozen=True)
+class _Walls:
+    """The walls of a topology: one per ring edge whose neighbour across it is lower.
+
+    ``at``: their ring positions; ``u``, ``v``: the vertices at their ends (material on
+    the left); ``lo``, ``hi``: their bottom and top levels; ``splits``: per vertex, the
+    levels where the walls meeting there start or stop (its vertical edges' ends).
+    """
+
+    at: np.ndarray
+    u: list
+    v: list
+    lo: list
+    hi: list
+    splits: dict
+
+    def without(self, dropped: np.ndarray) -> _Walls:
+        """These walls less those at the ring positions marked in ``dropped`` (the arcs' walls)."""
+        keep = np.flatnonzero(~dropped[self.at])
+        return _Walls(
+            self.at[keep],
+            [self.u[i] for i in keep],
+            [self.v[i] for i in keep],
+            [self.lo[i] for i in keep],
+            [self.hi[i] for i in keep],
+            self.splits,
+        )
+
+
+def _walls(topo) -> _Walls:
+    """The walls of ``topo`` and the levels at which each vertex's vertical edges are split."""
     u_all, v_all = topo.vid, topo.vid[topo.nxt]
     w = np.flatnonzero((topo.level > topo.out_level) & (u_all != v_all))
     wu, wv = u_all[w].tolist(), v_all[w].tolist()
@@ -361,37 +420,58 @@ def planar_brep(
             s = splits.setdefault(p, set())
             s.add(lo)
             s.add(hi)
-    splits = {p: sorted(s) for p, s in splits.items()}
+    return _Walls(w, wu, wv, wlo, whi, {p: sorted(s) for p, s in splits.items()})
 
-    def side(p, lo, hi, up):
-        """Signed vertical edges at vertex p from lo to hi (up) or hi to lo."""
-        ks = [k for k in splits[p] if lo <= k <= hi]
-        pairs = list(pairwise(ks))
-        if up:
-            return [(ed.point(p, a), ed.point(p, b), ed.vertical(p, a, b)) for a, b in pairs]
-        return [(ed.point(p, b), ed.point(p, a), ed.vertical(p, b, a)) for a, b in reversed(pairs)]
 
-    ij = np.round(topo.xy / QUANTUM).astype(np.int64)
-    on_grid = np.all(ij * QUANTUM == topo.xy, axis=1)
+def _vertical_run(ed: _Edges, splits: dict, p, lo, hi, up: bool) -> list:
+    """Signed vertical edges at vertex p from level lo to hi (``up``) or from hi to lo.
+
+    Each is ``(start node, end node, signed edge)``, one per pair of adjacent split
+    levels of p, so that every face beside p meets the same edges.
+    """
+    ks = [k for k in splits[p] if lo <= k <= hi]
+    pairs = list(pairwise(ks))
+    if up:
+        return [(ed.point(p, a), ed.point(p, b), ed.vertical(p, a, b)) for a, b in pairs]
+    return [(ed.point(p, b), ed.point(p, a), ed.vertical(p, b, a)) for a, b in reversed(pairs)]
+
+
+def _outline_points(topo, sides, what: str):
+    """The ring points, those of the outer boundary on a straight side moved onto it: ``(xy, side_of)``.
+
+    See :func:`_onto_sides`; the moves that would make a piece or a bottom loop
+    invalid are undone (:func:`_keep_pieces_valid`).
+    """
+    u_all, v_all = topo.vid, topo.vid[topo.nxt]
     outer = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
     vxy, side_of = _onto_sides(topo.xy, sides, np.column_stack([u_all[outer], v_all[outer]]))
     outer_loops = [
         [int(u_all[outer[i]]) for i in lp] for lp in _chain([(int(u_all[e]), int(v_all[e]), e) for e in outer], what)
     ]
     _keep_pieces_valid(topo, vxy, side_of, outer_loops)
-    sides_arr: Any = None if sides is None else np.asarray(sides, float)  # read only where sides are given
-    whole = None if sides is None else {tuple(row): k for k, row in enumerate(sides_arr.tolist())}
+    return vxy, side_of
 
-    # --- arcs: one cylinder face per arc of walls, its circle edges shared with the flat faces
-    arcs = _wall_arcs(topo, vxy, tolerance_mm, radii) if tolerance_mm > 0 else []
-    if chords:
-        arcs = [a for a in arcs if _circle_key(a[1], a[2]) not in chords]
-    in_arc = np.zeros(len(u_all), bool)
+
+def _ends_onto_circles(topo, vxy, arcs) -> None:
+    """Move the ends of the arcs marked ``onto`` (a whole circle's halves) onto their circle, in place."""
+    u_all, v_all = topo.vid, topo.vid[topo.nxt]
     for at, centre, radius, _, onto in arcs:
         if onto:
             for p in (int(u_all[at[0]]), int(v_all[at[-1]])):
                 d = vxy[p] - centre
                 vxy[p] = centre + d * (radius / np.hypot(d[0], d[1]))
+
+
+def _arc_faces(ed: _Edges, topo, vxy, z, arcs, splits) -> tuple[list, np.ndarray]:
+    """One cylinder face per arc of walls, its circle edges shared with the flat faces.
+
+    Returns the faces and, per ring position, whether its wall is in an arc (those
+    walls are not planar faces). Each arc's chords at its two levels are recorded in
+    ``ed.arc_of``, so that the flat faces take the arc for them.
+    """
+    u_all, v_all = topo.vid, topo.vid[topo.nxt]
+    in_arc = np.zeros(len(u_all), bool)
+    faces = []
     for j, (at, centre, radius, sweep, _) in enumerate(arcs):
         in_arc[at] = True
         lo, hi = int(topo.out_level[at[0]]), int(topo.level[at[0]])
@@ -407,8 +487,8 @@ def planar_brep(
             for x, y in pairwise(chain):
                 ed.arc_of[(min(x, y), max(x, y), lvl)] = (("a", j, lvl), x if ccw else y)
         # the chain runs with the material on its left, as a wall's bottom edge does
-        loop = [signed[lo]] + [e for _, _, e in side(chain[-1], lo, hi, up=True)]
-        loop += [~signed[hi]] + [e for _, _, e in side(chain[0], lo, hi, up=False)]
+        loop = [signed[lo]] + [e for _, _, e in _vertical_run(ed, splits, chain[-1], lo, hi, up=True)]
+        loop += [~signed[hi]] + [e for _, _, e in _vertical_run(ed, splits, chain[0], lo, hi, up=False)]
         ref = seam_direction(vxy[a_vid] - centre, abs(sweep))
         faces.append(
             Face(
@@ -420,17 +500,28 @@ def planar_brep(
                 inward=not ccw,
             )
         )
-    if arcs:  # the other walls stay planar
-        keep = np.flatnonzero(~in_arc[w])
-        wu, wv = [wu[i] for i in keep], [wv[i] for i in keep]
-        wlo, whi = [wlo[i] for i in keep], [whi[i] for i in keep]
-    wall_edges = []  # per wall: its directed edges (start node, end node, signed edge)
+    return faces, in_arc
+
+
+def _plain_walls(ed: _Edges, topo, walls: _Walls, vxy, side_of, sides) -> tuple[list, list]:
+    """Each planar wall's directed edges and the key of its vertical plane: ``(wall_edges, keys)``.
+
+    A wall's edges are ``(start node, end node, signed edge)``: along its bottom, up
+    its end, back along its top, down its start. Walls with equal keys lie in one
+    plane: a straight side of the outline, or the line through two grid points (an
+    exact integer key); any other wall is a plane of its own.
+    """
+    ij = np.round(topo.xy / QUANTUM).astype(np.int64)
+    on_grid = np.all(ij * QUANTUM == topo.xy, axis=1)
+    sides_arr: Any = None if sides is None else np.asarray(sides, float)  # read only where sides are given
+    whole = None if sides is None else {tuple(row): k for k, row in enumerate(sides_arr.tolist())}
+    wall_edges = []
     keys: list[tuple] = []
-    for a, b, lo, hi in zip(wu, wv, wlo, whi, strict=True):
+    for a, b, lo, hi in zip(walls.u, walls.v, walls.lo, walls.hi, strict=True):
         loop = [(ed.point(a, lo), ed.point(b, lo), ed.horizontal(a, b, lo))]
-        loop += side(b, lo, hi, up=True)
+        loop += _vertical_run(ed, walls.splits, b, lo, hi, up=True)
         loop.append((ed.point(b, hi), ed.point(a, hi), ed.horizontal(b, a, hi)))
-        loop += side(a, lo, hi, up=False)
+        loop += _vertical_run(ed, walls.splits, a, lo, hi, up=False)
         wall_edges.append(loop)
         k = _side_of_wall(a, b, side_of, vxy, sides_arr, whole)
         if k >= 0:  # along a straight side of the outline: its plane
@@ -443,74 +534,95 @@ def planar_brep(
             g = gcd(dx, dy)
             dx, dy = dx // g, dy // g
             keys.append((dx, dy, dy * int(ij[a, 0]) - dx * int(ij[a, 1])))
+    return wall_edges, keys
 
-    # walls in one plane that share a vertical edge are one face
-    users: dict = {}
-    for i, loop in enumerate(wall_edges):
-        for _, _, e in loop:
-            users.setdefault(e if e >= 0 else ~e, []).append(i)
-    groups = _groups(
-        len(wall_edges), (us for us in users.values() if len(us) == 2 and us[0] != us[1] and keys[us[0]] == keys[us[1]])
-    )
 
+def _wall_faces(ed: _Edges, walls: _Walls, wall_edges, keys, vxy, z, sides, what: str) -> list:
+    """The planar wall faces: the walls in one plane that share a vertical edge are one face."""
+    groups = _plane_groups(wall_edges, keys)
     pts = _node_xyz(ed, vxy, z)  # every wall node exists by now
+    sides_arr: Any = None if sides is None else np.asarray(sides, float)
+    faces = []
     for members in groups:
         key = keys[members[0]]
         dx, dy = key[-2:] if isinstance(key[0], str) else key[:2]
-        a0 = wu[members[0]]
-        origin = (float(vxy[a0, 0]), float(vxy[a0, 1]), float(z[wlo[members[0]]]))
+        a0 = walls.u[members[0]]
+        origin = (float(vxy[a0, 0]), float(vxy[a0, 1]), float(z[walls.lo[members[0]]]))
         if key[0] == "side":
             origin = (float(sides_arr[key[1], 0]), float(sides_arr[key[1], 1]), origin[2])
         normal, ref = (float(dy), float(-dx), 0.0), (float(dx), float(dy), 0.0)
         if len(members) == 1:
             faces.append(Face(origin, normal, ref, (tuple(e for _, _, e in wall_edges[members[0]]),)))
             continue
-        # drop the edges inside the merged face (used by two of its walls), chain the rest
-        count: dict = {}
-        for i in members:
-            for _, _, e in wall_edges[i]:
-                key = e if e >= 0 else ~e
-                count[key] = count.get(key, 0) + 1
-        directed = [d for i in members for d in wall_edges[i] if count[d[2] if d[2] >= 0 else ~d[2]] == 1]
-        loops = _chain(directed, what)
-        # the outer loop is the one of largest area in the wall's own (s, z) coordinates
-        dirn = np.array([dx, dy], float) / np.hypot(dx, dy)
+        faces.append(Face(origin, normal, ref, _merged_wall_loops(members, wall_edges, pts, dx, dy, what)))
+    return faces
 
-        def area(loop, directed=directed, dirn=dirn):
-            nodes = [directed[i][0] for i in loop]
-            p = pts[nodes]
-            return _loop_area(np.column_stack([p[:, :2] @ dirn, p[:, 2]]))
 
-        loops.sort(key=area, reverse=True)
-        faces.append(Face(origin, normal, ref, tuple(tuple(directed[i][2] for i in lp) for lp in loops)))
+def _plane_groups(wall_edges, keys) -> list:
+    """The walls grouped into faces: two walls with equal plane keys that share a vertical edge are joined."""
+    users: dict = {}
+    for i, loop in enumerate(wall_edges):
+        for _, _, e in loop:
+            users.setdefault(e if e >= 0 else ~e, []).append(i)
+    return _groups(
+        len(wall_edges), (us for us in users.values() if len(us) == 2 and us[0] != us[1] and keys[us[0]] == keys[us[1]])
+    )
 
-    # --- horizontal tops: each polygon of each piece at its level
+
+def _merged_wall_loops(members, wall_edges, pts, dx, dy, what: str) -> tuple:
+    """The loops of the face of several walls in one plane, the outer one first.
+
+    The edges two of its walls share lie inside the face and are dropped; the rest
+    are chained. The outer loop is the one of largest area in the plane's own
+    (along, up) coordinates.
+    """
+    count: dict = {}
+    for i in members:
+        for _, _, e in wall_edges[i]:
+            key = e if e >= 0 else ~e
+            count[key] = count.get(key, 0) + 1
+    directed = [d for i in members for d in wall_edges[i] if count[d[2] if d[2] >= 0 else ~d[2]] == 1]
+    loops = _chain(directed, what)
+    dirn = np.array([dx, dy], float) / np.hypot(dx, dy)
+
+    def area(loop):
+        p = pts[[directed[i][0] for i in loop]]
+        return _loop_area(np.column_stack([p[:, :2] @ dirn, p[:, 2]]))
+
+    loops.sort(key=area, reverse=True)
+    return tuple(tuple(directed[i][2] for i in lp) for lp in loops)
+
+
+def _top_faces(ed: _Edges, topo, z, *, reverse: bool) -> list:
+    """A horizontal face per polygon of each piece: its top at the piece's level, or (``reverse``)
+    its bottom at level 0, its loops run backwards."""
+    faces = []
     for k in range(len(topo.piece_level)):
-        lvl = int(topo.piece_level[k])
+        lvl = 0 if reverse else int(topo.piece_level[k])
         for rings in _ring_polygons(topo, k):
             loops = []
             for r in rings:
                 idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
+                if reverse:
+                    idx = idx[::-1]
                 uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
+                if reverse:
+                    uu, vv = vv, uu
                 loops.append(
                     _collapse([ed.horizontal_or_arc(a, b, lvl) for a, b in zip(uu, vv, strict=True) if a != b])
                 )
-            faces.append(Face((0.0, 0.0, float(z[lvl])), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), tuple(loops)))
+            normal = (0.0, 0.0, -1.0) if reverse else (0.0, 0.0, 1.0)
+            faces.append(Face((0.0, 0.0, float(z[lvl])), normal, (1.0, 0.0, 0.0), tuple(loops)))
+    return faces
 
-    if cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
-        for k in range(len(topo.piece_level)):
-            for rings in _ring_polygons(topo, k):
-                loops = []
-                for r in rings:
-                    idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])[::-1]
-                    uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
-                    loops.append(
-                        _collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu, vv, strict=True) if a != b])
-                    )
-                faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops)))
-        return _finish(ed, vxy, z, faces, what)
 
-    # --- bottoms: the ring edges with nothing beside them, run backwards
+def _bottom_faces(ed: _Edges, topo, vxy, z, what: str) -> list:
+    """The bottom faces: the ring edges with nothing beside them, run backwards, each hole in its part.
+
+    The loops are sorted by their side seen from below: outer loops are faces, each
+    hole goes to the smallest outer loop that covers it.
+    """
+    u_all, v_all = topo.vid, topo.vid[topo.nxt]
     b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
     # (an arc's chords give one edge: its ends from the edge itself)
     signed = dict.fromkeys(
@@ -524,22 +636,28 @@ def planar_brep(
     for lp in loops:
         xy = _loop_points([directed[i][2] for i in lp], ed.list, ed.arcs, pts)
         (outers if _loop_area(xy) < 0 else holes).append((lp, xy))  # seen from above, reversed
-    polys = [shapely.Polygon(xy) for _, xy in outers]
     bottom_loops = [[tuple(directed[i][2] for i in lp)] for lp, _ in outers]
-    if holes:
-        tree = shapely.STRtree(polys)
-        for lp, xy in holes:
-            probe = shapely.Point(xy[0])
-            hits = [j for j in tree.query(probe) if polys[j].covers(probe)]
-            if not hits:
-                raise FabricationError(
-                    f"the B-rep of the {what} has a bottom hole outside every part; nothing was written"
-                )
-            j = min(hits, key=lambda j: polys[j].area)
-            bottom_loops[j].append(tuple(directed[i][2] for i in lp))
-    for loops_ in bottom_loops:
-        faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops_)))
-    return _finish(ed, vxy, z, faces, what)
+    for j, lp in _holes_in_parts(outers, holes, what):
+        bottom_loops[j].append(tuple(directed[i][2] for i in lp))
+    return [Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops_)) for loops_ in bottom_loops]
+
+
+def _holes_in_parts(outers: list, holes: list, what: str) -> list:
+    """``[(outer number, hole), ...]``: each bottom hole ``(loop, xy)`` with the smallest outer loop covering it."""
+    import shapely
+
+    if not holes:
+        return []
+    polys = [shapely.Polygon(xy) for _, xy in outers]
+    tree = shapely.STRtree(polys)
+    out = []
+    for lp, xy in holes:
+        probe = shapely.Point(xy[0])
+        hits = [j for j in tree.query(probe) if polys[j].covers(probe)]
+        if not hits:
+            raise FabricationError(f"the B-rep of the {what} has a bottom hole outside every part; nothing was written")
+        out.append((min(hits, key=lambda j: polys[j].area), lp))
+    return out
 
 
 def _unpinched(pieces: list) -> list:
