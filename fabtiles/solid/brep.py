@@ -204,16 +204,27 @@ def _onto_sides(xy, sides, outer):
     ``(u, v)`` (material on the left); along each side a point that would fold
     back stays where it is. Returns the points and each point's side (-1: none).
     """
-    import shapely
-
     out = np.array(xy, float)
     side_of = np.full(len(xy), -1)
     if sides is None or not len(sides) or not len(outer):
         return out, side_of
     sides = np.asarray(sides, float)
+    succ = _runs_along_sides(out, sides, outer)
+    for k in range(len(sides)):
+        _onto_side(k, sides, succ, xy, out, side_of)
+    return out, side_of
+
+
+def _runs_along_sides(xy, sides, outer) -> dict:
+    """``{(side, point): next point}``: the outer boundary's edges whose both ends are near the same side.
+
+    A point near two sides (a corner) is in the runs of both.
+    """
+    import shapely
+
     tree = shapely.STRtree(shapely.linestrings(sides.reshape(-1, 2, 2)))
     ends = np.unique(np.asarray(outer).ravel())
-    pi, si = tree.query(shapely.points(out[ends]), predicate="dwithin", distance=SIDE_TOLERANCE_MM)
+    pi, si = tree.query(shapely.points(xy[ends]), predicate="dwithin", distance=SIDE_TOLERANCE_MM)
     near: dict = {}  # point -> sides it is near (corners: both of theirs)
     for p, k in zip(ends[pi].tolist(), si.tolist(), strict=True):
         near.setdefault(p, set()).add(k)
@@ -222,25 +233,35 @@ def _onto_sides(xy, sides, outer):
         if k_common := (near.get(u, set()) & near.get(v, set())):
             for k in k_common:
                 succ.setdefault((k, u), v)
-    for k in range(len(sides)):
-        a, d = sides[k, :2], sides[k, 2:] - sides[k, :2]
-        # runs start at points with no predecessor along this side
-        preds = {v for (kk, _), v in succ.items() if kk == k}
-        starts = [u for (kk, u) in succ if kk == k and u not in preds] or [u for (kk, u) in succ if kk == k][:1]
-        for u in starts:
-            last, p, seen = -1.0, u, set()
-            while p is not None and p not in seen:
-                seen.add(p)
-                t = float(np.dot(out[p] - a, d) / np.dot(d, d))
-                corner = bool(np.all(xy[p] == sides[k, :2]) or np.all(xy[p] == sides[k, 2:]))
-                if corner:
-                    last = max(last, t)
-                elif side_of[p] < 0 and last < t < 1.0:
-                    out[p] = a + t * d
-                    side_of[p] = k
-                    last = t
-                p = succ.get((k, p))
-    return out, side_of
+    return succ
+
+
+def _run_starts(k: int, succ: dict) -> list:
+    """The points where the runs along side k start: those with no predecessor along it (a closed run: any one)."""
+    preds = {v for (kk, _), v in succ.items() if kk == k}
+    return [u for (kk, u) in succ if kk == k and u not in preds] or [u for (kk, u) in succ if kk == k][:1]
+
+
+def _onto_side(k: int, sides, succ: dict, xy, out, side_of) -> None:
+    """Move the points of the runs along side k onto its line, in place (see :func:`_onto_sides`).
+
+    Along a run, a point moves only if it lies past the last one moved (or corner
+    passed): one that would fold back stays where it is.
+    """
+    a, d = sides[k, :2], sides[k, 2:] - sides[k, :2]
+    for u in _run_starts(k, succ):
+        last, p, seen = -1.0, u, set()
+        while p is not None and p not in seen:
+            seen.add(p)
+            t = float(np.dot(out[p] - a, d) / np.dot(d, d))
+            corner = bool(np.all(xy[p] == sides[k, :2]) or np.all(xy[p] == sides[k, 2:]))
+            if corner:
+                last = max(last, t)
+            elif side_of[p] < 0 and last < t < 1.0:
+                out[p] = a + t * d
+                side_of[p] = k
+                last = t
+            p = succ.get((k, p))
 
 
 def _keep_pieces_valid(topo, vxy, side_of, outer_loops):
@@ -249,7 +270,6 @@ def _keep_pieces_valid(topo, vxy, side_of, outer_loops):
     A sliver of a piece thinner than the move (a region edge within a micron of
     the side) would collapse; its points stay on the grid instead, as they were.
     """
-    import shapely
 
     ring_of_point = np.repeat(np.arange(len(topo.ring_start) - 1), np.diff(topo.ring_start))
     poly_of_ring = np.repeat(np.arange(len(topo.piece_rings) - 1), np.diff(topo.piece_rings))
@@ -258,20 +278,27 @@ def _keep_pieces_valid(topo, vxy, side_of, outer_loops):
         rings = np.unique(ring_of_point[moved[topo.vid]])
         if not len(rings):
             return
-        pieces = np.unique(poly_of_ring[rings])
-        bad_points = []
-        for k in pieces.tolist():
-            for poly in _piece_polygons(topo, k, vxy):
-                if not shapely.is_valid(poly[0]):
-                    bad_points.extend(poly[1])
-        for ids in outer_loops:
-            if len(ids) >= 3 and (side_of[ids] >= 0).any() and not shapely.is_valid(shapely.Polygon(vxy[ids])):
-                bad_points.extend(ids)
+        bad_points = _points_of_invalid(topo, np.unique(poly_of_ring[rings]).tolist(), vxy, side_of, outer_loops)
         bad = [p for p in set(bad_points) if side_of[p] >= 0]
         if not bad:
             return
         vxy[bad] = topo.xy[bad]
         side_of[bad] = -1
+
+
+def _points_of_invalid(topo, pieces: list, vxy, side_of, outer_loops) -> list:
+    """The points of the polygons of ``pieces``, and of the outer loops with a moved point, that are invalid."""
+    import shapely
+
+    bad_points = []
+    for k in pieces:
+        for poly in _piece_polygons(topo, k, vxy):
+            if not shapely.is_valid(poly[0]):
+                bad_points.extend(poly[1])
+    for ids in outer_loops:
+        if len(ids) >= 3 and (side_of[ids] >= 0).any() and not shapely.is_valid(shapely.Polygon(vxy[ids])):
+            bad_points.extend(ids)
+    return bad_points
 
 
 def _piece_polygons(topo, k, xy):
@@ -683,14 +710,10 @@ def _unpinched(pieces: list) -> list:
     fixed: dict[int, list] = {}
     added: list[tuple[float, ...]] = []
     for i in bad.tolist():
-        poly = flat[i]
-        split = shapely.make_valid(poly, method="structure", keep_collapsed=False)
-        polys = [g for g in shapely.get_parts(split) if g.geom_type == "Polygon" and g.area > 0]
-        old = {tuple(c) for c in shapely.get_coordinates(poly).tolist()}
-        new = {tuple(c) for c in shapely.get_coordinates(polys).tolist()} if polys else set()
-        if not polys or not new <= old or abs(sum(g.area for g in polys) - poly.area) > 1e-9 * max(poly.area, 1.0):
+        split = _pinch_split(flat[i])
+        if split is None:
             continue  # not a pinch on its own vertices: left for check_brep to refuse
-        fixed[i] = polys
+        fixed[i], old = split
         added.extend(old)  # the touching vertices among them, to be put into the neighbours' edges
     if not fixed:
         return pieces
@@ -702,6 +725,22 @@ def _unpinched(pieces: list) -> list:
     return [
         (shapely.orient_polygons(shapely.MultiPolygon(polys)), lvl) for polys, (_, lvl) in zip(out, pieces, strict=True)
     ]
+
+
+def _pinch_split(poly):
+    """``(polygons, poly's points)``: an invalid polygon split where it touches itself, or None when
+    the split would add a point or change the area (not a pinch on its own vertices)."""
+    import shapely
+
+    split = shapely.make_valid(poly, method="structure", keep_collapsed=False)
+    polys = [g for g in shapely.get_parts(split) if g.geom_type == "Polygon" and g.area > 0]
+    if not polys:
+        return None
+    old = {tuple(c) for c in shapely.get_coordinates(poly).tolist()}
+    new = {tuple(c) for c in shapely.get_coordinates(polys).tolist()}
+    if not new <= old or abs(sum(g.area for g in polys) - poly.area) > 1e-9 * max(poly.area, 1.0):
+        return None
+    return polys, old
 
 
 def _with_points_on_edges(poly, pins):
@@ -791,11 +830,7 @@ def _loop_points(loop, edges, arcs, pts) -> np.ndarray:
     """
     loop = np.asarray(loop, np.int64)
     index = np.where(loop >= 0, loop, ~loop)
-    is_arc = (
-        np.fromiter((e in arcs for e in index.tolist()), bool, len(index))
-        if isinstance(arcs, dict)
-        else np.asarray(arcs)[index, 2] > 0
-    )
+    is_arc = _are_arcs(index, arcs)
     if not is_arc.any():  # straight edges only (most loops): their starts
         ends = np.asarray(edges)[index] if not isinstance(edges, list) else np.array([edges[e] for e in index])
         return pts[np.where(loop >= 0, ends[:, 0], ends[:, 1]), :2]
@@ -807,14 +842,27 @@ def _loop_points(loop, edges, arcs, pts) -> np.ndarray:
         row = arcs.get(e) if isinstance(arcs, dict) else arcs[e]
         if row is None or row[2] <= 0:
             continue
-        cx, cy, r, sweep = (float(v) for v in row[:4])
-        step = 2.0 * np.arccos(max(1.0 - ARC_SAGITTA_MM / r, -1.0))
-        n = max(4, int(np.ceil(sweep / step)))
-        t0 = np.arctan2(pts[a, 1] - cy, pts[a, 0] - cx)
-        t = t0 + sweep * np.arange(1, n) / n
-        inner = np.column_stack([cx + r * np.cos(t), cy + r * np.sin(t)])
+        inner = _arc_inner_points(row, pts[a])
         out.extend(inner if s >= 0 else inner[::-1])
     return np.asarray(out, float).reshape(-1, 2)
+
+
+def _are_arcs(index, arcs) -> np.ndarray:
+    """Whether each of the edges ``index`` is an arc, ``arcs`` a mapping or an array (see :func:`_loop_points`)."""
+    if isinstance(arcs, dict):
+        return np.fromiter((e in arcs for e in index.tolist()), bool, len(index))
+    return np.asarray(arcs)[index, 2] > 0
+
+
+def _arc_inner_points(row, start) -> np.ndarray:
+    """The points inside an arc ``(cx, cy, r, sweep, ...)`` from ``start``, counter-clockwise, its
+    chords within :data:`ARC_SAGITTA_MM` (at least four)."""
+    cx, cy, r, sweep = (float(v) for v in row[:4])
+    step = 2.0 * np.arccos(max(1.0 - ARC_SAGITTA_MM / r, -1.0))
+    n = max(4, int(np.ceil(sweep / step)))
+    t0 = np.arctan2(start[1] - cy, start[0] - cx)
+    t = t0 + sweep * np.arange(1, n) / n
+    return np.column_stack([cx + r * np.cos(t), cy + r * np.sin(t)])
 
 
 def seam_direction(start, sweep: float) -> np.ndarray:
@@ -875,49 +923,44 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
     (measured: one closed circle and its seam written as a plain line read back as an
     invalid face).
     """
-    import shapely
-
     from ..geometry.arcs import GRID_LINK_SLACK, arc_runs_many
 
+    jobs = _arc_search_jobs(topo)
+    if not jobs:
+        return []
+    searched = _searched_vertices(jobs, xy)
+    out: list = []
+    for closed in (True, False):
+        ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
+        found = arc_runs_many(
+            [xy[jobs[k][1][searched[k]]] for k in ks],
+            tolerance_mm=tolerance_mm,
+            closed=closed,
+            link_slack=GRID_LINK_SLACK,
+            radii=radii,
+        )
+        for k, runs in zip(ks, found, strict=True):
+            if len(runs.first):
+                out.extend(_found_arcs(xy, jobs[k][0], jobs[k][1], searched[k], runs))
+    return out
+
+
+def _arc_search_jobs(topo) -> list:
+    """The stretches of walled ring edges to search for arcs: ``[(ring positions, their vertices, closed), ...]``.
+
+    A ring is cut where its wall's bottom level changes, where the wall stops, and at
+    the vertices where more than two boundary edges meet; a ring with no cut is one
+    closed stretch (see :func:`_wall_arcs`).
+    """
     u, v = topo.vid, topo.vid[topo.nxt]
+    n_points = len(topo.xy)
     real = u != v
     # each boundary edge once, as one int64 key (np.unique of rows sorted them lexically: 30 ms of the sheet's)
     lo_v, hi_v = np.minimum(u, v)[real].astype(np.int64), np.maximum(u, v)[real].astype(np.int64)
-    edge_keys = np.unique(lo_v * len(xy) + hi_v)
-    degree = np.bincount(np.r_[edge_keys // len(xy), edge_keys % len(xy)], minlength=len(xy))
+    edge_keys = np.unique(lo_v * n_points + hi_v)
+    degree = np.bincount(np.r_[edge_keys // n_points, edge_keys % n_points], minlength=n_points)
     walled = real & (topo.level > topo.out_level)
-    out = []
-
-    def collect(positions, verts, at, runs):
-        """The arcs ``runs`` found among the vertices ``at`` of ``verts`` (the ends of ``positions``)."""
-        n = len(positions)
-        if runs.full:  # a whole circle: two halves (see above), its sense the ring's
-            turn = np.copysign(1.0, _loop_area(xy[verts[at]]))
-            # the halves' ends: the vertices nearest the circle, one in each half of the ring
-            d = xy[verts[at]] - runs.centre[0]
-            off = np.abs(np.hypot(d[:, 0], d[:, 1]) - runs.radius[0])
-            m = len(at) // 2
-            i = int(np.argmin(off[:m]))
-            lo = i + m // 2  # at least a quarter of the ring away on either side
-            j = lo + int(np.argmin(off[lo : min(i + m + m // 2 + 1, len(at) - m // 2 + i + 1, len(at))]))
-            if max(off[i], off[j]) > ON_LINE_MM:
-                return  # moved onto the circle they would change the faces: the ring stays planar
-            for a, b in ((at[i], at[j]), (at[j], at[i] + n)):
-                part = positions[np.arange(a, b) % n]
-                ends = xy[[verts[a % n], verts[b % n]]] - runs.centre[0]
-                t = np.arctan2(ends[:, 1], ends[:, 0])
-                sweep = ((t[1] - t[0]) * turn) % (2 * np.pi)
-                out.append((part, runs.centre[0], float(runs.radius[0]), float(turn * sweep), True))
-            return
-        for first, last, c, rad, sw in zip(
-            runs.first.tolist(), runs.last.tolist(), runs.centre, runs.radius.tolist(), runs.sweep.tolist(), strict=True
-        ):
-            a, b = at[first], at[last]
-            if b <= a:
-                b += n
-            out.append((positions[np.arange(a, b) % n], c, rad, sw, False))
-
-    jobs = []  # (ring positions, their vertices, closed)
+    jobs = []
     for r in range(len(topo.ring_start) - 1):
         idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
         idx = idx[real[idx]]
@@ -933,9 +976,14 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
             seg = idx[(s0 + np.arange((s1 - s0) % len(idx) or len(idx))) % len(idx)]
             if walled[seg[0]] and len(seg) >= 3:
                 jobs.append((seg, np.append(u[seg], v[seg[-1]]), False))
-    if not jobs:
-        return out
-    # the vertices searched: those Douglas-Peucker keeps within ON_LINE_MM, all rings in one GEOS call
+    return jobs
+
+
+def _searched_vertices(jobs: list, xy) -> list:
+    """Per job, the positions of its vertices searched for arcs: those Douglas-Peucker keeps within
+    :data:`ON_LINE_MM` (all rings in one GEOS call), and an open stretch's ends."""
+    import shapely
+
     lines = np.array(
         [shapely.linearrings(xy[verts]) if closed else shapely.linestrings(xy[verts]) for _, verts, closed in jobs],
         dtype=object,
@@ -956,18 +1004,47 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
         if not closed:
             keep[[0, -1]] = True
         searched.append(np.flatnonzero(keep))
-    for closed in (True, False):
-        ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
-        found = arc_runs_many(
-            [xy[jobs[k][1][searched[k]]] for k in ks],
-            tolerance_mm=tolerance_mm,
-            closed=closed,
-            link_slack=GRID_LINK_SLACK,
-            radii=radii,
-        )
-        for k, runs in zip(ks, found, strict=True):
-            if len(runs.first):
-                collect(jobs[k][0], jobs[k][1], searched[k], runs)
+    return searched
+
+
+def _found_arcs(xy, positions, verts, at, runs) -> list:
+    """The arcs ``runs`` found among the vertices ``at`` of ``verts`` (the ends of ``positions``),
+    as :func:`_wall_arcs` returns them; a whole circle as two halves (see there)."""
+    n = len(positions)
+    if runs.full:
+        return _circle_halves(xy, positions, verts, at, runs)
+    out = []
+    for first, last, c, rad, sw in zip(
+        runs.first.tolist(), runs.last.tolist(), runs.centre, runs.radius.tolist(), runs.sweep.tolist(), strict=True
+    ):
+        a, b = at[first], at[last]
+        if b <= a:
+            b += n
+        out.append((positions[np.arange(a, b) % n], c, rad, sw, False))
+    return out
+
+
+def _circle_halves(xy, positions, verts, at, runs) -> list:
+    """A whole circle's two halves, its sense the ring's, between the vertices nearest the circle, one
+    in each half of the ring; none when those are farther than :data:`ON_LINE_MM` from it (moved onto
+    the circle they would change the faces: the ring stays planar)."""
+    n = len(positions)
+    turn = np.copysign(1.0, _loop_area(xy[verts[at]]))
+    d = xy[verts[at]] - runs.centre[0]
+    off = np.abs(np.hypot(d[:, 0], d[:, 1]) - runs.radius[0])
+    m = len(at) // 2
+    i = int(np.argmin(off[:m]))
+    lo = i + m // 2  # at least a quarter of the ring away on either side
+    j = lo + int(np.argmin(off[lo : min(i + m + m // 2 + 1, len(at) - m // 2 + i + 1, len(at))]))
+    if max(off[i], off[j]) > ON_LINE_MM:
+        return []
+    out = []
+    for a, b in ((at[i], at[j]), (at[j], at[i] + n)):
+        part = positions[np.arange(a, b) % n]
+        ends = xy[[verts[a % n], verts[b % n]]] - runs.centre[0]
+        t = np.arctan2(ends[:, 1], ends[:, 0])
+        sweep = ((t[1] - t[0]) * turn) % (2 * np.pi)
+        out.append((part, runs.centre[0], float(runs.radius[0]), float(turn * sweep), True))
     return out
 
 
@@ -1166,35 +1243,44 @@ def _crossing_arcs(brep: Brep) -> frozenset:
 
     if brep.arcs is None:
         return frozenset()
-    pts, edges, arcs = brep.points, brep.edges, brep.arcs
-    out = set()
+    out: set = set()
     for face in brep.faces:
         if face.radius > 0 or abs(face.normal[0]) + abs(face.normal[1]) > 0:
             continue
         index = [e if e >= 0 else ~e for loop in face.loops for e in loop]
-        if not (arcs[index, 2] > 0).any():
+        if not (brep.arcs[index, 2] > 0).any():
             continue
-        rings = [_loop_points(list(loop), edges, arcs, pts) for loop in face.loops]
+        rings = [_loop_points(list(loop), brep.edges, brep.arcs, brep.points) for loop in face.loops]
         if shapely.is_valid(shapely.Polygon(rings[0], rings[1:])):
             continue
-        lines, where = [], []  # each edge as drawn, and (loop, position, loop length)
-        for li, loop in enumerate(face.loops):
-            for k, e in enumerate(loop):
-                a = edges[e if e >= 0 else ~e]
-                end = pts[a[1] if e >= 0 else a[0], :2]
-                lines.append(shapely.LineString(np.vstack([_loop_points([e], edges, arcs, pts), end])))
-                where.append((li, k, len(loop)))
-        tree = shapely.STRtree(lines)
-        for i, e in enumerate(index):
-            if arcs[e, 2] <= 0:
-                continue
-            li, k, n = where[i]
-            near = {(li, k), (li, (k - 1) % n), (li, (k + 1) % n)}  # itself and the edges it joins
-            hits = [j for j in tree.query(lines[i], predicate="intersects").tolist() if where[j][:2] not in near]
-            for j in hits + ([i] if hits else []):
-                if arcs[index[j], 2] > 0:
-                    out.add(_circle_key(arcs[index[j], :2], arcs[index[j], 2]))
+        out |= _face_crossing_circles(face, index, brep.edges, brep.arcs, brep.points)
     return frozenset(out)
+
+
+def _face_crossing_circles(face, index: list, edges, arcs, pts) -> set:
+    """The circles of the arcs of a flat face that cross or touch an edge of it other than their neighbours,
+    and of the arcs they cross. ``index``: the face's edges, loop by loop."""
+    import shapely
+
+    lines, where = [], []  # each edge as drawn, and (loop, position, loop length)
+    for li, loop in enumerate(face.loops):
+        for k, e in enumerate(loop):
+            a = edges[e if e >= 0 else ~e]
+            end = pts[a[1] if e >= 0 else a[0], :2]
+            lines.append(shapely.LineString(np.vstack([_loop_points([e], edges, arcs, pts), end])))
+            where.append((li, k, len(loop)))
+    tree = shapely.STRtree(lines)
+    out = set()
+    for i, e in enumerate(index):
+        if arcs[e, 2] <= 0:
+            continue
+        li, k, n = where[i]
+        near = {(li, k), (li, (k - 1) % n), (li, (k + 1) % n)}  # itself and the edges it joins
+        hits = [j for j in tree.query(lines[i], predicate="intersects").tolist() if where[j][:2] not in near]
+        for j in hits + ([i] if hits else []):
+            if arcs[index[j], 2] > 0:
+                out.add(_circle_key(arcs[index[j], :2], arcs[index[j], 2]))
+    return out
 
 
 def _face_coverage(layers, bottom: float, cell_vertices: int):
@@ -1281,7 +1367,6 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     ...
     fabtiles.core.errors.FabricationError: the STEP solid has a volume of 200 mm^3, not the mesh's 100 mm^3 (0.05% allowed); nothing was written
     """  # noqa: E501 - a doctest's lines are as Python prints them
-    import shapely
 
     def fail(why):
         raise FabricationError(f"the {what} {why}; nothing was written")
@@ -1304,22 +1389,57 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     a = np.where(signed >= 0, edges[index, 0], edges[index, 1])
     b = np.where(signed >= 0, edges[index, 1], edges[index, 0])
     arcs = brep.arc_rows()
+    off_plane, off_curve = _off_surfaces(brep, pts, edges, arcs, a, face_of)
+    if off_plane > 1e-6:
+        fail(f"has a face with a point {off_plane:.3g} mm off its plane")
+    if off_curve > 1e-6:
+        fail(f"has a point {off_curve:.3g} mm off its cylinder or circle")
+    wound, total, chords = _winding_and_volume(brep, pts, edges, arcs, signed, face_of, a, b)
+    if np.any(wound <= 0):
+        fail("has a face wound against its normal (inside out)")
+    if not total > 0:
+        fail(f"has a volume of {total:.6g} mm^3: inside out")
+    if abs(chords - volume) > BREP_VOLUME_TOLERANCE * abs(volume):
+        fail(
+            f"has a volume of {chords:.6g} mm^3, not the mesh's {volume:.6g} mm^3 ({BREP_VOLUME_TOLERANCE:.2%} allowed)"
+        )
+    if not _flat_faces_valid(brep, pts, edges, arcs):
+        fail("has an invalid horizontal face (loops crossing or touching)")
+    return total
+
+
+def _off_surfaces(brep: Brep, pts, edges, arcs, a, face_of) -> tuple[float, float]:
+    """How far the B-rep's points lie off their faces: ``(off a plane, off a cylinder or circle)`` in mm.
+
+    ``a``: the start point of each signed edge of the faces' loops, ``face_of`` its face.
+    """
     radius = np.asarray([f.radius for f in brep.faces], float)
-    cyl = radius > 0
     normals = np.asarray([f.normal for f in brep.faces], float)
     normals /= np.linalg.norm(normals, axis=1, keepdims=True)
     origins = np.asarray([f.origin for f in brep.faces], float)
-    on_plane = ~cyl[face_of]
+    on_plane = ~(radius > 0)[face_of]
     off = np.abs(np.einsum("ij,ij->i", pts[a] - origins[face_of], normals[face_of]))[on_plane]
-    if off.size and off.max() > 1e-6:
-        fail(f"has a face with a point {off.max():.3g} mm off its plane")
+    off_plane = float(off.max()) if off.size else 0.0
     d = pts[a[~on_plane], :2] - origins[face_of[~on_plane], :2]
     off = np.abs(np.hypot(d[:, 0], d[:, 1]) - radius[face_of[~on_plane]])
     is_arc = arcs[:, 2] > 0
     d = pts[edges[is_arc]][:, :, :2] - arcs[is_arc, None, :2]
     off = np.concatenate([off, np.abs(np.hypot(d[..., 0], d[..., 1]) - arcs[is_arc, 2:3]).ravel()])
-    if off.size and off.max() > 1e-6:
-        fail(f"has a point {off.max():.3g} mm off its cylinder or circle")
+    return off_plane, float(off.max()) if off.size else 0.0
+
+
+def _winding_and_volume(brep: Brep, pts, edges, arcs, signed, face_of, a, b):
+    """``(wound, volume, chords' volume)``: per face, its vector area along its outward normal (positive:
+    wound as its normal says), and the volume with the arcs as arcs and as the mesh's chords.
+
+    The volume is the divergence theorem's with the field (0, 0, z): only the
+    horizontal faces count, an arc adding what lies between it and its chord.
+    """
+    index = np.where(signed >= 0, signed, ~signed)
+    cyl = np.asarray([f.radius for f in brep.faces], float) > 0
+    normals = np.asarray([f.normal for f in brep.faces], float)
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    origins = np.asarray([f.origin for f in brep.faces], float)
     cross = np.cross(pts[a], pts[b])
     area_vec = np.zeros((len(brep.faces), 3))
     np.add.at(area_vec, face_of, cross / 2)
@@ -1332,27 +1452,30 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     flat_faces = ~cyl & (np.abs(normals[:, 2]) == 1.0)  # the horizontal faces: they alone hold the volume
     wound = np.einsum("ij,ij->i", area_vec, normals) + np.where(flat_faces, exact * normals[:, 2], 0.0)
     wound[cyl] = 1.0
-    for f in np.flatnonzero(cyl).tolist():  # a cylinder's patch faces out from its axis at its middle
-        e = brep.faces[f].loops[0][0]  # the arc at its bottom
-        row_e = arcs[e if e >= 0 else ~e]
-        if row_e[3] >= 2 * np.pi - 1e-9:
-            continue  # a whole circle: its vector area is nought
-        start = pts[edges[e if e >= 0 else ~e, 0], :2] - row_e[:2]
-        mid = np.arctan2(start[1], start[0]) + row_e[3] / 2
-        out = np.array([np.cos(mid), np.sin(mid)]) * (-1.0 if brep.faces[f].inward else 1.0)
-        wound[f] = float(area_vec[f, :2] @ out)
-    if np.any(wound <= 0):
-        fail("has a face wound against its normal (inside out)")
-    # the divergence theorem with the field (0, 0, z): only the horizontal faces count
+    for f in np.flatnonzero(cyl).tolist():
+        wound[f] = _cylinder_winding(brep.faces[f], pts, edges, arcs, area_vec[f])
     z_of = origins[:, 2] * flat_faces
-    total, chords = float(z_of @ (area_vec[:, 2] + exact)), float(z_of @ (area_vec[:, 2] + flat))
-    if not total > 0:
-        fail(f"has a volume of {total:.6g} mm^3: inside out")
-    if abs(chords - volume) > BREP_VOLUME_TOLERANCE * abs(volume):
-        fail(
-            f"has a volume of {chords:.6g} mm^3, not the mesh's {volume:.6g} mm^3 ({BREP_VOLUME_TOLERANCE:.2%} allowed)"
-        )
-    # horizontal faces: their loops, in x, y, must make a valid polygon
+    return wound, float(z_of @ (area_vec[:, 2] + exact)), float(z_of @ (area_vec[:, 2] + flat))
+
+
+def _cylinder_winding(face, pts, edges, arcs, area_vec) -> float:
+    """A cylinder patch's vector area along the direction it faces at its middle, out from its axis
+    (or into it, ``inward``); a whole circle's, whose vector area is nought, 1."""
+    e = face.loops[0][0]  # the arc at its bottom
+    row_e = arcs[e if e >= 0 else ~e]
+    if row_e[3] >= 2 * np.pi - 1e-9:
+        return 1.0
+    start = pts[edges[e if e >= 0 else ~e, 0], :2] - row_e[:2]
+    mid = np.arctan2(start[1], start[0]) + row_e[3] / 2
+    out = np.array([np.cos(mid), np.sin(mid)]) * (-1.0 if face.inward else 1.0)
+    return float(area_vec[:2] @ out)
+
+
+def _flat_faces_valid(brep: Brep, pts, edges, arcs) -> bool:
+    """Whether each horizontal face, its loops in x, y (arcs drawn by chords), is a valid polygon by GEOS."""
+    import shapely
+
+    is_arc = arcs[:, 2] > 0
     polys = []
     for face in brep.faces:
         if face.radius > 0 or abs(face.normal[0]) + abs(face.normal[1]) > 0:
@@ -1367,7 +1490,4 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
             start = np.where(loop >= 0, edges[e, 0], edges[e, 1])
             rings.append(pts[start, :2])
         polys.append(shapely.Polygon(rings[0], rings[1:]))
-    valid = shapely.is_valid(np.asarray(polys, dtype=object)) if polys else np.ones(0, bool)
-    if not np.all(valid):
-        fail("has an invalid horizontal face (loops crossing or touching)")
-    return total
+    return bool(np.all(shapely.is_valid(np.asarray(polys, dtype=object)))) if polys else True
