@@ -1389,12 +1389,13 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     a = np.where(signed >= 0, edges[index, 0], edges[index, 1])
     b = np.where(signed >= 0, edges[index, 1], edges[index, 0])
     arcs = brep.arc_rows()
-    off_plane, off_curve = _off_surfaces(brep, pts, edges, arcs, a, face_of)
+    surfaces = _face_surfaces(brep)
+    off_plane, off_curve = _off_surfaces(surfaces, pts, edges, arcs, a, face_of)
     if off_plane > 1e-6:
         fail(f"has a face with a point {off_plane:.3g} mm off its plane")
     if off_curve > 1e-6:
         fail(f"has a point {off_curve:.3g} mm off its cylinder or circle")
-    wound, total, chords = _winding_and_volume(brep, pts, edges, arcs, signed, face_of, a, b)
+    wound, total, chords = _winding_and_volume(brep, surfaces, pts, edges, arcs, signed, face_of, a, b)
     if np.any(wound <= 0):
         fail("has a face wound against its normal (inside out)")
     if not total > 0:
@@ -1408,15 +1409,22 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     return total
 
 
-def _off_surfaces(brep: Brep, pts, edges, arcs, a, face_of) -> tuple[float, float]:
-    """How far the B-rep's points lie off their faces: ``(off a plane, off a cylinder or circle)`` in mm.
-
-    ``a``: the start point of each signed edge of the faces' loops, ``face_of`` its face.
-    """
+def _face_surfaces(brep: Brep) -> tuple:
+    """``(radius, unit normal, origin)`` of each face, as arrays."""
     radius = np.asarray([f.radius for f in brep.faces], float)
     normals = np.asarray([f.normal for f in brep.faces], float)
     normals /= np.linalg.norm(normals, axis=1, keepdims=True)
     origins = np.asarray([f.origin for f in brep.faces], float)
+    return radius, normals, origins
+
+
+def _off_surfaces(surfaces, pts, edges, arcs, a, face_of) -> tuple[float, float]:
+    """How far the B-rep's points lie off their faces: ``(off a plane, off a cylinder or circle)`` in mm.
+
+    ``surfaces``: per face, its radius, unit normal and origin; ``a``: the start point of
+    each signed edge of the faces' loops, ``face_of`` its face.
+    """
+    radius, normals, origins = surfaces
     on_plane = ~(radius > 0)[face_of]
     off = np.abs(np.einsum("ij,ij->i", pts[a] - origins[face_of], normals[face_of]))[on_plane]
     off_plane = float(off.max()) if off.size else 0.0
@@ -1428,7 +1436,7 @@ def _off_surfaces(brep: Brep, pts, edges, arcs, a, face_of) -> tuple[float, floa
     return off_plane, float(off.max()) if off.size else 0.0
 
 
-def _winding_and_volume(brep: Brep, pts, edges, arcs, signed, face_of, a, b):
+def _winding_and_volume(brep: Brep, surfaces, pts, edges, arcs, signed, face_of, a, b):
     """``(wound, volume, chords' volume)``: per face, its vector area along its outward normal (positive:
     wound as its normal says), and the volume with the arcs as arcs and as the mesh's chords.
 
@@ -1436,10 +1444,8 @@ def _winding_and_volume(brep: Brep, pts, edges, arcs, signed, face_of, a, b):
     horizontal faces count, an arc adding what lies between it and its chord.
     """
     index = np.where(signed >= 0, signed, ~signed)
-    cyl = np.asarray([f.radius for f in brep.faces], float) > 0
-    normals = np.asarray([f.normal for f in brep.faces], float)
-    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
-    origins = np.asarray([f.origin for f in brep.faces], float)
+    radius, normals, origins = surfaces
+    cyl = radius > 0
     cross = np.cross(pts[a], pts[b])
     area_vec = np.zeros((len(brep.faces), 3))
     np.add.at(area_vec, face_of, cross / 2)
