@@ -111,46 +111,54 @@ def entities_text(job: CutPlan, first_handle: int, owner: str) -> tuple[str, int
     of a sheet's DXF. LWPOLYLINE for R2000+, POLYLINE/VERTEX/SEQEND
     for R12.
     """
-    out = []
+    out: list[str] = []
     h = first_handle
-    r12 = job.dxf_version == "R12"
+    polyline = _r12_polyline if job.dxf_version == "R12" else _lwpolyline
     for curves, layer, closed in _groups(job):
         flag = 1 if closed else 0
         common = f"  8\n{layer.name}\n 62\n{layer.color}\n"
         for ring, bulge in curves:
-            xy = ring.ravel().tolist()
-            n = len(ring)
             # an arc: the bulge (group code 42, tan(sweep / 4)) of the vertex it leaves from
             bulges = [f" 42\n{b!r}\n" if b else "" for b in bulge.tolist()] if bulge.any() else None
-            if r12:
-                out.append(f"  0\nPOLYLINE\n  5\n{h:X}\n{common} 66\n1\n 10\n0.0\n 20\n0.0\n 30\n0.0\n 70\n{flag}\n")
-                if bulges is None:
-                    vtx = "".join(
-                        f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{layer.name}\n 10\n%r\n 20\n%r\n 30\n0.0\n 70\n0\n"
-                        for k in range(n)
-                    )
-                    out.append(vtx % tuple(xy))
-                else:
-                    out.append(
-                        "".join(
-                            f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{layer.name}\n 10\n{xy[2 * k]!r}\n"
-                            f" 20\n{xy[2 * k + 1]!r}\n 30\n0.0\n{bulges[k]} 70\n0\n"
-                            for k in range(n)
-                        )
-                    )
-                out.append(f"  0\nSEQEND\n  5\n{h + 1:X}\n  8\n{layer.name}\n")
-                h += n + 2
-            else:
-                out.append(
-                    f"  0\nLWPOLYLINE\n  5\n{h:X}\n330\n{owner}\n100\nAcDbEntity\n{common}"
-                    f"100\nAcDbPolyline\n 90\n{n}\n 70\n{flag}\n"
-                )
-                if bulges is None:
-                    out.append((" 10\n%r\n 20\n%r\n" * n) % tuple(xy))
-                else:
-                    out.append("".join(f" 10\n{xy[2 * k]!r}\n 20\n{xy[2 * k + 1]!r}\n{bulges[k]}" for k in range(n)))
-                h += 1
+            h = polyline(out, h, layer.name, common, flag, ring, bulges, owner)
     return "".join(out), h
+
+
+def _r12_polyline(out: list, h: int, name: str, common: str, flag: int, ring, bulges, owner: str) -> int:
+    """Append an R12 POLYLINE, its VERTEXes and SEQEND to ``out``; return the next free handle."""
+    xy = ring.ravel().tolist()
+    n = len(ring)
+    out.append(f"  0\nPOLYLINE\n  5\n{h:X}\n{common} 66\n1\n 10\n0.0\n 20\n0.0\n 30\n0.0\n 70\n{flag}\n")
+    if bulges is None:
+        vtx = "".join(
+            f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{name}\n 10\n%r\n 20\n%r\n 30\n0.0\n 70\n0\n" for k in range(n)
+        )
+        out.append(vtx % tuple(xy))
+    else:
+        out.append(
+            "".join(
+                f"  0\nVERTEX\n  5\n{h + 2 + k:X}\n  8\n{name}\n 10\n{xy[2 * k]!r}\n"
+                f" 20\n{xy[2 * k + 1]!r}\n 30\n0.0\n{bulges[k]} 70\n0\n"
+                for k in range(n)
+            )
+        )
+    out.append(f"  0\nSEQEND\n  5\n{h + 1:X}\n  8\n{name}\n")
+    return h + n + 2
+
+
+def _lwpolyline(out: list, h: int, name: str, common: str, flag: int, ring, bulges, owner: str) -> int:
+    """Append an LWPOLYLINE (R2000 and later) to ``out``; return the next free handle."""
+    xy = ring.ravel().tolist()
+    n = len(ring)
+    out.append(
+        f"  0\nLWPOLYLINE\n  5\n{h:X}\n330\n{owner}\n100\nAcDbEntity\n{common}"
+        f"100\nAcDbPolyline\n 90\n{n}\n 70\n{flag}\n"
+    )
+    if bulges is None:
+        out.append((" 10\n%r\n 20\n%r\n" * n) % tuple(xy))
+    else:
+        out.append("".join(f" 10\n{xy[2 * k]!r}\n 20\n{xy[2 * k + 1]!r}\n{bulges[k]}" for k in range(n)))
+    return h + 1
 
 
 _ENTITIES = "  0\nSECTION\n  2\nENTITIES\n"

@@ -81,12 +81,7 @@ def _layer_path_data(curves, closed: bool) -> list:
 
     Quicker than path by path on a panel's thousands of paths (``docs/speed.md``).
     """
-    curves = [
-        c
-        if not c.bulge.any() or np.abs(c.bulge).max() <= _QUARTER
-        else subdivide(c, max_sweep=np.pi / 2, closed=closed)
-        for c in curves
-    ]
+    curves = _quarter_arcs(curves, closed)
     if not curves:
         return []
     sizes = np.array([len(c.xy) for c in curves])
@@ -106,19 +101,36 @@ def _layer_path_data(curves, closed: bool) -> list:
         p = pts[s0 : s0 + n]
         if not any(bl[s0 : s0 + n]):
             out.append("M" + "L".join(p) + ("Z" if closed else ""))
-            continue
-        d = ["M", p[0]]
-        for k in range(1, n + (1 if closed else 0)):
-            bk = bl[s0 + k - 1]
-            if bk:
-                r = rad[s0 + k - 1]
-                d.append(f"A{r} {r} 0 0 {0 if bk > 0 else 1} {p[k % n]}")
-            elif k < n:
-                d.append("L" + p[k])
-        if closed:
-            d.append("Z")
-        out.append("".join(d))
+        else:
+            out.append(_arc_path_data(p, bl[s0 : s0 + n], rad[s0 : s0 + n], closed))
     return out
+
+
+def _quarter_arcs(curves, closed: bool) -> list:
+    """``curves`` with every arc over a quarter turn cut into arcs of at most a quarter (SVG's small-arc flag)."""
+    return [
+        c
+        if not c.bulge.any() or np.abs(c.bulge).max() <= _QUARTER
+        else subdivide(c, max_sweep=np.pi / 2, closed=closed)
+        for c in curves
+    ]
+
+
+def _arc_path_data(p: list, bl: list, rad: list, closed: bool) -> str:
+    """The path data of one path with arcs: its points ``p`` as text, each vertex's bulge ``bl`` and
+    the radius ``rad`` (text) of the arc leaving it."""
+    n = len(p)
+    d = ["M", p[0]]
+    for k in range(1, n + (1 if closed else 0)):
+        bk = bl[k - 1]
+        if bk:
+            r = rad[k - 1]
+            d.append(f"A{r} {r} 0 0 {0 if bk > 0 else 1} {p[k % n]}")
+        elif k < n:
+            d.append("L" + p[k])
+    if closed:
+        d.append("Z")
+    return "".join(d)
 
 
 def svg_text(job: CutPlan) -> str:

@@ -199,12 +199,8 @@ def check_solids(solids, *, volume: float, parts: int, name: str = "STEP file re
     within ``STEP_VOLUME_TOLERANCE`` of ``volume``.
     Raises :class:`~fabtiles.FabricationError`.
     """
-    from OCP.BRepCheck import BRepCheck_Analyzer
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
-    from OCP.TopAbs import TopAbs_FACE, TopAbs_SHELL
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopoDS import TopoDS
 
     def fail(why):
         raise FabricationError(f"the {name} {why}; nothing was written")
@@ -215,25 +211,9 @@ def check_solids(solids, *, volume: float, parts: int, name: str = "STEP file re
     for k, solid in enumerate(solids, 1):
         if solid is None or solid.IsNull():
             fail(f"has an empty solid ({k})")
-        shells = TopExp_Explorer(solid, TopAbs_SHELL)
-        n_shells = 0
-        while shells.More():
-            n_shells += 1
-            count, turn = _edge_uses(shells.Current())
-            if np.any(count != 2):
-                fail(f"has an open shell (solid {k})")
-            if np.any(turn != 0):
-                fail(f"has a shell with faces oriented both ways (solid {k})")
-            shells.Next()
-        if n_shells != 1:
-            fail(f"has {n_shells} shells in solid {k}, not 1")
-        faces = TopExp_Explorer(solid, TopAbs_FACE)
-        while faces.More():
-            face = TopoDS.Face(faces.Current())
-            ok = _big_face_valid(face) if len(_wires(face)) > BIG_FACE_WIRES else BRepCheck_Analyzer(face).IsValid()
-            if not ok:
-                fail(f"has an invalid face (solid {k}, BRepCheck_Analyzer)")
-            faces.Next()
+        why = _shell_fault(solid, k) or _face_fault(solid, k)
+        if why:
+            fail(why)
         props = GProp_GProps()
         BRepGProp.VolumeProperties_s(solid, props)
         if not props.Mass() > 0:
@@ -245,6 +225,41 @@ def check_solids(solids, *, volume: float, parts: int, name: str = "STEP file re
             f"({STEP_VOLUME_TOLERANCE:.2%} allowed)"
         )
     return total
+
+
+def _shell_fault(solid, k: int) -> str | None:
+    """What is wrong with the shells of solid number k (not one, open, oriented both ways), or None."""
+    from OCP.TopAbs import TopAbs_SHELL
+    from OCP.TopExp import TopExp_Explorer
+
+    shells = TopExp_Explorer(solid, TopAbs_SHELL)
+    n_shells = 0
+    while shells.More():
+        n_shells += 1
+        count, turn = _edge_uses(shells.Current())
+        if np.any(count != 2):
+            return f"has an open shell (solid {k})"
+        if np.any(turn != 0):
+            return f"has a shell with faces oriented both ways (solid {k})"
+        shells.Next()
+    return None if n_shells == 1 else f"has {n_shells} shells in solid {k}, not 1"
+
+
+def _face_fault(solid, k: int) -> str | None:
+    """Why solid number k has an invalid face by ``BRepCheck_Analyzer`` (see :func:`_big_face_valid`), or None."""
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    faces = TopExp_Explorer(solid, TopAbs_FACE)
+    while faces.More():
+        face = TopoDS.Face(faces.Current())
+        ok = _big_face_valid(face) if len(_wires(face)) > BIG_FACE_WIRES else BRepCheck_Analyzer(face).IsValid()
+        if not ok:
+            return f"has an invalid face (solid {k}, BRepCheck_Analyzer)"
+        faces.Next()
+    return None
 
 
 def check_step_file(path, *, volume: float, parts: int) -> float:

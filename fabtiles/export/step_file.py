@@ -208,11 +208,31 @@ def _pcurve(w: _Writer, surface: int, face, start, arc) -> int:
 
 
 def _brep_entities(w: _Writer, brep: Brep, name: str):
-    """Write one B-rep's entities; return the entity numbers of its solids."""
-    pts = brep.points
-    cart = [w.point(t) for t in _rows(pts, LENGTH_DECIMALS)]
+    """Write one B-rep's entities; return the entity numbers of its solids.
+
+    In the order points, vertices, cylinders, edges, faces, solids: each entity
+    refers only to entities before it.
+    """
+    cart = [w.point(t) for t in _rows(brep.points, LENGTH_DECIMALS)]
     vert = w.extend([f"VERTEX_POINT('',#{c})" for c in cart])
     # the cylinders first: their edges carry curves in their parameters (see _pcurves)
+    surfaces, on_cylinders = _cylinder_surfaces(w, brep)
+    edges = _edge_curves(w, brep, cart, vert, surfaces, on_cylinders)
+    placed = _plane_placements(brep)
+    faces = []
+    for f, face in enumerate(brep.faces):
+        surface = surfaces[f] if face.radius > 0 else w.add(f"PLANE('',#{w.placement(*placed[f])})")
+        faces.append(_face_entity(w, face, surface, edges))
+    solids = []
+    for i, shell_faces in enumerate(brep.solids):
+        shell = w.add("CLOSED_SHELL('',(" + ",".join(f"#{faces[f]}" for f in shell_faces) + "))")
+        label = name if len(brep.solids) == 1 else f"{name}-{i + 1}"
+        solids.append(w.add(f"MANIFOLD_SOLID_BREP({_name(label)},#{shell})"))
+    return solids
+
+
+def _cylinder_surfaces(w: _Writer, brep: Brep) -> tuple[dict, dict]:
+    """Write the ``CYLINDRICAL_SURFACE`` of each cylinder face: ``(face -> entity, edge -> its cylinder faces)``."""
     surfaces: dict = {}
     on_cylinders: dict = {}
     for f, face in enumerate(brep.faces):
@@ -221,6 +241,16 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
             surfaces[f] = w.add(f"CYLINDRICAL_SURFACE('',#{place},{_real(face.radius)})")
             for e in face.loops[0]:
                 on_cylinders.setdefault(e if e >= 0 else ~e, []).append(f)
+    return surfaces, on_cylinders
+
+
+def _edge_curves(w: _Writer, brep: Brep, cart, vert, surfaces: dict, on_cylinders: dict) -> list:
+    """Write each edge's curve (a line or an arc of a circle) and its ``EDGE_CURVE``; return the latter.
+
+    An edge of a cylinder face is a ``SURFACE_CURVE`` with its curve on each such
+    face (:func:`_pcurve`).
+    """
+    pts = brep.points
     edges = []
     d = pts[brep.edges[:, 1]] - pts[brep.edges[:, 0]]
     units = _rows(d, DIRECTION_DECIMALS, unit=True)
@@ -239,37 +269,35 @@ def _brep_entities(w: _Writer, brep: Brep, name: str):
             pcurves = [_pcurve(w, surfaces[f], brep.faces[f], pts[a], arc) for f in on_cylinders[i]]
             curve = w.add(f"SURFACE_CURVE('',#{curve},(" + ",".join(f"#{p}" for p in pcurves) + "),.CURVE_3D.)")
         edges.append(w.add(f"EDGE_CURVE('',#{vert[a]},#{vert[b]},#{curve},.T.)"))
-    faces = []
+    return edges
+
+
+def _plane_placements(brep: Brep) -> dict:
+    """Each plane face's placement as text, ``face -> (origin, normal, ref)``, the numbers of all in one pass each."""
     planes = [f for f, face in enumerate(brep.faces) if face.radius <= 0]
-    if planes:  # their placements' numbers in one pass each
-        origins = _rows([brep.faces[f].origin for f in planes], LENGTH_DECIMALS)
-        normals = _rows([brep.faces[f].normal for f in planes], DIRECTION_DECIMALS, unit=True)
-        refs = _rows([brep.faces[f].ref for f in planes], DIRECTION_DECIMALS, unit=True)
-        placed = dict(zip(planes, zip(origins, normals, refs, strict=True), strict=True))
-    for f, face in enumerate(brep.faces):
-        if face.radius > 0:
-            surface = surfaces[f]
-        else:
-            surface = w.add(f"PLANE('',#{w.placement(*placed[f])})")
-        bounds = []
-        for i, loop in enumerate(face.loops):
-            oes = w.extend(
-                [
-                    f"ORIENTED_EDGE('',*,*,#{edges[e]},.T.)" if e >= 0 else f"ORIENTED_EDGE('',*,*,#{edges[~e]},.F.)"
-                    for e in loop
-                ]
-            )
-            el = w.add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oes) + "))")
-            kind = "FACE_OUTER_BOUND" if i == 0 else "FACE_BOUND"
-            bounds.append(w.add(f"{kind}('',#{el},.T.)"))
-        sense = ".F." if face.inward else ".T."  # a hole's wall faces its axis
-        faces.append(w.add("ADVANCED_FACE('',(" + ",".join(f"#{b}" for b in bounds) + f"),#{surface},{sense})"))
-    solids = []
-    for i, shell_faces in enumerate(brep.solids):
-        shell = w.add("CLOSED_SHELL('',(" + ",".join(f"#{faces[f]}" for f in shell_faces) + "))")
-        label = name if len(brep.solids) == 1 else f"{name}-{i + 1}"
-        solids.append(w.add(f"MANIFOLD_SOLID_BREP({_name(label)},#{shell})"))
-    return solids
+    if not planes:
+        return {}
+    origins = _rows([brep.faces[f].origin for f in planes], LENGTH_DECIMALS)
+    normals = _rows([brep.faces[f].normal for f in planes], DIRECTION_DECIMALS, unit=True)
+    refs = _rows([brep.faces[f].ref for f in planes], DIRECTION_DECIMALS, unit=True)
+    return dict(zip(planes, zip(origins, normals, refs, strict=True), strict=True))
+
+
+def _face_entity(w: _Writer, face, surface: int, edges: list) -> int:
+    """Write a face's loops and its ``ADVANCED_FACE`` on ``surface``; return the face's entity."""
+    bounds = []
+    for i, loop in enumerate(face.loops):
+        oes = w.extend(
+            [
+                f"ORIENTED_EDGE('',*,*,#{edges[e]},.T.)" if e >= 0 else f"ORIENTED_EDGE('',*,*,#{edges[~e]},.F.)"
+                for e in loop
+            ]
+        )
+        el = w.add("EDGE_LOOP('',(" + ",".join(f"#{o}" for o in oes) + "))")
+        kind = "FACE_OUTER_BOUND" if i == 0 else "FACE_BOUND"
+        bounds.append(w.add(f"{kind}('',#{el},.T.)"))
+    sense = ".F." if face.inward else ".T."  # a hole's wall faces its axis
+    return w.add("ADVANCED_FACE('',(" + ",".join(f"#{b}" for b in bounds) + f"),#{surface},{sense})")
 
 
 def step_text(breps, *, name: str = "tile") -> str:

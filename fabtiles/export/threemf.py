@@ -418,6 +418,14 @@ def read_3mf(source) -> dict:
     indexing the part's own vertices). Reads the layouts :func:`package_3mf`
     writes (attributes in its order), not every 3MF.
     """
+    model, config = _package_parts(source)
+    if config is None:
+        return _read_components(model)
+    return _read_volumes(model, config)
+
+
+def _package_parts(source):
+    """``(model bytes, PrusaSlicer config element or None)`` of a 3MF package, a path or its bytes."""
     import xml.etree.ElementTree as ET
 
     data = source if isinstance(source, (bytes, bytearray)) else open(source, "rb").read()
@@ -428,8 +436,11 @@ def read_3mf(source) -> dict:
             config = ET.fromstring(zf.read(PRUSA_CONFIG_PATH)) if PRUSA_CONFIG_PATH in names else None
     except (zipfile.BadZipFile, KeyError, ET.ParseError) as exc:
         raise FabricationError(f"not a fabtiles 3MF package ({exc})") from None
-    if config is None:
-        return _read_components(model)
+    return model, config
+
+
+def _read_volumes(model: bytes, config) -> dict:
+    """The volumes layout's parts: the one object's triangles cut into the config's named volumes."""
     verts = _block(model, b"vertices", b"vertex", (b"x", b"y", b"z"), np.float32)
     tris = _block(model, b"triangles", b"triangle", (b"v1", b"v2", b"v3"), np.int64)
     parts = {}
@@ -453,15 +464,20 @@ _OBJECT = re.compile(rb'<object id="(\d+)" type="model" name=("[^"]*"|\'[^\']*\'
 _EXTRUDER = re.compile(rb'<metadata name="cura:extruder_nr"[^>]*>(\d+)</metadata>')
 
 
-def _read_components(model: bytes) -> dict:
-    """The components layout's parts: the mesh objects that the build item's object is made of."""
+def _object_bodies(model: bytes) -> dict:
+    """``{object id: (name, its text)}`` of the model's objects."""
     from xml.sax.saxutils import unescape
 
-    heads = list(_OBJECT.finditer(model))
     bodies = {}
-    for m in heads:
+    for m in _OBJECT.finditer(model):
         end = model.find(b"</object>", m.end())
         bodies[int(m.group(1))] = (unescape(m.group(2)[1:-1].decode("utf-8"), {"&quot;": '"'}), model[m.end() : end])
+    return bodies
+
+
+def _read_components(model: bytes) -> dict:
+    """The components layout's parts: the mesh objects that the build item's object is made of."""
+    bodies = _object_bodies(model)
     item = re.search(rb'<item objectid="(\d+)"', model)
     if item is None or int(item.group(1)) not in bodies:
         raise FabricationError("the 3MF model has no build item naming one of its objects")

@@ -205,43 +205,87 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
     start = np.concatenate([[0], np.cumsum(cnt)[:-1]])
     rid = np.repeat(np.arange(len(use)), cnt)
     local = np.arange(len(p)) - start[rid]
-    base = start[rid]
     n_of = cnt[rid]
     eps = fit_distance(tolerance_mm)
-    if closed:
-        prev = base + (local - 1) % n_of
-        nxt = base + (local + 1) % n_of
-    else:
-        prev = np.where(local == 0, np.arange(len(p)), np.arange(len(p)) - 1)
-        nxt = np.where(local == n_of - 1, np.arange(len(p)), np.arange(len(p)) + 1)
+    prev, nxt = _ring_neighbours(len(p), start[rid], local, n_of, closed)
     centre, radius, cross = _circumcircles(p, prev, nxt)
-    chord = np.hypot(*(p[nxt] - p).T)
-    # triple i (vertices prev[i], i, nxt[i]) is a piece of arc when it turns and both its
-    # chords stand within the tolerance off its circle
-    with np.errstate(invalid="ignore"):
-        r2 = radius**2
-        sag_next = radius - np.sqrt(np.maximum(r2 - chord**2 / 4, 0.0))
-        sag_prev = radius - np.sqrt(np.maximum(r2 - chord[prev] ** 2 / 4, 0.0))
-        ok = np.isfinite(radius) & (cross != 0) & (sag_next <= tolerance_mm) & (sag_prev <= tolerance_mm)
-        if not closed:
-            ok &= (local > 0) & (local < n_of - 1)
-        # link i: triples i and i + 1 on one circle (the vertex after triple i's on its circle, turning alike)
-        n2 = nxt[nxt]
-        link = (
-            ok
-            & ok[nxt]
-            & (np.abs(np.hypot(*(p[n2] - centre).T) - radius) <= link_slack * eps)
-            & (np.sign(cross) == np.sign(cross[nxt]))
-        )
+    interior = None if closed else (local > 0) & (local < n_of - 1)  # an open ring's ends are no triple's middle
+    ok, link = _arc_triples(p, prev, nxt, centre, radius, cross, tolerance_mm, link_slack * eps, interior)
     if not closed:
         link &= local < n_of - 2
     # each closed ring is rotated to start just after a break in its links, so no run wraps
     breaks = np.where(link, np.iinfo(np.int64).max, local)
     first_break = np.minimum.reduceat(breaks, start)
     unbroken = first_break == np.iinfo(np.int64).max
-    # a closed ring whose triples all turn alike within the tolerance may be a circle though some links
-    # fail: three points' circle is too unsure where the chords are short against the points' noise
-    # (a 100 mm circle outline on the print's 2**-10 mm grid: 1.3 mm chords, 0.0043 mm sagitta)
+    results = _whole_circles(p, start, cnt, rid, ok, cross, unbroken, eps, closed)
+    shift = np.where(unbroken, 0, first_break + 1)
+    order = start[rid] + (local + shift[rid]) % n_of
+    ring_of, v0, v1 = _candidate_runs(link[order], start, cnt, rid, closed)
+    keep = (v1 - v0 >= 3) & ~np.isin(ring_of, list(results))
+    runs = _fit_runs(p, order, start, cnt, ring_of[keep], v0[keep], v1[keep], eps)
+    known = _known_radii(radii, runs[4])
+    if len(known):
+        # two chords of a known radius, a triple of their own (neither neighbour triple is a piece
+        # of arc, so they overlap no run above)
+        t = np.flatnonzero(ok & ~ok[prev] & ~ok[nxt] & ~np.isin(rid, list(results)))
+        extra = _known_radius_arcs(p, t, prev, nxt, centre, radius, cross, known, radii, eps, link_slack)
+        if extra is not None:
+            t, cen, rad, turn = extra
+            # positions in the rotated ring, as _fit_runs gives them
+            rot = (local[t] - shift[rid[t]]) % n_of[t]
+            j, a, b, c, r, sw = runs
+            runs = (
+                np.r_[j, rid[t]],
+                np.r_[a, rot - 1],
+                np.r_[b, rot + 1],
+                np.vstack([c, cen]),
+                np.r_[r, rad],
+                np.r_[sw, turn],
+            )
+    results.update(_runs_by_ring(order, start, cnt, *runs))
+    for k, res in results.items():
+        out[use[k]] = res
+    return out
+
+
+def _ring_neighbours(n: int, base, local, n_of, closed: bool):
+    """``(prev, nxt)``: each vertex's neighbours along its ring (all rings' vertices in one array, each
+    ring from ``base``); an open ring's ends are their own neighbours on the side they have none."""
+    if closed:
+        return base + (local - 1) % n_of, base + (local + 1) % n_of
+    at = np.arange(n)
+    return np.where(local == 0, at, at - 1), np.where(local == n_of - 1, at, at + 1)
+
+
+def _arc_triples(p, prev, nxt, centre, radius, cross, tolerance_mm: float, link_mm: float, interior):
+    """``(ok, link)``: triple i (vertices prev[i], i, nxt[i]) is a piece of arc when it turns and both its
+    chords stand within ``tolerance_mm`` off its circle (and its middle is ``interior``, if given);
+    link i: triples i and i + 1 on one circle (the vertex after triple i's within ``link_mm`` of its
+    circle, turning alike)."""
+    chord = np.hypot(*(p[nxt] - p).T)
+    with np.errstate(invalid="ignore"):
+        r2 = radius**2
+        sag_next = radius - np.sqrt(np.maximum(r2 - chord**2 / 4, 0.0))
+        sag_prev = radius - np.sqrt(np.maximum(r2 - chord[prev] ** 2 / 4, 0.0))
+        ok = np.isfinite(radius) & (cross != 0) & (sag_next <= tolerance_mm) & (sag_prev <= tolerance_mm)
+        if interior is not None:
+            ok &= interior
+        n2 = nxt[nxt]
+        link = (
+            ok
+            & ok[nxt]
+            & (np.abs(np.hypot(*(p[n2] - centre).T) - radius) <= link_mm)
+            & (np.sign(cross) == np.sign(cross[nxt]))
+        )
+    return ok, link
+
+
+def _whole_circles(p, start, cnt, rid, ok, cross, unbroken, eps: float, closed: bool) -> dict:
+    """``{ring: ArcRuns}`` of the rings that are whole circles: all their points within ``eps`` of one
+    circle fitted to them, among the rings whose links never break or (closed) whose triples all turn
+    alike within the tolerance: three points' circle is too unsure where the chords are short
+    against the points' noise (a 100 mm circle outline on the print's 2**-10 mm grid: 1.3 mm
+    chords, 0.0043 mm sagitta)."""
     turns = ok & (np.sign(cross) == np.sign(cross[start[rid]]))
     whole = np.minimum.reduceat(turns.view(np.int8), start).astype(bool) if closed else unbroken
     results = {}
@@ -251,11 +295,17 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
         if np.abs(np.hypot(*(pts - c).T) - r).max() <= eps:
             sweep = 2 * np.pi * np.sign(cross[start[j]])
             results[j] = ArcRuns(np.array([0]), np.array([0]), c[None, :], np.array([r]), True, np.array([sweep]))
-    shift = np.where(unbroken, 0, first_break + 1)
-    order = base + (local + shift[rid]) % n_of
-    lk = link[order]
-    ends_of_ring = start + cnt - 1
-    lk[ends_of_ring] = False  # the break (or, for an unbroken ring that is no circle, a cut)
+    return results
+
+
+def _candidate_runs(lk, start, cnt, rid, closed: bool):
+    """``(ring, v0, v1)`` of the runs of links ``lk`` (in each ring's rotated order): vertices v0..v1.
+
+    Two runs one triple apart share a chord (triples on two circles meet there, or a
+    straight edge's three-chord ghost run): the shorter run gives it up, so the runs
+    share a vertex only.
+    """
+    lk[start + cnt - 1] = False  # the break (or, for an unbroken ring that is no circle, a cut)
     edges = np.diff(np.r_[0, lk.view(np.int8), 0])
     lo = np.flatnonzero(edges == 1)
     hi = np.flatnonzero(edges == -1) - 1
@@ -263,8 +313,6 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
     ring_of = rid[lo]
     v0 = lo - 1 - start[ring_of]
     v1 = hi + 2 - start[ring_of]
-    # two runs one triple apart share a chord (triples on two circles meet there, or a straight
-    # edge's three-chord ghost run): the shorter run gives it up, so the runs share a vertex only
     same = np.zeros(len(lo), dtype=bool)
     same[1:] = ring_of[1:] == ring_of[:-1]
     pairs = [(i - 1, i) for i in np.flatnonzero(same & (np.r_[0, v1[:-1]] > v0)).tolist()]
@@ -280,61 +328,70 @@ def arc_runs_many(rings, *, tolerance_mm: float, closed: bool = True, link_slack
             v1[a] = v0[b] + nb
         else:
             v0[b] = v1[a] - nb
-    keep = (v1 - v0 >= 3) & ~np.isin(ring_of, list(results))
-    ring_of, v0, v1 = ring_of[keep], v0[keep], v1[keep]
-    j, a, b, c, r, sw = _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps)
-    known = np.sort(np.r_[np.asarray(radii, dtype=float), r])
+    return ring_of, v0, v1
+
+
+def _known_radii(radii, found) -> np.ndarray:
+    """The radii given and those that recur (:data:`RADIUS_RECURS` times within :data:`RADIUS_MATCH`)
+    among the radii ``found``, sorted."""
+    known = np.sort(np.r_[np.asarray(radii, dtype=float), found])
     lo_k = np.searchsorted(known, known * (1 - RADIUS_MATCH), side="left")
     hi_k = np.searchsorted(known, known * (1 + RADIUS_MATCH), side="right")
     given = np.isin(known, np.asarray(radii, dtype=float))
-    known = known[given | (hi_k - lo_k >= RADIUS_RECURS)]
-    if len(known):
-        # two chords of a known radius, a triple of their own (neither neighbour triple is a piece
-        # of arc, so they overlap no run above)
-        t = np.flatnonzero(ok & ~ok[prev] & ~ok[nxt] & ~np.isin(rid, list(results)))
-        # |radius - k| <= RADIUS_MATCH k for some known k: the least k >= radius / (1 + RADIUS_MATCH) tells
-        at = np.minimum(np.searchsorted(known, radius[t] / (1 + RADIUS_MATCH)), len(known) - 1)
-        near = np.abs(radius[t] - known[at]) <= RADIUS_MATCH * known[at]
-        # the middle vertex off the chord between the ends by more than the fit's distance: no straight line
-        mid_off = np.abs(cross[t]) / np.maximum(np.hypot(*(p[nxt[t]] - p[prev[t]]).T), 1e-300)
-        t, rho = t[near & (mid_off > eps)], known[at][near & (mid_off > eps)]
-        if len(t):
-            # the circle of the known radius through the two ends, when the middle vertex lies on it within the
-            # fit's distance: a 0.6 mm join on the print's 2**-10 mm grid read 0.5989 mm by its three points
-            a0, a2 = p[prev[t]], p[nxt[t]]
-            mid, d = (a0 + a2) / 2, a2 - a0
-            h = np.hypot(*d.T) / 2
-            u = np.column_stack([-d[:, 1], d[:, 0]]) / (2 * h)[:, None]
-            side = np.sign(((centre[t] - mid) * u).sum(axis=1))
-            c_rho = mid + (side * np.sqrt(np.maximum(rho**2 - h**2, 0.0)))[:, None] * u
-            # (a radius given; one that recurs among the arcs found is itself a fit, the triple's as good)
-            fits = (
-                np.isin(rho, np.asarray(radii, dtype=float))
-                & (rho > h)
-                & (np.abs(np.hypot(*(p[t] - c_rho).T) - rho) <= link_slack * eps)
-            )
-            cen = np.where(fits[:, None], c_rho, centre[t])
-            rad = np.where(fits, rho, radius[t])
-            va, vb = p[prev[t]] - cen, p[t] - cen
-            vc = p[nxt[t]] - cen
-            turn = np.arctan2(va[:, 0] * vb[:, 1] - va[:, 1] * vb[:, 0], (va * vb).sum(axis=1)) + np.arctan2(
-                vb[:, 0] * vc[:, 1] - vb[:, 1] * vc[:, 0], (vb * vc).sum(axis=1)
-            )
-            # positions in the rotated ring, as _fit_runs gives them
-            rot = (local[t] - shift[rid[t]]) % n_of[t]
-            j, a, b = np.r_[j, rid[t]], np.r_[a, rot - 1], np.r_[b, rot + 1]
-            c, r, sw = np.vstack([c, cen]), np.r_[r, rad], np.r_[sw, turn]
-    if len(j):
-        srt = np.lexsort((a, j))
-        j, a, b, c, r, sw = j[srt], a[srt], b[srt], c[srt], r[srt], sw[srt]
-        first = order[start[j] + a % cnt[j]] - start[j]
-        last = order[start[j] + b % cnt[j]] - start[j]
-        cut = np.flatnonzero(np.r_[True, j[1:] != j[:-1], True])
-        for s0, s1 in zip(cut[:-1].tolist(), cut[1:].tolist(), strict=True):
-            results[int(j[s0])] = ArcRuns(first[s0:s1], last[s0:s1], c[s0:s1], r[s0:s1], False, sw[s0:s1])
-    for k, res in results.items():
-        out[use[k]] = res
-    return out
+    return known[given | (hi_k - lo_k >= RADIUS_RECURS)]
+
+
+def _known_radius_arcs(p, t, prev, nxt, centre, radius, cross, known, radii, eps: float, link_slack: float):
+    """``(triples, centres, radii, sweeps)`` of the lone triples ``t`` whose circle has a ``known`` radius
+    (within :data:`RADIUS_MATCH`) and whose middle vertex is off the straight line: two chords that
+    are an arc; or None. A given radius whose circle through the two ends passes the middle vertex
+    within the fit's distance is taken exactly."""
+    # |radius - k| <= RADIUS_MATCH k for some known k: the least k >= radius / (1 + RADIUS_MATCH) tells
+    at = np.minimum(np.searchsorted(known, radius[t] / (1 + RADIUS_MATCH)), len(known) - 1)
+    near = np.abs(radius[t] - known[at]) <= RADIUS_MATCH * known[at]
+    # the middle vertex off the chord between the ends by more than the fit's distance: no straight line
+    mid_off = np.abs(cross[t]) / np.maximum(np.hypot(*(p[nxt[t]] - p[prev[t]]).T), 1e-300)
+    t, rho = t[near & (mid_off > eps)], known[at][near & (mid_off > eps)]
+    if not len(t):
+        return None
+    # the circle of the known radius through the two ends, when the middle vertex lies on it within the
+    # fit's distance: a 0.6 mm join on the print's 2**-10 mm grid read 0.5989 mm by its three points
+    a0, a2 = p[prev[t]], p[nxt[t]]
+    mid, d = (a0 + a2) / 2, a2 - a0
+    h = np.hypot(*d.T) / 2
+    u = np.column_stack([-d[:, 1], d[:, 0]]) / (2 * h)[:, None]
+    side = np.sign(((centre[t] - mid) * u).sum(axis=1))
+    c_rho = mid + (side * np.sqrt(np.maximum(rho**2 - h**2, 0.0)))[:, None] * u
+    # (a radius given; one that recurs among the arcs found is itself a fit, the triple's as good)
+    fits = (
+        np.isin(rho, np.asarray(radii, dtype=float))
+        & (rho > h)
+        & (np.abs(np.hypot(*(p[t] - c_rho).T) - rho) <= link_slack * eps)
+    )
+    cen = np.where(fits[:, None], c_rho, centre[t])
+    rad = np.where(fits, rho, radius[t])
+    va, vb = p[prev[t]] - cen, p[t] - cen
+    vc = p[nxt[t]] - cen
+    turn = np.arctan2(va[:, 0] * vb[:, 1] - va[:, 1] * vb[:, 0], (va * vb).sum(axis=1)) + np.arctan2(
+        vb[:, 0] * vc[:, 1] - vb[:, 1] * vc[:, 0], (vb * vc).sum(axis=1)
+    )
+    return t, cen, rad, turn
+
+
+def _runs_by_ring(order, start, cnt, j, a, b, c, r, sw) -> dict:
+    """``{ring: ArcRuns}`` of the arcs (ring ``j``, rotated positions ``a..b``), their ends as the
+    ring's own vertex numbers, in order along each ring."""
+    results: dict = {}
+    if not len(j):
+        return results
+    srt = np.lexsort((a, j))
+    j, a, b, c, r, sw = j[srt], a[srt], b[srt], c[srt], r[srt], sw[srt]
+    first = order[start[j] + a % cnt[j]] - start[j]
+    last = order[start[j] + b % cnt[j]] - start[j]
+    cut = np.flatnonzero(np.r_[True, j[1:] != j[:-1], True])
+    for s0, s1 in zip(cut[:-1].tolist(), cut[1:].tolist(), strict=True):
+        results[int(j[s0])] = ArcRuns(first[s0:s1], last[s0:s1], c[s0:s1], r[s0:s1], False, sw[s0:s1])
+    return results
 
 
 def _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps) -> tuple:

@@ -124,8 +124,7 @@ def path_orders(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0), tho
     """:func:`order_paths`' orders: role -> ``(order, flipped)``, the paths' indices in cut order and
     whether each runs backwards (so a plan can reorder what it carries along with the paths: their arcs)."""
     out, here = {}, np.asarray(start, float)
-    roles = ("engrave", "score", "inner", "outer")
-    for k, role in enumerate(roles):
+    for k, role in enumerate(_ROLES):
         rings = [np.asarray(r, float) for r in paths.get(role, ())]
         if not rings:
             continue
@@ -133,14 +132,8 @@ def path_orders(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0), tho
             out[role] = (np.arange(len(rings)), np.zeros(len(rings), bool))
             here = rings[-1][0]
             continue
-        closed = role in ("inner", "outer") and (role == "inner" or outer_closed)
-        first = np.array([r[0] for r in rings], float)
-        last = first if closed else np.array([r[-1] for r in rings], float)
-        pairs = enclosing_pairs(rings) if role == "inner" else np.zeros((0, 2), np.int64)
-        # the next layer's one closed contour (a tile's outline) starts where it starts: go there
-        after = [r for r in roles[k + 1 :] if len(paths.get(r, ()))]
-        fixed = after and len(paths[after[0]]) == 1 and (after[0] == "inner" or (after[0] == "outer" and outer_closed))
-        end = np.asarray(paths[after[0]][0][0], float) if fixed else None
+        closed, first, last, pairs = _role_ends(role, rings, outer_closed)
+        end = _next_start(paths, _ROLES[k + 1 :], outer_closed)
         order, flipped = _order(
             first,
             last,
@@ -155,6 +148,28 @@ def path_orders(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0), tho
         end = rings[order[-1]][::-1] if flipped[-1] else rings[order[-1]]
         here = end[0] if closed else end[-1]
     return out
+
+
+_ROLES = ("engrave", "score", "inner", "outer")
+"""The roles in the order they are cut."""
+
+
+def _role_ends(role: str, rings: list, outer_closed: bool):
+    """``(closed, first, last, pairs)`` of a layer's paths: whether they are closed, each one's first and
+    last point, and the nesting (``(inside, around)``: the inner rings only) the order must keep."""
+    closed = role in ("inner", "outer") and (role == "inner" or outer_closed)
+    first = np.array([r[0] for r in rings], float)
+    last = first if closed else np.array([r[-1] for r in rings], float)
+    pairs = enclosing_pairs(rings) if role == "inner" else np.zeros((0, 2), np.int64)
+    return closed, first, last, pairs
+
+
+def _next_start(paths: dict, after: tuple, outer_closed: bool):
+    """Where the next layer's cut starts when it is one closed contour (a tile's outline), else None:
+    the layer before ends its travel there."""
+    after = [r for r in after if len(paths.get(r, ()))]
+    fixed = after and len(paths[after[0]]) == 1 and (after[0] == "inner" or (after[0] == "outer" and outer_closed))
+    return np.asarray(paths[after[0]][0][0], float) if fixed else None
 
 
 def _order(first, last, *, start, end=None, flip: bool, pairs, two_opt: bool = True, thorough: bool = False):
@@ -174,18 +189,34 @@ def _order(first, last, *, start, end=None, flip: bool, pairs, two_opt: bool = T
     near = _near(ends, exits, NEIGHBOURS // 2 + 1 if flip else NEIGHBOURS + 1)
     order, flipped = _nearest_neighbour(ends, exits, near, n, np.asarray(start, float), pairs)
     tours = [(order, flipped)]
-    if not flip and (not len(pairs) or np.all(pairs[:, 0] < pairs[:, 1])):
+    if not flip and _keeps_nesting(pairs):
         # the order given, when it keeps the nesting, is a start too: the greedy tour is not always
         # shorter (two rows of holes and the Hilbert curve's order: 716 mm against 770 mm)
         tours.append((np.arange(n), np.zeros(n, bool)))
     if two_opt and n > 2:
-        nodes = [sorted({c % n for c in near[q] + (near[q + n] if flip else [])} - {q}) for q in range(n)]
+        nodes = _neighbour_paths(near, n, flip)
         for o, f in tours:
             _two_opt(first, last, o, f, nodes, start, end, flip, pairs)
     best = min(tours, key=lambda t: _cost(first, last, t[0], t[1], start, end))
-    if thorough and flip and end is None and not len(pairs) and 2 < n <= POLISH_MAX:
+    if thorough and _polishable(n, flip, end, pairs):
         best = _polish(first, last, *best, start)
     return best
+
+
+def _keeps_nesting(pairs) -> bool:
+    """Whether the order given (path 0 first) cuts each path inside another before it."""
+    return not len(pairs) or bool(np.all(pairs[:, 0] < pairs[:, 1]))
+
+
+def _neighbour_paths(near: list, n: int, flip: bool) -> list:
+    """Per path, the other paths among its neighbours (either end's, when paths may run backwards)."""
+    return [sorted({c % n for c in near[q] + (near[q + n] if flip else [])} - {q}) for q in range(n)]
+
+
+def _polishable(n: int, flip: bool, end, pairs) -> bool:
+    """Whether :func:`_polish` takes these paths on: open ones that may run backwards, to a free end,
+    with no nesting, at most :data:`POLISH_MAX` of them."""
+    return flip and end is None and not len(pairs) and 2 < n <= POLISH_MAX
 
 
 POLISH_MAX = 1500
@@ -204,7 +235,6 @@ def _polish(first, last, order, flipped, start, max_rounds: int = 50):
     2-opt (:func:`_two_opt`) leaves chains of strokes that meet end to end apart, which a move
     of one path joins; a pen's plot has many (its strands end at the outline and at each other).
     """
-    n = len(order)
     entry = np.where(flipped[:, None], last[order], first[order])
     leave = np.where(flipped[:, None], first[order], last[order])
     e = entry[:, 0] + 1j * entry[:, 1]
@@ -212,48 +242,77 @@ def _polish(first, last, order, flipped, start, max_rounds: int = 50):
     s = complex(float(start[0]), float(start[1]))
     idx, fl = np.asarray(order, np.int64).copy(), np.asarray(flipped, bool).copy()
     for _ in range(max_rounds):
-        improved = False
-        for lo in range(n):  # 2-opt: the stretch lo..hi reversed
-            p = s if lo == 0 else x[lo - 1]
-            gain = np.abs(e[lo] - p) - np.abs(x[lo:] - p)
-            gain[:-1] += np.abs(e[lo + 1 :] - x[lo:-1]) - np.abs(e[lo + 1 :] - e[lo])
-            k = int(np.argmax(gain))
-            if gain[k] > 1e-9:
-                r = slice(lo, lo + k + 1)
-                e[r], x[r] = x[r][::-1].copy(), e[r][::-1].copy()
-                idx[r], fl[r] = idx[r][::-1].copy(), ~fl[r][::-1]
-                improved = True
-        for size in (1, 2, 3):  # or-opt: the run i..j moved between two others, either way round
-            # place k puts the run after position k - 1 (k = 0: first): between before[k] and after[k]
-            before, after, link, tail = _places(e, x, s)
-            i = 0
-            while i + size <= n:
-                j = i + size - 1
-                p = s if i == 0 else x[i - 1]
-                a, b = e[i], x[j]
-                saved = abs(a - p) + (abs(e[j + 1] - b) - abs(e[j + 1] - p) if j + 1 < n else 0.0)
-                ahead = np.abs(a - before) + np.abs(after - b) * tail - link
-                back = np.abs(b - before) + np.abs(after - a) * tail - link
-                ahead[i : j + 2] = back[i : j + 2] = np.inf  # its own place, and inside the run
-                fa, fb = int(np.argmin(ahead)), int(np.argmin(back))
-                cost, at, rev = (ahead[fa], fa, False) if ahead[fa] <= back[fb] else (back[fb], fb, True)
-                if saved - cost > 1e-9:
-                    run = slice(i, j + 1)
-                    re, rx, ri, rf = e[run].copy(), x[run].copy(), idx[run].copy(), fl[run].copy()
-                    if rev:
-                        re, rx, ri, rf = rx[::-1], re[::-1], ri[::-1], ~rf[::-1]
-                    rest = np.r_[0:i, j + 1 : n]
-                    cut = at if at < i else at - size  # the place among the paths left
-                    e = np.concatenate([e[rest[:cut]], re, e[rest[cut:]]])
-                    x = np.concatenate([x[rest[:cut]], rx, x[rest[cut:]]])
-                    idx = np.concatenate([idx[rest[:cut]], ri, idx[rest[cut:]]])
-                    fl = np.concatenate([fl[rest[:cut]], rf, fl[rest[cut:]]])
-                    before, after, link, tail = _places(e, x, s)
-                    improved = True
-                i += 1
+        improved = _two_opt_round(e, x, idx, fl, s)
+        for size in (1, 2, 3):
+            e, x, idx, fl, moved = _or_opt_round(e, x, idx, fl, s, size)
+            improved |= moved
         if not improved:
             break
     return idx, fl
+
+
+def _two_opt_round(e, x, idx, fl, s) -> bool:
+    """One round of full 2-opt (:func:`_polish`), in place: from each position, the stretch whose
+    reversal shortens the travel most is reversed. Returns whether any was.
+
+    ``e``, ``x``: each path's entry and exit (complex), in order; ``idx``, ``fl``: the paths
+    and whether each runs backwards; ``s``: the start.
+    """
+    improved = False
+    for lo in range(len(e)):  # 2-opt: the stretch lo..hi reversed
+        p = s if lo == 0 else x[lo - 1]
+        gain = np.abs(e[lo] - p) - np.abs(x[lo:] - p)
+        gain[:-1] += np.abs(e[lo + 1 :] - x[lo:-1]) - np.abs(e[lo + 1 :] - e[lo])
+        k = int(np.argmax(gain))
+        if gain[k] > 1e-9:
+            r = slice(lo, lo + k + 1)
+            e[r], x[r] = x[r][::-1].copy(), e[r][::-1].copy()
+            idx[r], fl[r] = idx[r][::-1].copy(), ~fl[r][::-1]
+            improved = True
+    return improved
+
+
+def _or_opt_round(e, x, idx, fl, s, size: int):
+    """One round of or-opt (:func:`_polish`): each run of ``size`` paths moved to the place, either way
+    round, that shortens the travel most. Returns ``(e, x, idx, fl, whether any moved)``, as
+    :func:`_two_opt_round` takes them."""
+    n = len(e)
+    improved = False
+    # place k puts the run after position k - 1 (k = 0: first): between before[k] and after[k]
+    before, after, link, tail = _places(e, x, s)
+    i = 0
+    while i + size <= n:
+        j = i + size - 1
+        p = s if i == 0 else x[i - 1]
+        a, b = e[i], x[j]
+        saved = abs(a - p) + (abs(e[j + 1] - b) - abs(e[j + 1] - p) if j + 1 < n else 0.0)
+        ahead = np.abs(a - before) + np.abs(after - b) * tail - link
+        back = np.abs(b - before) + np.abs(after - a) * tail - link
+        ahead[i : j + 2] = back[i : j + 2] = np.inf  # its own place, and inside the run
+        fa, fb = int(np.argmin(ahead)), int(np.argmin(back))
+        cost, at, rev = (ahead[fa], fa, False) if ahead[fa] <= back[fb] else (back[fb], fb, True)
+        if saved - cost > 1e-9:
+            e, x, idx, fl = _moved_run(e, x, idx, fl, i, j, at, rev)
+            before, after, link, tail = _places(e, x, s)
+            improved = True
+        i += 1
+    return e, x, idx, fl, improved
+
+
+def _moved_run(e, x, idx, fl, i: int, j: int, at: int, rev: bool):
+    """``(e, x, idx, fl)`` with the run of paths i..j moved to place ``at`` (see :func:`_places`),
+    run backwards if ``rev``."""
+    run = slice(i, j + 1)
+    re, rx, ri, rf = e[run].copy(), x[run].copy(), idx[run].copy(), fl[run].copy()
+    if rev:
+        re, rx, ri, rf = rx[::-1], re[::-1], ri[::-1], ~rf[::-1]
+    rest = np.r_[0:i, j + 1 : len(e)]
+    cut = at if at < i else at - (j + 1 - i)  # the place among the paths left
+    e = np.concatenate([e[rest[:cut]], re, e[rest[cut:]]])
+    x = np.concatenate([x[rest[:cut]], rx, x[rest[cut:]]])
+    idx = np.concatenate([idx[rest[:cut]], ri, idx[rest[cut:]]])
+    fl = np.concatenate([fl[rest[:cut]], rf, fl[rest[cut:]]])
+    return e, x, idx, fl
 
 
 def _places(e, x, s):
@@ -305,10 +364,7 @@ def _nearest_neighbour(ends, exits, near, n, start, pairs):
     left, rebuilt whenever half of those it holds are cut, with a radius doubled until
     a path is found.
     """
-    waiting = np.bincount(pairs[:, 1], minlength=n).tolist() if len(pairs) else [0] * n
-    around: list[list] = [[] for _ in range(n)]
-    for a, b in pairs.tolist():
-        around[a].append(b)
+    waiting, around = _nesting_lists(pairs, n)
     done = [False] * n
     order, entered = [], []
     m = len(ends)
@@ -317,23 +373,10 @@ def _nearest_neighbour(ends, exits, near, n, start, pairs):
     step = reach / np.sqrt(m)
     q = -1
     for _ in range(n):
-        pick = -1
-        if q >= 0:
-            for c in near[q]:
-                if not done[c % n] and not waiting[c % n]:
-                    pick = c
-                    break
+        pick = _first_free(near[q], done, waiting, n) if q >= 0 else -1
         if pick < 0:
             point = start if q < 0 else exits[q]
-            where, r = shapely.Point(point), step
-            far = 2 * reach + float(np.hypot(*(np.asarray(point) - ends.min(axis=0))))
-            while pick < 0:
-                found = live[live_tree.query(where, predicate="dwithin", distance=r)] if r < far else np.arange(m)
-                ok = [c for c in found.tolist() if not done[c % n] and not waiting[c % n]]
-                if ok:
-                    d = np.hypot(*(ends[ok] - point).T)
-                    pick = ok[int(np.argmin(d))]
-                r *= 2
+            pick = _nearest_free(ends, point, live, live_tree, step, reach, done, waiting, n)
         node = pick % n
         done[node] = True
         order.append(node)
@@ -349,6 +392,37 @@ def _nearest_neighbour(ends, exits, near, n, start, pairs):
     return order, np.array(entered, np.int64) >= n
 
 
+def _nesting_lists(pairs, n: int) -> tuple[list, list]:
+    """``(waiting, around)``: per path, how many paths inside it are still to be cut, and the paths around it."""
+    waiting = np.bincount(pairs[:, 1], minlength=n).tolist() if len(pairs) else [0] * n
+    around: list[list] = [[] for _ in range(n)]
+    for a, b in pairs.tolist():
+        around[a].append(b)
+    return waiting, around
+
+
+def _first_free(near: list, done: list, waiting: list, n: int) -> int:
+    """The first of the neighbours ``near`` whose path is not cut and waits for none, or -1."""
+    for c in near:
+        if not done[c % n] and not waiting[c % n]:
+            return c
+    return -1
+
+
+def _nearest_free(ends, point, live, live_tree, step: float, reach: float, done: list, waiting: list, n: int) -> int:
+    """The end nearest ``point`` whose path is not cut and waits for none, asking the R-tree of the
+    ``live`` ends with a radius doubled from ``step`` until one is found (past ``reach``: all ends)."""
+    where, r = shapely.Point(point), step
+    far = 2 * reach + float(np.hypot(*(np.asarray(point) - ends.min(axis=0))))
+    while True:
+        found = live[live_tree.query(where, predicate="dwithin", distance=r)] if r < far else np.arange(len(ends))
+        ok = [c for c in found.tolist() if not done[c % n] and not waiting[c % n]]
+        if ok:
+            d = np.hypot(*(ends[ok] - point).T)
+            return ok[int(np.argmin(d))]
+        r *= 2
+
+
 def _two_opt(first, last, order, flipped, nodes, start, end, flip, pairs):
     """2-opt in place on ``order`` (and ``flipped``): reverse a stretch of the order while that
     shortens the travel, trying each path against its neighbours (``nodes``), the paths
@@ -357,15 +431,11 @@ def _two_opt(first, last, order, flipped, nodes, start, end, flip, pairs):
     that may be reversed. A stretch holding a path and one around it is never reversed.
     """
     n = len(order)
-    fx, fy = first[:, 0].tolist(), first[:, 1].tolist()
-    lx, ly = last[:, 0].tolist(), last[:, 1].tolist()
-    sx, sy = float(start[0]), float(start[1])
-    ex, ey = (0.0, 0.0) if end is None else (float(end[0]), float(end[1]))
+    fx, fy, lx, ly, (sx, sy), (ex, ey) = _scalar_points(first, last, start, end)
     pos = np.empty(n, np.int64)
     pos[order] = np.arange(n)
     fl = flipped  # by position in the order: kept aligned with it
     hyp = math.hypot
-    inside, around = (pairs[:, 0], pairs[:, 1]) if len(pairs) else (None, None)
 
     def entry(node, f):
         return (lx[node], ly[node]) if f else (fx[node], fy[node])
@@ -396,24 +466,41 @@ def _two_opt(first, last, order, flipped, nodes, start, end, flip, pairs):
                 if gain > 1e-9:
                     best = (lo, hi)
                     break
-            if best is None:
-                continue
-            lo, hi = best
-            if inside is not None:
-                pi, pa = pos[inside], pos[around]
-                if np.any((np.minimum(pi, pa) >= lo) & (np.maximum(pi, pa) <= hi)):
-                    continue
-            order[lo : hi + 1] = order[lo : hi + 1][::-1].copy()
-            if flip:
-                fl[lo : hi + 1] = ~fl[lo : hi + 1][::-1]
-            pos[order[lo : hi + 1]] = np.arange(lo, hi + 1)
-            for p in (lo - 1, lo, hi, hi + 1):
-                if 0 <= p < n:
-                    node = int(order[p])
-                    if not queued[node]:
-                        queued[node] = True
-                        queue.append(node)
-            if not queued[a]:
-                queued[a] = True
-                queue.append(a)
-            break
+            if best is not None and _reverse_stretch(order, fl, pos, *best, flip, pairs):
+                _requeue(queue, queued, order, *best, a)
+                break
+
+
+def _scalar_points(first, last, start, end):
+    """``(fx, fy, lx, ly, (sx, sy), (ex, ey))``: the paths' first and last points, the start and the end
+    (none: the origin, not counted) as Python floats, for :func:`_two_opt`'s scalar loop."""
+    ends = (0.0, 0.0) if end is None else (float(end[0]), float(end[1]))
+    xy = (first[:, 0].tolist(), first[:, 1].tolist(), last[:, 0].tolist(), last[:, 1].tolist())
+    return (*xy, (float(start[0]), float(start[1])), ends)
+
+
+def _reverse_stretch(order, fl, pos, lo: int, hi: int, flip: bool, pairs) -> bool:
+    """Reverse the stretch lo..hi of ``order`` in place (its paths run backwards if ``flip``), unless it
+    holds a path and one around it (``pairs``). Returns whether it was reversed."""
+    if len(pairs):
+        pi, pa = pos[pairs[:, 0]], pos[pairs[:, 1]]
+        if np.any((np.minimum(pi, pa) >= lo) & (np.maximum(pi, pa) <= hi)):
+            return False
+    order[lo : hi + 1] = order[lo : hi + 1][::-1].copy()
+    if flip:
+        fl[lo : hi + 1] = ~fl[lo : hi + 1][::-1]
+    pos[order[lo : hi + 1]] = np.arange(lo, hi + 1)
+    return True
+
+
+def _requeue(queue, queued: list, order, lo: int, hi: int, a: int) -> None:
+    """Queue again the paths next to the ends of a reversed stretch lo..hi, and path ``a``."""
+    for p in (lo - 1, lo, hi, hi + 1):
+        if 0 <= p < len(order):
+            node = int(order[p])
+            if not queued[node]:
+                queued[node] = True
+                queue.append(node)
+    if not queued[a]:
+        queued[a] = True
+        queue.append(a)

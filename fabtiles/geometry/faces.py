@@ -473,14 +473,7 @@ def _congruence_groups(shapes: np.ndarray, rings: list) -> np.ndarray:
     reps: list[int] = []  # the first shape of each group, by group number
     start = 0
     while start < n:
-        end = start + 1
-        while (
-            end < n
-            and verts[order[end]] == verts[order[start]]
-            and nisl[order[end]] == nisl[order[start]]
-            and area[order[end]] - area[order[end - 1]] <= AREA_TOLERANCE * area[order[end]]
-        ):
-            end += 1
+        end = _run_end(order, start, verts, nisl, area)
         run_reps: list[int] = []
         for i in order[start:end].tolist():
             for g in run_reps:
@@ -500,6 +493,21 @@ def _congruence_groups(shapes: np.ndarray, rings: list) -> np.ndarray:
     return renum[group]
 
 
+def _run_end(order, start: int, verts, nisl, area) -> int:
+    """The end of the run of sorted shapes from ``start``: the same vertex count and islands, no area jump
+    over :data:`AREA_TOLERANCE` (see :func:`_congruence_groups`)."""
+    n = len(order)
+    end = start + 1
+    while (
+        end < n
+        and verts[order[end]] == verts[order[start]]
+        and nisl[order[end]] == nisl[order[start]]
+        and area[order[end]] - area[order[end - 1]] <= AREA_TOLERANCE * area[order[end]]
+    ):
+        end += 1
+    return end
+
+
 def _vertex_key(ring: np.ndarray) -> tuple:
     """A last tie-break between classes: the edge lengths sorted, to a micron."""
     length, _ = _edges_turns(ring)
@@ -507,6 +515,39 @@ def _vertex_key(ring: np.ndarray) -> tuple:
 
 
 # -- descriptions ----------------------------------------------------------------
+def _describe_convex(length: np.ndarray, turn: np.ndarray, same_len: bool) -> str:
+    """The name of a convex face from its edges' lengths and its turns at the vertices (see :func:`_describe`)."""
+    n = len(length)
+    size = float(length.max())
+    interior = math.pi - turn  # interior angle at each vertex
+    same_angle = bool(np.ptp(interior) <= 1e-4)
+    if same_len and same_angle and n <= MAX_SIDES:
+        return {3: "equilateral triangle", 4: "square"}.get(n, f"regular {_NAMES.get(n, f'{n}-gon')}")
+    if n == 3:
+        return "triangle"
+    if n == 4:
+        return _describe_quadrilateral(length, size, same_len, same_angle)
+    return _NAMES.get(n, f"{n}-gon") if n <= MAX_SIDES else ""
+
+
+def _describe_quadrilateral(length: np.ndarray, size: float, same_len: bool, same_angle: bool) -> str:
+    """A convex quadrilateral's name: rhombus, rectangle, kite (two pairs of adjacent equal edges; edge i
+    runs from vertex i to i + 1) or quadrilateral."""
+    if same_len:
+        return "rhombus"
+    if same_angle:
+        return "rectangle"
+    near = lambda x, y: abs(x - y) <= 1e-4 * size + TOLERANCE_MM  # noqa: E731
+    if any(near(length[k], length[(k + 1) % 4]) and near(length[(k + 2) % 4], length[(k + 3) % 4]) for k in range(2)):
+        return "kite"
+    return "quadrilateral"
+
+
+def _alternates(convex: np.ndarray) -> bool:
+    """Whether the vertices turn out and in by turns (a star's points and notches)."""
+    return bool((convex[::2].all() and not convex[1::2].any()) or (convex[1::2].all() and not convex[::2].any()))
+
+
 def _describe(ring: np.ndarray, islands: int = 0) -> str:
     """What a face with outer ring ``ring`` (counter-clockwise) is, where it is plain, else "".
 
@@ -527,32 +568,8 @@ def _describe(ring: np.ndarray, islands: int = 0) -> str:
     same_len = bool(np.ptp(length) <= 1e-4 * size + TOLERANCE_MM)
     convex = turn > 0
     if convex.all():
-        interior = math.pi - turn  # interior angle at each vertex
-        same_angle = bool(np.ptp(interior) <= 1e-4)
-        if same_len and same_angle and n <= MAX_SIDES:
-            return {3: "equilateral triangle", 4: "square"}.get(n, f"regular {_NAMES.get(n, f'{n}-gon')}")
-        if n == 3:
-            return "triangle"
-        if n == 4:
-            if same_len:
-                return "rhombus"
-            if same_angle:
-                return "rectangle"
-            near = lambda x, y: abs(x - y) <= 1e-4 * size + TOLERANCE_MM  # noqa: E731
-            # a kite: two pairs of adjacent equal edges (edge i runs from vertex i to i + 1)
-            if any(
-                near(length[k], length[(k + 1) % 4]) and near(length[(k + 2) % 4], length[(k + 3) % 4])
-                for k in range(2)
-            ):
-                return "kite"
-            return "quadrilateral"
-        return _NAMES.get(n, f"{n}-gon") if n <= MAX_SIDES else ""
-    if (
-        n >= 6
-        and n % 2 == 0
-        and same_len
-        and ((convex[::2].all() and not convex[1::2].any()) or (convex[1::2].all() and not convex[::2].any()))
-    ):
+        return _describe_convex(length, turn, same_len)
+    if n >= 6 and n % 2 == 0 and same_len and _alternates(convex):
         return f"{n // 2}-point star"
     if n == 4:
         return "dart"  # the kite's concave partner, as Penrose named it

@@ -210,29 +210,17 @@ def check_pattern_kept(
     >>> print(r.findings[0].message)
     filling the holes narrower than min_hole_mm = 1.2 mm left none of the pattern (all 2 holes filled): to keep at least 50 % of the pattern's open area, the holes of 1 mm must be 1.2 mm wide or wider: a stroke of at most 1.8 mm (it is 2 mm), a packing at least 1.07x larger (its edge or radius), or a profile with min_hole_mm <= 1 mm
     """  # noqa: E501 - a doctest's lines are as Python prints them
-    o_area, b_area = float(shapely.area(outline)), float(shapely.area(before))
-    # only a deboss's filling takes material (groove) away; elsewhere it only adds
-    gone = float(shapely.area(shapely.difference(before, after))) if deboss else 0.0
-    phases = [(o_area - b_area, float(shapely.area(after)) - b_area + gone, False)]
-    if deboss:
-        phases.append((b_area, gone, True))
-    shares = [(max(0.0, 1.0 - lost / area), area, grooves) for area, lost, grooves in phases if area > tolerance_mm**2]
-    if not shares:
+    least = _least_share(before, after, outline, deboss=deboss, tolerance_mm=tolerance_mm)
+    if least is None:
         return 1.0
-    kept, open_before, grooves = min(shares, key=lambda x: x[0])
-    kept = min(kept, 1.0)
+    kept, open_before, grooves = least
     if kept >= PATTERN_KEPT:
         return kept
     if kept < 1e-9:
         kept = 0.0
     openings = "grooves" if grooves else openings
-    # the openings before, and those the filling closed (their inside is material now; plate, for grooves)
-    pieces = shapely.get_parts(before if grooves else shapely.difference(outline, before))
-    pieces = pieces[shapely.area(pieces) > tolerance_mm**2]
-    shapely.prepare(after)
-    inside = shapely.contains(after, shapely.point_on_surface(pieces))
-    filled = pieces[inside != grooves]
-    n, total = len(filled), len(pieces)
+    filled, total = _filled_openings(before, after, outline, grooves=grooves, tolerance_mm=tolerance_mm)
+    n = len(filled)
     centres, widths = hole_widths(filled, tolerance_mm=tolerance_mm) if n else (np.empty(0, object), np.empty(0))
     what = f"all {total:,} {openings}" if n == total else f"{n:,} of {total:,} {openings}"
     area_of = "its grooves' area" if grooves else "the pattern's open area"
@@ -244,22 +232,10 @@ def check_pattern_kept(
         need = PATTERN_KEPT * open_before - kept * open_before
         reach = int(np.searchsorted(np.cumsum(shapely.area(filled)[order]), need))
         w = float(widths[order[min(reach, n - 1)]])
-        m = limit_mm
-        ways = []
-        if stroke is not None:
-            if grooves:
-                ways.append(f"a stroke of at least {_up(stroke + m - w):g} mm (it is {stroke:g} mm)")
-            elif stroke - (m - w) >= min_stroke_mm:
-                ways.append(f"a stroke of at most {_down(stroke - (m - w)):g} mm (it is {stroke:g} mm)")
-        if scale and not grooves:
-            s = stroke if stroke is not None else 0.0
-            ways.append(f"a packing at least {_up((m + s) / max(w + s, 1e-9)):g}x larger (its edge or radius)")
-        if tool:
-            ways.append(tool.format(w=f"{_down(w):g}"))
-        ways = ", ".join(ways[:-1]) + ", or " + ways[-1] if len(ways) > 1 else "".join(ways)
+        ways = _ways_to_width(w, limit_mm, stroke, min_stroke_mm, scale=scale, tool=tool, grooves=grooves)
         message += (
             f": to keep at least {100 * PATTERN_KEPT:.0f} % of {area_of}, the {openings} of {w:.3g} mm "
-            f"must be {m:g} mm wide or wider: {ways}"
+            f"must be {limit_mm:g} mm wide or wider: {ways}"
         )
     report.add(
         "filled_pattern",
@@ -271,6 +247,52 @@ def check_pattern_kept(
         limit=100 * PATTERN_KEPT,
     )
     return kept
+
+
+def _least_share(before, after, outline, *, deboss: bool, tolerance_mm: float):
+    """``(share kept, open area before, grooves)`` of the phase that kept least, or None when nothing was open.
+
+    The open area is the outline less ``before``; a ``deboss`` also loses its grooves'
+    area where the filling took groove away (``grooves`` True for that phase).
+    """
+    o_area, b_area = float(shapely.area(outline)), float(shapely.area(before))
+    # only a deboss's filling takes material (groove) away; elsewhere it only adds
+    gone = float(shapely.area(shapely.difference(before, after))) if deboss else 0.0
+    phases = [(o_area - b_area, float(shapely.area(after)) - b_area + gone, False)]
+    if deboss:
+        phases.append((b_area, gone, True))
+    shares = [(max(0.0, 1.0 - lost / area), area, grooves) for area, lost, grooves in phases if area > tolerance_mm**2]
+    if not shares:
+        return None
+    kept, open_before, grooves = min(shares, key=lambda x: x[0])
+    return min(kept, 1.0), open_before, grooves
+
+
+def _filled_openings(before, after, outline, *, grooves: bool, tolerance_mm: float):
+    """``(filled, total)``: the openings before that the filling closed (their inside is material now;
+    plate, for ``grooves``), and how many openings there were."""
+    pieces = shapely.get_parts(before if grooves else shapely.difference(outline, before))
+    pieces = pieces[shapely.area(pieces) > tolerance_mm**2]
+    shapely.prepare(after)
+    inside = shapely.contains(after, shapely.point_on_surface(pieces))
+    return pieces[inside != grooves], len(pieces)
+
+
+def _ways_to_width(w: float, m: float, stroke, min_stroke_mm: float, *, scale: bool, tool: str, grooves: bool) -> str:
+    """What makes openings ``w`` wide ``m`` wide, as a list in words: a thinner stroke (thicker, for
+    grooves) kept at ``min_stroke_mm`` or more, a larger packing (``scale``), or ``tool``."""
+    ways = []
+    if stroke is not None:
+        if grooves:
+            ways.append(f"a stroke of at least {_up(stroke + m - w):g} mm (it is {stroke:g} mm)")
+        elif stroke - (m - w) >= min_stroke_mm:
+            ways.append(f"a stroke of at most {_down(stroke - (m - w)):g} mm (it is {stroke:g} mm)")
+    if scale and not grooves:
+        s = stroke if stroke is not None else 0.0
+        ways.append(f"a packing at least {_up((m + s) / max(w + s, 1e-9)):g}x larger (its edge or radius)")
+    if tool:
+        ways.append(tool.format(w=f"{_down(w):g}"))
+    return ", ".join(ways[:-1]) + ", or " + ways[-1] if len(ways) > 1 else "".join(ways)
 
 
 def _up(x: float) -> float:

@@ -329,17 +329,7 @@ def to_shapely(cs) -> Polygon | MultiPolygon:
                 part_of.append(k)
     if not rings:
         return Polygon()
-    # Find rings that visit a vertex twice, all rings at once (sorting beats a per-ring unique).
-    lens = np.array([len(r) for r in rings])
-    coords = np.concatenate(rings)
-    rid = np.repeat(np.arange(len(rings)), lens)
-    order = np.lexsort((coords[:, 1], coords[:, 0], rid))
-    c, r = coords[order], rid[order]
-    dup = (r[1:] == r[:-1]) & (c[1:] == c[:-1]).all(axis=1)
-    for k in sorted(set(r[1:][dup].tolist()), reverse=True):
-        pieces = _split_pinched(rings[k])
-        rings[k : k + 1] = pieces
-        part_of[k : k + 1] = [part_of[k]] * len(pieces)
+    _split_pinched_rings(rings, part_of)
     lens = np.array([len(r) for r in rings])
     lr = shapely.linearrings(np.concatenate(rings), indices=np.repeat(np.arange(len(rings)), lens))
     ccw = shapely.is_ccw(lr)
@@ -349,20 +339,7 @@ def to_shapely(cs) -> Polygon | MultiPolygon:
     speck = ~ccw & (shapely.area(shapely.polygons(lr)) < MIN_HOLE_AREA)
     if speck.any():
         lr, ccw, part_of = lr[~speck], ccw[~speck], part_of[~speck]
-    polys = []
-    for k in np.unique(part_of):
-        mine = part_of == k
-        shells, holes = lr[mine & ccw], lr[mine & ~ccw]
-        if len(shells) == 1:
-            polys.append(shapely.Polygon(shells[0], holes))
-        elif len(shells) > 1:
-            polys += _assign_holes(shells, holes)
-    fixed = []
-    for p in polys:
-        if p.is_valid:
-            fixed.append(p)
-        else:  # pragma: no cover - Clipper output that splitting did not repair
-            fixed += [g for g in _polygons_of(shapely.make_valid(p)) if g.area > 0]
+    fixed = _made_valid(_component_polygons(lr, ccw, part_of))
     if not fixed:
         return Polygon()
     if len(fixed) > 1:
@@ -373,6 +350,45 @@ def to_shapely(cs) -> Polygon | MultiPolygon:
             fixed = _merge_line_touching(fixed)
     fixed.sort(key=lambda p: (round(p.bounds[1], 6), round(p.bounds[0], 6), -p.area))
     return fixed[0] if len(fixed) == 1 else MultiPolygon(fixed)
+
+
+def _split_pinched_rings(rings: list, part_of: list) -> None:
+    """Split, in place, the rings that visit a vertex twice (:func:`_split_pinched`), each piece in its
+    ring's component. All rings are searched at once: sorting beats a per-ring unique."""
+    lens = np.array([len(r) for r in rings])
+    coords = np.concatenate(rings)
+    rid = np.repeat(np.arange(len(rings)), lens)
+    order = np.lexsort((coords[:, 1], coords[:, 0], rid))
+    c, r = coords[order], rid[order]
+    dup = (r[1:] == r[:-1]) & (c[1:] == c[:-1]).all(axis=1)
+    for k in sorted(set(r[1:][dup].tolist()), reverse=True):
+        pieces = _split_pinched(rings[k])
+        rings[k : k + 1] = pieces
+        part_of[k : k + 1] = [part_of[k]] * len(pieces)
+
+
+def _component_polygons(lr, ccw, part_of) -> list:
+    """The polygons of each component: its counter-clockwise rings ``lr`` the shells, the others their holes."""
+    polys = []
+    for k in np.unique(part_of):
+        mine = part_of == k
+        shells, holes = lr[mine & ccw], lr[mine & ~ccw]
+        if len(shells) == 1:
+            polys.append(shapely.Polygon(shells[0], holes))
+        elif len(shells) > 1:
+            polys += _assign_holes(shells, holes)
+    return polys
+
+
+def _made_valid(polys: list) -> list:
+    """``polys``, each invalid one replaced by the polygons of ``shapely.make_valid`` (a last resort)."""
+    fixed = []
+    for p in polys:
+        if p.is_valid:
+            fixed.append(p)
+        else:  # pragma: no cover - Clipper output that splitting did not repair
+            fixed += [g for g in _polygons_of(shapely.make_valid(p)) if g.area > 0]
+    return fixed
 
 
 def _merge_line_touching(polys: list[Polygon]) -> list[Polygon]:

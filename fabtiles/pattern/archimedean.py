@@ -139,17 +139,7 @@ class ArchimedeanPacking:
     def __post_init__(self) -> None:
         cell = unit_cell(self.tiling)
         kinds = tuple(sorted(set(cell.sides.tolist())))
-        given = {}
-        motifs = self.motifs
-        if motifs is not None:
-            if not hasattr(motifs, "items"):
-                raise ParameterError(
-                    f"motifs must be a mapping from polygon sides to a Star or preset "
-                    f"name, like {{8: 'table3-3'}}, got {motifs!r}",
-                    param="motifs",
-                )
-            for key, star in motifs.items():
-                given[_kind(key, kinds, cell.name)] = _motif(f"motifs[{key!r}]", star)
+        given = _given_motifs(self.motifs, kinds, cell.name)
         method = check_method(self.method)
         if method == "hankin":  # only the kinds named keep a motif; the rest take Hankin's rays
             full = tuple((p, given[p]) for p in kinds if p in given)
@@ -164,14 +154,7 @@ class ArchimedeanPacking:
         init(self, "tiling", cell.name)
         edge = check_float("edge", self.edge, low=0, low_open=True)
         init(self, "edge", edge)
-        if method == "hankin":
-            rays = [p for p in kinds if p not in given]
-            contact = check_contact(self.contact_angle, self.contact_gap, edge, rays, cell.name)
-        else:  # unused, but kept (and checked) so replace(method="hankin") takes them
-            contact = (
-                check_float("contact_angle", self.contact_angle, low=0, high=90, low_open=True, high_open=True),
-                check_float("contact_gap", self.contact_gap, low=0),
-            )
+        contact = self._checked_contact(method, edge, [p for p in kinds if p not in given], cell.name)
         init(self, "method", method)
         init(self, "contact_angle", contact[0])
         init(self, "contact_gap", contact[1])
@@ -179,6 +162,17 @@ class ArchimedeanPacking:
         init(self, "motifs", MappingProxyType(dict(full)))
         init(self, "gap_motif", gap)
         init(self, "fill", check_float("fill", self.fill, low=0, high=1, low_open=True))
+
+    def _checked_contact(self, method: str, edge: float, rays: list, tiling: str) -> tuple:
+        """``(contact_angle, contact_gap)`` checked: against the tiling's polygons that take Hankin's
+        ``rays``, or, with the motifs' method, each alone (unused, but kept and checked so that
+        ``replace(method="hankin")`` takes them)."""
+        if method == "hankin":
+            return check_contact(self.contact_angle, self.contact_gap, edge, rays, tiling)
+        return (
+            check_float("contact_angle", self.contact_angle, low=0, high=90, low_open=True, high_open=True),
+            check_float("contact_gap", self.contact_gap, low=0),
+        )
 
     def __reduce__(self):
         # ``motifs`` is a mappingproxy, which does not pickle: pickle and copy rebuild from the parameters.
@@ -405,22 +399,37 @@ class ArchimedeanPacking:
                 # a gap under 1e-9 of the edge puts both starts on one point to float precision:
                 # the rays continue each other across the edge as with none
                 if gap <= 1e-9 * a:
-                    mid = centres[e] + inradius(p, a) * o
-                    miss = np.hypot(*(near - mid - radii[:, None] * o).T)
-                    j = int(np.argmin(miss))
-                    assert miss[j] < 1e-6 * a, "every edge has a neighbour"
-                    if hankin[entry[j]]:
-                        if not (o[0] > 1e-9 or (abs(o[0]) <= 1e-9 and o[1] > 0)):
-                            continue  # the neighbour lists the edge's two segments
-                        q = int(cell.sides[entry[j]])
-                        turn = math.atan2(*(mid - near[j])[::-1]) - cell.angles[entry[j]]
-                        kb = round(turn / (2 * math.pi / q)) % q
-                        other = rays[entry[j]][kb, :, 1] + near[j] - centres[e]
-                        segs += [[other[r], rays[e][k, r, 1]] for r in (0, 1)]
-                        continue
-                segs += [rays[e][k, 0], rays[e][k, 1]]
+                    segs += self._joined_rays(e, k, o, rays, hankin, (near, entry, radii))
+                else:
+                    segs += [rays[e][k, 0], rays[e][k, 1]]
             out.append(np.array(segs, dtype=float).reshape(-1, 2, 2))
         return out
+
+    def _joined_rays(self, e: int, k: int, o, rays: list, hankin: list, around) -> list:
+        """The segments of polygon e's rays on its edge k (outward normal ``o``) when they meet the
+        neighbour's there: each ray and the neighbour's one continuing it is one segment, listed by
+        the polygon the normal points right (or up) from; a neighbour keeping a motif: the rays.
+
+        ``around``: ``(near, entry, radii)``, the centres of the polygons near the cell, their
+        numbers in the cell and their circumradii.
+        """
+        cell, a = self._cell, self.edge
+        near, entry, radii = around
+        p = int(cell.sides[e])
+        centre = cell.centres[e] * a
+        mid = centre + inradius(p, a) * o
+        miss = np.hypot(*(near - mid - radii[:, None] * o).T)
+        j = int(np.argmin(miss))
+        assert miss[j] < 1e-6 * a, "every edge has a neighbour"
+        if not hankin[entry[j]]:
+            return [rays[e][k, 0], rays[e][k, 1]]
+        if not (o[0] > 1e-9 or (abs(o[0]) <= 1e-9 and o[1] > 0)):
+            return []  # the neighbour lists the edge's two segments
+        q = int(cell.sides[entry[j]])
+        turn = math.atan2(*(mid - near[j])[::-1]) - cell.angles[entry[j]]
+        kb = round(turn / (2 * math.pi / q)) % q
+        other = rays[entry[j]][kb, :, 1] + near[j] - centre
+        return [[other[r], rays[e][k, r, 1]] for r in (0, 1)]
 
     def _unit_motifs(self) -> list:
         """Per unit-cell circle: its motif's segments scaled to the circle, turned, centred at 0
@@ -510,6 +519,22 @@ def rectangular_period(tiling) -> tuple[float, float]:
         if abs(i - round(i)) < 1e-9:
             return px, float(abs(j * lat[1, 1]))
     raise AssertionError(f"no rectangular period for {tiling}")  # pragma: no cover - every tiling has one
+
+
+def _given_motifs(motifs, kinds: tuple, tiling: str) -> dict:
+    """The motifs given, ``{sides: Star}``, each key a kind of polygon of the tiling; a non-mapping refused."""
+    if motifs is None:
+        return {}
+    if not hasattr(motifs, "items"):
+        raise ParameterError(
+            f"motifs must be a mapping from polygon sides to a Star or preset "
+            f"name, like {{8: 'table3-3'}}, got {motifs!r}",
+            param="motifs",
+        )
+    given = {}
+    for key, star in motifs.items():
+        given[_kind(key, kinds, tiling)] = _motif(f"motifs[{key!r}]", star)
+    return given
 
 
 def _rebuild(params: dict) -> ArchimedeanPacking:

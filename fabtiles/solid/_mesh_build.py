@@ -410,7 +410,6 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
     Raises :class:`~fabtiles.FabricationError` if two pieces claim the same
     directed edge (they overlap), which a proper coverage never does.
     """
-    import manifold3d as m3
     import shapely
 
     if not cov.pieces:
@@ -438,53 +437,18 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
         grid = np.round(pts / QUANTUM).astype(np.int64)
         for k in range(len(polys)):
             r0, r1 = poly_off[k], poly_off[k + 1]
-            tris = None
-            if ring_len[r0:r1].min() >= 3:
-                base = np.arange(starts[r0], starts[r1])
-                ij = grid[base]
-                tris = ear_clip(ij, starts, part_off[multi_off[k] : multi_off[k + 1] + 1], nxt[base] - starts[r0])
-            if tris is None:
-                rings = [pts[starts[r] : starts[r + 1]] for r in range(r0, r1) if ring_len[r] >= 3]
-                if not rings:
-                    continue
-                tris = np.asarray(m3.triangulate(rings), dtype=np.int64).reshape(-1, 3)
-                # the triangulator numbers the points of the rings it was given, in order
-                base = np.concatenate([np.arange(starts[r], starts[r + 1]) for r in range(r0, r1) if ring_len[r] >= 3])
-                ij = grid[base]
-            tris = flip_degenerate(tris, ij)
-            if flat(tris, ij).any():
-                tris = cdt(polys[k], ij)
+            rings = (starts, ring_len[r0:r1], part_off[multi_off[k] : multi_off[k + 1] + 1], nxt)
+            found = _piece_triangles(polys[k], pts, grid, r0, r1, rings)
+            if found is None:
+                continue
+            base, tris = found
             tri_idx.append(base[tris])
             tri_lvl.append(np.full(len(tris), plevel[k]))
         if not tri_idx:
             raise FabricationError("nothing to mesh: the material region is empty")
-    if exact:
-        xy, inv = np.unique(pts, axis=0, return_inverse=True)
-        inv = inv.ravel()
-        n2 = len(xy)
-    else:
-        ij = np.round(pts / QUANTUM).astype(np.int64)
-        keys = (ij[:, 0] + (1 << 30)) * (1 << 31) + (ij[:, 1] + (1 << 30))
-        uniq, inv = np.unique(keys, return_inverse=True)
-        inv = inv.ravel()
-        n2 = len(uniq)
-        xy = np.zeros((n2, 2))
-        xy[inv] = pts
-        xy = np.round(xy / QUANTUM) * QUANTUM
-
-    u = inv
-    v = inv[nxt]
-    ok = np.flatnonzero(u != v)
-    # pair every directed edge with its reverse (the neighbouring piece) by one sort
-    ukey = np.minimum(u[ok], v[ok]) * n2 + np.maximum(u[ok], v[ok])
-    order = np.argsort(ukey, kind="stable")
-    sk = ukey[order]
-    same_next = sk[1:] == sk[:-1]
-    if np.any(same_next[1:] & same_next[:-1]):
-        raise FabricationError("cannot mesh the region: an edge is shared by more than two pieces")
-    a, b = ok[order[:-1][same_next]], ok[order[1:][same_next]]
-    if np.any(u[a] == u[b]):
-        raise FabricationError("cannot mesh the region: two pieces overlap (the region is not a clean coverage)")
+    xy, inv, n2 = _vertex_ids(pts, exact)
+    u, v = inv, inv[nxt]
+    a, b = _edge_twins(u, v, n2)
     out_lvl = np.zeros(len(u), dtype=edge_lvl.dtype)
     out_lvl[a] = edge_lvl[b]
     out_lvl[b] = edge_lvl[a]
@@ -506,6 +470,73 @@ def topology(cov: Coverage, *, triangulate: bool = True, exact: bool = False) ->
         tris=np.concatenate(tri_idx) if tri_idx else None,
         tri_level=np.concatenate(tri_lvl) if tri_lvl else None,
     )
+
+
+def _piece_triangles(poly, pts, grid, r0: int, r1: int, rings):
+    """``(ring points, triangles)`` of one piece (rings r0..r1), or None when it has no ring to fill.
+
+    Ear clipping on the grid first (:func:`ear_clip`), manifold3d's triangulator where it
+    gives up, then the degenerate triangles flipped away and, if some stay flat, a
+    constrained Delaunay triangulation (:func:`cdt`). ``rings``: ``(starts, ring lengths,
+    the piece's polygons' ring offsets, next point)`` of the coverage's ring points.
+    """
+    import manifold3d as m3
+
+    starts, ring_len, part_off, nxt = rings
+    tris = None
+    if ring_len.min() >= 3:
+        base = np.arange(starts[r0], starts[r1])
+        ij = grid[base]
+        tris = ear_clip(ij, starts, part_off, nxt[base] - starts[r0])
+    if tris is None:
+        full = [r for r in range(r0, r1) if ring_len[r - r0] >= 3]
+        if not full:
+            return None
+        tris = np.asarray(m3.triangulate([pts[starts[r] : starts[r + 1]] for r in full]), dtype=np.int64).reshape(-1, 3)
+        # the triangulator numbers the points of the rings it was given, in order
+        base = np.concatenate([np.arange(starts[r], starts[r + 1]) for r in full])
+        ij = grid[base]
+    tris = flip_degenerate(tris, ij)
+    if flat(tris, ij).any():
+        tris = cdt(poly, ij)
+    return base, tris
+
+
+def _vertex_ids(pts, exact: bool):
+    """``(xy, vid, n)``: the distinct vertices of the ring points ``pts``, each point's vertex, how many.
+
+    Points are one vertex when they round to one grid point (the vertex there), or with
+    ``exact`` when their coordinates are equal.
+    """
+    if exact:
+        xy, inv = np.unique(pts, axis=0, return_inverse=True)
+        return xy, inv.ravel(), len(xy)
+    ij = np.round(pts / QUANTUM).astype(np.int64)
+    keys = (ij[:, 0] + (1 << 30)) * (1 << 31) + (ij[:, 1] + (1 << 30))
+    uniq, inv = np.unique(keys, return_inverse=True)
+    inv = inv.ravel()
+    xy = np.zeros((len(uniq), 2))
+    xy[inv] = pts
+    return np.round(xy / QUANTUM) * QUANTUM, inv, len(uniq)
+
+
+def _edge_twins(u, v, n: int):
+    """``(a, b)``: the ring points of each directed edge ``u -> v`` and of its reverse, paired by one sort.
+
+    Raises :class:`~fabtiles.FabricationError` where an edge has more than two pieces or
+    two pieces run it the same way (they overlap).
+    """
+    ok = np.flatnonzero(u != v)
+    ukey = np.minimum(u[ok], v[ok]) * n + np.maximum(u[ok], v[ok])
+    order = np.argsort(ukey, kind="stable")
+    sk = ukey[order]
+    same_next = sk[1:] == sk[:-1]
+    if np.any(same_next[1:] & same_next[:-1]):
+        raise FabricationError("cannot mesh the region: an edge is shared by more than two pieces")
+    a, b = ok[order[:-1][same_next]], ok[order[1:][same_next]]
+    if np.any(u[a] == u[b]):
+        raise FabricationError("cannot mesh the region: two pieces overlap (the region is not a clean coverage)")
+    return a, b
 
 
 def mesh_coverage(cov: Coverage):

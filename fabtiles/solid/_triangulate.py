@@ -251,6 +251,17 @@ def _failure(where, why: str) -> FabricationError:
     return exc
 
 
+def _middle_point(t: list, ij: np.ndarray):
+    """``(x, m, y)``: a flat triangle's corners turned so that m lies between x and y (within the
+    bounding box of the other two), or None."""
+    for r in range(3):
+        x, m, y = t[r], t[(r + 1) % 3], t[(r + 2) % 3]
+        px, pm, py = ij[x], ij[m], ij[y]
+        if np.all(np.minimum(px, py) <= pm) and np.all(pm <= np.maximum(px, py)):
+            return x, m, y
+    return None
+
+
 def flip_degenerate(tris: np.ndarray, ij: np.ndarray) -> np.ndarray:
     """Remove zero-area triangles (three collinear grid points) by edge flips.
 
@@ -263,48 +274,43 @@ def flip_degenerate(tris: np.ndarray, ij: np.ndarray) -> np.ndarray:
         return tris
     tris = tris.copy()
     for _ in range(12):
-        owner = {}
-        for k, (a, b, c) in enumerate(tris.tolist()):
-            owner[(a, b)] = k
-            owner[(b, c)] = k
-            owner[(c, a)] = k
-        alive = np.ones(len(tris), bool)
-        extra = []
-        touched: set = set()
-        for k in flat.tolist():
-            if k in touched:
-                continue
-            t = tris[k].tolist()
-
-            # the middle point lies within the bounding box of the other two
-            mid = None
-            for r in range(3):
-                x, m, y = t[r], t[(r + 1) % 3], t[(r + 2) % 3]
-                px, pm, py = ij[x], ij[m], ij[y]
-                if np.all(np.minimum(px, py) <= pm) and np.all(pm <= np.maximum(px, py)):
-                    mid = (x, m, y)
-                    break
-            if mid is None or len(set(t)) < 3:
-                continue
-            x, m, y = mid
-            nb = owner.get((x, y))
-            if nb is None or nb in touched:
-                continue
-            n = tris[nb].tolist()
-            d = [v for v in n if v not in (x, y)]
-            if len(d) != 1:
-                continue
-            d = d[0]
-            alive[k] = alive[nb] = False
-            touched.update((k, nb))
-            extra.append((x, m, d))
-            extra.append((m, y, d))
-
-        tris = np.concatenate([tris[alive], np.asarray(extra, dtype=np.int64).reshape(-1, 3)])
+        tris = _flip_round(tris, flat, ij)
         flat = np.flatnonzero(twice_areas(ij, tris) == 0)
         if not len(flat):
             break
     return tris
+
+
+def _flip_round(tris: np.ndarray, flat: np.ndarray, ij: np.ndarray) -> np.ndarray:
+    """One round of :func:`flip_degenerate`: each flat triangle ``flat`` and its neighbour across its long
+    edge replaced by two, each triangle touched once (the others wait for the next round)."""
+    owner = {}
+    for k, (a, b, c) in enumerate(tris.tolist()):
+        owner[(a, b)] = k
+        owner[(b, c)] = k
+        owner[(c, a)] = k
+    alive = np.ones(len(tris), bool)
+    extra = []
+    touched: set = set()
+    for k in flat.tolist():
+        if k in touched:
+            continue
+        t = tris[k].tolist()
+        mid = _middle_point(t, ij)
+        if mid is None or len(set(t)) < 3:
+            continue
+        x, m, y = mid
+        nb = owner.get((x, y))
+        if nb is None or nb in touched:
+            continue
+        d = [v for v in tris[nb].tolist() if v not in (x, y)]
+        if len(d) != 1:
+            continue
+        alive[k] = alive[nb] = False
+        touched.update((k, nb))
+        extra.append((x, m, d[0]))
+        extra.append((m, y, d[0]))
+    return np.concatenate([tris[alive], np.asarray(extra, dtype=np.int64).reshape(-1, 3)])
 
 
 BOTTOM_RINGS = 64
@@ -312,6 +318,25 @@ BOTTOM_POINTS = 20_000
 """A bottom outlined by at most ``BOTTOM_RINGS`` rings of ``BOTTOM_POINTS`` points in all is
 triangulated on its own (a seamless relief sheet's has a few hundred points); a bigger one (a
 pierced tile's bottom is its whole pattern) takes the top's triangles, turned over."""
+
+
+def _outline_rings(bu, bv):
+    """The edges ``bu -> bv`` (each vertex starting one) chained into rings of vertex ids, or None
+    past :data:`BOTTOM_RINGS` rings."""
+    succ = dict(zip(bu.tolist(), bv.tolist(), strict=True))
+    rings, seen = [], set()
+    for start in bu.tolist():
+        if start in seen:
+            continue
+        ring, k = [], start
+        while k not in seen:
+            seen.add(k)
+            ring.append(k)
+            k = succ[k]
+        rings.append(ring)
+        if len(rings) > BOTTOM_RINGS:
+            return None
+    return rings
 
 
 def bottom_triangles(u, v, out_level, xy):
@@ -336,19 +361,9 @@ def bottom_triangles(u, v, out_level, xy):
         return None
     if len(np.unique(bu)) != len(bu) or not np.array_equal(np.sort(bu), np.sort(bv)):
         return None
-    succ = dict(zip(bu.tolist(), bv.tolist(), strict=True))
-    rings, seen = [], set()
-    for start in bu.tolist():
-        if start in seen:
-            continue
-        ring, k = [], start
-        while k not in seen:
-            seen.add(k)
-            ring.append(k)
-            k = succ[k]
-        rings.append(ring)
-        if len(rings) > BOTTOM_RINGS:
-            return None
+    rings = _outline_rings(bu, bv)
+    if rings is None:
+        return None
     ids = np.concatenate([np.asarray(r, np.int64) for r in rings])
     ij = np.round(xy[ids] / QUANTUM).astype(np.int64)
     starts = np.concatenate([[0], np.cumsum([len(r) for r in rings])])

@@ -204,16 +204,27 @@ def _onto_sides(xy, sides, outer):
     ``(u, v)`` (material on the left); along each side a point that would fold
     back stays where it is. Returns the points and each point's side (-1: none).
     """
-    import shapely
-
     out = np.array(xy, float)
     side_of = np.full(len(xy), -1)
     if sides is None or not len(sides) or not len(outer):
         return out, side_of
     sides = np.asarray(sides, float)
+    succ = _runs_along_sides(out, sides, outer)
+    for k in range(len(sides)):
+        _onto_side(k, sides, succ, xy, out, side_of)
+    return out, side_of
+
+
+def _runs_along_sides(xy, sides, outer) -> dict:
+    """``{(side, point): next point}``: the outer boundary's edges whose both ends are near the same side.
+
+    A point near two sides (a corner) is in the runs of both.
+    """
+    import shapely
+
     tree = shapely.STRtree(shapely.linestrings(sides.reshape(-1, 2, 2)))
     ends = np.unique(np.asarray(outer).ravel())
-    pi, si = tree.query(shapely.points(out[ends]), predicate="dwithin", distance=SIDE_TOLERANCE_MM)
+    pi, si = tree.query(shapely.points(xy[ends]), predicate="dwithin", distance=SIDE_TOLERANCE_MM)
     near: dict = {}  # point -> sides it is near (corners: both of theirs)
     for p, k in zip(ends[pi].tolist(), si.tolist(), strict=True):
         near.setdefault(p, set()).add(k)
@@ -222,25 +233,35 @@ def _onto_sides(xy, sides, outer):
         if k_common := (near.get(u, set()) & near.get(v, set())):
             for k in k_common:
                 succ.setdefault((k, u), v)
-    for k in range(len(sides)):
-        a, d = sides[k, :2], sides[k, 2:] - sides[k, :2]
-        # runs start at points with no predecessor along this side
-        preds = {v for (kk, _), v in succ.items() if kk == k}
-        starts = [u for (kk, u) in succ if kk == k and u not in preds] or [u for (kk, u) in succ if kk == k][:1]
-        for u in starts:
-            last, p, seen = -1.0, u, set()
-            while p is not None and p not in seen:
-                seen.add(p)
-                t = float(np.dot(out[p] - a, d) / np.dot(d, d))
-                corner = bool(np.all(xy[p] == sides[k, :2]) or np.all(xy[p] == sides[k, 2:]))
-                if corner:
-                    last = max(last, t)
-                elif side_of[p] < 0 and last < t < 1.0:
-                    out[p] = a + t * d
-                    side_of[p] = k
-                    last = t
-                p = succ.get((k, p))
-    return out, side_of
+    return succ
+
+
+def _run_starts(k: int, succ: dict) -> list:
+    """The points where the runs along side k start: those with no predecessor along it (a closed run: any one)."""
+    preds = {v for (kk, _), v in succ.items() if kk == k}
+    return [u for (kk, u) in succ if kk == k and u not in preds] or [u for (kk, u) in succ if kk == k][:1]
+
+
+def _onto_side(k: int, sides, succ: dict, xy, out, side_of) -> None:
+    """Move the points of the runs along side k onto its line, in place (see :func:`_onto_sides`).
+
+    Along a run, a point moves only if it lies past the last one moved (or corner
+    passed): one that would fold back stays where it is.
+    """
+    a, d = sides[k, :2], sides[k, 2:] - sides[k, :2]
+    for u in _run_starts(k, succ):
+        last, p, seen = -1.0, u, set()
+        while p is not None and p not in seen:
+            seen.add(p)
+            t = float(np.dot(out[p] - a, d) / np.dot(d, d))
+            corner = bool(np.all(xy[p] == sides[k, :2]) or np.all(xy[p] == sides[k, 2:]))
+            if corner:
+                last = max(last, t)
+            elif side_of[p] < 0 and last < t < 1.0:
+                out[p] = a + t * d
+                side_of[p] = k
+                last = t
+            p = succ.get((k, p))
 
 
 def _keep_pieces_valid(topo, vxy, side_of, outer_loops):
@@ -249,7 +270,6 @@ def _keep_pieces_valid(topo, vxy, side_of, outer_loops):
     A sliver of a piece thinner than the move (a region edge within a micron of
     the side) would collapse; its points stay on the grid instead, as they were.
     """
-    import shapely
 
     ring_of_point = np.repeat(np.arange(len(topo.ring_start) - 1), np.diff(topo.ring_start))
     poly_of_ring = np.repeat(np.arange(len(topo.piece_rings) - 1), np.diff(topo.piece_rings))
@@ -258,20 +278,27 @@ def _keep_pieces_valid(topo, vxy, side_of, outer_loops):
         rings = np.unique(ring_of_point[moved[topo.vid]])
         if not len(rings):
             return
-        pieces = np.unique(poly_of_ring[rings])
-        bad_points = []
-        for k in pieces.tolist():
-            for poly in _piece_polygons(topo, k, vxy):
-                if not shapely.is_valid(poly[0]):
-                    bad_points.extend(poly[1])
-        for ids in outer_loops:
-            if len(ids) >= 3 and (side_of[ids] >= 0).any() and not shapely.is_valid(shapely.Polygon(vxy[ids])):
-                bad_points.extend(ids)
+        bad_points = _points_of_invalid(topo, np.unique(poly_of_ring[rings]).tolist(), vxy, side_of, outer_loops)
         bad = [p for p in set(bad_points) if side_of[p] >= 0]
         if not bad:
             return
         vxy[bad] = topo.xy[bad]
         side_of[bad] = -1
+
+
+def _points_of_invalid(topo, pieces: list, vxy, side_of, outer_loops) -> list:
+    """The points of the polygons of ``pieces``, and of the outer loops with a moved point, that are invalid."""
+    import shapely
+
+    bad_points = []
+    for k in pieces:
+        for poly in _piece_polygons(topo, k, vxy):
+            if not shapely.is_valid(poly[0]):
+                bad_points.extend(poly[1])
+    for ids in outer_loops:
+        if len(ids) >= 3 and (side_of[ids] >= 0).any() and not shapely.is_valid(shapely.Polygon(vxy[ids])):
+            bad_points.extend(ids)
+    return bad_points
 
 
 def _piece_polygons(topo, k, xy):
@@ -330,6 +357,39 @@ def planar_brep(
     of the coverage (a cell of its grid) is a face of its own, and a one-level body's bottom too
     (see :data:`MAX_FACE_HOLES`); else the pieces at one level are merged first. ``chords``: the
     circles ``(cx, cy, r)`` (:func:`_circle_key`) whose arcs stay chords (see :func:`brep_of_part`).
+
+    The faces are made in the order walls (arcs first), tops, bottoms: the edges are
+    numbered as they are first met, so the order fixes the file written.
+    """
+    cov = Coverage(_unpinched(_level_pieces(cov, cells)), cov.levels)
+    topo = topology(cov, triangulate=False, exact=True)
+    z = np.asarray(cov.levels, float)
+    ed = _Edges()
+    walls = _walls(topo)
+    vxy, side_of = _outline_points(topo, sides, what)
+
+    arcs = _wall_arcs(topo, vxy, tolerance_mm, radii) if tolerance_mm > 0 else []
+    if chords:
+        arcs = [a for a in arcs if _circle_key(a[1], a[2]) not in chords]
+    _ends_onto_circles(topo, vxy, arcs)
+    faces, in_arc = _arc_faces(ed, topo, vxy, z, arcs, walls.splits)
+    if arcs:  # the other walls stay planar
+        walls = walls.without(in_arc)
+    wall_edges, keys = _plain_walls(ed, topo, walls, vxy, side_of, sides)
+    faces += _wall_faces(ed, walls, wall_edges, keys, vxy, z, sides, what)
+    faces += _top_faces(ed, topo, z, reverse=False)
+    if cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
+        faces += _top_faces(ed, topo, z, reverse=True)
+    else:
+        faces += _bottom_faces(ed, topo, vxy, z, what)
+    return _finish(ed, vxy, z, faces, what)
+
+
+def _level_pieces(cov: Coverage, cells: bool) -> list:
+    """The coverage's pieces as ``[(MultiPolygon, level), ...]``, by level, oriented.
+
+    The pieces at one level are merged, so that a flat region is one face whatever
+    the coverage's cells; with ``cells`` each cell keeps its own piece (a face each).
     """
     import shapely
 
@@ -338,18 +398,44 @@ def planar_brep(
         by_level.setdefault(int(lvl), []).append(geom)
     pieces = []
     for lvl, geoms in sorted(by_level.items()):
-        # one piece per level (a flat region one face whatever the coverage's cells), or each cell's own
         for merged in geoms if cells else [geoms[0] if len(geoms) == 1 else shapely.coverage_union_all(geoms)]:
             if merged.geom_type == "Polygon":  # one polygon (a flush mosaic's whole top): as the others, a multi
                 merged = shapely.MultiPolygon([merged])
             pieces.append((shapely.orient_polygons(merged), lvl))
-    cov = Coverage(_unpinched(pieces), cov.levels)
-    topo = topology(cov, triangulate=False, exact=True)
-    z = np.asarray(cov.levels, float)
-    ed = _Edges()
-    faces = []
+    return pieces
 
-    # --- walls: one per ring edge whose neighbour across it is lower
+
+@dataclass(frozen=True)
+class _Walls:
+    """The walls of a topology: one per ring edge whose neighbour across it is lower.
+
+    ``at``: their ring positions; ``u``, ``v``: the vertices at their ends (material on
+    the left); ``lo``, ``hi``: their bottom and top levels; ``splits``: per vertex, the
+    levels where the walls meeting there start or stop (its vertical edges' ends).
+    """
+
+    at: np.ndarray
+    u: list
+    v: list
+    lo: list
+    hi: list
+    splits: dict
+
+    def without(self, dropped: np.ndarray) -> _Walls:
+        """These walls less those at the ring positions marked in ``dropped`` (the arcs' walls)."""
+        keep = np.flatnonzero(~dropped[self.at])
+        return _Walls(
+            self.at[keep],
+            [self.u[i] for i in keep],
+            [self.v[i] for i in keep],
+            [self.lo[i] for i in keep],
+            [self.hi[i] for i in keep],
+            self.splits,
+        )
+
+
+def _walls(topo) -> _Walls:
+    """The walls of ``topo`` and the levels at which each vertex's vertical edges are split."""
     u_all, v_all = topo.vid, topo.vid[topo.nxt]
     w = np.flatnonzero((topo.level > topo.out_level) & (u_all != v_all))
     wu, wv = u_all[w].tolist(), v_all[w].tolist()
@@ -361,37 +447,58 @@ def planar_brep(
             s = splits.setdefault(p, set())
             s.add(lo)
             s.add(hi)
-    splits = {p: sorted(s) for p, s in splits.items()}
+    return _Walls(w, wu, wv, wlo, whi, {p: sorted(s) for p, s in splits.items()})
 
-    def side(p, lo, hi, up):
-        """Signed vertical edges at vertex p from lo to hi (up) or hi to lo."""
-        ks = [k for k in splits[p] if lo <= k <= hi]
-        pairs = list(pairwise(ks))
-        if up:
-            return [(ed.point(p, a), ed.point(p, b), ed.vertical(p, a, b)) for a, b in pairs]
-        return [(ed.point(p, b), ed.point(p, a), ed.vertical(p, b, a)) for a, b in reversed(pairs)]
 
-    ij = np.round(topo.xy / QUANTUM).astype(np.int64)
-    on_grid = np.all(ij * QUANTUM == topo.xy, axis=1)
+def _vertical_run(ed: _Edges, splits: dict, p, lo, hi, up: bool) -> list:
+    """Signed vertical edges at vertex p from level lo to hi (``up``) or from hi to lo.
+
+    Each is ``(start node, end node, signed edge)``, one per pair of adjacent split
+    levels of p, so that every face beside p meets the same edges.
+    """
+    ks = [k for k in splits[p] if lo <= k <= hi]
+    pairs = list(pairwise(ks))
+    if up:
+        return [(ed.point(p, a), ed.point(p, b), ed.vertical(p, a, b)) for a, b in pairs]
+    return [(ed.point(p, b), ed.point(p, a), ed.vertical(p, b, a)) for a, b in reversed(pairs)]
+
+
+def _outline_points(topo, sides, what: str):
+    """The ring points, those of the outer boundary on a straight side moved onto it: ``(xy, side_of)``.
+
+    See :func:`_onto_sides`; the moves that would make a piece or a bottom loop
+    invalid are undone (:func:`_keep_pieces_valid`).
+    """
+    u_all, v_all = topo.vid, topo.vid[topo.nxt]
     outer = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
     vxy, side_of = _onto_sides(topo.xy, sides, np.column_stack([u_all[outer], v_all[outer]]))
     outer_loops = [
         [int(u_all[outer[i]]) for i in lp] for lp in _chain([(int(u_all[e]), int(v_all[e]), e) for e in outer], what)
     ]
     _keep_pieces_valid(topo, vxy, side_of, outer_loops)
-    sides_arr: Any = None if sides is None else np.asarray(sides, float)  # read only where sides are given
-    whole = None if sides is None else {tuple(row): k for k, row in enumerate(sides_arr.tolist())}
+    return vxy, side_of
 
-    # --- arcs: one cylinder face per arc of walls, its circle edges shared with the flat faces
-    arcs = _wall_arcs(topo, vxy, tolerance_mm, radii) if tolerance_mm > 0 else []
-    if chords:
-        arcs = [a for a in arcs if _circle_key(a[1], a[2]) not in chords]
-    in_arc = np.zeros(len(u_all), bool)
+
+def _ends_onto_circles(topo, vxy, arcs) -> None:
+    """Move the ends of the arcs marked ``onto`` (a whole circle's halves) onto their circle, in place."""
+    u_all, v_all = topo.vid, topo.vid[topo.nxt]
     for at, centre, radius, _, onto in arcs:
         if onto:
             for p in (int(u_all[at[0]]), int(v_all[at[-1]])):
                 d = vxy[p] - centre
                 vxy[p] = centre + d * (radius / np.hypot(d[0], d[1]))
+
+
+def _arc_faces(ed: _Edges, topo, vxy, z, arcs, splits) -> tuple[list, np.ndarray]:
+    """One cylinder face per arc of walls, its circle edges shared with the flat faces.
+
+    Returns the faces and, per ring position, whether its wall is in an arc (those
+    walls are not planar faces). Each arc's chords at its two levels are recorded in
+    ``ed.arc_of``, so that the flat faces take the arc for them.
+    """
+    u_all, v_all = topo.vid, topo.vid[topo.nxt]
+    in_arc = np.zeros(len(u_all), bool)
+    faces = []
     for j, (at, centre, radius, sweep, _) in enumerate(arcs):
         in_arc[at] = True
         lo, hi = int(topo.out_level[at[0]]), int(topo.level[at[0]])
@@ -407,8 +514,8 @@ def planar_brep(
             for x, y in pairwise(chain):
                 ed.arc_of[(min(x, y), max(x, y), lvl)] = (("a", j, lvl), x if ccw else y)
         # the chain runs with the material on its left, as a wall's bottom edge does
-        loop = [signed[lo]] + [e for _, _, e in side(chain[-1], lo, hi, up=True)]
-        loop += [~signed[hi]] + [e for _, _, e in side(chain[0], lo, hi, up=False)]
+        loop = [signed[lo]] + [e for _, _, e in _vertical_run(ed, splits, chain[-1], lo, hi, up=True)]
+        loop += [~signed[hi]] + [e for _, _, e in _vertical_run(ed, splits, chain[0], lo, hi, up=False)]
         ref = seam_direction(vxy[a_vid] - centre, abs(sweep))
         faces.append(
             Face(
@@ -420,17 +527,28 @@ def planar_brep(
                 inward=not ccw,
             )
         )
-    if arcs:  # the other walls stay planar
-        keep = np.flatnonzero(~in_arc[w])
-        wu, wv = [wu[i] for i in keep], [wv[i] for i in keep]
-        wlo, whi = [wlo[i] for i in keep], [whi[i] for i in keep]
-    wall_edges = []  # per wall: its directed edges (start node, end node, signed edge)
+    return faces, in_arc
+
+
+def _plain_walls(ed: _Edges, topo, walls: _Walls, vxy, side_of, sides) -> tuple[list, list]:
+    """Each planar wall's directed edges and the key of its vertical plane: ``(wall_edges, keys)``.
+
+    A wall's edges are ``(start node, end node, signed edge)``: along its bottom, up
+    its end, back along its top, down its start. Walls with equal keys lie in one
+    plane: a straight side of the outline, or the line through two grid points (an
+    exact integer key); any other wall is a plane of its own.
+    """
+    ij = np.round(topo.xy / QUANTUM).astype(np.int64)
+    on_grid = np.all(ij * QUANTUM == topo.xy, axis=1)
+    sides_arr: Any = None if sides is None else np.asarray(sides, float)  # read only where sides are given
+    whole = None if sides is None else {tuple(row): k for k, row in enumerate(sides_arr.tolist())}
+    wall_edges = []
     keys: list[tuple] = []
-    for a, b, lo, hi in zip(wu, wv, wlo, whi, strict=True):
+    for a, b, lo, hi in zip(walls.u, walls.v, walls.lo, walls.hi, strict=True):
         loop = [(ed.point(a, lo), ed.point(b, lo), ed.horizontal(a, b, lo))]
-        loop += side(b, lo, hi, up=True)
+        loop += _vertical_run(ed, walls.splits, b, lo, hi, up=True)
         loop.append((ed.point(b, hi), ed.point(a, hi), ed.horizontal(b, a, hi)))
-        loop += side(a, lo, hi, up=False)
+        loop += _vertical_run(ed, walls.splits, a, lo, hi, up=False)
         wall_edges.append(loop)
         k = _side_of_wall(a, b, side_of, vxy, sides_arr, whole)
         if k >= 0:  # along a straight side of the outline: its plane
@@ -443,74 +561,95 @@ def planar_brep(
             g = gcd(dx, dy)
             dx, dy = dx // g, dy // g
             keys.append((dx, dy, dy * int(ij[a, 0]) - dx * int(ij[a, 1])))
+    return wall_edges, keys
 
-    # walls in one plane that share a vertical edge are one face
-    users: dict = {}
-    for i, loop in enumerate(wall_edges):
-        for _, _, e in loop:
-            users.setdefault(e if e >= 0 else ~e, []).append(i)
-    groups = _groups(
-        len(wall_edges), (us for us in users.values() if len(us) == 2 and us[0] != us[1] and keys[us[0]] == keys[us[1]])
-    )
 
+def _wall_faces(ed: _Edges, walls: _Walls, wall_edges, keys, vxy, z, sides, what: str) -> list:
+    """The planar wall faces: the walls in one plane that share a vertical edge are one face."""
+    groups = _plane_groups(wall_edges, keys)
     pts = _node_xyz(ed, vxy, z)  # every wall node exists by now
+    sides_arr: Any = None if sides is None else np.asarray(sides, float)
+    faces = []
     for members in groups:
         key = keys[members[0]]
         dx, dy = key[-2:] if isinstance(key[0], str) else key[:2]
-        a0 = wu[members[0]]
-        origin = (float(vxy[a0, 0]), float(vxy[a0, 1]), float(z[wlo[members[0]]]))
+        a0 = walls.u[members[0]]
+        origin = (float(vxy[a0, 0]), float(vxy[a0, 1]), float(z[walls.lo[members[0]]]))
         if key[0] == "side":
             origin = (float(sides_arr[key[1], 0]), float(sides_arr[key[1], 1]), origin[2])
         normal, ref = (float(dy), float(-dx), 0.0), (float(dx), float(dy), 0.0)
         if len(members) == 1:
             faces.append(Face(origin, normal, ref, (tuple(e for _, _, e in wall_edges[members[0]]),)))
             continue
-        # drop the edges inside the merged face (used by two of its walls), chain the rest
-        count: dict = {}
-        for i in members:
-            for _, _, e in wall_edges[i]:
-                key = e if e >= 0 else ~e
-                count[key] = count.get(key, 0) + 1
-        directed = [d for i in members for d in wall_edges[i] if count[d[2] if d[2] >= 0 else ~d[2]] == 1]
-        loops = _chain(directed, what)
-        # the outer loop is the one of largest area in the wall's own (s, z) coordinates
-        dirn = np.array([dx, dy], float) / np.hypot(dx, dy)
+        faces.append(Face(origin, normal, ref, _merged_wall_loops(members, wall_edges, pts, dx, dy, what)))
+    return faces
 
-        def area(loop, directed=directed, dirn=dirn):
-            nodes = [directed[i][0] for i in loop]
-            p = pts[nodes]
-            return _loop_area(np.column_stack([p[:, :2] @ dirn, p[:, 2]]))
 
-        loops.sort(key=area, reverse=True)
-        faces.append(Face(origin, normal, ref, tuple(tuple(directed[i][2] for i in lp) for lp in loops)))
+def _plane_groups(wall_edges, keys) -> list:
+    """The walls grouped into faces: two walls with equal plane keys that share a vertical edge are joined."""
+    users: dict = {}
+    for i, loop in enumerate(wall_edges):
+        for _, _, e in loop:
+            users.setdefault(e if e >= 0 else ~e, []).append(i)
+    return _groups(
+        len(wall_edges), (us for us in users.values() if len(us) == 2 and us[0] != us[1] and keys[us[0]] == keys[us[1]])
+    )
 
-    # --- horizontal tops: each polygon of each piece at its level
+
+def _merged_wall_loops(members, wall_edges, pts, dx, dy, what: str) -> tuple:
+    """The loops of the face of several walls in one plane, the outer one first.
+
+    The edges two of its walls share lie inside the face and are dropped; the rest
+    are chained. The outer loop is the one of largest area in the plane's own
+    (along, up) coordinates.
+    """
+    count: dict = {}
+    for i in members:
+        for _, _, e in wall_edges[i]:
+            key = e if e >= 0 else ~e
+            count[key] = count.get(key, 0) + 1
+    directed = [d for i in members for d in wall_edges[i] if count[d[2] if d[2] >= 0 else ~d[2]] == 1]
+    loops = _chain(directed, what)
+    dirn = np.array([dx, dy], float) / np.hypot(dx, dy)
+
+    def area(loop):
+        p = pts[[directed[i][0] for i in loop]]
+        return _loop_area(np.column_stack([p[:, :2] @ dirn, p[:, 2]]))
+
+    loops.sort(key=area, reverse=True)
+    return tuple(tuple(directed[i][2] for i in lp) for lp in loops)
+
+
+def _top_faces(ed: _Edges, topo, z, *, reverse: bool) -> list:
+    """A horizontal face per polygon of each piece: its top at the piece's level, or (``reverse``)
+    its bottom at level 0, its loops run backwards."""
+    faces = []
     for k in range(len(topo.piece_level)):
-        lvl = int(topo.piece_level[k])
+        lvl = 0 if reverse else int(topo.piece_level[k])
         for rings in _ring_polygons(topo, k):
             loops = []
             for r in rings:
                 idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
+                if reverse:
+                    idx = idx[::-1]
                 uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
+                if reverse:
+                    uu, vv = vv, uu
                 loops.append(
                     _collapse([ed.horizontal_or_arc(a, b, lvl) for a, b in zip(uu, vv, strict=True) if a != b])
                 )
-            faces.append(Face((0.0, 0.0, float(z[lvl])), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), tuple(loops)))
+            normal = (0.0, 0.0, -1.0) if reverse else (0.0, 0.0, 1.0)
+            faces.append(Face((0.0, 0.0, float(z[lvl])), normal, (1.0, 0.0, 0.0), tuple(loops)))
+    return faces
 
-    if cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
-        for k in range(len(topo.piece_level)):
-            for rings in _ring_polygons(topo, k):
-                loops = []
-                for r in rings:
-                    idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])[::-1]
-                    uu, vv = topo.vid[idx].tolist(), topo.vid[topo.nxt[idx]].tolist()
-                    loops.append(
-                        _collapse([ed.horizontal_or_arc(b, a, 0) for a, b in zip(uu, vv, strict=True) if a != b])
-                    )
-                faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops)))
-        return _finish(ed, vxy, z, faces, what)
 
-    # --- bottoms: the ring edges with nothing beside them, run backwards
+def _bottom_faces(ed: _Edges, topo, vxy, z, what: str) -> list:
+    """The bottom faces: the ring edges with nothing beside them, run backwards, each hole in its part.
+
+    The loops are sorted by their side seen from below: outer loops are faces, each
+    hole goes to the smallest outer loop that covers it.
+    """
+    u_all, v_all = topo.vid, topo.vid[topo.nxt]
     b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
     # (an arc's chords give one edge: its ends from the edge itself)
     signed = dict.fromkeys(
@@ -524,22 +663,28 @@ def planar_brep(
     for lp in loops:
         xy = _loop_points([directed[i][2] for i in lp], ed.list, ed.arcs, pts)
         (outers if _loop_area(xy) < 0 else holes).append((lp, xy))  # seen from above, reversed
-    polys = [shapely.Polygon(xy) for _, xy in outers]
     bottom_loops = [[tuple(directed[i][2] for i in lp)] for lp, _ in outers]
-    if holes:
-        tree = shapely.STRtree(polys)
-        for lp, xy in holes:
-            probe = shapely.Point(xy[0])
-            hits = [j for j in tree.query(probe) if polys[j].covers(probe)]
-            if not hits:
-                raise FabricationError(
-                    f"the B-rep of the {what} has a bottom hole outside every part; nothing was written"
-                )
-            j = min(hits, key=lambda j: polys[j].area)
-            bottom_loops[j].append(tuple(directed[i][2] for i in lp))
-    for loops_ in bottom_loops:
-        faces.append(Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops_)))
-    return _finish(ed, vxy, z, faces, what)
+    for j, lp in _holes_in_parts(outers, holes, what):
+        bottom_loops[j].append(tuple(directed[i][2] for i in lp))
+    return [Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops_)) for loops_ in bottom_loops]
+
+
+def _holes_in_parts(outers: list, holes: list, what: str) -> list:
+    """``[(outer number, hole), ...]``: each bottom hole ``(loop, xy)`` with the smallest outer loop covering it."""
+    import shapely
+
+    if not holes:
+        return []
+    polys = [shapely.Polygon(xy) for _, xy in outers]
+    tree = shapely.STRtree(polys)
+    out = []
+    for lp, xy in holes:
+        probe = shapely.Point(xy[0])
+        hits = [j for j in tree.query(probe) if polys[j].covers(probe)]
+        if not hits:
+            raise FabricationError(f"the B-rep of the {what} has a bottom hole outside every part; nothing was written")
+        out.append((min(hits, key=lambda j: polys[j].area), lp))
+    return out
 
 
 def _unpinched(pieces: list) -> list:
@@ -565,14 +710,10 @@ def _unpinched(pieces: list) -> list:
     fixed: dict[int, list] = {}
     added: list[tuple[float, ...]] = []
     for i in bad.tolist():
-        poly = flat[i]
-        split = shapely.make_valid(poly, method="structure", keep_collapsed=False)
-        polys = [g for g in shapely.get_parts(split) if g.geom_type == "Polygon" and g.area > 0]
-        old = {tuple(c) for c in shapely.get_coordinates(poly).tolist()}
-        new = {tuple(c) for c in shapely.get_coordinates(polys).tolist()} if polys else set()
-        if not polys or not new <= old or abs(sum(g.area for g in polys) - poly.area) > 1e-9 * max(poly.area, 1.0):
+        split = _pinch_split(flat[i])
+        if split is None:
             continue  # not a pinch on its own vertices: left for check_brep to refuse
-        fixed[i] = polys
+        fixed[i], old = split
         added.extend(old)  # the touching vertices among them, to be put into the neighbours' edges
     if not fixed:
         return pieces
@@ -584,6 +725,22 @@ def _unpinched(pieces: list) -> list:
     return [
         (shapely.orient_polygons(shapely.MultiPolygon(polys)), lvl) for polys, (_, lvl) in zip(out, pieces, strict=True)
     ]
+
+
+def _pinch_split(poly):
+    """``(polygons, poly's points)``: an invalid polygon split where it touches itself, or None when
+    the split would add a point or change the area (not a pinch on its own vertices)."""
+    import shapely
+
+    split = shapely.make_valid(poly, method="structure", keep_collapsed=False)
+    polys = [g for g in shapely.get_parts(split) if g.geom_type == "Polygon" and g.area > 0]
+    if not polys:
+        return None
+    old = {tuple(c) for c in shapely.get_coordinates(poly).tolist()}
+    new = {tuple(c) for c in shapely.get_coordinates(polys).tolist()}
+    if not new <= old or abs(sum(g.area for g in polys) - poly.area) > 1e-9 * max(poly.area, 1.0):
+        return None
+    return polys, old
 
 
 def _with_points_on_edges(poly, pins):
@@ -673,11 +830,7 @@ def _loop_points(loop, edges, arcs, pts) -> np.ndarray:
     """
     loop = np.asarray(loop, np.int64)
     index = np.where(loop >= 0, loop, ~loop)
-    is_arc = (
-        np.fromiter((e in arcs for e in index.tolist()), bool, len(index))
-        if isinstance(arcs, dict)
-        else np.asarray(arcs)[index, 2] > 0
-    )
+    is_arc = _are_arcs(index, arcs)
     if not is_arc.any():  # straight edges only (most loops): their starts
         ends = np.asarray(edges)[index] if not isinstance(edges, list) else np.array([edges[e] for e in index])
         return pts[np.where(loop >= 0, ends[:, 0], ends[:, 1]), :2]
@@ -689,14 +842,27 @@ def _loop_points(loop, edges, arcs, pts) -> np.ndarray:
         row = arcs.get(e) if isinstance(arcs, dict) else arcs[e]
         if row is None or row[2] <= 0:
             continue
-        cx, cy, r, sweep = (float(v) for v in row[:4])
-        step = 2.0 * np.arccos(max(1.0 - ARC_SAGITTA_MM / r, -1.0))
-        n = max(4, int(np.ceil(sweep / step)))
-        t0 = np.arctan2(pts[a, 1] - cy, pts[a, 0] - cx)
-        t = t0 + sweep * np.arange(1, n) / n
-        inner = np.column_stack([cx + r * np.cos(t), cy + r * np.sin(t)])
+        inner = _arc_inner_points(row, pts[a])
         out.extend(inner if s >= 0 else inner[::-1])
     return np.asarray(out, float).reshape(-1, 2)
+
+
+def _are_arcs(index, arcs) -> np.ndarray:
+    """Whether each of the edges ``index`` is an arc, ``arcs`` a mapping or an array (see :func:`_loop_points`)."""
+    if isinstance(arcs, dict):
+        return np.fromiter((e in arcs for e in index.tolist()), bool, len(index))
+    return np.asarray(arcs)[index, 2] > 0
+
+
+def _arc_inner_points(row, start) -> np.ndarray:
+    """The points inside an arc ``(cx, cy, r, sweep, ...)`` from ``start``, counter-clockwise, its
+    chords within :data:`ARC_SAGITTA_MM` (at least four)."""
+    cx, cy, r, sweep = (float(v) for v in row[:4])
+    step = 2.0 * np.arccos(max(1.0 - ARC_SAGITTA_MM / r, -1.0))
+    n = max(4, int(np.ceil(sweep / step)))
+    t0 = np.arctan2(start[1] - cy, start[0] - cx)
+    t = t0 + sweep * np.arange(1, n) / n
+    return np.column_stack([cx + r * np.cos(t), cy + r * np.sin(t)])
 
 
 def seam_direction(start, sweep: float) -> np.ndarray:
@@ -757,49 +923,44 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
     (measured: one closed circle and its seam written as a plain line read back as an
     invalid face).
     """
-    import shapely
-
     from ..geometry.arcs import GRID_LINK_SLACK, arc_runs_many
 
+    jobs = _arc_search_jobs(topo)
+    if not jobs:
+        return []
+    searched = _searched_vertices(jobs, xy)
+    out: list = []
+    for closed in (True, False):
+        ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
+        found = arc_runs_many(
+            [xy[jobs[k][1][searched[k]]] for k in ks],
+            tolerance_mm=tolerance_mm,
+            closed=closed,
+            link_slack=GRID_LINK_SLACK,
+            radii=radii,
+        )
+        for k, runs in zip(ks, found, strict=True):
+            if len(runs.first):
+                out.extend(_found_arcs(xy, jobs[k][0], jobs[k][1], searched[k], runs))
+    return out
+
+
+def _arc_search_jobs(topo) -> list:
+    """The stretches of walled ring edges to search for arcs: ``[(ring positions, their vertices, closed), ...]``.
+
+    A ring is cut where its wall's bottom level changes, where the wall stops, and at
+    the vertices where more than two boundary edges meet; a ring with no cut is one
+    closed stretch (see :func:`_wall_arcs`).
+    """
     u, v = topo.vid, topo.vid[topo.nxt]
+    n_points = len(topo.xy)
     real = u != v
     # each boundary edge once, as one int64 key (np.unique of rows sorts them lexically, more slowly)
     lo_v, hi_v = np.minimum(u, v)[real].astype(np.int64), np.maximum(u, v)[real].astype(np.int64)
-    edge_keys = np.unique(lo_v * len(xy) + hi_v)
-    degree = np.bincount(np.r_[edge_keys // len(xy), edge_keys % len(xy)], minlength=len(xy))
+    edge_keys = np.unique(lo_v * n_points + hi_v)
+    degree = np.bincount(np.r_[edge_keys // n_points, edge_keys % n_points], minlength=n_points)
     walled = real & (topo.level > topo.out_level)
-    out = []
-
-    def collect(positions, verts, at, runs):
-        """The arcs ``runs`` found among the vertices ``at`` of ``verts`` (the ends of ``positions``)."""
-        n = len(positions)
-        if runs.full:  # a whole circle: two halves (see above), its sense the ring's
-            turn = np.copysign(1.0, _loop_area(xy[verts[at]]))
-            # the halves' ends: the vertices nearest the circle, one in each half of the ring
-            d = xy[verts[at]] - runs.centre[0]
-            off = np.abs(np.hypot(d[:, 0], d[:, 1]) - runs.radius[0])
-            m = len(at) // 2
-            i = int(np.argmin(off[:m]))
-            lo = i + m // 2  # at least a quarter of the ring away on either side
-            j = lo + int(np.argmin(off[lo : min(i + m + m // 2 + 1, len(at) - m // 2 + i + 1, len(at))]))
-            if max(off[i], off[j]) > ON_LINE_MM:
-                return  # moved onto the circle they would change the faces: the ring stays planar
-            for a, b in ((at[i], at[j]), (at[j], at[i] + n)):
-                part = positions[np.arange(a, b) % n]
-                ends = xy[[verts[a % n], verts[b % n]]] - runs.centre[0]
-                t = np.arctan2(ends[:, 1], ends[:, 0])
-                sweep = ((t[1] - t[0]) * turn) % (2 * np.pi)
-                out.append((part, runs.centre[0], float(runs.radius[0]), float(turn * sweep), True))
-            return
-        for first, last, c, rad, sw in zip(
-            runs.first.tolist(), runs.last.tolist(), runs.centre, runs.radius.tolist(), runs.sweep.tolist(), strict=True
-        ):
-            a, b = at[first], at[last]
-            if b <= a:
-                b += n
-            out.append((positions[np.arange(a, b) % n], c, rad, sw, False))
-
-    jobs = []  # (ring positions, their vertices, closed)
+    jobs = []
     for r in range(len(topo.ring_start) - 1):
         idx = np.arange(topo.ring_start[r], topo.ring_start[r + 1])
         idx = idx[real[idx]]
@@ -815,9 +976,14 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
             seg = idx[(s0 + np.arange((s1 - s0) % len(idx) or len(idx))) % len(idx)]
             if walled[seg[0]] and len(seg) >= 3:
                 jobs.append((seg, np.append(u[seg], v[seg[-1]]), False))
-    if not jobs:
-        return out
-    # the vertices searched: those Douglas-Peucker keeps within ON_LINE_MM, all rings in one GEOS call
+    return jobs
+
+
+def _searched_vertices(jobs: list, xy) -> list:
+    """Per job, the positions of its vertices searched for arcs: those Douglas-Peucker keeps within
+    :data:`ON_LINE_MM` (all rings in one GEOS call), and an open stretch's ends."""
+    import shapely
+
     lines = np.array(
         [shapely.linearrings(xy[verts]) if closed else shapely.linestrings(xy[verts]) for _, verts, closed in jobs],
         dtype=object,
@@ -838,18 +1004,47 @@ def _wall_arcs(topo, xy, tolerance_mm: float, radii=()) -> list:
         if not closed:
             keep[[0, -1]] = True
         searched.append(np.flatnonzero(keep))
-    for closed in (True, False):
-        ks = [k for k, job in enumerate(jobs) if job[2] == closed and len(searched[k]) >= 4]
-        found = arc_runs_many(
-            [xy[jobs[k][1][searched[k]]] for k in ks],
-            tolerance_mm=tolerance_mm,
-            closed=closed,
-            link_slack=GRID_LINK_SLACK,
-            radii=radii,
-        )
-        for k, runs in zip(ks, found, strict=True):
-            if len(runs.first):
-                collect(jobs[k][0], jobs[k][1], searched[k], runs)
+    return searched
+
+
+def _found_arcs(xy, positions, verts, at, runs) -> list:
+    """The arcs ``runs`` found among the vertices ``at`` of ``verts`` (the ends of ``positions``),
+    as :func:`_wall_arcs` returns them; a whole circle as two halves (see there)."""
+    n = len(positions)
+    if runs.full:
+        return _circle_halves(xy, positions, verts, at, runs)
+    out = []
+    for first, last, c, rad, sw in zip(
+        runs.first.tolist(), runs.last.tolist(), runs.centre, runs.radius.tolist(), runs.sweep.tolist(), strict=True
+    ):
+        a, b = at[first], at[last]
+        if b <= a:
+            b += n
+        out.append((positions[np.arange(a, b) % n], c, rad, sw, False))
+    return out
+
+
+def _circle_halves(xy, positions, verts, at, runs) -> list:
+    """A whole circle's two halves, its sense the ring's, between the vertices nearest the circle, one
+    in each half of the ring; none when those are farther than :data:`ON_LINE_MM` from it (moved onto
+    the circle they would change the faces: the ring stays planar)."""
+    n = len(positions)
+    turn = np.copysign(1.0, _loop_area(xy[verts[at]]))
+    d = xy[verts[at]] - runs.centre[0]
+    off = np.abs(np.hypot(d[:, 0], d[:, 1]) - runs.radius[0])
+    m = len(at) // 2
+    i = int(np.argmin(off[:m]))
+    lo = i + m // 2  # at least a quarter of the ring away on either side
+    j = lo + int(np.argmin(off[lo : min(i + m + m // 2 + 1, len(at) - m // 2 + i + 1, len(at))]))
+    if max(off[i], off[j]) > ON_LINE_MM:
+        return []
+    out = []
+    for a, b in ((at[i], at[j]), (at[j], at[i] + n)):
+        part = positions[np.arange(a, b) % n]
+        ends = xy[[verts[a % n], verts[b % n]]] - runs.centre[0]
+        t = np.arctan2(ends[:, 1], ends[:, 0])
+        sweep = ((t[1] - t[0]) * turn) % (2 * np.pi)
+        out.append((part, runs.centre[0], float(runs.radius[0]), float(turn * sweep), True))
     return out
 
 
@@ -1048,35 +1243,44 @@ def _crossing_arcs(brep: Brep) -> frozenset:
 
     if brep.arcs is None:
         return frozenset()
-    pts, edges, arcs = brep.points, brep.edges, brep.arcs
-    out = set()
+    out: set = set()
     for face in brep.faces:
         if face.radius > 0 or abs(face.normal[0]) + abs(face.normal[1]) > 0:
             continue
         index = [e if e >= 0 else ~e for loop in face.loops for e in loop]
-        if not (arcs[index, 2] > 0).any():
+        if not (brep.arcs[index, 2] > 0).any():
             continue
-        rings = [_loop_points(list(loop), edges, arcs, pts) for loop in face.loops]
+        rings = [_loop_points(list(loop), brep.edges, brep.arcs, brep.points) for loop in face.loops]
         if shapely.is_valid(shapely.Polygon(rings[0], rings[1:])):
             continue
-        lines, where = [], []  # each edge as drawn, and (loop, position, loop length)
-        for li, loop in enumerate(face.loops):
-            for k, e in enumerate(loop):
-                a = edges[e if e >= 0 else ~e]
-                end = pts[a[1] if e >= 0 else a[0], :2]
-                lines.append(shapely.LineString(np.vstack([_loop_points([e], edges, arcs, pts), end])))
-                where.append((li, k, len(loop)))
-        tree = shapely.STRtree(lines)
-        for i, e in enumerate(index):
-            if arcs[e, 2] <= 0:
-                continue
-            li, k, n = where[i]
-            near = {(li, k), (li, (k - 1) % n), (li, (k + 1) % n)}  # itself and the edges it joins
-            hits = [j for j in tree.query(lines[i], predicate="intersects").tolist() if where[j][:2] not in near]
-            for j in hits + ([i] if hits else []):
-                if arcs[index[j], 2] > 0:
-                    out.add(_circle_key(arcs[index[j], :2], arcs[index[j], 2]))
+        out |= _face_crossing_circles(face, index, brep.edges, brep.arcs, brep.points)
     return frozenset(out)
+
+
+def _face_crossing_circles(face, index: list, edges, arcs, pts) -> set:
+    """The circles of the arcs of a flat face that cross or touch an edge of it other than their neighbours,
+    and of the arcs they cross. ``index``: the face's edges, loop by loop."""
+    import shapely
+
+    lines, where = [], []  # each edge as drawn, and (loop, position, loop length)
+    for li, loop in enumerate(face.loops):
+        for k, e in enumerate(loop):
+            a = edges[e if e >= 0 else ~e]
+            end = pts[a[1] if e >= 0 else a[0], :2]
+            lines.append(shapely.LineString(np.vstack([_loop_points([e], edges, arcs, pts), end])))
+            where.append((li, k, len(loop)))
+    tree = shapely.STRtree(lines)
+    out = set()
+    for i, e in enumerate(index):
+        if arcs[e, 2] <= 0:
+            continue
+        li, k, n = where[i]
+        near = {(li, k), (li, (k - 1) % n), (li, (k + 1) % n)}  # itself and the edges it joins
+        hits = [j for j in tree.query(lines[i], predicate="intersects").tolist() if where[j][:2] not in near]
+        for j in hits + ([i] if hits else []):
+            if arcs[index[j], 2] > 0:
+                out.add(_circle_key(arcs[index[j], :2], arcs[index[j], 2]))
+    return out
 
 
 def _face_coverage(layers, bottom: float, cell_vertices: int):
@@ -1163,7 +1367,6 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     ...
     fabtiles.core.errors.FabricationError: the STEP solid has a volume of 200 mm^3, not the mesh's 100 mm^3 (0.05% allowed); nothing was written
     """  # noqa: E501 - a doctest's lines are as Python prints them
-    import shapely
 
     def fail(why):
         raise FabricationError(f"the {what} {why}; nothing was written")
@@ -1186,22 +1389,63 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     a = np.where(signed >= 0, edges[index, 0], edges[index, 1])
     b = np.where(signed >= 0, edges[index, 1], edges[index, 0])
     arcs = brep.arc_rows()
+    surfaces = _face_surfaces(brep)
+    off_plane, off_curve = _off_surfaces(surfaces, pts, edges, arcs, a, face_of)
+    if off_plane > 1e-6:
+        fail(f"has a face with a point {off_plane:.3g} mm off its plane")
+    if off_curve > 1e-6:
+        fail(f"has a point {off_curve:.3g} mm off its cylinder or circle")
+    wound, total, chords = _winding_and_volume(brep, surfaces, pts, edges, arcs, signed, face_of, a, b)
+    if np.any(wound <= 0):
+        fail("has a face wound against its normal (inside out)")
+    if not total > 0:
+        fail(f"has a volume of {total:.6g} mm^3: inside out")
+    if abs(chords - volume) > BREP_VOLUME_TOLERANCE * abs(volume):
+        fail(
+            f"has a volume of {chords:.6g} mm^3, not the mesh's {volume:.6g} mm^3 ({BREP_VOLUME_TOLERANCE:.2%} allowed)"
+        )
+    if not _flat_faces_valid(brep, pts, edges, arcs):
+        fail("has an invalid horizontal face (loops crossing or touching)")
+    return total
+
+
+def _face_surfaces(brep: Brep) -> tuple:
+    """``(radius, unit normal, origin)`` of each face, as arrays."""
     radius = np.asarray([f.radius for f in brep.faces], float)
-    cyl = radius > 0
     normals = np.asarray([f.normal for f in brep.faces], float)
     normals /= np.linalg.norm(normals, axis=1, keepdims=True)
     origins = np.asarray([f.origin for f in brep.faces], float)
-    on_plane = ~cyl[face_of]
+    return radius, normals, origins
+
+
+def _off_surfaces(surfaces, pts, edges, arcs, a, face_of) -> tuple[float, float]:
+    """How far the B-rep's points lie off their faces: ``(off a plane, off a cylinder or circle)`` in mm.
+
+    ``surfaces``: per face, its radius, unit normal and origin; ``a``: the start point of
+    each signed edge of the faces' loops, ``face_of`` its face.
+    """
+    radius, normals, origins = surfaces
+    on_plane = ~(radius > 0)[face_of]
     off = np.abs(np.einsum("ij,ij->i", pts[a] - origins[face_of], normals[face_of]))[on_plane]
-    if off.size and off.max() > 1e-6:
-        fail(f"has a face with a point {off.max():.3g} mm off its plane")
+    off_plane = float(off.max()) if off.size else 0.0
     d = pts[a[~on_plane], :2] - origins[face_of[~on_plane], :2]
     off = np.abs(np.hypot(d[:, 0], d[:, 1]) - radius[face_of[~on_plane]])
     is_arc = arcs[:, 2] > 0
     d = pts[edges[is_arc]][:, :, :2] - arcs[is_arc, None, :2]
     off = np.concatenate([off, np.abs(np.hypot(d[..., 0], d[..., 1]) - arcs[is_arc, 2:3]).ravel()])
-    if off.size and off.max() > 1e-6:
-        fail(f"has a point {off.max():.3g} mm off its cylinder or circle")
+    return off_plane, float(off.max()) if off.size else 0.0
+
+
+def _winding_and_volume(brep: Brep, surfaces, pts, edges, arcs, signed, face_of, a, b):
+    """``(wound, volume, chords' volume)``: per face, its vector area along its outward normal (positive:
+    wound as its normal says), and the volume with the arcs as arcs and as the mesh's chords.
+
+    The volume is the divergence theorem's with the field (0, 0, z): only the
+    horizontal faces count, an arc adding what lies between it and its chord.
+    """
+    index = np.where(signed >= 0, signed, ~signed)
+    radius, normals, origins = surfaces
+    cyl = radius > 0
     cross = np.cross(pts[a], pts[b])
     area_vec = np.zeros((len(brep.faces), 3))
     np.add.at(area_vec, face_of, cross / 2)
@@ -1214,27 +1458,30 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
     flat_faces = ~cyl & (np.abs(normals[:, 2]) == 1.0)  # the horizontal faces: they alone hold the volume
     wound = np.einsum("ij,ij->i", area_vec, normals) + np.where(flat_faces, exact * normals[:, 2], 0.0)
     wound[cyl] = 1.0
-    for f in np.flatnonzero(cyl).tolist():  # a cylinder's patch faces out from its axis at its middle
-        e = brep.faces[f].loops[0][0]  # the arc at its bottom
-        row_e = arcs[e if e >= 0 else ~e]
-        if row_e[3] >= 2 * np.pi - 1e-9:
-            continue  # a whole circle: its vector area is nought
-        start = pts[edges[e if e >= 0 else ~e, 0], :2] - row_e[:2]
-        mid = np.arctan2(start[1], start[0]) + row_e[3] / 2
-        out = np.array([np.cos(mid), np.sin(mid)]) * (-1.0 if brep.faces[f].inward else 1.0)
-        wound[f] = float(area_vec[f, :2] @ out)
-    if np.any(wound <= 0):
-        fail("has a face wound against its normal (inside out)")
-    # the divergence theorem with the field (0, 0, z): only the horizontal faces count
+    for f in np.flatnonzero(cyl).tolist():
+        wound[f] = _cylinder_winding(brep.faces[f], pts, edges, arcs, area_vec[f])
     z_of = origins[:, 2] * flat_faces
-    total, chords = float(z_of @ (area_vec[:, 2] + exact)), float(z_of @ (area_vec[:, 2] + flat))
-    if not total > 0:
-        fail(f"has a volume of {total:.6g} mm^3: inside out")
-    if abs(chords - volume) > BREP_VOLUME_TOLERANCE * abs(volume):
-        fail(
-            f"has a volume of {chords:.6g} mm^3, not the mesh's {volume:.6g} mm^3 ({BREP_VOLUME_TOLERANCE:.2%} allowed)"
-        )
-    # horizontal faces: their loops, in x, y, must make a valid polygon
+    return wound, float(z_of @ (area_vec[:, 2] + exact)), float(z_of @ (area_vec[:, 2] + flat))
+
+
+def _cylinder_winding(face, pts, edges, arcs, area_vec) -> float:
+    """A cylinder patch's vector area along the direction it faces at its middle, out from its axis
+    (or into it, ``inward``); a whole circle's, whose vector area is nought, 1."""
+    e = face.loops[0][0]  # the arc at its bottom
+    row_e = arcs[e if e >= 0 else ~e]
+    if row_e[3] >= 2 * np.pi - 1e-9:
+        return 1.0
+    start = pts[edges[e if e >= 0 else ~e, 0], :2] - row_e[:2]
+    mid = np.arctan2(start[1], start[0]) + row_e[3] / 2
+    out = np.array([np.cos(mid), np.sin(mid)]) * (-1.0 if face.inward else 1.0)
+    return float(area_vec[:2] @ out)
+
+
+def _flat_faces_valid(brep: Brep, pts, edges, arcs) -> bool:
+    """Whether each horizontal face, its loops in x, y (arcs drawn by chords), is a valid polygon by GEOS."""
+    import shapely
+
+    is_arc = arcs[:, 2] > 0
     polys = []
     for face in brep.faces:
         if face.radius > 0 or abs(face.normal[0]) + abs(face.normal[1]) > 0:
@@ -1249,7 +1496,4 @@ def check_brep(brep: Brep, *, volume: float, parts: int, what: str = "STEP solid
             start = np.where(loop >= 0, edges[e, 0], edges[e, 1])
             rings.append(pts[start, :2])
         polys.append(shapely.Polygon(rings[0], rings[1:]))
-    valid = shapely.is_valid(np.asarray(polys, dtype=object)) if polys else np.ones(0, bool)
-    if not np.all(valid):
-        fail("has an invalid horizontal face (loops crossing or touching)")
-    return total
+    return bool(np.all(shapely.is_valid(np.asarray(polys, dtype=object)))) if polys else True

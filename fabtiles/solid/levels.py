@@ -367,15 +367,7 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
     _, dip = split_region(r, dips, holes=False, leveled=leveled)
     cells = cells_for([r, o] if kind == "relief" else [r], CELL_VERTICES, shift, avoid=[dip])
     xs, ys, box = cells
-    parts = shapely.get_parts(dip) if not dip.is_empty else np.empty(0, object)
-    # each dip's ring (dip_level leaves them no holes) as arrays, and its box
-    coords, which = shapely.get_coordinates(parts, return_index=True)
-    ring_off = np.concatenate([[0], np.cumsum(np.bincount(which, minlength=len(parts)))])
-    lo = np.minimum.reduceat(coords, ring_off[:-1]) if len(parts) else np.empty((0, 2))
-    hi = np.maximum.reduceat(coords, ring_off[:-1]) if len(parts) else np.empty((0, 2))
-    # a dip inside one cell: no cell line between its bounds (cell i lies between xs[i - 1] and xs[i])
-    ci, cj = np.searchsorted(xs, lo[:, 0], "left"), np.searchsorted(ys, lo[:, 1], "left")
-    inner = (ci == np.searchsorted(xs, hi[:, 0], "right")) & (cj == np.searchsorted(ys, hi[:, 1], "right"))
+    parts, coords, ring_off, inner = _dips_in_cells(dip, xs, ys)
     crossed = parts[~inner]
     rr = split_region(r, shapely.multipolygons(crossed), leveled=True)[0] if len(crossed) else r
     if kind == "relief":
@@ -400,6 +392,22 @@ def body_coverage(kind: str, r, o, stack, dips, *, shift: int = 0, leveled: bool
         ring = np.repeat(inner, lengths)
         pieces = _inner_dips(pieces, top, low, coords[ring], lengths[inner])
     return Coverage(pieces + extra, levels, cov.xs, cov.ys)
+
+
+def _dips_in_cells(dip, xs, ys):
+    """``(parts, coords, ring offsets, inner)``: the dips, their rings' points as arrays (dip_level
+    leaves them no holes), and which lie inside one cell (no cell line ``xs``, ``ys`` between their
+    bounds; cell i lies between xs[i - 1] and xs[i])."""
+    import shapely
+
+    parts = shapely.get_parts(dip) if not dip.is_empty else np.empty(0, object)
+    coords, which = shapely.get_coordinates(parts, return_index=True)
+    ring_off = np.concatenate([[0], np.cumsum(np.bincount(which, minlength=len(parts)))])
+    lo = np.minimum.reduceat(coords, ring_off[:-1]) if len(parts) else np.empty((0, 2))
+    hi = np.maximum.reduceat(coords, ring_off[:-1]) if len(parts) else np.empty((0, 2))
+    ci, cj = np.searchsorted(xs, lo[:, 0], "left"), np.searchsorted(ys, lo[:, 1], "left")
+    inner = (ci == np.searchsorted(xs, hi[:, 0], "right")) & (cj == np.searchsorted(ys, hi[:, 1], "right"))
+    return parts, coords, ring_off, inner
 
 
 def _reversed(coords, lengths, flip):

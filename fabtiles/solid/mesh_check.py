@@ -168,6 +168,22 @@ def _fail(name, why, merged):
     raise exc
 
 
+def _edge_problems(u, v, n: int) -> str:
+    """What is wrong with the directed edges ``u -> v`` (of ``n`` vertices) that do not pair up: the open
+    edges and the edges run twice the same way, as a sentence's end."""
+    key = np.sort(u * n + v)
+    dup = int(np.count_nonzero(key[1:] == key[:-1]))
+    rev = np.sort(v * n + u)
+    pos = np.minimum(np.searchsorted(key, rev), len(key) - 1)
+    missing = int(np.count_nonzero(key[pos] != rev))
+    problems = []
+    if missing or not dup:
+        problems.append(f"{max(missing, 1)} open edges")
+    if dup:
+        problems.append(f"{dup} edges wound the same way twice or shared by more than two faces")
+    return ", ".join(problems)
+
+
 def _check_merged(verts, faces, *, name, volume, bodies):
     """The checks of :func:`check_mesh` on a mesh merged by float32 position: ``(vertices, faces, volume)``."""
     merged = (verts, faces)
@@ -185,17 +201,7 @@ def _check_merged(verts, faces, *, name, volume, bodies):
     u = faces.ravel()
     v = faces[:, [1, 2, 0]].ravel()
     if not edges_pair_up(u, v, n):
-        key = np.sort(u * n + v)
-        dup = int(np.count_nonzero(key[1:] == key[:-1]))
-        rev = np.sort(v * n + u)
-        pos = np.minimum(np.searchsorted(key, rev), len(key) - 1)
-        missing = int(np.count_nonzero(key[pos] != rev))
-        problems = []
-        if missing or not dup:
-            problems.append(f"{max(missing, 1)} open edges")
-        if dup:
-            problems.append(f"{dup} edges wound the same way twice or shared by more than two faces")
-        _fail(name, "is not watertight as a slicer reads it (float32): " + ", ".join(problems), merged)
+        _fail(name, "is not watertight as a slicer reads it (float32): " + _edge_problems(u, v, n), merged)
     vol = float(np.einsum("ij,ij->i", p0, cross).sum() / 6.0)
     if not vol > 0:
         _fail(name, f"has a volume of {vol:g} mm^3 (it must be positive: faces point inward)", merged)

@@ -580,6 +580,21 @@ def mosaic_parts(region, outline, stack: Stack, specs) -> dict:
             f"the mosaic's faces could not be cut from the outline ({exc}); nothing was written"
         ) from None
     faces = faces[~_slivers(faces)]
+    owner = _face_owners(faces, specs)
+    out = {}
+    for k, spec in enumerate(specs):
+        layers = _mosaic_layers(spec, faces[owner == k], r, stack)
+        if not layers and not spec.base:
+            continue  # a colour no face of this print took (all its faces were filled)
+        out[spec.name] = _mosaic_body(spec, layers, o, stack)
+    return out
+
+
+def _face_owners(faces, specs) -> np.ndarray:
+    """Per face, the number of the spec whose face holds its representative point (on an edge: the
+    nearest); a face no spec names goes with the part holding the bands."""
+    import shapely
+
     owner = np.full(len(faces), -1)
     spec_faces = [(np.asarray(s.faces, dtype=object), k) for k, s in enumerate(specs) if len(s.faces)]
     if len(faces) and spec_faces:
@@ -592,24 +607,25 @@ def mosaic_parts(region, outline, stack: Stack, specs) -> dict:
         if len(lost):  # snapped faces whose point fell on a spec face's edge: the nearest spec face
             near = shapely.STRtree(polys).query_nearest(probe[lost], return_distance=False)
             owner[lost[near[0]]] = which[near[1]]
-    band_part = next((k for k, s in enumerate(specs) if s.bands), 0)
-    owner[owner < 0] = band_part
+    owner[owner < 0] = next((k for k, s in enumerate(specs) if s.bands), 0)
+    return owner
+
+
+def _mosaic_layers(spec: MosaicPart, mine, r, stack: Stack) -> list:
+    """A mosaic part's layers ``(geometry, top z)``: the bands ``r`` to the top if it holds them, its
+    faces ``mine`` to the top less the inset."""
+    import shapely
+
     b, h, i = stack.base, stack.relief, stack.inset
-    out = {}
-    for k, spec in enumerate(specs):
-        mine = faces[owner == k]
-        # the faces are disjoint parts of one overlay: a MultiPolygon of them is their union (no GEOS
-        # union of a sheet's thousands of faces)
-        face_geom = shapely.MultiPolygon(list(mine)) if len(mine) else shapely.Polygon()
-        layers = []
-        if spec.bands:
-            layers.append((r, b + h))
-        if not face_geom.is_empty:
-            layers.append((face_geom, b + h - i))
-        if not layers and not spec.base:
-            continue  # a colour no face of this print took (all its faces were filled)
-        out[spec.name] = _mosaic_body(spec, layers, o, stack)
-    return out
+    # the faces are disjoint parts of one overlay: a MultiPolygon of them is their union (no GEOS
+    # union of a sheet's thousands of faces)
+    face_geom = shapely.MultiPolygon(list(mine)) if len(mine) else shapely.Polygon()
+    layers = []
+    if spec.bands:
+        layers.append((r, b + h))
+    if not face_geom.is_empty:
+        layers.append((face_geom, b + h - i))
+    return layers
 
 
 def _slivers(faces) -> np.ndarray:
@@ -688,43 +704,13 @@ def _mosaic_mesh(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
     import shapely
 
     b = stack.base
-    one_level = len({z for _, z in layers}) <= 1
-    # the bands and the faces share their edges exactly (the faces are the outline less the bands, on the
-    # grid): a coverage union joins them without an overlay
     name = f"part {spec.name!r}"
-    geoms = [g for g, _ in layers]
-    try:
-        top = (
-            shapely.Polygon()
-            if not geoms
-            else geoms[0]
-            if len(geoms) == 1
-            else shapely.coverage_union_all(np.concatenate([shapely.get_parts(g) for g in geoms]))
-        )
-    except shapely.errors.GEOSException as exc:
-        raise FabricationError(
-            f"the {name} mesh could not be made: its bands and faces do not join ({exc}); nothing was written"
-        ) from None
-    if spec.base:
-        volume = o.area * b + sum(g.area * (z - b) for g, z in layers)
-        bodies = len(polygons_of(o))
-    else:
-        volume = sum(g.area * (z - b) for g, z in layers)
-        bodies = len(polygons_of(top))
+    top = _mosaic_top(layers, name)
+    volume, bodies = _mosaic_expected(spec, layers, top, o, b)
     error = None
     for shift in range(GRID_SHIFTS):
         try:
-            if spec.base and not layers:
-                cov = coverage([(o, b)], bottom=0.0, shift=shift)
-            elif spec.base and one_level:
-                cov = coverage_pair(top, o, region_z=layers[0][1], rest_z=b, bottom=0.0, shift=shift)
-            elif spec.base:
-                rest = shapely.difference(o, top, grid_size=QUANTUM)
-                cov = coverage(layers + ([(rest, b)] if not rest.is_empty else []), bottom=0.0, shift=shift)
-            elif one_level:
-                cov = coverage([(top, layers[0][1])], bottom=b, shift=shift)
-            else:
-                cov = coverage(layers, bottom=b, shift=shift)
+            cov = _mosaic_coverage(spec, layers, top, o, b, shift)
             verts, faces = mesh_coverage(cov)
         except shapely.errors.GEOSException as exc:
             error = error or FabricationError(
@@ -746,6 +732,57 @@ def _mosaic_mesh(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
         return CheckedPart(mverts, mfaces, float(volume), int(bodies), top, o, float(found))
     assert error is not None  # every attempt failed: the loop above returned otherwise
     raise error
+
+
+def _mosaic_top(layers, name: str):
+    """The footprint of a mosaic part's layers, their union.
+
+    The bands and the faces share their edges exactly (the faces are the outline less
+    the bands, on the grid): a coverage union joins them without an overlay.
+    """
+    import shapely
+
+    geoms = [g for g, _ in layers]
+    if not geoms:
+        return shapely.Polygon()
+    if len(geoms) == 1:
+        return geoms[0]
+    try:
+        return shapely.coverage_union_all(np.concatenate([shapely.get_parts(g) for g in geoms]))
+    except shapely.errors.GEOSException as exc:
+        raise FabricationError(
+            f"the {name} mesh could not be made: its bands and faces do not join ({exc}); nothing was written"
+        ) from None
+
+
+def _mosaic_expected(spec: MosaicPart, layers, top, o, b: float) -> tuple:
+    """``(volume, bodies)`` a mosaic part's mesh must have: with the plate, the outline's plate and
+    what stands on it, one body per piece of the outline; else its layers above the plate, one body
+    per piece of its footprint."""
+    if spec.base:
+        return o.area * b + sum(g.area * (z - b) for g, z in layers), len(polygons_of(o))
+    return sum(g.area * (z - b) for g, z in layers), len(polygons_of(top))
+
+
+def _mosaic_coverage(spec: MosaicPart, layers, top, o, b: float, shift: int):
+    """The coverage a mosaic part is meshed from, its cell lines moved by ``shift``.
+
+    A part with the plate is a relief of its top footprint on the whole outline (the
+    rest of the outline to the plate's top ``b``); one without it stands on the plate.
+    """
+    import shapely
+
+    one_level = len({z for _, z in layers}) <= 1
+    if spec.base and not layers:
+        return coverage([(o, b)], bottom=0.0, shift=shift)
+    if spec.base and one_level:
+        return coverage_pair(top, o, region_z=layers[0][1], rest_z=b, bottom=0.0, shift=shift)
+    if spec.base:
+        rest = shapely.difference(o, top, grid_size=QUANTUM)
+        return coverage(layers + ([(rest, b)] if not rest.is_empty else []), bottom=0.0, shift=shift)
+    if one_level:
+        return coverage([(top, layers[0][1])], bottom=b, shift=shift)
+    return coverage(layers, bottom=b, shift=shift)
 
 
 def stack_stats(stack):

@@ -136,16 +136,19 @@ class PrintModel:
         one = len(checked) == 1
         out = {}
         for name, mesh in checked.items():
-            material = PART_MATERIALS.get(name, OTHER)
-            colour = material.colour
-            label = name
-            if self.colours is not None:  # the design's colours: a relief's plate and bands, a deboss and its inlay
-                chosen = self.colours.band if name in ("pattern", "inlay") else self.colours.base
-                colour = chosen.linear
-                if not one and name in HOLDS:  # named as a mosaic's parts are: by colour and what it holds
-                    label = f"{chosen.name} ({HOLDS[name]})"
-            out[label] = PrintPart(label, 1 if one else material.extruder, colour, mesh)
+            label, colour = self._label_and_colour(name, one)
+            out[label] = PrintPart(label, 1 if one else PART_MATERIALS.get(name, OTHER).extruder, colour, mesh)
         return out
+
+    def _label_and_colour(self, name: str, one: bool) -> tuple:
+        """A checked part's label and display colour: its material's, or with the design's colours (a
+        relief's plate and bands, a deboss and its inlay) theirs, a part among several then named as a
+        mosaic's parts are, by colour and what it holds."""
+        if self.colours is None:
+            return name, PART_MATERIALS.get(name, OTHER).colour
+        chosen = self.colours.band if name in ("pattern", "inlay") else self.colours.base
+        label = f"{chosen.name} ({HOLDS[name]})" if not one and name in HOLDS else name
+        return label, chosen.linear
 
     @cached_property
     def fused(self) -> CheckedPart:
