@@ -10,9 +10,9 @@ keeps, in panel millimetres) and the bed, and returns a :class:`PanelSplit`:
 - **Where the seams run.** Each seam may move within the slack the bed leaves. Along
   it, candidates are scored in order by: the joints it can hold (every pair of pieces
   it separates needs one: a seam that crosses only thin bands cannot be joined), the
-  slivers it leaves (material narrower than the minimum feature, cut off by the
-  seam: an opening by half the minimum feature, less what the unsplit material
-  loses to it), then a place on the pattern's period (pieces in the same place of the
+  slivers it leaves (material narrower than the minimum feature: the wedge a band
+  crossing the seam at a slant leaves, a corner just beside the seam), then a place
+  on the pattern's period (pieces in the same place of the
   grid are then congruent: interchangeable, one file fits several places), then the
   even division.
 - **Islands.** A bit of band cut off on the wrong side of a seam, touching its piece
@@ -242,22 +242,56 @@ def split_panel(
 
 
 class _Context:
-    """The material and the joint's rules, with the material's own thin parts (not the seams' doing)."""
+    """The material and the joint's rules."""
 
     def __init__(self, material, joint: Joint, min_feature_mm: float):
         self.material = material
         self.joint = joint
         self.min_mm = min_feature_mm
         self.reach = joint.depth_mm + 2 * min_feature_mm + joint.head_mm
+        # a tab grown by the minimum feature, at the origin sticking out along +x and +y: placed by a shift
+        self.probes = [
+            np.asarray(joint.tab((0, 0), d).buffer(min_feature_mm, join_style="mitre").exterior.coords)
+            for d in ((1.0, 0.0), (0.0, 1.0))
+        ]
 
-    def near(self, axis: int, lo: float, hi: float):
+    def near(self, axis: int, lo: float, hi: float) -> _Window:
         """The material within reach of a seam of ``axis`` placed anywhere from ``lo`` to ``hi``."""
         x0, y0, x1, y1 = self.material.bounds
         r = self.reach
         window = box(lo - r, y0 - 1, hi + r, y1 + 1) if axis == 0 else box(x0 - 1, lo - r, x1 + 1, hi + r)
-        local = shapely.intersection(self.material, window)
+        return _Window(shapely.intersection(self.material, window), axis)
+
+
+class _Window:
+    """The material near a seam's slack, with its edges as arrays: a seam's crossings by arithmetic."""
+
+    def __init__(self, local, axis: int):
+        self.local = local
         shapely.prepare(local)
-        return local
+        rings = shapely.get_rings(shapely.get_parts(local))
+        starts, ends = [], []
+        for ring in rings:
+            xy = shapely.get_coordinates(ring)
+            starts.append(xy[:-1])
+            ends.append(xy[1:])
+        self.p = np.concatenate(starts) if starts else np.zeros((0, 2))
+        self.q = np.concatenate(ends) if ends else np.zeros((0, 2))
+        self.axis = axis
+        self.bounds = local.bounds
+
+    def crossings(self, pos: float) -> tuple[list[tuple[float, float]], np.ndarray]:
+        """The stretches where a seam at ``pos`` runs through material (from, to along it), and the
+        crossing edges' slopes (along the seam per unit across: the wedge each leaves)."""
+        a = self.p[:, self.axis] - pos
+        b = self.q[:, self.axis] - pos
+        hit = (a < 0) != (b < 0)  # half-open, as a point-in-polygon test counts: even-odd holds at vertices
+        t = a[hit] / (a[hit] - b[hit])
+        o = 1 - self.axis
+        along = self.p[hit, o] + t * (self.q[hit, o] - self.p[hit, o])
+        slope = np.abs(self.q[hit, o] - self.p[hit, o]) / np.abs(self.q[hit, self.axis] - self.p[hit, self.axis])
+        order = np.sort(along)
+        return [(float(order[k]), float(order[k + 1])) for k in range(0, len(order) - 1, 2)], slope
 
 
 def _number(i: int, j: int, nx: int, ny: int) -> int:
@@ -321,72 +355,46 @@ def _choose(ctx: _Context, axis: int, seams, others, lo_end, hi_end, cell_max, p
     return chosen
 
 
-def _score(ctx: _Context, local, axis: int, pos: float, others, on_period: bool, off: float, best) -> tuple | None:
+def _score(ctx: _Context, win: _Window, axis: int, pos: float, others, on_period: bool, off: float, best):
     """A seam position's key, smaller is better: pairs it cannot join, slivers, off the period, off
-    even; None when it cannot beat ``best`` on the pairs it joins (the slivers are not measured)."""
-    crossings = _crossings(local, axis, pos)
-    unjoined = sum(not _sites(ctx, local, axis, pos, crossings, a, b) for a, b in itertools.pairwise(others))
+    even; None when it cannot beat ``best`` on the pairs it joins."""
+    stretches, slopes = win.crossings(pos)
+    unjoined = sum(not _sites(ctx, win, pos, stretches, a, b) for a, b in itertools.pairwise(others))
     if best is not None and unjoined > best[0][0]:
         return None
-    return (unjoined, round(_sliver_area(ctx, local, axis, pos), 2), not on_period, round(off, 3))
+    return (unjoined, round(_sliver_area(ctx, win, pos, slopes), 2), not on_period, round(off, 3))
 
 
-def _line(axis: int, pos: float, a: float, b: float):
-    return shapely.LineString([(pos, a), (pos, b)] if axis == 0 else [(a, pos), (b, pos)])
-
-
-def _crossings(local, axis: int, pos: float) -> list[tuple[float, float]]:
-    """Where the seam at ``pos`` runs through material: (from, to) along the seam."""
-    x0, y0, x1, y1 = local.bounds
-    a, b = (y0 - 1, y1 + 1) if axis == 0 else (x0 - 1, x1 + 1)
-    cross = shapely.intersection(_line(axis, pos, a, b), local)
-    out = []
-    for seg in getattr(cross, "geoms", [cross]):
-        if seg.is_empty or seg.geom_type != "LineString":
-            continue
-        p, q = sorted(np.asarray(seg.coords)[[0, -1], 1 - axis])
-        out.append((float(p), float(q)))
-    return out
-
-
-def _sites(ctx: _Context, local, axis: int, pos: float, crossings, a: float, b: float) -> list[float]:
-    """Where on the seam ``pos`` between ``a`` and ``b`` a tab fits: the middles of its crossings."""
+def _sites(ctx: _Context, win: _Window, pos: float, stretches, a: float, b: float) -> list[float]:
+    """Where on the seam ``pos`` between ``a`` and ``b`` a tab fits: the middles of its stretches
+    long enough, where the tab grown by the minimum feature lies in the material."""
     need = ctx.joint.head_mm + 2 * ctx.min_mm
     lo, hi = a + need / 2, b - need / 2
+    probe = ctx.probes[win.axis]
     out = []
-    for p, q in crossings:
+    for p, q in stretches:
         p, q = max(p, lo), min(q, hi)
         if q - p < ctx.joint.neck_mm + 2 * ctx.min_mm:
             continue
         mid = (p + q) / 2
-        centre = (pos, mid) if axis == 0 else (mid, pos)
-        direction = (1.0, 0.0) if axis == 0 else (0.0, 1.0)
-        tab = ctx.joint.tab(centre, direction)
-        if shapely.contains(local, tab.buffer(ctx.min_mm, join_style="mitre")):
+        centre = (pos, mid) if win.axis == 0 else (mid, pos)
+        if shapely.contains(win.local, shapely.Polygon(probe + centre)):
             out.append(mid)
     return out
 
 
-def _sliver_area(ctx: _Context, local, axis: int, pos: float) -> float:
-    """Material the seam leaves thinner than the minimum feature near it (the pattern's own apart)."""
-    x0, y0, x1, y1 = local.bounds
-    w = 2 * ctx.min_mm
-    strip = box(pos - w, y0, pos + w, y1) if axis == 0 else box(x0, pos - w, x1, pos + w)
-    near = shapely.intersection(local, strip)
-    if near.is_empty:
-        return 0.0
-    lo = box(x0 - 1, y0 - 1, pos, y1 + 1) if axis == 0 else box(x0 - 1, y0 - 1, x1 + 1, pos)
-    hi = box(pos, y0 - 1, x1 + 1, y1 + 1) if axis == 0 else box(x0 - 1, pos, x1 + 1, y1 + 1)
-    half = shapely.intersection(near, lo), shapely.intersection(near, hi)
-    return sum(_thin(h, ctx.min_mm) for h in half) - _thin(near, ctx.min_mm)
+def _sliver_area(ctx: _Context, win: _Window, pos: float, slopes: np.ndarray) -> float:
+    """The material a seam at ``pos`` leaves narrower than the minimum feature, estimated.
 
-
-def _thin(region, width: float) -> float:
-    """The area an opening by half ``width`` takes from ``region``: its parts narrower than ``width``."""
-    if region.is_empty:
-        return 0.0
-    opened = shapely.buffer(shapely.buffer(region, -width / 2, join_style="mitre"), width / 2, join_style="mitre")
-    return float(shapely.area(shapely.difference(region, opened)))
+    An edge crossing the seam at an angle leaves a wedge, thinner than ``m`` over ``m`` times
+    its slope: ``m**2 * slope / 2``, capped at the edge's own reach; a corner of the material
+    within ``m`` of the seam without crossing it leaves a strip as thin as its distance.
+    """
+    m = ctx.min_mm
+    wedges = float(np.minimum(slopes, 50.0).sum()) * m * m / 2
+    d = np.abs(win.p[:, win.axis] - pos)
+    near = d[(d > 1e-9) & (d < m)]
+    return wedges + float(((m - near) * m).sum())
 
 
 def _cut(material, xs, ys, bounds) -> dict[tuple[int, int], shapely.Geometry]:

@@ -141,10 +141,10 @@ def test_bad_beds_and_joints_are_errors_naming_the_value():
         joint_for("dovetail", thickness_mm=3, fit_mm=1.0)
 
 
-@settings(max_examples=6)
+@settings(max_examples=10)
 @given(
-    w=st.floats(150, 320),
-    h=st.floats(120, 240),
+    w=st.floats(150, 420),
+    h=st.floats(120, 300),
     bed=st.tuples(st.floats(110, 260), st.floats(110, 260)),
     kind=st.sampled_from(["dovetail", "jigsaw"]),
 )
