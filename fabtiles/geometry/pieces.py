@@ -48,6 +48,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+import shapely.affinity
 from shapely.geometry import box
 
 from ..core.errors import FabricationError, ParameterError
@@ -68,6 +69,10 @@ _COARSE_STEP_MM = 4.0
 
 _GRID_STEP_MM = 1.0
 """The spacing of the positions tried around the best of the first, coarse round."""
+
+_ALIKE_SLIVER_MM2 = 2.0
+"""How much more sliver (mm^2 over all seams of an axis) seams a whole number of periods apart may
+leave than the best seams found one by one, and still be chosen for their alike pieces."""
 
 _ROUNDS = 2
 """Rounds of choosing the columns' seams then the rows': each choice depends on the other's segments."""
@@ -241,6 +246,56 @@ def split_panel(
     return PanelSplit((nx, ny), tuple(xs[1:-1]), tuple(ys[1:-1]), pieces, tuple(joints), joint)
 
 
+def laid_on_bed(region, bed_mm, *, margin_mm: float) -> tuple[shapely.Geometry, np.ndarray]:
+    """A piece as its file holds it: its lower left corner at the margin, turned a quarter if it
+    fits the bed only turned; and the 3 x 3 matrix (mm) that carries the file's piece to its
+    place in the panel.
+
+    >>> laid, m = laid_on_bed(box(300, 0, 500, 300), (400, 250), margin_mm=5)
+    >>> [round(v, 6) for v in laid.bounds], (m.round(6) + 0.0).tolist()
+    ([5.0, 5.0, 305.0, 205.0], [[0.0, -1.0, 505.0], [1.0, 0.0, -5.0], [0.0, 0.0, 1.0]])
+    >>> (m @ [5, 5, 1]).round(6).tolist()  # the file's corner at the margin is the panel's (500, 0)
+    [500.0, 0.0, 1.0]
+    """
+    x0, y0, x1, y1 = region.bounds
+    bw, bh = (b - 2 * margin_mm for b in bed_mm)
+    turn = not (x1 - x0 <= bw + 1e-9 and y1 - y0 <= bh + 1e-9)
+    # panel -> file: turn a quarter clockwise (x, y) -> (y, -x) if needed, then shift to the margin
+    rot = np.array([[0.0, 1.0], [-1.0, 0.0]]) if turn else np.eye(2)
+    corners = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]) @ rot.T
+    shift = margin_mm - corners.min(axis=0)
+    to_file = np.eye(3)
+    to_file[:2, :2] = rot
+    to_file[:2, 2] = shift
+    laid = shapely.transform(region, lambda xy: xy @ rot.T + shift)
+    return laid, np.linalg.inv(to_file)
+
+
+def congruent_groups(pieces, *, tolerance_mm: float = 1e-3) -> list[list[int]]:
+    """The pieces' numbers grouped by shape: pieces of one group are the same up to a shift, so
+    one file makes any of them (and they are interchangeable in the panel).
+
+    >>> ps = [Piece(1, (0, 0), box(0, 0, 10, 10)), Piece(2, (1, 0), box(10, 0, 20, 10)),
+    ...       Piece(3, (2, 0), box(20, 0, 31, 10))]
+    >>> congruent_groups(ps)
+    [[1, 2], [3]]
+    """
+    groups: list[tuple[shapely.Geometry, list[int]]] = []
+    for piece in pieces:
+        x0, y0 = piece.region.bounds[:2]
+        shape = shapely.affinity.translate(piece.region, -x0, -y0)
+        for ref, members in groups:
+            if (
+                abs(ref.area - shape.area) <= tolerance_mm * max(1.0, shape.length)
+                and shapely.hausdorff_distance(ref, shape) <= tolerance_mm
+            ):
+                members.append(piece.number)
+                break
+        else:
+            groups.append((shape, [piece.number]))
+    return [members for _, members in groups]
+
+
 class _Context:
     """The material and the joint's rules."""
 
@@ -325,9 +380,11 @@ def _candidates(ideal: float, lo: float, hi: float, period, step: float) -> list
 
 
 def _choose(ctx: _Context, axis: int, seams, others, lo_end, hi_end, cell_max, period) -> list[float]:
-    """Each inner seam of one axis at its best position within the slack the bed leaves.
+    """The inner seams of one axis at their best positions within the slack the bed leaves.
 
-    Positions are tried on a coarse grid (and the period's), then finely around the best.
+    Each seam is tried on a coarse grid (and the period's), then finely around its best. With
+    a period, seams a whole number of periods apart are tried too, and kept where they join as
+    many pairs with as few slivers: their inner pieces are then alike.
     """
     n = len(seams) - 1
     if n <= 1:
@@ -335,24 +392,60 @@ def _choose(ctx: _Context, axis: int, seams, others, lo_end, hi_end, cell_max, p
     slack = max(0.0, cell_max - (hi_end - lo_end) / n)
     ideal = _even(lo_end, hi_end, n)
     chosen = [lo_end]
+    scores = []
     for k in range(1, n):
         lo, hi = ideal[k] - slack / 2, ideal[k] + slack / 2
-        local = ctx.near(axis, lo, hi)
-        best = None
-        coarse = _candidates(ideal[k], lo, hi, period, _COARSE_STEP_MM)
-        for round_ in (coarse, None):
-            if round_ is None:
-                assert best is not None
-                c = best[1]
-                round_ = _candidates(c, max(lo, c - _COARSE_STEP_MM), min(hi, c + _COARSE_STEP_MM), None, _GRID_STEP_MM)
-            for pos, on_period in round_:
-                key = _score(ctx, local, axis, pos, others, on_period, abs(pos - ideal[k]), best)
-                if key is not None and (best is None or key < best[0]):
-                    best = (key, pos)
-        assert best is not None
+        best = _best_seam(ctx, ctx.near(axis, lo, hi), axis, others, ideal[k], lo, hi, period)
         chosen.append(best[1])
+        scores.append(best[0])
     chosen.append(hi_end)
+    if period is not None:
+        regular = _regular_seams(ctx, axis, others, lo_end, hi_end, n, cell_max, period)
+        if regular is not None:
+            unjoined = sum(s[0] for s in scores)
+            slivers = sum(s[1] for s in scores)
+            if regular[0][0] <= unjoined and regular[0][1] <= slivers + _ALIKE_SLIVER_MM2:
+                return regular[1]
     return chosen
+
+
+def _best_seam(ctx: _Context, win: _Window, axis: int, others, ideal: float, lo: float, hi: float, period):
+    """The best (key, position) of one seam between ``lo`` and ``hi``."""
+    best = None
+    coarse = _candidates(ideal, lo, hi, period, _COARSE_STEP_MM)
+    for round_ in (coarse, None):
+        if round_ is None:
+            assert best is not None
+            c = best[1]
+            round_ = _candidates(c, max(lo, c - _COARSE_STEP_MM), min(hi, c + _COARSE_STEP_MM), None, _GRID_STEP_MM)
+        for pos, on_period in round_:
+            key = _score(ctx, win, axis, pos, others, on_period, abs(pos - ideal), best)
+            if key is not None and (best is None or key < best[0]):
+                best = (key, pos)
+    assert best is not None
+    return best
+
+
+def _regular_seams(ctx: _Context, axis: int, others, lo_end, hi_end, n, cell_max, period):
+    """The best seams on the period a whole number of periods apart: ((unjoined, slivers), seams),
+    or None when no such spacing fits the bed."""
+    p, o = period
+    best = None
+    win = ctx.near(axis, lo_end, hi_end)
+    for steps in range(1, int(cell_max / p) + 1):
+        spacing = steps * p
+        k0 = math.ceil((hi_end - (n - 1) * spacing - cell_max - o) / p)
+        k1 = math.floor((lo_end + cell_max - o) / p)
+        for k in range(k0, k1 + 1):
+            inner = [o + k * p + i * spacing for i in range(n - 1)]
+            cuts = [lo_end, *inner, hi_end]
+            if any(b - a > cell_max + 1e-9 or b - a <= 0 for a, b in itertools.pairwise(cuts)):
+                continue
+            keys = [_score(ctx, win, axis, x, others, True, 0.0, None) for x in inner]
+            total = (sum(key[0] for key in keys), sum(key[1] for key in keys))
+            if best is None or total < best[0]:
+                best = (total, cuts)
+    return best
 
 
 def _score(ctx: _Context, win: _Window, axis: int, pos: float, others, on_period: bool, off: float, best):

@@ -2,6 +2,7 @@
 
 import itertools
 
+import numpy as np
 import pytest
 import shapely
 from hypothesis import given, settings
@@ -11,7 +12,7 @@ from shapely.geometry import box
 import fabtiles as ft
 from fabtiles.core.errors import FabricationError, ParameterError
 from fabtiles.geometry.laser_checks import fits_bed
-from fabtiles.geometry.pieces import MAX_PIECES, grid_for, joint_for, split_panel
+from fabtiles.geometry.pieces import MAX_PIECES, congruent_groups, grid_for, joint_for, laid_on_bed, split_panel
 from fabtiles.geometry.tile import TileGeometry
 
 MIN_MM = 1.0
@@ -164,3 +165,26 @@ def test_any_grid_panel_splits_into_joined_pieces_that_fit(w, h, bed, kind):
         assert fits_bed(x1 - x0, y1 - y0, (bed[0] - 10, bed[1] - 10))
         assert p.region.geom_type == "Polygon"
     assert len({j.pieces for j in s.joints}) >= (s.grid[0] - 1) * s.grid[1] + (s.grid[1] - 1) * s.grid[0]
+
+
+def test_each_piece_laid_on_the_bed_goes_back_to_its_place_by_its_matrix(split):
+    for p in split.pieces:
+        laid, matrix = laid_on_bed(p.region, (300, 250), margin_mm=5)
+        x0, y0, x1, y1 = laid.bounds
+        assert x0 == pytest.approx(5) and y0 == pytest.approx(5)
+        assert x1 <= 295 + 1e-6 and y1 <= 245 + 1e-6  # inside the bed less its margin
+        back = shapely.transform(laid, lambda xy, m=matrix: xy @ m[:2, :2].T + m[:2, 2])
+        assert shapely.symmetric_difference(back, p.region).area < 1e-6
+        assert abs(np.linalg.det(matrix[:2, :2]) - 1) < 1e-12  # a rigid motion, never a mirror
+
+
+def test_pieces_on_the_period_in_the_same_place_of_the_grid_are_one_shape():
+    holes = [box(x + 4, y + 4, x + 16, y + 16) for x, y in itertools.product(range(0, 600, 20), range(0, 100, 20))]
+    material = box(-2, -2, 602, 102).difference(shapely.union_all(holes))  # a 20 mm grid of holes, 8 mm bands
+    joint = joint_for("dovetail", thickness_mm=2)
+    s = split_panel(material, bed_mm=(160, 160), margin_mm=5, joint=joint, period_mm=(20, 20), origin=(10, 10))
+    assert all((x - 10) % 20 == pytest.approx(0) for x in s.seams_x)  # through the holes' middles
+    groups = congruent_groups(s.pieces)
+    inner = [p.number for p in s.pieces if 0 < p.cell[0] < s.grid[0] - 1]
+    assert len(inner) >= 2 and any(set(inner) <= set(g) for g in groups), groups
+    assert len(groups) <= 3  # the first, the inner ones, the last
