@@ -1,0 +1,594 @@
+"""Pieces of a panel larger than the bed: seams chosen on the pattern, and joints that lock.
+
+A tile larger than its machine's bed is made as pieces that assemble into exactly the
+designed panel. :func:`split_panel` takes the panel's material (the region a cutter
+keeps, in panel millimetres) and the bed, and returns a :class:`PanelSplit`:
+
+- **How many pieces.** The fewest columns x rows whose cells, with the joints' tabs
+  sticking out on two sides, fit the bed less its margin either way round
+  (:func:`grid_for`); more than :data:`MAX_PIECES` is an error.
+- **Where the seams run.** Each seam may move within the slack the bed leaves. Along
+  it, candidates are scored in order by: the joints it can hold (every pair of pieces
+  it separates needs one: a seam that crosses only thin bands cannot be joined), the
+  slivers it leaves (material narrower than the minimum feature: the wedge a band
+  crossing the seam at a slant leaves, a corner just beside the seam), then a place
+  on the pattern's period (pieces in the same place of the
+  grid are then congruent: interchangeable, one file fits several places), then the
+  even division.
+- **Islands.** A bit of band cut off on the wrong side of a seam, touching its piece
+  nowhere, would fall out: it joins the neighbour it touches, so the seam steps
+  round it along the pattern.
+- **Joints.** Where a piece meets its neighbour across a seam over a stretch of
+  material wide enough (the tab's widest part and the minimum feature each side), a
+  tab of the left (lower) piece locks into a socket of the right (upper) one:
+  a ``"dovetail"`` (a trapezoid whose head is wider than its neck) or a ``"jigsaw"``
+  knob (a disc on a neck). Tabs always stick out to the right and up, so pieces in
+  the same place of the grid get the same joints. ``fit_mm`` grows the tab like an
+  inlay's fit: positive presses in, negative leaves play. Laid flat, two joined
+  pieces cannot be pulled apart in the plane.
+
+The pieces are the nominal shapes: the cut plan offsets each by the kerf as any part.
+
+>>> import shapely
+>>> frame = shapely.box(0, 0, 300, 100).difference(shapely.box(10, 10, 290, 90))
+>>> split = split_panel(frame, bed_mm=(200, 200), margin_mm=5, joint=joint_for("dovetail", thickness_mm=3))
+>>> split.grid, len(split.pieces), len(split.joints)
+((2, 1), 2, 2)
+>>> [round(x, 1) for x in split.seams_x]
+[150.0]
+>>> round(sum(p.region.area for p in split.pieces) - frame.area, 6)
+0.0
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+import shapely.affinity
+from shapely.geometry import box
+
+from ..core.errors import FabricationError, ParameterError
+from ..core.validate import check_choice, check_float
+
+JOINT_KINDS = ("dovetail", "jigsaw")
+"""The joints a seam may carry: a dovetail (trapezoid) or a jigsaw knob (a disc on a neck)."""
+
+MAX_PIECES = 100
+"""The most pieces a panel is split into: beyond, the bed is too small for the panel to be worth it."""
+
+DOVETAIL_FLARE = 1.0 / 3.0
+"""How much wider a dovetail's head is than its neck, per unit of depth each side (a steep
+dovetail locks better in the plane than a woodworker's 1:6, and needs no glue to hold)."""
+
+_COARSE_STEP_MM = 4.0
+"""The spacing of the positions a seam is tried at first within its slack (besides the period's)."""
+
+_GRID_STEP_MM = 1.0
+"""The spacing of the positions tried around the best of the first, coarse round."""
+
+_ALIKE_SLIVER_MM2 = 2.0
+"""How much more sliver (mm^2 over all seams of an axis) seams a whole number of periods apart may
+leave than the best seams found one by one, and still be chosen for their alike pieces."""
+
+_ROUNDS = 2
+"""Rounds of choosing the columns' seams then the rows': each choice depends on the other's segments."""
+
+
+@dataclass(frozen=True, slots=True)
+class Joint:
+    """A joint's shape, in mm: its kind, the neck at the seam, the widest part, the depth into
+    the neighbour, and the fit (positive presses in, negative leaves play)."""
+
+    kind: str
+    neck_mm: float
+    head_mm: float
+    depth_mm: float
+    fit_mm: float = 0.0
+
+    def tab(self, centre, direction) -> shapely.Polygon:
+        """The tab at ``centre`` on the seam, sticking out along the unit vector ``direction``.
+
+        >>> t = joint_for("dovetail", thickness_mm=3).tab((0, 0), (1, 0))
+        >>> [round(v, 3) for v in t.bounds]
+        [0.0, -3.5, 6.0, 3.5]
+        """
+        d = np.asarray(direction, float)
+        n = np.array([-d[1], d[0]])
+        c = np.asarray(centre, float)
+        if self.kind == "dovetail":
+            local = [(0, -self.neck_mm / 2), (self.depth_mm, -self.head_mm / 2),
+                     (self.depth_mm, self.head_mm / 2), (0, self.neck_mm / 2)]  # fmt: skip
+            shape = shapely.Polygon(local)
+        else:
+            r = self.head_mm / 2
+            knob = shapely.Point(self.depth_mm - r, 0).buffer(r, quad_segs=16)
+            neck = box(0, -self.neck_mm / 2, self.depth_mm - r, self.neck_mm / 2)
+            shape = shapely.union(knob, neck)
+        coords = np.asarray(shape.exterior.coords)
+        placed = c + coords[:, :1] * d + coords[:, 1:] * n
+        return shapely.Polygon(placed)
+
+    @property
+    def extent_mm(self) -> float:
+        """How far a tab sticks out of its piece beyond the seam."""
+        return self.depth_mm
+
+
+def joint_for(kind: str = "dovetail", *, thickness_mm: float, kerf_mm: float = 0.0, fit_mm: float = 0.0) -> Joint:
+    """The joint sized from the material: the neck as wide as one thickness (never under 2 mm), a
+    dovetail as deep as two, its head wider by :data:`DOVETAIL_FLARE` of the depth each side; a
+    jigsaw knob as wide as that head, on a neck half the neck's width long.
+
+    The kerf only sets a floor: a neck narrower than four kerfs would burn away.
+
+    >>> joint_for("dovetail", thickness_mm=3)
+    Joint(kind='dovetail', neck_mm=3.0, head_mm=7.0, depth_mm=6.0, fit_mm=0.0)
+    >>> joint_for("jigsaw", thickness_mm=3).depth_mm
+    8.5
+    >>> joint_for("knot", thickness_mm=3)
+    Traceback (most recent call last):
+    ...
+    fabtiles.core.errors.ParameterError: 'knot' is not a valid joint, must be one of: dovetail, jigsaw
+    """
+    check_choice("joint", kind, JOINT_KINDS)
+    t = check_float("thickness_mm", thickness_mm, low=0.1, high=100.0)
+    kerf = check_float("kerf_mm", kerf_mm, low=0.0, high=10.0)
+    fit = check_float("fit_mm", fit_mm, low=-0.5, high=0.5)
+    neck = max(t, 2.0, 4 * kerf)
+    depth = 2 * neck
+    head = neck + 2 * DOVETAIL_FLARE * depth
+    if kind == "jigsaw":  # the knob (as wide as the dovetail's head) on a neck half its width long
+        depth = head + neck / 2
+    return Joint(kind, neck, head, depth, fit)
+
+
+@dataclass(frozen=True, slots=True)
+class Piece:
+    """One piece: its number (1 at the top left, along the rows), its place in the grid
+    (column, row from the bottom) and its nominal region in panel mm."""
+
+    number: int
+    cell: tuple[int, int]
+    region: shapely.Geometry
+
+
+@dataclass(frozen=True, slots=True)
+class PlacedJoint:
+    """A joint between two pieces (numbers): the tab's piece first, where on the seam, the tab."""
+
+    pieces: tuple[int, int]
+    at: tuple[float, float]
+    tab: shapely.Polygon
+
+
+@dataclass(frozen=True, slots=True)
+class PanelSplit:
+    """A panel split into pieces: the grid (columns, rows), the seams, the pieces and joints."""
+
+    grid: tuple[int, int]
+    seams_x: tuple[float, ...]
+    seams_y: tuple[float, ...]
+    pieces: tuple[Piece, ...]
+    joints: tuple[PlacedJoint, ...]
+    joint: Joint
+
+
+def grid_for(width_mm: float, height_mm: float, bed_mm, *, margin_mm: float, extent_mm: float) -> tuple[int, int]:
+    """The fewest columns x rows whose cells, grown by a tab's ``extent_mm`` on two sides, fit
+    the bed less ``margin_mm`` all round, either way round.
+
+    >>> grid_for(1200, 800, (600, 400), margin_mm=5, extent_mm=6)
+    (4, 2)
+    >>> grid_for(1200, 800, (16, 16), margin_mm=5, extent_mm=6)
+    Traceback (most recent call last):
+    ...
+    fabtiles.core.errors.ParameterError: bed_mm (16, 16) less the margin of 5 mm all round leaves no room for a piece with its joints (6 mm); use a larger bed, a smaller margin or a smaller joint
+    """  # noqa: E501 - a doctest's lines are as Python prints them
+    bw, bh = (b - 2 * margin_mm for b in bed_mm)
+    if min(bw, bh) <= extent_mm:
+        raise ParameterError(
+            f"bed_mm {tuple(bed_mm)!r} less the margin of {margin_mm:g} mm all round leaves no room for a piece "
+            f"with its joints ({extent_mm:g} mm); use a larger bed, a smaller margin or a smaller joint",
+            param="bed_mm",
+        )
+    best = None
+    for cw, ch in ((bw, bh), (bh, bw)):  # cells laid on the bed as they are or turned
+        nx = 1 if width_mm <= cw else math.ceil(width_mm / (cw - extent_mm))
+        ny = 1 if height_mm <= ch else math.ceil(height_mm / (ch - extent_mm))
+        if best is None or nx * ny < best[0] * best[1]:
+            best = (nx, ny)
+    assert best is not None
+    if best[0] * best[1] > MAX_PIECES:
+        raise ParameterError(
+            f"the {width_mm:g} x {height_mm:g} mm panel needs {best[0] * best[1]} pieces on the "
+            f"{bed_mm[0]:g} x {bed_mm[1]:g} mm bed, more than the {MAX_PIECES} allowed; use a larger bed or a "
+            "smaller panel",
+            param="bed_mm",
+        )
+    return best
+
+
+def split_panel(
+    material,
+    *,
+    bed_mm,
+    margin_mm: float,
+    joint: Joint,
+    min_feature_mm: float = 1.0,
+    period_mm: tuple[float, float] | None = None,
+    origin=(0.0, 0.0),
+) -> PanelSplit:
+    """Split ``material`` (a panel's region, mm) into pieces that fit ``bed_mm``, joined by ``joint``.
+
+    ``period_mm`` is the pattern's period along x and y (translations that map the pattern
+    onto itself) and ``origin`` a point of that lattice: seams on it make congruent pieces.
+    Raises :class:`~fabtiles.FabricationError` when a pair of neighbouring pieces can be joined
+    nowhere (every seam position crosses only material too thin for the joint).
+    """
+    x0, y0, x1, y1 = material.bounds
+    nx, ny = grid_for(x1 - x0, y1 - y0, bed_mm, margin_mm=margin_mm, extent_mm=joint.extent_mm)
+    cell_max = _cell_max(bed_mm, margin_mm, joint.extent_mm, x1 - x0, y1 - y0, nx, ny)
+    xs = _even(x0, x1, nx)
+    ys = _even(y0, y1, ny)
+    ctx = _Context(material, joint, min_feature_mm)
+    for _ in range(_ROUNDS):
+        xs = _choose(ctx, 0, xs, ys, x0, x1, cell_max[0], None if period_mm is None else (period_mm[0], origin[0]))
+        ys = _choose(ctx, 1, ys, xs, y0, y1, cell_max[1], None if period_mm is None else (period_mm[1], origin[1]))
+    regions = _islands_to_neighbours(_cut(material, xs, ys, (x0, y0, x1, y1)), nx, ny)
+    regions, joints = _joints(ctx, regions, xs, ys, nx, ny)
+    pieces = tuple(
+        Piece(_number(i, j, nx, ny), (i, j), regions[i, j]) for j in range(ny - 1, -1, -1) for i in range(nx)
+    )
+    return PanelSplit((nx, ny), tuple(xs[1:-1]), tuple(ys[1:-1]), pieces, tuple(joints), joint)
+
+
+def laid_on_bed(region, bed_mm, *, margin_mm: float) -> tuple[shapely.Geometry, np.ndarray]:
+    """A piece as its file holds it: its lower left corner at the margin, turned a quarter if it
+    fits the bed only turned; and the 3 x 3 matrix (mm) that carries the file's piece to its
+    place in the panel.
+
+    >>> laid, m = laid_on_bed(box(300, 0, 500, 300), (400, 250), margin_mm=5)
+    >>> [round(v, 6) for v in laid.bounds], (m.round(6) + 0.0).tolist()
+    ([5.0, 5.0, 305.0, 205.0], [[0.0, -1.0, 505.0], [1.0, 0.0, -5.0], [0.0, 0.0, 1.0]])
+    >>> (m @ [5, 5, 1]).round(6).tolist()  # the file's corner at the margin is the panel's (500, 0)
+    [500.0, 0.0, 1.0]
+    """
+    x0, y0, x1, y1 = region.bounds
+    bw, bh = (b - 2 * margin_mm for b in bed_mm)
+    turn = not (x1 - x0 <= bw + 1e-9 and y1 - y0 <= bh + 1e-9)
+    # panel -> file: turn a quarter clockwise (x, y) -> (y, -x) if needed, then shift to the margin
+    rot = np.array([[0.0, 1.0], [-1.0, 0.0]]) if turn else np.eye(2)
+    corners = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]) @ rot.T
+    shift = margin_mm - corners.min(axis=0)
+    to_file = np.eye(3)
+    to_file[:2, :2] = rot
+    to_file[:2, 2] = shift
+    laid = shapely.transform(region, lambda xy: xy @ rot.T + shift)
+    return laid, np.linalg.inv(to_file)
+
+
+def congruent_groups(pieces, *, tolerance_mm: float = 1e-3) -> list[list[int]]:
+    """The pieces' numbers grouped by shape: pieces of one group are the same up to a shift, so
+    one file makes any of them (and they are interchangeable in the panel).
+
+    >>> ps = [Piece(1, (0, 0), box(0, 0, 10, 10)), Piece(2, (1, 0), box(10, 0, 20, 10)),
+    ...       Piece(3, (2, 0), box(20, 0, 31, 10))]
+    >>> congruent_groups(ps)
+    [[1, 2], [3]]
+    """
+    groups: list[tuple[shapely.Geometry, list[int]]] = []
+    for piece in pieces:
+        x0, y0 = piece.region.bounds[:2]
+        shape = shapely.affinity.translate(piece.region, -x0, -y0)
+        for ref, members in groups:
+            if (
+                abs(ref.area - shape.area) <= tolerance_mm * max(1.0, shape.length)
+                and shapely.hausdorff_distance(ref, shape) <= tolerance_mm
+            ):
+                members.append(piece.number)
+                break
+        else:
+            groups.append((shape, [piece.number]))
+    return [members for _, members in groups]
+
+
+class _Context:
+    """The material and the joint's rules."""
+
+    def __init__(self, material, joint: Joint, min_feature_mm: float):
+        self.material = material
+        self.joint = joint
+        self.min_mm = min_feature_mm
+        self.reach = joint.depth_mm + 2 * min_feature_mm + joint.head_mm
+        # a tab grown by the minimum feature, at the origin sticking out along +x and +y: placed by a shift
+        self.probes = [
+            np.asarray(joint.tab((0, 0), d).buffer(min_feature_mm, join_style="mitre").exterior.coords)
+            for d in ((1.0, 0.0), (0.0, 1.0))
+        ]
+
+    def near(self, axis: int, lo: float, hi: float) -> _Window:
+        """The material within reach of a seam of ``axis`` placed anywhere from ``lo`` to ``hi``."""
+        x0, y0, x1, y1 = self.material.bounds
+        r = self.reach
+        window = box(lo - r, y0 - 1, hi + r, y1 + 1) if axis == 0 else box(x0 - 1, lo - r, x1 + 1, hi + r)
+        return _Window(shapely.intersection(self.material, window), axis)
+
+
+class _Window:
+    """The material near a seam's slack, with its edges as arrays: a seam's crossings by arithmetic."""
+
+    def __init__(self, local, axis: int):
+        self.local = local
+        shapely.prepare(local)
+        rings = shapely.get_rings(shapely.get_parts(local))
+        starts, ends = [], []
+        for ring in rings:
+            xy = shapely.get_coordinates(ring)
+            starts.append(xy[:-1])
+            ends.append(xy[1:])
+        self.p = np.concatenate(starts) if starts else np.zeros((0, 2))
+        self.q = np.concatenate(ends) if ends else np.zeros((0, 2))
+        self.axis = axis
+        self.bounds = local.bounds
+
+    def crossings(self, pos: float) -> tuple[list[tuple[float, float]], np.ndarray]:
+        """The stretches where a seam at ``pos`` runs through material (from, to along it), and the
+        crossing edges' slopes (along the seam per unit across: the wedge each leaves)."""
+        a = self.p[:, self.axis] - pos
+        b = self.q[:, self.axis] - pos
+        hit = (a < 0) != (b < 0)  # half-open, as a point-in-polygon test counts: even-odd holds at vertices
+        t = a[hit] / (a[hit] - b[hit])
+        o = 1 - self.axis
+        along = self.p[hit, o] + t * (self.q[hit, o] - self.p[hit, o])
+        slope = np.abs(self.q[hit, o] - self.p[hit, o]) / np.abs(self.q[hit, self.axis] - self.p[hit, self.axis])
+        order = np.sort(along)
+        return [(float(order[k]), float(order[k + 1])) for k in range(0, len(order) - 1, 2)], slope
+
+
+def _number(i: int, j: int, nx: int, ny: int) -> int:
+    """Pieces numbered from 1 at the top left, along each row, as a drawing is read."""
+    return (ny - 1 - j) * nx + i + 1
+
+
+def _even(lo: float, hi: float, n: int) -> list[float]:
+    return [lo + (hi - lo) * k / n for k in range(n + 1)]
+
+
+def _cell_max(bed_mm, margin_mm, extent, w, h, nx, ny) -> tuple[float, float]:
+    """The widest and tallest a cell may be (the tabs apart), in the bed's orientation that needs the grid."""
+    bw, bh = (b - 2 * margin_mm for b in bed_mm)
+    for cw, ch in ((bw, bh), (bh, bw)):
+        if w / nx <= cw - (extent if nx > 1 else 0) + 1e-9 and h / ny <= ch - (extent if ny > 1 else 0) + 1e-9:
+            return cw - (extent if nx > 1 else 0), ch - (extent if ny > 1 else 0)
+    raise AssertionError("grid_for chose a grid whose cells do not fit")  # pragma: no cover
+
+
+def _candidates(ideal: float, lo: float, hi: float, period, step: float) -> list[tuple[float, bool]]:
+    """Seam positions to try between ``lo`` and ``hi``: the period's (flagged), the ideal and a grid."""
+    out = [(ideal, False)]
+    n = int((hi - lo) / step)
+    out += [(lo + k * step, False) for k in range(n + 1)]
+    if period is not None and period[0] > 0:
+        p, o = period
+        k0, k1 = math.ceil((lo - o) / p), math.floor((hi - o) / p)
+        out += [(o + k * p, True) for k in range(k0, k1 + 1)]
+    return out
+
+
+def _choose(ctx: _Context, axis: int, seams, others, lo_end, hi_end, cell_max, period) -> list[float]:
+    """The inner seams of one axis at their best positions within the slack the bed leaves.
+
+    Each seam is tried on a coarse grid (and the period's), then finely around its best. With
+    a period, seams a whole number of periods apart are tried too, and kept where they join as
+    many pairs with as few slivers: their inner pieces are then alike.
+    """
+    n = len(seams) - 1
+    if n <= 1:
+        return list(seams)
+    slack = max(0.0, cell_max - (hi_end - lo_end) / n)
+    ideal = _even(lo_end, hi_end, n)
+    chosen = [lo_end]
+    scores = []
+    for k in range(1, n):
+        lo, hi = ideal[k] - slack / 2, ideal[k] + slack / 2
+        best = _best_seam(ctx, ctx.near(axis, lo, hi), axis, others, ideal[k], lo, hi, period)
+        chosen.append(best[1])
+        scores.append(best[0])
+    chosen.append(hi_end)
+    if period is not None:
+        regular = _regular_seams(ctx, axis, others, lo_end, hi_end, n, cell_max, period)
+        if regular is not None:
+            unjoined = sum(s[0] for s in scores)
+            slivers = sum(s[1] for s in scores)
+            if regular[0][0] <= unjoined and regular[0][1] <= slivers + _ALIKE_SLIVER_MM2:
+                return regular[1]
+    return chosen
+
+
+def _best_seam(ctx: _Context, win: _Window, axis: int, others, ideal: float, lo: float, hi: float, period):
+    """The best (key, position) of one seam between ``lo`` and ``hi``."""
+    best = None
+    coarse = _candidates(ideal, lo, hi, period, _COARSE_STEP_MM)
+    for round_ in (coarse, None):
+        if round_ is None:
+            assert best is not None
+            c = best[1]
+            round_ = _candidates(c, max(lo, c - _COARSE_STEP_MM), min(hi, c + _COARSE_STEP_MM), None, _GRID_STEP_MM)
+        for pos, on_period in round_:
+            key = _score(ctx, win, axis, pos, others, on_period, abs(pos - ideal), best)
+            if key is not None and (best is None or key < best[0]):
+                best = (key, pos)
+    assert best is not None
+    return best
+
+
+def _regular_seams(ctx: _Context, axis: int, others, lo_end, hi_end, n, cell_max, period):
+    """The best seams on the period a whole number of periods apart: ((unjoined, slivers), seams),
+    or None when no such spacing fits the bed."""
+    p, o = period
+    best = None
+    win = ctx.near(axis, lo_end, hi_end)
+    for steps in range(1, int(cell_max / p) + 1):
+        spacing = steps * p
+        k0 = math.ceil((hi_end - (n - 1) * spacing - cell_max - o) / p)
+        k1 = math.floor((lo_end + cell_max - o) / p)
+        for k in range(k0, k1 + 1):
+            inner = [o + k * p + i * spacing for i in range(n - 1)]
+            cuts = [lo_end, *inner, hi_end]
+            if any(b - a > cell_max + 1e-9 or b - a <= 0 for a, b in itertools.pairwise(cuts)):
+                continue
+            keys = [_score(ctx, win, axis, x, others, True, 0.0, None) for x in inner]
+            total = (sum(key[0] for key in keys), sum(key[1] for key in keys))
+            if best is None or total < best[0]:
+                best = (total, cuts)
+    return best
+
+
+def _score(ctx: _Context, win: _Window, axis: int, pos: float, others, on_period: bool, off: float, best):
+    """A seam position's key, smaller is better: pairs it cannot join, slivers, off the period, off
+    even; None when it cannot beat ``best`` on the pairs it joins."""
+    stretches, slopes = win.crossings(pos)
+    unjoined = sum(not _sites(ctx, win, pos, stretches, a, b) for a, b in itertools.pairwise(others))
+    if best is not None and unjoined > best[0][0]:
+        return None
+    return (unjoined, round(_sliver_area(ctx, win, pos, slopes), 2), not on_period, round(off, 3))
+
+
+def _sites(ctx: _Context, win: _Window, pos: float, stretches, a: float, b: float) -> list[float]:
+    """Where on the seam ``pos`` between ``a`` and ``b`` a tab fits: the middles of its stretches
+    long enough, where the tab grown by the minimum feature lies in the material."""
+    need = ctx.joint.head_mm + 2 * ctx.min_mm
+    lo, hi = a + need / 2, b - need / 2
+    probe = ctx.probes[win.axis]
+    out = []
+    for p, q in stretches:
+        p, q = max(p, lo), min(q, hi)
+        if q - p < ctx.joint.neck_mm + 2 * ctx.min_mm:
+            continue
+        mid = (p + q) / 2
+        centre = (pos, mid) if win.axis == 0 else (mid, pos)
+        if shapely.contains(win.local, shapely.Polygon(probe + centre)):
+            out.append(mid)
+    return out
+
+
+def _sliver_area(ctx: _Context, win: _Window, pos: float, slopes: np.ndarray) -> float:
+    """The material a seam at ``pos`` leaves narrower than the minimum feature, estimated.
+
+    An edge crossing the seam at an angle leaves a wedge, thinner than ``m`` over ``m`` times
+    its slope: ``m**2 * slope / 2``, capped at the edge's own reach; a corner of the material
+    within ``m`` of the seam without crossing it leaves a strip as thin as its distance.
+    """
+    m = ctx.min_mm
+    wedges = float(np.minimum(slopes, 50.0).sum()) * m * m / 2
+    d = np.abs(win.p[:, win.axis] - pos)
+    near = d[(d > 1e-9) & (d < m)]
+    return wedges + float(((m - near) * m).sum())
+
+
+def _cut(material, xs, ys, bounds) -> dict[tuple[int, int], shapely.Geometry]:
+    """The material in each cell of the seams' grid (the outermost seams moved out to the bounds)."""
+    x0, y0, x1, y1 = bounds
+    xs = [x0 - 1, *xs[1:-1], x1 + 1]
+    ys = [y0 - 1, *ys[1:-1], y1 + 1]
+    return {
+        (i, j): shapely.intersection(material, box(xs[i], ys[j], xs[i + 1], ys[j + 1]))
+        for i in range(len(xs) - 1)
+        for j in range(len(ys) - 1)
+    }
+
+
+def _parts(region) -> list:
+    return [g for g in getattr(region, "geoms", [region]) if not g.is_empty]
+
+
+def _islands_to_neighbours(regions: dict, nx: int, ny: int) -> dict:
+    """Give each bit of a piece that touches the piece's largest part nowhere to a neighbour it touches."""
+    changed = True
+    while changed:
+        changed = False
+        for cell, region in list(regions.items()):
+            parts = _parts(region)
+            if len(parts) < 2:
+                continue
+            main = max(parts, key=lambda g: g.area)
+            for part in parts:
+                if part is main:
+                    continue
+                home = _neighbour_touching(regions, cell, part, nx, ny)
+                if home is None:
+                    continue  # an island of the design itself, not of the seam
+                regions[cell] = shapely.difference(regions[cell], part)
+                regions[home] = shapely.union(regions[home], part)
+                changed = True
+    return regions
+
+
+def _neighbour_touching(regions: dict, cell, part, nx: int, ny: int):
+    i, j = cell
+    best = None
+    for di, dj in ((-1, 0), (1, 0), (0, -1), (0, 1)):
+        other = (i + di, j + dj)
+        if other not in regions:
+            continue
+        shared = shapely.intersection(shapely.boundary(part), shapely.boundary(regions[other])).length
+        if shared > 1e-9 and (best is None or shared > best[0]):
+            best = (shared, other)
+    return None if best is None else best[1]
+
+
+def _joints(ctx: _Context, regions: dict, xs, ys, nx: int, ny: int):
+    """A joint on every stretch where two neighbours meet wide enough; error where a pair has none."""
+    joints = []
+    joint = ctx.joint
+    for (i, j), region in sorted(regions.items()):
+        for axis, other in ((0, (i + 1, j)), (1, (i, j + 1))):
+            if other not in regions:
+                continue
+            pos = xs[i + 1] if axis == 0 else ys[j + 1]
+            shared = shapely.intersection(shapely.boundary(region), shapely.boundary(regions[other]))
+            stretches = [s for s in _segments(shared) if s.length > 1e-9]
+            if not stretches:
+                continue  # neighbours that touch nowhere (a corner of the grid)
+            placed = 0
+            for s in sorted(stretches, key=lambda s: -s.length):
+                c = np.asarray(s.centroid.coords[0])
+                if s.length < joint.neck_mm + 2 * ctx.min_mm or abs(c[axis] - pos) > 1e-6:
+                    continue
+                c[axis] = pos  # on the seam exactly: a tab a rounding off it would not touch its piece
+                direction = (1.0, 0.0) if axis == 0 else (0.0, 1.0)
+                tab = joint.tab(c, direction)
+                if not shapely.contains(regions[other], tab.buffer(ctx.min_mm, join_style="mitre").difference(region)):
+                    continue
+                grown = tab
+                if joint.fit_mm:
+                    grown = tab.buffer(joint.fit_mm, join_style="mitre")
+                regions[other] = shapely.difference(regions[other], tab)
+                regions[(i, j)] = shapely.union(regions[(i, j)], grown)
+                region = regions[(i, j)]
+                joints.append(
+                    PlacedJoint((_number(i, j, nx, ny), _number(*other, nx, ny)), (float(c[0]), float(c[1])), tab)
+                )
+                placed += 1
+            if not placed:
+                a, b = _number(i, j, nx, ny), _number(*other, nx, ny)
+                raise FabricationError(
+                    f"pieces {a} and {b} meet across the seam at {'x' if axis == 0 else 'y'} = {pos:.1f} mm only "
+                    f"where the material is narrower than a {joint.kind} joint needs "
+                    f"({joint.neck_mm + 2 * ctx.min_mm:g} mm at the seam, {joint.head_mm + 2 * ctx.min_mm:g} mm "
+                    "across its head); use a wider stroke or frame, a smaller joint, or a larger bed"
+                )
+    return regions, joints
+
+
+def _segments(geom) -> list:
+    """The line pieces of a shared boundary, merged where they continue each other."""
+    lines = [g for g in getattr(geom, "geoms", [geom]) if g.geom_type in ("LineString", "MultiLineString")]
+    if not lines:
+        return []
+    merged = shapely.line_merge(shapely.union_all(lines))
+    return list(getattr(merged, "geoms", [merged]))

@@ -1,0 +1,190 @@
+"""Panels split into pieces: checked with GEOS on the pieces as placed in the panel."""
+
+import itertools
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from shapely.geometry import box
+
+import fabtiles as ft
+from fabtiles.core.errors import FabricationError, ParameterError
+from fabtiles.geometry.laser_checks import fits_bed
+from fabtiles.geometry.pieces import MAX_PIECES, congruent_groups, grid_for, joint_for, laid_on_bed, split_panel
+from fabtiles.geometry.tile import TileGeometry
+
+MIN_MM = 1.0
+
+
+@pytest.fixture(scope="module")
+def lattice():
+    """A 600 x 400 mm screen of table3-3 rosettes with 6 mm bands and a 15 mm frame."""
+    tile = TileGeometry(
+        "rectangle", (600, 400), ft.HexPacking(radius=30, motif=ft.Star.preset("table3-3")), frame=15, stroke=6
+    )
+    return tile, tile.region()
+
+
+@pytest.fixture(scope="module")
+def split(lattice):
+    tile, material = lattice
+    return split_panel(
+        material,
+        bed_mm=(300, 250),
+        margin_mm=5,
+        joint=joint_for("dovetail", thickness_mm=3),
+        min_feature_mm=MIN_MM,
+        period_mm=(60, 60 * 3**0.5),
+        origin=tile.centre,
+    )
+
+
+def _grid_regions(s):
+    return {p.cell: p.region for p in s.pieces}
+
+
+def test_the_pieces_assemble_into_exactly_the_panel(lattice, split):
+    _, material = lattice
+    union = shapely.union_all([p.region for p in split.pieces])
+    assert shapely.symmetric_difference(union, material).area < 1e-6
+    overlap = sum(p.region.area for p in split.pieces) - union.area
+    assert abs(overlap) < 1e-6
+
+
+def test_each_piece_fits_the_bed_less_its_margin(split):
+    assert len(split.pieces) == split.grid[0] * split.grid[1] > 1
+    for p in split.pieces:
+        x0, y0, x1, y1 = p.region.bounds
+        assert fits_bed(x1 - x0, y1 - y0, (290, 240)), p.number
+
+
+def test_pieces_are_numbered_from_the_top_left_along_the_rows(split):
+    nx, ny = split.grid
+    numbers = {p.cell: p.number for p in split.pieces}
+    assert sorted(numbers.values()) == list(range(1, nx * ny + 1))
+    assert numbers[(0, ny - 1)] == 1 and numbers[(nx - 1, 0)] == nx * ny
+
+
+def test_each_piece_is_one_part_with_nothing_thinner_than_the_minimum(split):
+    for p in split.pieces:
+        assert p.region.geom_type == "Polygon", p.number  # no island falls out
+        assert not p.region.buffer(-MIN_MM / 2 + 1e-6).is_empty
+
+
+def test_every_pair_of_neighbours_is_joined_and_cannot_be_pulled_apart_in_the_plane(split):
+    regions = _grid_regions(split)
+    by_number = {p.number: p.region for p in split.pieces}
+    pairs = {j.pieces for j in split.joints}
+    for i, j in regions:
+        for other in ((i + 1, j), (i, j + 1)):
+            if other in regions:
+                a = next(p.number for p in split.pieces if p.cell == (i, j))
+                b = next(p.number for p in split.pieces if p.cell == other)
+                assert (a, b) in pairs, (a, b)
+    for a, b in pairs:
+        for angle in range(0, 360, 45):
+            v = shapely.affinity.rotate(shapely.Point(2, 0), angle, origin=(0, 0))
+            moved = shapely.affinity.translate(by_number[b], v.x, v.y)
+            assert shapely.intersection(by_number[a], moved).area > 0.1, (a, b, angle)
+
+
+def test_tabs_lie_in_their_neighbour_with_material_round_their_sockets(split):
+    by_number = {p.number: p.region for p in split.pieces}
+    for joint in split.joints:
+        a, b = joint.pieces
+        assert shapely.contains(by_number[a].buffer(1e-6), joint.tab)
+        ring = joint.tab.buffer(MIN_MM - 1e-3, join_style="mitre").difference(joint.tab)
+        assert shapely.contains(by_number[a].union(by_number[b]).buffer(1e-6), ring)
+
+
+def test_a_press_fit_grows_each_tab_by_the_fit(lattice):
+    _, material = lattice
+    fit = 0.1
+    s = split_panel(material, bed_mm=(400, 450), margin_mm=5, joint=joint_for("jigsaw", thickness_mm=3, fit_mm=fit))
+    union = shapely.union_all([p.region for p in s.pieces])
+    assert shapely.symmetric_difference(union, material).area < 1e-6  # the fit stays inside the neighbour
+    overlap = sum(p.region.area for p in s.pieces) - union.area
+    assert s.joints
+    grown = 0.0  # each tab's fit band beyond its seam (behind the seam it lies in its own piece)
+    for j in s.joints:
+        x0, y0, x1, y1 = j.tab.bounds
+        beyond = (
+            box(j.at[0], y0 - 1, x1 + 1, y1 + 1) if abs(x0 - j.at[0]) < 1e-9 else box(x0 - 1, j.at[1], x1 + 1, y1 + 1)
+        )
+        grown += j.tab.buffer(fit, join_style="mitre").difference(j.tab).intersection(beyond).area
+    assert overlap == pytest.approx(grown, rel=1e-3)
+
+
+def test_a_lattice_too_thin_for_any_joint_is_refused_naming_the_pieces():
+    thin = TileGeometry(
+        "rectangle", (200, 120), ft.HexPacking(radius=15, motif=ft.Star.preset("table3-3")), frame=3, stroke=1
+    ).region()
+    with pytest.raises(FabricationError, match=r"pieces \d+ and \d+ meet across the seam at . = [\d.]+ mm only"):
+        split_panel(thin, bed_mm=(130, 150), margin_mm=5, joint=joint_for("dovetail", thickness_mm=3))
+
+
+def test_the_fewest_pieces_either_way_round():
+    assert grid_for(500, 300, (600, 400), margin_mm=5, extent_mm=6) == (1, 1)
+    assert grid_for(1200, 800, (600, 400), margin_mm=5, extent_mm=6) == (4, 2)  # 300 x 400 cells, turned
+    assert grid_for(400, 400, (256, 256), margin_mm=5, extent_mm=6) == (2, 2)
+
+
+def test_bad_beds_and_joints_are_errors_naming_the_value():
+    with pytest.raises(ParameterError, match="leaves no room for a piece"):
+        grid_for(400, 400, (15, 300), margin_mm=5, extent_mm=6)
+    with pytest.raises(ParameterError, match=f"needs \\d+ pieces .* more than the {MAX_PIECES} allowed"):
+        grid_for(5000, 5000, (100, 100), margin_mm=5, extent_mm=6)
+    with pytest.raises(ParameterError, match="not a valid joint, must be one of: dovetail, jigsaw"):
+        joint_for("biscuit", thickness_mm=3)
+    with pytest.raises(ParameterError, match="fit_mm"):
+        joint_for("dovetail", thickness_mm=3, fit_mm=1.0)
+
+
+@settings(max_examples=10)
+@given(
+    w=st.floats(150, 420),
+    h=st.floats(120, 300),
+    bed=st.tuples(st.floats(110, 260), st.floats(110, 260)),
+    kind=st.sampled_from(["dovetail", "jigsaw"]),
+)
+def test_any_grid_panel_splits_into_joined_pieces_that_fit(w, h, bed, kind):
+    """A frame with a grid of square holes (bands 8 mm): any size on any bed that holds a joint."""
+    material = box(0, 0, w, h)
+    holes = [
+        box(x + 4, y + 4, x + 16, y + 16)
+        for x, y in itertools.product(range(8, int(w) - 28, 20), range(8, int(h) - 28, 20))
+    ]
+    material = material.difference(shapely.union_all(holes))
+    s = split_panel(material, bed_mm=bed, margin_mm=5, joint=joint_for(kind, thickness_mm=2))
+    union = shapely.union_all([p.region for p in s.pieces])
+    assert shapely.symmetric_difference(union, material).area < 1e-6
+    for p in s.pieces:
+        x0, y0, x1, y1 = p.region.bounds
+        assert fits_bed(x1 - x0, y1 - y0, (bed[0] - 10, bed[1] - 10))
+        assert p.region.geom_type == "Polygon"
+    assert len({j.pieces for j in s.joints}) >= (s.grid[0] - 1) * s.grid[1] + (s.grid[1] - 1) * s.grid[0]
+
+
+def test_each_piece_laid_on_the_bed_goes_back_to_its_place_by_its_matrix(split):
+    for p in split.pieces:
+        laid, matrix = laid_on_bed(p.region, (300, 250), margin_mm=5)
+        x0, y0, x1, y1 = laid.bounds
+        assert x0 == pytest.approx(5) and y0 == pytest.approx(5)
+        assert x1 <= 295 + 1e-6 and y1 <= 245 + 1e-6  # inside the bed less its margin
+        back = shapely.transform(laid, lambda xy, m=matrix: xy @ m[:2, :2].T + m[:2, 2])
+        assert shapely.symmetric_difference(back, p.region).area < 1e-6
+        assert abs(np.linalg.det(matrix[:2, :2]) - 1) < 1e-12  # a rigid motion, never a mirror
+
+
+def test_pieces_on_the_period_in_the_same_place_of_the_grid_are_one_shape():
+    holes = [box(x + 4, y + 4, x + 16, y + 16) for x, y in itertools.product(range(0, 600, 20), range(0, 100, 20))]
+    material = box(-2, -2, 602, 102).difference(shapely.union_all(holes))  # a 20 mm grid of holes, 8 mm bands
+    joint = joint_for("dovetail", thickness_mm=2)
+    s = split_panel(material, bed_mm=(160, 160), margin_mm=5, joint=joint, period_mm=(20, 20), origin=(10, 10))
+    assert all((x - 10) % 20 == pytest.approx(0) for x in s.seams_x)  # through the holes' middles
+    groups = congruent_groups(s.pieces)
+    inner = [p.number for p in s.pieces if 0 < p.cell[0] < s.grid[0] - 1]
+    assert len(inner) >= 2 and any(set(inner) <= set(g) for g in groups), groups
+    assert len(groups) <= 3  # the first, the inner ones, the last
