@@ -42,8 +42,8 @@ def kit_paths(path) -> tuple[Path, ...]:
 
 def kit_files(plans: KitPlans, path) -> list:
     """``[(path, plan), ...]``: the kit's files beside ``path`` and the plan each is written from (a kit
-    with no piece, its lattice alone: see :meth:`~fabtiles.geometry.cut_plan.KitPlans.files_of`)."""
-    kept = {suffix for suffix, _ in plans.files_of("")}
+    with no piece, its lattice alone: see :meth:`~fabtiles.geometry.cut_plan.KitPlans.files`)."""
+    kept = {suffix for suffix, _ in plans.files()}
     return [
         (p, getattr(plans, which))
         for p, (suffix, which) in zip(kit_paths(path), KIT_FILES, strict=True)

@@ -74,6 +74,11 @@ def write_lbrn2(
     >>> out.read_text().count('<Shape Type="Path"'), r.stats["inner_contours"], r.stats["outer_contours"]
     (2, 1, 1)
     """
+    from ..machines.profiles import load_profile
+    from .formats import FORMATS
+
+    profile = load_profile(profile, kind="laser")
+    FORMATS["lbrn2"].check_cutter(profile)  # a LightBurn project is for lasers
     plan = plan_cut(
         region,
         outline,

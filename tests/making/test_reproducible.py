@@ -47,7 +47,7 @@ def formats_of(sample: Path) -> list[str]:
     for fmt in FILE_FORMATS:
         if FORMATS[fmt].family == "cut":
             try:
-                options.cutter.cutter.check_format(options.cutter, fmt)
+                FORMATS[fmt].check_cutter(options.cutter)
             except FabtilesError:
                 continue
         allowed.append(fmt)
