@@ -18,6 +18,7 @@ from .core.errors import (
 from .core.report import Report
 from .designs.colour import Colours
 from .designs.design_file import load_design
+from .export.formats import Format
 from .machines.profiles import CutterProfile, LaserProfile, PrinterProfile, load_profile
 from .pattern.archimedean import ArchimedeanPacking
 from .pattern.packing import HexPacking, SquarePacking
@@ -58,6 +59,7 @@ __all__ = [
     "DesignError",
     "FabricationError",
     "FabtilesError",
+    "Format",
     "HexPacking",
     "LaserProfile",
     "LimitError",

@@ -70,7 +70,6 @@ and says how to install it, except where the programs are required (CI): there i
 SNIPPETS_NOT_RUN = {
     # (page, the start of the snippet's first line) -> why it is not run
     ("architecture.md", "def model_glb_bytes(model) -> bytes:"): "signatures, not a program",
-    ("architecture.md", 'Format("glb", "print", "model/gltf-binary",'): "an excerpt of a table",
 }
 
 

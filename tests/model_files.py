@@ -27,6 +27,7 @@ def write_cut(path, *, region, outline, centrelines=None, **options) -> Report:
 
     fmt = format_of(path, allowed=CUT_FORMATS)
     checked = CutOptions.of(path=str(path), fmt=fmt.name, **options)
+    fmt.check_cutter(checked.profile)  # the row refuses a cutter its files are not for, as the pipeline asks
     plan = plan_cut(region, outline, checked, centrelines=centrelines)
     file_options = FileOptions(name=Path(path).stem)
     atomic_write(path, fmt.write(plan, file_options))
@@ -62,11 +63,13 @@ def write_kit(path, *, region, outline, colours=(), **options) -> Report:
     path = Path(path)
     fmt = format_of(path, allowed=CUT_FORMATS)
     lattice = path.with_name(f"{path.stem}-lattice{path.suffix}")
-    plans = plan_kit(region, outline, KitOptions.of(path=str(lattice), fmt=fmt.name, **options), colours=colours)
+    checked = KitOptions.of(path=str(lattice), fmt=fmt.name, **options)
+    fmt.check_cutter(checked.lattice.profile)
+    plans = plan_kit(region, outline, checked, colours=colours)
     file_options = FileOptions(name=path.stem)
     files = [
         (path.with_name(f"{path.stem}{suffix}{path.suffix}"), fmt.write(plan, file_options))
-        for suffix, plan in plans.files_of(fmt.name)
+        for suffix, plan in plans.files()
     ]
     for p, data in files:
         atomic_write(p, data)

@@ -9,6 +9,7 @@ EXPECTED = {
     "DesignError",
     "FabricationError",
     "FabtilesError",
+    "Format",  # a format plugin's row (docs/architecture.md)
     "LimitError",
     "ParameterError",
     "ProfileError",

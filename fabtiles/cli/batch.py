@@ -16,7 +16,7 @@ from pathlib import Path
 
 import click
 
-from ..designs.design_file import FORMATS
+from .choices import FormatChoice
 
 
 def run_and_report(
@@ -87,7 +87,7 @@ def run_and_report(
     "--format",
     "formats",
     multiple=True,
-    type=click.Choice(FORMATS),
+    type=FormatChoice(),
     help="Output format (repeatable); default: each design's [output] formats.",
 )
 @click.option("-v", "--verbose", is_flag=True, help="List each design's fabrication findings under its line.")

@@ -21,7 +21,8 @@ from pathlib import Path
 import click
 
 from ..core.errors import ParameterError
-from ..designs.design_file import FORMATS, design_notes, load_design, override_notes
+from ..designs.design_file import design_notes, load_design, override_notes
+from .choices import FormatChoice
 
 
 def single_file_target(output, formats):
@@ -36,16 +37,20 @@ def single_file_target(output, formats):
     format or for several, and a :class:`ParameterError` when ``output`` names a file of
     a type fabtiles does not write (``tile.png``).
     """
+    from ..export.formats import FORMATS, design_formats
+
     path = Path(output)
-    fmt = path.suffix.lower().lstrip(".")
-    if fmt not in FORMATS:
+    suffix = path.suffix.lower()
+    suffixes = {FORMATS[f].suffix: f for f in reversed(design_formats())}  # the first format of a suffix
+    if suffix not in suffixes:
         if _file_suffix(output):
             raise ParameterError(
-                f"-o {output}: fabtiles does not write .{fmt} files; name the file with a format's suffix "
-                f"({', '.join('.' + f for f in FORMATS)}) or give a folder",
+                f"-o {output}: fabtiles does not write {suffix} files; name the file with a format's suffix "
+                f"({', '.join(FORMATS[f].suffix for f in design_formats())}) or give a folder",
                 param="output",
             )
         return None
+    fmt = suffixes[suffix]
     others = [f for f in dict.fromkeys(formats) if f != fmt]
     if others:
         raise click.UsageError(
@@ -118,7 +123,7 @@ def _file_suffix(output) -> bool:
     "--format",
     "formats",
     multiple=True,
-    type=click.Choice(FORMATS),
+    type=FormatChoice(),
     help="Output format (repeatable); default: the design's [output] formats.",
 )
 @click.option(

@@ -26,19 +26,22 @@ class _Group(click.Group):
 
         from ..core.errors import FabtilesDeprecationWarning
 
+        others: list = []
         try:
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always", FabtilesDeprecationWarning)
-                try:
-                    return super().invoke(ctx)
-                finally:  # a renamed key still read: one note each, saying the new name
-                    for message in dict.fromkeys(
-                        str(w.message) for w in caught if issubclass(w.category, FabtilesDeprecationWarning)
-                    ):
-                        click.echo(f"fabtiles: note: {message}", err=True)
-                    for w in caught:  # anything else is shown as it would have been
-                        if not issubclass(w.category, FabtilesDeprecationWarning):
-                            warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+            try:
+                with warnings.catch_warnings(record=True) as caught:
+                    warnings.simplefilter("always", FabtilesDeprecationWarning)
+                    try:
+                        return super().invoke(ctx)
+                    finally:  # a renamed key still read: one note each, saying the new name
+                        for message in dict.fromkeys(
+                            str(w.message) for w in caught if issubclass(w.category, FabtilesDeprecationWarning)
+                        ):
+                            click.echo(f"fabtiles: note: {message}", err=True)
+                        others = [w for w in caught if not issubclass(w.category, FabtilesDeprecationWarning)]
+            finally:  # anything else is shown as it would have been, once the recording has stopped
+                for w in others:
+                    warnings.showwarning(w.message, w.category, w.filename, w.lineno)
         except FabtilesError as exc:
             click.echo(f"fabtiles: error: {exc}", err=True)
             ctx.exit(2)

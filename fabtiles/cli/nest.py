@@ -13,6 +13,8 @@ from pathlib import Path
 
 import click
 
+from .choices import FormatChoice
+
 # the nesting's rotation modes and default time, as fabtiles.geometry.nest has them (a test keeps the two
 # alike): importing it here would import shapely for `fabtiles --help`
 ROTATIONS = ("none", "180", "90", "free")
@@ -96,7 +98,7 @@ def parse_sheet(text: str) -> tuple[float, float]:
     "--format",
     "formats",
     multiple=True,
-    type=click.Choice(("dxf", "svg", "lbrn2")),
+    type=FormatChoice(nests=True),
     help="Cutter format (repeatable); default: dxf.",
 )
 @click.option("--name", help="The files' stem; default: the design's name, or nest when there are several.")

@@ -12,9 +12,6 @@ import click
 
 from ..making.plot import WHATS
 
-PLOT_SUFFIXES = (".svg", ".hpgl")
-"""The files ``fabtiles plot`` writes, by the output's suffix."""
-
 
 @click.command("plot")
 @click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
@@ -54,19 +51,21 @@ def command(design_file, output, what, pen_mm, overrides):
     from ..core.errors import ParameterError
     from ..core.files import atomic_write
     from ..designs.design_file import load_design
-    from ..export import plot_svg
+    from ..export.formats import FORMATS, FileOptions
     from ..making.plot import plot_drawing
 
+    pens = [f for f in FORMATS.values() if f.family == "pen"]  # the format table's pen drawings
     suffix = Path(output).suffix.lower()
-    if suffix not in PLOT_SUFFIXES:
+    fmt = next((f for f in pens if f.suffix == suffix), None)
+    if fmt is None:
         raise ParameterError(
-            f"the plot's output (-o) must end in {' or '.join(PLOT_SUFFIXES)}, got {output!r}", param="output"
+            f"the plot's output (-o) must end in {' or '.join(f.suffix for f in pens)}, got {output!r}",
+            param="output",
         )
-    if suffix == ".hpgl":
-        plot_svg.need_vpype("HPGL")  # before any geometry
+    if fmt.requires is not None:
+        fmt.requires()  # a library it needs (HPGL: vpype), before any geometry
     drawing = plot_drawing(load_design(design_file, overrides=overrides), what=what, pen_mm=pen_mm)
-    data = plot_svg.svg_bytes(drawing) if suffix == ".svg" else plot_svg.hpgl_bytes(drawing)
-    atomic_write(output, data)
+    atomic_write(output, fmt.write(drawing, FileOptions(name=Path(output).stem)))
     layers = ", ".join(
         f"{layer.name} {len(layer.paths):,} stroke{'' if len(layer.paths) == 1 else 's'}" for layer in drawing.layers
     )

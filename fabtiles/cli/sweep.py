@@ -10,7 +10,7 @@ import os
 
 import click
 
-from ..designs.design_file import FORMATS
+from .choices import FormatChoice
 
 
 @click.command("sweep")
@@ -35,7 +35,7 @@ from ..designs.design_file import FORMATS
     "--format",
     "formats",
     multiple=True,
-    type=click.Choice(FORMATS),
+    type=FormatChoice(),
     help="Output format (repeatable); default: the design's [output] formats.",
 )
 @click.option(

@@ -113,6 +113,19 @@ class Report:
         """Add a line to the summary (``stats["notes"]``): what the export did, such as holes it filled."""
         self.stats.setdefault("notes", []).append(line)
 
+    def extended(self, *, notes=(), **stats) -> Report:
+        """A copy with ``stats`` set and ``notes`` added to the summary: a model's report made once,
+        never changed after its model is made.
+
+        >>> r = Report(path="", format="", stats={"notes": ["a"]})
+        >>> r.extended(notes=["b"], cutter="router").stats, r.stats
+        ({'notes': ['a', 'b'], 'cutter': 'router'}, {'notes': ['a']})
+        """
+        out = {**self.stats, **stats}
+        if notes:
+            out["notes"] = [*self.stats.get("notes", ()), *notes]
+        return Report(path=self.path, format=self.format, stats=out, findings=list(self.findings))
+
     @property
     def ok(self) -> bool:
         """True when no check found anything."""

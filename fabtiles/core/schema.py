@@ -770,10 +770,11 @@ KEYS: tuple[Key, ...] = MOTIF + (
         name="formats",
         type="formats",
         default=("svg",),
-        choices=("dxf", "svg", "lbrn2", "stl", "3mf", "step"),
+        choices="export",
         note="a non-empty list",
         query=None,
-        help="any of `dxf`, `svg`, `lbrn2` (LightBurn project), `stl`, `3mf`, `step`; not a web parameter: "
+        help="any of `dxf`, `svg`, `lbrn2` (LightBurn project), `stl`, `3mf`, `step` (the format table of "
+        "[architecture.md](architecture.md#the-format-table)), or a format plugin's; not a web parameter: "
         "each download is one format",
     ),
     Key(

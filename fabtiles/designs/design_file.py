@@ -64,12 +64,14 @@ else:  # pragma: no cover - Python 3.10
 
 from ..core import schema as _schema
 from ..core.errors import DesignError, FabtilesError, did_you_mean
+from ..export.formats import design_formats
 from ..pattern.packing import PACKINGS
 from ..pattern.star import Star
 from .colour import Colours
 
 FORMATS = _schema.key("output.formats").choice_values()
-"""Output formats a design may ask for."""
+"""The built-in output formats a design may ask for (the plugins' too:
+:func:`~fabtiles.export.formats.design_formats`)."""
 
 THREEMF_LAYOUTS = _schema.key("output.threemf_layout").choice_values()
 """``[output] threemf_layout``: PrusaSlicer's volumes (PrusaSlicer, Bambu Studio, OrcaSlicer) or components (Cura)."""
@@ -788,18 +790,19 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
     where = "[output]"
     _check_keys(table, OUTPUT_KEYS, where, source)
     formats = table.get("formats", ["svg"])
+    allowed = design_formats()
     if isinstance(formats, str):
         formats = [formats]
     if not isinstance(formats, list) or not formats:
         raise DesignError(
-            f"{source}: {where} formats must be a non-empty list of: {', '.join(FORMATS)}", param="output.formats"
+            f"{source}: {where} formats must be a non-empty list of: {', '.join(allowed)}", param="output.formats"
         )
     for f in formats:
-        if f not in FORMATS:
-            hint = did_you_mean(f, FORMATS)
+        if f not in allowed:
+            hint = did_you_mean(f, allowed)
             raise DesignError(
                 f"{source}: {where} formats: {f!r} is not a valid format{f' ({hint})' if hint else ''}, "
-                f"must be one of: {', '.join(FORMATS)}",
+                f"must be one of: {', '.join(allowed)}",
                 param="output.formats",
             )
     name = _value(table, "output", "name", source, where)

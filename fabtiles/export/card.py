@@ -27,8 +27,6 @@ from ..geometry.contours import laser_contours
 from ..geometry.cut_plan import make_plan
 from ..machines.profiles import DXF_VERSIONS, load_profile
 
-CARD_FORMATS = ("dxf", "svg")
-
 
 def card_job(profile, *, dxf_version=None):
     """The card of ``profile`` as a :class:`~fabtiles.geometry.cut_plan.CutPlan`, and the card."""
@@ -52,14 +50,16 @@ def write_card(path, profile, *, dxf_version=None) -> Report:
     """
     from pathlib import Path
 
-    fmt = Path(path).suffix.lower().lstrip(".")
-    if fmt not in CARD_FORMATS:
-        raise ParameterError(f"the card must be a .dxf or .svg file, got {str(path)!r}")
-    from .formats import FORMATS
+    from .formats import FORMATS, names_where
 
+    rows = [FORMATS[n] for n in names_where(card=True)]  # the format table's formats of the card
+    suffix = Path(path).suffix.lower()
+    fmt = next((f for f in rows if f.suffix == suffix), None)
+    if fmt is None:
+        raise ParameterError(f"the card must be a {' or '.join(f.suffix for f in rows)} file, got {str(path)!r}")
     job, card = card_job(profile, dxf_version=dxf_version)
-    atomic_write(path, FORMATS[fmt].bytes_of(job))
-    report = Report(path=str(path), format=fmt)
+    atomic_write(path, fmt.bytes_of(job))
+    report = Report(path=str(path), format=fmt.name)
     report.stats.update(
         profile=job.profile.name,
         kerf_mm=job.kerf_mm,

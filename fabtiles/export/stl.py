@@ -25,7 +25,7 @@ def figures(model) -> dict:
 
     A mosaic of several colours is one STL per colour: its figures are every part's.
     """
-    split = model.files_of("stl") if hasattr(model, "files_of") else [("", model)]
+    split = model.bodies()
     if len(split) > 1:
         parts = {m.fused_name: m.fused for _, m in split}
         allv = np.concatenate([p.vertices for p in parts.values()])

@@ -127,6 +127,10 @@ class CutPlan:
     engrave_area_mm2: float = 0.0
     offset: tuple = (0.0, 0.0)
 
+    def files(self) -> list:
+        """``[("", self)]``: a plan is one file of each format (see :class:`KitPlans` for two)."""
+        return [("", self)]
+
     def paths(self, role: str) -> list:
         """The paths of the layer of ``role`` (empty when the plan has none)."""
         return next((list(layer.paths) for layer in self.layers if layer.role == role), [])
@@ -206,8 +210,6 @@ class CutOptions:
         kind = cutter_kind(profile)
         kind.check_profile(profile)
         check_layers(profile)
-        if fmt:
-            kind.check_format(profile, fmt)
         mode = _checked_mode(profile, mode)
         dxf_version = check_choice(
             "dxf_version", profile.dxf_version if dxf_version is None else dxf_version, DXF_VERSIONS
@@ -727,7 +729,7 @@ class KitPlans:
     by_colour: tuple = ()
     """A coloured kit's pieces, one plan per face colour: ``((colour name, CutPlan), ...)``."""
 
-    def files_of(self, fmt: str) -> list:
+    def files(self) -> list:
         """``[(suffix, plan), ...]``: ``-lattice``, then ``-pieces``, or with colours (a design's
         ``[colour]``) a ``-pieces-<colour>`` per colour that has pieces. A kit with no piece (every
         hole too small for one, filled) is its lattice alone: no empty pieces file."""

@@ -4,14 +4,14 @@ A cutter profile (:class:`~fabtiles.machines.profiles.CutterProfile`) names its 
 the :class:`CutterKind` of that name holds everything that differs between the three:
 the keys of its profile section, the modes it cuts, what its kerf means, whether it
 opens holes by a tool's radius (the part as a router's bit or a waterjet's jet makes
-it), whether it writes LightBurn projects and cuts the calibration card and inlay kits,
+it), whether it cuts the calibration card and inlay kits,
 the comments its files carry, and the checks that raise when asked for more. Nothing
 outside this module asks a profile for its kind by name (``tests/machines/test_cutters.py`` reads
 the sources); the rest of the package asks the profile's :class:`CutterKind`.
 
 >>> router = KINDS["router"]
->>> router.opens_holes, router.tool, router.modes, router.lightburn
-(True, 'bit', ('pierced',), False)
+>>> router.opens_holes, router.tool, router.modes
+(True, 'bit', ('pierced',))
 >>> KINDS["laser"].opens_holes, KINDS["laser"].inlay
 (False, True)
 """
@@ -59,8 +59,6 @@ class CutterKind:
     """The tool that opens its holes, named in messages (``"bit"``, ``"jet"``); None: holes cut as drawn."""
     tool_key: str | None = None
     """The profile key of the tool's diameter, required in its section and named in errors."""
-    lightburn: bool = False
-    """Whether it writes LightBurn projects (``.lbrn2``, a laser program)."""
     card: bool = False
     """Whether ``fabtiles calibrate``'s test card is for it (its rows measure a laser's kerf and holes)."""
     named_in_reports: bool = True
@@ -194,15 +192,6 @@ class CutterKind:
                 param="tab_mm",
             )
 
-    def check_format(self, profile, fmt: str) -> None:
-        """A file format it does not write (a LightBurn project for a router) is a ParameterError."""
-        if fmt == "lbrn2" and not self.lightburn:
-            raise ParameterError(
-                f"a LightBurn project (.lbrn2) is for lasers; {self.name} profile {profile.name!r} "
-                "writes .dxf or .svg for its CAM",
-                param="formats",
-            )
-
     def check_card(self, profile) -> None:
         """The calibration card of a cutter it is not for is a ParameterError."""
         if not self.card:
@@ -275,7 +264,6 @@ LASER = CutterKind(
     modes=LASER_MODES,
     kerf="offset",
     zero_keys=("kerf_mm", "kerf_x_mm", "kerf_y_mm"),
-    lightburn=True,
     card=True,
     named_in_reports=False,
     tabs=True,

@@ -95,15 +95,18 @@ def check_tile(pattern, width_mm: float, height_mm: float, limits: Limits) -> in
     return count
 
 
-def check_export(tile, fmt: str, limits: Limits) -> None:
-    """Formats with their own, lower limits (STEP is slow on huge solids)."""
-    if fmt == "step":
-        count = estimate_segments(tile.pattern, tile.width_mm, tile.height_mm)
-        if count > limits.max_step_segments:
-            raise LimitError(
-                f"STEP export of about {count:,} segments is over the limit of "
-                f"{limits.max_step_segments:,}; export STL or 3MF, or a smaller tile"
-            )
+def check_export(tile, what: str, limit: str, limits: Limits) -> None:
+    """A format's own, lower segment limit: ``limits``' field ``limit`` (STEP is slow on huge solids).
+
+    ``what`` names the format in the message (``"STEP"``).
+    """
+    count = estimate_segments(tile.pattern, tile.width_mm, tile.height_mm)
+    most = getattr(limits, limit)
+    if count > most:
+        raise LimitError(
+            f"{what} export of about {count:,} segments is over the limit of {most:,}; "
+            "export STL or 3MF, or a smaller tile"
+        )
 
 
 def check_nest(parts: int, time_s: float, limits: Limits) -> None:

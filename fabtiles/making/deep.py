@@ -17,18 +17,33 @@ written into a temporary folder through the same pipeline, then
 from __future__ import annotations
 
 import tempfile
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from ..core.errors import FabricationError
 from ..machines import limits as _limits
 
-DEEP_FORMATS = ("stl", "3mf", "step")
-"""The formats the deep check reads back, when a design names none of them."""
 
-MESH_VOLUME_REL = 1e-5
-"""The read-back mesh's volume against the report's: both are sums over the same float32
-triangles (measured differences below 1e-7), so this only catches a lost or doubled body."""
+def _readers() -> dict[str, Callable[[Path, Any], tuple[str, int, float]]]:
+    """The format table's deep-check readers, by format."""
+    from ..export.formats import FORMATS
+
+    out = {}
+    for name, f in FORMATS.items():
+        if f.offered and f.read_back is not None:
+            out[name] = f.read_back
+    return out
+
+
+def deep_formats() -> tuple[str, ...]:
+    """The formats the deep check reads back (the table's rows with a reader), when a design names none of them.
+
+    >>> deep_formats()
+    ('stl', '3mf', 'step')
+    """
+    return tuple(_readers())
 
 
 @dataclass(frozen=True)
@@ -53,51 +68,17 @@ class ReadBack:
         )
 
 
-def _mesh_read_back(path, fmt: str, report) -> ReadBack:
-    import numpy as np
-    import trimesh
-
-    if fmt == "3mf":
-        # one object of parts: split it as PrusaSlicer does (its volumes' triangle ranges), then check each
-        # part with trimesh; trimesh's own loader joins the parts into one mesh, where a relief's plate
-        # and pattern meet along the outline in edges of four faces (the file is right, the check not)
-        from ..export.threemf import read_3mf
-
-        meshes: list[trimesh.Trimesh] = [
-            trimesh.Trimesh(p.vertices.astype(np.float64), p.faces, process=False) for p in read_3mf(str(path)).values()
-        ]
-    else:
-        scene = trimesh.load_scene(str(path), file_type=fmt, process=False)
-        meshes = [g for g in scene.dump() if isinstance(g, trimesh.Trimesh)]
-    volume = 0.0
-    for mesh in meshes:
-        mesh.merge_vertices()
-        if not mesh.is_watertight or not mesh.is_winding_consistent:
-            raise FabricationError(f"the {fmt.upper()} file read back by trimesh has a body that is not watertight")
-        if mesh.volume <= 0:
-            raise FabricationError(f"the {fmt.upper()} file read back by trimesh has a body turned inside out")
-        volume += float(mesh.volume)
-    expected = float(report.stats["volume_mm3"])
-    if not np.isclose(volume, expected, rtol=MESH_VOLUME_REL):
-        raise FabricationError(
-            f"the {fmt.upper()} file read back by trimesh holds {volume:.6g} mm^3, not the "
-            f"{expected:.6g} mm^3 it was written with"
-        )
-    return ReadBack(fmt, "trimesh", len(meshes), volume)
-
-
 def read_back(design, *, limits: _limits.Limits = _limits.CLI_LIMITS) -> list[ReadBack]:
-    """Write ``design``'s print files (default :data:`DEEP_FORMATS`) and read each back independently.
+    """Write ``design``'s print files (default :func:`deep_formats`) and read each back independently.
 
     Raises :class:`~fabtiles.FabricationError` when a reader refuses a file or finds
     other solids or another volume than the build reported: the file passed the
     writer's own checks, so that is a bug of fabtiles, and the message says so.
     """
-    from ..export.formats import FORMATS
-    from ..export.step import check_step_file
     from .pipeline import build_design, refusal_error
 
-    formats = [f for f in design.output.formats if FORMATS[f].family == "print"] or list(DEEP_FORMATS)
+    readers = _readers()
+    formats = [f for f in design.output.formats if f in readers] or list(readers)
     out = []
     with tempfile.TemporaryDirectory(prefix="fabtiles-deep-") as tmp:
         result = build_design(design, tmp, formats, limits=limits)
@@ -106,11 +87,8 @@ def read_back(design, *, limits: _limits.Limits = _limits.CLI_LIMITS) -> list[Re
         for report in result.reports:
             path = Path(tmp) / Path(report.path).name
             try:
-                if report.format == "step":
-                    volume = check_step_file(path, volume=report.stats["volume_mm3"], parts=report.stats["solids"])
-                    out.append(ReadBack("step", "OCCT", int(report.stats["solids"]), float(volume)))
-                else:
-                    out.append(_mesh_read_back(path, report.format, report))
+                reader, bodies, volume = readers[report.format](path, report)
+                out.append(ReadBack(report.format, reader, bodies, volume))
             except FabricationError as exc:
                 raise FabricationError(
                     f"the deep check found a file the writer's checks passed: {exc} "

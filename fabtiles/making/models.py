@@ -11,9 +11,9 @@ once, and each finding is reported once (``tests/making/test_one_model.py`` coun
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -135,6 +135,22 @@ def _colours(value):
     )
 
 
+class BuildModels(Protocol):
+    """What :func:`~fabtiles.making.pipeline.write_files` asks of a build's models: a tile's
+    (:class:`Models`) or a nest's sheets."""
+
+    options: BuildOptions
+
+    def model(self, family: str) -> Any:
+        """The model format family ``family`` is written from (:class:`~fabtiles.export.formats.CutModel`,
+        :class:`~fabtiles.export.formats.PrintModelProtocol`)."""
+        ...
+
+    def reports(self, files=()) -> list[tuple[str, Report]]:
+        """``(label, report)`` of each model made, once each; ``files``: the build's file reports."""
+        ...
+
+
 class Models:
     """The cut plan and print model of one tile (or one sheet), each made on first use, once.
 
@@ -149,13 +165,22 @@ class Models:
     checking : bool
         Make the models for ``fabtiles check``: the inlay kit's plans are not made
         (its lattice is checked as a pierced tile), nothing is meshed.
+    cut_region, print_region : tuple, optional
+        The regions the models are made from, when given rather than made from the tile
+        (a bare region's, a window of the tile): see :attr:`cut_region` and :attr:`print_region`.
     """
 
-    def __init__(self, tile, options: BuildOptions, *, sheet=None, checking: bool = False):
+    def __init__(
+        self, tile, options: BuildOptions, *, sheet=None, checking: bool = False, cut_region=None, print_region=None
+    ):
         self.tile = tile
         self.options = options
         self.sheet = sheet
         self.checking = checking
+        self._cut_region = cut_region
+        self._print_region = print_region
+        self._cut = None
+        self._print = None
 
     def _material(self, region):
         """``region``, or a :class:`~fabtiles.FabricationError` when it is empty (no file of nothing)."""
@@ -168,22 +193,31 @@ class Models:
 
     # ------------------------------------------------------------------ the cutter
 
-    @cached_property
+    @property
     def cut_region(self):
         """``(region, centrelines)`` the cutter's files are made from
-        (see :func:`~fabtiles.geometry.machine_geometry.cut_geometry`)."""
+        (see :func:`~fabtiles.geometry.machine_geometry.cut_geometry`), made once."""
         from ..geometry.machine_geometry import cut_geometry
 
-        o = self.options
-        mode = "pierced" if o.kit else o.laser_mode
-        if self.sheet is not None:
-            return self.sheet.region, self.sheet.centrelines
-        return cut_geometry(self.tile, profile=o.cutter, mode=mode, lines=not o.kit)
+        if self._cut_region is None:
+            o = self.options
+            mode = "pierced" if o.kit else o.laser_mode
+            if self.sheet is not None:
+                self._cut_region = (self.sheet.region, self.sheet.centrelines)
+            else:
+                self._cut_region = cut_geometry(self.tile, profile=o.cutter, mode=mode, lines=not o.kit)
+        return self._cut_region
 
-    @cached_property
+    @property
     def cut(self):
-        """The cut plan (:class:`~fabtiles.geometry.cut_plan.CutPlan`), or an inlay kit's two
+        """The cut model (:class:`~fabtiles.export.formats.CutModel`), made on first use, once: the cut plan
+        (:class:`~fabtiles.geometry.cut_plan.CutPlan`), or an inlay kit's two
         (:class:`~fabtiles.geometry.cut_plan.KitPlans`)."""
+        if self._cut is None:
+            self._cut = self._make_cut()
+        return self._cut
+
+    def _make_cut(self):
         from ..geometry.cut_plan import CutOptions, KitOptions, plan_cut, plan_kit
 
         o = self.options
@@ -229,8 +263,11 @@ class Models:
                     class_letters(kit.kit.holes, classes.faces, classes.labels, [c.letter for c in classes.classes])
                 )
                 filled = frozenset(c.letter for c in classes.classes if c.letter not in cut)
-                kit.report.stats["face_classes"] = self.face_class_stats(filled)
-                kit.report.note(f"lattice in {self.colouring.band.name} (the band colour)")
+                report = kit.report.extended(
+                    notes=[f"lattice in {self.colouring.band.name} (the band colour)"],
+                    face_classes=self.face_class_stats(filled),
+                )
+                kit = replace(kit, lattice=replace(kit.lattice, report=report))
             if (o.inlay_pieces or "registration") == "nested":
                 from ..geometry.kit_nesting import class_letters, nest_kit
 
@@ -269,10 +306,11 @@ class Models:
             n = len(self.sheet.offsets)
             bed = " x ".join(f"{v:g}" for v in o.cutter.bed_mm)
             used = " x ".join(f"{v:.1f}" for v in self.sheet.size)
-            plan.report.note(
+            note = (
                 f"laid {n} {'tile' if n == 1 else 'tiles'} on the {bed} mm bed of {o.cutter.kind} "
                 f"profile {o.cutter.name!r} ({used} mm used)"
             )
+            plan = replace(plan, report=plan.report.extended(notes=[note]))
         return plan
 
     # ------------------------------------------------------------------ the colours
@@ -404,17 +442,25 @@ class Models:
 
     # ------------------------------------------------------------------ the printer
 
-    @cached_property
+    @property
     def print_region(self):
         """``(region, dips)`` the print is made from
-        (see :func:`~fabtiles.geometry.machine_geometry.print_geometry`)."""
+        (see :func:`~fabtiles.geometry.machine_geometry.print_geometry`), made once."""
         from ..geometry.machine_geometry import print_geometry
 
-        return print_geometry(self.tile, profile=self.options.printer, style=self.options.print_style)
+        if self._print_region is None:
+            self._print_region = print_geometry(self.tile, profile=self.options.printer, style=self.options.print_style)
+        return self._print_region
 
-    @cached_property
+    @property
     def print(self):
-        """The print model (:class:`~fabtiles.solid.print_model.PrintModel`); its meshes are made on first use."""
+        """The print model (:class:`~fabtiles.solid.print_model.PrintModel`), made on first use, once; its
+        meshes are made on first use."""
+        if self._print is None:
+            self._print = self._make_print()
+        return self._print
+
+    def _make_print(self):
         from ..solid.print_model import print_model
 
         o = self.options
@@ -437,21 +483,33 @@ class Models:
         if style != "mosaic" and not given:
             return model
         filled = self.filled_classes(model.region) if o.fill_small_holes else frozenset()
-        if style == "mosaic":  # the parts are made lazily: they take the classes left open by the print's filling
-            model.mosaic = self.mosaic_specs(filled)
-        model.report.stats["face_classes"] = self.face_class_stats(filled)
-        return model
+        # the parts are made lazily: a mosaic's take the classes left open by the print's filling
+        return model.with_classes(
+            self.mosaic_specs(filled) if style == "mosaic" else (),
+            model.report.extended(face_classes=self.face_class_stats(filled)),
+        )
 
     def model(self, family: str):
         """The model a format family is written from: ``"cut"`` or ``"print"``."""
         return self.cut if family == "cut" else self.print
 
-    def reports(self) -> list[tuple[str, Report]]:
-        """``(label, report)`` of each model made so far: one set of findings per model."""
+    def made(self, family: str) -> bool:
+        """Whether the model of ``family`` (``"cut"`` or ``"print"``) has been made."""
+        return (self._cut if family == "cut" else self._print) is not None
+
+    def reports(self, files=()) -> list[tuple[str, Report]]:
+        """``(label, report)`` of each model made so far: one set of findings per model. ``files``: the
+        file reports of a build; the print model's says the filament, as the first print file measured it."""
+        from ..geometry.cut_plan import KitPlans
+
         out = []
-        if "cut" in self.__dict__:
+        if self.made("cut"):
             label = f"{self.options.cutter.kind} {self.options.cutter.name}"
-            out.append((label + (" (inlay kit)" if hasattr(self.cut, "lattice") else ""), self.cut.report))
-        if "print" in self.__dict__:
-            out.append((f"printer {self.options.printer.name}", self.print.report))
+            out.append((label + (" (inlay kit)" if isinstance(self.cut, KitPlans) else ""), self.cut.report))
+        if self.made("print"):
+            report = self.print.report
+            material = next((r.stats["material"] for r in files if "material" in r.stats), None)
+            if material is not None and "material" not in report.stats:
+                report = report.extended(material=material)
+            out.append((f"printer {self.options.printer.name}", report))
         return out

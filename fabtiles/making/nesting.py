@@ -42,13 +42,13 @@ class NestedSheets:
     nesting: Nesting
     report: Report
 
-    def files_of(self, fmt: str) -> list:
+    def files(self) -> list:
         """``[(suffix, plan), ...]``: ``-sheet-1``, ``-sheet-2``, ..."""
         return [(f"{NEST_SUFFIX}{k + 1}", plan) for k, plan in enumerate(self.plans)]
 
 
 class _NestModels:
-    """What :func:`~fabtiles.making.pipeline.write_files` asks of a build's models, for a nest."""
+    """A nest's :class:`~fabtiles.making.models.BuildModels`: its sheets are its one cut model."""
 
     def __init__(self, options: BuildOptions, sheets: NestedSheets, reports):
         self.options = options
@@ -58,7 +58,7 @@ class _NestModels:
     def model(self, family: str):
         return self.cut
 
-    def reports(self):
+    def reports(self, files=()):
         return list(self._reports)
 
 
@@ -267,15 +267,16 @@ def _counted(designs, count, time_s, limits: _limits.Limits) -> tuple[list, floa
 
 
 def _cut_formats(formats) -> tuple:
-    """The nest's formats, cutter formats only."""
-    from .pipeline import sheet_formats
+    """The nest's formats: those the table says nest, only."""
+    from ..export.formats import names_where
 
     formats = tuple(dict.fromkeys(formats))
-    cut, printed = sheet_formats(formats)
-    if printed or not cut:
+    nests = names_where(nests=True)
+    cut = tuple(f for f in formats if f in nests)
+    if len(cut) < len(formats) or not cut:
         raise ParameterError(
-            f"nested sheets are written in the cutter formats (dxf, svg, lbrn2) only, got "
-            f"{', '.join(formats) or 'none'}; use --format dxf, svg or lbrn2",
+            f"nested sheets are written in the cutter formats ({', '.join(nests)}) only, got "
+            f"{', '.join(formats) or 'none'}; use --format {', '.join(nests[:-1])} or {nests[-1]}",
             param="formats",
         )
     return cut
@@ -296,7 +297,7 @@ def _tiles(designs, limits: _limits.Limits) -> list:
 
 def _nest_options(designs, cut) -> list:
     """Each design's build options, checked for a nest: one cutter profile, no inlay kit, formats it takes."""
-    from ..machines.cutters import cutter_kind
+    from ..export.formats import FORMATS
 
     options = [BuildOptions.of_design(d) for d, _ in designs]
     profile = options[0].cutter
@@ -315,7 +316,7 @@ def _nest_options(designs, cut) -> list:
                 param="laser_mode",
             )
         for fmt in cut:  # the cutter's kind allows the format (a LightBurn project is for lasers)
-            cutter_kind(o.cutter).check_format(o.cutter, fmt)
+            FORMATS[fmt].check_cutter(o.cutter)
     return options
 
 
@@ -447,8 +448,7 @@ def nest_designs(
         progress=progress,
         limits=limits,
     )
-    # a nest's models stand in for Models by the members the writers read
-    result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)  # type: ignore[arg-type]  # a nest's models stand in for Models by shape
+    result = write_files(_NestModels(job.options, job.model, job.labels), job.formats, outdir, job.stem)
     return NestResult(result, job.nesting, job.sheets())
 
 
@@ -486,6 +486,6 @@ def nest_bytes(designs, formats=("dxf",), **options) -> NestedFiles:
     files = [
         (f"{job.stem}{suffix}.{fmt}", FORMATS[fmt].write(plan, opts))
         for fmt in job.formats
-        for suffix, plan in job.model.files_of(fmt)
+        for suffix, plan in FORMATS[fmt].files(job.model)
     ]
     return NestedFiles(job, files)

@@ -43,7 +43,7 @@ from ..core.report import Report
 from ..core.schema import build_options, option_keys
 from ..machines import limits as _limits
 from ..machines.profiles import DEFAULT_CUTTER_PROFILE, DEFAULT_PRINTER_PROFILE, load_profile
-from .models import BuildOptions, Models
+from .models import BuildModels, BuildOptions, Models
 from .staging import StagingFolder
 
 SHEET_SUFFIX = "-sheet"
@@ -125,9 +125,13 @@ def prepare_tile(design, *, limits: _limits.Limits = _limits.CLI_LIMITS):
 
 
 def check_format_limits(tile, formats, limits: _limits.Limits) -> None:
-    """The formats' own, lower limits (STEP is slow on huge solids)."""
+    """The formats' own, lower limits (the table's ``limit``: STEP is slow on huge solids)."""
+    from ..export.formats import FORMATS
+
     for fmt in formats:
-        _limits.check_export(tile, fmt, limits)
+        f = FORMATS[fmt]
+        if f.limit is not None:
+            _limits.check_export(tile, f.label, f.limit, limits)
 
 
 def layout_tile_sheet(
@@ -164,18 +168,16 @@ def _file_report(model_report: Report, path, fmt: str, figures: dict) -> Report:
     )
 
 
-def _planned_files(model, fmt: str, name: str, *, layout: str):
-    """``([(file name, model), ...], file options)``: the files format ``fmt`` writes of ``model``."""
+def _planned_files(model, f, name: str, *, layout: str):
+    """``([(file name, model), ...], file options)``: the files format ``f`` writes of ``model``
+    (several: a kit's lattice and pieces, a nest's sheets, a mosaic's STLs)."""
     from ..export.formats import FileOptions
 
-    if hasattr(model, "files_of"):  # several files of a format: a kit's sheets, a mosaic's STLs
-        files = [(f"{name}{suffix}.{fmt}", m) for suffix, m in model.files_of(fmt)]
-    else:
-        files = [(f"{name}.{fmt}", model)]
+    files = [(f"{name}{suffix}{f.suffix}", m) for suffix, m in f.files(model)]
     return files, FileOptions(name=Path(name).stem, layout=layout)
 
 
-def _model_of(models: Models, family: str, failed: dict):
+def _model_of(models: BuildModels, family: str, failed: dict):
     """``models.model(family)``, its error kept in ``failed`` so that its other formats are refused alike."""
     if family in failed:
         raise failed[family]
@@ -186,10 +188,10 @@ def _model_of(models: Models, family: str, failed: dict):
         raise
 
 
-def _made(models: Models, f, name: str, file_name: str | None, failed: dict):
+def _made(models: BuildModels, f, name: str, file_name: str | None, failed: dict):
     """``(report, [(file name, bytes), ...])`` of format ``f``: its model made (once) and its files written."""
     model = _model_of(models, f.family, failed)
-    files, options = _planned_files(model, f.name, name, layout=models.options.threemf_layout)
+    files, options = _planned_files(model, f, name, layout=models.options.threemf_layout)
     if file_name is not None:  # one format: its file (or a kit's two) named after file_name
         stem = Path(file_name).stem
         files = [(file_name, files[0][1])] if len(files) == 1 else [(f"{stem}{n[len(name) :]}", m) for n, m in files]
@@ -211,7 +213,7 @@ def refusal_error(refused: list[Refused]) -> FabtilesError:
 
 
 def write_files(
-    models: Models, formats, outdir, name: str, *, file_name: str | None = None, preview_svg: str | None = None
+    models: BuildModels, formats, outdir, name: str, *, file_name: str | None = None, preview_svg: str | None = None
 ) -> BuildResult:
     """Make the files of ``formats`` from ``models``, each format on its own, and move them into ``outdir``.
 
@@ -235,7 +237,7 @@ def write_files(
         try:
             report, made = _made(models, f, name, file_name, failed)
         except FabtilesError as exc:
-            path = file_name if file_name is not None else f"{name}.{fmt}"
+            path = file_name if file_name is not None else f"{name}{f.suffix}"
             refused.append(Refused(fmt, str(Path(outdir) / path), str(exc), exc))
             continue
         contents.extend(made)
@@ -249,15 +251,12 @@ def write_files(
         replaced = [str(Path(outdir) / p.name) for p in staged if (Path(outdir) / p.name).exists()]
         paths = [str(final(Path(p))) for p in staged]
         picture = str(final(picture)) if picture is not None else None
-    material = next((r.stats["material"] for r in reports if "material" in r.stats), None)
-    if material is not None and "print" in models.__dict__:  # the filament, as the first print file measured it
-        models.print.report.stats.setdefault("material", material)
     folder = Path(outdir)
     for report in reports:
         report.path = str(folder / report.path)
         if "files" in report.stats:
             report.stats["files"] = [str(folder / n) for n in report.stats["files"]]
-    return BuildResult(reports, (), picture, paths, models.reports(), replaced, refused=refused)
+    return BuildResult(reports, (), picture, paths, models.reports(reports), replaced, refused=refused)
 
 
 def earlier_files(outdir, name: str, written) -> list[str]:
@@ -267,14 +266,15 @@ def earlier_files(outdir, name: str, written) -> list[str]:
     name stays from an earlier build, perhaps of other values (``table3-3.stl`` of a
     150 mm tile beside a ``table3-3.dxf`` just built at 200 mm).
     """
-    from ..export.formats import FILE_FORMATS
+    from ..export.formats import FORMATS, design_formats
     from ..export.kit import KIT_FILES
 
     folder = Path(outdir)
     written = {Path(p).name for p in written}
-    names = [f"{name}{suffix}.{fmt}" for fmt in FILE_FORMATS for suffix in ("", *(s for s, _ in KIT_FILES))]
+    suffixes = [FORMATS[fmt].suffix for fmt in design_formats()]
+    names = [f"{name}{kit}{suffix}" for suffix in suffixes for kit in ("", *(s for s, _ in KIT_FILES))]
     # a coloured kit's pieces files, one per wood
-    names += sorted(p.name for fmt in FILE_FORMATS for p in folder.glob(f"{name}-pieces-*.{fmt}"))
+    names += sorted(p.name for suffix in suffixes for p in folder.glob(f"{name}-pieces-*{suffix}"))
     return [str(folder / n) for n in names if n not in written and (folder / n).is_file()]
 
 
@@ -367,12 +367,12 @@ def build_design(
 
 def _check_cutter_formats(options: BuildOptions, formats) -> None:
     """The cutter's kind allows each cutter format (a LightBurn project is for lasers)."""
+    from ..export.formats import FORMATS
     from ..machines.cutters import cutter_kind
 
-    kind = cutter_kind(options.cutter)
     for fmt in formats:
-        kind.check_format(options.cutter, fmt)
-    kind.check_mode(options.cutter, options.laser_mode)
+        FORMATS[fmt].check_cutter(options.cutter)
+    cutter_kind(options.cutter).check_mode(options.cutter, options.laser_mode)
 
 
 @dataclass(frozen=True)
@@ -395,8 +395,9 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
     from ..export.formats import FORMATS
 
     name = Path(file_name).stem if file_name else design.name
+    suffix = FORMATS[fmt].suffix
     with tempfile.TemporaryDirectory(prefix="fabtiles-") as tmp:
-        result = build_design(design, tmp, (fmt,), file_name=f"{name}.{fmt}", limits=limits)
+        result = build_design(design, tmp, (fmt,), file_name=f"{name}{suffix}", limits=limits)
         report = result.reports[0]
         if len(result.paths) > 1:
             import io
@@ -408,21 +409,18 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
                     zf.writestr(zip_entry(Path(p).name), Path(p).read_bytes(), compress_type=zipfile.ZIP_DEFLATED)
             return Download(buf.getvalue(), report, "application/zip", f"{name}-kit-{fmt}.zip")
         data = Path(result.paths[0]).read_bytes()
-    return Download(data, report, FORMATS[fmt].media_type, f"{name}.{fmt}")
+    return Download(data, report, FORMATS[fmt].media_type, f"{name}{suffix}")
 
 
 # --------------------------------------------------------------------------- the API's exports
 
 
-_CUT_OPTIONS = build_options("cut")
-_PRINT_OPTIONS = build_options("print")
-_3MF_OPTIONS = build_options("3mf")
 _INLAY_OPTIONS = tuple(k.build.name for k in option_keys("cut") if k.requires == 'laser_mode = "inlay"')
 
 
 def _options_for(fmt, profile, options: dict) -> BuildOptions:
     """The :class:`BuildOptions` of an API call writing ``fmt`` with keyword ``options``."""
-    allowed = _CUT_OPTIONS if fmt.family == "cut" else _3MF_OPTIONS if fmt.name == "3mf" else _PRINT_OPTIONS
+    allowed = build_options(fmt.options)
     for key in options:
         if key not in allowed:
             raise ParameterError(
@@ -446,9 +444,8 @@ def _options_for(fmt, profile, options: dict) -> BuildOptions:
             )
         from ..machines.cutters import cutter_kind
 
-        kind = cutter_kind(cutter)
-        kind.check_format(cutter, fmt.name)
-        kind.check_mode(cutter, mode)
+        fmt.check_cutter(cutter)
+        cutter_kind(cutter).check_mode(cutter, mode)
     return BuildOptions(cutter, printer, **BuildOptions.fields_of(o, "cut" if fmt.family == "cut" else "3mf"))
 
 
@@ -512,7 +509,10 @@ def export_region(
 
     fmt = format_of(path)
     build_options = _options_for(fmt, profile, options)
-    models = Models(_Region(region, outline, centrelines, stroke), build_options)
-    models.__dict__["cut_region"] = (region, centrelines)
-    models.__dict__["print_region"] = (region, dips)
+    models = Models(
+        _Region(region, outline, centrelines, stroke),
+        build_options,
+        cut_region=(region, centrelines),
+        print_region=(region, dips),
+    )
     return _write_one(models, path)

@@ -62,8 +62,7 @@ def plot_drawing(design, *, what: str = "centrelines", pen_mm=None, limits: _lim
     if what == "cut":
         from ..export.laser_svg import aci_to_hex
 
-        plan = models.cut
-        plan = getattr(plan, "lattice", plan)  # an inlay kit: its lattice
+        (_, plan), *_ = models.cut.files()  # an inlay kit: its first file's, the lattice
         layers = [
             (
                 layer.layer.name,

@@ -112,8 +112,7 @@ def print_view(design, *, limits: _limits.Limits, max_segments: int = VIEW_SEGME
         box = shapely.box(*window)
         region, outline = region.intersection(box), outline.intersection(box)
         dips = dips.intersection(box) if dips is not None else None
-        models.__dict__["print_region"] = (region, dips)
-        models.tile = _Window(tile, outline)
+        models = Models(_Window(tile, outline), models.options, print_region=(region, dips))
     glb = FORMATS["glb"]
     model = models.print
     data = glb.write(model, FileOptions())

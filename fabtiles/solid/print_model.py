@@ -111,6 +111,22 @@ class PrintModel:
         self.arc_radii_mm = tuple(float(r) for r in arc_radii_mm)
         """Radii the region's curves are known to have (half the stroke: its round joins), for the STEP's arcs."""
 
+    def with_classes(self, mosaic, report: Report) -> PrintModel:
+        """This print with a mosaic's parts (``mosaic``; none: its own) and a report that says its face
+        classes: a new model, made before any mesh, so a model's report is never changed once made."""
+        return PrintModel(
+            profile=self.profile,
+            stack=self.stack,
+            region=self.region,
+            outline=self.outline,
+            report=report,
+            dips=self.dips,
+            inlay=self.inlay,
+            colours=self.colours,
+            mosaic=mosaic or self.mosaic,
+            arc_radii_mm=self.arc_radii_mm,
+        )
+
     @property
     def single_part(self) -> bool:
         """True when the print is one part: its fused body and its part are the same mesh."""
@@ -165,14 +181,18 @@ class PrintModel:
         ((name, _),) = part_kinds(self.stack.style, single=True).items()
         return name
 
-    def files_of(self, fmt: str) -> list:
-        """``[(suffix, model), ...]``: the files a format writes of this print.
+    def files(self) -> list:
+        """``[("", self)]``: a print is one file of each format that holds its parts (see :meth:`bodies`)."""
+        return [("", self)]
 
-        An STL holds one body: a mosaic of several colours is one STL per colour,
-        ``-<colour>`` (all in the same frame, for slicers without 3MF), each a
-        :class:`PartPrint` of one part; everything else is one file, this model.
+    def bodies(self) -> list:
+        """``[(suffix, print), ...]``: the print as files of one body each (an STL holds one body).
+
+        A mosaic of several colours is one body per colour, ``-<colour>`` (all in the same
+        frame, for slicers without 3MF), each a :class:`PartPrint` of one part; anything
+        else is one body, this model.
         """
-        if fmt == "stl" and self.stack.style == "mosaic" and len(self.parts) > 1:
+        if self.stack.style == "mosaic" and len(self.parts) > 1:
             return [(f"-{_slug(name)}", PartPrint(self, part)) for name, part in self.parts.items()]
         return [("", self)]
 
@@ -285,3 +305,9 @@ class PartPrint:
 
     def stats(self) -> dict:
         return stack_stats(self.stack)
+
+    def files(self) -> list:
+        return [("", self)]
+
+    def bodies(self) -> list:
+        return [("", self)]

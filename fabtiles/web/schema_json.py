@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import asdict
 
 from ..core import schema as _schema
+from ..export.formats import FORMATS, design_formats
 from .params import FIELDS
 
 
@@ -36,7 +37,11 @@ def _key_json(k: _schema.Key, widget: _schema.Widget | None) -> dict:
 
 
 def schema_json() -> dict:
-    """``{"fields": {query parameter: {key, type, unit, help, default, range, widget, choices}}}``.
+    """``{"fields": {query parameter: {key, type, unit, help, default, range, widget, choices}}, "formats": [...]}``.
+
+    ``formats``: the format table's rows the web app offers (its download buttons and the nest
+    page's formats), a format plugin's included: name, family, suffix, label, media type,
+    description, the cutter kinds that take it, whether nested sheets are written in it.
 
     The gap motif's parameters (``gap_n``, ...) carry the motif key's entry with the gap's
     widget; ``width``/``height`` and ``motif_<sides>`` carry ``tile.size`` and ``packing.motifs``,
@@ -56,4 +61,5 @@ def schema_json() -> dict:
         else:
             k = _schema.key(f"{section}.{name}")
             fields[query] = _key_json(k, k.widget)
-    return {"fields": fields}
+    offered = design_formats()
+    return {"fields": fields, "formats": [FORMATS[n].row() for n in offered]}

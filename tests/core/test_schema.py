@@ -148,9 +148,14 @@ def test_profile_fit_error_names_the_profile_key(tmp_path):
 
 
 def test_build_options_are_the_schemas():
-    from fabtiles.making import pipeline
+    # the options each format takes: its row's family of options (the format table), the schema's list
+    from fabtiles.core.schema import build_options
+    from fabtiles.export.formats import FORMATS
 
-    assert pipeline._CUT_OPTIONS == (
+    cut, printed, threemf = (build_options(FORMATS[f].options) for f in ("dxf", "stl", "3mf"))
+    assert {build_options(FORMATS[f].options) for f in ("dxf", "svg", "lbrn2")} == {cut}
+    assert build_options(FORMATS["step"].options) == printed
+    assert cut == (
         "mode",
         "dxf_version",
         "kerf_mm",
@@ -162,8 +167,8 @@ def test_build_options_are_the_schemas():
         "tabs_per_part",
         "colours",
     )
-    assert pipeline._3MF_OPTIONS == pipeline._PRINT_OPTIONS[:-1] + ("inlay", "layout", "colours")
-    assert "mosaic_inset_mm" in pipeline._PRINT_OPTIONS
+    assert threemf == printed[:-1] + ("inlay", "layout", "colours")
+    assert "mosaic_inset_mm" in printed
 
 
 # -- every raise of the module ----------------------------------------------------------------------------------------
@@ -308,7 +313,7 @@ def test_what_belongs_to_a_layer_above_is_registered_by_it():
     import fabtiles.geometry.tile
 
     layered = [k for k in _schema.KEYS if isinstance(k.choices, str)]
-    assert {k.choices for k in layered} == {"pattern", "machines", "designs"}
+    assert {k.choices for k in layered} == {"pattern", "machines", "export", "designs"}
     for k in layered:
         assert k.choice_values(), k.path
     checked = [k for k in _schema.KEYS if k.checked_by is not None]

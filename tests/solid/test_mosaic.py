@@ -120,10 +120,10 @@ def test_each_colour_is_its_own_stl_named_by_colour():
     model = print_model(
         region, OUTLINE, profile="fdm-0.4mm", style="mosaic", mosaic=_specs(faces[:1], faces[1:]), colours=COLOURS
     )
-    files = model.files_of("stl")
+    files = model.bodies()  # the STL row writes one file per body
     assert [s for s, _ in files] == ["-black", "-white", "-cobalt", "-green"]
     assert [m.fused_name for _, m in files] == list(model.parts)
-    assert model.files_of("3mf") == [("", model)]
+    assert model.files() == [("", model)]
 
 
 def test_a_colour_no_face_took_is_no_part():

@@ -280,3 +280,19 @@ def test_the_size_limit_is_the_command_lines():
     from fabtiles.machines.limits import CLI_LIMITS, WEB_LIMITS
 
     assert WEB_LIMITS.max_size_mm == CLI_LIMITS.max_size_mm
+
+
+def test_the_pages_formats_are_the_format_tables(client):
+    """The download buttons and the nest page's formats are made from /api/schema's rows (app.js, nest.js)."""
+    formats = client.get("/api/schema").json()["formats"]
+    assert [(f["name"], f["label"], f["family"], f["suffix"]) for f in formats] == [
+        ("dxf", "DXF", "cut", ".dxf"),
+        ("svg", "SVG", "cut", ".svg"),
+        ("lbrn2", "LightBurn", "cut", ".lbrn2"),
+        ("stl", "STL", "print", ".stl"),
+        ("3mf", "3MF", "print", ".3mf"),
+        ("step", "STEP", "print", ".step"),
+    ]
+    assert [f["name"] for f in formats if f["nests"]] == ["dxf", "svg", "lbrn2"]
+    page = client.get("/").text
+    assert "data-format" not in page and 'id="download-design"' in page  # the buttons come from the schema

@@ -24,12 +24,10 @@ from fastapi.responses import JSONResponse, Response
 from starlette.concurrency import run_in_threadpool
 
 from ...core.errors import FabtilesError
+from ...export.formats import names_where
 from ...geometry.nest import ROTATIONS
 from ...machines import limits as _limits
 from ..building import design_of_query, field_of_param, user_message
-
-NEST_FORMATS = ("dxf", "svg", "lbrn2")
-"""The formats a nest's sheets are written in (the cutter formats)."""
 
 DEFAULT_TIME_S = 3.0
 """The web's default packing time, seconds (the page's *Time*): a nest answers in a few seconds."""
@@ -71,7 +69,7 @@ def read_body(body, *, limits: _limits.Limits) -> dict:
     The body: ``designs`` (a list of ``{"query": "<the editor's query>", "count": N}``),
     ``sheet`` (``[width, height]`` mm, or null: the cutter profile's bed), ``gap_mm`` (null:
     the kerf + 1 mm), ``rotate`` (``90``, ``180``, ``free``, ``none``), ``time_s`` (seconds,
-    at most the web's limit) and ``format`` (``dxf``, ``svg``, ``lbrn2``).
+    at most the web's limit) and ``format`` (a format nested sheets are written in: ``dxf``, ``svg``, ``lbrn2``).
 
     >>> read_body({"designs": [{"query": "preset=table3-1&width=40", "count": 0}]}, limits=_limits.WEB_LIMITS)
     Traceback (most recent call last):
@@ -85,8 +83,9 @@ def read_body(body, *, limits: _limits.Limits) -> dict:
     if rotate not in ROTATIONS:
         raise NestError(f"rotate must be one of: {', '.join(ROTATIONS)}, got {rotate!r}", "rotate")
     fmt = body.get("format", "dxf")
-    if fmt not in NEST_FORMATS:
-        raise NestError(f"format must be one of: {', '.join(NEST_FORMATS)}, got {fmt!r}", "format")
+    nests = names_where(nests=True)  # the format table's formats of nested sheets
+    if fmt not in nests:
+        raise NestError(f"format must be one of: {', '.join(nests)}, got {fmt!r}", "format")
     time_s = _number(body, "time_s", default=DEFAULT_TIME_S)
     if time_s <= 0 or time_s > limits.max_nest_time_s:
         raise NestError(

@@ -5,7 +5,7 @@ from __future__ import annotations
 from fastapi import APIRouter, Request
 from fastapi.responses import Response
 
-from ...export.formats import FILE_FORMATS as FORMATS
+from ...export.formats import design_formats
 from ...machines import limits as _limits
 from ..building import build, fabrication_checks
 from ..params import QueryError, parse_flag
@@ -137,7 +137,7 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         design, spec, _ = build(request, limits=limits)
         import tomli_w
 
-        design = {**design, "output": {"formats": list(FORMATS), **design.get("output", {})}}
+        design = {**design, "output": {"formats": list(design_formats()), **design.get("output", {})}}
         # named after the design, as its files are: the file's stem is their name when [output] name is unset
         text = f"# fabtiles design: build it with  fabtiles build {spec.name}.toml -o out\n"
         text += tomli_w.dumps(design)
@@ -149,8 +149,9 @@ def router(*, limits: _limits.Limits) -> APIRouter:
 
     @api.get("/api/export/{fmt}")
     def export(fmt: str, request: Request):
-        if fmt not in FORMATS:
-            raise QueryError(f"{fmt!r} is not a valid format, must be one of: {', '.join(FORMATS)}", "format")
+        offered = design_formats()  # the format table's, a plugin's included
+        if fmt not in offered:
+            raise QueryError(f"{fmt!r} is not a valid format, must be one of: {', '.join(offered)}", "format")
         from ...making import build_bytes
 
         _, spec, _ = build(request, limits=limits)

@@ -277,7 +277,7 @@ function downloads(valid) {
     const fmt = a.dataset.format;
     if (valid) {
       a.href = fmt ? `/api/export/${fmt}?${q}` : `/api/design.toml?${q}`;
-      a.download = !fmt ? `${name}.toml` : kit && a.dataset.family === "cut" ? `${name}-kit-${fmt}.zip` : `${name}.${fmt}`;
+      a.download = !fmt ? `${name}.toml` : kit && a.dataset.family === "cut" ? `${name}-kit-${fmt}.zip` : `${name}${a.dataset.suffix}`;
     } else {
       a.removeAttribute("href");
       a.removeAttribute("download");
@@ -512,9 +512,22 @@ function tilingControls() {
   }
 }
 
+// The download buttons: one per format the format table offers (a format plugin's too), before the design's.
+function formatButtons(formats) {
+  const design = $("download-design");
+  for (const f of formats) {
+    const a = document.createElement("a");
+    a.className = "btn";
+    Object.assign(a.dataset, { format: f.name, family: f.family, suffix: f.suffix });
+    a.textContent = f.label;
+    design.before(a);
+  }
+}
+
 // The schema's widgets: sliders by group (the gap motif's inner radius after gap n), the text, number and
-// check boxes, each number box's range and step, and each empty menu's choices.
+// check boxes, each number box's range and step, and each empty menu's choices; the download buttons.
 function applySchema(schema) {
+  formatButtons(schema.formats);
   SLIDERS = {};
   for (const [q, f] of Object.entries(schema.fields)) {
     const w = f.widget;

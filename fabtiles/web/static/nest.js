@@ -136,6 +136,7 @@ async function runNest() {
   $("nest-button").disabled = true;
   $("status").textContent = "nesting…";
   try {
+    await formatsLoaded;  // the format menu is filled before its value is sent
     const res = await fetch("/api/nest", { method: "POST", headers: { "Content-Type": "application/json" },
                                            body: JSON.stringify(body()) });
     const answer = await res.json().catch(() => ({ error: res.statusText, field: null }));
@@ -148,11 +149,22 @@ async function runNest() {
   }
 }
 
+// The formats nested sheets are written in, from the format table (/api/schema): its name, and its suffix
+// when the name is not the suffix's ("LightBurn (.lbrn2)").
+let formatsLoaded = Promise.resolve();
+
+async function formats() {
+  const sel = $("format");
+  for (const f of (await (await fetch("/api/schema")).json()).formats)
+    if (f.nests) sel.add(new Option(f.label.toLowerCase() === f.name ? f.label : `${f.label} (${f.suffix})`, f.name));
+}
+
 function start() {
   const q = designQuery(location.search);
   $("back").href = `/?${new URLSearchParams(location.search)}`;
   addDesign(q);
   $("nest-button").addEventListener("click", runNest);
+  formatsLoaded = formats();
   gallery();
 }
 
