@@ -30,12 +30,26 @@ settings.load_profile(os.environ.get("FABTILES_HYPOTHESIS", "ci"))
 COLLECTED = pytest.StashKey[set]()
 
 
+FIRST = (
+    "tests/solid/test_brep_designs.py",
+    "tests/test_docs.py",
+    "tests/export/test_stl.py",
+    "tests/making/test_reproducible.py",
+    "tests/export/test_mosaic_files.py",
+)
+"""The files that hold the longest tests, run first: the README's command runs the tests on two
+workers (``--dist worksteal``), and a long test started last keeps one waiting for the other."""
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
     if config.args_source == pytest.Config.ArgsSource.TESTPATHS and not (
         config.getoption("ignore") or config.getoption("ignore_glob") or config.getoption("deselect")
     ):
         config.stash[COLLECTED] = {item.nodeid.split("::", 1)[0] for item in items}
+    # a stable sort: each file's tests stay together and in order (its module fixtures made once)
+    rank = {name: k for k, name in enumerate(FIRST)}
+    items.sort(key=lambda item: rank.get(item.nodeid.split("::", 1)[0], len(FIRST)))
 
 
 @pytest.fixture(scope="session")
