@@ -16,8 +16,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def uncollected(root: Path, env: dict | None = None) -> list[str]:
-    """The test files and doctest modules under ``root`` of which ``pytest --collect-only`` collects nothing."""
+def collected_by_pytest(root: Path, env: dict | None = None) -> set[str]:
+    """The files of which ``python -m pytest --collect-only`` run in ``root`` collects a test."""
     proc = subprocess.run(
         [sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider"],
         cwd=root,
@@ -27,7 +27,14 @@ def uncollected(root: Path, env: dict | None = None) -> list[str]:
         env=env,
     )
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
-    collected = {line.split("::", 1)[0] for line in proc.stdout.splitlines() if "::" in line}
+    return {line.split("::", 1)[0] for line in proc.stdout.splitlines() if "::" in line}
+
+
+def uncollected(root: Path, env: dict | None = None, collected: set[str] | None = None) -> list[str]:
+    """The test files and doctest modules under ``root`` of which pytest collects nothing (``collected``:
+    what a run already collected there, else what ``pytest --collect-only`` does)."""
+    if collected is None:
+        collected = collected_by_pytest(root, env)
     expected = {p.relative_to(root).as_posix() for p in (root / "tests").rglob("test_*.py")}
     package = root / "fabtiles"
     if package.is_dir():
@@ -37,8 +44,12 @@ def uncollected(root: Path, env: dict | None = None) -> list[str]:
     return sorted(expected - collected)
 
 
-def test_every_test_file_and_doctest_is_collected():
-    assert uncollected(ROOT) == []
+def test_every_test_file_and_doctest_is_collected(pytestconfig, collected_files):
+    """Run by the README's command (no paths), this run's own collection is the one checked;
+    run with paths, ``pytest --collect-only`` in a process of its own."""
+    if collected_files is not None:
+        assert pytestconfig.rootpath == ROOT
+    assert uncollected(ROOT, collected=collected_files) == []
 
 
 def test_a_folder_pytest_skips_is_found(tmp_path):

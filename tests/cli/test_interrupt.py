@@ -21,11 +21,22 @@ def _start(design, out):
     )
 
 
+@pytest.fixture(scope="module")
+def full_build(tmp_path_factory):
+    """The design, the files of a complete build and how long that build took here (one for both signals)."""
+    tmp = tmp_path_factory.mktemp("interrupt")
+    design = tmp / "sheet.toml"
+    design.write_text(DESIGN)
+    t = time.perf_counter()
+    full = _start(design, tmp / "full")
+    assert full.wait(timeout=300) == 0, full.stderr.read().decode()
+    duration = time.perf_counter() - t
+    return design, {p.name: p.read_bytes() for p in (tmp / "full").iterdir()}, duration
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
-def test_interrupted_build_leaves_old_files_and_no_partial_ones(tmp_path, sig):
-    design = tmp_path / "sheet.toml"
-    design.write_text(DESIGN)
+def test_interrupted_build_leaves_old_files_and_no_partial_ones(tmp_path, sig, full_build):
     out = tmp_path / "out"
     out.mkdir()
     old = {f"sheet.{fmt}": f"good {fmt} file from an earlier build".encode() for fmt in ("dxf", "svg", "stl")}
@@ -33,11 +44,7 @@ def test_interrupted_build_leaves_old_files_and_no_partial_ones(tmp_path, sig):
         (out / name).write_bytes(data)
 
     # A full run, to know how long it takes here; then interrupt at fractions of it.
-    t = time.perf_counter()
-    full = _start(design, tmp_path / "full")
-    assert full.wait(timeout=300) == 0, full.stderr.read().decode()
-    duration = time.perf_counter() - t
-    complete = {p.name: p.read_bytes() for p in (tmp_path / "full").iterdir()}
+    design, complete, duration = full_build
     assert set(complete) == set(old)
 
     interrupted = 0

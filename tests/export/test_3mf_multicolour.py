@@ -212,7 +212,8 @@ def test_no_parts_is_refused():
 def printer_ini(tmp_path, n: int):
     """A PrusaSlicer printer of ``n`` extruders (0.4 mm nozzles, no offsets, no wipe tower, no skirt).
 
-    No extra perimeters: theirs is the slowest pass over a mosaic of many small faces, and which
+    No extra perimeters, the classic perimeter generator and no gap fill: Arachne's variable-width
+    perimeters and the gap fill are the slowest passes over a mosaic of many small faces, and which
     tool prints what is the same without them.
     """
     ini = tmp_path / f"printer-{n}.ini"
@@ -223,6 +224,7 @@ def printer_ini(tmp_path, n: int):
         f"extruder_offset = {each('0x0')}\nretract_length = {each('2')}\nretract_lift = {each('0')}\n"
         f"wipe_tower = 0\nskirts = 0\nbrim_width = 0\nuse_relative_e_distances = 1\n"
         f"layer_height = {LAYER}\nfirst_layer_height = {LAYER}\nextra_perimeters = 0\n"
+        "perimeter_generator = classic\ngap_fill_enabled = 0\n"
         "bed_shape = 0x0,250x0,250x210,0x210\n"
     )
     return ini

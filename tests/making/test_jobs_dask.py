@@ -133,35 +133,34 @@ def test_sweep_on_the_cluster_writes_what_a_local_run_writes(cluster, tmp_path):
         assert got[name] == want[name], name
 
 
-def test_a_worker_killed_mid_run_still_gives_every_output(tmp_path):
+def test_a_worker_killed_mid_run_still_gives_every_output(cluster, tmp_path):
+    """The last test of the module's cluster: it kills one of its two workers (no later test uses it)."""
     design = tmp_path / "big.toml"
     design.write_text(SMALL.replace("size = 60", "size = 160"))
     args = ("sweep", design, "--vary", "packing.radius=7:12:6", "--format", "svg", "--format", "dxf")
     local = fabtiles(*args, "-o", tmp_path / "local", "--jobs", "1")
     assert local.returncode == 0, local.stderr
-    c = Cluster(tmp_path)
-    try:
-        out = tmp_path / "dask"
-        run = subprocess.Popen(
-            [sys.executable, "-m", "fabtiles", *map(str, args), "-o", str(out), "--scheduler", c.address],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            text=True,
-        )
-        # Kill a worker in the middle of a task: while it is writing into its staging folder
-        # (named with its process id), so that task must be run again on the other worker.
-        victim = c.workers[0]
-        staging = f"{STAGING_PREFIX}{socket.gethostname()}-{victim.pid}-"
-        deadline = time.monotonic() + 600
-        while not (out.exists() and any(p.name.startswith(staging) for p in out.iterdir())):
-            assert run.poll() is None and time.monotonic() < deadline, "the worker never started a build"
-            time.sleep(0.005)
-        victim.send_signal(signal.SIGKILL)
-        victim.wait()
-        stdout, stderr = run.communicate(timeout=900)
-        assert run.returncode == 0, stdout + stderr
-    finally:
-        c.close()
+    c = cluster
+    assert all(w.poll() is None for w in c.workers)
+    out = tmp_path / "dask"
+    run = subprocess.Popen(
+        [sys.executable, "-m", "fabtiles", *map(str, args), "-o", str(out), "--scheduler", c.address],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    # Kill a worker in the middle of a task: while it is writing into its staging folder
+    # (named with its process id), so that task must be run again on the other worker.
+    victim = c.workers[0]
+    staging = f"{STAGING_PREFIX}{socket.gethostname()}-{victim.pid}-"
+    deadline = time.monotonic() + 600
+    while not (out.exists() and any(p.name.startswith(staging) for p in out.iterdir())):
+        assert run.poll() is None and time.monotonic() < deadline, "the worker never started a build"
+        time.sleep(0.005)
+    victim.send_signal(signal.SIGKILL)
+    victim.wait()
+    stdout, stderr = run.communicate(timeout=900)
+    assert run.returncode == 0, stdout + stderr
     want, got = files(tmp_path / "local"), files(out)
     assert got.keys() == want.keys()  # every output; the killed worker's staging folder is gone
     for name in want:  # the same files, a DXF up to its time and GUIDs of writing
