@@ -543,46 +543,55 @@ def _neighbour_touching(regions: dict, cell, part, nx: int, ny: int):
 
 def _joints(ctx: _Context, regions: dict, xs, ys, nx: int, ny: int):
     """A joint on every stretch where two neighbours meet wide enough; error where a pair has none."""
-    joints = []
-    joint = ctx.joint
-    for (i, j), region in sorted(regions.items()):
+    joints: list[PlacedJoint] = []
+    for i, j in sorted(regions):
         for axis, other in ((0, (i + 1, j)), (1, (i, j + 1))):
             if other not in regions:
                 continue
             pos = xs[i + 1] if axis == 0 else ys[j + 1]
-            shared = shapely.intersection(shapely.boundary(region), shapely.boundary(regions[other]))
-            stretches = [s for s in _segments(shared) if s.length > 1e-9]
+            pair = (_number(i, j, nx, ny), _number(*other, nx, ny))
+            stretches = _stretches(regions[(i, j)], regions[other])
             if not stretches:
                 continue  # neighbours that touch nowhere (a corner of the grid)
-            placed = 0
-            for s in sorted(stretches, key=lambda s: -s.length):
-                c = np.asarray(s.centroid.coords[0])
-                if s.length < joint.neck_mm + 2 * ctx.min_mm or abs(c[axis] - pos) > 1e-6:
-                    continue
-                c[axis] = pos  # on the seam exactly: a tab a rounding off it would not touch its piece
-                direction = (1.0, 0.0) if axis == 0 else (0.0, 1.0)
-                tab = joint.tab(c, direction)
-                if not shapely.contains(regions[other], tab.buffer(ctx.min_mm, join_style="mitre").difference(region)):
-                    continue
-                grown = tab
-                if joint.fit_mm:
-                    grown = tab.buffer(joint.fit_mm, join_style="mitre")
-                regions[other] = shapely.difference(regions[other], tab)
-                regions[(i, j)] = shapely.union(regions[(i, j)], grown)
-                region = regions[(i, j)]
-                joints.append(
-                    PlacedJoint((_number(i, j, nx, ny), _number(*other, nx, ny)), (float(c[0]), float(c[1])), tab)
-                )
-                placed += 1
+            placed = _tabs_on_seam(ctx, regions, (i, j), other, axis, pos, stretches)
             if not placed:
-                a, b = _number(i, j, nx, ny), _number(*other, nx, ny)
+                joint = ctx.joint
                 raise FabricationError(
-                    f"pieces {a} and {b} meet across the seam at {'x' if axis == 0 else 'y'} = {pos:.1f} mm only "
-                    f"where the material is narrower than a {joint.kind} joint needs "
+                    f"pieces {pair[0]} and {pair[1]} meet across the seam at {'x' if axis == 0 else 'y'} = "
+                    f"{pos:.1f} mm only where the material is narrower than a {joint.kind} joint needs "
                     f"({joint.neck_mm + 2 * ctx.min_mm:g} mm at the seam, {joint.head_mm + 2 * ctx.min_mm:g} mm "
                     "across its head); use a wider stroke or frame, a smaller joint, or a larger bed"
                 )
+            joints += [PlacedJoint(pair, at, tab) for at, tab in placed]
     return regions, joints
+
+
+def _stretches(region, other) -> list:
+    """Where two pieces meet: the shared boundary's line pieces, longest first."""
+    shared = shapely.intersection(shapely.boundary(region), shapely.boundary(other))
+    return sorted((s for s in _segments(shared) if s.length > 1e-9), key=lambda s: -s.length)
+
+
+def _tabs_on_seam(ctx: _Context, regions: dict, cell, other, axis: int, pos: float, stretches) -> list:
+    """A tab of ``cell`` into ``other`` at the middle of each stretch on the seam where it fits
+    (the two regions updated in place); the placed tabs as ``[((x, y), tab), ...]``."""
+    joint = ctx.joint
+    direction = (1.0, 0.0) if axis == 0 else (0.0, 1.0)
+    placed = []
+    for s in stretches:
+        c = np.asarray(s.centroid.coords[0])
+        if s.length < joint.neck_mm + 2 * ctx.min_mm or abs(c[axis] - pos) > 1e-6:
+            continue
+        c[axis] = pos  # on the seam exactly: a tab a rounding off it would not touch its piece
+        tab = joint.tab(c, direction)
+        ring = tab.buffer(ctx.min_mm, join_style="mitre").difference(regions[cell])
+        if not shapely.contains(regions[other], ring):
+            continue
+        grown = tab.buffer(joint.fit_mm, join_style="mitre") if joint.fit_mm else tab
+        regions[other] = shapely.difference(regions[other], tab)
+        regions[cell] = shapely.union(regions[cell], grown)
+        placed.append(((float(c[0]), float(c[1])), tab))
+    return placed
 
 
 def _segments(geom) -> list:
