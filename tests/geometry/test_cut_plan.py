@@ -34,7 +34,7 @@ def test_the_options_take_the_profiles_defaults_once_and_are_frozen():
     with pytest.raises(FrozenInstanceError):
         o.kerf_mm = 0.3
     with pytest.raises(TypeError):
-        CutOptions(ply, "pierced", "R2000", 0.15, 0.15)  # keyword-only fields
+        CutOptions(ply, "pierced", 0.15, 0.15)  # keyword-only fields
     kit = KitOptions.of(profile=ply, inlay_base="pocket", stroke=0.5)
     assert (kit.lattice.mode, kit.inlay_fit_mm, kit.inlay_base, kit.stroke_mm) == (
         "engrave",
