@@ -56,10 +56,8 @@ def write_card(path, profile, *, dxf_version=None) -> Report:
     fmt = next((f for f in rows if f.suffix == suffix), None)
     if fmt is None:
         raise ParameterError(f"the card must be a {' or '.join(f.suffix for f in rows)} file, got {str(path)!r}")
-    profile = load_profile(profile, kind="laser")
-    profile.cutter.check_card(profile)  # before the version: a profile that cannot cut the card is named first
+    job, card = card_job(profile)  # a profile that cannot cut the card is named before the version
     options = FileOptions(dxf_version=dxf_version)
-    job, card = card_job(profile)
     atomic_write(path, fmt.bytes_of(job, options))
     report = Report(path=str(path), format=fmt.name)
     report.stats.update(
