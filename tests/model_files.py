@@ -21,15 +21,16 @@ from fabtiles.core.report import Report
 from fabtiles.export.formats import CUT_FORMATS, FileOptions, format_of
 
 
-def write_cut(path, *, region, outline, centrelines=None, **options) -> Report:
-    """The cutter file (``.dxf``, ``.svg``, ``.lbrn2``) of ``region``: :func:`plan_cut` with ``options``."""
+def write_cut(path, *, region, outline, centrelines=None, dxf_version=None, **options) -> Report:
+    """The cutter file (``.dxf``, ``.svg``, ``.lbrn2``) of ``region``: :func:`plan_cut` with ``options``,
+    written with ``dxf_version`` (the file's option; default the profile's)."""
     from fabtiles.geometry.cut_plan import CutOptions, plan_cut
 
     fmt = format_of(path, allowed=CUT_FORMATS)
     checked = CutOptions.of(path=str(path), fmt=fmt.name, **options)
+    file_options = FileOptions(name=Path(path).stem, dxf_version=dxf_version)
     fmt.check_cutter(checked.profile)  # the row refuses a cutter its files are not for, as the pipeline asks
     plan = plan_cut(region, outline, checked, centrelines=centrelines)
-    file_options = FileOptions(name=Path(path).stem)
     atomic_write(path, fmt.write(plan, file_options))
     plan.report.stats.update(fmt.figures(plan, file_options))
     return plan.report
@@ -52,7 +53,7 @@ def write_print(path, *, region, outline, name=None, layout="volumes", **options
     return model.report
 
 
-def write_kit(path, *, region, outline, colours=(), **options) -> Report:
+def write_kit(path, *, region, outline, colours=(), dxf_version=None, **options) -> Report:
     """The inlay kit of ``region`` (:func:`plan_kit` with ``options``): ``<stem>-lattice`` and ``<stem>-pieces``
     beside ``path``, in its suffix's format, both made before either is written.
 
@@ -64,9 +65,9 @@ def write_kit(path, *, region, outline, colours=(), **options) -> Report:
     fmt = format_of(path, allowed=CUT_FORMATS)
     lattice = path.with_name(f"{path.stem}-lattice{path.suffix}")
     checked = KitOptions.of(path=str(lattice), fmt=fmt.name, **options)
+    file_options = FileOptions(name=path.stem, dxf_version=dxf_version)
     fmt.check_cutter(checked.lattice.profile)
     plans = plan_kit(region, outline, checked, colours=colours)
-    file_options = FileOptions(name=path.stem)
     files = [
         (path.with_name(f"{path.stem}{suffix}{path.suffix}"), fmt.write(plan, file_options))
         for suffix, plan in plans.files()

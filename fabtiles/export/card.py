@@ -21,44 +21,44 @@ import numpy as np
 from ..core.errors import ParameterError
 from ..core.files import atomic_write
 from ..core.report import Report
-from ..core.validate import check_choice
 from ..geometry.calibration import calibration_card
 from ..geometry.contours import laser_contours
 from ..geometry.cut_plan import make_plan
-from ..machines.profiles import DXF_VERSIONS, load_profile
+from ..machines.profiles import load_profile
 
 
-def card_job(profile, *, dxf_version=None):
+def card_job(profile):
     """The card of ``profile`` as a :class:`~fabtiles.geometry.cut_plan.CutPlan`, and the card."""
     profile = load_profile(profile, kind="laser")
     profile.cutter.check_card(profile)  # its rows measure a kerf, bridges and holes as a laser burns them
-    version = check_choice("dxf_version", profile.dxf_version if dxf_version is None else dxf_version, DXF_VERSIONS)
     card = calibration_card(profile)
     kx, ky = profile.kerf_xy_mm
     inner, outer = laser_contours(
         card.region, card.outline, kerf_mm=kx, kerf_y_mm=ky, tolerance_mm=profile.tolerance_mm
     )
     score = [np.asarray(p, dtype=float) for p in card.labels]
-    return make_plan(profile, "pierced", version, kx, {"inner": inner, "outer": outer, "score": score}), card
+    return make_plan(profile, "pierced", kx, {"inner": inner, "outer": outer, "score": score}), card
 
 
 def write_card(path, profile, *, dxf_version=None) -> Report:
     """Write the test card of a laser profile to ``path`` (``.dxf`` or ``.svg``), atomically.
 
-    Returns a :class:`~fabtiles.core.report.Report` whose stats give the card's size,
+    ``dxf_version``: a DXF card's version (default: the profile's). Returns a
+    :class:`~fabtiles.core.report.Report` whose stats give the card's size,
     its features and contour counts.
     """
     from pathlib import Path
 
-    from .formats import FORMATS, names_where
+    from .formats import FORMATS, FileOptions, names_where
 
     rows = [FORMATS[n] for n in names_where(card=True)]  # the format table's formats of the card
     suffix = Path(path).suffix.lower()
     fmt = next((f for f in rows if f.suffix == suffix), None)
     if fmt is None:
         raise ParameterError(f"the card must be a {' or '.join(f.suffix for f in rows)} file, got {str(path)!r}")
-    job, card = card_job(profile, dxf_version=dxf_version)
-    atomic_write(path, fmt.bytes_of(job))
+    job, card = card_job(profile)  # a profile that cannot cut the card is named before the version
+    options = FileOptions(dxf_version=dxf_version)
+    atomic_write(path, fmt.bytes_of(job, options))
     report = Report(path=str(path), format=fmt.name)
     report.stats.update(
         profile=job.profile.name,

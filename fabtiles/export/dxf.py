@@ -2,7 +2,8 @@
 
 The file imports into LightBurn, RDWorks, LaserGRBL or a CAM package as is:
 ``$INSUNITS`` = 4 (mm), closed LWPOLYLINEs (DXF R2000 and later) or closed R12
-POLYLINEs (``dxf_version="R12"``, for old laser software), no SPLINEs, no loose
+POLYLINEs (``dxf_version="R12"``, for old laser software; the version is the file's
+option, :class:`~fabtiles.export.formats.FileOptions`, the cutter profile's by default), no SPLINEs, no loose
 LINEs, no repeated points. Curves are arcs: a polyline's arc is a bulge on the vertex
 it leaves from (group code 42, ``tan(sweep / 4)``, at most a half turn each), as AutoCAD
 writes them; CAM turns each into one G2/G3 move (:mod:`fabtiles.geometry.arcs` finds them). Layers and ACI colours
@@ -25,21 +26,28 @@ import threading
 from contextlib import contextmanager
 
 from ..geometry.cut_plan import CutPlan
+from .formats import check_dxf_version
 
 
-def figures(plan: CutPlan) -> dict:
+def version_of(plan: CutPlan, dxf_version: str | None = None) -> str:
+    """The DXF version a file of ``plan`` is written in: ``dxf_version`` checked, else the cutter profile's."""
+    return check_dxf_version(dxf_version) or plan.profile.dxf_version
+
+
+def figures(plan: CutPlan, *, dxf_version: str | None = None) -> dict:
     """What a DXF adds to its plan's report: its version."""
-    return {"dxf_version": plan.dxf_version}
+    return {"dxf_version": version_of(plan, dxf_version)}
 
 
-def dxf_bytes(plan: CutPlan) -> bytes:
-    """The DXF file of ``plan``, as bytes to write."""
-    text, encoding = dxf_text(plan)
+def dxf_bytes(plan: CutPlan, *, dxf_version: str | None = None) -> bytes:
+    """The DXF file of ``plan`` in ``dxf_version`` (default: the cutter profile's), as bytes to write."""
+    text, encoding = dxf_text(plan, dxf_version=dxf_version)
     return text.encode(encoding, errors="dxfreplace")
 
 
-def build_document(job: CutPlan, *, entities: bool = True):
-    """The ezdxf document of a :class:`~fabtiles.geometry.cut_plan.CutPlan`.
+def build_document(job: CutPlan, *, dxf_version: str | None = None, entities: bool = True):
+    """The ezdxf document of a :class:`~fabtiles.geometry.cut_plan.CutPlan` in ``dxf_version``
+    (default: the cutter profile's).
 
     With ``entities=False`` only the header, units, layers and empty model space:
     :func:`dxf_text` writes the (many) polylines itself, see :func:`entities_text`.
@@ -47,12 +55,13 @@ def build_document(job: CutPlan, *, entities: bool = True):
     import ezdxf
     from ezdxf import units
 
+    version = version_of(job, dxf_version)
     with _fixed_metadata():  # ezdxf.new stamps its "created by" marker with the time
-        if job.dxf_version == "R12":  # R12 has no unit header; its coordinates are mm all the same
+        if version == "R12":  # R12 has no unit header; its coordinates are mm all the same
             doc = _new_r12()
         else:
-            doc = ezdxf.new(job.dxf_version, setup=False, units=units.MM)
-    if job.dxf_version != "R12":
+            doc = ezdxf.new(version, setup=False, units=units.MM)
+    if version != "R12":
         doc.header["$MEASUREMENT"] = 1
     # The drawing's extents (some laser programs zoom to them). ezdxf copies the model
     # space layout's extents over the header's when it writes, unless one of them is the
@@ -69,7 +78,7 @@ def build_document(job: CutPlan, *, entities: bool = True):
     for curves, layer, closed in _groups(job):
         attribs = {"layer": layer.name, "color": layer.color}
         for xy, bulge in curves:
-            if job.dxf_version == "R12":
+            if version == "R12":
                 points = [(x, y, 0.0, 0.0, b) for (x, y), b in zip(xy.tolist(), bulge.tolist(), strict=True)]
                 msp.add_polyline2d(points, format="xyseb", close=closed, dxfattribs=attribs)
             else:
@@ -103,8 +112,9 @@ def _groups(job: CutPlan):
     return [(layer.curves_or_paths(), layer.layer, layer.closed) for layer in job.layers]
 
 
-def entities_text(job: CutPlan, first_handle: int, owner: str) -> tuple[str, int]:
-    """The ENTITIES section body of ``job`` as DXF text, and the next free handle.
+def entities_text(job: CutPlan, first_handle: int, owner: str, *, dxf_version: str | None = None) -> tuple[str, int]:
+    """The ENTITIES section body of ``job`` as DXF text in ``dxf_version`` (default: the cutter
+    profile's), and the next free handle.
 
     Byte for byte what ezdxf writes for the same polylines (the tests compare the
     two), without ezdxf's per-entity and per-vertex Python objects, which cost most
@@ -113,7 +123,7 @@ def entities_text(job: CutPlan, first_handle: int, owner: str) -> tuple[str, int
     """
     out: list[str] = []
     h = first_handle
-    polyline = _r12_polyline if job.dxf_version == "R12" else _lwpolyline
+    polyline = _r12_polyline if version_of(job, dxf_version) == "R12" else _lwpolyline
     for curves, layer, closed in _groups(job):
         flag = 1 if closed else 0
         common = f"  8\n{layer.name}\n 62\n{layer.color}\n"
@@ -164,22 +174,23 @@ def _lwpolyline(out: list, h: int, name: str, common: str, flag: int, ring, bulg
 _ENTITIES = "  0\nSECTION\n  2\nENTITIES\n"
 
 
-def dxf_text(job: CutPlan) -> tuple[str, str]:
-    """The DXF file of ``job`` as text, and its encoding.
+def dxf_text(job: CutPlan, *, dxf_version: str | None = None) -> tuple[str, str]:
+    """The DXF file of ``job`` in ``dxf_version`` (default: the cutter profile's) as text, and its encoding.
 
     ezdxf writes the frame (header, tables, blocks, objects), :func:`entities_text` the polylines.
     """
-    doc = build_document(job, entities=False)
+    version = version_of(job, dxf_version)
+    doc = build_document(job, dxf_version=version, entities=False)
     owner = doc.modelspace().layout_key
     handles = doc.entitydb.handles
     first = int(handles.next(), 16)
-    body, nxt = entities_text(job, first, owner)
+    body, nxt = entities_text(job, first, owner, dxf_version=version)
     handles.reset(f"{nxt:X}")  # $HANDSEED above every handle used
     text = _fixed_frame(doc)
     at = text.index(_ENTITIES) + len(_ENTITIES)
     if not text.startswith("  0\nENDSEC\n", at):  # pragma: no cover - ezdxf layout changed
         raise RuntimeError("unexpected DXF layout from ezdxf: the ENTITIES section is not empty")
-    return _content_guids(cutter_comment(job) + text[:at] + body + text[at:], job.dxf_version), doc.output_encoding
+    return _content_guids(cutter_comment(job) + text[:at] + body + text[at:], version), doc.output_encoding
 
 
 _FIXED_META = threading.Lock()
@@ -280,7 +291,7 @@ def cutter_comment(job: CutPlan) -> str:
 
     >>> from fabtiles.machines.profiles import load_profile
     >>> from fabtiles.geometry.cut_plan import make_plan
-    >>> print(cutter_comment(make_plan(load_profile("router-6mm-mdf"), "pierced", "R2000", 0.0, {})), end="")
+    >>> print(cutter_comment(make_plan(load_profile("router-6mm-mdf"), "pierced", 0.0, {})), end="")
     999
     fabtiles router profile router-6mm-mdf: the part as the 6 mm bit makes it (hole corners rounded to 3 mm), NO tool compensation: CAM offsets the tool
     999

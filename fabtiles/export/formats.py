@@ -36,6 +36,8 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 from ..core.errors import ParameterError
 from ..core.schema import FAMILIES, register_choices
+from ..core.validate import check_choice
+from ..machines.profiles import DXF_VERSIONS
 
 if TYPE_CHECKING:
     from ..core.report import Report
@@ -115,14 +117,38 @@ class PenModel(Protocol):
 # --------------------------------------------------------------------------- the rows
 
 
+def check_dxf_version(dxf_version: str | None) -> str | None:
+    """``dxf_version`` checked against :data:`~fabtiles.machines.profiles.DXF_VERSIONS` (None: the profile's).
+
+    >>> check_dxf_version("R12")
+    'R12'
+    >>> check_dxf_version("R14")
+    Traceback (most recent call last):
+    ...
+    fabtiles.core.errors.ParameterError: 'R14' is not a valid dxf_version, must be one of: R12, R2000, R2004, R2007, R2010, R2013, R2018
+    """  # noqa: E501 - a doctest's lines are as Python prints them
+    if dxf_version is None:
+        return None
+    return check_choice("dxf_version", dxf_version, DXF_VERSIONS)
+
+
 @dataclass(frozen=True)
 class FileOptions:
-    """What one file needs beyond its model: the name it carries inside, the 3MF's layout."""
+    """What one file needs beyond its model: the name it carries inside, the 3MF's layout, the DXF's version.
+
+    The format's details live here rather than in the model: one cut plan is written as
+    any DXF version, an SVG or a LightBurn project alike.
+    """
 
     name: str = "tile"
     """The object's, product's or drawing's name in the file (a file's stem by default)."""
     layout: str = "volumes"
     """The 3MF layout (:data:`fabtiles.export.threemf.LAYOUTS`)."""
+    dxf_version: str | None = None
+    """The DXF's version (:data:`~fabtiles.machines.profiles.DXF_VERSIONS`); None: the cutter profile's."""
+
+    def __post_init__(self):
+        check_dxf_version(self.dxf_version)
 
 
 def no_figures(model, options) -> dict:
@@ -253,13 +279,13 @@ class Format:
 def _dxf(plan, options):
     from .dxf import dxf_bytes
 
-    return dxf_bytes(plan)
+    return dxf_bytes(plan, dxf_version=options.dxf_version)
 
 
 def _dxf_figures(plan, options):
     from .dxf import figures
 
-    return figures(plan)
+    return figures(plan, dxf_version=options.dxf_version)
 
 
 def _svg(plan, options):

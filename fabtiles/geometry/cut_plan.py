@@ -33,7 +33,7 @@ from ..core.errors import FabricationError, ParameterError
 from ..core.report import Report, distinct
 from ..core.validate import check_choice, check_float
 from ..machines.cutters import cutter_kind
-from ..machines.profiles import DXF_VERSIONS, LASER_MODES, LaserProfile, Layer, load_profile
+from ..machines.profiles import LASER_MODES, LaserProfile, Layer, load_profile
 from .arcs import Curve, curve_bounds, curves
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .cut_order import path_orders
@@ -112,11 +112,15 @@ class CutPlan:
     coordinates; ``bounds`` the extents of every path, from (0, 0) (a kit's pieces keep
     the lattice's, so the two files register); ``offset`` the vector the paths were
     moved by from the tile's coordinates to the file's (see :func:`make_plan`).
+
+    The layers, with their names, colours, speeds and powers, are the plan itself for every
+    cutter format (a DXF's layer table, an SVG's groups, a LightBurn project's cut settings),
+    so the plan holds them. What one format alone asks (a DXF's version) is the file's option,
+    :class:`~fabtiles.export.formats.FileOptions`, so one plan is written in any of them.
     """
 
     profile: LaserProfile
     mode: str
-    dxf_version: str
     kerf_mm: float
     layers: tuple = ()
     declared: tuple = ()
@@ -153,7 +157,6 @@ class CutOptions:
 
     profile: LaserProfile
     mode: str
-    dxf_version: str
     kerf_mm: float
     kerf_y_mm: float
     stroke_mm: float | None = None
@@ -169,7 +172,6 @@ class CutOptions:
         *,
         profile,
         mode=None,
-        dxf_version=None,
         kerf_mm=None,
         fill_small_holes: bool = False,
         stroke=None,
@@ -186,8 +188,6 @@ class CutOptions:
             The cutter profile (kerf, limits, bed, layers, defaults of the options below).
         mode : {"pierced", "score", "engrave"}, optional
             Default: the profile's. The inlay mode is two plans: :func:`plan_kit`.
-        dxf_version : str, optional
-            Default: the profile's.
         kerf_mm : float, optional
             Width of the cut; default: the profile's (along X and along Y).
         fill_small_holes : bool
@@ -211,9 +211,6 @@ class CutOptions:
         kind.check_profile(profile)
         check_layers(profile)
         mode = _checked_mode(profile, mode)
-        dxf_version = check_choice(
-            "dxf_version", profile.dxf_version if dxf_version is None else dxf_version, DXF_VERSIONS
-        )
         if kerf_mm is None:  # the profile's kerf, along X and along Y
             kerf, kerf_y = profile.kerf_xy_mm
         else:
@@ -229,7 +226,6 @@ class CutOptions:
         return cls(
             profile=profile,
             mode=mode,
-            dxf_version=dxf_version,
             kerf_mm=kerf,
             kerf_y_mm=kerf_y,
             stroke_mm=stroke,
@@ -296,7 +292,6 @@ class KitOptions:
         inlay_fit_mm=None,
         inlay_base: str = "pierced",
         kerf_mm=None,
-        dxf_version=None,
         stroke=None,
         tab_mm=None,
         tabs_per_part=None,
@@ -316,7 +311,6 @@ class KitOptions:
         lattice = CutOptions.of(
             profile=profile,
             mode="pierced" if base == "pierced" else "engrave",
-            dxf_version=dxf_version,
             kerf_mm=kerf_mm,
             tab_mm=tabs[0],
             tabs_per_part=tabs[1],
@@ -329,7 +323,6 @@ class KitOptions:
 def make_plan(
     profile,
     mode: str,
-    dxf_version: str,
     kerf_mm: float,
     paths: dict,
     *,
@@ -355,7 +348,7 @@ def make_plan(
 
     >>> from fabtiles.machines.profiles import load_profile
     >>> ring = np.array([[-0.075, -0.075], [40.075, -0.075], [40.075, 40.075], [-0.075, 40.075]])
-    >>> plan = make_plan(load_profile("laser-3mm-plywood"), "pierced", "R2000", 0.15, {"outer": [ring]})
+    >>> plan = make_plan(load_profile("laser-3mm-plywood"), "pierced", 0.15, {"outer": [ring]})
     >>> plan.offset, np.round(plan.bounds, 9).tolist(), plan.paths("outer")[0].min(axis=0).tolist()
     ((0.075, 0.075), [0.0, 0.0, 40.15, 40.15], [0.0, 0.0])
     """
@@ -382,7 +375,6 @@ def make_plan(
     return CutPlan(
         profile,
         mode,
-        dxf_version,
         kerf_mm,
         tuple(layers),
         tuple(declared),
@@ -585,7 +577,6 @@ def plan_cut(region, outline, options: CutOptions, *, centrelines=None) -> CutPl
     plan = make_plan(
         profile,
         o.mode,
-        o.dxf_version,
         o.kerf_mm,
         paths,
         report=report,
@@ -697,7 +688,7 @@ def _note_bed_edge(plan: CutPlan, profile, report: Report) -> None:
     >>> from fabtiles.machines.profiles import load_profile
     >>> ring = np.array([[-0.075, -0.075], [600.075, -0.075], [600.075, 400.075], [-0.075, 400.075]])
     >>> r = Report(path="", format="")
-    >>> _note_bed_edge(make_plan(load_profile("laser-3mm-plywood"), "pierced", "R2000", 0.15, {"outer": [ring]}),
+    >>> _note_bed_edge(make_plan(load_profile("laser-3mm-plywood"), "pierced", 0.15, {"outer": [ring]}),
     ...                load_profile("laser-3mm-plywood"), r)
     >>> print(r.stats["notes"][0])
     the cut paths span 600.15 x 400.15 mm, beyond the 600 x 400 mm bed by the cut's width outside the tile: the outline is cut at the sheet's edges (most machines travel a little beyond the nominal bed; if yours does not, make the tile smaller)
@@ -798,7 +789,6 @@ def plan_kit(region, outline, options: KitOptions, *, colours=()) -> KitPlans:
     pieces = make_plan(
         profile,
         "pierced",
-        lattice.dxf_version,
         lo.kerf_mm,
         paths,
         like=lattice,
@@ -914,9 +904,7 @@ def _pieces_by_colour(kit, colours, profile, lattice: CutPlan, kx: float, ky: fl
         out.append(
             (
                 name,
-                make_plan(
-                    profile, "pierced", lattice.dxf_version, kx, paths, like=lattice, part=part, outer_closed=closed
-                ),
+                make_plan(profile, "pierced", kx, paths, like=lattice, part=part, outer_closed=closed),
             )
         )
     return tuple(out)

@@ -151,7 +151,6 @@ def _nested_plan(
     new = make_plan(
         profile,
         "pierced",
-        lattice.dxf_version,
         kx,
         paths,
         bounds=(0.0, 0.0, *sheet),
@@ -193,7 +192,6 @@ def _lettered_lattice(lattice, letters: list, kit) -> CutPlan:
     return make_plan(
         lattice.profile,
         lattice.mode,
-        lattice.dxf_version,
         lattice.kerf_mm,
         lattice_paths,
         report=lattice.report,

@@ -218,6 +218,7 @@ class Models:
         return self._cut
 
     def _make_cut(self):
+        from ..export.formats import check_dxf_version
         from ..geometry.cut_plan import CutOptions, KitOptions, plan_cut, plan_kit
 
         o = self.options
@@ -239,21 +240,17 @@ class Models:
                 ),
             )
         if o.kit and self.sheet is None:
-            kit = plan_kit(
-                region,
-                outline,
-                KitOptions.of(
-                    profile=o.cutter,
-                    inlay_fit_mm=o.inlay_fit_mm,
-                    inlay_base=o.inlay_base or "pierced",
-                    kerf_mm=o.kerf_mm,
-                    dxf_version=o.dxf_version,
-                    stroke=self.tile.stroke,
-                    tab_mm=o.tab_mm,
-                    tabs_per_part=o.tabs_per_part,
-                ),
-                colours=self.kit_colours() if self.coloured else (),
+            kit_options = KitOptions.of(
+                profile=o.cutter,
+                inlay_fit_mm=o.inlay_fit_mm,
+                inlay_base=o.inlay_base or "pierced",
+                kerf_mm=o.kerf_mm,
+                stroke=self.tile.stroke,
+                tab_mm=o.tab_mm,
+                tabs_per_part=o.tabs_per_part,
             )
+            check_dxf_version(o.dxf_version)  # the files' option, refused with the plan's before the work
+            kit = plan_kit(region, outline, kit_options, colours=self.kit_colours() if self.coloured else ())
             if self.coloured:
                 from ..geometry.kit_nesting import class_letters
 
@@ -287,21 +284,17 @@ class Models:
                 'and --copies) or choose laser_mode = "pierced"',
                 param="laser_mode",
             )
-        plan = plan_cut(
-            region,
-            outline,
-            CutOptions.of(
-                profile=o.cutter,
-                mode=o.laser_mode,
-                dxf_version=o.dxf_version,
-                kerf_mm=o.kerf_mm,
-                fill_small_holes=o.fill_small_holes,
-                stroke=self.tile.stroke,
-                tab_mm=o.tab_mm,
-                tabs_per_part=o.tabs_per_part,
-            ),
-            centrelines=centrelines,
+        cut_options = CutOptions.of(
+            profile=o.cutter,
+            mode=o.laser_mode,
+            kerf_mm=o.kerf_mm,
+            fill_small_holes=o.fill_small_holes,
+            stroke=self.tile.stroke,
+            tab_mm=o.tab_mm,
+            tabs_per_part=o.tabs_per_part,
         )
+        check_dxf_version(o.dxf_version)  # the files' option, refused with the plan's before the work
+        plan = plan_cut(region, outline, cut_options, centrelines=centrelines)
         if self.sheet is not None:  # how many tiles, which the files' summary does not show otherwise
             n = len(self.sheet.offsets)
             bed = " x ".join(f"{v:g}" for v in o.cutter.bed_mm)

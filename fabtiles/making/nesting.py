@@ -104,7 +104,7 @@ def parse_counts(designs, count: int | None):
     return out
 
 
-def _sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf):
+def _sheet_plan(profile, plans, nesting, k, shapes, mode, kerf):
     """The cut plan of sheet ``k``: each placed copy's paths, every layer, moved rigidly."""
     from ..geometry.cut_plan import ROLES, make_plan
 
@@ -132,7 +132,6 @@ def _sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf):
     sheet = make_plan(
         profile,
         mode,
-        dxf_version,
         kerf,
         paths,
         report=report,
@@ -235,10 +234,8 @@ def plan_nest(
     outlines = [part_outline(p) for p in plans]
     parts, shapes = _parts(designs, outlines)
     nesting = nest(parts, sheet_mm=(w, h), gap_mm=gap, rotations=rotations, time_s=time_s, progress=progress)
-    mode, dxf_version = plans[0].mode, plans[0].dxf_version
-    sheets = tuple(
-        _sheet_plan(profile, plans, nesting, k, shapes, mode, dxf_version, kerf) for k in range(nesting.sheets)
-    )
+    mode = plans[0].mode
+    sheets = tuple(_sheet_plan(profile, plans, nesting, k, shapes, mode, kerf) for k in range(nesting.sheets))
     report = Report(path="", format="")
     report.stats.update(
         profile=profile.name,
@@ -482,7 +479,7 @@ def nest_bytes(designs, formats=("dxf",), **options) -> NestedFiles:
     from ..export.formats import FORMATS, FileOptions
 
     job = plan_nest(designs, formats, **options)
-    opts = FileOptions(name=job.stem, layout=job.options.threemf_layout)
+    opts = FileOptions(name=job.stem, layout=job.options.threemf_layout, dxf_version=job.options.dxf_version)
     files = [
         (f"{job.stem}{suffix}.{fmt}", FORMATS[fmt].write(plan, opts))
         for fmt in job.formats

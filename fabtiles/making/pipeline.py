@@ -168,13 +168,14 @@ def _file_report(model_report: Report, path, fmt: str, figures: dict) -> Report:
     )
 
 
-def _planned_files(model, f, name: str, *, layout: str):
+def _planned_files(model, f, name: str, *, options: BuildOptions):
     """``([(file name, model), ...], file options)``: the files format ``f`` writes of ``model``
-    (several: a kit's lattice and pieces, a nest's sheets, a mosaic's STLs)."""
+    (several: a kit's lattice and pieces, a nest's sheets, a mosaic's STLs), and what the files
+    need beyond their model (the build's 3MF layout and DXF version)."""
     from ..export.formats import FileOptions
 
     files = [(f"{name}{suffix}{f.suffix}", m) for suffix, m in f.files(model)]
-    return files, FileOptions(name=Path(name).stem, layout=layout)
+    return files, FileOptions(name=Path(name).stem, layout=options.threemf_layout, dxf_version=options.dxf_version)
 
 
 def _model_of(models: BuildModels, family: str, failed: dict):
@@ -191,7 +192,7 @@ def _model_of(models: BuildModels, family: str, failed: dict):
 def _made(models: BuildModels, f, name: str, file_name: str | None, failed: dict):
     """``(report, [(file name, bytes), ...])`` of format ``f``: its model made (once) and its files written."""
     model = _model_of(models, f.family, failed)
-    files, options = _planned_files(model, f, name, layout=models.options.threemf_layout)
+    files, options = _planned_files(model, f, name, options=models.options)
     if file_name is not None:  # one format: its file (or a kit's two) named after file_name
         stem = Path(file_name).stem
         files = [(file_name, files[0][1])] if len(files) == 1 else [(f"{stem}{n[len(name) :]}", m) for n, m in files]

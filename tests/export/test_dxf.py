@@ -222,10 +222,10 @@ def test_bad_profile_colour_in_file(tmp_path):
 @pytest.mark.parametrize("mode", ["pierced", "score"])
 def test_fast_writer_matches_ezdxf(version, mode):
     region, outline, seg = motif_tile(size=60, stroke=1.5)
-    job = plan_cut(region, outline, CutOptions.of(profile=PLY, dxf_version=version, mode=mode), centrelines=seg)
-    fast, _ = dxf_text(job)
+    job = plan_cut(region, outline, CutOptions.of(profile=PLY, mode=mode), centrelines=seg)
+    fast, _ = dxf_text(job, dxf_version=version)
     stream = io.StringIO()
-    build_document(job).write(stream)
+    build_document(job, dxf_version=version).write(stream)
     ref = stream.getvalue()
 
     def body(text):
@@ -341,9 +341,9 @@ def _header_value(text: str, name: str) -> str:
     return lines[at + 2]
 
 
-def _plate_plan(version="R2000", size=60.0):
+def _plate_plan(size=60.0):
     region, outline = star_plate(size=size)
-    return plan_cut(region, outline, CutOptions.of(profile=PLY, dxf_version=version))
+    return plan_cut(region, outline, CutOptions.of(profile=PLY))
 
 
 @pytest.mark.parametrize("version", ["R12", "R2000", "R2018"])
@@ -352,7 +352,7 @@ def test_the_header_holds_fixed_dates_not_todays(version):
 
     from ezdxf.tools.juliandate import juliandate
 
-    text, _ = dxf_text(_plate_plan(version))
+    text, _ = dxf_text(_plate_plan(), dxf_version=version)
     fixed = juliandate(datetime.datetime(2000, 1, 1))
     dates = ["$TDCREATE", "$TDUPDATE"] + ([] if version == "R12" else ["$TDUCREATE", "$TDUUPDATE"])
     # read from the text: ezdxf's reader sets $TDCREATE of the document it loads to now
@@ -375,7 +375,7 @@ def test_the_guids_come_from_the_content():
     assert all(len(g) == 38 and g[0] + g[-1] == "{}" and g == g.upper() for g in one)
     other = guids(_plate_plan(size=61.0))
     assert not set(one) & set(other)
-    assert "$FINGERPRINTGUID" not in dxf_text(_plate_plan("R12"))[0]  # R12 headers have none
+    assert "$FINGERPRINTGUID" not in dxf_text(_plate_plan(), dxf_version="R12")[0]  # R12 headers have none
 
 
 def test_a_header_without_ezdxfs_zero_guid_is_an_error():
@@ -407,9 +407,9 @@ def test_threads_writing_side_by_side_write_the_same_bytes():
 
     import ezdxf
 
-    plan = _plate_plan("R2018")
+    plan = _plate_plan()
     with ThreadPoolExecutor(4) as pool:
-        texts = list(pool.map(lambda _: dxf_text(plan)[0], range(8)))
+        texts = list(pool.map(lambda _: dxf_text(plan, dxf_version="R2018")[0], range(8)))
     assert len(set(texts)) == 1
     assert ezdxf.options.write_fixed_meta_data_for_testing is False
 
@@ -425,7 +425,7 @@ def test_the_classes_do_not_follow_the_order_of_a_set(monkeypatch, version):
         monkeypatch.setattr(
             EntityDB, "dxf_types_in_use", lambda self, r=reverse: dict.fromkeys(sorted(in_use(self), reverse=r)).keys()
         )
-        texts.append(dxf_text(_plate_plan(version))[0])
+        texts.append(dxf_text(_plate_plan(), dxf_version=version)[0])
     assert texts[0] == texts[1]
     at = texts[0].index("\nCLASSES\n")
     classes = texts[0][at : texts[0].index("\nENDSEC\n", at)].split("\n")

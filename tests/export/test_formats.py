@@ -108,6 +108,31 @@ def test_a_pen_format_is_plots_not_a_builds():
     assert not row.offered and row.options == ""
 
 
+def test_one_cut_plan_is_written_in_the_dxf_version_of_its_file_options():
+    from shapely.geometry import box
+
+    from fabtiles.export.formats import FileOptions
+    from fabtiles.geometry.cut_plan import CutOptions, plan_cut
+
+    plate = box(0, 0, 30, 30)
+    plan = plan_cut(plate.difference(box(10, 10, 20, 20)), plate, CutOptions.of(profile="laser-3mm-plywood"))
+    dxf = FORMATS["dxf"]
+
+    def version(data: bytes) -> str:
+        lines = data.decode("ascii").splitlines()
+        return lines[lines.index("$ACADVER") + 2]
+
+    default, r12, r2018 = (dxf.write(plan, FileOptions(dxf_version=v)) for v in (None, "R12", "R2018"))
+    assert (version(default), version(r12), version(r2018)) == ("AC1015", "AC1009", "AC1032")  # R2000: the profile's
+    assert dxf.write(plan, FileOptions(dxf_version="R2000")) == default
+    assert [dxf.figures(plan, FileOptions(dxf_version=v)) for v in (None, "R12")] == [
+        {"dxf_version": "R2000"},
+        {"dxf_version": "R12"},
+    ]
+    with pytest.raises(ft.ParameterError, match=r"^'R14' is not a valid dxf_version, must be one of: R12, R2000, "):
+        FileOptions(dxf_version="R14")
+
+
 def test_what_is_read_from_the_table():
     assert design_formats() == ("dxf", "svg", "lbrn2", "stl", "3mf", "step")
     assert names_where(nests=True) == ("dxf", "svg", "lbrn2")

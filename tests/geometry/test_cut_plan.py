@@ -19,12 +19,8 @@ PLATE = box(0, 0, 40, 40)
 def test_the_options_take_the_profiles_defaults_once_and_are_frozen():
     ply = load_profile("laser-3mm-plywood")
     o = CutOptions.of(profile="laser-3mm-plywood")
-    assert (o.profile, o.mode, o.dxf_version, (o.kerf_mm, o.kerf_y_mm)) == (
-        ply,
-        ply.mode,
-        ply.dxf_version,
-        ply.kerf_xy_mm,
-    )
+    assert (o.profile, o.mode, (o.kerf_mm, o.kerf_y_mm)) == (ply, ply.mode, ply.kerf_xy_mm)
+    assert not hasattr(o, "dxf_version")  # a DXF's version is its file's option, not the plan's
     assert (o.stroke_mm, o.fill_small_holes, o.tab_mm, o.tabs_per_part, o.path, o.fmt) == (None, False, 0.0, 4, "", "")
     given = CutOptions.of(profile=ply, mode="engrave", kerf_mm=0.2, stroke=1.5, tab_mm=0.5, tabs_per_part=2)
     assert (given.mode, given.kerf_mm, given.kerf_y_mm, given.stroke_mm, given.tab_mm, given.tabs_per_part) == (
@@ -38,7 +34,7 @@ def test_the_options_take_the_profiles_defaults_once_and_are_frozen():
     with pytest.raises(FrozenInstanceError):
         o.kerf_mm = 0.3
     with pytest.raises(TypeError):
-        CutOptions(ply, "pierced", "R2000", 0.15, 0.15)  # keyword-only fields
+        CutOptions(ply, "pierced", 0.15, 0.15)  # keyword-only fields
     kit = KitOptions.of(profile=ply, inlay_base="pocket", stroke=0.5)
     assert (kit.lattice.mode, kit.inlay_fit_mm, kit.inlay_base, kit.stroke_mm) == (
         "engrave",
@@ -126,12 +122,12 @@ def test_a_kits_plans_share_the_lattices_offset_and_bounds():
 def test_bounds_given_frame_the_file_and_an_empty_plan_is_not_moved():
     ply = load_profile("laser-3mm-plywood")
     ring = np.array([[5.0, 5.0], [15.0, 5.0], [15.0, 15.0]])
-    framed = make_plan(ply, "pierced", "R2000", 0.15, {"outer": [ring]}, bounds=(0, 0, 100, 50))
+    framed = make_plan(ply, "pierced", 0.15, {"outer": [ring]}, bounds=(0, 0, 100, 50))
     assert framed.offset == (0.0, 0.0) and framed.bounds == (0.0, 0.0, 100.0, 50.0)
     assert framed.paths("outer")[0].tolist() == ring.tolist()
-    moved = make_plan(ply, "pierced", "R2000", 0.15, {"outer": [ring - 10]}, bounds=(0, 0, 100, 50))
+    moved = make_plan(ply, "pierced", 0.15, {"outer": [ring - 10]}, bounds=(0, 0, 100, 50))
     assert moved.offset == (5.0, 5.0) and moved.bounds == (0.0, 0.0, 105.0, 55.0)
-    empty = make_plan(ply, "pierced", "R2000", 0.15, {})
+    empty = make_plan(ply, "pierced", 0.15, {})
     assert empty.offset == (0.0, 0.0) and empty.bounds == (0.0, 0.0, 0.0, 0.0)
 
 
