@@ -97,13 +97,19 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
     pieces = np.asarray(kit.pieces, dtype=object)
     letters = list(letters_of_holes)
     groups = plans.by_colour or (("", plans.pieces),)
-    nested = []
+    nested, notes, stats = [], [], dict(lattice.report.stats.get("nested_pieces", {}))
     for name, plan in groups:
         mine = _pieces_of(plan, pieces)
         if not len(mine):
             continue
-        nested.append((name, _nested_plan(name, mine, pieces, letters, lattice, (kx, ky), tabs, time_s)))
-    new_lattice = _lettered_lattice(lattice, letters, kit)
+        new, note, entry = _nested_plan(name, mine, pieces, letters, lattice, (kx, ky), tabs, time_s)
+        nested.append((name, new))
+        notes.append(note)
+        stats[name or "pieces"] = entry
+    report = lattice.report
+    if nested:  # the notes first, then the figures: the order the summary has always had
+        report = report.extended(notes=notes).extended(nested_pieces=stats)
+    new_lattice = _lettered_lattice(lattice, letters, kit, report)
     if plans.by_colour:
         return replace(plans, lattice=new_lattice, by_colour=tuple(nested))
     return replace(plans, lattice=new_lattice, pieces=nested[0][1] if nested else plans.pieces)
@@ -111,12 +117,13 @@ def nest_kit(plans: KitPlans, *, letters_of_holes, time_s: float = TIME_S, tabs=
 
 def _nested_plan(
     name: str, mine, pieces, letters: list, lattice, kerf_xy: tuple, tabs: tuple[float, int], time_s
-) -> CutPlan:
+) -> tuple[CutPlan, str, dict]:
     """The cut plan of one colour's pieces (``mine``, indices into ``pieces``) nested on a strip of the
-    tile's height, each scored with its hole's letter; the lattice's report told of it."""
+    tile's height, each scored with its hole's letter; with the note and figures the lattice's report
+    tells of it."""
     from .cut_plan import split_at_tabs
 
-    profile, report = lattice.profile, lattice.report
+    profile = lattice.profile
     kx, ky = kerf_xy
     d = max(kx, ky) / 2
     x0, y0, x1, y1 = lattice.bounds
@@ -157,21 +164,21 @@ def _nested_plan(
         part=shapely.union_all(placed),
         outer_closed=closed,
     )
-    _note_nested(report, name, ids, small, box, sheet, tile, d)
-    return new
+    return (new, *_note_nested(name, ids, small, box, sheet, tile, d))
 
 
-def _note_nested(report, name: str, ids: list, small: int, box: tuple, sheet: tuple, tile: tuple, d: float) -> None:
-    """The report told of one colour's nested pieces: how many, their sheet, the room they take, the letters."""
+def _note_nested(name: str, ids: list, small: int, box: tuple, sheet: tuple, tile: tuple, d: float) -> tuple[str, dict]:
+    """What the report tells of one colour's nested pieces: how many, their sheet, the room they take,
+    the letters (a note), and the figures."""
     width, height = box[2] - box[0] + 2 * d, box[3] - box[1] + 2 * d
-    report.note(
+    note = (
         f"pieces{f' in {name}' if name else ''} nested: {len(ids):,} on a {sheet[0]:.0f} x "
         f"{sheet[1]:.0f} mm sheet, within {width:.1f} x {height:.1f} mm "
         f"({width * height / (tile[0] * tile[1]):.0%} of the tile's area), {GAP_MM:g} mm apart, "
         f"half turns only (the grain); "
         + (f"{len(ids) - small:,} letters scored" + (f", {small:,} pieces too small for one" if small else ""))
     )
-    report.stats.setdefault("nested_pieces", {})[name or "pieces"] = {
+    return note, {
         "pieces": len(ids),
         "sheet_mm": [round(sheet[0], 3), round(sheet[1], 3)],
         "bbox_mm": [round(width, 3), round(height, 3)],
@@ -179,8 +186,8 @@ def _note_nested(report, name: str, ids: list, small: int, box: tuple, sheet: tu
     }
 
 
-def _lettered_lattice(lattice, letters: list, kit) -> CutPlan:
-    """The lattice's plan again with each hole's letter scored inside it, laid as before."""
+def _lettered_lattice(lattice, letters: list, kit, report) -> CutPlan:
+    """The lattice's plan again with each hole's letter scored inside it, laid as before, with ``report``."""
     # the lattice: each hole's letter scored inside it (on the slug, cut after the scoring)
     hole_score, _ = _letter_paths(letters, np.asarray(kit.holes, dtype=object))
     # the lattice's paths back in the tile's coordinates (the holes' letters are), then moved as before
@@ -194,7 +201,7 @@ def _lettered_lattice(lattice, letters: list, kit) -> CutPlan:
         lattice.mode,
         lattice.kerf_mm,
         lattice_paths,
-        report=lattice.report,
+        report=report,
         part=lattice.part,
         groups=groups_of,
         engrave_area_mm2=lattice.engrave_area_mm2,

@@ -135,3 +135,19 @@ def test_each_piece_and_each_hole_carry_their_face_class_letter(built):
 def test_registration_kits_are_unlettered(built):
     _, doc = _cuts(built["registration"][0] / "kit-pieces.dxf")
     assert _scores(doc) == []
+
+
+def test_nesting_a_kit_leaves_the_registration_kit_and_its_report_as_they_were():
+    from fabtiles.geometry.kit_nesting import class_letters, nest_kit
+    from fabtiles.making.pipeline import prepare_tile
+
+    design = design_from_text(design_text("registration"), name="kit")
+    models = Models(prepare_tile(design), BuildOptions.of_design(design))
+    plans = models.cut
+    before = dict(plans.report.stats)
+    classes = face_classes(models.tile, by="shape")
+    letters = class_letters(plans.kit.holes, classes.faces, classes.labels, [c.letter for c in classes.classes])
+    nested = nest_kit(plans, letters_of_holes=letters, time_s=0.5)
+    assert plans.report.stats == before and "nested_pieces" not in plans.report.stats  # made once, never changed
+    assert nested.report.stats["nested_pieces"]["pieces"]["pieces"] == len(plans.kit.pieces)
+    assert nested.report.stats["notes"][-1].startswith(f"pieces nested: {len(plans.kit.pieces):,} on a ")
