@@ -167,22 +167,20 @@ def _edge_uses(shell):
     this takes seconds (``docs/speed.md``).
     """
     from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
-    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED
     from OCP.TopExp import TopExp, TopExp_Explorer
 
     edges = ShapeMap()
     TopExp.MapShapes_s(shell, TopAbs_EDGE, edges)
     index, sense = [], []
-    sign = {TopAbs_FORWARD: 1, TopAbs_REVERSED: -1}
-    faces = TopExp_Explorer(shell, TopAbs_FACE)
-    while faces.More():
-        walk = TopExp_Explorer(faces.Current(), TopAbs_EDGE)  # senses composed with the face's
-        while walk.More():
-            edge = walk.Current()
-            index.append(edges.FindIndex(edge))
-            sense.append(sign.get(edge.Orientation(), 0))
-            walk.Next()
-        faces.Next()
+    find, sign = edges.FindIndex, {TopAbs_FORWARD: 1, TopAbs_REVERSED: -1}.get
+    # one explorer visits each face's edges in turn, their senses composed with the face's
+    walk = TopExp_Explorer(shell, TopAbs_EDGE)
+    while walk.More():
+        edge = walk.Current()
+        index.append(find(edge))
+        sense.append(sign(edge.Orientation(), 0))
+        walk.Next()
     n = edges.Extent() + 1
     count = np.bincount(np.asarray(index, np.int64), minlength=n)[1:]
     turn = np.bincount(np.asarray(index, np.int64), weights=np.asarray(sense, float), minlength=n)[1:]
@@ -255,7 +253,9 @@ def _face_fault(solid, k: int) -> str | None:
     faces = TopExp_Explorer(solid, TopAbs_FACE)
     while faces.More():
         face = TopoDS.Face(faces.Current())
-        ok = _big_face_valid(face) if len(_wires(face)) > BIG_FACE_WIRES else BRepCheck_Analyzer(face).IsValid()
+        # a face's children are its wires: only the few with many are counted
+        big = face.NbChildren() > BIG_FACE_WIRES and len(_wires(face)) > BIG_FACE_WIRES
+        ok = _big_face_valid(face) if big else BRepCheck_Analyzer(face).IsValid()
         if not ok:
             return f"has an invalid face (solid {k}, BRepCheck_Analyzer)"
         faces.Next()
