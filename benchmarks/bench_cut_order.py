@@ -36,8 +36,8 @@ def contours(sample: Path) -> dict:
     from fabtiles.making.pipeline import prepare_tile
 
     design = load_design(sample)
-    # the plan as it was made, before the cut order: order_paths stood aside
-    with mock.patch.object(cut_plan, "order_paths", lambda paths, **_: paths):
+    # the plan as it was made, before the cut order: path_orders stood aside (no role reordered)
+    with mock.patch.object(cut_plan, "path_orders", lambda paths, **_: {}):
         plan = Models(prepare_tile(design), BuildOptions.of_design(design)).cut
     return {layer.role: list(layer.paths) for layer in plan.layers}
 
