@@ -161,18 +161,25 @@ def _check_loose(parts, outline, report: Report) -> None:
     for g in np.unique(group):
         members = np.flatnonzero(group == g)
         loose[members[np.argmax(area[members])]] = False
-    if loose.any():
-        n = int(loose.sum())
-        report.add(
-            "loose_part",
-            f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
-            f"(they fall out; largest {area[loose].max():.3g} mm^2)",
-            count=n,
-            locations=locations(shapely.point_on_surface(parts[loose])),
-            sizes=area[loose][:MAX_LOCATIONS].round(3),
-            worst=round(float(area[loose].max()), 3),
-            unit="mm^2",
-        )
+    add_loose_parts(report, parts, area, loose, falls="they fall out")
+
+
+def add_loose_parts(report: Report, parts, area, loose, *, falls: str) -> None:
+    """The ``loose_part`` finding for the ``parts`` flagged ``loose`` (``area`` each), if any; ``falls``
+    says what becomes of them (the laser's and the printer's checks word it their way)."""
+    if not loose.any():
+        return
+    n = int(loose.sum())
+    report.add(
+        "loose_part",
+        f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
+        f"({falls}; largest {area[loose].max():.3g} mm^2)",
+        count=n,
+        locations=locations(shapely.point_on_surface(parts[loose])),
+        sizes=area[loose][:MAX_LOCATIONS].round(3),
+        worst=round(float(area[loose].max()), 3),
+        unit="mm^2",
+    )
 
 
 def check_cut_pattern(before, after, outline, profile, *, stroke=None, report: Report) -> float:

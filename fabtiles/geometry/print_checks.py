@@ -52,7 +52,7 @@ from ..core.errors import FabricationError, ProfileError
 from ..core.report import Report, distinct
 from ..machines.profiles import PrinterProfile, load_profile
 from .contours import polygon_parts
-from .laser_checks import fits_bed
+from .laser_checks import add_loose_parts, fits_bed
 from .narrow import (
     MAX_LOCATIONS,
     add_small_holes,
@@ -616,14 +616,4 @@ def _check_loose(region, report: Report) -> None:
         area = shapely.area(parts)
         loose = np.ones(len(parts), bool)
         loose[np.argmax(area)] = False
-        n = int(loose.sum())
-        report.add(
-            "loose_part",
-            f"{n} piece{'s' if n > 1 else ''} of material not joined to the main piece "
-            f"(a pierced tile falls apart; largest {area[loose].max():.3g} mm^2)",
-            count=n,
-            locations=locations(shapely.point_on_surface(parts[loose])),
-            sizes=area[loose][:MAX_LOCATIONS].round(3),
-            worst=round(float(area[loose].max()), 3),
-            unit="mm^2",
-        )
+        add_loose_parts(report, parts, area, loose, falls="a pierced tile falls apart")
