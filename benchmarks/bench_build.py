@@ -86,7 +86,10 @@ def main(argv=None) -> int:
     ap.add_argument("--before", type=Path, help="another checkout, for the README's job before and after")
     ap.add_argument("--only", action="append", default=[])
     args = ap.parse_args(argv)
-    want = lambda name: not args.only or name in args.only  # noqa: E731
+
+    def want(name):
+        return not args.only or name in args.only
+
     sheet, sample = ROOT / "samples" / "sheet-600x400.toml", ROOT / "samples" / "table3-3.toml"
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)

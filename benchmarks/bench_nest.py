@@ -27,11 +27,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from fabtiles.designs.design_file import design_from_text  # noqa: E402
-from fabtiles.geometry.nest import DEFAULT_TIME_S, nest  # noqa: E402
-from fabtiles.geometry.sheet import layout_sheet  # noqa: E402
-from fabtiles.making import BuildOptions, Models, prepare_tile  # noqa: E402
-from fabtiles.making.nesting import part_outline  # noqa: E402
+from fabtiles.designs.design_file import design_from_text  # noqa: E402 - after sys.path holds this checkout
+from fabtiles.geometry.nest import DEFAULT_TIME_S, nest  # noqa: E402 - after sys.path holds this checkout
+from fabtiles.geometry.sheet import layout_sheet  # noqa: E402 - after sys.path holds this checkout
+from fabtiles.making import BuildOptions, Models, prepare_tile  # noqa: E402 - after sys.path holds this checkout
+from fabtiles.making.nesting import part_outline  # noqa: E402 - after sys.path holds this checkout
 
 SHEET = (600.0, 400.0)
 COPIES = 10

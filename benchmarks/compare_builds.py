@@ -36,6 +36,11 @@ FORMATS = ("dxf", "svg", "lbrn2", "stl", "3mf", "step")
 FINDING = re.compile(r"^\s+- (?:[^:]+: )?([a-z_]+: .*)$")
 
 
+def _last_line(text: str) -> str:
+    """A command's last line of output (its one-line message), or nothing."""
+    return text.strip().splitlines()[-1] if text.strip() else ""
+
+
 def build(checkout: Path, sample: Path, fmt: str, out: Path) -> tuple[int, str]:
     out.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ, PYTHONPATH=str(checkout))
@@ -170,7 +175,7 @@ def main(argv=None) -> int:
                 runs[tag] = (*build(checkout, checkout / "samples" / sample.name, fmt, out), out)
             (ca, oa, da), (cb, ob, db) = runs["old"], runs["new"]
             if ca != 0 or cb != 0:
-                last = lambda o: o.strip().splitlines()[-1] if o.strip() else ""  # noqa: E731
+                last = _last_line
                 same = ca == cb and last(oa) == last(ob)
                 verdict = "same refusal" if same else f"exit {ca}/{cb}: {last(oa)!r} / {last(ob)!r}"
             else:

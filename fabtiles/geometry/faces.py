@@ -537,7 +537,10 @@ def _describe_quadrilateral(length: np.ndarray, size: float, same_len: bool, sam
         return "rhombus"
     if same_angle:
         return "rectangle"
-    near = lambda x, y: abs(x - y) <= 1e-4 * size + TOLERANCE_MM  # noqa: E731
+
+    def near(x, y):
+        return abs(x - y) <= 1e-4 * size + TOLERANCE_MM
+
     if any(near(length[k], length[(k + 1) % 4]) and near(length[(k + 2) % 4], length[(k + 3) % 4]) for k in range(2)):
         return "kite"
     return "quadrilateral"

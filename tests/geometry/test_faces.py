@@ -199,7 +199,10 @@ def test_region_override_fills_holes():
     # each face left keeps its class: its shape's description and its place in the order
     i, j = shapely.STRtree(full.faces).query(shapely.point_on_surface(less.faces), predicate="within")
     assert len(i) == len(less.faces)
-    desc = lambda fc, k: fc.classes[fc.labels[k]].description  # noqa: E731
+
+    def desc(fc, k):
+        return fc.classes[fc.labels[k]].description
+
     assert [desc(less, a) for a in i] == [desc(full, b) for b in j]
     assert less.classes[0].description == full.classes[0].description
     assert shapely.area(less.faces).sum() < shapely.area(full.faces).sum()

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
+import numpy as np
 import pytest
 import shapely
 from shapely.geometry import box
 
-from fabtiles import ParameterError
+from fabtiles import FabricationError, ParameterError, ProfileError, load_profile
 from fabtiles.geometry.narrow import narrow_places
-from fabtiles.geometry.print_checks import check_print
+from fabtiles.geometry.print_checks import check_min_hole, check_print, fill_print_holes, small_openings
 
 
 def codes(report):
@@ -91,12 +94,6 @@ def test_bad_heights_are_errors():
 
 # --------------------------------------------------------------------------- small holes (issue 30)
 
-from dataclasses import replace  # noqa: E402
-
-import numpy as np  # noqa: E402
-
-from fabtiles import FabricationError, ProfileError, load_profile  # noqa: E402
-from fabtiles.geometry.print_checks import check_min_hole, fill_print_holes, small_openings  # noqa: E402
 
 FDM = load_profile("fdm-0.4mm")
 

@@ -248,7 +248,10 @@ def test_a_page_opened_with_an_invalid_value_says_what_is_wrong_in_each_view(pag
 def test_controls_show_only_where_they_apply(page, server):
     page.goto(f"{server}/?preset=table3-3&width=60&radius=10&frame=3")
     page.wait_for_function("() => document.querySelector('#preview').dataset.version")
-    hidden = lambda sel: page.locator(sel).is_hidden()  # noqa: E731
+
+    def hidden(sel):
+        return page.locator(sel).is_hidden()
+
     # a square: no height; pierced: no kit; a relief: its base and relief heights only; miter: the limit
     assert hidden("#height-row") and hidden("#inlay_fit_mm") and hidden("#inlay_base")
     assert not hidden("#base_mm") and not hidden("#relief_mm") and hidden("#pierced_mm") and hidden("#deboss_mm")
