@@ -20,12 +20,18 @@ keeps, in panel millimetres) and the bed, and returns a :class:`PanelSplit`:
   round it along the pattern.
 - **Joints.** Where a piece meets its neighbour across a seam over a stretch of
   material wide enough (the tab's widest part and the minimum feature each side), a
-  tab of the left (lower) piece locks into a socket of the right (upper) one:
+  tab of the left (lower) piece locks into a socket of the right (upper) one (several
+  along a long stretch, one per :data:`TAB_SPACING_MM`):
   a ``"dovetail"`` (a trapezoid whose head is wider than its neck) or a ``"jigsaw"``
   knob (a disc on a neck). Tabs always stick out to the right and up, so pieces in
   the same place of the grid get the same joints. ``fit_mm`` grows the tab like an
   inlay's fit: positive presses in, negative leaves play. Laid flat, two joined
   pieces cannot be pulled apart in the plane.
+- **Seam bars.** Where a pair of pieces meets only across bands too thin for any joint
+  (a fine lattice), a bar of material is laid along the seam between them, as wide as
+  the joint and its neck either side (:func:`seam_bar_mm`), and the joints go into the
+  bar: the panel gains a mullion there (:attr:`PanelSplit.bars`; ``bars=False`` refuses
+  such a panel instead).
 
 The pieces are the nominal shapes: the cut plan offsets each by the kerf as any part.
 
@@ -75,6 +81,10 @@ _ALIKE_SLIVER_MM2 = 2.0
 leave than the best seams found one by one, and still be chosen for their alike pieces."""
 
 _ROUNDS = 2
+
+TAB_SPACING_MM = 150.0
+"""The length of a stretch of shared material per tab: a long stretch (a frame, a seam bar) gets
+several tabs evenly along it, so that a long seam cannot hinge about one."""
 """Rounds of choosing the columns' seams then the rows': each choice depends on the other's segments."""
 
 
@@ -175,6 +185,9 @@ class PanelSplit:
     pieces: tuple[Piece, ...]
     joints: tuple[PlacedJoint, ...]
     joint: Joint
+    bars: tuple[shapely.Geometry, ...] = ()
+    """The material added as seam bars (with the slits beside them filled) where a pair of pieces
+    met only across bands too thin for a joint: the pieces' union is the panel's material and these."""
 
 
 def grid_for(width_mm: float, height_mm: float, bed_mm, *, margin_mm: float, extent_mm: float) -> tuple[int, int]:
@@ -221,13 +234,15 @@ def split_panel(
     min_feature_mm: float = 1.0,
     period_mm: tuple[float, float] | None = None,
     origin=(0.0, 0.0),
+    bars: bool = True,
 ) -> PanelSplit:
     """Split ``material`` (a panel's region, mm) into pieces that fit ``bed_mm``, joined by ``joint``.
 
     ``period_mm`` is the pattern's period along x and y (translations that map the pattern
     onto itself) and ``origin`` a point of that lattice: seams on it make congruent pieces.
-    Raises :class:`~fabtiles.FabricationError` when a pair of neighbouring pieces can be joined
-    nowhere (every seam position crosses only material too thin for the joint).
+    Where a pair of neighbouring pieces can be joined nowhere (every seam position crosses only
+    material too thin for the joint), a seam bar is added between them; with ``bars=False``
+    that is a :class:`~fabtiles.FabricationError` instead.
     """
     x0, y0, x1, y1 = material.bounds
     nx, ny = grid_for(x1 - x0, y1 - y0, bed_mm, margin_mm=margin_mm, extent_mm=joint.extent_mm)
@@ -238,12 +253,27 @@ def split_panel(
     for _ in range(_ROUNDS):
         xs = _choose(ctx, 0, xs, ys, x0, x1, cell_max[0], None if period_mm is None else (period_mm[0], origin[0]))
         ys = _choose(ctx, 1, ys, xs, y0, y1, cell_max[1], None if period_mm is None else (period_mm[1], origin[1]))
-    regions = _islands_to_neighbours(_cut(material, xs, ys, (x0, y0, x1, y1)), nx, ny)
-    regions, joints = _joints(ctx, regions, xs, ys, nx, ny)
+    cells = _cell_boxes(xs, ys, (x0, y0, x1, y1))
+    regions = {cell: _clip(material, bounds) for cell, bounds in cells.items()}
+    added: list = []
+    if bars:  # where a pair would meet only across bands too thin for a joint, before the islands move
+        added = _lay_bars(ctx, regions, cells, _bar_boxes(ctx, xs, ys))
+    regions = _islands_to_neighbours(regions, nx, ny)
+    joints = _joints(ctx, regions, xs, ys, nx, ny)
     pieces = tuple(
         Piece(_number(i, j, nx, ny), (i, j), regions[i, j]) for j in range(ny - 1, -1, -1) for i in range(nx)
     )
-    return PanelSplit((nx, ny), tuple(xs[1:-1]), tuple(ys[1:-1]), pieces, tuple(joints), joint)
+    return PanelSplit((nx, ny), tuple(xs[1:-1]), tuple(ys[1:-1]), pieces, tuple(joints), joint, tuple(added))
+
+
+def seam_bar_mm(joint: Joint) -> float:
+    """How wide a seam bar is across its seam: a neck's width behind the seam, the tab's depth
+    and a neck's width round the socket beyond it.
+
+    >>> seam_bar_mm(joint_for("dovetail", thickness_mm=3))
+    12.0
+    """
+    return joint.depth_mm + 2 * joint.neck_mm
 
 
 def laid_on_bed(region, bed_mm, *, margin_mm: float) -> tuple[shapely.Geometry, np.ndarray]:
@@ -287,7 +317,8 @@ def congruent_groups(pieces, *, tolerance_mm: float = 1e-3) -> list[list[int]]:
         for ref, members in groups:
             if (
                 abs(ref.area - shape.area) <= tolerance_mm * max(1.0, shape.length)
-                and shapely.hausdorff_distance(ref, shape) <= tolerance_mm
+                and np.allclose(ref.bounds, shape.bounds, atol=tolerance_mm)
+                and shapely.symmetric_difference(ref, shape).area <= tolerance_mm * max(1.0, shape.length)
             ):
                 members.append(piece.number)
                 break
@@ -314,8 +345,8 @@ class _Context:
         """The material within reach of a seam of ``axis`` placed anywhere from ``lo`` to ``hi``."""
         x0, y0, x1, y1 = self.material.bounds
         r = self.reach
-        window = box(lo - r, y0 - 1, hi + r, y1 + 1) if axis == 0 else box(x0 - 1, lo - r, x1 + 1, hi + r)
-        return _Window(shapely.intersection(self.material, window), axis)
+        window = (lo - r, y0 - 1, hi + r, y1 + 1) if axis == 0 else (x0 - 1, lo - r, x1 + 1, hi + r)
+        return _Window(shapely.clip_by_rect(self.material, *window), axis)
 
 
 class _Window:
@@ -452,10 +483,16 @@ def _score(ctx: _Context, win: _Window, axis: int, pos: float, others, on_period
     """A seam position's key, smaller is better: pairs it cannot join, slivers, off the period, off
     even; None when it cannot beat ``best`` on the pairs it joins."""
     stretches, slopes = win.crossings(pos)
-    unjoined = sum(not _sites(ctx, win, pos, stretches, a, b) for a, b in itertools.pairwise(others))
+    unjoined = sum(not _sites(ctx, win, pos, stretches, a, b) for a, b in _pairs(others))
     if best is not None and unjoined > best[0][0]:
         return None
     return (unjoined, round(_sliver_area(ctx, win, pos, slopes), 2), not on_period, round(off, 3))
+
+
+def _pairs(others) -> list[tuple[float, float]]:
+    """The stretches of a seam between the other axis's seams, open at the panel's edges (a tab
+    near an edge crosses no seam)."""
+    return list(itertools.pairwise([-math.inf, *others[1:-1], math.inf]))
 
 
 def _sites(ctx: _Context, win: _Window, pos: float, stretches, a: float, b: float) -> list[float]:
@@ -490,16 +527,19 @@ def _sliver_area(ctx: _Context, win: _Window, pos: float, slopes: np.ndarray) ->
     return wedges + float(((m - near) * m).sum())
 
 
-def _cut(material, xs, ys, bounds) -> dict[tuple[int, int], shapely.Geometry]:
-    """The material in each cell of the seams' grid (the outermost seams moved out to the bounds)."""
+def _cell_boxes(xs, ys, bounds) -> dict[tuple[int, int], tuple[float, float, float, float]]:
+    """Each cell's rectangle between the seams (the outermost moved out beyond ``bounds``)."""
     x0, y0, x1, y1 = bounds
     xs = [x0 - 1, *xs[1:-1], x1 + 1]
     ys = [y0 - 1, *ys[1:-1], y1 + 1]
-    return {
-        (i, j): shapely.intersection(material, box(xs[i], ys[j], xs[i + 1], ys[j + 1]))
-        for i in range(len(xs) - 1)
-        for j in range(len(ys) - 1)
-    }
+    return {(i, j): (xs[i], ys[j], xs[i + 1], ys[j + 1]) for i in range(len(xs) - 1) for j in range(len(ys) - 1)}
+
+
+def _clip(geom, bounds):
+    """``geom`` within the rectangle ``bounds``: GEOS's rectangle clip (tens of times faster than
+    an overlay on a lattice of many holes), the overlay where the clip's result is not valid."""
+    out = shapely.clip_by_rect(geom, *bounds)
+    return out if shapely.is_valid(out) else shapely.intersection(geom, box(*bounds))
 
 
 def _parts(region) -> list:
@@ -541,9 +581,84 @@ def _neighbour_touching(regions: dict, cell, part, nx: int, ny: int):
     return None if best is None else best[1]
 
 
-def _joints(ctx: _Context, regions: dict, xs, ys, nx: int, ny: int):
-    """A joint on every stretch where two neighbours meet wide enough; error where a pair has none."""
+def _bar_boxes(ctx: _Context, xs, ys) -> list:
+    """Where each inner seam's pairs of pieces can hold no joint: a seam bar's box there (a neck's
+    width behind the seam, the tab's depth and a neck beyond)."""
+    joint = ctx.joint
+    out = []
+    for axis, seams, others in ((0, xs, ys), (1, ys, xs)):
+        for pos in seams[1:-1]:
+            win = ctx.near(axis, pos, pos)
+            stretches, _ = win.crossings(pos)
+            lo, hi = pos - joint.neck_mm, pos + joint.depth_mm + joint.neck_mm
+            for a, b in _pairs(others):
+                if b - a >= joint.head_mm + 2 * ctx.min_mm and not _sites(ctx, win, pos, stretches, a, b):
+                    a, b = max(a, others[0] - 1), min(b, others[-1] + 1)
+                    out.append(box(lo, a, hi, b) if axis == 0 else box(a, lo, b, hi))
+    return out
+
+
+def _lay_bars(ctx: _Context, regions: dict, cells: dict, boxes: list) -> list:
+    """Add the seam bars of ``boxes`` (within the panel's footprint) to the regions of the cells
+    they cross, in place, filling the holes they leave narrower than the minimum feature; the
+    material each bar added (disjoint: together, all that was added)."""
+    if not boxes:
+        return []
+    footprint = _footprint(ctx.material)
+    bars: list = []
+    for b in boxes:  # disjoint where an x and a y seam's bars cross
+        bar = shapely.intersection(b, footprint)
+        bar = shapely.difference(bar, shapely.union_all(bars)) if bars else bar
+        if not bar.is_empty:
+            bars.append(bar)
+    every = shapely.union_all(bars)
+    near = every.buffer(ctx.min_mm)
+    filled = []
+    for cell, bounds in cells.items():  # one overlay per region: each costs the whole region
+        part = _clip(every, bounds)
+        if not part.is_empty:
+            regions[cell], holes = _fill_slits(shapely.union(regions[cell], part), near, ctx.min_mm)
+            filled.append(holes)
+    new = [shapely.difference(bar, _clip(ctx.material, bar.bounds)) for bar in bars]
+    parts = shapely.get_parts(shapely.union_all(new + filled))
+    taken = np.zeros(len(parts), bool)
+    added = []
+    for bar in bars:  # each bit added counted with the first bar it lies by
+        mine = shapely.intersects(bar.buffer(ctx.min_mm), parts) & ~taken
+        taken |= mine
+        added.append(shapely.union_all(parts[mine]))
+    return added
+
+
+def _footprint(material):
+    """The material with its holes filled: where a seam bar may lie (never beyond the panel's edge)."""
+    return shapely.union_all([shapely.Polygon(p.exterior) for p in _parts(material) if p.geom_type == "Polygon"])
+
+
+def _fill_slits(region, near, min_mm: float):
+    """``region`` with the holes by ``near`` (a seam bar) narrower than ``min_mm`` filled; and those holes."""
+    shapely.prepare(near)
+    out, filled = [], []
+    for part in _parts(region):
+        if part.geom_type != "Polygon":
+            continue
+        rings = shapely.get_interior_ring(part, np.arange(shapely.get_num_interior_rings(part)))
+        holes = shapely.polygons(rings)
+        thin = np.zeros(len(holes), bool)
+        close = np.flatnonzero(shapely.intersects(near, holes))
+        thin[close] = shapely.is_empty(shapely.buffer(holes[close], -min_mm / 2))
+        out.append(shapely.polygons(shapely.get_exterior_ring(part), holes=rings[~thin]) if thin.any() else part)
+        filled.extend(holes[thin])
+    # the parts stay apart (a hole filled joins nothing): a collection of them, not an overlay
+    return (out[0] if len(out) == 1 else shapely.MultiPolygon(out)), shapely.union_all(filled)
+
+
+def _joints(ctx: _Context, regions: dict, xs, ys, nx: int, ny: int) -> list:
+    """A joint on every stretch where two neighbours meet wide enough (the regions changed in
+    place); an error where a pair has none."""
     joints: list[PlacedJoint] = []
+    sockets: dict = {cell: [] for cell in regions}
+    tabs: dict = {cell: [] for cell in regions}
     for i, j in sorted(regions):
         for axis, other in ((0, (i + 1, j)), (1, (i, j + 1))):
             if other not in regions:
@@ -553,7 +668,7 @@ def _joints(ctx: _Context, regions: dict, xs, ys, nx: int, ny: int):
             stretches = _stretches(regions[(i, j)], regions[other])
             if not stretches:
                 continue  # neighbours that touch nowhere (a corner of the grid)
-            placed = _tabs_on_seam(ctx, regions, (i, j), other, axis, pos, stretches)
+            placed = _tabs_on_seam(ctx, regions, (i, j), other, axis, pos, stretches, joints)
             if not placed:
                 joint = ctx.joint
                 raise FabricationError(
@@ -562,8 +677,17 @@ def _joints(ctx: _Context, regions: dict, xs, ys, nx: int, ny: int):
                     f"({joint.neck_mm + 2 * ctx.min_mm:g} mm at the seam, {joint.head_mm + 2 * ctx.min_mm:g} mm "
                     "across its head); use a wider stroke or frame, a smaller joint, or a larger bed"
                 )
-            joints += [PlacedJoint(pair, at, tab) for at, tab in placed]
-    return regions, joints
+            for at, tab in placed:
+                joints.append(PlacedJoint(pair, at, tab))
+                sockets[other].append(tab)
+                tabs[(i, j)].append(tab.buffer(ctx.joint.fit_mm, join_style="mitre") if ctx.joint.fit_mm else tab)
+    # each region changed once for all its tabs and sockets: an overlay costs the whole region
+    for cell in regions:
+        if sockets[cell]:
+            regions[cell] = shapely.difference(regions[cell], shapely.union_all(sockets[cell]))
+        if tabs[cell]:
+            regions[cell] = shapely.union(regions[cell], shapely.union_all(tabs[cell]))
+    return joints
 
 
 def _stretches(region, other) -> list:
@@ -572,25 +696,31 @@ def _stretches(region, other) -> list:
     return sorted((s for s in _segments(shared) if s.length > 1e-9), key=lambda s: -s.length)
 
 
-def _tabs_on_seam(ctx: _Context, regions: dict, cell, other, axis: int, pos: float, stretches) -> list:
-    """A tab of ``cell`` into ``other`` at the middle of each stretch on the seam where it fits
-    (the two regions updated in place); the placed tabs as ``[((x, y), tab), ...]``."""
+def _tabs_on_seam(ctx: _Context, regions: dict, cell, other, axis: int, pos: float, stretches, joints) -> list:
+    """Tabs of ``cell`` into ``other`` on each stretch on the seam where they fit: at its middle,
+    or evenly along it, one per :data:`TAB_SPACING_MM`, clear of the tabs of ``joints`` placed
+    before; the new tabs as ``[((x, y), tab), ...]`` (the regions are not changed)."""
     joint = ctx.joint
     direction = (1.0, 0.0) if axis == 0 else (0.0, 1.0)
-    placed = []
+    placed: list = []
     for s in stretches:
         c = np.asarray(s.centroid.coords[0])
         if s.length < joint.neck_mm + 2 * ctx.min_mm or abs(c[axis] - pos) > 1e-6:
             continue
-        c[axis] = pos  # on the seam exactly: a tab a rounding off it would not touch its piece
-        tab = joint.tab(c, direction)
-        ring = tab.buffer(ctx.min_mm, join_style="mitre").difference(regions[cell])
-        if not shapely.contains(regions[other], ring):
-            continue
-        grown = tab.buffer(joint.fit_mm, join_style="mitre") if joint.fit_mm else tab
-        regions[other] = shapely.difference(regions[other], tab)
-        regions[cell] = shapely.union(regions[cell], grown)
-        placed.append(((float(c[0]), float(c[1])), tab))
+        n = max(1, round(s.length / TAB_SPACING_MM))
+        for k in range(n):
+            at = np.asarray(s.interpolate((k + 0.5) / n, normalized=True).coords[0])
+            at[axis] = pos  # on the seam exactly: a tab a rounding off it would not touch its piece
+            tab = joint.tab(at, direction)
+            grown = tab.buffer(ctx.min_mm, join_style="mitre")
+            ring = grown.difference(_clip(regions[cell], grown.bounds))
+            if not shapely.contains(regions[other], ring):
+                continue
+            if any(shapely.intersects(grown, t.buffer(ctx.min_mm, join_style="mitre")) for _, t in placed) or any(
+                shapely.intersects(grown, j.tab.buffer(ctx.min_mm, join_style="mitre")) for j in joints
+            ):
+                continue  # too near a tab placed before, whose socket or tab the regions do not show yet
+            placed.append(((float(at[0]), float(at[1])), tab))
     return placed
 
 

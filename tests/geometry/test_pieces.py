@@ -5,6 +5,7 @@ import itertools
 import numpy as np
 import pytest
 import shapely
+import shapely.affinity
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import box
@@ -12,7 +13,16 @@ from shapely.geometry import box
 import fabtiles as ft
 from fabtiles.core.errors import FabricationError, ParameterError
 from fabtiles.geometry.laser_checks import fits_bed
-from fabtiles.geometry.pieces import MAX_PIECES, congruent_groups, grid_for, joint_for, laid_on_bed, split_panel
+from fabtiles.geometry.pieces import (
+    MAX_PIECES,
+    TAB_SPACING_MM,
+    congruent_groups,
+    grid_for,
+    joint_for,
+    laid_on_bed,
+    seam_bar_mm,
+    split_panel,
+)
 from fabtiles.geometry.tile import TileGeometry
 
 MIN_MM = 1.0
@@ -117,12 +127,61 @@ def test_a_press_fit_grows_each_tab_by_the_fit(lattice):
     assert overlap == pytest.approx(grown, rel=1e-3)
 
 
-def test_a_lattice_too_thin_for_any_joint_is_refused_naming_the_pieces():
-    thin = TileGeometry(
-        "rectangle", (200, 120), ft.HexPacking(radius=15, motif=ft.Star.preset("table3-3")), frame=3, stroke=1
+@pytest.fixture(scope="module")
+def thin():
+    """A 300 x 200 mm lattice of 1 mm bands in a 3 mm frame: no seam crosses material wide enough for a joint."""
+    return TileGeometry(
+        "rectangle", (300, 200), ft.HexPacking(radius=15, motif=ft.Star.preset("table3-3")), frame=3, stroke=1
     ).region()
+
+
+def test_a_lattice_too_thin_for_any_joint_is_refused_without_bars(thin):
     with pytest.raises(FabricationError, match=r"pieces \d+ and \d+ meet across the seam at . = [\d.]+ mm only"):
-        split_panel(thin, bed_mm=(130, 150), margin_mm=5, joint=joint_for("dovetail", thickness_mm=3))
+        split_panel(thin, bed_mm=(170, 130), margin_mm=5, joint=joint_for("dovetail", thickness_mm=3), bars=False)
+
+
+def test_a_lattice_too_thin_for_any_joint_gets_seam_bars_holding_the_joints(thin):
+    joint = joint_for("dovetail", thickness_mm=3)
+    s = split_panel(thin, bed_mm=(170, 130), margin_mm=5, joint=joint)
+    assert s.grid == (2, 2) and len(s.bars) == 4  # each of the four pairs on its own bar
+    union = shapely.union_all([p.region for p in s.pieces])
+    bars = shapely.union_all(s.bars)
+    assert shapely.symmetric_difference(union, shapely.union(thin, bars)).area < 1e-6  # the panel and the bars
+    assert abs(sum(b.area for b in s.bars) - bars.area) < 1e-6 and not shapely.intersects(bars, thin.buffer(-1e-6))
+    assert abs(sum(p.region.area for p in s.pieces) - union.area) < 1e-6  # no overlap
+    outline = shapely.box(*thin.bounds)
+    x0, y0, x1, y1 = thin.bounds
+    width = seam_bar_mm(joint)
+    for seam in s.seams_x:  # the whole seam is a bar: a neck behind it, the tab and a neck beyond
+        strip = shapely.box(seam - joint.neck_mm, y0, seam - joint.neck_mm + width, y1)
+        assert shapely.difference(strip, union).area < 1e-6
+    for seam in s.seams_y:
+        strip = shapely.box(x0, seam - joint.neck_mm, x1, seam - joint.neck_mm + width)
+        assert shapely.difference(strip, union).area < 1e-6
+    assert outline.contains(bars)
+    for p in s.pieces:
+        assert p.region.geom_type == "Polygon", p.number
+        x0, y0, x1, y1 = p.region.bounds
+        assert fits_bed(x1 - x0, y1 - y0, (160, 120))
+    assert {j.pieces for j in s.joints} == {(1, 2), (3, 4), (3, 1), (4, 2)}
+    by_number = {p.number: p.region for p in s.pieces}
+    for a, b in {j.pieces for j in s.joints}:  # interlocked: moved 2 mm any way in the plane, they collide
+        for angle in range(0, 360, 45):
+            dx, dy = 2 * np.cos(np.radians(angle)), 2 * np.sin(np.radians(angle))
+            moved = shapely.affinity.translate(by_number[b], dx, dy)
+            assert shapely.intersection(by_number[a], moved).area > 0.1, (a, b, angle)
+
+
+def test_a_long_stretch_gets_a_tab_per_spacing():
+    frame = box(0, 0, 400, 700).difference(box(60, 60, 340, 640))  # 60 mm sides: each seam crosses two
+    s = split_panel(frame, bed_mm=(500, 400), margin_mm=5, joint=joint_for("dovetail", thickness_mm=3))
+    assert s.grid == (1, 2)
+    assert len(s.joints) == 2  # a 60 mm stretch is shorter than the spacing: one tab each
+    wide = box(0, 0, 400, 700).difference(box(10, 10, 390, 690)).union(box(0, 330, 400, 370))
+    s = split_panel(wide, bed_mm=(500, 400), margin_mm=5, joint=joint_for("dovetail", thickness_mm=3))
+    assert s.seams_y == pytest.approx((350.0,))  # along the band's middle: one 400 mm stretch
+    assert np.allclose([j.at for j in s.joints], [(400 / 6, 350), (200, 350), (400 * 5 / 6, 350)])
+    assert round(400 / TAB_SPACING_MM) == 3
 
 
 def test_the_fewest_pieces_either_way_round():
