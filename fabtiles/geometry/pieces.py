@@ -82,6 +82,10 @@ leave than the best seams found one by one, and still be chosen for their alike 
 
 _ROUNDS = 2
 
+_SHORT_EDGE_MM = 50.0
+"""Edges of the material longer than this along a seam's axis are few (a frame's sides): a seam's
+crossings test them all, and only the short edges that start within this of it."""
+
 TAB_SPACING_MM = 150.0
 """The length of a stretch of shared material per tab: a long stretch (a frame, a seam bar) gets
 several tabs evenly along it, so that a long seam cannot hinge about one."""
@@ -361,23 +365,46 @@ class _Window:
             xy = shapely.get_coordinates(ring)
             starts.append(xy[:-1])
             ends.append(xy[1:])
-        self.p = np.concatenate(starts) if starts else np.zeros((0, 2))
-        self.q = np.concatenate(ends) if ends else np.zeros((0, 2))
+        p = np.concatenate(starts) if starts else np.zeros((0, 2))
+        q = np.concatenate(ends) if ends else np.zeros((0, 2))
         self.axis = axis
         self.bounds = local.bounds
+        # edges sorted by where they start along the axis; the few long ones (a frame's sides) apart,
+        # so that a seam's crossings look only at the short edges that can reach it
+        lo = np.minimum(p[:, axis], q[:, axis])
+        long = np.maximum(p[:, axis], q[:, axis]) - lo > _SHORT_EDGE_MM
+        order = np.argsort(np.where(long, -np.inf, lo), kind="stable")
+        self.p, self.q, self.lo = p[order], q[order], lo[order]
+        self.n_long = int(long.sum())
+        self.corners = np.sort(p[:, axis])
+
+    def _near(self, pos: float) -> slice:
+        """The short edges that may cross ``pos`` (after the long ones, which always might)."""
+        i0 = self.n_long + int(np.searchsorted(self.lo[self.n_long :], pos - _SHORT_EDGE_MM))
+        i1 = self.n_long + int(np.searchsorted(self.lo[self.n_long :], pos, side="right"))
+        return slice(i0, i1)
 
     def crossings(self, pos: float) -> tuple[list[tuple[float, float]], np.ndarray]:
         """The stretches where a seam at ``pos`` runs through material (from, to along it), and the
         crossing edges' slopes (along the seam per unit across: the wedge each leaves)."""
-        a = self.p[:, self.axis] - pos
-        b = self.q[:, self.axis] - pos
+        near = self._near(pos)
+        p = np.concatenate([self.p[: self.n_long], self.p[near]])
+        q = np.concatenate([self.q[: self.n_long], self.q[near]])
+        a = p[:, self.axis] - pos
+        b = q[:, self.axis] - pos
         hit = (a < 0) != (b < 0)  # half-open, as a point-in-polygon test counts: even-odd holds at vertices
         t = a[hit] / (a[hit] - b[hit])
         o = 1 - self.axis
-        along = self.p[hit, o] + t * (self.q[hit, o] - self.p[hit, o])
-        slope = np.abs(self.q[hit, o] - self.p[hit, o]) / np.abs(self.q[hit, self.axis] - self.p[hit, self.axis])
+        along = p[hit, o] + t * (q[hit, o] - p[hit, o])
+        slope = np.abs(q[hit, o] - p[hit, o]) / np.abs(q[hit, self.axis] - p[hit, self.axis])
         order = np.sort(along)
         return [(float(order[k]), float(order[k + 1])) for k in range(0, len(order) - 1, 2)], slope
+
+    def corners_within(self, pos: float, m: float) -> np.ndarray:
+        """How far each corner of the material within ``m`` of ``pos`` (not on it) lies from it."""
+        i0, i1 = np.searchsorted(self.corners, [pos - m, pos + m])
+        d = np.abs(self.corners[i0:i1] - pos)
+        return d[(d > 1e-9) & (d < m)]
 
 
 def _number(i: int, j: int, nx: int, ny: int) -> int:
@@ -522,8 +549,7 @@ def _sliver_area(ctx: _Context, win: _Window, pos: float, slopes: np.ndarray) ->
     """
     m = ctx.min_mm
     wedges = float(np.minimum(slopes, 50.0).sum()) * m * m / 2
-    d = np.abs(win.p[:, win.axis] - pos)
-    near = d[(d > 1e-9) & (d < m)]
+    near = win.corners_within(pos, m)
     return wedges + float(((m - near) * m).sum())
 
 
