@@ -54,6 +54,8 @@ class BuildOptions:
     kerf_mm: float | None = None
     print_style: str | None = None
     heights: dict = field(default_factory=dict)
+    pieces: bool = True
+    """A tile larger than the cutter's bed cut as pieces that lock together (False: refused)."""
     inlay: bool = False
     """The deboss grooves filled as a second part of the print."""
     threemf_layout: str = "volumes"
