@@ -167,6 +167,8 @@ def _profile_words(result, cutter: str, out) -> tuple[str, str]:
 
 def _echo_figures(result, cutter: str, class_lines: list) -> None:
     """The check's figures: the cutter's job and travel, the print's material, the classes."""
+    for line in result.pieces:  # a panel larger than the bed, checked as its pieces
+        click.echo(f"  {cutter} {line}")
     if result.job is not None:
         click.echo(f"  {cutter} job: {result.job.line()}")
         click.echo(f"  {cutter} {result.job.travel_line()}")

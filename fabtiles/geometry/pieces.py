@@ -81,13 +81,17 @@ _ROUNDS = 2
 @dataclass(frozen=True, slots=True)
 class Joint:
     """A joint's shape, in mm: its kind, the neck at the seam, the widest part, the depth into
-    the neighbour, and the fit (positive presses in, negative leaves play)."""
+    the neighbour, the fit (positive presses in, negative leaves play) and the radius its
+    corners are rounded to (a router's bit cannot cut a socket's inner corner sharper than its
+    own radius: the tab is rounded to it, and its neck meets the seam in fillets of it, so
+    both pieces are as the bit makes them)."""
 
     kind: str
     neck_mm: float
     head_mm: float
     depth_mm: float
     fit_mm: float = 0.0
+    corner_mm: float = 0.0
 
     def tab(self, centre, direction) -> shapely.Polygon:
         """The tab at ``centre`` on the seam, sticking out along the unit vector ``direction``.
@@ -108,6 +112,8 @@ class Joint:
             knob = shapely.Point(self.depth_mm - r, 0).buffer(r, quad_segs=16)
             neck = box(0, -self.neck_mm / 2, self.depth_mm - r, self.neck_mm / 2)
             shape = shapely.union(knob, neck)
+        if self.corner_mm > 0:
+            shape = _rounded(shape, self.corner_mm, self.neck_mm)
         coords = np.asarray(shape.exterior.coords)
         placed = c + coords[:, :1] * d + coords[:, 1:] * n
         return shapely.Polygon(placed)
@@ -118,15 +124,31 @@ class Joint:
         return self.depth_mm
 
 
-def joint_for(kind: str = "dovetail", *, thickness_mm: float, kerf_mm: float = 0.0, fit_mm: float = 0.0) -> Joint:
+def _rounded(shape, r: float, neck_mm: float) -> shapely.Polygon:
+    """A tab (sticking out along +x from the seam x = 0) with its corners rounded to ``r`` and its
+    neck meeting the seam in fillets of ``r``: the opening of the tab, then the closing of it with
+    the seam's side."""
+    q = 16
+    opened = shape.buffer(-r, quad_segs=q).buffer(r, quad_segs=q)
+    side = box(-2 * r, -neck_mm / 2 - 3 * r, 0, neck_mm / 2 + 3 * r)
+    closed = shapely.union(opened, side).buffer(r, quad_segs=q).buffer(-r, quad_segs=q)
+    _, y0, x1, y1 = shape.bounds
+    tab = shapely.intersection(closed, box(0, y0 - 2 * r, x1 + 1, y1 + 2 * r))
+    return max(_parts(tab), key=lambda g: g.area)
+
+
+def joint_for(
+    kind: str = "dovetail", *, thickness_mm: float, kerf_mm: float = 0.0, fit_mm: float = 0.0, corner_mm: float = 0.0
+) -> Joint:
     """The joint sized from the material: the neck as wide as one thickness (never under 2 mm), a
     dovetail as deep as two, its head wider by :data:`DOVETAIL_FLARE` of the depth each side; a
     jigsaw knob as wide as that head, on a neck half the neck's width long.
 
-    The kerf only sets a floor: a neck narrower than four kerfs would burn away.
+    The kerf only sets a floor: a neck narrower than four kerfs would burn away. ``corner_mm``
+    rounds the tab's corners (a router's bit radius, see :class:`Joint`).
 
     >>> joint_for("dovetail", thickness_mm=3)
-    Joint(kind='dovetail', neck_mm=3.0, head_mm=7.0, depth_mm=6.0, fit_mm=0.0)
+    Joint(kind='dovetail', neck_mm=3.0, head_mm=7.0, depth_mm=6.0, fit_mm=0.0, corner_mm=0.0)
     >>> joint_for("jigsaw", thickness_mm=3).depth_mm
     8.5
     >>> joint_for("knot", thickness_mm=3)
@@ -138,12 +160,13 @@ def joint_for(kind: str = "dovetail", *, thickness_mm: float, kerf_mm: float = 0
     t = check_float("thickness_mm", thickness_mm, low=0.1, high=100.0)
     kerf = check_float("kerf_mm", kerf_mm, low=0.0, high=10.0)
     fit = check_float("fit_mm", fit_mm, low=-0.5, high=0.5)
+    corner = check_float("corner_mm", corner_mm, low=0.0, high=50.0)
     neck = max(t, 2.0, 4 * kerf)
     depth = 2 * neck
     head = neck + 2 * DOVETAIL_FLARE * depth
     if kind == "jigsaw":  # the knob (as wide as the dovetail's head) on a neck half its width long
         depth = head + neck / 2
-    return Joint(kind, neck, head, depth, fit)
+    return Joint(kind, neck, head, depth, fit, corner)
 
 
 @dataclass(frozen=True, slots=True)
@@ -573,8 +596,9 @@ def _stretches(region, other) -> list:
 
 
 def _tabs_on_seam(ctx: _Context, regions: dict, cell, other, axis: int, pos: float, stretches) -> list:
-    """A tab of ``cell`` into ``other`` at the middle of each stretch on the seam where it fits
-    (the two regions updated in place); the placed tabs as ``[((x, y), tab), ...]``."""
+    """A tab of ``cell`` into ``other`` on each stretch of the seam where one fits: at its middle,
+    else at the nearest place along it that holds the tab (a stretch may run on from a frame into a
+    band); the two regions updated in place; the placed tabs as ``[((x, y), tab), ...]``."""
     joint = ctx.joint
     direction = (1.0, 0.0) if axis == 0 else (0.0, 1.0)
     placed = []
@@ -583,15 +607,44 @@ def _tabs_on_seam(ctx: _Context, regions: dict, cell, other, axis: int, pos: flo
         if s.length < joint.neck_mm + 2 * ctx.min_mm or abs(c[axis] - pos) > 1e-6:
             continue
         c[axis] = pos  # on the seam exactly: a tab a rounding off it would not touch its piece
-        tab = joint.tab(c, direction)
-        ring = tab.buffer(ctx.min_mm, join_style="mitre").difference(regions[cell])
-        if not shapely.contains(regions[other], ring):
+        found = _fitting_tab(ctx, regions, cell, other, s, c, direction, 1 - axis)
+        if found is None:
             continue
+        tab, at = found
         grown = tab.buffer(joint.fit_mm, join_style="mitre") if joint.fit_mm else tab
         regions[other] = shapely.difference(regions[other], tab)
         regions[cell] = shapely.union(regions[cell], grown)
-        placed.append(((float(c[0]), float(c[1])), tab))
+        placed.append(((float(at[0]), float(at[1])), tab))
     return placed
+
+
+def _fitting_tab(ctx: _Context, regions: dict, cell, other, stretch, c, direction, along: int):
+    """``(tab, where)``: the tab at ``c`` on ``stretch``, or moved along it (by a tenth of the neck,
+    nearest first) to where the tab grown by the minimum feature lies in the two pieces' material;
+    None where none does."""
+    joint = ctx.joint
+    x0, y0, x1, y1 = stretch.bounds
+    r = ctx.reach
+    window = box(x0 - r, y0 - r, x1 + r, y1 + r)
+    mine = shapely.intersection(regions[cell], window)
+    theirs = shapely.intersection(regions[other], window)
+    shapely.prepare(theirs)
+    lo = (y0 if along else x0) + joint.neck_mm / 2 + ctx.min_mm
+    hi = (y1 if along else x1) - joint.neck_mm / 2 - ctx.min_mm
+    step = max(0.1, joint.neck_mm / 10)
+    mid = float(c[along])
+    n = int((hi - lo) / step) if hi > lo else 0
+    tries = sorted({mid, *(lo + k * step for k in range(n + 1))}, key=lambda v: abs(v - mid))
+    for v in tries:
+        if not lo - 1e-9 <= v <= hi + 1e-9 and v != mid:
+            continue
+        at = np.array(c, float)
+        at[along] = v
+        tab = joint.tab(at, direction)
+        ring = tab.buffer(ctx.min_mm, join_style="mitre").difference(mine)
+        if shapely.contains(theirs, ring):
+            return tab, at
+    return None
 
 
 def _segments(geom) -> list:

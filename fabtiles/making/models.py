@@ -296,6 +296,11 @@ class Models:
             tabs_per_part=o.tabs_per_part,
         )
         check_dxf_version(o.dxf_version)  # the files' option, refused with the plan's before the work
+        if self.sheet is None and o.pieces:
+            from .pieces import pieces_model, too_big
+
+            if too_big(outline, o.cutter):  # cut as pieces that lock together, each on the bed
+                return pieces_model(self.tile, region, centrelines, o.cutter, cut_options)
         plan = plan_cut(region, outline, cut_options, centrelines=centrelines)
         if self.sheet is not None:  # how many tiles, which the files' summary does not show otherwise
             n = len(self.sheet.offsets)
