@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import shapely
 
-from ..core.errors import FabricationError
+from ..core.errors import FabricationError, ParameterError
 from ..core.report import Report
 
 PIECE_SUFFIX = "-piece-"
@@ -131,15 +131,24 @@ def pieces_model(tile, region, centrelines, profile, cut_options) -> PanelPieces
     )
     kind.check_joint(profile, joint.neck_mm)
     period, origin = _period(tile)
-    split = split_panel(
-        material,
-        bed_mm=profile.bed_mm,
-        margin_mm=profile.margin_mm,
-        joint=joint,
-        min_feature_mm=profile.min_feature_mm,
-        period_mm=period,
-        origin=origin,
-    )
+    try:
+        split = split_panel(
+            material,
+            bed_mm=profile.bed_mm,
+            margin_mm=profile.margin_mm,
+            joint=joint,
+            min_feature_mm=profile.min_feature_mm,
+            period_mm=period,
+            origin=origin,
+        )
+    except ParameterError as exc:  # the bed too small for a piece, or too many pieces: say which tile and bed
+        x0, y0, x1, y1 = outline.bounds
+        bw, bh = profile.bed_mm
+        raise ParameterError(
+            f"the tile is {x1 - x0:g} x {y1 - y0:g} mm, larger than the {bw:g} x {bh:g} mm bed of {profile.kind} "
+            f"profile {profile.name!r}, and cannot be cut as pieces: {exc}",
+            param=exc.param,
+        ) from None
     marks = "score" in kind.modes  # a laser scores the numbers; a router or waterjet has no score layer
     pieces = []
     for piece in split.pieces:
@@ -312,6 +321,13 @@ def _report(split, pieces, groups, outline, profile, mode: str, marks: bool) -> 
             f"{', '.join(map(str, unmarked))} (the material is narrower than the smallest text with "
             f"{profile.min_feature_mm:g} mm round it): see the assembly drawing"
         )
+    filled = sum(int(p.plan.report.stats.get("filled_holes", 0)) for p in pieces)
+    if filled:
+        report.stats["filled_holes"] = filled
+        report.note(
+            f"filled {filled:,} holes the {profile.kind} cannot cut (min_hole_mm = {profile.min_hole_mm:g} mm of "
+            f"{profile.kind} profile {profile.name!r}) over the pieces"
+        )
     for p in pieces:
         _add_findings(report, p)
     return report
@@ -324,7 +340,5 @@ def _add_findings(report: Report, piece: CutPiece) -> None:
     for f in piece.plan.report.findings:
         # a plan's findings are located in the coordinates it was given, the file's less its offset
         where = [tuple((m @ [x + offset[0], y + offset[1], 1.0])[:2]) for x, y in f.locations]
-        report.findings.append(replace(f, message=f"piece {piece.number}: {f.message}", locations=tuple(where)))
-    for line in piece.plan.report.stats.get("notes", ()):
-        if "filled" in line:
-            report.note(f"piece {piece.number}: {line}")
+        located = tuple((float(x), float(y)) for x, y in where)
+        report.findings.append(replace(f, message=f"piece {piece.number}: {f.message}", locations=located))
