@@ -200,7 +200,7 @@ def _echo_files(result) -> None:
     replaced = set(result.replaced)
     for report in result.reports:
         files = [str(p) for p in report.stats.get("files", [report.path])]
-        if "pieces" in report.stats and len(files) > 2:  # a panel's pieces: one line per format
+        if "panel_mm" in report.stats and len(files) > 2:  # a panel's pieces: one line per format
             verb = "replaced" if all(p in replaced for p in files) else "wrote"
             click.echo(f"{verb} {piece_range(files)} ({report.format}, {len(files)} pieces)")
             continue

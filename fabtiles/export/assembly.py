@@ -67,10 +67,11 @@ def assembly_svg(model, *, title: str = "") -> bytes:
         f'<g transform="{flip}" stroke-linejoin="round">',
         f'<path d="{_path_d(model.outline)}" fill="none" stroke="#999" stroke-width="{_num(w / 600)}"/>',
     ]
+    simple = max(w, h) / 3000  # a drawing to print: a third of a millimetre on a 1 m panel is finer than ink
     for p in model.pieces:
         i, j = p.cell
         lines.append(
-            f'<path id="piece-{p.number}" d="{_path_d(p.region)}" fill="{fills[(i + j) % 2]}" fill-rule="evenodd" '
+            f'<path id="piece-{p.number}" d="{_path_d(_drawn(p.region, simple))}" fill="{fills[(i + j) % 2]}" fill-rule="evenodd" '
             f'stroke="#5a4a2a" stroke-width="{_num(w / 1500)}"/>'
         )
     dash = f'stroke-dasharray="{_num(font / 3)} {_num(font / 5)}"'
@@ -109,6 +110,17 @@ def assembly_svg(model, *, title: str = "") -> bytes:
         )
     lines.append("</svg>")
     return ("\n".join(lines) + "\n").encode()
+
+
+def _drawn(region, tolerance: float):
+    """A piece as the drawing shows it: simplified within ``tolerance``, its holes smaller than a
+    disc of 5 ``tolerance`` across left out (too small to see printed; the files hold them)."""
+    small = (5 * tolerance) ** 2
+    parts = [
+        shapely.Polygon(p.exterior, [r for r in p.interiors if shapely.Polygon(r).area >= small])
+        for p in shapely.get_parts(region)
+    ]
+    return shapely.simplify(shapely.MultiPolygon(parts), tolerance)
 
 
 def _middle(region) -> tuple[float, float]:

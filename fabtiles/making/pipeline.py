@@ -438,7 +438,7 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
             with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as zf:
                 for p in result.paths:
                     zf.writestr(zip_entry(Path(p).name), Path(p).read_bytes(), compress_type=zipfile.ZIP_DEFLATED)
-            what = "pieces" if "pieces" in report.stats else "kit"  # a panel's pieces, or an inlay kit's files
+            what = "pieces" if "panel_mm" in report.stats else "kit"  # a panel's pieces, or an inlay kit's files
             return Download(buf.getvalue(), report, "application/zip", f"{name}-{what}-{fmt}.zip")
         data = Path(result.paths[0]).read_bytes()
     return Download(data, report, FORMATS[fmt].media_type, f"{name}{suffix}")

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -26,6 +27,8 @@ from fabtiles.machines.profiles import load_profile
 from fabtiles.making import build_design
 
 ROOT = Path(__file__).resolve().parents[2]
+if str(ROOT / "tests" / "export") not in sys.path:  # the real programs' helpers live beside the export tests
+    sys.path.append(str(ROOT / "tests" / "export"))
 
 BED = """kind = "laser"
 description = "a small laser for the tests of pieces"
@@ -269,3 +272,46 @@ def test_the_screen_sample_is_eight_pieces(tmp_path):
     assert result.findings == 0
     w, h = sorted(report.stats["largest_piece_mm"])
     assert w <= 400 - 2 * 5 and h <= 600 - 2 * 5
+
+
+# --------------------------------------------------------------------------- the programs users load the pieces into
+
+
+def test_meerk40t_loads_each_piece_within_the_bed(built, tmp_path):
+    from test_laser_programs import burns, meerk40t
+
+    _, out, _ = built
+    for n in (1, 4):  # a piece laid as it is and one of the other row
+        dxf = out / f"panel-piece-0{n}.dxf"
+        doc = read_checked(dxf)
+        job = meerk40t(dxf, tmp_path / str(n))
+        assert job["added"] == len(list(doc.modelspace()))
+        paths = np.concatenate(burns(job["gcode"]))
+        assert paths.min() >= -0.01 and (paths.max(axis=0) <= [200 - 2 * 5 + 0.2, 150 - 2 * 5 + 0.2]).all()
+
+
+def test_librecad_draws_each_piece(built, tmp_path):
+    from test_dxf_librecad import RGB, _dxf_edges, _print_pdf, _segments_by_colour, librecad  # noqa: F401 - a fixture
+
+    exe = librecad.__wrapped__()  # the fixture's skip when LibreCAD is missing
+    _, out, _ = built
+    profile = load_profile(out.parent / "bed-200x150.toml")
+    for n in range(1, 5):
+        dxf = tmp_path / f"panel-piece-0{n}.dxf"
+        dxf.write_bytes((out / dxf.name).read_bytes())
+        drawn = _segments_by_colour(_print_pdf(exe, dxf, tmp_path))
+        cuts = _dxf_edges(dxf, profile.layers.inner_cut) + _dxf_edges(dxf, profile.layers.outer_cut)
+        assert len(drawn[RGB[profile.layers.inner_cut.color]]) == cuts
+        assert len(drawn[RGB[profile.layers.score.color]]) == _dxf_edges(dxf, profile.layers.score)
+
+
+def test_lbrnts_reads_each_pieces_project(built):
+    from test_lbrn2 import lbrnts, read_lbrn2
+
+    _, out, _ = built
+    for n in range(1, 5):
+        path = out / f"panel-piece-0{n}.lbrn2"
+        got, ours = lbrnts(path), read_lbrn2(path)
+        assert [(s["cutIndex"], s["vertices"]) for s in got["shapes"]] == [
+            (s["index"], len(s["vertices"])) for s in ours["shapes"]
+        ]
