@@ -71,8 +71,8 @@ def assembly_svg(model, *, title: str = "") -> bytes:
     for p in model.pieces:
         i, j = p.cell
         lines.append(
-            f'<path id="piece-{p.number}" d="{_path_d(_drawn(p.region, simple))}" fill="{fills[(i + j) % 2]}" fill-rule="evenodd" '
-            f'stroke="#5a4a2a" stroke-width="{_num(w / 1500)}"/>'
+            f'<path id="piece-{p.number}" d="{_path_d(_drawn(p.region, simple))}" fill="{fills[(i + j) % 2]}" '
+            f'fill-rule="evenodd" stroke="#5a4a2a" stroke-width="{_num(w / 1500)}"/>'
         )
     dash = f'stroke-dasharray="{_num(font / 3)} {_num(font / 5)}"'
     for x in model.split.seams_x:

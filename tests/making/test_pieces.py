@@ -291,9 +291,10 @@ def test_meerk40t_loads_each_piece_within_the_bed(built, tmp_path):
 
 
 def test_librecad_draws_each_piece(built, tmp_path):
-    from test_dxf_librecad import RGB, _dxf_edges, _print_pdf, _segments_by_colour, librecad  # noqa: F401 - a fixture
+    from test_dxf_librecad import RGB, _dxf_edges, _print_pdf, _segments_by_colour
+    from test_dxf_librecad import librecad as program
 
-    exe = librecad.__wrapped__()  # the fixture's skip when LibreCAD is missing
+    exe = program.__wrapped__()  # the export tests' fixture: LibreCAD, or their skip (or failure) without it
     _, out, _ = built
     profile = load_profile(out.parent / "bed-200x150.toml")
     for n in range(1, 5):
