@@ -20,12 +20,17 @@ The model names no machine beyond its profile: a printer's pieces can be the sam
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
 
 from ..core.errors import FabricationError, ParameterError
 from ..core.report import Report
+
+if TYPE_CHECKING:
+    from ..geometry.cut_plan import CutPlan
+    from ..geometry.pieces import PanelSplit
 
 PIECE_SUFFIX = "-piece-"
 """A piece's file is ``<name>-piece-01.<format>``, numbered from 1 at the top left along the rows."""
@@ -54,7 +59,7 @@ class CutPiece:
 
     number: int
     cell: tuple[int, int]
-    plan: object
+    plan: CutPlan
     matrix: np.ndarray
     region: shapely.Geometry
     label: tuple[float, float, float] | None
@@ -71,7 +76,7 @@ class PanelPieces:
     """A panel cut as pieces (see the module text): the split, the pieces in number order, the
     congruent groups, the panel's outline, its profile and one report for them all."""
 
-    split: object
+    split: PanelSplit
     pieces: tuple[CutPiece, ...]
     groups: tuple[tuple[int, ...], ...]
     outline: shapely.Geometry
@@ -91,7 +96,7 @@ class PanelPieces:
     @property
     def joints(self) -> tuple:
         """The split's joints (:class:`~fabtiles.geometry.pieces.PlacedJoint`)."""
-        return self.split.joints  # type: ignore[attr-defined]
+        return self.split.joints
 
 
 def _apply(m: np.ndarray):
