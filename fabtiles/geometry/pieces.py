@@ -113,10 +113,17 @@ class Joint:
             neck = box(0, -self.neck_mm / 2, self.depth_mm - r, self.neck_mm / 2)
             shape = shapely.union(knob, neck)
         if self.corner_mm > 0:
-            shape = _rounded(shape, self.corner_mm, self.neck_mm)
+            shape = _rounded(shape, self.corner_mm, self.neck_mm, self.fit_mm)
         coords = np.asarray(shape.exterior.coords)
         placed = c + coords[:, :1] * d + coords[:, 1:] * n
         return shapely.Polygon(placed)
+
+    def grown(self, tab: shapely.Polygon, by_mm: float) -> shapely.Polygon:
+        """``tab`` grown by ``by_mm``: mitred, its corners kept sharp; a rounded tab (``corner_mm``)
+        with round joins, as its fillets meet the seam at a cusp that a mitre would draw out to a spike."""
+        if self.corner_mm:
+            return tab.buffer(by_mm, quad_segs=8)
+        return tab.buffer(by_mm, join_style="mitre")
 
     @property
     def extent_mm(self) -> float:
@@ -124,16 +131,18 @@ class Joint:
         return self.depth_mm
 
 
-def _rounded(shape, r: float, neck_mm: float) -> shapely.Polygon:
+def _rounded(shape, r: float, neck_mm: float, fit_mm: float) -> shapely.Polygon:
     """A tab (sticking out along +x from the seam x = 0) with its corners rounded to ``r`` and its
-    neck meeting the seam in fillets of ``r``: the opening of the tab, then the closing of it with
-    the seam's side."""
+    neck meeting the seam in fillets a little wider (by the fit: grown by it, a fillet of ``r``
+    alone would be tighter than the tool): the opening of the tab, then the closing of it with the
+    seam's side."""
     q = 16
+    fillet = r + abs(fit_mm) + 0.01
     opened = shape.buffer(-r, quad_segs=q).buffer(r, quad_segs=q)
-    side = box(-2 * r, -neck_mm / 2 - 3 * r, 0, neck_mm / 2 + 3 * r)
-    closed = shapely.union(opened, side).buffer(r, quad_segs=q).buffer(-r, quad_segs=q)
+    side = box(-2 * fillet, -neck_mm / 2 - 3 * fillet, 0, neck_mm / 2 + 3 * fillet)
+    closed = shapely.union(opened, side).buffer(fillet, quad_segs=q).buffer(-fillet, quad_segs=q)
     _, y0, x1, y1 = shape.bounds
-    tab = shapely.intersection(closed, box(0, y0 - 2 * r, x1 + 1, y1 + 2 * r))
+    tab = shapely.intersection(closed, box(0, y0 - 2 * fillet, x1 + 1, y1 + 2 * fillet))
     return max(_parts(tab), key=lambda g: g.area)
 
 
@@ -329,7 +338,7 @@ class _Context:
         self.reach = joint.depth_mm + 2 * min_feature_mm + joint.head_mm
         # a tab grown by the minimum feature, at the origin sticking out along +x and +y: placed by a shift
         self.probes = [
-            np.asarray(joint.tab((0, 0), d).buffer(min_feature_mm, join_style="mitre").exterior.coords)
+            np.asarray(joint.grown(joint.tab((0, 0), d), min_feature_mm).exterior.coords)
             for d in ((1.0, 0.0), (0.0, 1.0))
         ]
 
@@ -611,7 +620,7 @@ def _tabs_on_seam(ctx: _Context, regions: dict, cell, other, axis: int, pos: flo
         if found is None:
             continue
         tab, at = found
-        grown = tab.buffer(joint.fit_mm, join_style="mitre") if joint.fit_mm else tab
+        grown = joint.grown(tab, joint.fit_mm) if joint.fit_mm else tab
         regions[other] = shapely.difference(regions[other], tab)
         regions[cell] = shapely.union(regions[cell], grown)
         placed.append(((float(at[0]), float(at[1])), tab))
@@ -641,7 +650,7 @@ def _fitting_tab(ctx: _Context, regions: dict, cell, other, stretch, c, directio
         at = np.array(c, float)
         at[along] = v
         tab = joint.tab(at, direction)
-        ring = tab.buffer(ctx.min_mm, join_style="mitre").difference(mine)
+        ring = joint.grown(tab, ctx.min_mm).difference(mine)
         if shapely.contains(theirs, ring):
             return tab, at
     return None

@@ -329,10 +329,7 @@ def _report(split, pieces, groups, outline, profile, mode: str, marks: bool) -> 
     filled = sum(int(p.plan.report.stats.get("filled_holes", 0)) for p in pieces)
     if filled:
         report.stats["filled_holes"] = filled
-        report.note(
-            f"filled {filled:,} holes the {profile.kind} cannot cut (min_hole_mm = {profile.min_hole_mm:g} mm of "
-            f"{profile.kind} profile {profile.name!r}) over the pieces"
-        )
+        report.note(f"filled {filled:,} holes too small for the {profile.kind} to cut, over the pieces")
     for p in pieces:
         _add_findings(report, p)
     return report

@@ -316,3 +316,53 @@ def test_lbrnts_reads_each_pieces_project(built):
         assert [(s["cutIndex"], s["vertices"]) for s in got["shapes"]] == [
             (s["index"], len(s["vertices"])) for s in ours["shapes"]
         ]
+
+
+ROUTER = """kind = "router"
+[router]
+tool_diameter_mm = 3.175
+min_feature_mm = 2.0
+bed_mm = [220, 170]
+thickness_mm = 6
+"""
+
+
+def test_a_routers_pieces_are_rounded_to_its_bit_and_still_lock(tmp_path):
+    """A router's bit rounds a socket's inner corners: the tabs are rounded to match, and the pieces
+    (the files hold the part contour, no kerf) fit without overlapping beyond the fit and interlock."""
+    (tmp_path / "router.toml").write_text(ROUTER)
+    design = tmp_path / "r.toml"
+    text = PANEL.format(profile=tmp_path / "router.toml").replace("radius = 20", "radius = 30")
+    design.write_text(text.replace("frame = 10.0", "frame = 20.0").replace("stroke = 3.0", "stroke = 8.0"))
+    result = build_design(load_design(design), tmp_path / "out", ["dxf"])
+    (report,) = result.reports
+    assert report.stats["joint"]["corner_mm"] == pytest.approx(3.175 / 2, abs=1e-3)
+    manifest = json.loads((tmp_path / "out" / "r-assembly.json").read_text())
+    placed = {}
+    for entry in manifest["pieces"]:
+        doc = read_checked(tmp_path / "out" / entry["files"][0])
+        rings = ring_polygons(doc, {"INNER", "OUTER"})
+        material = rings[0]
+        for ring in rings[1:]:
+            material = shapely.symmetric_difference(material, ring)
+        m = np.asarray(entry["matrix"])
+        placed[entry["number"]] = shapely.transform(material, lambda xy, m=m: xy @ m[:2, :2].T + m[:2, 2])
+    assert manifest["joints"]
+    for joint in manifest["joints"]:
+        a, b = (placed[n] for n in joint["pieces"])
+        assert shapely.intersection(a, b).buffer(-0.07).is_empty  # no more than the 0.1 mm fit
+        x, y = joint["at"]
+        near = shapely.box(x - 30, y - 30, x + 30, y + 30)
+        a, b = a.intersection(near), b.intersection(near)
+        for k in range(16):
+            t = 2 * math.pi * k / 16
+            assert shapely.intersection(a, shapely.affinity.translate(b, 2 * math.cos(t), 2 * math.sin(t))).area > 0.05
+
+
+def test_a_joint_the_bit_cannot_cut_is_refused(tmp_path):
+    (tmp_path / "router.toml").write_text(ROUTER.replace("thickness_mm = 6", "thickness_mm = 2.5"))
+    design = tmp_path / "r.toml"
+    design.write_text(PANEL.format(profile=tmp_path / "router.toml"))
+    result = run("build", design, "-o", tmp_path / "out", "--format", "dxf")
+    assert result.exit_code == 2 and not (tmp_path / "out").exists()
+    assert "the dovetail joint's neck of 2.5 mm is narrower than the 3.175 mm bit" in result.output
