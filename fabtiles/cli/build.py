@@ -197,13 +197,16 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
 
 def _echo_files(result) -> None:
     """The files written (or replaced), then each model's figures and findings once, and the formats skipped."""
+    from ..making.pieces import PIECE_SUFFIX
+
     replaced = set(result.replaced)
     for report in result.reports:
         files = [str(p) for p in report.stats.get("files", [report.path])]
-        if "panel_mm" in report.stats and len(files) > 2:  # a panel's pieces: one line per format
-            verb = "replaced" if all(p in replaced for p in files) else "wrote"
-            click.echo(f"{verb} {piece_range(files)} ({report.format}, {len(files)} pieces)")
-            continue
+        pieces = [p for p in files if PIECE_SUFFIX in Path(p).name]
+        if "panel_mm" in report.stats and len(pieces) > 2:  # a panel's pieces: one line per format
+            verb = "replaced" if all(p in replaced for p in pieces) else "wrote"
+            click.echo(f"{verb} {piece_range(pieces)} ({report.format}, {len(pieces)} pieces)")
+            files = [p for p in files if p not in pieces]  # the nested sheets, one line each
         for path in files:
             click.echo(f"{'replaced' if path in replaced else 'wrote'} {path} ({report.format})")
     for path in result.assembly:

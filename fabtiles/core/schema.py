@@ -872,6 +872,15 @@ KEYS: tuple[Key, ...] = MOTIF + (
     ),
     Key(
         section="output",
+        name="pieces_sheets",
+        type="boolean",
+        default=False,
+        help="a panel cut as pieces (`pieces`): its pieces also nested onto sheets of the bed's size, "
+        "`<name>-sheet-1.dxf`, ..., as `fabtiles nest` nests tiles; the packer takes a few seconds a sheet",
+        option=BuildOption(name="pieces_sheets", families=("cut",)),
+    ),
+    Key(
+        section="output",
         name="inlay",
         type="boolean",
         default=False,
@@ -1182,7 +1191,7 @@ def build_options(family: str) -> tuple[str, ...]:
     The 3MF takes the print's options and its own.
 
     >>> build_options("cut")
-    ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'pieces', 'inlay_fit_mm', 'inlay_pieces', 'inlay_base', 'tab_mm', 'tabs_per_part', 'colours')
+    ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'pieces', 'pieces_sheets', 'inlay_fit_mm', 'inlay_pieces', 'inlay_base', 'tab_mm', 'tabs_per_part', 'colours')
     """  # noqa: E501 - a doctest's lines are as Python prints them
     wanted = _family(family)
     mine = [k.option.name for k in KEYS if k.option is not None and set(wanted) & set(k.option.families)]

@@ -38,6 +38,9 @@ PIECE_SUFFIX = "-piece-"
 ASSEMBLY_SUFFIX = "-assembly"
 """The assembly drawing and manifest: ``<name>-assembly.svg`` and ``<name>-assembly.json``."""
 
+NEST_TIME_S = 2.0
+"""The packer's time budget when a panel's pieces are nested onto sheets, seconds."""
+
 LABEL_HEIGHTS_MM = (12.0, 8.0, 6.0, 4.0, 3.0)
 """The heights a piece's number is tried at, largest first (a laser's score reads from 3 mm up)."""
 
@@ -82,10 +85,16 @@ class PanelPieces:
     outline: shapely.Geometry
     profile: object
     report: Report
+    sheets: tuple = ()
+    """The pieces nested onto bed-sized sheets (``[output] pieces_sheets``): a cut plan per sheet."""
 
     def files(self) -> list:
-        """``[(suffix, plan), ...]``: ``-piece-01``, ``-piece-02``, ... (see :func:`piece_suffix`)."""
-        return [(piece_suffix(p.number, len(self.pieces)), p.plan) for p in self.pieces]
+        """``[(suffix, plan), ...]``: ``-piece-01``, ``-piece-02``, ... (see :func:`piece_suffix`), then the
+        nested sheets' ``-sheet-1``, ``-sheet-2``, ... when they were asked for."""
+        from .nesting import NEST_SUFFIX
+
+        pieces = [(piece_suffix(p.number, len(self.pieces)), p.plan) for p in self.pieces]
+        return pieces + [(f"{NEST_SUFFIX}{k + 1}", plan) for k, plan in enumerate(self.sheets)]
 
     @property
     def panel_mm(self) -> tuple[float, float]:
@@ -178,6 +187,33 @@ def pieces_model(tile, region, centrelines, profile, cut_options) -> PanelPieces
     groups = tuple(tuple(g) for g in congruent_groups(split.pieces))
     report = _report(split, pieces, groups, outline, profile, mode, marks)
     return PanelPieces(split, tuple(pieces), groups, outline, profile, report)
+
+
+def with_sheets(model: PanelPieces, *, time_s: float = NEST_TIME_S) -> PanelPieces:
+    """``model`` with its pieces also nested onto sheets of the bed's size less its margin, as
+    ``fabtiles nest`` nests tiles (:mod:`.nesting`): quarter turns, the cut's width and a margin apart,
+    within ``time_s`` seconds of packing; the report says how many sheets."""
+    from ..geometry.nest import nest
+    from .nesting import gap_between, part_outline, sheet_plan
+
+    profile = model.profile
+    plans = [p.plan for p in model.pieces]
+    kerf = max(p.kerf_mm for p in plans)
+    m = profile.margin_mm
+    bw, bh = profile.bed_mm
+    parts = [(p.number, part_outline(p.plan)) for p in model.pieces]
+    nesting = nest(parts, sheet_mm=(bw - 2 * m, bh - 2 * m), gap_mm=gap_between(None, kerf, profile), time_s=time_s)
+    mode = plans[0].mode
+    shapes = list(range(len(plans)))
+    sheets = tuple(sheet_plan(profile, plans, nesting, k, shapes, mode, kerf) for k in range(nesting.sheets))
+    use = ", ".join(f"{u:.0%}" for u in nesting.material_use())
+    report = model.report.extended(
+        notes=[
+            f"nested onto {nesting.sheets} sheet{'s' if nesting.sheets != 1 else ''} of the bed (material use {use})"
+        ],
+        nested_sheets=nesting.sheets,
+    )
+    return replace(model, sheets=sheets, report=report)
 
 
 def _period(tile):

@@ -296,6 +296,7 @@ def earlier_files(outdir, name: str, written) -> list[str]:
     """
     from ..export.formats import FORMATS, design_formats
     from ..export.kit import KIT_FILES
+    from .nesting import NEST_SUFFIX
     from .pieces import ASSEMBLY_SUFFIX, PIECE_SUFFIX
 
     folder = Path(outdir)
@@ -305,6 +306,7 @@ def earlier_files(outdir, name: str, written) -> list[str]:
     # a coloured kit's pieces files, one per wood; a panel's pieces and its assembly
     names += sorted(p.name for suffix in suffixes for p in folder.glob(f"{name}-pieces-*{suffix}"))
     names += sorted({p.name for suffix in suffixes for p in folder.glob(f"{name}{PIECE_SUFFIX}*{suffix}")})
+    names += sorted({p.name for suffix in suffixes for p in folder.glob(f"{name}{NEST_SUFFIX}*{suffix}")})
     names += [f"{name}{ASSEMBLY_SUFFIX}{suffix}" for suffix in (".svg", ".json")]
     return [str(folder / n) for n in names if n not in written and (folder / n).is_file()]
 

@@ -161,6 +161,7 @@ def test_build_options_are_the_schemas():
         "kerf_mm",
         "fill_small_holes",
         "pieces",
+        "pieces_sheets",
         "inlay_fit_mm",
         "inlay_pieces",
         "inlay_base",

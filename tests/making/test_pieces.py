@@ -366,3 +366,20 @@ def test_a_joint_the_bit_cannot_cut_is_refused(tmp_path):
     result = run("build", design, "-o", tmp_path / "out", "--format", "dxf")
     assert result.exit_code == 2 and not (tmp_path / "out").exists()
     assert "the dovetail joint's neck of 2.5 mm is narrower than the 3.175 mm bit" in result.output
+
+
+def test_the_pieces_nested_onto_sheets_on_request(tmp_path):
+    design = panel(tmp_path)
+    out = tmp_path / "out"
+    result = build_design(load_design(design, overrides=["output.pieces_sheets=true"]), out, ["dxf"])
+    (report,) = result.reports
+    sheets = sorted(out.glob("panel-sheet-*.dxf"))
+    assert len(sheets) == report.stats["nested_sheets"] >= 1
+    pieces_edges = sum(len(list(read_checked(out / f"panel-piece-0{n}.dxf").modelspace())) for n in range(1, 5))
+    sheet_edges = 0
+    for path in sheets:
+        rings = [shapely.Polygon(r.exterior) for r in ring_polygons(read_checked(path), {"OUTER"})]
+        x0, y0, x1, y1 = shapely.union_all(rings).bounds
+        assert x0 >= -1e-6 and y0 >= -1e-6 and x1 <= 200 - 2 * 5 + 0.2 and y1 <= 150 - 2 * 5 + 0.2
+        sheet_edges += len(list(read_checked(path).modelspace()))
+    assert sheet_edges == pieces_edges  # every piece's every path on one sheet
