@@ -139,35 +139,36 @@ def manifest(model, files: dict, *, name: str) -> bytes:
     split = model.split
     joint = split.joint
     profile = model.profile
-    data = {
-        "version": MANIFEST_VERSION,
-        "name": name,
-        "panel_mm": [round(x1 - x0, 3), round(y1 - y0, 3)],
-        "bed_mm": list(profile.bed_mm),
-        "bed_margin_mm": profile.margin_mm,
-        "profile": {"name": profile.name, "kind": profile.kind},
-        "grid": list(split.grid),
-        "seams_x": [round(v, 3) for v in split.seams_x],
-        "seams_y": [round(v, 3) for v in split.seams_y],
-        "joint": {
-            "kind": joint.kind,
-            "neck_mm": round(joint.neck_mm, 3),
-            "head_mm": round(joint.head_mm, 3),
-            "depth_mm": round(joint.depth_mm, 3),
-            "fit_mm": joint.fit_mm,
-            "corner_mm": round(joint.corner_mm, 3),
-        },
-        "pieces": [
-            {
-                "number": p.number,
-                "files": list(files.get(p.number, ())),
-                "cell": list(p.cell),
-                "matrix": [[round(float(v), 6) + 0.0 for v in row] for row in np.asarray(p.matrix)],
-                "size_mm": [round(v, 3) for v in p.size_mm],
-            }
+    # dict(...) of keywords: the manifest's own field names, which the design's keys do not declare
+    data = dict(
+        version=MANIFEST_VERSION,
+        name=name,
+        panel_mm=[round(x1 - x0, 3), round(y1 - y0, 3)],
+        bed_mm=list(profile.bed_mm),
+        bed_margin_mm=profile.margin_mm,
+        profile=dict(name=profile.name, kind=profile.kind),
+        grid=list(split.grid),
+        seams_x=[round(v, 3) for v in split.seams_x],
+        seams_y=[round(v, 3) for v in split.seams_y],
+        joint=dict(
+            kind=joint.kind,
+            neck_mm=round(joint.neck_mm, 3),
+            head_mm=round(joint.head_mm, 3),
+            depth_mm=round(joint.depth_mm, 3),
+            fit_mm=joint.fit_mm,
+            corner_mm=round(joint.corner_mm, 3),
+        ),
+        pieces=[
+            dict(
+                number=p.number,
+                files=list(files.get(p.number, ())),
+                cell=list(p.cell),
+                matrix=[[round(float(v), 6) + 0.0 for v in row] for row in np.asarray(p.matrix)],
+                size_mm=[round(v, 3) for v in p.size_mm],
+            )
             for p in model.pieces
         ],
-        "joints": [{"pieces": list(j.pieces), "at": [round(v, 3) for v in j.at]} for j in split.joints],
-        "congruent": [list(g) for g in model.groups],
-    }
+        joints=[dict(pieces=list(j.pieces), at=[round(v, 3) for v in j.at]) for j in split.joints],
+        congruent=[list(g) for g in model.groups],
+    )
     return (json.dumps(data, indent=1) + "\n").encode()

@@ -31,6 +31,7 @@ from ..core.report import Report
 if TYPE_CHECKING:
     from ..geometry.cut_plan import CutPlan
     from ..geometry.pieces import PanelSplit
+    from ..machines.profiles import CutterProfile
 
 PIECE_SUFFIX = "-piece-"
 """A piece's file is ``<name>-piece-01.<format>``, numbered from 1 at the top left along the rows."""
@@ -83,7 +84,7 @@ class PanelPieces:
     pieces: tuple[CutPiece, ...]
     groups: tuple[tuple[int, ...], ...]
     outline: shapely.Geometry
-    profile: object
+    profile: CutterProfile
     report: Report
     sheets: tuple = ()
     """The pieces nested onto bed-sized sheets (``[output] pieces_sheets``): a cut plan per sheet."""
