@@ -276,37 +276,45 @@ def _label_paths(number: int, label) -> list:
 def _report(split, pieces, groups, outline, profile, mode: str, marks: bool) -> Report:
     """The pieces' one report: what the split made, the largest piece against the bed, the jobs and
     material summed, and each piece's findings (named, located in the panel)."""
-    from ..geometry.job_time import JobEstimate
-
-    x0, y0, x1, y1 = outline.bounds
-    w, h = x1 - x0, y1 - y0
-    bw, bh = profile.bed_mm
-    nx, ny = split.grid
-    joint = split.joint
     report = Report(path="", format="")
     first = pieces[0].plan.report.stats
     report.stats.update({k: first[k] for k in ("profile", "mode", "kerf_mm", "kerf_y_mm", "cutter") if k in first})
+    report.stats.update(_figures(split, pieces, groups, outline, profile))
+    _notes(report, split, pieces, groups, profile, marks)
+    for p in pieces:
+        _add_findings(report, p)
+    return report
+
+
+def _summed_job(pieces):
+    """The pieces' jobs as one: lengths, pierces, travel and time added."""
+    from ..geometry.job_time import JobEstimate
+
     jobs = [p.plan.estimate for p in pieces]
     cut: dict = {}
     for j in jobs:
         for k, v in j.cut_mm.items():
             cut[k] = cut.get(k, 0.0) + v
-    job = JobEstimate(
+    return JobEstimate(
         cut,
         sum(j.pierces for j in jobs),
         sum(j.engrave_area_mm2 for j in jobs),
         sum(j.travel_mm for j in jobs),
         sum(j.seconds for j in jobs),
     )
+
+
+def _figures(split, pieces, groups, outline, profile) -> dict:
+    """The report's figures of the split: the panel, grid, seams, joints, largest piece, material, job."""
+    x0, y0, x1, y1 = outline.bounds
+    joint = split.joint
     sizes = {p.number: p.size_mm for p in pieces}
     largest = max(pieces, key=lambda p: sizes[p.number][0] * sizes[p.number][1])
-    lw, lh = sizes[largest.number]
     area = sum(float(p.plan.report.stats.get("area_mm2", 0.0)) for p in pieces)
-    sheet_m2 = sum(sizes[n][0] * sizes[n][1] for n in sizes) / 1e6
+    sheet_m2 = sum(w * h for w, h in sizes.values()) / 1e6
     cost = None if profile.price_per_m2 is None else round(sheet_m2 * profile.price_per_m2, 4)
-    unmarked = [p.number for p in pieces if p.label is None]
-    report.stats.update(
-        panel_mm=[round(w, 3), round(h, 3)],
+    figures = dict(
+        panel_mm=[round(x1 - x0, 3), round(y1 - y0, 3)],
         pieces=len(pieces),
         grid=list(split.grid),
         seams_x=[round(v, 3) for v in split.seams_x],
@@ -320,17 +328,27 @@ def _report(split, pieces, groups, outline, profile, mode: str, marks: bool) -> 
             fit_mm=joint.fit_mm,
             corner_mm=round(joint.corner_mm, 3),
         ),
-        largest_piece_mm=[round(lw, 3), round(lh, 3)],
-        bed_mm=[bw, bh],
+        largest_piece=largest.number,
+        largest_piece_mm=[round(v, 3) for v in sizes[largest.number]],
+        bed_mm=list(profile.bed_mm),
         bed_margin_mm=profile.margin_mm,
         congruent=[list(g) for g in groups],
         area_mm2=round(area, 3),
         sheet={"sheet_m2": round(sheet_m2, 6), "cost": cost},
-        job=job.as_stats(),
-        unnumbered=unmarked,
+        job=_summed_job(pieces).as_stats(),
+        unnumbered=[p.number for p in pieces if p.label is None],
     )
+    filled = sum(int(p.plan.report.stats.get("filled_holes", 0)) for p in pieces)
+    return figures | ({"filled_holes": filled} if filled else {})
+
+
+def _notes(report: Report, split, pieces, groups, profile, marks: bool) -> None:
+    """The report's lines for people: the panel in pieces, the joints, the largest piece, the material,
+    the alike pieces, the numbers not scored, the holes filled."""
+    st = report.stats
+    (w, h), (bw, bh), (nx, ny) = st["panel_mm"], profile.bed_mm, split.grid
+    joint, n_j = split.joint, len(split.joints)
     kinds = {"dovetail": "dovetail", "jigsaw": "jigsaw joint"}
-    n_j = len(split.joints)
     report.note(
         f"{w:g} x {h:g} mm panel in {len(pieces)} pieces ({nx} x {ny}) for the {bw:g} x {bh:g} mm bed of "
         f"{profile.kind} profile {profile.name!r}"
@@ -340,18 +358,21 @@ def _report(split, pieces, groups, outline, profile, mode: str, marks: bool) -> 
         f"{joint.head_mm:.3g} mm, {joint.depth_mm:.3g} mm deep, fit {joint.fit_mm:+g} mm"
         + (f", corners rounded to {joint.corner_mm:g} mm for the tool" if joint.corner_mm else "")
     )
+    lw, lh = st["largest_piece_mm"]
     report.note(
-        f"largest piece {lw:.1f} x {lh:.1f} mm (piece {largest.number}) on the {bw:g} x {bh:g} mm bed, "
+        f"largest piece {lw:.1f} x {lh:.1f} mm (piece {st['largest_piece']}) on the {bw:g} x {bh:g} mm bed, "
         f"{profile.margin_mm:g} mm margin"
     )
+    cost = st["sheet"]["cost"]
     price = "" if cost is None else f", about {cost:.2f} at price_per_m2 = {profile.price_per_m2:g}"
     report.note(
-        f"material: {area / 1e6:.3g} m^2 in the pieces, cut from {sheet_m2:.3g} m^2 of sheet (each piece's "
-        f"extents){price}; job time summed over every piece"
+        f"material: {st['area_mm2'] / 1e6:.3g} m^2 in the pieces, cut from {st['sheet']['sheet_m2']:.3g} m^2 of "
+        f"sheet (each piece's extents){price}; job time summed over every piece"
     )
     alike = [g for g in groups if len(g) > 1]
     if alike:
         report.note("alike pieces (one shape, interchangeable): " + "; ".join(", ".join(map(str, g)) for g in alike))
+    unmarked = st["unnumbered"]
     if not marks:
         report.note(
             f"a {profile.kind} has no score layer: the pieces' numbers are in the assembly drawing only; "
@@ -363,13 +384,8 @@ def _report(split, pieces, groups, outline, profile, mode: str, marks: bool) -> 
             f"{', '.join(map(str, unmarked))} (the material is narrower than the smallest text with "
             f"{profile.min_feature_mm:g} mm round it): see the assembly drawing"
         )
-    filled = sum(int(p.plan.report.stats.get("filled_holes", 0)) for p in pieces)
-    if filled:
-        report.stats["filled_holes"] = filled
-        report.note(f"filled {filled:,} holes too small for the {profile.kind} to cut, over the pieces")
-    for p in pieces:
-        _add_findings(report, p)
-    return report
+    if "filled_holes" in st:
+        report.note(f"filled {st['filled_holes']:,} holes too small for the {profile.kind} to cut, over the pieces")
 
 
 def _add_findings(report: Report, piece: CutPiece) -> None:
