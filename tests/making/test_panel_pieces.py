@@ -383,3 +383,47 @@ def test_the_pieces_nested_onto_sheets_on_request(tmp_path):
         assert x0 >= -1e-6 and y0 >= -1e-6 and x1 <= 200 - 2 * 5 + 0.2 and y1 <= 150 - 2 * 5 + 0.2
         sheet_edges += len(list(read_checked(path).modelspace()))
     assert sheet_edges == pieces_edges  # every piece's every path on one sheet
+
+
+def placed_pieces(out: Path, stem: str, layers=("INNER", "OUTER"), kerf=0.15) -> tuple[dict, dict]:
+    """The manifest, and each piece read back from its DXF and placed in the panel (the kerf taken off)."""
+    manifest = json.loads((out / f"{stem}-assembly.json").read_text())
+    placed = {}
+    for entry in manifest["pieces"]:
+        rings = ring_polygons(read_checked(out / entry["files"][0]), set(layers))
+        material = rings[0]
+        for ring in rings[1:]:
+            material = shapely.symmetric_difference(material, ring)
+        m = np.asarray(entry["matrix"])
+        in_panel = shapely.transform(material, lambda xy, m=m: xy @ m[:2, :2].T + m[:2, 2])
+        placed[entry["number"]] = in_panel.buffer(-kerf / 2, join_style="mitre") if kerf else in_panel
+    return manifest, placed
+
+
+def test_jigsaw_joints_lock_too(tmp_path):
+    design = panel(tmp_path, extra='joint = "jigsaw"')
+    build_design(load_design(design), tmp_path / "out", ["dxf"])
+    manifest, placed = placed_pieces(tmp_path / "out", "panel")
+    assert manifest["joint"]["kind"] == "jigsaw" and manifest["joints"]
+    for joint in manifest["joints"]:
+        a, b = (placed[n] for n in joint["pieces"])
+        assert shapely.intersection(a, b).buffer(-0.07).is_empty
+        for k in range(16):
+            t = 2 * math.pi * k / 16
+            assert shapely.intersection(a, shapely.affinity.translate(b, 2 * math.cos(t), 2 * math.sin(t))).area > 0.05
+
+
+def test_a_strict_profiles_findings_name_the_piece(tmp_path):
+    # holes narrower than 5 mm kept: a strict profile refuses them, and says in which piece
+    design = panel(tmp_path, extra="strict = true")
+    profile = tmp_path / "bed-200x150.toml"
+    profile.write_text(profile.read_text().replace("min_hole_mm = 1.2", "min_hole_mm = 5.0"))
+    result = run("build", design, "-o", tmp_path / "out", "--format", "dxf", "--set", "output.fill_small_holes=false")
+    assert result.exit_code == 2 and not (tmp_path / "out").exists()
+    assert "fabtiles: error: piece 1: fabrication checks failed (profile is strict)" in result.output
+
+
+def test_check_says_when_the_panel_cannot_be_split(tmp_path):
+    design = panel(tmp_path)
+    result = run("check", design, "--set", "tile.stroke=1.0", "--set", "tile.frame=3.0")
+    assert "laser pieces: 1, pieces " in result.output and "joint needs" in result.output
