@@ -11,7 +11,7 @@ unchanged, through the pipeline's staging (all files or none):
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -227,7 +227,8 @@ def plan_nest(
     tiles = _tiles(designs, limits)
     from .models import Models
 
-    plans = [Models(t, o).cut for t, o in zip(tiles, options, strict=True)]
+    # each design's tile one part: one larger than the bed is refused as before, not cut as pieces
+    plans = [Models(t, replace(o, pieces=False)).cut for t, o in zip(tiles, options, strict=True)]
     kerf = max(p.kerf_mm for p in plans)
     gap = gap_between(gap_mm, kerf, profile)
     _check_rotations(rotations, plans, profile)

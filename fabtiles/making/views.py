@@ -38,7 +38,9 @@ def made_region(tile, design, *, models: Models | None = None):
         return None
     kind.check_profile(profile)
     if models is not None and models.sheet is None and not options.kit and not options.fill_small_holes:
-        return models.cut.part  # the plan opened the holes already (pierced is a router's only mode)
+        part = getattr(models.cut, "part", None)  # a panel's pieces have a part each, not one
+        if part is not None:
+            return part  # the plan opened the holes already (pierced is a router's only mode)
     region, _ = cut_geometry(tile, profile=profile, mode="pierced", lines=False)
     return open_region(region, radius_mm=profile.tool_radius_mm, tolerance_mm=profile.tolerance_mm).region
 
