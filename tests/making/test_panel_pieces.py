@@ -427,3 +427,10 @@ def test_check_says_when_the_panel_cannot_be_split(tmp_path):
     design = panel(tmp_path)
     result = run("check", design, "--set", "tile.stroke=1.0", "--set", "tile.frame=3.0")
     assert "laser pieces: 1, pieces " in result.output and "joint needs" in result.output
+
+
+@pytest.mark.parametrize("command", [("nest",), ("plot", "--what", "cut")], ids=["nest", "plot"])
+def test_nest_and_plot_refuse_a_tile_larger_than_the_bed_as_before(tmp_path, command):
+    out = tmp_path / ("out" if command[0] == "nest" else "cut.svg")
+    result = run(command[0], panel(tmp_path), "-o", out, *command[1:])
+    assert result.exit_code == 2 and "larger than the 200 x 150 mm bed" in result.output and not out.exists()
