@@ -186,7 +186,7 @@ def pieces_model(tile, region, centrelines, profile, cut_options) -> PanelPieces
             label = (label[0] + plan.offset[0], label[1] + plan.offset[1], label[2])
         pieces.append(CutPiece(piece.number, piece.cell, plan, matrix, piece.region, label))
     groups = tuple(tuple(g) for g in congruent_groups(split.pieces))
-    report = _report(split, pieces, groups, outline, profile, mode, marks)
+    report = _report(split, pieces, groups, outline, profile, marks)
     return PanelPieces(split, tuple(pieces), groups, outline, profile, report)
 
 
@@ -273,7 +273,7 @@ def _label_paths(number: int, label) -> list:
     return text_paths(str(number), height_mm=h, x=x, y=y, centre=True)
 
 
-def _report(split, pieces, groups, outline, profile, mode: str, marks: bool) -> Report:
+def _report(split, pieces, groups, outline, profile, marks: bool) -> Report:
     """The pieces' one report: what the split made, the largest piece against the bed, the jobs and
     material summed, and each piece's findings (named, located in the panel)."""
     report = Report(path="", format="")
