@@ -272,6 +272,12 @@ def test_the_screen_sample_is_eight_pieces(tmp_path):
     assert result.findings == 0
     w, h = sorted(report.stats["largest_piece_mm"])
     assert w <= 400 - 2 * 5 and h <= 600 - 2 * 5
+    # the README's and docs/pieces.md's picture is this build's drawing
+    drawn = (tmp_path / "screen-1200x800-assembly.svg").read_bytes()
+    assert drawn == (ROOT / "samples" / "pictures" / "screen-1200x800-assembly.svg").read_bytes(), (
+        "copy the new drawing: fabtiles build samples/screen-1200x800.toml -o out --format dxf, then "
+        "cp out/screen-1200x800-assembly.svg samples/pictures/"
+    )
 
 
 # --------------------------------------------------------------------------- the programs users load the pieces into
@@ -434,3 +440,24 @@ def test_nest_and_plot_refuse_a_tile_larger_than_the_bed_as_before(tmp_path, com
     out = tmp_path / ("out" if command[0] == "nest" else "cut.svg")
     result = run(command[0], panel(tmp_path), "-o", out, *command[1:])
     assert result.exit_code == 2 and "larger than the 200 x 150 mm bed" in result.output and not out.exists()
+
+
+def test_an_inlay_kit_of_a_tile_larger_than_the_bed_is_refused_as_before(tmp_path):
+    result = run(
+        "build", panel(tmp_path), "-o", tmp_path / "out", "--format", "dxf", "--set", 'output.laser_mode="inlay"'
+    )
+    assert result.exit_code == 2 and "larger than the 200 x 150 mm bed" in result.output
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_download_of_a_panel_is_a_zip_of_its_pieces_and_assembly(tmp_path):
+    import io
+    import zipfile
+
+    from fabtiles.machines.limits import CLI_LIMITS
+    from fabtiles.making import build_bytes
+
+    download = build_bytes(load_design(panel(tmp_path)), "svg", limits=CLI_LIMITS)
+    assert (download.media_type, download.file_name) == ("application/zip", "panel-pieces-svg.zip")
+    names = sorted(zipfile.ZipFile(io.BytesIO(download.data)).namelist())
+    assert names == ["panel-assembly.json", "panel-assembly.svg"] + [f"panel-piece-0{n}.svg" for n in range(1, 5)]
