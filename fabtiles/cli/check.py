@@ -110,7 +110,12 @@ def command(design_file, output, overrides, deep):
         atomic_write(
             output,
             tile_picture(
-                tile, design, title=f"{design.name}: fabrication findings", findings=findings, made=result.made
+                tile,
+                design,
+                title=f"{design.name}: fabrication findings",
+                findings=findings,
+                made=result.made,
+                pieces=result.split,  # a panel larger than the bed: its pieces' seams and numbers
             ),
         )
         click.echo(f"wrote {output}")

@@ -37,6 +37,15 @@ if TYPE_CHECKING:
 
 
 @dataclass(frozen=True)
+class PiecesOverlay:
+    """Where a panel's pieces are cut apart: the seams (mm) and each piece's number where it is drawn."""
+
+    seams_x: tuple[float, ...]
+    seams_y: tuple[float, ...]
+    numbers: tuple[tuple[int, float, float], ...]
+
+
+@dataclass(frozen=True)
 class CheckResult:
     """The reports of :func:`check_tile`: ``laser`` and ``print`` (paths are empty)."""
 
@@ -58,6 +67,8 @@ class CheckResult:
     """The print's material as its files hold it (small openings filled with ``fill_small_holes``)."""
     pieces: tuple[str, ...] = ()
     """A tile larger than the cutter's bed, checked as the pieces it is cut as: what the split made (lines)."""
+    split: PiecesOverlay | None = None
+    """Those pieces' seams and numbers, for the pictures (:func:`~fabtiles.export.preview_svg.pieces_overlay`)."""
 
     def findings(self) -> list[tuple[str, Finding]]:
         """Every finding with where it comes from: the cutter's kind (``"laser"``, ``"router"``,
@@ -171,6 +182,8 @@ def _check_pieces(tile, laser, laser_mode, fill_small_holes, printer, print_styl
     )
     lines_out = tuple(report.stats.get("notes", ()))
     laser_report = Report(path="", format="laser", findings=list(report.findings))
+    numbers = tuple((p.number, *_middle(p.region)) for p in model.pieces)
+    overlay = PiecesOverlay(model.split.seams_x, model.split.seams_y, numbers)
     return CheckResult(
         laser_report,
         print_report,
@@ -182,7 +195,13 @@ def _check_pieces(tile, laser, laser_mode, fill_small_holes, printer, print_styl
         print_filled,
         print_region,
         lines_out,
+        overlay,
     )
+
+
+def _middle(region) -> tuple[float, float]:
+    x0, y0, x1, y1 = region.bounds
+    return (x0 + x1) / 2, (y0 + y1) / 2
 
 
 def _check_cut(tile, cut_region, outline, laser, laser_mode, fill_small_holes: bool, report: Report) -> tuple:

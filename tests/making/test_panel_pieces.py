@@ -461,3 +461,13 @@ def test_a_download_of_a_panel_is_a_zip_of_its_pieces_and_assembly(tmp_path):
     assert (download.media_type, download.file_name) == ("application/zip", "panel-pieces-svg.zip")
     names = sorted(zipfile.ZipFile(io.BytesIO(download.data)).namelist())
     assert names == ["panel-assembly.json", "panel-assembly.svg"] + [f"panel-piece-0{n}.svg" for n in range(1, 5)]
+
+
+def test_the_checks_picture_draws_the_seams_and_numbers(built, tmp_path):
+    _, _, design = built
+    result = run("check", design, "-o", tmp_path / "overlay.svg")
+    assert f"wrote {tmp_path / 'overlay.svg'}" in result.output
+    svg = (tmp_path / "overlay.svg").read_text()
+    group = svg[svg.index('<g class="pieces"') :]
+    group = group[: group.index("</g>")]
+    assert group.count("<line ") == 2 and group.count("<text ") == 4  # a seam each way, four numbers
