@@ -197,10 +197,21 @@ def command(design_file, outdir, overrides, formats, sheet, copies, gap_mm):
 
 def _echo_files(result) -> None:
     """The files written (or replaced), then each model's figures and findings once, and the formats skipped."""
+    from ..making.pieces import PIECE_SUFFIX
+
     replaced = set(result.replaced)
     for report in result.reports:
-        for path in report.stats.get("files", [report.path]):
-            click.echo(f"{'replaced' if str(path) in replaced else 'wrote'} {path} ({report.format})")
+        files = [str(p) for p in report.stats.get("files", [report.path])]
+        pieces = [p for p in files if PIECE_SUFFIX in Path(p).name]
+        if "panel_mm" in report.stats and len(pieces) > 2:  # a panel's pieces: one line per format
+            verb = "replaced" if all(p in replaced for p in pieces) else "wrote"
+            click.echo(f"{verb} {piece_range(pieces)} ({report.format}, {len(pieces)} pieces)")
+            files = [p for p in files if p not in pieces]  # the nested sheets, one line each
+        for path in files:
+            click.echo(f"{'replaced' if path in replaced else 'wrote'} {path} ({report.format})")
+    for path in result.assembly:
+        what = "assembly drawing" if path.endswith(".svg") else "assembly manifest"
+        click.echo(f"{'replaced' if path in replaced else 'wrote'} {path} ({what})")
     for label, report in result.models:
         click.echo(report.summary(label))
     skipped = result.skipped
@@ -209,6 +220,17 @@ def _echo_files(result) -> None:
             f"fabtiles: note: skipped {', '.join(skipped)}: a sheet is laid out for the laser formats (dxf, svg) only",
             err=True,
         )
+
+
+def piece_range(files) -> str:
+    """A panel's piece files in one name: ``out/screen-piece-01..08.dxf``.
+
+    >>> piece_range(["o/s-piece-01.dxf", "o/s-piece-02.dxf", "o/s-piece-08.dxf"])
+    'o/s-piece-01..08.dxf'
+    """
+    first, last = Path(files[0]), Path(files[-1])
+    number = last.stem.rsplit("-", 1)[-1]
+    return f"{first.parent / first.stem}..{number}{first.suffix}"
 
 
 def _note_earlier(result) -> None:

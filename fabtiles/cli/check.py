@@ -110,7 +110,12 @@ def command(design_file, output, overrides, deep):
         atomic_write(
             output,
             tile_picture(
-                tile, design, title=f"{design.name}: fabrication findings", findings=findings, made=result.made
+                tile,
+                design,
+                title=f"{design.name}: fabrication findings",
+                findings=findings,
+                made=result.made,
+                pieces=result.split,  # a panel larger than the bed: its pieces' seams and numbers
             ),
         )
         click.echo(f"wrote {output}")
@@ -167,6 +172,8 @@ def _profile_words(result, cutter: str, out) -> tuple[str, str]:
 
 def _echo_figures(result, cutter: str, class_lines: list) -> None:
     """The check's figures: the cutter's job and travel, the print's material, the classes."""
+    for line in result.pieces:  # a panel larger than the bed, checked as its pieces
+        click.echo(f"  {cutter} {line}")
     if result.job is not None:
         click.echo(f"  {cutter} job: {result.job.line()}")
         click.echo(f"  {cutter} {result.job.travel_line()}")

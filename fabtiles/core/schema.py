@@ -861,6 +861,26 @@ KEYS: tuple[Key, ...] = MOTIF + (
     ),
     Key(
         section="output",
+        name="pieces",
+        type="boolean",
+        default=True,
+        help="a tile larger than the cutter profile's bed (either way round) is cut as pieces that lock "
+        "together, each on the bed with the profile's `bed_margin_mm`: `<name>-piece-01.dxf`, ..., with "
+        "`<name>-assembly.svg` and `.json` ([pieces.md](pieces.md)); `false`: such a tile is refused, "
+        "larger than the bed",
+        option=BuildOption(name="pieces", families=("cut",)),
+    ),
+    Key(
+        section="output",
+        name="pieces_sheets",
+        type="boolean",
+        default=False,
+        help="a panel cut as pieces (`pieces`): its pieces also nested onto sheets of the bed's size, "
+        "`<name>-sheet-1.dxf`, ..., as `fabtiles nest` nests tiles; the packer takes a few seconds a sheet",
+        option=BuildOption(name="pieces_sheets", families=("cut",)),
+    ),
+    Key(
+        section="output",
         name="inlay",
         type="boolean",
         default=False,
@@ -1171,7 +1191,7 @@ def build_options(family: str) -> tuple[str, ...]:
     The 3MF takes the print's options and its own.
 
     >>> build_options("cut")
-    ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'inlay_fit_mm', 'inlay_pieces', 'inlay_base', 'tab_mm', 'tabs_per_part', 'colours')
+    ('mode', 'dxf_version', 'kerf_mm', 'fill_small_holes', 'pieces', 'pieces_sheets', 'inlay_fit_mm', 'inlay_pieces', 'inlay_base', 'tab_mm', 'tabs_per_part', 'colours')
     """  # noqa: E501 - a doctest's lines are as Python prints them
     wanted = _family(family)
     mine = [k.option.name for k in KEYS if k.option is not None and set(wanted) & set(k.option.families)]

@@ -164,6 +164,8 @@ class OutputSpec:
     print_style: str | None = _default("output.print_style")
     name: str | None = _default("output.name")
     fill_small_holes: bool = _default("output.fill_small_holes")
+    pieces: bool = _default("output.pieces")
+    pieces_sheets: bool = _default("output.pieces_sheets")
     inlay: bool = _default("output.inlay")
     threemf_layout: str = _default("output.threemf_layout")
     inlay_fit_mm: float | None = _default("output.inlay_fit_mm")

@@ -94,6 +94,38 @@ def findings_overlay(findings, height: float, *, mark_mm: float = 1.5) -> str:
     return "\n".join(out)
 
 
+def pieces_overlay(pieces, width: float, height: float) -> str:
+    """The seams (dashed) and numbers of a panel's pieces, in a ``<g class="pieces">``; y flipped.
+
+    ``pieces`` has ``seams_x``, ``seams_y`` (mm) and ``numbers``, ``((number, x, y), ...)`` where
+    each number goes (:class:`~fabtiles.making.checks.CheckResult`'s ``split``).
+
+    >>> from types import SimpleNamespace
+    >>> print(pieces_overlay(SimpleNamespace(seams_x=(50.0,), seams_y=(), numbers=((1, 25.0, 10.0),)), 100, 20))
+    <g class="pieces" stroke="#c0392b" stroke-width="0.5" stroke-dasharray="2 1.2">
+    <line x1="50" y1="0" x2="50" y2="20"/>
+    <text x="25" y="10" font-size="8" text-anchor="middle" dominant-baseline="middle" stroke="none" fill="#c0392b">1</text>
+    </g>
+    """  # noqa: E501 - a doctest's lines are as Python prints them
+    line = max(0.2, min(width, height) / 40)
+    out = [
+        f'<g class="pieces" stroke="#c0392b" stroke-width="{_num(line)}" '
+        f'stroke-dasharray="{_num(4 * line)} {_num(2.4 * line)}">'
+    ]
+    out += [f'<line x1="{_num(x)}" y1="0" x2="{_num(x)}" y2="{_num(height)}"/>' for x in pieces.seams_x]
+    out += [
+        f'<line x1="0" y1="{_num(height - y)}" x2="{_num(width)}" y2="{_num(height - y)}"/>' for y in pieces.seams_y
+    ]
+    size = max(width, height) / 12.5
+    out += [
+        f'<text x="{_num(x)}" y="{_num(height - y)}" font-size="{_num(size)}" text-anchor="middle" '
+        f'dominant-baseline="middle" stroke="none" fill="#c0392b">{n}</text>'
+        for n, x, y in pieces.numbers
+    ]
+    out.append("</g>")
+    return "\n".join(out)
+
+
 INK = "#1f3b73"
 """The bands' colour in a picture of a design given no colours.
 
@@ -111,6 +143,7 @@ def tile_svg(
     findings=None,
     region=None,
     faces=(),
+    pieces=None,
 ) -> str:
     """An SVG picture of ``tile`` at true size: material filled, outline stroked.
 
@@ -133,6 +166,9 @@ def tile_svg(
     faces : sequence of (str, shapely geometry, str), optional
         The pattern's faces in colour, drawn under the material: ``(class letter, faces,
         colour)`` each (a coloured design, ``docs/colours.md``), as ``<path class="face-A">``.
+    pieces : PiecesOverlay, optional
+        A tile larger than the cutter's bed: the seams its pieces are cut along and their numbers,
+        drawn over it (:func:`pieces_overlay`).
 
     Examples
     --------
@@ -165,6 +201,8 @@ def tile_svg(
     line = max(0.1, min(w, h) / 500)
     # marks 1 % of the tile's smaller side (1.5 mm on 150 mm), never under 0.5 mm
     marks = "" if findings is None else findings_overlay(findings, h, mark_mm=max(0.5, min(w, h) / 100)) + "\n"
+    if pieces is not None:
+        marks = pieces_overlay(pieces, w, h) + "\n" + marks
     return (
         '<?xml version="1.0" encoding="UTF-8"?>\n'
         f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(w)}mm" height="{_num(h)}mm" '

@@ -532,7 +532,7 @@ def split_at_tabs(paths: dict, tab_mm: float, tabs_per_part: int, report: Report
     return False
 
 
-def plan_cut(region, outline, options: CutOptions, *, centrelines=None) -> CutPlan:
+def plan_cut(region, outline, options: CutOptions, *, centrelines=None, marks=()) -> CutPlan:
     """Run the checks and build the contours: the tile's :class:`CutPlan`.
 
     Parameters
@@ -545,6 +545,8 @@ def plan_cut(region, outline, options: CutOptions, *, centrelines=None) -> CutPl
         The profile, mode, kerf, tabs and the rest, checked (:meth:`CutOptions.of`).
     centrelines : ndarray (k, 2, 2), optional
         Centre-line segments in file coordinates; needed by the score mode.
+    marks : sequence of ndarray (m, 2)
+        Open polylines scored on the material besides (a panel's piece number), file coordinates.
 
     Raises before any contour is made: :class:`~fabtiles.ParameterError` for a bad
     region or outline, :class:`~fabtiles.FabricationError` for a tile larger than the
@@ -572,6 +574,8 @@ def plan_cut(region, outline, options: CutOptions, *, centrelines=None) -> CutPl
     else:
         paths = _score_mode_paths(outline, outline_parts, centrelines, o, report)
         part = outline
+    if len(marks):
+        paths["score"] = [*paths.get("score", ()), *marks]
     outer_rings = len(paths["outer"])
     closed = split_at_tabs(paths, o.tab_mm, o.tabs_per_part, report)
     plan = make_plan(

@@ -95,13 +95,17 @@ several tabs evenly along it, so that a long seam cannot hinge about one."""
 @dataclass(frozen=True, slots=True)
 class Joint:
     """A joint's shape, in mm: its kind, the neck at the seam, the widest part, the depth into
-    the neighbour, and the fit (positive presses in, negative leaves play)."""
+    the neighbour, the fit (positive presses in, negative leaves play) and the radius its
+    corners are rounded to (a router's bit cannot cut a socket's inner corner sharper than its
+    own radius: the tab is rounded to it, and its neck meets the seam in fillets of it, so
+    both pieces are as the bit makes them)."""
 
     kind: str
     neck_mm: float
     head_mm: float
     depth_mm: float
     fit_mm: float = 0.0
+    corner_mm: float = 0.0
 
     def tab(self, centre, direction) -> shapely.Polygon:
         """The tab at ``centre`` on the seam, sticking out along the unit vector ``direction``.
@@ -122,9 +126,18 @@ class Joint:
             knob = shapely.Point(self.depth_mm - r, 0).buffer(r, quad_segs=16)
             neck = box(0, -self.neck_mm / 2, self.depth_mm - r, self.neck_mm / 2)
             shape = shapely.union(knob, neck)
+        if self.corner_mm > 0:
+            shape = _rounded(shape, self.corner_mm, self.neck_mm, self.fit_mm)
         coords = np.asarray(shape.exterior.coords)
         placed = c + coords[:, :1] * d + coords[:, 1:] * n
         return shapely.Polygon(placed)
+
+    def grown(self, tab: shapely.Polygon, by_mm: float) -> shapely.Polygon:
+        """``tab`` grown by ``by_mm``: mitred, its corners kept sharp; a rounded tab (``corner_mm``)
+        with round joins, as its fillets meet the seam at a cusp that a mitre would draw out to a spike."""
+        if self.corner_mm:
+            return tab.buffer(by_mm, quad_segs=8)
+        return tab.buffer(by_mm, join_style="mitre")
 
     @property
     def extent_mm(self) -> float:
@@ -132,15 +145,33 @@ class Joint:
         return self.depth_mm
 
 
-def joint_for(kind: str = "dovetail", *, thickness_mm: float, kerf_mm: float = 0.0, fit_mm: float = 0.0) -> Joint:
+def _rounded(shape, r: float, neck_mm: float, fit_mm: float) -> shapely.Polygon:
+    """A tab (sticking out along +x from the seam x = 0) with its corners rounded to ``r`` and its
+    neck meeting the seam in fillets a little wider (by the fit: grown by it, a fillet of ``r``
+    alone would be tighter than the tool): the opening of the tab, then the closing of it with the
+    seam's side."""
+    q = 16
+    fillet = r + abs(fit_mm) + 0.01
+    opened = shape.buffer(-r, quad_segs=q).buffer(r, quad_segs=q)
+    side = box(-2 * fillet, -neck_mm / 2 - 3 * fillet, 0, neck_mm / 2 + 3 * fillet)
+    closed = shapely.union(opened, side).buffer(fillet, quad_segs=q).buffer(-fillet, quad_segs=q)
+    _, y0, x1, y1 = shape.bounds
+    tab = shapely.intersection(closed, box(0, y0 - 2 * fillet, x1 + 1, y1 + 2 * fillet))
+    return max(_parts(tab), key=lambda g: g.area)
+
+
+def joint_for(
+    kind: str = "dovetail", *, thickness_mm: float, kerf_mm: float = 0.0, fit_mm: float = 0.0, corner_mm: float = 0.0
+) -> Joint:
     """The joint sized from the material: the neck as wide as one thickness (never under 2 mm), a
     dovetail as deep as two, its head wider by :data:`DOVETAIL_FLARE` of the depth each side; a
     jigsaw knob as wide as that head, on a neck half the neck's width long.
 
-    The kerf only sets a floor: a neck narrower than four kerfs would burn away.
+    The kerf only sets a floor: a neck narrower than four kerfs would burn away. ``corner_mm``
+    rounds the tab's corners (a router's bit radius, see :class:`Joint`).
 
     >>> joint_for("dovetail", thickness_mm=3)
-    Joint(kind='dovetail', neck_mm=3.0, head_mm=7.0, depth_mm=6.0, fit_mm=0.0)
+    Joint(kind='dovetail', neck_mm=3.0, head_mm=7.0, depth_mm=6.0, fit_mm=0.0, corner_mm=0.0)
     >>> joint_for("jigsaw", thickness_mm=3).depth_mm
     8.5
     >>> joint_for("knot", thickness_mm=3)
@@ -152,12 +183,13 @@ def joint_for(kind: str = "dovetail", *, thickness_mm: float, kerf_mm: float = 0
     t = check_float("thickness_mm", thickness_mm, low=0.1, high=100.0)
     kerf = check_float("kerf_mm", kerf_mm, low=0.0, high=10.0)
     fit = check_float("fit_mm", fit_mm, low=-0.5, high=0.5)
+    corner = check_float("corner_mm", corner_mm, low=0.0, high=50.0)
     neck = max(t, 2.0, 4 * kerf)
     depth = 2 * neck
     head = neck + 2 * DOVETAIL_FLARE * depth
     if kind == "jigsaw":  # the knob (as wide as the dovetail's head) on a neck half its width long
         depth = head + neck / 2
-    return Joint(kind, neck, head, depth, fit)
+    return Joint(kind, neck, head, depth, fit, corner)
 
 
 @dataclass(frozen=True, slots=True)
@@ -341,7 +373,7 @@ class _Context:
         self.reach = joint.depth_mm + 2 * min_feature_mm + joint.head_mm
         # a tab grown by the minimum feature, at the origin sticking out along +x and +y: placed by a shift
         self.probes = [
-            np.asarray(joint.tab((0, 0), d).buffer(min_feature_mm, join_style="mitre").exterior.coords)
+            np.asarray(joint.grown(joint.tab((0, 0), d), min_feature_mm).exterior.coords)
             for d in ((1.0, 0.0), (0.0, 1.0))
         ]
 
@@ -706,7 +738,7 @@ def _joints(ctx: _Context, regions: dict, xs, ys, nx: int, ny: int) -> list:
             for at, tab in placed:
                 joints.append(PlacedJoint(pair, at, tab))
                 sockets[other].append(tab)
-                tabs[(i, j)].append(tab.buffer(ctx.joint.fit_mm, join_style="mitre") if ctx.joint.fit_mm else tab)
+                tabs[(i, j)].append(ctx.joint.grown(tab, ctx.joint.fit_mm) if ctx.joint.fit_mm else tab)
     # each region changed once for all its tabs and sockets: an overlay costs the whole region
     for cell in regions:
         if sockets[cell]:
@@ -723,31 +755,61 @@ def _stretches(region, other) -> list:
 
 
 def _tabs_on_seam(ctx: _Context, regions: dict, cell, other, axis: int, pos: float, stretches, joints) -> list:
-    """Tabs of ``cell`` into ``other`` on each stretch on the seam where they fit: at its middle,
-    or evenly along it, one per :data:`TAB_SPACING_MM`, clear of the tabs of ``joints`` placed
-    before; the new tabs as ``[((x, y), tab), ...]`` (the regions are not changed)."""
+    """Tabs of ``cell`` into ``other`` on each stretch of the seam where they fit: one per
+    :data:`TAB_SPACING_MM` of it, each at the middle of its share of the stretch, else at the
+    nearest place in that share that holds the tab (a stretch may run on from a frame into a
+    band), clear of the tabs of ``joints`` placed before; the new tabs as ``[((x, y), tab), ...]``
+    (the regions are not changed: :func:`_joints` applies every tab at the end)."""
     joint = ctx.joint
     direction = (1.0, 0.0) if axis == 0 else (0.0, 1.0)
+    along = 1 - axis
+    taken = [joint.grown(j.tab, ctx.min_mm) for j in joints]
     placed: list = []
     for s in stretches:
         c = np.asarray(s.centroid.coords[0])
         if s.length < joint.neck_mm + 2 * ctx.min_mm or abs(c[axis] - pos) > 1e-6:
             continue
+        start, end = sorted((s.coords[0][along], s.coords[-1][along]))
         n = max(1, round(s.length / TAB_SPACING_MM))
         for k in range(n):
-            at = np.asarray(s.interpolate((k + 0.5) / n, normalized=True).coords[0])
+            share = (start + (end - start) * k / n, start + (end - start) * (k + 1) / n)
+            at = np.array(c, float)
             at[axis] = pos  # on the seam exactly: a tab a rounding off it would not touch its piece
-            tab = joint.tab(at, direction)
-            grown = tab.buffer(ctx.min_mm, join_style="mitre")
-            ring = grown.difference(_clip(regions[cell], grown.bounds))
-            if not shapely.contains(regions[other], ring):
-                continue
-            if any(shapely.intersects(grown, t.buffer(ctx.min_mm, join_style="mitre")) for _, t in placed) or any(
-                shapely.intersects(grown, j.tab.buffer(ctx.min_mm, join_style="mitre")) for j in joints
-            ):
-                continue  # too near a tab placed before, whose socket or tab the regions do not show yet
-            placed.append(((float(at[0]), float(at[1])), tab))
+            at[along] = (share[0] + share[1]) / 2
+            found = _fitting_tab(ctx, regions, cell, other, share, at, direction, along, taken)
+            if found is not None:
+                tab, where = found
+                taken.append(joint.grown(tab, ctx.min_mm))
+                placed.append(((float(where[0]), float(where[1])), tab))
     return placed
+
+
+def _fitting_tab(ctx: _Context, regions: dict, cell, other, share, c, direction, along: int, taken):
+    """``(tab, where)``: the tab at ``c``, or moved along the seam within ``share`` (by a tenth of
+    the neck, nearest first) to where the tab grown by the minimum feature lies in the two pieces'
+    material, clear of the ``taken`` tabs (grown likewise); None where none does."""
+    joint = ctx.joint
+    r = ctx.reach
+    lo, hi = share
+    x0, y0, x1, y1 = (c[0] - r, lo - r, c[0] + r, hi + r) if along else (lo - r, c[1] - r, hi + r, c[1] + r)
+    mine = _clip(regions[cell], (x0, y0, x1, y1))
+    theirs = _clip(regions[other], (x0, y0, x1, y1))
+    shapely.prepare(theirs)
+    lo, hi = lo + joint.neck_mm / 2 + ctx.min_mm, hi - joint.neck_mm / 2 - ctx.min_mm
+    step = max(0.1, joint.neck_mm / 10)
+    mid = float(c[along])
+    n = int((hi - lo) / step) if hi > lo else 0
+    tries = sorted({mid, *(lo + k * step for k in range(n + 1))}, key=lambda v: abs(v - mid))
+    for v in tries:
+        if not lo - 1e-9 <= v <= hi + 1e-9 and v != mid:
+            continue
+        at = np.array(c, float)
+        at[along] = v
+        tab = joint.tab(at, direction)
+        grown = joint.grown(tab, ctx.min_mm)
+        if shapely.contains(theirs, grown.difference(mine)) and not any(shapely.intersects(grown, t) for t in taken):
+            return tab, at
+    return None
 
 
 def _segments(geom) -> list:

@@ -32,6 +32,13 @@ FAMILY = "laser"
 """The family every 2D cutter belongs to: the profile kind the DXF, SVG and LightBurn formats take
 (``load_profile(..., kind="laser")``) and the one design key ``[output] laser_profile``."""
 
+JOINTS = ("dovetail", "jigsaw")
+"""The joints that lock the pieces of a panel larger than the bed: a dovetail (a trapezoid whose head
+is wider than its neck) or a jigsaw knob (a disc on a neck); every kind of cutter makes both."""
+
+PIECE_KEYS = ("thickness_mm", "bed_margin_mm", "joint", "joint_fit_mm")
+"""The keys of every cutter's section that say how a panel larger than the bed is cut as pieces."""
+
 KERF_RULES = ("offset", "none", "jet")
 """What a cutter's kerf is: ``"offset"`` (>= 0, the contours offset by half of it), ``"none"``
 (must be 0: the file holds the part contour and CAM offsets the tool), ``"jet"`` (> 0, the
@@ -70,6 +77,8 @@ class CutterKind:
     Filled with ``{d}`` (the tool's diameter), ``{r}`` (its radius) and ``{kerf}`` (mm)."""
     svg_title: str = ""
     """Its SVG's title, filled with ``{name}``, ``{mode}``, ``{d}``, ``{r}`` and ``{kerf}``."""
+    bed_margin_mm: float = 5.0
+    """The margin a piece of a panel keeps from the bed's edges unless the profile gives ``bed_margin_mm``."""
     tabs: bool = False
     """Whether fabtiles leaves holding tabs in its outer cut (``tab_mm``); a router's and a waterjet's file
     holds the part whole, and their CAM adds the tabs (with its lead-ins and its own tab heights)."""
@@ -192,6 +201,38 @@ class CutterKind:
                 param="tab_mm",
             )
 
+    def joint_corner_mm(self, profile) -> float:
+        """The radius a joint's corners are rounded to: the tool's (a router's bit cannot cut a socket's
+        inner corner sharper than its radius, so the tab is rounded to match); 0 for a laser.
+
+        >>> from fabtiles.machines.profiles import load_profile
+        >>> p = load_profile("router-6mm-mdf")
+        >>> p.cutter.joint_corner_mm(p), load_profile("laser-3mm-plywood").cutter.joint_corner_mm(p)
+        (3.0, 0.0)
+        """
+        return self.tool_radius(profile)
+
+    def check_joint(self, profile, neck_mm: float) -> None:
+        """A joint whose neck the tool cannot enter (a socket narrower than a router's bit or a waterjet's
+        jet, with room for the rounding) is a :class:`~fabtiles.ParameterError`.
+
+        >>> from fabtiles.machines.profiles import load_profile
+        >>> p = load_profile("router-6mm-mdf")
+        >>> p.cutter.check_joint(p, 12.0)
+        >>> p.cutter.check_joint(p, 5.0)
+        Traceback (most recent call last):
+        ...
+        fabtiles.core.errors.ParameterError: the dovetail joint's neck of 5 mm is narrower than the 6 mm bit (tool_diameter_mm of router profile 'router-6mm-mdf') can cut a socket for; give the profile a thickness_mm of at least 6 mm (the neck is as wide as the material is thick) or use a smaller bit
+        """  # noqa: E501 - a doctest's lines are as Python prints them
+        d = 2 * self.tool_radius(profile)
+        if neck_mm < d - 1e-9:
+            raise ParameterError(
+                f"the {profile.joint} joint's neck of {neck_mm:g} mm is narrower than {self.tool_name(profile)} "
+                f"can cut a socket for; give the profile a thickness_mm of at least {d:g} mm (the neck is as "
+                f"wide as the material is thick) or use a smaller {self.tool}",
+                param="thickness_mm",
+            )
+
     def check_card(self, profile) -> None:
         """The calibration card of a cutter it is not for is a ParameterError."""
         if not self.card:
@@ -260,6 +301,7 @@ LASER = CutterKind(
         "inlay_fit_mm",
         "min_piece_mm",
         "price_per_m2",
+        *PIECE_KEYS,
     ),
     modes=LASER_MODES,
     kerf="offset",
@@ -283,8 +325,10 @@ ROUTER = CutterKind(
         "pierce_s",
         "travel_mm_s",
         "price_per_m2",
+        *PIECE_KEYS,
     ),
     kerf="none",
+    bed_margin_mm=10.0,
     fixed=(("kerf_mm", 0.0), ("min_hole_mm", 0.0)),
     tool="bit",
     tool_key="tool_diameter_mm",
@@ -307,8 +351,10 @@ WATERJET = CutterKind(
         "pierce_s",
         "travel_mm_s",
         "price_per_m2",
+        *PIECE_KEYS,
     ),
     kerf="jet",
+    bed_margin_mm=10.0,
     tool="jet",
     tool_key="kerf_mm",
     dxf_note="the {d} mm jet's centre path (corners rounded to {r} mm, kerf {kerf} mm compensated: contours half "

@@ -24,7 +24,7 @@ from typing import Any
 from ..core.errors import ProfileError, did_you_mean
 from ..core.schema import key as schema_key
 from ..core.schema import register_choices
-from .cutters import CUTTER_KINDS, KINDS, LASER_MODES, cutter_kind, family, members
+from .cutters import CUTTER_KINDS, JOINTS, KINDS, LASER_MODES, cutter_kind, family, members
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -34,6 +34,8 @@ else:  # pragma: no cover - Python 3.10
 PRINT_STYLES = ("relief", "pierced", "deboss", "mosaic")
 PRINTER = "printer"
 """The kind of a 3D printer's profile (every other kind is a 2D cutter's, :data:`~fabtiles.machines.cutters.KINDS`)."""
+DEFAULT_THICKNESS_MM = 3.0
+"""A cutter profile's sheet thickness when it gives none (it sizes the joints of a panel's pieces)."""
 DXF_VERSIONS = ("R12", "R2000", "R2004", "R2007", "R2010", "R2013", "R2018")
 
 
@@ -116,6 +118,15 @@ class CutterProfile:
     kind: str = "laser"
     tool_diameter_mm: float | None = None
     """A router's bit diameter (mm); None for a laser or a waterjet."""
+    thickness_mm: float | None = None
+    """The sheet's thickness (mm), which sizes the joints of a panel's pieces; None: 3 mm."""
+    bed_margin_mm: float | None = None
+    """How far a piece of a panel keeps from the bed's edges (mm); None: the kind's (a laser's 5 mm,
+    a router's or waterjet's 10 mm, room for the clamps that hold the sheet)."""
+    joint: str = "dovetail"
+    """The joint that locks a panel's pieces (:data:`~fabtiles.machines.cutters.JOINTS`)."""
+    joint_fit_mm: float = 0.1
+    """How much a joint's tab is grown (mm): positive presses in, negative leaves play."""
 
     def __post_init__(self):
         cutter_kind(self)  # a kind that is no cutter's is a ProfileError
@@ -134,6 +145,16 @@ class CutterProfile:
     def min_piece_or_default_mm(self) -> float:
         """The smallest hole an inlay kit makes a piece of: ``min_piece_mm``, else twice ``min_hole_mm``."""
         return 2 * self.min_hole_mm if self.min_piece_mm is None else self.min_piece_mm
+
+    @property
+    def thickness_or_default_mm(self) -> float:
+        """The sheet's thickness: ``thickness_mm``, else 3 mm (the bundled lasers' sheets)."""
+        return DEFAULT_THICKNESS_MM if self.thickness_mm is None else self.thickness_mm
+
+    @property
+    def margin_mm(self) -> float:
+        """The margin a piece keeps from the bed's edges: ``bed_margin_mm``, else the kind's."""
+        return self.cutter.bed_margin_mm if self.bed_margin_mm is None else self.bed_margin_mm
 
     @property
     def kerf_xy_mm(self) -> tuple[float, float]:
@@ -428,9 +449,13 @@ def _value(source: str, kind: str, cutter, key: str, value):
         return schema_key("output.inlay_fit_mm").check(
             value, name=full, prefix=f"{source}: ", error=ProfileError, param=full, note=False
         )
-    if key in ("mode", "print_style", "dxf_version"):
+    if key == "joint_fit_mm":
+        return schema_key("output.inlay_fit_mm").check(
+            value, name=full, prefix=f"{source}: ", error=ProfileError, param=full, note=False
+        )
+    if key in ("mode", "print_style", "dxf_version", "joint"):
         return _choice(source, cutter, key, full, value)
-    zero_ok = key in (cutter.zero_keys if cutter else PRINTER_ZERO_KEYS)
+    zero_ok = key in (cutter.zero_keys if cutter else PRINTER_ZERO_KEYS) or key == "bed_margin_mm"
     return _positive(source, full, value, allow_zero=zero_ok or key in ("pierce_s", "price_per_kg", "price_per_m2"))
 
 
@@ -440,6 +465,7 @@ def _choice(source: str, cutter, key: str, full: str, value) -> str:
         "mode": cutter.modes if cutter else LASER_MODES,
         "print_style": PRINT_STYLES,
         "dxf_version": DXF_VERSIONS,
+        "joint": JOINTS,
     }[key]
     if value not in choices:
         hint = did_you_mean(value, choices)

@@ -37,6 +37,15 @@ if TYPE_CHECKING:
 
 
 @dataclass(frozen=True)
+class PiecesOverlay:
+    """Where a panel's pieces are cut apart: the seams (mm) and each piece's number where it is drawn."""
+
+    seams_x: tuple[float, ...]
+    seams_y: tuple[float, ...]
+    numbers: tuple[tuple[int, float, float], ...]
+
+
+@dataclass(frozen=True)
 class CheckResult:
     """The reports of :func:`check_tile`: ``laser`` and ``print`` (paths are empty)."""
 
@@ -56,6 +65,10 @@ class CheckResult:
     """The print's openings filled (``fill_small_holes``): narrower than the printer profile's ``min_hole_mm``."""
     print_region: object = None
     """The print's material as its files hold it (small openings filled with ``fill_small_holes``)."""
+    pieces: tuple[str, ...] = ()
+    """A tile larger than the cutter's bed, checked as the pieces it is cut as: what the split made (lines)."""
+    split: PiecesOverlay | None = None
+    """Those pieces' seams and numbers, for the pictures (:func:`~fabtiles.export.preview_svg.pieces_overlay`)."""
 
     def findings(self) -> list[tuple[str, Finding]]:
         """Every finding with where it comes from: the cutter's kind (``"laser"``, ``"router"``,
@@ -78,6 +91,7 @@ def check_tile(
     print_style=None,
     heights=None,
     job: bool = False,
+    pieces: bool = False,
 ) -> CheckResult:
     """Run the laser and print checks of ``tile`` (see the module text).
 
@@ -99,12 +113,18 @@ def check_tile(
         Also estimate the laser job's length and time (its contours are built, as
         for the laser files): ``CheckResult.job``. None when the tile cannot be cut
         (larger than the bed).
+    pieces : bool
+        A tile larger than the cutter's bed is checked as the pieces the build cuts it as
+        (:mod:`fabtiles.making.pieces`): the split's figures in ``CheckResult.pieces``, each
+        piece's findings in the cutter's report, the job summed; a split that cannot be made
+        is a ``pieces`` finding. Else such a tile is a ``bed_size`` finding.
     """
     from ..geometry.laser_checks import check_fits_bed
 
     laser = load_profile(laser_profile or DEFAULT_LASER_PROFILE, kind="laser")
     printer = load_profile(printer_profile or DEFAULT_PRINTER_PROFILE, kind="printer")
-    if (laser_mode or laser.mode) == "inlay":  # an inlay kit's lattice is checked (and timed) as a pierced tile
+    original_mode = laser_mode or laser.mode
+    if original_mode == "inlay":  # an inlay kit's lattice is checked (and timed) as a pierced tile
         laser_mode = "pierced"
     region, outline = tile.region(), tile.outline_shape()
     # the laser file's material: with interlace_cut, the under gaps cut and their tabs
@@ -113,6 +133,8 @@ def check_tile(
     try:
         check_fits_bed(outline, laser)
     except FabricationError as exc:
+        if pieces and (laser_mode or laser.mode) != "inlay" and original_mode != "inlay":
+            return _check_pieces(tile, laser, laser_mode, fill_small_holes, printer, print_style, heights, job)
         laser_report.add("bed_size", str(exc))
     filled, made = _check_cut(tile, cut_region, outline, laser, laser_mode, fill_small_holes, laser_report)
     print_report, print_filled, print_region = _check_printed(
@@ -127,6 +149,59 @@ def check_tile(
     return CheckResult(
         laser_report, print_report, filled, estimate, material, made, laser.kind, print_filled, print_region
     )
+
+
+def _check_pieces(tile, laser, laser_mode, fill_small_holes, printer, print_style, heights, job) -> CheckResult:
+    """:func:`check_tile` of a tile larger than the cutter's bed, as its pieces (see its ``pieces``)."""
+    from ..core.errors import FabtilesError
+    from ..geometry.cut_plan import CutOptions
+    from .pieces import pieces_model
+
+    region, outline = tile.region(), tile.outline_shape()
+    print_report, print_filled, print_region = _check_printed(
+        tile, region, outline, printer, print_style, heights, fill_small_holes
+    )
+    material = _filament(print_region, outline, printer, print_style, heights) if job else None
+    cut_region, lines = laser_geometry(tile, profile=laser, mode=laser_mode)
+    options = CutOptions.of(
+        profile=replace(laser, strict=False), mode=laser_mode, fill_small_holes=fill_small_holes, fmt="check"
+    )
+    try:
+        model = pieces_model(tile, cut_region, lines, laser, options)
+    except FabtilesError as exc:
+        report = Report(path="", format="laser")
+        report.add("pieces", str(exc))
+        return CheckResult(report, print_report, 0, None, material, None, laser.kind, print_filled, print_region)
+    report = model.report
+    filled = sum(int(p.plan.report.stats.get("filled_holes", 0)) for p in model.pieces)
+    from ..geometry.job_time import JobEstimate
+
+    stats = report.stats["job"]
+    estimate = JobEstimate(
+        dict(stats["cut_mm"]), stats["pierces"], stats["engrave_area_mm2"], stats["travel_mm"], stats["seconds"]
+    )
+    lines_out = tuple(report.stats.get("notes", ()))
+    laser_report = Report(path="", format="laser", findings=list(report.findings))
+    numbers = tuple((p.number, *_middle(p.region)) for p in model.pieces)
+    overlay = PiecesOverlay(model.split.seams_x, model.split.seams_y, numbers)
+    return CheckResult(
+        laser_report,
+        print_report,
+        filled,
+        estimate if job else None,
+        material,
+        None,
+        laser.kind,
+        print_filled,
+        print_region,
+        lines_out,
+        overlay,
+    )
+
+
+def _middle(region) -> tuple[float, float]:
+    x0, y0, x1, y1 = region.bounds
+    return (x0 + x1) / 2, (y0 + y1) / 2
 
 
 def _check_cut(tile, cut_region, outline, laser, laser_mode, fill_small_holes: bool, report: Report) -> tuple:
@@ -226,4 +301,5 @@ def check_design(design, tile=None, *, job: bool = False) -> CheckResult:
         print_style=out.print_style,
         heights=out.heights(),
         job=job,
+        pieces=out.pieces,
     )

@@ -54,6 +54,10 @@ class BuildOptions:
     kerf_mm: float | None = None
     print_style: str | None = None
     heights: dict = field(default_factory=dict)
+    pieces: bool = True
+    """A tile larger than the cutter's bed cut as pieces that lock together (False: refused)."""
+    pieces_sheets: bool = False
+    """A panel's pieces also nested onto bed-sized sheets."""
     inlay: bool = False
     """The deboss grooves filled as a second part of the print."""
     threemf_layout: str = "volumes"
@@ -294,6 +298,12 @@ class Models:
             tabs_per_part=o.tabs_per_part,
         )
         check_dxf_version(o.dxf_version)  # the files' option, refused with the plan's before the work
+        if self.sheet is None and o.pieces:
+            from .pieces import pieces_model, too_big, with_sheets
+
+            if too_big(outline, o.cutter):  # cut as pieces that lock together, each on the bed
+                pieces = pieces_model(self.tile, region, centrelines, o.cutter, cut_options)
+                return with_sheets(pieces) if o.pieces_sheets else pieces
         plan = plan_cut(region, outline, cut_options, centrelines=centrelines)
         if self.sheet is not None:  # how many tiles, which the files' summary does not show otherwise
             n = len(self.sheet.offsets)

@@ -11,7 +11,7 @@ unchanged, through the pipeline's staging (all files or none):
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -104,7 +104,7 @@ def parse_counts(designs, count: int | None):
     return out
 
 
-def _sheet_plan(profile, plans, nesting, k, shapes, mode, kerf):
+def sheet_plan(profile, plans, nesting, k, shapes, mode, kerf):
     """The cut plan of sheet ``k``: each placed copy's paths, every layer, moved rigidly."""
     from ..geometry.cut_plan import ROLES, make_plan
 
@@ -227,15 +227,16 @@ def plan_nest(
     tiles = _tiles(designs, limits)
     from .models import Models
 
-    plans = [Models(t, o).cut for t, o in zip(tiles, options, strict=True)]
+    # each design's tile one part: one larger than the bed is refused as before, not cut as pieces
+    plans = [Models(t, replace(o, pieces=False)).cut for t, o in zip(tiles, options, strict=True)]
     kerf = max(p.kerf_mm for p in plans)
-    gap = _gap(gap_mm, kerf, profile)
+    gap = gap_between(gap_mm, kerf, profile)
     _check_rotations(rotations, plans, profile)
     outlines = [part_outline(p) for p in plans]
     parts, shapes = _parts(designs, outlines)
     nesting = nest(parts, sheet_mm=(w, h), gap_mm=gap, rotations=rotations, time_s=time_s, progress=progress)
     mode = plans[0].mode
-    sheets = tuple(_sheet_plan(profile, plans, nesting, k, shapes, mode, kerf) for k in range(nesting.sheets))
+    sheets = tuple(sheet_plan(profile, plans, nesting, k, shapes, mode, kerf) for k in range(nesting.sheets))
     report = Report(path="", format="")
     report.stats.update(
         profile=profile.name,
@@ -336,7 +337,7 @@ def _sheet_size(sheet_mm, profile) -> tuple[float, float]:
     return w, h
 
 
-def _gap(gap_mm, kerf: float, profile) -> float:
+def gap_between(gap_mm, kerf: float, profile) -> float:
     """The gap between parts in mm, checked to keep two parts' cuts apart (None: the cut's width and a margin)."""
     least = max(kerf, 2 * profile.tool_radius_mm)  # a router's bit must pass between two parts
     gap = least + GAP_EXTRA_MM if gap_mm is None else check_float("gap_mm", gap_mm)

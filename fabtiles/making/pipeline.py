@@ -91,6 +91,8 @@ class BuildResult:
     build of ``table3-3.dxf``, or a refused format's): left from an earlier build, not rewritten."""
     refused: list[Refused] = field(default_factory=list)
     """The formats asked for that were refused, each with its reason; their files were not written."""
+    assembly: list[str] = field(default_factory=list)
+    """A panel cut as pieces: the paths of its assembly drawing and manifest (also in :attr:`paths`)."""
 
     @property
     def findings(self) -> int:
@@ -245,6 +247,9 @@ def write_files(
         reports.append(report)
     if not reports:  # every format refused: the build fails, with nothing written
         raise refusal_error(refused)
+    stem = Path(file_name).stem if file_name is not None else name
+    assembly = _assembly_files(models, contents, stem, failed)
+    contents.extend(assembly)
     with StagingFolder(outdir) as (staging, final):
         staged = [atomic_write(staging / fname, data) for fname, data in contents]
         picture = atomic_write(staging / f"{name}{PREVIEW_SUFFIX}", preview_svg) if preview_svg is not None else None
@@ -257,7 +262,29 @@ def write_files(
         report.path = str(folder / report.path)
         if "files" in report.stats:
             report.stats["files"] = [str(folder / n) for n in report.stats["files"]]
-    return BuildResult(reports, (), picture, paths, models.reports(reports), replaced, refused=refused)
+    made = [str(folder / n) for n, _ in assembly]
+    return BuildResult(reports, (), picture, paths, models.reports(reports), replaced, refused=refused, assembly=made)
+
+
+def _assembly_files(models: BuildModels, contents: list, stem: str, failed: dict) -> list:
+    """A panel cut as pieces: ``[(name, bytes), ...]`` of its assembly drawing and manifest, made once
+    per build from the cut model, naming each piece's files among ``contents``; else nothing."""
+    from ..export.assembly import assembly_svg, manifest
+    from .pieces import ASSEMBLY_SUFFIX, PanelPieces, piece_suffix
+
+    made = getattr(models, "made", None)
+    if "cut" in failed or made is None or not made("cut"):
+        return []
+    model = models.model("cut")
+    if not isinstance(model, PanelPieces):
+        return []
+    n = len(model.pieces)
+    names = [fname for fname, _ in contents]
+    files = {p.number: [f for f in names if f.startswith(f"{stem}{piece_suffix(p.number, n)}.")] for p in model.pieces}
+    return [
+        (f"{stem}{ASSEMBLY_SUFFIX}.svg", assembly_svg(model, title=stem)),
+        (f"{stem}{ASSEMBLY_SUFFIX}.json", manifest(model, files, name=stem)),
+    ]
 
 
 def earlier_files(outdir, name: str, written) -> list[str]:
@@ -269,13 +296,18 @@ def earlier_files(outdir, name: str, written) -> list[str]:
     """
     from ..export.formats import FORMATS, design_formats
     from ..export.kit import KIT_FILES
+    from .nesting import NEST_SUFFIX
+    from .pieces import ASSEMBLY_SUFFIX, PIECE_SUFFIX
 
     folder = Path(outdir)
     written = {Path(p).name for p in written}
     suffixes = [FORMATS[fmt].suffix for fmt in design_formats()]
     names = [f"{name}{kit}{suffix}" for suffix in suffixes for kit in ("", *(s for s, _ in KIT_FILES))]
-    # a coloured kit's pieces files, one per wood
+    # a coloured kit's pieces files, one per wood; a panel's pieces and its assembly
     names += sorted(p.name for suffix in suffixes for p in folder.glob(f"{name}-pieces-*{suffix}"))
+    names += sorted({p.name for suffix in suffixes for p in folder.glob(f"{name}{PIECE_SUFFIX}*{suffix}")})
+    names += sorted({p.name for suffix in suffixes for p in folder.glob(f"{name}{NEST_SUFFIX}*{suffix}")})
+    names += [f"{name}{ASSEMBLY_SUFFIX}{suffix}" for suffix in (".svg", ".json")]
     return [str(folder / n) for n in names if n not in written and (folder / n).is_file()]
 
 
@@ -408,7 +440,8 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
             with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as zf:
                 for p in result.paths:
                     zf.writestr(zip_entry(Path(p).name), Path(p).read_bytes(), compress_type=zipfile.ZIP_DEFLATED)
-            return Download(buf.getvalue(), report, "application/zip", f"{name}-kit-{fmt}.zip")
+            what = "pieces" if "panel_mm" in report.stats else "kit"  # a panel's pieces, or an inlay kit's files
+            return Download(buf.getvalue(), report, "application/zip", f"{name}-{what}-{fmt}.zip")
         data = Path(result.paths[0]).read_bytes()
     return Download(data, report, FORMATS[fmt].media_type, f"{name}{suffix}")
 

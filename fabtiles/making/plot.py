@@ -21,6 +21,8 @@ Its front ends: ``fabtiles plot`` (SVG, or HPGL through vpype), the vpype plugin
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..core.validate import check_choice, check_float
@@ -58,7 +60,8 @@ def plot_drawing(design, *, what: str = "centrelines", pen_mm=None, limits: _lim
 
     what, pen = check_plot_options(what, pen_mm)
     tile = prepare_tile(design, limits=limits)
-    models = Models(tile, BuildOptions.of_design(design))
+    # the cut as one plan: a tile larger than the cutter's bed is refused as before, not drawn as pieces
+    models = Models(tile, replace(BuildOptions.of_design(design), pieces=False))
     if what == "cut":
         from ..export.laser_svg import aci_to_hex
 

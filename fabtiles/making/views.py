@@ -38,19 +38,22 @@ def made_region(tile, design, *, models: Models | None = None):
         return None
     kind.check_profile(profile)
     if models is not None and models.sheet is None and not options.kit and not options.fill_small_holes:
-        return models.cut.part  # the plan opened the holes already (pierced is a router's only mode)
+        part = getattr(models.cut, "part", None)  # a panel's pieces have a part each, not one
+        if part is not None:
+            return part  # the plan opened the holes already (pierced is a router's only mode)
     region, _ = cut_geometry(tile, profile=profile, mode="pierced", lines=False)
     return open_region(region, radius_mm=profile.tool_radius_mm, tolerance_mm=profile.tolerance_mm).region
 
 
 def tile_picture(
-    tile, design, *, models: Models | None = None, title: str | None = None, findings=None, made=False
+    tile, design, *, models: Models | None = None, title: str | None = None, findings=None, made=False, pieces=None
 ) -> str:
     """The tile's picture (SVG, true size): a router's part as its tool makes it, and with the design's
     colours its faces filled in their classes' colours and its bands in the band colour.
 
     ``made`` is the part to draw when the caller has it already (``fabtiles check``'s); by
-    default it is :func:`made_region`'s.
+    default it is :func:`made_region`'s. ``pieces``: a panel's seams and numbers drawn over it
+    (:attr:`~fabtiles.making.checks.CheckResult.split`).
     """
     from ..export.preview_svg import tile_svg
 
@@ -61,6 +64,7 @@ def tile_picture(
         title=design.name if title is None else title,
         findings=findings,
         region=region,
+        pieces=pieces,
         **models.picture_colours(),
     )
 

@@ -35,7 +35,8 @@ def test_batch_builds_good_designs_and_reports_broken_ones(tmp_path):
     for name, (text, _) in BROKEN.items():
         (tmp_path / name).write_text(text)
         broken.append(tmp_path / name)
-    samples = sorted(SAMPLES.glob("*.toml"))
+    # every sample of one file a format (the screen larger than its bed is pieces: tests/making/test_panel_pieces.py)
+    samples = sorted(p for p in SAMPLES.glob("*.toml") if p.stem != "screen-1200x800")
     out = tmp_path / "out"
     proc = run_batch(*samples, *broken, "-o", out, "--jobs", "2", "--format", "svg", "--format", "dxf")
     assert proc.returncode == 2

@@ -160,6 +160,8 @@ def test_build_options_are_the_schemas():
         "dxf_version",
         "kerf_mm",
         "fill_small_holes",
+        "pieces",
+        "pieces_sheets",
         "inlay_fit_mm",
         "inlay_pieces",
         "inlay_base",

@@ -247,3 +247,36 @@ def test_pieces_on_the_period_in_the_same_place_of_the_grid_are_one_shape():
     inner = [p.number for p in s.pieces if 0 < p.cell[0] < s.grid[0] - 1]
     assert len(inner) >= 2 and any(set(inner) <= set(g) for g in groups), groups
     assert len(groups) <= 3  # the first, the inner ones, the last
+
+
+def test_a_rounded_tab_has_its_tools_radius_and_grows_without_spikes():
+    joint = joint_for("dovetail", thickness_mm=6, fit_mm=0.1, corner_mm=1.5)
+    tab = joint.tab((0, 0), (1, 0))
+    # the piece with its tab as the bit cuts it from outside (concave corners closed by its radius) and
+    # the socket as the bit cuts it (the tab's convex corners, the socket's inner ones, opened): unchanged
+    piece = shapely.union(tab, box(-10, -20, 0, 20))
+    near = box(-5, -15, 20, 15)
+    for made in (piece.buffer(1.5).buffer(-1.5), piece.buffer(-1.5).buffer(1.5)):
+        assert shapely.symmetric_difference(piece, made).intersection(near).area < 0.05
+    x0, y0, x1, y1 = tab.bounds
+    assert x0 == pytest.approx(0) and x1 == pytest.approx(joint.depth_mm)
+    grown = joint.grown(tab, 1.0)  # the fillets' cusps at the seam, grown round: 1 mm out, no further
+    gx0, gy0, gx1, gy1 = grown.bounds
+    assert (gx0, gy0, gx1, gy1) == pytest.approx((x0 - 1, y0 - 1, x1 + 1, y1 + 1), abs=0.01)
+    with pytest.raises(ParameterError, match="corner_mm"):
+        joint_for("dovetail", thickness_mm=6, corner_mm=-1)
+
+
+def test_a_tab_moves_along_its_stretch_to_where_the_material_holds_it():
+    from fabtiles.geometry.pieces import _Context, _tabs_on_seam
+
+    # a frame along the bottom and a thin band running up the seam from it: the stretch where the two
+    # pieces meet is the frame's 10 mm and the band's 30 mm, its middle in the band, too thin for a tab
+    material = shapely.union_all([box(0, 0, 300, 10), box(149, 0, 151, 40)])
+    joint = joint_for("dovetail", thickness_mm=3)
+    ctx = _Context(material, joint, 1.0)
+    regions = {(0, 0): material.intersection(box(0, 0, 150, 50)), (1, 0): material.intersection(box(150, 0, 300, 50))}
+    stretches = [shapely.LineString([(150, 0), (150, 40)])]
+    ((at, tab),) = _tabs_on_seam(ctx, regions, (0, 0), (1, 0), 0, 150.0, stretches, [])
+    assert at[0] == pytest.approx(150) and at[1] < 10  # in the frame
+    assert shapely.contains(material.buffer(1e-9), tab)

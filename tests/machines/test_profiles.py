@@ -74,6 +74,16 @@ def test_profiles_are_frozen():
         ('kind = "laser"\n[laser]\nbed_mm = [600]\n', r"p.toml: laser.bed_mm must be \[width, height\] in mm"),
         ('kind = "laser"\n[laser]\nstrict = "yes"\n', r"p.toml: laser.strict must be true or false"),
         (
+            'kind = "router"\n[router]\ntool_diameter_mm = 3\njoint = "finger"\n',
+            r"p.toml: router.joint = 'finger' is not valid, must be one of: dovetail, jigsaw",
+        ),
+        (
+            'kind = "laser"\n[laser]\njoint_fit_mm = 0.7\n',
+            r"p.toml: laser.joint_fit_mm must be a number of mm from -0.5 to 0.5, got 0.7",
+        ),
+        ('kind = "laser"\n[laser]\nbed_margin_mm = -1\n', r"p.toml: laser.bed_margin_mm must be >= 0, got -1"),
+        ('kind = "laser"\n[laser]\nthickness_mm = 0\n', r"p.toml: laser.thickness_mm must be > 0, got 0"),
+        (
             'kind = "laser"\n[laser]\nmode = "etch"\n',
             r"p.toml: laser.mode = 'etch' is not valid, must be one of: pierced, score, engrave",
         ),
@@ -212,3 +222,20 @@ def test_the_cli_prints_the_renamed_key_as_one_note(tmp_path):
         f"fabtiles: note: {path}: printer.style is now printer.print_style (the design "
         f"key's name); rename it, the old name will stop loading\n"
     )
+
+
+def test_the_pieces_keys_defaults_by_kind(tmp_path):
+    # a laser's pieces keep 5 mm from the bed's edges, a router's and a waterjet's 10 mm (the clamps)
+    laser = load_profile(write(tmp_path, 'kind = "laser"\n'))
+    assert (laser.margin_mm, laser.joint, laser.joint_fit_mm, laser.thickness_or_default_mm) == (
+        5.0,
+        "dovetail",
+        0.1,
+        3.0,
+    )
+    assert load_profile("router-6mm-mdf").margin_mm == 10.0
+    assert load_profile("waterjet-1mm-aluminium").margin_mm == 10.0
+    mine = load_profile(
+        write(tmp_path, 'kind = "laser"\n[laser]\nbed_margin_mm = 0\njoint = "jigsaw"\nthickness_mm = 4\n')
+    )
+    assert (mine.margin_mm, mine.joint, mine.thickness_or_default_mm) == (0.0, "jigsaw", 4.0)

@@ -134,3 +134,13 @@ def test_name_names_the_downloads(client):
     assert 'name = "my-tile"' in client.get(f"/api/design.toml?{SMALL}&name=my-tile").text
     r = client.get(f"/api/export/svg?{SMALL}&name=../x")
     assert r.status_code == 422 and r.json()["field"] == "name"
+
+
+def test_overlay_of_a_tile_larger_than_the_bed_draws_its_pieces_seams(client):
+    # 700 x 300 mm on laser-3mm-plywood's 600 x 400 mm bed: two pieces, one seam
+    query = "outline=rectangle&width=700&height=300&radius=40&stroke=4&frame=20"
+    text = client.get(f"/api/preview.svg?{query}&findings=true").text
+    group = text[text.index('<g class="pieces"') :]
+    group = group[: group.index("</g>")]
+    assert group.count("<line ") == 1 and group.count("<text ") == 2
+    assert 'class="pieces"' not in client.get(f"/api/preview.svg?{query}").text

@@ -44,17 +44,17 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         _, spec, tile = build(request, limits=limits, view=("findings",))
         from ...making.views import tile_picture
 
-        findings, made = None, False
+        findings, made, pieces = None, False, None
         if show:
             from ...making.checks import check_design
 
             result = check_design(spec, tile)
-            findings, made = result.findings(), result.made
+            findings, made, pieces = result.findings(), result.made, result.split
         # a router's or waterjet's part is drawn as its tool makes it (None: a laser's, the tile's own);
         # a coloured design's faces in their colours
         # whether the pictures are in the design's colours (else the plain ink and plate: /api/faces "plain")
         return Response(
-            tile_picture(tile, spec, title=repr(tile), findings=findings, made=made),
+            tile_picture(tile, spec, title=repr(tile), findings=findings, made=made, pieces=pieces),
             media_type="image/svg+xml",
             headers={"X-Fabtiles-Coloured": "true" if spec.colour.given else "false"},
         )
