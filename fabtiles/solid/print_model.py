@@ -25,10 +25,11 @@ part, meshed once. A build makes one model, whatever print formats it writes.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import cached_property
 from typing import NamedTuple
 
-from ..core.errors import ParameterError
+from ..core.errors import FabricationError, ParameterError
 from ..core.report import Report
 from .parts import (
     CheckedPart,
@@ -227,6 +228,7 @@ def print_model(
     dips=None,
     colours=None,
     mosaic=(),
+    recess=None,
     path: str = "",
     fmt: str = "",
 ) -> PrintModel:
@@ -240,7 +242,8 @@ def print_model(
     part; ``dips`` lowers an interlaced relief's under strands (:mod:`fabtiles.solid.levels`); ``colours`` (a
     :class:`~fabtiles.designs.colour.Colouring`) colours the parts, and a mosaic's ``mosaic``
     (:class:`~fabtiles.solid.parts.MosaicPart`, one per colour) says which part holds
-    the plate, the bands and which faces. No mesh is built here: the model
+    the plate, the bands and which faces; ``recess`` (a :class:`~fabtiles.geometry.stack.Recess`)
+    is sunk into the bottom face (:func:`check_recess`). No mesh is built here: the model
     makes each on first use. A strict profile with findings raises.
     """
     heights = dict(
@@ -263,6 +266,8 @@ def print_model(
         fmt=fmt,
     )
     check_inlay(stack, inlay)
+    if recess is not None:
+        stack = replace(stack, recess=check_recess(recess, region, outline, stack))
     if mosaic and stack.style != "mosaic":
         raise ParameterError(f"mosaic parts need style='mosaic', got style={stack.style!r}", param="style")
     # the strokes' round joins have half the stroke's radius (the STEP's cylinders find them by it)
@@ -279,6 +284,40 @@ def print_model(
         mosaic=mosaic,
         arc_radii_mm=radii,
     )
+
+
+RECESS_WALL_MM = 0.5
+"""The least material kept between a recess in the bottom and the bottom's edge (or an opening)."""
+
+
+def check_recess(recess, region, outline, stack):
+    """``recess`` snapped to the grid, checked to lie in the solid bottom and to leave material over it.
+
+    The solid bottom is the outline (relief, deboss, mosaic) or the region (pierced),
+    less :data:`RECESS_WALL_MM` all round; the material over the recess is the plate
+    (less a deboss's grooves) or the pierced part's thickness. Raises
+    :class:`~fabtiles.FabricationError` otherwise: a recess that reached an edge would
+    open the part's side.
+    """
+    import shapely
+
+    from ..geometry.stack import Recess
+    from ._mesh_build import snap
+
+    floor = {"relief": stack.base, "mosaic": stack.base, "deboss": stack.base - stack.deboss}.get(
+        stack.style, stack.pierced
+    )
+    if not 0 < recess.depth < floor:
+        raise FabricationError(
+            f"the recess under the print must be deeper than 0 and shallower than the {floor:g} mm of material "
+            f"over it, got {recess.depth:g} mm"
+        )
+    solid = region if stack.style == "pierced" else outline
+    if not shapely.covers(shapely.buffer(solid, -RECESS_WALL_MM, quad_segs=2), recess.region):
+        raise FabricationError(
+            f"the recess under the print reaches within {RECESS_WALL_MM:g} mm of the edge of its solid bottom"
+        )
+    return Recess(snap(recess.region), float(recess.depth))
 
 
 def _slug(name: str) -> str:
