@@ -861,6 +861,15 @@ KEYS: tuple[Key, ...] = MOTIF + (
     ),
     Key(
         section="output",
+        name="pieces",
+        type="boolean",
+        default=True,
+        help="make a tile larger than its machine's bed as pieces that lock together (false: refuse it, or for a "
+        "printer warn bed_size)",
+        option=BuildOption(name="pieces", families=("cut", "print")),
+    ),
+    Key(
+        section="output",
         name="inlay",
         type="boolean",
         default=False,

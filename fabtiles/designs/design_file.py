@@ -165,6 +165,7 @@ class OutputSpec:
     name: str | None = _default("output.name")
     fill_small_holes: bool = _default("output.fill_small_holes")
     inlay: bool = _default("output.inlay")
+    pieces: bool = _default("output.pieces")
     threemf_layout: str = _default("output.threemf_layout")
     inlay_fit_mm: float | None = _default("output.inlay_fit_mm")
     inlay_pieces: str = _default("output.inlay_pieces")

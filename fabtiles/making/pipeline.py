@@ -198,8 +198,9 @@ def _made(models: BuildModels, f, name: str, file_name: str | None, failed: dict
         files = [(file_name, files[0][1])] if len(files) == 1 else [(f"{stem}{n[len(name) :]}", m) for n, m in files]
         options = replace(options, name=stem)
     contents = [(fname, f.write(m, options)) for fname, m in files]
-    # a print's figures are its model's (a mosaic's STLs: every colour's), a kit's its first file's
-    measured = files[0][1] if f.family == "cut" else model
+    # a print's figures are its model's (a mosaic's STLs: every colour's), a kit's or a print in pieces' its
+    # first file's
+    measured = files[0][1] if f.family == "cut" or hasattr(model, "pieces") else model
     report = _file_report(model.report, files[0][0], f.name, f.figures(measured, options))
     if len(files) > 1:
         report.stats["files"] = [n for n, _ in files]

@@ -83,6 +83,11 @@ class PrintPieces:
         """``[("-piece-01", print), ...]``: one file of each format per piece."""
         return [(f"-piece-{p.piece.number:02d}", p.model) for p in self.pieces]
 
+    @property
+    def profile(self):
+        """The printer profile (every piece's)."""
+        return self.pieces[0].model.profile
+
     def bodies(self) -> list:
         """``[(suffix, print), ...]``: the pieces' bodies (a mosaic piece: one per colour), one STL each."""
         return [(f"-piece-{p.piece.number:02d}{s}", m) for p in self.pieces for s, m in p.model.bodies()]
@@ -93,6 +98,18 @@ class PrintPieces:
         bed = " x ".join(f"{v:g}" for v in self.bed_mm)
         n = len(self.pieces)
         return f"{x1 - x0:g} x {y1 - y0:g} mm panel in {n} piece{'s' if n != 1 else ''} for the {bed} mm bed"
+
+    def material(self) -> dict:
+        """The filament of all the pieces (a report's ``material``), by piece, from their meshes (made if not yet)."""
+        from ..geometry.material import filament
+
+        volumes = {}
+        for p in self.pieces:
+            model = p.model
+            made = "parts" in vars(model) and "fused" not in vars(model)  # a 3MF's parts, without meshing again
+            volume = sum(q.mesh.mesh_volume_mm3 for q in model.parts.values()) if made else model.fused.mesh_volume_mm3
+            volumes[f"piece {p.piece.number}"] = volume
+        return filament(volumes, self.pieces[0].model.profile).as_stats()
 
     @property
     def split_bounds(self) -> tuple:

@@ -160,6 +160,7 @@ def test_build_options_are_the_schemas():
         "dxf_version",
         "kerf_mm",
         "fill_small_holes",
+        "pieces",
         "inlay_fit_mm",
         "inlay_pieces",
         "inlay_base",
