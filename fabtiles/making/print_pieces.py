@@ -36,6 +36,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..core.errors import ParameterError
 from ..core.report import Report
 from ..core.validate import check_float
 
@@ -239,17 +240,26 @@ def print_pieces(
     heights = dict(heights or {})
     stack = resolve_stack(profile, style, **heights)
     clearance = check_clearance(profile.joint_clearance_mm)
-    margin = check_float("bed_margin_mm", profile.bed_margin_mm, low=0.0, high=min(profile.bed_mm) / 4)
+    margin = check_float("bed_margin_mm", profile.bed_margin_mm, low=0.0)
     footprint = region if stack.style == "pierced" else outline
-    split = split_panel(
-        footprint,
-        bed_mm=profile.bed_mm,
-        margin_mm=margin,
-        joint=print_joint(profile, joint),
-        min_feature_mm=profile.min_wall_mm,
-        period_mm=period_mm,
-        origin=origin,
-    )
+    try:
+        split = split_panel(
+            footprint,
+            bed_mm=profile.bed_mm,
+            margin_mm=margin,
+            joint=print_joint(profile, joint),
+            min_feature_mm=profile.min_wall_mm,
+            period_mm=period_mm,
+            origin=origin,
+        )
+    except ParameterError as exc:  # the bed, named with the tile that does not fit it
+        x0, y0, x1, y1 = outline.bounds
+        bed = " x ".join(f"{v:g}" for v in profile.bed_mm)
+        raise ParameterError(
+            f"the {x1 - x0:g} x {y1 - y0:g} mm tile is larger than the {bed} mm bed of printer profile "
+            f"{profile.name!r}, and cannot be made as pieces for it: {exc}",
+            param=exc.param,
+        ) from None
     shapes = seam_gaps([p.region for p in split.pieces], clearance)
     made = []
     unnumbered = []
