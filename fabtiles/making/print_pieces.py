@@ -33,12 +33,17 @@ writes it as it writes a tile.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..core.errors import ParameterError
 from ..core.report import Report
 from ..core.validate import check_float
+
+if TYPE_CHECKING:
+    from ..geometry.pieces import PanelSplit, Piece
+    from ..solid.print_model import PrintModel
 
 NECK_NOZZLES = 10
 """A printed joint's neck in nozzle widths (4 mm at 0.4 mm): several perimeters each side."""
@@ -65,16 +70,16 @@ class PrintedPiece:
     """One printed piece: the piece of the split (number, place in the grid, nominal region in
     panel mm), the 3 x 3 matrix (mm) that carries its file to its place in the panel, its print."""
 
-    piece: object
+    piece: Piece
     matrix: np.ndarray
-    model: object
+    model: PrintModel
 
 
 @dataclass(frozen=True)
 class PrintPieces:
     """A print split into pieces (see the module text): the split, the pieces, the gap between them."""
 
-    split: object
+    split: PanelSplit
     pieces: tuple
     clearance_mm: float
     bed_mm: tuple

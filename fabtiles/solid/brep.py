@@ -384,7 +384,7 @@ def planar_brep(
         # the recess's points are numbered after the ring points, its roof's level after the levels
         walls_and_roof, holes, points = _recess_faces(ed, len(vxy), len(z), recess)
         vxy, z = np.concatenate([vxy, points]), np.append(z, recess.depth)
-        faces += _bottom_faces(ed, topo, vxy, z, what, holes=holes)
+        faces += _bottom_faces(ed, topo, vxy, z, what, recess_holes=holes)
         faces += walls_and_roof
     elif cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
         faces += _top_faces(ed, topo, z, reverse=True)
@@ -700,14 +700,13 @@ def _top_faces(ed: _Edges, topo, z, *, reverse: bool) -> list:
     return faces
 
 
-def _bottom_faces(ed: _Edges, topo, vxy, z, what: str, holes=()) -> list:
+def _bottom_faces(ed: _Edges, topo, vxy, z, what: str, recess_holes=()) -> list:
     """The bottom faces: the ring edges with nothing beside them, run backwards, each hole in its part.
 
     The loops are sorted by their side seen from below: outer loops are faces, each
-    hole goes to the smallest outer loop that covers it; so do ``holes`` (a recess's,
+    hole goes to the smallest outer loop that covers it; so do ``recess_holes`` (a recess's,
     ``(loop of signed edges, xy)``).
     """
-    extra = holes
     u_all, v_all = topo.vid, topo.vid[topo.nxt]
     b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
     # (an arc's chords give one edge: its ends from the edge itself)
@@ -725,7 +724,7 @@ def _bottom_faces(ed: _Edges, topo, vxy, z, what: str, holes=()) -> list:
     bottom_loops = [[tuple(directed[i][2] for i in lp)] for lp, _ in outers]
     for j, lp in _holes_in_parts(outers, holes, what):
         bottom_loops[j].append(tuple(directed[i][2] for i in lp))
-    for j, loop in _holes_in_parts(outers, list(extra), what):
+    for j, loop in _holes_in_parts(outers, list(recess_holes), what):
         bottom_loops[j].append(loop)
     return [Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops_)) for loops_ in bottom_loops]
 

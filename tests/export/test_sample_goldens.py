@@ -41,7 +41,7 @@ from fabtiles.making import build_design, export_tile
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = sorted((ROOT / "samples").glob("*.toml"))
-LARGE = {"sheet-600x400", "panel-2440x1220"}
+LARGE = {"sheet-600x400", "panel-2440x1220", "relief-400x400"}
 """Samples whose full golden would be megabytes: counts and a sample of entities only."""
 ONE = ROOT / "samples" / "rosette.toml"
 """The sample also built in score mode and as R12 (small: one rosette in a circle)."""
