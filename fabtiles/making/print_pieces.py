@@ -32,7 +32,7 @@ writes it as it writes a tile.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -59,6 +59,13 @@ NUMBER_LINE_NOZZLES = 3
 
 NUMBER_HEIGHT_MM = (12.0, 5.0)
 """The height of a piece's number: the first that fits, else smaller down to the second."""
+
+STRAIGHT_OUTLINE_POINTS = 16
+"""An outline of at most this many points is straight sides (a rectangle, a hexagon); more: it has curves."""
+
+HAIR_MM = 1e-3
+"""Narrower than this on average, a bit :func:`without_slivers` finds is the opening's own hair along a
+curved edge, not a sliver the seam cut."""
 
 JOINT_INSET_MM = 0.02
 """How far inside a piece's seams its part of an interlaced relief's dips keeps (they must lie
@@ -142,8 +149,25 @@ def check_clearance(value) -> float:
     return check_float("joint_clearance_mm", value, low=0.0, high=MAX_CLEARANCE_MM)
 
 
-def seam_gaps(regions, clearance_mm: float) -> list:
-    """Each region less half of ``clearance_mm`` along every line it shares with another.
+def seam_lines(regions) -> list:
+    """The lines each of ``regions`` (pieces that tile a panel) shares with the others: its seams."""
+    import shapely
+
+    regions = np.asarray(regions, dtype=object)
+    tree = shapely.STRtree(regions)
+    out = []
+    for i, region in enumerate(regions):
+        near = [j for j in tree.query(region, predicate="intersects").tolist() if j != i]
+        # where the boundaries coincide (split_panel cuts both sides with the same lines), lines only
+        touching = shapely.intersection(shapely.boundary(region), shapely.boundary(regions[near]))
+        lines = shapely.get_parts(shapely.get_parts(touching))
+        lines = lines[shapely.get_type_id(lines) == 1]
+        out.append(shapely.line_merge(shapely.union_all(lines)) if len(lines) else shapely.LineString())
+    return out
+
+
+def seam_gaps(regions, seams, clearance_mm: float) -> list:
+    """Each region less half of ``clearance_mm`` along its ``seams`` (:func:`seam_lines`).
 
     Two neighbours then stand ``clearance_mm`` apart wherever they met, on the straight
     seam and round the joints alike; a piece's edges on the panel's outline do not move.
@@ -152,27 +176,44 @@ def seam_gaps(regions, clearance_mm: float) -> list:
 
     if clearance_mm <= 0:
         return list(regions)
-    regions = np.asarray(regions, dtype=object)
-    tree = shapely.STRtree(regions)
-    out = []
-    half = clearance_mm / 2
-    for i, region in enumerate(regions):
-        near = [j for j in tree.query(region, predicate="intersects").tolist() if j != i]
-        if not near:
-            out.append(region)
-            continue
-        # where the boundaries coincide (split_panel cuts both sides with the same lines), lines only
-        touching = shapely.intersection(shapely.boundary(region), shapely.boundary(regions[near]))
-        lines = shapely.get_parts(shapely.get_parts(touching))
-        lines = lines[shapely.get_type_id(lines) == 1]
-        if not len(lines):
-            out.append(region)
-            continue
-        shared = shapely.line_merge(shapely.union_all(lines))
-        # square ends: a seam's end on the panel's edge is cut clean through past the edge
-        gap = shapely.buffer(shared, half, cap_style="square", join_style="mitre")
-        out.append(shapely.difference(region, gap))
-    return out
+    # square ends: a seam's end on the panel's edge is cut clean through past the edge
+    return [
+        region
+        if lines.is_empty
+        else shapely.difference(region, shapely.buffer(lines, clearance_mm / 2, cap_style="square", join_style="mitre"))
+        for region, lines in zip(regions, seams, strict=True)
+    ]
+
+
+def without_slivers(region, seams, width_mm: float):
+    """``region`` (a piece's part of the pattern) less the bits narrower than ``width_mm`` that its ``seams``
+    cut off: the tip of a band the seam crosses at a slant, a strip of band along it. They would print
+    thin or not at all; the plate shows there instead. The pattern's own narrow places, and a band's
+    square end at the seam, stay (the print checks report the first).
+
+    The bits are those an opening of ``width_mm`` takes away within ``width_mm`` of the seams,
+    larger than twice what it rounds off a square corner (a band's end at the seam keeps its
+    corners).
+    """
+    import shapely
+
+    if seams.is_empty or region.is_empty:
+        return region
+    zone = shapely.buffer(seams, width_mm)
+
+    def opening(g):  # a corner a segment a quarter: straight edges, no arcs cut into the band
+        return shapely.buffer(shapely.buffer(g, -width_mm / 2, quad_segs=1), width_mm / 2, quad_segs=1)
+
+    opened = opening(region)
+    thin = shapely.get_parts(shapely.difference(region, opened))
+    if not len(thin):
+        return region
+    real = 2 * shapely.area(thin) > HAIR_MM * shapely.length(thin)  # twice the area over the perimeter: its width
+    near = shapely.get_parts(shapely.intersection(thin[real], zone))
+    square = shapely.box(0, 0, 4 * width_mm, 4 * width_mm)
+    corner = (square.area - opening(square).area) / 4  # what the opening takes off a square corner
+    cut = near[shapely.area(near) > 2 * corner] if len(near) else near
+    return shapely.difference(region, shapely.union_all(cut)) if len(cut) else region
 
 
 def number_recess(number: int, solid, *, profile):
@@ -239,6 +280,7 @@ def print_pieces(
     from ..geometry.pieces import laid_on_bed, split_panel
     from ..geometry.stack import resolve_stack
     from ..machines.profiles import load_profile
+    from ..solid._mesh_build import snap
     from ..solid.print_model import print_model
 
     profile = load_profile(profile, kind="printer")
@@ -265,24 +307,38 @@ def print_pieces(
             f"{profile.name!r}, and cannot be made as pieces for it: {exc}",
             param=exc.param,
         ) from None
-    shapes = seam_gaps([p.region for p in split.pieces], clearance)
+    # a seam that cuts a curve of the outline ends its arc off the circle: such pieces' STEP walls stay planes
+    straight = int(shapely.get_num_coordinates(outline)) <= STRAIGHT_OUTLINE_POINTS
+    seams = seam_lines([p.region for p in split.pieces])
+    shapes = seam_gaps([p.region for p in split.pieces], seams, clearance)
     made = []
     unnumbered = []
-    for piece, shape in zip(split.pieces, shapes, strict=True):
+    for piece, shape, lines in zip(split.pieces, shapes, seams, strict=True):
         laid, matrix = laid_on_bed(shape, profile.bed_mm, margin_mm=margin)
-        to_file = np.linalg.inv(matrix)
+        # panel -> file, the inverse of the rigid matrix exactly (a turn's transpose): as laid_on_bed moves it
+        turn = matrix[:2, :2].T
+        shift = -(turn @ matrix[:2, 2])
 
-        def move(g, m=to_file):
-            return shapely.transform(g, lambda xy: xy @ m[:2, :2].T + m[:2, 2])
+        def move(g, turn=turn, shift=shift):
+            return shapely.transform(g, lambda xy: xy @ turn.T + shift)
 
-        mine = laid if stack.style == "pierced" else move(shapely.intersection(region, shape))
+        if stack.style == "pierced":
+            kept, mine = shape, laid
+        else:
+            kept = without_slivers(shapely.intersection(region, shape), lines, profile.min_wall_mm)
+            mine = snap(move(kept))  # on the meshes' grid: moved, a hair-thin place stays valid
         piece_dips = None
-        if dips is not None:
-            piece_dips = move(shapely.intersection(dips, shapely.buffer(shape, -JOINT_INSET_MM, join_style="mitre")))
+        if dips is not None:  # strictly inside the piece's material, as the meshes need them
+            inside = shapely.get_parts(
+                shapely.intersection(dips, shapely.buffer(shape, -JOINT_INSET_MM, join_style="mitre"))
+            )
+            shapely.prepare(kept)
+            inside = inside[shapely.contains_properly(kept, inside)] if len(inside) else inside
+            piece_dips = move(shapely.multipolygons(inside)) if len(inside) else None
         recess = number_recess(piece.number, laid, profile=profile)
         if recess is None:
             unnumbered.append(piece.number)
-        parts = tuple(replace(s, faces=tuple(move(f) for f in s.faces)) for s in mosaic)
+        parts = tuple(s._replace(faces=tuple(move(f) for f in s.faces)) for s in mosaic)
         model = print_model(
             mine,
             laid,
@@ -295,6 +351,7 @@ def print_pieces(
             colours=colours,
             mosaic=parts,
             recess=recess,
+            step_arcs=straight,
             **heights,
         )
         made.append(PrintedPiece(piece, matrix, model))
@@ -303,7 +360,8 @@ def print_pieces(
     report = Report("", "", stats={"pieces": len(made), "joints": len(split.joints)}, findings=findings)
     result = PrintPieces(split, tuple(made), clearance, tuple(profile.bed_mm), report)
     report.note(
-        f"{result.line()} of printer profile {profile.name!r}: {len(split.joints)} {split.joint.kind} joints, "
+        f"{result.line()} of printer profile {profile.name!r}: {len(split.joints)} {split.joint.kind} "
+        f"joint{'s' if len(split.joints) != 1 else ''}, "
         f"{clearance:g} mm apart, each piece's number sunk into its bottom"
     )
     if unnumbered:

@@ -97,6 +97,7 @@ class PrintModel:
         colours=None,
         mosaic=(),
         arc_radii_mm=(),
+        step_arcs: bool = True,
     ):
         self.profile = profile
         self.stack = stack
@@ -111,6 +112,9 @@ class PrintModel:
         """A mosaic's parts, one per colour (:class:`~fabtiles.solid.parts.MosaicPart`)."""
         self.arc_radii_mm = tuple(float(r) for r in arc_radii_mm)
         """Radii the region's curves are known to have (half the stroke: its round joins), for the STEP's arcs."""
+        self.step_arcs = bool(step_arcs)
+        """Whether the STEP finds the arcs of the walls (cylinders); False: planes only (a piece cut from a round
+        outline, whose arcs end off their circles where the seams cut them)."""
 
     def with_classes(self, mosaic, report: Report) -> PrintModel:
         """This print with a mosaic's parts (``mosaic``; none: its own) and a report that says its face
@@ -126,6 +130,7 @@ class PrintModel:
             colours=self.colours,
             mosaic=mosaic or self.mosaic,
             arc_radii_mm=self.arc_radii_mm,
+            step_arcs=self.step_arcs,
         )
 
     @property
@@ -202,9 +207,8 @@ class PrintModel:
         """``(brep, mesh volume, solids)``: the B-rep of the fused body (:mod:`.brep`), for STEP."""
         from .brep import brep_of_part
 
-        return brep_of_part(
-            self.fused, self.stack, self.dips, tolerance_mm=self.profile.tolerance_mm, radii=self.arc_radii_mm
-        )
+        tolerance = self.profile.tolerance_mm if self.step_arcs else 0.0
+        return brep_of_part(self.fused, self.stack, self.dips, tolerance_mm=tolerance, radii=self.arc_radii_mm)
 
     def stats(self) -> dict:
         """The stack's style and heights, for a file's report."""
@@ -229,6 +233,7 @@ def print_model(
     colours=None,
     mosaic=(),
     recess=None,
+    step_arcs: bool = True,
     path: str = "",
     fmt: str = "",
 ) -> PrintModel:
@@ -243,7 +248,8 @@ def print_model(
     :class:`~fabtiles.designs.colour.Colouring`) colours the parts, and a mosaic's ``mosaic``
     (:class:`~fabtiles.solid.parts.MosaicPart`, one per colour) says which part holds
     the plate, the bands and which faces; ``recess`` (a :class:`~fabtiles.geometry.stack.Recess`)
-    is sunk into the bottom face (:func:`check_recess`). No mesh is built here: the model
+    is sunk into the bottom face (:func:`check_recess`); ``step_arcs=False`` writes the STEP's walls as
+    planes only. No mesh is built here: the model
     makes each on first use. A strict profile with findings raises.
     """
     heights = dict(
@@ -283,6 +289,7 @@ def print_model(
         colours=colours,
         mosaic=mosaic,
         arc_radii_mm=radii,
+        step_arcs=step_arcs,
     )
 
 

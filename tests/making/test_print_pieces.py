@@ -286,3 +286,53 @@ def test_every_pair_sharing_a_seam_is_joined(pieces):
         shared = shapely.intersection(shapely.boundary(a.piece.region), shapely.boundary(b.piece.region)).length
         joined = {a.piece.number, b.piece.number} in [set(j.pieces) for j in pieces.split.joints]
         assert joined == (shared > 1.0)
+
+
+@pytest.mark.parametrize(
+    "extra",
+    [
+        dict(output={"print_style": "mosaic"}, colour={"by": "shape", "palette": "iznik"}),
+        dict(tile={"interlace": True}),
+        dict(output={"print_style": "deboss"}),
+    ],
+    ids=["mosaic", "interlaced", "deboss"],
+)
+def test_every_style_with_a_plate_builds_as_watertight_pieces(tmp_path, extra):
+    profile = tmp_path / "small-bed.toml"
+    profile.write_text('kind = "printer"\n[printer]\nbed_mm = [120, 120]\n')
+    output = {"printer_profile": str(profile), **extra.pop("output", {})}
+    text = design_toml(**{**SMALL, "size": [160, 100]}, output=output, **extra)
+    result = build_design(design_from_text(text, name="panel"), tmp_path / "out", ["stl", "3mf"])
+    assert not result.refused
+    stls = sorted((tmp_path / "out").glob("panel-piece-0*.stl"))
+    assert {p.name[:13] for p in stls} == {"panel-piece-0"} and len({p.name[:14] for p in stls}) == 2
+    for path in stls:
+        mesh = trimesh.load_mesh(path)
+        assert mesh.is_watertight and mesh.volume > 0
+    assert len(list((tmp_path / "out").glob("panel-piece-0*.3mf"))) == 2
+
+
+def test_a_wedge_a_seam_cuts_off_a_band_is_left_out_and_the_pattern_stays():
+    from fabtiles.making.print_pieces import without_slivers
+
+    seam = shapely.LineString([(10, 0), (10, 20)])
+    # a band crossing the seam at a slant: its tip beside the seam is thinner than 0.8 mm; a thin band far off
+    band = shapely.Polygon([(0, 0), (10, 0), (10, 0.3), (0, 4)])
+    thin = shapely.box(0, 10, 8, 10.5)
+    kept = without_slivers(shapely.union(band, thin), seam, 0.8)
+    assert shapely.covers(kept, thin)
+    assert kept.area < band.area + thin.area
+    assert kept.bounds[2] < 10 - 0.3  # the tip is gone
+
+
+def test_a_round_panels_pieces_are_read_back_from_step(tmp_path):
+    """A seam cuts the round outline's arcs off their circles: the pieces' STEP walls are planes, which OCCT reads."""
+    tile = build_tile(design_from_text(design_toml(**{**SMALL, "outline": "circle", "size": 160})))
+    made = print_pieces(tile.region(), tile.outline_shape(), profile=profile_with(bed_mm=BED), stroke=tile.stroke)
+    assert len(made.pieces) == 4
+    p = made.pieces[0]
+    assert not p.model.step_arcs
+    path = tmp_path / "piece-01.step"
+    path.write_bytes(FORMATS["step"].write(p.model, FileOptions()))
+    _, volume, solids = p.model.brep
+    assert check_step_file(path, volume=volume, parts=solids) == pytest.approx(volume, rel=1e-3)
