@@ -204,8 +204,10 @@ def without_slivers(region, seams, width_mm: float):
     def opening(g):  # a corner a segment a quarter: straight edges, no arcs cut into the band
         return shapely.buffer(shapely.buffer(g, -width_mm / 2, quad_segs=1), width_mm / 2, quad_segs=1)
 
-    opened = opening(region)
-    thin = shapely.get_parts(shapely.difference(region, opened))
+    # only near the seams (the opening of a whole sheet's bands takes seconds), far enough that the window's
+    # own edges leave their bits outside the zone
+    local = shapely.intersection(region, shapely.buffer(seams, 4 * width_mm, cap_style="flat", join_style="mitre"))
+    thin = shapely.get_parts(shapely.difference(local, opening(local)))
     if not len(thin):
         return region
     real = 2 * shapely.area(thin) > HAIR_MM * shapely.length(thin)  # twice the area over the perimeter: its width
@@ -213,7 +215,10 @@ def without_slivers(region, seams, width_mm: float):
     square = shapely.box(0, 0, 4 * width_mm, 4 * width_mm)
     corner = (square.area - opening(square).area) / 4  # what the opening takes off a square corner
     cut = near[shapely.area(near) > 2 * corner] if len(near) else near
-    return shapely.difference(region, shapely.union_all(cut)) if len(cut) else region
+    if not len(cut):
+        return region
+    # grown by a hair: no hair of the band is left along the bit's edges, which follow the band's
+    return shapely.difference(region, shapely.buffer(shapely.union_all(cut), HAIR_MM / 1000, join_style="mitre"))
 
 
 def number_recess(number: int, solid, *, profile):
