@@ -13,6 +13,7 @@ import itertools
 import math
 import re
 import subprocess
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -32,6 +33,7 @@ from fabtiles.making.print_pieces import check_clearance, print_pieces
 from fabtiles.solid.mesh_check import check_indexed
 from fabtiles.solid.print_model import print_model
 
+ROOT = Path(__file__).resolve().parents[2]
 B, H = 2.0, 1.2
 BED = (120.0, 120.0)
 SMALL = dict(preset="table3-3", radius=20, outline="rectangle", size=[200, 120], frame=8, stroke=3.0)
@@ -235,7 +237,7 @@ def test_a_design_larger_than_the_bed_builds_as_pieces_and_pieces_false_warns(tm
 
 def test_the_400_mm_relief_sample_is_four_pieces_on_the_256_mm_bed():
     """Checked from the 2D only: the split and every piece's footprint on the bed."""
-    design = load_design("samples/relief-400x400.toml")
+    design = load_design(ROOT / "samples" / "relief-400x400.toml")
     models = Models(design.build_tile(), BuildOptions.of_design(design))
     assert models.print_in_pieces
     made = models.print

@@ -71,3 +71,12 @@ def test_a_recess_reaching_the_edge_is_refused():
 def test_a_recess_deeper_than_the_plate_is_refused(depth):
     with pytest.raises(FabricationError, match=rf"shallower than the 2 mm of material over it, got {depth:g} mm"):
         print_model(PLATE, OUTLINE, profile="fdm-0.4mm", recess=Recess(shapely.box(2, 2, 5, 5), depth))
+
+
+def test_a_bottom_that_does_not_tile_with_its_recess_is_an_error_not_a_file(monkeypatch):
+    from fabtiles.solid import _mesh_build
+
+    monkeypatch.setattr(_mesh_build, "recessed_bottom", lambda *args: None)
+    model = print_model(PLATE, OUTLINE, profile="fdm-0.4mm", style="pierced", recess=recess_for("pierced"))
+    with pytest.raises(FabricationError, match=r"the bottom with its recess \(the piece's number\) could not be"):
+        model.fused  # noqa: B018 - the mesh is made on first use
