@@ -391,7 +391,7 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
     """Build one format of ``design``: the file's bytes, report, media type and name.
 
     Made through the same pipeline as :func:`build_design` (the same models and
-    checks); an inlay kit's two files come as one zip archive.
+    checks); an inlay kit's two files come as one zip archive, and so do a print's pieces.
     """
     from ..core.files import zip_entry
     from ..export.formats import FORMATS
@@ -409,7 +409,9 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
             with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as zf:
                 for p in result.paths:
                     zf.writestr(zip_entry(Path(p).name), Path(p).read_bytes(), compress_type=zipfile.ZIP_DEFLATED)
-            return Download(buf.getvalue(), report, "application/zip", f"{name}-kit-{fmt}.zip")
+            # a print larger than the bed is its pieces' files, an inlay kit (or a mosaic's STLs) its parts'
+            what = "pieces" if all("-piece-" in Path(p).name for p in result.paths) else "kit"
+            return Download(buf.getvalue(), report, "application/zip", f"{name}-{what}-{fmt}.zip")
         data = Path(result.paths[0]).read_bytes()
     return Download(data, report, FORMATS[fmt].media_type, f"{name}{suffix}")
 

@@ -338,3 +338,25 @@ def test_a_round_panels_pieces_are_read_back_from_step(tmp_path):
     path.write_bytes(FORMATS["step"].write(p.model, FileOptions()))
     _, volume, solids = p.model.brep
     assert check_step_file(path, volume=volume, parts=solids) == pytest.approx(volume, rel=1e-3)
+
+
+def test_the_web_download_of_a_panel_in_pieces_is_a_zip_of_them():
+    import io
+    import zipfile
+
+    from fabtiles.machines.limits import WEB_LIMITS
+    from fabtiles.making import build_bytes
+
+    got = build_bytes(load_design(ROOT / "samples" / "relief-400x400.toml"), "stl", limits=WEB_LIMITS)
+    assert got.file_name == "relief-400x400-pieces-stl.zip" and got.media_type == "application/zip"
+    names = sorted(zipfile.ZipFile(io.BytesIO(got.data)).namelist())
+    assert names == [f"relief-400x400-piece-0{n}.stl" for n in range(1, 5)]
+
+
+def test_a_piece_too_narrow_for_its_number_has_none():
+    from fabtiles.making.print_pieces import number_recess
+
+    profile = profile_with()
+    assert number_recess(7, shapely.box(0, 0, 4, 60), profile=profile) is None
+    wide = number_recess(7, shapely.box(0, 0, 60, 60), profile=profile)
+    assert shapely.covers(shapely.box(0, 0, 60, 60).buffer(-1.3), wide.region)
