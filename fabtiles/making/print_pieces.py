@@ -364,10 +364,13 @@ def print_pieces(
     findings = list({(f.code, f.message): f for p in made for f in p.model.report.findings}.values())
     report = Report("", "", stats={"pieces": len(made), "joints": len(split.joints)}, findings=findings)
     result = PrintPieces(split, tuple(made), clearance, tuple(profile.bed_mm), report)
+    sizes = [(b[2] - b[0], b[3] - b[1]) for b in (p.model.outline.bounds for p in made)]
+    w, h = max(sizes, key=lambda s: s[0] * s[1])
+    report.stats["largest_piece_mm"] = [round(w, 1), round(h, 1)]
     report.note(
         f"{result.line()} of printer profile {profile.name!r}: {len(split.joints)} {split.joint.kind} "
-        f"joint{'s' if len(split.joints) != 1 else ''}, "
-        f"{clearance:g} mm apart, each piece's number sunk into its bottom"
+        f"joint{'s' if len(split.joints) != 1 else ''}, {clearance:g} mm apart, the largest piece {w:.0f} x "
+        f"{h:.0f} mm, each piece's number sunk into its bottom"
     )
     if unnumbered:
         report.note(

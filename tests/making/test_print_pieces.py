@@ -243,6 +243,7 @@ def test_the_400_mm_relief_sample_is_four_pieces_on_the_256_mm_bed():
     made = models.print
     assert made.split.grid == (2, 2) and len(made.split.joints) == 4
     assert made.line() == "400 x 400 mm panel in 4 pieces for the 256 x 256 mm bed"
+    assert made.report.stats["largest_piece_mm"] == [207.9, 207.9]  # a tab out on two sides, less half the gap
     for p in made.pieces:
         x0, y0, x1, y1 = p.model.outline.bounds
         assert x0 >= 5 - 1e-6 and y0 >= 5 - 1e-6 and x1 <= 251 + 1e-6 and y1 <= 251 + 1e-6
