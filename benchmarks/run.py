@@ -93,7 +93,8 @@ def _peak_mb() -> float:
 
 
 def _profile(fmt: str, name: str | None = None):
-    """The bundled profiles (``name``, if given), the laser's bed made large enough for the 2,440 mm panel."""
+    """The bundled profiles (``name``, if given), the beds made large enough for the 2,440 mm panel (the
+    sheet's print is measured whole, not as the pieces a 256 mm bed would make of it)."""
     import dataclasses
 
     from fabtiles import load_profile
@@ -102,7 +103,7 @@ def _profile(fmt: str, name: str | None = None):
         return load_profile(name)
     if fmt in ("dxf", "svg"):
         return dataclasses.replace(load_profile("laser-3mm-plywood"), bed_mm=(2500.0, 1300.0))
-    return load_profile("fdm-0.4mm")
+    return dataclasses.replace(load_profile("fdm-0.4mm"), bed_mm=(2500.0, 1300.0))
 
 
 def run_scenario(name: str) -> dict:

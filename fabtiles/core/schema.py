@@ -864,11 +864,11 @@ KEYS: tuple[Key, ...] = MOTIF + (
         name="pieces",
         type="boolean",
         default=True,
-        help="a tile larger than the cutter profile's bed (either way round) is cut as pieces that lock "
-        "together, each on the bed with the profile's `bed_margin_mm`: `<name>-piece-01.dxf`, ..., with "
-        "`<name>-assembly.svg` and `.json` ([pieces.md](pieces.md)); `false`: such a tile is refused, "
-        "larger than the bed",
-        option=BuildOption(name="pieces", families=("cut",)),
+        help="a tile larger than its machine's bed (either way round) is made as pieces that lock "
+        "together, each on the bed with the profile's `bed_margin_mm`: `<name>-piece-01.dxf`, ..., "
+        "`<name>-piece-01.stl`, ..., with `<name>-assembly.svg` and `.json` ([pieces.md](pieces.md)); "
+        "`false`: such a tile is refused by a cutter, larger than the bed, and a printer warns `bed_size`",
+        option=BuildOption(name="pieces", families=("cut", "print")),
     ),
     Key(
         section="output",

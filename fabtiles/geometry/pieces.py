@@ -517,10 +517,12 @@ def _best_seam(ctx: _Context, win: _Window, axis: int, others, ideal: float, lo:
 
 
 def _regular_seams(ctx: _Context, axis: int, others, lo_end, hi_end, n, cell_max, period):
-    """The best seams on the period a whole number of periods apart: ((unjoined, slivers), seams),
-    or None when no such spacing fits the bed."""
+    """The best seams on the period a whole number of periods apart: ((unjoined, slivers, uneven), seams),
+    or None when no such spacing fits the bed; of seams alike in the rest, those nearest the even division
+    (the most even pieces)."""
     p, o = period
     best = None
+    even = (hi_end - lo_end) / n
     win = ctx.near(axis, lo_end, hi_end)
     for steps in range(1, int(cell_max / p) + 1):
         spacing = steps * p
@@ -532,7 +534,8 @@ def _regular_seams(ctx: _Context, axis: int, others, lo_end, hi_end, n, cell_max
             if any(b - a > cell_max + 1e-9 or b - a <= 0 for a, b in itertools.pairwise(cuts)):
                 continue
             keys = [_score(ctx, win, axis, x, others, True, 0.0, None) for x in inner]
-            total = (sum(key[0] for key in keys), sum(key[1] for key in keys))
+            uneven = round(max(abs(b - a - even) for a, b in itertools.pairwise(cuts)), 3)
+            total = (sum(key[0] for key in keys), sum(key[1] for key in keys), uneven)
             if best is None or total < best[0]:
                 best = (total, cuts)
     return best

@@ -12,6 +12,7 @@ writers all resolve a part's heights here.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from ..core.errors import ParameterError
 from ..core.schema import key, register_check
@@ -34,7 +35,8 @@ class Stack:
     ``base`` is the plate thickness b (relief, deboss), ``relief`` the pattern
     height h above the plate (relief), ``pierced`` the thickness t (pierced),
     ``deboss`` the groove depth d (deboss), ``inset`` how far a mosaic's faces sit below
-    its bands (mosaic; 0: flush).
+    its bands (mosaic; 0: flush), ``recess`` a shallow :class:`Recess` in the bottom face
+    (None: the bottom is flat).
     """
 
     style: str
@@ -43,6 +45,7 @@ class Stack:
     pierced: float
     deboss: float
     inset: float = 0.0
+    recess: Recess | None = None
 
     @property
     def top(self) -> float:
@@ -63,6 +66,26 @@ class Stack:
         if self.style == "mosaic":  # the bands to the top, the faces (the rest of the outline) inset
             return outline_area * (self.base + self.relief) - (outline_area - region_area) * self.inset
         return outline_area * self.base - region_area * self.deboss
+
+
+@dataclass(frozen=True)
+class Recess:
+    """A shallow recess sunk into the bottom face of a printed part: a piece's number, mirrored so
+    that it reads from below.
+
+    ``region`` is (Multi)Polygons on the :data:`QUANTUM` grid, strictly inside the part's solid
+    bottom (the outline of a relief, deboss or mosaic; the region of a pierced part), and
+    ``depth`` (mm) less than the material over it. Its roof bridges the recess as the slicer
+    lays the layer over it: nothing under it needs support.
+    """
+
+    region: Any
+    depth: float
+
+    @property
+    def volume(self) -> float:
+        """The material the recess takes away (mm^3)."""
+        return float(self.region.area) * self.depth
 
 
 def resolve_stack(

@@ -201,6 +201,17 @@ class PrinterProfile:
     """The print's style unless a design or call gives one: the design key ``[output] print_style``,
     one name for both (a profile's older ``style`` key still loads, with a note)."""
     bed_mm: tuple[float, float] = (256.0, 256.0)
+    bed_margin_mm: float = 5.0
+    """The bed's edge a piece of a panel larger than the bed keeps clear of (mm)."""
+    joint_clearance_mm: float | None = None
+    """The gap between two printed pieces of a panel, everywhere they meet (mm); default half the
+    nozzle (see :mod:`fabtiles.making.print_pieces`)."""
+
+    @property
+    def margin_mm(self) -> float:
+        """The margin a piece keeps from the bed's edges (``bed_margin_mm``), as a cutter profile's."""
+        return self.bed_margin_mm
+
     strict: bool = False
     filament_density_g_cm3: float = 1.24
     filament_diameter_mm: float = 1.75
@@ -210,6 +221,8 @@ class PrinterProfile:
     def __post_init__(self):
         if self.min_hole_mm is None:  # two nozzle widths (see the class text)
             object.__setattr__(self, "min_hole_mm", 2 * self.nozzle_mm)
+        if self.joint_clearance_mm is None:
+            object.__setattr__(self, "joint_clearance_mm", self.nozzle_mm / 2)
 
 
 def bundled_profiles(kind: str | None = None) -> tuple[str, ...]:
@@ -383,8 +396,8 @@ def _positive(source, key, value, *, allow_zero=False):
     return float(value)
 
 
-PRINTER_ZERO_KEYS = ("min_hole_mm", "tolerance_mm")
-"""A printer's keys that may be 0: no hole limit, no thinning."""
+PRINTER_ZERO_KEYS = ("min_hole_mm", "tolerance_mm", "bed_margin_mm", "joint_clearance_mm")
+"""A printer's keys that may be 0: no hole limit, no thinning, no margin, pieces that touch."""
 
 
 def _parse(data: dict, source: str, name: str):

@@ -55,7 +55,8 @@ class BuildOptions:
     print_style: str | None = None
     heights: dict = field(default_factory=dict)
     pieces: bool = True
-    """A tile larger than the cutter's bed cut as pieces that lock together (False: refused)."""
+    """A tile larger than a machine's bed made as pieces that lock together (False: a cutter refuses
+    it, a printer makes it whole with a ``bed_size`` warning)."""
     pieces_sheets: bool = False
     """A panel's pieces also nested onto bed-sized sheets."""
     inlay: bool = False
@@ -183,6 +184,7 @@ class Models:
         self.checking = checking
         self._cut_region = cut_region
         self._print_region = print_region
+        self._window = print_region is not None  # a window of the tile (the 3D view's): never in pieces
         self._cut = None
         self._print = None
 
@@ -466,6 +468,8 @@ class Models:
     def _make_print(self):
         from ..solid.print_model import print_model
 
+        if self.print_in_pieces:
+            return self._make_print_pieces()
         o = self.options
         region, dips = self.print_region
         self._material(region)
@@ -492,6 +496,54 @@ class Models:
             model.report.extended(face_classes=self.face_class_stats(filled)),
         )
 
+    # ------------------------------------------------------------------ a print larger than the bed
+
+    @property
+    def print_in_pieces(self) -> bool:
+        """Whether the print is made as pieces: ``pieces`` is on and the outline fits the printer's bed
+        neither way round (a tile that fits is printed whole, as ever)."""
+        from ..geometry.laser_checks import fits_bed
+
+        if not self.options.pieces or self.sheet is not None or self._window:
+            return False
+        x0, y0, x1, y1 = self.tile.outline_shape().bounds
+        return not fits_bed(x1 - x0, y1 - y0, self.options.printer.bed_mm)
+
+    def _make_print_pieces(self):
+        """The print as pieces (:class:`~fabtiles.making.print_pieces.PrintPieces`), split for the printer's bed."""
+        from ..geometry.print_checks import print_region
+        from ..geometry.stack import resolve_stack
+        from .print_pieces import print_pieces
+
+        o = self.options
+        region, dips = self.print_region
+        self._material(region)
+        outline = self.tile.outline_shape()
+        style = o.print_style or o.printer.print_style
+        mosaic = ()
+        if style == "mosaic":
+            stack = resolve_stack(o.printer, style, **o.heights)
+            filled_region = print_region(region, outline, o.printer, stack.style, fill_small_holes=o.fill_small_holes)[
+                0
+            ]
+            mosaic = self.mosaic_specs(self.filled_classes(filled_region) if o.fill_small_holes else frozenset())
+        period = getattr(self.tile.pattern, "period", None)
+        return print_pieces(
+            region,
+            outline,
+            profile=o.printer,
+            style=o.print_style,
+            heights=o.heights,
+            stroke=self.tile.stroke,
+            fill_small_holes=o.fill_small_holes,
+            inlay=o.inlay,
+            dips=dips,
+            colours=self.colouring if self.coloured or style == "mosaic" else None,
+            mosaic=mosaic,
+            period_mm=tuple(period) if period is not None else None,
+            origin=self.tile.centre,
+        )
+
     def model(self, family: str):
         """The model a format family is written from: ``"cut"`` or ``"print"``."""
         return self.cut if family == "cut" else self.print
@@ -512,6 +564,8 @@ class Models:
         if self.made("print"):
             report = self.print.report
             material = next((r.stats["material"] for r in files if "material" in r.stats), None)
+            if material is not None and self.print_in_pieces:  # every piece's, not the first file's
+                material = self.print.material()
             if material is not None and "material" not in report.stats:
                 report = report.extended(material=material)
             out.append((f"printer {self.options.printer.name}", report))

@@ -200,8 +200,9 @@ def _made(models: BuildModels, f, name: str, file_name: str | None, failed: dict
         files = [(file_name, files[0][1])] if len(files) == 1 else [(f"{stem}{n[len(name) :]}", m) for n, m in files]
         options = replace(options, name=stem)
     contents = [(fname, f.write(m, options)) for fname, m in files]
-    # a print's figures are its model's (a mosaic's STLs: every colour's), a kit's its first file's
-    measured = files[0][1] if f.family == "cut" else model
+    # a print's figures are its model's (a mosaic's STLs: every colour's), a kit's or a print in pieces' its
+    # first file's
+    measured = files[0][1] if f.family == "cut" or hasattr(model, "pieces") else model
     report = _file_report(model.report, files[0][0], f.name, f.figures(measured, options))
     if len(files) > 1:
         report.stats["files"] = [n for n, _ in files]
@@ -267,24 +268,32 @@ def write_files(
 
 
 def _assembly_files(models: BuildModels, contents: list, stem: str, failed: dict) -> list:
-    """A panel cut as pieces: ``[(name, bytes), ...]`` of its assembly drawing and manifest, made once
-    per build from the cut model, naming each piece's files among ``contents``; else nothing."""
+    """A panel made as pieces: ``[(name, bytes), ...]`` of its assembly drawing and manifest, made once
+    per build from the cut model (``<stem>-assembly``) and the print model (``<stem>-assembly``
+    too, or ``<stem>-print-assembly`` beside a cutter's: each machine's bed splits the panel its
+    own way), naming each piece's files among ``contents``; else nothing."""
     from ..export.assembly import assembly_svg, manifest
     from .pieces import ASSEMBLY_SUFFIX, PanelPieces, piece_suffix
+    from .print_pieces import PrintPieces
 
     made = getattr(models, "made", None)
-    if "cut" in failed or made is None or not made("cut"):
-        return []
-    model = models.model("cut")
-    if not isinstance(model, PanelPieces):
-        return []
-    n = len(model.pieces)
-    names = [fname for fname, _ in contents]
-    files = {p.number: [f for f in names if f.startswith(f"{stem}{piece_suffix(p.number, n)}.")] for p in model.pieces}
-    return [
-        (f"{stem}{ASSEMBLY_SUFFIX}.svg", assembly_svg(model, title=stem)),
-        (f"{stem}{ASSEMBLY_SUFFIX}.json", manifest(model, files, name=stem)),
-    ]
+    out: list = []
+    for family, kind, suffixes in (("cut", PanelPieces, None), ("print", PrintPieces, (".stl", ".3mf", ".step"))):
+        if family in failed or made is None or not made(family):
+            continue
+        model = models.model(family)
+        if not isinstance(model, kind):
+            continue
+        n = len(model.pieces)
+        names = [f for f, _ in contents if suffixes is None or f.endswith(suffixes)]
+        if suffixes is None:  # the cutter's files: every format but the printer's
+            names = [f for f in names if not f.endswith((".stl", ".3mf", ".step"))]
+        files = {
+            p.number: [f for f in names if f.startswith(f"{stem}{piece_suffix(p.number, n)}")] for p in model.pieces
+        }
+        base = f"{stem}{'-print' if out else ''}{ASSEMBLY_SUFFIX}"
+        out += [(f"{base}.svg", assembly_svg(model, title=stem)), (f"{base}.json", manifest(model, files, name=stem))]
+    return out
 
 
 def earlier_files(outdir, name: str, written) -> list[str]:
@@ -422,7 +431,7 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
     """Build one format of ``design``: the file's bytes, report, media type and name.
 
     Made through the same pipeline as :func:`build_design` (the same models and
-    checks); an inlay kit's two files come as one zip archive.
+    checks); an inlay kit's two files come as one zip archive, and so do a print's pieces.
     """
     from ..core.files import zip_entry
     from ..export.formats import FORMATS
@@ -440,7 +449,8 @@ def build_bytes(design, fmt: str, *, limits: _limits.Limits, file_name: str | No
             with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as zf:
                 for p in result.paths:
                     zf.writestr(zip_entry(Path(p).name), Path(p).read_bytes(), compress_type=zipfile.ZIP_DEFLATED)
-            what = "pieces" if "panel_mm" in report.stats else "kit"  # a panel's pieces, or an inlay kit's files
+            # a panel's pieces (cut or printed), else an inlay kit's files (or a mosaic's STLs)
+            what = "pieces" if result.assembly else "kit"
             return Download(buf.getvalue(), report, "application/zip", f"{name}-{what}-{fmt}.zip")
         data = Path(result.paths[0]).read_bytes()
     return Download(data, report, FORMATS[fmt].media_type, f"{name}{suffix}")

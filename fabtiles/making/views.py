@@ -8,6 +8,8 @@ kit's lattice and pieces (:func:`inlay_kit_of`); the 3D view the print model's p
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from ..core.report import Report
 from ..machines import limits as _limits
 from .models import BuildOptions, Models
@@ -103,7 +105,8 @@ def print_view(design, *, limits: _limits.Limits, max_segments: int = VIEW_SEGME
 
     tile = prepare_tile(design, limits=limits)
     check_format_limits(tile, ("3mf",), limits)
-    models = Models(tile, BuildOptions.of_design(design))
+    # the view shows the panel whole, however the files split it for the bed
+    models = Models(tile, replace(BuildOptions.of_design(design), pieces=False))
     region, dips = models.print_region
     outline = tile.outline_shape()
     count = _limits.estimate_segments(tile.pattern, tile.width_mm, tile.height_mm)

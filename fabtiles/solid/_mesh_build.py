@@ -37,7 +37,7 @@ import numpy as np
 
 from ..core.errors import FabricationError, ParameterError
 from ..geometry.stack import MAX_HEIGHT_MM, QUANTUM, Stack, resolve_stack  # noqa: F401  (the writers' names)
-from ._triangulate import bottom_triangles, cdt, ear_clip, flat, flip_degenerate
+from ._triangulate import bottom_triangles, cdt, ear_clip, flat, flip_degenerate, recessed_bottom
 
 CELL_VERTICES = 1500
 """Target number of region vertices per meshing cell."""
@@ -539,16 +539,25 @@ def _edge_twins(u, v, n: int):
     return a, b
 
 
-def mesh_coverage(cov: Coverage):
-    """Mesh a coverage as one stack: returns ``(vertices (n, 3) float64, faces (m, 3) int64)``."""
+def mesh_coverage(cov: Coverage, recess=None):
+    """Mesh a coverage as one stack: returns ``(vertices (n, 3) float64, faces (m, 3) int64)``.
+
+    ``recess`` (a :class:`~fabtiles.geometry.stack.Recess`, on the grid, strictly inside
+    the bottom and shallower than the lowest level over it) is sunk into the bottom
+    (:func:`_recess_faces`).
+    """
     topo = topology(cov)
     assert topo.tris is not None and topo.tri_level is not None  # topology() triangulates by default
     nl = len(cov.levels)
     tris = topo.vid[topo.tris]
     top = tris * nl + topo.tri_level[:, None]
     u, v = topo.vid, topo.vid[topo.nxt]
-    own = bottom_triangles(u, v, topo.out_level, topo.xy)
-    bottom = ((tris if own is None else own) * nl)[:, ::-1]
+    cup = None
+    if recess is None:
+        own = bottom_triangles(u, v, topo.out_level, topo.xy)
+        bottom = ((tris if own is None else own) * nl)[:, ::-1]
+    else:
+        bottom, cup = _recess_faces(u, v, topo, nl, recess)
     walls = []
     if nl >= 4:
         walls = [_ladder_walls(u, v, topo.out_level, topo.level, nl, len(topo.xy))]
@@ -560,17 +569,57 @@ def mesh_coverage(cov: Coverage):
             c, d = vv * nl + lo + 1, uu * nl + lo + 1
             walls.append(np.stack([a, b, c], axis=1))
             walls.append(np.stack([a, c, d], axis=1))
-    faces = np.concatenate([top, bottom] + walls)
+    faces = np.concatenate([top, bottom] + walls + ([cup[0]] if cup is not None else []))
     # number the used (vertex, level) ids in order: a mark and a cumulative sum, no sort
-    mark = np.zeros(len(topo.xy) * nl, bool)
+    n_ids = len(topo.xy) * nl
+    mark = np.zeros(n_ids + (len(cup[1]) if cup is not None else 0), bool)
     mark[faces.ravel()] = True
     used = np.flatnonzero(mark)
     new_id = np.cumsum(mark) - 1
     faces = new_id[faces]
     verts = np.empty((len(used), 3))
-    verts[:, :2] = topo.xy[used // nl]
-    verts[:, 2] = cov.levels[used % nl]
+    grid = used[used < n_ids]
+    verts[: len(grid), :2] = topo.xy[grid // nl]
+    verts[: len(grid), 2] = cov.levels[grid % nl]
+    if cup is not None:  # the recess's points, numbered after the coverage's
+        verts[len(grid) :] = cup[1][used[len(grid) :] - n_ids]
     return verts, faces
+
+
+def _recess_faces(u, v, topo, nl: int, recess):
+    """``(bottom, (cup, points))``: the faces of a bottom with ``recess`` sunk into it.
+
+    The bottom is its outline less the recess, triangulated on its own
+    (:func:`~fabtiles.solid._triangulate.recessed_bottom`); the recess is a cup: its
+    walls from the bottom up to ``recess.depth`` and its roof there, facing down. Its
+    points are ids ``len(xy) * nl + k``: each recess ring point at z = 0, then again at
+    the depth. Nothing else changes: the walls and tops above do not reach the recess.
+    """
+    import shapely
+
+    rings = []
+    for poly in shapely.get_parts(shapely.orient_polygons(recess.region)):
+        for ring in (poly.exterior, *poly.interiors):
+            rings.append(np.asarray(ring.coords, float)[:-1])
+    found = recessed_bottom(u, v, topo.out_level, topo.xy, rings)
+    if found is None:
+        raise FabricationError("the bottom with its recess (the piece's number) could not be triangulated")
+    own, roof = found
+    n_ids, m = len(topo.xy) * nl, sum(len(r) for r in rings)
+    # the bottom's outline vertices at level 0; the recess's points at z = 0 (ids n_ids + k)
+    bottom = np.where(own < len(topo.xy), own * nl, n_ids + own - len(topo.xy))[:, ::-1]
+    starts = np.concatenate([[0], np.cumsum([len(r) for r in rings])])
+    a = np.arange(m)
+    b = a + 1
+    b[starts[1:] - 1] = starts[:-1]  # each ring's last point to its first
+    low, high = n_ids + a, n_ids + m + a
+    low_b, high_b = n_ids + b, n_ids + m + b
+    # the recess lies on each ring edge's left: its walls face it (the edge run backwards)
+    walls = np.concatenate([np.stack([low_b, low, high], axis=1), np.stack([low_b, high, high_b], axis=1)])
+    pts = np.concatenate(rings)
+    points = np.concatenate([np.c_[pts, np.zeros(m)], np.c_[pts, np.full(m, recess.depth)]])
+    cup = np.concatenate([walls, (n_ids + m + roof)[:, ::-1]])
+    return bottom, (cup, points)
 
 
 def _ladder_walls(u, v, out_level, level, nl: int, n_vertices: int) -> np.ndarray:

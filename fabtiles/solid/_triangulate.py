@@ -372,3 +372,60 @@ def bottom_triangles(u, v, out_level, xy):
     nxt = np.arange(len(ids)) + 1
     nxt[starts[1:] - 1] = starts[:-1]
     return ids[tris] if tiles_exactly(ij, tris, nxt, flat_ok=False) else None
+
+
+def _triangulated(rings) -> np.ndarray | None:
+    """manifold3d's triangles of closed ``rings`` (points one after another, each ring's
+    (k, 2) array, exteriors counter-clockwise, holes clockwise), flat ones flipped away, or
+    None when they do not tile the rings exactly."""
+    import manifold3d as m3
+
+    pts = np.concatenate(rings)
+    ij = np.round(pts / QUANTUM).astype(np.int64)
+    lengths = np.array([len(r) for r in rings])
+    starts = np.concatenate([[0], np.cumsum(lengths)])
+    nxt = np.arange(len(pts)) + 1
+    nxt[starts[1:] - 1] = starts[:-1]
+    tris = np.asarray(m3.triangulate([np.asarray(r, float) for r in rings]), dtype=np.int64).reshape(-1, 3)
+    tris = flip_degenerate(tris, ij)
+    return tris if tiles_exactly(ij, tris, nxt, flat_ok=False) else None
+
+
+def recessed_bottom(u, v, out_level, xy, recess_rings):
+    """The triangles of a bottom with a recess: ``(bottom, roof)``, or None when either does not tile.
+
+    ``u -> v`` are a coverage's edges, ``out_level`` the level beside each (0: nothing:
+    the bottom's outline), ``xy`` the vertices; ``recess_rings`` the recess's rings
+    (each a (k, 2) array, not closed, exteriors counter-clockwise, holes clockwise),
+    strictly inside the bottom. The bottom is its outline less the recess, triangulated
+    on its own (its rings' vertices are numbered ``xy``'s, then the recess's points
+    ``len(xy) + k``, counter-clockwise seen from above); ``roof`` is the recess's own
+    triangles (numbered by its points, counter-clockwise seen from above).
+    """
+    sel = (out_level == 0) & (u != v)
+    bu, bv = u[sel], v[sel]
+    if not len(bu) or len(np.unique(bu)) != len(bu) or not np.array_equal(np.sort(bu), np.sort(bv)):
+        return None
+    succ = dict(zip(bu.tolist(), bv.tolist(), strict=True))
+    outline: list = []
+    seen: set = set()
+    for start in bu.tolist():
+        if start in seen:
+            continue
+        ring, k = [], start
+        while k not in seen:
+            seen.add(k)
+            ring.append(k)
+            k = succ[k]
+        outline.append(np.asarray(ring, np.int64))
+    n_points = sum(len(r) for r in recess_rings)
+    first = len(xy) + np.concatenate([[0], np.cumsum([len(r) for r in recess_rings])])
+    # the recess is a hole of the bottom: its rings run the other way there
+    holes = [np.arange(first[k], first[k + 1])[::-1] for k in range(len(recess_rings))]
+    ids = np.concatenate(outline + holes)
+    every = np.concatenate([xy, np.concatenate(recess_rings)]) if n_points else xy
+    bottom = _triangulated([every[r] for r in outline + holes])
+    roof = _triangulated(list(recess_rings))
+    if bottom is None or roof is None:
+        return None
+    return ids[bottom], roof

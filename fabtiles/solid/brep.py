@@ -343,6 +343,7 @@ def planar_brep(
     radii=(),
     cells: bool = False,
     chords=frozenset(),
+    recess=None,
 ) -> Brep:
     """The B-rep of a stack coverage (one closed shell per connected part).
 
@@ -357,6 +358,7 @@ def planar_brep(
     of the coverage (a cell of its grid) is a face of its own, and a one-level body's bottom too
     (see :data:`MAX_FACE_HOLES`); else the pieces at one level are merged first. ``chords``: the
     circles ``(cx, cy, r)`` (:func:`_circle_key`) whose arcs stay chords (see :func:`brep_of_part`).
+    ``recess``: a :class:`~fabtiles.geometry.stack.Recess` sunk into the bottom (:func:`_recess_faces`).
 
     The faces are made in the order walls (arcs first), tops, bottoms: the edges are
     numbered as they are first met, so the order fixes the file written.
@@ -378,11 +380,66 @@ def planar_brep(
     wall_edges, keys = _plain_walls(ed, topo, walls, vxy, side_of, sides)
     faces += _wall_faces(ed, walls, wall_edges, keys, vxy, z, sides, what)
     faces += _top_faces(ed, topo, z, reverse=False)
-    if cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
+    if recess is not None:
+        # the recess's points are numbered after the ring points, its roof's level after the levels
+        walls_and_roof, holes, points = _recess_faces(ed, len(vxy), len(z), recess)
+        vxy, z = np.concatenate([vxy, points]), np.append(z, recess.depth)
+        faces += _bottom_faces(ed, topo, vxy, z, what, recess_holes=holes)
+        faces += walls_and_roof
+    elif cells and len(cov.levels) == 2:  # one level: each top's bottom beneath it, its loops run backwards
         faces += _top_faces(ed, topo, z, reverse=True)
     else:
         faces += _bottom_faces(ed, topo, vxy, z, what)
     return _finish(ed, vxy, z, faces, what)
+
+
+def _recess_faces(ed: _Edges, first: int, level: int, recess) -> tuple[list, list, np.ndarray]:
+    """``(faces, holes, points)``: a recess sunk into the bottom, as faces on the edges of ``ed``.
+
+    Its points are vertices ``first + k``, at level 0 and at ``level`` (its roof's). The
+    faces are a plane wall over each edge of its rings, its roof (one face per polygon,
+    facing down) and each island it rings (the hole of a digit's loop: bottom, at level
+    0); ``holes`` are its outer rings as holes of the bottom, ``(loop, xy)`` as
+    :func:`_holes_in_parts` takes them.
+    """
+    import shapely
+
+    faces: list = []
+    holes: list = []
+    pts: list = []
+    n = first
+
+    def ring_ids(ring):
+        nonlocal n
+        xy = np.asarray(ring.coords, float)[:-1]
+        pts.append(xy)
+        ids = list(range(n, n + len(xy)))
+        n += len(xy)
+        return ids, xy
+
+    for poly in shapely.get_parts(shapely.orient_polygons(recess.region)):
+        rings = [ring_ids(r) for r in (poly.exterior, *poly.interiors)]
+        roof = []
+        for k, (ids, xy) in enumerate(rings):
+            pairs = list(zip(ids, ids[1:] + ids[:1], strict=True))
+            for (a, b), (pa, pb) in zip(pairs, zip(xy, np.roll(xy, -1, axis=0), strict=True), strict=True):
+                # the recess lies left of a -> b: its wall faces it, run as a wall of the edge b -> a
+                loop = (
+                    ed.horizontal(b, a, 0),
+                    ed.vertical(a, 0, level),
+                    ed.horizontal(a, b, level),
+                    ed.vertical(b, level, 0),
+                )
+                dx, dy = (pa - pb).tolist()
+                faces.append(Face((float(pb[0]), float(pb[1]), 0.0), (dy, -dx, 0.0), (dx, dy, 0.0), (loop,)))
+            roof.append(tuple(ed.horizontal(b, a, level) for a, b in reversed(pairs)))
+            bottom = tuple(ed.horizontal(a, b, 0) for a, b in pairs)
+            if k == 0:
+                holes.append((bottom, xy))
+            else:  # an island the recess rings: bottom
+                faces.append(Face((0.0, 0.0, 0.0), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), (bottom,)))
+        faces.append(Face((0.0, 0.0, float(recess.depth)), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(roof)))
+    return faces, holes, np.concatenate(pts)
 
 
 def _level_pieces(cov: Coverage, cells: bool) -> list:
@@ -643,11 +700,12 @@ def _top_faces(ed: _Edges, topo, z, *, reverse: bool) -> list:
     return faces
 
 
-def _bottom_faces(ed: _Edges, topo, vxy, z, what: str) -> list:
+def _bottom_faces(ed: _Edges, topo, vxy, z, what: str, recess_holes=()) -> list:
     """The bottom faces: the ring edges with nothing beside them, run backwards, each hole in its part.
 
     The loops are sorted by their side seen from below: outer loops are faces, each
-    hole goes to the smallest outer loop that covers it.
+    hole goes to the smallest outer loop that covers it; so do ``recess_holes`` (a recess's,
+    ``(loop of signed edges, xy)``).
     """
     u_all, v_all = topo.vid, topo.vid[topo.nxt]
     b = np.flatnonzero((topo.out_level == 0) & (u_all != v_all))
@@ -666,6 +724,8 @@ def _bottom_faces(ed: _Edges, topo, vxy, z, what: str) -> list:
     bottom_loops = [[tuple(directed[i][2] for i in lp)] for lp, _ in outers]
     for j, lp in _holes_in_parts(outers, holes, what):
         bottom_loops[j].append(tuple(directed[i][2] for i in lp))
+    for j, loop in _holes_in_parts(outers, list(recess_holes), what):
+        bottom_loops[j].append(loop)
     return [Face((0.0, 0.0, float(z[0])), (0.0, 0.0, -1.0), (1.0, 0.0, 0.0), tuple(loops_)) for loops_ in bottom_loops]
 
 
@@ -1211,10 +1271,14 @@ def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0, ra
     """The B-rep of a checked fused body (see :func:`build_brep`): ``(brep, mesh_volume, n_solids)``."""
     kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
     layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
-    cov, cells = _face_coverage(layers, bottom, _cells_for_faces(layers))
+    # a recess's holes go into the bottom's one face: not a bottom of cells
+    cells_at = _cells_for_faces(layers) if stack.recess is None else SINGLE_CELL
+    cov, cells = _face_coverage(layers, bottom, cells_at)
     sides, chords = _sides(part.outline), frozenset[tuple]()
     for _ in range(CHORD_ROUNDS):
-        brep = planar_brep(cov, sides=sides, tolerance_mm=tolerance_mm, radii=radii, cells=cells, chords=chords)
+        brep = planar_brep(
+            cov, sides=sides, tolerance_mm=tolerance_mm, radii=radii, cells=cells, chords=chords, recess=stack.recess
+        )
         crossing = _crossing_arcs(brep)
         if not crossing:
             break

@@ -26,6 +26,7 @@ trimesh and manifold3d are imported only inside the functions.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import TYPE_CHECKING, NamedTuple, Protocol
 
 import numpy as np
@@ -165,7 +166,16 @@ def _body_arrays(kind: str, r, o, stack: Stack, shift: int = 0, dips=None):
         cov = coverage([(r, b)], bottom=b - d, shift=shift)
     else:  # pragma: no cover - internal
         raise ValueError(kind)
-    return (*mesh_coverage(cov), (cov.xs, cov.ys))
+    return (*mesh_coverage(cov, _recess(kind, stack)), (cov.xs, cov.ys))
+
+
+ON_THE_BED = ("relief", "mosaic", "base", "pierced", "plate")
+"""The body kinds whose bottom lies on the bed: those a :class:`~fabtiles.geometry.stack.Recess` is sunk into."""
+
+
+def _recess(kind: str, stack: Stack):
+    """The stack's recess if a body of ``kind`` has it (its bottom is the bed's), else None."""
+    return stack.recess if kind in ON_THE_BED else None
 
 
 def _expected(kind, r, o, stack, dips=None):
@@ -173,6 +183,10 @@ def _expected(kind, r, o, stack, dips=None):
     b, h = stack.base, stack.relief
     nr = len(polygons_of(r))
     no = len(polygons_of(o))
+    recess = _recess(kind, stack)
+    if recess is not None:
+        volume, bodies = _expected(kind, r, o, replace(stack, recess=None), dips)
+        return volume - recess.volume, bodies
     if dips is not None and kind in ("relief", "pattern"):
         from .levels import dips_volume
 
@@ -707,11 +721,13 @@ def _mosaic_mesh(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
     name = f"part {spec.name!r}"
     top = _mosaic_top(layers, name)
     volume, bodies = _mosaic_expected(spec, layers, top, o, b)
+    if spec.base and stack.recess is not None:
+        volume -= stack.recess.volume
     error = None
     for shift in range(GRID_SHIFTS):
         try:
             cov = _mosaic_coverage(spec, layers, top, o, b, shift)
-            verts, faces = mesh_coverage(cov)
+            verts, faces = mesh_coverage(cov, stack.recess if spec.base else None)
         except shapely.errors.GEOSException as exc:
             error = error or FabricationError(
                 f"the {name} mesh could not be cut into cells ({exc}); nothing was written"

@@ -25,10 +25,11 @@ part, meshed once. A build makes one model, whatever print formats it writes.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import cached_property
 from typing import NamedTuple
 
-from ..core.errors import ParameterError
+from ..core.errors import FabricationError, ParameterError
 from ..core.report import Report
 from .parts import (
     CheckedPart,
@@ -96,6 +97,7 @@ class PrintModel:
         colours=None,
         mosaic=(),
         arc_radii_mm=(),
+        step_arcs: bool = True,
     ):
         self.profile = profile
         self.stack = stack
@@ -110,6 +112,9 @@ class PrintModel:
         """A mosaic's parts, one per colour (:class:`~fabtiles.solid.parts.MosaicPart`)."""
         self.arc_radii_mm = tuple(float(r) for r in arc_radii_mm)
         """Radii the region's curves are known to have (half the stroke: its round joins), for the STEP's arcs."""
+        self.step_arcs = bool(step_arcs)
+        """Whether the STEP finds the arcs of the walls (cylinders); False: planes only (a piece cut from a round
+        outline, whose arcs end off their circles where the seams cut them)."""
 
     def with_classes(self, mosaic, report: Report) -> PrintModel:
         """This print with a mosaic's parts (``mosaic``; none: its own) and a report that says its face
@@ -125,6 +130,7 @@ class PrintModel:
             colours=self.colours,
             mosaic=mosaic or self.mosaic,
             arc_radii_mm=self.arc_radii_mm,
+            step_arcs=self.step_arcs,
         )
 
     @property
@@ -201,9 +207,8 @@ class PrintModel:
         """``(brep, mesh volume, solids)``: the B-rep of the fused body (:mod:`.brep`), for STEP."""
         from .brep import brep_of_part
 
-        return brep_of_part(
-            self.fused, self.stack, self.dips, tolerance_mm=self.profile.tolerance_mm, radii=self.arc_radii_mm
-        )
+        tolerance = self.profile.tolerance_mm if self.step_arcs else 0.0
+        return brep_of_part(self.fused, self.stack, self.dips, tolerance_mm=tolerance, radii=self.arc_radii_mm)
 
     def stats(self) -> dict:
         """The stack's style and heights, for a file's report."""
@@ -227,6 +232,8 @@ def print_model(
     dips=None,
     colours=None,
     mosaic=(),
+    recess=None,
+    step_arcs: bool = True,
     path: str = "",
     fmt: str = "",
 ) -> PrintModel:
@@ -240,7 +247,9 @@ def print_model(
     part; ``dips`` lowers an interlaced relief's under strands (:mod:`fabtiles.solid.levels`); ``colours`` (a
     :class:`~fabtiles.designs.colour.Colouring`) colours the parts, and a mosaic's ``mosaic``
     (:class:`~fabtiles.solid.parts.MosaicPart`, one per colour) says which part holds
-    the plate, the bands and which faces. No mesh is built here: the model
+    the plate, the bands and which faces; ``recess`` (a :class:`~fabtiles.geometry.stack.Recess`)
+    is sunk into the bottom face (:func:`check_recess`); ``step_arcs=False`` writes the STEP's walls as
+    planes only. No mesh is built here: the model
     makes each on first use. A strict profile with findings raises.
     """
     heights = dict(
@@ -263,6 +272,8 @@ def print_model(
         fmt=fmt,
     )
     check_inlay(stack, inlay)
+    if recess is not None:
+        stack = replace(stack, recess=check_recess(recess, region, outline, stack))
     if mosaic and stack.style != "mosaic":
         raise ParameterError(f"mosaic parts need style='mosaic', got style={stack.style!r}", param="style")
     # the strokes' round joins have half the stroke's radius (the STEP's cylinders find them by it)
@@ -278,7 +289,42 @@ def print_model(
         colours=colours,
         mosaic=mosaic,
         arc_radii_mm=radii,
+        step_arcs=step_arcs,
     )
+
+
+RECESS_WALL_MM = 0.5
+"""The least material kept between a recess in the bottom and the bottom's edge (or an opening)."""
+
+
+def check_recess(recess, region, outline, stack):
+    """``recess`` snapped to the grid, checked to lie in the solid bottom and to leave material over it.
+
+    The solid bottom is the outline (relief, deboss, mosaic) or the region (pierced),
+    less :data:`RECESS_WALL_MM` all round; the material over the recess is the plate
+    (less a deboss's grooves) or the pierced part's thickness. Raises
+    :class:`~fabtiles.FabricationError` otherwise: a recess that reached an edge would
+    open the part's side.
+    """
+    import shapely
+
+    from ..geometry.stack import Recess
+    from ._mesh_build import snap
+
+    floor = {"relief": stack.base, "mosaic": stack.base, "deboss": stack.base - stack.deboss}.get(
+        stack.style, stack.pierced
+    )
+    if not 0 < recess.depth < floor:
+        raise FabricationError(
+            f"the recess under the print must be deeper than 0 and shallower than the {floor:g} mm of material "
+            f"over it, got {recess.depth:g} mm"
+        )
+    solid = region if stack.style == "pierced" else outline
+    if not shapely.covers(shapely.buffer(solid, -RECESS_WALL_MM, quad_segs=2), recess.region):
+        raise FabricationError(
+            f"the recess under the print reaches within {RECESS_WALL_MM:g} mm of the edge of its solid bottom"
+        )
+    return Recess(snap(recess.region), float(recess.depth))
 
 
 def _slug(name: str) -> str:

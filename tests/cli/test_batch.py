@@ -120,7 +120,8 @@ def test_a_design_with_formats_refused_is_built_in_part_exit_3(tmp_path):
     profile = tmp_path / "strict.toml"
     profile.write_text('kind = "printer"\n[printer]\nstrict = true\nbed_mm = [10, 10]\n')
     tile, good = tmp_path / "tile.toml", tmp_path / "good.toml"
-    tile.write_text(design_toml(preset="table3-1", radius=8, output={"printer_profile": str(profile)}))
+    # not made as pieces: the tile larger than the bed is the strict printer's finding
+    tile.write_text(design_toml(preset="table3-1", radius=8, output={"printer_profile": str(profile), "pieces": False}))
     good.write_text(design_toml(preset="table3-1", radius=8))
     proc = run_batch(tile, good, "-o", tmp_path / "out", "--format", "svg", "--format", "stl")
     assert proc.returncode == 3, proc.stderr

@@ -43,7 +43,7 @@ ROOT = Path(__file__).resolve().parents[2]
 PIECES = {"screen-1200x800"}
 """Samples larger than their cutter's bed, cut as pieces: checked in tests/making/test_panel_pieces.py."""
 SAMPLES = sorted(p for p in (ROOT / "samples").glob("*.toml") if p.stem not in PIECES)
-LARGE = {"sheet-600x400", "panel-2440x1220"}
+LARGE = {"sheet-600x400", "panel-2440x1220", "relief-400x400"}
 """Samples whose full golden would be megabytes: counts and a sample of entities only."""
 ONE = ROOT / "samples" / "rosette.toml"
 """The sample also built in score mode and as R12 (small: one rosette in a circle)."""

@@ -264,7 +264,8 @@ def test_a_build_whose_every_format_is_refused_raises_and_writes_nothing(tmp_pat
     # one reason (one model's, or one format): that error itself, its type kept
     profile = tmp_path / "strict.toml"
     profile.write_text('kind = "printer"\n[printer]\nstrict = true\nbed_mm = [10, 10]\n')
-    design = small(overrides=[f'output.printer_profile="{profile}"'])
+    # not made as pieces: the tile larger than the bed is the strict profile's finding
+    design = small(overrides=[f'output.printer_profile="{profile}"', "output.pieces=false"])
     with pytest.raises(FabricationError, match="profile is strict"):
         pipeline.build_design(design, tmp_path / "a", ["stl", "3mf"])
     assert not (tmp_path / "a").exists()
