@@ -79,6 +79,8 @@ def connect(scheduler: str):
     The address is first tried with one bare connection and handshake: a refused,
     silent or wrong address fails there within :data:`CONNECT_TIMEOUT_S`, and leaves
     no half-made client behind (whose clean-up alone takes longer than the timeout).
+    A TCP address is tried with a plain socket before that: Dask retries a refused
+    connection until its timeout, where the socket is refused at once.
     """
     import asyncio
 
@@ -93,6 +95,7 @@ def connect(scheduler: str):
         await comm.close()
 
     try:
+        _refused_at_once(scheduler)
         asyncio.run(asyncio.wait_for(probe(), CONNECT_TIMEOUT_S + 1))
         return Client(scheduler, timeout=CONNECT_TIMEOUT_S)
     except Exception as exc:  # refused, timed out, a bad address, or not a Dask scheduler at all
@@ -104,6 +107,34 @@ def connect(scheduler: str):
             f"{CONNECT_TIMEOUT_S:g} s ({reason}); check the address (tcp://host:8786) "
             f"and that `dask scheduler` is running there"
         ) from None
+
+
+def _refused_at_once(scheduler: str) -> None:
+    """Raise ConnectionError when ``scheduler`` is a TCP address where nothing listens, or whose host
+    has no address.
+
+    Anything else (another protocol, an address Dask will name as bad, a host that does not answer)
+    is left to Dask's own connection and its timeout.
+    """
+    import socket
+
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    try:
+        protocol, location = parse_address(scheduler)
+        host, port = parse_host_port(location)
+    except ValueError:
+        return
+    if protocol != "tcp":
+        return
+    try:
+        socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S).close()
+    except ConnectionRefusedError:
+        raise ConnectionError("connection refused: nothing listens there") from None
+    except socket.gaierror:
+        raise ConnectionError(f"no address for the host {host!r}") from None
+    except OSError:
+        return
 
 
 def _run_dask(jobs: Sequence[Job], scheduler: str) -> Iterator[Outcome]:

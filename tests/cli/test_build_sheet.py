@@ -38,12 +38,14 @@ def design(tmp_path):
     return path
 
 
-def check_sheet_dxf(path, design_path, copies, kerf=PLY.kerf_mm):
-    """The sheet DXF: the laser checks, ``copies`` outer contours, every one inside the bed."""
+def check_sheet_dxf(path, design_path, copies, kerf=PLY.kerf_mm, sheet=None):
+    """The sheet DXF: the laser checks, ``copies`` outer contours, every one inside the bed.
+
+    ``sheet``: the design's sheet of ``copies``, where the test has laid it out already."""
     design = load_design(design_path)
-    tile = design.build_tile(tile_cls=fabtiles.Tile)
     options = BuildOptions.of_design(design)
-    sheet = layout_tile_sheet(tile, options, copies=copies)
+    if sheet is None:
+        sheet = layout_tile_sheet(design.build_tile(tile_cls=fabtiles.Tile), options, copies=copies)
     region = sheet.region
     if options.fill_small_holes:  # the design's default: the cut fills the holes the laser cannot cut
         region, _ = fill_small_holes(region, PLY.min_hole_mm, tolerance_mm=PLY.tolerance_mm)
@@ -231,4 +233,4 @@ def test_interlace_cut_sheet_cuts_every_copy(tmp_path):
     out = tmp_path / "out"
     result = run("build", path, "-o", out, "--format", "dxf", "--copies", 3)
     assert result.exit_code == 0, result.output
-    check_sheet_dxf(out / "cut-sheet.dxf", path, 3)
+    check_sheet_dxf(out / "cut-sheet.dxf", path, 3, sheet=sheet)

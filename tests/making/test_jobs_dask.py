@@ -20,6 +20,7 @@ from designs import design_toml
 from distributed import Client
 from dxf_helpers import assert_same_file
 
+from fabtiles.core.errors import FabtilesError
 from fabtiles.making import STAGING_PREFIX
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -188,6 +189,25 @@ def test_unreachable_scheduler_is_a_clear_error(tmp_path):
         "not-an-address",
     )
     assert bad.returncode == 2 and "missing port number in address 'not-an-address'" in bad.stderr
+
+
+def test_a_refused_port_or_an_unknown_host_fails_at_once_not_after_the_timeout(monkeypatch):
+    """Dask retries a refused connection until its timeout; the plain socket tried first does not."""
+    from fabtiles.making import jobs
+
+    def refuse(address, timeout):
+        raise ConnectionRefusedError(111, "Connection refused")
+
+    monkeypatch.setattr(socket, "create_connection", refuse)
+    with pytest.raises(FabtilesError, match=r"'tcp://127.0.0.1:1' .*\(connection refused: nothing listens there\)"):
+        jobs.connect("tcp://127.0.0.1:1")
+
+    def unknown(address, timeout):
+        raise socket.gaierror(-2, "Name or service not known")
+
+    monkeypatch.setattr(socket, "create_connection", unknown)
+    with pytest.raises(FabtilesError, match=r"\(no address for the host 'scheduler.invalid'\)"):
+        jobs.connect("tcp://scheduler.invalid:8786")
 
 
 def test_jobs_and_scheduler_together_is_a_usage_error(tmp_path):

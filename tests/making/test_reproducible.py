@@ -1,12 +1,12 @@
 """Reproducible files (issue 31): the same design gives the same bytes, run after run.
 
-Every shipped sample is built in every format its machines allow, twice, by two
-``fabtiles build`` processes started a second apart, each with its own string hash
-seed (a set's order follows the seed: ezdxf's CLASSES section did), and every file
-is compared byte for byte. So are an inlay kit, a sheet of copies, a test card in a
-DXF version with CLASSES, and the web app's downloads (the kit's zip, the 3D view's
-GLB). In process, every writer of the format table writes the same bytes from two
-models of the same design.
+Every shipped sample is built in every format its machines allow, twice, in two
+rounds started a second apart, each a process of its own with its own string hash
+seed (a set's order follows the seed: ezdxf's CLASSES section did) that runs every
+``fabtiles build`` of the round, and every file is compared byte for byte. So are
+an inlay kit, a sheet of copies, a test card in a DXF version with CLASSES, and the
+web app's downloads (the kit's zip, the 3D view's GLB). In process, every writer of
+the format table writes the same bytes from two models of the same design.
 
 A failure names the file and its first difference: the byte, the line of a text
 file, the member of a zip.
@@ -14,7 +14,9 @@ file, the member of a zip.
 
 from __future__ import annotations
 
+import fcntl
 import io
+import json
 import os
 import subprocess
 import sys
@@ -56,25 +58,52 @@ def formats_of(sample: Path) -> list[str]:
     return allowed
 
 
-def run_twice(tmp_path, commands) -> tuple[Path, Path]:
-    """Run each ``(argv, folder)`` of ``commands`` in two rounds of fresh processes, a second apart.
+_ROUND = """
+import contextlib, io, json, sys, traceback
+from fabtiles.cli.main import cli
+jobs, report = json.loads(sys.argv[1]), {}
+for name, argv in jobs:
+    out = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(out):
+            if argv[0] == "-c":
+                exec(compile(argv[1], name, "exec"), {"__name__": "__round__", "OUT": argv[2]})
+                status = 0
+            else:
+                status = cli.main(args=argv, prog_name="fabtiles", standalone_mode=False)
+    except SystemExit as stop:
+        status = stop.code
+    except BaseException:
+        status = traceback.format_exc()
+    if status not in (0, None):
+        report[name] = f"fabtiles {' '.join(argv)} gave {status}:\\n{out.getvalue()}"
+print(json.dumps(report))
+"""
+"""One round: each job ``(name, argv)`` is a ``fabtiles`` command line run in this process as the
+command runs it (or ``["-c", code, folder]``: Python run with ``OUT`` the folder); prints the
+failures as JSON, ``{name: what went wrong}``."""
 
-    ``argv`` is run as ``python <argv>`` with ``{out}`` replaced by the round's
-    ``folder``; each round has its own string hash seed. Returns the two rounds' folders.
+
+def run_twice(top: Path, jobs: list[tuple[str, list]]) -> tuple[Path, Path, dict]:
+    """Run ``jobs`` (see `_ROUND`, ``{out}`` replaced by the round's folder) in two rounds, a second apart.
+
+    Each round is a fresh process with its own string hash seed that runs every job.
+    Returns the two rounds' folders and the jobs that failed, with why.
     """
-    rounds = []
+    rounds, failed = [], {}
     for seed in ("1", "5"):  # under Python 3.11 these two took the CLASSES in different orders
-        top = tmp_path / f"round-{seed}"
+        out = top / f"round-{seed}"
         env = dict(os.environ, PYTHONHASHSEED=seed)
-        for argv, folder in commands:
-            out = top / folder
-            args = [str(a).replace("{out}", str(out)) for a in argv]
-            proc = subprocess.run([sys.executable, *args], cwd=ROOT, env=env, capture_output=True, text=True)
-            assert proc.returncode == 0, f"{' '.join(args)} failed:\n{proc.stdout}\n{proc.stderr}"
-        rounds.append(top)
+        round_jobs = [(name, [str(a).replace("{out}", str(out)) for a in argv]) for name, argv in jobs]
+        proc = subprocess.run(
+            [sys.executable, "-c", _ROUND, json.dumps(round_jobs)], cwd=ROOT, env=env, capture_output=True, text=True
+        )
+        assert proc.returncode == 0, f"the round failed:\n{proc.stdout}\n{proc.stderr}"
+        failed.update(json.loads(proc.stdout.strip().splitlines()[-1]))
+        rounds.append(out)
         if seed == "1":
             time.sleep(1.0)  # a time stamp of whole seconds changes between the rounds
-    return rounds[0], rounds[1]
+    return rounds[0], rounds[1], failed
 
 
 def first_difference(a: bytes, b: bytes) -> str:
@@ -146,81 +175,97 @@ def test_the_samples_formats_cover_every_file_format():
     assert "lbrn2" not in formats_of(ROOT / "samples" / "panel-2440x1220.toml")  # a router's
 
 
-@pytest.mark.parametrize(
-    "sample",
-    [pytest.param(s, marks=pytest.mark.slow) if s.stem in LEFT_OUT else s for s in SAMPLES],
-    ids=[s.stem for s in SAMPLES],
-)
-def test_two_builds_of_a_sample_are_byte_identical(tmp_path, sample):
-    formats = [f for f in formats_of(sample) if f not in LEFT_OUT.get(sample.stem, ())]
-    argv = ["-m", "fabtiles", "build", sample, "-o", "{out}"]
-    for fmt in formats:
-        argv += ["--format", fmt]
-    first, second = run_twice(tmp_path, [(argv, ".")])
-    # a mosaic writes an STL per colour; a tile larger than the printer's bed each print format per piece
-    extra = {"mosaic-iznik": 3, "relief-400x400": 3 * 3, "sheet-600x400": 5 * 2}.get(sample.stem, 0)
-    assert assert_same_files(first, second) == len(formats) + extra
+def sample_job(sample: Path) -> tuple[str, list]:
+    """The build of ``sample`` in every format its machines allow (but the ones `LEFT_OUT`)."""
+    argv = ["build", sample, "-o", f"{{out}}/{sample.stem}"]
+    for fmt in formats_of(sample):
+        if fmt not in LEFT_OUT.get(sample.stem, ()):
+            argv += ["--format", fmt]
+    return sample.stem, argv
 
 
 _WEB_DOWNLOADS = """
-import sys
 from pathlib import Path
 from fabtiles.machines.limits import WEB_LIMITS
 from fabtiles.making import build_bytes
 from fabtiles.making.views import print_view
 from fabtiles.designs.design_file import load_design
-out = Path(sys.argv[1]); out.mkdir(parents=True)
+out = Path(OUT); out.mkdir(parents=True)
 kit = build_bytes(load_design("samples/table3-3.toml", overrides=["output.laser_mode=inlay"]), "dxf", limits=WEB_LIMITS)
 (out / kit.file_name).write_bytes(kit.data)
 design = load_design("samples/rosette.toml", overrides=["output.print_style=deboss", "output.inlay=true"])
 (out / "view.glb").write_bytes(print_view(design, limits=WEB_LIMITS)[0])
 """
 
+_TABLE = ROOT / "samples" / "table3-3.toml"
+_CUT = ["--format", "dxf", "--format", "svg", "--format", "lbrn2"]
+KIT_JOBS = [
+    ("kit", ["build", _TABLE, "-o", "{out}/kits/kit", "--set", "output.laser_mode=inlay", *_CUT]),
+    ("sheet", ["build", ROOT / "samples" / "rosette.toml", "-o", "{out}/kits/sheet", "--copies", "3", *_CUT]),
+    (
+        "inlay",
+        [
+            "build",
+            _TABLE,
+            "-o",
+            "{out}/kits/inlay",
+            "--set",
+            "output.print_style=deboss",
+            "--set",
+            "output.inlay=true",
+            "--set",
+            "output.threemf_layout=components",
+            "--format",
+            "3mf",
+        ],
+    ),
+    # R2004 and later have the CLASSES section whose order followed the hash seed
+    (
+        "card",
+        ["calibrate", "--profile", "laser-3mm-plywood", "--dxf-version", "R2018", "-o", "{out}/kits/card/card.dxf"],
+    ),
+    ("web", ["-c", _WEB_DOWNLOADS, "{out}/kits/web"]),
+]
+"""The kits, sheets, cards and web downloads built twice besides the samples."""
 
-def test_kits_sheets_cards_and_downloads_are_byte_identical(tmp_path):
-    table = ROOT / "samples" / "table3-3.toml"
-    cut = ["--format", "dxf", "--format", "svg", "--format", "lbrn2"]
-    commands = [
-        (["-m", "fabtiles", "build", table, "-o", "{out}", "--set", "output.laser_mode=inlay", *cut], "kit"),
-        (["-m", "fabtiles", "build", ROOT / "samples" / "rosette.toml", "-o", "{out}", "--copies", "3", *cut], "sheet"),
-        (
-            [
-                "-m",
-                "fabtiles",
-                "build",
-                table,
-                "-o",
-                "{out}",
-                "--set",
-                "output.print_style=deboss",
-                "--set",
-                "output.inlay=true",
-                "--set",
-                "output.threemf_layout=components",
-                "--format",
-                "3mf",
-            ],
-            "inlay",
-        ),
-        # R2004 and later have the CLASSES section whose order followed the hash seed
-        (
-            [
-                "-m",
-                "fabtiles",
-                "calibrate",
-                "--profile",
-                "laser-3mm-plywood",
-                "--dxf-version",
-                "R2018",
-                "-o",
-                "{out}/card.dxf",
-            ],
-            "card",
-        ),
-        (["-c", _WEB_DOWNLOADS, "{out}"], "web"),
-    ]
-    first, second = run_twice(tmp_path, commands)
-    assert assert_same_files(first, second) == 13
+
+@pytest.fixture(scope="session")
+def two_rounds(tmp_path_factory) -> tuple[Path, Path, dict]:
+    """Every sample and every one of `KIT_JOBS` built in two rounds (`run_twice`), once for the
+    whole run: where xdist shares the tests among workers, the first worker to need the rounds
+    makes them, and the others wait for them and read them."""
+    jobs = [*(sample_job(s) for s in SAMPLES), *KIT_JOBS]
+    if "PYTEST_XDIST_WORKER" not in os.environ:
+        return run_twice(tmp_path_factory.mktemp("reproducible"), jobs)
+    top = tmp_path_factory.getbasetemp().parent / "reproducible"  # the run's, shared by its workers
+    top.mkdir(exist_ok=True)
+    with open(top / ".lock", "w") as lock:  # closing the file releases the lock
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not (top / "failed.json").exists():
+            failed = run_twice(top, jobs)[2]
+            (top / "failed.json").write_text(json.dumps(failed))
+        return top / "round-1", top / "round-5", json.loads((top / "failed.json").read_text())
+
+
+@pytest.mark.parametrize(
+    "sample",
+    [pytest.param(s, marks=pytest.mark.slow) if s.stem in LEFT_OUT else s for s in SAMPLES],
+    ids=[s.stem for s in SAMPLES],
+)
+def test_two_builds_of_a_sample_are_byte_identical(two_rounds, sample):
+    first, second, failed = two_rounds
+    assert sample.stem not in failed, failed.get(sample.stem)
+    formats = [f for f in formats_of(sample) if f not in LEFT_OUT.get(sample.stem, ())]
+    # a mosaic writes an STL per colour; a tile larger than the printer's bed each print format per piece,
+    # and the pieces' assembly drawing and manifest
+    extra = {"mosaic-iznik": 3, "relief-400x400": 3 * 3 + 2, "sheet-600x400": 5 * 2 + 2}.get(sample.stem, 0)
+    assert assert_same_files(first / sample.stem, second / sample.stem) == len(formats) + extra
+
+
+def test_kits_sheets_cards_and_downloads_are_byte_identical(two_rounds):
+    first, second, failed = two_rounds
+    assert [failed[name] for name, _ in KIT_JOBS if name in failed] == []
+    assert assert_same_files(first / "kits", second / "kits") == 13
 
 
 # --------------------------------------------------------------------------- in process, per writer

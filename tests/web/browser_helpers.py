@@ -13,8 +13,10 @@ import pytest
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
 REQUIRED = os.environ.get("FABTILES_REQUIRE_BROWSER") == "1"
 
-# WebGL in a headless browser with no GPU: ANGLE on SwiftShader, Chromium's CPU renderer.
-WEBGL_ARGS = ["--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
+# WebGL in a headless browser with no GPU: ANGLE on SwiftShader, Chromium's CPU renderer. The page's
+# other content is rasterized by Skia on the CPU: rasterized through SwiftShader, the gallery's SVG
+# thumbnails and the preview took seconds each and held up the page's requests behind them.
+WEBGL_ARGS = ["--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--disable-gpu-rasterization"]
 NO_GPU_ARGS = ["--disable-gpu"]
 
 
