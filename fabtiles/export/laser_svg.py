@@ -26,12 +26,19 @@ HAIRLINE_MM = 0.025
 """Stroke width of the paths (a 0.001 inch hairline: "cut, don't engrave" for most drivers)."""
 
 
-def aci_to_hex(color: int) -> str:
-    """``#RRGGBB`` of an AutoCAD Color Index.
+_STANDARD_ACI = ("#FF0000", "#FFFF00", "#00FF00", "#00FFFF", "#0000FF", "#FF00FF", "#FFFFFF", "#808080", "#C0C0C0")
+"""The nine standard AutoCAD colours (ACI 1 to 9), the ones laser layers use: an SVG or LightBurn
+file of them needs no import of ezdxf (half a second of every such build, ``docs/speed.md``)."""
 
-    >>> aci_to_hex(1), aci_to_hex(3), aci_to_hex(5)
-    ('#FF0000', '#00FF00', '#0000FF')
+
+def aci_to_hex(color: int) -> str:
+    """``#RRGGBB`` of an AutoCAD Color Index: the nine standard ones from a table, the rest from ezdxf's.
+
+    >>> aci_to_hex(1), aci_to_hex(3), aci_to_hex(5), aci_to_hex(30)
+    ('#FF0000', '#00FF00', '#0000FF', '#FF7F00')
     """
+    if 1 <= color <= len(_STANDARD_ACI):
+        return _STANDARD_ACI[color - 1]
     from ezdxf.colors import aci2rgb
 
     r, g, b = aci2rgb(color)

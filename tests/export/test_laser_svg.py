@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import re
+import subprocess
+import sys
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -73,16 +75,13 @@ def test_reproducible_byte_for_byte(tmp_path):
     assert not re.search(r"[ ML]-0[ LZ\"]", text) and not re.search(r"\de[-+]?\d", text)
 
 
-def test_aci_colours():
-    assert [aci_to_hex(c) for c in (1, 2, 3, 4, 5, 6, 7)] == [
-        "#FF0000",
-        "#FFFF00",
-        "#00FF00",
-        "#00FFFF",
-        "#0000FF",
-        "#FF00FF",
-        "#FFFFFF",
-    ]
+def test_aci_colours_are_ezdxfs_and_the_standard_ones_need_no_ezdxf():
+    from ezdxf.colors import aci2rgb
+
+    assert [aci_to_hex(c) for c in range(1, 256)] == ["#{:02X}{:02X}{:02X}".format(*aci2rgb(c)) for c in range(1, 256)]
+    code = "import sys; from fabtiles.export.laser_svg import aci_to_hex; aci_to_hex(5); print('ezdxf' in sys.modules)"
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == "False"
 
 
 @pytest.mark.parametrize(
