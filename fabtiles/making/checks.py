@@ -44,6 +44,12 @@ class PiecesOverlay:
     seams_y: tuple[float, ...]
     numbers: tuple[tuple[int, float, float], ...]
 
+    @classmethod
+    def of(cls, split) -> PiecesOverlay:
+        """The overlay of a :class:`~fabtiles.geometry.pieces.PanelSplit`: each number in the middle of its piece's
+        box."""
+        return cls(split.seams_x, split.seams_y, tuple((p.number, *_middle(p.region)) for p in split.pieces))
+
 
 @dataclass(frozen=True)
 class CheckResult:
@@ -182,8 +188,7 @@ def _check_pieces(tile, laser, laser_mode, fill_small_holes, printer, print_styl
     )
     lines_out = tuple(report.stats.get("notes", ()))
     laser_report = Report(path="", format="laser", findings=list(report.findings))
-    numbers = tuple((p.number, *_middle(p.region)) for p in model.pieces)
-    overlay = PiecesOverlay(model.split.seams_x, model.split.seams_y, numbers)
+    overlay = PiecesOverlay.of(model.split)
     return CheckResult(
         laser_report,
         print_report,

@@ -122,32 +122,27 @@ def too_big(outline, profile) -> bool:
     return not fits_bed(x1 - x0, y1 - y0, profile.bed_mm)
 
 
-def pieces_model(tile, region, centrelines, profile, cut_options) -> PanelPieces:
-    """The :class:`PanelPieces` of ``tile`` too big for the bed of the cutter ``profile``.
-
-    ``region`` and ``centrelines`` are the cutter's (:attr:`~fabtiles.making.models.Models.cut_region`),
-    ``cut_options`` the checked :class:`~fabtiles.geometry.cut_plan.CutOptions` every piece is planned
-    with. Raises :class:`~fabtiles.FabricationError` where two neighbours can be joined nowhere and
-    :class:`~fabtiles.ParameterError` for a bed too small for a piece and its joints, or a panel of
-    more pieces than :data:`~fabtiles.geometry.pieces.MAX_PIECES`.
-    """
-    from ..geometry.pieces import congruent_groups, joint_for, laid_on_bed, split_panel
+def split_for_cutter(tile, region, profile, *, mode: str, kerf_mm: float):
+    """The :class:`~fabtiles.geometry.pieces.PanelSplit` of ``tile`` for the bed of the cutter ``profile``:
+    its joint from the profile, seams on the pattern's period; ``region`` is the cutter's material
+    (a scored or engraved plate, ``mode`` other than pierced, is all material). Raises as
+    :func:`pieces_model`."""
+    from ..geometry.pieces import joint_for, split_panel
 
     kind = profile.cutter
     outline = tile.outline_shape()
-    mode = cut_options.mode
-    material = region if mode == "pierced" else outline  # a scored or engraved plate is all material
+    material = region if mode == "pierced" else outline
     joint = joint_for(
         profile.joint,
         thickness_mm=profile.thickness_or_default_mm,
-        kerf_mm=max(cut_options.kerf_mm, cut_options.kerf_y_mm),
+        kerf_mm=kerf_mm,
         fit_mm=profile.joint_fit_mm,
         corner_mm=kind.joint_corner_mm(profile),
     )
     kind.check_joint(profile, joint.neck_mm)
     period, origin = _period(tile)
     try:
-        split = split_panel(
+        return split_panel(
             material,
             bed_mm=profile.bed_mm,
             margin_mm=profile.margin_mm,
@@ -164,6 +159,23 @@ def pieces_model(tile, region, centrelines, profile, cut_options) -> PanelPieces
             f"profile {profile.name!r}, and cannot be cut as pieces: {exc}",
             param=exc.param,
         ) from None
+
+
+def pieces_model(tile, region, centrelines, profile, cut_options) -> PanelPieces:
+    """The :class:`PanelPieces` of ``tile`` too big for the bed of the cutter ``profile``.
+
+    ``region`` and ``centrelines`` are the cutter's (:attr:`~fabtiles.making.models.Models.cut_region`),
+    ``cut_options`` the checked :class:`~fabtiles.geometry.cut_plan.CutOptions` every piece is planned
+    with. Raises :class:`~fabtiles.FabricationError` where two neighbours can be joined nowhere and
+    :class:`~fabtiles.ParameterError` for a bed too small for a piece and its joints, or a panel of
+    more pieces than :data:`~fabtiles.geometry.pieces.MAX_PIECES`.
+    """
+    from ..geometry.pieces import congruent_groups, laid_on_bed
+
+    kind = profile.cutter
+    outline = tile.outline_shape()
+    mode = cut_options.mode
+    split = split_for_cutter(tile, region, profile, mode=mode, kerf_mm=max(cut_options.kerf_mm, cut_options.kerf_y_mm))
     marks = "score" in kind.modes  # a laser scores the numbers; a router or waterjet has no score layer
     pieces = []
     for piece in split.pieces:

@@ -47,6 +47,30 @@ def made_region(tile, design, *, models: Models | None = None):
     return open_region(region, radius_mm=profile.tool_radius_mm, tolerance_mm=profile.tolerance_mm).region
 
 
+def panel_seams(tile, design, *, models: Models | None = None):
+    """Where a tile larger than its cutter's bed is cut into pieces, for the pictures
+    (:class:`~fabtiles.making.checks.PiecesOverlay`: the seams and the pieces' numbers); None for a
+    tile that fits, one not made as pieces, or a split that cannot be made (the checks say why).
+
+    Only the split is made (no piece's cut plan): the web app's preview draws it over the tile.
+    """
+    from ..core.errors import FabtilesError
+    from .checks import PiecesOverlay
+    from .pieces import split_for_cutter, too_big
+
+    models = models if models is not None else Models(tile, BuildOptions.of_design(design))
+    o = models.options
+    if not o.pieces or o.kit or models.sheet is not None or not too_big(tile.outline_shape(), o.cutter):
+        return None
+    kerf = o.kerf_mm if o.kerf_mm is not None else max(o.cutter.kerf_xy_mm)
+    try:
+        region, _ = models.cut_region
+        split = split_for_cutter(tile, region, o.cutter, mode=o.mode, kerf_mm=kerf)
+    except FabtilesError:
+        return None
+    return PiecesOverlay.of(split)
+
+
 def tile_picture(
     tile, design, *, models: Models | None = None, title: str | None = None, findings=None, made=False, pieces=None
 ) -> str:

@@ -136,11 +136,17 @@ def test_name_names_the_downloads(client):
     assert r.status_code == 422 and r.json()["field"] == "name"
 
 
-def test_overlay_of_a_tile_larger_than_the_bed_draws_its_pieces_seams(client):
+def _pieces_group(text: str) -> str:
+    group = text[text.index('<g class="pieces"') :]
+    return group[: group.index("</g>")]
+
+
+def test_a_tile_larger_than_the_bed_is_drawn_with_its_pieces_seams_with_or_without_findings(client):
     # 700 x 300 mm on laser-3mm-plywood's 600 x 400 mm bed: two pieces, one seam
     query = "outline=rectangle&width=700&height=300&radius=40&stroke=4&frame=20"
-    text = client.get(f"/api/preview.svg?{query}&findings=true").text
-    group = text[text.index('<g class="pieces"') :]
-    group = group[: group.index("</g>")]
-    assert group.count("<line ") == 1 and group.count("<text ") == 2
-    assert 'class="pieces"' not in client.get(f"/api/preview.svg?{query}").text
+    checked = _pieces_group(client.get(f"/api/preview.svg?{query}&findings=true").text)
+    plain = _pieces_group(client.get(f"/api/preview.svg?{query}").text)
+    assert checked.count("<line ") == 1 and checked.count("<text ") == 2
+    assert plain == checked  # the same split, made alone for the plain preview
+    assert 'class="pieces"' not in client.get(f"/api/preview.svg?{query}&pieces=false").text
+    assert 'class="pieces"' not in client.get(f"/api/preview.svg?{SMALL}").text

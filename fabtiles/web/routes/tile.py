@@ -50,6 +50,10 @@ def router(*, limits: _limits.Limits) -> APIRouter:
 
             result = check_design(spec, tile)
             findings, made, pieces = result.findings(), result.made, result.split
+        else:  # a tile larger than the cutter's bed: where it is cut into pieces
+            from ...making.views import panel_seams
+
+            pieces = panel_seams(tile, spec)
         # a router's or waterjet's part is drawn as its tool makes it (None: a laser's, the tile's own);
         # a coloured design's faces in their colours
         # whether the pictures are in the design's colours (else the plain ink and plate: /api/faces "plain")
