@@ -16,6 +16,7 @@ error. A large pattern needs no layout: make the tile as big as the bed
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import click
@@ -202,8 +203,9 @@ def _echo_files(result) -> None:
     replaced = set(result.replaced)
     for report in result.reports:
         files = [str(p) for p in report.stats.get("files", [report.path])]
-        pieces = [p for p in files if PIECE_SUFFIX in Path(p).name]
-        if "panel_mm" in report.stats and len(pieces) > 2:  # a panel's pieces: one line per format
+        # a panel's pieces (cut or printed; a mosaic piece's STLs, one per colour, each stay a line)
+        pieces = [p for p in files if re.search(rf"{PIECE_SUFFIX}\d+$", Path(p).stem)]
+        if result.assembly and len(pieces) > 2:  # one line per format
             verb = "replaced" if all(p in replaced for p in pieces) else "wrote"
             click.echo(f"{verb} {piece_range(pieces)} ({report.format}, {len(pieces)} pieces)")
             files = [p for p in files if p not in pieces]  # the nested sheets, one line each

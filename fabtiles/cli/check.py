@@ -179,5 +179,7 @@ def _echo_figures(result, cutter: str, class_lines: list) -> None:
         click.echo(f"  {cutter} {result.job.travel_line()}")
     if result.filament is not None:
         click.echo(f"  print material: {result.filament.line()} (print time: ask the slicer)")
+    for line in result.print.stats.get("notes", ()):  # a print larger than the bed: its pieces
+        click.echo(f"  print {line}")
     for line in class_lines:
         click.echo("  " + line)

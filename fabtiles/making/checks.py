@@ -144,7 +144,7 @@ def check_tile(
         laser_report.add("bed_size", str(exc))
     filled, made = _check_cut(tile, cut_region, outline, laser, laser_mode, fill_small_holes, laser_report)
     print_report, print_filled, print_region = _check_printed(
-        tile, region, outline, printer, print_style, heights, fill_small_holes
+        tile, region, outline, printer, print_style, heights, fill_small_holes, pieces
     )
     estimate = (
         _job(tile, cut_region, laser, laser_mode, fill_small_holes)
@@ -165,7 +165,7 @@ def _check_pieces(tile, laser, laser_mode, fill_small_holes, printer, print_styl
 
     region, outline = tile.region(), tile.outline_shape()
     print_report, print_filled, print_region = _check_printed(
-        tile, region, outline, printer, print_style, heights, fill_small_holes
+        tile, region, outline, printer, print_style, heights, fill_small_holes, True
     )
     material = _filament(print_region, outline, printer, print_style, heights) if job else None
     cut_region, lines = laser_geometry(tile, profile=laser, mode=laser_mode)
@@ -235,8 +235,12 @@ def _check_cut(tile, cut_region, outline, laser, laser_mode, fill_small_holes: b
     return filled, made
 
 
-def _check_printed(tile, region, outline, printer, print_style, heights, fill_small_holes: bool) -> tuple:
-    """The printer's checks of the print's region as its files hold it: ``(report, openings filled, region)``."""
+def _check_printed(
+    tile, region, outline, printer, print_style, heights, fill_small_holes: bool, pieces: bool = False
+) -> tuple:
+    """The printer's checks of the print's region as its files hold it: ``(report, openings filled, region)``;
+    with ``pieces``, a tile larger than the printer's bed is split as the build prints it (a line
+    saying into how many pieces, or a ``pieces`` finding where it cannot be) instead of ``bed_size``."""
     from ..geometry.print_checks import check_print, check_print_pattern
     from ..geometry.print_checks import print_region as made_print_region
 
@@ -259,7 +263,38 @@ def _check_printed(tile, region, outline, printer, print_style, heights, fill_sm
     )
     if print_filled:
         check_print_pattern(designed, print_region, outline, printer, style, stroke=tile.stroke, report=print_report)
+    if pieces and "bed_size" in {f.code for f in print_report.findings}:
+        _print_in_pieces(tile, designed, outline, printer, print_style, heights, print_report)
     return print_report, print_filled, print_region
+
+
+def _print_in_pieces(tile, region, outline, printer, print_style, heights, report: Report) -> None:
+    """A print larger than the printer's bed, checked as its pieces' split: ``bed_size`` becomes the
+    line of the pieces, or a ``pieces`` finding where the split cannot be made."""
+    from ..core.errors import FabtilesError
+    from .print_pieces import print_split
+
+    report.findings[:] = [f for f in report.findings if f.code != "bed_size"]
+    period = getattr(tile.pattern, "period", None)
+    try:
+        split = print_split(
+            region,
+            outline,
+            profile=printer,
+            style=print_style,
+            heights=heights,
+            period_mm=tuple(period) if period is not None else None,
+            origin=tile.centre,
+        )
+    except FabtilesError as exc:
+        report.add("pieces", f"the print cannot be made as pieces: {exc}")
+        return
+    x0, y0, x1, y1 = outline.bounds
+    (nx, ny), (bw, bh) = split.grid, printer.bed_mm
+    report.note(
+        f"{x1 - x0:g} x {y1 - y0:g} mm panel in {len(split.pieces)} pieces ({nx} x {ny}) for the {bw:g} x {bh:g} mm "
+        f"bed of printer profile {printer.name!r}: {len(split.joints)} {split.joint.kind} joints"
+    )
 
 
 def _filament(region, outline, printer, style, heights):

@@ -286,6 +286,41 @@ def number_recess(number: int, solid, *, profile):
     return None
 
 
+def print_split(
+    region, outline, *, profile, style=None, heights=None, joint: str = "dovetail", period_mm=None, origin=(0.0, 0.0)
+):
+    """The :class:`~fabtiles.geometry.pieces.PanelSplit` of a print for the printer profile's bed: on the
+    outline (the plate is solid everywhere), or on the lattice itself for a pierced print; the
+    arguments as :func:`print_pieces`'s, which raises as it does."""
+    from ..geometry.pieces import split_panel
+    from ..geometry.stack import resolve_stack
+    from ..machines.profiles import load_profile
+
+    profile = load_profile(profile, kind="printer")
+    stack = resolve_stack(profile, style, **dict(heights or {}))
+    check_clearance(profile.joint_clearance_mm)
+    margin = check_float("bed_margin_mm", profile.bed_margin_mm, low=0.0)
+    footprint = region if stack.style == "pierced" else outline
+    try:
+        return split_panel(
+            footprint,
+            bed_mm=profile.bed_mm,
+            margin_mm=margin,
+            joint=print_joint(profile, joint),
+            min_feature_mm=profile.min_wall_mm,
+            period_mm=period_mm,
+            origin=origin,
+        )
+    except ParameterError as exc:  # the bed, named with the tile that does not fit it
+        x0, y0, x1, y1 = outline.bounds
+        bed = " x ".join(f"{v:g}" for v in profile.bed_mm)
+        raise ParameterError(
+            f"the {x1 - x0:g} x {y1 - y0:g} mm tile is larger than the {bed} mm bed of printer profile "
+            f"{profile.name!r}, and cannot be made as pieces for it: {exc}",
+            param=exc.param,
+        ) from None
+
+
 def print_pieces(
     region,
     outline,
@@ -315,7 +350,7 @@ def print_pieces(
     """
     import shapely
 
-    from ..geometry.pieces import laid_on_bed, split_panel
+    from ..geometry.pieces import laid_on_bed
     from ..geometry.stack import resolve_stack
     from ..machines.profiles import load_profile
     from ..solid._mesh_build import snap
@@ -326,25 +361,9 @@ def print_pieces(
     stack = resolve_stack(profile, style, **heights)
     clearance = check_clearance(profile.joint_clearance_mm)
     margin = check_float("bed_margin_mm", profile.bed_margin_mm, low=0.0)
-    footprint = region if stack.style == "pierced" else outline
-    try:
-        split = split_panel(
-            footprint,
-            bed_mm=profile.bed_mm,
-            margin_mm=margin,
-            joint=print_joint(profile, joint),
-            min_feature_mm=profile.min_wall_mm,
-            period_mm=period_mm,
-            origin=origin,
-        )
-    except ParameterError as exc:  # the bed, named with the tile that does not fit it
-        x0, y0, x1, y1 = outline.bounds
-        bed = " x ".join(f"{v:g}" for v in profile.bed_mm)
-        raise ParameterError(
-            f"the {x1 - x0:g} x {y1 - y0:g} mm tile is larger than the {bed} mm bed of printer profile "
-            f"{profile.name!r}, and cannot be made as pieces for it: {exc}",
-            param=exc.param,
-        ) from None
+    split = print_split(
+        region, outline, profile=profile, style=style, heights=heights, joint=joint, period_mm=period_mm, origin=origin
+    )
     # a seam that cuts a curve of the outline ends its arc off the circle: such pieces' STEP walls stay planes
     straight = int(shapely.get_num_coordinates(outline)) <= STRAIGHT_OUTLINE_POINTS
     seams = seam_lines([p.region for p in split.pieces])

@@ -372,3 +372,36 @@ def test_a_piece_too_narrow_for_its_number_has_none():
     assert number_recess(7, shapely.box(0, 0, 4, 60), profile=profile) is None
     wide = number_recess(7, shapely.box(0, 0, 60, 60), profile=profile)
     assert shapely.covers(shapely.box(0, 0, 60, 60).buffer(-1.3), wide.region)
+
+
+def test_check_of_a_print_larger_than_the_bed_says_its_pieces_instead_of_bed_size():
+    from fabtiles.making.checks import check_tile
+
+    tile = load_design(ROOT / "samples" / "relief-400x400.toml")
+    built = build_tile(tile)
+    split = check_tile(built, pieces=True)
+    assert "bed_size" not in {f.code for f in split.print.findings}
+    assert split.print.stats["notes"] == [
+        "400 x 400 mm panel in 4 pieces (2 x 2) for the 256 x 256 mm bed of printer profile 'fdm-0.4mm': "
+        "4 dovetail joints"
+    ]
+    whole = check_tile(built, pieces=False)
+    assert "bed_size" in {f.code for f in whole.print.findings} and "notes" not in whole.print.stats
+    tiny = check_tile(built, pieces=True, printer_profile=profile_with(bed_mm=(20.0, 20.0)))
+    (finding,) = [f for f in tiny.print.findings if f.code == "pieces"]
+    assert "the print cannot be made as pieces: the 400 x 400 mm tile is larger than the 20 x 20 mm bed" in (
+        finding.message
+    )
+
+
+def test_the_relief_samples_assembly_drawing_is_the_docs_picture(tmp_path):
+    result = build_design(load_design(ROOT / "samples" / "relief-400x400.toml"), tmp_path, ["stl"])
+    assert [Path(p).name for p in result.assembly] == ["relief-400x400-assembly.svg", "relief-400x400-assembly.json"]
+    drawn = (tmp_path / "relief-400x400-assembly.svg").read_bytes()
+    assert drawn == (ROOT / "samples" / "pictures" / "relief-400x400-assembly.svg").read_bytes(), (
+        "copy the new drawing: fabtiles build samples/relief-400x400.toml -o out --format stl, then "
+        "cp out/relief-400x400-assembly.svg samples/pictures/"
+    )
+    assert "400 x 400 mm panel in 4 pieces (2 x 2) for the 256 x 256 mm bed of printer profile fdm-0.4mm" in (
+        drawn.decode()
+    )
