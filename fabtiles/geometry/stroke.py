@@ -315,31 +315,27 @@ def to_cross_section(geom):
 def to_shapely(cs) -> Polygon | MultiPolygon:
     """A ``manifold3d.CrossSection`` as a valid shapely Polygon or MultiPolygon.
 
-    Each connected component (``decompose``) becomes one polygon: its
-    counter-clockwise contour is the shell, the clockwise ones its holes. Clipper
-    may return a contour that touches itself at a vertex, which shapely calls
-    invalid; such contours are split at the repeated vertex first (cheap), and
-    ``shapely.make_valid`` is only a last resort for a polygon still invalid.
+    Clipper's contours are the answer's rings: the counter-clockwise ones shells, the
+    clockwise ones holes, each hole in the smallest shell around it
+    (:func:`_assign_holes`; asking Clipper for its components instead costs the square
+    of a region's holes). Clipper may return a contour that touches itself at a
+    vertex, which shapely calls invalid; such contours are split at the repeated
+    vertex first (cheap), and ``shapely.make_valid`` is only a last resort for a
+    polygon still invalid.
     """
-    rings, part_of = [], []
-    for k, part in enumerate(cs.decompose()):
-        for r in part.to_polygons():
-            if len(r) >= 3:
-                rings.append(np.asarray(r, dtype=float))
-                part_of.append(k)
+    rings = [np.asarray(r, dtype=float) for r in cs.to_polygons() if len(r) >= 3]
     if not rings:
         return Polygon()
-    _split_pinched_rings(rings, part_of)
+    _split_pinched_rings(rings)
     lens = np.array([len(r) for r in rings])
     lr = shapely.linearrings(np.concatenate(rings), indices=np.repeat(np.arange(len(rings)), lens))
     ccw = shapely.is_ccw(lr)
-    part_of = np.array(part_of)
     # Holes of no size: where many band edges cross at one point, Clipper2 can leave a
     # speck of ~1e-15 mm^2 (seen on table3-3 tiles); it is rounding noise, not a hole.
     speck = ~ccw & (shapely.area(shapely.polygons(lr)) < MIN_HOLE_AREA)
     if speck.any():
-        lr, ccw, part_of = lr[~speck], ccw[~speck], part_of[~speck]
-    fixed = _made_valid(_component_polygons(lr, ccw, part_of))
+        lr, ccw = lr[~speck], ccw[~speck]
+    fixed = _made_valid(_assign_holes(lr[ccw], lr[~ccw]))
     if not fixed:
         return Polygon()
     if len(fixed) > 1:
@@ -352,9 +348,9 @@ def to_shapely(cs) -> Polygon | MultiPolygon:
     return fixed[0] if len(fixed) == 1 else MultiPolygon(fixed)
 
 
-def _split_pinched_rings(rings: list, part_of: list) -> None:
-    """Split, in place, the rings that visit a vertex twice (:func:`_split_pinched`), each piece in its
-    ring's component. All rings are searched at once: sorting beats a per-ring unique."""
+def _split_pinched_rings(rings: list) -> None:
+    """Split, in place, the rings that visit a vertex twice (:func:`_split_pinched`).
+    All rings are searched at once: sorting beats a per-ring unique."""
     lens = np.array([len(r) for r in rings])
     coords = np.concatenate(rings)
     rid = np.repeat(np.arange(len(rings)), lens)
@@ -362,22 +358,7 @@ def _split_pinched_rings(rings: list, part_of: list) -> None:
     c, r = coords[order], rid[order]
     dup = (r[1:] == r[:-1]) & (c[1:] == c[:-1]).all(axis=1)
     for k in sorted(set(r[1:][dup].tolist()), reverse=True):
-        pieces = _split_pinched(rings[k])
-        rings[k : k + 1] = pieces
-        part_of[k : k + 1] = [part_of[k]] * len(pieces)
-
-
-def _component_polygons(lr, ccw, part_of) -> list:
-    """The polygons of each component: its counter-clockwise rings ``lr`` the shells, the others their holes."""
-    polys = []
-    for k in np.unique(part_of):
-        mine = part_of == k
-        shells, holes = lr[mine & ccw], lr[mine & ~ccw]
-        if len(shells) == 1:
-            polys.append(shapely.Polygon(shells[0], holes))
-        elif len(shells) > 1:
-            polys += _assign_holes(shells, holes)
-    return polys
+        rings[k : k + 1] = _split_pinched(rings[k])
 
 
 def _made_valid(polys: list) -> list:
@@ -416,16 +397,21 @@ def _merge_line_touching(polys: list[Polygon]) -> list[Polygon]:
 
 
 def _assign_holes(shells, holes) -> list[Polygon]:
-    """Polygons from several shells of one component (lobes of a pinched ring) and holes."""
+    """Polygons of the rings ``shells`` (counter-clockwise) and ``holes`` (clockwise): each hole goes
+    to the smallest shell that covers it (a shell in another's hole is an island, and the holes
+    inside the island are its own). A hole no shell covers is dropped."""
+    if len(shells) == 1:
+        return [shapely.Polygon(shells[0], holes)]
     shell_polys = shapely.polygons(shells)
     owner: list[list] = [[] for _ in shells]
-    if len(holes):
-        probe = shapely.point_on_surface(shapely.polygons(holes))
-        for k, pt in enumerate(probe):
-            inside = np.flatnonzero(shapely.contains(shell_polys, pt))
-            if len(inside):
-                best = inside[np.argmin(shapely.area(shell_polys[inside]))]
-                owner[best].append(holes[k])
+    if len(holes) and len(shells):
+        hole_of, shell_of = shapely.STRtree(shell_polys).query(shapely.polygons(holes), predicate="covered_by")
+        # per hole the smallest shell covering it, the holes in their order
+        order = np.lexsort((shapely.area(shell_polys)[shell_of], hole_of))
+        hole_of, shell_of = hole_of[order], shell_of[order]
+        first = np.r_[True, hole_of[1:] != hole_of[:-1]]
+        for h, k in zip(hole_of[first].tolist(), shell_of[first].tolist(), strict=True):
+            owner[k].append(holes[h])
     return [shapely.Polygon(s, h) for s, h in zip(shells, owner, strict=True)]
 
 
