@@ -60,12 +60,35 @@ def segment_graph(segments: np.ndarray, *, return_ids: bool = False):
     """
     pts = segments.reshape(-1, 2)
     key = np.round(pts / _MERGE).astype(np.int64)
-    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    first, inverse = _unique_rows(key)
     verts = pts[first]
     seg_ids = inverse.reshape(-1, 2)
     ids = seg_ids[seg_ids[:, 0] != seg_ids[:, 1]]
-    ids = np.unique(np.sort(ids, axis=1), axis=0)
+    ids = np.sort(ids, axis=1)
+    ids = ids[_unique_rows(ids)[0]]
     return (verts, ids, seg_ids) if return_ids else (verts, ids)
+
+
+def _unique_rows(key: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(first, inverse)`` of ``np.unique(key, axis=0, return_index=True, return_inverse=True)``
+    for integer pairs ``key`` ``(n, 2)``: the unique rows in the same (lexicographic) order.
+
+    ``np.unique`` with ``axis=0`` sorts the rows as records, several times slower than sorting
+    one integer per row, which the pair is whenever its range allows (else two sort keys).
+    """
+    if not len(key):
+        return np.empty(0, np.int64), np.empty(0, np.int64)
+    lo = key.min(axis=0)
+    span = key.max(axis=0) - lo + 1
+    if float(span[0]) * float(span[1]) < 2.0**62:
+        order = np.argsort((key[:, 0] - lo[0]) * span[1] + (key[:, 1] - lo[1]), kind="stable")
+    else:
+        order = np.lexsort((key[:, 1], key[:, 0]))
+    ordered = key[order]
+    new = np.r_[True, (ordered[1:] != ordered[:-1]).any(axis=1)]
+    inverse = np.empty(len(key), np.int64)
+    inverse[order] = np.cumsum(new) - 1
+    return order[new], inverse
 
 
 def clip_segments(seg: np.ndarray, outline) -> np.ndarray:
