@@ -111,7 +111,7 @@ def _plane_pcurves(face) -> None:
 
     STEP leaves them out for planes, and OCCT then projects an edge onto the plane
     afresh each time a check asks for it; projected once and kept, the same curves
-    make ``BRepCheck_Analyzer`` about twice as quick (``docs/speed.md``).
+    make ``BRepCheck_Analyzer`` and the volume quicker (``docs/speed.md``).
     """
     from OCP.BRepLib import BRepLib
     from OCP.TopAbs import TopAbs_EDGE
