@@ -1,6 +1,7 @@
 import numpy as np
 import pytest
 import shapely
+from dxf_helpers import hausdorff_distance
 from shapely.geometry import MultiLineString
 
 import fabtiles as ft
@@ -71,7 +72,7 @@ def test_circles_as_annuli_equal_their_stroked_chords(join, width):
     assert len(shapely.get_parts(annuli)) == len(shapely.get_parts(chords))
     # miter: the same set; round and bevel differ by at most 2 * 0.005 * half / r (r: gap circles)
     bound = 1e-6 if join == "miter" else 2 * 0.005 * (width / 2) / circles[1].min() + 1e-6
-    assert shapely.hausdorff_distance(annuli.boundary, chords.boundary) <= bound
+    assert hausdorff_distance(annuli.boundary, chords.boundary, densify=1.0) <= bound  # at the vertices, as GEOS
     assert annuli.area == pytest.approx(chords.area, rel=1e-5)
 
 
