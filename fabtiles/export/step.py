@@ -106,6 +106,25 @@ def _wires(face):
     return out
 
 
+def _plane_pcurves(face) -> None:
+    """Store the 2D curve of each edge of a planar face on its plane.
+
+    STEP leaves them out for planes, and OCCT then projects an edge onto the plane
+    afresh each time a check asks for it; projected once and kept, the same curves
+    make ``BRepCheck_Analyzer`` and the volume quicker (``docs/speed.md``).
+    """
+    from OCP.BRepLib import BRepLib
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    build = BRepLib.BuildPCurveForEdgeOnPlane_s
+    edges = TopExp_Explorer(face, TopAbs_EDGE)
+    while edges.More():
+        build(TopoDS.Edge(edges.Current()), face)
+        edges.Next()
+
+
 def _big_face_valid(face) -> bool:
     """A face with many holes: each wire by OCCT, how the wires lie together by GEOS.
 
@@ -129,6 +148,7 @@ def _big_face_valid(face) -> bool:
     surface = GeomAdaptor_Surface(geom)
     if surface.GetType() != GeomAbs_Plane:
         return False
+    _plane_pcurves(face)
     plane = surface.Plane()
     pos = plane.Position()
     o, xd, yd = pos.Location(), pos.XDirection(), pos.YDirection()
@@ -255,6 +275,8 @@ def _face_fault(solid, k: int) -> str | None:
         face = TopoDS.Face(faces.Current())
         # a face's children are its wires: only the few with many are counted
         big = face.NbChildren() > BIG_FACE_WIRES and len(_wires(face)) > BIG_FACE_WIRES
+        if not big:
+            _plane_pcurves(face)
         ok = _big_face_valid(face) if big else BRepCheck_Analyzer(face).IsValid()
         if not ok:
             return f"has an invalid face (solid {k}, BRepCheck_Analyzer)"

@@ -60,12 +60,35 @@ def segment_graph(segments: np.ndarray, *, return_ids: bool = False):
     """
     pts = segments.reshape(-1, 2)
     key = np.round(pts / _MERGE).astype(np.int64)
-    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    first, inverse = _unique_rows(key)
     verts = pts[first]
     seg_ids = inverse.reshape(-1, 2)
     ids = seg_ids[seg_ids[:, 0] != seg_ids[:, 1]]
-    ids = np.unique(np.sort(ids, axis=1), axis=0)
+    ids = np.sort(ids, axis=1)
+    ids = ids[_unique_rows(ids)[0]]
     return (verts, ids, seg_ids) if return_ids else (verts, ids)
+
+
+def _unique_rows(key: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(first, inverse)`` of ``np.unique(key, axis=0, return_index=True, return_inverse=True)``
+    for integer pairs ``key`` ``(n, 2)``: the unique rows in the same (lexicographic) order.
+
+    ``np.unique`` with ``axis=0`` sorts the rows as records, several times slower than sorting
+    one integer per row, which the pair is whenever its range allows (else two sort keys).
+    """
+    if not len(key):
+        return np.empty(0, np.int64), np.empty(0, np.int64)
+    lo = key.min(axis=0)
+    span = key.max(axis=0) - lo + 1
+    if float(span[0]) * float(span[1]) < 2.0**62:
+        order = np.argsort((key[:, 0] - lo[0]) * span[1] + (key[:, 1] - lo[1]), kind="stable")
+    else:
+        order = np.lexsort((key[:, 1], key[:, 0]))
+    ordered = key[order]
+    new = np.r_[True, (ordered[1:] != ordered[:-1]).any(axis=1)]
+    inverse = np.empty(len(key), np.int64)
+    inverse[order] = np.cumsum(new) - 1
+    return order[new], inverse
 
 
 def clip_segments(seg: np.ndarray, outline) -> np.ndarray:
@@ -315,31 +338,31 @@ def to_cross_section(geom):
 def to_shapely(cs) -> Polygon | MultiPolygon:
     """A ``manifold3d.CrossSection`` as a valid shapely Polygon or MultiPolygon.
 
-    Each connected component (``decompose``) becomes one polygon: its
-    counter-clockwise contour is the shell, the clockwise ones its holes. Clipper
-    may return a contour that touches itself at a vertex, which shapely calls
-    invalid; such contours are split at the repeated vertex first (cheap), and
-    ``shapely.make_valid`` is only a last resort for a polygon still invalid.
+    Clipper's contours are the answer's rings: the counter-clockwise ones shells, the
+    clockwise ones holes, each hole in the smallest shell around it
+    (:func:`_assign_holes`; asking Clipper for its components instead costs the square
+    of a region's holes). Clipper may return a contour that touches itself at a
+    vertex, which shapely calls invalid; such contours are split at the repeated
+    vertex first (cheap), and ``shapely.make_valid`` is only a last resort for a
+    polygon still invalid.
     """
-    rings, part_of = [], []
-    for k, part in enumerate(cs.decompose()):
-        for r in part.to_polygons():
-            if len(r) >= 3:
-                rings.append(np.asarray(r, dtype=float))
-                part_of.append(k)
+    # Clipper's union of the contours again (a tenth of the cost of asking it for components) gives
+    # each ring from the vertex and in the order the components would, so files stay as they were
+    m3d = _cs()
+    again = m3d.CrossSection(cs.to_polygons(), m3d.FillRule.Positive).to_polygons()
+    rings = [np.asarray(r, dtype=float) for r in again if len(r) >= 3]
     if not rings:
         return Polygon()
-    _split_pinched_rings(rings, part_of)
+    _split_pinched_rings(rings)
     lens = np.array([len(r) for r in rings])
     lr = shapely.linearrings(np.concatenate(rings), indices=np.repeat(np.arange(len(rings)), lens))
     ccw = shapely.is_ccw(lr)
-    part_of = np.array(part_of)
     # Holes of no size: where many band edges cross at one point, Clipper2 can leave a
     # speck of ~1e-15 mm^2 (seen on table3-3 tiles); it is rounding noise, not a hole.
     speck = ~ccw & (shapely.area(shapely.polygons(lr)) < MIN_HOLE_AREA)
     if speck.any():
-        lr, ccw, part_of = lr[~speck], ccw[~speck], part_of[~speck]
-    fixed = _made_valid(_component_polygons(lr, ccw, part_of))
+        lr, ccw = lr[~speck], ccw[~speck]
+    fixed = _made_valid(_assign_holes(lr[ccw], lr[~ccw]))
     if not fixed:
         return Polygon()
     if len(fixed) > 1:
@@ -352,9 +375,9 @@ def to_shapely(cs) -> Polygon | MultiPolygon:
     return fixed[0] if len(fixed) == 1 else MultiPolygon(fixed)
 
 
-def _split_pinched_rings(rings: list, part_of: list) -> None:
-    """Split, in place, the rings that visit a vertex twice (:func:`_split_pinched`), each piece in its
-    ring's component. All rings are searched at once: sorting beats a per-ring unique."""
+def _split_pinched_rings(rings: list) -> None:
+    """Split, in place, the rings that visit a vertex twice (:func:`_split_pinched`).
+    All rings are searched at once: sorting beats a per-ring unique."""
     lens = np.array([len(r) for r in rings])
     coords = np.concatenate(rings)
     rid = np.repeat(np.arange(len(rings)), lens)
@@ -362,22 +385,7 @@ def _split_pinched_rings(rings: list, part_of: list) -> None:
     c, r = coords[order], rid[order]
     dup = (r[1:] == r[:-1]) & (c[1:] == c[:-1]).all(axis=1)
     for k in sorted(set(r[1:][dup].tolist()), reverse=True):
-        pieces = _split_pinched(rings[k])
-        rings[k : k + 1] = pieces
-        part_of[k : k + 1] = [part_of[k]] * len(pieces)
-
-
-def _component_polygons(lr, ccw, part_of) -> list:
-    """The polygons of each component: its counter-clockwise rings ``lr`` the shells, the others their holes."""
-    polys = []
-    for k in np.unique(part_of):
-        mine = part_of == k
-        shells, holes = lr[mine & ccw], lr[mine & ~ccw]
-        if len(shells) == 1:
-            polys.append(shapely.Polygon(shells[0], holes))
-        elif len(shells) > 1:
-            polys += _assign_holes(shells, holes)
-    return polys
+        rings[k : k + 1] = _split_pinched(rings[k])
 
 
 def _made_valid(polys: list) -> list:
@@ -416,16 +424,21 @@ def _merge_line_touching(polys: list[Polygon]) -> list[Polygon]:
 
 
 def _assign_holes(shells, holes) -> list[Polygon]:
-    """Polygons from several shells of one component (lobes of a pinched ring) and holes."""
+    """Polygons of the rings ``shells`` (counter-clockwise) and ``holes`` (clockwise): each hole goes
+    to the smallest shell that covers it (a shell in another's hole is an island, and the holes
+    inside the island are its own). A hole no shell covers is dropped."""
+    if len(shells) == 1:
+        return [shapely.Polygon(shells[0], holes)]
     shell_polys = shapely.polygons(shells)
     owner: list[list] = [[] for _ in shells]
-    if len(holes):
-        probe = shapely.point_on_surface(shapely.polygons(holes))
-        for k, pt in enumerate(probe):
-            inside = np.flatnonzero(shapely.contains(shell_polys, pt))
-            if len(inside):
-                best = inside[np.argmin(shapely.area(shell_polys[inside]))]
-                owner[best].append(holes[k])
+    if len(holes) and len(shells):
+        hole_of, shell_of = shapely.STRtree(shell_polys).query(shapely.polygons(holes), predicate="covered_by")
+        # per hole the smallest shell covering it, the holes in their order
+        order = np.lexsort((shapely.area(shell_polys)[shell_of], hole_of))
+        hole_of, shell_of = hole_of[order], shell_of[order]
+        first = np.r_[True, hole_of[1:] != hole_of[:-1]]
+        for h, k in zip(hole_of[first].tolist(), shell_of[first].tolist(), strict=True):
+            owner[k].append(holes[h])
     return [shapely.Polygon(s, h) for s, h in zip(shells, owner, strict=True)]
 
 

@@ -186,7 +186,8 @@ def test_the_time_estimate_against_a_simulation_of_the_same_job(files, tmp_path)
 # --------------------------------------------------------------------------- lbrnts
 
 
-def lbrnts(path) -> dict:
+def lbrnts(*paths) -> list[dict]:
+    """What lbrnts reads in each project, all in one run of Node."""
     folder = os.environ.get("FABTILES_LBRNTS_DIR", "")
     node = program("node", "apt-get install nodejs")
     found = folder and (Path(folder) / "node_modules" / "lbrnts").exists()
@@ -195,13 +196,14 @@ def lbrnts(path) -> dict:
         "lbrnts",
         "npm install lbrnts svgson transformation-matrix in a folder, then FABTILES_LBRNTS_DIR=that folder",
     )
-    return json.loads(run([node, HERE / "lbrnts_read.mjs", path], cwd=folder).stdout)
+    out = run([node, HERE / "lbrnts_read.mjs", *paths], cwd=folder).stdout
+    return [json.loads(line) for line in out.splitlines()]
 
 
 def test_lbrnts_reads_every_cut_setting_and_shape(files):
     paths, _ = files
-    for mode in ("pierced", "score"):
-        got = lbrnts(paths[mode, "lbrn2"])
+    modes = ("pierced", "score")
+    for mode, got in zip(modes, lbrnts(*[paths[m, "lbrn2"] for m in modes]), strict=True):
         ours = read_lbrn2(paths[mode, "lbrn2"])
         assert got["formatVersion"] == "1"
         assert [(c["index"], c["name"], c["type"], c["speed"], c["maxPower"], c["numPasses"]) for c in got["cuts"]] == [
@@ -294,9 +296,9 @@ def _drawn(verts, prims, closed) -> np.ndarray:
 
 def test_lbrnts_reads_the_arcs_as_beziers_on_the_dxfs_curves(arc_files):
     import shapely
-    from dxf_helpers import vertices
+    from dxf_helpers import hausdorff_distance, vertices
 
-    got = lbrnts(arc_files["lbrn2"])
+    (got,) = lbrnts(arc_files["lbrn2"])
     doc = ezdxf.readfile(arc_files["dxf"])
     want = [vertices(e) for e in doc.modelspace()]
     assert len(got["shapes"]) == len(want)
@@ -308,7 +310,7 @@ def test_lbrnts_reads_the_arcs_as_beziers_on_the_dxfs_curves(arc_files):
         drawn = _drawn(shape["verts"], shape["prims"], True)
         # the Beziers as lbrnts reads them lie on the DXF's arcs (ezdxf's drawing of its bulges)
         # within a tenth of the tolerance and the 4 decimals
-        d = shapely.hausdorff_distance(shapely.LinearRing(drawn), shapely.LinearRing(ring), densify=0.05)
+        d = hausdorff_distance(shapely.LinearRing(drawn), shapely.LinearRing(ring), densify=0.05)
         assert d <= 0.1 * tol + 2e-4
 
 

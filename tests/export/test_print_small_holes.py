@@ -88,7 +88,9 @@ def openings(section, style, outline, min_area=1e-4):
     if not len(found):
         return found
     found = found[shapely.area(found) > min_area]
-    hair = (widths(found) < HAIR) & (shapely.distance(found, outline.exterior) < SNAP)
+    # measured only along the outline: a hole's largest disc is costly where it is a long sliver
+    hair = shapely.distance(found, outline.exterior) < SNAP
+    hair[hair] = widths(found[hair]) < HAIR
     return found[~hair]
 
 

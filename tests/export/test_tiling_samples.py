@@ -8,6 +8,7 @@ consistently wound body of the expected volume within the outline.
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import ezdxf
@@ -25,7 +26,9 @@ def test_one_sample_per_tiling():
     assert sorted(p.stem for p in SAMPLES.glob("*.toml")) == sorted(TILINGS)
 
 
+@functools.cache
 def _tile(tiling):
+    """The sample's design and tile, built once for its DXF and STL tests (the tile keeps its region)."""
     design = load_design(SAMPLES / f"{tiling}.toml")
     assert design.packing.kind == "archimedean" and design.packing.tiling == tiling
     assert design.output.fill_small_holes

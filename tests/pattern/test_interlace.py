@@ -16,18 +16,25 @@ ROSETTES = ["table1-part2", "table2-left", "table2-right", "table3-1", "table3-2
 
 
 def brute_crossings(seg, eps=1e-6):
-    """Interior crossing points of every pair of segments, O(n^2), and four-end straight joints."""
+    """Interior crossing points of every pair of segments, O(n^2), and four-end straight joints.
+
+    Each segment against every later one, a row of pairs at a time in numpy (the pairs in the order
+    of ``itertools.combinations``)."""
+    seg = np.asarray(seg, dtype=float)
+    p, r = seg[:, 0], seg[:, 1] - seg[:, 0]
+    length = np.sqrt(r[:, 0] * r[:, 0] + r[:, 1] * r[:, 1])
     out = []
-    for (p, p2), (q, q2) in itertools.combinations(seg, 2):
-        r, s = p2 - p, q2 - q
-        den = r[0] * s[1] - r[1] * s[0]
-        if abs(den) < 1e-9 * np.linalg.norm(r) * np.linalg.norm(s):
-            continue
-        t = ((q - p)[0] * s[1] - (q - p)[1] * s[0]) / den
-        u = ((q - p)[0] * r[1] - (q - p)[1] * r[0]) / den
-        lr, ls = np.linalg.norm(r), np.linalg.norm(s)
-        if eps / lr < t < 1 - eps / lr and eps / ls < u < 1 - eps / ls:
-            out.append(p + t * r)
+    for i in range(len(seg) - 1):
+        q, s, ls = p[i + 1 :], r[i + 1 :], length[i + 1 :]
+        den = r[i, 0] * s[:, 1] - r[i, 1] * s[:, 0]
+        crossing = ~(np.abs(den) < 1e-9 * length[i] * ls)  # not parallel
+        d = q - p[i]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (d[:, 0] * s[:, 1] - d[:, 1] * s[:, 0]) / den
+            u = (d[:, 0] * r[i, 1] - d[:, 1] * r[i, 0]) / den
+        lr = length[i]
+        crossing &= (eps / lr < t) & (t < 1 - eps / lr) & (eps / ls < u) & (u < 1 - eps / ls)
+        out += list(p[i] + t[crossing, None] * r[i])
     # straight joints: four ends at one point, as two straight lines
     ends = {}
     for a, b in seg:
