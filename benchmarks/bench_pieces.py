@@ -103,10 +103,10 @@ def main(argv=None) -> int:
             runs: dict = {"pieces": [], "whole": []}
             for k in range(args.runs):
                 for label, design in (("whole", whole), ("pieces", pieces)):
-                    runs[label].append(timed(design, folder / f"out-{label}-{k}"))
+                    runs[label].append(timed(design, folder / f"{panel}-{label}-{k}"))
             cpu = {label: statistics.median(c for c, _ in r) for label, r in runs.items()}
             wall = {label: statistics.median(w for _, w in r) for label, r in runs.items()}
-            files = sorted(p.name for p in (folder / "out-pieces-0").iterdir())
+            files = sorted(p.name for p in (folder / f"{panel}-pieces-0").iterdir())
             print(
                 f"{panel}: whole {cpu['whole']:.1f} s CPU ({wall['whole']:.1f} s wall), as pieces "
                 f"{cpu['pieces']:.1f} s CPU ({wall['pieces']:.1f} s wall): {cpu['pieces'] / cpu['whole']:.2f}x; "
