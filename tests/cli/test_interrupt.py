@@ -10,7 +10,8 @@ import pytest
 from designs import design_toml
 from dxf_helpers import assert_same_file
 
-DESIGN = design_toml(outline="rectangle", size=[300, 200], frame=5, output={"formats": ["dxf", "svg", "stl"]})
+DESIGN = design_toml(outline="rectangle", size=[250, 200], frame=5, output={"formats": ["dxf", "svg", "stl"]})
+"""Fits the printer's bed and the laser's: one file per format (a larger tile is made as pieces)."""
 
 
 def _start(design, out):

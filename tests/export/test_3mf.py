@@ -303,7 +303,7 @@ def test_inlay_is_a_3mf_option_only(tmp_path):
         with pytest.raises(
             ParameterError,
             match=rf"'inlay' is not a valid option for .{fmt} files, must be one of: "
-            r"style, base_mm, relief_mm, pierced_mm, deboss_mm, mosaic_inset_mm, fill_small_holes, colours$",
+            r"style, base_mm, relief_mm, pierced_mm, deboss_mm, mosaic_inset_mm, fill_small_holes, pieces, colours$",
         ):
             tile.export(tmp_path / f"t.{fmt}", style="deboss", inlay=True)
     assert list(tmp_path.iterdir()) == []

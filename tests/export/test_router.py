@@ -264,8 +264,8 @@ def cli_run(*args):
     [
         ('kind = "router"\n[router]\ntool_diameter_mm = 40\n', r"tool_diameter_mm = 40 mm of router profile"),
         (
-            'kind = "router"\n[router]\ntool_diameter_mm = 3\nbed_mm = [100, 100]\n',
-            r"larger than the 100 x 100 mm bed of router profile",
+            'kind = "router"\n[router]\ntool_diameter_mm = 3\nbed_mm = [30, 30]\n',  # no room for one piece
+            r"larger than the 30 x 30 mm bed of router profile .*, and cannot be cut as pieces",
         ),
         ('kind = "waterjet"\n[waterjet]\nkerf_mm = -1\n', r"waterjet.kerf_mm must be > 0, got -1"),
     ],

@@ -317,9 +317,9 @@ def test_lbrnts_reads_each_pieces_project(built):
     from test_lbrn2 import lbrnts, read_lbrn2
 
     _, out, _ = built
-    for n in range(1, 5):
-        path = out / f"panel-piece-0{n}.lbrn2"
-        got, ours = lbrnts(path), read_lbrn2(path)
+    paths = [out / f"panel-piece-0{n}.lbrn2" for n in range(1, 5)]
+    for path, got in zip(paths, lbrnts(*paths), strict=True):  # one Node run reads them all
+        ours = read_lbrn2(path)
         assert [(s["cutIndex"], s["vertices"]) for s in got["shapes"]] == [
             (s["index"], len(s["vertices"])) for s in ours["shapes"]
         ]
