@@ -89,10 +89,10 @@ def parse_sheet(text: str) -> tuple[float, float]:
     "--time",
     "time_s",
     type=float,
-    default=DEFAULT_TIME_S,
-    show_default=True,
+    default=None,
     metavar="SECONDS",
-    help="The packer's time budget (> 0); at least a second per sheet.",
+    help=f"The packer's time budget (> 0); at least a second per sheet.  [default: 0.2 s a part, from 1 to "
+    f"{DEFAULT_TIME_S:g}]",
 )
 @click.option(
     "--format",

@@ -47,7 +47,21 @@ ROTATIONS = {"none": (0.0,), "180": (0.0, 180.0), "90": (0.0, 90.0, 180.0, 270.0
 """The rotation modes and their angles in degrees (``free``: any angle)."""
 
 DEFAULT_TIME_S = 5.0
-"""The default time budget of :func:`nest`, seconds."""
+"""The most time :func:`nest` takes unless given its budget, seconds (see :func:`default_time_s`)."""
+
+SECONDS_PER_PART = 0.2
+"""The default budget's share of each part: a few tiles nest as well in a second as in five."""
+
+
+def default_time_s(parts: int) -> float:
+    """The packer's time budget unless one is given: :data:`SECONDS_PER_PART` a part, from one
+    second to :data:`DEFAULT_TIME_S`.
+
+    >>> default_time_s(6), default_time_s(40)
+    (1.2, 5.0)
+    """
+    return min(DEFAULT_TIME_S, max(1.0, parts * SECONDS_PER_PART))
+
 
 MARGIN_MM = 0.01
 """Slack added to the gap and kept from the sheet's edges: spyrrow computes in 32-bit floats
@@ -254,7 +268,7 @@ def _solve(shapes, idx, height, gap, angles, seconds, on_tick):
 
 
 def nest(
-    parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float = DEFAULT_TIME_S, progress=None
+    parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float | None = None, progress=None
 ) -> Nesting:
     """Place ``parts`` on as few ``sheet_mm`` sheets as the packer finds, ``gap_mm`` apart.
 
@@ -269,9 +283,10 @@ def nest(
         Least distance between two placed outlines, mm (>= 0). Parts may touch the sheet's edges.
     rotations : {"90", "180", "free", "none"}
         Allowed turns: quarter turns, half turns (wood grain), any angle, or none.
-    time_s : float
+    time_s : float, optional
         The time budget, seconds (> 0); the packer counts whole seconds and takes at least
-        one per sheet, so a job of several sheets may take a little longer.
+        one per sheet, so a job of several sheets may take a little longer. By default
+        :func:`default_time_s` of the parts.
     progress : callable, optional
         Called with a :class:`NestProgress` about five times a second while packing.
 
@@ -287,8 +302,10 @@ def nest(
     FabricationError
         For a part larger than the sheet either way round (in the allowed rotations).
     """
-    w, h, gap, budget = _checked(sheet_mm, gap_mm, rotations, time_s)
+    w, h, gap, budget = _checked(sheet_mm, gap_mm, rotations, DEFAULT_TIME_S if time_s is None else time_s)
     ids, shapes = _check_parts(parts)
+    if time_s is None:
+        budget = default_time_s(len(shapes))
     angles = ROTATIONS[rotations]
     _check_fit(ids, shapes, (w, h), angles, rotations)
 

@@ -254,12 +254,13 @@ def plan_nest(
 
 def _counted(designs, count, time_s, limits: _limits.Limits) -> tuple[list, float]:
     """The designs with their counts and the nest's time, checked against the limits."""
-    from ..geometry.nest import DEFAULT_TIME_S
+    from ..geometry.nest import default_time_s
 
     if not designs:
         raise ParameterError("give at least one design to nest", param="designs")
     designs = parse_counts(designs, count)
-    time_s = DEFAULT_TIME_S if time_s is None else check_float("time_s", time_s, low=0, low_open=True)
+    parts = sum(n for _, n in designs)
+    time_s = default_time_s(parts) if time_s is None else check_float("time_s", time_s, low=0, low_open=True)
     _limits.check_nest(sum(n for _, n in designs), time_s, limits)
     return designs, time_s
 

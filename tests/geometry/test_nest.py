@@ -158,3 +158,13 @@ def test_bad_input_is_refused_naming_the_value(kwargs, error, match):
 def test_bad_parts_are_refused(parts, match):
     with pytest.raises(ParameterError, match=match):
         nest(parts, sheet_mm=(100, 100), gap_mm=1, time_s=1)
+
+
+def test_the_default_budget_is_a_fifth_of_a_second_a_part_from_one_to_five():
+    from fabtiles.geometry.nest import DEFAULT_TIME_S, default_time_s
+
+    seen = []
+    parts = [(f"p{k}", box(0, 0, 40, 30)) for k in range(3)]
+    result = nest(parts, sheet_mm=(200, 200), gap_mm=1, progress=seen.append)
+    assert {p.budget_s for p in seen} == {1.0} and len(result.placements) == 3
+    assert [default_time_s(n) for n in (1, 5, 10, 25, 400)] == [1.0, 1.0, 2.0, DEFAULT_TIME_S, DEFAULT_TIME_S]
