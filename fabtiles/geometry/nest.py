@@ -60,7 +60,7 @@ def default_time_s(parts: int) -> float:
     >>> default_time_s(6), default_time_s(40)
     (1.2, 5.0)
     """
-    return min(DEFAULT_TIME_S, max(1.0, parts * SECONDS_PER_PART))
+    return min(DEFAULT_TIME_S, max(1.0, round(parts * SECONDS_PER_PART, 3)))
 
 
 MARGIN_MM = 0.01
