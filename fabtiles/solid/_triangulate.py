@@ -320,9 +320,9 @@ triangulated on its own (a seamless relief sheet's has a few hundred points); a 
 pierced tile's bottom is its whole pattern) takes the top's triangles, turned over."""
 
 
-def _outline_rings(bu, bv):
+def _outline_rings(bu, bv, limit: int | None = BOTTOM_RINGS):
     """The edges ``bu -> bv`` (each vertex starting one) chained into rings of vertex ids, or None
-    past :data:`BOTTOM_RINGS` rings."""
+    past ``limit`` rings (None: no limit)."""
     succ = dict(zip(bu.tolist(), bv.tolist(), strict=True))
     rings, seen = [], set()
     for start in bu.tolist():
@@ -334,7 +334,7 @@ def _outline_rings(bu, bv):
             ring.append(k)
             k = succ[k]
         rings.append(ring)
-        if len(rings) > BOTTOM_RINGS:
+        if limit is not None and len(rings) > limit:
             return None
     return rings
 
@@ -406,18 +406,7 @@ def recessed_bottom(u, v, out_level, xy, recess_rings):
     bu, bv = u[sel], v[sel]
     if not len(bu) or len(np.unique(bu)) != len(bu) or not np.array_equal(np.sort(bu), np.sort(bv)):
         return None
-    succ = dict(zip(bu.tolist(), bv.tolist(), strict=True))
-    outline: list = []
-    seen: set = set()
-    for start in bu.tolist():
-        if start in seen:
-            continue
-        ring, k = [], start
-        while k not in seen:
-            seen.add(k)
-            ring.append(k)
-            k = succ[k]
-        outline.append(np.asarray(ring, np.int64))
+    outline = [np.asarray(ring, np.int64) for ring in _outline_rings(bu, bv, limit=None) or ()]
     n_points = sum(len(r) for r in recess_rings)
     first = len(xy) + np.concatenate([[0], np.cumsum([len(r) for r in recess_rings])])
     # the recess is a hole of the bottom: its rings run the other way there
