@@ -272,10 +272,11 @@ def _print_in_pieces(tile, region, outline, printer, print_style, heights, repor
     """A print larger than the printer's bed, checked as its pieces' split: ``bed_size`` becomes the
     line of the pieces, or a ``pieces`` finding where the split cannot be made."""
     from ..core.errors import FabtilesError
+    from .pieces import pattern_period
     from .print_pieces import print_split
 
     report.findings[:] = [f for f in report.findings if f.code != "bed_size"]
-    period = getattr(tile.pattern, "period", None)
+    period, origin = pattern_period(tile)
     try:
         split = print_split(
             region,
@@ -283,8 +284,8 @@ def _print_in_pieces(tile, region, outline, printer, print_style, heights, repor
             profile=printer,
             style=print_style,
             heights=heights,
-            period_mm=tuple(period) if period is not None else None,
-            origin=tile.centre,
+            period_mm=period,
+            origin=origin,
         )
     except FabtilesError as exc:
         report.add("pieces", f"the print cannot be made as pieces: {exc}")

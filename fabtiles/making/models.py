@@ -513,6 +513,7 @@ class Models:
         """The print as pieces (:class:`~fabtiles.making.print_pieces.PrintPieces`), split for the printer's bed."""
         from ..geometry.print_checks import print_region
         from ..geometry.stack import resolve_stack
+        from .pieces import pattern_period
         from .print_pieces import print_pieces
 
         o = self.options
@@ -527,7 +528,7 @@ class Models:
                 0
             ]
             mosaic = self.mosaic_specs(self.filled_classes(filled_region) if o.fill_small_holes else frozenset())
-        period = getattr(self.tile.pattern, "period", None)
+        period, origin = pattern_period(self.tile)
         return print_pieces(
             region,
             outline,
@@ -540,8 +541,8 @@ class Models:
             dips=dips,
             colours=self.colouring if self.coloured or style == "mosaic" else None,
             mosaic=mosaic,
-            period_mm=tuple(period) if period is not None else None,
-            origin=self.tile.centre,
+            period_mm=period,
+            origin=origin,
         )
 
     def model(self, family: str):

@@ -140,7 +140,7 @@ def split_for_cutter(tile, region, profile, *, mode: str, kerf_mm: float):
         corner_mm=kind.joint_corner_mm(profile),
     )
     kind.check_joint(profile, joint.neck_mm)
-    period, origin = _period(tile)
+    period, origin = pattern_period(tile)
     try:
         return split_panel(
             material,
@@ -229,7 +229,7 @@ def with_sheets(model: PanelPieces, *, time_s: float = NEST_TIME_S) -> PanelPiec
     return replace(model, sheets=sheets, report=report)
 
 
-def _period(tile):
+def pattern_period(tile):
     """The pattern's rectangular period and a lattice point of it (panel mm), or ``(None, (0, 0))``."""
     period = getattr(getattr(tile, "pattern", None), "period", None)
     if not isinstance(period, tuple):
