@@ -273,21 +273,21 @@ def _assembly_files(models: BuildModels, contents: list, stem: str, failed: dict
     too, or ``<stem>-print-assembly`` beside a cutter's: each machine's bed splits the panel its
     own way), naming each piece's files among ``contents``; else nothing."""
     from ..export.assembly import assembly_svg, manifest
+    from ..export.formats import FORMATS
     from .pieces import ASSEMBLY_SUFFIX, PanelPieces, piece_suffix
     from .print_pieces import PrintPieces
 
     made = getattr(models, "made", None)
+    printed = tuple(f.suffix for f in FORMATS.values() if f.family == "print")
     out: list = []
-    for family, kind, suffixes in (("cut", PanelPieces, None), ("print", PrintPieces, (".stl", ".3mf", ".step"))):
+    for family, kind in (("cut", PanelPieces), ("print", PrintPieces)):
         if family in failed or made is None or not made(family):
             continue
         model = models.model(family)
         if not isinstance(model, kind):
             continue
         n = len(model.pieces)
-        names = [f for f, _ in contents if suffixes is None or f.endswith(suffixes)]
-        if suffixes is None:  # the cutter's files: every format but the printer's
-            names = [f for f in names if not f.endswith((".stl", ".3mf", ".step"))]
+        names = [f for f, _ in contents if f.endswith(printed) == (family == "print")]
         files = {
             p.number: [f for f in names if f.startswith(f"{stem}{piece_suffix(p.number, n)}")] for p in model.pieces
         }

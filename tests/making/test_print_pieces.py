@@ -405,3 +405,23 @@ def test_the_relief_samples_assembly_drawing_is_the_docs_picture(tmp_path):
     assert "400 x 400 mm panel in 4 pieces (2 x 2) for the 256 x 256 mm bed of printer profile fdm-0.4mm" in (
         drawn.decode()
     )
+
+
+def test_a_build_cut_and_printed_as_pieces_writes_an_assembly_for_each_machine(tmp_path):
+    printer = tmp_path / "small-bed.toml"
+    printer.write_text('kind = "printer"\n[printer]\nbed_mm = [120, 120]\n')
+    laser = tmp_path / "small-laser.toml"
+    laser.write_text('kind = "laser"\n[laser]\nbed_mm = [150, 150]\n')
+    text = design_toml(**SMALL, output={"printer_profile": str(printer), "laser_profile": str(laser)})
+    result = build_design(design_from_text(text, name="panel"), tmp_path / "out", ["dxf", "stl"])
+    assert [Path(p).name for p in result.assembly] == [
+        "panel-assembly.svg",
+        "panel-assembly.json",
+        "panel-print-assembly.svg",
+        "panel-print-assembly.json",
+    ]
+    cut = json.loads((tmp_path / "out" / "panel-assembly.json").read_text())
+    printed = json.loads((tmp_path / "out" / "panel-print-assembly.json").read_text())
+    assert cut["profile"]["kind"] == "laser" and printed["profile"]["kind"] == "printer"
+    assert {f for p in cut["pieces"] for f in p["files"]} == {f"panel-piece-0{n}.dxf" for n in range(1, 3)}
+    assert {f for p in printed["pieces"] for f in p["files"]} == {f"panel-piece-0{n}.stl" for n in range(1, 5)}
