@@ -90,9 +90,13 @@ def fabrication_checks(tile, spec) -> dict:
     )
     job = result.job.as_stats() if result.job is not None else None
     material = result.filament.as_stats() if result.filament is not None else None
+    # a tile larger than a machine's bed: how it is cut and printed as pieces (the panel's first line of each)
+    pieces = [f"{result.cutter} {line}" for line in result.pieces[:1]]
+    pieces += [f"print {line}" for line in result.print.stats.get("notes", ())[:1]]
     return {
         "findings": findings,
         "summary": summary,
+        "pieces": pieces,
         "filled_holes": result.filled_holes,
         "print_filled_holes": result.print_filled_holes,
         "job": job,

@@ -150,3 +150,11 @@ def test_a_tile_larger_than_the_bed_is_drawn_with_its_pieces_seams_with_or_witho
     assert plain == checked  # the same split, made alone for the plain preview
     assert 'class="pieces"' not in client.get(f"/api/preview.svg?{query}&pieces=false").text
     assert 'class="pieces"' not in client.get(f"/api/preview.svg?{SMALL}").text
+
+
+def test_the_checks_say_how_a_tile_larger_than_the_beds_is_cut_and_printed_as_pieces(client):
+    query = "outline=rectangle&width=700&height=300&radius=40&stroke=4&frame=20"
+    pieces = client.get(f"/api/checks?{query}").json()["pieces"]
+    assert pieces[0].startswith("laser 700 x 300 mm panel in 2 pieces (2 x 1) for the 600 x 400 mm bed")
+    assert pieces[1].startswith("print 700 x 300 mm panel in ") and "256 x 256 mm bed" in pieces[1]
+    assert client.get(f"/api/checks?{SMALL}").json()["pieces"] == []

@@ -341,7 +341,7 @@ async function refresh() {
   }
   const again = chosen && list.querySelector(`li[data-code="${chosen.code}"][data-where="${chosen.where}"]`);
   if (again) choose(again, true); else chosen = null;
-  $("status").textContent = data.summary || "";
+  $("status").textContent = [data.summary || "", ...(data.pieces || [])].filter(Boolean).join("; ");
   const cutter = (data.cutter || "laser").replace(/^./, (c) => c.toUpperCase());
   $("job").textContent = data.job ? `${cutter} job (estimate from the profile): ${data.job.line}` : "";
   $("material").textContent = data.material
