@@ -46,7 +46,7 @@ def relief_bodies(design_path=DESIGN):
     """The ``base`` and ``pattern`` trimesh bodies of a design's relief (its printer profile)."""
     import fabtiles
     from fabtiles.designs.design_file import load_design
-    from fabtiles.export.dispatch import DEFAULT_PRINTER_PROFILE
+    from fabtiles.machines.profiles import DEFAULT_PRINTER_PROFILE
     from fabtiles.solid.parts import build_meshes
 
     design = load_design(design_path)
