@@ -9,15 +9,19 @@ It prints standing on its back, the pattern up: the relief's plate and strands a
 flat tops and vertical walls, and the block's only faces that look down are its back
 on the bed and the upper side of the finger groove. The groove runs round the block's
 sides (a waist): from the foot the sides step in at a chamfer, run straight up the
-groove's middle, and step out again at a chamfer, 40 degrees from vertical by default:
-no flatter than the printer's overhang limit (45 degrees unless the settings or the
-printer profile say otherwise), with a margin, since a slicer's automatic supports
-may already start just under 45 degrees. So no part of it needs support. Each chamfer is the convex hull of the
-outline and the outline taken in by the groove's depth, so the outline must be convex,
-as every tile outline is (square, rectangle, hexagon, circle). Where a chamfer would
-join an outline edge that the inset has lost (a rounded corner narrower than the
-groove is deep), the chamfer is made taller so that no face of it is flatter than the
-limit.
+groove's middle, and step out again at a chamfer that overhangs no more than the
+printer's limit (45 degrees from vertical unless the settings or the printer profile
+say otherwise), so no part of it needs support.
+
+Each chamfer is the convex hull of the outline and the outline taken in by the groove's
+depth, so the outline must be convex, as every tile outline is (square, rectangle,
+hexagon, circle). A slicer judges an overhang layer by layer: how far a layer reaches
+beyond the one under it, in any direction. A corner of the outline moves farther than
+its sides as the groove takes it in (a square's corner by the depth times the square
+root of two), so the chamfer's rise is the farthest any point of the outline moves,
+the Hausdorff distance of the two outlines, over the tangent of the limit: no point
+of any layer reaches beyond the layer under it by more than the layer's height times
+that tangent, and the flat sides stand steeper than the limit.
 
 The block and the relief are fused with manifold3d, and every body is checked as a
 slicer reads it (:func:`~fabtiles.solid.mesh_check.check_indexed`) before a writer
@@ -42,12 +46,8 @@ from .parts import CheckedPart, stack_stats
 from .print_model import PrintModel, PrintPart
 
 OVERHANG_DEG = 45.0
-"""The flattest downward face (degrees from vertical) a printer is taken to lay without support, unless
-told otherwise: the figure slicers and makers use."""
-
-CHAMFER_DEG = 40.0
-"""The grip's chamfers' angle from vertical by default: under :data:`OVERHANG_DEG` with a margin, since a
-slicer's automatic supports may start just under 45 degrees (``docs/stamps-draft.md``)."""
+"""The flattest overhang (degrees from vertical) a printer is taken to lay without support, unless told
+otherwise: the figure slicers and makers use."""
 
 LAND_MM = 2.0
 """The straight sides kept at the block's foot (on the bed) and under its shoulder, either side of the groove."""
@@ -55,16 +55,14 @@ LAND_MM = 2.0
 NECK_MM = 10.0
 """The narrowest the block may be at the groove's bottom (the width of the largest disc that fits there)."""
 
-ANGLE_RANGE_DEG = (20.0, 70.0)
-"""The overhang limits and chamfer angles accepted (degrees from vertical)."""
+OVERHANG_RANGE_DEG = (20.0, 70.0)
+"""The overhang limits accepted (degrees from vertical)."""
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class StampSettings:
     """A clay stamp's block and grip (see the module text); lengths in mm.
 
-    >>> round(StampSettings(block_mm=20, grip_mm=4, chamfer_deg=45).groove_height_mm(), 9)
-    12.0
     >>> StampSettings(grip_mm=0)
     Traceback (most recent call last):
     ...
@@ -77,37 +75,21 @@ class StampSettings:
     """How deep the finger groove goes into the block's sides."""
     groove_mm: float = 4.0
     """The height of the groove's straight middle, between its two chamfers (0: a V)."""
-    chamfer_deg: float = CHAMFER_DEG
-    """The chamfers' angle from vertical: at most the overhang limit."""
     overhang_deg: float | None = None
-    """The flattest downward face the printer lays without support (degrees from vertical); None: the
-    printer profile's ``overhang_deg`` when it has one, else :data:`OVERHANG_DEG`."""
+    """The flattest overhang the printer lays without support (degrees from vertical), which the
+    chamfers keep to; None: the printer profile's ``overhang_deg`` when it has one, else
+    :data:`OVERHANG_DEG`."""
 
     def __post_init__(self):
         set_ = object.__setattr__
         set_(self, "block_mm", check_float("block_mm", self.block_mm, low=0, low_open=True, high=200))
         set_(self, "grip_mm", check_float("grip_mm", self.grip_mm, low=0, low_open=True, high=20))
         set_(self, "groove_mm", check_float("groove_mm", self.groove_mm, low=0, high=100))
-        low, high = ANGLE_RANGE_DEG
-        set_(self, "chamfer_deg", check_float("chamfer_deg", self.chamfer_deg, low=low, high=high))
         if self.overhang_deg is not None:
+            low, high = OVERHANG_RANGE_DEG
             set_(self, "overhang_deg", check_float("overhang_deg", self.overhang_deg, low=low, high=high))
-            check_chamfer(self, self.overhang_deg)
-        check_block(self, self.grip_mm / math.tan(math.radians(self.chamfer_deg)))
-
-    def groove_height_mm(self) -> float:
-        """The groove's height when each chamfer rises the groove's depth over ``tan(chamfer_deg)``."""
-        return 2 * self.grip_mm / math.tan(math.radians(self.chamfer_deg)) + self.groove_mm
-
-
-def check_chamfer(settings: StampSettings, overhang_deg: float) -> None:
-    """Refuse chamfers flatter than the printer's overhang limit ``overhang_deg``."""
-    if settings.chamfer_deg > overhang_deg:
-        raise ParameterError(
-            f"chamfer_deg must be at most the printer's overhang limit of {overhang_deg:g} degrees from "
-            f"vertical (a flatter chamfer needs support), got {settings.chamfer_deg:g}",
-            param="chamfer_deg",
-        )
+        # the least rise (a circle's, whose every point moves the groove's depth): the outline may need more
+        check_block(self, self.grip_mm / math.tan(math.radians(self.overhang_deg or OVERHANG_DEG)))
 
 
 def check_block(settings: StampSettings, rise_mm: float) -> None:
@@ -127,7 +109,6 @@ class Grip:
     """The block's shape: its outline, the waist (the outline taken in by the groove's depth) and heights."""
 
     def __init__(self, outline, settings: StampSettings, overhang_deg: float):
-        check_chamfer(settings, overhang_deg)
         import shapely
 
         polys = list(getattr(outline, "geoms", [outline]))
@@ -150,25 +131,16 @@ class Grip:
         self.outer = _ring(outline)
         self.inner = _ring(shapely.buffer(outline, -settings.grip_mm, join_style="mitre"))
         self.overhang_deg = overhang_deg
-        # every face of a chamfer (a hull) has the normal of an edge of one of its two rings; its run
-        # is the two rings' support difference along that normal
-        run = float(np.max(_support(self.outer, self.normals) - _support(self.inner, self.normals)))
-        self.rise_mm = _up(run / math.tan(math.radians(settings.chamfer_deg)))
+        # the farthest a point of the outline moves: at one of its corners (the distance to a convex set
+        # is largest at a vertex)
+        run = float(shapely.distance(shapely.points(self.outer), shapely.Polygon(self.inner)).max())
+        self.run_mm = run
+        self.rise_mm = _up(run / math.tan(math.radians(overhang_deg)))
         check_block(settings, self.rise_mm)
         self.settings = settings
         total = 2 * self.rise_mm + settings.groove_mm
         self.z = np.cumsum([_up((settings.block_mm - total) / 2), self.rise_mm, settings.groove_mm, self.rise_mm])
         """Where the groove's lower chamfer starts, its middle starts, ends, and its upper chamfer ends."""
-
-    @cached_property
-    def normals(self) -> np.ndarray:
-        """The outward unit normals of both rings' edges."""
-        out = []
-        for ring in (self.outer, self.inner):
-            d = np.roll(ring, -1, axis=0) - ring
-            n = np.stack([d[:, 1], -d[:, 0]], axis=1)
-            out.append(n / np.linalg.norm(n, axis=1, keepdims=True))
-        return np.concatenate(out)
 
     def manifold(self, height_mm: float):
         """The block up to ``height_mm``, as a manifold3d solid: three convex hulls, the foot with its
@@ -276,8 +248,8 @@ class StampPrint:
         self.report = model.report.extended(
             notes=[
                 f"clay stamp: a block {grip.settings.block_mm:g} mm high with a finger groove "
-                f"{grip.settings.grip_mm:g} mm deep round its sides, its chamfers {grip.settings.chamfer_deg:g} "
-                f"degrees from vertical (the limit {grip.overhang_deg:g}): print it pattern up, no supports"
+                f"{grip.settings.grip_mm:g} mm deep round its sides, its chamfers overhanging at most "
+                f"{grip.overhang_deg:g} degrees from vertical: print it pattern up, no supports"
             ],
             stamp=self.figures(),
         )
@@ -295,7 +267,6 @@ class StampPrint:
             "grip_mm": self.settings.grip_mm,
             "groove_mm": [float(z1), float(zc)],
             "chamfer_rise_mm": self.grip.rise_mm,
-            "chamfer_deg": self.settings.chamfer_deg,
             "overhang_deg": self.grip.overhang_deg,
             "height_mm": self.height_mm,
         }
