@@ -244,7 +244,7 @@ class StampPrint:
         self.stack = model.stack
         self.region = model.region
         self.outline = model.outline
-        self.height_mm = float(np.float32(self.block_top_mm + model.stack.base + model.stack.relief))
+        self.height_mm = round(self.block_top_mm + model.stack.base + model.stack.relief, 6)
         self.report = model.report.extended(
             notes=[
                 f"clay stamp: a block {grip.settings.block_mm:g} mm high with a finger groove "
