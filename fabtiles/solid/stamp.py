@@ -106,7 +106,13 @@ def check_block(settings: StampSettings, rise_mm: float) -> None:
 
 
 class Grip:
-    """The block's shape: its outline, the waist (the outline taken in by the groove's depth) and heights."""
+    """The block's shape: its outline, the waist (the outline taken in by the groove's depth) and heights.
+
+    ``outline`` is the relief's outline (a convex polygon, on the mesh grid); ``overhang_deg`` the limit
+    the upper chamfer keeps to. Raises :class:`~fabtiles.ParameterError` for an outline that is not
+    convex, a groove deeper than the outline leaves a :data:`NECK_MM` waist for, or a block too short
+    for the groove.
+    """
 
     def __init__(self, outline, settings: StampSettings, overhang_deg: float):
         import shapely
@@ -128,6 +134,7 @@ class Grip:
                 f"got {settings.grip_mm:g}",
                 param="grip_mm",
             )
+        (outline,) = polys
         self.outer = _ring(outline)
         self.inner = _ring(shapely.buffer(outline, -settings.grip_mm, join_style="mitre"))
         self.overhang_deg = overhang_deg
