@@ -219,6 +219,35 @@ def test_a_flatter_limit_from_the_settings_or_the_profile_makes_a_lower_groove()
     assert from_profile.grip.rise_mm == flat.grip.rise_mm
 
 
+def test_an_interlaced_relief_mirrored_with_its_dips_makes_a_stamp():
+    # the dips mirrored with the strands: the imprint's crossings alternate as designed
+    import fabtiles as ft
+    from fabtiles.geometry.interlace import tile_dips
+
+    tile = ft.Tile("circle", 40, ft.Star.preset("table3-1"), frame=2, stroke=1.6, interlace=True)
+    outline = tile.outline_shape()
+    dips = mirrored(tile_dips(tile), outline)
+    model = print_model(
+        mirrored(tile.region(), outline),
+        outline,
+        profile="fdm-0.4mm",
+        style="relief",
+        base_mm=B,
+        relief_mm=H,
+        dips=dips,
+    )
+    stamp = stamp_print(model, settings=StampSettings(block_mm=BLOCK, grip_mm=GRIP, groove_mm=GROOVE))
+    mesh = trimesh.load(io.BytesIO(FORMATS["stl"].write(stamp, FileOptions())), file_type="stl")
+    assert mesh.is_watertight and mesh.body_count == 1
+    relief_only = trimesh.load(io.BytesIO(FORMATS["stl"].write(model, FileOptions())), file_type="stl")
+    figures = stamp.stats()["stamp"]
+    z1, _ = figures["groove_mm"]
+    block = block_volume(outline, z1, figures["chamfer_rise_mm"], GROOVE, BLOCK)
+    assert mesh.volume == pytest.approx(block + relief_only.volume, rel=1e-4)
+    # under a crossing the strand dips: the section just under the top is less than the strands
+    assert section(mesh, TOP - 0.05).area < section(mesh, BLOCK + B + 0.05).area - 1.0
+
+
 @settings(max_examples=examples(6), deadline=None)
 @given(
     outline=st.sampled_from(OUTLINES),
