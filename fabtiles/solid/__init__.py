@@ -9,7 +9,9 @@
   count expected);
 - :mod:`~fabtiles.solid.parts`: the checked parts of a print by name (the 3MF's base
   and pattern, the STL's one fused body);
-- :mod:`~fabtiles.solid.brep`: the planar boundary representation a STEP file holds.
+- :mod:`~fabtiles.solid.brep`: the planar boundary representation a STEP file holds;
+- :mod:`~fabtiles.solid.stamp`: a clay stamp, a relief on a block with a finger grip that
+  prints without supports.
 
 Nothing here writes a file: the formats are :mod:`fabtiles.export`'s (a contract in
 ``.importlinter``).
