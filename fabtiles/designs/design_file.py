@@ -484,8 +484,7 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
 
     Every value is checked by building the tile (cheap: no geometry is computed).
     """
-    packing = _sections(data, source)
-    surface = _surface_spec(data.get("surface", {}), source)
+    packing, surface = _sections(data, source)
     motif = _motif_spec(data["motif"], source, "[motif]") if "motif" in data else None
     tile_spec = _tile_spec(data.get("tile", {}), source, surface)
     output = _output_spec(data.get("output", {}), source)
@@ -505,19 +504,20 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
 
 
 def _sections(data: dict, source: str):
-    """The design's sections checked (known, tables, motif and tile given); its packing's spec, or None."""
+    """The design's sections checked (known, tables, motif and tile given): its packing's spec (or None) and
+    its surface's."""
     _check_keys(data, SECTIONS, "the design", source, what="section")
     for sec in SECTIONS:
         if sec in data and not isinstance(data[sec], dict):
             raise DesignError(f"{source}: [{sec}] must be a table, got {data[sec]!r}")
     packing = _packing_spec(data["packing"], source) if "packing" in data else None
-    cylinder = isinstance(data.get("surface"), dict) and data["surface"].get("shape") == CYLINDER
+    surface = _surface_spec(data.get("surface", {}), source)
     for sec in ("motif", "tile"):
-        if sec == "tile" and cylinder:
+        if sec == "tile" and surface.cylinder:
             continue  # a cylinder's strip is its own rectangle; [tile] gives the stroke, if anything
         if sec not in data and not (sec == "motif" and packing is not None and packing.kind == "archimedean"):
             raise DesignError(f"{source}: the design needs a [{sec}] section")
-    return packing
+    return packing, surface
 
 
 def _built(design: Design, source: str) -> Design:
@@ -889,12 +889,10 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
 
 
 # -- the surface ----------------------------------------------------------------------------------------------------
-def _surface_spec(table, source: str) -> SurfaceSpec:
+def _surface_spec(table: dict, source: str) -> SurfaceSpec:
     """The ``[surface]`` section: its keys checked; a cylinder's diameter and length required, a flat tile's
     cylinder keys refused."""
     where = "[surface]"
-    if not isinstance(table, dict):
-        raise DesignError(f"{source}: [surface] must be a table, got {table!r}", param="surface")
     _check_keys(table, SURFACE_KEYS, where, source)
     values = _section(table, "surface", source, where)
     if values["shape"] == CYLINDER:

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from ..core.errors import FabricationError, ParameterError
+from ..core.report import Report
 
 if TYPE_CHECKING:
     from ..designs.design_file import SurfaceSpec
@@ -261,6 +262,13 @@ def strip_model(models, cylinder: Cylinder):
         **cylinder.heights,
     )
     report = model.report.extended(notes=[cylinder.line()], cylinder=cylinder_stats(cylinder))
+    # the strip is not laid on the bed: the cylinder stands on it, its diameter checked by check_cylinder
+    report = Report(
+        path=report.path,
+        format=report.format,
+        stats=report.stats,
+        findings=[f for f in report.findings if f.code != "bed_size"],
+    )
     return model.with_classes(model.mosaic, report)  # a new model with the report: a made report is never changed
 
 
