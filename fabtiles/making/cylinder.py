@@ -26,6 +26,10 @@ if TYPE_CHECKING:
     from .models import BuildOptions
 
 
+HOLDER_RING_MM = 5.0
+"""The width of a lamp holder's ring round the fitting and of its spokes (mm)."""
+
+
 @dataclass(frozen=True)
 class Cylinder:
     """A cylinder's resolved measures (mm) and choices, for its print style and printer.
@@ -180,12 +184,12 @@ def _check_shade(cylinder: Cylinder, printer, wall_mm: float, name: str) -> None
     if cylinder.lamp_fitting_mm is None:
         return
     inside = 2 * (radius - wall_mm)
-    room = inside - 2 * printer.min_wall_mm
+    room = inside - 4 * HOLDER_RING_MM
     if cylinder.lamp_fitting_mm > room:
         raise ParameterError(
             f"lamp_fitting_mm = {cylinder.lamp_fitting_mm:g} is wider than the shade holds: its inside is "
-            f"{inside:.2f} mm across, and the holder's ring round the fitting needs min_wall_mm "
-            f"({printer.min_wall_mm:g} mm) each side; the fitting may be at most {room:.2f} mm",
+            f"{inside:.2f} mm across, and the holder's ring round the fitting and its spokes into the wall take "
+            f"{HOLDER_RING_MM:g} mm each, each side; the fitting may be at most {room:.2f} mm",
             param="surface.lamp_fitting_mm",
         )
 
@@ -210,6 +214,8 @@ def strip_region(region, dips, outline, cylinder: Cylinder):
     import shapely
     from shapely import affinity
 
+    from ..geometry.interlace import polygonal
+
     c, length, rim = cylinder.circumference_mm, cylinder.length_mm, cylinder.rim_mm
     if cylinder.mirror:
         region = affinity.scale(region, xfact=-1, yfact=1, origin=(c / 2, 0))
@@ -219,7 +225,9 @@ def strip_region(region, dips, outline, cylinder: Cylinder):
         region = shapely.difference(region, rims) if cylinder.style == "deboss" else shapely.union(region, rims)
         if dips is not None:
             dips = shapely.difference(dips, rims)
-    region = shapely.intersection(region, outline)
+    region = polygonal(shapely.intersection(region, outline))  # an overlay may leave lines where the rims meet
+    if dips is not None:
+        dips = polygonal(dips)
     return region, dips
 
 
