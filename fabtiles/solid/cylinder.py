@@ -137,7 +137,7 @@ def wrap_part(
     planes = cut_planes(x0, width, big_r, chord)
     sv, sf = slice_x(verts, faces, planes)
     gv, gf, twins = glue_seam(sv, sf, x0, x1, name=name)
-    bodies = _wrapped_bodies(sf, twins, len(sv), part.bodies, name)
+    bodies = _wrapped_bodies(sf, twins, len(gv), part.bodies, name)  # twins may be the seam's new vertices
     cyl = to_cylinder(gv, x0=x0, width=width, outer_radius_mm=big_r, top_mm=top)
     # two cut points a fraction of a micron apart (a sliver of the flat triangulation cut by a plane) are
     # one float32 point: merged, the sliver's pieces collapse and go (an edge collapsed)
@@ -303,7 +303,11 @@ def glue_seam(verts, faces, x0: float, x1: float, *, name: str = "part"):
     new_verts: list = []
     for s in (0, 1):
         other = yz[ends[1 - s]]
-        faces = _split_at(verts, faces, on[s], other, new_verts, (x0, x1)[s])
+        # the second side's faces may hold the first side's new vertices: split with them in the list
+        every = np.concatenate([verts, np.array(new_verts, np.float64).reshape(-1, 3)])
+        more: list = []
+        faces = _split_at(every, faces, every[:, 0] == (x0, x1)[s], other, more, (x0, x1)[s])
+        new_verts += more
     if new_verts:
         verts = np.concatenate([verts, np.array(new_verts)])
     on = (verts[:, 0] == x0, verts[:, 0] == x1)
