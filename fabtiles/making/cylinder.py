@@ -26,10 +26,6 @@ if TYPE_CHECKING:
     from .models import BuildOptions
 
 
-HOLDER_RING_MM = 5.0
-"""The width of a lamp holder's ring round the fitting and of its spokes (mm)."""
-
-
 @dataclass(frozen=True)
 class Cylinder:
     """A cylinder's resolved measures (mm) and choices, for its print style and printer.
@@ -183,26 +179,31 @@ def _check_shade(cylinder: Cylinder, printer, wall_mm: float, name: str) -> None
         )
     if cylinder.lamp_fitting_mm is None:
         return
+    from dataclasses import fields
+
+    from ..solid.cylinder import LampHolder
+
+    ring = next(f.default for f in fields(LampHolder) if f.name == "ring_mm")  # the holder's, as it is made
     inside = 2 * (radius - wall_mm)
-    room = inside - 4 * HOLDER_RING_MM
+    room = inside - 4 * ring
     if cylinder.lamp_fitting_mm > room:
         raise ParameterError(
             f"lamp_fitting_mm = {cylinder.lamp_fitting_mm:g} is wider than the shade holds: its inside is "
             f"{inside:.2f} mm across, and the holder's ring round the fitting and its spokes into the wall take "
-            f"{HOLDER_RING_MM:g} mm each, each side; the fitting may be at most {room:.2f} mm",
+            f"{ring:g} mm each, each side; the fitting may be at most {room:.2f} mm",
             param="surface.lamp_fitting_mm",
         )
 
 
 def check_formats(formats) -> None:
-    """Refuse a cylinder whose formats are all a cutter's: a cylinder is printed, the strip has no cut."""
-    from ..export.formats import FORMATS
+    """Refuse a cylinder whose formats are all a cutter's: a cylinder is printed, its strip has no cut."""
+    from ..export.formats import FORMATS, names_where
 
-    printed = [name for name, f in FORMATS.items() if f.family == "print"]
     if not any(FORMATS[f].family == "print" for f in formats):
         raise ParameterError(
             f'[surface] shape = "cylinder" is printed, not cut: formats {", ".join(formats)} make none of it; '
-            f"a cylinder makes {', '.join(printed)}",
+            f"a cylinder is made in the print formats, {', '.join(names_where(family='print'))} (its STEP is "
+            "refused with the reason: see docs/surfaces.md)",
             param="output.formats",
         )
 

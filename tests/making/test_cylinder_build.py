@@ -199,8 +199,8 @@ def test_values_that_make_no_cylinder_are_refused(text, override, match, param):
         (
             ROLLER,
             ['output.formats=["svg", "dxf"]'],
-            '[surface] shape = "cylinder" is printed, not cut: formats svg, dxf make none of it; a cylinder '
-            "makes stl, 3mf, step, glb",
+            '[surface] shape = "cylinder" is printed, not cut: formats svg, dxf make none of it; a cylinder is '
+            "made in the print formats, stl, 3mf, step (its STEP is refused with the reason",
         ),
     ],
 )
@@ -299,3 +299,29 @@ def test_the_samples_design_files_load_as_cylinders():
     assert roller.fitted == (
         "surface: cylinder D 60 mm x 80 mm, 9 periods around (packing radius 10.00 -> 10.47 mm, +4.7 %)",
     )
+
+
+def test_a_cylinders_step_is_refused_and_its_cutter_files_too(built, tmp_path):
+    path = tmp_path / "roller.toml"
+    path.write_text(ROLLER)
+    result = cli_run("build", path, "-o", tmp_path / "out", "--format", "step")
+    assert result.exit_code == 2 and "fabtiles: error: a cylinder's STEP is not made" in result.output
+    assert not (tmp_path / "out").exists()
+    result = cli_run("build", path, "-o", tmp_path / "out", "--format", "svg", "--format", "stl")
+    assert result.exit_code == 3, result.output
+    assert "refused" in result.output and "is printed, not cut" in result.output
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["roller.stl"]
+
+
+def test_the_3d_view_is_the_cylinder(built):
+    import io
+
+    import trimesh
+
+    from fabtiles.machines.limits import WEB_LIMITS
+    from fabtiles.making.pipeline import build_bytes
+
+    glb = build_bytes(design_from_text(SHADE, name="shade"), "glb", limits=WEB_LIMITS)
+    scene = trimesh.load(io.BytesIO(glb.data), file_type="glb")
+    assert glb.media_type == "model/gltf-binary"
+    assert max(scene.extents) == pytest.approx(50, abs=0.01)
