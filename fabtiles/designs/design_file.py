@@ -1,7 +1,7 @@
 """Design files: a TOML description of one tile, validated into frozen dataclasses
 (reference: ``docs/design-files.md``).
 
-A design has four sections; every key is checked, and an unknown key is an
+A design has up to six sections; every key is checked, and an unknown key is an
 error naming the key, its section and the valid keys (with a "did you mean").
 
 ``[motif]`` (required)
@@ -31,6 +31,12 @@ error naming the key, its section and the valid keys (with a "did you mean").
     part filling the grooves flush, for a two-colour inlay print), ``threemf_layout``
     ("volumes", default, for PrusaSlicer, Bambu Studio and OrcaSlicer; "components"
     for UltiMaker Cura).
+``[colour]`` (optional)
+    the faces' colours (:class:`~fabtiles.designs.colour.Colours`, ``docs/colours.md``).
+``[surface]`` (optional)
+    ``shape = "cylinder"`` with ``diameter``, ``length`` (mm), ``fit``, ``mirror``, ``bore_mm``,
+    ``rim_mm``, ``lamp_fitting_mm``: the pattern round a cylinder, its tile the unrolled strip
+    (:class:`SurfaceSpec`, :mod:`fabtiles.making.cylinder`, ``docs/surfaces.md``).
 
 >>> d = design_from_text('''
 ... [motif]
