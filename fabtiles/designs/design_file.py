@@ -963,6 +963,7 @@ def _fit_surface(design: Design, star, source: str) -> Design:
             param="surface.diameter",
         )
     n = max(1, round(around / period))
+    length = s.length
     if s.fit == "packing":
         scale = around / (n * period)
         p = replace(p, **{key: size * scale})
@@ -977,6 +978,6 @@ def _fit_surface(design: Design, star, source: str) -> Design:
             f"x {s.length:g} mm, {n} period{'s' if n != 1 else ''} around (packing {key} {size:g} mm kept)"
         )
         s = replace(s, diameter=diameter)
-    width = math.pi * s.diameter
-    tile_spec = replace(design.tile_spec, size=(width, s.length))
+    width = around if s.fit == "packing" else n * period  # the circumference at the fitted diameter
+    tile_spec = replace(design.tile_spec, size=(width, length))
     return replace(design, packing=p, surface=s, tile_spec=tile_spec, fitted=(*design.fitted, line))

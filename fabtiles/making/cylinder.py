@@ -179,11 +179,9 @@ def _check_shade(cylinder: Cylinder, printer, wall_mm: float, name: str) -> None
         )
     if cylinder.lamp_fitting_mm is None:
         return
-    from dataclasses import fields
-
     from ..solid.cylinder import LampHolder
 
-    ring = next(f.default for f in fields(LampHolder) if f.name == "ring_mm")  # the holder's, as it is made
+    ring = LampHolder(fitting_mm=cylinder.lamp_fitting_mm).ring_mm  # the holder's ring, as it is made
     inside = 2 * (radius - wall_mm)
     room = inside - 4 * ring
     if cylinder.lamp_fitting_mm > room:
