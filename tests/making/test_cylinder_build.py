@@ -26,9 +26,9 @@ ROLLER = """
 [motif]
 preset = "table3-1"
 [packing]
-radius = 6
+radius = 7.5
 [tile]
-stroke = 1.4
+stroke = 1.2
 [surface]
 shape = "cylinder"
 diameter = 30
@@ -175,8 +175,8 @@ def test_values_that_make_no_cylinder_are_refused(text, override, match, param):
             ROLLER,
             ["surface.diameter=3"],
             "[surface] diameter = 3 mm is too small for one period of the pattern: its circumference, 9.42 mm, is "
-            "less than the pattern's period along x, 12.00 mm (packing radius 6 mm); the diameter must be at least "
-            "3.82 mm",
+            "less than the pattern's period along x, 15.00 mm (packing radius 7.5 mm); the diameter must be at least "
+            "4.77 mm",
         ),
         (
             ROLLER,
@@ -246,8 +246,9 @@ def test_the_stl_is_one_watertight_cylinder(built, name, diameter, length):
     centre = mesh.bounds[:, :2].mean(axis=0)
     r = (v[:, 0] - centre[0]) ** 2 + (v[:, 1] - centre[1]) ** 2
     assert math.sqrt(r.max()) == pytest.approx(diameter / 2, abs=0.01) and radius == pytest.approx(diameter / 2, 0.01)
-    if name == "roller":  # the bore goes through
+    if name == "roller":  # the bore goes through; the pattern stands 1.6 mm proud of the plate
         assert math.sqrt(r.min()) == pytest.approx(8.4 / 2, abs=0.05)
+        assert (abs(r**0.5 - (15 - 1.6)) < 0.01).sum() > 100
 
 
 def test_the_3mf_reads_back_and_the_reports_say_the_cylinder(built):
@@ -325,3 +326,16 @@ def test_the_3d_view_is_the_cylinder(built):
     scene = trimesh.load(io.BytesIO(glb.data), file_type="glb")
     assert glb.media_type == "model/gltf-binary"
     assert max(scene.extents) == pytest.approx(50, abs=0.01)
+
+
+def test_fabtiles_check_checks_the_strip_as_printed(tmp_path):
+    path = tmp_path / "roller.toml"
+    path.write_text(ROLLER)
+    result = cli_run("check", path)
+    assert result.exit_code == 0, result.output
+    lines = result.output.splitlines()
+    assert f"{path}: printer profile fdm-0.4mm" in lines  # no cutter: a cylinder is not cut
+    assert any(ln.startswith("  print cylinder (roller): outer diameter 30.00 mm x 20 mm") for ln in lines)
+    assert lines[-1] == "ok: nothing found"
+    result = cli_run("check", path, "--set", "tile.stroke=1.5", "--set", "packing.radius=6")
+    assert result.exit_code == 1 and "print filled_pattern" in result.output  # the flat tile's findings
