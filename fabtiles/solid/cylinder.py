@@ -135,9 +135,10 @@ def wrap_part(
         raise ParameterError(f"top_mm = {top:g} mm is below the part's highest point, {zmax:g} mm", param="top_mm")
     volume = _wrapped_volume(verts, faces, width=width, inner=big_r - top)
     planes = cut_planes(x0, width, big_r, chord)
-    sv, sf = slice_x(verts, faces, planes)
+    spacing = width / (len(planes) + 1)
+    sv, sf = slice_x(verts, faces, planes, SNAP_FRACTION * spacing, chord)
     gv, gf, twins = glue_seam(sv, sf, x0, x1, name=name)
-    bodies = _wrapped_bodies(sf, twins, len(gv), part.bodies, name)  # twins may be the seam's new vertices
+    bodies = _wrapped_bodies(sf, twins, len(gv), part.bodies, name)
     cyl = to_cylinder(gv, x0=x0, width=width, outer_radius_mm=big_r, top_mm=top)
     # two cut points a fraction of a micron apart (a sliver of the flat triangulation cut by a plane) are
     # one float32 point: merged, the sliver's pieces collapse and go (an edge collapsed)
@@ -182,27 +183,37 @@ def _wrapped_volume(verts, faces, *, width: float, inner: float) -> float:
     return float(2 * math.pi / width * (inner * vol + moment))
 
 
+SNAP_FRACTION = 0.02
+"""A cut closer than this fraction of the planes' spacing to an edge's end is made at that end
+(:func:`slice_x`): no sliver a fraction of a micron wide, whose float32 normal would be noise."""
+
+
 def cut_planes(x0: float, width: float, outer_radius_mm: float, chord_mm: float) -> np.ndarray:
     """The ``x`` of the planes the strip is cut at before it is wrapped: equal steps of at most the angle
-    whose chord at ``outer_radius_mm`` lies ``chord_mm`` from its arc, each moved half a grid step off the
-    grid (the flat mesh's vertices are on it), so no plane passes through a vertex.
+    whose chord at ``outer_radius_mm`` lies ``chord_mm`` from its arc (less the room a cut moved to an
+    edge's end takes, :data:`SNAP_FRACTION` either side), each moved half a grid step off the grid (the
+    flat mesh's vertices are on it), so no plane passes through a vertex.
 
-    >>> len(cut_planes(0, 100, 10, 0.01))  # 2 acos(1 - 0.01 / 10) = 0.0894 rad: 71 steps
-    70
+    >>> len(cut_planes(0, 100, 10, 0.01))  # 2 acos(1 - 0.01 / 10) = 0.0894 rad, less 4 %: 74 steps
+    73
     """
-    step = 2 * math.acos(1 - chord_mm / outer_radius_mm)
+    step = 2 * math.acos(1 - chord_mm / outer_radius_mm) / (1 + 2 * SNAP_FRACTION)
     n = max(math.ceil(2 * math.pi / step), 1)
     planes = x0 + width * np.arange(1, n) / n
     return (np.floor(planes / QUANTUM) + 0.5) * QUANTUM
 
 
-def slice_x(verts, faces, planes):
+def slice_x(verts, faces, planes, snap_mm: float = 0.0, collapse_mm: float = 0.0):
     """The mesh with every triangle cut at the planes ``x = planes`` (sorted) it crosses.
 
     Each cut triangle becomes strips between its planes (a strip holding its middle
     corner a pentagon), each fanned into triangles of the triangle's winding. A point
     on an edge is made once per edge and plane, so the neighbours across an edge cut it
-    at the same vertex: the mesh stays closed. No plane may pass through a vertex.
+    at the same vertex: the mesh stays closed. An edge whose end lies within ``snap_mm``
+    of the plane is cut at that end (the nearer), no new point; a triangle's cut shorter
+    than ``collapse_mm`` (a sliver's) is collapsed to its lower-numbered end (an old vertex
+    if one is): a needle of a curved surface has a float32 normal that is mostly rounding.
+    No plane may pass through a vertex.
     Returns ``(vertices, faces)``: the old vertices first, the new ones after.
 
     >>> v = np.array([[0.0, 0, 0], [4, 0, 0], [0, 1, 0], [0, 0, 1]])
@@ -252,10 +263,16 @@ def slice_x(verts, faces, planes):
     key = (np.minimum(u, v) * n + np.maximum(u, v)) * len(planes) + j
     _, first, inv = np.unique(key, return_index=True, return_inverse=True)
     pu, pv, pj = u[first], v[first], j[first]
+    du, dv = np.abs(x[pu] - planes[pj]), np.abs(x[pv] - planes[pj])
+    at_end = np.minimum(du, dv) < snap_mm
+    fresh = ~at_end
+    pu, pv, pj = pu[fresh], pv[fresh], pj[fresh]
     t = (planes[pj] - x[pu]) / (x[pv] - x[pu])
     new = verts[pu] + t[:, None] * (verts[pv] - verts[pu])
     new[:, 0] = planes[pj]
-    ids = n + inv.ravel()
+    point = np.where(du <= dv, u[first], v[first])
+    point[fresh] = n + np.arange(len(new))
+    ids = point[inv.ravel()]
     got = []
     start = 0
     for w in wants:
@@ -280,8 +297,19 @@ def slice_x(verts, faces, planes):
     )
     tflip = np.concatenate([flip[tri], flip[tri][b_in], flip[tri]])
     tris[tflip] = tris[tflip][:, ::-1]
+    out = np.concatenate([verts, new])
+    if collapse_mm > 0:
+        # a sliver's two cut points, a hair apart on one plane, are one point: the cut between them collapsed
+        pa, pb = lhi[has_hi], chi[has_hi]
+        pair = (pa != pb) & ((pa >= n) | (pb >= n))
+        pa, pb = pa[pair], pb[pair]
+        near = np.linalg.norm(out[pa] - out[pb], axis=1) < collapse_mm
+        if near.any():
+            from ..core.graph import components
+
+            tris = components(len(out), pa[near], pb[near])[tris]  # onto the lowest: an old vertex if one is
     ok = (tris[:, 0] != tris[:, 1]) & (tris[:, 1] != tris[:, 2]) & (tris[:, 0] != tris[:, 2])
-    return np.concatenate([verts, new]), np.concatenate([faces[~cut], tris[ok]])
+    return out, np.concatenate([faces[~cut], tris[ok]])
 
 
 def glue_seam(verts, faces, x0: float, x1: float, *, name: str = "part"):
