@@ -339,3 +339,10 @@ def test_fabtiles_check_checks_the_strip_as_printed(tmp_path):
     assert lines[-1] == "ok: nothing found"
     result = cli_run("check", path, "--set", "tile.stroke=1.5", "--set", "packing.radius=6")
     assert result.exit_code == 1 and "print filled_pattern" in result.output  # the flat tile's findings
+
+
+def test_a_sweep_varies_the_surface():
+    from fabtiles.making.sweep import parse_vary
+
+    vary = parse_vary("surface.diameter=30,40")
+    assert vary.key == "surface.diameter" and vary.values == (30, 40)
