@@ -269,14 +269,21 @@ def strip_model(models, cylinder: Cylinder):
         **cylinder.heights,
     )
     report = model.report.extended(notes=[cylinder.line()], cylinder=cylinder_stats(cylinder))
-    # the strip is not laid on the bed: the cylinder stands on it, its diameter checked by check_cylinder
-    report = Report(
-        path=report.path,
-        format=report.format,
-        stats=report.stats,
-        findings=[f for f in report.findings if f.code != "bed_size"],
-    )
+    findings = [f for f in report.findings if not _not_on_the_cylinder(f, cylinder, models.tile.stroke)]
+    report = Report(path=report.path, format=report.format, stats=report.stats, findings=findings)
     return model.with_classes(model.mosaic, report)  # a new model with the report: a made report is never changed
+
+
+def _not_on_the_cylinder(finding, cylinder: Cylinder, stroke: float) -> bool:
+    """Whether ``finding`` of the flat strip is none of the cylinder's: the strip's size against the bed (the
+    cylinder stands on it, its diameter checked by :func:`check_cylinder`), or thin walls all of them at the
+    seam, within a stroke of ``x = 0`` or ``x = C``: the two halves of a band the seam cuts, whole on the
+    cylinder."""
+    if finding.code == "bed_size":
+        return True
+    c = cylinder.circumference_mm
+    at_seam = [min(x, c - x) <= stroke for x, _ in finding.locations]
+    return finding.code == "thin_wall" and len(at_seam) == finding.count and all(at_seam)
 
 
 def cylinder_stats(cylinder: Cylinder) -> dict:

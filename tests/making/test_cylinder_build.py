@@ -126,6 +126,28 @@ def test_mirror_reverses_the_strip_and_rims_close_its_ends():
         assert inside == pytest.approx(rims.area if covered else 0, abs=1e-6), style
 
 
+def test_a_band_the_seam_cuts_is_no_thin_wall_of_the_cylinder():
+    """The flat strip's check finds the two halves of a band the seam cuts thin; on the cylinder they are one
+    band, so the cylinder's report leaves them out (and the strip's size against the bed)."""
+    from fabtiles.solid.print_model import print_model
+
+    m = models_of(ROLLER, "packing.radius=10", "tile.stroke=1", "surface.diameter=60", "surface.length=80")
+    c = m.cylinder
+    region, _ = strip_region(*m.print_region, m.tile.outline_shape(), c)
+    flat = print_model(
+        region, m.tile.outline_shape(), profile=m.options.printer, style="relief", stroke=1, fill_small_holes=True,
+        **c.heights,
+    )  # fmt: skip
+    (thin,) = [f for f in flat.report.findings if f.code == "thin_wall"]
+    assert thin.count > 0 and all(min(x, c.circumference_mm - x) < 1 for x, _ in thin.locations)
+    assert strip_model(m, c).report.findings == []
+    wide = models_of(SHADE, "surface.diameter=100")  # its strip, 314 mm, is wider than the 256 mm bed
+    region, _ = strip_region(*wide.print_region, wide.tile.outline_shape(), wide.cylinder)
+    flat = print_model(region, wide.tile.outline_shape(), profile=wide.options.printer, style="pierced", stroke=1.6)
+    assert "bed_size" in {f.code for f in flat.report.findings}
+    assert "bed_size" not in {f.code for f in strip_model(wide, wide.cylinder).report.findings}
+
+
 def test_a_cylinder_is_not_cut():
     with pytest.raises(FabricationError, match=r'\[surface\] shape = "cylinder" is printed, not cut'):
         models_of(ROLLER).cut  # noqa: B018 - the property makes the cut model
