@@ -375,6 +375,12 @@ def build_design(
     """
     formats = tuple(dict.fromkeys(formats or design.output.formats))
     sheet = sheet or copies is not None or gap_mm is not None
+    if sheet and design.surface.cylinder:
+        raise ParameterError(
+            '[surface] shape = "cylinder" is printed whole, standing on an end: it is not laid on a cutter\'s '
+            "sheet; drop --sheet, --copies and --gap",
+            param="sheet",
+        )
     skipped: tuple[str, ...] = ()
     if sheet:
         formats, skipped = sheet_formats(formats)

@@ -220,6 +220,11 @@ def test_values_that_make_no_cylinder_are_refused(text, override, match, param):
         ),
         (
             ROLLER,
+            ["--sheet"],
+            '[surface] shape = "cylinder" is printed whole, standing on an end: it is not laid on a cutter\'s sheet',
+        ),
+        (
+            ROLLER,
             ['output.formats=["svg", "dxf"]'],
             '[surface] shape = "cylinder" is printed, not cut: formats svg, dxf make none of it; a cylinder is '
             "made in the print formats, stl, 3mf, step (its STEP is refused with the reason",
@@ -229,7 +234,7 @@ def test_values_that_make_no_cylinder_are_refused(text, override, match, param):
 def test_bad_cylinders_exit_2_with_no_file(tmp_path, text, sets, message):
     path = tmp_path / "cyl.toml"
     path.write_text(text)
-    args = [a for s in sets for a in ("--set", s)]
+    args = [a for s in sets for a in ((s,) if s.startswith("--") else ("--set", s))]
     result = cli_run("build", path, "-o", tmp_path / "out", *args)
     assert result.exit_code == 2, result.output
     lines = [ln for ln in result.output.splitlines() if ln.startswith("fabtiles: error:")]
