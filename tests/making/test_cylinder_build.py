@@ -373,3 +373,21 @@ def test_a_sweep_varies_the_surface():
 
     vary = parse_vary("surface.diameter=30,40")
     assert vary.key == "surface.diameter" and vary.values == (30, 40)
+
+
+def test_the_web_views_show_the_whole_cylinder_and_its_strip_as_printed():
+    import io
+
+    import trimesh
+
+    from fabtiles.machines.limits import WEB_LIMITS
+    from fabtiles.making.views import print_view, tile_picture
+
+    design = design_from_text(SHADE, name="shade")
+    data, report = print_view(design, limits=WEB_LIMITS, max_segments=10)  # no window: the cylinder whole
+    assert report.stats["view"].startswith("the whole cylinder, its unrolled strip 157.08 x 30 mm")
+    assert max(trimesh.load(io.BytesIO(data), file_type="glb").extents) == pytest.approx(50, abs=0.01)
+    m = models_of(ROLLER)
+    svg = tile_picture(m.tile, design_from_text(ROLLER, name="roller"), models=m)
+    plain = tile_picture(m.tile, design_from_text(ROLLER, name="roller"), models=m, made=m.tile.region())
+    assert svg != plain  # the picture is the strip mirrored, its rims closed
