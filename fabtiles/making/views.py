@@ -88,7 +88,8 @@ def tile_picture(
         from .cylinder import strip_region
 
         # a cylinder's strip as it is printed (mirrored, its rims closed), where its findings are
-        made = strip_region(*models.print_region, tile.outline_shape(), models.cylinder)[0]
+        printed, dips = models.print_region
+        made = strip_region(printed, dips, tile.outline_shape(), models.cylinder)[0]
     region = made_region(tile, design, models=models) if made is False else made
     return tile_svg(
         tile,
