@@ -18,7 +18,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from ..core.errors import FabricationError, ParameterError
+from ..core.errors import ParameterError
 from ..core.report import Report
 
 if TYPE_CHECKING:
@@ -254,8 +254,6 @@ def strip_model(models, cylinder: Cylinder):
     region, dips = models.print_region
     outline = models.tile.outline_shape()
     region, dips = strip_region(region, dips, outline, cylinder)
-    if region.is_empty:
-        raise FabricationError("the cylinder's strip holds no material: its pattern and rims are empty")
     model = print_model(
         region,
         outline,

@@ -492,6 +492,7 @@ class Models:
         if self.cylinder is not None:
             from .cylinder import cylinder_print
 
+            self._material(self.print_region[0])
             return cylinder_print(self, self.cylinder)
         if self.print_in_pieces:
             return self._make_print_pieces()
