@@ -9,7 +9,10 @@
   count expected);
 - :mod:`~fabtiles.solid.parts`: the checked parts of a print by name (the 3MF's base
   and pattern, the STL's one fused body);
-- :mod:`~fabtiles.solid.brep`: the planar boundary representation a STEP file holds.
+- :mod:`~fabtiles.solid.brep`: the planar boundary representation a STEP file holds;
+- :mod:`~fabtiles.solid.cylinder`: a flat print of the unrolled strip wrapped onto a
+  cylinder (texture rollers, lampshades with a lamp holder), read by the mesh writers
+  as a print model is.
 
 Nothing here writes a file: the formats are :mod:`fabtiles.export`'s (a contract in
 ``.importlinter``).

@@ -17,6 +17,9 @@ import numpy as np
 import pytest
 import shapely
 import trimesh
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis_scale import examples
 from real_programs import cura_definitions, program, run
 from shapely import affinity
 
@@ -31,9 +34,11 @@ from fabtiles.solid.cylinder import (
     LampHolder,
     cylinder_print,
     glue_seam,
+    slice_x,
     with_holder,
     wrap_part,
 )
+from fabtiles.solid.mesh_check import check_indexed
 from fabtiles.solid.print_model import print_model
 
 ROLLER = dict(diameter=30.0, length=20.0, periods=6)
@@ -246,6 +251,48 @@ def test_deboss_and_mosaic_wrap_to_watertight_bodies():
             mesh = trimesh.Trimesh(p.mesh.vertices, p.mesh.faces)
             assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0
         assert len(read_stl(FORMATS["stl"].write(cp, FileOptions())).split(only_watertight=False)) == 1
+
+
+@settings(max_examples=examples(10), deadline=None)
+@given(
+    c=st.floats(20, 100),
+    length=st.floats(1, 20),
+    top=st.floats(0.5, 5),
+    inside=st.floats(0.5, 30),
+)
+def test_a_plain_strip_wraps_to_the_tube_of_its_sizes(c, length, top, inside):
+    box = shapely.box(0, 0, c, length)
+    model = print_model(box, box, profile="fdm-0.4mm", style="pierced", pierced_mm=top)
+    outer = top + inside
+    part = wrap_part(model.fused, circumference_mm=c, outer_radius_mm=outer, top_mm=top)
+    _, y0, _, y1 = model.fused.outline.bounds  # as meshed: on the grid
+    tube = math.pi * (outer**2 - inside**2) * (y1 - y0)
+    assert part.volume_mm3 == pytest.approx(tube, rel=1e-6)  # the flat mesh's corners are float32
+    assert part.mesh_volume_mm3 == pytest.approx(tube, rel=1e-3) and part.mesh_volume_mm3 < tube
+    mesh = trimesh.Trimesh(part.vertices, part.faces)
+    assert mesh.is_watertight and mesh.is_winding_consistent and part.bodies == 1
+    r = radii(mesh, outer)
+    assert r.max() == pytest.approx(outer, abs=1e-5) and r.min() == pytest.approx(inside, abs=1e-5)
+
+
+@settings(max_examples=examples(25), deadline=None)
+@given(
+    rotation=st.lists(st.floats(-math.pi, math.pi), min_size=3, max_size=3),
+    cuts=st.lists(st.floats(0.01, 0.99), min_size=1, max_size=12, unique=True),
+)
+def test_slicing_keeps_a_closed_mesh_closed_and_cuts_every_edge_at_the_planes(rotation, cuts):
+    box = trimesh.creation.box(extents=(3, 2, 1))
+    box.apply_transform(trimesh.transformations.euler_matrix(*rotation))
+    v, f = np.asarray(box.vertices), np.asarray(box.faces)
+    lo, hi = v[:, 0].min(), v[:, 0].max()
+    planes = np.sort(lo + (hi - lo) * np.asarray(cuts))
+    if np.abs(v[:, 0][:, None] - planes[None, :]).min() < 1e-3 or np.diff(planes).min(initial=1) < 1e-3:
+        return  # a plane through a corner, or two planes as one: not what slice_x is given
+    sv, sf = slice_x(v, f, planes)
+    check_indexed(sv, sf, name="sliced box", volume=6.0, bodies=1)
+    x = sv[:, 0][sf]
+    inside = (x.min(axis=1)[:, None] < planes - 1e-9) & (planes + 1e-9 < x.max(axis=1)[:, None])
+    assert not inside.any()  # no triangle crosses a plane
 
 
 # --------------------------------------------------------------------------- the lampshade
