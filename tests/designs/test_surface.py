@@ -4,6 +4,9 @@ periods, its bad values refused with the key named."""
 import math
 
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+from hypothesis_scale import examples
 
 from fabtiles.core import schema
 from fabtiles.core.errors import DesignError
@@ -142,3 +145,31 @@ def test_a_surface_must_be_a_table():
 
     with pytest.raises(DesignError, match=r"\[surface\] must be a table, got 3"):
         design_from_dict({"motif": {"preset": "table3-3"}, "tile": {"size": 50}, "surface": 3})
+
+
+@settings(max_examples=examples(40), deadline=None)
+@given(
+    diameter=st.floats(20, 300),
+    radius=st.floats(3, 30),
+    fit=st.sampled_from(schema.SURFACE_FITS),
+    kind=st.sampled_from(("hex", "square")),
+)
+def test_the_fit_makes_whole_periods_round_and_moves_the_least(diameter, radius, fit, kind):
+    """Whatever the sizes, the strip holds a whole number of periods, and the value fitted moves by at most
+    half a period's share of it (the nearest whole number is taken)."""
+    around = math.pi * diameter
+    assume(around >= 2 * radius)
+    text = ROLLER.replace("radius = 10", f'kind = "{kind}"\nradius = {radius!r}').replace(
+        "diameter = 60", f'diameter = {diameter!r}\nfit = "{fit}"'
+    )
+    d = design(text)
+    period = 2 * d.packing.radius  # hex and square: 2R along x
+    n = d.tile_spec.size[0] / period
+    assert n == pytest.approx(round(n), abs=1e-9) and round(n) >= 1
+    assert d.tile_spec.size[0] == pytest.approx(math.pi * d.surface.diameter)
+    if fit == "packing":
+        assert d.surface.diameter == diameter
+        assert abs(d.packing.radius / radius - 1) <= 0.5 / round(n) + 1e-9 or round(n) == 1
+    else:
+        assert d.packing.radius == radius
+        assert abs(d.surface.diameter - diameter) <= radius / math.pi + 1e-9
