@@ -56,3 +56,14 @@ def design_toml(
     if colour:
         lines += _table("colour", colour)
     return "\n".join(lines) + "\n"
+
+
+def is_cylinder(path) -> bool:
+    """Whether the design file at ``path`` puts its pattern on a cylinder (``[surface] shape = "cylinder"``):
+    a roller or a shade, printed only, built by tests/making/test_cylinder_build.py rather than by the tests
+    that make every flat sample's cutter files."""
+    from pathlib import Path
+
+    import tomllib
+
+    return tomllib.loads(Path(path).read_text(encoding="utf-8")).get("surface", {}).get("shape") == "cylinder"

@@ -35,6 +35,7 @@ def documented(key: str, text: str) -> bool:
         ("packing", design.PACKING_KEYS),
         ("tile", design.TILE_KEYS),
         ("output", design.OUTPUT_KEYS),
+        ("surface", design.SURFACE_KEYS),
     ],
 )
 def test_every_design_key_is_in_design_files_md(section, keys):

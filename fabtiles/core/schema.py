@@ -37,7 +37,7 @@ from typing import Any
 
 from .errors import ParameterError, did_you_mean
 
-SECTIONS = ("motif", "packing", "tile", "output", "colour")
+SECTIONS = ("motif", "packing", "tile", "output", "colour", "surface")
 """The design's sections, in the order of a design file."""
 
 TYPES = (
@@ -372,6 +372,28 @@ MOTIF_REQUIRED = ("n", "radii")
 
 GAP_MOTIF: dict[str, Any] = {"n": 6, "radii": (0.5, 1.0)}
 """The gap circles' motif when a packing names none (a table of motif keys)."""
+
+
+SURFACE_SHAPES = ("flat", "cylinder")
+"""``[surface] shape``: a flat tile, or the pattern round a cylinder."""
+
+SURFACE_FITS = ("packing", "diameter")
+"""``[surface] fit``: what changes so the circumference holds a whole number of periods."""
+
+ROLLER_BORE_MM = 8.4
+"""A roller's axle hole (mm) unless the design gives ``bore_mm``: an 8 mm dowel or rod, with room to turn."""
+
+ROLLER_RIM_MM = 3.0
+"""A roller's (relief, deboss) band at each end (mm) unless the design gives ``rim_mm``."""
+
+SHADE_RIM_MM = 5.0
+"""A shade's (pierced) closed rim at each end (mm) unless the design gives ``rim_mm``."""
+
+CYLINDER_REQUIRED = ("diameter", "length")
+"""The ``[surface]`` keys a cylinder needs."""
+
+STRIP_TILE_KEYS = ("outline", "size", "frame", "corner_radius")
+"""The ``[tile]`` keys a cylinder sets itself: its unrolled strip is a rectangle, closed by rims, not a frame."""
 
 
 PACKED = ("packing", ("hex", "square", "archimedean"))
@@ -1040,6 +1062,90 @@ KEYS: tuple[Key, ...] = MOTIF + (
         help='`[colour.faces]` `A = "navy"`, `B = "#c8553d"`: a colour per face class; classes given one '
         "colour share a material (a filament, a wood), so six classes fit a four-slot AMS as four colours; "
         '`"band"` or `"base"` gives a class the bands\' or the base\'s colour (it joins that part)',
+    ),
+    # [surface]
+    Key(
+        section="surface",
+        name="shape",
+        type="choice",
+        default="flat",
+        choices=SURFACE_SHAPES,
+        query=None,
+        help='`"flat"`: a tile; `"cylinder"`: the pattern wrapped round a cylinder, seamless: a texture roller '
+        "(`relief`, `deboss`) or a lampshade (`pierced`), printed standing on an end ([surfaces.md](surfaces.md))",
+    ),
+    Key(
+        section="surface",
+        name="diameter",
+        type="number",
+        unit="mm",
+        range=Range(0, None, min_open=True),
+        default_text="required for a cylinder",
+        query=None,
+        help="the cylinder's diameter at the pattern's outer surface; its circumference holds a whole number "
+        "of the pattern's periods (see `fit`)",
+    ),
+    Key(
+        section="surface",
+        name="length",
+        type="number",
+        unit="mm",
+        range=Range(0, None, min_open=True),
+        default_text="required for a cylinder",
+        query=None,
+        help="the cylinder's length along its axis, the rims included; at most the printer profile's `height_mm`",
+    ),
+    Key(
+        section="surface",
+        name="fit",
+        type="choice",
+        default="packing",
+        choices=SURFACE_FITS,
+        query=None,
+        help='how the circumference is made a whole number of periods: `"packing"` changes the packing\'s '
+        '`radius` (or `edge`) and keeps the diameter; `"diameter"` keeps the packing and changes the diameter',
+    ),
+    Key(
+        section="surface",
+        name="mirror",
+        type="boolean",
+        default_text="true for relief and deboss (a roller), false for pierced (a shade)",
+        query=None,
+        help="mirror the pattern round the cylinder, so that what a roller leaves in clay reads as designed "
+        "(an imprint is the mirror of its roller's surface)",
+    ),
+    Key(
+        section="surface",
+        name="bore_mm",
+        type="number",
+        unit="mm",
+        range=Range(0, None, min_open=True),
+        default_text=f"{ROLLER_BORE_MM:g}",
+        query=None,
+        help="a roller's (relief, deboss) axle hole through its length; the default takes an 8 mm dowel or "
+        "steel rod with room to turn, printed holes coming out a little small",
+    ),
+    Key(
+        section="surface",
+        name="rim_mm",
+        type="number",
+        unit="mm",
+        range=Range(0, None),
+        default_text=f"{ROLLER_RIM_MM:g} on a roller, {SHADE_RIM_MM:g} on a shade",
+        query=None,
+        help="a closed band at each end of the cylinder: a shade's rims (pierced), a roller's bands raised to "
+        "the pattern's top that roll on the clay as depth guides (relief) or plain plate (deboss); 0: none",
+    ),
+    Key(
+        section="surface",
+        name="lamp_fitting_mm",
+        type="number",
+        unit="mm",
+        range=Range(0, None, min_open=True),
+        default_text="none",
+        query=None,
+        help="a pierced shade: a ring inside its lower end holding a lamp fitting of this diameter "
+        "(40 for an E27 lampholder, 28 for an E14)",
     ),
 )
 """Every design key, section by section in the order of a design file."""

@@ -1,7 +1,7 @@
 """Design files: a TOML description of one tile, validated into frozen dataclasses
 (reference: ``docs/design-files.md``).
 
-A design has four sections; every key is checked, and an unknown key is an
+A design has up to six sections; every key is checked, and an unknown key is an
 error naming the key, its section and the valid keys (with a "did you mean").
 
 ``[motif]`` (required)
@@ -31,6 +31,12 @@ error naming the key, its section and the valid keys (with a "did you mean").
     part filling the grooves flush, for a two-colour inlay print), ``threemf_layout``
     ("volumes", default, for PrusaSlicer, Bambu Studio and OrcaSlicer; "components"
     for UltiMaker Cura).
+``[colour]`` (optional)
+    the faces' colours (:class:`~fabtiles.designs.colour.Colours`, ``docs/colours.md``).
+``[surface]`` (optional)
+    ``shape = "cylinder"`` with ``diameter``, ``length`` (mm), ``fit``, ``mirror``, ``bore_mm``,
+    ``rim_mm``, ``lamp_fitting_mm``: the pattern round a cylinder, its tile the unrolled strip
+    (:class:`SurfaceSpec`, :mod:`fabtiles.making.cylinder`, ``docs/surfaces.md``).
 
 >>> d = design_from_text('''
 ... [motif]
@@ -51,6 +57,7 @@ error naming the key, its section and the valid keys (with a "did you mean").
 
 from __future__ import annotations
 
+import math
 import re
 import sys
 from dataclasses import dataclass, field
@@ -96,6 +103,13 @@ HEIGHT_KEYS = tuple(
 
 OUTPUT_KEYS = _schema.names("output")
 COLOUR_KEYS = _schema.names("colour")
+SURFACE_KEYS = _schema.names("surface")
+"""The valid keys of ``[surface]``."""
+CYLINDER = "cylinder"
+"""``[surface] shape`` of the pattern wrapped round a cylinder."""
+ROLLER_STYLES = ("relief", "deboss")
+"""The print styles that make a cylinder a roller (its pattern pressed into clay); ``pierced`` makes a shade."""
+STRIP_TILE_KEYS = _schema.STRIP_TILE_KEYS
 """The valid keys of ``[colour]`` (``faces`` is the ``[colour.faces]`` table)."""
 """The valid keys of ``[output]`` (the exporters read the mode/style/profile keys)."""
 
@@ -185,6 +199,52 @@ class OutputSpec:
 
 
 @dataclass(frozen=True)
+class SurfaceSpec:
+    """The ``[surface]`` section: a flat tile, or the pattern round a cylinder (``docs/surfaces.md``).
+
+    ``None`` is a value the print style decides (:meth:`mirror_for`, :meth:`bore_for`,
+    :meth:`rim_for`): a roller (relief, deboss) is mirrored, bored and banded otherwise than a
+    shade (pierced). After the fit, ``diameter`` is the one the cylinder is made at (``fit =
+    "diameter"`` moves it), its circumference the unrolled strip's width.
+    """
+
+    shape: str = _default("surface.shape")
+    diameter: float | None = None
+    length: float | None = None
+    fit: str = _default("surface.fit")
+    mirror: bool | None = None
+    bore_mm: float | None = None
+    rim_mm: float | None = None
+    lamp_fitting_mm: float | None = None
+
+    @property
+    def cylinder(self) -> bool:
+        """Whether the pattern is wrapped round a cylinder."""
+        return self.shape == CYLINDER
+
+    @staticmethod
+    def roller(style: str) -> bool:
+        """Whether a cylinder printed in ``style`` is a roller (relief, deboss) rather than a shade (pierced)."""
+        return style in ROLLER_STYLES
+
+    def mirror_for(self, style: str) -> bool:
+        """Whether the strip is mirrored: ``mirror``, else a roller's imprint is the mirror of its surface."""
+        return self.roller(style) if self.mirror is None else self.mirror
+
+    def bore_for(self, style: str) -> float:
+        """The axle hole's diameter (mm): a roller's ``bore_mm`` or its default; a shade has none (0)."""
+        if not self.roller(style):
+            return 0.0
+        return _schema.ROLLER_BORE_MM if self.bore_mm is None else self.bore_mm
+
+    def rim_for(self, style: str) -> float:
+        """The closed band at each end (mm): ``rim_mm``, else the roller's or the shade's default."""
+        if self.rim_mm is not None:
+            return self.rim_mm
+        return _schema.ROLLER_RIM_MM if self.roller(style) else _schema.SHADE_RIM_MM
+
+
+@dataclass(frozen=True)
 class Design:
     """A validated design. ``name`` is ``[output] name`` or the file's stem."""
 
@@ -196,7 +256,9 @@ class Design:
     source: str = "<design>"
     colour: Colours = field(default_factory=Colours)
     fitted: tuple[str, ...] = ()
-    """What ``packing.seamless`` changed (the radius or edge, a rectangle's height), one line each."""
+    """What ``packing.seamless`` or a cylinder's fit changed (the radius or edge, a rectangle's height, the
+    diameter), one line each."""
+    surface: SurfaceSpec = field(default_factory=SurfaceSpec)
 
     def build_tile(self, tile_cls=None):
         """The :class:`~fabtiles.geometry.tile.TileGeometry` of this design (see :func:`build_tile`)."""
@@ -428,29 +490,40 @@ def design_from_dict(data: dict, *, name: str = "design", source: str = "<design
 
     Every value is checked by building the tile (cheap: no geometry is computed).
     """
-    packing = _sections(data, source)
+    packing, surface = _sections(data, source)
     motif = _motif_spec(data["motif"], source, "[motif]") if "motif" in data else None
-    tile_spec = _tile_spec(data["tile"], source)
+    tile_spec = _tile_spec(data.get("tile", {}), source, surface)
     output = _output_spec(data.get("output", {}), source)
     colour = _colour_spec(data["colour"], source) if "colour" in data else Colours(given=False)
     name = output.name or name
     design = Design(
-        name=name, motif=motif, tile_spec=tile_spec, packing=packing, output=output, source=source, colour=colour
+        name=name,
+        motif=motif,
+        tile_spec=tile_spec,
+        packing=packing,
+        output=output,
+        source=source,
+        colour=colour,
+        surface=surface,
     )
     return _built(design, source)
 
 
 def _sections(data: dict, source: str):
-    """The design's sections checked (known, tables, motif and tile given); its packing's spec, or None."""
+    """The design's sections checked (known, tables, motif and tile given): its packing's spec (or None) and
+    its surface's."""
     _check_keys(data, SECTIONS, "the design", source, what="section")
     for sec in SECTIONS:
         if sec in data and not isinstance(data[sec], dict):
             raise DesignError(f"{source}: [{sec}] must be a table, got {data[sec]!r}")
     packing = _packing_spec(data["packing"], source) if "packing" in data else None
+    surface = _surface_spec(data.get("surface", {}), source)
     for sec in ("motif", "tile"):
+        if sec == "tile" and surface.cylinder:
+            continue  # a cylinder's strip is its own rectangle; [tile] gives the stroke, if anything
         if sec not in data and not (sec == "motif" and packing is not None and packing.kind == "archimedean"):
             raise DesignError(f"{source}: the design needs a [{sec}] section")
-    return packing
+    return packing, surface
 
 
 def _built(design: Design, source: str) -> Design:
@@ -466,6 +539,8 @@ def _built(design: Design, source: str) -> Design:
             _build_packing(packing, star)
         except FabtilesError as exc:
             raise _wrapped(exc, source, "[packing]") from None
+    if design.surface.cylinder:
+        design = _fit_surface(design, star, source)
     try:
         design = _fit_seamless(design)
         build_tile(design)
@@ -507,7 +582,7 @@ def _fit_seamless(design: Design) -> Design:
     from ..geometry.seamless import seamless_fit
 
     p = design.packing
-    if p is None or not p.seamless:
+    if p is None or not p.seamless or design.surface.cylinder:  # a cylinder's fit is the surface's
         return design
     t = design.tile_spec
     if p.kind == "archimedean":
@@ -744,11 +819,13 @@ def _method(table: dict, source: str, where: str) -> tuple[str, dict]:
     return method, contact
 
 
-def _tile_spec(table: dict, source: str) -> TileSpec:
+def _tile_spec(table: dict, source: str, surface: SurfaceSpec | None = None) -> TileSpec:
     from ..geometry.tile import check_tile_size
 
     where = "[tile]"
     _check_keys(table, TILE_KEYS, where, source)
+    if surface is not None and surface.cylinder:
+        return _strip_spec(table, source, surface)
     outline = _value(table, "tile", "outline", source, where, "square")
     if "size" not in table:
         raise DesignError(f"{source}: {where} needs size (mm: a number, or [width, height])", param="tile.size")
@@ -815,3 +892,92 @@ def _output_spec(table: dict, source: str) -> OutputSpec:
             param="output.name",
         )
     return OutputSpec(formats=tuple(dict.fromkeys(formats)), **_section(table, "output", source, where))
+
+
+# -- the surface ----------------------------------------------------------------------------------------------------
+def _surface_spec(table: dict, source: str) -> SurfaceSpec:
+    """The ``[surface]`` section: its keys checked; a cylinder's diameter and length required, a flat tile's
+    cylinder keys refused."""
+    where = "[surface]"
+    _check_keys(table, SURFACE_KEYS, where, source)
+    values = _section(table, "surface", source, where)
+    if values["shape"] == CYLINDER:
+        for name in _schema.CYLINDER_REQUIRED:
+            if values[name] is None:
+                raise DesignError(
+                    f'{source}: {where} shape = "cylinder" needs {name} (mm, > 0)', param=f"surface.{name}"
+                )
+    else:
+        given = [k for k in SURFACE_KEYS if k != "shape" and k in table]
+        if given:
+            raise DesignError(
+                f'{source}: {where} {given[0]} is a key of shape = "cylinder", not of shape = '
+                f'{values["shape"]!r}; set shape = "cylinder" or remove it',
+                param=f"surface.{given[0]}",
+            )
+    return SurfaceSpec(**values)
+
+
+def _strip_spec(table: dict, source: str, surface: SurfaceSpec) -> TileSpec:
+    """A cylinder's ``[tile]``: the unrolled strip, a rectangle round the circumference by the length, with no
+    frame (its x ends meet at the seam; the rims close its y ends). The keys that would say otherwise are
+    refused."""
+    given = [k for k in STRIP_TILE_KEYS if k in table]
+    if given:
+        raise DesignError(
+            f'{source}: [tile] {given[0]} is not a key of a cylinder\'s tile: with [surface] shape = "cylinder" '
+            "the tile is the unrolled strip, the circumference by the length, framed by rim_mm at its ends; "
+            f"remove {given[0]}",
+            param=f"tile.{given[0]}",
+        )
+    assert surface.diameter is not None and surface.length is not None  # required by _surface_spec
+    values = _section(table, "tile", source, "[tile]", skip=STRIP_TILE_KEYS)
+    size = (math.pi * surface.diameter, surface.length)
+    return TileSpec(outline="rectangle", size=size, frame=0.0, corner_radius=0.0, **values)
+
+
+def _fit_surface(design: Design, star, source: str) -> Design:
+    """A cylinder's circumference made a whole number of the pattern's periods along x: the packing's radius
+    (or edge) scaled, or the diameter moved (``fit``); the strip's width set to it, and what changed said
+    in :attr:`Design.fitted`."""
+    from dataclasses import replace
+
+    s, p = design.surface, design.packing
+    assert s.diameter is not None and s.length is not None  # required by _surface_spec
+    if p is None:
+        raise DesignError(
+            f'{source}: [surface] shape = "cylinder" needs a [packing]: a lone motif does not repeat round the '
+            "cylinder, a packing's pattern does (add [packing] with a radius, or a tiling and edge)",
+            param="surface.shape",
+        )
+    period = float(_build_packing(p, star).period[0])
+    key = "edge" if p.kind == "archimedean" else "radius"
+    size = getattr(p, key)
+    around = math.pi * s.diameter
+    if around < period - 1e-9:
+        raise DesignError(
+            f"{source}: [surface] diameter = {s.diameter:g} mm is too small for one period of the pattern: its "
+            f"circumference, {around:.2f} mm, is less than the pattern's period along x, {period:.2f} mm "
+            f"(packing {key} {size:g} mm); the diameter must be at least {period / math.pi:.2f} mm, or make the "
+            f"packing's {key} smaller",
+            param="surface.diameter",
+        )
+    n = max(1, round(around / period))
+    length = s.length
+    if s.fit == "packing":
+        scale = around / (n * period)
+        p = replace(p, **{key: size * scale})
+        line = (
+            f"surface: cylinder D {s.diameter:g} mm x {s.length:g} mm, {n} period{'s' if n != 1 else ''} around "
+            f"(packing {key} {size:.2f} -> {size * scale:.2f} mm, {100 * (scale - 1):+.1f} %)"
+        )
+    else:
+        diameter = n * period / math.pi
+        line = (
+            f"surface: cylinder D {s.diameter:g} -> {diameter:.2f} mm ({100 * (diameter / s.diameter - 1):+.1f} %) "
+            f"x {s.length:g} mm, {n} period{'s' if n != 1 else ''} around (packing {key} {size:g} mm kept)"
+        )
+        s = replace(s, diameter=diameter)
+    width = around if s.fit == "packing" else n * period  # the circumference at the fitted diameter
+    tile_spec = replace(design.tile_spec, size=(width, length))
+    return replace(design, packing=p, surface=s, tile_spec=tile_spec, fitted=(*design.fitted, line))

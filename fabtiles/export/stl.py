@@ -50,14 +50,17 @@ def figures(model) -> dict:
 
 
 def stl_bytes(vertices, faces) -> bytes:
-    """Binary STL (float32, normals from the float32 corners) of a mesh.
+    """Binary STL (float32, normals computed in float64 from the float32 corners) of a mesh.
 
     >>> v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
     >>> len(stl_bytes(v, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]))
     284
     """
     tris = np.asarray(vertices).astype(np.float32)[np.asarray(faces)]  # = vertices[faces] in float32
-    normals = cross_rows(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]).astype(np.float64)
+    # the float32 corners' normal in float64, as admesh and the slicers compute it: a needle of a curved
+    # surface (a wrapped print's) has a float32 cross product that is mostly rounding
+    t64 = tris.astype(np.float64)
+    normals = cross_rows(t64[:, 1] - t64[:, 0], t64[:, 2] - t64[:, 0])
     lengths = np.linalg.norm(normals, axis=1, keepdims=True)
     normals = (normals / np.where(lengths > 0, lengths, 1)).astype(np.float32)
     rec = np.zeros(len(tris), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])

@@ -201,6 +201,8 @@ class PrinterProfile:
     """The print's style unless a design or call gives one: the design key ``[output] print_style``,
     one name for both (a profile's older ``style`` key still loads, with a note)."""
     bed_mm: tuple[float, float] = (256.0, 256.0)
+    height_mm: float = 256.0
+    """The tallest print the printer builds (mm): a cylinder, printed standing on an end, is at most this long."""
     bed_margin_mm: float = 5.0
     """The bed's edge a piece of a panel larger than the bed keeps clear of (mm)."""
     joint_clearance_mm: float | None = None

@@ -331,6 +331,8 @@ def check_design(design, tile=None, *, job: bool = False) -> CheckResult:
     """:func:`check_tile` with the profiles, modes and options of a :class:`~fabtiles.designs.design_file.Design`."""
     out = design.output
     tile = tile if tile is not None else design.build_tile()
+    if design.surface.cylinder:
+        return _check_cylinder(design, tile)
     from ..designs.design_file import profile_of
 
     return check_tile(
@@ -344,3 +346,16 @@ def check_design(design, tile=None, *, job: bool = False) -> CheckResult:
         job=job,
         pieces=out.pieces,
     )
+
+
+def _check_cylinder(design, tile) -> CheckResult:
+    """:func:`check_design` of a cylinder: the printer's checks of its unrolled strip as its files hold it
+    (mirrored, rims closed, small openings filled), its bad values refused; a cylinder is not cut, so its
+    cutter's report is empty."""
+    from .cylinder import strip_model
+    from .models import BuildOptions, Models
+
+    models = Models(tile, BuildOptions.of_design(design))
+    assert models.cylinder is not None  # a cylinder's design
+    model = strip_model(models, models.cylinder)
+    return CheckResult(Report(path="", format="laser"), model.report, print_region=model.region, cutter="none")

@@ -23,7 +23,9 @@ from ..core.schema import CALL_OPTIONS, FAMILIES, option_keys
 
 if TYPE_CHECKING:
     from ..designs.colour import Colours
+    from ..designs.design_file import SurfaceSpec
     from ..machines.profiles import CutterProfile, PrinterProfile
+    from .cylinder import Cylinder
 
 HEIGHT_FIELDS = tuple(k.name for k in option_keys("print") if k.unit == "mm")
 """The print heights, gathered in :attr:`BuildOptions.heights`."""
@@ -64,6 +66,9 @@ class BuildOptions:
     threemf_layout: str = "volumes"
     colours: Colours | None = None
     """The design's ``[colour]`` or the call's ``colours`` (:class:`~fabtiles.Colours`), or None: none given."""
+    surface: SurfaceSpec | None = None
+    """A cylinder's ``[surface]`` (the tile is its unrolled strip: :mod:`fabtiles.making.cylinder`), or None: a
+    flat tile."""
 
     @classmethod
     def of_design(cls, design) -> BuildOptions:
@@ -77,6 +82,7 @@ class BuildOptions:
             cutter=profile_of(design, "laser"),
             printer=profile_of(design, "printer"),
             colours=design.colour,
+            surface=design.surface if design.surface.cylinder else None,
             **cls.fields_of(values, *FAMILIES),
         )
 
@@ -228,6 +234,11 @@ class Models:
         from ..geometry.cut_plan import CutOptions, KitOptions, plan_cut, plan_kit
 
         o = self.options
+        if o.surface is not None:
+            raise FabricationError(
+                '[surface] shape = "cylinder" is printed, not cut: its strip makes no cutter file; '
+                "ask for a print format (stl, 3mf)"
+            )
         region, centrelines = self.cut_region
         self._material(self.tile.region() if self.sheet is None else region)
         outline = self.sheet.outline if self.sheet is not None else self.tile.outline_shape()
@@ -465,9 +476,24 @@ class Models:
             self._print = self._make_print()
         return self._print
 
+    @cached_property
+    def cylinder(self) -> Cylinder | None:
+        """The cylinder the tile's strip is wrapped into (:class:`~fabtiles.making.cylinder.Cylinder`), its
+        values checked; None for a flat tile."""
+        from .cylinder import cylinder_of
+
+        if self.options.surface is None:
+            return None
+        return cylinder_of(self.options.surface, self.options, self.tile.width_mm)
+
     def _make_print(self):
         from ..solid.print_model import print_model
 
+        if self.cylinder is not None:
+            from .cylinder import cylinder_print
+
+            self._material(self.print_region[0])
+            return cylinder_print(self, self.cylinder)
         if self.print_in_pieces:
             return self._make_print_pieces()
         o = self.options
@@ -504,8 +530,8 @@ class Models:
         neither way round (a tile that fits is printed whole, as ever)."""
         from ..geometry.laser_checks import fits_bed
 
-        if not self.options.pieces or self.sheet is not None or self._window:
-            return False
+        if not self.options.pieces or self.sheet is not None or self._window or self.options.surface is not None:
+            return False  # a cylinder stands on the bed whole, or is refused (making.cylinder.check_cylinder)
         x0, y0, x1, y1 = self.tile.outline_shape().bounds
         return not fits_bed(x1 - x0, y1 - y0, self.options.printer.bed_mm)
 

@@ -375,6 +375,12 @@ def build_design(
     """
     formats = tuple(dict.fromkeys(formats or design.output.formats))
     sheet = sheet or copies is not None or gap_mm is not None
+    if sheet and design.surface.cylinder:
+        raise ParameterError(
+            '[surface] shape = "cylinder" is printed whole, standing on an end: it is not laid on a cutter\'s '
+            "sheet; drop --sheet, --copies and --gap",
+            param="sheet",
+        )
     skipped: tuple[str, ...] = ()
     if sheet:
         formats, skipped = sheet_formats(formats)
@@ -387,10 +393,18 @@ def build_design(
         raise ParameterError(
             f"file_name {file_name!r} names one file, but {len(formats)} formats are asked for: {', '.join(formats)}"
         )
+    if design.surface.cylinder:
+        from .cylinder import check_formats
+
+        check_formats(formats)
     tile = prepare_tile(design, limits=limits)
     check_format_limits(tile, formats, limits)
     options = BuildOptions.of_design(design)
     _check_cutter_formats(options, formats)
+    if options.surface is not None:  # a cylinder's values refused before any geometry
+        from .cylinder import cylinder_of
+
+        cylinder_of(options.surface, options, tile.width_mm)
     # Compute (and fail) before anything is written; a sheet that cannot fit fails before the tile.
     layout = layout_tile_sheet(tile, options, copies=copies, gap_mm=gap_mm, limits=limits) if sheet else None
     models = Models(tile, options, sheet=layout)

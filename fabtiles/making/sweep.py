@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..core.errors import ParameterError, did_you_mean
-from ..designs.design_file import MOTIF_KEYS, OUTPUT_KEYS, PACKING_KEYS, TILE_KEYS, parse_override
+from ..designs.design_file import MOTIF_KEYS, OUTPUT_KEYS, PACKING_KEYS, SURFACE_KEYS, TILE_KEYS, parse_override
 
 MAX_VARIANTS = 10_000
 """More variants than this need ``yes=True`` (``--yes``): a typo in a range must not start days of work."""
@@ -44,6 +44,7 @@ VARY_KEYS = {
     "packing.gap_motif": MOTIF_KEYS,
     "tile": TILE_KEYS,
     "output": tuple(k for k in OUTPUT_KEYS if k not in ("formats", "name")),
+    "surface": SURFACE_KEYS,
 }
 """The keys a sweep may vary, by section (``formats`` come from ``--format``; names are the sweep's)."""
 

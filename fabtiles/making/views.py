@@ -84,6 +84,12 @@ def tile_picture(
     from ..export.preview_svg import tile_svg
 
     models = models if models is not None else Models(tile, BuildOptions.of_design(design))
+    if models.cylinder is not None and (made is False or made is None):
+        from .cylinder import strip_region
+
+        # a cylinder's strip as it is printed (mirrored, its rims closed), where its findings are
+        printed, dips = models.print_region
+        made = strip_region(printed, dips, tile.outline_shape(), models.cylinder)[0]
     region = made_region(tile, design, models=models) if made is False else made
     return tile_svg(
         tile,
@@ -135,7 +141,7 @@ def print_view(design, *, limits: _limits.Limits, max_segments: int = VIEW_SEGME
     outline = tile.outline_shape()
     count = _limits.estimate_segments(tile.pattern, tile.width_mm, tile.height_mm)
     window = None
-    if count > max_segments:
+    if count > max_segments and models.cylinder is None:  # a cylinder is shown whole: its strip wraps whole
         x0, y0, x1, y1 = outline.bounds
         half = (np.sqrt(max_segments / count) / 2) * np.array([x1 - x0, y1 - y0])
         cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
@@ -161,6 +167,8 @@ def print_view(design, *, limits: _limits.Limits, max_segments: int = VIEW_SEGME
             f"the centre {window[2] - window[0]:.0f} x {window[3] - window[1]:.0f} mm of the "
             f"{size} tile, a lighter preview (the files hold all of it)"
         )
+    elif models.cylinder is not None:
+        report.stats["view"] = f"the whole cylinder, its unrolled strip {size}"
     else:
         report.stats["view"] = f"the whole {size} tile"
     return data, report

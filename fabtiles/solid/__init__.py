@@ -10,6 +10,9 @@
 - :mod:`~fabtiles.solid.parts`: the checked parts of a print by name (the 3MF's base
   and pattern, the STL's one fused body);
 - :mod:`~fabtiles.solid.brep`: the planar boundary representation a STEP file holds;
+- :mod:`~fabtiles.solid.cylinder`: a flat print of the unrolled strip wrapped onto a
+  cylinder (texture rollers, lampshades with a lamp holder), read by the mesh writers
+  as a print model is.
 - :mod:`~fabtiles.solid.stamp`: a clay stamp, a relief on a block with a finger grip that
   prints without supports.
 

@@ -75,10 +75,11 @@ def test_the_javascript_lists_no_key():
 
 
 def test_the_validated_sections_hold_the_schemas_keys():
-    from fabtiles.designs.design_file import OutputSpec, PackingSpec, TileSpec
+    from fabtiles.designs.design_file import OutputSpec, PackingSpec, SurfaceSpec, TileSpec
     from fabtiles.making.models import BuildOptions
 
-    for cls, section in ((PackingSpec, "packing"), (TileSpec, "tile"), (OutputSpec, "output")):
+    sections = ((PackingSpec, "packing"), (TileSpec, "tile"), (OutputSpec, "output"), (SurfaceSpec, "surface"))
+    for cls, section in sections:
         assert {f.name for f in dataclasses.fields(cls)} == set(_schema.names(section)), section
         for f in dataclasses.fields(cls):
             k = _schema.key(f"{section}.{f.name}")
@@ -243,7 +244,7 @@ def test_key_checks_its_section_and_type():
     with pytest.raises(
         ParameterError,
         match=r"a key's section must be one of: motif, packing, tile, output, "
-        r"colour, got 'finish'",
+        r"colour, surface, got 'finish'",
     ):
         Key(section="finish", name="x", type="string", help="")
     with pytest.raises(ParameterError, match=r"a key's type must be one of: string, integer, .*, got 'date'"):

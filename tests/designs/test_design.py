@@ -184,7 +184,7 @@ def test_unreadable_and_invalid_files(tmp_path):
         (
             ("[tile]", "[tyle]"),
             r"unknown section 'tyle' in the design; did you mean 'tile'\? "
-            r"\(valid sections: motif, packing, tile, output, colour\)",
+            r"\(valid sections: motif, packing, tile, output, colour, surface\)",
         ),
         (
             ('preset = "table3-3"', 'preset = "table3-3"\nradius = 3'),
