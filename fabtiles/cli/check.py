@@ -97,7 +97,7 @@ def command(design_file, output, overrides, deep):
     laser, printer = _profile_words(result, cutter, out)
     for line in design_notes(design):  # what the checked tile has that the file does not say (a seamless fit)
         click.echo(f"fabtiles: note: {line}", err=True)
-    click.echo(f"{design_file}: {printer}" if design.surface.cylinder else f"{design_file}: {laser}, {printer}")
+    click.echo(f"{design_file}: {printer}" if design.surface.shape != "flat" else f"{design_file}: {laser}, {printer}")
     _echo_figures(result, cutter, class_lines)
     findings = result.findings()
     for where, f in findings:

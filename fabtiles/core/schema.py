@@ -374,8 +374,8 @@ GAP_MOTIF: dict[str, Any] = {"n": 6, "radii": (0.5, 1.0)}
 """The gap circles' motif when a packing names none (a table of motif keys)."""
 
 
-SURFACE_SHAPES = ("flat", "cylinder")
-"""``[surface] shape``: a flat tile, or the pattern round a cylinder."""
+SURFACE_SHAPES = ("flat", "cylinder", "stamp")
+"""``[surface] shape``: a flat tile, the pattern round a cylinder, or a clay stamp (a relief on a block)."""
 
 SURFACE_FITS = ("packing", "diameter")
 """``[surface] fit``: what changes so the circumference holds a whole number of periods."""
@@ -391,6 +391,9 @@ SHADE_RIM_MM = 5.0
 
 CYLINDER_REQUIRED = ("diameter", "length")
 """The ``[surface]`` keys a cylinder needs."""
+
+STAMP_KEYS = ("mirror", "block_mm", "grip_mm", "groove_mm")
+"""The ``[surface]`` keys of a clay stamp (``shape = "stamp"``); the others are a cylinder's."""
 
 STRIP_TILE_KEYS = ("outline", "size", "frame", "corner_radius")
 """The ``[tile]`` keys a cylinder sets itself: its unrolled strip is a rectangle, closed by rims, not a frame."""
@@ -1072,7 +1075,8 @@ KEYS: tuple[Key, ...] = MOTIF + (
         choices=SURFACE_SHAPES,
         query=None,
         help='`"flat"`: a tile; `"cylinder"`: the pattern wrapped round a cylinder, seamless: a texture roller '
-        "(`relief`, `deboss`) or a lampshade (`pierced`), printed standing on an end ([surfaces.md](surfaces.md))",
+        '(`relief`, `deboss`) or a lampshade (`pierced`), printed standing on an end; `"stamp"`: a clay stamp, '
+        "the relief mirrored on a block with a finger grip, printed pattern up ([surfaces.md](surfaces.md))",
     ),
     Key(
         section="surface",
@@ -1109,10 +1113,10 @@ KEYS: tuple[Key, ...] = MOTIF + (
         section="surface",
         name="mirror",
         type="boolean",
-        default_text="true for relief and deboss (a roller), false for pierced (a shade)",
+        default_text="true for a stamp and a roller (relief, deboss), false for a shade (pierced)",
         query=None,
-        help="mirror the pattern round the cylinder, so that what a roller leaves in clay reads as designed "
-        "(an imprint is the mirror of its roller's surface)",
+        help="mirror the pattern (round a cylinder, or a stamp's face), so that what a roller or a stamp leaves "
+        "in clay reads as designed (an imprint is the mirror of the surface that made it)",
     ),
     Key(
         section="surface",
@@ -1146,6 +1150,37 @@ KEYS: tuple[Key, ...] = MOTIF + (
         query=None,
         help="a pierced shade: a ring inside its lower end holding a lamp fitting of this diameter "
         "(40 for an E27 lampholder, 28 for an E14)",
+    ),
+    Key(
+        section="surface",
+        name="block_mm",
+        type="number",
+        unit="mm",
+        range=Range(0, 200, min_open=True),
+        default=20.0,
+        query=None,
+        help="a stamp's block: its height from the bed to the relief's plate, the finger groove in its sides",
+    ),
+    Key(
+        section="surface",
+        name="grip_mm",
+        type="number",
+        unit="mm",
+        range=Range(0, 20, min_open=True),
+        default=3.0,
+        query=None,
+        help="how deep a stamp's finger groove goes into the block's sides; its chamfers keep to the printer "
+        "profile's overhang limit, so it prints without supports",
+    ),
+    Key(
+        section="surface",
+        name="groove_mm",
+        type="number",
+        unit="mm",
+        range=Range(0, 100),
+        default=4.0,
+        query=None,
+        help="the height of a stamp's finger groove's straight middle, between its two chamfers (0: a V)",
     ),
 )
 """Every design key, section by section in the order of a design file."""

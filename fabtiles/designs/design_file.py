@@ -107,6 +107,10 @@ SURFACE_KEYS = _schema.names("surface")
 """The valid keys of ``[surface]``."""
 CYLINDER = "cylinder"
 """``[surface] shape`` of the pattern wrapped round a cylinder."""
+STAMP = "stamp"
+"""``[surface] shape`` of a clay stamp."""
+STAMP_KEYS = _schema.STAMP_KEYS
+"""The ``[surface]`` keys of a stamp (the others are a cylinder's)."""
 ROLLER_STYLES = ("relief", "deboss")
 """The print styles that make a cylinder a roller (its pattern pressed into clay); ``pierced`` makes a shade."""
 STRIP_TILE_KEYS = _schema.STRIP_TILE_KEYS
@@ -216,11 +220,19 @@ class SurfaceSpec:
     bore_mm: float | None = None
     rim_mm: float | None = None
     lamp_fitting_mm: float | None = None
+    block_mm: float = _default("surface.block_mm")
+    grip_mm: float = _default("surface.grip_mm")
+    groove_mm: float = _default("surface.groove_mm")
 
     @property
     def cylinder(self) -> bool:
         """Whether the pattern is wrapped round a cylinder."""
         return self.shape == CYLINDER
+
+    @property
+    def stamp(self) -> bool:
+        """Whether the tile is a clay stamp: its relief mirrored on a block with a finger grip."""
+        return self.shape == STAMP
 
     @staticmethod
     def roller(style: str) -> bool:
@@ -228,8 +240,11 @@ class SurfaceSpec:
         return style in ROLLER_STYLES
 
     def mirror_for(self, style: str) -> bool:
-        """Whether the strip is mirrored: ``mirror``, else a roller's imprint is the mirror of its surface."""
-        return self.roller(style) if self.mirror is None else self.mirror
+        """Whether the pattern is mirrored: ``mirror``, else a stamp's or a roller's imprint is the mirror of
+        its surface."""
+        if self.mirror is not None:
+            return self.mirror
+        return self.stamp or self.roller(style)
 
     def bore_for(self, style: str) -> float:
         """The axle hole's diameter (mm): a roller's ``bore_mm`` or its default; a shade has none (0)."""
@@ -901,20 +916,22 @@ def _surface_spec(table: dict, source: str) -> SurfaceSpec:
     where = "[surface]"
     _check_keys(table, SURFACE_KEYS, where, source)
     values = _section(table, "surface", source, where)
-    if values["shape"] == CYLINDER:
+    shape = values["shape"]
+    if shape == CYLINDER:
         for name in _schema.CYLINDER_REQUIRED:
             if values[name] is None:
                 raise DesignError(
                     f'{source}: {where} shape = "cylinder" needs {name} (mm, > 0)', param=f"surface.{name}"
                 )
-    else:
-        given = [k for k in SURFACE_KEYS if k != "shape" and k in table]
-        if given:
-            raise DesignError(
-                f'{source}: {where} {given[0]} is a key of shape = "cylinder", not of shape = '
-                f'{values["shape"]!r}; set shape = "cylinder" or remove it',
-                param=f"surface.{given[0]}",
-            )
+    own = {CYLINDER: [k for k in SURFACE_KEYS if k not in _schema.STAMP_KEYS or k == "mirror"], STAMP: STAMP_KEYS}
+    given = [k for k in SURFACE_KEYS if k != "shape" and k in table and k not in own.get(shape, ())]
+    if given:
+        whose = "stamp" if given[0] in STAMP_KEYS else "cylinder"
+        raise DesignError(
+            f'{source}: {where} {given[0]} is a key of shape = "{whose}", not of shape = {shape!r}; '
+            f'set shape = "{whose}" or remove it',
+            param=f"surface.{given[0]}",
+        )
     return SurfaceSpec(**values)
 
 

@@ -333,6 +333,8 @@ def check_design(design, tile=None, *, job: bool = False) -> CheckResult:
     tile = tile if tile is not None else design.build_tile()
     if design.surface.cylinder:
         return _check_cylinder(design, tile)
+    if design.surface.stamp:
+        return _check_stamp(design, tile)
     from ..designs.design_file import profile_of
 
     return check_tile(
@@ -358,4 +360,14 @@ def _check_cylinder(design, tile) -> CheckResult:
     models = Models(tile, BuildOptions.of_design(design))
     assert models.cylinder is not None  # a cylinder's design
     model = strip_model(models, models.cylinder)
+    return CheckResult(Report(path="", format="laser"), model.report, print_region=model.region, cutter="none")
+
+
+def _check_stamp(design, tile) -> CheckResult:
+    """:func:`check_design` of a clay stamp: the printer's checks of its face as its files hold it (mirrored),
+    its block and grip refused if they cannot be made; a stamp is not cut, so its cutter's report is empty."""
+    from .models import BuildOptions, Models
+    from .stamp import stamp_print
+
+    model = stamp_print(Models(tile, BuildOptions.of_design(design)))
     return CheckResult(Report(path="", format="laser"), model.report, print_region=model.region, cutter="none")

@@ -161,7 +161,8 @@ def _check_bore(cylinder: Cylinder, printer, wall_mm: float, name: str) -> None:
     if wall_mm < printer.min_wall_mm:
         most = 2 * (wall_mm + cylinder.bore_mm / 2 - printer.min_wall_mm)
         raise ParameterError(
-            f"bore_mm = {cylinder.bore_mm:g} leaves a wall of {wall_mm:.2f} mm under the pattern of a "
+            f"bore_mm = {cylinder.bore_mm:g} leaves "
+            f"{'no wall' if wall_mm <= 0 else f'a wall of {wall_mm:.2f} mm'} under the pattern of a "
             f"{2 * cylinder.outer_radius_mm:.2f} mm roller, thinner than the min_wall_mm of {name}, "
             f"{printer.min_wall_mm:g} mm; the bore may be at most {max(most, 0):.2f} mm",
             param="surface.bore_mm",
@@ -193,14 +194,14 @@ def _check_shade(cylinder: Cylinder, printer, wall_mm: float, name: str) -> None
         )
 
 
-def check_formats(formats) -> None:
-    """Refuse a cylinder whose formats are all a cutter's: a cylinder is printed, its strip has no cut."""
+def check_formats(formats, shape: str = "cylinder") -> None:
+    """Refuse a cylinder or a stamp (``shape``) whose formats are all a cutter's: it is printed, not cut."""
     from ..export.formats import FORMATS, names_where
 
     if not any(FORMATS[f].family == "print" for f in formats):
         raise ParameterError(
-            f'[surface] shape = "cylinder" is printed, not cut: formats {", ".join(formats)} make none of it; '
-            f"a cylinder is made in the print formats, {', '.join(names_where(family='print'))} (its STEP is "
+            f'[surface] shape = "{shape}" is printed, not cut: formats {", ".join(formats)} make none of it; '
+            f"a {shape} is made in the print formats, {', '.join(names_where(family='print'))} (its STEP is "
             "refused with the reason: see docs/surfaces.md)",
             param="output.formats",
         )

@@ -69,6 +69,8 @@ class BuildOptions:
     surface: SurfaceSpec | None = None
     """A cylinder's ``[surface]`` (the tile is its unrolled strip: :mod:`fabtiles.making.cylinder`), or None: a
     flat tile."""
+    stamp: SurfaceSpec | None = None
+    """A clay stamp's ``[surface]`` (the tile's relief on a block: :mod:`fabtiles.making.stamp`), or None."""
 
     @classmethod
     def of_design(cls, design) -> BuildOptions:
@@ -83,6 +85,7 @@ class BuildOptions:
             printer=profile_of(design, "printer"),
             colours=design.colour,
             surface=design.surface if design.surface.cylinder else None,
+            stamp=design.surface if design.surface.stamp else None,
             **cls.fields_of(values, *FAMILIES),
         )
 
@@ -234,9 +237,10 @@ class Models:
         from ..geometry.cut_plan import CutOptions, KitOptions, plan_cut, plan_kit
 
         o = self.options
-        if o.surface is not None:
+        if o.surface is not None or o.stamp is not None:
+            shape = "cylinder" if o.surface is not None else "stamp"
             raise FabricationError(
-                '[surface] shape = "cylinder" is printed, not cut: its strip makes no cutter file; '
+                f'[surface] shape = "{shape}" is printed, not cut: it makes no cutter file; '
                 "ask for a print format (stl, 3mf)"
             )
         region, centrelines = self.cut_region
@@ -494,6 +498,11 @@ class Models:
 
             self._material(self.print_region[0])
             return cylinder_print(self, self.cylinder)
+        if self.options.stamp is not None:
+            from .stamp import stamp_print
+
+            self._material(self.print_region[0])
+            return stamp_print(self)
         if self.print_in_pieces:
             return self._make_print_pieces()
         o = self.options
@@ -530,8 +539,9 @@ class Models:
         neither way round (a tile that fits is printed whole, as ever)."""
         from ..geometry.laser_checks import fits_bed
 
-        if not self.options.pieces or self.sheet is not None or self._window or self.options.surface is not None:
-            return False  # a cylinder stands on the bed whole, or is refused (making.cylinder.check_cylinder)
+        o = self.options
+        if not o.pieces or self.sheet is not None or self._window or o.surface is not None or o.stamp is not None:
+            return False  # a cylinder or a stamp is printed whole (a cylinder too wide refused: check_cylinder)
         x0, y0, x1, y1 = self.tile.outline_shape().bounds
         return not fits_bed(x1 - x0, y1 - y0, self.options.printer.bed_mm)
 

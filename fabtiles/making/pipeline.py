@@ -375,9 +375,10 @@ def build_design(
     """
     formats = tuple(dict.fromkeys(formats or design.output.formats))
     sheet = sheet or copies is not None or gap_mm is not None
-    if sheet and design.surface.cylinder:
+    if sheet and (design.surface.cylinder or design.surface.stamp):
+        how = "standing on an end" if design.surface.cylinder else "pattern up"
         raise ParameterError(
-            '[surface] shape = "cylinder" is printed whole, standing on an end: it is not laid on a cutter\'s '
+            f'[surface] shape = "{design.surface.shape}" is printed whole, {how}: it is not laid on a cutter\'s '
             "sheet; drop --sheet, --copies and --gap",
             param="sheet",
         )
@@ -393,10 +394,10 @@ def build_design(
         raise ParameterError(
             f"file_name {file_name!r} names one file, but {len(formats)} formats are asked for: {', '.join(formats)}"
         )
-    if design.surface.cylinder:
+    if design.surface.cylinder or design.surface.stamp:
         from .cylinder import check_formats
 
-        check_formats(formats)
+        check_formats(formats, design.surface.shape)
     tile = prepare_tile(design, limits=limits)
     check_format_limits(tile, formats, limits)
     options = BuildOptions.of_design(design)
@@ -405,6 +406,10 @@ def build_design(
         from .cylinder import cylinder_of
 
         cylinder_of(options.surface, options, tile.width_mm)
+    if options.stamp is not None:  # a stamp's values refused before any geometry
+        from .stamp import stamp_settings
+
+        stamp_settings(options.stamp, options)
     # Compute (and fail) before anything is written; a sheet that cannot fit fails before the tile.
     layout = layout_tile_sheet(tile, options, copies=copies, gap_mm=gap_mm, limits=limits) if sheet else None
     models = Models(tile, options, sheet=layout)

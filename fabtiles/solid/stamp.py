@@ -77,7 +77,7 @@ class StampSettings:
     """The height of the groove's straight middle, between its two chamfers (0: a V)."""
     overhang_deg: float | None = None
     """The flattest overhang the printer lays without support (degrees from vertical), which the
-    chamfers keep to; None: the printer profile's ``overhang_deg`` when it has one, else
+    chamfers keep to; None: the printer profile's ``max_overhang_deg`` when it has one, else
     :data:`OVERHANG_DEG`."""
 
     def __post_init__(self):
@@ -270,9 +270,9 @@ class StampPrint:
         """The stamp's shape, for the report."""
         z1, zc = self.grip.z[[0, 3]]
         return {
-            "block_mm": self.block_top_mm,
-            "grip_mm": self.settings.grip_mm,
-            "groove_mm": [float(z1), float(zc)],
+            "block_top_mm": self.block_top_mm,
+            "groove_depth_mm": self.settings.grip_mm,
+            "groove_from_to_mm": [float(z1), float(zc)],
             "chamfer_rise_mm": self.grip.rise_mm,
             "overhang_deg": self.grip.overhang_deg,
             "height_mm": self.height_mm,
@@ -370,6 +370,6 @@ def stamp_print(model: PrintModel, *, settings: StampSettings | None = None) -> 
         raise ParameterError(f"settings must be a StampSettings, got {type(settings).__name__}", param="settings")
     overhang = settings.overhang_deg
     if overhang is None:
-        overhang = getattr(model.profile, "overhang_deg", None) or OVERHANG_DEG
+        overhang = getattr(model.profile, "max_overhang_deg", None) or OVERHANG_DEG
     grip = Grip(snap(model.outline), settings, float(overhang))
     return StampPrint(model, settings, grip)

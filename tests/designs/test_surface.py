@@ -173,3 +173,47 @@ def test_the_fit_makes_whole_periods_round_and_moves_the_least(diameter, radius,
     else:
         assert d.packing.radius == radius
         assert abs(d.surface.diameter - diameter) <= radius / math.pi + 1e-9
+
+
+STAMP = """
+[motif]
+preset = "table3-3"
+[packing]
+radius = 10
+[tile]
+outline = "hexagon"
+size = 60
+[surface]
+shape = "stamp"
+"""
+
+
+def test_a_stamp_keeps_its_tile_and_takes_the_block_defaults():
+    d = design(STAMP)
+    assert d.surface.stamp and not d.surface.cylinder
+    assert d.tile_spec.outline == "hexagon" and d.tile_spec.size == (60.0, 60.0)
+    assert (d.surface.block_mm, d.surface.grip_mm, d.surface.groove_mm) == (20.0, 3.0, 4.0)
+    assert d.surface.mirror_for("relief") is True
+    assert design(STAMP, "mirror = false\n").surface.mirror_for("relief") is False
+
+
+@pytest.mark.parametrize(
+    ("extra", "match", "param"),
+    [
+        ("diameter = 60\n", r'diameter is a key of shape = "cylinder", not of shape = \'stamp\'', "surface.diameter"),
+        ("bore_mm = 8\n", r'bore_mm is a key of shape = "cylinder", not of shape = \'stamp\'', "surface.bore_mm"),
+        ("grip_mm = 25\n", r"\[surface\] grip_mm must be a number of mm > 0 and <= 20, got 25", None),
+        ("block_mm = 0\n", r"\[surface\] block_mm must be a number of mm > 0 and <= 200, got 0", None),
+    ],
+)
+def test_bad_stamps_are_refused(extra, match, param):
+    with pytest.raises(DesignError, match=match) as info:
+        design(STAMP, extra)
+    if param is not None:
+        assert info.value.param == param
+
+
+def test_a_cylinder_refuses_a_stamps_keys():
+    with pytest.raises(DesignError, match=r'grip_mm is a key of shape = "stamp", not of shape = \'cylinder\'') as info:
+        design(ROLLER, "grip_mm = 2\n")
+    assert info.value.param == "surface.grip_mm"

@@ -107,7 +107,7 @@ def test_the_stl_is_one_watertight_body_of_the_reliefs_and_the_blocks_volume(sta
     assert mesh.is_watertight and mesh.is_winding_consistent
     assert mesh.body_count == 1
     figures = stamp.report.stats["stamp"]
-    z1, zc = figures["groove_mm"]
+    z1, zc = figures["groove_from_to_mm"]
     rise = figures["chamfer_rise_mm"]
     assert zc - z1 == pytest.approx(2 * rise + GROOVE)
     expected = block_volume(outline, z1, rise, GROOVE, BLOCK) + outline.area * B + region.area * H
@@ -118,7 +118,7 @@ def test_the_stl_is_one_watertight_body_of_the_reliefs_and_the_blocks_volume(sta
 
 def test_the_groove_goes_in_as_deep_as_asked_and_keeps_its_lands(stamp):
     outline, stamp, _, mesh = stamp
-    z1, zc = stamp.report.stats["stamp"]["groove_mm"]
+    z1, zc = stamp.report.stats["stamp"]["groove_from_to_mm"]
     assert z1 >= LAND_MM and BLOCK - zc >= LAND_MM
     waist = section(mesh, (z1 + zc) / 2)
     inset = outline.buffer(-GRIP, join_style="mitre")
@@ -195,7 +195,7 @@ def test_the_report_says_how_to_print_it():
     stamp, *_ = made(outline_of("circle"))
     assert any("pattern up, no supports" in line for line in stamp.report.stats["notes"])
     figures = stamp.stats()["stamp"]
-    assert figures["block_mm"] == BLOCK and figures["height_mm"] == pytest.approx(TOP)
+    assert figures["block_top_mm"] == BLOCK and figures["height_mm"] == pytest.approx(TOP)
     assert figures["overhang_deg"] == OVERHANG_DEG
 
 
@@ -214,7 +214,7 @@ def test_a_flatter_limit_from_the_settings_or_the_profile_makes_a_lower_groove()
     tangents = math.tan(math.radians(45)) / math.tan(math.radians(60))
     assert flat.grip.rise_mm == pytest.approx(steep.grip.rise_mm * tangents, abs=2e-3)
     model = relief(letter(outline_of("circle")), outline_of("circle"))
-    model.profile = dataclasses.make_dataclass("Profile", [("overhang_deg", float)])(60.0)
+    model.profile = dataclasses.replace(model.profile, max_overhang_deg=60.0)  # the printer profile's limit
     from_profile = stamp_print(model, settings=StampSettings(block_mm=BLOCK, grip_mm=GRIP, groove_mm=GROOVE))
     assert from_profile.grip.rise_mm == flat.grip.rise_mm
 
@@ -241,7 +241,7 @@ def test_an_interlaced_relief_mirrored_with_its_dips_makes_a_stamp():
     assert mesh.is_watertight and mesh.body_count == 1
     relief_only = trimesh.load(io.BytesIO(FORMATS["stl"].write(model, FileOptions())), file_type="stl")
     figures = stamp.stats()["stamp"]
-    z1, _ = figures["groove_mm"]
+    z1, _ = figures["groove_from_to_mm"]
     block = block_volume(outline, z1, figures["chamfer_rise_mm"], GROOVE, BLOCK)
     assert mesh.volume == pytest.approx(block + relief_only.volume, rel=1e-4)
     # under a crossing the strand dips: the section just under the top is less than the strands
