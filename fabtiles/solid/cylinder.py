@@ -336,12 +336,11 @@ def glue_seam(verts, faces, x0: float, x1: float, *, name: str = "part"):
     ends = [np.unique(faces[on[s][faces]]) for s in (0, 1)]
     yz = _snap_to_twins(yz, ends[0], ends[1])
     verts = np.column_stack([verts[:, 0], yz])
-    new_verts: list = []
     for s in (0, 1):
-        other = yz[ends[1 - s]]
-        faces = _split_at(verts, faces, on[s], other, new_verts, (x0, x1)[s])
-    if new_verts:
-        verts = np.concatenate([verts, np.array(new_verts)])
+        new_verts: list = []
+        faces = _split_at(verts, faces, verts[:, 0] == (x0, x1)[s], yz[ends[1 - s]], new_verts, (x0, x1)[s])
+        if new_verts:
+            verts = np.concatenate([verts, np.array(new_verts)])
     on = (verts[:, 0] == x0, verts[:, 0] == x1)
     used = np.zeros(len(verts), bool)
     used[faces.ravel()] = True

@@ -26,6 +26,7 @@ from shapely import affinity
 from fabtiles import FabricationError, ParameterError, Star
 from fabtiles.export.formats import FORMATS, FileOptions
 from fabtiles.export.threemf import read_3mf
+from fabtiles.geometry.machine_geometry import print_geometry
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 from fabtiles.solid.cylinder import (
@@ -295,6 +296,29 @@ def test_slicing_keeps_a_closed_mesh_closed_and_cuts_every_edge_at_the_planes(ro
     assert not inside.any()  # no triangle crosses a plane
 
 
+def test_an_interlaced_roller_wraps_with_its_dips():
+    sizes = dict(diameter=24.0, length=10.0, periods=4)
+    c = math.pi * sizes["diameter"]
+    pack = HexPacking(radius=c / (2 * sizes["periods"]), motif=Star.preset("table3-2"))
+    tile = TileGeometry("rectangle", (c, sizes["length"]), pack, stroke=1.2, interlace=True)
+    region, dips = print_geometry(tile, profile="fdm-0.4mm", style="relief")
+    assert dips is not None and not dips.is_empty
+    model = print_model(region, tile.outline_shape(), profile="fdm-0.4mm", style="relief", dips=dips)
+    cp = cylinder_print(model, circumference_mm=c, outer_radius_mm=sizes["diameter"] / 2)
+    mesh = read_stl(FORMATS["stl"].write(cp, FileOptions()))
+    assert mesh.is_watertight and mesh.is_winding_consistent and len(mesh.split(only_watertight=False)) == 1
+    # the dips lower the strands: less than the plain relief of the same region
+    plain = (
+        math.pi
+        / c
+        * (
+            cp.outline.area * ((cp.inner_radius_mm + cp.stack.base) ** 2 - cp.inner_radius_mm**2)
+            + cp.region.area * (cp.outer_radius_mm**2 - (cp.inner_radius_mm + cp.stack.base) ** 2)
+        )
+    )
+    assert mesh.volume < plain - 1
+
+
 # --------------------------------------------------------------------------- the lampshade
 
 
@@ -431,6 +455,27 @@ def test_a_strip_whose_edges_do_not_meet_is_refused(small):
     one_side = print_model(shapely.box(0, 2, 5, 6), model.outline, profile="fdm-0.4mm", style="relief")
     with pytest.raises(FabricationError, match=r"edges x = 0 and x = 62\.83\d* of the strip do not meet: \d+ vertices"):
         wrap_part(one_side.fused, circumference_mm=c, outer_radius_mm=10, top_mm=3.2)
+
+
+@pytest.mark.parametrize("steps", [1, 2])
+def test_a_crossing_a_grid_step_or_two_apart_on_the_two_edges_is_glued(small, steps):
+    model, c = small
+    q = 2.0**-10
+    x1 = model.fused.outline.bounds[2]
+    band = shapely.union(shapely.box(0, 2, 5, 4), shapely.box(x1 - 5, 2 + steps * q, x1, 4))
+    one_band = print_model(band, model.outline, profile="fdm-0.4mm", style="relief")
+    part = wrap_part(one_band.fused, circumference_mm=c, outer_radius_mm=10, top_mm=3.2)
+    mesh = trimesh.Trimesh(part.vertices, part.faces)
+    assert mesh.is_watertight and mesh.is_winding_consistent and part.bodies == 1
+
+
+def test_a_crossing_further_apart_is_not_glued(small):
+    model, c = small
+    x1 = model.fused.outline.bounds[2]
+    band = shapely.union(shapely.box(0, 2, 5, 4), shapely.box(x1 - 5, 2.005, x1, 4))
+    one_band = print_model(band, model.outline, profile="fdm-0.4mm", style="relief")
+    with pytest.raises(FabricationError, match=r"do not meet: 2 vertices have no twin"):
+        wrap_part(one_band.fused, circumference_mm=c, outer_radius_mm=10, top_mm=3.2)
 
 
 def test_a_part_with_other_bodies_than_it_says_is_refused(small):
