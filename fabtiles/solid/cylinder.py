@@ -13,10 +13,14 @@ end (:func:`wrap_part`):
   so that the mesh lies in the positive quadrant as flat prints do. The map keeps
   the faces' winding (``(x, y, z) -> (theta, Z, r)`` is an even permutation of the
   cylinder's right-handed ``(r, theta, Z)``).
+  With ``C = 2 pi outer_radius_mm`` the pattern keeps its size on the outer surface
+  (any other pair stretches it round by their ratio).
 - Before the map, the mesh is cut by planes ``x = const`` a small angle apart
-  (:data:`CHORD_MM`): every edge then spans less than that angle, so every chord
-  lies within :data:`CHORD_MM` of its circle. Only triangles crossing a plane are cut;
-  walls along ``y`` are left whole.
+  (:data:`CHORD_MM`, :data:`MAX_STEP_RAD`): every edge then spans less than that angle,
+  so every chord lies within :data:`CHORD_MM` of its circle. Only triangles crossing a
+  plane are cut; walls along ``y`` are left whole. A cut a hair from a corner is made
+  at the corner, and a sliver's cut a hair long collapsed (:func:`slice_x`): no needle
+  is left whose float32 normal would be rounding.
 - The SEAM: the flat part's walls at ``x = 0`` and ``x = C`` would meet face to face.
   They are removed and the two open boundaries glued vertex to vertex by ``(y, z)``
   (a vertex one side has and the other lacks splits the other side's edge: no
@@ -25,7 +29,7 @@ end (:func:`wrap_part`):
 The wrapped mesh is checked as a slicer reads it (:mod:`fabtiles.solid.mesh_check`),
 against the exact volume of the curved body of the flat mesh (the map's Jacobian is
 ``r 2 pi / C``), within the check's 0.5 %: the chords cut off a fraction of about
-``angle^2 / 6`` of it, a few hundredths of a percent.
+``angle^2 / 6`` of it, at most about 0.1 %.
 
 :func:`cylinder_print` wraps every part of a flat print model (and its fused body),
 with a :class:`LampHolder` fused to the inside of a lampshade if asked:
