@@ -490,9 +490,9 @@ class LampHolder:
         object.__setattr__(self, "thickness_mm", check_float("thickness_mm", self.thickness_mm, low=0, low_open=True))
 
 
-def holder_outline(holder: LampHolder, *, inner_radius_mm: float, outer_radius_mm: float, chord_mm: float = CHORD_MM):
+def holder_outline(holder: LampHolder, *, inner_radius_mm: float, wall_mm: float, chord_mm: float = CHORD_MM):
     """The holder's 2D shape (a manifold3d ``CrossSection``) around the origin: the ring and its spokes,
-    which reach half way into the wall between ``inner_radius_mm`` and ``outer_radius_mm``.
+    which reach half way into the wall ``wall_mm`` thick outside ``inner_radius_mm``.
 
     Raises :class:`~fabtiles.ParameterError` when the ring does not fit inside the shade with a
     spoke's length to spare.
@@ -508,7 +508,7 @@ def holder_outline(holder: LampHolder, *, inner_radius_mm: float, outer_radius_m
             f"inside diameter, {2 * inner_radius_mm:g} mm",
             param="fitting_mm",
         )
-    reach = (inner_radius_mm + outer_radius_mm) / 2
+    reach = inner_radius_mm + wall_mm / 2
 
     def circle(r):
         step = 2 * math.acos(1 - min(chord_mm / r, 1.0))
@@ -524,12 +524,20 @@ def holder_outline(holder: LampHolder, *, inner_radius_mm: float, outer_radius_m
 
 
 def with_holder(
-    part: CheckedPart, holder: LampHolder, *, outer_radius_mm: float, inner_radius_mm: float, name: str = "part"
+    part: CheckedPart,
+    holder: LampHolder,
+    *,
+    outer_radius_mm: float,
+    inner_radius_mm: float,
+    wall_mm: float | None = None,
+    name: str = "part",
 ) -> CheckedPart:
     """A wrapped part fused with the lamp holder at its ``Z = 0`` end (manifold3d's union), checked again.
 
-    ``volume_mm3`` is the part's exact volume plus what the union added as meshed; the bodies stay
-    the part's (the holder joins the one it touches).
+    The axis is at ``(outer_radius_mm, outer_radius_mm)``; the spokes reach half way into the part's wall,
+    ``wall_mm`` thick outside ``inner_radius_mm`` (default: up to the outer radius). ``volume_mm3`` is the
+    part's exact volume plus what the union added as meshed; the bodies stay the part's (the holder joins
+    the one it touches).
     """
     import manifold3d as m3
 
@@ -550,7 +558,8 @@ def with_holder(
         raise FabricationError(
             f"the {name} mesh could not be read by manifold3d ({shade.status()}); nothing was written"
         )
-    ring = holder_outline(holder, inner_radius_mm=inner_radius_mm, outer_radius_mm=outer_radius_mm)
+    wall = outer_radius_mm - inner_radius_mm if wall_mm is None else wall_mm
+    ring = holder_outline(holder, inner_radius_mm=inner_radius_mm, wall_mm=wall)
     body = m3.Manifold.extrude(ring, holder.thickness_mm).translate((outer_radius_mm, outer_radius_mm, 0.0))
     fused = shade + body
     mesh = fused.to_mesh()
@@ -578,6 +587,21 @@ def stack_top(stack) -> float:
     if stack.style == "pierced":
         return float(stack.pierced)
     return float(stack.base)
+
+
+def inner_wall(stack) -> float:
+    """The thickness of the print's solid inside (mm): a relief's or mosaic's plate, a deboss plate under its
+    grooves, a pierced wall; the lamp holder's spokes reach half way into it.
+
+    >>> from fabtiles.solid._mesh_build import resolve_stack
+    >>> inner_wall(resolve_stack("fdm-0.4mm", "deboss", base_mm=2, deboss_mm=0.8))
+    1.2
+    """
+    if stack.style in ("relief", "mosaic"):
+        return float(stack.base)
+    if stack.style == "pierced":
+        return float(stack.pierced)
+    return float(stack.base - stack.deboss)
 
 
 class CylinderPrint:
@@ -619,7 +643,12 @@ class CylinderPrint:
         if self.holder is None:
             return part
         return with_holder(
-            part, self.holder, outer_radius_mm=self.outer_radius_mm, inner_radius_mm=self.inner_radius_mm, name=name
+            part,
+            self.holder,
+            outer_radius_mm=self.outer_radius_mm,
+            inner_radius_mm=self.inner_radius_mm,
+            wall_mm=inner_wall(self.stack),
+            name=name,
         )
 
     @property
@@ -730,5 +759,5 @@ def cylinder_print(
     if holder is not None and not isinstance(holder, LampHolder):
         raise ParameterError(f"holder must be a LampHolder or None, got {holder!r}", param="holder")
     if holder is not None:
-        holder_outline(holder, inner_radius_mm=big_r - top, outer_radius_mm=big_r)
+        holder_outline(holder, inner_radius_mm=big_r - top, wall_mm=inner_wall(model.stack))
     return CylinderPrint(model, circumference_mm=c, outer_radius_mm=big_r, holder=holder)

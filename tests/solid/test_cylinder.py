@@ -525,11 +525,13 @@ def test_a_holder_thicker_than_the_shade_is_long_is_refused(small):
     model, c = small
     part = wrap_part(model.fused, circumference_mm=c, outer_radius_mm=30, top_mm=3.2)
     with pytest.raises(ParameterError, match=r"thickness_mm = 9 mm of the lamp holder must be less than the shade's"):
-        with_holder(part, LampHolder(fitting_mm=10, thickness_mm=9), outer_radius_mm=30, inner_radius_mm=26.8)
+        with_holder(
+            part, LampHolder(fitting_mm=10, thickness_mm=9), outer_radius_mm=30, inner_radius_mm=26.8, wall_mm=2
+        )
 
 
 def test_an_open_mesh_is_not_fused_with_a_holder(small):
     model, _ = small
     part = model.fused._replace(faces=model.fused.faces[:-1])
     with pytest.raises(FabricationError, match=r"the part mesh could not be read by manifold3d"):
-        with_holder(part, LampHolder(fitting_mm=10), outer_radius_mm=30, inner_radius_mm=26.8)
+        with_holder(part, LampHolder(fitting_mm=10), outer_radius_mm=30, inner_radius_mm=26.8, wall_mm=2)
