@@ -409,6 +409,20 @@ def test_admesh_finds_nothing_to_fix(stl_files):
         assert int(re.search(r"Total disconnected facets\s*:\s*(\d+)", text).group(1)) == 0
 
 
+def test_prusaslicer_reads_the_rollers_3mf_as_one_closed_object_of_two_parts(roller, tmp_path):
+    prusa = program("prusa-slicer", "apt-get install prusa-slicer")
+    cp, _ = roller
+    path = tmp_path / "roller.3mf"
+    path.write_bytes(FORMATS["3mf"].write(cp, FileOptions()))
+    text = run([prusa, "--loglevel", "1", "--datadir", tmp_path / "data", "--info", path], cwd=tmp_path).stdout
+    found = dict(re.findall(r"^(\w+) = +(\S+)$", text, flags=re.M))
+    assert found["manifold"] == "yes" and int(found["number_of_parts"]) == 2
+    assert float(found["size_x"]) == pytest.approx(ROLLER["diameter"], abs=CHORD_MM)
+    assert float(found["size_z"]) == pytest.approx(ROLLER["length"], abs=1e-5)
+    parts = sum(p.mesh.mesh_volume_mm3 for p in cp.parts.values())
+    assert float(found["volume"]) == pytest.approx(parts, rel=1e-5)
+
+
 def test_prusaslicer_and_curaengine_slice_a_roller_and_a_shade(small_stl_files, tmp_path):
     prusa = program("prusa-slicer", "apt-get install prusa-slicer")
     engine = program("CuraEngine", "apt-get install cura-engine")
