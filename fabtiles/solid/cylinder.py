@@ -628,6 +628,9 @@ class CylinderPrint:
         """The flat print's highest ``z``: it goes to the outer radius."""
         self.inner_radius_mm = self.outer_radius_mm - self.top_mm
         """The inside's radius (a roller's bore, a lampshade's inner wall)."""
+        _, y0, _, y1 = model.outline.bounds
+        self.length_mm = float(y1 - y0)
+        """The length along the axis: the strip's height."""
 
     def _wrap(self, part: CheckedPart, name: str) -> CheckedPart:
         return wrap_part(
@@ -710,6 +713,7 @@ class CylinderPrint:
                 "shape": "cylinder",
                 "diameter_mm": 2 * self.outer_radius_mm,
                 "circumference_mm": self.circumference_mm,
+                "length_mm": self.length_mm,
                 "inner_diameter_mm": 2 * self.inner_radius_mm,
             },
         )

@@ -236,6 +236,8 @@ def test_the_glb_and_the_figures_read_the_wrapped_parts(roller):
     assert FORMATS["glb"].write(cp, FileOptions())[:4] == b"glTF"
     figures = FORMATS["stl"].figures(cp, FileOptions())
     assert figures["surface"]["diameter_mm"] == ROLLER["diameter"]
+    assert figures["surface"]["length_mm"] == pytest.approx(ROLLER["length"])
+    assert figures["surface"]["inner_diameter_mm"] == pytest.approx(2 * cp.inner_radius_mm)
     assert figures["volume_mm3"] == pytest.approx(cp.fused.mesh_volume_mm3)
 
 
