@@ -13,10 +13,14 @@ end (:func:`wrap_part`):
   so that the mesh lies in the positive quadrant as flat prints do. The map keeps
   the faces' winding (``(x, y, z) -> (theta, Z, r)`` is an even permutation of the
   cylinder's right-handed ``(r, theta, Z)``).
+  With ``C = 2 pi outer_radius_mm`` the pattern keeps its size on the outer surface
+  (any other pair stretches it round by their ratio).
 - Before the map, the mesh is cut by planes ``x = const`` a small angle apart
-  (:data:`CHORD_MM`): every edge then spans less than that angle, so every chord
-  lies within :data:`CHORD_MM` of its circle. Only triangles crossing a plane are cut;
-  walls along ``y`` are left whole.
+  (:data:`CHORD_MM`, :data:`MAX_STEP_RAD`): every edge then spans less than that angle,
+  so every chord lies within :data:`CHORD_MM` of its circle. Only triangles crossing a
+  plane are cut; walls along ``y`` are left whole. A cut a hair from a corner is made
+  at the corner, and a sliver's cut a hair long collapsed (:func:`slice_x`): no needle
+  is left whose float32 normal would be rounding.
 - The SEAM: the flat part's walls at ``x = 0`` and ``x = C`` would meet face to face.
   They are removed and the two open boundaries glued vertex to vertex by ``(y, z)``
   (a vertex one side has and the other lacks splits the other side's edge: no
@@ -25,7 +29,7 @@ end (:func:`wrap_part`):
 The wrapped mesh is checked as a slicer reads it (:mod:`fabtiles.solid.mesh_check`),
 against the exact volume of the curved body of the flat mesh (the map's Jacobian is
 ``r 2 pi / C``), within the check's 0.5 %: the chords cut off a fraction of about
-``angle^2 / 6`` of it, a few hundredths of a percent.
+``angle^2 / 6`` of it, at most about 0.1 %.
 
 :func:`cylinder_print` wraps every part of a flat print model (and its fused body),
 with a :class:`LampHolder` fused to the inside of a lampshade if asked:
@@ -336,16 +340,11 @@ def glue_seam(verts, faces, x0: float, x1: float, *, name: str = "part"):
     ends = [np.unique(faces[on[s][faces]]) for s in (0, 1)]
     yz = _snap_to_twins(yz, ends[0], ends[1])
     verts = np.column_stack([verts[:, 0], yz])
-    new_verts: list = []
     for s in (0, 1):
-        other = yz[ends[1 - s]]
-        # the second side's faces may hold the first side's new vertices: split with them in the list
-        every = np.concatenate([verts, np.array(new_verts, np.float64).reshape(-1, 3)])
-        more: list = []
-        faces = _split_at(every, faces, every[:, 0] == (x0, x1)[s], other, more, (x0, x1)[s])
-        new_verts += more
-    if new_verts:
-        verts = np.concatenate([verts, np.array(new_verts)])
+        new_verts: list = []
+        faces = _split_at(verts, faces, verts[:, 0] == (x0, x1)[s], yz[ends[1 - s]], new_verts, (x0, x1)[s])
+        if new_verts:
+            verts = np.concatenate([verts, np.array(new_verts)])
     on = (verts[:, 0] == x0, verts[:, 0] == x1)
     used = np.zeros(len(verts), bool)
     used[faces.ravel()] = True
@@ -491,9 +490,9 @@ class LampHolder:
         object.__setattr__(self, "thickness_mm", check_float("thickness_mm", self.thickness_mm, low=0, low_open=True))
 
 
-def holder_outline(holder: LampHolder, *, inner_radius_mm: float, outer_radius_mm: float, chord_mm: float = CHORD_MM):
+def holder_outline(holder: LampHolder, *, inner_radius_mm: float, wall_mm: float, chord_mm: float = CHORD_MM):
     """The holder's 2D shape (a manifold3d ``CrossSection``) around the origin: the ring and its spokes,
-    which reach half way into the wall between ``inner_radius_mm`` and ``outer_radius_mm``.
+    which reach half way into the wall ``wall_mm`` thick outside ``inner_radius_mm``.
 
     Raises :class:`~fabtiles.ParameterError` when the ring does not fit inside the shade with a
     spoke's length to spare.
@@ -509,7 +508,7 @@ def holder_outline(holder: LampHolder, *, inner_radius_mm: float, outer_radius_m
             f"inside diameter, {2 * inner_radius_mm:g} mm",
             param="fitting_mm",
         )
-    reach = (inner_radius_mm + outer_radius_mm) / 2
+    reach = inner_radius_mm + wall_mm / 2
 
     def circle(r):
         step = 2 * math.acos(1 - min(chord_mm / r, 1.0))
@@ -525,12 +524,20 @@ def holder_outline(holder: LampHolder, *, inner_radius_mm: float, outer_radius_m
 
 
 def with_holder(
-    part: CheckedPart, holder: LampHolder, *, outer_radius_mm: float, inner_radius_mm: float, name: str = "part"
+    part: CheckedPart,
+    holder: LampHolder,
+    *,
+    outer_radius_mm: float,
+    inner_radius_mm: float,
+    wall_mm: float | None = None,
+    name: str = "part",
 ) -> CheckedPart:
     """A wrapped part fused with the lamp holder at its ``Z = 0`` end (manifold3d's union), checked again.
 
-    ``volume_mm3`` is the part's exact volume plus what the union added as meshed; the bodies stay
-    the part's (the holder joins the one it touches).
+    The axis is at ``(outer_radius_mm, outer_radius_mm)``; the spokes reach half way into the part's wall,
+    ``wall_mm`` thick outside ``inner_radius_mm`` (default: up to the outer radius). ``volume_mm3`` is the
+    part's exact volume plus what the union added as meshed; the bodies stay the part's (the holder joins
+    the one it touches).
     """
     import manifold3d as m3
 
@@ -551,7 +558,8 @@ def with_holder(
         raise FabricationError(
             f"the {name} mesh could not be read by manifold3d ({shade.status()}); nothing was written"
         )
-    ring = holder_outline(holder, inner_radius_mm=inner_radius_mm, outer_radius_mm=outer_radius_mm)
+    wall = outer_radius_mm - inner_radius_mm if wall_mm is None else wall_mm
+    ring = holder_outline(holder, inner_radius_mm=inner_radius_mm, wall_mm=wall)
     body = m3.Manifold.extrude(ring, holder.thickness_mm).translate((outer_radius_mm, outer_radius_mm, 0.0))
     fused = shade + body
     mesh = fused.to_mesh()
@@ -581,6 +589,21 @@ def stack_top(stack) -> float:
     return float(stack.base)
 
 
+def inner_wall(stack) -> float:
+    """The thickness of the print's solid inside (mm): a relief's or mosaic's plate, a deboss plate under its
+    grooves, a pierced wall; the lamp holder's spokes reach half way into it.
+
+    >>> from fabtiles.solid._mesh_build import resolve_stack
+    >>> inner_wall(resolve_stack("fdm-0.4mm", "deboss", base_mm=2, deboss_mm=0.8))
+    1.2
+    """
+    if stack.style in ("relief", "mosaic"):
+        return float(stack.base)
+    if stack.style == "pierced":
+        return float(stack.pierced)
+    return float(stack.base - stack.deboss)
+
+
 class CylinderPrint:
     """A flat print model's parts wrapped onto a cylinder, read by the STL, 3MF and GLB writers as a
     :class:`~fabtiles.solid.print_model.PrintModel` is (:class:`~fabtiles.export.formats.PrintModelProtocol`).
@@ -605,6 +628,9 @@ class CylinderPrint:
         """The flat print's highest ``z``: it goes to the outer radius."""
         self.inner_radius_mm = self.outer_radius_mm - self.top_mm
         """The inside's radius (a roller's bore, a lampshade's inner wall)."""
+        _, y0, _, y1 = model.outline.bounds
+        self.length_mm = float(y1 - y0)
+        """The length along the axis: the strip's height."""
 
     def _wrap(self, part: CheckedPart, name: str) -> CheckedPart:
         return wrap_part(
@@ -620,7 +646,12 @@ class CylinderPrint:
         if self.holder is None:
             return part
         return with_holder(
-            part, self.holder, outer_radius_mm=self.outer_radius_mm, inner_radius_mm=self.inner_radius_mm, name=name
+            part,
+            self.holder,
+            outer_radius_mm=self.outer_radius_mm,
+            inner_radius_mm=self.inner_radius_mm,
+            wall_mm=inner_wall(self.stack),
+            name=name,
         )
 
     @property
@@ -682,6 +713,7 @@ class CylinderPrint:
                 "shape": "cylinder",
                 "diameter_mm": 2 * self.outer_radius_mm,
                 "circumference_mm": self.circumference_mm,
+                "length_mm": self.length_mm,
                 "inner_diameter_mm": 2 * self.inner_radius_mm,
             },
         )
@@ -731,5 +763,5 @@ def cylinder_print(
     if holder is not None and not isinstance(holder, LampHolder):
         raise ParameterError(f"holder must be a LampHolder or None, got {holder!r}", param="holder")
     if holder is not None:
-        holder_outline(holder, inner_radius_mm=big_r - top, outer_radius_mm=big_r)
+        holder_outline(holder, inner_radius_mm=big_r - top, wall_mm=inner_wall(model.stack))
     return CylinderPrint(model, circumference_mm=c, outer_radius_mm=big_r, holder=holder)

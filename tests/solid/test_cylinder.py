@@ -26,6 +26,7 @@ from shapely import affinity
 from fabtiles import FabricationError, ParameterError, Star
 from fabtiles.export.formats import FORMATS, FileOptions
 from fabtiles.export.threemf import read_3mf
+from fabtiles.geometry.machine_geometry import print_geometry
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 from fabtiles.solid.cylinder import (
@@ -235,6 +236,8 @@ def test_the_glb_and_the_figures_read_the_wrapped_parts(roller):
     assert FORMATS["glb"].write(cp, FileOptions())[:4] == b"glTF"
     figures = FORMATS["stl"].figures(cp, FileOptions())
     assert figures["surface"]["diameter_mm"] == ROLLER["diameter"]
+    assert figures["surface"]["length_mm"] == pytest.approx(ROLLER["length"])
+    assert figures["surface"]["inner_diameter_mm"] == pytest.approx(2 * cp.inner_radius_mm)
     assert figures["volume_mm3"] == pytest.approx(cp.fused.mesh_volume_mm3)
 
 
@@ -293,6 +296,29 @@ def test_slicing_keeps_a_closed_mesh_closed_and_cuts_every_edge_at_the_planes(ro
     x = sv[:, 0][sf]
     inside = (x.min(axis=1)[:, None] < planes - 1e-9) & (planes + 1e-9 < x.max(axis=1)[:, None])
     assert not inside.any()  # no triangle crosses a plane
+
+
+def test_an_interlaced_roller_wraps_with_its_dips():
+    sizes = dict(diameter=24.0, length=10.0, periods=4)
+    c = math.pi * sizes["diameter"]
+    pack = HexPacking(radius=c / (2 * sizes["periods"]), motif=Star.preset("table3-2"))
+    tile = TileGeometry("rectangle", (c, sizes["length"]), pack, stroke=1.2, interlace=True)
+    region, dips = print_geometry(tile, profile="fdm-0.4mm", style="relief")
+    assert dips is not None and not dips.is_empty
+    model = print_model(region, tile.outline_shape(), profile="fdm-0.4mm", style="relief", dips=dips)
+    cp = cylinder_print(model, circumference_mm=c, outer_radius_mm=sizes["diameter"] / 2)
+    mesh = read_stl(FORMATS["stl"].write(cp, FileOptions()))
+    assert mesh.is_watertight and mesh.is_winding_consistent and len(mesh.split(only_watertight=False)) == 1
+    # the dips lower the strands: less than the plain relief of the same region
+    plain = (
+        math.pi
+        / c
+        * (
+            cp.outline.area * ((cp.inner_radius_mm + cp.stack.base) ** 2 - cp.inner_radius_mm**2)
+            + cp.region.area * (cp.outer_radius_mm**2 - (cp.inner_radius_mm + cp.stack.base) ** 2)
+        )
+    )
+    assert mesh.volume < plain - 1
 
 
 # --------------------------------------------------------------------------- the lampshade
@@ -385,6 +411,20 @@ def test_admesh_finds_nothing_to_fix(stl_files):
         assert int(re.search(r"Total disconnected facets\s*:\s*(\d+)", text).group(1)) == 0
 
 
+def test_prusaslicer_reads_the_rollers_3mf_as_one_closed_object_of_two_parts(roller, tmp_path):
+    prusa = program("prusa-slicer", "apt-get install prusa-slicer")
+    cp, _ = roller
+    path = tmp_path / "roller.3mf"
+    path.write_bytes(FORMATS["3mf"].write(cp, FileOptions()))
+    text = run([prusa, "--loglevel", "1", "--datadir", tmp_path / "data", "--info", path], cwd=tmp_path).stdout
+    found = dict(re.findall(r"^(\w+) = +(\S+)$", text, flags=re.M))
+    assert found["manifold"] == "yes" and int(found["number_of_parts"]) == 2
+    assert float(found["size_x"]) == pytest.approx(ROLLER["diameter"], abs=CHORD_MM)
+    assert float(found["size_z"]) == pytest.approx(ROLLER["length"], abs=1e-5)
+    parts = sum(p.mesh.mesh_volume_mm3 for p in cp.parts.values())
+    assert float(found["volume"]) == pytest.approx(parts, rel=1e-5)
+
+
 def test_prusaslicer_and_curaengine_slice_a_roller_and_a_shade(small_stl_files, tmp_path):
     prusa = program("prusa-slicer", "apt-get install prusa-slicer")
     engine = program("CuraEngine", "apt-get install cura-engine")
@@ -431,6 +471,27 @@ def test_a_strip_whose_edges_do_not_meet_is_refused(small):
     one_side = print_model(shapely.box(0, 2, 5, 6), model.outline, profile="fdm-0.4mm", style="relief")
     with pytest.raises(FabricationError, match=r"edges x = 0 and x = 62\.83\d* of the strip do not meet: \d+ vertices"):
         wrap_part(one_side.fused, circumference_mm=c, outer_radius_mm=10, top_mm=3.2)
+
+
+@pytest.mark.parametrize("steps", [1, 2])
+def test_a_crossing_a_grid_step_or_two_apart_on_the_two_edges_is_glued(small, steps):
+    model, c = small
+    q = 2.0**-10
+    x1 = model.fused.outline.bounds[2]
+    band = shapely.union(shapely.box(0, 2, 5, 4), shapely.box(x1 - 5, 2 + steps * q, x1, 4))
+    one_band = print_model(band, model.outline, profile="fdm-0.4mm", style="relief")
+    part = wrap_part(one_band.fused, circumference_mm=c, outer_radius_mm=10, top_mm=3.2)
+    mesh = trimesh.Trimesh(part.vertices, part.faces)
+    assert mesh.is_watertight and mesh.is_winding_consistent and part.bodies == 1
+
+
+def test_a_crossing_further_apart_is_not_glued(small):
+    model, c = small
+    x1 = model.fused.outline.bounds[2]
+    band = shapely.union(shapely.box(0, 2, 5, 4), shapely.box(x1 - 5, 2.005, x1, 4))
+    one_band = print_model(band, model.outline, profile="fdm-0.4mm", style="relief")
+    with pytest.raises(FabricationError, match=r"do not meet: 2 vertices have no twin"):
+        wrap_part(one_band.fused, circumference_mm=c, outer_radius_mm=10, top_mm=3.2)
 
 
 def test_a_part_with_other_bodies_than_it_says_is_refused(small):
@@ -480,11 +541,13 @@ def test_a_holder_thicker_than_the_shade_is_long_is_refused(small):
     model, c = small
     part = wrap_part(model.fused, circumference_mm=c, outer_radius_mm=30, top_mm=3.2)
     with pytest.raises(ParameterError, match=r"thickness_mm = 9 mm of the lamp holder must be less than the shade's"):
-        with_holder(part, LampHolder(fitting_mm=10, thickness_mm=9), outer_radius_mm=30, inner_radius_mm=26.8)
+        with_holder(
+            part, LampHolder(fitting_mm=10, thickness_mm=9), outer_radius_mm=30, inner_radius_mm=26.8, wall_mm=2
+        )
 
 
 def test_an_open_mesh_is_not_fused_with_a_holder(small):
     model, _ = small
     part = model.fused._replace(faces=model.fused.faces[:-1])
     with pytest.raises(FabricationError, match=r"the part mesh could not be read by manifold3d"):
-        with_holder(part, LampHolder(fitting_mm=10), outer_radius_mm=30, inner_radius_mm=26.8)
+        with_holder(part, LampHolder(fitting_mm=10), outer_radius_mm=30, inner_radius_mm=26.8, wall_mm=2)
