@@ -1,6 +1,7 @@
 """A flat print of the unrolled strip wrapped onto a cylinder, checked independently.
 
-The STL is read back by trimesh and admesh and sliced by PrusaSlicer and CuraEngine; the
+The STL is read back by trimesh and admesh and the 3MF by PrusaSlicer (the slicers slice a
+roller and a shade built from design files in tests/making/test_cylinder_build.py); the
 cylinder's sizes, its cross-section at mid-height against the flat strip's pattern on the
 line y = L/2 (shapely), the seam, a mirrored strip and the volume against the prisms'
 analytic volume.
@@ -20,7 +21,7 @@ import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
-from real_programs import cura_definitions, program, run
+from real_programs import program, run
 from shapely import affinity
 
 from fabtiles import FabricationError, ParameterError, Star
@@ -379,26 +380,6 @@ def stl_files(roller, shade, tmp_path_factory):
     return out
 
 
-SLICED_ROLLER = dict(diameter=24.0, length=8.0, periods=5)
-SLICED_SHADE = dict(diameter=36.0, length=10.0, periods=6)
-
-
-@pytest.fixture(scope="module")
-def small_stl_files(tmp_path_factory):
-    """A short roller and a short shade with its holder, as STL files: what the slicers slice (quickly)."""
-    folder = tmp_path_factory.mktemp("sliced")
-    holder = LampHolder(fitting_mm=12, ring_mm=3, thickness_mm=1.6)
-    out = {}
-    for name, cp, length in (
-        ("roller", wrapped(SLICED_ROLLER, "relief", shift=SHIFT), SLICED_ROLLER["length"]),
-        ("shade", wrapped(SLICED_SHADE, "pierced", rims=True, holder=holder), SLICED_SHADE["length"]),
-    ):
-        path = folder / f"{name}.stl"
-        path.write_bytes(FORMATS["stl"].write(cp, FileOptions()))
-        out[name] = (path, length)
-    return out
-
-
 def test_admesh_finds_nothing_to_fix(stl_files):
     admesh = program("admesh", "apt-get install admesh")
     for path in stl_files.values():
@@ -423,25 +404,6 @@ def test_prusaslicer_reads_the_rollers_3mf_as_one_closed_object_of_two_parts(rol
     assert float(found["size_z"]) == pytest.approx(ROLLER["length"], abs=1e-5)
     parts = sum(p.mesh.mesh_volume_mm3 for p in cp.parts.values())
     assert float(found["volume"]) == pytest.approx(parts, rel=1e-5)
-
-
-def test_prusaslicer_and_curaengine_slice_a_roller_and_a_shade(small_stl_files, tmp_path):
-    prusa = program("prusa-slicer", "apt-get install prusa-slicer")
-    engine = program("CuraEngine", "apt-get install cura-engine")
-    ini = tmp_path / "printer.ini"
-    ini.write_text("layer_height = 0.2\nfirst_layer_height = 0.2\nbed_shape = 0x0,120x0,120x120,0x120\n")
-    for name, (stl, length) in small_stl_files.items():
-        gcode = tmp_path / f"{name}.gcode"
-        run([prusa, "--loglevel", "1", "--datadir", tmp_path / "prusa-data", "--load", ini, "--export-gcode",
-             "--dont-arrange", "--output", gcode, stl])  # fmt: skip
-        zs = [float(z) for z in re.findall(r"^;Z:([0-9.]+)$", gcode.read_text(), flags=re.M)]
-        assert len(zs) == round(length / 0.2) and zs[-1] == pytest.approx(length)
-        settings = ["-s", "layer_height=0.2", "-s", "layer_height_0=0.2", "-s", "adhesion_type=none"]
-        definitions = cura_definitions() / "fdmprinter.def.json"
-        err = run(
-            [engine, "slice", "-v", "-j", definitions, *settings, "-l", stl, "-o", tmp_path / "cura.gcode"]
-        ).stderr
-        assert int(re.search(r"^Layer count: (\d+)$", err, re.M).group(1)) == round(length / 0.2)
 
 
 # --------------------------------------------------------------------------- bad input
