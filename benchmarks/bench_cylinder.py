@@ -1,77 +1,162 @@
-"""Benchmark: a texture roller and a lampshade wrapped onto a cylinder, against the flat strip.
+"""Benchmark: the roller and lampshade samples built whole, against the same pattern as a flat tile.
 
-Library calls in one process (the imports paid before the clock starts): the unrolled strip's
-flat print (:func:`~fabtiles.solid.print_model.print_model`, its fused body, the STL's bytes)
-against the same print wrapped (:func:`~fabtiles.solid.cylinder.cylinder_print`: the flat
-body, its wrap, the STL's bytes; the lampshade with its lamp holder fused). The pattern is
-table3-2 on the hex packing with 1 mm bands, fitted so the circumference is a whole number of
-periods. Wall time, the best of ``--runs``, and the triangles. Run by hand, never in CI::
+Whole ``fabtiles build`` processes (imports included, the designs' own formats: STL and 3MF) of
+``samples/roller-60x80.toml`` and ``samples/lampshade-120x150.toml``, each against the same
+design as a flat tile of its unrolled size: a ``C x L`` rectangle (``C`` the fitted
+circumference), the packing as fitted (the radius ``fabtiles build`` reports), frame 0, the
+same stroke, print style, heights and printer; the flat tile has no rims, no mirror, no bore
+and no lamp holder, its plate is the style's default, and it is made whole (``pieces = false``: the
+shade's strip is longer than the printer's bed). Run in turn (flat, cylinder, flat,
+...) so that each pair's ratio holds while a shared machine's speed drifts; CPU time (the
+child's user + system) and wall time, medians; the STL's triangles and both files' sizes.
 
-    python benchmarks/bench_cylinder.py
-    python benchmarks/bench_cylinder.py --runs 1 --only roller
+``--stages`` also times the cylinder's steps in one process (the imports paid before the
+clock starts; CPU time, the best of 3): the design and its fit, the strip's flat print and its
+fused body, the wrap of that body (the STL's mesh) and of the 3MF's parts (``--runs 0``: only
+those). Run by hand, never in CI::
+
+    python benchmarks/bench_cylinder.py              # both samples, 3 pairs each
+    python benchmarks/bench_cylinder.py --runs 1 --only roller --stages
 """
 
 from __future__ import annotations
 
 import argparse
-import math
+import os
+import resource
+import statistics
+import struct
+import subprocess
+import sys
+import tempfile
 import time
+from pathlib import Path
 
-import shapely
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # Python 3.10
+    import tomli as tomllib
 
-from fabtiles import Star
-from fabtiles.export.stl import model_stl_bytes
-from fabtiles.geometry.tile import TileGeometry
-from fabtiles.pattern.packing import HexPacking
-from fabtiles.solid.cylinder import LampHolder, cylinder_print
-from fabtiles.solid.print_model import print_model
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
 
-CASES = {
-    # name: diameter, length, style, packing periods round, rims (mm), holder
-    "roller": (60.0, 80.0, "relief", 12, 0.0, None),
-    "shade": (120.0, 150.0, "pierced", 16, 4.0, LampHolder(fitting_mm=40)),
+SAMPLES = {
+    "roller": ROOT / "samples" / "roller-60x80.toml",
+    "lampshade": ROOT / "samples" / "lampshade-120x150.toml",
 }
 
 
-def strip(diameter, length, periods, rims):
-    """The unrolled strip's region and outline, and its circumference."""
-    c = math.pi * diameter
-    pack = HexPacking(radius=c / (2 * periods), motif=Star.preset("table3-2"))
-    tile = TileGeometry("rectangle", (c, length), pack, stroke=1.0)
-    region, outline = tile.region(), tile.outline_shape()
-    if rims:
-        bands = [shapely.box(0, 0, c, rims), shapely.box(0, length - rims, c, length)]
-        region = shapely.union_all([region, *bands]).intersection(outline)
-    return region, outline, c
+def flat_design(sample: Path, folder: Path) -> Path:
+    """The sample as a flat tile of its unrolled size (see the module text), written into ``folder``."""
+    import tomli_w
+
+    from fabtiles.designs.design_file import load_design
+
+    fitted = load_design(sample)  # the packing fitted round the cylinder, the strip's size C x L
+    text = tomllib.loads(sample.read_text())
+    surface = text.pop("surface")
+    text["packing"]["radius"] = fitted.packing.radius
+    width, length = fitted.tile_spec.size
+    text["tile"] = dict(text.get("tile", {}), outline="rectangle", size=[width, length], frame=0.0)
+    text["output"]["pieces"] = False  # whole, as the cylinder is (the shade's strip is longer than the bed)
+    assert surface["shape"] == "cylinder"
+    path = folder / f"{sample.stem}-flat.toml"
+    path.write_text(tomli_w.dumps(text))
+    return path
 
 
-def once(name: str, wrapped: bool) -> tuple[float, int]:
-    diameter, length, style, periods, rims, holder = CASES[name]
-    region, outline, c = strip(diameter, length, periods, rims)
-    start = time.perf_counter()
-    model = print_model(region, outline, profile="fdm-0.4mm", style=style)
-    if wrapped:
-        model = cylinder_print(model, circumference_mm=c, outer_radius_mm=diameter / 2, holder=holder)
-    model_stl_bytes(model)
-    return time.perf_counter() - start, len(model.fused.faces)
+def timed(design: Path, out: Path) -> tuple[float, float]:
+    """``(cpu_s, wall_s)`` of one ``fabtiles build`` of ``design`` into ``out``."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    subprocess.run(
+        [sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(out)],
+        check=True,
+        capture_output=True,
+        cwd=ROOT,
+        env=dict(os.environ, PYTHONPATH=str(ROOT)),
+    )
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime), wall
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--runs", type=int, default=3)
-    parser.add_argument("--only", choices=list(CASES))
-    args = parser.parse_args()
-    print("| print | flat strip: s, triangles | wrapped: s, triangles | ratio |")
-    print("|---|---:|---:|---:|")
-    for name in [args.only] if args.only else list(CASES):
-        flat = min((once(name, False) for _ in range(args.runs)), key=lambda r: r[0])
-        cyl = min((once(name, True) for _ in range(args.runs)), key=lambda r: r[0])
-        d, length = CASES[name][:2]
-        print(
-            f"| {name} {d:g} x {length:g} mm | {flat[0]:.2f}, {flat[1]:,} | {cyl[0]:.2f}, {cyl[1]:,} "
-            f"| {cyl[0] / flat[0]:.1f}x |"
-        )
+def files(out: Path) -> tuple[int, float, float]:
+    """The STL's triangles and the STL's and 3MF's sizes (MB) in ``out``."""
+    (stl,) = out.glob("*.stl")
+    (tmf,) = out.glob("*.3mf")
+    with stl.open("rb") as f:
+        f.seek(80)
+        (triangles,) = struct.unpack("<I", f.read(4))
+    return triangles, stl.stat().st_size / 1e6, tmf.stat().st_size / 1e6
+
+
+def stages(sample: Path) -> dict:
+    """Seconds of the cylinder's steps in this process (see the module text)."""
+    from fabtiles.designs.design_file import load_design
+    from fabtiles.making.models import BuildOptions, Models
+
+    best: dict = {}
+    for _ in range(3):
+        out = {}
+        t = time.process_time()
+        design = load_design(sample)
+        models = Models(design.build_tile(), BuildOptions.of_design(design))
+        cp = models.print
+        out["design and fit"] = time.process_time() - t
+        t = time.process_time()
+        cp.model.fused  # noqa: B018 (made on first use)
+        out["strip's flat print, fused"] = time.process_time() - t
+        t = time.process_time()
+        cp.fused  # noqa: B018
+        out["wrap of the fused body (STL)"] = time.process_time() - t
+        t = time.process_time()
+        cp.parts  # noqa: B018
+        out["wrap of the parts (3MF)"] = time.process_time() - t
+        best = {k: min(v, best.get(k, v)) for k, v in out.items()}
+    return best
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--runs", type=int, default=3, help="pairs of builds per sample (0: none)")
+    ap.add_argument("--only", nargs="*", choices=list(SAMPLES), help="run only these samples")
+    ap.add_argument("--stages", action="store_true", help="also time the cylinder's steps in process")
+    args = ap.parse_args(argv)
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        for name, sample in SAMPLES.items():
+            if (args.only and name not in args.only) or args.runs < 1:
+                continue
+            flat = flat_design(sample, folder)
+            runs: dict = {"flat": [], "cylinder": []}
+            for k in range(args.runs):
+                for label, design in (("flat", flat), ("cylinder", sample)):
+                    runs[label].append(timed(design, folder / f"{name}-{label}-{k}"))
+            cpu = {label: statistics.median(c for c, _ in r) for label, r in runs.items()}
+            wall = {label: statistics.median(w for _, w in r) for label, r in runs.items()}
+            made = {label: files(folder / f"{name}-{label}-0") for label in runs}
+            rows.append((name, cpu, wall, made))
+            print(f"{name} done", file=sys.stderr, flush=True)
+    if rows:
+        print("| sample | flat tile C x L: CPU s (wall), triangles, STL + 3MF MB | cylinder: the same | ratio CPU |")
+        print("|---|---:|---:|---:|")
+    for name, cpu, wall, made in rows:
+        cells = [
+            f"{cpu[k]:.2f} ({wall[k]:.2f}), {made[k][0]:,}, {made[k][1]:.1f} + {made[k][2]:.1f}"
+            for k in ("flat", "cylinder")
+        ]
+        print(f"| {name} | {cells[0]} | {cells[1]} | {cpu['cylinder'] / cpu['flat']:.2f}x |")
+    if args.stages:
+        import fabtiles.making.models  # noqa: F401 (the imports paid before the clock)
+
+        for name, sample in SAMPLES.items():
+            if args.only and name not in args.only:
+                continue
+            print(name, ", ".join(f"{k} {v:.2f} s" for k, v in stages(sample).items()))
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    raise SystemExit(main())
