@@ -206,6 +206,15 @@ class PrinterProfile:
     joint_clearance_mm: float | None = None
     """The gap between two printed pieces of a panel, everywhere they meet (mm); default half the
     nozzle (see :mod:`fabtiles.making.print_pieces`)."""
+    max_overhang_deg: float = 45.0
+    """The steepest overhang the printer makes without support, in degrees from vertical (> 0 and
+    < 90): an opening's ceiling in a wall printed upright that leans further is an ``overhang``
+    finding unless it is bridged (see :mod:`fabtiles.geometry.wall_overhangs`). 45 degrees is the
+    rule of thumb FDM design guides give: each layer then rests on at least half of the one below."""
+    max_bridge_mm: float = 5.0
+    """The widest flat ceiling the printer bridges between its two ends (mm, >= 0; 0: none): 5 mm is
+    what desktop FDM printers bridge with no visible sag, the figure design guides give (wider
+    bridges print, sagging 0.1 mm and more)."""
 
     @property
     def margin_mm(self) -> float:
@@ -396,8 +405,8 @@ def _positive(source, key, value, *, allow_zero=False):
     return float(value)
 
 
-PRINTER_ZERO_KEYS = ("min_hole_mm", "tolerance_mm", "bed_margin_mm", "joint_clearance_mm")
-"""A printer's keys that may be 0: no hole limit, no thinning, no margin, pieces that touch."""
+PRINTER_ZERO_KEYS = ("min_hole_mm", "tolerance_mm", "bed_margin_mm", "joint_clearance_mm", "max_bridge_mm")
+"""A printer's keys that may be 0: no hole limit, no thinning, no margin, pieces that touch, no bridges."""
 
 
 def _parse(data: dict, source: str, name: str):
@@ -468,6 +477,11 @@ def _value(source: str, kind: str, cutter, key: str, value):
         )
     if key in ("mode", "print_style", "dxf_version", "joint"):
         return _choice(source, cutter, key, full, value)
+    if key == "max_overhang_deg":
+        angle = _positive(source, full, value)
+        if angle >= 90:
+            raise ProfileError(f"{source}: {full} must be > 0 and < 90 (degrees from vertical), got {value!r}")
+        return angle
     zero_ok = key in (cutter.zero_keys if cutter else PRINTER_ZERO_KEYS) or key == "bed_margin_mm"
     return _positive(source, full, value, allow_zero=zero_ok or key in ("pierce_s", "price_per_kg", "price_per_m2"))
 

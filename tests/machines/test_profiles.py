@@ -98,6 +98,12 @@ def test_profiles_are_frozen():
         ),
         ('kind = "printer"\n[printer]\nbase_mm = -2\n', r"printer.base_mm must be > 0, got -2"),
         (
+            'kind = "printer"\n[printer]\nmax_overhang_deg = 90\n',
+            r"p.toml: printer.max_overhang_deg must be > 0 and < 90 \(degrees from vertical\), got 90",
+        ),
+        ('kind = "printer"\n[printer]\nmax_overhang_deg = 0\n', r"p.toml: printer.max_overhang_deg must be > 0, got 0"),
+        ('kind = "printer"\n[printer]\nmax_bridge_mm = -1\n', r"p.toml: printer.max_bridge_mm must be >= 0, got -1"),
+        (
             'kind = "laser"\n[layers]\nscore = { name = "S", color = 300 }\n',
             r"layers.score.color must be an AutoCAD Color Index 1..255, got 300",
         ),
@@ -192,6 +198,13 @@ def test_printer_min_hole_given_default_and_off(tmp_path):
     given = load_profile(write(tmp_path, 'kind = "printer"\n[printer]\nnozzle_mm = 0.4\nmin_hole_mm = 0.6\n'))
     assert given.min_hole_mm == 0.6
     assert load_profile(write(tmp_path, 'kind = "printer"\n[printer]\nmin_hole_mm = 0\n')).min_hole_mm == 0.0
+
+
+def test_printer_overhang_limit_and_bridge_default_given_and_off(tmp_path):
+    bundled = load_profile("fdm-0.4mm")
+    assert (bundled.max_overhang_deg, bundled.max_bridge_mm) == (45.0, 5.0)
+    given = load_profile(write(tmp_path, 'kind = "printer"\n[printer]\nmax_overhang_deg = 55\nmax_bridge_mm = 0\n'))
+    assert (given.max_overhang_deg, given.max_bridge_mm) == (55.0, 0.0)
 
 
 def test_a_printers_old_style_key_loads_with_a_note_naming_print_style(tmp_path):
