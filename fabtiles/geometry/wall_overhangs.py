@@ -361,12 +361,14 @@ def pointed_tops(
     over each point's upper edge, which trims the material wedge between two points. Every new
     edge leans exactly at the limit or is an edge of the opening already printable.
 
-    A peak keeps ``min_wall_mm`` of material from every other opening and from the strip's edge
-    (a periodic strip's top and bottom; else the outline's): where a full peak would come closer,
-    it is cut back to that distance and counted in ``clipped`` (its cut top may overhang still,
-    and the check says where). Of a peak cut through, only the piece over its own stretch is
-    taken. A peak may come closer than ``min_wall_mm`` to its own opening's other edges: that
-    leaves a sharp tip of material, as a star's points do.
+    A peak keeps ``min_wall_mm`` of material from every other opening, from the peaks already
+    raised (the lowest stretches first, as they print) and from the strip's edge (a periodic
+    strip's top and bottom; else the outline's). Where a full peak would come closer, it is cut
+    back to that distance, and nothing of it above the cut is taken either, so a peak never goes
+    round another opening (which would leave that opening in a loose ring); such a peak is counted
+    in ``clipped``, and its cut top may still overhang (the check says where). A peak may come
+    closer than ``min_wall_mm`` to its own opening's other edges: that leaves a sharp tip of
+    material, as a star's points do.
 
     Parameters
     ----------
