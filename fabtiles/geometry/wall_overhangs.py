@@ -151,11 +151,15 @@ def _strip(region, outline, period_mm):
         raise ParameterError(
             f"period_mm = {p:g} mm must be the strip's width along x ({x1 - x0:g} mm): the strip is one turn"
         )
+    eps = 1e-9 * max(1.0, p)
+    b = shapely.bounds(openings)
+    seam = (b[:, 0] <= x0 + eps) | (b[:, 2] >= x1 - eps)
     copies = [shapely.transform(openings, lambda xy, k=k: xy + [k * p, 0.0]) for k in (-1, 0, 1)]
-    joined = shapely.get_parts(shapely.union_all(np.concatenate(copies)))
+    # only the openings at the seam are joined to their copies a turn on; the others stay as they are
+    across = shapely.get_parts(shapely.union_all(np.concatenate([c[seam] for c in copies])))
+    joined = np.concatenate([*(c[~seam] for c in copies), across])
     joined = joined[(shapely.get_type_id(joined) == 3) & (shapely.area(joined) > AREA_TOLERANCE_MM2)]
     domain = shapely.box(x0 - p, y0, x1 + p, y1)
-    eps = 1e-9 * max(1.0, p)
     left = shapely.bounds(joined)[:, 0]
     return joined, domain, (left > x0 + eps) & (left <= x0 + p + eps)
 
@@ -340,7 +344,8 @@ def _shadow(block, top: float):
     a, b = a[same], b[same]
     a, b = a[np.abs(b[:, 0] - a[:, 0]) > 1e-12], b[np.abs(b[:, 0] - a[:, 0]) > 1e-12]
     quads = np.stack([a, b, np.c_[b[:, 0], np.full(len(b), top)], np.c_[a[:, 0], np.full(len(a), top)]], axis=1)
-    return shapely.union_all(np.concatenate([polys, shapely.polygons(quads)]))
+    quads = shapely.polygons(quads)
+    return shapely.union_all(np.concatenate([polys, quads[shapely.area(quads) > 0]]))
 
 
 def pointed_tops(
@@ -412,27 +417,36 @@ def pointed_tops(
     tree = shapely.STRtree(grown)
     peaks = np.array([_peak(shapely.get_coordinates(found.lines[i]), slope) for i in todo], dtype=object)
     owner = found.owner[todo]
-    # the peaks taken so far, grown by the wall (a periodic strip's also a turn either way): a later
-    # peak keeps clear of them as of the openings
-    taken_grown: list = []
-    taken_owner: list[int] = []
-    taken_bounds: list = []
+    # the peaks taken so far (a periodic strip's also a turn either way), their bounds grown by the
+    # wall: a later peak keeps clear of them as of the openings
+    turns = (0.0,) if period_mm is None else (-period_mm, 0.0, period_mm)
+    taken_peaks = np.empty(len(todo) * len(turns), dtype=object)
+    taken_owner = np.empty(len(todo) * len(turns), dtype=int)
+    taken_bounds = np.empty((len(todo) * len(turns), 4))
+    n_taken = 0
     kept = []
     clipped = np.zeros(len(todo), bool)
-    turns = (0.0,) if period_mm is None else (-period_mm, 0.0, period_mm)
     low = shapely.bounds(found.lines[todo])[:, 1]
     for k in np.argsort(low, kind="stable"):  # the lowest first, as they print
         peak, own = peaks[k], int(owner[k])
         base = shapely.difference(peak, openings[own])
         blocks = [grown[o] for o in tree.query(peak, predicate="intersects") if o != own]
-        if taken_bounds:
-            b, (px0, py0, px1, py1) = np.asarray(taken_bounds), peak.bounds
+        if n_taken:
+            b, (px0, py0, px1, py1) = taken_bounds[:n_taken], peak.bounds
             near = (b[:, 0] <= px1) & (b[:, 2] >= px0) & (b[:, 1] <= py1) & (b[:, 3] >= py0)
-            near &= np.asarray(taken_owner) != own
-            blocks += [taken_grown[i] for i in np.flatnonzero(near)]
-        blocks.append(shapely.difference(peak, inner))
-        block = shapely.intersection(shapely.union_all(blocks), peak)
-        cut = base if block.is_empty else shapely.difference(base, _shadow(block, peak.bounds[3]))
+            for i in np.flatnonzero(near & (taken_owner[:n_taken] != own)):
+                if shapely.dwithin(taken_peaks[i], peak, grow):  # grown only when it is that near
+                    blocks.append(shapely.buffer(taken_peaks[i], grow, quad_segs=QUAD_SEGS))
+        if not shapely.contains_properly(inner, peak):
+            blocks.append(shapely.difference(peak, inner))
+        cut = base
+        if blocks:
+            # a hair beyond the peak, so that no edge of the cut runs along the stretch a rounding off it
+            block = shapely.intersection(
+                shapely.union_all(blocks), shapely.buffer(peak, OVERLAP_MM, join_style="mitre")
+            )
+            if not block.is_empty:
+                cut = shapely.difference(base, _shadow(block, max(peak.bounds[3], block.bounds[3])))
         pieces = shapely.get_parts(cut)
         pieces = pieces[(shapely.get_type_id(pieces) == 3) & (shapely.area(pieces) > 0)]
         pieces = pieces[shapely.dwithin(pieces, found.lines[todo[k]], 1e-6)]
@@ -442,23 +456,25 @@ def pointed_tops(
             continue
         kept.extend(pieces)
         if wall:
-            g = shapely.buffer(shapely.union_all(pieces), grow, quad_segs=QUAD_SEGS)
+            g = pieces[0] if len(pieces) == 1 else shapely.union_all(pieces)
             for t in turns:
                 moved = g if t == 0 else shapely.transform(g, lambda xy, t=t: xy + [t, 0.0])
-                taken_grown.append(moved)
-                taken_owner.append(own if t == 0 else -1)
-                taken_bounds.append(moved.bounds)
+                (mx0, my0, mx1, my1) = moved.bounds
+                taken_peaks[n_taken], taken_owner[n_taken] = moved, own if t == 0 else -1
+                taken_bounds[n_taken] = (mx0 - grow, my0 - grow, mx1 + grow, my1 + grow)
+                n_taken += 1
     taken = shapely.union_all(np.array(kept, dtype=object)) if kept else shapely.Polygon()
     if period_mm is not None:  # the peaks of the copies back into the strip
-        shifted = [
-            shapely.transform(
-                shapely.intersection(taken, shapely.box(x0 + k * period_mm, y0, x1 + k * period_mm, y1)),
-                lambda xy, k=k: xy - [k * period_mm, 0.0],
-            )
-            for k in (0, 1)
-        ]
-        # a turn back moves a point by a rounding: its edges meet the strip's again when snapped to them
-        taken = shapely.snap(shapely.union_all(shifted), region, POINT_TOLERANCE_MM)
+        here = shapely.intersection(taken, shapely.box(x0, y0, x1, y1))
+        on = shapely.transform(
+            shapely.intersection(taken, shapely.box(x1, y0, x1 + period_mm, y1)), lambda xy: xy - [period_mm, 0.0]
+        )
+        if not on.is_empty:
+            # a turn back moves a point by a rounding: its edges meet the strip's again when snapped to
+            # them (only the strip's material near them, for speed)
+            near = shapely.intersection(region, shapely.box(*shapely.buffer(on, 1.0).bounds))
+            on = shapely.snap(on, near, POINT_TOLERANCE_MM)
+        taken = shapely.union(here, on)
     # grown by a hair: where a peak's computed corner lies a rounding off its opening's edge, the
     # difference would leave a sliver of material there with a ceiling of its own
     taken = shapely.buffer(taken, OVERLAP_MM, join_style="mitre")

@@ -124,10 +124,11 @@ def test_the_ceilings_are_the_edges_with_material_above_and_turned_over_the_floo
     region, outline = wall_with(*holes), box(0, 0, 60, 60)
     limit_plus = limit + ANGLE_TOLERANCE_DEG
     found = wall_ceilings(region, overhang_deg=limit, outline=outline)
-    assert found.span_mm.sum() == pytest.approx(flat_length(region, outline, limit_plus, above=True), abs=1e-6)
+    # within the edges shorter than 1e-3 mm the probing skips (where two openings' edges meet)
+    assert found.span_mm.sum() == pytest.approx(flat_length(region, outline, limit_plus, above=True), abs=0.01)
     turned = affinity.rotate(region, 180, origin=(30, 30))
     floors = wall_ceilings(turned, overhang_deg=limit, outline=outline)
-    assert floors.span_mm.sum() == pytest.approx(flat_length(region, outline, limit_plus, above=False), abs=1e-6)
+    assert floors.span_mm.sum() == pytest.approx(flat_length(region, outline, limit_plus, above=False), abs=0.01)
     # left and right are alike: a mirror has the same stretches
     mirrored = wall_ceilings(affinity.scale(region, -1, 1, origin=(30, 30)), overhang_deg=limit, outline=outline)
     assert sorted(mirrored.span_mm.round(6)) == sorted(found.span_mm.round(6))
