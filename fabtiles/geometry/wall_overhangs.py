@@ -400,46 +400,77 @@ def pointed_tops(
     bridge = _check_length("max_bridge_mm", max_bridge_mm)
     found = wall_ceilings(region, overhang_deg=limit, outline=outline, period_mm=period_mm)
     strip = outline if outline is not None else shapely.box(*region.bounds)
-    x0, y0, x1, y1 = strip.bounds
     todo = np.flatnonzero(found.span_mm > bridge * (1 + 1e-9))
     if not len(todo):
         return PointedTops(region, 0, 0, (), 0.0)
     slope = 1 / math.tan(math.radians(limit))
-    if period_mm is None:
-        inner = shapely.buffer(strip, -wall, join_style="mitre") if wall else strip
-    else:  # the strip goes on in x: only its top and bottom are edges
-        inner = shapely.box(x0 - 3 * period_mm, y0 + wall, x1 + 3 * period_mm, y1 - wall)
-    openings = found.openings
-    # the buffer's polygon circumscribes the true offset, so no chord of it comes closer than ``wall``,
-    # and GEOS simplifies the input by 1 % of the distance before it offsets it
-    grow = wall * (1 / math.cos(math.pi / 4 / QUAD_SEGS) + BUFFER_SIMPLIFY)
-    grown = shapely.buffer(openings, grow, quad_segs=QUAD_SEGS) if wall else openings
-    tree = shapely.STRtree(grown)
-    peaks = np.array([_peak(shapely.get_coordinates(found.lines[i]), slope) for i in todo], dtype=object)
-    owner = found.owner[todo]
-    # the peaks taken so far (a periodic strip's also a turn either way), their bounds grown by the
-    # wall: a later peak keeps clear of them as of the openings
-    turns = (0.0,) if period_mm is None else (-period_mm, 0.0, period_mm)
-    taken_peaks = np.empty(len(todo) * len(turns), dtype=object)
-    taken_owner = np.empty(len(todo) * len(turns), dtype=int)
-    taken_bounds = np.empty((len(todo) * len(turns), 4))
-    n_taken = 0
-    kept = []
+    room = _Room(found.openings, strip, wall, period_mm, capacity=len(todo))
+    kept: list = []
     clipped = np.zeros(len(todo), bool)
     low = shapely.bounds(found.lines[todo])[:, 1]
     for k in np.argsort(low, kind="stable"):  # the lowest first, as they print
-        peak, own = peaks[k], int(owner[k])
-        base = shapely.difference(peak, openings[own])
-        blocks = [grown[o] for o in tree.query(peak, predicate="intersects") if o != own]
-        if n_taken:
-            b, (px0, py0, px1, py1) = taken_bounds[:n_taken], peak.bounds
+        stretch, own = found.lines[todo[k]], int(found.owner[todo[k]])
+        peak = _peak(shapely.get_coordinates(stretch), slope)
+        base = shapely.difference(peak, found.openings[own])
+        pieces = room.cut(base, peak, stretch, own)
+        # cut back by any real area
+        clipped[k] = float(shapely.area(pieces).sum()) < float(shapely.area(base)) * (1 - 1e-9) - 1e-9
+        if len(pieces):
+            kept.extend(pieces)
+            room.add(pieces, own)
+    out = _without(region, shapely.union_all(kept) if kept else shapely.Polygon(), strip, period_mm)
+    where = found.middles(period_mm, strip.bounds[0])[todo][clipped]
+    return PointedTops(
+        out,
+        len(todo),
+        int(clipped.sum()),
+        tuple((float(round(x, 3)), float(round(y, 3))) for x, y in where),
+        float(shapely.area(region) - shapely.area(out)),
+    )
+
+
+class _Room:
+    """The room a peak keeps: ``wall`` from the other openings, from the peaks raised so far and from
+    the strip's edge (a periodic strip's top and bottom)."""
+
+    def __init__(self, openings, strip, wall: float, period_mm, *, capacity: int):
+        x0, y0, x1, y1 = strip.bounds
+        if period_mm is None:
+            self.inner = shapely.buffer(strip, -wall, join_style="mitre") if wall else strip
+        else:  # the strip goes on in x: only its top and bottom are edges
+            self.inner = shapely.box(x0 - 3 * period_mm, y0 + wall, x1 + 3 * period_mm, y1 - wall)
+        # the buffer's polygon circumscribes the true offset, so no chord of it comes closer than
+        # ``wall``, and GEOS simplifies the input by 1 % of the distance before it offsets it
+        self.grow = wall * (1 / math.cos(math.pi / 4 / QUAD_SEGS) + BUFFER_SIMPLIFY)
+        self.grown = shapely.buffer(openings, self.grow, quad_segs=QUAD_SEGS) if wall else openings
+        self.tree = shapely.STRtree(self.grown)
+        # the peaks raised so far, a periodic strip's also a turn either way, their bounds grown
+        self.turns = (0.0,) if period_mm is None else (-period_mm, 0.0, period_mm)
+        size = capacity * len(self.turns)
+        self.peaks = np.empty(size, dtype=object)
+        self.owner = np.empty(size, dtype=int)
+        self.bounds = np.empty((size, 4))
+        self.n = 0
+        self.wall = wall
+
+    def blocks(self, peak, own: int) -> list:
+        """What of the room lies in ``peak``'s way: the others' grown openings and peaks, the edge."""
+        out = [self.grown[o] for o in self.tree.query(peak, predicate="intersects") if o != own]
+        if self.n:
+            b, (px0, py0, px1, py1) = self.bounds[: self.n], peak.bounds
             near = (b[:, 0] <= px1) & (b[:, 2] >= px0) & (b[:, 1] <= py1) & (b[:, 3] >= py0)
-            for i in np.flatnonzero(near & (taken_owner[:n_taken] != own)):
-                if shapely.dwithin(taken_peaks[i], peak, grow):  # grown only when it is that near
-                    blocks.append(shapely.buffer(taken_peaks[i], grow, quad_segs=QUAD_SEGS))
-        if not shapely.contains_properly(inner, peak):
-            blocks.append(shapely.difference(peak, inner))
+            for i in np.flatnonzero(near & (self.owner[: self.n] != own)):
+                if shapely.dwithin(self.peaks[i], peak, self.grow):  # grown only when it is that near
+                    out.append(shapely.buffer(self.peaks[i], self.grow, quad_segs=QUAD_SEGS))
+        if not shapely.contains_properly(self.inner, peak):
+            out.append(shapely.difference(peak, self.inner))
+        return out
+
+    def cut(self, base, peak, stretch, own: int) -> np.ndarray:
+        """The pieces of ``base`` (the peak less its opening) over ``stretch`` clear of the room,
+        nothing above a block taken."""
         cut = base
+        blocks = self.blocks(peak, own)
         if blocks:
             # a hair beyond the peak, so that no edge of the cut runs along the stretch a rounding off it
             block = shapely.intersection(
@@ -449,22 +480,25 @@ def pointed_tops(
                 cut = shapely.difference(base, _shadow(block, max(peak.bounds[3], block.bounds[3])))
         pieces = shapely.get_parts(cut)
         pieces = pieces[(shapely.get_type_id(pieces) == 3) & (shapely.area(pieces) > 0)]
-        pieces = pieces[shapely.dwithin(pieces, found.lines[todo[k]], 1e-6)]
-        expected = float(shapely.area(base))
-        clipped[k] = float(shapely.area(pieces).sum()) < expected * (1 - 1e-9) - 1e-9  # by any real area
-        if not len(pieces):
-            continue
-        kept.extend(pieces)
-        if wall:
-            g = pieces[0] if len(pieces) == 1 else shapely.union_all(pieces)
-            for t in turns:
-                moved = g if t == 0 else shapely.transform(g, lambda xy, t=t: xy + [t, 0.0])
-                (mx0, my0, mx1, my1) = moved.bounds
-                taken_peaks[n_taken], taken_owner[n_taken] = moved, own if t == 0 else -1
-                taken_bounds[n_taken] = (mx0 - grow, my0 - grow, mx1 + grow, my1 + grow)
-                n_taken += 1
-    taken = shapely.union_all(np.array(kept, dtype=object)) if kept else shapely.Polygon()
-    if period_mm is not None:  # the peaks of the copies back into the strip
+        return pieces[shapely.dwithin(pieces, stretch, 1e-6)]
+
+    def add(self, pieces: np.ndarray, own: int) -> None:
+        """Keep later peaks of other openings clear of these pieces of ``own``'s peak."""
+        if not self.wall:
+            return
+        g = pieces[0] if len(pieces) == 1 else shapely.union_all(pieces)
+        for t in self.turns:
+            moved = g if t == 0 else shapely.transform(g, lambda xy, t=t: xy + [t, 0.0])
+            mx0, my0, mx1, my1 = moved.bounds
+            self.peaks[self.n], self.owner[self.n] = moved, own if t == 0 else -1
+            self.bounds[self.n] = (mx0 - self.grow, my0 - self.grow, mx1 + self.grow, my1 + self.grow)
+            self.n += 1
+
+
+def _without(region, taken, strip, period_mm):
+    """``region`` less the peaks ``taken`` (a periodic strip's brought back into it from a turn on)."""
+    if period_mm is not None:
+        x0, y0, x1, y1 = strip.bounds
         here = shapely.intersection(taken, shapely.box(x0, y0, x1, y1))
         on = shapely.transform(
             shapely.intersection(taken, shapely.box(x1, y0, x1 + period_mm, y1)), lambda xy: xy - [period_mm, 0.0]
@@ -477,18 +511,9 @@ def pointed_tops(
         taken = shapely.union(here, on)
     # grown by a hair: where a peak's computed corner lies a rounding off its opening's edge, the
     # difference would leave a sliver of material there with a ceiling of its own
-    taken = shapely.buffer(taken, OVERLAP_MM, join_style="mitre")
-    out = shapely.difference(region, taken)
+    out = shapely.difference(region, shapely.buffer(taken, OVERLAP_MM, join_style="mitre"))
     parts = shapely.get_parts(out)
     if len(parts) > 1:  # an overlay's slivers along the peaks' floors
         parts = parts[shapely.area(parts) > AREA_TOLERANCE_MM2]
         out = parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
-    removed = float(shapely.area(region) - shapely.area(out))
-    where = found.middles(period_mm, x0)[todo][clipped]
-    return PointedTops(
-        out,
-        len(todo),
-        int(clipped.sum()),
-        tuple((float(round(x, 3)), float(round(y, 3))) for x, y in where),
-        removed,
-    )
+    return out
