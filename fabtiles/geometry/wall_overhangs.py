@@ -20,7 +20,8 @@ edge, is judged as if held at both).
 A deboss's groove is backed by the plate: its ceiling steps out by the groove's depth in one
 layer, held at the back and at both ends. A groove no deeper than one layer's step at the limit
 (``layer_height_mm * tan(max_overhang_deg)``) is no overhang at all; a deeper one is judged as a
-hole's.
+hole's. A relief (a texture roller) is the same with the gaps between its raised bands as the
+openings: the underside of a band steps out by the relief's height over the plate.
 
 :func:`pointed_tops` raises every ceiling stretch into a peak whose two sides lean exactly
 ``max_overhang_deg`` from vertical, as makers draw a teardrop over a round hole: after it, the check
@@ -208,7 +209,8 @@ def wall_ceilings(region, *, overhang_deg: float = 45.0, outline=None, period_mm
     ----------
     region : shapely Polygon or MultiPolygon
         The wall's material in the strip's coordinates, y up (the first layer at the lowest y): a
-        pierced wall's material, or a debossed wall's plate less its grooves.
+        pierced wall's material, a debossed wall's plate less its grooves, or a relief's raised
+        pattern.
     overhang_deg : float
         The printer's limit, degrees from vertical, > 0 and < 90.
     outline : shapely Polygon, optional
@@ -242,10 +244,19 @@ def wall_ceilings(region, *, overhang_deg: float = 45.0, outline=None, period_mm
     return Ceilings(lines_a, span, np.array(owner, dtype=int), openings)
 
 
+WALL_OPENINGS = {
+    "pierced": ("a hole through the wall", "holes through the wall"),
+    "deboss": ("a groove", "grooves"),
+    "relief": ("a gap in the raised pattern", "gaps in the raised pattern"),
+}
+"""What a wall's openings are, by print style (a pierced wall's go through it; the others' are backed)."""
+
+
 def check_wall_overhangs(
     region,
     profile,
     *,
+    style: str = "pierced",
     depth_mm: float | None = None,
     outline=None,
     period_mm: float | None = None,
@@ -259,9 +270,12 @@ def check_wall_overhangs(
         The wall's material, y up (see :func:`wall_ceilings`).
     profile : str, Path or PrinterProfile
         Its ``max_overhang_deg`` is the limit, its ``max_bridge_mm`` the widest stretch bridged.
+    style : {"pierced", "deboss", "relief"}
+        What the openings are: holes through the wall, grooves, or gaps between raised bands.
     depth_mm : float, optional
-        A deboss's groove depth (mm, > 0); None for openings through the wall. A groove no deeper
-        than ``layer_height_mm * tan(max_overhang_deg)`` has no overhang.
+        A deboss's or a relief's openings: how deep they go into the wall, backed by it (mm, > 0);
+        default the profile's ``deboss_mm`` or ``relief_mm``. Openings no deeper than
+        ``layer_height_mm * tan(max_overhang_deg)`` have no overhang.
     outline, period_mm : optional
         As for :func:`wall_ceilings`.
     report : Report, optional
@@ -274,6 +288,11 @@ def check_wall_overhangs(
         the stretches' middles as locations (x within the period), their widths as sizes, the widest
         as ``worst`` and ``max_bridge_mm`` as the limit.
 
+    Raises
+    ------
+    ParameterError
+        A style that is none of these, a depth for a pierced wall, a depth not > 0.
+
     >>> import shapely
     >>> wall = shapely.box(0, 0, 40, 30).difference(shapely.box(10, 10, 30, 14))
     >>> print(check_wall_overhangs(wall, "fdm-0.4mm").findings[0].message)  # doctest: +NORMALIZE_WHITESPACE
@@ -282,10 +301,17 @@ def check_wall_overhangs(
     fails without support; pointed tops, a peak at the limit over each, print without it
     """
     profile = load_profile(profile, kind="printer")
+    if style not in WALL_OPENINGS:
+        raise ParameterError(f"style must be one of: {', '.join(WALL_OPENINGS)}, got {style!r}")
+    if style == "pierced" and depth_mm is not None:
+        raise ParameterError(
+            f"depth_mm = {depth_mm!r} is for a deboss or a relief: a pierced wall's holes go through it"
+        )
     report = report if report is not None else Report(path="", format="print")
     limit = profile.max_overhang_deg
-    if depth_mm is not None:
-        depth = _check_length("depth_mm", depth_mm, allow_zero=False)
+    if style != "pierced":
+        given = depth_mm if depth_mm is not None else getattr(profile, f"{style}_mm")
+        depth = _check_length("depth_mm", given, allow_zero=False)
         if depth <= profile.layer_height_mm * math.tan(math.radians(limit)) * (1 + 1e-9):
             return report
     found = wall_ceilings(region, overhang_deg=limit, outline=outline, period_mm=period_mm)
@@ -297,9 +323,7 @@ def check_wall_overhangs(
     where = found.middles(period_mm, x0)[wide]
     spans = found.span_mm[wide]
     order = np.argsort(-spans, kind="stable")
-    one, many = (
-        ("a groove", "grooves") if depth_mm is not None else ("a hole through the wall", "holes through the wall")
-    )
+    one, many = WALL_OPENINGS[style]
     bridge = profile.max_bridge_mm
     widest = float(spans.max())
     lean = f"more than max_overhang_deg = {limit:g} degrees from vertical"

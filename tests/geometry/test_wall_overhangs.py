@@ -179,11 +179,19 @@ def test_a_flat_top_narrower_than_the_bridge_is_bridged_and_a_wider_one_is_found
 def test_a_shallow_groove_has_no_overhang_and_a_deeper_one_is_judged_as_a_hole():
     grooves = wall_with(box(10, 10, 30, 12))
     step = FDM.layer_height_mm * math.tan(math.radians(FDM.max_overhang_deg))
-    assert codes(check_wall_overhangs(grooves, FDM, depth_mm=step)) == []
-    (f,) = check_wall_overhangs(grooves, FDM, depth_mm=0.8).findings
+    assert codes(check_wall_overhangs(grooves, FDM, style="deboss", depth_mm=step)) == []
+    (f,) = check_wall_overhangs(grooves, FDM, style="deboss").findings  # the profile's deboss_mm, 0.8 mm
     assert f.message.startswith("1 ceiling of a groove leans more than")
+    assert codes(check_wall_overhangs(grooves, replace(FDM, deboss_mm=step), style="deboss")) == []
     report = ft.Report(path="x", format="stl")
-    assert check_wall_overhangs(grooves, "fdm-0.4mm", depth_mm=0.8, report=report) is report
+    assert check_wall_overhangs(grooves, "fdm-0.4mm", style="deboss", report=report) is report
+
+
+def test_a_reliefs_gaps_are_judged_by_the_relief_height():
+    raised = box(0, 0, 60, 60).difference(box(10, 10, 30, 12))  # the gap between two raised bands
+    (f,) = check_wall_overhangs(raised, FDM, style="relief").findings
+    assert f.message.startswith("1 ceiling of a gap in the raised pattern leans")
+    assert codes(check_wall_overhangs(raised, FDM, style="relief", depth_mm=0.2)) == []
 
 
 def test_a_hole_across_the_seam_of_a_periodic_strip_is_judged_whole_once():
@@ -401,6 +409,14 @@ def test_bad_lengths_are_refused_by_name(kwargs, match):
         pointed_tops(wall_with(box(10, 10, 20, 12)), **kwargs)
 
 
-def test_a_groove_without_depth_is_refused():
-    with pytest.raises(ParameterError, match=r"depth_mm must be a finite number of mm > 0, got 0"):
-        check_wall_overhangs(wall_with(box(10, 10, 20, 12)), FDM, depth_mm=0)
+@pytest.mark.parametrize(
+    "kwargs,match",
+    [
+        ({"style": "deboss", "depth_mm": 0}, r"depth_mm must be a finite number of mm > 0, got 0"),
+        ({"style": "mosaic"}, r"style must be one of: pierced, deboss, relief, got 'mosaic'"),
+        ({"depth_mm": 0.8}, r"depth_mm = 0.8 is for a deboss or a relief: a pierced wall's holes go through it"),
+    ],
+)
+def test_a_bad_style_or_depth_is_refused(kwargs, match):
+    with pytest.raises(ParameterError, match=match):
+        check_wall_overhangs(wall_with(box(10, 10, 20, 12)), FDM, **kwargs)
