@@ -62,8 +62,8 @@ OVERLAP_MM = 1e-5
 :data:`POINT_TOLERANCE_MM`, far above a rounding."""
 
 AREA_TOLERANCE_MM2 = 1e-4
-"""Openings and peak pieces of less area than this are slivers of the geometry, not openings."""
-
+"""Openings, and pieces of the material left by the peaks, of less area than this are slivers of
+the geometry."""
 
 QUAD_SEGS = 8
 """Segments of a quarter circle in the room kept around the other openings."""
@@ -111,8 +111,8 @@ class PointedTops:
     raised: int
     """How many ceiling stretches were raised into a peak (clipped ones included)."""
     clipped: int
-    """How many peaks were cut short to keep ``min_wall_mm`` of material from another opening or the
-    strip's edge; their tops may still overhang (the check says where)."""
+    """How many peaks were cut short to keep ``min_wall_mm`` of material from another opening, a peak
+    raised before or the strip's edge; their tops may still overhang (the check says where)."""
     clipped_at: tuple[tuple[float, float], ...]
     """The middle of each clipped peak's ceiling stretch."""
     removed_mm2: float
@@ -135,10 +135,11 @@ def _check_length(name: str, value: float, *, allow_zero: bool = True) -> float:
 
 
 def _strip(region, outline, period_mm):
-    """The openings to judge, the domain they were cut from, and the x range of the openings kept.
+    """The openings, the domain they were cut from, and which of them to judge.
 
-    A periodic strip is laid three times side by side so an opening across the seam is whole; the
-    openings kept are those whose leftmost point lies in ``(x0, x0 + period]``, one copy of each.
+    A periodic strip's openings are laid three times side by side, those at the seam joined to
+    their copies a turn on, so an opening across the seam is whole; the openings judged are those
+    whose leftmost point lies in ``(x0, x0 + period]``, one copy of each (the others are neighbours).
     """
     if outline is None:
         outline = shapely.box(*region.bounds)
