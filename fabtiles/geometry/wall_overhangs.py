@@ -23,9 +23,10 @@ layer, held at the back and at both ends. A groove no deeper than one layer's st
 hole's. A relief (a texture roller) is the same with the gaps between its raised bands as the
 openings: the underside of a band steps out by the relief's height over the plate.
 
-:func:`pointed_tops` raises every ceiling stretch into a peak whose two sides lean exactly
-``max_overhang_deg`` from vertical, as makers draw a teardrop over a round hole: after it, the check
-finds only the peaks it had to clip to keep ``min_wall_mm`` of material, which it lists.
+:func:`pointed_tops` raises every ceiling stretch into a peak whose two sides lean
+:data:`PEAK_MARGIN_DEG` inside ``max_overhang_deg`` from vertical, as makers draw a teardrop over a
+round hole: after it, the check finds only the peaks it had to clip to keep ``min_wall_mm`` of
+material, which it lists.
 
 >>> import shapely
 >>> wall = shapely.box(0, 0, 30, 30).difference(shapely.Point(15, 15).buffer(5, quad_segs=16))
@@ -64,6 +65,11 @@ OVERLAP_MM = 1e-5
 AREA_TOLERANCE_MM2 = 1e-4
 """Openings, and pieces of the material left by the peaks, of less area than this are slivers of
 the geometry."""
+
+PEAK_MARGIN_DEG = 1.0
+"""The peaks' sides lean this much less than the printer's limit, and every edge beyond the limit
+less this is raised: a slicer given the same limit as its support threshold supports a face that
+leans at exactly it (the docs on overhangs give the slicer's figures)."""
 
 QUAD_SEGS = 8
 """Segments of a quarter circle in the room kept around the other openings."""
@@ -384,12 +390,13 @@ def pointed_tops(
 ) -> PointedTops:
     """The wall's material with every overhanging ceiling of its openings raised into a peak.
 
-    Each ceiling stretch (:func:`wall_ceilings`) wider than ``max_bridge_mm`` becomes the floor of a
-    peak: the triangle between the stretch and the two lines that rise from its ends, leaning
-    ``overhang_deg`` from vertical towards each other. A round hole becomes the classic teardrop
-    (the lines are tangent to it where its edge leans at the limit); a star's opening gains a peak
-    over each point's upper edge, which trims the material wedge between two points. Every new
-    edge leans exactly at the limit or is an edge of the opening already printable.
+    Each ceiling stretch (:func:`wall_ceilings`, of the limit less :data:`PEAK_MARGIN_DEG`) wider
+    than ``max_bridge_mm`` becomes the floor of a peak: the triangle between the stretch and the two
+    lines that rise from its ends, leaning that much from vertical towards each other. A round hole
+    becomes the classic teardrop (the lines are tangent to it where its edge leans at that angle); a
+    star's opening gains a peak over each point's upper edge, which trims the material wedge
+    between two points. Every new edge leans inside the limit by the margin or is an edge of the
+    opening already printable.
 
     A peak keeps ``min_wall_mm`` of material from every other opening, from the peaks already
     raised (the lowest stretches first, as they print) and from the strip's edge (a periodic
@@ -420,7 +427,9 @@ def pointed_tops(
     ParameterError
         A limit, wall or bridge out of its range (the message names it), or a bad ``period_mm``.
     """
+    # the peaks lean a little inside the limit: a slicer given the same limit supports a face at it
     limit = _check_angle(overhang_deg)
+    limit -= min(PEAK_MARGIN_DEG, limit / 2)
     wall = _check_length("min_wall_mm", min_wall_mm)
     bridge = _check_length("max_bridge_mm", max_bridge_mm)
     found = wall_ceilings(region, overhang_deg=limit, outline=outline, period_mm=period_mm)

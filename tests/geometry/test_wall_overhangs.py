@@ -20,6 +20,7 @@ from fabtiles import ParameterError, load_profile
 from fabtiles.geometry.wall_overhangs import (
     ANGLE_TOLERANCE_DEG,
     OVERLAP_MM,
+    PEAK_MARGIN_DEG,
     check_wall_overhangs,
     pointed_tops,
     wall_ceilings,
@@ -234,12 +235,12 @@ def test_a_round_hole_becomes_the_classic_teardrop(limit):
     region = wall_with(shapely.Point(30, 30).buffer(r, quad_segs=256))
     out = pointed_tops(region, overhang_deg=limit, min_wall_mm=0.8)
     assert (out.raised, out.clipped, out.clipped_at) == (1, 0, ())
-    a = math.radians(limit)
+    a = math.radians(limit - PEAK_MARGIN_DEG)  # a degree inside the limit
     # the kite of the two tangents at the limit less the circle's sector between them
     assert out.removed_mm2 == pytest.approx(r * r * (1 / math.tan(a) - math.pi / 2 + a), rel=0.01)
     (hole,) = shapely.get_parts(box(0, 0, 60, 60).difference(out.region))
     assert hole.bounds[3] == pytest.approx(30 + r / math.sin(a), abs=0.01)  # the apex
-    assert len(wall_ceilings(out.region, overhang_deg=limit)) == 0
+    assert len(wall_ceilings(out.region, overhang_deg=limit - PEAK_MARGIN_DEG)) == 0
 
 
 def openings_apart(region, out, outline, wall):
@@ -261,12 +262,12 @@ def openings_apart(region, out, outline, wall):
             assert shapely.distance(after[i], after[j]) >= min(was, wall) - 2 * OVERLAP_MM
 
 
-def only_over_clipped(region, out, *, max_bridge_mm=0.0, **kwargs):
+def only_over_clipped(region, out, *, overhang_deg, max_bridge_mm=0.0, outline=None):
     """Every stretch left after pointed tops (wider than ``max_bridge_mm``) lies over a clipped peak's
-    stretch: within its x range, not below it."""
-    left = wall_ceilings(out.region, **kwargs)
+    stretch (of the limit less the peaks' margin): within its x range, not below it."""
+    left = wall_ceilings(out.region, overhang_deg=overhang_deg, outline=outline)
     left_xy = left.middles()[left.span_mm > max_bridge_mm]
-    before = wall_ceilings(region, **kwargs)
+    before = wall_ceilings(region, overhang_deg=overhang_deg - PEAK_MARGIN_DEG, outline=outline)
     said = {tuple(p) for p in np.round(out.clipped_at, 3).tolist()}
     clipped = [k for k, p in enumerate(np.round(before.middles(), 3).tolist()) if tuple(p) in said]
     assert len(clipped) == out.clipped
@@ -290,9 +291,11 @@ def test_pointed_tops_take_only_material_keep_the_walls_and_leave_only_clipped_p
 def test_a_flat_top_becomes_a_pointed_arch_and_bridged_ones_stay_flat():
     region = wall_with(box(10, 10, 20, 14), box(40, 10, 44, 14))
     out = pointed_tops(region, overhang_deg=45, min_wall_mm=0.8)
-    assert out.raised == 2 and out.removed_mm2 == pytest.approx(25 + 4, abs=1e-3)  # peaks 5 and 2 mm high
+    # a peak over a top w wide, its sides leaning a from vertical, is w / 2 / tan(a) high
+    cot = 1 / math.tan(math.radians(45 - PEAK_MARGIN_DEG))
+    assert out.raised == 2 and out.removed_mm2 == pytest.approx((25 + 4) * cot, abs=1e-3)
     kept = pointed_tops(region, overhang_deg=45, min_wall_mm=0.8, max_bridge_mm=5)
-    assert kept.raised == 1 and kept.removed_mm2 == pytest.approx(25, abs=1e-3)
+    assert kept.raised == 1 and kept.removed_mm2 == pytest.approx(25 * cot, abs=1e-3)
     assert wall_ceilings(kept.region).span_mm.tolist() == [4.0]
 
 
@@ -307,7 +310,8 @@ def test_a_peak_that_would_thin_a_band_is_clipped_and_said():
     lower, upper = sorted(shapely.get_parts(box(0, 0, 60, 60).difference(out.region)), key=lambda g: g.bounds[1])
     assert upper.intersection(box(0, 0, 60, 40)).symmetric_difference(above).area < 1e-9  # its own peak is above
     assert 0.8 <= shapely.distance(lower, upper) <= 0.82  # the room is kept, rounded up
-    # the teardrop's apex would be at 20 + 6 sqrt 2 = 28.5, inside the hole above: its top is cut 0.8 mm below
+    # the teardrop's apex would be at 20 + 6 / sin 44 degrees = 28.6, inside the hole above: its top is cut
+    # 0.8 mm below
     assert 28 - 0.82 <= lower.bounds[3] <= 28 - 0.8
 
 
@@ -329,14 +333,15 @@ def test_pointed_tops_on_a_periodic_strip_raise_the_hole_across_the_seam_at_both
     strip = box(0, 0, 50, 30)
     wall = strip.difference(shapely.union_all([shapely.Point(x, 15).buffer(6, quad_segs=64) for x in (0, 50)]))
     out = pointed_tops(wall, overhang_deg=45, min_wall_mm=0.8, outline=strip, period_mm=50)
-    assert out.raised == 1 and out.removed_mm2 == pytest.approx(36 * (1 - math.pi / 4), rel=0.01)
+    a = math.radians(45 - PEAK_MARGIN_DEG)
+    assert out.raised == 1 and out.removed_mm2 == pytest.approx(36 * (1 / math.tan(a) - math.pi / 2 + a), rel=0.01)
     assert len(wall_ceilings(out.region, outline=strip, period_mm=50)) == 0
     # the strip still meets itself at the seam, and the teardrop is whole across it
     ends = [out.region.intersection(shapely.LineString([(x, 0), (x, 30)])) for x in (0, 50)]
     assert ends[0].symmetric_difference(affinity.translate(ends[1], -50)).length < 1e-9
     # on the seam: material up to the hole's bottom and from the teardrop's apex
     ys = np.unique(shapely.get_coordinates(ends[0])[:, 1].round(6))
-    assert ys.tolist() == pytest.approx([0, 9, 15 + 6 * math.sqrt(2), 30], abs=0.01)
+    assert ys.tolist() == pytest.approx([0, 9, 15 + 6 / math.sin(a), 30], abs=0.01)
 
 
 # --- real patterns -----------------------------------------------------------------------
