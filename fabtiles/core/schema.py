@@ -1134,7 +1134,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         widget=Widget(
             kind="select",
             label="Mirror",
-            extra=(("", "the style's (a roller's, not a shade's)"), ("true", "mirrored"), ("false", "not mirrored")),
+            extra=(("", "by the style: a roller, not a shade"), ("true", "mirrored"), ("false", "not mirrored")),
             when=_CYLINDER_WHEN,
         ),
         help="mirror the pattern round the cylinder, so that what a roller leaves in clay reads as designed "
@@ -1158,9 +1158,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         unit="mm",
         range=Range(0, None),
         default_text=f"{ROLLER_RIM_MM:g} on a roller, {SHADE_RIM_MM:g} on a shade",
-        widget=Widget(
-            kind="number", label="Rims (mm)", min=0, step=0.5, placeholder="the style's", when=_CYLINDER_WHEN
-        ),
+        widget=Widget(kind="number", label="Rims (mm)", min=0, step=0.5, placeholder="3 or 5", when=_CYLINDER_WHEN),
         help="a closed band at each end of the cylinder: a shade's rims (pierced), a roller's bands raised to "
         "the pattern's top that roll on the clay as depth guides (relief) or plain plate (deboss); 0: none",
     ),

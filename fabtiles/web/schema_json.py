@@ -13,6 +13,7 @@ from dataclasses import asdict
 
 from ..core import schema as _schema
 from ..export.formats import FORMATS, design_formats
+from .building import user_message
 from .params import FIELDS
 
 
@@ -71,5 +72,6 @@ def schema_json() -> dict:
     return {
         "fields": fields,
         "formats": [FORMATS[n].row() for n in offered],
-        "unmade": {"cylinder": unmade_formats(offered)},
+        # in the form's words, as the page's errors: no design file's section
+        "unmade": {"cylinder": {f: user_message(Exception(r), None) for f, r in unmade_formats(offered).items()}},
     }

@@ -314,7 +314,7 @@ function downloads(valid) {
     a.title = valid ? "" : "fix the design first (see the message above)";
   }
   const reasons = [...new Set(Object.values(unmade))], note = $("unmade");
-  note.textContent = reasons.map((r) => `Not made for a ${state.shape}: ${r}`).join("\n");
+  note.textContent = reasons.join("\n");
   note.hidden = !reasons.length;
 }
 
