@@ -88,6 +88,15 @@ def test_the_preview_is_the_unrolled_strip(client):
     assert width == pytest.approx(24 * np.pi, abs=1e-3) and height == 20  # round the circumference, the length up
 
 
+def test_the_preview_is_mirrored_as_the_roller_prints_it(client):
+    """The strip as its files hold it: a roller's mirrored (the default), drawn otherwise with mirror=false."""
+
+    def paths(extra):
+        return sorted(re.findall(r' d="([^"]+)"', client.get(f"/api/preview.svg?{ROLLER}{extra}").text))
+
+    assert paths("") == paths("&mirror=true") != paths("&mirror=false")
+
+
 def test_the_3d_view_is_the_cylinder_standing(roller_glb):
     r = roller_glb
     assert r.status_code == 200 and r.content[:4] == b"glTF"
