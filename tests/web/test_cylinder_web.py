@@ -181,3 +181,10 @@ def test_the_surface_controls_show_for_a_cylinder_only(client):
         assert ["shape", ["cylinder"]] in fields[param]["widget"]["when"], param
     for param in ("outline", "width", "height", "frame", "corner_radius"):
         assert ["shape", ["flat"]] in fields[param]["widget"]["when"], param
+
+
+def test_a_cylinder_is_not_nested_on_sheets(client):
+    """The nest page takes the editor's design: a cylinder's is refused at the designs, with the reason."""
+    body = {"designs": [{"query": ROLLER, "count": 1}], "sheet": None, "gap_mm": None, "rotate": "90", "time_s": 1}
+    r = client.post("/api/nest", json={**body, "format": "dxf"})
+    assert r.status_code == 422 and r.json()["field"] == "designs" and "is printed, not cut" in r.json()["error"]
