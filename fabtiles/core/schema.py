@@ -486,6 +486,12 @@ _HEX_SQUARE = (("packing", ("hex", "square")),)
 _PACKING = "pattern"
 _HEIGHT_RANGE = Range(0, 1000, min_open=True)
 _PRINT = ("print",)
+FLAT_WHEN = ("shape", ("flat",))
+"""The web form's condition of the tile's outline, size and frame: a flat tile's (a cylinder's tile is its
+unrolled strip, sized by the ``[surface]``)."""
+_CYLINDER_WHEN = (("shape", ("cylinder",)),)
+_ROLLER_WHEN = (*_CYLINDER_WHEN, ("print_style", ("relief", "deboss")))
+_SHADE_WHEN = (*_CYLINDER_WHEN, ("print_style", ("pierced",)))
 
 
 def _height(name: str, label: str, what: str, styles: tuple[str, ...]) -> Key:
@@ -670,7 +676,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         default="square",
         choices=("square", "rectangle", "hexagon", "circle"),
         help="`square`, `rectangle`, `hexagon` (pointy-top) or `circle`",
-        widget=Widget(kind="select", label="Outline"),
+        widget=Widget(kind="select", label="Outline", when=(FLAT_WHEN,)),
     ),
     Key(
         section="tile",
@@ -694,7 +700,9 @@ KEYS: tuple[Key, ...] = MOTIF + (
         default=0.0,
         help="solid margin inside the outline",
         checked_by=_TILE,
-        widget=Widget(kind="slider", label="frame (mm)", min=0, max=30, step=0.5, group="tile-sliders"),
+        widget=Widget(
+            kind="slider", label="frame (mm)", min=0, max=30, step=0.5, group="tile-sliders", when=(FLAT_WHEN,)
+        ),
     ),
     Key(
         section="tile",
@@ -750,7 +758,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
             max=30,
             step=0.5,
             group="tile-sliders",
-            when=(("outline", ("square", "rectangle", "hexagon")),),
+            when=(FLAT_WHEN, ("outline", ("square", "rectangle", "hexagon"))),
         ),
     ),
     Key(
@@ -1073,7 +1081,11 @@ KEYS: tuple[Key, ...] = MOTIF + (
         type="choice",
         default="flat",
         choices=SURFACE_SHAPES,
-        query=None,
+        widget=Widget(
+            kind="select",
+            label="Shape",
+            labels=(("flat", "a flat tile"), ("cylinder", "a cylinder: roller or lampshade")),
+        ),
         help='`"flat"`: a tile; `"cylinder"`: the pattern wrapped round a cylinder, seamless: a texture roller '
         '(`relief`, `deboss`) or a lampshade (`pierced`), printed standing on an end; `"stamp"`: a clay stamp, '
         "the relief mirrored on a block with a finger grip, printed pattern up ([surfaces.md](surfaces.md))",
@@ -1085,7 +1097,9 @@ KEYS: tuple[Key, ...] = MOTIF + (
         unit="mm",
         range=Range(0, None, min_open=True),
         default_text="required for a cylinder",
-        query=None,
+        widget=Widget(
+            kind="slider", label="diameter (mm)", min=10, max=250, step=1, group="surface-sliders", when=_CYLINDER_WHEN
+        ),
         help="the cylinder's diameter at the pattern's outer surface; its circumference holds a whole number "
         "of the pattern's periods (see `fit`)",
     ),
@@ -1096,7 +1110,9 @@ KEYS: tuple[Key, ...] = MOTIF + (
         unit="mm",
         range=Range(0, None, min_open=True),
         default_text="required for a cylinder",
-        query=None,
+        widget=Widget(
+            kind="slider", label="length (mm)", min=10, max=300, step=1, group="surface-sliders", when=_CYLINDER_WHEN
+        ),
         help="the cylinder's length along its axis, the rims included; at most the printer profile's `height_mm`",
     ),
     Key(
@@ -1105,7 +1121,12 @@ KEYS: tuple[Key, ...] = MOTIF + (
         type="choice",
         default="packing",
         choices=SURFACE_FITS,
-        query=None,
+        widget=Widget(
+            kind="select",
+            label="Fit",
+            labels=(("packing", "the packing to the diameter"), ("diameter", "the diameter to the packing")),
+            when=_CYLINDER_WHEN,
+        ),
         help='how the circumference is made a whole number of periods: `"packing"` changes the packing\'s '
         '`radius` (or `edge`) and keeps the diameter; `"diameter"` keeps the packing and changes the diameter',
     ),
@@ -1114,7 +1135,16 @@ KEYS: tuple[Key, ...] = MOTIF + (
         name="mirror",
         type="boolean",
         default_text="true for a stamp and a roller (relief, deboss), false for a shade (pierced)",
-        query=None,
+        widget=Widget(
+            kind="select",
+            label="Mirror",
+            extra=(
+                ("", "by the style: a stamp or a roller, not a shade"),
+                ("true", "mirrored"),
+                ("false", "not mirrored"),
+            ),
+            when=_CYLINDER_WHEN,
+        ),
         help="mirror the pattern (round a cylinder, or a stamp's face), so that what a roller or a stamp leaves "
         "in clay reads as designed (an imprint is the mirror of the surface that made it)",
     ),
@@ -1125,7 +1155,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         unit="mm",
         range=Range(0, None, min_open=True),
         default_text=f"{ROLLER_BORE_MM:g}",
-        query=None,
+        widget=Widget(kind="number", label="Bore (mm)", min=0, step=0.1, placeholder="8.4", when=_ROLLER_WHEN),
         help="a roller's (relief, deboss) axle hole through its length; the default takes an 8 mm dowel or "
         "steel rod with room to turn, printed holes coming out a little small",
     ),
@@ -1136,7 +1166,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         unit="mm",
         range=Range(0, None),
         default_text=f"{ROLLER_RIM_MM:g} on a roller, {SHADE_RIM_MM:g} on a shade",
-        query=None,
+        widget=Widget(kind="number", label="Rims (mm)", min=0, step=0.5, placeholder="3 or 5", when=_CYLINDER_WHEN),
         help="a closed band at each end of the cylinder: a shade's rims (pierced), a roller's bands raised to "
         "the pattern's top that roll on the clay as depth guides (relief) or plain plate (deboss); 0: none",
     ),
@@ -1147,7 +1177,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         unit="mm",
         range=Range(0, None, min_open=True),
         default_text="none",
-        query=None,
+        widget=Widget(kind="number", label="Lamp fitting (mm)", min=0, step=1, placeholder="none", when=_SHADE_WHEN),
         help="a pierced shade: a ring inside its lower end holding a lamp fitting of this diameter "
         "(40 for an E27 lampholder, 28 for an E14)",
     ),
@@ -1201,7 +1231,9 @@ GAP_WIDGETS = {
 sliders travel less than the motif's."""
 
 SIZE_WIDGETS = {
-    "width": Widget(kind="slider", label="width (mm)", min=20, max=600, step=1, group="tile-sliders"),
+    "width": Widget(
+        kind="slider", label="width (mm)", min=20, max=600, step=1, group="tile-sliders", when=(FLAT_WHEN,)
+    ),
     "height": Widget(
         kind="slider",
         label="height (mm)",
@@ -1209,7 +1241,7 @@ SIZE_WIDGETS = {
         max=400,
         step=1,
         group="tile-sliders",
-        when=(("outline", ("rectangle",)),),
+        when=(FLAT_WHEN, ("outline", ("rectangle",))),
     ),
 }
 """The web form's controls of ``[tile] size``: its ``width`` and ``height`` parameters."""

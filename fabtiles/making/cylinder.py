@@ -207,6 +207,25 @@ def check_formats(formats, shape: str = "cylinder") -> None:
         )
 
 
+def unmade_formats(formats) -> dict[str, str]:
+    """The formats of ``formats`` a cylinder is not made in, each with the reason in one line: the cutters'
+    (one reason naming them all, :func:`check_formats`' refusal) and STEP
+    (:data:`fabtiles.solid.cylinder.NO_STEP`)."""
+    from ..export.formats import FORMATS
+    from ..solid.cylinder import NO_STEP
+
+    cut = [f for f in formats if FORMATS[f].family != "print"]
+    reasons: dict[str, str] = {}
+    if cut:
+        try:
+            check_formats(cut)
+        except ParameterError as err:
+            reasons = dict.fromkeys(cut, str(err))
+    if "step" in formats:
+        reasons["step"] = NO_STEP
+    return reasons
+
+
 def strip_region(region, dips, outline, cylinder: Cylinder):
     """The strip's material as the cylinder prints it: mirrored ``x -> C - x`` when asked, and a rim at each
     ``y`` end (a relief's raised to the pattern's top, a shade's closed; a deboss's plain plate, no groove

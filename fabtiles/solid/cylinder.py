@@ -58,6 +58,12 @@ from .print_model import PartPrint, PrintPart
 if TYPE_CHECKING:
     from .print_model import PrintModel
 
+NO_STEP = (
+    "a cylinder's STEP is not made: its B-rep would need a curved face for every edge of the "
+    "pattern wrapped round it, which fabtiles does not build; write STL or 3MF"
+)
+"""Why a cylinder has no STEP (its :attr:`CylinderPrint.brep` raises it; the web app shows it by the button)."""
+
 CHORD_MM = 0.01
 """Largest distance between a wrapped edge (a chord) and the circle it stands for, at the outer radius."""
 
@@ -700,10 +706,7 @@ class CylinderPrint:
     @property
     def brep(self):
         """A cylinder's STEP is not made: raises :class:`~fabtiles.FabricationError`."""
-        raise FabricationError(
-            "a cylinder's STEP is not made: its B-rep would need a curved face for every edge of the "
-            "pattern wrapped round it, which fabtiles does not build; write STL or 3MF"
-        )
+        raise FabricationError(NO_STEP)
 
     def stats(self) -> dict:
         """The stack's style and heights and the cylinder's sizes, for a file's report."""

@@ -14,7 +14,7 @@ from fastapi import Request
 from fastapi.responses import JSONResponse
 
 from ..machines import limits as _limits
-from .params import DEFAULTS, FIELDS, design_from_query
+from .params import DEFAULTS, FIELDS, FLAT_ONLY, design_from_query
 
 SOURCE = "query"
 """What a design error of the web names as its source; :func:`user_message` takes it out again."""
@@ -57,6 +57,8 @@ def design_of_query(query: dict, *, limits: _limits.Limits):
         del base["preset"]  # the motif's own parameters replace the default preset
     if query.get("packing") in ("none", "archimedean"):
         del base["radius"]  # no packing radius (a tiling has an edge)
+    if query.get("shape") == "cylinder":  # its tile is its unrolled strip: no outline, size or frame
+        base = {k: v for k, v in base.items() if k not in FLAT_ONLY}
     design = design_from_query({**base, **query})
     spec, tile = tile_from_dict(design, limits=limits)
     return design, spec, tile
@@ -92,8 +94,11 @@ def fabrication_checks(tile, spec) -> dict:
     material = result.filament.as_stats() if result.filament is not None else None
     # a tile larger than a machine's bed: how it is cut and printed as pieces (the panel's first line of each)
     pieces = [f"{result.cutter} {line}" for line in result.pieces[:1]]
-    pieces += [f"print {line}" for line in result.print.stats.get("notes", ())[:1]]
+    cylinder = _cylinder(tile, spec)
+    if cylinder is None:  # a cylinder's print note is its line, below: it is never printed in pieces
+        pieces += [f"print {line}" for line in result.print.stats.get("notes", ())[:1]]
     return {
+        **(cylinder or {"cylinder": None, "fitted": []}),
         "findings": findings,
         "summary": summary,
         "pieces": pieces,
@@ -103,6 +108,18 @@ def fabrication_checks(tile, spec) -> dict:
         "material": material,
         "cutter": result.cutter,
     }
+
+
+def _cylinder(tile, spec) -> dict | None:
+    """A cylinder's line for the checks (``cylinder (roller): outer diameter ...``) and what its fit changed
+    (``surface: cylinder D 60 mm x 80 mm, 9 periods around ...``); None for a flat tile."""
+    if not spec.surface.cylinder:
+        return None
+    from ..making import BuildOptions, Models
+
+    cylinder = Models(tile, BuildOptions.of_design(spec)).cylinder
+    assert cylinder is not None  # a cylinder's design
+    return {"cylinder": cylinder.line(), "fitted": [line for line in spec.fitted if line.startswith("surface:")]}
 
 
 def field_of_param(param: str | None) -> str | None:

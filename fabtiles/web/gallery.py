@@ -7,9 +7,11 @@ profiles cut and print), their faces coloured by shape in the palettes
 tilings as their samples in ``samples/tilings/`` have them (a test builds each
 entry and its sample and compares the tiles, so the two cannot drift; the
 samples have no colours, so neither have these entries), then four tilings by
-Hankin's polygons in contact as ``samples/hankin/`` has them (compared likewise). The thumbnails are
+Hankin's polygons in contact as ``samples/hankin/`` has them (compared likewise), and two
+cylinders, a texture roller and a lampshade, as ``samples/roller-60x80.toml`` and
+``samples/lampshade-120x150.toml`` have them (compared likewise). The thumbnails are
 drawn by the preview code (:func:`~fabtiles.making.views.tile_picture`, the
-coloured faces too) and kept for the life of the process.
+coloured faces too; a cylinder's unrolled strip as it prints) and kept for the life of the process.
 
 >>> [e.key for e in entries()][:3]
 ['table1-part1', 'table1-part2', 'table2-left']
@@ -19,6 +21,8 @@ coloured faces too) and kept for the life of the process.
 'iznik'
 >>> entry("hankin-4.8.8").query["contact_angle"]
 '67.5'
+>>> entry("roller").query["shape"], entry("lampshade").query["lamp_fitting_mm"]
+('cylinder', '40')
 """
 
 from __future__ import annotations
@@ -80,6 +84,31 @@ _HANKIN = {
 }
 
 
+# key -> title, note and query: the cylinders of samples/roller-60x80.toml and samples/lampshade-120x150.toml
+_CYLINDERS = {
+    "roller": (
+        "Texture roller",
+        "table3-3 rosettes round a 60 x 80 mm roller, raised 2 mm and mirrored so the imprint in clay reads as "
+        "designed, bored for an 8 mm dowel",
+        {"radius": "10", "stroke": "1.6", "diameter": "60", "length": "80", "print_style": "relief", "relief_mm": "2"},
+    ),
+    "lampshade": (
+        "Lampshade",
+        "table3-3 rosettes pierced through a 120 x 150 mm shade with 8 mm rims and a holder for an E27 lamp fitting",
+        {
+            "radius": "20",
+            "stroke": "2",
+            "diameter": "120",
+            "length": "150",
+            "rim_mm": "8",
+            "lamp_fitting_mm": "40",
+            "print_style": "pierced",
+            "pierced_mm": "2",
+        },
+    ),
+}
+
+
 @dataclass(frozen=True)
 class Entry:
     """One place to start: ``query`` opens it in the editor (``/?`` + the query)."""
@@ -89,7 +118,7 @@ class Entry:
     note: str
     query: dict
     group: str = "preset"
-    """``"preset"``, ``"tiling"`` or ``"hankin"``: the gallery's header counts each."""
+    """``"preset"``, ``"tiling"``, ``"hankin"`` or ``"cylinder"``: the gallery's header counts each."""
 
 
 def _tile_query(stroke=1) -> dict:
@@ -118,7 +147,8 @@ def _tiling_query(tiling: str, edge: float, motifs: dict, main, gap_n) -> dict:
 
 @functools.cache
 def entries() -> tuple[Entry, ...]:
-    """The gallery's entries: the presets, then the tilings, then the tilings by Hankin's method."""
+    """The gallery's entries: the presets, then the tilings, then the tilings by Hankin's method, then the
+    cylinders."""
     out = []
     for name in PRESETS:
         radius, stroke = _PRESET_TILES.get(name, ("15", 1))
@@ -163,6 +193,10 @@ def entries() -> tuple[Entry, ...]:
                 "hankin",
             )
         )
+    for key, (title, note, values) in _CYLINDERS.items():
+        query = {"preset": "table3-3", "packing": "hex", "shape": "cylinder", **values}
+        query.update(printer_profile="fdm-0.4mm", fill_small_holes="true")
+        out.append(Entry(key, title, note, query, "cylinder"))
     assert set(_TILINGS) == set(TILINGS), "a tiling is missing from the gallery"
     assert set(_PRESET_PALETTES) == set(PRESETS), "a preset has no palette in the gallery"
     return tuple(out)

@@ -73,8 +73,15 @@ def _special(field, text):
     return None if str(text).lower() in ("", "none") else _number(field, text, integer=True)
 
 
+def _optional_flag(field, text):
+    return None if str(text) == "" else parse_flag(field, text)
+
+
 def _parser(k):
-    """The query parser of a schema key, by its type (a select of integers also takes ``none``)."""
+    """The query parser of a schema key, by its type (a select of integers also takes ``none``, a select of a
+    boolean an empty value: not given)."""
+    if k.type == "boolean" and k.widget is not None and k.widget.kind == "select":
+        return _optional_flag
     if k.type == "integer":
         if k.widget is not None and k.widget.kind == "select":
             return _special
@@ -121,6 +128,10 @@ def _fields() -> dict:
 FIELDS = _fields()
 """Query parameter -> (section, design key, parser)."""
 
+
+FLAT_ONLY = ("outline", "width", "height", "frame", "corner_radius")
+"""The tile's parameters a cylinder takes none of: its tile is its unrolled strip, sized by ``diameter`` and
+``length`` (``docs/surfaces.md``)."""
 
 DEFAULTS = {
     "preset": "table3-3",
@@ -173,7 +184,7 @@ def _sections(query) -> tuple[dict, dict, dict]:
 
     ``motifs`` are packing=archimedean's presets per polygon kind (``motif_8=table3-3``).
     """
-    design: dict = {"motif": {}, "packing": {}, "tile": {}, "output": {}, "colour": {}}
+    design: dict = {"motif": {}, "packing": {}, "tile": {}, "output": {}, "colour": {}, "surface": {}}
     gap: dict = {}
     motifs: dict = {}
     for key, raw in query.items():
@@ -181,6 +192,8 @@ def _sections(query) -> tuple[dict, dict, dict]:
             raise QueryError(f"{key!r} is not a valid parameter, must be one of: {', '.join(FIELDS)}", key)
         section, name, parse = FIELDS[key]
         value = parse(key, raw)
+        if value is None and section == "surface":  # a menu's "the default" (mirror=)
+            continue
         if section == "motifs":
             if value not in ("", "default"):
                 motifs[name] = value

@@ -13,6 +13,7 @@ from dataclasses import asdict
 
 from ..core import schema as _schema
 from ..export.formats import FORMATS, design_formats
+from .building import user_message
 from .params import FIELDS
 
 
@@ -33,6 +34,8 @@ def _key_json(k: _schema.Key, widget: _schema.Widget | None) -> dict:
         labels = dict(widget.labels) if widget is not None else {}
         entry["choices"] = [[str(v), labels.get(str(v), str(v))] for v in k.choice_values()]
         entry["choices"] += [list(e) for e in (widget.extra if widget is not None else ())]
+    elif widget is not None and widget.kind == "select" and widget.extra:  # a menu of a boolean: its values
+        entry["choices"] = [list(e) for e in widget.extra]
     return entry
 
 
@@ -41,7 +44,9 @@ def schema_json() -> dict:
 
     ``formats``: the format table's rows the web app offers (its download buttons and the nest
     page's formats), a format plugin's included: name, family, suffix, label, media type,
-    description, the cutter kinds that take it, whether nested sheets are written in it.
+    description, the cutter kinds that take it, whether nested sheets are written in it. ``unmade``: per
+    ``[surface] shape``, the offered formats it is not made in, each with the reason (the page disables
+    their buttons and says why).
 
     The gap motif's parameters (``gap_n``, ...) carry the motif key's entry with the gap's
     widget; ``width``/``height`` and ``motif_<sides>`` carry ``tile.size`` and ``packing.motifs``,
@@ -62,4 +67,11 @@ def schema_json() -> dict:
             k = _schema.key(f"{section}.{name}")
             fields[query] = _key_json(k, k.widget)
     offered = design_formats()
-    return {"fields": fields, "formats": [FORMATS[n].row() for n in offered]}
+    from ..making.cylinder import unmade_formats
+
+    return {
+        "fields": fields,
+        "formats": [FORMATS[n].row() for n in offered],
+        # in the form's words, as the page's errors: no design file's section
+        "unmade": {"cylinder": {f: user_message(Exception(r), None) for f, r in unmade_formats(offered).items()}},
+    }

@@ -69,7 +69,7 @@ def test_the_javascript_lists_no_key():
     # the menus with code of their own; the parameters the page always sends (the others only when set)
     assert lists == [
         '["preset", "special", "tiling"]',
-        '["frame", "stroke", "corner_radius", "join", "laser_profile", "laser_mode",\n'
+        '["stroke", "join", "laser_profile", "laser_mode",\n'
         '                   "printer_profile", "print_style", "colour_by", "palette"]',
     ]
 

@@ -21,11 +21,32 @@ def client():
     return TestClient(create_app())
 
 
-def test_presets_then_tilings_then_hankin():
+def test_presets_then_tilings_then_hankin_then_cylinders():
     keys = [e.key for e in gallery.entries()]
     hankin = [f"hankin-{t}" for t in gallery._HANKIN]
-    assert keys == [*PRESETS, *gallery._TILINGS, *hankin] and set(keys[len(PRESETS) : -len(hankin)]) == set(TILINGS)
-    assert len(keys) == 22
+    assert keys == [*PRESETS, *gallery._TILINGS, *hankin, "roller", "lampshade"]
+    assert set(keys[len(PRESETS) : len(PRESETS) + len(TILINGS)]) == set(TILINGS)
+    assert len(keys) == 24
+
+
+@pytest.mark.parametrize("key, sample", [("roller", "roller-60x80"), ("lampshade", "lampshade-120x150")])
+def test_cylinder_entry_is_its_sample(key, sample):
+    """The entry's design is the sample's, key for key (the sample's formats aside: a download is one format),
+    and so is its strip."""
+    from fabtiles.designs.design_file import design_from_dict
+
+    ours = design_from_dict(design_from_query(gallery.entry(key).query))
+    theirs = load_design(SAMPLES / f"{sample}.toml")
+    assert ours.surface == theirs.surface and ours.surface.cylinder
+    assert ours.packing == theirs.packing and ours.motif == theirs.motif and ours.tile_spec == theirs.tile_spec
+    assert ours.output.heights() == theirs.output.heights()
+    assert (ours.output.print_style, ours.output.printer_profile) == (
+        theirs.output.print_style,
+        theirs.output.printer_profile,
+    )
+    a, b = ours.build_tile(), theirs.build_tile()
+    assert a.region().symmetric_difference(b.region()).area <= 1e-6 * b.region().area
+    assert (a.width_mm, a.height_mm) == pytest.approx((b.width_mm, b.height_mm))
 
 
 @pytest.mark.parametrize("tiling", sorted(gallery._HANKIN))
@@ -136,7 +157,8 @@ def test_every_gallery_value_is_inside_its_slider(key):
     a slider of 1 to 400 at its end)."""
     query = gallery.entry(key).query
     values = _slider_values(query)
-    assert {p for p, _ in values} >= {"width", "frame", "stroke"}
+    sized_by = {"diameter", "length"} if query.get("shape") == "cylinder" else {"width", "frame"}
+    assert {p for p, _ in values} >= {*sized_by, "stroke"}
     if "radii" in query:
         assert "radii" in {p for p, _ in values}
     for param, value in values:

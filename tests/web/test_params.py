@@ -118,7 +118,7 @@ def test_every_design_key_is_a_query_parameter():
     keys |= {("packing", k) for k in design.PACKING_KEYS if k != "gap_motif"}
     keys |= {("gap_motif", k) for k in design.MOTIF_KEYS}  # [packing] gap_motif = { ... }
     keys |= {("tile", k) for k in design.TILE_KEYS} | {("output", k) for k in design.OUTPUT_KEYS}
-    keys |= {("colour", k) for k in design.COLOUR_KEYS}
+    keys |= {("colour", k) for k in design.COLOUR_KEYS} | {("surface", k) for k in design.SURFACE_KEYS}
     web = {QUERY_NAMES.get((section, name), (section, name)) for section, name, _ in FIELDS.values()}
     assert NOT_WEB_PARAMS <= keys
     assert web == keys - NOT_WEB_PARAMS, (keys - NOT_WEB_PARAMS - web, web - keys)

@@ -206,7 +206,8 @@ def test_the_gallery_opens_a_tiling_in_the_editor(page, server):
     page.wait_for_function(f"() => document.querySelectorAll('#gallery a').length === {len(entries())}")
     # the header counts what the page shows
     counts = [int(n) for n in __import__("re").findall(r"\d+", page.text_content("#gallery-intro"))]
-    assert counts == [7, 11, 4] and sum(counts) == page.locator("#gallery a").count()
+    assert counts == [7, 11, 4, 2] and sum(counts) == page.locator("#gallery a").count()
+    assert "2 cylinders (texture roller, lampshade)" in page.text_content("#gallery-intro")
     page.wait_for_function(
         "() => { const i = document.querySelector('#gallery a[data-key=\"4.8.8\"] img');"
         " return i.complete && i.naturalWidth > 0; }",
@@ -230,3 +231,48 @@ def test_the_gallery_opens_a_tiling_in_the_editor(page, server):
     assert "gallery=4.8.8" in page.url
     _wait_model(page)
     assert "packing=archimedean" in page.url and "edge=14" in page.url  # the editor's URL stays shareable
+
+
+def _shown(page, selector) -> bool:
+    return page.locator(selector).first.is_visible()
+
+
+def test_the_gallery_opens_the_roller_standing_in_3d(page, server):
+    """The roller from the gallery: the surface's controls instead of the tile's outline, size and frame, the
+    strip in 2D, the cylinder standing in 3D inside the canvas, its line in the checks, its print downloads."""
+    page.goto(f"{server}/gallery")
+    page.wait_for_selector('#gallery a[data-key="roller"]')
+    page.click('#gallery a[data-key="roller"]')
+    page.wait_for_url("**/?*shape=cylinder*")
+    _wait_model(page)
+    assert "width=" not in page.url and "frame=" not in page.url and "diameter=60" in page.url
+    assert "Showing the whole cylinder, its unrolled strip" in page.text_content("#view3d-caption")
+    assert page.get_attribute("#view3d", "data-parts") == "base,pattern"
+    # the controls: the surface's for a roller, not the flat tile's nor a shade's
+    assert page.input_value("#shape") == "cylinder" and page.input_value("#diameter") == "60"
+    assert page.input_value("#length") == "80"
+    for selector in ("#diameter-row", "#length-row", "#fit", "#mirror", "#bore_mm", "#rim_mm", "#surface-note"):
+        assert _shown(page, selector), selector
+    for selector in ("#width-row", "#frame-row", "#outline", "#lamp_fitting_mm"):
+        assert not _shown(page, selector), selector
+    # the 3D view frames the standing cylinder: none of it on the canvas's edge, most of the height used
+    ground = _background(_pixels(page))
+    inner = ground[:, 6:-6]
+    edge = np.concatenate([inner[:3].ravel(), inner[-3:].ravel(), ground[6:-6, :3].ravel(), ground[6:-6, -3:].ravel()])
+    assert edge.all(), f"{(~edge).sum()} pixels of the model on the canvas's edge"
+    rows, _ = np.nonzero(~ground)
+    assert (rows.max() - rows.min()) / ground.shape[0] > 0.6
+    # the checks' line; the downloads: STL and 3MF, the cutters' and STEP disabled with the reason shown
+    page.wait_for_function("() => document.querySelector('#status').textContent.includes('cylinder (roller)')")
+    assert "9 periods around" in page.text_content("#status")
+    assert page.get_attribute("#downloads a[data-format=stl]", "download") == "roller.stl"
+    for fmt in ("dxf", "svg", "lbrn2", "step"):
+        assert page.get_attribute(f"#downloads a[data-format={fmt}]", "href") is None, fmt
+    unmade = page.text_content("#unmade")
+    assert _shown(page, "#unmade") and "is printed, not cut" in unmade and "STEP is not made" in unmade
+    # back to a flat tile: its controls and every download again
+    v = _version(page)
+    page.select_option("#shape", "flat")
+    _wait_model(page, v)
+    assert _shown(page, "#width-row") and not _shown(page, "#diameter-row") and not _shown(page, "#unmade")
+    assert page.get_attribute("#downloads a[data-format=dxf]", "href").startswith("/api/export/dxf?")

@@ -141,7 +141,12 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         design, spec, _ = build(request, limits=limits)
         import tomli_w
 
-        design = {**design, "output": {"formats": list(design_formats()), **design.get("output", {})}}
+        formats = list(design_formats())
+        if spec.surface.cylinder:  # the formats a cylinder is made in: its file builds with no refusal
+            from ...making.cylinder import unmade_formats
+
+            formats = [f for f in formats if f not in unmade_formats(formats)]
+        design = {**design, "output": {"formats": formats, **design.get("output", {})}}
         # named after the design, as its files are: the file's stem is their name when [output] name is unset
         text = f"# fabtiles design: build it with  fabtiles build {spec.name}.toml -o out\n"
         text += tomli_w.dumps(design)

@@ -24,6 +24,9 @@ const state = {
   colour_by: "none", palette: "zellige",  // the [colour] section: faces classed by shape, the palette
   band_colour: "", base_colour: "",  // "": the palette's
   faces: {},  // [colour.faces]: faces[letter] = colour (face_<letter>), the others the palette's
+  // [surface]: a flat tile, or a cylinder (the sample roller's size) whose tile is its unrolled strip;
+  // mirror "": the print style's (a roller's), the text boxes "": the style's defaults
+  shape: "flat", diameter: 60, length: 80, fit: "packing", mirror: "", bore_mm: "", rim_mm: "", lamp_fitting_mm: "",
 };
 // Options sent only when set: the schema's text and number boxes, and its check boxes (gap_rosette is the
 // page's own: the gap motif as a rosette).
@@ -31,6 +34,9 @@ const state = {
 let TEXT_KEYS = [], FLAG_KEYS = ["gap_rosette"], MENUS = [];
 // COLOUR_KEYS: the schema's colour pickers (the band's and the base's); sent only when chosen.
 let COLOUR_KEYS = [];
+// SURFACE_KEYS: the [surface] keys but the shape, sent only for a cylinder (the tile's outline, size and frame
+// only for a flat tile: query()); UNMADE: per shape, the formats it is not made in and why (the schema's).
+let SURFACE_KEYS = [], UNMADE = {};
 const OWN_MENUS = new Set(["preset", "special", "tiling"]);
 // WHEN: each control's condition (the schema's widget.when: [parameter, values] pairs, all to hold);
 // RADII: the slider of each radius (the schema's widget of the radii list).
@@ -139,10 +145,21 @@ function query() {
     q.set("outline_circles", state.outline_circles ? "true" : "false");
     if (state.seamless) q.set("seamless", "true");
   }
-  q.set("outline", state.outline);
-  q.set("width", state.width);
-  if (state.outline === "rectangle") q.set("height", state.height);
-  for (const k of ["frame", "stroke", "corner_radius", "join", "laser_profile", "laser_mode",
+  const cylinder = state.shape === "cylinder";
+  if (cylinder) {  // its tile is its unrolled strip: the diameter and length size it, no outline or frame
+    q.set("shape", state.shape);
+    q.set("diameter", state.diameter);
+    q.set("length", state.length);
+    if (state.fit !== "packing") q.set("fit", state.fit);
+    if (state.mirror !== "") q.set("mirror", state.mirror);
+  } else {
+    q.set("outline", state.outline);
+    q.set("width", state.width);
+    if (state.outline === "rectangle") q.set("height", state.height);
+    q.set("frame", state.frame);
+    q.set("corner_radius", state.corner_radius);
+  }
+  for (const k of ["stroke", "join", "laser_profile", "laser_mode",
                    "printer_profile", "print_style", "colour_by", "palette"]) q.set(k, state[k]);
   for (const k of COLOUR_KEYS) if (state[k]) q.set(k, state[k]);
   for (const [letter, colour] of Object.entries(state.faces)) if (colour) q.set(`face_${letter}`, colour);
@@ -154,7 +171,8 @@ function query() {
   if (state.laser_mode === "inlay" && state.inlay_base !== "pierced") q.set("inlay_base", state.inlay_base);
   if (state.laser_mode === "inlay" && state.inlay_pieces !== "registration") q.set("inlay_pieces", state.inlay_pieces);
   q.set("fill_small_holes", state.fill_small_holes ? "true" : "false");
-  for (const k of TEXT_KEYS) if (String(state[k]).trim() !== "") q.set(k, String(state[k]).trim());
+  for (const k of TEXT_KEYS)
+    if (String(state[k]).trim() !== "" && (cylinder || !SURFACE_KEYS.includes(k))) q.set(k, String(state[k]).trim());
   return q;
 }
 
@@ -206,6 +224,7 @@ function showLabel() {
 
 // Each control shown only where it applies (the schema's conditions): a rectangle's height, the kit's fit...
 function applyWhen() {
+  $("surface-note").hidden = state.shape !== "cylinder";
   for (const [key, pairs] of Object.entries(WHEN)) {
     const on = pairs.every(([param, values]) => values.includes(String(state[param])));
     const control = $(`${key}-row`) || ($(key) && $(key).closest(".row"));
@@ -272,9 +291,17 @@ function showError(field, message) {
 function downloads(valid) {
   const q = query(), label = designLabel(), name = String(state.name).trim() || label;
   if (!String(state.name).trim()) q.set("name", label);
-  const kit = state.laser_mode === "inlay";
+  const kit = state.laser_mode === "inlay", unmade = UNMADE[state.shape] || {};
   for (const a of document.querySelectorAll("#downloads a")) {
     const fmt = a.dataset.format;
+    if (valid && unmade[fmt]) {  // not made in this shape: no link, and the reason beside the buttons
+      a.removeAttribute("href");
+      a.removeAttribute("download");
+      a.setAttribute("aria-disabled", "true");
+      a.classList.add("disabled");
+      a.title = unmade[fmt];
+      continue;
+    }
     if (valid) {
       a.href = fmt ? `/api/export/${fmt}?${q}` : `/api/design.toml?${q}`;
       a.download = !fmt ? `${name}.toml` : kit && a.dataset.family === "cut" ? `${name}-kit-${fmt}.zip` : `${name}${a.dataset.suffix}`;
@@ -286,6 +313,9 @@ function downloads(valid) {
     a.classList.toggle("disabled", !valid);
     a.title = valid ? "" : "fix the design first (see the message above)";
   }
+  const reasons = [...new Set(Object.values(unmade))], note = $("unmade");
+  note.textContent = reasons.join("\n");
+  note.hidden = !reasons.length;
 }
 
 async function refresh() {
@@ -341,7 +371,8 @@ async function refresh() {
   }
   const again = chosen && list.querySelector(`li[data-code="${chosen.code}"][data-where="${chosen.where}"]`);
   if (again) choose(again, true); else chosen = null;
-  $("status").textContent = [data.summary || "", ...(data.pieces || [])].filter(Boolean).join("; ");
+  $("status").textContent = [data.summary || "", ...(data.pieces || []), ...(data.fitted || []), data.cylinder || ""]
+    .filter(Boolean).join("; ");
   const cutter = (data.cutter || "laser").replace(/^./, (c) => c.toUpperCase());
   $("job").textContent = data.job ? `${cutter} job (estimate from the profile): ${data.job.line}` : "";
   $("material").textContent = data.material
@@ -528,10 +559,12 @@ function formatButtons(formats) {
 // check boxes, each number box's range and step, and each empty menu's choices; the download buttons.
 function applySchema(schema) {
   formatButtons(schema.formats);
+  UNMADE = schema.unmade || {};
   SLIDERS = {};
   for (const [q, f] of Object.entries(schema.fields)) {
     const w = f.widget;
     if (!w) continue;
+    if (f.key.startsWith("surface.") && q !== "shape") SURFACE_KEYS.push(q);
     if (w.when && w.when.length) WHEN[q] = w.when;
     if (w.kind === "slider" && f.type === "numbers") RADII = w;  // a slider per radius (radiiSliders)
     else if (w.kind === "slider") {

@@ -7,8 +7,10 @@ async function gallery() {
   // the header counts what the page shows, from the same list
   const count = (g) => items.filter((e) => e.group === g).length;
   document.getElementById("gallery-intro").textContent =
-    `The paper's ${count("preset")} presets, the ${count("tiling")} Archimedean tilings and ` +
-    `${count("hankin")} of them by Hankin's method: choose one to open it in the editor.`;
+    `The paper's ${count("preset")} presets, the ${count("tiling")} Archimedean tilings, ` +
+    `${count("hankin")} of them by Hankin's method, and ${count("cylinder")} cylinders (` +
+    `${items.filter((e) => e.group === "cylinder").map((e) => e.title.toLowerCase()).join(", ")}): ` +
+    "choose one to open it in the editor.";
   for (const e of items) {
     const a = document.createElement("a");
     a.href = `/?${new URLSearchParams({ gallery: e.key, ...e.query })}`;  // the editor names the design after it

@@ -54,10 +54,14 @@ async function start() {
   // The camera of a new tile size: from the front and above, the whole tile in view. The distance is the
   // least that keeps every corner of the model's box inside MARGIN of the view's half-width and
   // half-height: a corner at lateral offset x and depth d - p.dir needs x <= (d - p.dir) tan(half angle).
-  const MARGIN = 0.9, VIEW = new THREE.Vector3(0, -1.25, 1.1).normalize();
+  // A model standing taller than half its width (a cylinder on its end) is seen more from the side, its height
+  // and its pattern both in view; a plate from above.
+  const MARGIN = 0.9, VIEW_PLATE = new THREE.Vector3(0, -1.25, 1.1).normalize();
+  const VIEW_STANDING = new THREE.Vector3(0, -1.6, 0.75).normalize();
   const fit = () => {
     const bounds = new THREE.Box3().setFromObject(model), size = bounds.getSize(new THREE.Vector3());
     const centre = bounds.getCenter(new THREE.Vector3()), span = Math.max(size.x, size.y, size.z);
+    const VIEW = standing(size) ? VIEW_STANDING : VIEW_PLATE;
     const right = new THREE.Vector3().crossVectors(VIEW.clone().negate(), camera.up).normalize();
     const up = new THREE.Vector3().crossVectors(right, VIEW.clone().negate()).normalize();
     const tanY = Math.tan(THREE.MathUtils.degToRad(camera.fov / 2)) * MARGIN, tanX = tanY * camera.aspect;
@@ -72,9 +76,13 @@ async function start() {
     camera.near = distance / 100; camera.far = distance + 20 * span;
     camera.updateProjectionMatrix();
     controls.update();
-    fitted = `${size.x.toFixed(1)}x${size.y.toFixed(1)}`;
+    fitted = key(size);
     turned = false;
   };
+  // the model's size as the fit knows it: a new size (a tile's width and height, a standing model's length too)
+  // is framed again; a plate's new print height is not
+  const standing = (size) => size.z > 0.5 * Math.max(size.x, size.y);
+  const key = (size) => `${size.x.toFixed(1)}x${size.y.toFixed(1)}${standing(size) ? `x${size.z.toFixed(1)}` : ""}`;
   document.getElementById("view3d-reset").addEventListener("click", () => { if (model) { fit(); render(); } });
 
   const show = async (q) => {
@@ -100,7 +108,7 @@ async function start() {
       model.traverse((o) => { if (o.isMesh) shadeByHeight(o); });
       scene.add(model);
       const size = new THREE.Box3().setFromObject(model).getSize(new THREE.Vector3());
-      if (fitted !== `${size.x.toFixed(1)}x${size.y.toFixed(1)}`) fit();  // keep the user's turn otherwise
+      if (fitted !== key(size)) fit();  // keep the user's turn otherwise
       render();
       const names = Object.entries(parts).map(([n, p]) => `${n} (${p.triangles.toLocaleString("en")} triangles)`);
       caption.textContent = `Showing ${view}: ${names.join(", ")}. Drag to turn, wheel to zoom, right-drag to move.`;
