@@ -486,10 +486,11 @@ _HEX_SQUARE = (("packing", ("hex", "square")),)
 _PACKING = "pattern"
 _HEIGHT_RANGE = Range(0, 1000, min_open=True)
 _PRINT = ("print",)
-FLAT_WHEN = ("shape", ("flat",))
-"""The web form's condition of the tile's outline, size and frame: a flat tile's (a cylinder's tile is its
-unrolled strip, sized by the ``[surface]``)."""
+FLAT_WHEN = ("shape", ("flat", "stamp"))
+"""The web form's condition of the tile's outline, size and frame: a flat tile's or a stamp's (a cylinder's
+tile is its unrolled strip, sized by the ``[surface]``)."""
 _CYLINDER_WHEN = (("shape", ("cylinder",)),)
+_STAMP_WHEN = (("shape", ("stamp",)),)
 _ROLLER_WHEN = (*_CYLINDER_WHEN, ("print_style", ("relief", "deboss")))
 _SHADE_WHEN = (*_CYLINDER_WHEN, ("print_style", ("pierced",)))
 
@@ -1084,7 +1085,11 @@ KEYS: tuple[Key, ...] = MOTIF + (
         widget=Widget(
             kind="select",
             label="Shape",
-            labels=(("flat", "a flat tile"), ("cylinder", "a cylinder: roller or lampshade")),
+            labels=(
+                ("flat", "a flat tile"),
+                ("cylinder", "a cylinder: roller or lampshade"),
+                ("stamp", "a clay stamp"),
+            ),
         ),
         help='`"flat"`: a tile; `"cylinder"`: the pattern wrapped round a cylinder, seamless: a texture roller '
         '(`relief`, `deboss`) or a lampshade (`pierced`), printed standing on an end; `"stamp"`: a clay stamp, '
@@ -1143,7 +1148,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
                 ("true", "mirrored"),
                 ("false", "not mirrored"),
             ),
-            when=_CYLINDER_WHEN,
+            when=(("shape", ("cylinder", "stamp")),),
         ),
         help="mirror the pattern (round a cylinder, or a stamp's face), so that what a roller or a stamp leaves "
         "in clay reads as designed (an imprint is the mirror of the surface that made it)",
@@ -1183,12 +1188,22 @@ KEYS: tuple[Key, ...] = MOTIF + (
     ),
     Key(
         section="surface",
+        name="pointed_tops",
+        type="boolean",
+        default=False,
+        widget=Widget(kind="checkbox", label="Pointed tops", when=_CYLINDER_WHEN),
+        help="a cylinder's openings (a shade's holes, a roller's grooves or gaps) given a pointed top at the printer "
+        "profile's `max_overhang_deg`, a teardrop over a round hole, so the wall prints standing without supports; "
+        "the print check finds the ceilings that still overhang",
+    ),
+    Key(
+        section="surface",
         name="block_mm",
         type="number",
         unit="mm",
         range=Range(0, 200, min_open=True),
         default=20.0,
-        query=None,
+        widget=Widget(kind="number", label="Block (mm)", min=1, step=1, placeholder="20", when=_STAMP_WHEN),
         help="a stamp's block: its height from the bed to the relief's plate, the finger groove in its sides",
     ),
     Key(
@@ -1198,7 +1213,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         unit="mm",
         range=Range(0, 20, min_open=True),
         default=3.0,
-        query=None,
+        widget=Widget(kind="number", label="Finger groove (mm)", min=0.5, step=0.5, placeholder="3", when=_STAMP_WHEN),
         help="how deep a stamp's finger groove goes into the block's sides; its chamfers keep to the printer "
         "profile's overhang limit, so it prints without supports",
     ),
@@ -1209,7 +1224,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         unit="mm",
         range=Range(0, 100),
         default=4.0,
-        query=None,
+        widget=Widget(kind="number", label="Groove middle (mm)", min=0, step=0.5, placeholder="4", when=_STAMP_WHEN),
         help="the height of a stamp's finger groove's straight middle, between its two chamfers (0: a V)",
     ),
 )

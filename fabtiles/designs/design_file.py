@@ -220,6 +220,7 @@ class SurfaceSpec:
     bore_mm: float | None = None
     rim_mm: float | None = None
     lamp_fitting_mm: float | None = None
+    pointed_tops: bool = _default("surface.pointed_tops")
     block_mm: float = _default("surface.block_mm")
     grip_mm: float = _default("surface.grip_mm")
     groove_mm: float = _default("surface.groove_mm")

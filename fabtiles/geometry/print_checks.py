@@ -48,10 +48,11 @@ from typing import NamedTuple
 import numpy as np
 import shapely
 
-from ..core.errors import FabricationError, ProfileError
+from ..core.errors import FabricationError, ParameterError, ProfileError
 from ..core.report import Report, distinct
 from ..machines.profiles import PrinterProfile, load_profile
 from .contours import polygon_parts
+from .interlace import polygonal
 from .laser_checks import add_loose_parts, fits_bed
 from .narrow import (
     MAX_LOCATIONS,
@@ -172,7 +173,16 @@ def _simplify_rings(rings, tolerance_mm: float):
     return flat
 
 
-def print_region(region, outline, profile, style: str, *, fill_small_holes: bool = False, flatten: bool = True):
+def print_region(
+    region,
+    outline,
+    profile,
+    style: str,
+    *,
+    fill_small_holes: bool = False,
+    flatten: bool = True,
+    period_mm: float | None = None,
+):
     """The material a print is built from: ``(region, filled)``.
 
     Its holes thinned within the profile's ``tolerance_mm`` (:func:`flatten_holes`;
@@ -180,6 +190,10 @@ def print_region(region, outline, profile, style: str, *, fill_small_holes: bool
     the bands), then, with ``fill_small_holes``, its openings narrower than the profile's
     ``min_hole_mm`` filled (:func:`fill_print_holes`; ``filled`` counts them). The print
     writers, the 3D view and ``fabtiles check`` all build and check this region.
+
+    ``period_mm``: the region repeats along x with this period and its outline is one period
+    (a cylinder's unrolled strip): an opening the strip's ends cut is judged whole
+    (:func:`fill_periodic_holes`), so both ends are filled alike and still meet.
     """
     profile = load_profile(profile, kind="printer")
     if flatten:
@@ -187,7 +201,41 @@ def print_region(region, outline, profile, style: str, *, fill_small_holes: bool
     if not fill_small_holes:
         return region, 0
     check_min_hole(profile, outline)
+    if period_mm is not None:
+        return fill_periodic_holes(region, outline, profile, style, period_mm=period_mm)
     return fill_print_holes(region, outline, profile, style)
+
+
+def fill_periodic_holes(region, outline, profile, style: str, *, period_mm: float):
+    """:func:`fill_print_holes` of a region that repeats along x every ``period_mm``, its outline one period.
+
+    The openings are judged on the region repeated half a period beyond each end, so one that
+    the ends cut is judged whole, once, and filled (or not) at both ends alike; ``count`` is the
+    openings changed whose centre lies in the outline's period. ``(region, count)``.
+
+    >>> from shapely.geometry import box
+    >>> strip = box(0, 0, 20, 10).difference(box(-0.2, 4, 0.5, 6)).difference(box(19.8, 4, 20.2, 6))
+    >>> filled, n = fill_periodic_holes(strip, box(0, 0, 20, 10), "fdm-0.4mm", "pierced", period_mm=20)
+    >>> n, round(filled.area, 3)
+    (1, 200.0)
+    """
+    from shapely import affinity
+
+    profile = load_profile(profile, kind="printer")
+    x0, y0, x1, y1 = outline.bounds
+    if abs((x1 - x0) - period_mm) > 1e-6 * period_mm:
+        raise ParameterError(
+            f"period_mm = {period_mm:g} is not the outline's width, {x1 - x0:g} mm: a periodic region's outline "
+            "is one period"
+        )
+    wide = shapely.box(x0 - period_mm / 2, y0, x1 + period_mm / 2, y1)
+    copies = [affinity.translate(region, xoff=k * period_mm) for k in (-1, 0, 1)]
+    repeated = polygonal(shapely.intersection(shapely.union_all(copies), wide))
+    filled, _ = fill_print_holes(repeated, wide, profile, style)
+    changed = shapely.get_parts(polygonal(shapely.symmetric_difference(filled, repeated)))
+    centres = shapely.get_coordinates(shapely.centroid(changed))[:, 0] if len(changed) else np.empty(0)
+    count = int(np.count_nonzero((centres >= x0) & (centres < x1)))
+    return polygonal(shapely.intersection(filled, outline)), count
 
 
 def check_print_pattern(before, after, outline, profile, style: str, *, stroke=None, report: Report) -> float:

@@ -42,6 +42,7 @@ class Cylinder:
     bore_mm: float
     rim_mm: float
     lamp_fitting_mm: float | None
+    pointed_tops: bool
     heights: dict
 
     @property
@@ -64,6 +65,8 @@ class Cylinder:
         parts.append("mirrored" if self.mirror else "not mirrored")
         if self.lamp_fitting_mm is not None:
             parts.append(f"lamp holder for a {self.lamp_fitting_mm:g} mm fitting")
+        if self.pointed_tops:
+            parts.append("pointed tops")
         return ", ".join(parts) + "; printed standing on an end"
 
 
@@ -103,6 +106,7 @@ def cylinder_of(surface: SurfaceSpec, options: BuildOptions, circumference_mm: f
         bore_mm=bore,
         rim_mm=surface.rim_for(style),
         lamp_fitting_mm=surface.lamp_fitting_mm,
+        pointed_tops=surface.pointed_tops,
         heights=heights,
     )
     check_cylinder(cylinder, printer, wall_mm=stack.pierced if style == "pierced" else radius - sunk - bore / 2)
@@ -207,29 +211,31 @@ def check_formats(formats, shape: str = "cylinder") -> None:
         )
 
 
-def unmade_formats(formats) -> dict[str, str]:
-    """The formats of ``formats`` a cylinder is not made in, each with the reason in one line: the cutters'
-    (one reason naming them all, :func:`check_formats`' refusal) and STEP
-    (:data:`fabtiles.solid.cylinder.NO_STEP`)."""
+def unmade_formats(formats, shape: str = "cylinder") -> dict[str, str]:
+    """The formats of ``formats`` a cylinder or a stamp (``shape``) is not made in, each with the reason in
+    one line: the cutters' (one reason naming them all, :func:`check_formats`' refusal) and STEP
+    (:data:`fabtiles.solid.cylinder.NO_STEP`, :data:`fabtiles.solid.stamp.NO_STEP`)."""
     from ..export.formats import FORMATS
-    from ..solid.cylinder import NO_STEP
+    from ..solid import cylinder, stamp
 
     cut = [f for f in formats if FORMATS[f].family != "print"]
     reasons: dict[str, str] = {}
     if cut:
         try:
-            check_formats(cut)
+            check_formats(cut, shape)
         except ParameterError as err:
             reasons = dict.fromkeys(cut, str(err))
     if "step" in formats:
-        reasons["step"] = NO_STEP
+        reasons["step"] = cylinder.NO_STEP if shape == "cylinder" else stamp.NO_STEP
     return reasons
 
 
-def strip_region(region, dips, outline, cylinder: Cylinder):
-    """The strip's material as the cylinder prints it: mirrored ``x -> C - x`` when asked, and a rim at each
+def strip_region(region, dips, outline, cylinder: Cylinder, printer=None):
+    """The strip's material as the cylinder prints it: mirrored ``x -> C - x`` when asked, a rim at each
     ``y`` end (a relief's raised to the pattern's top, a shade's closed; a deboss's plain plate, no groove
-    in it). ``(region, dips)``."""
+    in it) and, with ``pointed_tops``, each opening's top raised to a peak at ``printer``'s overhang limit
+    (:func:`~fabtiles.geometry.wall_overhangs.pointed_tops`). ``(region, dips, tops)``: ``tops`` the
+    :class:`~fabtiles.geometry.wall_overhangs.PointedTops` made, or None."""
     import shapely
     from shapely import affinity
 
@@ -245,9 +251,37 @@ def strip_region(region, dips, outline, cylinder: Cylinder):
         if dips is not None:
             dips = shapely.difference(dips, rims)
     region = polygonal(shapely.intersection(region, outline))  # an overlay may leave lines where the rims meet
+    tops = None
+    if cylinder.pointed_tops:
+        region, tops = _pointed(region, outline, cylinder, printer)
+        if dips is not None:
+            dips = shapely.intersection(dips, region)
     if dips is not None:
         dips = polygonal(dips)
-    return region, dips
+    return region, dips, tops
+
+
+def _pointed(region, outline, cylinder: Cylinder, printer):
+    """``region`` with its openings' tops pointed at the printer's overhang limit, keeping its ``min_wall_mm``:
+    a shade's or a relief's openings are the holes in its material, a deboss's its grooves (the region)."""
+    import shapely
+
+    from ..geometry.interlace import polygonal
+    from ..geometry.wall_overhangs import pointed_tops
+
+    if printer is None:
+        raise ParameterError("pointed_tops needs the printer profile whose overhang limit the peaks keep to")
+    material = shapely.difference(outline, region) if cylinder.style == "deboss" else region
+    tops = pointed_tops(
+        material,
+        overhang_deg=printer.max_overhang_deg,
+        min_wall_mm=printer.min_wall_mm,
+        max_bridge_mm=printer.max_bridge_mm,
+        outline=outline,
+        period_mm=cylinder.circumference_mm,
+    )
+    pointed = shapely.difference(outline, tops.region) if cylinder.style == "deboss" else tops.region
+    return polygonal(shapely.intersection(pointed, outline)), tops
 
 
 def cylinder_print(models, cylinder: Cylinder):
@@ -273,7 +307,7 @@ def strip_model(models, cylinder: Cylinder):
     o = models.options
     region, dips = models.print_region
     outline = models.tile.outline_shape()
-    region, dips = strip_region(region, dips, outline, cylinder)
+    region, dips, tops = strip_region(region, dips, outline, cylinder, o.printer)
     model = print_model(
         region,
         outline,
@@ -284,24 +318,28 @@ def strip_model(models, cylinder: Cylinder):
         inlay=o.inlay,
         dips=dips,
         colours=models.colouring if models.coloured else None,
+        period_mm=cylinder.circumference_mm,
         **cylinder.heights,
     )
-    report = model.report.extended(notes=[cylinder.line()], cylinder=cylinder_stats(cylinder))
+    notes = [cylinder.line()] + ([] if tops is None else [_tops_line(tops, o.printer)])
+    report = model.report.extended(notes=notes, cylinder=cylinder_stats(cylinder))
     findings = [f for f in report.findings if not _not_on_the_cylinder(f, cylinder, models.tile.stroke)]
+    findings += _overhangs(model, outline, cylinder, o.printer)
     report = Report(path=report.path, format=report.format, stats=report.stats, findings=findings)
     return model.with_classes(model.mosaic, report)  # a new model with the report: a made report is never changed
 
 
 def _not_on_the_cylinder(finding, cylinder: Cylinder, stroke: float) -> bool:
     """Whether ``finding`` of the flat strip is none of the cylinder's: the strip's size against the bed (the
-    cylinder stands on it, its diameter checked by :func:`check_cylinder`), or thin walls all of them at the
-    seam, within a stroke of ``x = 0`` or ``x = C``: the two halves of a band the seam cuts, whole on the
-    cylinder."""
+    cylinder stands on it, its diameter checked by :func:`check_cylinder`), or thin walls or small holes all
+    of them at the seam, within a stroke of ``x = 0`` or ``x = C``: the two halves of a band or an opening the
+    seam cuts, whole on the cylinder (its openings are filled judged whole:
+    :func:`~fabtiles.geometry.print_checks.fill_periodic_holes`)."""
     if finding.code == "bed_size":
         return True
     c = cylinder.circumference_mm
     at_seam = [min(x, c - x) <= stroke for x, _ in finding.locations]
-    return finding.code == "thin_wall" and len(at_seam) == finding.count and all(at_seam)
+    return finding.code in ("thin_wall", "small_hole") and len(at_seam) == finding.count and all(at_seam)
 
 
 def cylinder_stats(cylinder: Cylinder) -> dict:
@@ -314,3 +352,28 @@ def cylinder_stats(cylinder: Cylinder) -> dict:
         "end_rims_mm": cylinder.rim_mm,
         "mirrored": cylinder.mirror,
     }
+
+
+def _tops_line(tops, printer) -> str:
+    """What pointed tops did, in one line for the reports."""
+    cut = f" ({tops.clipped} cut back to keep min_wall_mm = {printer.min_wall_mm:g} mm)" if tops.clipped else ""
+    return (
+        f"pointed tops: {tops.raised} ceiling{'s' if tops.raised != 1 else ''} raised to a peak at "
+        f"max_overhang_deg = {printer.max_overhang_deg:g} degrees{cut}"
+    )
+
+
+def _overhangs(model, outline, cylinder: Cylinder, printer) -> list:
+    """The ``overhang`` finding of the wall printed standing (:func:`~fabtiles.geometry.wall_overhangs.
+    check_wall_overhangs`) on the strip as printed: a shade's holes, a deboss's grooves, a relief's gaps."""
+    import shapely
+
+    from ..geometry.wall_overhangs import check_wall_overhangs
+
+    style = cylinder.style
+    material = shapely.difference(outline, model.region) if style == "deboss" else model.region
+    depth = None if style == "pierced" else model.stack.deboss if style == "deboss" else model.stack.relief
+    found = check_wall_overhangs(
+        material, printer, style=style, depth_mm=depth, outline=outline, period_mm=cylinder.circumference_mm
+    )
+    return list(found.findings)

@@ -89,7 +89,7 @@ def tile_picture(
 
         # a cylinder's strip as it is printed (mirrored, its rims closed), where its findings are
         printed, dips = models.print_region
-        made = strip_region(printed, dips, tile.outline_shape(), models.cylinder)[0]
+        made = strip_region(printed, dips, tile.outline_shape(), models.cylinder, models.options.printer)[0]
     elif models.options.stamp is not None and (made is False or made is None):
         # a stamp's face as it is printed (mirrored unless the design says not), where its findings are
         made = models.print.region

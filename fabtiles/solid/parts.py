@@ -64,6 +64,7 @@ def prepare_print(
     *,
     fill_small_holes: bool = False,
     flatten: bool = True,
+    period_mm: float | None = None,
     path="",
     fmt="",
 ):
@@ -73,7 +74,8 @@ def prepare_print(
     (:func:`~fabtiles.geometry.print_checks.print_region`: its holes thinned within the
     profile's ``tolerance_mm`` unless ``flatten=False``, its openings narrower than the
     profile's ``min_hole_mm`` filled when ``fill_small_holes``; ``report.stats["filled_holes"]``
-    counts them). A strict profile with findings raises.
+    counts them; ``period_mm``: the region repeats along x with this period, its outline one
+    period, and is filled so: a cylinder's strip). A strict profile with findings raises.
     """
     from ..geometry.print_checks import check_print, check_print_pattern, print_region
 
@@ -87,7 +89,13 @@ def prepare_print(
     report = Report(path=str(path), format=fmt)
     designed, _ = print_region(region, outline, profile, stack.style, flatten=flatten)
     region, filled = print_region(
-        designed, outline, profile, stack.style, fill_small_holes=bool(fill_small_holes), flatten=False
+        designed,
+        outline,
+        profile,
+        stack.style,
+        fill_small_holes=bool(fill_small_holes),
+        flatten=False,
+        period_mm=period_mm,
     )
     if fill_small_holes:
         report.stats["filled_holes"] = filled

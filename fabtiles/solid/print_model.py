@@ -234,12 +234,15 @@ def print_model(
     mosaic=(),
     recess=None,
     step_arcs: bool = True,
+    period_mm: float | None = None,
     path: str = "",
     fmt: str = "",
 ) -> PrintModel:
     """Validate, make the region to print and run the printability checks: the tile's :class:`PrintModel`.
 
-    Parameters as :func:`~fabtiles.solid.parts.build_meshes`, plus ``stroke`` (mm, named
+    Parameters as :func:`~fabtiles.solid.parts.build_meshes`, plus ``period_mm`` (the region repeats
+    along x with this period, its outline one period: a cylinder's strip, filled so that its ends
+    meet), ``stroke`` (mm, named
     by the thin-wall check), ``fill_small_holes`` (fill the openings no disc of the
     printer profile's ``min_hole_mm`` fits in, see
     :func:`~fabtiles.geometry.print_checks.fill_print_holes`) and ``path``, ``fmt`` (what
@@ -268,6 +271,7 @@ def print_model(
         stroke,
         fill_small_holes=fill_small_holes,
         flatten=dips is None,
+        period_mm=period_mm,
         path=path,
         fmt=fmt,
     )

@@ -236,6 +236,10 @@ def _checked(solid, *, name: str, volume: float, region, outline) -> CheckedPart
     return CheckedPart(verts, faces, float(volume), 1, region, outline, float(found))
 
 
+NO_STEP = "a clay stamp has no STEP file (its grip's chamfers are not made as a B-rep); write STL or 3MF"
+"""Why a stamp has no STEP file, in one line (the build's refusal and the web page's note)."""
+
+
 class StampPrint:
     """A clay stamp ready for the print writers (STL, 3MF, GLB): made by :func:`stamp_print`.
 
@@ -334,9 +338,7 @@ class StampPrint:
     @property
     def brep(self):
         """No STEP of a stamp: its chamfers are not the planes of a relief's prisms."""
-        raise FabricationError(
-            "a clay stamp has no STEP file (its grip's chamfers are not made as a B-rep); write STL or 3MF"
-        )
+        raise FabricationError(NO_STEP)
 
 
 def stamp_print(model: PrintModel, *, settings: StampSettings | None = None) -> StampPrint:

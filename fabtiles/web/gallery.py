@@ -89,19 +89,31 @@ _CYLINDERS = {
     "roller": (
         "Texture roller",
         "table3-3 rosettes round a 60 x 80 mm roller, raised 2 mm and mirrored so the imprint in clay reads as "
-        "designed, bored for an 8 mm dowel",
-        {"radius": "10", "stroke": "1.6", "diameter": "60", "length": "80", "print_style": "relief", "relief_mm": "2"},
+        "designed, bored for an 8 mm dowel, the bands' undersides pointed to print without supports",
+        {
+            "preset": "table3-3",
+            "radius": "10",
+            "stroke": "1.6",
+            "diameter": "60",
+            "length": "80",
+            "pointed_tops": "true",
+            "print_style": "relief",
+            "relief_mm": "2",
+        },
     ),
     "lampshade": (
         "Lampshade",
-        "table3-3 rosettes pierced through a 120 x 150 mm shade with 8 mm rims and a holder for an E27 lamp fitting",
+        "table1-part2 stars pierced through a 120 x 150 mm shade with 8 mm rims and a holder for an E27 lamp "
+        "fitting, the openings' tops pointed to print without supports",
         {
+            "preset": "table1-part2",
             "radius": "20",
             "stroke": "2",
             "diameter": "120",
             "length": "150",
             "rim_mm": "8",
             "lamp_fitting_mm": "40",
+            "pointed_tops": "true",
             "print_style": "pierced",
             "pierced_mm": "2",
         },
@@ -194,7 +206,7 @@ def entries() -> tuple[Entry, ...]:
             )
         )
     for key, (title, note, values) in _CYLINDERS.items():
-        query = {"preset": "table3-3", "packing": "hex", "shape": "cylinder", **values}
+        query = {"packing": "hex", "shape": "cylinder", **values}
         query.update(printer_profile="fdm-0.4mm", fill_small_holes="true")
         out.append(Entry(key, title, note, query, "cylinder"))
     assert set(_TILINGS) == set(TILINGS), "a tiling is missing from the gallery"

@@ -73,5 +73,8 @@ def schema_json() -> dict:
         "fields": fields,
         "formats": [FORMATS[n].row() for n in offered],
         # in the form's words, as the page's errors: no design file's section
-        "unmade": {"cylinder": {f: user_message(Exception(r), None) for f, r in unmade_formats(offered).items()}},
+        "unmade": {
+            shape: {f: user_message(Exception(r), None) for f, r in unmade_formats(offered, shape).items()}
+            for shape in ("cylinder", "stamp")
+        },
     }

@@ -242,3 +242,30 @@ def test_flatten_holes_keeps_every_hole_within_the_tolerance():
     assert len(hole.coords) < len(was.coords)  # simplified...
     assert shapely.hausdorff_distance(hole, was) <= 0.02  # ...within the tolerance, every point
     assert abs(flat.area - plate.area) <= 0.02 * was.length
+
+
+# --------------------------------------------------------------------------- a strip that repeats along x
+
+
+def _edge_ys(region, x: float) -> list:
+    cut = shapely.intersection(region.boundary, shapely.LineString([(x, -1), (x, 100)]))
+    return sorted(np.round(shapely.get_coordinates(cut)[:, 1], 6).tolist())
+
+
+def test_a_periodic_strip_is_filled_alike_at_both_ends():
+    from fabtiles.geometry.print_checks import fill_periodic_holes
+
+    # an opening 3 mm wide crossing the seam unevenly: 0.3 mm of it at x = 0, 2.7 mm at x = 20
+    strip = shapely.box(0, 0, 20, 10).difference(shapely.box(-0.3, 3, 0.3, 7)).difference(shapely.box(17.3, 3, 20, 7))
+    outline = shapely.box(0, 0, 20, 10)
+    plain, _ = fill_print_holes(strip, outline, "fdm-0.4mm", "pierced")
+    assert _edge_ys(plain, 0) != _edge_ys(plain, 20)  # judged in pieces: the thin end filled, the wide one kept
+    filled, n = fill_periodic_holes(strip, outline, "fdm-0.4mm", "pierced", period_mm=20)
+    assert n == 0 and _edge_ys(filled, 0) == _edge_ys(filled, 20) == [0.0, 3.0, 7.0, 10.0]
+
+
+def test_a_periodic_fill_needs_the_outline_to_be_one_period():
+    from fabtiles.geometry.print_checks import fill_periodic_holes
+
+    with pytest.raises(ParameterError, match=r"period_mm = 15 is not the outline's width, 20 mm"):
+        fill_periodic_holes(shapely.box(0, 0, 20, 10), shapely.box(0, 0, 20, 10), "fdm-0.4mm", "pierced", period_mm=15)

@@ -177,10 +177,13 @@ def test_the_surface_controls_show_for_a_cylinder_only(client):
     fields = client.get("/api/schema").json()["fields"]
     assert fields["shape"]["widget"]["when"] == []
     assert [v for v, _ in fields["mirror"]["choices"]] == ["", "true", "false"]
-    for param in ("diameter", "length", "fit", "mirror", "bore_mm", "rim_mm", "lamp_fitting_mm"):
+    for param in ("diameter", "length", "fit", "bore_mm", "rim_mm", "lamp_fitting_mm", "pointed_tops"):
         assert ["shape", ["cylinder"]] in fields[param]["widget"]["when"], param
-    for param in ("outline", "width", "height", "frame", "corner_radius"):
-        assert ["shape", ["flat"]] in fields[param]["widget"]["when"], param
+    assert ["shape", ["cylinder", "stamp"]] in fields["mirror"]["widget"]["when"]
+    for param in ("block_mm", "grip_mm", "groove_mm"):
+        assert ["shape", ["stamp"]] in fields[param]["widget"]["when"], param
+    for param in ("outline", "width", "height", "frame", "corner_radius"):  # a stamp keeps the tile's
+        assert ["shape", ["flat", "stamp"]] in fields[param]["widget"]["when"], param
 
 
 def test_a_cylinder_is_not_nested_on_sheets(client):
@@ -188,3 +191,35 @@ def test_a_cylinder_is_not_nested_on_sheets(client):
     body = {"designs": [{"query": ROLLER, "count": 1}], "sheet": None, "gap_mm": None, "rotate": "90", "time_s": 1}
     r = client.post("/api/nest", json={**body, "format": "dxf"})
     assert r.status_code == 422 and r.json()["field"] == "designs" and "is printed, not cut" in r.json()["error"]
+
+
+# --------------------------------------------------------------------------- a stamp
+
+STAMP = "shape=stamp&outline=hexagon&width=40&frame=2&radius=8&stroke=1.6&print_style=relief&block_mm=16"
+
+
+def test_a_stamp_query_keeps_its_tile_and_gives_its_block():
+    design, spec, tile = design_of_query(_query(STAMP), limits=WEB_LIMITS)
+    assert design["surface"] == {"shape": "stamp", "block_mm": 16.0}
+    assert spec.surface.stamp and design["tile"]["outline"] == "hexagon" and tile.width_mm == pytest.approx(40)
+
+
+def test_a_stamps_download_is_one_body_on_its_block(client):
+    r = client.get(f"/api/export/stl?{STAMP}")
+    assert r.status_code == 200
+    mesh = trimesh.load(io.BytesIO(r.content), file_type="stl")
+    assert mesh.is_watertight and mesh.bounds[1][2] == pytest.approx(16 + 2.0 + 1.2, abs=0.01)
+
+
+def test_a_stamps_unmade_formats_are_refused_with_the_reason(client):
+    unmade = client.get("/api/schema").json()["unmade"]["stamp"]
+    assert set(unmade) == {"dxf", "svg", "lbrn2", "step"}
+    assert unmade["step"].startswith("a clay stamp has no STEP file")
+    r = client.get(f"/api/export/dxf?{STAMP}")
+    assert r.status_code == 422 and '"stamp" is printed, not cut' in r.json()["error"]
+
+
+def test_pointed_tops_reach_the_cylinder_from_the_query(client):
+    plain = client.get(f"/api/checks?{SHADE}").json()
+    pointed = client.get(f"/api/checks?{SHADE}&pointed_tops=true").json()
+    assert "pointed tops" in pointed["cylinder"] and "pointed tops" not in plain["cylinder"]

@@ -142,10 +142,10 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         import tomli_w
 
         formats = list(design_formats())
-        if spec.surface.cylinder:  # the formats a cylinder is made in: its file builds with no refusal
+        if spec.surface.shape != "flat":  # the formats a cylinder or stamp is made in: its file builds as it is
             from ...making.cylinder import unmade_formats
 
-            formats = [f for f in formats if f not in unmade_formats(formats)]
+            formats = [f for f in formats if f not in unmade_formats(formats, spec.surface.shape)]
         design = {**design, "output": {"formats": formats, **design.get("output", {})}}
         # named after the design, as its files are: the file's stem is their name when [output] name is unset
         text = f"# fabtiles design: build it with  fabtiles build {spec.name}.toml -o out\n"

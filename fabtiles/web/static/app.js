@@ -27,6 +27,8 @@ const state = {
   // [surface]: a flat tile, or a cylinder (the sample roller's size) whose tile is its unrolled strip;
   // mirror "": the print style's (a roller's), the text boxes "": the style's defaults
   shape: "flat", diameter: 60, length: 80, fit: "packing", mirror: "", bore_mm: "", rim_mm: "", lamp_fitting_mm: "",
+  pointed_tops: false,  // a cylinder's openings pointed at the printer's overhang limit
+  block_mm: "", grip_mm: "", groove_mm: "",  // a stamp's block and finger groove ("": the defaults)
 };
 // Options sent only when set: the schema's text and number boxes, and its check boxes (gap_rosette is the
 // page's own: the gap motif as a rosette).
@@ -34,8 +36,8 @@ const state = {
 let TEXT_KEYS = [], FLAG_KEYS = ["gap_rosette"], MENUS = [];
 // COLOUR_KEYS: the schema's colour pickers (the band's and the base's); sent only when chosen.
 let COLOUR_KEYS = [];
-// SURFACE_KEYS: the [surface] keys but the shape, sent only for a cylinder (the tile's outline, size and frame
-// only for a flat tile: query()); UNMADE: per shape, the formats it is not made in and why (the schema's).
+// SURFACE_KEYS: the [surface] keys but the shape, each sent only where its condition holds (a cylinder's, a
+// stamp's; the tile's outline, size and frame not for a cylinder: query()); UNMADE: per shape, the formats it is not made in and why (the schema's).
 let SURFACE_KEYS = [], UNMADE = {};
 const OWN_MENUS = new Set(["preset", "special", "tiling"]);
 // WHEN: each control's condition (the schema's widget.when: [parameter, values] pairs, all to hold);
@@ -152,7 +154,12 @@ function query() {
     q.set("length", state.length);
     if (state.fit !== "packing") q.set("fit", state.fit);
     if (state.mirror !== "") q.set("mirror", state.mirror);
+    if (state.pointed_tops) q.set("pointed_tops", "true");
   } else {
+    if (state.shape === "stamp") {  // a stamp keeps the tile's outline, size and frame
+      q.set("shape", state.shape);
+      if (state.mirror !== "") q.set("mirror", state.mirror);
+    }
     q.set("outline", state.outline);
     q.set("width", state.width);
     if (state.outline === "rectangle") q.set("height", state.height);
@@ -172,7 +179,7 @@ function query() {
   if (state.laser_mode === "inlay" && state.inlay_pieces !== "registration") q.set("inlay_pieces", state.inlay_pieces);
   q.set("fill_small_holes", state.fill_small_holes ? "true" : "false");
   for (const k of TEXT_KEYS)
-    if (String(state[k]).trim() !== "" && (cylinder || !SURFACE_KEYS.includes(k))) q.set(k, String(state[k]).trim());
+    if (String(state[k]).trim() !== "" && (!SURFACE_KEYS.includes(k) || applies(k))) q.set(k, String(state[k]).trim());
   return q;
 }
 
@@ -222,11 +229,16 @@ function showLabel() {
   sel.dataset.label = label;
 }
 
+// Whether a control applies to the state: its conditions (the schema's widget.when) all hold.
+function applies(key) {
+  return (WHEN[key] || []).every(([param, values]) => values.includes(String(state[param])));
+}
+
 // Each control shown only where it applies (the schema's conditions): a rectangle's height, the kit's fit...
 function applyWhen() {
   $("surface-note").hidden = state.shape !== "cylinder";
-  for (const [key, pairs] of Object.entries(WHEN)) {
-    const on = pairs.every(([param, values]) => values.includes(String(state[param])));
+  for (const key of Object.keys(WHEN)) {
+    const on = applies(key);
     const control = $(`${key}-row`) || ($(key) && $(key).closest(".row"));
     if (control) control.hidden = !on;
     for (const err of document.querySelectorAll(`.err[data-for="${key}"]`)) err.hidden = !on;
