@@ -69,7 +69,7 @@ the geometry."""
 PEAK_MARGIN_DEG = 1.0
 """The peaks' sides lean this much less than the printer's limit, and every edge beyond the limit
 less this is raised: a slicer given the same limit as its support threshold supports a face that
-leans at exactly it (the docs on overhangs give the slicer's figures)."""
+leans at exactly it (docs/surfaces.md gives the slicer's figures)."""
 
 QUAD_SEGS = 8
 """Segments of a quarter circle in the room kept around the other openings."""
