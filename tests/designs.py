@@ -58,12 +58,14 @@ def design_toml(
     return "\n".join(lines) + "\n"
 
 
-def is_cylinder(path) -> bool:
-    """Whether the design file at ``path`` puts its pattern on a cylinder (``[surface] shape = "cylinder"``):
-    a roller or a shade, printed only, built by tests/making/test_cylinder_build.py rather than by the tests
-    that make every flat sample's cutter files."""
+def printed_only(path) -> bool:
+    """Whether the design file at ``path`` is printed only (``[surface] shape = "cylinder"`` or ``"stamp"``): a
+    roller, a shade or a clay stamp, made in the print formats and built by their own tests
+    (tests/making/test_cylinder_build.py, test_stamp_build.py) rather than by the tests that make every flat
+    sample's cutter files."""
     from pathlib import Path
 
     import tomllib
 
-    return tomllib.loads(Path(path).read_text(encoding="utf-8")).get("surface", {}).get("shape") == "cylinder"
+    shape = tomllib.loads(Path(path).read_text(encoding="utf-8")).get("surface", {}).get("shape", "flat")
+    return shape != "flat"

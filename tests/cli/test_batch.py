@@ -5,7 +5,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from designs import is_cylinder
+from designs import printed_only
 
 SAMPLES = Path(__file__).resolve().parents[2] / "samples"
 
@@ -38,7 +38,7 @@ def test_batch_builds_good_designs_and_reports_broken_ones(tmp_path):
         (tmp_path / name).write_text(text)
         broken.append(tmp_path / name)
     # every sample of one file a format (the screen larger than its bed is pieces: tests/making/test_panel_pieces.py)
-    samples = sorted(p for p in SAMPLES.glob("*.toml") if p.stem != "screen-1200x800" and not is_cylinder(p))
+    samples = sorted(p for p in SAMPLES.glob("*.toml") if p.stem != "screen-1200x800" and not printed_only(p))
     out = tmp_path / "out"
     proc = run_batch(*samples, *broken, "-o", out, "--jobs", "2", "--format", "svg", "--format", "dxf")
     assert proc.returncode == 2

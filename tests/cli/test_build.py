@@ -6,14 +6,14 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from designs import design_toml, is_cylinder
+from designs import design_toml, printed_only
 
 from fabtiles import FabtilesError
 from fabtiles.cli.main import cli
 from fabtiles.export.formats import FORMATS
 
 ROOT = Path(__file__).resolve().parents[2]
-SAMPLES = sorted(p for p in (ROOT / "samples").glob("*.toml") if not is_cylinder(p))
+SAMPLES = sorted(p for p in (ROOT / "samples").glob("*.toml") if not printed_only(p))
 RENDERS = ROOT / "samples" / "renders"
 
 SMALL = design_toml(preset="table3-1", radius=8, output={"formats": ["svg"]})

@@ -18,7 +18,7 @@ import json
 from pathlib import Path
 
 import pytest
-from designs import is_cylinder
+from designs import printed_only
 from dxf_helpers import (
     GOLDEN,
     assert_golden,
@@ -43,7 +43,7 @@ from fabtiles.making import build_design, export_tile
 ROOT = Path(__file__).resolve().parents[2]
 PIECES = {"screen-1200x800"}
 """Samples larger than their cutter's bed, cut as pieces: checked in tests/making/test_panel_pieces.py."""
-SAMPLES = sorted(p for p in (ROOT / "samples").glob("*.toml") if p.stem not in PIECES and not is_cylinder(p))
+SAMPLES = sorted(p for p in (ROOT / "samples").glob("*.toml") if p.stem not in PIECES and not printed_only(p))
 LARGE = {"sheet-600x400", "panel-2440x1220", "relief-400x400"}
 """Samples whose full golden would be megabytes: counts and a sample of entities only."""
 ONE = ROOT / "samples" / "rosette.toml"

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import pytest
 import shapely
-from designs import is_cylinder
+from designs import printed_only
 from mesh_helpers import (
     STYLES,
     VOLUME_REL,
@@ -48,7 +48,7 @@ SKIP = {"sheet-600x400", "panel-2440x1220", "screen-1200x800", "relief-400x400"}
 """The benchmark sheet and the router's panel: far too big for a test of every format and style; the
 samples larger than their machine's bed are made as pieces (tests/making/test_panel_pieces.py,
 tests/making/test_print_pieces.py)."""
-SAMPLES = [p for p in sorted((ROOT / "samples").glob("*.toml")) if p.stem not in SKIP and not is_cylinder(p)]
+SAMPLES = [p for p in sorted((ROOT / "samples").glob("*.toml")) if p.stem not in SKIP and not printed_only(p)]
 IDS = [p.stem for p in SAMPLES]
 
 STEP_SIZE_MM = 40.0

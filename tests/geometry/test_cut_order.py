@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from designs import is_cylinder
+from designs import printed_only
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
@@ -20,7 +20,7 @@ from fabtiles.making.models import BuildOptions, Models
 from fabtiles.making.pipeline import prepare_tile
 
 ROOT = Path(__file__).resolve().parents[2]
-SAMPLES = sorted(p for p in (ROOT / "samples").glob("*.toml") if p.stem != "screen-1200x800" and not is_cylinder(p))
+SAMPLES = sorted(p for p in (ROOT / "samples").glob("*.toml") if p.stem != "screen-1200x800" and not printed_only(p))
 """The samples of one plan each (the screen, larger than its bed, is pieces: tests/making/test_panel_pieces.py)."""
 
 

@@ -276,3 +276,28 @@ def test_the_gallery_opens_the_roller_standing_in_3d(page, server):
     _wait_model(page, v)
     assert _shown(page, "#width-row") and not _shown(page, "#diameter-row") and not _shown(page, "#unmade")
     assert page.get_attribute("#downloads a[data-format=dxf]", "href").startswith("/api/export/dxf?")
+
+
+def test_a_stamp_keeps_the_tiles_controls_and_shows_its_block(page, server):
+    """A stamp from the shape menu: the tile's outline, size and frame stay, the block's and the groove's
+    controls show, the cylinder's hide; the 3D view shows the block and the pattern; the cutters' files and
+    STEP are disabled with the reason shown."""
+    page.goto(f"{server}/?preset=table3-3&outline=hexagon&width=50&radius=8&frame=2&stroke=1.6&print_style=relief")
+    _wait_model(page)
+    v = _version(page)
+    page.select_option("#shape", "stamp")
+    _wait_model(page, v)
+    assert "shape=stamp" in page.url and "width=50" in page.url
+    for selector in ("#width-row", "#frame-row", "#outline", "#block_mm", "#grip_mm", "#groove_mm", "#mirror"):
+        assert _shown(page, selector), selector
+    for selector in ("#diameter-row", "#fit", "#bore_mm", "#pointed_tops", "#surface-note"):
+        assert not _shown(page, selector), selector
+    assert page.get_attribute("#view3d", "data-parts") == "block,pattern"
+    for fmt in ("dxf", "svg", "lbrn2", "step"):
+        assert page.get_attribute(f"#downloads a[data-format={fmt}]", "href") is None, fmt
+    assert "a clay stamp has no STEP file" in page.text_content("#unmade")
+    v = _version(page)
+    page.fill("#block_mm", "16")
+    page.dispatch_event("#block_mm", "change")
+    _wait_model(page, v)
+    assert "block_mm=16" in page.url
