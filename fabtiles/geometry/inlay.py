@@ -293,7 +293,7 @@ def shape_key(poly, decimals: int = 3) -> tuple:
         heading = np.arctan2(edges[:, 1], edges[:, 0])
         turn = (np.roll(heading, -1) - heading + math.pi) % (2 * math.pi) - math.pi
         seq = np.round(np.c_[length, turn], decimals) + 0.0
-        readings.append(tuple(map(tuple, np.roll(seq, -_least_start(seq), axis=0))))
+        readings.append(tuple(map(tuple, np.roll(seq, -_least_start(np.asarray(seq)), axis=0))))
     holes = (len(poly.interiors), round(poly.area, decimals))
     return min(readings), holes
 
