@@ -293,11 +293,24 @@ def shape_key(poly, decimals: int = 3) -> tuple:
         heading = np.arctan2(edges[:, 1], edges[:, 0])
         turn = (np.roll(heading, -1) - heading + math.pi) % (2 * math.pi) - math.pi
         seq = np.round(np.c_[length, turn], decimals) + 0.0
-        n = len(length)
-        rows = [tuple(map(tuple, np.roll(seq, -k, axis=0))) for k in range(n)]
-        readings.append(min(rows))
+        readings.append(tuple(map(tuple, np.roll(seq, -_least_start(np.asarray(seq)), axis=0))))
     holes = (len(poly.interiors), round(poly.area, decimals))
     return min(readings), holes
+
+
+def _least_start(seq: np.ndarray) -> int:
+    """The row to start at for the smallest reading of ``seq``'s rows read cyclically (compared as
+    tuples, row by row): the starts still tied are narrowed a row at a time, instead of every reading
+    made as tuples (a ring of n vertices: n readings of n rows each)."""
+    n = len(seq)
+    starts = np.arange(n)
+    for j in range(n):
+        if len(starts) == 1:
+            break
+        for column in range(seq.shape[1]):
+            values = seq[(starts + j) % n, column]
+            starts = starts[values == values.min()]
+    return int(starts[0])
 
 
 def distinct_shapes(pieces) -> int:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 import shapely
 from hypothesis import HealthCheck, given, settings
@@ -75,30 +76,44 @@ def _edges(shape):
 
 def assert_no_coplanar_neighbours(shape):
     """Every edge joins two faces in different planes: each flat region is one face (cylinders: see
-    tests/export/test_step_cylinders.py)."""
+    tests/export/test_step_cylinders.py).
+
+    The faces of each edge are gathered as OCCT's ``TopExp.MapShapesAndAncestors`` gathers them
+    (every face, every edge of it), by one walk over the faces: reading that map's lists back edge by
+    edge took seconds on a sample's tile. Each face's plane is read once."""
     from OCP.BRepAdaptor import BRepAdaptor_Surface
-    from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as EdgeFaces
+    from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
     from OCP.GeomAbs import GeomAbs_Plane
     from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
-    from OCP.TopExp import TopExp
+    from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS
 
-    owners = EdgeFaces()
-    TopExp.MapShapesAndAncestors_s(shape, TopAbs_EDGE, TopAbs_FACE, owners)
-    for i in range(1, owners.Extent() + 1):
-        faces = list(owners.FindFromIndex(i))
-        assert len(faces) == 2
-        surfaces = [BRepAdaptor_Surface(TopoDS.Face(f), False) for f in faces]
-        if any(surf.GetType() != GeomAbs_Plane for surf in surfaces):
-            continue
-        planes = []
-        for surf in surfaces:
+    faces, edges = ShapeMap(), ShapeMap()
+    edge_of, face_of = [], []
+    walk = TopExp_Explorer(shape, TopAbs_FACE)
+    while walk.More():
+        face = walk.Current()
+        k = faces.Add(face)
+        inner = TopExp_Explorer(face, TopAbs_EDGE)
+        while inner.More():
+            edge_of.append(edges.Add(inner.Current()))
+            face_of.append(k)
+            inner.Next()
+        walk.Next()
+    planes = np.full((faces.Extent() + 1, 4), np.nan)  # (normal, offset) by face index; NaN: not a plane
+    for k in range(1, faces.Extent() + 1):
+        surf = BRepAdaptor_Surface(TopoDS.Face(faces.FindKey(k)), False)
+        if surf.GetType() == GeomAbs_Plane:
             pl = surf.Plane()
             n, p = pl.Axis().Direction(), pl.Location()
-            planes.append(((n.X(), n.Y(), n.Z()), n.X() * p.X() + n.Y() * p.Y() + n.Z() * p.Z()))
-        (n1, d1), (n2, d2) = planes
-        dot = sum(a * b for a, b in zip(n1, n2, strict=True))
-        assert not (abs(abs(dot) - 1) < 1e-9 and abs(d1 - (d2 if dot > 0 else -d2)) < 1e-6), planes
+            planes[k] = (n.X(), n.Y(), n.Z(), n.X() * p.X() + n.Y() * p.Y() + n.Z() * p.Z())
+    edge_of, face_of = np.asarray(edge_of), np.asarray(face_of)
+    assert (np.bincount(edge_of)[1:] == 2).all()  # every edge of a face bounds two faces
+    pair = face_of[np.argsort(edge_of, kind="stable")].reshape(-1, 2)
+    one, two = planes[pair[:, 0]], planes[pair[:, 1]]
+    dot = (one[:, :3] * two[:, :3]).sum(axis=1)
+    same = (np.abs(np.abs(dot) - 1) < 1e-9) & (np.abs(one[:, 3] - np.where(dot > 0, two[:, 3], -two[:, 3])) < 1e-6)
+    assert not same.any(), [one[same][0].tolist(), two[same][0].tolist()]
 
 
 def _write(tmp_path, tile, style="relief", **kw):

@@ -1,8 +1,8 @@
 """Reproducible files (issue 31): the same design gives the same bytes, run after run.
 
 Every shipped sample is built in every format its machines allow, twice, in two
-rounds started a second apart, each a process of its own with its own string hash
-seed (a set's order follows the seed: ezdxf's CLASSES section did) that runs every
+rounds started at least a second apart, each a process of its own with its own string
+hash seed (a set's order follows the seed: ezdxf's CLASSES section did) that runs every
 ``fabtiles build`` of the round, and every file is compared byte for byte. So are
 an inlay kit, a sheet of copies, a test card in a DXF version with CLASSES, and the
 web app's downloads (the kit's zip, the 3D view's GLB). In process, every writer of
@@ -90,13 +90,17 @@ failures as JSON, ``{name: what went wrong}``."""
 
 
 def run_twice(top: Path, jobs: list[tuple[str, list]]) -> tuple[Path, Path, dict]:
-    """Run ``jobs`` (see `_ROUND`, ``{out}`` replaced by the round's folder) in two rounds, a second apart.
+    """Run ``jobs`` (see `_ROUND`, ``{out}`` replaced by the round's folder) in two rounds, started at
+    least a second apart.
 
     Each round is a fresh process with its own string hash seed that runs every job.
     Returns the two rounds' folders and the jobs that failed, with why.
     """
     rounds, failed = [], {}
+    started = time.monotonic()
     for seed in ("1", "5"):  # under Python 3.11 these two took the CLASSES in different orders
+        if seed == "5":  # a time stamp of whole seconds changes between the rounds' starts
+            time.sleep(max(0.0, started + 1.0 - time.monotonic()))
         out = top / f"round-{seed}"
         env = dict(os.environ, PYTHONHASHSEED=seed)
         round_jobs = [(name, [str(a).replace("{out}", str(out)) for a in argv]) for name, argv in jobs]
@@ -106,8 +110,6 @@ def run_twice(top: Path, jobs: list[tuple[str, list]]) -> tuple[Path, Path, dict
         assert proc.returncode == 0, f"the round failed:\n{proc.stdout}\n{proc.stderr}"
         failed.update(json.loads(proc.stdout.strip().splitlines()[-1]))
         rounds.append(out)
-        if seed == "1":
-            time.sleep(1.0)  # a time stamp of whole seconds changes between the rounds
     return rounds[0], rounds[1], failed
 
 
