@@ -6,8 +6,6 @@ run by hand: ``FABTILES_HYPOTHESIS=long python -m pytest tests/making/test_pipel
 """
 
 import os
-import tempfile
-from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -27,20 +25,6 @@ settings.register_profile(
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
 )
 settings.load_profile(os.environ.get("FABTILES_HYPOTHESIS", "ci"))
-
-
-def pytest_configure(config):
-    """Bytecode for the Python processes the tests start, where writing it is turned off.
-
-    The run starts about 200 of them (xdist's workers, the documented ``fabtiles`` commands, the
-    reproducible rounds); with ``PYTHONDONTWRITEBYTECODE`` set, each compiled the package's sources
-    again. They keep it in one folder outside the tree instead (``PYTHONPYCACHEPREFIX``), so the
-    tree stays free of ``__pycache__`` as the setting meant; where bytecode is written (CI), nothing
-    changes.
-    """
-    if os.environ.get("PYTHONDONTWRITEBYTECODE") and not os.environ.get("PYTHONPYCACHEPREFIX"):
-        del os.environ["PYTHONDONTWRITEBYTECODE"]
-        os.environ["PYTHONPYCACHEPREFIX"] = str(Path(tempfile.gettempdir()) / f"fabtiles-pycache-{os.getuid()}")
 
 
 COLLECTED = pytest.StashKey[set]()
