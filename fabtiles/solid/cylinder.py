@@ -377,8 +377,10 @@ def glue_seam(verts, faces, x0: float, x1: float, *, name: str = "part"):
 
 def _snap_to_twins(yz, ends0, ends1):
     """``yz`` with each vertex of ``ends1`` lacking an exact twin among ``ends0`` moved onto the nearest one of
-    the same ``z`` within :data:`SEAM_SNAP_MM` along ``y``."""
+    the same ``z`` within :data:`SEAM_SNAP_MM` along ``y``, unless a vertex of ``ends1`` is there already: then
+    the two are one crossing and a point splitting an edge of the same side, which :func:`_split_at` matches."""
     have = {(float(p[0]), float(p[1])) for p in yz[ends0]}
+    taken = {(float(p[0]), float(p[1])) for p in yz[ends1]}
     by_z: dict = {}
     for i in ends0:
         by_z.setdefault(float(yz[i, 1]), []).append(float(yz[i, 0]))
@@ -389,7 +391,7 @@ def _snap_to_twins(yz, ends0, ends1):
             continue
         ys = np.array(by_z[z])
         k = int(np.argmin(np.abs(ys - y)))
-        if abs(ys[k] - y) <= SEAM_SNAP_MM:
+        if abs(ys[k] - y) <= SEAM_SNAP_MM and (float(ys[k]), z) not in taken:
             yz[i, 0] = ys[k]
     return yz
 
