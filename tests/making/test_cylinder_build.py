@@ -535,7 +535,24 @@ OVERLAPPING_DIPS = dict(  # a merged dip put on the grid overlapping a lone one:
     fill=True,
 )
 
+PEAK_CUT_DIPS = dict(  # a peak cut into a dip, which then crossed the region's edge on the grid
+    preset="table2-left",
+    rotation=15,
+    packing="square",
+    size=12.6,
+    stroke=1.87,
+    interlace=True,
+    diameter=25.8,
+    length=34.7,
+    pointed=True,
+    fit="packing",
+    style="relief",
+    fill=True,
+)
 
-@pytest.mark.parametrize("case", [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS], ids=["fill", "split", "dips"])
+
+@pytest.mark.parametrize(
+    "case", [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS, PEAK_CUT_DIPS], ids=["fill", "split", "dips", "peak"]
+)
 def test_designs_that_broke_the_seam_are_sound(case):
     sound_or_refused(cylinder_text(**case), refused=False)
