@@ -405,7 +405,8 @@ def pointed_tops(
     round another opening (which would leave that opening in a loose ring); such a peak is counted
     in ``clipped``, and its cut top may still overhang (the check says where). A peak may come
     closer than ``min_wall_mm`` to its own opening's other edges: that leaves a sharp tip of
-    material, as a star's points do.
+    material, as a star's points do; a piece that two peaks cut off a part of the material,
+    narrower than ``min_wall_mm``, goes with them (loose, it would fall out of a pierced wall).
 
     Parameters
     ----------
@@ -452,7 +453,7 @@ def pointed_tops(
         if len(pieces):
             kept.extend(pieces)
             room.add(pieces, own)
-    out = _without(region, shapely.union_all(kept) if kept else shapely.Polygon(), strip, period_mm)
+    out = _without(region, shapely.union_all(kept) if kept else shapely.Polygon(), strip, period_mm, wall)
     where = found.middles(period_mm, strip.bounds[0])[todo][clipped]
     return PointedTops(
         out,
@@ -529,8 +530,10 @@ class _Room:
             self.n += 1
 
 
-def _without(region, taken, strip, period_mm):
-    """``region`` less the peaks ``taken`` (a periodic strip's brought back into it from a turn on)."""
+def _without(region, taken, strip, period_mm, wall: float = 0.0):
+    """``region`` less the peaks ``taken`` (a periodic strip's brought back into it from a turn on), and less
+    the pieces the peaks cut off a part of it narrower than ``wall`` (a star's tip between two peaks of its
+    opening: loose, it would fall out of a pierced wall, and no disc of ``wall`` fits in it to print)."""
     if period_mm is not None:
         x0, y0, x1, y1 = strip.bounds
         here = shapely.intersection(taken, shapely.box(x0, y0, x1, y1))
@@ -549,5 +552,22 @@ def _without(region, taken, strip, period_mm):
     parts = shapely.get_parts(out)
     if len(parts) > 1:  # an overlay's slivers along the peaks' floors
         parts = parts[shapely.area(parts) > AREA_TOLERANCE_MM2]
+        parts = parts[~_cut_off(parts, shapely.get_parts(region), wall)]
         out = parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
     return out
+
+
+def _cut_off(parts, before, wall: float):
+    """Which ``parts`` are pieces cut off a part of ``before`` (not its largest piece) narrower than ``wall``."""
+    if len(parts) <= len(before) or wall <= 0:
+        return np.zeros(len(parts), bool)
+    owner = np.full(len(parts), -1)
+    inside, of = shapely.STRtree(before).query(shapely.point_on_surface(parts), predicate="intersects")
+    owner[inside] = of
+    area = shapely.area(parts)
+    largest = np.zeros(len(parts), bool)
+    for k in np.unique(owner[owner >= 0]).tolist():
+        mine = np.flatnonzero(owner == k)
+        largest[mine[np.argmax(area[mine])]] = True
+    narrow = shapely.is_empty(shapely.buffer(parts, -wall / 2, quad_segs=2))
+    return (owner >= 0) & ~largest & narrow

@@ -684,8 +684,18 @@ class CylinderPrint:
 
     @cached_property
     def fused(self) -> CheckedPart:
-        """The print as one wrapped, checked body (with the lamp holder): what an STL holds."""
-        return self._held(self._wrap(self.model.fused, self.fused_name), self.fused_name)
+        """The print as one wrapped, checked body (with the lamp holder): what an STL holds.
+
+        Raises :class:`~fabtiles.FabricationError` when it is more than one body: a cylinder prints standing
+        as one piece, and a piece of a pierced wall not joined to the rest falls out of it."""
+        part = self._held(self._wrap(self.model.fused, self.fused_name), self.fused_name)
+        if part.bodies > 1:
+            raise FabricationError(
+                f"the wrapped {self.fused_name} falls apart into {part.bodies} bodies: {part.bodies - 1} "
+                f"piece{'s' if part.bodies > 2 else ''} of material not joined to the rest (fabtiles check lists "
+                "them as loose_part); make the stroke wider so that the pattern's pieces meet; nothing was written"
+            )
+        return part
 
     @property
     def fused_name(self) -> str:

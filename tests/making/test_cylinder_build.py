@@ -550,9 +550,26 @@ PEAK_CUT_DIPS = dict(  # a peak cut into a dip, which then crossed the region's 
     fill=True,
 )
 
+LOOSE_TIPS = dict(  # two peaks of one opening cut a star's tip off its band: loose in the shade's wall
+    preset="table3-3",
+    rotation=7.5,
+    packing="square",
+    size=9.89,
+    stroke=1.18,
+    interlace=False,
+    diameter=65.0,
+    length=16,
+    pointed=True,
+    fit="packing",
+    style="pierced",
+    fill=False,
+)
+
 
 @pytest.mark.parametrize(
-    "case", [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS, PEAK_CUT_DIPS], ids=["fill", "split", "dips", "peak"]
+    "case",
+    [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS, PEAK_CUT_DIPS, LOOSE_TIPS],
+    ids=["fill", "split", "dips", "peak", "tips"],
 )
 def test_designs_that_broke_the_seam_are_sound(case):
     sound_or_refused(cylinder_text(**case), refused=False)
