@@ -524,4 +524,4 @@ def test_a_wall_that_falls_apart_is_refused():
     with pytest.raises(
         FabricationError, match=r"wrapped pattern falls apart into 2 bodies: 1 piece of material not joined"
     ):
-        cp.fused
+        _ = cp.fused
