@@ -325,7 +325,13 @@ def slice_x(verts, faces, planes, snap_mm: float = 0.0, collapse_mm: float = 0.0
         if near.any():
             from ..core.graph import components
 
-            tris = components(len(out), pa[near], pb[near])[tris]  # onto the lowest: an old vertex if one is
+            pa, pb = pa[near], pb[near]
+            # a cut point a hair from two old vertices (each a cut moved to an edge's end) joins neither: two
+            # old vertices made one would fold the mesh where they are not an edge's two ends
+            comp = components(len(out), pa, pb)
+            shared = np.bincount(comp[:n], minlength=len(out))[comp] > 1
+            keep = ~(shared[pa] & ((pa < n) | (pb < n)))
+            tris = components(len(out), pa[keep], pb[keep])[tris]  # onto the lowest: an old vertex if one is
     ok = (tris[:, 0] != tris[:, 1]) & (tris[:, 1] != tris[:, 2]) & (tris[:, 0] != tris[:, 2])
     return out, np.concatenate([faces[~cut], tris[ok]])
 

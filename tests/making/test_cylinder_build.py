@@ -565,11 +565,26 @@ LOOSE_TIPS = dict(  # two peaks of one opening cut a star's tip off its band: lo
     fill=False,
 )
 
+FOLDED_CUTS = dict(  # a cut point a hair from two corners each within a snap of a plane: the two made one
+    preset="table3-2",
+    rotation=7.5,
+    packing="hex",
+    size=5.54,
+    stroke=1.91,
+    interlace=False,
+    diameter=53.2,
+    length=20,
+    pointed=True,
+    fit="packing",
+    style="pierced",
+    fill=False,
+)
+
 
 @pytest.mark.parametrize(
     "case",
-    [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS, PEAK_CUT_DIPS, LOOSE_TIPS],
-    ids=["fill", "split", "dips", "peak", "tips"],
+    [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS, PEAK_CUT_DIPS, LOOSE_TIPS, FOLDED_CUTS],
+    ids=["fill", "split", "dips", "peak", "tips", "cuts"],
 )
 def test_designs_that_broke_the_seam_are_sound(case):
     sound_or_refused(cylinder_text(**case), refused=False)
