@@ -13,6 +13,9 @@ import pytest
 import shapely
 import trimesh
 from click.testing import CliRunner
+from hypothesis import HealthCheck, example, given, settings
+from hypothesis import strategies as st
+from hypothesis_scale import examples
 from real_programs import cura_definitions, program, run
 
 from fabtiles.cli.main import cli
@@ -588,3 +591,38 @@ FOLDED_CUTS = dict(  # a cut point a hair from two corners each within a snap of
 )
 def test_designs_that_broke_the_seam_are_sound(case):
     sound_or_refused(cylinder_text(**case), refused=False)
+
+
+PRESETS = ("table1-part1", "table1-part2", "table2-left", "table2-right", "table3-1", "table3-2", "table3-3")
+
+
+@st.composite
+def small_cylinders(draw) -> dict:
+    packing = draw(st.sampled_from(["hex", "square", "4.8.8", "6.6.6", "3.12.12", "4.6.12"]))
+    tiling = packing not in ("hex", "square")
+    return dict(
+        preset=draw(st.sampled_from(PRESETS)),
+        rotation=draw(st.sampled_from([0, 7.5, 15])),
+        packing=packing,
+        size=round(draw(st.floats(6, 12) if tiling else st.floats(5, 14)), 2),
+        stroke=round(draw(st.floats(1.0, 2.5)), 2),
+        interlace=draw(st.booleans()),
+        diameter=round(draw(st.floats(25, 40)), 1),
+        length=round(draw(st.floats(10, 20)), 1),
+        pointed=draw(st.booleans()),
+        fit=draw(st.sampled_from(["packing", "diameter"])),
+        style=draw(st.sampled_from(["relief", "deboss", "pierced"])),
+        fill=draw(st.booleans()),
+    )
+
+
+@settings(max_examples=examples(4), deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(case=small_cylinders())
+@example(case=SEAM_FILL)
+@example(case=SEAM_SPLIT)
+@example(case=OVERLAPPING_DIPS)
+@example(case=PEAK_CUT_DIPS)
+@example(case=LOOSE_TIPS)
+@example(case=FOLDED_CUTS)
+def test_any_small_cylinder_is_one_watertight_body_or_refused(case):
+    sound_or_refused(cylinder_text(**case))
