@@ -552,14 +552,14 @@ def _without(region, taken, strip, period_mm, wall: float = 0.0):
     parts = shapely.get_parts(out)
     if len(parts) > 1:  # an overlay's slivers along the peaks' floors
         parts = parts[shapely.area(parts) > AREA_TOLERANCE_MM2]
-        parts = parts[~_cut_off(parts, shapely.get_parts(region), wall)]
-        out = parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
-    return out
+    parts = parts[~_cut_off(parts, shapely.get_parts(region), wall)]
+    return parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
 
 
 def _cut_off(parts, before, wall: float):
-    """Which ``parts`` are pieces cut off a part of ``before`` (not its largest piece) narrower than ``wall``."""
-    if len(parts) <= len(before) or wall <= 0:
+    """Which ``parts`` are pieces the peaks cut off a part of ``before`` narrower than ``wall``: all but its
+    largest piece, and that one too where the part was not so narrow (the peaks left crumbs of it)."""
+    if wall <= 0:
         return np.zeros(len(parts), bool)
     owner = np.full(len(parts), -1)
     inside, of = shapely.STRtree(before).query(shapely.point_on_surface(parts), predicate="intersects")
@@ -570,4 +570,7 @@ def _cut_off(parts, before, wall: float):
         mine = np.flatnonzero(owner == k)
         largest[mine[np.argmax(area[mine])]] = True
     narrow = shapely.is_empty(shapely.buffer(parts, -wall / 2, quad_segs=2))
-    return (owner >= 0) & ~largest & narrow
+    was_narrow = np.ones(len(parts), bool)
+    if (narrow & largest).any():
+        was_narrow[owner >= 0] = shapely.is_empty(shapely.buffer(before, -wall / 2, quad_segs=2))[owner[owner >= 0]]
+    return (owner >= 0) & narrow & (~largest | ~was_narrow)

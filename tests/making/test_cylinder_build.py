@@ -583,11 +583,26 @@ FOLDED_CUTS = dict(  # a cut point a hair from two corners each within a snap of
     fill=False,
 )
 
+CRUMBS = dict(  # peaks that eat a small piece of the wall down to crumbs narrower than min_wall_mm
+    preset="table1-part1",
+    rotation=7.5,
+    packing="square",
+    size=11.65,
+    stroke=2.45,
+    interlace=False,
+    diameter=39.3,
+    length=16.4,
+    pointed=True,
+    fit="packing",
+    style="pierced",
+    fill=False,
+)
+
 
 @pytest.mark.parametrize(
     "case",
-    [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS, PEAK_CUT_DIPS, LOOSE_TIPS, FOLDED_CUTS],
-    ids=["fill", "split", "dips", "peak", "tips", "cuts"],
+    [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS, PEAK_CUT_DIPS, LOOSE_TIPS, FOLDED_CUTS, CRUMBS],
+    ids=["fill", "split", "dips", "peak", "tips", "cuts", "crumbs"],
 )
 def test_designs_that_broke_the_seam_are_sound(case):
     sound_or_refused(cylinder_text(**case), refused=False)
@@ -624,5 +639,6 @@ def small_cylinders(draw) -> dict:
 @example(case=PEAK_CUT_DIPS)
 @example(case=LOOSE_TIPS)
 @example(case=FOLDED_CUTS)
+@example(case=CRUMBS)
 def test_any_small_cylinder_is_one_watertight_body_or_refused(case):
     sound_or_refused(cylinder_text(**case))
