@@ -331,9 +331,41 @@ def slice_x(verts, faces, planes, snap_mm: float = 0.0, collapse_mm: float = 0.0
             comp = components(len(out), pa, pb)
             shared = np.bincount(comp[:n], minlength=len(out))[comp] > 1
             keep = ~(shared[pa] & ((pa < n) | (pb < n)))
-            tris = components(len(out), pa[keep], pb[keep])[tris]  # onto the lowest: an old vertex if one is
-    ok = (tris[:, 0] != tris[:, 1]) & (tris[:, 1] != tris[:, 2]) & (tris[:, 0] != tris[:, 2])
-    return out, np.concatenate([faces[~cut], tris[ok]])
+            pa, pb = pa[keep], pb[keep]
+            # a collapse that would open the mesh (its two points share a neighbour beyond the sliver's two
+            # triangles) is not made: the sliver stays, closed
+            sliced = np.concatenate([faces[~cut], tris])
+            for _ in range(COLLAPSE_ROUNDS):
+                comp = components(len(out), pa, pb)
+                bad = _unpaired_vertices(_proper(comp[sliced]))
+                if not len(bad):
+                    break
+                off = np.isin(comp[pa], bad)
+                if not off.any():
+                    break
+                pa, pb = pa[~off], pb[~off]
+            tris = components(len(out), pa, pb)[tris]  # onto the lowest: an old vertex if one is
+    return out, np.concatenate([faces[~cut], _proper(tris)])
+
+
+COLLAPSE_ROUNDS = 4
+"""Rounds of :func:`slice_x` taking back the collapses that open the mesh."""
+
+
+def _proper(tris):
+    """The triangles with three distinct corners."""
+    return tris[(tris[:, 0] != tris[:, 1]) & (tris[:, 1] != tris[:, 2]) & (tris[:, 0] != tris[:, 2])]
+
+
+def _unpaired_vertices(faces) -> np.ndarray:
+    """The vertices of the edges that are not used exactly once each way round (a closed mesh has none)."""
+    e = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    n = int(faces.max()) + 1 if len(faces) else 1
+    keys, counts = np.unique(e[:, 0] * n + e[:, 1], return_counts=True)
+    back = (keys % n) * n + keys // n
+    at = np.minimum(np.searchsorted(keys, back), len(keys) - 1)
+    bad = (counts != 1) | (keys[at] != back) | (counts[at] != 1)
+    return np.unique(np.concatenate([keys[bad] // n, keys[bad] % n]))
 
 
 def glue_seam(verts, faces, x0: float, x1: float, *, name: str = "part"):

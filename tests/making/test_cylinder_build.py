@@ -598,11 +598,26 @@ CRUMBS = dict(  # peaks that eat a small piece of the wall down to crumbs narrow
     fill=False,
 )
 
+OPENING_COLLAPSE = dict(  # a sliver's cut collapsed where its two points share another neighbour
+    preset="table1-part1",
+    rotation=0,
+    packing="square",
+    size=10.6,
+    stroke=1.39,
+    interlace=True,
+    diameter=26.9,
+    length=10,
+    pointed=False,
+    fit="diameter",
+    style="deboss",
+    fill=True,
+)
+
 
 @pytest.mark.parametrize(
     "case",
-    [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS, PEAK_CUT_DIPS, LOOSE_TIPS, FOLDED_CUTS, CRUMBS],
-    ids=["fill", "split", "dips", "peak", "tips", "cuts", "crumbs"],
+    [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS, PEAK_CUT_DIPS, LOOSE_TIPS, FOLDED_CUTS, CRUMBS, OPENING_COLLAPSE],
+    ids=["fill", "split", "dips", "peak", "tips", "cuts", "crumbs", "collapse"],
 )
 def test_designs_that_broke_the_seam_are_sound(case):
     sound_or_refused(cylinder_text(**case), refused=False)
@@ -640,5 +655,6 @@ def small_cylinders(draw) -> dict:
 @example(case=LOOSE_TIPS)
 @example(case=FOLDED_CUTS)
 @example(case=CRUMBS)
+@example(case=OPENING_COLLAPSE)
 def test_any_small_cylinder_is_one_watertight_body_or_refused(case):
     sound_or_refused(cylinder_text(**case))
