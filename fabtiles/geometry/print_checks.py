@@ -242,15 +242,28 @@ def fill_periodic_holes(region, outline, profile, style: str, *, period_mm: floa
     # each change is kept once, where its centre lies in the period, and repeated: an opening at the edge of
     # what a disc fits may be judged apart from its copy one period on, and the strip's ends would then differ
     added, removed = (
-        _in_period(polygonal(shapely.difference(a, b)), x0, x1) for a, b in ((filled, repeated), (repeated, filled))
+        _in_period(polygonal(shapely.difference(a, b, grid_size=SEAM_GRID_MM)), x0, x1)
+        for a, b in ((filled, repeated), (repeated, filled))
     )
     count = len(added) + len(removed)
     if not count:
         return polygonal(shapely.intersection(region, outline)), 0
-    again = [affinity.translate(g, xoff=k * period_mm) for g in (*added, *removed) for k in (-1, 0, 1)]
-    n = 3 * len(added)
-    out = shapely.difference(shapely.union_all([repeated, *again[:n]]), shapely.union_all(again[n:]))
+    # made on the period and a hair round it (the repeated region's, on its grid), then cut to the outline
+    window = shapely.box(x0 - 1.0, y0 - 1.0, x1 + 1.0, y1 + 1.0)
+    base = shapely.intersection(repeated, window, grid_size=SEAM_GRID_MM)
+    add, take = (_moved(g, period_mm, window) for g in (added, removed))
+    out = shapely.union_all([base, *add], grid_size=SEAM_GRID_MM) if len(add) else base
+    if len(take):
+        out = shapely.difference(out, shapely.union_all(take, grid_size=SEAM_GRID_MM), grid_size=SEAM_GRID_MM)
     return polygonal(shapely.intersection(out, outline)), count
+
+
+def _moved(parts: list, period_mm: float, window):
+    """``parts`` and their copies a period either way, those that reach into ``window``."""
+    from shapely import affinity
+
+    again = np.array([affinity.translate(g, xoff=k * period_mm) for g in parts for k in (-1, 0, 1)], dtype=object)
+    return again[shapely.intersects(again, window)] if len(again) else again
 
 
 def _in_period(geometry, x0: float, x1: float) -> list:

@@ -534,25 +534,35 @@ def _without(region, taken, strip, period_mm, wall: float = 0.0):
     """``region`` less the peaks ``taken`` (a periodic strip's brought back into it from a turn on), and less
     the pieces the peaks cut off a part of it narrower than ``wall`` (a star's tip between two peaks of its
     opening: loose, it would fall out of a pierced wall, and no disc of ``wall`` fits in it to print)."""
+    # grown by a hair: where a peak's computed corner lies a rounding off its opening's edge, the
+    # difference would leave a sliver of material there with a ceiling of its own (grown before a periodic
+    # strip's are brought back into it, so that what the hair reaches beyond one end is taken at the other)
+    taken = shapely.buffer(taken, OVERLAP_MM, join_style="mitre")
     if period_mm is not None:
         x0, y0, x1, y1 = strip.bounds
-        here = shapely.intersection(taken, shapely.box(x0, y0, x1, y1))
-        on = shapely.transform(
-            shapely.intersection(taken, shapely.box(x1, y0, x1 + period_mm, y1)), lambda xy: xy - [period_mm, 0.0]
-        )
-        if not on.is_empty:
-            # a turn back moves a point by a rounding: its edges meet the strip's again when snapped to
-            # them (only the strip's material near them, for speed)
-            near = shapely.intersection(region, shapely.box(*shapely.buffer(on, 1.0).bounds))
-            on = shapely.snap(on, near, POINT_TOLERANCE_MM)
-        taken = shapely.union(here, on)
-    # grown by a hair: where a peak's computed corner lies a rounding off its opening's edge, the
-    # difference would leave a sliver of material there with a ceiling of its own
-    out = shapely.difference(region, shapely.buffer(taken, OVERLAP_MM, join_style="mitre"))
+        pieces = [shapely.intersection(taken, shapely.box(x0, y0, x1, y1))]
+        for lo, shift in ((x1, -period_mm), (x0 - period_mm, period_mm)):
+            on = shapely.transform(
+                shapely.intersection(taken, shapely.box(lo, y0, lo + period_mm, y1)), lambda xy, d=shift: xy + [d, 0.0]
+            )
+            if not on.is_empty:
+                # a turn back moves a point by a rounding: its edges meet the strip's again when snapped to
+                # them (only the strip's material near them, for speed)
+                near = shapely.intersection(region, shapely.box(*shapely.buffer(on, 1.0).bounds))
+                pieces.append(shapely.snap(on, near, POINT_TOLERANCE_MM))
+        taken = shapely.union_all(pieces)
+    out = shapely.difference(region, taken)
     parts = shapely.get_parts(out)
+    # a part at a periodic strip's end may go on across the seam: never dropped, so that both ends meet
+    ends = np.zeros(len(parts), bool)
+    if period_mm is not None and len(parts):
+        x0, _, x1, _ = strip.bounds
+        b = shapely.bounds(parts)
+        ends = (b[:, 0] <= x0 + POINT_TOLERANCE_MM) | (b[:, 2] >= x1 - POINT_TOLERANCE_MM)
     if len(parts) > 1:  # an overlay's slivers along the peaks' floors
-        parts = parts[shapely.area(parts) > AREA_TOLERANCE_MM2]
-    parts = parts[~_cut_off(parts, shapely.get_parts(region), wall)]
+        keep = ends | (shapely.area(parts) > AREA_TOLERANCE_MM2)
+        parts, ends = parts[keep], ends[keep]
+    parts = parts[ends | ~_cut_off(parts, shapely.get_parts(region), wall)]
     return parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
 
 

@@ -613,12 +613,34 @@ OPENING_COLLAPSE = dict(  # a sliver's cut collapsed where its two points share 
     fill=True,
 )
 
-
-@pytest.mark.parametrize(
-    "case",
-    [SEAM_FILL, SEAM_SPLIT, OVERLAPPING_DIPS, PEAK_CUT_DIPS, LOOSE_TIPS, FOLDED_CUTS, CRUMBS, OPENING_COLLAPSE],
-    ids=["fill", "split", "dips", "peak", "tips", "cuts", "crumbs", "collapse"],
+SEAM_SLIVER = dict(  # the tip of a wedge of plate the seam cuts, dropped as a sliver at one end of the strip
+    preset="table3-1",
+    rotation=7.5,
+    packing="4.8.8",
+    size=11.01,
+    stroke=1.02,
+    interlace=False,
+    diameter=32.4,
+    length=20,
+    pointed=True,
+    fit="diameter",
+    style="deboss",
+    fill=True,
 )
+CASES = {
+    "fill": SEAM_FILL,
+    "split": SEAM_SPLIT,
+    "dips": OVERLAPPING_DIPS,
+    "peak": PEAK_CUT_DIPS,
+    "tips": LOOSE_TIPS,
+    "cuts": FOLDED_CUTS,
+    "crumbs": CRUMBS,
+    "collapse": OPENING_COLLAPSE,
+    "sliver": SEAM_SLIVER,
+}
+
+
+@pytest.mark.parametrize("case", CASES.values(), ids=CASES.keys())
 def test_designs_that_broke_the_seam_are_sound(case):
     sound_or_refused(cylinder_text(**case), refused=False)
 
@@ -656,5 +678,6 @@ def small_cylinders(draw) -> dict:
 @example(case=FOLDED_CUTS)
 @example(case=CRUMBS)
 @example(case=OPENING_COLLAPSE)
+@example(case=SEAM_SLIVER)
 def test_any_small_cylinder_is_one_watertight_body_or_refused(case):
     sound_or_refused(cylinder_text(**case))
