@@ -152,7 +152,11 @@ def dips(region, w: Weave, half: float, gap: float, within=None):
         return shapely.multipolygons(parts)
     # overlapping slivers merged, back on the grid
     merged = polygonal(shapely.set_precision(shapely.union_all(parts[touching]), QUANTUM))
-    return shapely.multipolygons(np.concatenate([parts[~touching], shapely.get_parts(merged)]))
+    out = shapely.multipolygons(np.concatenate([parts[~touching], shapely.get_parts(merged)]))
+    if shapely.is_valid(out):
+        return out
+    # put on the grid, a merged sliver may have moved onto a lone one: all merged, an overlay needs them valid
+    return polygonal(shapely.set_precision(shapely.union_all(parts), QUANTUM))
 
 
 def _straight(w: Weave, half: float, gap: float):

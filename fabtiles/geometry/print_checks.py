@@ -206,6 +206,11 @@ def print_region(
     return fill_print_holes(region, outline, profile, style)
 
 
+SEAM_GRID_MM = 2.0**-20
+"""The grid a periodic region's copies are joined on (:func:`fill_periodic_holes`): far finer than the mesh's
+grid, coarse enough that two copies' edges at the seam a rounding apart meet."""
+
+
 def fill_periodic_holes(region, outline, profile, style: str, *, period_mm: float):
     """:func:`fill_print_holes` of a region that repeats along x every ``period_mm``, its outline one period.
 
@@ -230,12 +235,42 @@ def fill_periodic_holes(region, outline, profile, style: str, *, period_mm: floa
         )
     wide = shapely.box(x0 - period_mm / 2, y0, x1 + period_mm / 2, y1)
     copies = [affinity.translate(region, xoff=k * period_mm) for k in (-1, 0, 1)]
-    repeated = polygonal(shapely.intersection(shapely.union_all(copies), wide))
+    # on a fine grid, so that copies whose edges at the seam lie a rounding apart are one (an opening across it
+    # split by a gap of nanometres would be judged as two)
+    repeated = polygonal(shapely.intersection(shapely.union_all(copies, grid_size=SEAM_GRID_MM), wide))
     filled, _ = fill_print_holes(repeated, wide, profile, style)
-    changed = shapely.get_parts(polygonal(shapely.symmetric_difference(filled, repeated)))
-    centres = shapely.get_coordinates(shapely.centroid(changed))[:, 0] if len(changed) else np.empty(0)
-    count = int(np.count_nonzero((centres >= x0) & (centres < x1)))
-    return polygonal(shapely.intersection(filled, outline)), count
+    # each change is kept once, where its centre lies in the period, and repeated: an opening at the edge of
+    # what a disc fits may be judged apart from its copy one period on, and the strip's ends would then differ
+    added, removed = (
+        _in_period(polygonal(shapely.difference(a, b, grid_size=SEAM_GRID_MM)), x0, x1)
+        for a, b in ((filled, repeated), (repeated, filled))
+    )
+    count = len(added) + len(removed)
+    if not count:
+        return polygonal(shapely.intersection(region, outline)), 0
+    # made on the period and a hair round it (the repeated region's, on its grid), then cut to the outline
+    window = shapely.box(x0 - 1.0, y0 - 1.0, x1 + 1.0, y1 + 1.0)
+    base = shapely.intersection(repeated, window, grid_size=SEAM_GRID_MM)
+    add, take = (_moved(g, period_mm, window) for g in (added, removed))
+    out = shapely.union_all([base, *add], grid_size=SEAM_GRID_MM) if len(add) else base
+    if len(take):
+        out = shapely.difference(out, shapely.union_all(take, grid_size=SEAM_GRID_MM), grid_size=SEAM_GRID_MM)
+    return polygonal(shapely.intersection(out, outline)), count
+
+
+def _moved(parts: list, period_mm: float, window):
+    """``parts`` and their copies a period either way, those that reach into ``window``."""
+    from shapely import affinity
+
+    again = np.array([affinity.translate(g, xoff=k * period_mm) for g in parts for k in (-1, 0, 1)], dtype=object)
+    return again[shapely.intersects(again, window)] if len(again) else again
+
+
+def _in_period(geometry, x0: float, x1: float) -> list:
+    """The parts of ``geometry`` whose centre lies in ``[x0, x1)``."""
+    parts = shapely.get_parts(geometry)
+    centres = shapely.get_coordinates(shapely.centroid(parts))[:, 0] if len(parts) else np.empty(0)
+    return list(parts[(centres >= x0) & (centres < x1)])
 
 
 def check_print_pattern(before, after, outline, profile, style: str, *, stroke=None, report: Report) -> float:

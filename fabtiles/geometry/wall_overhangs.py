@@ -405,7 +405,8 @@ def pointed_tops(
     round another opening (which would leave that opening in a loose ring); such a peak is counted
     in ``clipped``, and its cut top may still overhang (the check says where). A peak may come
     closer than ``min_wall_mm`` to its own opening's other edges: that leaves a sharp tip of
-    material, as a star's points do.
+    material, as a star's points do; a piece that two peaks cut off a part of the material,
+    narrower than ``min_wall_mm``, goes with them (loose, it would fall out of a pierced wall).
 
     Parameters
     ----------
@@ -452,7 +453,7 @@ def pointed_tops(
         if len(pieces):
             kept.extend(pieces)
             room.add(pieces, own)
-    out = _without(region, shapely.union_all(kept) if kept else shapely.Polygon(), strip, period_mm)
+    out = _without(region, shapely.union_all(kept) if kept else shapely.Polygon(), strip, period_mm, wall)
     where = found.middles(period_mm, strip.bounds[0])[todo][clipped]
     return PointedTops(
         out,
@@ -529,25 +530,57 @@ class _Room:
             self.n += 1
 
 
-def _without(region, taken, strip, period_mm):
-    """``region`` less the peaks ``taken`` (a periodic strip's brought back into it from a turn on)."""
+def _without(region, taken, strip, period_mm, wall: float = 0.0):
+    """``region`` less the peaks ``taken`` (a periodic strip's brought back into it from a turn on), and less
+    the pieces the peaks cut off a part of it narrower than ``wall`` (a star's tip between two peaks of its
+    opening: loose, it would fall out of a pierced wall, and no disc of ``wall`` fits in it to print)."""
+    # grown by a hair: where a peak's computed corner lies a rounding off its opening's edge, the
+    # difference would leave a sliver of material there with a ceiling of its own (grown before a periodic
+    # strip's are brought back into it, so that what the hair reaches beyond one end is taken at the other)
+    taken = shapely.buffer(taken, OVERLAP_MM, join_style="mitre")
     if period_mm is not None:
         x0, y0, x1, y1 = strip.bounds
-        here = shapely.intersection(taken, shapely.box(x0, y0, x1, y1))
-        on = shapely.transform(
-            shapely.intersection(taken, shapely.box(x1, y0, x1 + period_mm, y1)), lambda xy: xy - [period_mm, 0.0]
-        )
-        if not on.is_empty:
-            # a turn back moves a point by a rounding: its edges meet the strip's again when snapped to
-            # them (only the strip's material near them, for speed)
-            near = shapely.intersection(region, shapely.box(*shapely.buffer(on, 1.0).bounds))
-            on = shapely.snap(on, near, POINT_TOLERANCE_MM)
-        taken = shapely.union(here, on)
-    # grown by a hair: where a peak's computed corner lies a rounding off its opening's edge, the
-    # difference would leave a sliver of material there with a ceiling of its own
-    out = shapely.difference(region, shapely.buffer(taken, OVERLAP_MM, join_style="mitre"))
+        pieces = [shapely.intersection(taken, shapely.box(x0, y0, x1, y1))]
+        for lo, shift in ((x1, -period_mm), (x0 - period_mm, period_mm)):
+            on = shapely.transform(
+                shapely.intersection(taken, shapely.box(lo, y0, lo + period_mm, y1)), lambda xy, d=shift: xy + [d, 0.0]
+            )
+            if not on.is_empty:
+                # a turn back moves a point by a rounding: its edges meet the strip's again when snapped to
+                # them (only the strip's material near them, for speed)
+                near = shapely.intersection(region, shapely.box(*shapely.buffer(on, 1.0).bounds))
+                pieces.append(shapely.snap(on, near, POINT_TOLERANCE_MM))
+        taken = shapely.union_all(pieces)
+    out = shapely.difference(region, taken)
     parts = shapely.get_parts(out)
+    # a part at a periodic strip's end may go on across the seam: never dropped, so that both ends meet
+    ends = np.zeros(len(parts), bool)
+    if period_mm is not None and len(parts):
+        x0, _, x1, _ = strip.bounds
+        b = shapely.bounds(parts)
+        ends = (b[:, 0] <= x0 + POINT_TOLERANCE_MM) | (b[:, 2] >= x1 - POINT_TOLERANCE_MM)
     if len(parts) > 1:  # an overlay's slivers along the peaks' floors
-        parts = parts[shapely.area(parts) > AREA_TOLERANCE_MM2]
-        out = parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
-    return out
+        keep = ends | (shapely.area(parts) > AREA_TOLERANCE_MM2)
+        parts, ends = parts[keep], ends[keep]
+    parts = parts[ends | ~_cut_off(parts, shapely.get_parts(region), wall)]
+    return parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
+
+
+def _cut_off(parts, before, wall: float):
+    """Which ``parts`` are pieces the peaks cut off a part of ``before`` narrower than ``wall``: all but its
+    largest piece, and that one too where the part was not so narrow (the peaks left crumbs of it)."""
+    if wall <= 0:
+        return np.zeros(len(parts), bool)
+    owner = np.full(len(parts), -1)
+    inside, of = shapely.STRtree(before).query(shapely.point_on_surface(parts), predicate="intersects")
+    owner[inside] = of
+    area = shapely.area(parts)
+    largest = np.zeros(len(parts), bool)
+    for k in np.unique(owner[owner >= 0]).tolist():
+        mine = np.flatnonzero(owner == k)
+        largest[mine[np.argmax(area[mine])]] = True
+    narrow = shapely.is_empty(shapely.buffer(parts, -wall / 2, quad_segs=2))
+    was_narrow = np.ones(len(parts), bool)
+    if (narrow & largest).any():
+        was_narrow[owner >= 0] = shapely.is_empty(shapely.buffer(before, -wall / 2, quad_segs=2))[owner[owner >= 0]]
+    return (owner >= 0) & narrow & (~largest | ~was_narrow)

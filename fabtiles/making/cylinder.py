@@ -255,10 +255,28 @@ def strip_region(region, dips, outline, cylinder: Cylinder, printer=None):
     if cylinder.pointed_tops:
         region, tops = _pointed(region, outline, cylinder, printer)
         if dips is not None:
-            dips = shapely.intersection(dips, region)
+            dips = _dips_inside(dips, region)
     if dips is not None:
         dips = polygonal(dips)
     return region, dips, tops
+
+
+def _dips_inside(dips, region):
+    """An interlaced relief's ``dips`` kept :data:`~fabtiles.geometry.interlace.INSET_MM` inside the ``region``
+    where a peak cut into them: a dip on the region's edge would cross it once both are put on the mesh's grid."""
+    import shapely
+
+    from ..geometry.interlace import INSET_MM, polygonal
+
+    parts = shapely.get_parts(dips)
+    if not len(parts):
+        return dips
+    shapely.prepare(region)
+    cut = ~shapely.contains_properly(region, parts)
+    if cut.any():
+        near = shapely.intersection(region, shapely.envelope(shapely.buffer(shapely.union_all(parts[cut]), 1.0)))
+        parts[cut] = shapely.intersection(parts[cut], shapely.buffer(near, -INSET_MM))
+    return polygonal(shapely.get_parts(parts))
 
 
 def _pointed(region, outline, cylinder: Cylinder, printer):

@@ -325,9 +325,47 @@ def slice_x(verts, faces, planes, snap_mm: float = 0.0, collapse_mm: float = 0.0
         if near.any():
             from ..core.graph import components
 
-            tris = components(len(out), pa[near], pb[near])[tris]  # onto the lowest: an old vertex if one is
-    ok = (tris[:, 0] != tris[:, 1]) & (tris[:, 1] != tris[:, 2]) & (tris[:, 0] != tris[:, 2])
-    return out, np.concatenate([faces[~cut], tris[ok]])
+            pa, pb = pa[near], pb[near]
+            # a cut point a hair from two old vertices (each a cut moved to an edge's end) joins neither: two
+            # old vertices made one would fold the mesh where they are not an edge's two ends
+            comp = components(len(out), pa, pb)
+            shared = np.bincount(comp[:n], minlength=len(out))[comp] > 1
+            keep = ~(shared[pa] & ((pa < n) | (pb < n)))
+            pa, pb = pa[keep], pb[keep]
+            # a collapse that would open the mesh (its two points share a neighbour beyond the sliver's two
+            # triangles) is not made: the sliver stays, closed
+            sliced = np.concatenate([faces[~cut], tris])
+            for _ in range(COLLAPSE_ROUNDS):
+                comp = components(len(out), pa, pb)
+                bad = _unpaired_vertices(_proper(comp[sliced]))
+                if not len(bad):
+                    break
+                off = np.isin(comp[pa], bad)
+                if not off.any():
+                    break
+                pa, pb = pa[~off], pb[~off]
+            tris = components(len(out), pa, pb)[tris]  # onto the lowest: an old vertex if one is
+    return out, np.concatenate([faces[~cut], _proper(tris)])
+
+
+COLLAPSE_ROUNDS = 4
+"""Rounds of :func:`slice_x` taking back the collapses that open the mesh."""
+
+
+def _proper(tris):
+    """The triangles with three distinct corners."""
+    return tris[(tris[:, 0] != tris[:, 1]) & (tris[:, 1] != tris[:, 2]) & (tris[:, 0] != tris[:, 2])]
+
+
+def _unpaired_vertices(faces) -> np.ndarray:
+    """The vertices of the edges that are not used exactly once each way round (a closed mesh has none)."""
+    e = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    n = int(faces.max()) + 1 if len(faces) else 1
+    keys, counts = np.unique(e[:, 0] * n + e[:, 1], return_counts=True)
+    back = (keys % n) * n + keys // n
+    at = np.minimum(np.searchsorted(keys, back), len(keys) - 1)
+    bad = (counts != 1) | (keys[at] != back) | (counts[at] != 1)
+    return np.unique(np.concatenate([keys[bad] // n, keys[bad] % n]))
 
 
 def glue_seam(verts, faces, x0: float, x1: float, *, name: str = "part"):
@@ -377,8 +415,10 @@ def glue_seam(verts, faces, x0: float, x1: float, *, name: str = "part"):
 
 def _snap_to_twins(yz, ends0, ends1):
     """``yz`` with each vertex of ``ends1`` lacking an exact twin among ``ends0`` moved onto the nearest one of
-    the same ``z`` within :data:`SEAM_SNAP_MM` along ``y``."""
+    the same ``z`` within :data:`SEAM_SNAP_MM` along ``y``, unless a vertex of ``ends1`` is there already: then
+    the two are one crossing and a point splitting an edge of the same side, which :func:`_split_at` matches."""
     have = {(float(p[0]), float(p[1])) for p in yz[ends0]}
+    taken = {(float(p[0]), float(p[1])) for p in yz[ends1]}
     by_z: dict = {}
     for i in ends0:
         by_z.setdefault(float(yz[i, 1]), []).append(float(yz[i, 0]))
@@ -389,7 +429,7 @@ def _snap_to_twins(yz, ends0, ends1):
             continue
         ys = np.array(by_z[z])
         k = int(np.argmin(np.abs(ys - y)))
-        if abs(ys[k] - y) <= SEAM_SNAP_MM:
+        if abs(ys[k] - y) <= SEAM_SNAP_MM and (float(ys[k]), z) not in taken:
             yz[i, 0] = ys[k]
     return yz
 
@@ -682,8 +722,18 @@ class CylinderPrint:
 
     @cached_property
     def fused(self) -> CheckedPart:
-        """The print as one wrapped, checked body (with the lamp holder): what an STL holds."""
-        return self._held(self._wrap(self.model.fused, self.fused_name), self.fused_name)
+        """The print as one wrapped, checked body (with the lamp holder): what an STL holds.
+
+        Raises :class:`~fabtiles.FabricationError` when it is more than one body: a cylinder prints standing
+        as one piece, and a piece of a pierced wall not joined to the rest falls out of it."""
+        part = self._held(self._wrap(self.model.fused, self.fused_name), self.fused_name)
+        if part.bodies > 1:
+            raise FabricationError(
+                f"the wrapped {self.fused_name} falls apart into {part.bodies} bodies: {part.bodies - 1} "
+                f"piece{'s' if part.bodies > 2 else ''} of material not joined to the rest (fabtiles check lists "
+                "them as loose_part); make the stroke wider so that the pattern's pieces meet; nothing was written"
+            )
+        return part
 
     @property
     def fused_name(self) -> str:

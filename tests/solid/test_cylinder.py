@@ -513,3 +513,15 @@ def test_an_open_mesh_is_not_fused_with_a_holder(small):
     part = model.fused._replace(faces=model.fused.faces[:-1])
     with pytest.raises(FabricationError, match=r"the part mesh could not be read by manifold3d"):
         with_holder(part, LampHolder(fitting_mm=10), outer_radius_mm=30, inner_radius_mm=26.8, wall_mm=2)
+
+
+def test_a_wall_that_falls_apart_is_refused():
+    c = 40.0
+    outline = shapely.box(0, 0, c, 10)
+    wall = shapely.union(shapely.box(0, 0, c, 3), shapely.box(10, 5, 14, 8))  # a square not joined to the band
+    model = print_model(wall, outline, profile="fdm-0.4mm", style="pierced")
+    cp = cylinder_print(model, circumference_mm=c, outer_radius_mm=c / (2 * math.pi))
+    with pytest.raises(
+        FabricationError, match=r"wrapped pattern falls apart into 2 bodies: 1 piece of material not joined"
+    ):
+        _ = cp.fused
