@@ -150,14 +150,7 @@ def manifest(model, files: dict, *, name: str) -> bytes:
         grid=list(split.grid),
         seams_x=[round(v, 3) for v in split.seams_x],
         seams_y=[round(v, 3) for v in split.seams_y],
-        joint=dict(
-            kind=joint.kind,
-            neck_mm=round(joint.neck_mm, 3),
-            head_mm=round(joint.head_mm, 3),
-            depth_mm=round(joint.depth_mm, 3),
-            fit_mm=joint.fit_mm,
-            corner_mm=round(joint.corner_mm, 3),
-        ),
+        joint=joint.figures(),
         pieces=[
             dict(
                 number=p.number,

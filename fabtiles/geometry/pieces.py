@@ -107,6 +107,17 @@ class Joint:
     fit_mm: float = 0.0
     corner_mm: float = 0.0
 
+    def figures(self) -> dict:
+        """The joint's shape for the reports and the assembly manifest (mm, to the micron)."""
+        return dict(
+            kind=self.kind,
+            neck_mm=round(self.neck_mm, 3),
+            head_mm=round(self.head_mm, 3),
+            depth_mm=round(self.depth_mm, 3),
+            fit_mm=self.fit_mm,
+            corner_mm=round(self.corner_mm, 3),
+        )
+
     def tab(self, centre, direction) -> shapely.Polygon:
         """The tab at ``centre`` on the seam, sticking out along the unit vector ``direction``.
 

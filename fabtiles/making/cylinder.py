@@ -237,14 +237,14 @@ def strip_region(region, dips, outline, cylinder: Cylinder, printer=None):
     (:func:`~fabtiles.geometry.wall_overhangs.pointed_tops`). ``(region, dips, tops)``: ``tops`` the
     :class:`~fabtiles.geometry.wall_overhangs.PointedTops` made, or None."""
     import shapely
-    from shapely import affinity
 
     from ..geometry.interlace import polygonal
+    from ..geometry.mirror import mirrored
 
     c, length, rim = cylinder.circumference_mm, cylinder.length_mm, cylinder.rim_mm
-    if cylinder.mirror:
-        region = affinity.scale(region, xfact=-1, yfact=1, origin=(c / 2, 0))
-        dips = None if dips is None else affinity.scale(dips, xfact=-1, yfact=1, origin=(c / 2, 0))
+    if cylinder.mirror:  # the strip's outline is [0, C] across: mirrored about it, x -> C - x
+        region = mirrored(region, outline)
+        dips = None if dips is None else mirrored(dips, outline)
     if rim > 0:
         rims = shapely.union(shapely.box(0, 0, c, rim), shapely.box(0, length - rim, c, length))
         region = shapely.difference(region, rims) if cylinder.style == "deboss" else shapely.union(region, rims)
@@ -320,24 +320,12 @@ def strip_model(models, cylinder: Cylinder):
     """The unrolled strip's flat :class:`~fabtiles.solid.print_model.PrintModel`: the tile's print made
     as a flat tile's, from the strip's region (:func:`strip_region`) with the cylinder's heights, its
     report saying what the cylinder is."""
-    from ..solid.print_model import print_model
-
     o = models.options
     region, dips = models.print_region
     outline = models.tile.outline_shape()
     region, dips, tops = strip_region(region, dips, outline, cylinder, o.printer)
-    model = print_model(
-        region,
-        outline,
-        profile=o.printer,
-        style=cylinder.style,
-        stroke=models.tile.stroke,
-        fill_small_holes=o.fill_small_holes,
-        inlay=o.inlay,
-        dips=dips,
-        colours=models.colouring if models.coloured else None,
-        period_mm=cylinder.circumference_mm,
-        **cylinder.heights,
+    model = models.flat_print(
+        region, dips, style=cylinder.style, heights=cylinder.heights, period_mm=cylinder.circumference_mm
     )
     notes = [cylinder.line()] + ([] if tops is None else [_tops_line(tops, o.printer)])
     report = model.report.extended(notes=notes, cylinder=cylinder_stats(cylinder))

@@ -490,9 +490,32 @@ class Models:
             return None
         return cylinder_of(self.options.surface, self.options, self.tile.width_mm)
 
-    def _make_print(self):
+    def flat_print(self, region, dips, *, style, heights, coloured=None, **extra):
+        """The flat print model of ``region`` on the tile's outline with the build's printer, stroke, filling of
+        small openings, inlay and colours: the one call a tile, a cylinder's strip and a stamp's face share.
+
+        ``coloured``: colour the parts (default: when the design gives colours); ``extra``: more keywords of
+        :func:`~fabtiles.solid.print_model.print_model` (a strip's ``period_mm``).
+        """
         from ..solid.print_model import print_model
 
+        o = self.options
+        coloured = self.coloured if coloured is None else coloured
+        return print_model(
+            region,
+            self.tile.outline_shape(),
+            profile=o.printer,
+            style=style,
+            stroke=self.tile.stroke,
+            fill_small_holes=o.fill_small_holes,
+            inlay=o.inlay,
+            dips=dips,
+            colours=self.colouring if coloured else None,
+            **extra,
+            **heights,
+        )
+
+    def _make_print(self):
         if self.cylinder is not None:
             from .cylinder import cylinder_print
 
@@ -510,17 +533,8 @@ class Models:
         self._material(region)
         style = o.print_style or o.printer.print_style
         given = self.coloured
-        model = print_model(
-            region,
-            self.tile.outline_shape(),
-            profile=o.printer,
-            style=o.print_style,
-            stroke=self.tile.stroke,
-            fill_small_holes=o.fill_small_holes,
-            inlay=o.inlay,
-            dips=dips,
-            colours=self.colouring if given or style == "mosaic" else None,
-            **o.heights,
+        model = self.flat_print(
+            region, dips, style=o.print_style, heights=o.heights, coloured=given or style == "mosaic"
         )
         if style != "mosaic" and not given:
             return model

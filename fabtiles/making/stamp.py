@@ -48,7 +48,6 @@ def stamp_print(models: Models) -> StampPrint:
     """The stamp of ``models``' tile: its relief print, mirrored unless the design says not, on the block."""
     from ..geometry.mirror import mirrored
     from ..solid import stamp as solid_stamp
-    from ..solid.print_model import print_model
 
     o = models.options
     assert o.stamp is not None  # a stamp's design
@@ -59,22 +58,8 @@ def stamp_print(models: Models) -> StampPrint:
     if mirror:
         region = mirrored(region, outline)
         dips = None if dips is None else mirrored(dips, outline)
-    model = print_model(
-        region,
-        outline,
-        profile=o.printer,
-        style="relief",
-        stroke=models.tile.stroke,
-        fill_small_holes=o.fill_small_holes,
-        dips=dips,
-        colours=models.colouring if models.coloured else None,
-        **o.heights,
-    )
-    model = (
-        model.with_classes(
-            model.mosaic, model.report.extended(notes=["stamp's face mirrored: its imprint reads as designed"])
-        )
-        if mirror
-        else model
-    )
+    model = models.flat_print(region, dips, style="relief", heights=o.heights)
+    if mirror:
+        note = "stamp's face mirrored: its imprint reads as designed"
+        model = model.with_classes(model.mosaic, model.report.extended(notes=[note]))
     return solid_stamp.stamp_print(model, settings=settings)
