@@ -1144,7 +1144,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
             kind="select",
             label="Mirror",
             extra=(
-                ("", "by the style: a stamp or a roller, not a shade"),
+                ("", "by the style"),
                 ("true", "mirrored"),
                 ("false", "not mirrored"),
             ),
