@@ -22,11 +22,8 @@ those). Run by hand, never in CI::
 from __future__ import annotations
 
 import argparse
-import os
-import resource
 import statistics
 import struct
-import subprocess
 import sys
 import tempfile
 import time
@@ -36,6 +33,8 @@ if sys.version_info >= (3, 11):
     import tomllib
 else:  # Python 3.10
     import tomli as tomllib
+
+from build_timing import timed_build
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -63,22 +62,6 @@ def flat_design(sample: Path, folder: Path) -> Path:
     path = folder / f"{sample.stem}-flat.toml"
     path.write_text(tomli_w.dumps(text))
     return path
-
-
-def timed(design: Path, out: Path) -> tuple[float, float]:
-    """``(cpu_s, wall_s)`` of one ``fabtiles build`` of ``design`` into ``out``."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    subprocess.run(
-        [sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(out)],
-        check=True,
-        capture_output=True,
-        cwd=ROOT,
-        env=dict(os.environ, PYTHONPATH=str(ROOT)),
-    )
-    wall = time.perf_counter() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime), wall
 
 
 def files(out: Path) -> tuple[int, float, float]:
@@ -133,7 +116,7 @@ def main(argv=None) -> int:
             runs: dict = {"flat": [], "cylinder": []}
             for k in range(args.runs):
                 for label, design in (("flat", flat), ("cylinder", sample)):
-                    runs[label].append(timed(design, folder / f"{name}-{label}-{k}"))
+                    runs[label].append(timed_build(design, folder / f"{name}-{label}-{k}"))
             cpu = {label: statistics.median(c for c, _ in r) for label, r in runs.items()}
             wall = {label: statistics.median(w for _, w in r) for label, r in runs.items()}
             made = {label: files(folder / f"{name}-{label}-0") for label in runs}

@@ -20,14 +20,11 @@ The panels:
 from __future__ import annotations
 
 import argparse
-import os
-import resource
 import statistics
-import subprocess
-import sys
 import tempfile
-import time
 from pathlib import Path
+
+from build_timing import timed_build
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -73,23 +70,6 @@ def _designs(folder: Path) -> dict:
     return out
 
 
-def timed(design: Path, out: Path) -> tuple[float, float]:
-    """``(cpu_s, wall_s)`` of one ``fabtiles build`` of ``design``."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    subprocess.run(
-        [sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(out), "--format", "dxf"],
-        check=True,
-        capture_output=True,
-        cwd=ROOT,
-        env=dict(os.environ, PYTHONPATH=str(ROOT)),
-    )
-    wall = time.perf_counter() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return cpu, wall
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--runs", type=int, default=2, help="pairs of builds per panel")
@@ -103,7 +83,7 @@ def main(argv=None) -> int:
             runs: dict = {"pieces": [], "whole": []}
             for k in range(args.runs):
                 for label, design in (("whole", whole), ("pieces", pieces)):
-                    runs[label].append(timed(design, folder / f"{panel}-{label}-{k}"))
+                    runs[label].append(timed_build(design, folder / f"{panel}-{label}-{k}", "--format", "dxf"))
             cpu = {label: statistics.median(c for c, _ in r) for label, r in runs.items()}
             wall = {label: statistics.median(w for _, w in r) for label, r in runs.items()}
             files = sorted(p.name for p in (folder / f"{panel}-pieces-0").iterdir())
