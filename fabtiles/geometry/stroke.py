@@ -36,6 +36,7 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
+from ..core.native import import_uninterrupted
 from ..core.schema import key
 
 JOINS: tuple[str, ...] = key("tile.join").choice_values()
@@ -48,7 +49,7 @@ MIN_HOLE_AREA = 1e-10
 
 
 def _cs():
-    import manifold3d
+    manifold3d = import_uninterrupted("manifold3d")
 
     return manifold3d
 

@@ -15,6 +15,7 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from ..core.errors import ParameterError
+from ..core.native import import_uninterrupted
 from ..core.report import distinct
 from ..core.schema import key, register_check
 from ..core.validate import check_choice, check_float
@@ -334,7 +335,7 @@ class TileGeometry:
         and cached (see :mod:`fabtiles.geometry.stroke` for how and why).
         """
         if self._region is None:
-            import manifold3d as m3d
+            m3d = import_uninterrupted("manifold3d")
 
             if isinstance(self._pattern, Star) or not self._pattern.outline_circles:
                 segments, circles = self.segments(), None

@@ -36,6 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.errors import FabricationError, ParameterError
+from ..core.native import import_uninterrupted
 from ..geometry.stack import MAX_HEIGHT_MM, QUANTUM, Stack, resolve_stack  # noqa: F401  (the writers' names)
 from ._triangulate import bottom_triangles, cdt, ear_clip, flat, flip_degenerate, recessed_bottom
 
@@ -480,7 +481,7 @@ def _piece_triangles(poly, pts, grid, r0: int, r1: int, rings):
     constrained Delaunay triangulation (:func:`cdt`). ``rings``: ``(starts, ring lengths,
     the piece's polygons' ring offsets, next point)`` of the coverage's ring points.
     """
-    import manifold3d as m3
+    m3 = import_uninterrupted("manifold3d")
 
     starts, ring_len, part_off, nxt = rings
     tris = None

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.errors import FabricationError
+from ..core.native import import_uninterrupted
 from ..geometry.stack import QUANTUM
 
 
@@ -353,7 +354,7 @@ def bottom_triangles(u, v, out_level, xy):
     passes a vertex twice, or the triangles do not tile it exactly (then the
     caller turns the top's over).
     """
-    import manifold3d as m3
+    m3 = import_uninterrupted("manifold3d")
 
     sel = (out_level == 0) & (u != v)  # edges with nothing beside them: the bottom's outline
     bu, bv = u[sel], v[sel]
@@ -378,7 +379,7 @@ def _triangulated(rings) -> np.ndarray | None:
     """manifold3d's triangles of closed ``rings`` (points one after another, each ring's
     (k, 2) array, exteriors counter-clockwise, holes clockwise), flat ones flipped away, or
     None when they do not tile the rings exactly."""
-    import manifold3d as m3
+    m3 = import_uninterrupted("manifold3d")
 
     pts = np.concatenate(rings)
     ij = np.round(pts / QUANTUM).astype(np.int64)

@@ -49,6 +49,7 @@ from typing import TYPE_CHECKING, cast
 import numpy as np
 
 from ..core.errors import FabricationError, ParameterError
+from ..core.native import import_uninterrupted
 from ..core.validate import check_float, check_int
 from ._mesh_build import QUANTUM
 from .mesh_check import check_indexed, cross_rows, merge_indexed32
@@ -543,7 +544,7 @@ def holder_outline(holder: LampHolder, *, inner_radius_mm: float, wall_mm: float
     Raises :class:`~fabtiles.ParameterError` when the ring does not fit inside the shade with a
     spoke's length to spare.
     """
-    import manifold3d as m3
+    m3 = import_uninterrupted("manifold3d")
 
     hole = holder.fitting_mm / 2
     ring = hole + holder.ring_mm
@@ -585,7 +586,7 @@ def with_holder(
     part's exact volume plus what the union added as meshed; the bodies stay the part's (the holder joins
     the one it touches).
     """
-    import manifold3d as m3
+    m3 = import_uninterrupted("manifold3d")
 
     length = float(part.vertices[:, 2].max())
     if holder.thickness_mm >= length:

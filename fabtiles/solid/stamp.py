@@ -38,6 +38,7 @@ from functools import cached_property
 import numpy as np
 
 from ..core.errors import FabricationError, ParameterError
+from ..core.native import import_uninterrupted
 from ..core.validate import check_float
 from ..geometry.stack import QUANTUM
 from ._mesh_build import snap
@@ -152,7 +153,8 @@ class Grip:
     def manifold(self, height_mm: float):
         """The block up to ``height_mm``, as a manifold3d solid: three convex hulls, the foot with its
         chamfer, the waist and the shoulder with its chamfer, each sharing a face with the next."""
-        from manifold3d import Manifold, OpType
+        m3 = import_uninterrupted("manifold3d")
+        Manifold, OpType = m3.Manifold, m3.OpType
 
         z1, za, zb, zc = self.z
         o, i = self.outer, self.inner
@@ -216,7 +218,8 @@ def _mixed_area(a: np.ndarray, b: np.ndarray) -> float:
 
 def _manifold_of(part: CheckedPart, dz: float):
     """A checked mesh, raised by ``dz``, as a manifold3d solid."""
-    from manifold3d import Manifold, Mesh64
+    m3 = import_uninterrupted("manifold3d")
+    Manifold, Mesh64 = m3.Manifold, m3.Mesh64
 
     verts = np.asarray(part.vertices, np.float64) + (0.0, 0.0, dz)
     return Manifold(Mesh64(vert_properties=verts, tri_verts=np.asarray(part.faces, np.uint64)))

@@ -16,7 +16,7 @@ DESIGN = design_toml(outline="rectangle", size=[250, 200], frame=5, output={"for
 
 def _start(design, out):
     return subprocess.Popen(
-        [sys.executable, "-m", "fabtiles", "build", str(design), "-o", str(out)],
+        [sys.executable, "-X", "faulthandler", "-m", "fabtiles", "build", str(design), "-o", str(out)],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
     )
@@ -55,7 +55,8 @@ def test_interrupted_build_leaves_old_files_and_no_partial_ones(tmp_path, sig, f
         if proc.poll() is None:
             proc.send_signal(sig)
             interrupted += 1
-        rc = proc.wait(timeout=120)
+        _, err = proc.communicate(timeout=120)
+        rc = proc.returncode
         names = sorted(os.listdir(out))
         # Nothing else in the folder: no temporary, staging or partial file.
         assert names == sorted(old), names
@@ -69,5 +70,6 @@ def test_interrupted_build_leaves_old_files_and_no_partial_ones(tmp_path, sig, f
             for name, data in old.items():
                 (out / name).write_bytes(data)
         else:
-            assert rc in (1, 2, 128 + sig, -sig), rc  # click reports Ctrl+C as "Aborted!", status 1
+            # click reports Ctrl+C as "Aborted!", status 1; a crash shows its traceback (faulthandler)
+            assert rc in (1, 2, 128 + sig, -sig), (rc, err.decode()[-3000:])
     assert interrupted >= 2
