@@ -69,3 +69,12 @@ def printed_only(path) -> bool:
 
     shape = tomllib.loads(Path(path).read_text(encoding="utf-8")).get("surface", {}).get("shape", "flat")
     return shape != "flat"
+
+
+def default_sigint() -> None:
+    """A child process's Ctrl+C as in a terminal (``preexec_fn``): a shell's background job, such
+    as a CI script started with ``&``, hands its children SIGINT ignored, and Python then never
+    raises KeyboardInterrupt."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)

@@ -7,7 +7,7 @@ import sys
 import time
 
 import pytest
-from designs import design_toml
+from designs import default_sigint, design_toml
 from dxf_helpers import assert_same_file
 
 DESIGN = design_toml(outline="rectangle", size=[250, 200], frame=5, output={"formats": ["dxf", "svg", "stl"]})
@@ -19,6 +19,7 @@ def _start(design, out):
         [sys.executable, "-X", "faulthandler", "-m", "fabtiles", "build", str(design), "-o", str(out)],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
+        preexec_fn=default_sigint,
     )
 
 

@@ -8,6 +8,7 @@ import threading
 from pathlib import Path
 
 import pytest
+from designs import default_sigint
 
 import fabtiles
 from fabtiles.core.native import import_uninterrupted
@@ -39,7 +40,9 @@ except KeyboardInterrupt:
 def _run(tmp_path, sig, how):
     (tmp_path / "slow_init.py").write_text(SLOW_INIT.format(sig=sig))
     code = SCRIPT.format(folder=str(tmp_path), sig=sig, how=how)
-    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    return subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, preexec_fn=default_sigint
+    )
 
 
 @pytest.mark.parametrize("sig", ["SIGINT", "SIGTERM"])
