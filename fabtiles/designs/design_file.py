@@ -439,6 +439,8 @@ def design_notes(design: Design) -> list[str]:
             '[motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take '
             "Hankin's rays (name a motif there for a kind, or remove [motif])"
         )
+    if p is not None and p.kind == "girih" and design.motif is not None:
+        notes.append('[motif] is not drawn: kind = "girih" draws the girih tiles\' strapwork (remove [motif])')
     return notes
 
 

@@ -27,6 +27,17 @@ def test_girih_design_builds_the_packing():
     assert tile.region().is_valid and tile.region().area > 0.2 * 60 * 60
 
 
+def test_a_motif_is_noted_as_not_drawn():
+    from fabtiles.designs.design_file import design_notes
+
+    assert design_notes(design_from_text(BASE)) == []
+    with_motif = design_from_text(BASE + '[motif]\npreset = "table3-3"\n')
+    assert design_notes(with_motif) == [
+        '[motif] is not drawn: kind = "girih" draws the girih tiles\' strapwork (remove [motif])'
+    ]
+    assert build_tile(with_motif).pattern == GirihPacking("decagon-bowtie", edge=8)
+
+
 def test_seamless_fits_the_edge_and_the_height():
     d = design_from_text(
         BASE.replace("edge = 8", "edge = 8\nseamless = true")
