@@ -265,10 +265,10 @@ class GirihPacking:
     >>> p = GirihPacking("decagon-bowtie", edge=10)
     >>> [round(v, 3) for v in p.period], len(p.polygons((-1, -1, 1, 1)))
     ([49.798, 36.18], 1)
-    >>> GirihPacking("decagon", edge=10)
+    >>> GirihPacking("rhombus", edge=10)
     Traceback (most recent call last):
     ...
-    fabtiles.core.errors.ParameterError: pattern = 'decagon' is not a girih pattern (did you mean 'decagon-bowtie'?), must be one of: decagon-bowtie, hexagons, rhombi
+    fabtiles.core.errors.ParameterError: pattern = 'rhombus' is not a girih pattern (did you mean 'rhombi'?), must be one of: decagon-bowtie, hexagons, rhombi
     """  # noqa: E501 - a doctest's lines are as Python prints them
 
     pattern: str
