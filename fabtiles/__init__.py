@@ -21,6 +21,7 @@ from .designs.design_file import load_design
 from .export.formats import Format
 from .machines.profiles import CutterProfile, LaserProfile, PrinterProfile, load_profile
 from .pattern.archimedean import ArchimedeanPacking
+from .pattern.girih import GirihPacking
 from .pattern.packing import HexPacking, SquarePacking
 from .pattern.radii import straight_radii
 from .pattern.star import Star
@@ -60,6 +61,7 @@ __all__ = [
     "FabricationError",
     "FabtilesError",
     "Format",
+    "GirihPacking",
     "HexPacking",
     "LaserProfile",
     "LimitError",

@@ -10,6 +10,7 @@ EXPECTED = {
     "FabricationError",
     "FabtilesError",
     "Format",  # a format plugin's row (docs/architecture.md)
+    "GirihPacking",
     "LimitError",
     "ParameterError",
     "ProfileError",

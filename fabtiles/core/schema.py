@@ -478,6 +478,8 @@ MOTIF = _motif_keys("motif")
 
 _TILE = "geometry"
 _ARCH = 'kind = "archimedean"'
+_GIRIH = 'kind = "girih"'
+_ARCH_OR_GIRIH = 'kind = "archimedean" or "girih"'
 _HANKIN = 'method = "hankin"'
 _HANKIN_WHEN = (("packing", ("archimedean",)), ("method", ("hankin",)))
 _INLAY_WHEN = (("laser_mode", ("inlay",)),)
@@ -520,12 +522,16 @@ KEYS: tuple[Key, ...] = MOTIF + (
         type="choice",
         default="hex",
         query="packing",
-        choices=("hex", "square", "archimedean"),
-        help="`hex`, `square` or `archimedean`",
+        choices=("hex", "square", "archimedean", "girih"),
+        help="`hex`, `square`, `archimedean` or `girih` (girih.md)",
         widget=Widget(
             kind="select",
             label="Kind",
-            labels=(("hex", "hexagonal (tangent circles)"), ("archimedean", "Archimedean tiling (incircles)")),
+            labels=(
+                ("hex", "hexagonal (tangent circles)"),
+                ("archimedean", "Archimedean tiling (incircles)"),
+                ("girih", "girih tiles (strapwork)"),
+            ),
             extra=(("none", "none: one motif"),),
         ),
     ),
@@ -576,7 +582,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         type="boolean",
         default=False,
         help="fit the radius (and a rectangle's height) so the tile repeats seamlessly",
-        widget=Widget(kind="checkbox", label="Seamless", when=(PACKED,)),
+        widget=Widget(kind="checkbox", label="Seamless", when=(("packing", (*PACKED[1], "girih")),)),
     ),
     Key(
         section="packing",
@@ -595,7 +601,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         unit="mm",
         range=Range(0, None, min_open=True),
         default=20.0,
-        requires=_ARCH,
+        requires=_ARCH_OR_GIRIH,
         help="the polygons' edge length (instead of `radius`)",
         checked_by="pattern",
         widget=Widget(
@@ -605,8 +611,18 @@ KEYS: tuple[Key, ...] = MOTIF + (
             max=100,
             step=0.5,
             group="packing-sliders",
-            when=(("packing", ("archimedean",)),),
+            when=(("packing", ("archimedean", "girih")),),
         ),
+    ),
+    Key(
+        section="packing",
+        name="girih_pattern",
+        type="choice",
+        choices="pattern",
+        requires=_GIRIH,
+        checked_by="pattern",
+        help='the girih pattern, e.g. `"decagon-bowtie"` (girih.md)',
+        widget=Widget(kind="select", label="Girih pattern", when=(("packing", ("girih",)),)),
     ),
     Key(
         section="packing",

@@ -90,9 +90,16 @@ PACKING_KEYS = _schema.names("packing")
 HANKIN_KEYS = tuple(k.name for k in _schema.section_keys("packing") if k.requires == 'method = "hankin"')
 """The ``[packing]`` keys of ``method = "hankin"`` alone (the contact angle and gap)."""
 ARCHIMEDEAN_KEYS = (
-    tuple(k.name for k in _schema.section_keys("packing") if k.requires == 'kind = "archimedean"') + HANKIN_KEYS
+    tuple(k.name for k in _schema.section_keys("packing") if k.requires.startswith('kind = "archimedean"'))
+    + HANKIN_KEYS
 )
-"""The ``[packing]`` keys of ``kind = "archimedean"`` alone (it has no ``radius``)."""
+"""The ``[packing]`` keys of ``kind = "archimedean"`` (it has no ``radius``)."""
+GIRIH_KEYS = tuple(
+    k.name for k in _schema.section_keys("packing") if k.requires.startswith("kind = ") and '"girih"' in k.requires
+)
+"""The ``[packing]`` keys of ``kind = "girih"`` (the pattern and the edge)."""
+EDGE_KINDS = ("archimedean", "girih")
+"""The packings sized by their polygons' edge (no ``radius``, no ``[motif]`` needed)."""
 TILE_KEYS = _schema.names("tile")
 HEIGHT_KEYS = tuple(
     k.name
@@ -153,6 +160,7 @@ class PackingSpec:
     contact_angle: float = _default("packing.contact_angle")
     contact_gap: float = _default("packing.contact_gap")
     motifs: tuple[tuple[int, MotifSpec], ...] = ()
+    girih_pattern: str | None = _default("packing.girih_pattern")
 
 
 @dataclass(frozen=True)
@@ -431,6 +439,8 @@ def design_notes(design: Design) -> list[str]:
             '[motif] is not drawn: with method = "hankin" the polygons [packing.motifs] leaves out take '
             "Hankin's rays (name a motif there for a kind, or remove [motif])"
         )
+    if p is not None and p.kind == "girih" and design.motif is not None:
+        notes.append('[motif] is not drawn: kind = "girih" draws the girih tiles\' strapwork (remove [motif])')
     return notes
 
 
@@ -537,7 +547,7 @@ def _sections(data: dict, source: str):
     for sec in ("motif", "tile"):
         if sec == "tile" and surface.cylinder:
             continue  # a cylinder's strip is its own rectangle; [tile] gives the stroke, if anything
-        if sec not in data and not (sec == "motif" and packing is not None and packing.kind == "archimedean"):
+        if sec not in data and not (sec == "motif" and packing is not None and packing.kind in EDGE_KINDS):
             raise DesignError(f"{source}: the design needs a [{sec}] section")
     return packing, surface
 
@@ -595,13 +605,19 @@ def build_tile(design: Design, *, tile_cls=None):
 def _fit_seamless(design: Design) -> Design:
     from dataclasses import replace
 
-    from ..geometry.seamless import seamless_fit
+    from ..geometry.seamless import period_fit, seamless_fit
 
     p = design.packing
     if p is None or not p.seamless or design.surface.cylinder:  # a cylinder's fit is the surface's
         return design
     t = design.tile_spec
-    if p.kind == "archimedean":
+    if p.kind == "girih":
+        fit = period_fit(
+            t.outline, t.size, p.edge, _build_packing(p, None).period, f"the girih pattern {p.girih_pattern}"
+        )
+        fitted = replace(design, packing=replace(p, edge=fit.edge), tile_spec=replace(t, size=fit.size))
+        key, asked = "edge", p.edge
+    elif p.kind == "archimedean":
         fit = seamless_fit(t.outline, t.size, p.edge, packing=p.tiling)
         fitted = replace(design, packing=replace(p, edge=fit.edge), tile_spec=replace(t, size=fit.size))
         key, asked = "edge", p.edge
@@ -641,6 +657,11 @@ def _fit_lines(key: str, asked: float, fit, t) -> tuple[str, ...]:
 
 def _build_packing(p: PackingSpec, star: Star | None):
     gap = p.gap_motif.star() if p.gap_motif is not None else None
+    if p.kind == "girih":
+        from ..pattern.girih import GirihPacking
+
+        assert p.girih_pattern is not None  # the design's check: a girih packing names its pattern
+        return GirihPacking(p.girih_pattern, p.edge)
     if p.kind == "archimedean":
         from ..pattern.archimedean import ArchimedeanPacking
         from ..pattern.tilings import unit_cell
@@ -754,9 +775,10 @@ def _packing_spec(table: dict, source: str) -> PackingSpec:
     _check_keys(table, PACKING_KEYS, where, source)
     gap = table.get("gap_motif")
     kind = _value(table, "packing", "kind", source, where, "hex")
-    extra = _archimedean_spec(table, source) if kind == "archimedean" else {}
+    extra = {"archimedean": _archimedean_spec, "girih": _girih_spec}.get(kind, lambda *_: {})(table, source)
+    own = {"archimedean": ARCHIMEDEAN_KEYS, "girih": GIRIH_KEYS}.get(kind, ())
     if kind != "archimedean":
-        wrong = [k for k in ARCHIMEDEAN_KEYS if k in table]
+        wrong = [k for k in ARCHIMEDEAN_KEYS if k in table and k not in own]
         if wrong and wrong[0] == "method":
             raise DesignError(
                 f"{source}: {where} method = {table['method']!r} is not valid with kind = {kind!r}: "
@@ -767,14 +789,24 @@ def _packing_spec(table: dict, source: str) -> PackingSpec:
                 param=_key(where, key="method"),
             )
         if wrong:
-            raise DesignError(
-                f'{source}: {where} {wrong[0]} is a key of kind = "archimedean", '
-                f'not of kind = {kind!r}; set kind = "archimedean" or remove it',
-                param=_key(where, key=wrong[0]),
-            )
-    values = _section(table, "packing", source, where, skip=("kind",) + ARCHIMEDEAN_KEYS)
+            raise _other_kinds_key(wrong[0], kind, source)
+    wrong = [k for k in GIRIH_KEYS if k in table and k not in own]
+    if wrong:
+        raise _other_kinds_key(wrong[0], kind, source)
+    values = _section(table, "packing", source, where, skip=("kind",) + ARCHIMEDEAN_KEYS + GIRIH_KEYS)
     return PackingSpec(
         kind=kind, **extra, **values, gap_motif=None if gap is None else _motif_spec(gap, source, "[packing] gap_motif")
+    )
+
+
+def _other_kinds_key(name: str, kind: str, source: str) -> DesignError:
+    """The error of a ``[packing]`` key that belongs to other kinds of packing than ``kind``."""
+    kinds = [k for k, keys in (("archimedean", ARCHIMEDEAN_KEYS), ("girih", GIRIH_KEYS)) if name in keys]
+    owner = "kind = " + " or ".join(f'"{k}"' for k in kinds)
+    return DesignError(
+        f"{source}: [packing] {name} is a key of {owner}, not of kind = {kind!r}; "
+        f"set {owner.replace(' or ', ' (or ')}{')' if len(kinds) > 1 else ''} or remove it",
+        param=_key("[packing]", key=name),
     )
 
 
@@ -811,6 +843,33 @@ def _archimedean_spec(table: dict, source: str) -> dict:
             )
         motifs.append((int(key), _motif_spec(value, source, f"[packing.motifs] {key}")))
     return dict(tiling=tiling, edge=edge, motifs=tuple(sorted(motifs)), method=method, **contact)
+
+
+def _girih_spec(table: dict, source: str) -> dict:
+    """``kind = "girih"``: its ``girih_pattern`` (required) and edge; no radius."""
+    from ..pattern.girih import PATTERNS
+
+    where = "[packing]"
+    if "radius" in table:
+        raise DesignError(
+            f'{source}: {where} kind = "girih" has no radius: give the tiles\' edge (mm) instead, '
+            f"like edge = {table['radius']!r}",
+            param=_key(where, key="radius"),
+        )
+    if "girih_pattern" not in table:
+        raise DesignError(
+            f'{source}: {where} kind = "girih" needs girih_pattern = one of: {", ".join(PATTERNS)}',
+            param=_key(where, key="girih_pattern"),
+        )
+    pattern = _value(table, "packing", "girih_pattern", source, where)
+    check = _schema.key("packing.girih_pattern").checker
+    assert check is not None  # registered by fabtiles.pattern.girih, which the package imports
+    try:
+        check(pattern)
+    except FabtilesError as exc:
+        raise DesignError(f"{source}: {where} {exc}", param=_key(where, key="girih_pattern")) from None
+    edge = _value(table, "packing", "edge", source, where, _schema.key("packing.edge").default)
+    return dict(girih_pattern=pattern, edge=edge)
 
 
 def _method(table: dict, source: str, where: str) -> tuple[str, dict]:
@@ -969,7 +1028,7 @@ def _fit_surface(design: Design, star, source: str) -> Design:
             param="surface.shape",
         )
     period = float(_build_packing(p, star).period[0])
-    key = "edge" if p.kind == "archimedean" else "radius"
+    key = "edge" if p.kind in EDGE_KINDS else "radius"
     size = getattr(p, key)
     around = math.pi * s.diameter
     if around < period - 1e-9:

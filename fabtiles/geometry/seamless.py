@@ -188,3 +188,34 @@ def seamless_radius(outline, size, radius, *, packing="hex") -> float:
     7.142857142857143
     """
     return seamless_fit(outline, size, radius, packing=packing).radius
+
+
+def period_fit(outline, size, edge, period, what: str) -> SeamlessFit:
+    """The edge nearest to ``edge`` that makes a rectangle an exact number of a pattern's rectangular
+    ``period`` ``(px, py)`` (mm, at that ``edge``): the width kept, the height moved to whole periods.
+
+    For a pattern whose two periods are incommensurable (a girih pattern's, with five-fold angles), so
+    only a rectangle fits; ``what`` names the pattern in the message refusing another outline.
+
+    >>> fit = period_fit("rectangle", (200, 100), 10, (49.8, 36.18), "the girih pattern decagon-bowtie")
+    >>> round(fit.edge, 4), fit.repeats
+    (10.0402, (4, 3))
+    >>> period_fit("square", 100, 10, (49.8, 36.18), "the girih pattern decagon-bowtie")
+    Traceback (most recent call last):
+    ...
+    fabtiles.core.errors.ParameterError: a square tile cannot be seamless with the girih pattern decagon-bowtie (its periods 49.8 and 36.18 mm are incommensurable); use outline 'rectangle'
+    """  # noqa: E501 - a doctest's lines are as Python prints them
+    outline = check_choice("outline", outline, OUTLINES)
+    w, h = check_tile_size(outline, size)
+    edge = check_float("edge", edge, low=0, low_open=True)
+    px, py = (float(v) / edge for v in period)
+    if outline != "rectangle":
+        raise ParameterError(
+            f"a {outline} tile cannot be seamless with {what} (its periods {px * edge:.4g} and {py * edge:.4g} mm "
+            "are incommensurable); use outline 'rectangle'",
+            param="outline",
+        )
+    m = max(1, round(w / (px * edge)))
+    a = w / (px * m)
+    k = max(1, round(h / (py * a)))
+    return SeamlessFit(radius=a, size=(w, k * py * a), repeats=(m, k))

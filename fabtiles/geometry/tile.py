@@ -20,6 +20,7 @@ from ..core.report import distinct
 from ..core.schema import key, register_check
 from ..core.validate import check_choice, check_float
 from ..pattern.archimedean import ArchimedeanPacking
+from ..pattern.girih import GirihPacking
 from ..pattern.packing import Packing
 from ..pattern.star import Star
 from .stroke import JOINS, clip_segments, stroke_cross_section, to_cross_section, to_shapely
@@ -88,7 +89,7 @@ class TileGeometry:
     size : float or (float, float)
         mm. ``square``, ``hexagon`` (width across flats) and ``circle`` (diameter)
         take one number or an equal pair; ``rectangle`` takes ``(width, height)``.
-    pattern : HexPacking, SquarePacking, ArchimedeanPacking or Star
+    pattern : HexPacking, SquarePacking, ArchimedeanPacking, GirihPacking or Star
         A packing (its lattice point (0, 0) at the tile centre), or a single motif
         centred and scaled to the largest circle inside the frame.
     frame : float
@@ -145,9 +146,9 @@ class TileGeometry:
     ):
         self._outline = check_choice("outline", outline, OUTLINES)
         self._size = check_tile_size(self._outline, size)
-        if not isinstance(pattern, (Packing, ArchimedeanPacking, Star)):
+        if not isinstance(pattern, (Packing, ArchimedeanPacking, GirihPacking, Star)):
             raise ParameterError(
-                f"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking or Star, "
+                f"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking, GirihPacking or Star, "
                 f"got {type(pattern).__name__}",
                 param="pattern",
             )

@@ -55,7 +55,7 @@ def design_of_query(query: dict, *, limits: _limits.Limits):
     base = dict(DEFAULTS)
     if ("n" in query or "radii" in query) and "preset" not in query:
         del base["preset"]  # the motif's own parameters replace the default preset
-    if query.get("packing") in ("none", "archimedean"):
+    if query.get("packing") in ("none", "archimedean", "girih"):
         del base["radius"]  # no packing radius (a tiling has an edge)
     if query.get("shape") == "cylinder":  # its tile is its unrolled strip: no outline, size or frame
         base = {k: v for k, v in base.items() if k not in FLAT_ONLY}

@@ -9,7 +9,8 @@ entry and its sample and compares the tiles, so the two cannot drift; the
 samples have no colours, so neither have these entries), then four tilings by
 Hankin's polygons in contact as ``samples/hankin/`` has them (compared likewise), and two
 cylinders, a texture roller and a lampshade, as ``samples/roller-60x80.toml`` and
-``samples/lampshade-120x150.toml`` have them (compared likewise). The thumbnails are
+``samples/lampshade-120x150.toml`` have them (compared likewise), then the girih pattern of
+``samples/girih-decagon-bowtie.toml`` (compared likewise). The thumbnails are
 drawn by the preview code (:func:`~fabtiles.making.views.tile_picture`, the
 coloured faces too; a cylinder's unrolled strip as it prints) and kept for the life of the process.
 
@@ -121,6 +122,23 @@ _CYLINDERS = {
 }
 
 
+# key -> title, note and query: the girih patterns of samples/girih-<pattern>.toml
+_GIRIH = {
+    "girih-decagon-bowtie": (
+        "Girih decagons and bowties",
+        "the Lu-Steinhardt girih tiles: decagons on a rhombic lattice with bowties between, their strapwork "
+        "crossing each edge's midpoint at 54 degrees",
+        {
+            "packing": "girih",
+            "girih_pattern": "decagon-bowtie",
+            "edge": "12",
+            "colour_by": "shape",
+            "palette": "zellige",
+        },
+    ),
+}
+
+
 @dataclass(frozen=True)
 class Entry:
     """One place to start: ``query`` opens it in the editor (``/?`` + the query)."""
@@ -130,7 +148,7 @@ class Entry:
     note: str
     query: dict
     group: str = "preset"
-    """``"preset"``, ``"tiling"``, ``"hankin"`` or ``"cylinder"``: the gallery's header counts each."""
+    """``"preset"``, ``"tiling"``, ``"hankin"``, ``"cylinder"`` or ``"girih"``: the gallery's header counts each."""
 
 
 def _tile_query(stroke=1) -> dict:
@@ -160,7 +178,7 @@ def _tiling_query(tiling: str, edge: float, motifs: dict, main, gap_n) -> dict:
 @functools.cache
 def entries() -> tuple[Entry, ...]:
     """The gallery's entries: the presets, then the tilings, then the tilings by Hankin's method, then the
-    cylinders."""
+    cylinders, then the girih patterns."""
     out = []
     for name in PRESETS:
         radius, stroke = _PRESET_TILES.get(name, ("15", 1))
@@ -209,6 +227,8 @@ def entries() -> tuple[Entry, ...]:
         query = {"packing": "hex", "shape": "cylinder", **values}
         query.update(printer_profile="fdm-0.4mm", fill_small_holes="true")
         out.append(Entry(key, title, note, query, "cylinder"))
+    for key, (title, note, values) in _GIRIH.items():
+        out.append(Entry(key, title, note, {**values, **_tile_query(1.2)}, "girih"))
     assert set(_TILINGS) == set(TILINGS), "a tiling is missing from the gallery"
     assert set(_PRESET_PALETTES) == set(PRESETS), "a preset has no palette in the gallery"
     return tuple(out)

@@ -4,7 +4,7 @@
 >>> fields["stroke"]["widget"]["kind"], fields["stroke"]["key"], fields["stroke"]["range"]["min"]
 ('slider', 'tile.stroke', 0)
 >>> [v for v, _ in fields["packing"]["choices"]]
-['hex', 'square', 'archimedean', 'none']
+['hex', 'square', 'archimedean', 'girih', 'none']
 """
 
 from __future__ import annotations

@@ -116,7 +116,8 @@ def test_bad_tiles(args, kwargs, match):
 
 def test_bad_pattern_and_single_star_stroke():
     with pytest.raises(
-        ParameterError, match=r"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking or Star, got str"
+        ParameterError,
+        match=r"pattern must be a HexPacking, SquarePacking, ArchimedeanPacking, GirihPacking or Star, got str",
     ):
         TileGeometry("square", 100, "table3-3")
     with pytest.raises(ParameterError, match=r"stroke must be > 0 and <= 5 mm \(the motif circle's radius\), got 6"):

@@ -24,9 +24,9 @@ def client():
 def test_presets_then_tilings_then_hankin_then_cylinders():
     keys = [e.key for e in gallery.entries()]
     hankin = [f"hankin-{t}" for t in gallery._HANKIN]
-    assert keys == [*PRESETS, *gallery._TILINGS, *hankin, "roller", "lampshade"]
+    assert keys == [*PRESETS, *gallery._TILINGS, *hankin, "roller", "lampshade", "girih-decagon-bowtie"]
     assert set(keys[len(PRESETS) : len(PRESETS) + len(TILINGS)]) == set(TILINGS)
-    assert len(keys) == 24
+    assert len(keys) == 25
 
 
 @pytest.mark.parametrize("key, sample", [("roller", "roller-60x80"), ("lampshade", "lampshade-120x150")])
@@ -57,6 +57,17 @@ def test_hankin_entry_is_its_sample(tiling):
     a, b = tile.region(), sample.region()
     assert a.symmetric_difference(b).area <= 1e-6 * b.area
     assert tile.stroke == sample.stroke and tile.width_mm == sample.width_mm
+
+
+@pytest.mark.parametrize("key", sorted(gallery._GIRIH))
+def test_girih_entry_is_its_sample(key):
+    from fabtiles.designs.design_file import design_from_dict
+
+    ours = design_from_dict(design_from_query(gallery.entry(key).query))
+    theirs = load_design(SAMPLES / f"{key}.toml")
+    assert ours.packing == theirs.packing and ours.tile_spec == theirs.tile_spec and ours.colour == theirs.colour
+    a, b = ours.build_tile().region(), theirs.build_tile().region()
+    assert a.symmetric_difference(b).area <= 1e-6 * b.area
 
 
 @pytest.mark.parametrize("tiling", sorted(TILINGS))

@@ -9,6 +9,7 @@ const state = {
   packing: "hex", radius: 15, gap_n: 6, gap_inner: 0.5, outline_circles: false,
   gap_rotation: 0, gap_rosette: false, gap_alpha: 20, gap_spr: 0.2,  // the gap motif (radii inner, 1): a rosette
   // when gap_rosette (special circle 2), sent only then; its rotation only when not 0
+  girih_pattern: "decagon-bowtie",  // packing=girih: the pattern of girih tiles (and the edge)
   tiling: "4.8.8", edge: 20, motifs: {},  // packing=archimedean: motifs[sides] = preset ("" = the motif above)
   method: "motifs", contact_angle: 60, contact_gap: 0,  // method=hankin: Hankin's rays ("" motif: the rays)
   outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
@@ -124,7 +125,11 @@ function query() {
     q.set("rotation", state.rotation);
   }
   q.set("packing", state.packing);
-  if (state.packing !== "none") {
+  if (state.packing === "girih") {  // the tiles' strapwork: no circles, no gap motif
+    q.set("girih_pattern", state.girih_pattern);
+    q.set("edge", state.edge);
+    if (state.seamless) q.set("seamless", "true");
+  } else if (state.packing !== "none") {
     if (state.packing === "archimedean") {
       q.set("tiling", state.tiling);
       q.set("edge", state.edge);

@@ -1,0 +1,68 @@
+"""A girih design's files: a clean DXF that LibreCAD draws, a watertight STL that PrusaSlicer slices."""
+
+from __future__ import annotations
+
+import re
+
+import ezdxf
+import pytest
+from mesh_helpers import assert_solid, expected_volume, load_stl, top
+from real_programs import program
+from test_3mf_multicolour import slice_gcode
+from test_dxf_librecad import _dxf_edges, _print_pdf, _segments_by_colour
+
+import fabtiles
+from fabtiles.designs.design_file import design_from_text
+from fabtiles.machines.profiles import load_profile
+from fabtiles.pattern.girih import PATTERNS
+
+DESIGN = """
+[packing]
+kind = "girih"
+girih_pattern = "{pattern}"
+edge = 9
+[tile]
+outline = "square"
+size = 50
+frame = 3
+stroke = 1.2
+"""
+
+
+def _tile(pattern="decagon-bowtie"):
+    return design_from_text(DESIGN.format(pattern=pattern)).build_tile(tile_cls=fabtiles.Tile)
+
+
+@pytest.mark.parametrize("pattern", PATTERNS)
+def test_girih_dxf_audits_clean(pattern, tmp_path):
+    tile = _tile(pattern)
+    report = tile.export(tmp_path / "t.dxf", profile="laser-3mm-plywood", fill_small_holes=True)
+    assert report.ok, report.summary()
+    doc = ezdxf.readfile(tmp_path / "t.dxf")
+    assert not doc.audit().has_errors and len(doc.modelspace()) > 10
+
+
+def test_girih_stl_is_watertight(tmp_path):
+    tile = _tile()
+    tile.export(tmp_path / "t.stl", profile="fdm-0.4mm", style="relief", fill_small_holes=False)
+    mesh = load_stl(tmp_path / "t.stl")
+    volume = expected_volume("relief", tile.region(), tile.outline_shape())
+    assert_solid(mesh, volume, (0, 0, tile.width_mm, tile.height_mm), top("relief"))
+
+
+def test_librecad_draws_the_girih_dxf(tmp_path):
+    librecad = program("librecad", "apt-get install librecad")
+    dxf = tmp_path / "girih.dxf"
+    _tile().export(dxf, profile="laser-3mm-plywood", fill_small_holes=True)
+    profile = load_profile("laser-3mm-plywood")
+    drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
+    edges = _dxf_edges(dxf, profile.layers.inner_cut) + _dxf_edges(dxf, profile.layers.outer_cut)
+    assert sum(len(s) for s in drawn.values()) == edges > 50
+
+
+def test_prusaslicer_slices_the_girih_stl(tmp_path):
+    stl = tmp_path / "girih.stl"
+    _tile().export(stl, profile="fdm-0.4mm", style="relief", fill_small_holes=False)
+    gcode = slice_gcode(tmp_path, stl, 1)
+    layers = re.findall(r"^;LAYER_CHANGE", gcode, flags=re.M)
+    assert len(layers) > 5 and re.search(r"^G1 X[\d.]+ Y[\d.]+ E[\d.]+", gcode, flags=re.M)
