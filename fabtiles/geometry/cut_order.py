@@ -150,6 +150,42 @@ def path_orders(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0), tho
     return out
 
 
+def order_strokes(first, last, *, start=(0.0, 0.0), given=None) -> tuple:
+    """``(order, flipped)`` of open strokes that may run backwards (a pen's), from ``start``, ``first``
+    and ``last`` their end points ``(n, 2)``.
+
+    Up to :data:`POLISH_MAX` strokes: the greedy tours from ``start`` and (with an order
+    ``given``, ``(order, flipped)``, e.g. a hatch's boustrophedon) from the given order's first
+    stroke, as vpype's ``linesort`` starts, and the given order itself, each improved by
+    neighbour-list 2-opt and polished by :func:`_polish`; the shortest is returned. More strokes
+    keep the order given, which is then made by a method that scales (the greedy tour's and
+    2-opt's Python loops would be the whole time of a large plot), or take the greedy tour.
+    """
+    first, last = np.asarray(first, float), np.asarray(last, float)
+    n = len(first)
+    if given is not None and n > POLISH_MAX:
+        return np.asarray(given[0], np.int64), np.asarray(given[1], bool)
+    if n < 2:
+        return np.zeros(n, np.int64), np.zeros(n, bool)
+    pairs = np.zeros((0, 2), np.int64)
+    ends, exits = np.concatenate([first, last]), np.concatenate([last, first])
+    near = _near(ends, exits, NEIGHBOURS // 2 + 1)
+    origins = [] if given is not None else [np.asarray(start, float)]
+    tours = []
+    if given is not None:
+        tours.append((np.asarray(given[0], np.int64).copy(), np.asarray(given[1], bool).copy()))
+        g, f = int(tours[0][0][0]), bool(tours[0][1][0])
+        origins.append(last[g] if f else first[g])
+    tours += [_nearest_neighbour(ends, exits, near, n, o, pairs) for o in origins]
+    if n > 2:
+        nodes = _neighbour_paths(near, n, True)
+        for o, f in tours:
+            _two_opt(first, last, o, f, nodes, start, None, True, pairs)
+    if _polishable(n, True, None, pairs):
+        tours = [_polish(first, last, *t, start) for t in tours]
+    return min(tours, key=lambda t: _cost(first, last, t[0], t[1], start))
+
+
 _ROLES = ("engrave", "score", "inner", "outer")
 """The roles in the order they are cut."""
 
