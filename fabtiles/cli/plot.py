@@ -102,3 +102,9 @@ def command(design_file, output, what, pen_mm, fill, hatch_mm, angles, cross, ov
     click.echo(
         f"{output}: {layers}; pen down {drawing.length_mm / 1000:.3g} m, pen up {drawing.travel_mm / 1000:.3g} m"
     )
+    bare = drawing.stats.get("fill", {}).get("not_hatched")
+    if bare:
+        click.echo(
+            f"not hatched (no line fits in the faces, narrower than the {drawing.pen_mm:g} mm pen or the spacing): "
+            f"class{'es' if len(bare) > 1 else ''} {', '.join(bare)}"
+        )

@@ -197,6 +197,7 @@ def _filled(models, centrelines, outline, pen: float, *, hatch_mm, angles, cross
     band = colouring.band
     lines = order_paths({"score": strokes(centrelines) + _rings(outline)}, thorough=True)["score"]
     pens: dict = {band.hex: (band.name, ["strands", "outline"], [lines])}
+    bare = []  # the classes no line fits in: faces narrower than the pen or the spacing
     for k, c in enumerate(classes.classes):
         h = hatch(
             classes.faces[classes.labels == k],
@@ -205,6 +206,9 @@ def _filled(models, centrelines, outline, pen: float, *, hatch_mm, angles, cross
             inset_mm=pen / 2,
             cross=cross,
         )
+        if not len(h.segments):
+            bare.append(c.letter)
+            continue
         colour = colouring.face(c.letter)
         _, what, groups = pens.setdefault(colour.hex, (colour.name, [], []))
         what.append(c.letter)
@@ -215,7 +219,7 @@ def _filled(models, centrelines, outline, pen: float, *, hatch_mm, angles, cross
     x0, y0, x1, y1 = outline.bounds
     stats = {
         "what": "centrelines",
-        "fill": {"hatch_mm": spacing, "angles_deg": angle_of, "cross": bool(cross)},
+        "fill": {"hatch_mm": spacing, "angles_deg": angle_of, "cross": bool(cross), "not_hatched": bare},
     }
     return pen_drawing(layers, bounds=(min(x0, 0.0), min(y0, 0.0), x1, y1), pen_mm=pen, stats=stats, order=False)
 

@@ -45,6 +45,7 @@ def test_a_layer_per_pen_named_and_coloured_as_vpype_reads_them(tmp_path):
     out = tmp_path / "filled.svg"
     res = CliRunner().invoke(cli, ["plot", str(MOSAIC), "-o", str(out), "--fill", "--pen", str(PEN), "--set", SMALL[0]])
     assert res.exit_code == 0, res.output
+    assert "not hatched (no line fits in the faces, narrower than the 0.4 mm pen or the spacing): class" in res.output
     doc = vp.read_multilayer_svg(str(out), quantization=0.01)
     design = load_design(MOSAIC, overrides=SMALL)
     models = Models(prepare_tile(design), BuildOptions.of_design(design))
@@ -103,6 +104,8 @@ def test_default_spacing_is_the_pen_and_angles_differ_by_class(small):
     assert fill["hatch_mm"] == PEN and fill["cross"] is True
     letters = [c.letter for c in models.face_classes.classes]
     assert list(fill["angles_deg"].values()) == list(ANGLES_DEG[: len(letters)])
+    hatched = {x for layer in drawing.layers for x in letters_of(layer.name)}
+    assert set(fill["not_hatched"]) == set(letters) - hatched and fill["not_hatched"]  # the kites, under the pen
 
 
 def test_angles_override_by_class_and_for_all():
