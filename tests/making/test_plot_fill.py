@@ -179,3 +179,16 @@ def test_cli_fill_without_colours_exit_2_no_file(tmp_path):
     out = tmp_path / "f.svg"
     res = CliRunner().invoke(cli, ["plot", str(ROOT / "samples" / "rosette.toml"), "-o", str(out), "--fill"])
     assert res.exit_code == 2 and "fill needs the design's colours" in res.output and not out.exists()
+
+
+def test_the_filled_plot_picture_is_up_to_date(tmp_path):
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("render_plot", ROOT / "samples" / "render_plot.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    out = module.render(MOSAIC, tmp_path / "plot.svg")
+    assert out.read_bytes() == (ROOT / "samples" / "renders" / "plot-mosaic-iznik.svg").read_bytes(), (
+        "run python samples/render_plot.py"
+    )
+    assert "](../samples/renders/plot-mosaic-iznik.svg)" in (ROOT / "docs" / "plotters-and-inkscape.md").read_text()
