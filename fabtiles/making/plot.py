@@ -263,5 +263,8 @@ def _class_angles(angles, letters: list) -> dict:
     out = {}
     for k, letter in enumerate(letters):
         value = given.get(letter, given.get("", ANGLES_DEG[k % len(ANGLES_DEG)]))
-        out[letter] = check_float(f"angle of class {letter}", value)
+        try:
+            out[letter] = check_float(f"angle of class {letter}", value)
+        except ParameterError as exc:
+            raise ParameterError(str(exc), param="angle") from None
     return out
