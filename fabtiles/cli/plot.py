@@ -92,7 +92,7 @@ def command(design_file, output, what, pen_mm, fill, hatch_mm, angles, cross, ov
         pen_mm=pen_mm,
         fill=fill,
         hatch_mm=hatch_mm,
-        angles=angles_from_text(angles) if angles else None,
+        angles_deg=angles_from_text(angles) if angles else None,
         cross=cross,
     )
     atomic_write(output, fmt.write(drawing, FileOptions(name=Path(output).stem)))

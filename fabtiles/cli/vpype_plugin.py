@@ -104,7 +104,7 @@ def add_design(
             pen_mm=pen_mm,
             fill=fill,
             hatch_mm=hatch_mm,
-            angles=angles_from_text(angles) if angles else None,
+            angles_deg=angles_from_text(angles) if angles else None,
             cross=cross,
         )
     except FabtilesError as exc:

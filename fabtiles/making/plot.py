@@ -66,7 +66,7 @@ def check_plot_options(what: str, pen_mm) -> tuple[str, float]:
 
 def angles_from_text(values) -> dict:
     """``--angle`` values (``"30"``: every class; ``"B=60"``: class B) as :func:`plot_drawing`'s
-    ``angles`` (``""`` the key of every class).
+    ``angles_deg`` (``""`` the key of every class).
 
     >>> angles_from_text(["30", "B=60.5"])
     {'': 30.0, 'B': 60.5}
@@ -91,7 +91,7 @@ def plot_drawing(
     pen_mm=None,
     fill: bool = False,
     hatch_mm=None,
-    angles=None,
+    angles_deg=None,
     cross: bool = False,
     limits: _limits.Limits = _limits.CLI_LIMITS,
 ):
@@ -107,7 +107,7 @@ def plot_drawing(
     hatch_mm : float, optional
         The distance between hatch lines (default the pen's width: the strokes touch), from a
         tenth of the pen's width to the largest face's size.
-    angles : float or dict, optional
+    angles_deg : float or dict, optional
         The hatch lines' angle in degrees from the x axis: one for every class, or a dict of class
         letters (``""`` for every class) to angles; default :data:`ANGLES_DEG` in class order.
     cross : bool
@@ -161,7 +161,7 @@ def plot_drawing(
     centrelines = tile_score_lines(tile)  # an interlaced tile's under strands broken (no region: a pen needs none)
     outline = tile.outline_shape()
     if fill:
-        return _filled(models, centrelines, outline, pen, hatch_mm=hatch_mm, angles=angles, cross=cross)
+        return _filled(models, centrelines, outline, pen, hatch_mm=hatch_mm, angles_deg=angles_deg, cross=cross)
     band = models.colouring.band.hex if models.coloured else "#000000"
     layers = [("strands", band, strokes(centrelines)), ("outline", "#000000", _rings(outline))]
     if models.coloured:
@@ -184,7 +184,7 @@ def _rings(geom) -> list:
     return [np.asarray(shapely.get_coordinates(r)) for r in rings]
 
 
-def _filled(models, centrelines, outline, pen: float, *, hatch_mm, angles, cross: bool):
+def _filled(models, centrelines, outline, pen: float, *, hatch_mm, angles_deg, cross: bool):
     """The drawing with ``fill``: a layer per pen, the band's strands and outline and the classes'
     hatching, each layer ordered (see :func:`plot_drawing`)."""
     from ..geometry.cut_order import order_paths
@@ -193,7 +193,7 @@ def _filled(models, centrelines, outline, pen: float, *, hatch_mm, angles, cross
 
     classes, colouring = models.face_classes, models.colouring
     spacing = _check_hatch(hatch_mm, pen, classes.faces)
-    angle_of = _class_angles(angles, [c.letter for c in classes.classes])
+    angle_of = _class_angles(angles_deg, [c.letter for c in classes.classes])
     band = colouring.band
     lines = order_paths({"score": strokes(centrelines) + _rings(outline)}, thorough=True)["score"]
     pens: dict = {band.hex: (band.name, ["strands", "outline"], [lines])}

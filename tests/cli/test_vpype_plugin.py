@@ -92,7 +92,7 @@ def test_fill_gives_the_layers_of_fabtiles_plot_fill(vpype):
     assert code == 0, err
     layers = stat_layers(out)
     design = load_design(mosaic, overrides=["tile.size=40"])
-    drawing = plot_drawing(design, fill=True, cross=True, pen_mm=0.5, angles={"B": 10.0})
+    drawing = plot_drawing(design, fill=True, cross=True, pen_mm=0.5, angles_deg={"B": 10.0})
     assert len(layers) == len(drawing.layers) > 2
     from fabtiles.geometry.cut_order import travel
 

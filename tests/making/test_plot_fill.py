@@ -86,7 +86,7 @@ def test_the_spacing_is_the_one_asked_for():
     lines through one face differ by the spacing exactly."""
     design = load_design(MOSAIC, overrides=SMALL)
     for hatch_mm in (0.35, 0.8):
-        drawing = plot_drawing(design, fill=True, pen_mm=0.3, hatch_mm=hatch_mm, angles={"B": 20.0})
+        drawing = plot_drawing(design, fill=True, pen_mm=0.3, hatch_mm=hatch_mm, angles_deg={"B": 20.0})
         layer = next(layer for layer in drawing.layers if letters_of(layer.name) == ["B"])
         seg = np.array(layer.paths)
         t = math.radians(20.0)
@@ -110,9 +110,9 @@ def test_default_spacing_is_the_pen_and_angles_differ_by_class(small):
 
 def test_angles_override_by_class_and_for_all():
     design = load_design(MOSAIC, overrides=SMALL)
-    every = plot_drawing(design, fill=True, angles=30).stats["fill"]["angles_deg"]
+    every = plot_drawing(design, fill=True, angles_deg=30).stats["fill"]["angles_deg"]
     assert set(every.values()) == {30.0}
-    one = plot_drawing(design, fill=True, angles={"": 10, "B": 60}).stats["fill"]["angles_deg"]
+    one = plot_drawing(design, fill=True, angles_deg={"": 10, "B": 60}).stats["fill"]["angles_deg"]
     assert one["B"] == 60.0 and one["A"] == 10.0
 
 
@@ -142,8 +142,8 @@ def test_pen_up_travel_at_most_vpypes_linesort_two_opt(small):
         ({"hatch_mm": 0.02}, r"hatch_mm must be from 0.03 \(a tenth of the 0.3 mm pen\) to .* got 0.02"),
         ({"hatch_mm": 500}, r"hatch_mm must be from .* mm \(the largest face's size\), got 500"),
         ({"hatch_mm": "wide"}, "hatch_mm must be a finite number, got 'wide'"),
-        ({"angles": "steep"}, "angle of class A must be a finite number, got 'steep'"),
-        ({"angles": {"Q": 30}}, r"angle's class 'Q' is not one of this design's face classes \(A, B"),
+        ({"angles_deg": "steep"}, "angle of class A must be a finite number, got 'steep'"),
+        ({"angles_deg": {"Q": 30}}, r"angle's class 'Q' is not one of this design's face classes \(A, B"),
         ({"what": "cut"}, "fill hatches the faces of a pen's drawing: what must be centrelines, got 'cut'"),
     ],
 )

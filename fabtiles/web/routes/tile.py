@@ -130,7 +130,7 @@ def router(*, limits: _limits.Limits) -> APIRouter:
                 pen_mm=_number(q, "pen_mm"),
                 fill=parse_flag("fill", q.get("fill", "false")),
                 hatch_mm=_number(q, "hatch_mm"),
-                angles=_number(q, "angle"),
+                angles_deg=_number(q, "angle"),
                 cross=parse_flag("cross", q.get("cross", "false")),
                 limits=limits,
             )
