@@ -192,3 +192,12 @@ def test_the_filled_plot_picture_is_up_to_date(tmp_path):
         "run python samples/render_plot.py"
     )
     assert "](../samples/renders/plot-mosaic-iznik.svg)" in (ROOT / "docs" / "plotters-and-inkscape.md").read_text()
+
+
+def test_hpgl_selects_a_pen_per_layer(tmp_path):
+    pytest.importorskip("vpype")
+    out = tmp_path / "filled.hpgl"
+    res = CliRunner().invoke(cli, ["plot", str(MOSAIC), "-o", str(out), "--fill", "--set", SMALL[0]])
+    assert res.exit_code == 0, res.output
+    n = len(plot_drawing(load_design(MOSAIC, overrides=SMALL), fill=True).layers)
+    assert re.findall(r"SP(\d+)", out.read_text()) == [str(k) for k in range(1, n + 1)] + ["0"]
