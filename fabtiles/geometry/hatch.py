@@ -17,7 +17,9 @@ hatch direction), so the strokes of neighbouring faces line up.
 
 :func:`hatch_order` orders the strokes for a short pen-up travel: each face's strokes as a
 boustrophedon (line after line, every other one drawn backwards), the faces then ordered as
-paths by :mod:`.cut_order` (a face's chain may be drawn from either end).
+paths by :mod:`.cut_order` (a face's chain may be drawn from either end); up to
+:data:`~.cut_order.POLISH_MAX` strokes :func:`~.cut_order.order_strokes` then keeps the
+shortest of that order and the greedy tours, each improved by 2-opt and the polish.
 
 >>> square = shapely.box(0, 0, 10, 10)
 >>> h = hatch([square], spacing_mm=2.5, angle_deg=0, inset_mm=1)

@@ -86,6 +86,7 @@ def test_faces_share_one_grid_and_keep_their_index():
 def test_a_face_narrower_than_the_inset_gets_no_stroke():
     h = hatch([shapely.box(0, 0, 0.2, 10)], spacing_mm=0.1, angle_deg=0, inset_mm=0.15)
     assert len(h.segments) == 0 and hatch_order(h) == []
+    assert len(hatch([], spacing_mm=1, angle_deg=0, cross=True).segments) == 0
 
 
 def test_order_draws_every_stroke_once_and_is_short():
