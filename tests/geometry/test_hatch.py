@@ -10,7 +10,7 @@ import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from fabtiles.geometry.cut_order import order_strokes, travel
+from fabtiles.geometry.cut_order import POLISH_MAX, TWO_OPT_MAX, order_strokes, travel
 from fabtiles.geometry.hatch import hatch, hatch_order
 
 
@@ -99,17 +99,17 @@ def test_order_draws_every_stroke_once_and_is_short():
     assert travel(paths, closed=False) < as_made / 4
 
 
-def test_order_strokes_keeps_a_large_given_order_and_improves_a_small_one():
+def test_order_strokes_improves_small_and_middle_orders_and_keeps_a_large_one():
     rng = np.random.default_rng(3)
-    first = rng.uniform(0, 100, (60, 2))
-    last = first + rng.uniform(-2, 2, (60, 2))
-    given = (np.arange(60), np.zeros(60, bool))
-    order, flipped = order_strokes(first, last, given=given)
-    paths = [np.array([first[i], last[i]]) for i in range(60)]
-    ordered = [paths[i][::-1] if f else paths[i] for i, f in zip(order, flipped, strict=True)]
-    assert sorted(order.tolist()) == list(range(60))
-    assert travel(ordered, closed=False) < travel(paths, closed=False) / 2
-    big = 2000
+    for n in (60, POLISH_MAX + 1):
+        first = rng.uniform(0, 100, (n, 2))
+        last = first + rng.uniform(-2, 2, (n, 2))
+        order, flipped = order_strokes(first, last, given=(np.arange(n), np.zeros(n, bool)))
+        paths = [np.array([first[i], last[i]]) for i in range(n)]
+        ordered = [paths[i][::-1] if f else paths[i] for i, f in zip(order, flipped, strict=True)]
+        assert sorted(order.tolist()) == list(range(n))
+        assert travel(ordered, closed=False) < travel(paths, closed=False) / 2
+    big = TWO_OPT_MAX + 1
     order, flipped = order_strokes(np.zeros((big, 2)), np.ones((big, 2)), given=(np.arange(big), np.zeros(big, bool)))
     assert order.tolist() == list(range(big)) and not flipped.any()
     assert order_strokes(np.zeros((1, 2)), np.ones((1, 2)))[0].tolist() == [0]
