@@ -1,4 +1,4 @@
-"""The vpype plugin: ``vpype fabtiles DESIGN.toml [--what centrelines|cut] [--set k=v] [--pen MM] ...``.
+"""The vpype plugin: ``vpype fabtiles [--what centrelines|cut] [--set k=v] [--pen MM] [--fill] DESIGN.toml ...``.
 
 Installed with the extra (``pip install 'fabtiles[vpype]'``), fabtiles registers this
 command in vpype's ``vpype.plugins`` entry-point group, so a design enters a vpype
@@ -48,21 +48,65 @@ def _global_processor(f):
     help="Override a design key, as in `fabtiles build --set` (repeatable).",
 )
 @click.option("--pen", "pen_mm", type=float, default=None, help="The pen's width in mm (default 0.3).")
+@click.option("--fill", is_flag=True, help="Hatch each face in its class's colour, a layer per pen (needs [colour]).")
+@click.option(
+    "--hatch-mm", type=float, default=None, help="With --fill: the hatch lines' distance in mm (default the pen's)."
+)
+@click.option(
+    "--angle",
+    "angles",
+    multiple=True,
+    metavar="[CLASS=]DEGREES",
+    help="With --fill: the hatch angle, of every class (30) or of one (B=60); repeatable.",
+)
+@click.option("--cross", is_flag=True, help="With --fill: cross-hatch, a second set of lines at right angles.")
 @_global_processor
-def fabtiles_command(document, design, what, overrides, pen_mm):
+def fabtiles_command(document, design, what, overrides, pen_mm, fill, hatch_mm, angles, cross):
     """Draw a fabtiles design (a TOML file): one layer per pen, named and coloured."""
-    return add_design(document, design, what=what, overrides=overrides, pen_mm=pen_mm)
+    return add_design(
+        document,
+        design,
+        what=what,
+        overrides=overrides,
+        pen_mm=pen_mm,
+        fill=fill,
+        hatch_mm=hatch_mm,
+        angles=angles,
+        cross=cross,
+    )
 
 
-def add_design(document, design, *, what="centrelines", overrides=(), pen_mm=None):
-    """``document`` with the design's drawing added, a layer per pen; fabtiles' errors as click's."""
+def add_design(
+    document,
+    design,
+    *,
+    what="centrelines",
+    overrides=(),
+    pen_mm=None,
+    fill=False,
+    hatch_mm=None,
+    angles=(),
+    cross=False,
+):
+    """``document`` with the design's drawing added, a layer per pen; fabtiles' errors as click's.
+
+    ``fill``, ``hatch_mm``, ``angles`` (``--angle`` texts) and ``cross`` as ``fabtiles plot``'s.
+    """
     from ..core.errors import FabtilesError
     from ..designs.design_file import load_design
     from ..export.plot_svg import vpype_document
-    from ..making.plot import plot_drawing
+    from ..making.plot import angles_from_text, plot_drawing
 
     try:
-        drawing = plot_drawing(load_design(design, overrides=list(overrides)), what=what, pen_mm=pen_mm)
+        drawing = plot_drawing(
+            load_design(design, overrides=list(overrides)),
+            what=what,
+            pen_mm=pen_mm,
+            fill=fill,
+            hatch_mm=hatch_mm,
+            angles_deg=angles_from_text(angles) if angles else None,
+            cross=cross,
+        )
     except FabtilesError as exc:
         raise click.ClickException(f"fabtiles: {exc}") from None
     return vpype_document(drawing, document)

@@ -150,6 +150,47 @@ def path_orders(paths: dict, *, outer_closed: bool = True, start=(0.0, 0.0), tho
     return out
 
 
+def order_strokes(first, last, *, start=(0.0, 0.0), given=None) -> tuple:
+    """``(order, flipped)`` of open strokes that may run backwards (a pen's), from ``start``, ``first``
+    and ``last`` their end points ``(n, 2)``.
+
+    Up to :data:`POLISH_MAX` strokes: the greedy tours from ``start`` and (with an order
+    ``given``, ``(order, flipped)``, e.g. a hatch's boustrophedon) from the given order's first
+    stroke, as vpype's ``linesort`` starts, and the given order itself, each improved by
+    neighbour-list 2-opt and polished by :func:`_polish`; the shortest is returned. More strokes,
+    up to :data:`TWO_OPT_MAX`: the order given improved by full 2-opt alone (the or-opt moves
+    are the polish's time). More still keep the order given, which is then made by a method
+    that scales (the greedy tour's and 2-opt's Python loops would be the whole time of a large
+    plot); without one, the greedy tour.
+    """
+    first, last = np.asarray(first, float), np.asarray(last, float)
+    n = len(first)
+    if given is not None and n > POLISH_MAX:
+        order, flipped = np.asarray(given[0], np.int64), np.asarray(given[1], bool)
+        if n > TWO_OPT_MAX:
+            return order, flipped
+        return _polish(first, last, order, flipped, start, or_opt=())
+    if n < 2:
+        return np.zeros(n, np.int64), np.zeros(n, bool)
+    pairs = np.zeros((0, 2), np.int64)
+    ends, exits = np.concatenate([first, last]), np.concatenate([last, first])
+    near = _near(ends, exits, NEIGHBOURS // 2 + 1)
+    origins = [] if given is not None else [np.asarray(start, float)]
+    tours = []
+    if given is not None:
+        tours.append((np.asarray(given[0], np.int64).copy(), np.asarray(given[1], bool).copy()))
+        g, f = int(tours[0][0][0]), bool(tours[0][1][0])
+        origins.append(last[g] if f else first[g])
+    tours += [_nearest_neighbour(ends, exits, near, n, o, pairs) for o in origins]
+    if n > 2:
+        nodes = _neighbour_paths(near, n, True)
+        for o, f in tours:
+            _two_opt(first, last, o, f, nodes, start, None, True, pairs)
+    if _polishable(n, True, None, pairs):
+        tours = [_polish(first, last, *t, start) for t in tours]
+    return min(tours, key=lambda t: _cost(first, last, t[0], t[1], start))
+
+
 _ROLES = ("engrave", "score", "inner", "outer")
 """The roles in the order they are cut."""
 
@@ -225,7 +266,13 @@ tile's few hundred strokes and too long for a sheet's thousands (``docs/speed.md
 keep the neighbour-list 2-opt."""
 
 
-def _polish(first, last, order, flipped, start, max_rounds: int = 50):
+TWO_OPT_MAX = 10000
+"""The most strokes :func:`order_strokes` improves by full 2-opt (a round is O(n^2) in numpy):
+a hatch layer of a few thousand strokes, the size where its boustrophedon order is left a few
+percent longer than vpype's ``linesort --two-opt`` makes it (``docs/speed.md``)."""
+
+
+def _polish(first, last, order, flipped, start, max_rounds: int = 50, or_opt=(1, 2, 3)):
     """``(order, flipped)`` improved by full 2-opt and or-opt until neither shortens the travel.
 
     For open paths that may run backwards, from ``start`` to a free end (a pen's strokes).
@@ -243,7 +290,7 @@ def _polish(first, last, order, flipped, start, max_rounds: int = 50):
     idx, fl = np.asarray(order, np.int64).copy(), np.asarray(flipped, bool).copy()
     for _ in range(max_rounds):
         improved = _two_opt_round(e, x, idx, fl, s)
-        for size in (1, 2, 3):
+        for size in or_opt:
             e, x, idx, fl, moved = _or_opt_round(e, x, idx, fl, s, size)
             improved |= moved
         if not improved:

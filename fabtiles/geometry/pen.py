@@ -130,6 +130,21 @@ def _mate_crossings(mate: np.ndarray, crossings: list, by_node, first, counts, o
                 mate[es[i[p]]], mate[es[j[p]]] = es[j[p]], es[i[p]]
 
 
+def join_ordered(groups, *, start=(0.0, 0.0)) -> list:
+    """One pen's groups of strokes (lists of polylines, each in its own drawing order: the strands,
+    a class's hatching) as one layer's strokes in drawing order: the groups one after the other are
+    the start of :func:`~.cut_order.order_strokes`, which may interleave them where that is shorter."""
+    from .cut_order import order_strokes
+
+    paths = [np.asarray(p, float) for group in groups for p in group if len(p) >= 2]
+    if len(paths) < 2 or sum(1 for g in groups if len(g)) < 2:
+        return paths  # one group: in its order already
+    first = np.array([p[0] for p in paths])
+    last = np.array([p[-1] for p in paths])
+    order, flipped = order_strokes(first, last, start=start, given=(np.arange(len(paths)), np.zeros(len(paths), bool)))
+    return [paths[i][::-1] if f else paths[i] for i, f in zip(order.tolist(), flipped.tolist(), strict=True)]
+
+
 def pen_drawing(layers, *, bounds, pen_mm: float, stats=None, order: bool = True) -> PenDrawing:
     """A :class:`PenDrawing` of ``layers`` (``(name, colour, paths)``), each layer's strokes ordered
     for the shortest pen-up travel from the origin (``order=False``: kept in the order given)."""

@@ -13,6 +13,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 import tomllib
 from lxml import etree
@@ -82,10 +83,36 @@ def test_options_set_and_cut(vpype):
     assert "vp_name: 'INNER'" in out and "vp_name: 'OUTER'" in out
 
 
+def test_fill_gives_the_layers_of_fabtiles_plot_fill(vpype):
+    """``vpype fabtiles --fill ...`` adds the layers ``fabtiles plot --fill`` draws: one per pen, with
+    its name, colour, pen-down length and pen-up travel (the same strokes in the same order)."""
+    mosaic = ROOT / "samples" / "mosaic-iznik.toml"
+    args = ("--fill", "--cross", "--pen", "0.5", "--angle", "B=10", "--set", "tile.size=40")
+    code, out, err = vpype("fabtiles", *args, mosaic, "stat")
+    assert code == 0, err
+    layers = stat_layers(out)
+    design = load_design(mosaic, overrides=["tile.size=40"])
+    drawing = plot_drawing(design, fill=True, cross=True, pen_mm=0.5, angles_deg={"B": 10.0})
+    assert len(layers) == len(drawing.layers) > 2
+    from fabtiles.geometry.cut_order import travel
+
+    for (length, up, block), layer in zip(layers.values(), drawing.layers, strict=True):
+        assert f"vp_name: '{layer.name}'" in block
+        r, g, b = (int(layer.colour[i : i + 2], 16) for i in (1, 3, 5))
+        assert f"vp_color: Color(red={r}, green={g}, blue={b}" in block
+        assert length / PX_PER_MM == pytest.approx(layer.length_mm, rel=1e-6)
+        # vpype's pen-up length leaves out the way to the first stroke
+        assert up / PX_PER_MM == pytest.approx(
+            travel(layer.paths, closed=False) - float(np.hypot(*layer.paths[0][0])), rel=1e-6
+        )
+
+
 @pytest.mark.parametrize(
     "args, message",
     [
         (["nothere.toml"], "fabtiles: cannot read design file 'nothere.toml'"),
+        (["--fill", SAMPLE], "fill needs the design's colours"),
+        (["--fill", "--angle", "x", ROOT / "samples" / "mosaic-iznik.toml"], "angle must be degrees"),
         (["--set", "tile.size=-3", SAMPLE], "[tile] size must be"),
         (["--pen", "0", SAMPLE], "pen_mm must be"),
     ],

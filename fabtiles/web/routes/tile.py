@@ -32,8 +32,16 @@ PLAIN = _plain()
 """What the pictures show of a design given no colours (``/api/faces``' ``plain``)."""
 
 
+def _number(query, field: str):
+    """A query's number (None when absent or empty); anything else a :class:`QueryError` naming it."""
+    from ..params import _number as number
+
+    text = query.get(field, "")
+    return None if text == "" else number(field, text)
+
+
 def router(*, limits: _limits.Limits) -> APIRouter:
-    """``/api/preview.svg``, ``/api/faces``, ``/api/kit.svg``, ``/api/view.glb``, ``/api/checks``,
+    """``/api/preview.svg``, ``/api/faces``, ``/api/kit.svg``, ``/api/plot.svg``, ``/api/view.glb``, ``/api/checks``,
     ``/api/design.toml``, ``/api/export/{fmt}``."""
     api = APIRouter()
 
@@ -102,6 +110,39 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         _, spec, tile = build(request, limits=limits)
         return Response(
             kit_svg(inlay_kit_of(tile, spec), tile.outline_shape(), title=spec.name), media_type="image/svg+xml"
+        )
+
+    @api.get("/api/plot.svg")
+    def plot_picture(request: Request):
+        """The design as ``fabtiles plot`` draws it, the plot's own SVG: ``pen_mm`` (default 0.3);
+        ``fill=true``: a layer per pen, each face class hatched in its colour (``hatch_mm``,
+        ``angle`` (degrees, every class), ``cross``); without colours the fill is refused (422)."""
+        from ...core.errors import ParameterError
+        from ...export.plot_svg import svg_bytes
+        from ...making.plot import plot_drawing
+
+        view = ("fill", "pen_mm", "hatch_mm", "angle", "cross")
+        q = request.query_params
+        _, spec, _ = build(request, limits=limits, view=view)
+        try:
+            drawing = plot_drawing(
+                spec,
+                pen_mm=_number(q, "pen_mm"),
+                fill=parse_flag("fill", q.get("fill", "false")),
+                hatch_mm=_number(q, "hatch_mm"),
+                angles_deg=_number(q, "angle"),
+                cross=parse_flag("cross", q.get("cross", "false")),
+                limits=limits,
+            )
+        except ParameterError as exc:  # the plot's own options: the answer names the field
+            if exc.param not in view:
+                raise
+            raise QueryError(str(exc), exc.param) from None
+        layers = ", ".join(f"{layer.name}: {len(layer.paths)}" for layer in drawing.layers)
+        return Response(
+            svg_bytes(drawing),
+            media_type="image/svg+xml",
+            headers={"X-Fabtiles-Pens": layers, "Cache-Control": "no-store"},
         )
 
     @api.get("/api/view.glb")

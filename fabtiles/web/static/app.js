@@ -659,4 +659,34 @@ async function init() {
   refresh();
 }
 
+// The pen plot (/api/plot.svg, fabtiles plot's SVG): drawn only while its box is open, for the
+// design the page last drew well, with the box's pen, fill and cross-hatch.
+let plotSeq = 0;
+async function showPlot() {
+  if (!$("plot-box").open || !window.fabtilesDesign) return;
+  const q = new URLSearchParams(window.fabtilesDesign);
+  q.set("pen_mm", $("plot-pen").value);
+  if ($("plot-fill").checked) q.set("fill", "true");
+  if ($("plot-cross").checked) q.set("cross", "true");
+  const mine = ++plotSeq;
+  $("plot-caption").textContent = "drawing…";
+  const res = await fetch(`/api/plot.svg?${q}`);
+  if (mine !== plotSeq) return;
+  if (!res.ok) {
+    const err = await res.json().catch(() => ({}));
+    $("plot").hidden = true;
+    $("plot-caption").textContent = "";
+    $("plot-error").textContent = err.error || `the plot failed (${res.status})`;
+    $("plot-error").hidden = false;
+    return;
+  }
+  $("plot").src = "data:image/svg+xml;charset=utf-8," + encodeURIComponent(await res.text());
+  $("plot").hidden = false;
+  $("plot-error").hidden = true;
+  $("plot-caption").textContent = `Pens (layer: strokes): ${res.headers.get("X-Fabtiles-Pens") || ""}`;
+}
+for (const id of ["plot-pen", "plot-fill", "plot-cross"]) $(id).addEventListener("change", showPlot);
+$("plot-box").addEventListener("toggle", showPlot);
+document.addEventListener("fabtiles:design", showPlot);
+
 init();
