@@ -779,7 +779,7 @@ def _packing_spec(table: dict, source: str) -> PackingSpec:
 
 
 def _archimedean_spec(table: dict, source: str) -> dict:
-    from ..pattern.tilings import TILINGS
+    from ..pattern.tilings import ALL_TILINGS
 
     where = "[packing]"
     if "radius" in table:
@@ -790,7 +790,7 @@ def _archimedean_spec(table: dict, source: str) -> dict:
         )
     if "tiling" not in table:
         raise DesignError(
-            f'{source}: {where} kind = "archimedean" needs tiling = one of: {", ".join(TILINGS)}',
+            f'{source}: {where} kind = "archimedean" needs tiling = one of: {", ".join(ALL_TILINGS)}',
             param=_key(where, key="tiling"),
         )
     tiling = _value(table, "packing", "tiling", source, where)
