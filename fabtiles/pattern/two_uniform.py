@@ -218,7 +218,7 @@ def _normal(cell) -> tuple:
     if lat[1, 1] < 0:
         lat[1] = -lat[1]
     inv = np.linalg.inv(lat)
-    polys = {}
+    polys: dict[tuple, tuple] = {}
     for x, y, p, a in cell[1]:
         f = (rot @ np.array([x, y])) @ inv
         f = f - np.floor(np.round(f, 9))
