@@ -204,7 +204,7 @@ class TilingPacking:
         """The tilings: the 11 vertex configurations, then the two-uniform tilings.
 
         >>> len(TilingPacking.tilings()), TilingPacking.tilings()[:3], TilingPacking.tilings()[11]
-        (29, ('3.3.3.3.3.3', '4.4.4.4', '6.6.6'), '[3^6; 3^2.4.3.4]')
+        (31, ('3.3.3.3.3.3', '4.4.4.4', '6.6.6'), '[3^6; 3^2.4.3.4]')
         """
         return ALL_TILINGS
 

@@ -19,7 +19,7 @@ tangent incircles this is the inner Soddy circle of Descartes' theorem.
 >>> canonical("3^4.6"), canonical("4.6.4.3")
 ('3.3.3.3.6', '3.4.6.4')
 >>> canonical("3.3.3.3.3.3; 3.3.6.3.3 #2"), len(ALL_TILINGS)
-('[3^6; 3^4.6]#2', 29)
+('[3^6; 3^4.6]#2', 31)
 """
 
 from __future__ import annotations

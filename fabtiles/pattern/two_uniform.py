@@ -14,7 +14,9 @@ all for edge 1, then given a short basis turned so the first lattice vector lies
   into a dodecagon;
 - rows of squares and rows of triangles, or rows of hexagons and bowties between rows of
   squares, stacked;
-- dodecagons sharing edges on a square lattice, a square in each hole.
+- dodecagons sharing edges on a square lattice, a square in each hole;
+- the two of squares and triangles with vertices 3^3.4^2 and 3^2.4.3.4, polygon by polygon
+  across edges from one square (found by a search of small lattices).
 
 The tests check every cell from its polygons alone: regular polygons covering the plane once,
 360 degrees around every vertex, and exactly the two vertex types the name gives.
@@ -48,6 +50,8 @@ TWO_UNIFORM = (
     "[3.6.3.6; 3^2.6^2]",
     "[3.4^2.6; 3.6.3.6]#1",
     "[3.4^2.6; 3.6.3.6]#2",
+    "[3^3.4^2; 3^2.4.3.4]#1",
+    "[3^3.4^2; 3^2.4.3.4]#2",
     "[3^3.4^2; 4^4]#1",
     "[3^3.4^2; 4^4]#2",
     "[3^6; 3^3.4^2]#1",
@@ -71,6 +75,8 @@ TWO_UNIFORM_NAMES = {
     "[3.6.3.6; 3^2.6^2]": "triangles, hexagons 2 apart",
     "[3.4^2.6; 3.6.3.6]#1": "3.6.3.6 rows and squares, staggered",
     "[3.4^2.6; 3.6.3.6]#2": "3.6.3.6 rows and squares, aligned",
+    "[3^3.4^2; 3^2.4.3.4]#1": "pairs of squares in zigzag rows",
+    "[3^3.4^2; 3^2.4.3.4]#2": "pairs of squares round single squares",
     "[3^3.4^2; 4^4]#1": "two rows of squares, one of triangles",
     "[3^3.4^2; 4^4]#2": "three rows of squares, one of triangles",
     "[3^6; 3^3.4^2]#1": "two rows of triangles, one of squares",
@@ -195,6 +201,19 @@ def _dodecagon_squares() -> tuple:
     return [[d, 0.0], [0.0, d]], polys
 
 
+def _attached(lattice, steps) -> tuple:
+    """A square on the origin, then each polygon of ``steps`` across an edge of one already
+    placed: ``(index of that polygon, its edge k, sides)``, edge k the one whose midpoint lies
+    ``360 (k + 1) / p`` degrees round from the polygon's edge-midpoint direction."""
+    polys = [(0.0, 0.0, 4, 0.0)]
+    for parent, k, sides in steps:
+        x, y, p, a = polys[parent]
+        phi = a + 360.0 * (k + 1) / p
+        r = _inradius(p) + _inradius(sides)
+        polys.append((x + r * math.cos(math.radians(phi)), y + r * math.sin(math.radians(phi)), sides, phi + 180.0))
+    return lattice, polys
+
+
 def _gauss(lattice) -> np.ndarray:
     """A shortest basis of the lattice (Lagrange-Gauss reduction)."""
     u, v = (np.array(r, dtype=float) for r in lattice)
@@ -247,6 +266,18 @@ def two_uniform_cells(archimedean: dict) -> dict:
         "[3^6; 3^3.4^2]#1": lambda: _rows("TTS"),
         "[3^6; 3^3.4^2]#2": lambda: _rows("TTTS"),
         "[3.12^2; 3.4.3.12]": _dodecagon_squares,
+        # squares and triangles found by a search of the square-triangle tilings of these two vertex
+        # types on small lattices (a cell filled vertex by vertex), kept as the steps that build them
+        "[3^3.4^2; 3^2.4.3.4]#1": lambda: _attached(
+            [(-(1 + S3 / 2), 0.5), (-1.0, -(2 + S3))],
+            [(0, 0, 4), (0, 1, 3), (0, 2, 3), (0, 3, 3), (1, 0, 3), (1, 1, 3)]
+            + [(1, 2, 3), (2, 1, 4), (3, 0, 3), (5, 1, 4), (6, 0, 3)],
+        ),
+        "[3^3.4^2; 3^2.4.3.4]#2": lambda: _attached(
+            [(-S3 / 2, -(1.5 + S3)), (-(1.5 + S3), S3 / 2)],
+            [(0, 0, 3), (0, 1, 3), (0, 2, 3), (0, 3, 3), (1, 0, 4), (1, 1, 3), (2, 0, 4), (2, 1, 3), (3, 0, 4)]
+            + [(3, 1, 3), (4, 0, 4), (4, 1, 3), (5, 1, 3), (6, 0, 3), (7, 1, 3), (8, 0, 3), (13, 0, 4)],
+        ),
     }
     if archimedean:
         cells |= {

@@ -5,7 +5,7 @@ from asgi_client import TestClient
 from test_browser import _preview_version, _wait_new_preview
 
 from fabtiles.designs.design_file import design_from_dict
-from fabtiles.pattern.tilings import ALL_TILINGS, TILINGS
+from fabtiles.pattern.tilings import ALL_TILINGS
 from fabtiles.web.app import create_app
 from fabtiles.web.params import QueryError, design_from_query
 
