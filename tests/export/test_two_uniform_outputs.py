@@ -108,3 +108,13 @@ def test_cli_refuses_an_unknown_tiling(tmp_path):
     message = result.output.strip().splitlines()
     assert len(message) == 1 and "tiling '[3^6; 3^4.6]#3' is unknown; did you mean '[3^6; 3^4.6]#" in message[0]
     assert not out.exists() or not any(out.iterdir())
+
+
+def test_the_picture_is_reproducible():
+    import importlib.util
+
+    root = Path(__file__).resolve().parents[2]
+    spec = importlib.util.spec_from_file_location("render_two_uniform", root / "samples" / "render_two_uniform.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert module.svg() == (root / "samples" / "renders" / "two-uniform.svg").read_text()
