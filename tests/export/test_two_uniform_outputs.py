@@ -118,3 +118,22 @@ def test_the_picture_is_reproducible():
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     assert module.svg() == (root / "samples" / "renders" / "two-uniform.svg").read_text()
+
+
+def test_interlace_weaves(tmp_path):
+    tile = _design(tmp_path, "[3^3.4^2; 3^2.4.3.4]#2", "hankin", "tile.interlace=true").build_tile(
+        tile_cls=fabtiles.Tile
+    )
+    assert tile.weave().conflicts == 0 and len(tile.weave()) > 20
+
+
+@pytest.mark.parametrize(
+    ("tiling", "outline", "size"),
+    [("[3^3.4^2; 3^2.4.3.4]#2", "square", 150), ("[3^6; 3^4.6]#1", "rectangle", (150, 100))],
+)
+def test_seamless_fit_is_whole_periods(tiling, outline, size):
+    from fabtiles.pattern.archimedean import TilingPacking
+
+    fit = fabtiles.seamless_fit(outline, size, 14, packing=tiling)
+    px, py = TilingPacking(tiling, edge=fit.radius).period
+    assert fit.size[0] == pytest.approx(fit.repeats[0] * px) and fit.size[1] == pytest.approx(fit.repeats[1] * py)
