@@ -127,6 +127,13 @@ _PAIRS = {_pair_key(name): name for name in TWO_UNIFORM}
 _PAIRS |= {(types, None): name for (types, number), name in list(_PAIRS.items()) if number is None}
 
 
+def _pair_hint(tiling) -> str:
+    """``did you mean '...#1' or '...#2'?`` for a two-uniform name without the number its pair needs."""
+    key = _pair_key(tiling) if isinstance(tiling, str) else None
+    both = [name for (types, number), name in _PAIRS.items() if key and number and types == key[0]]
+    return f"did you mean {both[0]!r} or {both[1]!r}?" if key and key[1] is None and len(both) == 2 else ""
+
+
 def canonical(tiling) -> str:
     """The tiling's name in :data:`ALL_TILINGS` form.
 
@@ -151,7 +158,7 @@ def canonical(tiling) -> str:
         except ValueError:
             name = _PAIRS.get(_pair_key(tiling))
     if name is None:
-        hint = did_you_mean(tiling, ALL_TILINGS)
+        hint = _pair_hint(tiling) or did_you_mean(tiling, ALL_TILINGS)
         raise ParameterError(
             f"tiling {tiling!r} is unknown{'; ' + hint if hint else ''} (tilings: "
             f"{', '.join(ALL_TILINGS)}; exponent forms such as 3^4.6 also work)",

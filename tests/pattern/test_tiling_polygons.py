@@ -128,10 +128,15 @@ def test_two_uniform_spellings():
     assert TilingPacking("4.12.6; 4.6.4.3", edge=EDGE).tiling == "[4.6.12; 3.4.6.4]"
 
 
-@pytest.mark.parametrize("bad", ["[3^6; 3^4.6]", "[3^6; 3^4.6]#3", "[3^6; 4.8.8]", "[3^6; 3^4.6; 6^3]"])
+@pytest.mark.parametrize("bad", ["[3^6; 3^4.6]#3", "[3^6; 4.8.8]", "[3^6; 3^4.6; 6^3]"])
 def test_unknown_two_uniform_tiling(bad):
     with pytest.raises(
         ParameterError,
         match=r"is unknown(; did you mean '[^']+'\?)? \(tilings: 3\.3\.3\.3\.3\.3, .*\[3\^6; 3\^4\.6\]#1",
     ):
         TilingPacking(bad, edge=EDGE)
+
+
+def test_a_pair_without_its_number_names_both():
+    with pytest.raises(ParameterError, match=r"did you mean '\[3\^6; 3\^4\.6\]#1' or '\[3\^6; 3\^4\.6\]#2'\?"):
+        TilingPacking("3^6; 3^4.6", edge=EDGE)
