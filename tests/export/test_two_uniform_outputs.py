@@ -1,10 +1,10 @@
 """The two-uniform tilings into the files, as the 11 go (``docs/tilings.md``).
 
-Each, by Hankin's rays, cuts cleanly (a DXF with no findings under the 3 mm plywood
-profile, which ezdxf's audit passes), and by the paper's default motifs with at most thin
-bridges at this small size; a few print as one watertight
-body; one goes through LibreCAD and PrusaSlicer; an unknown tiling stops the CLI with exit 2
-and no file.
+Each, by Hankin's rays, cuts cleanly (a DXF with no findings under the 3 mm plywood profile,
+which ezdxf's audit passes), and by the paper's default motifs with at most thin bridges at this
+small size; a few print as one watertight body; LibreCAD draws one's DXF, PrusaSlicer slices
+one's mosaic and OCCT opens one's STEP; interlace and seamless tiles take them; an unknown
+tiling stops the CLI with exit 2 and no file.
 """
 
 from __future__ import annotations
@@ -137,3 +137,13 @@ def test_seamless_fit_is_whole_periods(tiling, outline, size):
     fit = fabtiles.seamless_fit(outline, size, 14, packing=tiling)
     px, py = TilingPacking(tiling, edge=fit.radius).period
     assert fit.size[0] == pytest.approx(fit.repeats[0] * px) and fit.size[1] == pytest.approx(fit.repeats[1] * py)
+
+
+def test_occt_opens_the_step(tmp_path):
+    from fabtiles.export.step import check_step_file
+
+    design = _design(tmp_path, "[3.12^2; 3.4.3.12]", "hankin", "output.fill_small_holes=false")
+    result = build_design(design, tmp_path / "out", ("step",))
+    tile = design.build_tile()
+    volume = expected_volume("relief", tile.region(), tile.outline_shape())
+    assert check_step_file(result.paths[0], volume=volume, parts=1) == pytest.approx(volume, rel=1e-3)

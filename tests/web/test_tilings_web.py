@@ -69,10 +69,20 @@ def test_api_tilings_and_preview(client):
     assert r.status_code == 200 and r.text.startswith("<?xml")
 
 
+def test_a_two_uniform_tiling_previews(client):
+    info = client.get("/api/tilings").json()
+    assert info["[3^6; 3^4.6]#2"] == {"name": "triangles, hexagons sqrt 13 apart", "kinds": [3, 6]}
+    params = {"preset": "table3-3", "packing": "archimedean", "tiling": "[3^6; 3^4.6]#2", "edge": "12", "width": "80"}
+    plain = client.get("/api/preview.svg", params=params)
+    hankin = client.get("/api/preview.svg", params={**params, "method": "hankin", "contact_angle": "60"})
+    assert plain.status_code == hankin.status_code == 200 and plain.text != hankin.text
+
+
 @pytest.mark.parametrize(
     "params, field, match",
     [
         ({"tiling": "5.5.5"}, "tiling", "tiling '5.5.5' is unknown"),
+        ({"tiling": "[3^6; 3^4.6]#3"}, "tiling", "did you mean '[3^6; 3^4.6]#"),
         ({"motif_6": "table3-3"}, "motif_6", "motifs key 6 is not a polygon of the tiling 4.8.8"),
         ({"motif_8": "nope"}, "motif_8", "preset 'nope' is unknown"),
         ({"edge": "-2"}, "edge", "edge must be a finite number > 0"),
