@@ -174,7 +174,7 @@ class UnitCell:
     Attributes
     ----------
     name : str
-        Vertex configuration.
+        The tiling's name: its vertex configuration, or a two-uniform tiling's two.
     lattice : ndarray (2, 2)
         Rows are the two lattice vectors.
     centres, sides, angles : ndarray (k, 2), (k,), (k,)
