@@ -20,7 +20,7 @@ from .designs.colour import Colours
 from .designs.design_file import load_design
 from .export.formats import Format
 from .machines.profiles import CutterProfile, LaserProfile, PrinterProfile, load_profile
-from .pattern.archimedean import ArchimedeanPacking
+from .pattern.archimedean import ArchimedeanPacking, TilingPacking
 from .pattern.girih import GirihPacking
 from .pattern.packing import HexPacking, SquarePacking
 from .pattern.radii import straight_radii
@@ -73,6 +73,7 @@ __all__ = [
     "SquarePacking",
     "Star",
     "Tile",
+    "TilingPacking",
     "load_design",
     "load_profile",
     "nest",

@@ -22,6 +22,7 @@ EXPECTED = {
     "SquarePacking",
     "Star",
     "Tile",
+    "TilingPacking",  # ArchimedeanPacking is its former name, kept so scripts keep working
     "load_design",
     "load_profile",
     "nest",

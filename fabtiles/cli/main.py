@@ -94,12 +94,12 @@ def presets():
         line = f"{name:<13} n={p['n']:<3} radii={radii:<16} alpha={p['alpha']:<3g} spr={p['spr']:<5g} special={special}"
         note = PRESET_NOTES[name]
         click.echo(line + (f"   ({note})" if note else ""))
-    from ..pattern.tilings import NAMES, TILINGS, unit_cell
+    from ..pattern.tilings import ALL_TILINGS, NAMES, unit_cell
 
     click.echo('\nTilings ([packing] kind = "archimedean", tiling = "..."), motifs keyed by polygon sides:')
-    for name in TILINGS:
+    for name in ALL_TILINGS:
         kinds = ",".join(map(str, sorted(set(unit_cell(name).sides.tolist()))))
-        click.echo(f"{name:<13} {NAMES[name]:<24} polygons {kinds}")
+        click.echo(f"{name:<24} {NAMES[name]:<40} polygons {kinds}")
 
 
 @cli.command()

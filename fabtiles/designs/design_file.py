@@ -811,7 +811,7 @@ def _other_kinds_key(name: str, kind: str, source: str) -> DesignError:
 
 
 def _archimedean_spec(table: dict, source: str) -> dict:
-    from ..pattern.tilings import TILINGS
+    from ..pattern.tilings import ALL_TILINGS
 
     where = "[packing]"
     if "radius" in table:
@@ -822,7 +822,7 @@ def _archimedean_spec(table: dict, source: str) -> dict:
         )
     if "tiling" not in table:
         raise DesignError(
-            f'{source}: {where} kind = "archimedean" needs tiling = one of: {", ".join(TILINGS)}',
+            f'{source}: {where} kind = "archimedean" needs tiling = one of: {", ".join(ALL_TILINGS)}',
             param=_key(where, key="tiling"),
         )
     tiling = _value(table, "packing", "tiling", source, where)

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from ..core.errors import ParameterError
 from ..core.validate import check_choice, check_float
 from ..pattern.archimedean import rectangular_period
-from ..pattern.tilings import TILINGS, canonical, unit_cell
+from ..pattern.tilings import ALL_TILINGS, canonical, unit_cell
 from .tile import OUTLINES, check_tile_size
 
 
@@ -97,11 +97,11 @@ def seamless_fit(outline, size, radius, *, packing="hex") -> SeamlessFit:
     (20.7107, (3, 3))
     """
     outline = check_choice("outline", outline, OUTLINES)
-    if isinstance(packing, str) and packing not in ("hex", "square") and packing[:1].isdigit():
+    if isinstance(packing, str) and packing not in ("hex", "square") and packing.lstrip("[ ")[:1].isdigit():
         return _tiling_fit(outline, size, radius, canonical(packing))
     if not isinstance(packing, str) or packing not in ("hex", "square"):
         raise ParameterError(
-            f"{packing!r} is not a valid packing, must be one of: hex, square, or a tiling ({', '.join(TILINGS)})",
+            f"{packing!r} is not a valid packing, must be one of: hex, square, or a tiling ({', '.join(ALL_TILINGS)})",
             param="packing",
         )
     w, h = check_tile_size(outline, size)

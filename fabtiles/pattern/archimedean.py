@@ -1,4 +1,4 @@
-"""The tile operation on the 11 Archimedean tilings (``docs/tile-operation.md``).
+"""The tile operation on the 11 Archimedean and the two-uniform tilings (``docs/tile-operation.md``).
 
 Pure numpy. In an edge-to-edge tiling by regular polygons of edge ``a`` the
 incircle of each p-gon (radius ``a / (2 tan(pi/p))``) touches the incircles of
@@ -27,7 +27,7 @@ from ..core.validate import check_float
 from .hankin import check_contact, check_method, polygon_rays
 from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, default_gap_motif
 from .star import Star
-from .tilings import NAMES, TILINGS, UnitCell, inradius, unit_cell
+from .tilings import ALL_TILINGS, NAMES, UnitCell, circumradius, inradius, unit_cell
 
 DEFAULT_MOTIFS: Mapping[int, dict[str, Any]] = MappingProxyType(
     {
@@ -60,13 +60,15 @@ def _rotated(seg: np.ndarray, angle: float, step: float) -> np.ndarray:
 
 
 @dataclass(frozen=True, slots=True, repr=False)
-class ArchimedeanPacking:
-    """An Archimedean tiling's incircles and gap circles, a motif in each (immutable).
+class TilingPacking:
+    """A tiling's incircles and gap circles, a motif in each (immutable); the tiling one of the
+    11 Archimedean or the two-uniform ones (``ArchimedeanPacking`` is the same class).
 
     Parameters
     ----------
     tiling : str
-        One of :meth:`tilings` (``"4.8.8"``), or an exponent form (``"3^4.6"``).
+        One of :meth:`tilings` (``"4.8.8"``, ``"[3^6; 3^4.6]#1"``), or another spelling
+        :func:`~fabtiles.pattern.tilings.canonical` takes (``"3^4.6"``).
     edge : float
         Edge length ``a`` of the tiling's polygons, mm (> 0).
     motifs : mapping of int to Star or str, optional
@@ -98,17 +100,17 @@ class ArchimedeanPacking:
 
     Examples
     --------
-    >>> p = ArchimedeanPacking("4.8.8", edge=20, motifs={8: "table3-3"})
+    >>> p = TilingPacking("4.8.8", edge=20, motifs={8: "table3-3"})
     >>> p.tiling, p.kinds, round(p.incircle_radius(8), 4), tuple(round(v, 4) for v in p.period)
     ('4.8.8', (4, 8), 24.1421, (48.2843, 48.2843))
     >>> c, r = p.circles((-5, -5, 5, 5))
     >>> len(r), p.circle_sides((-5, -5, 5, 5)).tolist()
     (1, [8])
-    >>> ArchimedeanPacking("4.8.8", edge=20, motifs={6: "table3-3"})
+    >>> TilingPacking("4.8.8", edge=20, motifs={6: "table3-3"})
     Traceback (most recent call last):
     ...
     fabtiles.core.errors.ParameterError: motifs key 6 is not a polygon of the tiling 4.8.8, must be one of: 4, 8
-    >>> h = ArchimedeanPacking("4.8.8", edge=20, method="hankin", contact_angle=67.5)
+    >>> h = TilingPacking("4.8.8", edge=20, method="hankin", contact_angle=67.5)
     >>> h.motifs, h.segments((-1, -1, 1, 1)).shape  # the octagon's: 2 per edge it keeps (4 of 8)
     (mappingproxy({}), (8, 2, 2))
     """
@@ -199,18 +201,18 @@ class ArchimedeanPacking:
 
     @staticmethod
     def tilings() -> tuple[str, ...]:
-        """The 11 vertex configurations.
+        """The tilings: the 11 vertex configurations, then the two-uniform tilings.
 
-        >>> len(ArchimedeanPacking.tilings()), ArchimedeanPacking.tilings()[:3]
-        (11, ('3.3.3.3.3.3', '4.4.4.4', '6.6.6'))
+        >>> len(TilingPacking.tilings()), TilingPacking.tilings()[:3], TilingPacking.tilings()[11]
+        (31, ('3.3.3.3.3.3', '4.4.4.4', '6.6.6'), '[3^6; 3^2.4.3.4]')
         """
-        return TILINGS
+        return ALL_TILINGS
 
     @staticmethod
     def tiling_name(tiling) -> str:
         """Common name of a tiling.
 
-        >>> ArchimedeanPacking.tiling_name("3^4.6")
+        >>> TilingPacking.tiling_name("3^4.6")
         'snub hexagonal'
         """
         return NAMES[unit_cell(tiling).name]
@@ -240,10 +242,10 @@ class ArchimedeanPacking:
             contact_gap=self.contact_gap,
         )
 
-    def replace(self, **changes) -> ArchimedeanPacking:
+    def replace(self, **changes) -> TilingPacking:
         """A copy with some parameters changed (validated again).
 
-        >>> ArchimedeanPacking("3.6.3.6", 10).replace(edge=5).edge
+        >>> TilingPacking("3.6.3.6", 10).replace(edge=5).edge
         5.0
         """
         return type(self)(**{**self.params(), **changes})
@@ -255,7 +257,7 @@ class ArchimedeanPacking:
         if self.method == "hankin":
             extra += f", method='hankin', contact_angle={self.contact_angle:g}, contact_gap={self.contact_gap:g}"
         return (
-            f"ArchimedeanPacking({self.tiling!r}, edge={self.edge:g}, motifs={{{motifs}}}, "
+            f"{type(self).__name__}({self.tiling!r}, edge={self.edge:g}, motifs={{{motifs}}}, "
             f"gap_motif={self.gap_motif!r}{extra})"
         )
 
@@ -270,16 +272,13 @@ class ArchimedeanPacking:
         sides = np.concatenate([cell.sides, np.zeros(len(cell.gap_radii), dtype=int)])
         return offsets, radii, sides
 
-    def _placed(self, window):
-        """``(centres, entry index)`` of every circle whose bounding box meets ``window``,
-        incircles first then gap circles, each group rows bottom to top, left to right."""
+    def _translates(self, offsets, margins, window) -> tuple[np.ndarray, np.ndarray]:
+        """``(points, entry index)``: every lattice translate of each offset (mm) within its margin
+        (mm) of ``window``, unsorted; a LimitError when the window holds too many."""
         x0, y0, x1, y1 = _check_window(window)
-        offsets, radii, sides = self._entries()
         basis = self.lattice
         inv = np.linalg.inv(basis.T)
-        pts, idx = [], []
         lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
-        margins = self._reach(radii) * (1 + 1e-9)
         for off, m in zip(offsets, margins, strict=True):
             corners = np.array([[x0 - m, y0 - m], [x1 + m, y0 - m], [x0 - m, y1 + m], [x1 + m, y1 + m]])
             ij = (corners - off) @ inv.T
@@ -293,14 +292,72 @@ class ArchimedeanPacking:
             )
         jj, ii = np.meshgrid(np.arange(lo[1], hi[1] + 1), np.arange(lo[0], hi[0] + 1), indexing="ij")
         lattice = ii.reshape(-1, 1) * basis[0] + jj.reshape(-1, 1) * basis[1]
+        pts, idx = [], []
         for e, (off, m) in enumerate(zip(offsets, margins, strict=True)):
             p = lattice + off
             keep = (p[:, 0] >= x0 - m) & (p[:, 0] <= x1 + m) & (p[:, 1] >= y0 - m) & (p[:, 1] <= y1 + m)
             pts.append(p[keep])
             idx.append(np.full(int(keep.sum()), e))
-        pts, idx = np.concatenate(pts), np.concatenate(idx)
+        return np.concatenate(pts), np.concatenate(idx)
+
+    def _placed(self, window):
+        """``(centres, entry index)`` of every circle whose bounding box meets ``window``,
+        incircles first then gap circles, each group rows bottom to top, left to right."""
+        offsets, radii, sides = self._entries()
+        pts, idx = self._translates(offsets, self._reach(radii) * (1 + 1e-9), window)
         order = np.lexsort((np.round(pts[:, 0], 9), np.round(pts[:, 1], 9), sides[idx] == 0))
         return pts[order], idx[order]
+
+    def polygons(self, window) -> list[np.ndarray]:
+        """Every polygon of the tiling that meets ``window``, as its corners.
+
+        The tiling under the pattern, for a picture or a check: the polygons of edge
+        :attr:`edge` whose centres are the incircles' (:meth:`circles`), in the same frame.
+
+        Parameters
+        ----------
+        window : (float, float, float, float)
+            ``(xmin, ymin, xmax, ymax)`` in the packing's frame, mm (as :meth:`circles`).
+
+        Returns
+        -------
+        list of ndarray, shape (k, 2)
+            Each polygon's ``k`` corners, mm, counter-clockwise; rows of polygons bottom to
+            top, left to right.
+
+        Examples
+        --------
+        >>> square = TilingPacking("4.4.4.4", edge=10).polygons((1, 1, 2, 2))
+        >>> [p.round(3).tolist() for p in square]
+        [[[5.0, 5.0], [-5.0, 5.0], [-5.0, -5.0], [5.0, -5.0]]]
+        >>> len(TilingPacking("[3^6; 3^4.6]#1", edge=10).polygons((0, 0, 30, 30)))
+        25
+        """
+        x0, y0, x1, y1 = _check_window(window)
+        cell, a = self._cell, self.edge
+        outer = np.array([circumradius(int(p), a) for p in cell.sides])
+        pts, idx = self._translates(cell.centres * a, outer * (1 + 1e-9), window)
+        order = np.lexsort((np.round(pts[:, 0], 9), np.round(pts[:, 1], 9)))
+        pts, idx = pts[order], idx[order]
+        rect = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
+        out: list[np.ndarray] = []
+        for centre, e in zip(pts, idx.tolist(), strict=True):
+            p = int(cell.sides[e])
+            turns = cell.angles[e] + 2 * np.pi * np.arange(p) / p
+            normals = np.stack([np.cos(turns), np.sin(turns)], axis=1)
+            # separating axes of two convex shapes: the rectangle's (its bounding box) and the polygon's edge normals
+            if ((rect - centre) @ normals.T).min(axis=0).max() > inradius(p, a) * (1 + 1e-12):
+                continue
+            corners = centre + outer[e] * np.stack([np.cos(turns + np.pi / p), np.sin(turns + np.pi / p)], axis=1)
+            if (
+                corners[:, 0].max() < x0
+                or corners[:, 0].min() > x1
+                or corners[:, 1].max() < y0
+                or corners[:, 1].min() > y1
+            ):
+                continue
+            out.append(corners)
+        return out
 
     def circles(self, window) -> tuple[np.ndarray, np.ndarray]:
         """Centres ``(m, 2)`` and radii ``(m,)`` of every circle that may meet ``window``.
@@ -324,7 +381,7 @@ class ArchimedeanPacking:
 
         Examples
         --------
-        >>> c, r = ArchimedeanPacking("6.6.6", edge=10).circles((0, 0, 8, 6))
+        >>> c, r = TilingPacking("6.6.6", edge=10).circles((0, 0, 8, 6))
         >>> c.round(3).tolist(), r.round(3).tolist()
         ([[0.0, 0.0], [8.66, 5.0]], [8.66, 1.34])
         """
@@ -334,7 +391,7 @@ class ArchimedeanPacking:
     def circle_sides(self, window) -> np.ndarray:
         """For each circle of :meth:`circles` (same order), the sides of its polygon; 0 for a gap circle.
 
-        >>> ArchimedeanPacking("3.4.6.4", edge=10).circle_sides((-1, -1, 1, 1)).tolist()
+        >>> TilingPacking("3.4.6.4", edge=10).circle_sides((-1, -1, 1, 1)).tolist()
         [6]
         """
         return self._entries()[2][self._placed(window)[1]]
@@ -342,7 +399,7 @@ class ArchimedeanPacking:
     def segment_count(self, window) -> int:
         """Centre-line segments :meth:`segments` returns for ``window``, counted without placing them.
 
-        >>> ArchimedeanPacking("4.4.4.4", edge=10).segment_count((0, 0, 6, 6))  # 4 squares, 1 gap
+        >>> TilingPacking("4.4.4.4", edge=10).segment_count((0, 0, 6, 6))  # 4 squares, 1 gap
         76
         """
         per = np.array([len(u) for u in self._unit_motifs()])
@@ -492,7 +549,7 @@ class ArchimedeanPacking:
 
         Examples
         --------
-        >>> ArchimedeanPacking("4.4.4.4", edge=10).segments((0, 0, 6, 6)).shape
+        >>> TilingPacking("4.4.4.4", edge=10).segments((0, 0, 6, 6)).shape
         (76, 2, 2)
         """
         parts = [self.motif_segments(window)]
@@ -537,12 +594,16 @@ def _given_motifs(motifs, kinds: tuple, tiling: str) -> dict:
     return given
 
 
-def _rebuild(params: dict) -> ArchimedeanPacking:
-    return ArchimedeanPacking(**params)
+def _rebuild(params: dict) -> TilingPacking:
+    return TilingPacking(**params)
+
+
+ArchimedeanPacking = TilingPacking
+"""The name :class:`TilingPacking` had when it drew the 11 Archimedean tilings only."""
 
 
 @functools.lru_cache(maxsize=64)
-def _unit_motifs(packing: ArchimedeanPacking) -> list:
+def _unit_motifs(packing: TilingPacking) -> list:
     """A packing's placed motifs, once per distinct packing (packings are values: equal ones share them)."""
     return packing._make_unit_motifs()
 
@@ -585,4 +646,4 @@ def _check_window(window):
 
 
 # The schema names no module above it: the values and checks of its keys are registered from here.
-register_check(ArchimedeanPacking, "packing.edge")
+register_check(TilingPacking, "packing.edge")

@@ -1,4 +1,5 @@
-"""The 11 Archimedean tilings as translational unit cells, and their gap circles (``docs/tile-operation.md``).
+"""The 11 Archimedean and the two-uniform tilings as translational unit cells, and their gap circles
+(``docs/tile-operation.md``, ``docs/tilings.md``).
 
 Pure numpy. Each tiling is given by two lattice vectors and the regular polygons
 of one cell (centre, number of sides, direction of one edge midpoint), all for
@@ -17,6 +18,8 @@ tangent incircles this is the inner Soddy circle of Descartes' theorem.
 ([4, 8], 4, 4)
 >>> canonical("3^4.6"), canonical("4.6.4.3")
 ('3.3.3.3.6', '3.4.6.4')
+>>> canonical("3.3.3.3.3.3; 3.3.6.3.3 #2"), len(ALL_TILINGS)
+('[3^6; 3^4.6]#2', 31)
 """
 
 from __future__ import annotations
@@ -24,12 +27,14 @@ from __future__ import annotations
 import functools
 import itertools
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..core.errors import ParameterError, did_you_mean
 from ..core.schema import register_check, register_choices
+from .two_uniform import TWO_UNIFORM, TWO_UNIFORM_NAMES, two_uniform_cells
 
 S3 = math.sqrt(3.0)
 
@@ -63,6 +68,11 @@ NAMES = {
 }
 """Vertex configuration -> common name of the tiling."""
 
+ALL_TILINGS = TILINGS + TWO_UNIFORM
+"""The 11 Archimedean tilings, then the two-uniform ones (:data:`~fabtiles.pattern.two_uniform.TWO_UNIFORM`)."""
+
+NAMES = {**NAMES, **TWO_UNIFORM_NAMES}
+
 
 def inradius(p: int, edge: float = 1.0) -> float:
     """Incircle radius ``edge / (2 tan(pi/p))`` of a regular p-gon.
@@ -94,29 +104,64 @@ def _cyclic_forms(seq: tuple[int, ...]) -> set[tuple[int, ...]]:
 
 _FORMS = {form: name for name in TILINGS for form in _cyclic_forms(_expand(name))}
 
+_PAIR = re.compile(r"\[?\s*([0-9^.\s]+?)\s*[;,]\s*([0-9^.\s]+?)\s*\]?\s*(?:(?:#|\s)\s*([0-9]+))?")
+
+
+def _config(text: str) -> tuple[int, ...]:
+    """A vertex configuration's one spelling: the least of its rotations and reflections."""
+    return min(_cyclic_forms(_expand(text)))
+
+
+def _pair_key(text: str):
+    """``(frozenset of the two configurations, number or None)`` of a two-uniform name, or None."""
+    match = _PAIR.fullmatch(text.strip())
+    if match is None:
+        return None
+    try:
+        return frozenset((_config(match[1]), _config(match[2]))), match[3] and int(match[3])
+    except ValueError:
+        return None
+
+
+_PAIRS = {_pair_key(name): name for name in TWO_UNIFORM}
+_PAIRS |= {(types, None): name for (types, number), name in list(_PAIRS.items()) if number is None}
+
+
+def _pair_hint(tiling) -> str:
+    """``did you mean '...#1' or '...#2'?`` for a two-uniform name without the number its pair needs."""
+    key = _pair_key(tiling) if isinstance(tiling, str) else None
+    both = [name for (types, number), name in _PAIRS.items() if key and number and types == key[0]]
+    return f"did you mean {both[0]!r} or {both[1]!r}?" if key and key[1] is None and len(both) == 2 else ""
+
 
 def canonical(tiling) -> str:
-    """The tiling's name in :data:`TILINGS` form.
+    """The tiling's name in :data:`ALL_TILINGS` form.
 
     Accepts exponent forms (``"3^6"``, ``"3^4.6"``, ``"4.8^2"``) and any rotation or
-    reflection of the vertex configuration (``"8.4.8"``).
+    reflection of the vertex configuration (``"8.4.8"``); a two-uniform tiling by its two
+    configurations in either order, separated by ``;`` or ``,``, brackets optional, and
+    ``#1``/``#2`` (or `` 1``/`` 2``) where two tilings share their vertex types.
 
     >>> canonical("3^6"), canonical("4.8^2"), canonical("12.3.12")
     ('3.3.3.3.3.3', '4.8.8', '3.12.12')
-    >>> canonical("5.5.5")
+    >>> canonical("3.3.4.3.4, 3.3.3.3.3.3"), canonical("[3^6; 3^3.4^2] 2")
+    ('[3^6; 3^2.4.3.4]', '[3^6; 3^3.4^2]#2')
+    >>> canonical("5.5.5")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    fabtiles.core.errors.ParameterError: tiling '5.5.5' is unknown (tilings: 3.3.3.3.3.3, 4.4.4.4, 6.6.6, 3.6.3.6, 3.12.12, 4.6.12, 4.8.8, 3.3.3.3.6, 3.3.3.4.4, 3.3.4.3.4, 3.4.6.4; exponent forms such as 3^4.6 also work)
+    fabtiles.core.errors.ParameterError: tiling '5.5.5' is unknown (tilings: 3.3.3.3.3.3, 4.4.4.4, ..., [3^6; 3^3.4^2]#2; exponent forms such as 3^4.6 also work)
     """  # noqa: E501 - a doctest's lines are as Python prints them
-    try:
-        name = _FORMS.get(_expand(tiling)) if isinstance(tiling, str) else None
-    except ValueError:
-        name = None
+    name = None
+    if isinstance(tiling, str):
+        try:
+            name = _FORMS.get(_expand(tiling))
+        except ValueError:
+            name = _PAIRS.get(_pair_key(tiling))
     if name is None:
-        hint = did_you_mean(tiling, TILINGS)
+        hint = _pair_hint(tiling) or did_you_mean(tiling, ALL_TILINGS)
         raise ParameterError(
             f"tiling {tiling!r} is unknown{'; ' + hint if hint else ''} (tilings: "
-            f"{', '.join(TILINGS)}; exponent forms such as 3^4.6 also work)",
+            f"{', '.join(ALL_TILINGS)}; exponent forms such as 3^4.6 also work)",
             param="tiling",
         )
     return name
@@ -129,7 +174,7 @@ class UnitCell:
     Attributes
     ----------
     name : str
-        Vertex configuration.
+        The tiling's name: its vertex configuration, or a two-uniform tiling's two.
     lattice : ndarray (2, 2)
         Rows are the two lattice vectors.
     centres, sides, angles : ndarray (k, 2), (k,), (k,)
@@ -225,6 +270,13 @@ def _cells() -> dict:
     return cells
 
 
+@functools.cache
+def _all_cells() -> dict:
+    """The cells of :data:`ALL_TILINGS`, in :func:`_cells`' form."""
+    archimedean = _cells()
+    return {**archimedean, **two_uniform_cells(archimedean)}
+
+
 def _snub_hexagonal():
     """3.3.3.3.6 from the triangular tiling: the six triangles around every point of the
     index-7 sublattice ``a + b w`` with ``a = 2b (mod 7)`` (w = e^(i pi/3)) merge into a
@@ -255,7 +307,7 @@ def _snub_hexagonal():
 def unit_cell(tiling) -> UnitCell:
     """The :class:`UnitCell` of a tiling (any form :func:`canonical` accepts), edge 1."""
     name = canonical(tiling)
-    lattice, polys = _cells()[name]
+    lattice, polys = _all_cells()[name]
     lattice = np.array(lattice, dtype=float)
     centres = np.array([(x, y) for x, y, _, _ in polys], dtype=float)
     sides = np.array([p for _, _, p, _ in polys], dtype=int)
@@ -373,5 +425,5 @@ def _gap_circles(lattice, centres, sides, vertices):
 
 
 # The schema names no module above it: the values and checks of its keys are registered from here.
-register_choices(TILINGS, "packing.tiling")
+register_choices(ALL_TILINGS, "packing.tiling")
 register_check(unit_cell, "packing.tiling")

@@ -84,6 +84,9 @@ _HANKIN = {
     "4.6.12": (60, 1),
 }
 
+# key -> two-uniform tiling, contact angle (degrees): the values of samples/<key>.toml (edge 14, stroke 1, no gap)
+_TWO_UNIFORM = {"two-uniform-hankin": ("[3^3.4^2; 3^2.4.3.4]#2", 60)}
+
 
 # key -> title, note and query: the cylinders of samples/roller-60x80.toml and samples/lampshade-120x150.toml
 _CYLINDERS = {
@@ -148,7 +151,8 @@ class Entry:
     note: str
     query: dict
     group: str = "preset"
-    """``"preset"``, ``"tiling"``, ``"hankin"``, ``"cylinder"`` or ``"girih"``: the gallery's header counts each."""
+    """``"preset"``, ``"tiling"``, ``"hankin"``, ``"two-uniform"``, ``"cylinder"`` or ``"girih"``: the gallery's
+    header counts each."""
 
 
 def _tile_query(stroke=1) -> dict:
@@ -177,8 +181,8 @@ def _tiling_query(tiling: str, edge: float, motifs: dict, main, gap_n) -> dict:
 
 @functools.cache
 def entries() -> tuple[Entry, ...]:
-    """The gallery's entries: the presets, then the tilings, then the tilings by Hankin's method, then the
-    cylinders, then the girih patterns."""
+    """The gallery's entries: the presets, then the tilings, then the tilings by Hankin's method (a two-uniform
+    one last), then the cylinders, then the girih patterns."""
     out = []
     for name in PRESETS:
         radius, stroke = _PRESET_TILES.get(name, ("15", 1))
@@ -223,6 +227,12 @@ def entries() -> tuple[Entry, ...]:
                 "hankin",
             )
         )
+    for key, (tiling, angle) in _TWO_UNIFORM.items():
+        query = {"preset": "table3-3", "packing": "archimedean", "tiling": tiling, "edge": "14", "method": "hankin"}
+        query["contact_angle"] = f"{angle:g}"
+        note = f"the two-uniform tiling {tiling} ({NAMES[tiling]}) by Hankin's polygons in contact"
+        note += f", rays at {angle:g} degrees"
+        out.append(Entry(key, f"Hankin {tiling}", note, {**query, **_tile_query(1)}, "two-uniform"))
     for key, (title, note, values) in _CYLINDERS.items():
         query = {"packing": "hex", "shape": "cylinder", **values}
         query.update(printer_profile="fdm-0.4mm", fill_small_holes="true")

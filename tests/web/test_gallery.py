@@ -24,9 +24,10 @@ def client():
 def test_presets_then_tilings_then_hankin_then_cylinders():
     keys = [e.key for e in gallery.entries()]
     hankin = [f"hankin-{t}" for t in gallery._HANKIN]
-    assert keys == [*PRESETS, *gallery._TILINGS, *hankin, "roller", "lampshade", "girih-decagon-bowtie"]
+    last = ["two-uniform-hankin", "roller", "lampshade", "girih-decagon-bowtie"]
+    assert keys == [*PRESETS, *gallery._TILINGS, *hankin, *last]
     assert set(keys[len(PRESETS) : len(PRESETS) + len(TILINGS)]) == set(TILINGS)
-    assert len(keys) == 25
+    assert len(keys) == 26
 
 
 @pytest.mark.parametrize("key, sample", [("roller", "roller-60x80"), ("lampshade", "lampshade-120x150")])
@@ -68,6 +69,15 @@ def test_girih_entry_is_its_sample(key):
     assert ours.packing == theirs.packing and ours.tile_spec == theirs.tile_spec and ours.colour == theirs.colour
     a, b = ours.build_tile().region(), theirs.build_tile().region()
     assert a.symmetric_difference(b).area <= 1e-6 * b.area
+
+
+def test_two_uniform_entry_is_its_sample():
+    _, tile = tile_from_dict(design_from_query(gallery.entry("two-uniform-hankin").query), limits=WEB_LIMITS)
+    sample = load_design(SAMPLES / "two-uniform-hankin.toml").build_tile()
+    assert tile.pattern == sample.pattern and tile.pattern.tiling == "[3^3.4^2; 3^2.4.3.4]#2"
+    a, b = tile.region(), sample.region()
+    assert a.symmetric_difference(b).area <= 1e-6 * b.area
+    assert tile.stroke == sample.stroke and tile.width_mm == sample.width_mm
 
 
 @pytest.mark.parametrize("tiling", sorted(TILINGS))

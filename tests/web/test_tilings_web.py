@@ -5,7 +5,7 @@ from asgi_client import TestClient
 from test_browser import _preview_version, _wait_new_preview
 
 from fabtiles.designs.design_file import design_from_dict
-from fabtiles.pattern.tilings import TILINGS
+from fabtiles.pattern.tilings import ALL_TILINGS
 from fabtiles.web.app import create_app
 from fabtiles.web.params import QueryError, design_from_query
 
@@ -54,7 +54,7 @@ def test_bad_tiling_query(query, field, match):
 
 def test_api_tilings_and_preview(client):
     info = client.get("/api/tilings").json()
-    assert list(info) == list(TILINGS) and info["4.6.12"] == {"name": "truncated trihexagonal", "kinds": [4, 6, 12]}
+    assert list(info) == list(ALL_TILINGS) and info["4.6.12"] == {"name": "truncated trihexagonal", "kinds": [4, 6, 12]}
     r = client.get(
         "/api/preview.svg",
         params={
@@ -69,10 +69,20 @@ def test_api_tilings_and_preview(client):
     assert r.status_code == 200 and r.text.startswith("<?xml")
 
 
+def test_a_two_uniform_tiling_previews(client):
+    info = client.get("/api/tilings").json()
+    assert info["[3^6; 3^4.6]#2"] == {"name": "triangles, hexagons sqrt 13 apart", "kinds": [3, 6]}
+    params = {"preset": "table3-3", "packing": "archimedean", "tiling": "[3^6; 3^4.6]#2", "edge": "12", "width": "80"}
+    plain = client.get("/api/preview.svg", params=params)
+    hankin = client.get("/api/preview.svg", params={**params, "method": "hankin", "contact_angle": "60"})
+    assert plain.status_code == hankin.status_code == 200 and plain.text != hankin.text
+
+
 @pytest.mark.parametrize(
     "params, field, match",
     [
         ({"tiling": "5.5.5"}, "tiling", "tiling '5.5.5' is unknown"),
+        ({"tiling": "[3^6; 3^4.6]#3"}, "tiling", "did you mean '[3^6; 3^4.6]#"),
         ({"motif_6": "table3-3"}, "motif_6", "motifs key 6 is not a polygon of the tiling 4.8.8"),
         ({"motif_8": "nope"}, "motif_8", "preset 'nope' is unknown"),
         ({"edge": "-2"}, "edge", "edge must be a finite number > 0"),

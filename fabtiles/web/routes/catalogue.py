@@ -28,10 +28,10 @@ def router(*, limits: _limits.Limits) -> APIRouter:
 
     @api.get("/api/tilings")
     def tilings():
-        """The Archimedean tilings of packing=archimedean: name and polygon kinds (motif_<sides>)."""
-        from ...pattern.tilings import NAMES, TILINGS, unit_cell
+        """The tilings of packing=archimedean (the 11, then the two-uniform): name and polygon kinds (motif_<sides>)."""
+        from ...pattern.tilings import ALL_TILINGS, NAMES, unit_cell
 
-        return {t: {"name": NAMES[t], "kinds": sorted(set(unit_cell(t).sides.tolist()))} for t in TILINGS}
+        return {t: {"name": NAMES[t], "kinds": sorted(set(unit_cell(t).sides.tolist()))} for t in ALL_TILINGS}
 
     @api.get("/api/profiles")
     def profiles():

@@ -8,7 +8,8 @@ async function gallery() {
   const count = (g) => items.filter((e) => e.group === g).length;
   document.getElementById("gallery-intro").textContent =
     `The paper's ${count("preset")} presets, the ${count("tiling")} Archimedean tilings, ` +
-    `${count("hankin")} of them by Hankin's method, ${count("cylinder")} cylinders (` +
+    `${count("hankin")} of them by Hankin's method, ${count("two-uniform")} two-uniform tiling, ` +
+    `${count("cylinder")} cylinders (` +
     `${items.filter((e) => e.group === "cylinder").map((e) => e.title.toLowerCase()).join(", ")}) and ` +
     `${count("girih")} of girih tiles: ` +
     "choose one to open it in the editor.";
