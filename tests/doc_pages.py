@@ -17,7 +17,9 @@ matches what was printed line for line; a line ``...`` stands for any number of 
 `run_page` runs a page's steps in one fresh folder holding a copy of ``samples/``, as a reader
 does after cloning: later commands use the files earlier ones wrote. ``fabtiles``, ``python``
 and ``python3`` are this interpreter's (``sys.executable -m fabtiles``); the commands listed in
-`NOT_RUN` are not run, for the reason given there.
+`NOT_RUN` are not run, for the reason given there. A plain ``fabtiles ...`` (no shell syntax, see
+`in_process_args`) is run by the CLI in this process, as ``python -m fabtiles`` would run it, which
+spares each its interpreter's start and imports; any other command is run by bash.
 """
 
 from __future__ import annotations
@@ -27,9 +29,12 @@ import doctest
 import io
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
+import traceback
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -209,22 +214,106 @@ def fresh_folder(tmp: Path) -> Path:
     return tmp
 
 
-def run_command(command: str, folder: Path) -> subprocess.CompletedProcess:
-    """``command`` run by bash in ``folder``, stdout and stderr together as a terminal shows them."""
-    path = os.pathsep.join([str(folder / ".shims"), str(Path(sys.executable).parent), os.environ.get("PATH", "")])
-    (folder / ".home").mkdir(exist_ok=True)  # the programs' settings (PrusaSlicer's) stay in the folder
-    env = {
-        **os.environ,
-        "PATH": path,
+def command_env(folder: Path) -> dict[str, str]:
+    """The variables a command runs with, over this process's: the shims first on ``PATH``, ``HOME``
+    in the folder (the programs' settings, PrusaSlicer's, stay there) and a 100-column terminal."""
+    (folder / ".home").mkdir(exist_ok=True)
+    return {
+        "PATH": os.pathsep.join([str(folder / ".shims"), str(Path(sys.executable).parent), os.environ.get("PATH", "")]),
         "PYTHONPATH": str(ROOT),
         "PYTHONUNBUFFERED": "1",
         "COLUMNS": "100",
         "HOME": str(folder / ".home"),
     }
+
+
+PLAIN_WORD = r"""(?:[\w@%+=:,./-]|'[^']*'|"[^"$`\\!]*")+"""
+"""A word the shell passes on as it is once its quotes are taken off: letters, digits and
+``@%+=:,./-_``, single-quoted text, and double-quoted text with no ``$``, backquote, backslash or
+``!``. So no variable, glob, tilde, brace, escape, redirection, pipe, list or sub-shell."""
+
+PLAIN = re.compile(rf"{PLAIN_WORD}(?:\s+{PLAIN_WORD})*")
+
+POOLED = {"batch", "sweep"}
+"""The commands that build in a pool of processes: forked from the test process those would carry
+its state, so these run by bash, as a reader's do."""
+
+
+def in_process_args(command: str) -> list[str] | None:
+    """The arguments of ``command`` when it is a plain ``fabtiles ...`` (its words all `PLAIN_WORD`\\ s,
+    then maybe a ``# comment``; not one of `POOLED`), which the CLI runs in this process with the
+    same effect as bash (`run_in_process`); else None, and bash runs it."""
+    body = re.sub(r"\s#.*", "", command).strip()  # a '#' inside quotes leaves a quote open: not plain
+    if not PLAIN.fullmatch(body):
+        return None
+    words = shlex.split(body)
+    if words[0] != "fabtiles":
+        return None
+    subcommand = next((w for w in words[1:] if not w.startswith("-")), None)
+    return None if subcommand in POOLED else words[1:]
+
+
+def run_in_process(args: list[str], folder: Path) -> subprocess.CompletedProcess:
+    """``fabtiles ARGS`` run by the CLI in this process as ``python -m fabtiles`` would run it in
+    ``folder``: the same variables (`command_env`), help laid out for the 100 columns, warnings
+    shown by a fresh interpreter's filters, stdout and stderr into one text in the order written,
+    a traceback printed for an exception that escapes (status 1), the exit status of ``sys.exit``.
+    """
+    from click import formatting
+    from click.testing import CliRunner
+
+    from fabtiles.cli.main import cli
+
+    here = os.getcwd()
+    os.chdir(folder)
+    with CliRunner().isolation(env=command_env(folder)) as (_, _, output), warnings.catch_warnings():
+        formatting.FORCED_WIDTH = None  # not the runner's 80 columns: COLUMNS' (isolation restores it)
+        for stream in (sys.stdout, sys.stderr):
+            stream.reconfigure(write_through=True)  # as PYTHONUNBUFFERED: the two interleave as written
+        warnings.resetwarnings()
+        for action, category, module in FRESH_FILTERS:
+            warnings.filterwarnings(action, category=category, module=module, append=True)
+        warnings.showwarning = _show_warning
+        try:
+            cli.main(args=args, prog_name="fabtiles")
+            status = 0
+        except SystemExit as done:
+            status = done.code if isinstance(done.code, int) else 0 if done.code is None else 1
+            if done.code is not None and not isinstance(done.code, int):
+                print(done.code, file=sys.stderr)
+        except Exception:
+            traceback.print_exc()  # the interpreter's last words, to stderr
+            status = 1
+        finally:
+            os.chdir(here)
+        text = output.getvalue().decode("utf-8", "backslashreplace")
+    return subprocess.CompletedProcess(["fabtiles", *args], status, text)
+
+
+FRESH_FILTERS = [
+    ("default", DeprecationWarning, "__main__"),
+    ("ignore", DeprecationWarning, ""),
+    ("ignore", PendingDeprecationWarning, ""),
+    ("ignore", ImportWarning, ""),
+    ("ignore", ResourceWarning, ""),
+]
+"""The warnings filters of a fresh interpreter with no ``-W`` (the order of ``warnings.filters``)."""
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    sys.stderr.write(warnings.formatwarning(message, category, filename, lineno, line))
+
+
+def run_command(command: str, folder: Path) -> subprocess.CompletedProcess:
+    """``command`` run in ``folder``, stdout and stderr together as a terminal shows them: a plain
+    ``fabtiles ...`` (`in_process_args`) by the CLI in this process, anything else by bash."""
+    args = in_process_args(command)
+    if args is not None:
+        return run_in_process(args, folder)
     return subprocess.run(
         ["bash", "-c", command],
         cwd=folder,
-        env=env,
+        env={**os.environ, **command_env(folder)},
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
         text=True,

@@ -243,6 +243,65 @@ def test_the_runner_finds_planted_mistakes(tmp_path):
 
 
 @pytest.mark.parametrize(
+    "command,args",
+    [
+        ("fabtiles presets", ["presets"]),
+        ("fabtiles build samples/t.toml -o out   # a comment", ["build", "samples/t.toml", "-o", "out"]),
+        (
+            "fabtiles build t.toml --set output.laser_mode='\"inlay\"'",
+            ["build", "t.toml", "--set", 'output.laser_mode="inlay"'],
+        ),
+        (
+            'fabtiles check t.toml --set output.laser_profile="my laser.toml"',
+            ["check", "t.toml", "--set", "output.laser_profile=my laser.toml"],
+        ),
+        ("fabtiles batch samples/*.toml -o out", None),  # a glob
+        ("fabtiles build t.toml --set tile.size=[200,200]", None),  # a glob too: a file 'tile.size=2' matches it
+        ("fabtiles sweep t.toml --vary packing.radius=10:20:5 -o sweep", None),  # a pool of processes
+        ("fabtiles build t.toml -o $OUT", None),
+        ('fabtiles build "$HOME/t.toml"', None),
+        ("fabtiles check t.toml > log", None),
+        ("fabtiles check t.toml | grep laser", None),
+        ("fabtiles check t.toml && ls", None),
+        ("fabtiles build ~/t.toml", None),
+        ("fabtiles check 'a #b'", None),  # a '#' that is no comment
+        ("HOME=/tmp fabtiles presets", None),
+        ("python samples/custom_sizes.py out", None),
+        ("grep '^T[0-9]' mosaic.gcode", None),
+    ],
+)
+def test_only_a_plain_fabtiles_command_runs_in_process(command, args):
+    assert doc_pages.in_process_args(command) == args
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        "fabtiles presets --no-such-option",  # a usage error
+        "fabtiles nest --help",  # laid out for the terminal's columns
+        "fabtiles calibrate --profile laser-3mm-plywood -o card.svg",
+        "fabtiles build samples/table3-3.toml -o out --set output.laser_mode=inlay --format svg",  # a note first
+    ],
+)
+def test_a_command_run_in_process_prints_exits_and_writes_as_by_bash(command, tmp_path, monkeypatch):
+    """What the CLI prints in this process (stdout and stderr in order), its status and its files are
+    what ``bash -c`` gives in a folder of their own."""
+    runs = []
+    for name, args in (("bash", None), ("here", doc_pages.in_process_args(command))):
+        folder = doc_pages.fresh_folder(tmp_path / name)
+        monkeypatch.setattr(doc_pages, "in_process_args", lambda c, args=args: args)
+        done = doc_pages.run_command(command, folder)
+        files = {
+            p.relative_to(folder): p.read_bytes()
+            for p in folder.rglob("*")
+            if p.is_file() and not {".shims", ".home", "samples"} & set(p.relative_to(folder).parts)
+        }
+        runs.append((done.returncode, done.stdout.replace(str(folder), "FOLDER"), files))
+    assert runs[1][0] == runs[0][0] and runs[1][1] == runs[0][1] and runs[1][2] == runs[0][2]
+    assert runs[1][1]
+
+
+@pytest.mark.parametrize(
     "shown,printed,ok",
     [
         (["a", "b"], ["a", "b"], True),

@@ -29,6 +29,7 @@ from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star, load_profile
 from fabtiles.export import stl
+from fabtiles.geometry.stack import QUANTUM
 from fabtiles.geometry.tile import TileGeometry
 from fabtiles.pattern.packing import HexPacking
 from fabtiles.solid import mesh_check as sc
@@ -258,11 +259,16 @@ def test_defect_on_a_cell_line_is_meshed_again_with_moved_lines(tmp_path, monkey
     # three ways. The region is fine; the retry with moved cell lines must mesh it. (The
     # lines as they were placed before they were kept clear of vertices: kept clear, they
     # miss this ring, but a line can still pass beside a neighbouring ring's edge.)
+    # Meshed is the sheet's window around that place, from its 11th to its 13th column of
+    # cells (1200 / 19 mm wide) and its first two rows (60 mm), the sheet's frame below: the
+    # window's cells are the sheet's there, so its lines run where the sheet's do.
     from fabtiles.solid import _mesh_build as mb
 
     monkeypatch.setattr(mb, "_off_vertices", lambda lines, values: lines)
     tile = TileGeometry("rectangle", (1200, 600), HexPacking(15, Star.preset("table3-3")), frame=5, stroke=1.0)
-    region, outline = tile.region(), tile.outline_shape()
+    x0, x1 = np.round(np.array([1200 * 10 / 19, 1200 * 12 / 19]) / QUANTUM) * QUANTUM  # on the mesh's grid
+    window = box(x0, 0, x1, 120)
+    region, outline = tile.region().intersection(window), tile.outline_shape().intersection(window)
     shifts = []
     body_arrays = parts._body_arrays
 
@@ -278,7 +284,7 @@ def test_defect_on_a_cell_line_is_meshed_again_with_moved_lines(tmp_path, monkey
     assert shifts[:2] == [0, 1], f"this sheet no longer exercises the moved-lines retry: {shifts}"
     tris = stl.read_stl_triangles(path.read_bytes())
     verts, _faces = sc.check_triangles(tris, volume=expected_volume("relief", region, outline), bodies=1)
-    assert np.ptp(verts, axis=0) == pytest.approx([1200, 600, B + H], abs=1e-5)
+    assert np.ptp(verts, axis=0) == pytest.approx([x1 - x0, 120, B + H], abs=1e-5)
 
 
 def test_geos_failure_while_cutting_cells_is_a_fabrication_error(tmp_path, shapes, monkeypatch):
