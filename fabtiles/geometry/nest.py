@@ -267,6 +267,40 @@ def _solve(shapes, idx, height, gap, angles, seconds, on_tick):
     return placed
 
 
+_START_SEPARATIONS = 4.0
+"""How many separations wide the packer's first strip is kept (it panicked at under one: :func:`_solve_lower`)."""
+
+
+def _solve_lower(shapes, idx, height, sep, angles, seconds, on_tick):
+    """:func:`_solve`, on a lower strip where the packer fails on the sheet's height.
+
+    The packer starts from a strip as wide as the parts' area over its height: parts far smaller
+    than the sheet make that narrower than the separation allows, and it panics ("Offset resulted
+    in an empty polygon"). A lower strip holds them as well (the sheet's parts are slid to its
+    corner afterwards), so the strip is kept low enough for a start of a few separations wide, and
+    halved on a panic; at the height of the widest part a lone part is left to the caller (placed
+    at the corner) and several are a fabrication error, not a crash.
+    """
+    lowest = max(float(np.hypot(*np.subtract(*np.reshape(shapes[i].bounds, (2, 2))))) for i in idx) + 2 * sep
+    area = sum(shapes[i].area for i in idx)
+    height = min(height, max(lowest, area / (_START_SEPARATIONS * max(sep, 1e-9))))
+    while True:
+        try:
+            return _solve(shapes, idx, height, sep, angles, seconds, on_tick)
+        except BaseException as exc:
+            if type(exc).__name__ != "PanicException":  # pyo3's panic, a BaseException of its own
+                raise
+            if height <= lowest and len(idx) == 1:
+                return []  # the caller places a lone part at the sheet's corner itself
+            if height <= lowest:
+                raise FabricationError(
+                    f"the nesting packer cannot place {len(idx)} parts of at most {lowest - 2 * sep:.3g} mm across "
+                    f"{sep:.3g} mm apart (it fails on parts this small for the gap): make gap_mm smaller or the "
+                    "parts larger"
+                ) from None
+            height = max(lowest, height / 2)
+
+
 def nest(
     parts, *, sheet_mm, gap_mm: float, rotations: str = "90", time_s: float | None = None, progress=None
 ) -> Nesting:
@@ -327,7 +361,7 @@ def nest(
         # spyrrow keeps the separation from the strip's edges too: the strip is taller by it on both
         # sides, and the placements move back by it, so parts may reach the sheet's edges
         sep = gap + MARGIN_MM
-        placed = _solve(packed, remaining, h - 2 * MARGIN_MM + 2 * sep, sep, angles, seconds, tick)
+        placed = _solve_lower(packed, remaining, h - 2 * MARGIN_MM + 2 * sep, sep, angles, seconds, tick)
         candidates = _on_sheet(placed, ids, shapes, sheet, sep, (w, h))
         kept = _apart(candidates, gap)
         if not kept:  # nothing within the sheet (a free turn made the first part too wide): one part alone

@@ -168,3 +168,30 @@ def test_the_default_budget_is_a_fifth_of_a_second_a_part_from_one_to_five():
     result = nest(parts, sheet_mm=(200, 200), gap_mm=1, progress=seen.append)
     assert {p.budget_s for p in seen} == {1.0} and len(result.placements) == 3
     assert [default_time_s(n) for n in (1, 5, 10, 25, 400)] == [1.0, 1.0, 2.0, DEFAULT_TIME_S, DEFAULT_TIME_S]
+
+
+def _hexagon(radius):
+    a = np.radians(np.arange(6) * 60)
+    return shapely.Polygon(np.c_[radius * np.cos(a), radius * np.sin(a)])
+
+
+@pytest.mark.parametrize("radius,count", [(10, 1), (1, 1), (1, 2)])
+def test_parts_far_smaller_than_the_sheet_are_placed(radius, count):
+    """The packer panicked on a strip much taller than the parts' area needs (a pyo3 PanicException,
+    which is no Exception: a traceback); the strip is lowered, and a lone part it still fails on is
+    placed at the corner."""
+    parts = [(str(i), _hexagon(radius)) for i in range(count)]
+    n = nest(parts, sheet_mm=(400, 300), gap_mm=1, time_s=1)
+    placed = n.outlines
+    assert [p.sheet for p in n.placements] == [0] * count
+    for shape in placed:
+        x0, y0, x1, y1 = shape.bounds
+        assert x0 >= 0 and y0 >= 0 and x1 <= 400 and y1 <= 300
+    if count == 2:
+        assert placed[0].distance(placed[1]) >= 1 - 1e-9
+
+
+def test_parts_too_small_for_the_packer_at_the_gap_are_a_fabrication_error():
+    parts = [(str(i), _hexagon(0.5)) for i in range(2)]
+    with pytest.raises(FabricationError, match=r"cannot place 2 parts of at most .* mm across .* apart"):
+        nest(parts, sheet_mm=(400, 300), gap_mm=1, time_s=1)
