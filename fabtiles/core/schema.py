@@ -1094,7 +1094,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
     ),
     Key(
         section="colour",
-        name="engrave",
+        name="shaded",
         type="string",
         default="",
         note='class letters ("A C") or "all"',
@@ -1315,8 +1315,8 @@ CALL_OPTIONS = (
         name="colours",
         families=("cut", "print"),
         help="a `fabtiles.Colours` (the `[colour]` section's keys: `by`, `palette`, `band_colour`, "
-        '`base_colour`, `faces`): the faces classed and coloured, for `style="mosaic"`, the '
-        "parts' colours and an inlay kit's pieces by colour (see docs/colours.md)",
+        '`base_colour`, `faces`, `shaded`, `shades`): the faces classed and coloured, for `style="mosaic"`, the '
+        "parts' colours, an inlay kit's pieces by colour and a laser's shaded classes (see docs/colours.md)",
     ),
 )
 """Build options of the export API that no design key sets (the cutter profile's, overridden per call)."""

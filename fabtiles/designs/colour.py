@@ -463,15 +463,15 @@ class Colours:
     band_colour: str | None = None
     base_colour: str | None = None
     faces: tuple | dict = field(default=())
-    engrave: str = ""
+    shaded: str = ""
     shades: tuple | dict = field(default=())
     given: bool = True
 
     def __post_init__(self):
         for k in section_keys("colour"):
-            if k.name not in ("faces", "shades"):
+            if k.type not in ("colours", "shades"):  # tables, checked below
                 k.check(getattr(self, k.name))
-        _engraved_letters(self.engrave, ())  # its spelling; its letters against the design's classes later
+        _engraved_letters(self.shaded, ())  # its spelling; its letters against the design's classes later
         shades = self.shades.items() if isinstance(self.shades, dict) else self.shades
         for letter, _ in shades:
             _check_letter(letter, "shades")
@@ -486,9 +486,9 @@ class Colours:
         object.__setattr__(self, "faces", tuple(sorted(pairs)))
 
     def engraved(self, classes) -> tuple:
-        """The letters of ``engrave`` among the design's ``classes`` (all of them for ``"all"``); an unknown
+        """The letters of ``shaded`` among the design's ``classes`` (all of them for ``"all"``); an unknown
         letter is a :class:`ParameterError` naming it and the classes."""
-        return _engraved_letters(self.engrave, tuple(classes))
+        return _engraved_letters(self.shaded, tuple(classes))
 
     def shade_overrides(self) -> dict:
         """``[colour.shades]`` as letter -> table (plain dicts)."""
@@ -519,7 +519,7 @@ def _frozen(table):
 
 
 def _engraved_letters(text, classes: tuple) -> tuple:
-    """The class letters of ``[colour] engrave`` (``"A C"``, ``"A,C"`` or ``"all"``), checked against
+    """The class letters of ``[colour] shaded`` (``"A C"``, ``"A,C"`` or ``"all"``), checked against
     ``classes`` when they are given.
 
     >>> _engraved_letters("A, c", ("A", "B", "C")), _engraved_letters("all", ("A", "B"))
@@ -527,12 +527,12 @@ def _engraved_letters(text, classes: tuple) -> tuple:
     >>> _engraved_letters("D", ("A", "B"))
     Traceback (most recent call last):
     ...
-    fabtiles.core.errors.ParameterError: [colour] engrave names face class 'D', which this design has not (its classes: A, B)
+    fabtiles.core.errors.ParameterError: [colour] shaded names face class 'D', which this design has not (its classes: A, B)
     """  # noqa: E501 - a doctest's lines are as Python prints them
     words = [w.upper() for w in re.split(r"[\s,]+", text.strip()) if w] if isinstance(text, str) else None
     if words is None or any(not re.fullmatch(r"[A-Z]{1,2}|ALL", w) for w in words):
         raise ParameterError(
-            f'[colour] engrave must be class letters ("A C") or "all", got {text!r}', param="colour.engrave"
+            f'[colour] shaded must be class letters ("A C") or "all", got {text!r}', param="colour.shaded"
         )
     if not classes:
         return tuple(dict.fromkeys(words))
@@ -541,9 +541,9 @@ def _engraved_letters(text, classes: tuple) -> tuple:
     unknown = [w for w in words if w not in classes]
     if unknown:
         raise ParameterError(
-            f"[colour] engrave names face class {unknown[0]!r}, which this design has not "
+            f"[colour] shaded names face class {unknown[0]!r}, which this design has not "
             f"(its classes: {', '.join(classes)})",
-            param="colour.engrave",
+            param="colour.shaded",
         )
     return tuple(dict.fromkeys(words))
 

@@ -75,9 +75,9 @@ def shade_layers(profile, classes, overrides=None) -> tuple:
     classes = list(classes)
     if len(classes) > MAX_SHADES:
         raise ParameterError(
-            f"[colour] engrave shades {len(classes)} face classes, more than the {MAX_SHADES} layers a laser "
-            f"file holds besides its cuts (LightBurn's 30); give fewer classes in [colour] engrave",
-            param="colour.engrave",
+            f"[colour] shaded names {len(classes)} face classes, more than the {MAX_SHADES} layers a laser "
+            f"file holds besides its cuts (LightBurn's 30); give fewer classes in [colour] shaded",
+            param="colour.shaded",
         )
     overrides = dict(overrides or {})
     letters = [letter for letter, _ in classes]

@@ -134,7 +134,7 @@ def _colours(value):
     >>> _colours("iznik")
     Traceback (most recent call last):
     ...
-    fabtiles.core.errors.ParameterError: colours must be a fabtiles.Colours (or a dict of its keys: by, palette, band_colour, base_colour, faces, engrave, shades), got 'iznik'
+    fabtiles.core.errors.ParameterError: colours must be a fabtiles.Colours (or a dict of its keys: by, palette, band_colour, base_colour, faces, shaded, shades), got 'iznik'
     """  # noqa: E501 - a doctest's lines are as Python prints them
     from ..core.schema import names
     from ..designs.colour import Colours
@@ -339,19 +339,19 @@ class Models:
     # ------------------------------------------------------------------ the colours
 
     def shades(self) -> tuple:
-        """A shaded engraving's layers: ``((Layer, faces), ...)`` of the classes ``[colour] engrave``
+        """A shaded engraving's layers: ``((Layer, faces), ...)`` of the classes ``[colour] shaded``
         names (:mod:`~fabtiles.geometry.shades`); none when it names none."""
         from ..geometry.shades import shade_layers
 
         spec = self.options.colours
-        if spec is None or not spec.engrave.strip():
+        if spec is None or not spec.shaded.strip():
             return ()
         if self.options.kit or self.sheet is not None:
             what = "an inlay kit" if self.options.kit else "a sheet of tiles"
             raise ParameterError(
-                f"[colour] engrave = {spec.engrave!r} shades one tile's faces, not {what}: "
+                f"[colour] shaded = {spec.shaded!r} shades one tile's faces, not {what}: "
                 'write one tile (laser_mode "pierced", "score" or "engrave", no --sheet or --copies) or drop it',
-                param="colour.engrave",
+                param="colour.shaded",
             )
         classes = self.face_classes
         letters = spec.engraved([c.letter for c in classes.classes])

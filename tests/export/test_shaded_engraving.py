@@ -21,7 +21,7 @@ from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 FILL = PLY.layers.engrave
-COLOURS = dict(by="shape", palette="zellige", engrave="all", shades={"B": {"power_pct": 40}})
+COLOURS = dict(by="shape", palette="zellige", shaded="all", shades={"B": {"power_pct": 40}})
 
 
 def tile():
@@ -32,8 +32,8 @@ def tile():
 def files(tmp_path_factory):
     out = tmp_path_factory.mktemp("shades")
     t, paths, reports = tile(), {}, {}
-    for mode, engrave in (("engrave", "all"), ("pierced", "B D")):
-        colours = Colours(**{**COLOURS, "engrave": engrave})
+    for mode, shaded in (("engrave", "all"), ("pierced", "B D")):
+        colours = Colours(**{**COLOURS, "shaded": shaded})
         for fmt in ("dxf", "svg", "lbrn2"):
             paths[mode, fmt] = out / f"{mode}.{fmt}"
             reports[mode, fmt] = t.export(paths[mode, fmt], mode=mode, colours=colours)
@@ -199,10 +199,10 @@ def test_lbrnts_reads_a_layer_per_class_with_its_settings(files):
         (dict(shades={"B": {"power": 10}}), r"\[colour.shades.B\] has an unknown key 'power'"),
         (dict(shades={"B": 10}), r"\[colour.shades.B\] must be a table"),
         (
-            dict(engrave="A", shades={"C": {"power_pct": 10}}),
+            dict(shaded="A", shades={"C": {"power_pct": 10}}),
             r"\[colour.shades\] C is not an engraved face class \(engraved: A\)",
         ),
-        (dict(engrave="Z"), r"\[colour\] engrave names face class 'Z', which this design has not"),
+        (dict(shaded="Z"), r"\[colour\] shaded names face class 'Z', which this design has not"),
     ],
 )
 def test_bad_shades_are_refused_naming_the_value(colours, msg, tmp_path):
@@ -213,15 +213,15 @@ def test_bad_shades_are_refused_naming_the_value(colours, msg, tmp_path):
 
 def test_a_bad_spelling_or_letter_key_is_refused_at_once():
     with pytest.raises(
-        ParameterError, match=r'\[colour\] engrave must be class letters \("A C"\) or "all", got \'A-B\''
+        ParameterError, match=r'\[colour\] shaded must be class letters \("A C"\) or "all", got \'A-B\''
     ):
-        Colours(engrave="A-B")
+        Colours(shaded="A-B")
     with pytest.raises(ParameterError, match=r"key 'b' must be a class letter"):
         Colours(shades={"b": {"power_pct": 10}})
 
 
 def test_more_classes_than_layers_are_refused():
-    with pytest.raises(ParameterError, match=rf"shades {MAX_SHADES + 1} face classes, more than the {MAX_SHADES}"):
+    with pytest.raises(ParameterError, match=rf"names {MAX_SHADES + 1} face classes, more than the {MAX_SHADES}"):
         shade_layers(PLY, [(f"A{k}", (0.5, 0.5, 0.5)) for k in range(MAX_SHADES + 1)])
 
 
@@ -272,7 +272,7 @@ laser_mode = "engrave"
 formats = ["dxf"]
 [colour]
 by = "shape"
-engrave = "all"
+shaded = "all"
 [colour.shades]
 {shades}
 """
