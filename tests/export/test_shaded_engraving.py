@@ -302,3 +302,22 @@ def test_cli_a_bad_shades_letter_exits_2(tmp_path):
     design.write_text(DESIGN.format(shades="b = { power_pct = 10 }"))
     result = CliRunner().invoke(cli, ["build", str(design), "-o", str(tmp_path / "out")], catch_exceptions=False)
     assert result.exit_code == 2 and "key 'b' must be a class letter" in result.output
+
+
+def test_the_score_mode_scores_the_lines_and_shades_the_classes(tmp_path):
+    report = tile().export(
+        tmp_path / "s.dxf", mode="score", colours=Colours(**{**COLOURS, "shaded": "A", "shades": {}})
+    )
+    layers = {e.dxf.layer for e in ezdxf.readfile(tmp_path / "s.dxf").modelspace()}
+    assert layers == {PLY.layers.score.name, "SHADE_A", PLY.layers.outer_cut.name}
+    assert list(report.stats["shades"]) == ["SHADE_A"]
+
+
+def test_cli_a_sheet_is_not_shaded(tmp_path):
+    design = tmp_path / "d.toml"
+    design.write_text(DESIGN.format(shades=""))
+    result = CliRunner().invoke(
+        cli, ["build", str(design), "-o", str(tmp_path / "out"), "--copies", "2"], catch_exceptions=False
+    )
+    assert result.exit_code == 2 and "shades one tile's faces, not a sheet of tiles" in result.output
+    assert not (tmp_path / "out").exists()
