@@ -323,6 +323,12 @@ class Models:
                 pieces = pieces_model(self.tile, region, centrelines, o.cutter, cut_options)
                 return with_sheets(pieces) if o.pieces_sheets else pieces
         plan = plan_cut(region, outline, cut_options, centrelines=centrelines, shades=shades)
+        return self._with_notes(plan, shades)
+
+    def _with_notes(self, plan, shades):
+        """``plan`` with the report's lines a tile's plan alone cannot say: its shaded classes, and a
+        sheet's tiles."""
+        o = self.options
         if shades:
             plan = replace(plan, report=plan.report.extended(notes=self._shade_notes(plan)))
         if self.sheet is not None:  # how many tiles, which the files' summary does not show otherwise
