@@ -139,3 +139,23 @@ def shared_powers(layers) -> list:
         key = (layer.power_pct, layer.speed_mm_s, layer.line_interval_mm, layer.passes)
         seen.setdefault(key, []).append(letter)
     return [tuple(v) for v in seen.values() if len(v) > 1]
+
+
+WOOD = "#e6cb9c"
+"""Bare plywood, as a picture of a shaded engraving draws the unburnt wood."""
+
+CHAR = "#2e1a0e"
+"""The darkest burn a picture draws: the profile's darkest power."""
+
+
+def burn_colour(power_pct: float, darkest_pct: float) -> str:
+    """How a picture draws wood engraved at ``power_pct``: from :data:`WOOD` to :data:`CHAR`, reached at
+    ``darkest_pct`` (the engrave layer's darkest power).
+
+    >>> burn_colour(0.0, 20.0), burn_colour(20.0, 20.0), burn_colour(10.0, 20.0)
+    ('#e6cb9c', '#2e1a0e', '#8a7255')
+    """
+    t = min(1.0, max(0.0, power_pct / darkest_pct))
+    ends = [[int(c[i : i + 2], 16) for i in (1, 3, 5)] for c in (WOOD, CHAR)]
+    mixed = [round(a + t * (b - a)) for a, b in zip(*ends, strict=True)]
+    return "#" + "".join(f"{v:02x}" for v in mixed)

@@ -428,10 +428,30 @@ class Models:
         if not self.coloured:
             return {}
         classes, colours = self.face_classes, self.colouring
+        if self.options.colours.shaded.strip() and not self.options.kit and self.sheet is None:
+            return self._burnt_colours()
         return dict(
             fill=colours.band.hex,
             faces=tuple((c.letter, classes.of(c.letter), colours.face(c.letter).hex) for c in classes.classes),
         )
+
+    def _burnt_colours(self) -> dict:
+        """A shaded engraving's picture colours: each shaded class burnt at its power on bare wood, the
+        bands engraved in the engrave mode (else wood), a class a pierced cut cuts out left open."""
+        from ..geometry.laser_checks import engrave_layer
+        from ..geometry.shades import WOOD, burn_colour
+
+        darkest = engrave_layer(self.options.cutter).shade_range_pct[1]
+        burnt = {layer.name.removeprefix("SHADE_"): layer.power_pct for layer, _ in self.shades()}
+        mode = self.options.mode
+        fill = burn_colour(engrave_layer(self.options.cutter).power_pct, darkest) if mode == "engrave" else WOOD
+        classes = self.face_classes
+        faces = tuple(
+            (c.letter, classes.of(c.letter), burn_colour(burnt[c.letter], darkest) if c.letter in burnt else WOOD)
+            for c in classes.classes
+            if c.letter in burnt or mode != "pierced"
+        )
+        return dict(fill=fill, faces=faces)
 
     def filled_classes(self, region) -> frozenset:
         """The letters of the classes none of whose faces is an opening of ``region``: every face filled

@@ -1,5 +1,6 @@
 """The web app's shaded engraving: ``shaded`` and ``shade_<letter>`` reach the laser files, a bad one is named."""
 
+import re
 import xml.etree.ElementTree as ET
 
 import pytest
@@ -49,3 +50,20 @@ def test_a_bad_shade_names_its_parameter(client, query, field, message):
     assert r.status_code == 422, r.text
     assert message in r.json()["error"], r.json()
     assert r.json()["field"] == field, r.json()
+
+
+def test_the_preview_draws_the_shaded_classes_burnt_on_wood(client):
+    from fabtiles.geometry.shades import WOOD, burn_colour
+    from fabtiles.machines.profiles import load_profile
+
+    fill = load_profile("laser-3mm-plywood").layers.engrave
+    darkest = fill.shade_range_pct[1]
+    svg = client.get(
+        f"/api/preview.svg?{SMALL.replace('laser_mode=engrave', 'laser_mode=pierced')}&shaded=B&shade_B=power_pct:10"
+    ).text
+    # the shaded class burnt at its power, the bands bare wood, the classes cut out left open
+    assert re.search(rf'class="face-B"[^>]*fill="{burn_colour(10.0, darkest)}"', svg), svg[:2000]
+    assert f'fill="{WOOD}"' in svg and 'class="face-A"' not in svg
+    engraved = client.get(f"/api/preview.svg?{SMALL}&shaded=all").text
+    assert f'fill="{burn_colour(fill.power_pct, darkest)}"' in engraved  # the engrave mode's bands, engraved
+    assert all(f'class="face-{k}"' in engraved for k in "ABCD")
