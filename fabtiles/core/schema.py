@@ -1098,6 +1098,7 @@ KEYS: tuple[Key, ...] = MOTIF + (
         type="string",
         default="",
         note='class letters ("A C") or "all"',
+        widget=Widget(kind="text", label="Shaded on a laser", placeholder="all, or letters: B D"),
         help="the face classes a laser engraves in shades, each on a layer of its own at a power from its "
         "colour's darkness (laser modes pierced, score and engrave; a pierced cut keeps them, engraved, "
         "instead of cutting them out): see [laser-cutting.md](laser-cutting.md#shaded-engraving)",
