@@ -425,10 +425,11 @@ class Models:
     def picture_colours(self) -> dict:
         """:func:`~fabtiles.export.preview_svg.tile_svg`'s colours: the bands', and each class's faces
         (nothing when no colours were asked for)."""
-        if not self.coloured:
+        spec = self.options.colours
+        if spec is None or not self.coloured:
             return {}
         classes, colours = self.face_classes, self.colouring
-        if self.options.colours.shaded.strip() and not self.options.kit and self.sheet is None:
+        if spec.shaded.strip() and not self.options.kit and self.sheet is None:
             return self._burnt_colours()
         return dict(
             fill=colours.band.hex,
