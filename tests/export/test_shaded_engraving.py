@@ -10,13 +10,15 @@ import numpy as np
 import pytest
 import shapely
 from click.testing import CliRunner
+from hypothesis import given
+from hypothesis import strategies as st
 from test_laser_programs import meerk40t
 from test_lbrn2 import lbrnts
 
 from fabtiles import Colours, HexPacking, ParameterError, ProfileError, Star, Tile
 from fabtiles.cli.main import cli
 from fabtiles.geometry.faces import face_classes
-from fabtiles.geometry.shades import MAX_SHADES, darkness, shade_layers
+from fabtiles.geometry.shades import MAX_SHADES, darkness, shade_layers, shade_power
 from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
@@ -321,3 +323,25 @@ def test_cli_a_sheet_is_not_shaded(tmp_path):
     )
     assert result.exit_code == 2 and "shades one tile's faces, not a sheet of tiles" in result.output
     assert not (tmp_path / "out").exists()
+
+
+def test_classes_of_one_colour_engrave_alike_and_the_summary_says_so(tmp_path):
+    colours = Colours(by="shape", shaded="A B", faces={"A": "navy", "B": "navy"})
+    report = tile().export(tmp_path / "t.lbrn2", mode="engrave", colours=colours)
+    shades = report.stats["shades"]
+    assert shades["SHADE_A"]["power_pct"] == shades["SHADE_B"]["power_pct"]
+    assert any(n.startswith("classes A, B engrave alike") for n in report.stats["notes"])
+
+
+@given(st.floats(0, 1), st.floats(0, 1), st.floats(1, 100), st.floats(1, 100))
+def test_a_darker_colour_never_gets_less_power_and_stays_in_the_range(d1, d2, a, b):
+    span = (min(a, b), max(a, b))
+    p1, p2 = shade_power(min(d1, d2), span), shade_power(max(d1, d2), span)
+    assert p1 <= p2
+    assert round(span[0]) - 0.5 <= p1 and p2 <= round(span[1]) + 0.5
+
+
+@given(st.tuples(st.floats(0, 1), st.floats(0, 1), st.floats(0, 1)), st.floats(0, 1))
+def test_darkness_falls_as_any_channel_brightens(rgb, more):
+    brighter = tuple(min(1.0, c + more) if k == 1 else c for k, c in enumerate(rgb))
+    assert 0.0 <= darkness(brighter) <= darkness(rgb) + 1e-12 <= 1.0 + 1e-12
