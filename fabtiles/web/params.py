@@ -147,6 +147,9 @@ def _fields() -> dict:
     return fields
 
 
+CLASS_TABLES = ("faces", "shades")
+"""The ``[colour]`` tables keyed by class letter, a parameter per letter (``face_<letter>``, ``shade_<letter>``)."""
+
 FIELDS = _fields()
 """Query parameter -> (section, design key, parser)."""
 
@@ -195,9 +198,7 @@ def design_from_query(query) -> dict:
     _packing(design, gap, motifs, query)
     _check_profiles(design["output"])
     # colours are asked for when a [colour] key differs from its default (the page always sends its menus)
-    colour = {
-        k: v for k, v in design["colour"].items() if k in ("faces", "shades") or v != _schema.key(f"colour.{k}").default
-    }
+    colour = {k: v for k, v in design["colour"].items() if k in CLASS_TABLES or v != _schema.key(f"colour.{k}").default}
     design["colour"] = colour
     _tile_size(design["tile"])
     return {k: v for k, v in design.items() if v or k == "tile"}
@@ -222,7 +223,7 @@ def _sections(query) -> tuple[dict, dict, dict]:
             if value not in ("", "default"):
                 motifs[name] = value
             continue
-        if section in ("faces", "shades"):
+        if section in CLASS_TABLES:
             if value not in ("", {}):
                 design["colour"].setdefault(section, {})[name] = value
             continue

@@ -14,7 +14,7 @@ from dataclasses import asdict
 from ..core import schema as _schema
 from ..export.formats import FORMATS, design_formats
 from .building import user_message
-from .params import FIELDS
+from .params import CLASS_TABLES, FIELDS
 
 
 def _key_json(k: _schema.Key, widget: _schema.Widget | None) -> dict:
@@ -59,7 +59,7 @@ def schema_json() -> dict:
             fields[query] = {**_key_json(k, _schema.GAP_WIDGETS.get(name)), "key": f"packing.gap_motif.{name}"}
         elif section == "motifs":
             fields[query] = _key_json(_schema.key("packing.motifs"), None)
-        elif section in ("faces", "shades"):
+        elif section in CLASS_TABLES:
             k = _schema.key(f"colour.{section}")
             fields[query] = {**_key_json(k, None), "key": f"colour.{section}.{name}"}
         elif section == "tile" and name in ("width", "height"):
