@@ -53,11 +53,12 @@ TYPES = (
     "formats",
     "colour",
     "colours",
+    "shades",
 )
 """A key's value type. ``numbers`` is a list of numbers, ``size`` a number or a [width, height]
 pair, ``motif`` a motif table or a preset name, ``motifs`` a table of motifs keyed by polygon sides,
 ``formats`` a list of output formats, ``colour`` a ``#rrggbb``, palette or CSS colour name, ``colours`` a table of
-face class letters to colours."""
+face class letters to colours, ``shades`` a table of face class letters to engrave settings."""
 
 WIDGETS = ("slider", "number", "select", "checkbox", "text", "colour")
 """How the web form shows a key."""
@@ -1091,6 +1092,27 @@ KEYS: tuple[Key, ...] = MOTIF + (
         "colour share a material (a filament, a wood), so six classes fit a four-slot AMS as four colours; "
         '`"band"` or `"base"` gives a class the bands\' or the base\'s colour (it joins that part)',
     ),
+    Key(
+        section="colour",
+        name="shaded",
+        type="string",
+        default="",
+        note='class letters ("A C") or "all"',
+        widget=Widget(kind="text", label="Shaded on a laser", placeholder="all, or letters: B D"),
+        help="the face classes a laser engraves in shades, each on a layer of its own at a power from its "
+        "colour's darkness (laser modes pierced, score and engrave; a pierced cut keeps them, engraved, "
+        "instead of cutting them out): see [laser-cutting.md](laser-cutting.md#shaded-engraving)",
+    ),
+    Key(
+        section="colour",
+        name="shades",
+        type="shades",
+        default_text="derived from each class's colour",
+        note="a table of class letters to engrave settings",
+        query=None,
+        help="`[colour.shades]` `C = { power_pct = 40 }`: an engraved class's `power_pct`, `speed_mm_s`, "
+        "`line_interval_mm` or `passes`, in place of those derived from its colour",
+    ),
     # [surface]
     Key(
         section="surface",
@@ -1293,8 +1315,8 @@ CALL_OPTIONS = (
         name="colours",
         families=("cut", "print"),
         help="a `fabtiles.Colours` (the `[colour]` section's keys: `by`, `palette`, `band_colour`, "
-        '`base_colour`, `faces`): the faces classed and coloured, for `style="mosaic"`, the '
-        "parts' colours and an inlay kit's pieces by colour (see docs/colours.md)",
+        '`base_colour`, `faces`, `shaded`, `shades`): the faces classed and coloured, for `style="mosaic"`, the '
+        "parts' colours, an inlay kit's pieces by colour and a laser's shaded classes (see docs/colours.md)",
     ),
 )
 """Build options of the export API that no design key sets (the cutter profile's, overridden per call)."""
@@ -1470,6 +1492,7 @@ _TYPE_WORDS = {
     "formats": "list of strings",
     "colour": "string, #rrggbb, a palette's or a CSS colour name",
     "colours": "table of class letters to colours",
+    "shades": "table of class letters to tables of engrave settings",
 }
 
 

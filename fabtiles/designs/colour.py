@@ -463,23 +463,36 @@ class Colours:
     band_colour: str | None = None
     base_colour: str | None = None
     faces: tuple | dict = field(default=())
+    shaded: str = ""
+    shades: tuple | dict = field(default=())
     given: bool = True
 
     def __post_init__(self):
         for k in section_keys("colour"):
-            if k.name != "faces":
+            if k.type not in ("colours", "shades"):  # tables, checked below
                 k.check(getattr(self, k.name))
+        _engraved_letters(self.shaded, ())  # its spelling; its letters against the design's classes later
+        shades = self.shades.items() if isinstance(self.shades, dict) else self.shades
+        for letter, _ in shades:
+            _check_letter(letter, "shades")
+        object.__setattr__(self, "shades", tuple(sorted((k, _frozen(v)) for k, v in shades)))
         faces = self.faces.items() if isinstance(self.faces, dict) else self.faces
         pairs = []
         for letter, value in faces:
-            if not (isinstance(letter, str) and re.fullmatch(r"[A-Z]{1,2}", letter)):
-                raise ParameterError(
-                    f"key {letter!r} must be a class letter (A, B, ... as fabtiles check lists them)", param="faces"
-                )
+            _check_letter(letter, "faces")
             if not (isinstance(value, str) and value.strip().lower() in PART_COLOURS):
                 parse_colour(value, param=letter)
             pairs.append((letter, value))
         object.__setattr__(self, "faces", tuple(sorted(pairs)))
+
+    def engraved(self, classes) -> tuple:
+        """The letters of ``shaded`` among the design's ``classes`` (all of them for ``"all"``); an unknown
+        letter is a :class:`ParameterError` naming it and the classes."""
+        return _engraved_letters(self.shaded, tuple(classes))
+
+    def shade_overrides(self) -> dict:
+        """``[colour.shades]`` as letter -> table (plain dicts)."""
+        return {letter: dict(table) if isinstance(table, tuple) else table for letter, table in self.shades}
 
     def colouring(self, classes=("A",)) -> Colouring:
         """The colours of a tile whose face classes are ``classes`` (:func:`colouring`)."""
@@ -490,6 +503,49 @@ class Colours:
             faces=dict(self.faces),
             classes=classes,
         )
+
+
+def _check_letter(letter, param: str) -> None:
+    """A ``[colour.faces]`` or ``[colour.shades]`` key: a class letter."""
+    if not (isinstance(letter, str) and re.fullmatch(r"[A-Z]{1,2}", letter)):
+        raise ParameterError(
+            f"key {letter!r} must be a class letter (A, B, ... as fabtiles check lists them)", param=param
+        )
+
+
+def _frozen(table):
+    """A ``[colour.shades]`` entry as sorted pairs when it is a table (hashable, like the rest of a design)."""
+    return tuple(sorted(table.items())) if isinstance(table, dict) else table
+
+
+def _engraved_letters(text, classes: tuple) -> tuple:
+    """The class letters of ``[colour] shaded`` (``"A C"``, ``"A,C"`` or ``"all"``), checked against
+    ``classes`` when they are given.
+
+    >>> _engraved_letters("A, c", ("A", "B", "C")), _engraved_letters("all", ("A", "B"))
+    (('A', 'C'), ('A', 'B'))
+    >>> _engraved_letters("D", ("A", "B"))
+    Traceback (most recent call last):
+    ...
+    fabtiles.core.errors.ParameterError: [colour] shaded names face class 'D', which this design has not (its classes: A, B)
+    """  # noqa: E501 - a doctest's lines are as Python prints them
+    words = [w.upper() for w in re.split(r"[\s,]+", text.strip()) if w] if isinstance(text, str) else None
+    if words is None or any(not re.fullmatch(r"[A-Z]{1,2}|ALL", w) for w in words):
+        raise ParameterError(
+            f'[colour] shaded must be class letters ("A C") or "all", got {text!r}', param="colour.shaded"
+        )
+    if not classes:
+        return tuple(dict.fromkeys(words))
+    if "ALL" in words:
+        return tuple(classes)
+    unknown = [w for w in words if w not in classes]
+    if unknown:
+        raise ParameterError(
+            f"[colour] shaded names face class {unknown[0]!r}, which this design has not "
+            f"(its classes: {', '.join(classes)})",
+            param="colour.shaded",
+        )
+    return tuple(dict.fromkeys(words))
 
 
 # The schema names no module above it: the values and checks of its keys are registered from here.

@@ -930,9 +930,18 @@ def _colour_spec(table: dict, source: str) -> Colours:
             f'{source}: [colour.faces] must be a table of class letters to colours (A = "navy"), got {faces!r}',
             param="colour.faces",
         )
+    shades = table.get("shades", {})
+    if not isinstance(shades, dict):
+        raise DesignError(
+            f"{source}: [colour.shades] must be a table of class letters to engrave settings "
+            f"(C = {{ power_pct = 40 }}), got {shades!r}",
+            param="colour.shades",
+        )
     try:
-        return Colours(**values, faces=faces, given=True)
+        return Colours(**values, faces=faces, shades=shades, given=True)
     except FabtilesError as exc:
+        if str(exc.param or "").startswith(("colour.", "shades")):
+            raise DesignError(f"{source}: {exc}", param=exc.param) from None
         # a bad colour names its class (the web app's face_<letter> parameter): colour.faces.A
         letter = exc.param if re.fullmatch(r"[A-Z]{1,2}", str(getattr(exc, "param", None))) else None
         raise DesignError(

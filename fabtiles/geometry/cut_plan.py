@@ -37,7 +37,7 @@ from ..machines.profiles import LASER_MODES, LaserProfile, Layer, load_profile
 from .arcs import Curve, curve_bounds, curves
 from .contours import clean_rings, laser_contours, outline_contours, polygon_parts, score_paths
 from .cut_order import path_orders
-from .job_time import JobEstimate, travel_mm
+from .job_time import JobEstimate, total, travel_mm
 from .job_time import estimate as job_estimate
 from .laser_checks import (
     check_cut_pattern,
@@ -333,8 +333,12 @@ def make_plan(
     bounds=None,
     like: CutPlan | None = None,
     outer_closed: bool = True,
+    shades=(),
 ) -> CutPlan:
     """A :class:`CutPlan` of ``paths`` (role -> list of arrays), its layers, bounds and estimate.
+
+    ``shades``: ``((layer, rings, groups, area_mm2), ...)``, more engrave layers of their own settings
+    (a shaded engraving's face classes, :mod:`.shades`), engraved after the ``engrave`` role's fill.
 
     For plans made without the tile pipeline too (the calibration card, a kit's pieces).
     ``outer_closed=False``: the outer paths are open pieces between holding tabs (:func:`split_at_tabs`).
@@ -364,6 +368,10 @@ def make_plan(
     layers = _layers(layers_of, moved, arcs, closed_of, groups)
     # a router or waterjet file has its two profiles' layers only; the engrave layer only when it engraves
     declared = [getattr(layers_of, key) for key in kind.layers if key != "engrave" or paths.get("engrave")]
+    shaded = [_shade_layer(profile, s, offset) for s in shades]
+    at = 1 if layers and layers[0].role == "engrave" else 0  # after the bands' fill, before the rest
+    layers[at:at] = [layer for layer, _ in shaded]
+    declared[at:at] = [layer.layer for layer, _ in shaded]
     est = job_estimate(
         profile,
         **{role: [c.xy for c in arcs[role]] for role in ROLES},
@@ -372,6 +380,9 @@ def make_plan(
         curves=arcs,
     )
     est = replace(est, travel_before_mm=travel_before)
+    if shaded:  # each shade's fill at its own speed and interval: the job counts every layer
+        est = replace(total([est, *(e for _, e in shaded)]), travel_before_mm=travel_before)
+        engrave_area_mm2 += sum(s[3] for s in shades)
     return CutPlan(
         profile,
         mode,
@@ -385,6 +396,21 @@ def make_plan(
         engrave_area_mm2,
         tuple(float(v) for v in offset),
     )
+
+
+def _shade_layer(profile, shade, offset) -> tuple:
+    """One shaded class's engrave layer, its rings moved into the file like the plan's, and its job."""
+    layer, rings, groups, area = shade
+    shift = np.asarray(offset, dtype=float)
+    moved = {"engrave": [np.asarray(r, dtype=float) + shift for r in rings]}
+    arcs = {"engrave": curves(moved["engrave"], tolerance_mm=profile.tolerance_mm, closed=True)}
+    _in_cut_order(moved, arcs, True)
+    cut = CutLayer(
+        "engrave", layer, tuple(moved["engrave"]), fill=True, groups=tuple(groups), curves=tuple(arcs["engrave"])
+    )
+    own = replace(profile, layers=replace(profile.layers, engrave=layer))
+    est = job_estimate(own, engrave=moved["engrave"], engrave_area_mm2=area, curves=arcs)
+    return cut, est
 
 
 def _arcs(moved: dict, closed_of: dict, tolerance_mm: float) -> dict:
@@ -532,7 +558,7 @@ def split_at_tabs(paths: dict, tab_mm: float, tabs_per_part: int, report: Report
     return False
 
 
-def plan_cut(region, outline, options: CutOptions, *, centrelines=None, marks=()) -> CutPlan:
+def plan_cut(region, outline, options: CutOptions, *, centrelines=None, marks=(), shades=()) -> CutPlan:
     """Run the checks and build the contours: the tile's :class:`CutPlan`.
 
     Parameters
@@ -547,6 +573,9 @@ def plan_cut(region, outline, options: CutOptions, *, centrelines=None, marks=()
         Centre-line segments in file coordinates; needed by the score mode.
     marks : sequence of ndarray (m, 2)
         Open polylines scored on the material besides (a panel's piece number), file coordinates.
+    shades : sequence of (Layer, shapely geometry)
+        Faces engraved, each group on its own layer (a shaded engraving, :mod:`.shades`), file
+        coordinates; a pierced cut keeps them as material (engraved, not cut out).
 
     Raises before any contour is made: :class:`~fabtiles.ParameterError` for a bad
     region or outline, :class:`~fabtiles.FabricationError` for a tile larger than the
@@ -564,6 +593,11 @@ def plan_cut(region, outline, options: CutOptions, *, centrelines=None, marks=()
         report.stats["kerf_y_mm"] = o.kerf_y_mm
     report.stats.update(kind.report_stats())
     groups, engrave_area = (), 0.0
+    if shades:
+        engrave_layer(profile)  # the shades are the fill's settings, shaded
+        if o.mode == "pierced":  # the engraved faces stay: material, not holes
+            region = _kept_faces(region, [faces for _, faces in shades], profile.tolerance_mm)
+            parts = polygon_parts(region)
     if o.mode == "pierced":
         paths, part = _pierced_paths(region, parts, outline, o, report)
     elif o.mode == "engrave":
@@ -588,9 +622,40 @@ def plan_cut(region, outline, options: CutOptions, *, centrelines=None, marks=()
         groups=groups,
         engrave_area_mm2=engrave_area,
         outer_closed=closed,
+        shades=[_shade_rings(layer, faces, profile, report) for layer, faces in shades],
     )
     _plan_stats(plan, outline, outer_rings, report)
     return plan
+
+
+def _kept_faces(region, faces, tolerance_mm: float):
+    """``region`` with ``faces`` (some of its holes) filled, and no sliver left along their edges."""
+    whole = shapely.union_all([region, *faces])
+    parts = []
+    for poly in shapely.get_parts(whole):
+        holes = [h for h in poly.interiors if shapely.Polygon(h).area > tolerance_mm**2]
+        parts.append(shapely.Polygon(poly.exterior, holes))
+    return shapely.MultiPolygon(parts) if len(parts) > 1 else parts[0]
+
+
+def _shade_rings(layer, faces, profile, report: Report) -> tuple:
+    """A shaded class's faces as filled rings: ``(layer, rings, groups, area_mm2)``; the report told its settings."""
+    parts = shapely.get_parts(faces)
+    rings, part = shapely.get_rings(parts, return_index=True)
+    exterior = np.zeros(len(rings), dtype=bool)
+    starts = np.concatenate([[0], np.cumsum(shapely.get_num_interior_rings(parts) + 1)[:-1]])
+    exterior[starts[: len(parts)]] = True
+    cleaned, kept = clean_rings(rings, min_area=profile.tolerance_mm**2, ccw=exterior)
+    area = float(shapely.area(parts).sum())
+    report.stats.setdefault("shades", {})[layer.name] = {
+        "power_pct": layer.power_pct,
+        "speed_mm_s": layer.speed_mm_s,
+        "line_interval_mm": layer.line_interval_mm,
+        "passes": layer.passes,
+        "faces": len(parts),
+        "area_mm2": round(area, 3),
+    }
+    return layer, cleaned, part[kept].tolist(), area
 
 
 def _outline_paths(outline, o: CutOptions) -> list:

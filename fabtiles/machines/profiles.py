@@ -54,6 +54,17 @@ class Layer:
     power_pct: float = 60.0
     passes: int = 1
     line_interval_mm: float | None = None
+    power_range_pct: tuple[float, float] | None = None
+    """An engrave layer's powers for shaded faces, lightest to darkest (see :func:`shade_power`); None:
+    from a quarter of ``power_pct`` to ``power_pct``."""
+
+    @property
+    def shade_range_pct(self) -> tuple[float, float]:
+        """The powers a shaded engraving spreads its classes over: ``power_range_pct``, else a quarter of
+        ``power_pct`` to ``power_pct`` (the profile's fill is tuned for its darkest burn)."""
+        if self.power_range_pct is not None:
+            return self.power_range_pct
+        return (max(1.0, round(self.power_pct / 4)), self.power_pct)
 
 
 @dataclass(frozen=True)
@@ -556,7 +567,7 @@ def _layer(source: str, key: str, value) -> Layer:
     return Layer(lname, color, **_layer_settings(value, default, source, full))
 
 
-LAYER_KEYS = ("name", "color", "speed_mm_s", "power_pct", "passes", "line_interval_mm")
+LAYER_KEYS = ("name", "color", "speed_mm_s", "power_pct", "passes", "line_interval_mm", "power_range_pct")
 """The keys of a ``[layers]`` entry."""
 
 
@@ -572,7 +583,24 @@ def _layer_settings(value: dict, default: Layer, source: str, full: str) -> dict
     interval = value.get("line_interval_mm", default.line_interval_mm)
     if interval is not None:
         interval = _positive(source, f"{full}.line_interval_mm", interval)
-    return dict(speed_mm_s=speed, power_pct=float(power), passes=passes, line_interval_mm=interval)
+    span = value.get("power_range_pct")
+    if span is not None:
+        span = _power_range(span, source, full)
+    return dict(
+        speed_mm_s=speed, power_pct=float(power), passes=passes, line_interval_mm=interval, power_range_pct=span
+    )
+
+
+def _power_range(span, source: str, full: str) -> tuple[float, float]:
+    """A layer's ``power_range_pct``: two percentages in (0, 100], the first no greater than the second."""
+    ok = isinstance(span, list) and len(span) == 2
+    ok = ok and all(isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v <= 100 for v in span)
+    if not ok or span[0] > span[1]:
+        raise ProfileError(
+            f"{source}: {full}.power_range_pct must be [lightest, darkest], two percentages > 0 and <= 100, "
+            f"the first no greater, got {span!r}"
+        )
+    return float(span[0]), float(span[1])
 
 
 # The schema names no module above it: the values and checks of its keys are registered from here.

@@ -134,7 +134,7 @@ def _colours(value):
     >>> _colours("iznik")
     Traceback (most recent call last):
     ...
-    fabtiles.core.errors.ParameterError: colours must be a fabtiles.Colours (or a dict of its keys: by, palette, band_colour, base_colour, faces), got 'iznik'
+    fabtiles.core.errors.ParameterError: colours must be a fabtiles.Colours (or a dict of its keys: by, palette, band_colour, base_colour, faces, shaded, shades), got 'iznik'
     """  # noqa: E501 - a doctest's lines are as Python prints them
     from ..core.schema import names
     from ..designs.colour import Colours
@@ -243,6 +243,7 @@ class Models:
                 f'[surface] shape = "{shape}" is printed, not cut: it makes no cutter file; '
                 "ask for a print format (stl, 3mf)"
             )
+        shades = self.shades()
         region, centrelines = self.cut_region
         self._material(self.tile.region() if self.sheet is None else region)
         outline = self.sheet.outline if self.sheet is not None else self.tile.outline_shape()
@@ -315,13 +316,21 @@ class Models:
             tabs_per_part=o.tabs_per_part,
         )
         check_dxf_version(o.dxf_version)  # the files' option, refused with the plan's before the work
-        if self.sheet is None and o.pieces:
+        if self.sheet is None and o.pieces and not shades:
             from .pieces import pieces_model, too_big, with_sheets
 
             if too_big(outline, o.cutter):  # cut as pieces that lock together, each on the bed
                 pieces = pieces_model(self.tile, region, centrelines, o.cutter, cut_options)
                 return with_sheets(pieces) if o.pieces_sheets else pieces
-        plan = plan_cut(region, outline, cut_options, centrelines=centrelines)
+        plan = plan_cut(region, outline, cut_options, centrelines=centrelines, shades=shades)
+        return self._with_notes(plan, shades)
+
+    def _with_notes(self, plan, shades):
+        """``plan`` with the report's lines a tile's plan alone cannot say: its shaded classes, and a
+        sheet's tiles."""
+        o = self.options
+        if shades:
+            plan = replace(plan, report=plan.report.extended(notes=self._shade_notes(plan)))
         if self.sheet is not None:  # how many tiles, which the files' summary does not show otherwise
             n = len(self.sheet.offsets)
             bed = " x ".join(f"{v:g}" for v in o.cutter.bed_mm)
@@ -334,6 +343,49 @@ class Models:
         return plan
 
     # ------------------------------------------------------------------ the colours
+
+    def shades(self) -> tuple:
+        """A shaded engraving's layers: ``((Layer, faces), ...)`` of the classes ``[colour] shaded``
+        names (:mod:`~fabtiles.geometry.shades`); none when it names none."""
+        from ..geometry.shades import shade_layers
+
+        spec = self.options.colours
+        if spec is None or not spec.shaded.strip():
+            return ()
+        if self.options.kit or self.sheet is not None:
+            what = "an inlay kit" if self.options.kit else "a sheet of tiles"
+            raise ParameterError(
+                f"[colour] shaded = {spec.shaded!r} shades one tile's faces, not {what}: "
+                'write one tile (laser_mode "pierced", "score" or "engrave", no --sheet or --copies) or drop it',
+                param="colour.shaded",
+            )
+        classes = self.face_classes
+        letters = spec.engraved([c.letter for c in classes.classes])
+        colours = [(letter, self.colouring.face(letter).srgb) for letter in letters]
+        layers = shade_layers(self.options.cutter, colours, spec.shade_overrides())
+        return tuple((layer, classes.of(letter)) for letter, layer in layers)
+
+    def _shade_notes(self, plan) -> list:
+        """The report's lines on a shaded engraving: each class's layer and settings, and the classes that
+        came out alike."""
+        from ..geometry.shades import shared_powers
+
+        notes = []
+        named = [(layer.layer.name.removeprefix("SHADE_"), layer.layer) for layer in plan.layers]
+        named = [(k, layer) for k, layer in named if layer.name.startswith("SHADE_")]
+        for letter, layer in named:
+            colour = self.colouring.face(letter)
+            notes.append(
+                f"class {letter} ({colour.name}) engraved on layer {layer.name}: {layer.power_pct:g} % at "
+                f"{layer.speed_mm_s:g} mm/s, line interval {layer.line_interval_mm:g} mm, {layer.passes} pass"
+                f"{'es' if layer.passes != 1 else ''}"
+            )
+        for group in shared_powers(named):
+            notes.append(
+                f"classes {', '.join(group)} engrave alike (the same derived settings): widen the engrave layer's "
+                "power_range_pct or set their power_pct in [colour.shades]"
+            )
+        return notes
 
     @cached_property
     def face_classes(self):
@@ -373,13 +425,34 @@ class Models:
     def picture_colours(self) -> dict:
         """:func:`~fabtiles.export.preview_svg.tile_svg`'s colours: the bands', and each class's faces
         (nothing when no colours were asked for)."""
-        if not self.coloured:
+        spec = self.options.colours
+        if spec is None or not self.coloured:
             return {}
         classes, colours = self.face_classes, self.colouring
+        if spec.shaded.strip() and not self.options.kit and self.sheet is None:
+            return self._burnt_colours()
         return dict(
             fill=colours.band.hex,
             faces=tuple((c.letter, classes.of(c.letter), colours.face(c.letter).hex) for c in classes.classes),
         )
+
+    def _burnt_colours(self) -> dict:
+        """A shaded engraving's picture colours: each shaded class burnt at its power on bare wood, the
+        bands engraved in the engrave mode (else wood), a class a pierced cut cuts out left open."""
+        from ..geometry.laser_checks import engrave_layer
+        from ..geometry.shades import WOOD, burn_colour
+
+        darkest = engrave_layer(self.options.cutter).shade_range_pct[1]
+        burnt = {layer.name.removeprefix("SHADE_"): layer.power_pct for layer, _ in self.shades()}
+        mode = self.options.mode
+        fill = burn_colour(engrave_layer(self.options.cutter).power_pct, darkest) if mode == "engrave" else WOOD
+        classes = self.face_classes
+        faces = tuple(
+            (c.letter, classes.of(c.letter), burn_colour(burnt[c.letter], darkest) if c.letter in burnt else WOOD)
+            for c in classes.classes
+            if c.letter in burnt or mode != "pierced"
+        )
+        return dict(fill=fill, faces=faces)
 
     def filled_classes(self, region) -> frozenset:
         """The letters of the classes none of whose faces is an opening of ``region``: every face filled

@@ -134,6 +134,9 @@ def field_of_param(param: str | None) -> str | None:
     ('interlace_gap_mm', None, 'motif_8')
     >>> field_of_param("colour.faces.B"), field_of_param("colour.faces"), field_of_param("colour.band_colour")
     ('face_B', None, 'band_colour')
+    >>> field_of_param("colour.shades.B.power_pct")
+    'shade_B'
+
     """
     if param and "." not in param:
         named = [key for key, (_, name, _) in FIELDS.items() if name == param]
@@ -157,10 +160,12 @@ def _section_field(parts: list) -> str | None:
 
 
 def _menu_field(parts: list) -> str | None:
-    """The field a face class's colour (``face_<letter>``) or a polygon kind's motif (``motif_<sides>``)
-    would have, for a key of those; None for any other key."""
+    """The field a face class's colour (``face_<letter>``) or engrave settings (``shade_<letter>``), or a
+    polygon kind's motif (``motif_<sides>``) would have, for a key of those; None for any other key."""
     if len(parts) == 3 and parts[:2] == ["colour", "faces"]:
         return f"face_{parts[2]}"
+    if len(parts) >= 3 and parts[:2] == ["colour", "shades"]:  # a class's engrave setting: shade_<letter>
+        return f"shade_{parts[2]}"
     if len(parts) >= 3 and parts[:2] == ["packing", "motifs"]:
         return f"motif_{parts[2]}"
     return None

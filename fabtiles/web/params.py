@@ -12,6 +12,7 @@ one validation path. Problems raise :class:`QueryError`, which names the field.
 from __future__ import annotations
 
 import math
+import re
 
 from ..core import schema as _schema
 from ..core.errors import FabtilesError
@@ -69,6 +70,24 @@ def _text(field, text):
     return str(text)
 
 
+def _shade(field, text):
+    """A class's ``[colour.shades]`` table from ``power_pct:40,line_interval_mm:0.08`` (empty: none given).
+
+    >>> _shade("shade_B", "power_pct:40, passes:2")
+    {'power_pct': 40.0, 'passes': 2}
+    """
+    table: dict = {}
+    for item in (p for p in re.split(r"[,\s]+", str(text).strip()) if p):
+        name, _, value = item.partition(":")
+        try:
+            table[name] = int(value) if name == "passes" else float(value)
+        except ValueError:
+            raise QueryError(
+                f"{field} must be settings like power_pct:40,speed_mm_s:200, got {text!r}", field
+            ) from None
+    return table
+
+
 def _special(field, text):
     return None if str(text).lower() in ("", "none") else _number(field, text, integer=True)
 
@@ -106,7 +125,8 @@ def _fields() -> dict:
     """Query parameter -> (section, design key, parser), from the schema (:mod:`fabtiles.core.schema`).
 
     A key's parameter is its name, with these exceptions: ``[packing] kind`` is ``packing``;
-    ``[colour.faces]`` is ``face_<letter>`` (section ``faces``);
+    ``[colour.faces]`` is ``face_<letter>`` (section ``faces``); ``[colour.shades]`` is ``shade_<letter>``
+    (section ``shades``, ``power_pct:40,speed_mm_s:200``);
     the gap motif's keys are ``gap_<key>`` (section ``gap_motif``); ``[packing.motifs]`` is
     ``motif_<sides>`` (section ``motifs``); ``[tile] size`` is ``width`` and ``height``.
     """
@@ -118,12 +138,17 @@ def _fields() -> dict:
             fields.update({f"motif_{p}": ("motifs", str(p), _text) for p in MOTIF_SIDES})
         elif k.type == "colours":  # [colour.faces]: a colour per class letter, face_A=navy
             fields.update({f"face_{letter}": ("faces", letter, _text) for letter in FACE_LETTERS})
+        elif k.type == "shades":  # [colour.shades]: a class's engrave settings, shade_B=power_pct:40
+            fields.update({f"shade_{letter}": ("shades", letter, _shade) for letter in FACE_LETTERS})
         elif k.type == "size":
             fields.update({"width": ("tile", "width", _number), "height": ("tile", "height", _number)})
         elif k.query is not None:
             fields[k.query] = (k.section, k.name, _parser(k))
     return fields
 
+
+CLASS_TABLES = ("faces", "shades")
+"""The ``[colour]`` tables keyed by class letter, a parameter per letter (``face_<letter>``, ``shade_<letter>``)."""
 
 FIELDS = _fields()
 """Query parameter -> (section, design key, parser)."""
@@ -173,7 +198,7 @@ def design_from_query(query) -> dict:
     _packing(design, gap, motifs, query)
     _check_profiles(design["output"])
     # colours are asked for when a [colour] key differs from its default (the page always sends its menus)
-    colour = {k: v for k, v in design["colour"].items() if k == "faces" or v != _schema.key(f"colour.{k}").default}
+    colour = {k: v for k, v in design["colour"].items() if k in CLASS_TABLES or v != _schema.key(f"colour.{k}").default}
     design["colour"] = colour
     _tile_size(design["tile"])
     return {k: v for k, v in design.items() if v or k == "tile"}
@@ -198,9 +223,9 @@ def _sections(query) -> tuple[dict, dict, dict]:
             if value not in ("", "default"):
                 motifs[name] = value
             continue
-        if section == "faces":
-            if value != "":
-                design["colour"].setdefault("faces", {})[name] = value
+        if section in CLASS_TABLES:
+            if value not in ("", {}):
+                design["colour"].setdefault(section, {})[name] = value
             continue
         (gap if section == "gap_motif" else design[section])[name] = value
     return design, gap, motifs

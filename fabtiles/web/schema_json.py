@@ -14,7 +14,7 @@ from dataclasses import asdict
 from ..core import schema as _schema
 from ..export.formats import FORMATS, design_formats
 from .building import user_message
-from .params import FIELDS
+from .params import CLASS_TABLES, FIELDS
 
 
 def _key_json(k: _schema.Key, widget: _schema.Widget | None) -> dict:
@@ -50,7 +50,7 @@ def schema_json() -> dict:
 
     The gap motif's parameters (``gap_n``, ...) carry the motif key's entry with the gap's
     widget; ``width``/``height`` and ``motif_<sides>`` carry ``tile.size`` and ``packing.motifs``,
-    ``face_<letter>`` ``colour.faces``.
+    ``face_<letter>`` ``colour.faces`` and ``shade_<letter>`` ``colour.shades``.
     """
     fields = {}
     for query, (section, name, _) in FIELDS.items():
@@ -59,8 +59,9 @@ def schema_json() -> dict:
             fields[query] = {**_key_json(k, _schema.GAP_WIDGETS.get(name)), "key": f"packing.gap_motif.{name}"}
         elif section == "motifs":
             fields[query] = _key_json(_schema.key("packing.motifs"), None)
-        elif section == "faces":
-            fields[query] = {**_key_json(_schema.key("colour.faces"), None), "key": f"colour.faces.{name}"}
+        elif section in CLASS_TABLES:
+            k = _schema.key(f"colour.{section}")
+            fields[query] = {**_key_json(k, None), "key": f"colour.{section}.{name}"}
         elif section == "tile" and name in ("width", "height"):
             fields[query] = _key_json(_schema.key("tile.size"), _schema.SIZE_WIDGETS[name])
         else:

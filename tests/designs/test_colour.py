@@ -264,7 +264,7 @@ def test_the_export_api_takes_colours(tmp_path):
     with pytest.raises(
         ParameterError,
         match=r"colours must be a fabtiles.Colours \(or a dict of its keys: by, "
-        r"palette, band_colour, base_colour, faces\), got \{'pallete': 'x'\}",
+        r"palette, band_colour, base_colour, faces, shaded, shades\), got \{'pallete': 'x'\}",
     ):
         tile.export(tmp_path / "c.3mf", colours={"pallete": "x"})
     with pytest.raises(ParameterError, match=r"key 'a' must be a class letter"):

@@ -105,8 +105,9 @@ QUERY_NAMES = {
     ("tile", "width"): ("tile", "size"),
     ("tile", "height"): ("tile", "size"),
     **{("motifs", str(p)): ("packing", "motifs") for p in (3, 4, 6, 8, 12)},  # motif_<sides>
-    **{("faces", chr(ord("A") + i)): ("colour", "faces") for i in range(26)},
-}  # face_<letter>
+    **{("faces", chr(ord("A") + i)): ("colour", "faces") for i in range(26)},  # face_<letter>
+    **{("shades", chr(ord("A") + i)): ("colour", "shades") for i in range(26)},  # shade_<letter>
+}
 
 
 def test_every_design_key_is_a_query_parameter():

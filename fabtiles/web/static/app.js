@@ -25,6 +25,7 @@ const state = {
   colour_by: "none", palette: "zellige",  // the [colour] section: faces classed by shape, the palette
   band_colour: "", base_colour: "",  // "": the palette's
   faces: {},  // [colour.faces]: faces[letter] = colour (face_<letter>), the others the palette's
+  shaded: "",  // [colour] shaded: the classes a laser engraves in shades ("": none)
   // [surface]: a flat tile, or a cylinder (the sample roller's size) whose tile is its unrolled strip;
   // mirror "": the print style's (a roller's), the text boxes "": the style's defaults
   shape: "flat", diameter: 60, length: 80, fit: "packing", mirror: "", bore_mm: "", rim_mm: "", lamp_fitting_mm: "",
