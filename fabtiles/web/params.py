@@ -27,7 +27,12 @@ class QueryError(FabtilesError, ValueError):
         self.field = field
 
 
-def _number(field, text, *, integer=False):
+def parse_number(field, text, *, integer=False):
+    """A query field's number (an int with ``integer``); anything else a :class:`QueryError` naming it.
+
+    >>> parse_number("edge", "12.5"), parse_number("n", "8", integer=True)
+    (12.5, 8)
+    """
     try:
         value = float(text)
     except (TypeError, ValueError):
@@ -46,7 +51,7 @@ def _numbers(field, text):
     parts = [p for p in str(text).replace(" ", "").split(",") if p]
     if not parts:
         raise QueryError(f"{field} must be comma-separated numbers like 51,70,172, got {text!r}", field)
-    return [_number(field, p) for p in parts]
+    return [parse_number(field, p) for p in parts]
 
 
 def parse_flag(field, text):
@@ -89,7 +94,7 @@ def _shade(field, text):
 
 
 def _special(field, text):
-    return None if str(text).lower() in ("", "none") else _number(field, text, integer=True)
+    return None if str(text).lower() in ("", "none") else parse_number(field, text, integer=True)
 
 
 def _optional_flag(field, text):
@@ -104,8 +109,8 @@ def _parser(k):
     if k.type == "integer":
         if k.widget is not None and k.widget.kind == "select":
             return _special
-        return lambda f, t: _number(f, t, integer=True)
-    return {"number": _number, "numbers": _numbers, "boolean": _flag}.get(k.type, _text)
+        return lambda f, t: parse_number(f, t, integer=True)
+    return {"number": parse_number, "numbers": _numbers, "boolean": _flag}.get(k.type, _text)
 
 
 def _motif_sides() -> tuple[int, ...]:
@@ -141,7 +146,7 @@ def _fields() -> dict:
         elif k.type == "shades":  # [colour.shades]: a class's engrave settings, shade_B=power_pct:40
             fields.update({f"shade_{letter}": ("shades", letter, _shade) for letter in FACE_LETTERS})
         elif k.type == "size":
-            fields.update({"width": ("tile", "width", _number), "height": ("tile", "height", _number)})
+            fields.update({"width": ("tile", "width", parse_number), "height": ("tile", "height", parse_number)})
         elif k.query is not None:
             fields[k.query] = (k.section, k.name, _parser(k))
     return fields

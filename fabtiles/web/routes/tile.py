@@ -34,7 +34,7 @@ PLAIN = _plain()
 
 def _number(query, field: str):
     """A query's number (None when absent or empty); anything else a :class:`QueryError` naming it."""
-    from ..params import _number as number
+    from ..params import parse_number as number
 
     text = query.get(field, "")
     return None if text == "" else number(field, text)
