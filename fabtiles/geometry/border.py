@@ -35,7 +35,9 @@ import shapely
 from shapely.ops import polylabel
 
 from ..core.errors import ParameterError
+from ..core.graph import components
 from ..pattern.frieze import frieze_cell
+from .stroke import segment_graph
 
 _SQRT3 = math.sqrt(3.0)
 
@@ -238,6 +240,25 @@ class Border:
         """The shortest edge of any cell, mm."""
         q = self.cells()
         return float(np.linalg.norm(q - np.roll(q, -1, axis=1), axis=2).min())
+
+
+def stubs(segments: np.ndarray, shortest: float) -> np.ndarray:
+    """Which of the field's clipped centre-lines belong to a piece of pattern (lines joined end to end)
+    shorter than ``shortest`` in all: the tips of motifs just reaching past the band's line, a mask.
+
+    An interlace leaves them unwoven: crossing a strand, such a stub would be all gap.
+
+    >>> seg = np.array([[[0, 0], [1, 0]], [[1, 0], [1, 1]], [[5, 5], [9, 5]]], float)
+    >>> stubs(seg, 3.0).tolist()
+    [True, True, False]
+    """
+    if not len(segments):
+        return np.zeros(0, bool)
+    _, _, ids = segment_graph(segments, return_ids=True)
+    label = components(int(ids.max()) + 1, ids[:, 0], ids[:, 1])[ids[:, 0]]
+    length = np.linalg.norm(segments[:, 1] - segments[:, 0], axis=1)
+    total = np.bincount(label, weights=length)
+    return total[label] < shortest
 
 
 @functools.lru_cache(maxsize=64)

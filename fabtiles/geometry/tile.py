@@ -24,7 +24,7 @@ from ..pattern.frieze import check_frieze_motif
 from ..pattern.girih import GirihPacking
 from ..pattern.packing import Packing
 from ..pattern.star import Star
-from .border import Border, check_border
+from .border import Border, check_border, stubs
 from .stroke import JOINS, clip_segments, stroke_cross_section, to_cross_section, to_shapely
 
 OUTLINES: tuple[str, ...] = key("tile.outline").choice_values()
@@ -212,6 +212,7 @@ class TileGeometry:
             None if interlace_gap_mm is None else check_float("interlace_gap_mm", interlace_gap_mm, low=0)
         )
         self._segments = None
+        self._woven = 0
         self._region = None
         self._centrelines = None
         self._weave = None
@@ -377,8 +378,13 @@ class TileGeometry:
             if self._border is not None:
                 motifs = self._field_motifs()
                 field = self.field_shape()
+                clipped = clip_segments(motifs, field)
+                stub = stubs(clipped, 4 * self._stroke)
+                frieze = self._border.frieze(TOLERANCE)
+                # the woven lines first (the field's and the frieze's), then the stubs, the line and the circles
+                self._woven = int(np.count_nonzero(~stub)) + len(frieze)
                 seg = np.concatenate(
-                    [clip_segments(motifs, field), self.border_segments()]
+                    [clipped[~stub], frieze, clipped[stub], self.border_segments()[len(frieze) :]]
                     + [clip_segments(seg[len(motifs) :], field)] * (len(seg) > len(motifs))
                 )
             self._segments = seg
@@ -400,7 +406,8 @@ class TileGeometry:
 
     def motif_segments(self) -> np.ndarray:
         """The motifs' centre-lines alone (without a packing's outline circles), file coordinates;
-        with a border, the field's clipped to :meth:`field_shape` and the border's.
+        with a border, the field's clipped to :meth:`field_shape` and the frieze's (the line between
+        them is, like the outline circles, no strand of an interlace: the lines end on it).
 
         >>> from fabtiles.pattern.packing import HexPacking
         >>> t = TileGeometry("square", 40, HexPacking(10, Star.preset("table3-3"), outline_circles=True))
@@ -409,8 +416,7 @@ class TileGeometry:
         """
         if self._border is None:
             return self._field_motifs()
-        field = clip_segments(self._field_motifs(), self.field_shape())
-        return self.segments()[: len(field) + len(self.border_segments())]
+        return self.segments()[: self._woven]
 
     def _window(self) -> tuple[float, float, float, float]:
         """The outline's bounding box grown by the farthest a band reaches past its centre-lines

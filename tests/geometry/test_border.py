@@ -48,8 +48,8 @@ def test_the_field_lies_inside_the_band(outline, size):
     field = shapely.multilinestrings(tile.segments())
     # the field's lines, the frieze and the line between them: none leaves the band or the field
     assert tile.inner_shape().buffer(TOLERANCE + 1e-6).contains(field)
-    border = len(tile.border_segments())
-    field_only = tile.motif_segments()[: len(tile.motif_segments()) - border]
+    woven = tile.motif_segments()
+    field_only = woven[: len(woven) - len(tile.border().frieze())]
     assert tile.field_shape().buffer(1e-6).contains(shapely.multilinestrings(field_only))
     # the field's material stops at the band's inner line: another field leaves the band's alone
     other = tile.replace(pattern=SquarePacking(radius=6, motif=Star.preset("table3-1")))
@@ -176,6 +176,24 @@ def test_the_unit_cells_strands_end_in_mirrored_pairs_on_its_edges(motif):
     ends = seg.reshape(-1, 2)
     on_side = ends[np.isclose(np.abs(ends[:, 0]), 1)]
     assert {tuple(p) for p in np.round(on_side * [-1, 1], 9)} == {tuple(p) for p in np.round(on_side, 9)}
+
+
+@pytest.mark.parametrize(("outline", "size"), OUTLINES)
+@pytest.mark.parametrize("motif", MOTIFS)
+def test_the_frieze_and_the_field_weave_and_end_on_the_line_between_them(outline, size, motif):
+    from fabtiles.geometry.interlace import tile_drawing, tile_score_lines
+
+    tile = _tile(outline, size, motif, stroke=1, interlace=True)
+    ring = tile.border_segments()[len(tile.border().frieze()) :]
+    woven = tile.motif_segments()
+    # the line, and the field's stubs that end on it, are scored whole, not woven
+    rest = tile.segments()[len(woven) :]
+    assert len(rest) >= len(ring) and np.allclose(rest[len(rest) - len(ring) :], ring)
+    weave = tile.weave()
+    assert len(weave.sin) > 50 and weave.sin.min() > 0.1 and weave.conflicts == 0
+    drawing = tile_drawing(tile)
+    assert drawing.is_valid and drawing.area < tile.region().area
+    assert len(tile_score_lines(tile)) > len(ring)
 
 
 def test_a_single_motif_shrinks_inside_the_border():
