@@ -21,7 +21,8 @@ error naming the key, its section and the valid keys (with a "did you mean").
 ``[tile]`` (required)
     ``outline``, ``size``, ``frame``, ``stroke``, ``join``, ``miter_limit``, ``corner_radius``,
     ``interlace``, ``interlace_gap_mm``, ``interlace_cut`` (woven strands, see
-    :mod:`fabtiles.geometry.interlace`).
+    :mod:`fabtiles.geometry.interlace`), ``border_mm``, ``border_motif``, ``border_angle`` (a frieze
+    round the field, see :mod:`fabtiles.geometry.border`).
 ``[output]`` (optional)
     ``formats`` (subset of dxf svg stl 3mf step; default ["svg"]), ``laser_profile``,
     ``printer_profile``, ``laser_mode``, ``print_style``, ``name`` (default: the
