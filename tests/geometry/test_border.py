@@ -9,6 +9,8 @@ import re
 import numpy as np
 import pytest
 import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from fabtiles.core.errors import ParameterError
 from fabtiles.geometry.border import border_fit, opening_ratio
@@ -241,3 +243,22 @@ def test_rounded_corners_inside_the_frame_are_refused_with_a_border():
     with pytest.raises(ParameterError, match=r"corner_radius must be <= the frame \(2 mm\) with a border"):
         _tile(corner_radius=5)
     assert _tile(corner_radius=2).region().is_valid
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    outline=st.sampled_from(["square", "rectangle", "hexagon", "circle"]),
+    width=st.floats(30, 600),
+    height=st.floats(30, 600),
+    frame=st.floats(0, 10),
+    share=st.floats(0.01, 1.0),
+)
+def test_every_side_holds_whole_near_square_cells(outline, width, height, frame, share):
+    height = height if outline == "rectangle" else width
+    inside = min(width, height) - 2 * frame
+    band = share * inside / 3
+    fit = border_fit(outline, (width, height), band, frame=frame)
+    for n, cell, side in zip(fit.repeats, fit.cell_mm, fit.side_mm, strict=True):
+        assert n >= 1 and n * cell == pytest.approx(side)
+        # a band at most a third of the tile leaves each side at least one band long: cells within a third of square
+        assert abs(cell - band) <= band / 3 + 1e-9
