@@ -396,7 +396,7 @@ CYLINDER_REQUIRED = ("diameter", "length")
 STAMP_KEYS = ("mirror", "block_mm", "grip_mm", "groove_mm")
 """The ``[surface]`` keys of a clay stamp (``shape = "stamp"``); the others are a cylinder's."""
 
-STRIP_TILE_KEYS = ("outline", "size", "frame", "corner_radius")
+STRIP_TILE_KEYS = ("outline", "size", "frame", "corner_radius", "border_mm")
 """The ``[tile]`` keys a cylinder sets itself: its unrolled strip is a rectangle, closed by rims, not a frame."""
 
 
@@ -813,6 +813,56 @@ KEYS: tuple[Key, ...] = MOTIF + (
         help="laser, pierced: cut the under gaps through, leaving tabs; otherwise they are scored or dipped",
         widget=Widget(
             kind="checkbox", label="Cut the gaps", when=(("interlace", ("true",)), ("laser_mode", ("pierced",)))
+        ),
+    ),
+    Key(
+        section="tile",
+        name="border_mm",
+        type="number",
+        unit="mm",
+        range=Range(0, None),
+        default=0.0,
+        checked_by=_TILE,
+        help="width of a band inside the frame filled with a frieze, a whole number of repeats on each side "
+        "([borders.md](borders.md)); 0: none. At most a third of the tile's width inside the frame",
+        widget=Widget(
+            kind="slider", label="border (mm)", min=0, max=30, step=0.5, group="tile-sliders", when=(FLAT_WHEN,)
+        ),
+    ),
+    Key(
+        section="tile",
+        name="border_motif",
+        type="choice",
+        default="stars",
+        choices="pattern",
+        checked_by="pattern",
+        help='the frieze: `"stars"` (eight-point stars joined at the cells\' edges and corners) or `"hankin"` '
+        "(Hankin's rays on square cells: eight-point stars and crosses)",
+        widget=Widget(
+            kind="select",
+            label="Border motif",
+            labels=(("stars", "stars"), ("hankin", "Hankin's stars and crosses")),
+            when=(FLAT_WHEN,),
+        ),
+    ),
+    Key(
+        section="tile",
+        name="border_angle",
+        type="number",
+        unit="degrees",
+        range=Range(0, 90, min_open=True, max_open=True),
+        default_text='the packing\'s `contact_angle` with `method = "hankin"`, else 67.5',
+        requires='border_motif = "hankin"',
+        checked_by=_TILE,
+        help="the contact angle of the hankin frieze's rays",
+        widget=Widget(
+            kind="number",
+            label="Border angle (deg)",
+            min=0,
+            max=90,
+            step=0.5,
+            placeholder="67.5",
+            when=(FLAT_WHEN, ("border_motif", ("hankin",))),
         ),
     ),
     # [output]

@@ -21,7 +21,8 @@ error naming the key, its section and the valid keys (with a "did you mean").
 ``[tile]`` (required)
     ``outline``, ``size``, ``frame``, ``stroke``, ``join``, ``miter_limit``, ``corner_radius``,
     ``interlace``, ``interlace_gap_mm``, ``interlace_cut`` (woven strands, see
-    :mod:`fabtiles.geometry.interlace`).
+    :mod:`fabtiles.geometry.interlace`), ``border_mm``, ``border_motif``, ``border_angle`` (a frieze
+    round the field, see :mod:`fabtiles.geometry.border`).
 ``[output]`` (optional)
     ``formats`` (subset of dxf svg stl 3mf step; default ["svg"]), ``laser_profile``,
     ``printer_profile``, ``laser_mode``, ``print_style``, ``name`` (default: the
@@ -177,6 +178,9 @@ class TileSpec:
     interlace: bool = _default("tile.interlace")
     interlace_gap_mm: float | None = _default("tile.interlace_gap_mm")
     interlace_cut: bool = _default("tile.interlace_cut")
+    border_mm: float = _default("tile.border_mm")
+    border_motif: str = _default("tile.border_motif")
+    border_angle: float | None = _default("tile.border_angle")
 
 
 @dataclass(frozen=True)
@@ -441,6 +445,12 @@ def design_notes(design: Design) -> list[str]:
         )
     if p is not None and p.kind == "girih" and design.motif is not None:
         notes.append('[motif] is not drawn: kind = "girih" draws the girih tiles\' strapwork (remove [motif])')
+    t = design.tile_spec
+    if t.border_mm > 0:
+        from ..geometry.border import border_fit
+
+        fit = border_fit(t.outline, t.size, t.border_mm, frame=t.frame)
+        notes.append(fit.line(t.border_motif, border_angle(design) if t.border_motif == "hankin" else None))
     return notes
 
 
@@ -599,7 +609,21 @@ def build_tile(design: Design, *, tile_cls=None):
         interlace=t.interlace,
         interlace_gap_mm=t.interlace_gap_mm,
         interlace_cut=t.interlace_cut,
+        border_mm=t.border_mm,
+        border_motif=t.border_motif,
+        border_angle=border_angle(design),
     )
+
+
+def border_angle(design: Design) -> float:
+    """The hankin frieze's contact angle: ``[tile] border_angle``, else the packing's ``contact_angle``
+    with ``method = "hankin"``, else 67.5 degrees."""
+    if design.tile_spec.border_angle is not None:
+        return design.tile_spec.border_angle
+    p = design.packing
+    if p is not None and p.kind == "archimedean" and p.method == "hankin":
+        return p.contact_angle
+    return 67.5
 
 
 def _fit_seamless(design: Design) -> Design:

@@ -20,9 +20,11 @@ from ..core.report import distinct
 from ..core.schema import key, register_check
 from ..core.validate import check_choice, check_float
 from ..pattern.archimedean import ArchimedeanPacking
+from ..pattern.frieze import check_frieze_motif
 from ..pattern.girih import GirihPacking
 from ..pattern.packing import Packing
 from ..pattern.star import Star
+from .border import Border, check_border, stubs
 from .stroke import JOINS, clip_segments, stroke_cross_section, to_cross_section, to_shapely
 
 OUTLINES: tuple[str, ...] = key("tile.outline").choice_values()
@@ -113,6 +115,15 @@ class TileGeometry:
     interlace_cut : bool
         Laser, pierced: cut the under strands' gaps through too (tabs keep every
         piece joined).
+    border_mm : float
+        Width of a band just inside the frame filled with a frieze, mm (0: none; at
+        most a third of the width inside the frame): see :mod:`fabtiles.geometry.border`.
+        The field (the pattern) fills the inside of the band, and a line of the stroke
+        parts the two.
+    border_motif : {"stars", "hankin"}
+        The frieze's motif (:mod:`fabtiles.pattern.frieze`).
+    border_angle : float
+        The hankin frieze's contact angle, degrees (0 to 90, open).
 
     Examples
     --------
@@ -143,6 +154,9 @@ class TileGeometry:
         interlace=False,
         interlace_gap_mm=None,
         interlace_cut=False,
+        border_mm=0.0,
+        border_motif="stars",
+        border_angle=67.5,
     ):
         self._outline = check_choice("outline", outline, OUTLINES)
         self._size = check_tile_size(self._outline, size)
@@ -179,6 +193,10 @@ class TileGeometry:
                     f"narrowest width), got {self._corner_radius:g}",
                     param="corner_radius",
                 )
+        self._border_mm = check_float("border_mm", border_mm, low=0)
+        self._border_motif = check_frieze_motif(border_motif)
+        self._border_angle = check_float("border_angle", border_angle, low=0, high=90, low_open=True, high_open=True)
+        self._border = self._checked_border()
         limit, what = (
             (self.motif_radius, "the motif circle's radius")
             if isinstance(pattern, Star)
@@ -194,6 +212,7 @@ class TileGeometry:
             None if interlace_gap_mm is None else check_float("interlace_gap_mm", interlace_gap_mm, low=0)
         )
         self._segments = None
+        self._woven = 0
         self._region = None
         self._centrelines = None
         self._weave = None
@@ -224,9 +243,50 @@ class TileGeometry:
             interlace=self._interlace,
             interlace_gap_mm=self._interlace_gap,
             interlace_cut=self._interlace_cut,
+            border_mm=self._border_mm,
+            border_motif=self._border_motif,
+            border_angle=self._border_angle,
         )
 
     interlace = property(lambda self: self._interlace, doc="Whether the strands are woven.")
+    border_mm = property(lambda self: self._border_mm, doc="Width of the border's band, mm (0: none).")
+    border_motif = property(lambda self: self._border_motif, doc="The border frieze's motif.")
+    border_angle = property(lambda self: self._border_angle, doc="The hankin frieze's contact angle, degrees.")
+
+    def _checked_border(self) -> Border | None:
+        """The border, its width checked against the tile and the stroke; None without one."""
+        if self._border_mm == 0:
+            return None
+        if self._corner_radius > self._frame:
+            raise ParameterError(
+                f"corner_radius must be <= the frame ({self._frame:g} mm) with a border (the band turns square "
+                f"corners inside the frame), got {self._corner_radius:g}",
+                param="corner_radius",
+            )
+        border = Border(
+            self._outline,
+            self._size,
+            self._frame,
+            self._border_mm,
+            self._border_motif,
+            self._border_angle,
+            self.centre,
+        )
+        check_border(border, self._stroke)
+        return border
+
+    def border(self) -> Border | None:
+        """The border (:class:`~fabtiles.geometry.border.Border`: its fit, cells and frieze), or None."""
+        return self._border
+
+    def border_segments(self) -> np.ndarray:
+        """The border's centre-lines ``(k, 2, 2)``, file coordinates: the frieze and the line between the
+        band and the field (empty without a border)."""
+        if self._border is None:
+            return np.empty((0, 2, 2))
+        ring = np.asarray(self.field_shape().exterior.coords)
+        return np.concatenate([self._border.frieze(TOLERANCE), np.stack([ring[:-1], ring[1:]], axis=1)])
+
     interlace_cut = property(lambda self: self._interlace_cut, doc="Cut the under gaps (laser, pierced).")
 
     @property
@@ -270,8 +330,8 @@ class TileGeometry:
 
     @property
     def motif_radius(self) -> float:
-        """Radius of the circle a single motif fills: the inscribed circle inside the frame."""
-        return min(self._size) / 2 - self._frame
+        """Radius of the circle a single motif fills: the inscribed circle inside the frame (and the border)."""
+        return min(self._size) / 2 - self._frame - self._border_mm
 
     # -- geometry -------------------------------------------------------------
     def outline_shape(self) -> Polygon:
@@ -290,11 +350,22 @@ class TileGeometry:
             wh = (self._width - 2 * f, self._height - 2 * f)
         return outline_polygon(self._outline, *wh, max(0.0, self._corner_radius - f), self.centre)
 
+    def field_shape(self) -> Polygon:
+        """Where the pattern lies: inside the frame, and inside the border's band if there is one."""
+        if self._border_mm == 0:
+            return self.inner_shape()
+        inset = self._frame + self._border_mm
+        w = self._width - 2 * inset
+        h = 2 * w / math.sqrt(3) if self._outline == "hexagon" else self._height - 2 * inset
+        return outline_polygon(self._outline, w, h, 0.0, self.centre)
+
     def segments(self) -> np.ndarray:
         """Centre-lines ``(k, 2, 2)`` in file coordinates (mm), before clipping.
 
         For a packing: every motif whose circle reaches the outline's bounding box
-        (grown by half the stroke), so the segments cover the whole outline.
+        (grown by half the stroke), so the segments cover the whole outline. With a
+        border, the field's centre-lines clipped to :meth:`field_shape`, then the
+        border's (:meth:`border_segments`), then the field's outline circles, if any.
         """
         if self._segments is None:
             cx, cy = self.centre
@@ -303,20 +374,49 @@ class TileGeometry:
                 seg = star.segments() * (self.motif_radius / star.extent)
             else:
                 seg = self._pattern.segments(self._window())
-            self._segments = seg + np.array([cx, cy])
+            seg = seg + np.array([cx, cy])
+            if self._border is not None:
+                motifs = self._field_motifs()
+                field = self.field_shape()
+                clipped = clip_segments(motifs, field)
+                stub = stubs(clipped, 4 * self._stroke)
+                frieze = self._border.frieze(TOLERANCE)
+                # the woven lines first (the field's and the frieze's), then the stubs, the line and the circles
+                self._woven = int(np.count_nonzero(~stub)) + len(frieze)
+                seg = np.concatenate(
+                    [clipped[~stub], frieze, clipped[stub], self.border_segments()[len(frieze) :]]
+                    + [clip_segments(seg[len(motifs) :], field)] * (len(seg) > len(motifs))
+                )
+            self._segments = seg
         return self._segments.copy()
 
+    def _field_motifs(self) -> np.ndarray:
+        """The field's motifs' centre-lines (not its outline circles), unclipped, file coordinates."""
+        if isinstance(self._pattern, Star) or not getattr(self._pattern, "outline_circles", False):
+            if self._border is None:
+                return self.segments()
+            star_or_packing = self._pattern
+            seg = (
+                star_or_packing.segments() * (self.motif_radius / star_or_packing.extent)
+                if isinstance(star_or_packing, Star)
+                else star_or_packing.segments(self._window())
+            )
+            return seg + np.array(self.centre)
+        return self._pattern.motif_segments(self._window()) + np.array(self.centre)
+
     def motif_segments(self) -> np.ndarray:
-        """The motifs' centre-lines alone (without a packing's outline circles), file coordinates.
+        """The motifs' centre-lines alone (without a packing's outline circles), file coordinates;
+        with a border, the field's clipped to :meth:`field_shape` and the frieze's (the line between
+        them is, like the outline circles, no strand of an interlace: the lines end on it).
 
         >>> from fabtiles.pattern.packing import HexPacking
         >>> t = TileGeometry("square", 40, HexPacking(10, Star.preset("table3-3"), outline_circles=True))
         >>> len(t.motif_segments()) < len(t.segments())
         True
         """
-        if isinstance(self._pattern, Star) or not getattr(self._pattern, "outline_circles", False):
-            return self.segments()
-        return self._pattern.motif_segments(self._window()) + np.array(self.centre)
+        if self._border is None:
+            return self._field_motifs()
+        return self.segments()[: self._woven]
 
     def _window(self) -> tuple[float, float, float, float]:
         """The outline's bounding box grown by the farthest a band reaches past its centre-lines
@@ -339,7 +439,7 @@ class TileGeometry:
             m3d = import_uninterrupted("manifold3d")
 
             if isinstance(self._pattern, Star) or not self._pattern.outline_circles:
-                segments, circles = self.segments(), None
+                segments, circles = self._field_motifs(), None
             else:  # the circles as exact annuli, the motifs as bands (see stroke_cross_section)
                 centre = np.array(self.centre)
                 segments = self._pattern.motif_segments(self._window()) + centre
@@ -354,6 +454,17 @@ class TileGeometry:
                 circles=circles,
             )
             outline = self.outline_shape()
+            if self._border is not None:  # the field inside the band, the band's lines stroked on their own
+                field = to_cross_section(self.field_shape())
+                bands = m3d.CrossSection.batch_boolean([bands, field], m3d.OpType.Intersect)
+                border = stroke_cross_section(
+                    self.border_segments(),
+                    self._stroke,
+                    join=self._join,
+                    miter_limit=self._miter_limit,
+                    tolerance=TOLERANCE,
+                )
+                bands = m3d.CrossSection.batch_boolean([bands, border], m3d.OpType.Add)
             parts = [bands]
             if self._frame > 0:
                 parts.append(to_cross_section(outline.difference(self.inner_shape())))
@@ -417,5 +528,12 @@ def check_tile_size(outline: str, size) -> tuple[float, float]:
 # The schema names no module above it: the values and checks of its keys are registered from here.
 register_check(check_tile_size, "tile.size")
 register_check(
-    TileGeometry, "tile.frame", "tile.stroke", "tile.miter_limit", "tile.corner_radius", "tile.interlace_gap_mm"
+    TileGeometry,
+    "tile.frame",
+    "tile.stroke",
+    "tile.miter_limit",
+    "tile.corner_radius",
+    "tile.interlace_gap_mm",
+    "tile.border_mm",
+    "tile.border_angle",
 )

@@ -66,6 +66,7 @@ def design_of_query(query: dict, *, limits: _limits.Limits):
 
 def fabrication_checks(tile, spec) -> dict:
     """Laser and print checks of a tile with the design's profiles and options, as JSON."""
+    from ..designs.design_file import design_notes
     from ..making.checks import check_design
 
     result = check_design(spec, tile, job=True)
@@ -97,8 +98,11 @@ def fabrication_checks(tile, spec) -> dict:
     cylinder = _cylinder(tile, spec)
     if cylinder is None:  # a cylinder's print note is its line, below: it is never printed in pieces
         pieces += [f"print {line}" for line in result.print.stats.get("notes", ())[:1]]
+    checked = cylinder or {"cylinder": None, "fitted": []}
+    # a border's fit (its repeats and cells), as the build notes it
+    checked["fitted"] = [*checked["fitted"], *(line for line in design_notes(spec) if line.startswith("tile.border"))]
     return {
-        **(cylinder or {"cylinder": None, "fitted": []}),
+        **checked,
         "findings": findings,
         "summary": summary,
         "pieces": pieces,

@@ -159,7 +159,7 @@ FIELDS = _fields()
 """Query parameter -> (section, design key, parser)."""
 
 
-FLAT_ONLY = ("outline", "width", "height", "frame", "corner_radius")
+FLAT_ONLY = ("outline", "width", "height", "frame", "corner_radius", "border_mm")
 """The tile's parameters a cylinder takes none of: its tile is its unrolled strip, sized by ``diameter`` and
 ``length`` (``docs/surfaces.md``)."""
 

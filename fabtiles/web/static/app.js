@@ -20,6 +20,7 @@ const state = {
   miter_limit: 4, seamless: false, fill_small_holes: true, name: "",
   base_mm: "", relief_mm: "", pierced_mm: "", deboss_mm: "",  // "": the printer profile's
   interlace: false, interlace_gap_mm: "", interlace_cut: false,  // woven strands; "": a third of the stroke
+  border_mm: 0, border_motif: "stars", border_angle: "",  // a frieze round the field (0: none; "": 67.5 or the contact angle)
   inlay: false,  // deboss: the 3MF gets a second part filling the grooves
   mosaic_inset_mm: "",  // mosaic: the faces below the bands ("": flush)
   colour_by: "none", palette: "zellige",  // the [colour] section: faces classed by shape, the palette
@@ -171,6 +172,10 @@ function query() {
     if (state.outline === "rectangle") q.set("height", state.height);
     q.set("frame", state.frame);
     q.set("corner_radius", state.corner_radius);
+    if (Number(state.border_mm)) {  // no border is the default: its queries stay as they were
+      q.set("border_mm", state.border_mm);
+      if (state.border_motif !== "stars") q.set("border_motif", state.border_motif);
+    }
   }
   for (const k of ["stroke", "join", "laser_profile", "laser_mode",
                    "printer_profile", "print_style", "colour_by", "palette"]) q.set(k, state[k]);
