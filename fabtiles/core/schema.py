@@ -698,7 +698,6 @@ KEYS: tuple[Key, ...] = MOTIF + (
         checked_by="pattern",
         help="a parquet deformation: the contact angle at the far side of the tile, `contact_angle` "
         "being the near side's; each polygon takes the angle at its centre (hankin.md)",
-        query=None,
     ),
     Key(
         section="packing",
@@ -708,7 +707,6 @@ KEYS: tuple[Key, ...] = MOTIF + (
         requires=_HANKIN,
         choices="pattern",
         help='across which the angle changes: `"x"` left to right, `"y"` bottom to top',
-        query=None,
     ),
     Key(
         section="packing",
@@ -719,7 +717,6 @@ KEYS: tuple[Key, ...] = MOTIF + (
         choices="pattern",
         help='`"linear"`: the angle in proportion to the distance across; `"smooth"`: smoothstep, '
         "settling into each side's angle",
-        query=None,
     ),
     # [tile]
     Key(

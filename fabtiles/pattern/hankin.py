@@ -198,6 +198,6 @@ def polygons_rays(p: int, edge: float, angles, gap: float, turns) -> np.ndarray:
 # The schema names no module above it: the values and checks of its keys are registered from here.
 register_choices(METHODS, "packing.method")
 register_check(check_method, "packing.method")
-register_check(check_contact, "packing.contact_angle", "packing.contact_gap")
+register_check(check_contact, "packing.contact_angle", "packing.contact_gap", "packing.contact_angle_to")
 register_choices(PARQUET_DIRECTIONS, "packing.parquet_direction")
 register_choices(PARQUET_CURVES, "packing.parquet_curve")
