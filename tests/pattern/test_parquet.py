@@ -16,6 +16,9 @@ import numpy as np
 import pytest
 import shapely
 from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis_scale import examples
 from mesh_helpers import assert_solid, expected_volume, load_stl, top
 
 import fabtiles
@@ -23,7 +26,8 @@ from fabtiles import DesignError, ParameterError
 from fabtiles.cli.main import cli
 from fabtiles.designs.design_file import design_from_text
 from fabtiles.pattern.archimedean import TilingPacking
-from fabtiles.pattern.hankin import parquet_angles, polygon_rays, polygons_rays
+from fabtiles.pattern.hankin import max_contact_angle, parquet_angles, polygon_rays, polygons_rays
+from fabtiles.pattern.tilings import ALL_TILINGS, unit_cell
 
 WINDOW = (-35.0, -30.0, 35.0, 30.0)
 TILINGS = ["4.8.8", "3.12.12", "4.6.12", "3.3.4.3.4", "[3^6; 3^4.6]#1"]
@@ -95,6 +99,32 @@ def test_strands_stay_continuous_across_every_edge(tiling, gap):
         centre = poly.mean(axis=0)
         mine = ends[np.linalg.norm(ends - centre, axis=1) < np.linalg.norm(poly[0] - centre) - 1e-9]
         assert (count_at(mine, ends) == 2).all()
+
+
+@settings(max_examples=examples(20), deadline=None)
+@given(
+    tiling=st.sampled_from(ALL_TILINGS),
+    angles=st.tuples(st.floats(1, 89), st.floats(1, 89)),
+    gap_fraction=st.one_of(st.just(0.0), st.floats(0.01, 0.9)),
+    direction=st.sampled_from(["x", "y"]),
+    curve=st.sampled_from(["linear", "smooth"]),
+)
+def test_any_valid_deformation_keeps_every_strand_whole(tiling, angles, gap_fraction, direction, curve):
+    """Property: for any two valid angles, each ray's start is shared with the neighbour's rays
+    (4 starts at a gapless midpoint, 2 at each gap point) and its end with its partner's; no
+    segment twice."""
+    edge = 8.0
+    gap = gap_fraction * edge
+    if any(max(angles) > max_contact_angle(p, edge, gap) for p in set(unit_cell(tiling).sides.tolist())):
+        return  # no pattern at one side: refused as contact_angle is (test_hankin)
+    packing = deformed(tiling, *angles, gap=gap, parquet_direction=direction, parquet_curve=curve)
+    seg = packing.segments(WINDOW)
+    middle = (np.abs(seg) < np.array([20.0, 15.0])).all(axis=2)  # both ends well inside the window
+    starts, ends = seg[:, 0], seg[:, 1]
+    assert (count_at(starts[middle[:, 0]], starts) == (4 if gap == 0 else 2)).all()
+    assert (count_at(ends[middle[:, 1]], ends) == 2).all()
+    flat = seg.reshape(len(seg), -1)
+    assert (count_at(flat, flat) == 1).all()
 
 
 @pytest.mark.parametrize("tiling", ["4.8.8", "3.4.6.4"])
@@ -233,7 +263,7 @@ def test_contact_angle_to_without_hankins_method_is_refused_in_a_design():
     "setting, match",
     [
         ("packing.contact_angle_to=95", r"contact_angle_to must be a finite number > 0 and < 90, got 95"),
-        ("packing.contact_gap=4", r"contact_angle_to 75 has no pattern .* contact_angle_to must be > 0 and <= 68\.1986"),
+        ("packing.contact_gap=4", r"contact_angle_to 75 has no pattern .* must be > 0 and <= 68\.1986"),
         ('packing.parquet_direction="z"', r"parquet_direction = 'z' is not valid, must be one of: x, y"),
         ('packing.parquet_curve="cubic"', r"parquet_curve = 'cubic' is not valid, must be one of: linear, smooth"),
         ('packing.method="motifs"', r'contact_angle is a key of method = "hankin"'),
