@@ -9,6 +9,7 @@ DXF and a watertight STL; the bad values are refused naming the key, the value a
 
 from __future__ import annotations
 
+import pickle
 import re
 
 import ezdxf
@@ -183,6 +184,7 @@ def test_parquet_angles_clamp_outside_the_window():
 def test_the_parameters_round_trip_and_print():
     p = deformed("4.8.8", parquet_direction="y", parquet_curve="smooth")
     assert p.replace() == p and p != p.replace(contact_angle_to=70)
+    assert pickle.loads(pickle.dumps(p)) == p and hash(pickle.loads(pickle.dumps(p))) == hash(p)
     assert "contact_angle_to=75, parquet_direction='y', parquet_curve='smooth'" in repr(p)
 
 
@@ -218,6 +220,17 @@ def test_a_deformed_design_weaves_through_its_bent_crossings():
     mids = np.concatenate([(p + np.roll(p, -1, axis=0)) / 2 for p in tile.pattern.polygons((-30, -30, 30, 30))])
     mids = mids[np.abs(mids).max(axis=1) < 30] + np.array(tile.centre)
     assert (count_at(mids, weave.points, 1e-6) == 1).all()
+
+
+def test_a_steep_deformation_knots_the_sharpest_bends_and_still_weaves():
+    """Bends of 30 degrees or more (BEND_DEG) at a midpoint are knots, never a crossing bent double."""
+    steep = DESIGN.replace("size = 70", "size = 40").replace("contact_angle = 30", "contact_angle = 5")
+    weave = tile_of(
+        steep.replace("contact_angle_to = 75", "contact_angle_to = 88").replace(
+            "stroke = 1", "stroke = 1\ninterlace = true"
+        )
+    ).weave()
+    assert len(weave.knots) > 0 and weave.conflicts == 0 and len(weave) > 10
 
 
 def test_a_deformed_design_builds_a_clean_dxf_and_a_watertight_stl(tmp_path):
