@@ -706,7 +706,8 @@ KEYS: tuple[Key, ...] = MOTIF + (
         default="x",
         requires=_HANKIN,
         choices="pattern",
-        help='across which the angle changes: `"x"` left to right, `"y"` bottom to top',
+        help='across which the angle changes: `"x"` left to right, `"y"` bottom to top, `"radial"` from '
+        "the centre out to the inscribed circle",
     ),
     Key(
         section="packing",

@@ -104,7 +104,8 @@ class TilingPacking:
         Both polygons of an edge start their rays at the same points on it, so the strands stay
         continuous, bending there by the two polygons' difference in angle. None (default): one angle.
     parquet_direction : str, keyword-only
-        Across which the angle changes: ``"x"`` (left to right, default) or ``"y"`` (bottom to top).
+        Across which the angle changes: ``"x"`` (left to right, default), ``"y"`` (bottom to top) or
+        ``"radial"`` (from the centre out to the circle inscribed in the window).
     parquet_curve : str, keyword-only
         ``"linear"`` (default) or ``"smooth"`` (smoothstep: flat at both sides).
 
@@ -148,7 +149,7 @@ class TilingPacking:
     contact_angle_to: float | None = None
     """A parquet deformation's angle at the far side, degrees (None: one angle throughout)."""
     parquet_direction: str = "x"
-    """Across which a parquet deformation's angle changes: ``"x"`` or ``"y"``."""
+    """Across which a parquet deformation's angle changes: ``"x"``, ``"y"`` or ``"radial"``."""
     parquet_curve: str = "linear"
     """How a parquet deformation's angle changes: ``"linear"`` or ``"smooth"``."""
     _motifs: tuple[tuple[int, Star], ...] = field(init=False, repr=False)

@@ -126,8 +126,9 @@ def polygon_rays(p: int, edge: float, angle: float, gap: float = 0.0, turn: floa
     return rays
 
 
-PARQUET_DIRECTIONS = ("x", "y")
-"""Across which a parquet deformation's angle changes: left to right (``x``) or bottom to top (``y``)."""
+PARQUET_DIRECTIONS = ("x", "y", "radial")
+"""Across which a parquet deformation's angle changes: left to right (``x``), bottom to top (``y``),
+or from the centre outwards (``radial``: the near side the centre, the far side the inscribed circle)."""
 
 PARQUET_CURVES = ("linear", "smooth")
 """How the angle goes from one side to the other: in proportion, or by smoothstep ``3 t^2 - 2 t^3``
@@ -142,7 +143,7 @@ def check_parquet(direction, curve) -> tuple[str, str]:
     >>> check_parquet("z", "linear")
     Traceback (most recent call last):
     ...
-    fabtiles.core.errors.ParameterError: parquet_direction = 'z' is not valid, must be one of: x, y
+    fabtiles.core.errors.ParameterError: parquet_direction = 'z' is not valid, must be one of: x, y, radial
     """
     for name, value, valid in (
         ("parquet_direction", direction, PARQUET_DIRECTIONS),
@@ -156,17 +157,25 @@ def check_parquet(direction, curve) -> tuple[str, str]:
 def parquet_angles(centres, window, angle: float, angle_to: float, direction: str = "x", curve: str = "linear"):
     """The contact angle (degrees) of the polygons centred at ``centres`` ``(m, 2)`` in a parquet deformation.
 
-    ``t`` runs from 0 at the window's near side (left for ``"x"``, bottom for ``"y"``) to 1 at its
-    far side, clamped outside; the angle is ``angle + (angle_to - angle) f(t)``, ``f`` the curve.
+    ``t`` runs from 0 at the window's near side (left for ``"x"``, bottom for ``"y"``, its centre for
+    ``"radial"``) to 1 at its far side (``"radial"``: the circle inscribed in the window), clamped
+    outside; the angle is ``angle + (angle_to - angle) f(t)``, ``f`` the curve.
 
     >>> parquet_angles([[-10, 0], [0, 0], [10, 0], [20, 0]], (-10, -5, 10, 5), 40, 80).tolist()
     [40.0, 60.0, 80.0, 80.0]
     >>> parquet_angles([[0, -2.5]], (-10, -5, 10, 5), 40, 80, "y", "smooth").round(4).tolist()
     [46.25]
+    >>> parquet_angles([[0, 0], [3, 4], [0, 9]], (-10, -5, 10, 5), 40, 80, "radial").tolist()
+    [40.0, 80.0, 80.0]
     """
-    axis = PARQUET_DIRECTIONS.index(direction)
-    low, high = float(window[axis]), float(window[axis + 2])
-    x = np.asarray(centres, dtype=float).reshape(-1, 2)[:, axis]
+    centres = np.asarray(centres, dtype=float).reshape(-1, 2)
+    x0, y0, x1, y1 = (float(v) for v in window)
+    if direction == "radial":
+        x = np.hypot(centres[:, 0] - (x0 + x1) / 2, centres[:, 1] - (y0 + y1) / 2)
+        low, high = 0.0, min(x1 - x0, y1 - y0) / 2
+    else:
+        axis = PARQUET_DIRECTIONS.index(direction)
+        x, low, high = centres[:, axis], (x0, y0)[axis], (x1, y1)[axis]
     t = np.clip((x - low) / (high - low), 0.0, 1.0) if high > low else np.zeros(len(x))
     if curve == "smooth":
         t = t * t * (3 - 2 * t)

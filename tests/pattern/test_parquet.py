@@ -58,7 +58,11 @@ def count_at(points, among, tol=1e-7):
 
 
 def expected_angle(centre, angle=30.0, angle_to=75.0, axis=0, smooth=False):
-    t = min(max((centre[axis] - WINDOW[axis]) / (WINDOW[axis + 2] - WINDOW[axis]), 0.0), 1.0)
+    """The angle at ``centre``: across x (axis 0) or y (1), or radially from WINDOW's centre (2)."""
+    if axis == 2:
+        t = min(np.hypot(*centre) / 30.0, 1.0)  # WINDOW is centred on 0, 60 mm high
+    else:
+        t = min(max((centre[axis] - WINDOW[axis]) / (WINDOW[axis + 2] - WINDOW[axis]), 0.0), 1.0)
     if smooth:
         t = t * t * (3 - 2 * t)
     return angle + (angle_to - angle) * t
@@ -107,7 +111,7 @@ def test_strands_stay_continuous_across_every_edge(tiling, gap):
     tiling=st.sampled_from(ALL_TILINGS),
     angles=st.tuples(st.floats(1, 89), st.floats(1, 89)),
     gap_fraction=st.one_of(st.just(0.0), st.floats(0.01, 0.9)),
-    direction=st.sampled_from(["x", "y"]),
+    direction=st.sampled_from(["x", "y", "radial"]),
     curve=st.sampled_from(["linear", "smooth"]),
 )
 def test_any_valid_deformation_keeps_every_strand_whole(tiling, angles, gap_fraction, direction, curve):
@@ -129,12 +133,12 @@ def test_any_valid_deformation_keeps_every_strand_whole(tiling, angles, gap_frac
 
 
 @pytest.mark.parametrize("tiling", ["4.8.8", "3.4.6.4"])
-@pytest.mark.parametrize("direction, curve", [("x", "linear"), ("y", "smooth")])
+@pytest.mark.parametrize("direction, curve", [("x", "linear"), ("y", "smooth"), ("radial", "linear")])
 def test_each_polygons_rays_make_its_centres_angle_with_their_edge(tiling, direction, curve):
     packing = deformed(tiling, parquet_direction=direction, parquet_curve=curve)
     rays = measured(packing)
     assert len(rays) > 100
-    axis = "xy".index(direction)
+    axis = ["x", "y", "radial"].index(direction)
     for centre, angle in rays:
         assert angle == pytest.approx(expected_angle(centre, axis=axis, smooth=curve == "smooth"), abs=1e-7)
 
@@ -257,7 +261,7 @@ def test_bad_parquet_values_are_refused_by_the_packing():
         deformed("4.8.8", angle_to=95)
     with pytest.raises(ParameterError, match=r"contact_angle_to 80 has no pattern .* must be > 0 and <= 63\.43"):
         deformed("4.8.8", angle=40, angle_to=80, gap=4)
-    with pytest.raises(ParameterError, match=r"parquet_direction = 'z' is not valid, must be one of: x, y"):
+    with pytest.raises(ParameterError, match=r"parquet_direction = 'z' is not valid, must be one of: x, y, radial"):
         deformed("4.8.8", parquet_direction="z")
     with pytest.raises(ParameterError, match=r"parquet_curve = 'cubic' is not valid, must be one of: linear, smooth"):
         deformed("4.8.8", parquet_curve="cubic")
@@ -277,7 +281,7 @@ def test_contact_angle_to_without_hankins_method_is_refused_in_a_design():
     [
         ("packing.contact_angle_to=95", r"contact_angle_to must be a finite number > 0 and < 90, got 95"),
         ("packing.contact_gap=4", r"contact_angle_to 75 has no pattern .* must be > 0 and <= 68\.1986"),
-        ('packing.parquet_direction="z"', r"parquet_direction = 'z' is not valid, must be one of: x, y"),
+        ('packing.parquet_direction="z"', r"parquet_direction = 'z' is not valid, must be one of: x, y, radial"),
         ('packing.parquet_curve="cubic"', r"parquet_curve = 'cubic' is not valid, must be one of: linear, smooth"),
         ('packing.method="motifs"', r'contact_angle is a key of method = "hankin"'),
     ],
