@@ -4,7 +4,8 @@
 
 ``construction.svg``: one octagon's rays, the contact angle and the corners' bisectors,
 without and with a contact gap; ``<tiling>-<angle>.svg``: the table of the 11 tilings at
-four contact angles, the tiling's edges faint under the centre-lines. The files are
+four contact angles, the tiling's edges faint under the centre-lines; ``parquet.svg``: a
+parquet deformation, the angle going from 20 to 80 degrees left to right. The files are
 reproducible byte for byte; tests/test_hankin_pictures.py checks the committed ones are current.
 """
 
@@ -76,6 +77,27 @@ def table_picture(tiling: str, angle: float) -> str:
     )
 
 
+def parquet_picture(tiling: str = "4.8.8", angles=(20.0, 80.0), half=(66.0, 16.5)) -> str:
+    """A strip of ``tiling`` whose contact angle goes from ``angles[0]`` at its left to ``angles[1]`` at its right."""
+    w, h = half
+    pack = ArchimedeanPacking(
+        tiling, EDGE, method="hankin", contact_angle=angles[0], contact_angle_to=angles[1], parquet_direction="x"
+    )
+    rays = pack.segments((-w, -h, w, h))
+    box = f"{_f(-w)} {_f(-h)} {_f(2 * w)} {_f(2 * h)}"
+    return (
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{4 * SIZE}" height="{round(4 * SIZE * h / w)}" '
+        f'viewBox="{box}">\n'
+        f"<title>{tiling}, contact angle {angles[0]:g} to {angles[1]:g} degrees left to right</title>\n"
+        f'<defs><clipPath id="c"><rect x="{_f(-w)}" y="{_f(-h)}" width="{_f(2 * w)}" '
+        f'height="{_f(2 * h)}"/></clipPath></defs>\n'
+        f'<rect x="{_f(-w)}" y="{_f(-h)}" width="{_f(2 * w)}" height="{_f(2 * h)}" fill="#fff"/>\n'
+        f'<g clip-path="url(#c)" fill="none" stroke-linecap="round">\n'
+        f"{_lines(_tiling_edges(tiling, w), stroke='#b8c4d6', stroke_width='0.25')}\n"
+        f"{_lines(rays, stroke='#1d3b6e', stroke_width='0.6')}\n</g>\n</svg>\n"
+    )
+
+
 def construction_picture() -> str:
     """An octagon's rays at 60 degrees without a gap (left) and with a gap of a third of the edge (right)."""
     p, a, angle = 8, 40.0, 60.0
@@ -127,6 +149,8 @@ def render(out: Path = OUT) -> list[Path]:
     out.mkdir(parents=True, exist_ok=True)
     written = [out / "construction.svg"]
     atomic_write(written[0], construction_picture().encode())
+    written.append(out / "parquet.svg")
+    atomic_write(written[-1], parquet_picture().encode())
     for tiling in TILINGS:
         for angle in ANGLES:
             path = out / f"{tiling}-{angle}.svg"

@@ -27,4 +27,5 @@ def test_the_docs_table_is_the_scripts():
     text = (ROOT / "docs" / "hankin.md").read_text(encoding="utf-8")
     assert module.table_markdown() in text
     assert "../samples/pictures/hankin/construction.svg" in text
+    assert "../samples/pictures/hankin/parquet.svg" in text
     assert len(module.table_markdown().splitlines()) == 2 + 11

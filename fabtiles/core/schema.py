@@ -686,6 +686,39 @@ KEYS: tuple[Key, ...] = MOTIF + (
             kind="slider", label="contact gap (mm)", min=0, max=20, step=0.1, group="packing-sliders", when=_HANKIN_WHEN
         ),
     ),
+    Key(
+        section="packing",
+        name="contact_angle_to",
+        type="number",
+        unit="degrees",
+        range=Range(0, 90, min_open=True, max_open=True),
+        default=None,
+        default_text="none",
+        requires=_HANKIN,
+        checked_by="pattern",
+        help="a parquet deformation: the contact angle at the far side of the tile, `contact_angle` "
+        "being the near side's; each polygon takes the angle at its centre (hankin.md)",
+    ),
+    Key(
+        section="packing",
+        name="parquet_direction",
+        type="choice",
+        default="x",
+        requires=_HANKIN,
+        choices="pattern",
+        help='across which the angle changes: `"x"` left to right, `"y"` bottom to top, `"radial"` from '
+        "the centre out to the inscribed circle",
+    ),
+    Key(
+        section="packing",
+        name="parquet_curve",
+        type="choice",
+        default="linear",
+        requires=_HANKIN,
+        choices="pattern",
+        help='`"linear"`: the angle in proportion to the distance across; `"smooth"`: smoothstep, '
+        "settling into each side's angle",
+    ),
     # [tile]
     Key(
         section="tile",

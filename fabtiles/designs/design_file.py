@@ -160,6 +160,9 @@ class PackingSpec:
     method: str = _default("packing.method")
     contact_angle: float = _default("packing.contact_angle")
     contact_gap: float = _default("packing.contact_gap")
+    contact_angle_to: float | None = _default("packing.contact_angle_to")
+    parquet_direction: str = _default("packing.parquet_direction")
+    parquet_curve: str = _default("packing.parquet_curve")
     motifs: tuple[tuple[int, MotifSpec], ...] = ()
     girih_pattern: str | None = _default("packing.girih_pattern")
 
@@ -703,6 +706,9 @@ def _build_packing(p: PackingSpec, star: Star | None):
                 method="hankin",
                 contact_angle=p.contact_angle,
                 contact_gap=p.contact_gap,
+                contact_angle_to=p.contact_angle_to,
+                parquet_direction=p.parquet_direction,
+                parquet_curve=p.parquet_curve,
             )
         if star is not None:  # [motif] fills the kinds [packing.motifs] leaves out
             kinds = set(unit_cell(p.tiling).sides.tolist())

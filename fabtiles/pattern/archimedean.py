@@ -24,7 +24,7 @@ import numpy as np
 from ..core.errors import LimitError, ParameterError
 from ..core.schema import register_check
 from ..core.validate import check_float
-from .hankin import check_contact, check_method, polygon_rays
+from .hankin import check_contact, check_method, check_parquet, parquet_angles, polygon_rays, polygons_rays
 from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, default_gap_motif
 from .star import Star
 from .tilings import ALL_TILINGS, NAMES, UnitCell, circumradius, inradius, unit_cell
@@ -97,6 +97,17 @@ class TilingPacking:
         ``method="hankin"``: the distance along the edge between the two rays' starts, mm,
         >= 0 and < ``edge``. With no gap (or one under 1e-9 of the edge) a ray and its straight
         continuation across the edge (the neighbour's ray) are one segment.
+    contact_angle_to : float, optional, keyword-only
+        ``method="hankin"``: a *parquet deformation*: the contact angle at the far side of the
+        window :meth:`segments` draws (a tile's bounding box), ``contact_angle`` being the near
+        side's; each polygon's rays take the angle at its centre (:func:`~fabtiles.pattern.hankin.parquet_angles`).
+        Both polygons of an edge start their rays at the same points on it, so the strands stay
+        continuous, bending there by the two polygons' difference in angle. None (default): one angle.
+    parquet_direction : str, keyword-only
+        Across which the angle changes: ``"x"`` (left to right, default), ``"y"`` (bottom to top) or
+        ``"radial"`` (from the centre out to the circle inscribed in the window).
+    parquet_curve : str, keyword-only
+        ``"linear"`` (default) or ``"smooth"`` (smoothstep: flat at both sides).
 
     Examples
     --------
@@ -135,6 +146,12 @@ class TilingPacking:
     """Hankin's rays' angle to their edge, degrees."""
     contact_gap: float = 0.0
     """Between the two rays' starts on an edge, mm."""
+    contact_angle_to: float | None = None
+    """A parquet deformation's angle at the far side, degrees (None: one angle throughout)."""
+    parquet_direction: str = "x"
+    """Across which a parquet deformation's angle changes: ``"x"``, ``"y"`` or ``"radial"``."""
+    parquet_curve: str = "linear"
+    """How a parquet deformation's angle changes: ``"linear"`` or ``"smooth"``."""
     _motifs: tuple[tuple[int, Star], ...] = field(init=False, repr=False)
     """``motifs`` as ``(sides, Star)`` pairs: what equality and the hash compare (a mapping has no hash)."""
 
@@ -160,6 +177,11 @@ class TilingPacking:
         init(self, "method", method)
         init(self, "contact_angle", contact[0])
         init(self, "contact_gap", contact[1])
+        init(
+            self,
+            "contact_angle_to",
+            self._checked_parquet(method, edge, [p for p in kinds if p not in given], cell.name),
+        )
         init(self, "_motifs", full)
         init(self, "motifs", MappingProxyType(dict(full)))
         init(self, "gap_motif", gap)
@@ -175,6 +197,20 @@ class TilingPacking:
             check_float("contact_angle", self.contact_angle, low=0, high=90, low_open=True, high_open=True),
             check_float("contact_gap", self.contact_gap, low=0),
         )
+
+    def _checked_parquet(self, method: str, edge: float, rays: list, tiling: str) -> float | None:
+        """``contact_angle_to`` checked like ``contact_angle`` (every angle between the two then has
+        a pattern too: the limit is one bound), and the direction and curve against their choices."""
+        check_parquet(self.parquet_direction, self.parquet_curve)
+        if self.contact_angle_to is None:
+            return None
+        if method != "hankin":
+            raise ParameterError(
+                f"contact_angle_to = {self.contact_angle_to!r} is a parquet deformation of Hankin's rays, "
+                f"not of method = {method!r}; set method = 'hankin' or leave contact_angle_to out",
+                param="contact_angle_to",
+            )
+        return check_contact(self.contact_angle_to, self.contact_gap, edge, rays, tiling, name="contact_angle_to")[0]
 
     def __reduce__(self):
         # ``motifs`` is a mappingproxy, which does not pickle: pickle and copy rebuild from the parameters.
@@ -240,6 +276,9 @@ class TilingPacking:
             method=self.method,
             contact_angle=self.contact_angle,
             contact_gap=self.contact_gap,
+            contact_angle_to=self.contact_angle_to,
+            parquet_direction=self.parquet_direction,
+            parquet_curve=self.parquet_curve,
         )
 
     def replace(self, **changes) -> TilingPacking:
@@ -256,6 +295,11 @@ class TilingPacking:
         extra += f", fill={self.fill:g}" if self.fill != 1.0 else ""
         if self.method == "hankin":
             extra += f", method='hankin', contact_angle={self.contact_angle:g}, contact_gap={self.contact_gap:g}"
+        if self.contact_angle_to is not None:
+            extra += (
+                f", contact_angle_to={self.contact_angle_to:g}, parquet_direction={self.parquet_direction!r}, "
+                f"parquet_curve={self.parquet_curve!r}"
+            )
         return (
             f"{type(self).__name__}({self.tiling!r}, edge={self.edge:g}, motifs={{{motifs}}}, "
             f"gap_motif={self.gap_motif!r}{extra})"
@@ -333,6 +377,17 @@ class TilingPacking:
         >>> len(TilingPacking("[3^6; 3^4.6]#1", edge=10).polygons((0, 0, 30, 30)))
         25
         """
+        cell, a = self._cell, self.edge
+        out: list[np.ndarray] = []
+        for centre, e in zip(*self._frames(window), strict=True):
+            p = int(cell.sides[e])
+            turns = cell.angles[e] + 2 * np.pi * np.arange(p) / p + np.pi / p
+            out.append(centre + circumradius(p, a) * np.stack([np.cos(turns), np.sin(turns)], axis=1))
+        return out
+
+    def _frames(self, window) -> tuple[np.ndarray, np.ndarray]:
+        """``(centres, entry index)`` of every polygon of the tiling that meets ``window``, in the
+        order of :meth:`polygons`; a polygon's sides and turn are its unit-cell entry's."""
         x0, y0, x1, y1 = _check_window(window)
         cell, a = self._cell, self.edge
         outer = np.array([circumradius(int(p), a) for p in cell.sides])
@@ -340,24 +395,25 @@ class TilingPacking:
         order = np.lexsort((np.round(pts[:, 0], 9), np.round(pts[:, 1], 9)))
         pts, idx = pts[order], idx[order]
         rect = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
-        out: list[np.ndarray] = []
-        for centre, e in zip(pts, idx.tolist(), strict=True):
-            p = int(cell.sides[e])
+        keep = np.zeros(len(pts), dtype=bool)
+        for e in np.unique(idx).tolist():
+            p, at = int(cell.sides[e]), np.flatnonzero(idx == e)
             turns = cell.angles[e] + 2 * np.pi * np.arange(p) / p
             normals = np.stack([np.cos(turns), np.sin(turns)], axis=1)
+            centres = pts[at]
             # separating axes of two convex shapes: the rectangle's (its bounding box) and the polygon's edge normals
-            if ((rect - centre) @ normals.T).min(axis=0).max() > inradius(p, a) * (1 + 1e-12):
-                continue
-            corners = centre + outer[e] * np.stack([np.cos(turns + np.pi / p), np.sin(turns + np.pi / p)], axis=1)
-            if (
-                corners[:, 0].max() < x0
-                or corners[:, 0].min() > x1
-                or corners[:, 1].max() < y0
-                or corners[:, 1].min() > y1
-            ):
-                continue
-            out.append(corners)
-        return out
+            apart = ((rect[None] - centres[:, None]) @ normals.T).min(axis=1).max(axis=1) > inradius(p, a) * (1 + 1e-12)
+            corners = centres[:, None] + outer[e] * np.stack(
+                [np.cos(turns + np.pi / p), np.sin(turns + np.pi / p)], axis=1
+            )
+            outside = (
+                (corners[..., 0].max(axis=1) < x0)
+                | (corners[..., 0].min(axis=1) > x1)
+                | (corners[..., 1].max(axis=1) < y0)
+                | (corners[..., 1].min(axis=1) > y1)
+            )
+            keep[at] = ~(apart | outside)
+        return pts[keep], idx[keep]
 
     def circles(self, window) -> tuple[np.ndarray, np.ndarray]:
         """Centres ``(m, 2)`` and radii ``(m,)`` of every circle that may meet ``window``.
@@ -403,7 +459,14 @@ class TilingPacking:
         76
         """
         per = np.array([len(u) for u in self._unit_motifs()])
-        count = int(per[self._placed(window)[1]].sum())
+        if self.contact_angle_to is None:
+            count = int(per[self._placed(window)[1]].sum())
+        else:
+            rays, motifs = self._parquet_entries()
+            idx = self._placed(window)[1]
+            count = int(per[idx[motifs[idx]]].sum())
+            e = self._frames(window)[1]
+            count += int((2 * self._cell.sides[e])[rays[e]].sum())
         if self.outline_circles:
             _, radii = self.circles(window)
             r, k = np.unique(radii, return_counts=True)
@@ -528,9 +591,42 @@ class TilingPacking:
         pts, idx = self._placed(window)
         units = self._unit_motifs()
         parts = [np.empty((0, 2, 2))]
+        if self.contact_angle_to is not None:
+            rays, motifs = self._parquet_entries()
+            pts, idx = pts[motifs[idx]], idx[motifs[idx]]
+            parts.append(self._parquet_rays(window, rays))
         for e in np.unique(idx):
             unit = units[e]
             parts.append((unit[None] + pts[idx == e][:, None, None, :]).reshape(-1, 2, 2))
+        return np.concatenate(parts)
+
+    def _parquet_entries(self) -> tuple[np.ndarray, np.ndarray]:
+        """Per unit-cell polygon: whether it takes Hankin's rays, whether it keeps a motif."""
+        stars = dict(self._motifs)
+        motifs = np.array([int(p) in stars for p in self._cell.sides])
+        return ~motifs, motifs
+
+    def _parquet_rays(self, window, rays: np.ndarray) -> np.ndarray:
+        """A parquet deformation's rays, ``(k, 2, 2)`` mm: each polygon meeting ``window`` that takes
+        rays (``rays`` per unit-cell entry), at the angle of its centre's place across the window.
+
+        Each polygon's rays are their own segments (the neighbour's continuation bends by the
+        difference in angle, so the two are never one straight segment)."""
+        cell, a = self._cell, self.edge
+        centres, idx = self._frames(window)
+        parts = [np.empty((0, 2, 2))]
+        for e in np.unique(idx[rays[idx]]).tolist():
+            at = centres[idx == e]
+            angles = parquet_angles(
+                at,
+                window,
+                self.contact_angle,
+                cast(float, self.contact_angle_to),
+                self.parquet_direction,
+                self.parquet_curve,
+            )
+            r = polygons_rays(int(cell.sides[e]), a, angles, self.contact_gap, np.full(len(at), cell.angles[e]))
+            parts.append((r + at[:, None, None, None, :]).reshape(-1, 2, 2))
         return np.concatenate(parts)
 
     def segments(self, window) -> np.ndarray:

@@ -181,3 +181,15 @@ def test_bad_new_keys_name_the_field(query, field, match):
     with pytest.raises(QueryError, match=match) as info:
         design_from_query(query)
     assert info.value.field == field
+
+
+def test_a_parquet_deformation_is_three_query_parameters():
+    from fabtiles import DesignError
+    from fabtiles.designs.design_file import design_from_dict
+
+    query = {"packing": "archimedean", "tiling": "4.8.8", "edge": "10", "method": "hankin", "width": "80"}
+    query |= {"contact_angle": "30", "contact_angle_to": "70", "parquet_direction": "y", "parquet_curve": "smooth"}
+    packing = design_from_dict(design_from_query(query)).packing
+    assert (packing.contact_angle_to, packing.parquet_direction, packing.parquet_curve) == (70.0, "y", "smooth")
+    with pytest.raises(DesignError, match=r"parquet_curve = 'cubic' is not valid, must be one of: linear, smooth"):
+        design_from_dict(design_from_query({**query, "parquet_curve": "cubic"}))
