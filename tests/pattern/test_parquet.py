@@ -293,3 +293,19 @@ def test_cli_exits_2_and_writes_nothing(tmp_path, setting, match):
     result = CliRunner().invoke(cli, ["build", str(path), "-o", str(out), "--set", setting], catch_exceptions=False)
     assert result.exit_code == 2 and re.search(match, result.output), result.output
     assert len(result.output.strip().splitlines()) == 1 and not out.exists()
+
+
+@pytest.mark.parametrize(
+    "text,where",
+    [
+        (DESIGN.replace("[packing]\n", "[packing]\nseamless = true\n"), "seamless = true"),
+        (
+            DESIGN.replace('["svg"]', '["stl"]').replace('outline = "square"\nsize = 70\nframe = 3\n', "")
+            + '[surface]\nshape = "cylinder"\ndiameter = 60\nlength = 40\n',
+            "a cylinder's strip",
+        ),
+    ],
+)
+def test_a_deformation_cannot_repeat_without_a_seam(text, where):
+    with pytest.raises(DesignError, match=rf"contact_angle_to = 75 changes the pattern .*\({where}\)"):
+        design_from_text(text)
