@@ -635,14 +635,16 @@ def _fit_seamless(design: Design) -> Design:
     from ..geometry.seamless import period_fit, seamless_fit
 
     p = design.packing
-    varies = p is not None and p.kind == "archimedean" and p.contact_angle_to not in (None, p.contact_angle)
+    if p is None:
+        return design
+    varies = p.kind == "archimedean" and p.contact_angle_to not in (None, p.contact_angle)
     if varies and (p.seamless or design.surface.cylinder):
         where = "a cylinder's strip" if design.surface.cylinder else "seamless = true"
         raise DesignError(
             f"packing.contact_angle_to = {p.contact_angle_to:g} changes the pattern across the tile, so it cannot "
             f"repeat without a seam ({where}): give contact_angle_to = contact_angle, or no seamless fit"
         )
-    if p is None or not p.seamless or design.surface.cylinder:  # a cylinder's fit is the surface's
+    if not p.seamless or design.surface.cylinder:  # a cylinder's fit is the surface's
         return design
     t = design.tile_spec
     if p.kind == "girih":
