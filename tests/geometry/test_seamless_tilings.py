@@ -20,16 +20,23 @@ HEXAGON = ("3.3.3.3.3.3", "6.6.6", "3.6.3.6", "3.12.12", "4.6.12", "3.3.3.3.6", 
 
 
 def neighbours_continue(tile, steps):
-    """Largest area where the tile moved by a step differs from a 3x bigger tile cut there."""
+    """Largest area where the tile moved by a step differs from a bigger tile, centred on it, cut there.
+
+    The bigger tile is the smallest rectangle about the tile's centre that holds every moved copy (with a
+    hair's margin): its pattern is the same, and the cost of its region grows with its area.
+    """
     w, h = tile.width_mm, tile.height_mm
-    big = tile.replace(outline="rectangle", size=(3 * w, 3 * h))
+    reach = np.abs(np.asarray(steps, dtype=float)).max(axis=0)
+    big = tile.replace(outline="rectangle", size=(2 * reach[0] + w + 0.02, 2 * reach[1] + h + 0.02))
     reference = big.region()
     centre = np.array(big.centre) - np.array(tile.centre)
     worst = 0.0
     for step in steps:
         dx, dy = centre + np.asarray(step)
+        outline = affinity.translate(tile.outline_shape(), dx, dy)
+        assert big.outline_shape().contains(outline)
         moved = affinity.translate(tile.region(), dx, dy)
-        cut = reference.intersection(affinity.translate(tile.outline_shape(), dx, dy))
+        cut = reference.intersection(outline)
         worst = max(worst, moved.symmetric_difference(cut).area)
     return worst
 
