@@ -1,8 +1,9 @@
 """Every sample design in every print style, as STL, 3MF and STEP (issue 5).
 
 Each ``samples/*.toml`` (but the 600 x 400 mm benchmark sheet and the router panel) is built as its
-design says and written through the public :meth:`fabtiles.Tile.export` with the
-design's printer profile, in each style (relief, pierced, deboss). The files are
+design says and written as :meth:`fabtiles.Tile.export` writes it (STEP through it; STL and 3MF
+through its pipeline from one print model shared by both) with the design's printer profile, in
+each style (relief, pierced, deboss). The files are
 read back (trimesh for STL and 3MF, OCP for STEP) and must be watertight (STEP: a
 valid closed B-rep), of the volume of region area x heights within 0.5 %, within
 the outline's bounds from z = 0 to the style's top, with the expected number of
@@ -40,8 +41,12 @@ from mesh_helpers import (
 
 import fabtiles
 from fabtiles.designs.design_file import load_design
+from fabtiles.export.formats import format_of
 from fabtiles.geometry.stack import resolve_stack
 from fabtiles.machines.profiles import DEFAULT_PRINTER_PROFILE
+from fabtiles.making import write_files
+from fabtiles.making.models import Models
+from fabtiles.making.pipeline import _options_for
 
 ROOT = Path(__file__).resolve().parents[2]
 SKIP = {"sheet-600x400", "panel-2440x1220", "screen-1200x800", "relief-400x400"}
@@ -70,6 +75,32 @@ def sample_tile(path: Path, shrink: bool = False):
     return tile, design.output.printer_profile or DEFAULT_PRINTER_PROFILE
 
 
+@pytest.fixture(scope="module")
+def print_export():
+    """``export(path, sample, style)``: what ``tile.export(path, ...)`` writes, from one print model per
+    sample and style shared by the STL and the 3MF.
+
+    ``Tile.export`` makes a fresh :class:`~fabtiles.making.models.Models` on each call; the writers are
+    pure functions of the print model, so both formats are written through the same pipeline
+    (:func:`~fabtiles.making.write_files`) from one model, made with the options ``Tile.export`` makes
+    for either suffix (asserted equal).
+    """
+    models: dict = {}
+
+    def export(path: Path, sample: Path, style: str):
+        tile, profile = sample_tile(sample)
+        options = {"style": style, "fill_small_holes": False}
+        built = {s: _options_for(format_of(f"t.{s}"), profile, options) for s in ("stl", "3mf")}
+        assert built["stl"] == built["3mf"]
+        key = (sample, style)
+        if key not in models:
+            models[key] = Models(tile, built["stl"])
+        (report,) = write_files(models[key], (format_of(path).name,), path.parent, path.stem).reports
+        return report
+
+    return export
+
+
 def expectations(tile, profile, style):
     """Region, outline, stack heights and the expected volume, top and body count.
 
@@ -89,11 +120,11 @@ def test_samples_found():
 
 @pytest.mark.parametrize("style", STYLES)
 @pytest.mark.parametrize("sample", SAMPLES, ids=IDS)
-def test_sample_stl(tmp_path, sample, style):
+def test_sample_stl(tmp_path, print_export, sample, style):
     tile, profile = sample_tile(sample)
     region, outline, s, volume, zmax, parts = expectations(tile, profile, style)
     path = tmp_path / "t.stl"
-    report = tile.export(path, profile=profile, style=style, fill_small_holes=False)
+    report = print_export(path, sample, style)
     assert report.format == "stl" and report.stats["style"] == style
     mesh = load_stl(path)
     assert_solid(mesh, volume, outline.bounds, zmax, bodies=parts)
@@ -102,11 +133,11 @@ def test_sample_stl(tmp_path, sample, style):
 
 @pytest.mark.parametrize("style", STYLES)
 @pytest.mark.parametrize("sample", SAMPLES, ids=IDS)
-def test_sample_3mf(tmp_path, sample, style):
+def test_sample_3mf(tmp_path, print_export, sample, style):
     tile, profile = sample_tile(sample)
     region, outline, s, volume, zmax, parts = expectations(tile, profile, style)
     path = tmp_path / "t.3mf"
-    report = tile.export(path, profile=profile, style=style, fill_small_holes=False)
+    report = print_export(path, sample, style)
     assert report.format == "3mf"
     assert 'unit="millimeter"' in zipfile.ZipFile(path).read("3D/3dmodel.model").decode()
     got = load_3mf_parts(path)
