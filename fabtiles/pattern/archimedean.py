@@ -25,7 +25,7 @@ from ..core.errors import LimitError, ParameterError
 from ..core.schema import register_check
 from ..core.validate import check_float
 from .hankin import check_contact, check_method, check_parquet, parquet_angles, polygon_rays, polygons_rays
-from .packing import MAX_CIRCLES_IN_WINDOW, chord_count, circle_segments, default_gap_motif
+from .packing import MAX_CIRCLES_IN_WINDOW, check_window, chord_count, circle_segments, default_gap_motif
 from .star import Star
 from .tilings import ALL_TILINGS, NAMES, UnitCell, circumradius, inradius, unit_cell
 
@@ -319,7 +319,7 @@ class TilingPacking:
     def _translates(self, offsets, margins, window) -> tuple[np.ndarray, np.ndarray]:
         """``(points, entry index)``: every lattice translate of each offset (mm) within its margin
         (mm) of ``window``, unsorted; a LimitError when the window holds too many."""
-        x0, y0, x1, y1 = _check_window(window)
+        x0, y0, x1, y1 = check_window(window)
         basis = self.lattice
         inv = np.linalg.inv(basis.T)
         lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
@@ -388,7 +388,7 @@ class TilingPacking:
     def _frames(self, window) -> tuple[np.ndarray, np.ndarray]:
         """``(centres, entry index)`` of every polygon of the tiling that meets ``window``, in the
         order of :meth:`polygons`; a polygon's sides and turn are its unit-cell entry's."""
-        x0, y0, x1, y1 = _check_window(window)
+        x0, y0, x1, y1 = check_window(window)
         cell, a = self._cell, self.edge
         outer = np.array([circumradius(int(p), a) for p in cell.sides])
         pts, idx = self._translates(cell.centres * a, outer * (1 + 1e-9), window)
@@ -727,18 +727,6 @@ def _motif(name, star) -> Star:
     if not isinstance(star, Star):
         raise ParameterError(f"{name} must be a Star or a preset name, got {star!r}", param=name.split("[")[0])
     return star
-
-
-def _check_window(window):
-    try:
-        x0, y0, x1, y1 = (float(v) for v in window)
-    except (TypeError, ValueError):
-        raise ParameterError(f"window must be (xmin, ymin, xmax, ymax), got {window!r}", param="window") from None
-    if not all(math.isfinite(v) for v in (x0, y0, x1, y1)) or x1 < x0 or y1 < y0:
-        raise ParameterError(
-            f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}", param="window"
-        )
-    return x0, y0, x1, y1
 
 
 # The schema names no module above it: the values and checks of its keys are registered from here.

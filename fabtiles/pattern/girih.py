@@ -36,7 +36,7 @@ import numpy as np
 from ..core.errors import LimitError, ParameterError, did_you_mean
 from ..core.schema import register_check, register_choices
 from ..core.validate import check_float
-from .packing import MAX_CIRCLES_IN_WINDOW
+from .packing import MAX_CIRCLES_IN_WINDOW, check_window
 
 TILES: Mapping[str, tuple[int, ...]] = MappingProxyType(
     {
@@ -317,7 +317,7 @@ class GirihPacking:
     # -- tiles ----------------------------------------------------------------------------------------------------
     def _placed(self, window) -> tuple[np.ndarray, np.ndarray]:
         """``(shifts, tile index)`` of every cell tile whose bounding box meets ``window``, mm."""
-        x0, y0, x1, y1 = _check_window(window)
+        x0, y0, x1, y1 = check_window(window)
         cell, a = girih_cell(self.pattern), self.edge
         basis = cell.lattice * a
         inv = np.linalg.inv(basis.T)
@@ -381,7 +381,7 @@ class GirihPacking:
 
     def circles(self, window) -> tuple[np.ndarray, np.ndarray]:
         """No circles: centres ``(0, 2)`` and radii ``(0,)`` (a girih pattern is drawn from its tiles)."""
-        _check_window(window)
+        check_window(window)
         return np.empty((0, 2)), np.empty(0)
 
     def motif_segments(self, window) -> np.ndarray:
@@ -392,18 +392,6 @@ class GirihPacking:
         """Centre-line segments :meth:`segments` returns for ``window``, counted without placing them."""
         per = np.array([len(u) for u in _cell_strapwork(self.pattern)])
         return int(per[self._placed(window)[1]].sum())
-
-
-def _check_window(window):
-    try:
-        x0, y0, x1, y1 = (float(v) for v in window)
-    except (TypeError, ValueError):
-        raise ParameterError(f"window must be (xmin, ymin, xmax, ymax), got {window!r}", param="window") from None
-    if not all(math.isfinite(v) for v in (x0, y0, x1, y1)) or x1 < x0 or y1 < y0:
-        raise ParameterError(
-            f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}", param="window"
-        )
-    return x0, y0, x1, y1
 
 
 # The schema names no module above it: the values and checks of its keys are registered from here.

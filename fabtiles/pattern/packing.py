@@ -166,7 +166,7 @@ class Packing:
         return np.concatenate([big, gap]), radii
 
     def _points(self, window, offsets, reach) -> np.ndarray:
-        x0, y0, x1, y1 = _check_window(window)
+        x0, y0, x1, y1 = check_window(window)
         m = reach * max(self.fill, 1.0) * (1 + 1e-9)
         x0, y0, x1, y1 = x0 - m, y0 - m, x1 + m, y1 + m
         basis = self._basis() * self.radius  # rows are lattice vectors
@@ -353,13 +353,21 @@ def _placed_motif(packing: Packing, which: str) -> np.ndarray:
     return unit
 
 
-def _check_window(window):
+def check_window(window) -> tuple[float, float, float, float]:
+    """``window`` as four floats ``(xmin, ymin, xmax, ymax)``, finite with min <= max; else a
+    :class:`~fabtiles.ParameterError` naming it (every packing's window is checked here).
+
+    >>> check_window((0, 0, 10, 5))
+    (0.0, 0.0, 10.0, 5.0)
+    """
     try:
         x0, y0, x1, y1 = (float(v) for v in window)
     except (TypeError, ValueError):
-        raise ParameterError(f"window must be (xmin, ymin, xmax, ymax), got {window!r}") from None
+        raise ParameterError(f"window must be (xmin, ymin, xmax, ymax), got {window!r}", param="window") from None
     if not all(math.isfinite(v) for v in (x0, y0, x1, y1)) or x1 < x0 or y1 < y0:
-        raise ParameterError(f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}")
+        raise ParameterError(
+            f"window must be finite (xmin, ymin, xmax, ymax) with min <= max, got {window!r}", param="window"
+        )
     return x0, y0, x1, y1
 
 

@@ -5,13 +5,11 @@ from __future__ import annotations
 import ezdxf
 from click.testing import CliRunner
 from mesh_helpers import assert_solid, expected_volume, load_stl, top
-from real_programs import program
-from test_dxf_librecad import _dxf_edges, _print_pdf, _segments_by_colour
+from test_dxf_librecad import drawn_and_cut_edges
 
 import fabtiles
 from fabtiles.cli.main import cli
 from fabtiles.designs.design_file import design_from_text, design_notes
-from fabtiles.machines.profiles import load_profile
 
 DESIGN = """
 [motif]
@@ -57,13 +55,10 @@ def test_a_bordered_stl_is_watertight(tmp_path):
 
 
 def test_librecad_draws_the_bordered_dxf(tmp_path):
-    librecad = program("librecad", "apt-get install librecad")
     dxf = tmp_path / "border.dxf"
     _tile().export(dxf, profile="laser-3mm-plywood", fill_small_holes=True)
-    profile = load_profile("laser-3mm-plywood")
-    drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
-    edges = _dxf_edges(dxf, profile.layers.inner_cut) + _dxf_edges(dxf, profile.layers.outer_cut)
-    assert sum(len(s) for s in drawn.values()) == edges > 50
+    drawn, edges = drawn_and_cut_edges(dxf, tmp_path)
+    assert drawn == edges > 50
 
 
 def test_the_cli_refuses_a_bad_border_with_exit_2_and_no_file(tmp_path):

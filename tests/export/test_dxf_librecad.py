@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 from dxf_helpers import bulges, motif_tile, star_plate, vertices
 from model_files import write_cut
+from real_programs import program
 
 from fabtiles.machines.profiles import LaserLayers, Layer, load_profile
 
@@ -87,6 +88,16 @@ def _dxf_edges(path, layer) -> int:
         if e.dxf.layer == layer.name:
             n += len(vertices(e)) - (0 if e.is_closed else 1)
     return n
+
+
+def drawn_and_cut_edges(dxf, tmp_path, profile_name: str = "laser-3mm-plywood") -> tuple[int, int]:
+    """The line segments LibreCAD prints of ``dxf`` and the edges of its inner and outer cuts: equal when
+    LibreCAD draws every cut."""
+    librecad = program("librecad", "apt-get install librecad")
+    profile = load_profile(profile_name)
+    drawn = _segments_by_colour(_print_pdf(librecad, dxf, tmp_path))
+    edges = _dxf_edges(dxf, profile.layers.inner_cut) + _dxf_edges(dxf, profile.layers.outer_cut)
+    return sum(len(s) for s in drawn.values()), edges
 
 
 def _extent(points) -> np.ndarray:

@@ -14,14 +14,12 @@ from pathlib import Path
 import ezdxf
 import pytest
 from mesh_helpers import assert_solid, expected_volume, load_stl, top
-from real_programs import program
 from test_3mf_multicolour import extrusions_by_tool, slice_gcode
-from test_dxf_librecad import _dxf_edges, _print_pdf, _segments_by_colour
+from test_dxf_librecad import drawn_and_cut_edges
 from test_tiling_samples import SAMPLES as TILING_SAMPLES
 
 import fabtiles
 from fabtiles.designs.design_file import load_design
-from fabtiles.machines.profiles import load_profile
 from fabtiles.making import build_design
 from fabtiles.pattern.tilings import TILINGS
 
@@ -115,13 +113,10 @@ def test_interlace_weaves_and_builds(tmp_path):
 
 
 def test_librecad_draws_the_hankin_dxf(tmp_path):
-    librecad = program("librecad", "apt-get install librecad")
     _, result = _build(tmp_path, ("dxf",))
     dxf = Path(result.paths[0])
-    profile = load_profile("laser-3mm-plywood")
-    drawn = _segments_by_colour(_print_pdf(librecad, dxf, dxf.parent))
-    edges = _dxf_edges(dxf, profile.layers.inner_cut) + _dxf_edges(dxf, profile.layers.outer_cut)
-    assert sum(len(s) for s in drawn.values()) == edges > 100
+    drawn, edges = drawn_and_cut_edges(dxf, dxf.parent)
+    assert drawn == edges > 100
 
 
 def test_prusaslicer_slices_the_hankin_mosaic_by_colour(tmp_path):
