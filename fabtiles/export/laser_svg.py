@@ -8,6 +8,13 @@ unit is one millimetre; the y axis is flipped so the picture looks like the DXF.
 Coordinates are printed with 4 decimals (0.1 um), so the file is reproducible
 byte for byte. Curves are SVG arcs (``A``), at most a half turn each, from the cut plan's
 arcs (:mod:`fabtiles.geometry.arcs`).
+
+A shaded engraving's SVG (a face class per layer, :mod:`fabtiles.geometry.shades`) also carries
+MeerK40t's operations: one ``meerk40t:operation`` element per layer (in MeerK40t's namespace, so
+browsers and Inkscape ignore it) with the layer's kind, power (per mille, as MeerK40t stores it),
+speed, passes, raster resolution and the ``id`` of each of its paths. MeerK40t's SVG loader makes
+those operations in place of classifying by colour, which would raster every fill together in one
+operation at one power.
 """
 
 from __future__ import annotations
@@ -21,6 +28,9 @@ from ._text import number as _num
 
 _QUARTER = np.tan(np.pi / 8) + 1e-12
 """The bulge of a quarter turn."""
+
+MEERK40T_NAMESPACE = "https://github.com/meerk40t/meerk40t/wiki/Namespace"
+"""The XML namespace of MeerK40t's own SVG elements (its ``core/svg_io.py``)."""
 
 HAIRLINE_MM = 0.025
 """Stroke width of the paths (a 0.001 inch hairline: "cut, don't engrave" for most drivers)."""
@@ -141,16 +151,20 @@ def _arc_path_data(p: list, bl: list, rad: list, closed: bool) -> str:
 
 
 def svg_text(job: CutPlan) -> str:
-    """The laser SVG of a cut plan, as text: one group per layer, in cut order."""
+    """The laser SVG of a cut plan, as text: one group per layer, in cut order (and, shaded,
+    MeerK40t's operation of each layer, see the module's docstring)."""
     xmin, ymin, xmax, ymax = job.bounds
     w, h = xmax - xmin, ymax - ymin
+    shaded = _shaded(job)
+    xmlns = f' xmlns:meerk40t="{MEERK40T_NAMESPACE}"' if shaded else ""
     head = (
         '<?xml version="1.0" encoding="UTF-8"?>\n'
-        f'<svg xmlns="http://www.w3.org/2000/svg" width="{_num(w)}mm" height="{_num(h)}mm" '
+        f'<svg xmlns="http://www.w3.org/2000/svg"{xmlns} width="{_num(w)}mm" height="{_num(h)}mm" '
         f'viewBox="{_num(xmin)} {_num(-ymax)} {_num(w)} {_num(h)}">\n'
         f"<title>{_title(job)}</title>\n"
     )
     out = [head]
+    ids: list = []  # a shaded file's path ids, a list per layer, for MeerK40t's operations
     for cut in job.layers:
         layer = cut.layer
         if cut.fill:  # an engraved fill: each polygon one path, its holes as subpaths, filled even-odd
@@ -160,16 +174,46 @@ def svg_text(job: CutPlan) -> str:
             polys: dict = {}
             for r, p in zip(cut.curves_or_paths(), cut.groups, strict=True):
                 polys.setdefault(p, []).append(_path_data(r, 0.0, True))
-            out.extend(f'<path d="{"".join(d)}"/>\n' for d in polys.values())
+            paths = ["".join(d) for d in polys.values()]
         else:
             out.append(
                 f'<g id="{_escape(layer.name)}" fill="none" stroke="{aci_to_hex(layer.color)}" '
                 f'stroke-width="{_num(HAIRLINE_MM)}">\n'
             )
-            out.extend(f'<path d="{d}"/>\n' for d in _layer_path_data(cut.curves_or_paths(), cut.closed))
+            paths = _layer_path_data(cut.curves_or_paths(), cut.closed)
+        if shaded:
+            first = sum(len(i) for i in ids) + 1
+            ids.append([f"p{k}" for k in range(first, first + len(paths))])
+            out.extend(f'<path id="{i}" d="{d}"/>\n' for i, d in zip(ids[-1], paths, strict=True))
+        else:
+            out.extend(f'<path d="{d}"/>\n' for d in paths)
         out.append("</g>\n")
+    if shaded:
+        out.extend(_meerk40t_operation(cut, i) for cut, i in zip(job.layers, ids, strict=True))
     out.append("</svg>\n")
     return "".join(out)
+
+
+def _shaded(job: CutPlan) -> bool:
+    """Whether ``job`` is a shaded engraving: a fill layer other than the profile's engrave layer."""
+    return any(cut.fill and cut.layer != job.profile.layers.engrave for cut in job.layers)
+
+
+def _meerk40t_operation(cut, ids: list) -> str:
+    """MeerK40t's operation of one layer: a raster for a fill (its line interval as a resolution in
+    dots per inch), an engrave for open score lines, a cut for contours; its paths by ``id``."""
+    layer = cut.layer
+    if cut.fill:
+        interval = layer.line_interval_mm
+        kind, extra = "op raster", f' dpi="{round(25.4 / interval)}"' if interval else ""
+    else:
+        kind, extra = ("op cut" if cut.closed else "op engrave"), ""
+    if layer.passes > 1:  # MeerK40t runs an operation once unless its passes are marked custom
+        extra += f' passes="{layer.passes}" passes_custom="True"'
+    return (
+        f'<meerk40t:operation type="{kind}" label="{_escape(layer.name)}" color="{aci_to_hex(layer.color)}" '
+        f'speed="{_num(layer.speed_mm_s)}" power="{_num(layer.power_pct * 10)}"{extra} references="{" ".join(ids)}"/>\n'
+    )
 
 
 def svg_bytes(plan: CutPlan) -> bytes:

@@ -12,6 +12,8 @@ import shapely
 from click.testing import CliRunner
 from hypothesis import given
 from hypothesis import strategies as st
+from PIL import Image
+from real_programs import program, run
 from test_laser_programs import meerk40t
 from test_lbrn2 import lbrnts
 
@@ -23,6 +25,7 @@ from fabtiles.machines.profiles import load_profile
 
 PLY = load_profile("laser-3mm-plywood")
 FILL = PLY.layers.engrave
+SVG = "{http://www.w3.org/2000/svg}"
 COLOURS = dict(by="shape", palette="zellige", shaded="all", shades={"B": {"power_pct": 40}})
 
 
@@ -157,14 +160,58 @@ def test_meerk40t_gives_each_class_of_the_dxf_its_own_engrave_operation(files, t
     assert job["ops"] == want
 
 
-def test_meerk40t_loads_every_shape_of_the_svg_into_a_raster(files, tmp_path):
+def svg_layers(path) -> dict:
+    """Group id -> the ids of its paths, in the file's order."""
+    root = ET.parse(path).getroot()
+    return {g.get("id"): [p.get("id") for p in g.iter(f"{SVG}path")] for g in root.iter(f"{SVG}g")}
+
+
+@pytest.mark.parametrize("mode", ["engrave", "pierced"])
+def test_meerk40t_loads_the_svg_with_an_engraving_per_class_at_its_power(files, tmp_path, mode):
+    _, paths, reports = files
+    job = meerk40t(paths[mode, "svg"], tmp_path, listing="operations")
+    layers = svg_layers(paths[mode, "svg"])
+    assert job["added"] == sum(len(v) for v in layers.values())
+    # MeerK40t makes the file's operations, in its order: each class's raster at its power (per mille)
+    # and speed, the cuts after; each operation holds its layer's shapes, every shape in one
+    listed = re.findall(r"\d+: (Raster|Cut)=?\w* ([0-9.]+)mm/s @([0-9.]+)", job["listing"])
+    shades = reports[mode, "svg"].stats["shades"]
+    want = [("Raster", s["speed_mm_s"], s["power_pct"] * 10) for s in shades.values()]
+    if mode == "engrave":
+        want = [("Raster", FILL.speed_mm_s, FILL.power_pct * 10), *want]
+    cuts = [PLY.layers.outer_cut] if mode == "engrave" else [PLY.layers.inner_cut, PLY.layers.outer_cut]
+    want += [("Cut", c.speed_mm_s, c.power_pct * 10) for c in cuts]
+    assert [(k, float(s), float(p)) for k, s, p in listed] == want
+    assert job["ops"] == [
+        ("cut" if k == "Cut" else "raster", len(v)) for (k, *_), v in zip(want, layers.values(), strict=True)
+    ]
+    assert re.findall(r"\s0\.\d+\s+: op \w+ - (\S+)", job["listing"]) == list(layers)  # named by their layers
+
+
+def test_meerk40t_runs_a_class_of_the_svg_as_many_passes_as_set(tmp_path):
+    path = tmp_path / "passes.svg"
+    colours = Colours(**{**COLOURS, "shaded": "B", "shades": {"B": {"power_pct": 40, "passes": 2}}})
+    tile().export(path, mode="engrave", colours=colours)
+    listing = meerk40t(path, tmp_path, listing="operations")["listing"]
+    assert re.findall(r"\d+: (\dX )?Raster", listing) == ["", "2X "]
+
+
+def test_inkscape_draws_the_svg_as_without_meerk40ts_operations(files, tmp_path):
+    # the operations are elements of MeerK40t's namespace: a plain SVG reader draws nothing of them
+    inkscape = program("inkscape", "apt-get install inkscape")
     _, paths, _ = files
     text = paths["engrave", "svg"].read_text()
-    job = meerk40t(paths["engrave", "svg"], tmp_path)
-    assert job["added"] == text.count("<path")
-    # MeerK40t rasters the filled shapes together (one raster of every fill): the per-class operations
-    # and powers reach it through the DXF's colours and the LightBurn project
-    assert ("raster", text.count("<path") - 1) in job["ops"]
+    assert text.count("<meerk40t:operation ") == len(svg_layers(paths["engrave", "svg"]))
+    bare = tmp_path / "bare.svg"
+    bare.write_text(re.sub(r'<meerk40t:operation [^>]*/>\n| xmlns:meerk40t="[^"]*"', "", text))
+    pixels = []
+    for svg in (paths["engrave", "svg"], bare):
+        png = tmp_path / f"{svg.stem}.png"
+        run([inkscape, svg, "--export-type=png", f"--export-filename={png}", "--export-dpi=150"])
+        pixels.append(np.asarray(Image.open(png).convert("RGBA")))
+    assert pixels[0].shape == pixels[1].shape and (pixels[0] == pixels[1]).all()
+    queried = {row.split(",")[0] for row in run([inkscape, "--query-all", paths["engrave", "svg"]]).stdout.splitlines()}
+    assert {k for k in svg_layers(paths["engrave", "svg"]) if k.startswith("SHADE_")} <= queried
 
 
 def test_lbrnts_reads_a_layer_per_class_with_its_settings(files):
