@@ -1,4 +1,4 @@
-"""Shaded engraving: each face class on a layer of its own power, read back by GEOS, MeerK40t and lbrnts."""
+"""Shaded engraving: each face class on a layer of its own power, read back by GEOS, MeerK40t, lbrnts and Inkscape."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from PIL import Image
 from real_programs import program, run
-from test_laser_programs import meerk40t
+from test_laser_programs import burns, meerk40t
 from test_lbrn2 import lbrnts
 
 from fabtiles import Colours, HexPacking, ParameterError, ProfileError, Star, Tile
@@ -186,6 +186,13 @@ def test_meerk40t_loads_the_svg_with_an_engraving_per_class_at_its_power(files, 
         ("cut" if k == "Cut" else "raster", len(v)) for (k, *_), v in zip(want, layers.values(), strict=True)
     ]
     assert re.findall(r"\s0\.\d+\s+: op \w+ - (\S+)", job["listing"]) == list(layers)  # named by their layers
+    # the G-code (headless MeerK40t has no renderer to raster with): every contour cut once at the cut
+    # layers' power, the outline last, after the holes (its own operation, after the inner cuts')
+    cut = burns(job["gcode"])
+    assert len(cut) == sum(len(layers[c.name]) for c in cuts)
+    assert set(re.findall(r"S([0-9.]+)", job["gcode"])) == {"0", f"{PLY.layers.outer_cut.power_pct * 10:g}"}
+    extents = [np.ptp(b, axis=0).prod() for b in cut]
+    assert extents[-1] == max(extents)
 
 
 def test_meerk40t_runs_a_class_of_the_svg_as_many_passes_as_set(tmp_path):
