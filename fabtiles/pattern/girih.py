@@ -1,4 +1,5 @@
-"""Girih tiles: the five Lu-Steinhardt tiles, their strapwork and periodic patterns of them (``docs/girih.md``).
+"""Girih tiles: the five Lu-Steinhardt tiles, their strapwork, periodic patterns of them and their subdivision
+(``docs/girih.md``).
 
 Pure numpy. The five tiles (P. J. Lu and P. J. Steinhardt, "Decagonal and quasi-crystalline
 tilings in medieval Islamic architecture", Science 315, 1106, 2007, Fig. 1A) have equal edges
@@ -17,6 +18,10 @@ of their own half first, so each half holds its own closed figure.
 
 A pattern is a lattice and the tiles of one cell (:data:`PATTERNS`), so a tile of it repeats
 seamlessly and the pipeline takes its strapwork like any packing's centre-lines.
+
+The subdivision (:func:`subdivide`) replaces each decagon, hexagon and bowtie by girih tiles ``TAU2`` times
+smaller: every large edge is the long diagonal of a small hexagon, half in each tile sharing it, and
+:func:`subdivision_rule` fills the rest. A pattern subdivided ``level`` times is again a lattice and one cell.
 
 >>> seg = strapwork(tile_corners("decagon"))
 >>> seg.shape, round(float(np.hypot(*(seg[0, 1] - seg[0, 0]))), 4)
@@ -370,7 +375,8 @@ def subdivide(tiles, *, lattice=None) -> list[tuple[str, np.ndarray]]:
     >>> sorted({k: sum(1 for n, _ in one if n == k) for k in SUBDIVIDED}.items())
     [('bowtie', 10), ('decagon', 1), ('hexagon', 20)]
     """
-    out, edges = [], {}
+    out: list[tuple[str, np.ndarray]] = []
+    edges: dict[tuple[float, ...], tuple[np.ndarray, np.ndarray]] = {}
     for kind, corners in tiles:
         corners = np.asarray(corners, dtype=float)
         origin, matrix = _frame(kind, corners)
