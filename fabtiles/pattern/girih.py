@@ -324,7 +324,9 @@ def subdivision_rule(kind: str) -> tuple[tuple[str, np.ndarray], ...]:
     ['bowtie', 'bowtie']
     """
     if check_tile(kind) not in SUBDIVIDED:
-        raise ParameterError(f"the subdivision rule replaces the {', '.join(SUBDIVIDED)}, not a {kind}", param="tile")
+        raise ParameterError(
+            f"tile = {kind!r} has no subdivision rule, must be one of: {', '.join(SUBDIVIDED)}", param="tile"
+        )
     if kind == "decagon":
         rule = _decagon_rule()
     else:
@@ -344,10 +346,7 @@ def _start(kind: str, corners: np.ndarray) -> int:
     turn = np.degrees(np.arctan2(nxt[:, 0] * prev[:, 1] - nxt[:, 1] * prev[:, 0], (nxt * prev).sum(axis=1)))
     angles = tuple(round(float(t)) % 360 for t in turn)
     seq = TILES[kind]
-    for k in range(len(seq)):
-        if angles[k:] + angles[:k] == seq:
-            return k
-    raise AssertionError(f"not a {kind}: angles {angles}")
+    return next(k for k in range(len(seq)) if angles[k:] + angles[:k] == seq)
 
 
 def _frame(kind: str, corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -304,7 +304,7 @@ def test_a_level_too_deep_is_refused():
         (lambda: GirihPacking("hexagons", edge=5, level=True), r"level must be an integer >= 0, got True"),
         (
             lambda: subdivision_rule("pentagon"),
-            r"the subdivision rule replaces the decagon, hexagon, bowtie, not a pentagon",
+            r"tile = 'pentagon' has no subdivision rule, must be one of: decagon, hexagon, bowtie",
         ),
     ],
 )
