@@ -58,6 +58,19 @@ def test_seamless_fits_the_edge_and_the_height():
     assert any(line.startswith("packing.seamless: edge 8 mm fitted to") for line in d.fitted)
 
 
+def test_seamless_fits_a_subdivided_pattern_by_its_larger_period():
+    d = design_from_text(
+        BASE.replace("edge = 8", "edge = 6\ngirih_level = 1\nseamless = true")
+        .replace('"square"', '"rectangle"')
+        .replace("size = 60", "size = [200, 150]")
+        .replace("stroke = 1", "stroke = 0.8")
+    )
+    pack = build_tile(d).pattern
+    px, py = pack.period
+    assert pack.level == 1 and px == pytest.approx(pack.replace(level=0).period[0] * 2.618034, rel=1e-6)
+    assert 200 / px == pytest.approx(3) and d.tile_spec.size[1] / py == pytest.approx(round(d.tile_spec.size[1] / py))
+
+
 @pytest.mark.parametrize(
     ("change", "match", "param"),
     [
