@@ -627,6 +627,25 @@ KEYS: tuple[Key, ...] = MOTIF + (
     ),
     Key(
         section="packing",
+        name="girih_level",
+        type="integer",
+        range=Range(0, None),
+        default=0,
+        requires=_GIRIH,
+        help="times the pattern is subdivided into girih tiles the golden ratio squared smaller, `edge` "
+        "being the smallest tiles' (0: the pattern's own tiles; decagon-bowtie and hexagons; girih.md)",
+        widget=Widget(
+            kind="number",
+            label="Subdivision level",
+            min=0,
+            max=5,
+            step=1,
+            placeholder="0",
+            when=(("packing", ("girih",)),),
+        ),
+    ),
+    Key(
+        section="packing",
         name="motifs",
         type="motifs",
         query=None,

@@ -71,7 +71,7 @@ else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 from ..core import schema as _schema
-from ..core.errors import DesignError, FabtilesError, did_you_mean
+from ..core.errors import DesignError, FabtilesError, LimitError, ParameterError, did_you_mean
 from ..export.formats import design_formats
 from ..pattern.packing import PACKINGS
 from ..pattern.star import Star
@@ -165,6 +165,7 @@ class PackingSpec:
     parquet_curve: str = _default("packing.parquet_curve")
     motifs: tuple[tuple[int, MotifSpec], ...] = ()
     girih_pattern: str | None = _default("packing.girih_pattern")
+    girih_level: int = _default("packing.girih_level")
 
 
 @dataclass(frozen=True)
@@ -697,7 +698,7 @@ def _build_packing(p: PackingSpec, star: Star | None):
         from ..pattern.girih import GirihPacking
 
         assert p.girih_pattern is not None  # the design's check: a girih packing names its pattern
-        return GirihPacking(p.girih_pattern, p.edge)
+        return GirihPacking(p.girih_pattern, p.edge, level=p.girih_level)
     if p.kind == "archimedean":
         from ..pattern.archimedean import ArchimedeanPacking
         from ..pattern.tilings import unit_cell
@@ -886,7 +887,7 @@ def _archimedean_spec(table: dict, source: str) -> dict:
 
 def _girih_spec(table: dict, source: str) -> dict:
     """``kind = "girih"``: its ``girih_pattern`` (required) and edge; no radius."""
-    from ..pattern.girih import PATTERNS
+    from ..pattern.girih import PATTERNS, check_level
 
     where = "[packing]"
     if "radius" in table:
@@ -908,7 +909,13 @@ def _girih_spec(table: dict, source: str) -> dict:
     except FabtilesError as exc:
         raise DesignError(f"{source}: {where} {exc}", param=_key(where, key="girih_pattern")) from None
     edge = _value(table, "packing", "edge", source, where, _schema.key("packing.edge").default)
-    return dict(girih_pattern=pattern, edge=edge)
+    level = _value(table, "packing", "girih_level", source, where, _schema.key("packing.girih_level").default)
+    try:
+        check_level(pattern, level)
+    except (ParameterError, LimitError) as exc:  # the library names its argument; the design, its key
+        cls = LimitError if isinstance(exc, LimitError) else DesignError  # a work limit stays one
+        raise cls(f"{source}: {where} girih_{exc}", param=_key(where, key="girih_level")) from None
+    return dict(girih_pattern=pattern, edge=edge, girih_level=level)
 
 
 def _method(table: dict, source: str, where: str) -> tuple[str, dict]:

@@ -1,4 +1,5 @@
-"""Girih tiles: the five Lu-Steinhardt tiles, their strapwork and periodic patterns of them (``docs/girih.md``).
+"""Girih tiles: the five Lu-Steinhardt tiles, their strapwork, periodic patterns of them and their subdivision
+(``docs/girih.md``).
 
 Pure numpy. The five tiles (P. J. Lu and P. J. Steinhardt, "Decagonal and quasi-crystalline
 tilings in medieval Islamic architecture", Science 315, 1106, 2007, Fig. 1A) have equal edges
@@ -17,6 +18,10 @@ of their own half first, so each half holds its own closed figure.
 
 A pattern is a lattice and the tiles of one cell (:data:`PATTERNS`), so a tile of it repeats
 seamlessly and the pipeline takes its strapwork like any packing's centre-lines.
+
+The subdivision (:func:`subdivide`) replaces each decagon, hexagon and bowtie by girih tiles ``TAU2`` times
+smaller: every large edge is the long diagonal of a small hexagon, half in each tile sharing it, and
+:func:`subdivision_rule` fills the rest. A pattern subdivided ``level`` times is again a lattice and one cell.
 
 >>> seg = strapwork(tile_corners("decagon"))
 >>> seg.shape, round(float(np.hypot(*(seg[0, 1] - seg[0, 0]))), 4)
@@ -232,21 +237,256 @@ def check_pattern(pattern) -> str:
     return pattern
 
 
-@functools.cache
-def girih_cell(pattern: str) -> GirihCell:
-    """The cell of a periodic pattern, edge 1 (made once)."""
-    return _CELLS[check_pattern(pattern)]()
+# -- subdivision -------------------------------------------------------------------------------------------------------
+TAU2 = (3 + math.sqrt(5)) / 2
+"""The subdivision's scale, the golden ratio squared: a large tile's edge over its small tiles' edge. It is
+also the elongated hexagon's length from tip to tip (``1 + 2 cos 36``), so a small hexagon spans a large edge."""
+
+SUBDIVIDED: tuple[str, ...] = ("decagon", "hexagon", "bowtie")
+"""The tiles the subdivision rule replaces (the tiles it makes are these three too)."""
+
+MAX_SUBDIVISION_SEGMENTS = 500_000
+"""The most strapwork segments one repeat of a subdivided pattern may hold (they are all made, once)."""
+
+_PLURAL = {
+    "decagon": "decagons",
+    "pentagon": "pentagons",
+    "hexagon": "hexagons",
+    "bowtie": "bowties",
+    "rhombus": "rhombi",
+}
+_SEGMENTS_PER_TILE = {"decagon": 20, "hexagon": 10, "bowtie": 8}
+
+# Each large tile's small tiles, not counting the hexagons on its edges: (kind, a corner of the large tile
+# tile_corners(kind, edge=TAU2), a walk of unit steps from it (degrees) to the small tile's corner 0, the heading of
+# the small tile's first edge). The decagon's are made in _decagon_rule.
+_WALKED_RULES: Mapping[str, tuple[tuple[str, int, tuple[int, ...], int], ...]] = MappingProxyType(
+    {
+        # a small bowtie in each half, its end edges on the half-hexagons of the large bowtie's ends
+        "bowtie": (("bowtie", 0, (36,), 0), ("bowtie", 0, (36, 72, 108), 0)),
+        # two hexagons and three bowties: the filling with a mirror line (none keeps both of the tile's)
+        "hexagon": (
+            ("hexagon", 4, (), 252),
+            ("bowtie", 1, (36, 72), 0),
+            ("bowtie", 4, (252,), 216),
+            ("bowtie", 1, (), 72),
+            ("hexagon", 1, (72,), 108),
+        ),
+    }
+)
+_COUNTS = np.array(
+    # small tiles (rows: decagon, hexagon, bowtie) a large tile (columns) becomes, each edge's hexagon counted
+    # half (it is shared with the neighbour)
+    [[1, 0, 0], [10 + 10 / 2, 2 + 6 / 2, 0 + 6 / 2], [10, 3, 2]]
+)
+
+
+def _unit(degrees: float) -> np.ndarray:
+    return np.array([math.cos(math.radians(degrees)), math.sin(math.radians(degrees))])
+
+
+def edge_hexagon(a, b) -> np.ndarray:
+    """The small hexagon ``(6, 2)`` whose tips are the ends of a large edge ``a -> b``: its edge is ``|ab| / TAU2``,
+    half of it lies on each side of the edge, so the two tiles sharing the edge make the same one.
+
+    >>> np.round(edge_hexagon((0, 0), (TAU2, 0)), 4).tolist()
+    [[0.0, 0.0], [0.809, -0.5878], [1.809, -0.5878], [2.618, 0.0], [1.809, 0.5878], [0.809, 0.5878]]
+    """
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    d = b - a
+    return tile_corners(
+        "hexagon", edge=float(np.hypot(*d)) / TAU2, start=a, heading=math.degrees(math.atan2(d[1], d[0])) - 36
+    )
+
+
+def _decagon_rule() -> list[tuple[str, np.ndarray]]:
+    """The large decagon's small tiles: a decagon at its centre turned as it is, a bowtie standing on each of that
+    decagon's edges and a hexagon on each of its corners, pointing out (the hexagon's far tip is a large corner)."""
+    big = tile_corners("decagon", edge=TAU2)
+    centre = big.mean(axis=0)
+    small = tile_corners("decagon")
+    small += centre - small.mean(axis=0)
+    out = [("decagon", small)]
+    for k in range(10):
+        # corner k points out at 36k - 108 degrees; the hexagon's axis is 36 degrees left of its first edge
+        out.append(("hexagon", tile_corners("hexagon", start=small[k], heading=36 * k - 144)))
+        # the bowtie's end edge (its first) runs back along the decagon's edge k, so the bowtie lies outside
+        out.append(("bowtie", tile_corners("bowtie", start=small[(k + 1) % 10], heading=36 * k + 180)))
+    return out
 
 
 @functools.cache
-def _cell_strapwork(pattern: str) -> tuple[np.ndarray, ...]:
-    """Each cell tile's strapwork, edge 1, read-only (made once)."""
-    out = []
-    for corners in girih_cell(pattern).corners:
-        seg = strapwork(corners)
-        seg.setflags(write=False)
-        out.append(seg)
-    return tuple(out)
+def subdivision_rule(kind: str) -> tuple[tuple[str, np.ndarray], ...]:
+    """The small tiles (edge 1) that replace the large tile ``tile_corners(kind, edge=TAU2)``, besides the hexagons on
+    its edges (:func:`edge_hexagon`), each counter-clockwise from the corner :data:`TILES` starts at.
+
+    >>> [k for k, _ in subdivision_rule("bowtie")]
+    ['bowtie', 'bowtie']
+    """
+    if check_tile(kind) not in SUBDIVIDED:
+        raise ParameterError(
+            f"tile = {kind!r} has no subdivision rule, must be one of: {', '.join(SUBDIVIDED)}", param="tile"
+        )
+    if kind == "decagon":
+        rule = _decagon_rule()
+    else:
+        big = tile_corners(kind, edge=TAU2)
+        rule = [
+            (k, tile_corners(k, start=big[corner] + sum((_unit(d) for d in walk), np.zeros(2)), heading=h))
+            for k, corner, walk, h in _WALKED_RULES[kind]
+        ]
+    for _, corners in rule:
+        corners.setflags(write=False)
+    return tuple(rule)
+
+
+def _start(kind: str, corners: np.ndarray) -> int:
+    """The first corner from which ``corners`` has the angles of :data:`TILES` (a tile's own frame)."""
+    prev, nxt = np.roll(corners, 1, axis=0) - corners, np.roll(corners, -1, axis=0) - corners
+    turn = np.degrees(np.arctan2(nxt[:, 0] * prev[:, 1] - nxt[:, 1] * prev[:, 0], (nxt * prev).sum(axis=1)))
+    angles = tuple(round(float(t)) % 360 for t in turn)
+    seq = TILES[kind]
+    return next(k for k in range(len(seq)) if angles[k:] + angles[:k] == seq)
+
+
+def _frame(kind: str, corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(origin, matrix)`` taking ``tile_corners(kind)`` (edge 1) onto ``corners``, corner 0 onto :func:`_start`."""
+    k = _start(kind, corners)
+    d = corners[(k + 1) % len(corners)] - corners[k]
+    return corners[k], np.array([[d[0], -d[1]], [d[1], d[0]]])
+
+
+def _edge_key(midpoint: np.ndarray, lattice: np.ndarray | None) -> tuple[float, ...]:
+    """An edge's midpoint as a key, taken modulo ``lattice`` when there is one (edges a lattice step apart are one)."""
+    if lattice is None:
+        return tuple(np.round(midpoint, 6).tolist())
+    f = np.linalg.solve(lattice.T, midpoint)
+    return tuple((np.round(f, 6) % 1.0).round(6).tolist())
+
+
+def subdivide(tiles, *, lattice=None) -> list[tuple[str, np.ndarray]]:
+    """One step of the subdivision: every tile ``(kind, corners)`` of an edge-to-edge tiling of decagons, hexagons
+    and bowties replaced by its :func:`subdivision_rule` tiles, ``TAU2`` times smaller, and every edge by the one
+    :func:`edge_hexagon` the two tiles sharing it make. ``lattice`` (rows): the tiles are one cell of a periodic
+    tiling, and edges a lattice step apart are one.
+
+    >>> one = subdivide([("decagon", tile_corners("decagon", edge=TAU2))])
+    >>> sorted({k: sum(1 for n, _ in one if n == k) for k in SUBDIVIDED}.items())
+    [('bowtie', 10), ('decagon', 1), ('hexagon', 20)]
+    """
+    out: list[tuple[str, np.ndarray]] = []
+    edges: dict[tuple[float, ...], tuple[np.ndarray, np.ndarray]] = {}
+    for kind, corners in tiles:
+        corners = np.asarray(corners, dtype=float)
+        origin, matrix = _frame(kind, corners)
+        for small, unit in subdivision_rule(kind):
+            out.append((small, unit @ matrix.T / TAU2 + origin))
+        for a, b in zip(corners, np.roll(corners, -1, axis=0), strict=True):
+            edges.setdefault(_edge_key((a + b) / 2, lattice), (a, b))
+    return out + [("hexagon", edge_hexagon(a, b)) for a, b in edges.values()]
+
+
+def check_level(pattern, level) -> int:
+    """``level`` checked for ``pattern``: a whole number from 0 (the pattern's own tiles), above 0 only for a pattern
+    of the tiles the rule replaces, and no deeper than :data:`MAX_SUBDIVISION_SEGMENTS` allows.
+
+    >>> check_level("decagon-bowtie", 2)
+    2
+    >>> check_level("decagon-bowtie", 5)
+    Traceback (most recent call last):
+    ...
+    fabtiles.core.errors.LimitError: level = 5 would make 692,918 strapwork segments in one repeat of the girih pattern decagon-bowtie, more than the limit of 500,000; the deepest level it takes is 4
+    """  # noqa: E501 - a doctest's lines are as Python prints them
+    pattern = check_pattern(pattern)
+    if isinstance(level, bool) or not isinstance(level, (int, np.integer)) or level < 0:
+        raise ParameterError(f"level must be an integer >= 0, got {level!r}", param="level")
+    level = int(level)
+    if level == 0:
+        return level
+    other = [k for k in TILES if k in _CELLS[pattern]().kinds and k not in SUBDIVIDED]
+    if other:
+        raise ParameterError(
+            f"level = {level} subdivides decagons, hexagons and bowties; the girih pattern {pattern} has "
+            f"{' and '.join(_PLURAL[k] for k in other)}, which the rule does not replace: use 0, or a pattern "
+            f"of those tiles ({', '.join(subdividable_patterns())})",
+            param="level",
+        )
+    count = subdivided_segments(pattern, level)
+    if count > MAX_SUBDIVISION_SEGMENTS:
+        deepest = max(n for n in range(level) if subdivided_segments(pattern, n) <= MAX_SUBDIVISION_SEGMENTS)
+        raise LimitError(
+            f"level = {level} would make {count:,} strapwork segments in one repeat of the girih pattern {pattern}, "
+            f"more than the limit of {MAX_SUBDIVISION_SEGMENTS:,}; the deepest level it takes is {deepest}",
+            param="level",
+        )
+    return level
+
+
+def subdividable_patterns() -> tuple[str, ...]:
+    """The patterns of :data:`PATTERNS` made of the tiles the subdivision rule replaces (``level`` above 0)."""
+    return tuple(p for p in PATTERNS if set(_CELLS[p]().kinds) <= set(SUBDIVIDED))
+
+
+def subdivided_segments(pattern: str, level: int) -> int:
+    """The strapwork segments of one cell of ``pattern`` subdivided ``level`` times, counted without making it: the
+    tiles of each kind grow by the rule's counts, each edge's hexagon counted half in each of its two tiles.
+
+    >>> [subdivided_segments("decagon-bowtie", n) for n in range(3)]
+    [28, 296, 2134]
+    """
+    kinds = girih_cell(pattern).kinds
+    counts = np.array([sum(k == kind for k in kinds) for kind in SUBDIVIDED], dtype=float)
+    for _ in range(level):
+        counts = _COUNTS @ counts
+    per = np.array([_SEGMENTS_PER_TILE[k] for k in SUBDIVIDED])
+    return round(float(per @ counts))
+
+
+@functools.cache
+def girih_cell(pattern: str, level: int = 0) -> GirihCell:
+    """The cell of a periodic pattern, edge 1 (made once): at ``level`` above 0 the pattern's cell ``TAU2 ** level``
+    times larger, subdivided ``level`` times, so its tiles have edge 1 again."""
+    seed = _CELLS[check_pattern(pattern)]()
+    level = check_level(pattern, level)
+    scale = TAU2**level
+    lattice = seed.lattice * scale
+    tiles = [(k, c * scale) for k, c in zip(seed.kinds, seed.corners, strict=True)]
+    for _ in range(level):
+        tiles = subdivide(tiles, lattice=lattice)
+    return GirihCell(lattice=lattice, kinds=tuple(k for k, _ in tiles), corners=tuple(c for _, c in tiles))
+
+
+@functools.cache
+def _unit_strapwork(kind: str) -> np.ndarray:
+    """The strapwork of ``tile_corners(kind)``, read-only (made once)."""
+    seg = strapwork(tile_corners(kind))
+    seg.setflags(write=False)
+    return seg
+
+
+def tile_strapwork(kind: str, corners) -> np.ndarray:
+    """The strapwork of a tile given by its name and corners: the unit tile's, moved onto it (the same lines as
+    :func:`strapwork` of the corners, made without pairing them again).
+
+    >>> c = tile_corners("bowtie", edge=3, start=(1, 2), heading=40)
+    >>> bool(np.allclose(tile_strapwork("bowtie", c), strapwork(c)))
+    True
+    """
+    origin, matrix = _frame(kind, np.asarray(corners, dtype=float))
+    return _unit_strapwork(kind) @ matrix.T + origin
+
+
+@functools.cache
+def _cell_strapwork(pattern: str, level: int = 0) -> tuple[np.ndarray, np.ndarray]:
+    """Every cell tile's strapwork, edge 1, as one read-only array ``(m, 2, 2)`` and where each tile's segments
+    start in it (``n + 1`` offsets), made once."""
+    cell = girih_cell(pattern, level)
+    parts = [tile_strapwork(k, c) for k, c in zip(cell.kinds, cell.corners, strict=True)]
+    seg = np.concatenate(parts)
+    starts = np.concatenate([[0], np.cumsum([len(p) for p in parts])])
+    seg.setflags(write=False)
+    starts.setflags(write=False)
+    return seg, starts
 
 
 @dataclass(frozen=True, slots=True, repr=False)
@@ -259,12 +499,17 @@ class GirihPacking:
         One of :data:`PATTERNS`.
     edge : float
         The tiles' edge length, mm (> 0).
+    level : int
+        How many times the pattern is subdivided (:func:`subdivide`; 0, the default: its own tiles). At level n the
+        pattern is laid ``TAU2 ** n`` times larger and subdivided n times, so its tiles have ``edge`` again.
 
     Examples
     --------
     >>> p = GirihPacking("decagon-bowtie", edge=10)
     >>> [round(v, 3) for v in p.period], len(p.polygons((-1, -1, 1, 1)))
     ([49.798, 36.18], 1)
+    >>> [round(v, 3) for v in GirihPacking("decagon-bowtie", edge=10, level=1).period]
+    [130.373, 94.721]
     >>> GirihPacking("rhombus", edge=10)
     Traceback (most recent call last):
     ...
@@ -276,10 +521,17 @@ class GirihPacking:
     edge: float = 20.0
     """The tiles' edge, mm."""
     _: KW_ONLY
+    level: int = 0
+    """Times the pattern is subdivided (0: its own tiles)."""
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "pattern", check_pattern(self.pattern))
         object.__setattr__(self, "edge", check_float("edge", self.edge, low=0, low_open=True))
+        object.__setattr__(self, "level", check_level(self.pattern, self.level))
+
+    @property
+    def _cell(self) -> GirihCell:
+        return girih_cell(self.pattern, self.level)
 
     @property
     def outline_circles(self) -> bool:
@@ -295,55 +547,56 @@ class GirihPacking:
     @property
     def lattice(self) -> np.ndarray:
         """The two lattice vectors (rows), mm."""
-        return girih_cell(self.pattern).lattice * self.edge
+        return self._cell.lattice * self.edge
 
     @property
     def period(self) -> tuple[float, float]:
         """The smallest rectangular period ``(px, py)``, mm."""
-        px, py = girih_cell(self.pattern).period
+        px, py = self._cell.period
         return (px * self.edge, py * self.edge)
 
     def params(self) -> dict:
         """The constructor arguments."""
-        return dict(pattern=self.pattern, edge=self.edge)
+        return dict(pattern=self.pattern, edge=self.edge, level=self.level)
 
     def replace(self, **changes) -> GirihPacking:
         """A copy with some parameters changed (validated again)."""
         return type(self)(**{**self.params(), **changes})
 
     def __repr__(self) -> str:
-        return f"GirihPacking({self.pattern!r}, edge={self.edge:g})"
+        level = f", level={self.level}" if self.level else ""
+        return f"GirihPacking({self.pattern!r}, edge={self.edge:g}{level})"
 
     # -- tiles ----------------------------------------------------------------------------------------------------
     def _placed(self, window) -> tuple[np.ndarray, np.ndarray]:
         """``(shifts, tile index)`` of every cell tile whose bounding box meets ``window``, mm."""
         x0, y0, x1, y1 = check_window(window)
-        cell, a = girih_cell(self.pattern), self.edge
+        cell, a = self._cell, self.edge
         basis = cell.lattice * a
         inv = np.linalg.inv(basis.T)
-        shifts, index = [], []
-        for e, corners in enumerate(cell.corners):
-            lo_c, hi_c = corners.min(axis=0) * a, corners.max(axis=0) * a
-            box = np.array([[x0 - hi_c[0], y0 - hi_c[1]], [x1 - lo_c[0], y1 - lo_c[1]]])
-            ij = np.array([[box[i, 0], box[j, 1]] for i in (0, 1) for j in (0, 1)]) @ inv.T
-            lo, hi = np.floor(ij.min(axis=0)), np.ceil(ij.max(axis=0))
-            if float(np.prod(hi - lo + 1)) * len(cell.corners) > MAX_CIRCLES_IN_WINDOW:
-                raise LimitError(
-                    f"the window holds about {float(np.prod(hi - lo + 1)):.3g} girih tiles, more than the limit of "
-                    f"{MAX_CIRCLES_IN_WINDOW}; use a larger edge (got {self.edge:g} mm) or a smaller tile",
-                    param="edge",
-                )
-            jj, ii = np.meshgrid(np.arange(lo[1], hi[1] + 1), np.arange(lo[0], hi[0] + 1), indexing="ij")
-            s = ii.reshape(-1, 1) * basis[0] + jj.reshape(-1, 1) * basis[1]
-            keep = (
-                (s[:, 0] + hi_c[0] >= x0)
-                & (s[:, 0] + lo_c[0] <= x1)
-                & (s[:, 1] + hi_c[1] >= y0)
-                & (s[:, 1] + lo_c[1] <= y1)
+        lo_c = np.array([c.min(axis=0) for c in cell.corners]) * a
+        hi_c = np.array([c.max(axis=0) for c in cell.corners]) * a
+        # the lattice steps that can bring any cell tile's box into the window
+        box = np.array([[x0 - hi_c[:, 0].max(), y0 - hi_c[:, 1].max()], [x1 - lo_c[:, 0].min(), y1 - lo_c[:, 1].min()]])
+        ij = np.array([[box[i, 0], box[j, 1]] for i in (0, 1) for j in (0, 1)]) @ inv.T
+        lo, hi = np.floor(ij.min(axis=0)), np.ceil(ij.max(axis=0))
+        steps = float(np.prod(hi - lo + 1))
+        if steps * len(cell.corners) > MAX_CIRCLES_IN_WINDOW:
+            raise LimitError(
+                f"the window holds about {steps * len(cell.corners):.3g} girih tiles, more than the limit of "
+                f"{MAX_CIRCLES_IN_WINDOW}; use a larger edge (got {self.edge:g} mm) or a smaller tile",
+                param="edge",
             )
-            shifts.append(s[keep])
-            index.append(np.full(int(keep.sum()), e))
-        return np.concatenate(shifts), np.concatenate(index)
+        jj, ii = np.meshgrid(np.arange(lo[1], hi[1] + 1), np.arange(lo[0], hi[0] + 1), indexing="ij")
+        s = ii.reshape(-1, 1) * basis[0] + jj.reshape(-1, 1) * basis[1]
+        keep = (
+            (s[None, :, 0] + hi_c[:, None, 0] >= x0)
+            & (s[None, :, 0] + lo_c[:, None, 0] <= x1)
+            & (s[None, :, 1] + hi_c[:, None, 1] >= y0)
+            & (s[None, :, 1] + lo_c[:, None, 1] <= y1)
+        )
+        tile, shift = np.nonzero(keep)  # tile by tile, as the cell lists them
+        return s[shift], tile
 
     def tiles(self, window) -> list[tuple[str, np.ndarray]]:
         """Every tile whose bounding box meets ``window``: its name and corners ``(k, 2)``, mm,
@@ -352,7 +605,7 @@ class GirihPacking:
         >>> [name for name, _ in GirihPacking("hexagons", edge=10).tiles((-1, -1, 1, 1))]
         ['hexagon']
         """
-        cell, a = girih_cell(self.pattern), self.edge
+        cell, a = self._cell, self.edge
         shifts, index = self._placed(window)
         return [(cell.kinds[e], cell.corners[e] * a + s) for s, e in zip(shifts, index.tolist(), strict=True)]
 
@@ -371,13 +624,12 @@ class GirihPacking:
         >>> GirihPacking("decagon-bowtie", edge=10).segments((-1, -1, 1, 1)).shape
         (20, 2, 2)
         """
-        units = _cell_strapwork(self.pattern)
+        units, starts = _cell_strapwork(self.pattern, self.level)
         shifts, index = self._placed(window)
-        parts = [np.empty((0, 2, 2))]
-        for e in np.unique(index):
-            placed = units[e][None] * self.edge + shifts[index == e][:, None, None, :]
-            parts.append(placed.reshape(-1, 2, 2))
-        return np.concatenate(parts)
+        count = (starts[1:] - starts[:-1])[index]
+        first = np.repeat(starts[index] - (np.cumsum(count) - count), count)
+        rows = first + np.arange(int(count.sum()))
+        return units[rows] * self.edge + np.repeat(shifts, count, axis=0)[:, None, :]
 
     def circles(self, window) -> tuple[np.ndarray, np.ndarray]:
         """No circles: centres ``(0, 2)`` and radii ``(0,)`` (a girih pattern is drawn from its tiles)."""
@@ -390,8 +642,8 @@ class GirihPacking:
 
     def segment_count(self, window) -> int:
         """Centre-line segments :meth:`segments` returns for ``window``, counted without placing them."""
-        per = np.array([len(u) for u in _cell_strapwork(self.pattern)])
-        return int(per[self._placed(window)[1]].sum())
+        _, starts = _cell_strapwork(self.pattern, self.level)
+        return int((starts[1:] - starts[:-1])[self._placed(window)[1]].sum())
 
 
 # The schema names no module above it: the values and checks of its keys are registered from here.

@@ -3,7 +3,7 @@
 import pytest
 from click.testing import CliRunner
 
-from fabtiles import DesignError, GirihPacking
+from fabtiles import DesignError, GirihPacking, LimitError
 from fabtiles.cli.main import cli
 from fabtiles.designs.design_file import build_tile, design_from_text
 
@@ -25,6 +25,13 @@ def test_girih_design_builds_the_packing():
     tile = build_tile(d)
     assert tile.pattern == GirihPacking("decagon-bowtie", edge=8)
     assert tile.region().is_valid and tile.region().area > 0.2 * 60 * 60
+
+
+def test_girih_level_subdivides_the_pattern():
+    d = design_from_text(BASE.replace("edge = 8", "edge = 6\ngirih_level = 2"))
+    assert d.packing.girih_level == 2
+    assert build_tile(d).pattern == GirihPacking("decagon-bowtie", edge=6, level=2)
+    assert design_from_text(BASE).packing.girih_level == 0
 
 
 def test_a_motif_is_noted_as_not_drawn():
@@ -49,6 +56,19 @@ def test_seamless_fits_the_edge_and_the_height():
     w, h = d.tile_spec.size
     assert w == 60 and w / px == pytest.approx(round(w / px)) and h / py == pytest.approx(round(h / py))
     assert any(line.startswith("packing.seamless: edge 8 mm fitted to") for line in d.fitted)
+
+
+def test_seamless_fits_a_subdivided_pattern_by_its_larger_period():
+    d = design_from_text(
+        BASE.replace("edge = 8", "edge = 6\ngirih_level = 1\nseamless = true")
+        .replace('"square"', '"rectangle"')
+        .replace("size = 60", "size = [200, 150]")
+        .replace("stroke = 1", "stroke = 0.8")
+    )
+    pack = build_tile(d).pattern
+    px, py = pack.period
+    assert pack.level == 1 and px == pytest.approx(pack.replace(level=0).period[0] * 2.618034, rel=1e-6)
+    assert 200 / px == pytest.approx(3) and d.tile_spec.size[1] / py == pytest.approx(round(d.tile_spec.size[1] / py))
 
 
 @pytest.mark.parametrize(
@@ -79,6 +99,26 @@ def test_seamless_fits_the_edge_and_the_height():
             r"a square tile cannot be seamless with the girih pattern decagon-bowtie",
             "tile.outline",
         ),
+        (
+            ("edge = 8", "edge = 8\ngirih_level = -1"),
+            r"\[packing\] girih_level must be an integer >= 0, got -1",
+            "packing.girih_level",
+        ),
+        (
+            ("edge = 8", "edge = 8\ngirih_level = 1.5"),
+            r"girih_level must be an integer >= 0, got 1.5",
+            "packing.girih_level",
+        ),
+        (
+            ('"decagon-bowtie"', '"rhombi"\ngirih_level = 1'),
+            r"\[packing\] girih_level = 1 subdivides decagons, hexagons and bowties; the girih pattern rhombi has",
+            "packing.girih_level",
+        ),
+        (
+            ('kind = "girih"\ngirih_pattern = "decagon-bowtie"\nedge = 8', 'kind = "hex"\ngirih_level = 1'),
+            r'girih_level is a key of kind = "girih", not of kind = \'hex\'',
+            "packing.girih_level",
+        ),
     ],
 )
 def test_bad_input_names_the_key_and_value(change, match, param):
@@ -94,6 +134,22 @@ def test_cli_exits_2_and_writes_nothing(tmp_path):
     result = CliRunner().invoke(cli, ["build", str(path), "-o", str(out)], catch_exceptions=False)
     assert result.exit_code == 2 and result.output.startswith("fabtiles: error: ")
     assert "did you mean 'decagon-bowtie'?" in result.output and result.output.count("\n") == 1
+    assert not out.exists()
+
+
+def test_a_level_too_deep_is_refused_exit_2_and_no_file(tmp_path):
+    text = BASE.replace("edge = 8", "edge = 8\ngirih_level = 6")
+    with pytest.raises(
+        LimitError, match=r"girih_level = 6 would make 4,749,436 strapwork segments .* limit of 500,000"
+    ) as info:
+        design_from_text(text)
+    assert info.value.param == "packing.girih_level"
+    path = tmp_path / "deep.toml"
+    path.write_text(text, encoding="utf-8")
+    out = tmp_path / "out"
+    result = CliRunner().invoke(cli, ["build", str(path), "-o", str(out)], catch_exceptions=False)
+    assert result.exit_code == 2 and result.output.count("\n") == 1
+    assert "girih_level = 6 would make 4,749,436 strapwork segments" in result.output
     assert not out.exists()
 
 

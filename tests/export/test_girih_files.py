@@ -18,7 +18,8 @@ DESIGN = """
 [packing]
 kind = "girih"
 girih_pattern = "{pattern}"
-edge = 9
+girih_level = {level}
+edge = {edge}
 [tile]
 outline = "square"
 size = 50
@@ -27,21 +28,23 @@ stroke = 1.2
 """
 
 
-def _tile(pattern="decagon-bowtie"):
-    return design_from_text(DESIGN.format(pattern=pattern)).build_tile(tile_cls=fabtiles.Tile)
+def _tile(pattern="decagon-bowtie", level=0):
+    edge = 9 if level == 0 else 7.5  # stroke 1.2 takes an edge of 7.2 mm at least
+    return design_from_text(DESIGN.format(pattern=pattern, level=level, edge=edge)).build_tile(tile_cls=fabtiles.Tile)
 
 
-@pytest.mark.parametrize("pattern", PATTERNS)
-def test_girih_dxf_audits_clean(pattern, tmp_path):
-    tile = _tile(pattern)
+@pytest.mark.parametrize(("pattern", "level"), [(p, 0) for p in PATTERNS] + [("decagon-bowtie", 2)])
+def test_girih_dxf_audits_clean(pattern, level, tmp_path):
+    tile = _tile(pattern, level)
     report = tile.export(tmp_path / "t.dxf", profile="laser-3mm-plywood", fill_small_holes=True)
     assert report.ok, report.summary()
     doc = ezdxf.readfile(tmp_path / "t.dxf")
     assert not doc.audit().has_errors and len(doc.modelspace()) > 10
 
 
-def test_girih_stl_is_watertight(tmp_path):
-    tile = _tile()
+@pytest.mark.parametrize("level", [0, 2])
+def test_girih_stl_is_watertight(level, tmp_path):
+    tile = _tile(level=level)
     tile.export(tmp_path / "t.stl", profile="fdm-0.4mm", style="relief", fill_small_holes=False)
     mesh = load_stl(tmp_path / "t.stl")
     volume = expected_volume("relief", tile.region(), tile.outline_shape())

@@ -9,7 +9,7 @@ const state = {
   packing: "hex", radius: 15, gap_n: 6, gap_inner: 0.5, outline_circles: false,
   gap_rotation: 0, gap_rosette: false, gap_alpha: 20, gap_spr: 0.2,  // the gap motif (radii inner, 1): a rosette
   // when gap_rosette (special circle 2), sent only then; its rotation only when not 0
-  girih_pattern: "decagon-bowtie",  // packing=girih: the pattern of girih tiles (and the edge)
+  girih_pattern: "decagon-bowtie", girih_level: "",  // packing=girih: the pattern of girih tiles, its subdivision ("": 0)
   tiling: "4.8.8", edge: 20, motifs: {},  // packing=archimedean: motifs[sides] = preset ("" = the motif above)
   method: "motifs", contact_angle: 60, contact_gap: 0,  // method=hankin: Hankin's rays ("" motif: the rays)
   outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
@@ -189,8 +189,10 @@ function query() {
   if (state.laser_mode === "inlay" && state.inlay_base !== "pierced") q.set("inlay_base", state.inlay_base);
   if (state.laser_mode === "inlay" && state.inlay_pieces !== "registration") q.set("inlay_pieces", state.inlay_pieces);
   q.set("fill_small_holes", state.fill_small_holes ? "true" : "false");
-  for (const k of TEXT_KEYS)
-    if (String(state[k]).trim() !== "" && (!SURFACE_KEYS.includes(k) || applies(k))) q.set(k, String(state[k]).trim());
+  for (const k of TEXT_KEYS) {  // a surface's or a packing's own box only where its condition holds
+    const own = SURFACE_KEYS.includes(k) || (WHEN[k] || []).some(([param]) => param === "packing");
+    if (String(state[k]).trim() !== "" && (!own || applies(k))) q.set(k, String(state[k]).trim());
+  }
   return q;
 }
 
