@@ -163,6 +163,15 @@ def test_hankin_design_toml_download_builds_the_same_packing(client):
     assert pack == load_design_pattern("hankin/6.6.6.toml")
 
 
+def test_parquet_design_toml_download_builds_the_same_packing(client):
+    from fabtiles.designs.design_file import design_from_text
+    from fabtiles.web.gallery import entry
+
+    text = client.get("/api/design.toml", params=entry("parquet-4.8.8").query).text
+    assert "contact_angle_to = 75" in text and 'parquet_direction = "x"' in text and 'parquet_curve = "linear"' in text
+    assert design_from_text(text).build_tile().pattern == load_design_pattern("classical/parquet-4.8.8.toml")
+
+
 def load_design_pattern(name):
     from pathlib import Path
 
@@ -220,6 +229,16 @@ def test_hankin_query_to_design_and_preview(client):
             "contact_angle 85 has no pattern on the tiling 4.8.8",
         ),
         ({"contact_angle": "50"}, "contact_angle", 'contact_angle is a key of method = "hankin"'),
+        (
+            {"method": "hankin", "contact_angle_to": "85", "contact_gap": "3"},
+            "contact_angle_to",
+            "contact_angle_to 85 has no pattern on the tiling 4.8.8 with contact_gap 3 mm",
+        ),
+        (
+            {"method": "hankin", "contact_angle_to": "75", "parquet_curve": "cubic"},
+            "parquet_curve",
+            "parquet_curve = 'cubic' is not valid, must be one of: linear, smooth",
+        ),
         (
             {"packing": "hex", "radius": "10", "tiling": None, "edge": None, "method": "hankin"},
             "method",
