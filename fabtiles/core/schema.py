@@ -496,6 +496,9 @@ _CYLINDER_WHEN = (("shape", ("cylinder",)),)
 _STAMP_WHEN = (("shape", ("stamp",)),)
 _ROLLER_WHEN = (*_CYLINDER_WHEN, ("print_style", ("relief", "deboss")))
 _SHADE_WHEN = (*_CYLINDER_WHEN, ("print_style", ("pierced",)))
+_PARQUET_WHEN = (*_HANKIN_WHEN, FLAT_WHEN, ("seamless", ("false",)), ("parquet", ("true",)))
+"""The web form's condition of a parquet deformation's controls: Hankin's rays on a tile that need not repeat
+(a seamless tile and a cylinder's strip refuse one), with the page's own box "vary across the tile" ticked."""
 
 
 def _height(name: str, label: str, what: str, styles: tuple[str, ...]) -> Key:
@@ -717,6 +720,15 @@ KEYS: tuple[Key, ...] = MOTIF + (
         checked_by="pattern",
         help="a parquet deformation: the contact angle at the far side of the tile, `contact_angle` "
         "being the near side's; each polygon takes the angle at its centre (hankin.md)",
+        widget=Widget(
+            kind="slider",
+            label="contact angle to (deg)",
+            min=1,
+            max=89,
+            step=0.5,
+            group="parquet-sliders",
+            when=_PARQUET_WHEN,
+        ),
     ),
     Key(
         section="packing",
@@ -727,6 +739,12 @@ KEYS: tuple[Key, ...] = MOTIF + (
         choices="pattern",
         help='across which the angle changes: `"x"` left to right, `"y"` bottom to top, `"radial"` from '
         "the centre out to the inscribed circle",
+        widget=Widget(
+            kind="select",
+            label="Direction",
+            labels=(("x", "left to right"), ("y", "bottom to top"), ("radial", "centre out")),
+            when=_PARQUET_WHEN,
+        ),
     ),
     Key(
         section="packing",
@@ -737,6 +755,12 @@ KEYS: tuple[Key, ...] = MOTIF + (
         choices="pattern",
         help='`"linear"`: the angle in proportion to the distance across; `"smooth"`: smoothstep, '
         "settling into each side's angle",
+        widget=Widget(
+            kind="select",
+            label="Curve",
+            labels=(("linear", "linear"), ("smooth", "smooth (settles at each side)")),
+            when=_PARQUET_WHEN,
+        ),
     ),
     # [tile]
     Key(

@@ -10,7 +10,9 @@ samples have no colours, so neither have these entries), then four tilings by
 Hankin's polygons in contact as ``samples/hankin/`` has them (compared likewise), and two
 cylinders, a texture roller and a lampshade, as ``samples/roller-60x80.toml`` and
 ``samples/lampshade-120x150.toml`` have them (compared likewise), then the girih pattern of
-``samples/girih-decagon-bowtie.toml`` (compared likewise). The thumbnails are
+``samples/girih-decagon-bowtie.toml`` (compared likewise), then two classical devices on Hankin's
+rays, a border of stars and a parquet deformation, as ``samples/classical/`` has them (compared
+likewise). The thumbnails are
 drawn by the preview code (:func:`~fabtiles.making.views.tile_picture`, the
 coloured faces too; a cylinder's unrolled strip as it prints) and kept for the life of the process.
 
@@ -24,6 +26,8 @@ coloured faces too; a cylinder's unrolled strip as it prints) and kept for the l
 '67.5'
 >>> entry("roller").query["shape"], entry("lampshade").query["lamp_fitting_mm"]
 ('cylinder', '40')
+>>> entry("parquet-4.8.8").query["contact_angle_to"], entry("border-4.8.8").query["border_mm"]
+('75', '15')
 """
 
 from __future__ import annotations
@@ -142,6 +146,33 @@ _GIRIH = {
 }
 
 
+_HANKIN_488 = {"preset": "table3-3", "packing": "archimedean", "tiling": "4.8.8", "method": "hankin"}
+
+# key -> title, note and query: the classical devices of samples/classical/<key>.toml, on Hankin's rays (the
+# parquet's direction and curve sent as the page sends them, with its far-side angle)
+_CLASSICAL = {
+    "border-4.8.8": (
+        "Border of stars",
+        "Hankin's polygons in contact on the 4.8.8 tiling, rays at 67.5 degrees, framed by a 15 mm border of "
+        "eight-point stars, a whole number on each side",
+        {**_HANKIN_488, "edge": "14", "contact_angle": "67.5", "border_mm": "15"},
+    ),
+    "parquet-4.8.8": (
+        "Parquet deformation",
+        "Hankin's polygons in contact on the 4.8.8 tiling, the contact angle going from 30 degrees at the left "
+        "to 75 at the right, the strands unbroken",
+        {
+            **_HANKIN_488,
+            "edge": "10",
+            "contact_angle": "30",
+            "contact_angle_to": "75",
+            "parquet_direction": "x",
+            "parquet_curve": "linear",
+        },
+    ),
+}
+
+
 @dataclass(frozen=True)
 class Entry:
     """One place to start: ``query`` opens it in the editor (``/?`` + the query)."""
@@ -151,8 +182,8 @@ class Entry:
     note: str
     query: dict
     group: str = "preset"
-    """``"preset"``, ``"tiling"``, ``"hankin"``, ``"two-uniform"``, ``"cylinder"`` or ``"girih"``: the gallery's
-    header counts each."""
+    """``"preset"``, ``"tiling"``, ``"hankin"``, ``"two-uniform"``, ``"cylinder"``, ``"girih"`` or
+    ``"classical"``: the gallery's header counts each."""
 
 
 def _tile_query(stroke=1) -> dict:
@@ -182,7 +213,8 @@ def _tiling_query(tiling: str, edge: float, motifs: dict, main, gap_n) -> dict:
 @functools.cache
 def entries() -> tuple[Entry, ...]:
     """The gallery's entries: the presets, then the tilings, then the tilings by Hankin's method (a two-uniform
-    one last), then the cylinders, then the girih patterns."""
+    one last), then the cylinders, then the girih patterns, then the classical devices (a border, a parquet
+    deformation)."""
     out = []
     for name in PRESETS:
         radius, stroke = _PRESET_TILES.get(name, ("15", 1))
@@ -239,6 +271,8 @@ def entries() -> tuple[Entry, ...]:
         out.append(Entry(key, title, note, query, "cylinder"))
     for key, (title, note, values) in _GIRIH.items():
         out.append(Entry(key, title, note, {**values, **_tile_query(1.2)}, "girih"))
+    for key, (title, note, values) in _CLASSICAL.items():
+        out.append(Entry(key, title, note, {**values, **_tile_query(1)}, "classical"))
     assert set(_TILINGS) == set(TILINGS), "a tiling is missing from the gallery"
     assert set(_PRESET_PALETTES) == set(PRESETS), "a preset has no palette in the gallery"
     return tuple(out)

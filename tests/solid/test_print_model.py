@@ -21,7 +21,7 @@ from fabtiles.designs.design_file import design_from_dict
 from fabtiles.export.stl import read_stl_triangles, stl_bytes
 from fabtiles.machines.profiles import PRINT_STYLES
 from fabtiles.making.models import BuildOptions, Models
-from fabtiles.pattern.tilings import TILINGS
+from fabtiles.pattern.tilings import ALL_TILINGS, unit_cell
 from fabtiles.solid.mesh_check import check_triangles
 
 PRESETS = ("table1-part1", "table1-part2", "table2-left", "table2-right", "table3-1", "table3-2", "table3-3")
@@ -50,7 +50,7 @@ def designs(draw, styles=PRINT_STYLES):
             "outline_circles": draw(st.booleans()),
         }
     else:
-        tiling = draw(st.sampled_from(TILINGS))
+        tiling = draw(st.sampled_from(ALL_TILINGS))  # the 11 Archimedean and the 20 two-uniform
         packing = {
             "kind": "archimedean",
             "tiling": tiling,
@@ -58,7 +58,7 @@ def designs(draw, styles=PRINT_STYLES):
             "outline_circles": draw(st.booleans()),
         }
         if draw(st.booleans()):  # one kind of polygon with a motif of its own
-            sides = draw(st.sampled_from(sorted({int(s) for s in tiling.split(".")})))
+            sides = draw(st.sampled_from(sorted(set(unit_cell(tiling).sides.tolist()))))
             packing["motifs"] = {str(sides): draw(st.sampled_from(PRESETS))}
         data["packing"] = packing
     outline = draw(st.sampled_from(["square", "rectangle", "hexagon", "circle"]))

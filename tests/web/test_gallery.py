@@ -24,10 +24,10 @@ def client():
 def test_presets_then_tilings_then_hankin_then_cylinders():
     keys = [e.key for e in gallery.entries()]
     hankin = [f"hankin-{t}" for t in gallery._HANKIN]
-    last = ["two-uniform-hankin", "roller", "lampshade", "girih-decagon-bowtie"]
+    last = ["two-uniform-hankin", "roller", "lampshade", "girih-decagon-bowtie", "border-4.8.8", "parquet-4.8.8"]
     assert keys == [*PRESETS, *gallery._TILINGS, *hankin, *last]
     assert set(keys[len(PRESETS) : len(PRESETS) + len(TILINGS)]) == set(TILINGS)
-    assert len(keys) == 26
+    assert len(keys) == 28
 
 
 @pytest.mark.parametrize("key, sample", [("roller", "roller-60x80"), ("lampshade", "lampshade-120x150")])
@@ -69,6 +69,21 @@ def test_girih_entry_is_its_sample(key):
     assert ours.packing == theirs.packing and ours.tile_spec == theirs.tile_spec and ours.colour == theirs.colour
     a, b = ours.build_tile().region(), theirs.build_tile().region()
     assert a.symmetric_difference(b).area <= 1e-6 * b.area
+
+
+@pytest.mark.parametrize("key", sorted(gallery._CLASSICAL))
+def test_classical_entry_is_its_sample(key):
+    """A border's or a parquet deformation's entry is its sample in samples/classical/, key for key, and so is
+    its tile."""
+    from fabtiles.designs.design_file import design_from_dict
+
+    ours = design_from_dict(design_from_query(gallery.entry(key).query))
+    theirs = load_design(SAMPLES / "classical" / f"{key}.toml")
+    assert ours.packing == theirs.packing and ours.tile_spec == theirs.tile_spec and ours.packing.method == "hankin"
+    assert ours.tile_spec.border_mm > 0 or ours.packing.contact_angle_to is not None
+    a, b = ours.build_tile(), theirs.build_tile()
+    assert a.region().symmetric_difference(b.region()).area <= 1e-6 * b.region().area
+    assert a.stroke == b.stroke and a.width_mm == b.width_mm
 
 
 def test_two_uniform_entry_is_its_sample():

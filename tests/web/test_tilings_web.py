@@ -163,6 +163,15 @@ def test_hankin_design_toml_download_builds_the_same_packing(client):
     assert pack == load_design_pattern("hankin/6.6.6.toml")
 
 
+def test_parquet_design_toml_download_builds_the_same_packing(client):
+    from fabtiles.designs.design_file import design_from_text
+    from fabtiles.web.gallery import entry
+
+    text = client.get("/api/design.toml", params=entry("parquet-4.8.8").query).text
+    assert "contact_angle_to = 75" in text and 'parquet_direction = "x"' in text and 'parquet_curve = "linear"' in text
+    assert design_from_text(text).build_tile().pattern == load_design_pattern("classical/parquet-4.8.8.toml")
+
+
 def load_design_pattern(name):
     from pathlib import Path
 
@@ -221,6 +230,16 @@ def test_hankin_query_to_design_and_preview(client):
         ),
         ({"contact_angle": "50"}, "contact_angle", 'contact_angle is a key of method = "hankin"'),
         (
+            {"method": "hankin", "contact_angle_to": "85", "contact_gap": "3"},
+            "contact_angle_to",
+            "contact_angle_to 85 has no pattern on the tiling 4.8.8 with contact_gap 3 mm",
+        ),
+        (
+            {"method": "hankin", "contact_angle_to": "75", "parquet_curve": "cubic"},
+            "parquet_curve",
+            "parquet_curve = 'cubic' is not valid, must be one of: linear, smooth",
+        ),
+        (
             {"packing": "hex", "radius": "10", "tiling": None, "edge": None, "method": "hankin"},
             "method",
             'is a key of kind = "archimedean"',
@@ -272,3 +291,47 @@ def test_page_hankin_method_and_its_sliders(page, server):
     assert page.input_value("#contact_gap") == "1"
     page.select_option("#method", "motifs")  # back to the paper's: the motif and the gap circles again
     assert page.is_visible("#motif-box") and page.is_visible("#gap_n")
+
+
+def test_the_schema_offers_the_parquet_controls_where_hankins_rays_need_not_repeat(client):
+    fields = client.get("/api/schema").json()["fields"]
+    to, direction, curve = (fields[k]["widget"] for k in ("contact_angle_to", "parquet_direction", "parquet_curve"))
+    assert (
+        to["kind"] == "slider" and (to["min"], to["max"]) == (1, 89) and direction["kind"] == curve["kind"] == "select"
+    )
+    assert to["when"] == direction["when"] == curve["when"]
+    assert ["seamless", ["false"]] in to["when"] and ["method", ["hankin"]] in to["when"]
+    assert ["shape", ["flat", "stamp"]] in to["when"] and ["parquet", ["true"]] in to["when"]
+    assert [c[0] for c in fields["parquet_direction"]["choices"]] == ["x", "y", "radial"]
+
+
+def test_page_parquet_deformation_controls(page, server):
+    page.goto(f"{server}/?preset=table3-3&width=60&frame=3&packing=archimedean&tiling=4.8.8&edge=10&method=hankin")
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    assert page.is_visible("#parquet") and not page.is_checked("#parquet") and "contact_angle_to" not in page.url
+    assert page.is_hidden("#contact_angle_to-row") and page.is_hidden("#parquet_direction")
+    old = _preview_version(page)
+    page.check("#parquet")
+    _wait_new_preview(page, old)
+    assert page.is_visible("#contact_angle_to-row") and page.is_visible("#parquet_curve")
+    assert "contact_angle_to=75&parquet_direction=x&parquet_curve=linear" in page.url
+    old = _preview_version(page)
+    page.fill("#contact_angle_to", "40")
+    page.dispatch_event("#contact_angle_to", "change")
+    page.select_option("#parquet_direction", "radial")
+    page.select_option("#parquet_curve", "smooth")
+    _wait_new_preview(page, old)
+    page.wait_for_function("() => location.search.includes('parquet_curve=smooth')")
+    assert "contact_angle_to=40&parquet_direction=radial" in page.url
+    assert "contact_angle_to=40" in page.get_attribute("#download-design", "href")
+    assert page.locator(".err:visible").count() == 0
+    # the link opens the same state; a seamless tile cannot vary: the controls go, and the query's keys
+    page.goto(page.url)
+    page.wait_for_function("() => document.querySelector('#preview').dataset.version")
+    assert page.is_checked("#parquet") and page.input_value("#contact_angle_to") == "40"
+    assert page.input_value("#parquet_direction") == "radial" and page.input_value("#parquet_curve") == "smooth"
+    old = _preview_version(page)
+    page.check("#seamless")
+    _wait_new_preview(page, old)
+    assert page.is_hidden("#parquet") and page.is_hidden("#contact_angle_to-row") and page.is_hidden("#parquet_curve")
+    assert "seamless=true" in page.url and "contact_angle_to" not in page.url

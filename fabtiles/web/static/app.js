@@ -12,6 +12,8 @@ const state = {
   girih_pattern: "decagon-bowtie", girih_level: "",  // packing=girih: the pattern of girih tiles, its subdivision ("": 0)
   tiling: "4.8.8", edge: 20, motifs: {},  // packing=archimedean: motifs[sides] = preset ("" = the motif above)
   method: "motifs", contact_angle: 60, contact_gap: 0,  // method=hankin: Hankin's rays ("" motif: the rays)
+  // a parquet deformation (the page's box "vary across the tile"): the angle at the far side, across which, how
+  parquet: false, contact_angle_to: 75, parquet_direction: "x", parquet_curve: "linear",
   outline: "square", width: 150, height: 150, frame: 5, stroke: 1, corner_radius: 0, join: "miter",
   laser_profile: "laser-3mm-plywood", laser_mode: "pierced", printer_profile: "fdm-0.4mm", print_style: "relief",
   threemf_layout: "volumes",  // 3MF parts for PrusaSlicer, Bambu Studio, OrcaSlicer; "components" for Cura
@@ -33,10 +35,10 @@ const state = {
   pointed_tops: false,  // a cylinder's openings pointed at the printer's overhang limit
   block_mm: "", grip_mm: "", groove_mm: "",  // a stamp's block and finger groove ("": the defaults)
 };
-// Options sent only when set: the schema's text and number boxes, and its check boxes (gap_rosette is the
-// page's own: the gap motif as a rosette).
+// Options sent only when set: the schema's text and number boxes, and its check boxes (gap_rosette and
+// parquet are the page's own: the gap motif as a rosette; the contact angle varying across the tile).
 // MENUS: the schema's menus but the motif's (preset, special circle) and the tiling's, which have their own code.
-let TEXT_KEYS = [], FLAG_KEYS = ["gap_rosette"], MENUS = [];
+let TEXT_KEYS = [], FLAG_KEYS = ["gap_rosette", "parquet"], MENUS = [];
 // COLOUR_KEYS: the schema's colour pickers (the band's and the base's); sent only when chosen.
 let COLOUR_KEYS = [];
 // SURFACE_KEYS: the [surface] keys but the shape, each sent only where its condition holds (a cylinder's, a
@@ -139,6 +141,11 @@ function query() {
         q.set("method", state.method);
         q.set("contact_angle", state.contact_angle);
         if (Number(state.contact_gap)) q.set("contact_gap", state.contact_gap);
+        if (state.parquet && applies("parquet")) {  // a parquet deformation, where the tile need not repeat
+          q.set("contact_angle_to", state.contact_angle_to);
+          q.set("parquet_direction", state.parquet_direction);
+          q.set("parquet_curve", state.parquet_curve);
+        }
       }
       for (const p of (tilings[state.tiling] || { kinds: [] }).kinds)
         if (state.motifs[p]) q.set(`motif_${p}`, state.motifs[p]);
@@ -213,6 +220,7 @@ function fromUrl() {
   }
   if (!q.has("preset")) state.preset = "";
   if (q.has("preset")) applyPreset(state.preset, false);
+  state.parquet = q.has("contact_angle_to");  // the page's box: ticked by a link with a far-side angle
   if (!origin.gallery) origin.label = state.preset && !q.has("n") && !q.has("radii") ? state.preset : EDITED;
 }
 
@@ -591,6 +599,8 @@ function applySchema(schema) {
     if (!w) continue;
     if (f.key.startsWith("surface.") && q !== "shape") SURFACE_KEYS.push(q);
     if (w.when && w.when.length) WHEN[q] = w.when;
+    // the page's box "vary across the tile" applies where its controls would but for itself
+    if ((w.when || []).some(([param]) => param === "parquet")) WHEN.parquet = w.when.filter(([param]) => param !== "parquet");
     if (w.kind === "slider" && f.type === "numbers") RADII = w;  // a slider per radius (radiiSliders)
     else if (w.kind === "slider") {
       (SLIDERS[w.group] = SLIDERS[w.group] || []).push([q, w.label, w.min, w.max, w.step]);

@@ -10,8 +10,9 @@ async function gallery() {
     `The paper's ${count("preset")} presets, the ${count("tiling")} Archimedean tilings, ` +
     `${count("hankin")} of them by Hankin's method, ${count("two-uniform")} two-uniform tiling, ` +
     `${count("cylinder")} cylinders (` +
-    `${items.filter((e) => e.group === "cylinder").map((e) => e.title.toLowerCase()).join(", ")}) and ` +
-    `${count("girih")} of girih tiles: ` +
+    `${items.filter((e) => e.group === "cylinder").map((e) => e.title.toLowerCase()).join(", ")}), ` +
+    `${count("girih")} of girih tiles and ${count("classical")} classical devices (` +
+    `${items.filter((e) => e.group === "classical").map((e) => e.title.toLowerCase()).join(", ")}): ` +
     "choose one to open it in the editor.";
   for (const e of items) {
     const a = document.createElement("a");
