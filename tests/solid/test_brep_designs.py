@@ -30,8 +30,11 @@ from fabtiles.solid.brep import check_brep, planar_brep
 PRESETS = ("table1-part1", "table1-part2", "table2-left", "table2-right", "table3-1", "table3-2", "table3-3")
 TILINGS = ("6.6.6", "4.4.4.4", "4.8.8", "3.6.3.6", "3.12.12")
 
-# The relief of the issue that wrote nothing: its STEP had a pinched face where an interlace dip's
-# corner rests on a cell line of its top (the top has more holes than one face holds).
+# The relief of the issue that wrote nothing (its STEP had a pinched face where an interlace dip's
+# corner rests on a cell line of its top), at about half its 156.5 x 129.8 mm: with the fixes undone
+# the full size builds today as well (the cell lines have moved since), and the fixes have tests of
+# their own (test_a_face_pinched_at_a_cell_line_is_split_there, tests/solid/test_levels.py); this one
+# keeps a whole interlaced relief, its top cut by cell lines, through every format and OCCT.
 DESIGN_1 = """
 [motif]
 preset = "table2-right"
@@ -41,7 +44,7 @@ radius = 12.27
 outline_circles = true
 [tile]
 outline = "rectangle"
-size = [156.5, 129.8]
+size = [80, 70]
 frame = 5.0
 stroke = 1.2
 join = "bevel"
