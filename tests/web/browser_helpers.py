@@ -29,28 +29,42 @@ def need(ok, why):
 
 
 @contextlib.contextmanager
-def chromium_page(extra_args):
-    """A Playwright page in headless Chromium (1280 x 900, downloads accepted)."""
+def playwright():
+    """Playwright's driver (one a process: its sync API runs one at a time)."""
     try:
         from playwright.sync_api import sync_playwright
     except ImportError:
         need(False, "playwright is not installed")
     need(os.path.exists(CHROMIUM), f"{CHROMIUM} is not installed")
     with sync_playwright() as pw:
-        browser = pw.chromium.launch(
-            executable_path=CHROMIUM,
-            args=[
-                "--no-sandbox",
-                *extra_args,
-                "--disable-quic",
-                "--no-first-run",
-                "--disable-background-networking",
-                "--disable-component-update",
-                "--disable-sync",
-            ],
-        )
-        context = browser.new_context(accept_downloads=True, viewport={"width": 1280, "height": 900})
-        pg = context.new_page()
-        pg.set_default_timeout(30_000)
-        yield pg
-        browser.close()
+        yield pw
+
+
+@contextlib.contextmanager
+def chromium(pw, extra_args):
+    """Headless Chromium, launched by Playwright ``pw`` with ``extra_args`` (pages: :func:`new_page`)."""
+    browser = pw.chromium.launch(
+        executable_path=CHROMIUM,
+        args=[
+            "--no-sandbox",
+            *extra_args,
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+        ],
+    )
+    yield browser
+    browser.close()
+
+
+@contextlib.contextmanager
+def new_page(browser):
+    """A page of its own (1280 x 900, downloads accepted) in a fresh context of ``browser``: no
+    cookies, storage or downloads shared with another test module's page."""
+    context = browser.new_context(accept_downloads=True, viewport={"width": 1280, "height": 900})
+    pg = context.new_page()
+    pg.set_default_timeout(30_000)
+    yield pg
+    context.close()

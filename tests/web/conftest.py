@@ -15,7 +15,7 @@ import time
 import urllib.request
 
 import pytest
-from browser_helpers import NO_GPU_ARGS, chromium_page
+from browser_helpers import NO_GPU_ARGS, chromium, new_page, playwright
 
 START_TIMEOUT_S = 60.0
 
@@ -74,8 +74,22 @@ def server(_served):
         pytest.fail(f"fabtiles serve died during this test ({proc.returncode}):\n{_tail(log)}")
 
 
+@pytest.fixture(scope="session")
+def _playwright():
+    """Playwright's driver, one a worker (its sync API allows one at a time)."""
+    with playwright() as pw:
+        yield pw
+
+
+@pytest.fixture(scope="session")
+def _chromium(_playwright):
+    """Headless Chromium without a GPU, launched once a worker (a launch takes about a second)."""
+    with chromium(_playwright, NO_GPU_ARGS) as browser:
+        yield browser
+
+
 @pytest.fixture(scope="module")
-def page(_served):
-    """A page in headless Chromium without a GPU, one per test module."""
-    with chromium_page(NO_GPU_ARGS) as pg:
+def page(_served, _chromium):
+    """A page in a fresh context of the worker's Chromium, one per test module."""
+    with new_page(_chromium) as pg:
         yield pg

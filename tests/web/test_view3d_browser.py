@@ -4,7 +4,7 @@ import io
 
 import numpy as np
 import pytest
-from browser_helpers import WEBGL_ARGS, chromium_page, need
+from browser_helpers import WEBGL_ARGS, chromium, need, new_page
 
 pytestmark = pytest.mark.browser
 
@@ -12,11 +12,11 @@ SMALL = "preset=table3-3&width=60&radius=10&frame=3&stroke=1.5"
 
 
 @pytest.fixture(scope="module")
-def page(_served):
+def page(_served, _playwright):
     from fabtiles.web.viewer_files import installed
 
     need(installed(), "three.js is not installed in the package: run `fabtiles install-viewer`")
-    with chromium_page(WEBGL_ARGS) as pg:
+    with chromium(_playwright, WEBGL_ARGS) as browser, new_page(browser) as pg:
         yield pg
 
 
