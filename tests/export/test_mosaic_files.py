@@ -178,6 +178,9 @@ def test_the_hexagon_mosaic_writes_every_part_watertight(hexagon):
     assert volumes["white (bands)"] + volumes["cobalt (A)"] == pytest.approx(area * relief, rel=1e-3)
 
 
+# sliced as filled, the default: the kept file has the same three parts on the same extruders, and its parts'
+# soundness (what broke) is test_the_hexagon_mosaic_writes_every_part_watertight's
+@pytest.mark.parametrize("hexagon", [True], ids=["filled"], indirect=True)
 def test_prusaslicer_prints_each_hexagon_part_with_its_own_tool(hexagon, tmp_path):
     out, _ = hexagon
     gcode = slice_gcode(tmp_path, out / "hexagon.3mf", len(HEXAGON_PARTS))

@@ -136,7 +136,7 @@ def test_a_band_the_seam_cuts_is_no_thin_wall_of_the_cylinder():
     band, so the cylinder's report leaves them out (and the strip's size against the bed)."""
     from fabtiles.solid.print_model import print_model
 
-    m = models_of(ROLLER, "packing.radius=10", "tile.stroke=1", "surface.diameter=60", "surface.length=80")
+    m = models_of(ROLLER, "packing.radius=10", "tile.stroke=1", "surface.diameter=60", "surface.length=30")
     c = m.cylinder
     region, _, _ = strip_region(*m.print_region, m.tile.outline_shape(), c)
     flat = print_model(
@@ -295,7 +295,16 @@ def test_the_3mf_reads_back_and_the_reports_say_the_cylinder(built):
         assert f"cylinder ({'roller' if name == 'roller' else 'shade'}): outer diameter " in output
 
 
-PRUSA_CONFIG = "layer_height = 0.2\nfirst_layer_height = 0.2\nsupport_material = 0\n"
+PRUSA_CONFIG = (
+    "layer_height = 0.2\nfirst_layer_height = 0.2\nsupport_material = 0\n"
+    "perimeter_generator = classic\ngap_fill_enabled = 0\nperimeters = 1\nextra_perimeters = 0\nthin_walls = 0\n"
+    "fill_density = 0%\ntop_solid_layers = 0\nbottom_solid_layers = 0\n"
+)
+"""Supports off, one classic perimeter and no infill, gap fill or solid layers: the layers' heights and the
+absence of support are what is asserted, and they are the same without the slowest passes."""
+
+CURA_LEAN = ["infill_sparse_density=0", "wall_line_count=1", "top_layers=0", "bottom_layers=0"]
+"""CuraEngine's counterpart of :data:`PRUSA_CONFIG`'s lean walls: its layer count is the same."""
 
 
 @pytest.mark.parametrize(("name", "length"), [("roller", 20), ("shade", 30)])
@@ -316,6 +325,7 @@ def test_prusaslicer_and_curaengine_slice_it_standing_without_supports(built, tm
     assert zs[-1] == pytest.approx(length) and ";TYPE:Support material" not in text
     settings = ["-s", "layer_height=0.2", "-s", "layer_height_0=0.2", "-s", "adhesion_type=none"]
     settings += ["-s", "support_enable=false", "-s", "machine_height=300"]
+    settings += [arg for setting in CURA_LEAN for arg in ("-s", setting)]
     definitions = cura_definitions() / "fdmprinter.def.json"
     cura = [engine, "slice", "-v", "-j", definitions, *settings, "-l", stl, "-o", tmp_path / "cura.gcode"]
     err = run(cura, timeout=300).stderr

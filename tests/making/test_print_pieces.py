@@ -193,7 +193,16 @@ def test_stl_3mf_and_step_writers_take_each_piece(pieces, tmp_path):
     )
 
 
-PRUSA_CONFIG = "layer_height = 0.2\nfirst_layer_height = 0.2\nbed_shape = 0x0,120x0,120x120,0x120\n"
+PRUSA_CONFIG = (
+    "layer_height = 0.2\nfirst_layer_height = 0.2\nbed_shape = 0x0,120x0,120x120,0x120\n"
+    "perimeter_generator = classic\ngap_fill_enabled = 0\nperimeters = 1\nextra_perimeters = 0\nthin_walls = 0\n"
+    "fill_density = 0%\ntop_solid_layers = 0\nbottom_solid_layers = 0\n"
+)
+"""One classic perimeter and no infill, gap fill or solid layers: the layers are what is asserted, and they are
+the same without the slowest passes."""
+
+CURA_LEAN = ["infill_sparse_density=0", "wall_line_count=1", "top_layers=0", "bottom_layers=0"]
+"""CuraEngine's counterpart of :data:`PRUSA_CONFIG`'s lean walls: its layer count is the same."""
 
 
 def test_prusaslicer_and_curaengine_slice_every_piece(pieces, tmp_path):
@@ -212,6 +221,7 @@ def test_prusaslicer_and_curaengine_slice_every_piece(pieces, tmp_path):
         zs = [float(z) for z in re.findall(r"^;Z:([0-9.]+)$", gcode.read_text(), flags=re.M)]
         assert len(zs) == round((B + H) / 0.2) and zs[-1] == pytest.approx(B + H)
         settings = ["-s", "layer_height=0.2", "-s", "layer_height_0=0.2", "-s", "adhesion_type=none"]
+        settings += [arg for setting in CURA_LEAN for arg in ("-s", setting)]
         definitions = cura_definitions() / "fdmprinter.def.json"
         cura = [engine, "slice", "-v", "-j", definitions, *settings, "-l", stl, "-o", tmp_path / "cura.gcode"]
         err = run(cura, timeout=300).stderr
