@@ -643,7 +643,8 @@ def _fit_seamless(design: Design) -> Design:
         where = "a cylinder's strip" if design.surface.cylinder else "seamless = true"
         raise DesignError(
             f"packing.contact_angle_to = {p.contact_angle_to:g} changes the pattern across the tile, so it cannot "
-            f"repeat without a seam ({where}): give contact_angle_to = contact_angle, or no seamless fit"
+            f"repeat without a seam ({where}): give contact_angle_to = contact_angle, or no seamless fit",
+            param="packing.contact_angle_to",
         )
     if not p.seamless or design.surface.cylinder:  # a cylinder's fit is the surface's
         return design

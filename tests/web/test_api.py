@@ -179,6 +179,11 @@ BAD = [
     ("laser_mode=etch", "laser_mode", "etch"),
     ("print_style=emboss", "print_style", "emboss"),
     ("bogus=1", "bogus", "'bogus' is not a valid parameter"),
+    (
+        "packing=archimedean&tiling=4.8.8&method=hankin&contact_angle_to=75&seamless=true",
+        "contact_angle_to",
+        "contact_angle_to = 75 changes the pattern across the tile, so it cannot repeat without a seam",
+    ),
 ]
 
 
