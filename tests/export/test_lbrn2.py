@@ -156,7 +156,7 @@ def test_meerk40t_loads_the_project_with_its_speeds_and_powers(files, tmp_path, 
     assert extent(project["gcode"]) == pytest.approx(extent(dxf_job["gcode"]), abs=0.03)
 
 
-def test_the_time_estimate_against_a_simulation_of_the_same_job(files, tmp_path):
+def test_the_time_estimate_against_a_simulation_of_the_same_job(tmp_path):
     """Our estimate against gcode-simulator (GRBL's planner, acceleration included) on MeerK40t's G-code.
 
     MeerK40t's G-code has no pierce dwell and moves between paths at its own rate, so
