@@ -285,13 +285,12 @@ def test_the_screen_sample_is_eight_pieces(tmp_path):
 
 
 def test_meerk40t_loads_each_piece_within_the_bed(built, tmp_path):
-    from test_laser_programs import burns, meerk40t
+    from test_laser_programs import burns, meerk40t_jobs
 
     _, out, _ = built
-    for n in (1, 4):  # a piece laid as it is and one of the other row
-        dxf = out / f"panel-piece-0{n}.dxf"
+    dxfs = [out / f"panel-piece-0{n}.dxf" for n in (1, 4)]  # a piece laid as it is and one of the other row
+    for dxf, job in zip(dxfs, meerk40t_jobs(dxfs, tmp_path), strict=True):  # one MeerK40t run loads both
         doc = read_checked(dxf)
-        job = meerk40t(dxf, tmp_path / str(n))
         assert job["added"] == len(list(doc.modelspace()))
         paths = np.concatenate(burns(job["gcode"]))
         assert paths.min() >= -0.01 and (paths.max(axis=0) <= [200 - 2 * 5 + 0.2, 150 - 2 * 5 + 0.2]).all()
