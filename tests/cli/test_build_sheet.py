@@ -223,7 +223,11 @@ def test_interlace_cut_sheet_cuts_every_copy(tmp_path):
     from fabtiles.geometry.machine_geometry import cut_geometry as laser_geometry
 
     path = tmp_path / "cut.toml"
-    path.write_text(WOVEN.replace("interlace = true", "interlace = true\ninterlace_cut = true"), encoding="utf-8")
+    # a 30 mm tile: its crossings' cut still takes tens of mm^2 off the region (asserted below), so a sheet
+    # of the uncut region would not be three times the cut's area
+    text = WOVEN.replace("interlace = true", "interlace = true\ninterlace_cut = true").replace("size = 60", "size = 30")
+    assert "size = 30" in text
+    path.write_text(text, encoding="utf-8")
     design = load_design(path)
     tile = design.build_tile(tile_cls=fabtiles.Tile)
     cut, _ = laser_geometry(tile, profile=PLY, mode="pierced")

@@ -56,8 +56,16 @@ def stat_layers(text: str) -> dict:
     return out
 
 
-def test_stat_reports_the_layers_and_the_centrelines_length(vpype):
-    code, out, err = vpype("fabtiles", SAMPLE, "stat")
+@pytest.fixture(scope="module")
+def sample_run(vpype, tmp_path_factory):
+    """One vpype run of the sample for the stat and the pipeline tests: stat, then sort and write:
+    (exit code, stdout, stderr, the SVG written)."""
+    svg = tmp_path_factory.mktemp("pipeline") / "out.svg"
+    return (*vpype("fabtiles", SAMPLE, "stat", "linesort", "write", svg), svg)
+
+
+def test_stat_reports_the_layers_and_the_centrelines_length(sample_run):
+    code, out, err, _ = sample_run
     assert code == 0, err
     layers = stat_layers(out)
     drawing = plot_drawing(load_design(SAMPLE))
@@ -69,9 +77,10 @@ def test_stat_reports_the_layers_and_the_centrelines_length(vpype):
     assert layers[1][0] / PX_PER_MM == pytest.approx(drawing.layers[0].length_mm, rel=1e-3)
 
 
-def test_pipeline_writes_true_size(vpype, tmp_path):
-    out = tmp_path / "out.svg"
-    code, _, err = vpype("fabtiles", "--pen", "0.5", SAMPLE, "linesort", "write", out)
+def test_pipeline_writes_true_size(sample_run):
+    # (the --pen option is read in test_fill_gives_the_layers_of_fabtiles_plot_fill and refused in
+    # test_errors_are_one_line)
+    code, _, err, out = sample_run
     assert code == 0, err
     root = etree.parse(str(out)).getroot()
     assert root.get("width") == "15.0cm" and root.get("height") == "15.0cm"  # the 150 mm tile

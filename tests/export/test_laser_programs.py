@@ -69,21 +69,28 @@ def meerk40t(path, tmp_path, listing: str = "tree list") -> dict:
     Returns the elements added, the operations of ``tree list`` with their references,
     what the ``listing`` command printed, and the G-code.
     """
+    return meerk40t_jobs([path], tmp_path, listing)[0]
+
+
+def meerk40t_jobs(paths, tmp_path, listing: str = "tree list") -> list[dict]:
+    """:func:`meerk40t` of each of ``paths``, in one run of MeerK40t (its start is most of a run's time).
+
+    Between two files the elements and the operations are deleted and the plan cleared, so each file
+    is loaded, classified and planned as in a run of its own: its operations and G-code are those of
+    a fresh start (a DXF's burns in another order at times, as from one fresh run to the next).
+    """
     exe = shutil.which("meerk40t") or str(Path(sys.executable).with_name("meerk40t"))
     require(os.path.exists(exe) and exe, "meerk40t", 'pip install "meerk40t[dxf]" (in the "test" extra)')
     home = tmp_path / "meerk40t-home"
     home.mkdir(parents=True, exist_ok=True)
-    gcode = tmp_path / f"{Path(path).stem}.gcode"
+    gcodes = [tmp_path / f"{k}-{Path(path).stem}.gcode" for k, path in enumerate(paths)]
     env = {**os.environ, "HOME": str(home), "XDG_CONFIG_HOME": str(home / ".config")}
     extra = ["-e", listing] if listing != "tree list" else []
-    done = run(
-        [
-            exe,
-            "-Z",
-            "-X",
-            "-A",
-            "-e",
-            "device add grbl-diode",
+    commands = []
+    for k, (path, gcode) in enumerate(zip(paths, gcodes, strict=True)):
+        if k:
+            commands += ["-e", "element* delete", "-e", "operation* delete", "-e", "plan clear"]
+        commands += [
             "-e",
             f"load {path}",
             "-e",
@@ -93,24 +100,29 @@ def meerk40t(path, tmp_path, listing: str = "tree list") -> dict:
             "plan copy preprocess validate blob preopt optimize",
             "-e",
             f"plan save_job {gcode}",
-            "-e",
-            "quit",
-        ],
-        env=env,
-        timeout=180,
-    )
+        ]
+    done = run([exe, "-Z", "-X", "-A", "-e", "device add grbl-diode", *commands, "-e", "quit"], env=env, timeout=180)
     out = re.sub(r"\x1b\[[0-9;]*m", "", done.stdout + done.stderr)
-    added = int(re.search(r"Elements before: 0, after: \d+, added: (\d+)", out).group(1))
-    tree = out[out.index("Tree:") :]
-    ops = []  # (kind, references) of each operation, in the tree's order
-    for line in tree.splitlines():
-        m = re.search(r"\s(\d+)\.(\d+)(\.\d+)?\s+: (op (\w+)|reference)", line)
-        if m and m.group(1) == "0":
-            if m.group(5):
-                ops.append([m.group(5), 0])
-            elif m.group(3):
-                ops[-1][1] += 1
-    return dict(added=added, ops=[tuple(op) for op in ops], listing=out, gcode=gcode.read_text())
+    # each file's part of the console: from the echo of its load command to the next file's
+    starts, at = [], 0
+    for path in paths:
+        at = out.index(f"load {path}", at)
+        starts.append(at)
+        at += 1
+    jobs = []
+    for start, stop, gcode in zip(starts, [*starts[1:], len(out)], gcodes, strict=True):
+        part = out[start:stop]
+        added = int(re.search(r"Elements before: 0, after: \d+, added: (\d+)", part).group(1))
+        ops = []  # (kind, references) of each operation, in the tree's order
+        for line in part[part.index("Tree:") :].splitlines():
+            m = re.search(r"\s(\d+)\.(\d+)(\.\d+)?\s+: (op (\w+)|reference)", line)
+            if m and m.group(1) == "0":
+                if m.group(5):
+                    ops.append([m.group(5), 0])
+                elif m.group(3):
+                    ops[-1][1] += 1
+        jobs.append(dict(added=added, ops=[tuple(op) for op in ops], listing=part, gcode=gcode.read_text()))
+    return jobs
 
 
 def burns(gcode: str) -> list[np.ndarray]:
@@ -132,9 +144,17 @@ def burns(gcode: str) -> list[np.ndarray]:
     return [np.array(p) for p in paths]
 
 
+@pytest.fixture(scope="module")
+def jobs(files, tmp_path_factory):
+    """MeerK40t's jobs of the pattern's pierced DXF and SVG and its score DXF, in one run: (mode, format) -> job."""
+    keys = [("pierced", "dxf"), ("pierced", "svg"), ("score", "dxf")]
+    done = meerk40t_jobs([files[k] for k in keys], tmp_path_factory.mktemp("meerk40t"))
+    return dict(zip(keys, done, strict=True))
+
+
 @pytest.mark.parametrize("fmt", ["dxf", "svg"])
-def test_meerk40t_cuts_every_contour_once_at_the_tile_size(files, tmp_path, fmt):
-    job = meerk40t(files["pierced", fmt], tmp_path)
+def test_meerk40t_cuts_every_contour_once_at_the_tile_size(files, jobs, fmt):
+    job = jobs["pierced", fmt]
     layers = dxf_layers(files["pierced", "dxf"])
     contours = sum(len(v) for v in layers.values())
     assert all(all(closed) for closed in layers.values())
@@ -159,8 +179,8 @@ def test_meerk40t_cuts_every_contour_once_at_the_tile_size(files, tmp_path, fmt)
         assert allp.min(axis=0)[0] == pytest.approx(0, abs=GRBL_STEP)
 
 
-def test_meerk40t_engraves_the_score_lines_and_cuts_the_outline(files, tmp_path):
-    job = meerk40t(files["score", "dxf"], tmp_path)
+def test_meerk40t_engraves_the_score_lines_and_cuts_the_outline(files, jobs):
+    job = jobs["score", "dxf"]
     layers = dxf_layers(files["score", "dxf"])
     assert layers.keys() == {PLY.layers.score.name, PLY.layers.outer_cut.name}
     assert job["added"] == len(layers[PLY.layers.score.name]) + 1
@@ -248,13 +268,20 @@ def _curve_points(dxf) -> np.ndarray:
     return np.vstack([vertices(e) for e in ezdxf.readfile(dxf).modelspace()])
 
 
+@pytest.fixture(scope="module")
+def arc_jobs(arc_files, tmp_path_factory):
+    """MeerK40t's jobs of the circle tile's DXF and SVG, in one run: format -> job."""
+    done = meerk40t_jobs([arc_files["dxf"], arc_files["svg"]], tmp_path_factory.mktemp("meerk40t-arcs"))
+    return dict(zip(("dxf", "svg"), done, strict=True))
+
+
 @pytest.mark.parametrize("fmt", ["dxf", "svg"])
-def test_meerk40t_cuts_the_arcs_as_arcs(arc_files, tmp_path, fmt):
+def test_meerk40t_cuts_the_arcs_as_arcs(arc_files, arc_jobs, fmt):
     from scipy.spatial import cKDTree
     from test_dxf_librecad import _arc_middles, _densify
 
     dxf = arc_files["dxf"]
-    job = meerk40t(arc_files[fmt], tmp_path)
+    job = arc_jobs[fmt]
     paths = burns(job["gcode"])
     layers = dxf_layers(dxf)
     assert len(paths) == sum(len(v) for v in layers.values())

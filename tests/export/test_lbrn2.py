@@ -21,7 +21,7 @@ import pytest
 from model_files import write_cut
 from real_programs import program, require, run
 from shapely.geometry import box
-from test_laser_programs import burns, meerk40t
+from test_laser_programs import burns, meerk40t, meerk40t_jobs
 
 from fabtiles import ArchimedeanPacking, HexPacking, ProfileError, Star, Tile
 from fabtiles.export import lbrn2
@@ -135,10 +135,19 @@ def test_cut_length_is_the_dxf_paths_read_back(files):
 # --------------------------------------------------------------------------- MeerK40t
 
 
-@pytest.mark.parametrize("mode", ["pierced", "score"])
-def test_meerk40t_loads_the_project_with_its_speeds_and_powers(files, tmp_path, mode):
+@pytest.fixture(scope="module")
+def jobs(files, tmp_path_factory):
+    """MeerK40t's jobs of the pattern's projects and DXFs, in one run, its operations listed: (mode, format) -> job."""
     paths, _ = files
-    project = meerk40t(paths[mode, "lbrn2"], tmp_path, listing="operations")
+    keys = [(mode, fmt) for mode in ("pierced", "score") for fmt in ("lbrn2", "dxf")]
+    done = meerk40t_jobs([paths[k] for k in keys], tmp_path_factory.mktemp("meerk40t"), listing="operations")
+    return dict(zip(keys, done, strict=True))
+
+
+@pytest.mark.parametrize("mode", ["pierced", "score"])
+def test_meerk40t_loads_the_project_with_its_speeds_and_powers(files, jobs, mode):
+    paths, _ = files
+    project = jobs[mode, "lbrn2"]
     want = dxf_paths(paths[mode, "dxf"])
     assert project["added"] == len(want)  # one element per contour and score path
     keys = ["inner_cut", "outer_cut"] if mode == "pierced" else ["score", "outer_cut"]
@@ -147,7 +156,7 @@ def test_meerk40t_loads_the_project_with_its_speeds_and_powers(files, tmp_path, 
         (getattr(PLY.layers, k).speed_mm_s, getattr(PLY.layers, k).power_pct * 10) for k in keys
     ]
     # the G-code burns what the DXF's G-code burns, to the same extent
-    dxf_job = meerk40t(paths[mode, "dxf"], tmp_path / "dxf")
+    dxf_job = jobs[mode, "dxf"]
 
     def extent(gcode):
         pts = np.concatenate(burns(gcode))
@@ -156,7 +165,7 @@ def test_meerk40t_loads_the_project_with_its_speeds_and_powers(files, tmp_path, 
     assert extent(project["gcode"]) == pytest.approx(extent(dxf_job["gcode"]), abs=0.03)
 
 
-def test_the_time_estimate_against_a_simulation_of_the_same_job(files, tmp_path):
+def test_the_time_estimate_against_a_simulation_of_the_same_job(tmp_path):
     """Our estimate against gcode-simulator (GRBL's planner, acceleration included) on MeerK40t's G-code.
 
     MeerK40t's G-code has no pierce dwell and moves between paths at its own rate, so
@@ -315,8 +324,7 @@ def test_lbrnts_reads_the_arcs_as_beziers_on_the_dxfs_curves(arc_files):
 
 
 def test_meerk40t_burns_the_projects_beziers_as_the_dxfs_arcs(arc_files, tmp_path):
-    lb = burns(meerk40t(arc_files["lbrn2"], tmp_path)["gcode"])
-    dx = burns(meerk40t(arc_files["dxf"], tmp_path / "dxf")["gcode"])
+    lb, dx = (burns(job["gcode"]) for job in meerk40t_jobs([arc_files["lbrn2"], arc_files["dxf"]], tmp_path))
     a, b = np.concatenate(lb), np.concatenate(dx)
     assert len(lb) == len(dx)
     assert a.max(axis=0) - a.min(axis=0) == pytest.approx(b.max(axis=0) - b.min(axis=0), abs=0.05)

@@ -100,15 +100,27 @@ def lbrn2_shapes(path) -> list:
     ]
 
 
+@pytest.fixture(scope="module")
+def builds(tmp_path_factory):
+    """The build of a case, once for the module's tests: ``builds(case)`` is (the output folder, the result)."""
+    done: dict = {}
+
+    def build(case):
+        if case not in done:
+            sample, overrides, sheet = CASES[case]
+            design = load_design(SAMPLES / f"{sample}.toml", overrides=overrides)
+            router = "router" in case or "waterjet" in case  # LightBurn is for lasers
+            formats = ["dxf", "svg"] if router else ["dxf", "svg", "lbrn2"]
+            out = tmp_path_factory.mktemp(case)
+            done[case] = out, build_design(design, out, formats, copies=3 if sheet else None)
+        return done[case]
+
+    return build
+
+
 @pytest.fixture(scope="module", params=list(CASES))
-def built(request, tmp_path_factory):
-    sample, overrides, sheet = CASES[request.param]
-    design = load_design(SAMPLES / f"{sample}.toml", overrides=overrides)
-    router = "router" in request.param or "waterjet" in request.param  # LightBurn is for lasers
-    formats = ["dxf", "svg"] if router else ["dxf", "svg", "lbrn2"]
-    out = tmp_path_factory.mktemp(request.param)
-    result = build_design(design, out, formats, copies=3 if sheet else None)
-    return request.param, out, result
+def built(request, builds):
+    return (request.param, *builds(request.param))
 
 
 def test_every_coordinate_is_at_least_0_and_the_extents_agree(built):
@@ -158,10 +170,9 @@ def test_the_report_gives_the_files_move_from_the_tile(built):
 
 
 @pytest.mark.parametrize("fmt", ["dxf", "lbrn2"])
-def test_a_kits_pieces_lie_in_their_lattice_holes_read_back(tmp_path, fmt):
+def test_a_kits_pieces_lie_in_their_lattice_holes_read_back(builds, fmt):
     """The lattice and the pieces share one origin: each piece's cut, read back, holds a hole of the lattice's."""
-    design = load_design(SAMPLES / "table3-3.toml", overrides=['output.laser_mode="inlay"'])
-    build_design(design, tmp_path, [fmt])
+    tmp_path, _ = builds("inlay")  # the table3-3 sample as an inlay kit, its DXFs and projects
     if fmt == "dxf":
 
         def contours(path, layer):

@@ -158,7 +158,9 @@ def test_bad_fill_options(kw, match):
 def test_fill_without_colours_says_how_to_give_them():
     with pytest.raises(ParameterError, match=r"fill needs the design's colours: add a \[colour\] section"):
         plot_drawing(load_design(ROOT / "samples" / "rosette.toml"), fill=True)
-    drawing = plot_drawing(load_design(ROOT / "samples" / "rosette.toml", overrides=["colour.by=shape"]), fill=True)
+    drawing = plot_drawing(
+        load_design(ROOT / "samples" / "rosette.toml", overrides=["colour.by=shape", *SMALL]), fill=True
+    )
     assert len(drawing.layers) > 1
 
 

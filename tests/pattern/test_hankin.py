@@ -32,8 +32,9 @@ def corners(centre, p, mid_angle, edge):
 
 
 def intersect(p0, u0, p1, u1):
-    """Where the lines p0 + s u0 and p1 + t u1 meet."""
-    s, _ = np.linalg.solve(np.array([u0, -u1]).T, p1 - p0)
+    """Where the lines p0 + s u0 and p1 + t u1 meet (Cramer's rule on s u0 - t u1 = p1 - p0)."""
+    (ax, ay), (bx, by), (cx, cy) = u0, -u1, p1 - p0
+    s = (cx * by - bx * cy) / (ax * by - bx * ay)
     return p0 + s * u0
 
 
@@ -75,6 +76,11 @@ def reference_rays(tiling, angle, gap, reach):
     return rays
 
 
+def same_point(a, b) -> bool:
+    """``np.allclose(a, b)`` of two points, on plain floats (it is called for every pair of rays at a point)."""
+    return abs(a[0] - b[0]) <= 1e-8 + 1e-5 * abs(b[0]) and abs(a[1] - b[1]) <= 1e-8 + 1e-5 * abs(b[1])
+
+
 def reference_segments(tiling, angle, gap, reach):
     rays = reference_rays(tiling, angle, gap, reach)
     if gap > 0:
@@ -91,7 +97,7 @@ def reference_segments(tiling, angle, gap, reach):
                 continue
             partner = None
             for y, (s2, e2, c2) in enumerate(group):
-                if y == x or y in used or np.allclose(c, c2):
+                if y == x or y in used or same_point(c, c2):
                     continue
                 u, w = e - s, e2 - s2
                 if abs(u[0] * w[1] - u[1] * w[0]) < 1e-9 * np.hypot(*u) * np.hypot(*w) and u @ w < 0:
