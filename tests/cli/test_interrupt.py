@@ -29,11 +29,13 @@ def full_build(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("interrupt")
     design = tmp / "sheet.toml"
     design.write_text(DESIGN)
-    t = time.perf_counter()
-    full = _start(design, tmp / "full")
-    assert full.wait(timeout=300) == 0, full.stderr.read().decode()
-    duration = time.perf_counter() - t
-    return design, {p.name: p.read_bytes() for p in (tmp / "full").iterdir()}, duration
+    durations = []
+    for k in range(2):  # the first may also compile the package's bytecode: the shorter is what a build takes
+        t = time.perf_counter()
+        full = _start(design, tmp / f"full-{k}")
+        assert full.wait(timeout=300) == 0, full.stderr.read().decode()
+        durations.append(time.perf_counter() - t)
+    return design, {p.name: p.read_bytes() for p in (tmp / "full-1").iterdir()}, min(durations)
 
 
 @pytest.mark.slow
@@ -51,11 +53,14 @@ def test_interrupted_build_leaves_old_files_and_no_partial_ones(tmp_path, sig, f
 
     interrupted = 0
     for fraction in (0.3, 0.55, 0.8, 0.95):
+        t = time.perf_counter()
         proc = _start(design, out)
         time.sleep(duration * fraction)
         if proc.poll() is None:
             proc.send_signal(sig)
             interrupted += 1
+        else:  # done sooner than the full build was (a machine less loaded now): time the next ones by this
+            duration = min(duration, time.perf_counter() - t)
         _, err = proc.communicate(timeout=120)
         rc = proc.returncode
         names = sorted(os.listdir(out))
