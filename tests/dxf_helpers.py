@@ -131,11 +131,12 @@ def is_closed(entity) -> bool:
     return bool(entity.closed if entity.dxftype() == "LWPOLYLINE" else entity.is_closed)
 
 
-def dxf_entities(path, decimals: int = 4) -> list[tuple]:
-    """Every model-space entity as ``(layer, dxftype, closed, color, ((x, y), ...))``, in file order."""
+def dxf_entities(path, decimals: int = 4, doc=None) -> list[tuple]:
+    """Every model-space entity as ``(layer, dxftype, closed, color, ((x, y), ...))``, in file order
+    (``doc``: the file as ezdxf read it, when the caller has it)."""
     import ezdxf
 
-    doc = ezdxf.readfile(path)
+    doc = doc or ezdxf.readfile(path)
     out = []
     for e in doc.modelspace():
         pts = raw_vertices(e) if e.dxftype() in CUT_TYPES else np.empty((0, 2))
@@ -190,9 +191,10 @@ def assert_same_entity(got, want, k, decimals: int = 4) -> None:
         assert bdiff <= 2 * 10.0**-decimals, f"entity {k}: bulges differ by {bdiff}"
 
 
-def assert_golden(path, name: str, decimals: int = 4) -> None:
-    """Compare the entities of DXF ``path`` with ``golden/<name>.json``, entity by entity."""
-    got = dxf_entities(path, decimals)
+def assert_golden(path, name: str, decimals: int = 4, doc=None) -> None:
+    """Compare the entities of DXF ``path`` (``doc``: as ezdxf read it) with ``golden/<name>.json``, entity
+    by entity."""
+    got = dxf_entities(path, decimals, doc)
     golden = GOLDEN / f"{name}.json"
     if _update_golden(golden):
         golden.parent.mkdir(parents=True, exist_ok=True)
@@ -220,14 +222,14 @@ def entity_summary(entities, samples: int = 40) -> dict:
     }
 
 
-def assert_golden_summary(path, name: str, decimals: int = 4, samples: int = 40) -> None:
+def assert_golden_summary(path, name: str, decimals: int = 4, samples: int = 40, doc=None) -> None:
     """Compare a large DXF with ``golden/<name>.json``: exact counts, every n-th entity in full.
 
     For files whose full golden would be megabytes: entity and vertex counts (in
     total and per layer, type, closed flag and colour) must match exactly, and
     about ``samples`` entities spread over the file are compared entity by entity.
     """
-    got = entity_summary(dxf_entities(path, decimals), samples)
+    got = entity_summary(dxf_entities(path, decimals, doc), samples)
     golden = GOLDEN / f"{name}.json"
     if _update_golden(golden):
         golden.parent.mkdir(parents=True, exist_ok=True)

@@ -73,16 +73,16 @@ def test_sample_dxf_is_golden(sample, tmp_path):
     path, tile, profile = build(sample, tmp_path)
     assert path.name == f"{sample.stem}.dxf"
     if profile.kind == "router":  # the part as the bit makes it, no kerf (see tests/export/test_router.py)
-        check_router_dxf(path, tile.region(), profile)
+        doc = check_router_dxf(path, tile.region(), profile)
     else:
         fill = load_design(sample).output.fill_small_holes
-        check_laser_dxf(
+        doc = check_laser_dxf(
             path, laser_region(tile, profile, fill), kerf=profile.kerf_mm, version=profile.dxf_version, profile=profile
         )
     if sample.stem in LARGE:  # the panel's entities are long (rounded corners): fewer of them sampled
-        assert_golden_summary(path, f"sample-{sample.stem}", samples=10 if profile.kind == "router" else 40)
+        assert_golden_summary(path, f"sample-{sample.stem}", samples=10 if profile.kind == "router" else 40, doc=doc)
     else:
-        assert_golden(path, f"sample-{sample.stem}")
+        assert_golden(path, f"sample-{sample.stem}", doc=doc)
 
 
 def test_sample_score_dxf_is_golden(tmp_path):
