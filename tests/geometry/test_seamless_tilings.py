@@ -43,12 +43,14 @@ def neighbours_continue(tile, steps):
 
 @pytest.mark.parametrize("tiling", TILINGS)
 def test_rectangle_fit_of_every_tiling(tiling):
-    fit = seamless_fit("rectangle", (60, 45), 6, packing=tiling)
+    # 40 x 30 mm is large enough: a window grown by half the stroke alone (missing the miter tips of
+    # motifs just outside) leaves specks on the 3.3.3.3.6 and 3.3.4.3.4 tiles here as on larger ones
+    fit = seamless_fit("rectangle", (40, 30), 6, packing=tiling)
     px, py = rectangular_period(tiling)
     m, k = fit.repeats
-    assert fit.size[0] == 60 and px * fit.edge * m == pytest.approx(60)
+    assert fit.size[0] == 40 and px * fit.edge * m == pytest.approx(40)
     assert fit.size[1] == pytest.approx(py * fit.edge * k)
-    assert abs(60 / (px * 6) - m) <= 0.5 + 1e-9 or m == 1
+    assert abs(40 / (px * 6) - m) <= 0.5 + 1e-9 or m == 1
     pack = ArchimedeanPacking(tiling, fit.edge)
     tile = TileGeometry("rectangle", fit.size, pack, stroke=0.5)
     w, h = fit.size
