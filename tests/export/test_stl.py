@@ -25,6 +25,7 @@ from mesh_helpers import (
     top,
 )
 from model_files import write_print
+from shapely import affinity
 from shapely.geometry import box
 
 from fabtiles import FabricationError, FabtilesError, ParameterError, ProfileError, Star, load_profile
@@ -261,14 +262,21 @@ def test_defect_on_a_cell_line_is_meshed_again_with_moved_lines(tmp_path, monkey
     # miss this ring, but a line can still pass beside a neighbouring ring's edge.)
     # Meshed is the sheet's window around that place, from its 11th to its 13th column of
     # cells (1200 / 19 mm wide) and its first two rows (60 mm), the sheet's frame below: the
-    # window's cells are the sheet's there, so its lines run where the sheet's do.
+    # window's cells are the sheet's there, so its lines run where the sheet's do. The sheet's
+    # region there is a 360 mm wide sheet's of the same height moved 420 mm (14 periods of the
+    # packing) right: the same pattern about the same centre, the same frame below, its side
+    # frames far from the window (the whole sheet's region took seconds).
     from fabtiles.solid import _mesh_build as mb
 
     monkeypatch.setattr(mb, "_off_vertices", lambda lines, values: lines)
-    tile = TileGeometry("rectangle", (1200, 600), HexPacking(15, Star.preset("table3-3")), frame=5, stroke=1.0)
+    pack = HexPacking(15, Star.preset("table3-3"))
+    assert pack.period[0] == 30
+    narrow = TileGeometry("rectangle", (360, 600), pack, frame=5, stroke=1.0)
     x0, x1 = np.round(np.array([1200 * 10 / 19, 1200 * 12 / 19]) / QUANTUM) * QUANTUM  # on the mesh's grid
     window = box(x0, 0, x1, 120)
-    region, outline = tile.region().intersection(window), tile.outline_shape().intersection(window)
+    assert box(420 + 5, 0, 420 + 360 - 5, 120).contains(window)
+    region = affinity.translate(narrow.region(), 420, 0).intersection(window)
+    outline = narrow.replace(size=(1200, 600)).outline_shape().intersection(window)
     shifts = []
     body_arrays = parts._body_arrays
 

@@ -84,7 +84,10 @@ def test_librecad_draws_the_dxf(tmp_path):
 
 
 def test_prusaslicer_slices_the_mosaic_by_colour(tmp_path):
-    design = _design(tmp_path, "[3.4.6.4; 3.4^2.6]", "hankin", 'output.print_style="mosaic"', 'colour.by="shape"')
+    # a 40 mm tile holds every shape's colour (four tools) and slices in two thirds of a 70 mm one's time
+    design = _design(
+        tmp_path, "[3.4.6.4; 3.4^2.6]", "hankin", 'output.print_style="mosaic"', 'colour.by="shape"', "tile.size=40"
+    )
     path = Path(build_design(design, tmp_path / "out", ("3mf",)).paths[0])
     gcode = slice_gcode(tmp_path, path, 4)
     tools = sorted({int(t) for t in re.findall(r"^T(\d+)\s*$", gcode, flags=re.M)})

@@ -6,6 +6,7 @@ rotation or reflection found here); faces a packing's translation maps onto each
 share a class, pieces cut by the frame included; letters follow the total area.
 """
 
+import functools
 import math
 from itertools import pairwise
 from pathlib import Path
@@ -33,12 +34,24 @@ def _sample(name):
     return load_design(SAMPLES / name).build_tile()
 
 
+@pytest.fixture(scope="module")
+def sample_classes():
+    """A sample's tile and its face classes by the sample's name, each built once for the module's
+    tests (the designs' are ``classed``'s and ``test_translates_share_a_class``'s)."""
+
+    @functools.cache
+    def of(name):
+        tile = _sample(name)
+        return tile, face_classes(tile)
+
+    return of
+
+
 @pytest.fixture(scope="module", params=DESIGNS + ["motif"])
-def classed(request):
-    if request.param == "motif":
-        tile = TileGeometry("circle", 100, Star.preset("table3-1"), frame=2, stroke=0.6)
-    else:
-        tile = _sample(request.param)
+def classed(request, sample_classes):
+    if request.param != "motif":
+        return sample_classes(request.param)
+    tile = TileGeometry("circle", 100, Star.preset("table3-1"), frame=2, stroke=0.6)
     return tile, face_classes(tile)
 
 
@@ -139,11 +152,10 @@ TILINGS = sorted(f"tilings/{p.name}" for p in (SAMPLES / "tilings").glob("*.toml
 
 
 @pytest.mark.parametrize("name", sorted(set(DESIGNS + TILINGS)))
-def test_translates_share_a_class(name):
+def test_translates_share_a_class(name, sample_classes):
     """A face moved by a period of the packing onto another face (its whole or a piece of it
     cut by the frame) is in that face's class."""
-    tile = _sample(name)
-    fc = face_classes(tile)
+    tile, fc = sample_classes(name)
     pattern = tile.pattern
     px, py = pattern.period
     moves = [(px, 0.0), (0.0, py), (-px, 0.0), (0.0, -py)]

@@ -48,25 +48,28 @@ def check_nesting(n: Nesting, parts, gap: float) -> None:
                     assert shapely.distance(n.outlines[i], n.outlines[j]) >= gap - 1e-9
 
 
-def test_thirty_parts_of_three_shapes_on_two_sheets():
+@pytest.fixture(scope="module")
+def thirty():
+    """Thirty parts of three shapes on two sheets: the parts and their nesting."""
     parts = [(f"sq{k}", box(0, 0, 100, 100)) for k in range(10)]
     parts += [(f"hex{k}", HEX) for k in range(10)]
     parts += [(f"c{k}", Point(0, 0).buffer(50, quad_segs=16)) for k in range(10)]
-    n = nest(parts, sheet_mm=(600, 400), gap_mm=1.15, time_s=2)
+    return parts, nest(parts, sheet_mm=(600, 400), gap_mm=1.15, time_s=2)
+
+
+def test_thirty_parts_of_three_shapes_on_two_sheets(thirty):
+    parts, n = thirty
     check_nesting(n, parts, 1.15)
     # 0.20 m^2 of parts on 0.24 m^2 sheets: two sheets (0.84 of one is beyond any packing of these)
     assert n.sheets <= 2
     assert sum(n.material_use()) == pytest.approx(sum(s.area for _, s in parts) / 240_000, abs=1e-3)
 
 
-def test_each_sheets_parts_lie_in_its_corner():
-    """A lone tile at the sheet's corner, not half-way up its edge; every sheet's block of parts too."""
-    n = nest([("one", HEX)], sheet_mm=(400, 300), gap_mm=1, time_s=1)
-    x0, y0, _, _ = n.outlines[0].bounds
-    assert (x0, y0) == pytest.approx((0, 0), abs=1e-9)
-    parts = [(f"sq{k}", box(0, 0, 100, 100)) for k in range(5)]
-    n = nest(parts, sheet_mm=(250, 250), gap_mm=1, time_s=2)
-    check_nesting(n, parts, 1)
+def test_each_sheets_parts_lie_in_its_corner(thirty):
+    """Every sheet's block of parts at the sheet's corner, not half-way up its edge (a lone tile's
+    corner: test_parts_far_smaller_than_the_sheet_are_placed)."""
+    _, n = thirty
+    assert n.sheets == 2  # the block of the full sheet and the few parts left for the next
     for k in range(n.sheets):
         corner = np.min([n.outlines[i].bounds[:2] for i in n.on_sheet(k)], axis=0)
         assert corner == pytest.approx((0, 0), abs=1e-9)
@@ -175,11 +178,14 @@ def _hexagon(radius):
 def test_parts_far_smaller_than_the_sheet_are_placed(radius, count):
     """The packer panicked on a strip much taller than the parts' area needs (a pyo3 PanicException,
     which is no Exception: a traceback); the strip is lowered, and a lone part it still fails on is
-    placed at the corner."""
+    placed at the corner. A lone part the packer places (radius 10) is at the sheet's corner too, not
+    half-way up its edge."""
     parts = [(str(i), _hexagon(radius)) for i in range(count)]
     n = nest(parts, sheet_mm=(400, 300), gap_mm=1, time_s=1)
     placed = n.outlines
     assert [p.sheet for p in n.placements] == [0] * count
+    corner = np.min([shape.bounds[:2] for shape in placed], axis=0)
+    assert corner == pytest.approx((0, 0), abs=1e-9)
     for shape in placed:
         x0, y0, x1, y1 = shape.bounds
         assert x0 >= 0 and y0 >= 0 and x1 <= 400 and y1 <= 300

@@ -43,12 +43,14 @@ def neighbours_continue(tile, steps):
 
 @pytest.mark.parametrize("tiling", TILINGS)
 def test_rectangle_fit_of_every_tiling(tiling):
-    fit = seamless_fit("rectangle", (60, 45), 6, packing=tiling)
+    # 40 x 30 mm is large enough: a window grown by half the stroke alone (missing the miter tips of
+    # motifs just outside) leaves specks on the 3.3.3.3.6 and 3.3.4.3.4 tiles here as on larger ones
+    fit = seamless_fit("rectangle", (40, 30), 6, packing=tiling)
     px, py = rectangular_period(tiling)
     m, k = fit.repeats
-    assert fit.size[0] == 60 and px * fit.edge * m == pytest.approx(60)
+    assert fit.size[0] == 40 and px * fit.edge * m == pytest.approx(40)
     assert fit.size[1] == pytest.approx(py * fit.edge * k)
-    assert abs(60 / (px * 6) - m) <= 0.5 + 1e-9 or m == 1
+    assert abs(40 / (px * 6) - m) <= 0.5 + 1e-9 or m == 1
     pack = ArchimedeanPacking(tiling, fit.edge)
     tile = TileGeometry("rectangle", fit.size, pack, stroke=0.5)
     w, h = fit.size
@@ -75,10 +77,12 @@ def test_square_fit(tiling):
 
 @pytest.mark.parametrize("tiling", HEXAGON)
 def test_hexagon_fit(tiling):
-    fit = seamless_fit("hexagon", 60, 5, packing=tiling)
+    # 40 mm holds two to eight periods of each tiling across: seamlessness is the period's, not the count's
+    fit = seamless_fit("hexagon", 40, 5, packing=tiling)
     w = fit.size[0]
-    assert w == 60 and rectangular_period(tiling)[0] * fit.edge * fit.repeats[0] == pytest.approx(60)
-    tile = TileGeometry("hexagon", 60, ArchimedeanPacking(tiling, fit.edge, outline_circles=True), stroke=0.5)
+    assert fit.repeats[0] >= 2
+    assert w == 40 and rectangular_period(tiling)[0] * fit.edge * fit.repeats[0] == pytest.approx(40)
+    tile = TileGeometry("hexagon", 40, ArchimedeanPacking(tiling, fit.edge, outline_circles=True), stroke=0.5)
     s3 = math.sqrt(3)
     assert neighbours_continue(tile, [(w, 0), (w / 2, s3 / 2 * w), (-w / 2, s3 / 2 * w)]) < 1e-4
 

@@ -8,6 +8,7 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
@@ -42,11 +43,24 @@ def window_circles(pack, half):
     return c, r, pack.circle_sides(w)
 
 
-def pair_gaps(c, r):
-    d = np.hypot(*(c[:, None] - c[None]).transpose(2, 0, 1))
-    gap = d - r[:, None] - r[None]
-    np.fill_diagonal(gap, np.inf)
-    return gap
+def pair_gaps(c, r, tol):
+    """The smallest gap between two circles, and which touch (their gap within ``tol``), ``(n, n)``.
+
+    Only pairs whose centres lie within the largest diameter and ``tol`` of each other can
+    overlap or touch: an R-tree finds them, and every other pair has a gap over ``tol``.
+    """
+    points = shapely.points(c)
+    i, j = shapely.STRtree(points).query(points, predicate="dwithin", distance=2 * r.max() + tol)
+    i, j = i[i != j], j[i != j]
+    gap = np.hypot(*(c[i] - c[j]).T) - r[i] - r[j]
+    touch = np.zeros((len(c), len(c)), dtype=bool)
+    touch[i, j] = np.abs(gap) < tol
+    return gap.min(initial=np.inf), touch
+
+
+def nearest(points, to):
+    """Index in ``to`` of the point nearest each of ``points`` (an R-tree's, not every pair's distance)."""
+    return shapely.STRtree(shapely.points(to)).query_nearest(shapely.points(points))[1]
 
 
 tilings = st.sampled_from(ALL_TILINGS)  # the two-uniform ones too
@@ -146,9 +160,8 @@ def test_circles_never_overlap_and_touch_as_the_tiling_says(tiling, edge):
     period = edge * max(rectangular_period(tiling))
     half = 2.5 * period
     c, r, sides = window_circles(p, half)
-    gap = pair_gaps(c, r) / edge
-    assert gap.min() > -TOL  # never overlap
-    touch = np.abs(gap) < TOL
+    least, touch = pair_gaps(c, r, TOL * edge)
+    assert least / edge > -TOL  # never overlap
     inc = sides > 0
     # Only circles far from the window's border have all their neighbours listed.
     inner = np.abs(c).max(axis=1) < half - 1.5 * period
@@ -198,9 +211,9 @@ def test_gap_circles_in_a_window_are_one_per_vertex(tiling):
     verts = ((cell.vertices[None] + (ij @ cell.lattice)[:, None]).reshape(-1, 2)) * edge
     verts = verts[np.abs(verts).max(axis=1) < half - edge]
     # Each vertex has exactly one gap circle nearer to it than to any other vertex, and it is its own.
-    nearest_gap = np.hypot(*(gaps[None] - verts[:, None]).transpose(2, 0, 1)).argmin(axis=1)
+    nearest_gap = nearest(verts, gaps)
     assert len(np.unique(nearest_gap)) == len(verts)
-    owner = np.hypot(*(verts[None] - gaps[nearest_gap][:, None]).transpose(2, 0, 1)).argmin(axis=1)
+    owner = nearest(gaps[nearest_gap], verts)
     assert np.array_equal(owner, np.arange(len(verts)))
     assert (np.hypot(*(gaps[nearest_gap] - verts).T) < 0.2 * edge).all()
 
@@ -262,7 +275,7 @@ def test_motifs_turned_to_the_tangency_points():
     seg = p.motif_segments((-60, -60, 60, 60)).reshape(-1, 2)
     ends = np.unique(np.round(seg, 6), axis=0)
     inc = sides > 0
-    touch = np.abs(pair_gaps(c[inc], r[inc])) < TOL
+    touch = pair_gaps(c[inc], r[inc], TOL)[1]
     k = np.flatnonzero(np.abs(c[inc]).max(axis=1) < 30)
     for i in k:
         for j in np.flatnonzero(touch[i]):
