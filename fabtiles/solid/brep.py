@@ -134,10 +134,11 @@ class _Edges:
             self.list.append((self.point(min(u, v), k), self.point(max(u, v), k)))
         return e if u < v else ~e
 
-    def vertical(self, p, ka, kb):
-        """Signed edge at ring vertex p from level ka to the adjacent split level kb."""
+    def vertical(self, p, ka, kb, corner=None):
+        """Signed edge at ring vertex p from level ka to the adjacent split level kb (``corner``: the ring
+        position of p it stands at, where two corners of the region meet at p: see :func:`_walls`)."""
         lo, hi = min(ka, kb), max(ka, kb)
-        key = ("v", p, lo, hi)
+        key = ("v", p, lo, hi) if corner is None else ("v", p, lo, hi, corner)
         e = self.edges.get(key)
         if e is None:
             e = self.edges[key] = len(self.list)
@@ -374,7 +375,7 @@ def planar_brep(
     if chords:
         arcs = [a for a in arcs if _circle_key(a[1], a[2]) not in chords]
     _ends_onto_circles(topo, vxy, arcs)
-    faces, in_arc = _arc_faces(ed, topo, vxy, z, arcs, walls.splits)
+    faces, in_arc = _arc_faces(ed, topo, vxy, z, arcs, walls.splits, walls.pinched)
     if arcs:  # the other walls stay planar
         walls = walls.without(in_arc)
     wall_edges, keys = _plain_walls(ed, topo, walls, vxy, side_of, sides)
@@ -468,7 +469,9 @@ class _Walls:
 
     ``at``: their ring positions; ``u``, ``v``: the vertices at their ends (material on
     the left); ``lo``, ``hi``: their bottom and top levels; ``splits``: per vertex, the
-    levels where the walls meeting there start or stop (its vertical edges' ends).
+    levels where the walls meeting there start or stop (its vertical edges' ends);
+    ``pinched``: the vertices where two corners of the region meet (two walls start there
+    over common levels), whose vertical edges are one per corner.
     """
 
     at: np.ndarray
@@ -477,6 +480,14 @@ class _Walls:
     lo: list
     hi: list
     splits: dict
+    pinched: frozenset = frozenset()
+
+    def corners(self, topo, k: int) -> tuple:
+        """The corners (ring positions) of wall ``k``'s two ends where they are pinched vertices, else None."""
+        at = int(self.at[k])
+        a = at if self.u[k] in self.pinched else None
+        b = int(topo.nxt[at]) if self.v[k] in self.pinched else None
+        return a, b
 
     def without(self, dropped: np.ndarray) -> _Walls:
         """These walls less those at the ring positions marked in ``dropped`` (the arcs' walls)."""
@@ -488,6 +499,7 @@ class _Walls:
             [self.lo[i] for i in keep],
             [self.hi[i] for i in keep],
             self.splits,
+            self.pinched,
         )
 
 
@@ -499,25 +511,32 @@ def _walls(topo) -> _Walls:
     wlo, whi = topo.out_level[w].tolist(), topo.level[w].tolist()
     # split levels at each vertex: the bottoms and tops of the walls that meet there
     splits: dict = {}
+    starts: dict = {}
+    pinched = set()
     for a, b, lo, hi in zip(wu, wv, wlo, whi, strict=True):
         for p in (a, b):
             s = splits.setdefault(p, set())
             s.add(lo)
             s.add(hi)
-    return _Walls(w, wu, wv, wlo, whi, {p: sorted(s) for p, s in splits.items()})
+        # a second wall starting at a over common levels: two corners of the region meet at a
+        if any(lo < h and lo2 < hi for lo2, h in starts.get(a, ())):
+            pinched.add(a)
+        starts.setdefault(a, []).append((lo, hi))
+    return _Walls(w, wu, wv, wlo, whi, {p: sorted(s) for p, s in splits.items()}, frozenset(pinched))
 
 
-def _vertical_run(ed: _Edges, splits: dict, p, lo, hi, up: bool) -> list:
+def _vertical_run(ed: _Edges, splits: dict, p, lo, hi, up: bool, corner=None) -> list:
     """Signed vertical edges at vertex p from level lo to hi (``up``) or from hi to lo.
 
     Each is ``(start node, end node, signed edge)``, one per pair of adjacent split
-    levels of p, so that every face beside p meets the same edges.
+    levels of p, so that every face beside p meets the same edges (at a pinched vertex,
+    every face of the same ``corner``).
     """
     ks = [k for k in splits[p] if lo <= k <= hi]
     pairs = list(pairwise(ks))
     if up:
-        return [(ed.point(p, a), ed.point(p, b), ed.vertical(p, a, b)) for a, b in pairs]
-    return [(ed.point(p, b), ed.point(p, a), ed.vertical(p, b, a)) for a, b in reversed(pairs)]
+        return [(ed.point(p, a), ed.point(p, b), ed.vertical(p, a, b, corner)) for a, b in pairs]
+    return [(ed.point(p, b), ed.point(p, a), ed.vertical(p, b, a, corner)) for a, b in reversed(pairs)]
 
 
 def _outline_points(topo, sides, what: str):
@@ -546,7 +565,7 @@ def _ends_onto_circles(topo, vxy, arcs) -> None:
                 vxy[p] = centre + d * (radius / np.hypot(d[0], d[1]))
 
 
-def _arc_faces(ed: _Edges, topo, vxy, z, arcs, splits) -> tuple[list, np.ndarray]:
+def _arc_faces(ed: _Edges, topo, vxy, z, arcs, splits, pinched=frozenset()) -> tuple[list, np.ndarray]:
     """One cylinder face per arc of walls, its circle edges shared with the flat faces.
 
     Returns the faces and, per ring position, whether its wall is in an arc (those
@@ -571,8 +590,10 @@ def _arc_faces(ed: _Edges, topo, vxy, z, arcs, splits) -> tuple[list, np.ndarray
             for x, y in pairwise(chain):
                 ed.arc_of[(min(x, y), max(x, y), lvl)] = (("a", j, lvl), x if ccw else y)
         # the chain runs with the material on its left, as a wall's bottom edge does
-        loop = [signed[lo]] + [e for _, _, e in _vertical_run(ed, splits, chain[-1], lo, hi, up=True)]
-        loop += [~signed[hi]] + [e for _, _, e in _vertical_run(ed, splits, chain[0], lo, hi, up=False)]
+        end = int(topo.nxt[at[-1]]) if chain[-1] in pinched else None  # corners, as _Walls.corners gives them
+        start = int(at[0]) if chain[0] in pinched else None
+        loop = [signed[lo]] + [e for _, _, e in _vertical_run(ed, splits, chain[-1], lo, hi, up=True, corner=end)]
+        loop += [~signed[hi]] + [e for _, _, e in _vertical_run(ed, splits, chain[0], lo, hi, up=False, corner=start)]
         ref = seam_direction(vxy[a_vid] - centre, abs(sweep))
         faces.append(
             Face(
@@ -601,11 +622,12 @@ def _plain_walls(ed: _Edges, topo, walls: _Walls, vxy, side_of, sides) -> tuple[
     whole = None if sides is None else {tuple(row): k for k, row in enumerate(sides_arr.tolist())}
     wall_edges = []
     keys: list[tuple] = []
-    for a, b, lo, hi in zip(walls.u, walls.v, walls.lo, walls.hi, strict=True):
+    for k, (a, b, lo, hi) in enumerate(zip(walls.u, walls.v, walls.lo, walls.hi, strict=True)):
+        corner_a, corner_b = walls.corners(topo, k)
         loop = [(ed.point(a, lo), ed.point(b, lo), ed.horizontal(a, b, lo))]
-        loop += _vertical_run(ed, walls.splits, b, lo, hi, up=True)
+        loop += _vertical_run(ed, walls.splits, b, lo, hi, up=True, corner=corner_b)
         loop.append((ed.point(b, hi), ed.point(a, hi), ed.horizontal(b, a, hi)))
-        loop += _vertical_run(ed, walls.splits, a, lo, hi, up=False)
+        loop += _vertical_run(ed, walls.splits, a, lo, hi, up=False, corner=corner_a)
         wall_edges.append(loop)
         k = _side_of_wall(a, b, side_of, vxy, sides_arr, whole)
         if k >= 0:  # along a straight side of the outline: its plane

@@ -58,6 +58,24 @@ fill_small_holes = true
 """
 
 
+def test_two_corners_of_the_top_meeting_at_a_point_over_a_dip_get_an_edge_each(tmp_path):
+    """Design 1 at 56 x 49 mm: two pieces of its top touch at a point where the dip lies around them, so four
+    walls from the dip to the top stand at that point; one vertical edge shared by the four was refused
+    ("an edge joining more than two faces"). Each corner has its own edge now, and OCCT reads the solid."""
+    from fabtiles.export.step import check_step_file, step_bytes
+
+    design = design_from_text(DESIGN_1.replace("size = [80, 70]", "size = [56, 49]"), name="design1")
+    model = Models(prepare_tile(design), BuildOptions.of_design(design)).print
+    brep, volume, parts = model.brep
+    data = step_bytes(model)  # checks the B-rep: every edge used once each way
+    points = brep.points[brep.edges].reshape(-1, 2, 3)
+    vertical = points[:, 0, :2] == points[:, 1, :2]
+    at = np.all(np.abs(points[:, 0, :2] - [49.0068, 14.4102]) < 1e-3, axis=1) & vertical.all(axis=1)
+    assert at.sum() == 2  # the two corners' edges, side by side
+    (tmp_path / "d.step").write_bytes(data)
+    assert check_step_file(tmp_path / "d.step", volume=volume, parts=parts) == pytest.approx(volume, rel=5e-4)
+
+
 def test_a_face_pinched_at_a_cell_line_is_split_there():
     """A cell piece whose ring runs along the cell line past a vertex and back to it (B on the
     edge A-C) is two faces touching at B; the piece across the line gets B in its edge too."""
