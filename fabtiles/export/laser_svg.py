@@ -165,6 +165,7 @@ def svg_text(job: CutPlan) -> str:
     )
     out = [head]
     ids: list = []  # a shaded file's path ids, a list per layer, for MeerK40t's operations
+    prefix = _path_id_prefix([cut.layer.name for cut in job.layers])
     for cut in job.layers:
         layer = cut.layer
         if cut.fill:  # an engraved fill: each polygon one path, its holes as subpaths, filled even-odd
@@ -183,7 +184,7 @@ def svg_text(job: CutPlan) -> str:
             paths = _layer_path_data(cut.curves_or_paths(), cut.closed)
         if shaded:
             first = sum(len(i) for i in ids) + 1
-            ids.append([f"p{k}" for k in range(first, first + len(paths))])
+            ids.append([f"{prefix}{k}" for k in range(first, first + len(paths))])
             out.extend(f'<path id="{i}" d="{d}"/>\n' for i, d in zip(ids[-1], paths, strict=True))
         else:
             out.extend(f'<path d="{d}"/>\n' for d in paths)
@@ -192,6 +193,19 @@ def svg_text(job: CutPlan) -> str:
         out.extend(_meerk40t_operation(cut, i) for cut, i in zip(job.layers, ids, strict=True))
     out.append("</svg>\n")
     return "".join(out)
+
+
+def _path_id_prefix(layer_names) -> str:
+    """The prefix of a shaded file's path ids (``p1``, ``p2``, ...): ``p``, or ``p_``, ``p__``, ... when a
+    layer's name, its group's id, would read as one of them.
+
+    >>> _path_id_prefix(["SHADE_A", "CUT"]), _path_id_prefix(["p3", "p_12"])
+    ('p', 'p__')
+    """
+    prefix = "p"
+    while any(n.startswith(prefix) and n[len(prefix) :].isdigit() for n in layer_names):
+        prefix += "_"
+    return prefix
 
 
 def _shaded(job: CutPlan) -> bool:
