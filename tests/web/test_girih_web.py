@@ -54,6 +54,7 @@ def test_page_girih_menu_and_controls(page, server):
     _wait_new_preview(page, v)
     assert page.locator("#girih_pattern").is_visible() and page.locator("#edge-row").is_visible()
     assert page.locator("#radius-row").is_hidden() and page.locator("#gap_n-row").is_hidden()
+    assert page.locator("#motif-box").is_hidden()  # the strapwork is the pattern: no motif to set
     assert page.locator("#outline_circles").is_hidden() and page.locator("#seamless").is_visible()
     assert "packing=girih" in page.url and "girih_pattern=decagon-bowtie" in page.url and "gap_n" not in page.url
     v = _preview_version(page)
@@ -73,3 +74,4 @@ def test_page_girih_menu_and_controls(page, server):
     page.select_option("#packing", "hex")  # the level is the girih packing's own: not sent with another
     _wait_new_preview(page, v)
     assert "girih_level" not in page.url and page.locator("#girih_level").is_hidden()
+    assert page.locator("#motif-box").is_visible()

@@ -553,7 +553,8 @@ function showColours() {
 function tilingControls() {
   const arch = state.packing === "archimedean", hankin = state.method === "hankin";
   $("tiling-controls").hidden = !arch;
-  $("motif-box").hidden = arch && hankin;  // Hankin's rays take no [motif]: the per-kind menus name presets
+  // Hankin's rays take no [motif] (the per-kind menus name presets); girih tiles draw their strapwork
+  $("motif-box").hidden = (arch && hankin) || state.packing === "girih";
   $("kind-motifs-note").textContent = hankin
     ? "Each polygon takes Hankin's rays, or a preset per polygon kind in its incircle."
     : "Each polygon's incircle holds a motif: the one above, or a preset per polygon kind.";
