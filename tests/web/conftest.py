@@ -18,6 +18,7 @@ import pytest
 from browser_helpers import NO_GPU_ARGS, chromium, new_page, playwright
 
 START_TIMEOUT_S = 60.0
+NO_MODEL = "not built: this test reads the 2D page only"
 
 
 def _free_port() -> int:
@@ -89,7 +90,19 @@ def _chromium(_playwright):
 
 
 @pytest.fixture(scope="module")
-def page(_served, _chromium):
-    """A page in a fresh context of the worker's Chromium, one per test module."""
+def page(request, _served, _chromium):
+    """A page in a fresh context of the worker's Chromium, one per test module.
+
+    The editor's 3D view asks the server for the print's model (``/api/view.glb``) after every good
+    design; the modules using this page never look at the model, so the request is answered at once
+    with the error the view shows, and the server's time goes to the pictures and checks these tests
+    read. A module that does not read the 3D view's caption either (no ``READS_3D_CAPTION = True``)
+    gets no three.js: the view says it is missing, as without ``fabtiles install-viewer``, and
+    Chromium neither compiles it nor draws with WebGL on its CPU at each page load. The 3D view's own
+    tests (``test_view3d_browser.py``) have a page of their own with WebGL.
+    """
     with new_page(_chromium) as pg:
+        pg.route("**/api/view.glb?*", lambda route: route.fulfill(status=503, json={"error": NO_MODEL}))
+        if not getattr(request.module, "READS_3D_CAPTION", False):
+            pg.route("**/static/vendor/three/**", lambda route: route.abort())
         yield pg

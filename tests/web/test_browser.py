@@ -6,6 +6,7 @@ Needs /usr/bin/chromium and the playwright package (see browser_helpers.py).
 import pytest
 
 pytestmark = pytest.mark.browser
+READS_3D_CAPTION = True  # an invalid design says so in the 3D view too (conftest.py: page)
 
 
 def _preview_version(page):

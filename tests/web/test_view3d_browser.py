@@ -84,7 +84,10 @@ def test_the_relief_turns_in_3d(page, server):
     page.fill("#stroke", "0")
     page.dispatch_event("#stroke", "change")
     page.wait_for_function("() => document.querySelector('.err[data-for=stroke]').textContent.length > 0")
-    page.wait_for_timeout(800)
+    # the view has dropped any model still coming once its caption says so: none is drawn after this
+    page.wait_for_function(
+        "() => document.querySelector('#view3d-caption').textContent.startsWith('3D view not updated')"
+    )
     assert "stroke" in page.text_content(".err[data-for=stroke]")
     assert _version(page) == v
     assert np.abs(_pixels(page) - good).sum(axis=-1).astype(bool).mean() < 0.01
