@@ -64,6 +64,17 @@ def load_stl(path):
     return trimesh.load(path, file_type="stl")
 
 
+def assert_relief_stl(tile, path, profile: str = "fdm-0.4mm"):
+    """Export ``tile`` as a relief STL to ``path`` (small holes kept) and assert it is one solid of the
+    region's volume within the tile (:func:`assert_solid`); returns the mesh. ``profile`` must have the
+    ``fdm-0.4mm`` heights (:data:`B`, :data:`H`)."""
+    tile.export(path, profile=profile, style="relief", fill_small_holes=False)
+    mesh = load_stl(path)
+    volume = expected_volume("relief", tile.region(), tile.outline_shape())
+    assert_solid(mesh, volume, (0, 0, tile.width_mm, tile.height_mm), top("relief"))
+    return mesh
+
+
 def assert_solid(m, volume, bounds_xy, zmax, bodies=1, zmin=0.0):
     """Assert that a trimesh body is watertight, wound consistently, of the right volume and size.
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import ezdxf
 from click.testing import CliRunner
-from mesh_helpers import assert_solid, expected_volume, load_stl, top
+from mesh_helpers import assert_relief_stl
 from test_dxf_librecad import drawn_and_cut_edges
 
 import fabtiles
@@ -47,11 +47,7 @@ def test_a_bordered_dxf_audits_clean(tmp_path):
 
 
 def test_a_bordered_stl_is_watertight(tmp_path):
-    tile = _tile()
-    tile.export(tmp_path / "t.stl", profile="fdm-0.4mm", style="relief", fill_small_holes=False)
-    mesh = load_stl(tmp_path / "t.stl")
-    volume = expected_volume("relief", tile.region(), tile.outline_shape())
-    assert_solid(mesh, volume, (0, 0, tile.width_mm, tile.height_mm), top("relief"))
+    assert_relief_stl(_tile(), tmp_path / "t.stl")
 
 
 def test_librecad_draws_the_bordered_dxf(tmp_path):

@@ -6,7 +6,7 @@ import re
 
 import ezdxf
 import pytest
-from mesh_helpers import assert_solid, expected_volume, load_stl, top
+from mesh_helpers import assert_relief_stl
 from test_3mf_multicolour import slice_gcode
 from test_dxf_librecad import drawn_and_cut_edges
 
@@ -44,11 +44,7 @@ def test_girih_dxf_audits_clean(pattern, level, tmp_path):
 
 @pytest.mark.parametrize("level", [0, 2])
 def test_girih_stl_is_watertight(level, tmp_path):
-    tile = _tile(level=level)
-    tile.export(tmp_path / "t.stl", profile="fdm-0.4mm", style="relief", fill_small_holes=False)
-    mesh = load_stl(tmp_path / "t.stl")
-    volume = expected_volume("relief", tile.region(), tile.outline_shape())
-    assert_solid(mesh, volume, (0, 0, tile.width_mm, tile.height_mm), top("relief"))
+    assert_relief_stl(_tile(level=level), tmp_path / "t.stl")
 
 
 def test_librecad_draws_the_girih_dxf(tmp_path):

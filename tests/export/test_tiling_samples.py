@@ -13,7 +13,7 @@ from pathlib import Path
 
 import ezdxf
 import pytest
-from mesh_helpers import assert_solid, assert_style_sections, expected_volume, load_stl, top
+from mesh_helpers import assert_relief_stl, assert_style_sections
 
 import fabtiles
 from fabtiles.designs.design_file import load_design
@@ -47,10 +47,7 @@ def test_sample_dxf_is_clean(tiling, tmp_path):
 @pytest.mark.parametrize("tiling", TILINGS)
 def test_sample_stl_is_watertight(tiling, tmp_path):
     design, tile = _tile(tiling)
-    tile.export(tmp_path / "t.stl", profile=design.output.printer_profile, style="relief", fill_small_holes=False)
-    mesh = load_stl(tmp_path / "t.stl")
-    volume = expected_volume("relief", tile.region(), tile.outline_shape())
-    assert_solid(mesh, volume, (0, 0, tile.width_mm, tile.height_mm), top("relief"))
+    mesh = assert_relief_stl(tile, tmp_path / "t.stl", design.output.printer_profile)
     assert_style_sections(mesh, "relief", tile.region(), tile.outline_shape())
 
 

@@ -15,7 +15,7 @@ from pathlib import Path
 import ezdxf
 import pytest
 from click.testing import CliRunner
-from mesh_helpers import assert_solid, expected_volume, load_stl, top
+from mesh_helpers import assert_relief_stl, expected_volume
 from test_3mf_multicolour import extrusions_by_tool, slice_gcode
 from test_dxf_librecad import drawn_and_cut_edges
 
@@ -69,11 +69,7 @@ def test_dxf_is_clean(tiling, method, tmp_path):
 @pytest.mark.parametrize("tiling", TWO_UNIFORM)
 def test_stl_is_watertight(tiling, tmp_path):
     design = _design(tmp_path, tiling, "motifs" if tiling.startswith("[3^6") else "hankin")
-    tile = design.build_tile(tile_cls=fabtiles.Tile)
-    tile.export(tmp_path / "t.stl", profile=design.output.printer_profile, style="relief", fill_small_holes=False)
-    mesh = load_stl(tmp_path / "t.stl")
-    volume = expected_volume("relief", tile.region(), tile.outline_shape())
-    assert_solid(mesh, volume, (0, 0, tile.width_mm, tile.height_mm), top("relief"))
+    assert_relief_stl(design.build_tile(tile_cls=fabtiles.Tile), tmp_path / "t.stl", design.output.printer_profile)
 
 
 def test_librecad_draws_the_dxf(tmp_path):
