@@ -4,7 +4,7 @@
 
 One bordered tile per outline and frieze, 80 mm, the table3-3 rosettes of radius 8 mm in the field:
 a square with stars, a square with Hankin's rays, a hexagon with stars, a circle with Hankin's rays.
-The files are reproducible byte for byte; tests/test_border_pictures.py checks the committed ones
+The files are reproducible byte for byte; tests/test_doc_pictures.py checks the committed ones
 are current.
 """
 

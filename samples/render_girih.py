@@ -5,7 +5,7 @@
 ``rule.svg``: the large decagon, bowtie and hexagon, each with the small tiles the rule puts in it
 (the hexagons on its edges half outside it), their strapwork, and the large tile's outline. ``level-0.svg``,
 ``level-1.svg``, ``level-2.svg``: an 80 mm tile of the decagon-bowtie pattern at those levels, its tiles'
-edge 3 mm. The files are reproducible byte for byte; tests/test_girih_pictures.py checks the committed
+edge 3 mm. The files are reproducible byte for byte; tests/test_doc_pictures.py checks the committed
 ones are current.
 """
 

@@ -6,7 +6,7 @@
 without and with a contact gap; ``<tiling>-<angle>.svg``: the table of the 11 tilings at
 four contact angles, the tiling's edges faint under the centre-lines; ``parquet.svg``: a
 parquet deformation, the angle going from 20 to 80 degrees left to right. The files are
-reproducible byte for byte; tests/test_hankin_pictures.py checks the committed ones are current.
+reproducible byte for byte; tests/test_doc_pictures.py checks the committed ones are current.
 """
 
 from __future__ import annotations
