@@ -851,21 +851,27 @@ def _other_kinds_key(name: str, kind: str, source: str) -> DesignError:
     )
 
 
+def _edge_kind_keys(table: dict, source: str, kind: str, whose: str, needed: str, choices) -> None:
+    """Refuse a packing of ``kind`` (sized by an edge) that gives a radius, or lacks its ``needed`` key."""
+    where = "[packing]"
+    if "radius" in table:
+        raise DesignError(
+            f'{source}: {where} kind = "{kind}" has no radius: give {whose} edge (mm) instead, '
+            f"like edge = {table['radius']!r}",
+            param=_key(where, key="radius"),
+        )
+    if needed not in table:
+        raise DesignError(
+            f'{source}: {where} kind = "{kind}" needs {needed} = one of: {", ".join(choices)}',
+            param=_key(where, key=needed),
+        )
+
+
 def _archimedean_spec(table: dict, source: str) -> dict:
     from ..pattern.tilings import ALL_TILINGS
 
     where = "[packing]"
-    if "radius" in table:
-        raise DesignError(
-            f'{source}: {where} kind = "archimedean" has no radius: give the tiling\'s '
-            f"edge (mm) instead, like edge = {table['radius']!r}",
-            param=_key(where, key="radius"),
-        )
-    if "tiling" not in table:
-        raise DesignError(
-            f'{source}: {where} kind = "archimedean" needs tiling = one of: {", ".join(ALL_TILINGS)}',
-            param=_key(where, key="tiling"),
-        )
+    _edge_kind_keys(table, source, "archimedean", "the tiling's", "tiling", ALL_TILINGS)
     tiling = _value(table, "packing", "tiling", source, where)
     edge = _value(table, "packing", "edge", source, where, _schema.key("packing.edge").default)
     raw = table.get("motifs", {})
@@ -891,17 +897,7 @@ def _girih_spec(table: dict, source: str) -> dict:
     from ..pattern.girih import PATTERNS, check_level
 
     where = "[packing]"
-    if "radius" in table:
-        raise DesignError(
-            f'{source}: {where} kind = "girih" has no radius: give the tiles\' edge (mm) instead, '
-            f"like edge = {table['radius']!r}",
-            param=_key(where, key="radius"),
-        )
-    if "girih_pattern" not in table:
-        raise DesignError(
-            f'{source}: {where} kind = "girih" needs girih_pattern = one of: {", ".join(PATTERNS)}',
-            param=_key(where, key="girih_pattern"),
-        )
+    _edge_kind_keys(table, source, "girih", "the tiles'", "girih_pattern", PATTERNS)
     pattern = _value(table, "packing", "girih_pattern", source, where)
     check = _schema.key("packing.girih_pattern").checker
     assert check is not None  # registered by fabtiles.pattern.girih, which the package imports
