@@ -19,6 +19,8 @@ formats = ["svg"]
 from __future__ import annotations
 
 import json
+import re
+from pathlib import Path
 
 
 def _value(v) -> str:
@@ -78,3 +80,19 @@ def default_sigint() -> None:
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+def assert_cli_refused(args, out, match: str) -> str:
+    """``fabtiles ARGS`` run in process is refused as the CLI refuses bad input: exit 2, one line
+    ``fabtiles: error: ...`` holding the regular expression ``match``, and nothing at ``out``. Returns
+    the line."""
+    from click.testing import CliRunner
+
+    from fabtiles.cli.main import cli
+
+    result = CliRunner().invoke(cli, [str(a) for a in args], catch_exceptions=False)
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith("fabtiles: error: ") and result.output.count("\n") == 1, result.output
+    assert re.search(match, result.output), result.output
+    assert not Path(out).exists()
+    return result.output

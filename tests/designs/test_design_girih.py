@@ -2,6 +2,7 @@
 
 import pytest
 from click.testing import CliRunner
+from designs import assert_cli_refused
 
 from fabtiles import DesignError, GirihPacking, LimitError
 from fabtiles.cli.main import cli
@@ -130,11 +131,7 @@ def test_bad_input_names_the_key_and_value(change, match, param):
 def test_cli_exits_2_and_writes_nothing(tmp_path):
     path = tmp_path / "g.toml"
     path.write_text(BASE.replace('"decagon-bowtie"', '"decagon-bowties"'), encoding="utf-8")
-    out = tmp_path / "out"
-    result = CliRunner().invoke(cli, ["build", str(path), "-o", str(out)], catch_exceptions=False)
-    assert result.exit_code == 2 and result.output.startswith("fabtiles: error: ")
-    assert "did you mean 'decagon-bowtie'?" in result.output and result.output.count("\n") == 1
-    assert not out.exists()
+    assert_cli_refused(["build", path, "-o", tmp_path / "out"], tmp_path / "out", "did you mean 'decagon-bowtie'\\?")
 
 
 def test_a_level_too_deep_is_refused_exit_2_and_no_file(tmp_path):
@@ -146,11 +143,11 @@ def test_a_level_too_deep_is_refused_exit_2_and_no_file(tmp_path):
     assert info.value.param == "packing.girih_level"
     path = tmp_path / "deep.toml"
     path.write_text(text, encoding="utf-8")
-    out = tmp_path / "out"
-    result = CliRunner().invoke(cli, ["build", str(path), "-o", str(out)], catch_exceptions=False)
-    assert result.exit_code == 2 and result.output.count("\n") == 1
-    assert "girih_level = 6 would make 4,749,436 strapwork segments" in result.output
-    assert not out.exists()
+    assert_cli_refused(
+        ["build", path, "-o", tmp_path / "out"],
+        tmp_path / "out",
+        "girih_level = 6 would make 4,749,436 strapwork segments",
+    )
 
 
 def test_cli_builds_a_girih_svg(tmp_path):

@@ -2,6 +2,7 @@
 
 import pytest
 from click.testing import CliRunner
+from designs import assert_cli_refused
 
 from fabtiles import ArchimedeanPacking, DesignError, Star
 from fabtiles.cli.main import cli
@@ -126,14 +127,9 @@ def test_bad_hankin_keys_name_the_key_and_the_valid_values(change, match, key):
     ],
 )
 def test_cli_exits_2_and_writes_nothing(tmp_path, setting, match):
-    import re
-
     path = tmp_path / "h.toml"
     path.write_text(BASE, encoding="utf-8")
-    out = tmp_path / "out"
-    result = CliRunner().invoke(cli, ["build", str(path), "-o", str(out), "--set", setting], catch_exceptions=False)
-    assert result.exit_code == 2 and re.search(match, result.output), result.output
-    assert len(result.output.strip().splitlines()) == 1 and not out.exists()
+    assert_cli_refused(["build", path, "-o", tmp_path / "out", "--set", setting], tmp_path / "out", match)
 
 
 def test_cli_method_on_a_hex_packing_exits_2(tmp_path):

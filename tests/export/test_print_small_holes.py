@@ -17,6 +17,7 @@ import subprocess
 import numpy as np
 import pytest
 import shapely
+from designs import assert_cli_refused
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
@@ -273,9 +274,6 @@ def test_random_designs_unfilled_count_what_the_slicer_faces(tmp_path, d):
     ],
 )
 def test_bad_min_hole_is_one_line_exit_2_and_no_file(tmp_path, line, match):
-    from click.testing import CliRunner
-
-    from fabtiles.cli.main import cli
 
     profile = tmp_path / "tall.toml"
     profile.write_text(f'kind = "printer"\n[printer]\n{line}\n')
@@ -284,11 +282,7 @@ def test_bad_min_hole_is_one_line_exit_2_and_no_file(tmp_path, line, match):
         '[motif]\npreset = "table3-1"\n[packing]\nradius = 8\n[tile]\nsize = 60\nframe = 3\n'
         f'[output]\nformats = ["stl"]\nprinter_profile = "{profile}"\nfill_small_holes = true\n'
     )
-    out = tmp_path / "out"
-    result = CliRunner().invoke(cli, ["build", str(design), "-o", str(out)], catch_exceptions=False)
-    assert result.exit_code == 2 and re.search(match, result.output), result.output
-    assert result.output.startswith("fabtiles: error: ") and result.output.count("\n") == 1
-    assert not out.exists()
+    assert_cli_refused(["build", design, "-o", tmp_path / "out"], tmp_path / "out", match)
 
 
 def test_fill_small_holes_must_be_a_bool(tmp_path):

@@ -10,13 +10,12 @@ DXF and a watertight STL; the bad values are refused naming the key, the value a
 from __future__ import annotations
 
 import pickle
-import re
 
 import ezdxf
 import numpy as np
 import pytest
 import shapely
-from click.testing import CliRunner
+from designs import assert_cli_refused
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
@@ -24,7 +23,6 @@ from mesh_helpers import assert_relief_stl
 
 import fabtiles
 from fabtiles import DesignError, ParameterError
-from fabtiles.cli.main import cli
 from fabtiles.designs.design_file import design_from_text
 from fabtiles.pattern.archimedean import TilingPacking
 from fabtiles.pattern.hankin import max_contact_angle, parquet_angles, polygon_rays, polygons_rays
@@ -287,10 +285,7 @@ def test_contact_angle_to_without_hankins_method_is_refused_in_a_design():
 def test_cli_exits_2_and_writes_nothing(tmp_path, setting, match):
     path = tmp_path / "p.toml"
     path.write_text(DESIGN, encoding="utf-8")
-    out = tmp_path / "out"
-    result = CliRunner().invoke(cli, ["build", str(path), "-o", str(out), "--set", setting], catch_exceptions=False)
-    assert result.exit_code == 2 and re.search(match, result.output), result.output
-    assert len(result.output.strip().splitlines()) == 1 and not out.exists()
+    assert_cli_refused(["build", path, "-o", tmp_path / "out", "--set", setting], tmp_path / "out", match)
 
 
 @pytest.mark.parametrize(
