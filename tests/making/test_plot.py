@@ -62,22 +62,32 @@ def test_bad_options(kw, match):
         plot_drawing(load_design(ROOT / "samples" / "rosette.toml"), **kw)
 
 
+def vpype_linesort_travels(paths) -> list[float]:
+    """The pen-up travel from the origin of vpype's ``linesort --two-opt`` of ``paths`` (open strokes,
+    ``(m, 2)`` arrays), given in their order (as ``vpype read`` of our SVG has them) and in reverse."""
+    vp = pytest.importorskip("vpype")
+    vpype_cli = pytest.importorskip("vpype_cli")
+    from fabtiles.geometry.cut_order import travel
+
+    out = []
+    for given in (list(paths), list(paths)[::-1]):
+        doc = vp.Document()
+        doc.add(vp.LineCollection([p[:, 0] + 1j * p[:, 1] for p in given]), 1)
+        lines = vpype_cli.execute("linesort --two-opt", doc).layers[1]
+        out.append(travel([np.column_stack([line.real, line.imag]) for line in lines], closed=False))
+    return out
+
+
 @pytest.mark.parametrize("sample", ["table3-3", "table3-2", "mosaic-iznik"])
 def test_strokes_travel_no_further_than_vpypes_linesort_two_opt(sample):
     """Each layer's pen-up travel from the origin, against vpype's ``linesort --two-opt`` on the same
     strokes: given in our order (as ``vpype read`` of our SVG has them) and in the reverse order."""
-    vp = pytest.importorskip("vpype")
-    vpype_cli = pytest.importorskip("vpype_cli")
     from fabtiles.geometry.cut_order import travel
 
     drawing = plot_drawing(load_design(ROOT / "samples" / f"{sample}.toml"))
     for layer in drawing.layers:
         ours = travel(layer.paths, closed=False)
-        for given in (list(layer.paths), list(layer.paths)[::-1]):
-            doc = vp.Document()
-            doc.add(vp.LineCollection([p[:, 0] + 1j * p[:, 1] for p in given]), 1)
-            sorted_ = vpype_cli.execute("linesort --two-opt", doc).layers[1]
-            theirs = travel([np.column_stack([line.real, line.imag]) for line in sorted_], closed=False)
+        for theirs in vpype_linesort_travels(layer.paths):
             assert ours <= 1.005 * theirs, (layer.name, ours, theirs)
     if sample == "table3-3":  # its strands chain end to end: 1,276 mm with 2-opt alone, 1,213 mm by vpype
         assert drawing.layers[0].name == "strands" and travel(drawing.layers[0].paths, closed=False) < 500

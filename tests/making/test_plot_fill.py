@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 import shapely
 from click.testing import CliRunner
+from test_plot import vpype_linesort_travels
 
 from fabtiles import ParameterError
 from fabtiles.cli.main import cli
@@ -121,8 +122,6 @@ def test_pen_up_travel_at_most_vpypes_linesort_two_opt(size, cross):
     """Each layer's pen-up travel from the origin, against vpype's ``linesort --two-opt`` on the same
     lines, given in our order (as ``vpype read`` of our SVG has them) and in the reverse order. The
     100 mm tile's cobalt layer (2,746 strokes) is past the polish, in the full 2-opt's range."""
-    vp = pytest.importorskip("vpype")
-    vpype_cli = pytest.importorskip("vpype_cli")
     from fabtiles.geometry.cut_order import POLISH_MAX, travel
 
     design = load_design(MOSAIC, overrides=[f"tile.size={size}"])
@@ -131,11 +130,7 @@ def test_pen_up_travel_at_most_vpypes_linesort_two_opt(size, cross):
         assert max(len(layer.paths) for layer in drawing.layers) > POLISH_MAX
     for layer in drawing.layers:
         ours = travel(layer.paths, closed=False)
-        for given in (list(layer.paths), list(layer.paths)[::-1]):
-            doc = vp.Document()
-            doc.add(vp.LineCollection([p[:, 0] + 1j * p[:, 1] for p in given]), 1)
-            lines = vpype_cli.execute("linesort --two-opt", doc).layers[1]
-            theirs = travel([np.column_stack([line.real, line.imag]) for line in lines], closed=False)
+        for theirs in vpype_linesort_travels(layer.paths):
             assert ours <= theirs + 1e-6, (layer.name, ours, theirs)
 
 
