@@ -2,7 +2,7 @@
 (``docs/girih.md``).
 
 Pure numpy. The five tiles (P. J. Lu and P. J. Steinhardt, "Decagonal and quasi-crystalline
-tilings in medieval Islamic architecture", Science 315, 1106, 2007, Fig. 1A) have equal edges
+tilings in medieval Islamic architecture", Science 315, 1106, 2007, Fig. 1F) have equal edges
 and every angle a multiple of 36 degrees: the regular decagon and pentagon, the elongated
 hexagon (72, 144, 144, 72, 144, 144), the bowtie (72, 72, 216, 72, 72, 216) and the rhombus
 (72, 108). Each edge's midpoint is crossed by two decoration lines at 54 degrees to the edge
@@ -10,7 +10,7 @@ hexagon (72, 144, 144, 72, 144, 144), the bowtie (72, 72, 216, 72, 72, 216) and 
 
 Inside a tile every line runs on until it meets another, and two lines that meet each other
 first are a pair: a tile's lines are paired in order of the distance they run, shortest first.
-That gives the figures of Lu and Steinhardt's Fig. 1A: on the decagon and the pentagon the lines
+That gives the figures of Lu and Steinhardt's Fig. 1F: on the decagon and the pentagon the lines
 of two edges beside a corner meet on its bisector (a 10- and a 5-pointed star, their points at
 the midpoints); beside a 72-degree corner the two lines are one straight line from midpoint to
 midpoint; in the bowtie the lines leaning to a 216-degree corner meet the lines of the far edge

@@ -521,6 +521,16 @@ def weave(segments) -> Weave:
     pdir = pieces[:, 1] - pieces[:, 0]
     pdir /= np.linalg.norm(pdir, axis=1, keepdims=True)
     odir, udir = pdir[v_piece[over_visit]], pdir[v_piece[under_visit]]
+    # Where both strands bend at a crossing, the pieces arriving there can be the two halves of one line (a flat V
+    # touching a line with its tip): parallel, they would give the crossing no angle. There each strand's
+    # direction is the mean of its pieces arriving and leaving.
+    flat = np.abs(_cross(odir, udir)) < STRAIGHT
+    if flat.any():
+        arriving = v_piece[np.concatenate([over_visit[flat], under_visit[flat]])]
+        leaving = partner[(2 * arriving + flip[arriving]) ^ 1] >> 1
+        through = pdir[arriving] + pdir[leaving]
+        through /= np.linalg.norm(through, axis=1, keepdims=True)
+        odir[flat], udir[flat] = np.split(through, 2)
     seg_strand = np.full(k, -1)
     seg_strand[piece_seg] = strand_of
     return Weave(

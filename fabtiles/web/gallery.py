@@ -9,10 +9,10 @@ entry and its sample and compares the tiles, so the two cannot drift; the
 samples have no colours, so neither have these entries), then four tilings by
 Hankin's polygons in contact as ``samples/hankin/`` has them (compared likewise), and two
 cylinders, a texture roller and a lampshade, as ``samples/roller-60x80.toml`` and
-``samples/lampshade-120x150.toml`` have them (compared likewise), then the girih pattern of
-``samples/girih-decagon-bowtie.toml`` (compared likewise), then two classical devices on Hankin's
-rays, a border of stars and a parquet deformation, as ``samples/classical/`` has them (compared
-likewise). The thumbnails are
+``samples/lampshade-120x150.toml`` have them (compared likewise), then the girih patterns of
+``samples/girih-decagon-bowtie.toml`` and ``samples/classical/girih-subdivided.toml`` (compared
+likewise), then two classical devices on Hankin's rays, a border of stars and a parquet deformation,
+as ``samples/classical/`` has them (compared likewise). The thumbnails are
 drawn by the preview code (:func:`~fabtiles.making.views.tile_picture`, the
 coloured faces too; a cylinder's unrolled strip as it prints) and kept for the life of the process.
 
@@ -129,7 +129,8 @@ _CYLINDERS = {
 }
 
 
-# key -> title, note and query: the girih patterns of samples/girih-<pattern>.toml
+# key -> title, note, query and stroke (mm): the girih patterns of samples/<key>.toml, the subdivided one in
+# samples/classical/ (the every-sample tests leave that folder out)
 _GIRIH = {
     "girih-decagon-bowtie": (
         "Girih decagons and bowties",
@@ -142,6 +143,21 @@ _GIRIH = {
             "colour_by": "shape",
             "palette": "zellige",
         },
+        1.2,
+    ),
+    "girih-subdivided": (
+        "Girih subdivided",
+        "the decagons and bowties subdivided once into girih tiles of edge 6 mm: each large decagon a "
+        "ten-pointed star in a ring of bowties and hexagons",
+        {
+            "packing": "girih",
+            "girih_pattern": "decagon-bowtie",
+            "girih_level": "1",
+            "edge": "6",
+            "colour_by": "shape",
+            "palette": "zellige",
+        },
+        1,
     ),
 }
 
@@ -269,8 +285,8 @@ def entries() -> tuple[Entry, ...]:
         query = {"packing": "hex", "shape": "cylinder", **values}
         query.update(printer_profile="fdm-0.4mm", fill_small_holes="true")
         out.append(Entry(key, title, note, query, "cylinder"))
-    for key, (title, note, values) in _GIRIH.items():
-        out.append(Entry(key, title, note, {**values, **_tile_query(1.2)}, "girih"))
+    for key, (title, note, values, stroke) in _GIRIH.items():
+        out.append(Entry(key, title, note, {**values, **_tile_query(stroke)}, "girih"))
     for key, (title, note, values) in _CLASSICAL.items():
         out.append(Entry(key, title, note, {**values, **_tile_query(1)}, "classical"))
     assert set(_TILINGS) == set(TILINGS), "a tiling is missing from the gallery"

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis_scale import examples
@@ -127,6 +128,30 @@ def test_a_tip_turns_the_strand():
     assert w.strand[0] == w.strand[1]
     assert len(w) == 4
     check_alternation(w)
+
+
+def _bent_crossing(bend_deg):
+    """A line and a flat V whose tip touches it: the two strands cross there, each bending by ``bend_deg``."""
+    t = 10 * math.tan(math.radians(bend_deg))
+    return np.array([[[-10, 0], [10, 0]], [[-10, -t], [0, 0]], [[0, 0], [10, -t]]], float)
+
+
+@pytest.mark.parametrize("bend", [3.0, 10.0, 25.0])
+def test_two_strands_bending_at_one_point_cross_at_their_angle(bend):
+    # each strand runs from the line on one side to the V's arm on the other: they change sides at the tip,
+    # a crossing of two strands that both bend there; their directions are the mean of the pieces
+    # arriving and leaving, so they meet at the bend angle (the pieces arriving can be the line's two halves)
+    from fabtiles.geometry import interlace as gi
+
+    w = weave(_bent_crossing(bend))
+    assert len(w) == 1 and len(w.knots) == 0 and w.conflicts == 0
+    assert w.sin[0] == pytest.approx(math.sin(math.radians(bend)))
+    assert abs(w.over_dir[0, 1]) == pytest.approx(math.sin(math.radians(bend / 2)))
+    assert np.isfinite(w.under_gaps(0.5, 0.3)).all() and np.isfinite(w.max_gap(0.5))
+    assert w.straight_reach().tolist() == [[0.0, 0.0]]  # the under strand bends at the crossing
+    region = shapely.union_all(shapely.buffer(shapely.linestrings(_bent_crossing(bend)), 0.5))
+    woven = gi.woven_region(region, w, 0.5, 0.3)
+    assert woven.is_valid and 0 < woven.area < region.area
 
 
 def test_strands_and_visits_are_linear_not_quadratic_in_count():

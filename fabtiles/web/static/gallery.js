@@ -11,7 +11,7 @@ async function gallery() {
     `${count("hankin")} of them by Hankin's method, ${count("two-uniform")} two-uniform tiling, ` +
     `${count("cylinder")} cylinders (` +
     `${items.filter((e) => e.group === "cylinder").map((e) => e.title.toLowerCase()).join(", ")}), ` +
-    `${count("girih")} of girih tiles and ${count("classical")} classical devices (` +
+    `${count("girih")} girih patterns and ${count("classical")} classical devices (` +
     `${items.filter((e) => e.group === "classical").map((e) => e.title.toLowerCase()).join(", ")}): ` +
     "choose one to open it in the editor.";
   for (const e of items) {
