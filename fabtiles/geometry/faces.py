@@ -254,7 +254,7 @@ def _faces(region, outline) -> np.ndarray:
     parts = parts[~shapely.is_empty(parts)]
     nholes = shapely.get_num_interior_rings(parts)
     owner = np.repeat(np.arange(len(parts)), nholes)
-    index = np.concatenate([np.arange(k) for k in nholes])
+    index = np.arange(int(nholes.sum())) - np.repeat(np.cumsum(nholes) - nholes, nholes)  # its number in its part
     holes = shapely.polygons(shapely.get_interior_ring(parts[owner], index))
     shells = shapely.polygons(shapely.get_exterior_ring(parts))
     # a piece of material inside a hole (an island) is taken out of it: its shell, so the

@@ -371,3 +371,13 @@ def test_region_must_be_polygons():
 def test_no_faces():
     fc = face_classes(MOTIF_TILE, region=MOTIF_TILE.outline_shape())
     assert len(fc.faces) == 0 and fc.classes == () and fc.stats() == []
+
+
+def test_a_tile_with_no_material_is_one_face_its_outline():
+    # a 20 mm circle in a hex packing of radius 40: every stroke falls outside it (the build refuses the tile
+    # saying so; its faces must not fail first)
+    tile = TileGeometry("circle", 20, HexPacking(radius=40, motif=Star.preset("table3-3")), frame=0, stroke=1)
+    assert tile.region().is_empty
+    classes = face_classes(tile, by="shape")
+    assert len(classes.faces) == 1 and [c.count for c in classes.classes] == [1]
+    assert classes.faces[0].area == pytest.approx(tile.outline_shape().area)
