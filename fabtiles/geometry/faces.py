@@ -303,7 +303,8 @@ def _whole_faces(tile, faces):
     cx, cy = tile.centre
     areas = shapely.area(faces)
     # the representative point of each face, moved into the period [-px/2, px/2] x [-py/2, py/2]
-    pts = _inner_points(faces) - (cx, cy)
+    inner = _inner_points(faces)
+    pts = inner - (cx, cy)
     pts = pts - np.round(pts / (px, py)) * (px, py)
     moves = np.array([(px, 0.0), (-px, 0.0), (0.0, py), (0.0, -py)])
     # A margin of half a period holds every whole face of the samples (the hex packing's
@@ -313,7 +314,12 @@ def _whole_faces(tile, faces):
     margin = max(px, py) / 2
     while True:
         window = tile.replace(
-            outline="rectangle", size=(px + 2 * margin, py + 2 * margin), frame=0.0, corner_radius=0.0, interlace=False
+            outline="rectangle",
+            size=(px + 2 * margin, py + 2 * margin),
+            frame=0.0,
+            corner_radius=0.0,
+            interlace=False,
+            border_mm=0.0,
         )
         wholes = _faces(window.region(), window.outline_shape())
         wx, wy = window.centre
@@ -349,6 +355,8 @@ def _whole_faces(tile, faces):
     # a bounded whole face is no smaller than its piece in the tile (a region passed in may
     # merge faces the pattern keeps apart: then the tile's face is classified by its own shape)
     ok = open_[k] | (areas[i] <= shapely.area(wholes[k]) * (1 + AREA_TOLERANCE))
+    if tile.border_mm > 0:  # the border's frieze is no piece of the packing: its faces go by their own shape
+        ok &= shapely.contains_xy(tile.field_shape(), *inner[i].T)
     index[i[ok]] = k[ok]
     return wholes, index, open_
 

@@ -47,7 +47,9 @@ def sample_classes():
     return of
 
 
-@pytest.fixture(scope="module", params=DESIGNS + ["motif"])
+# a border's band of stars round Hankin's rays: the frieze's faces are classed by their own shapes, the field's
+# by the packing's
+@pytest.fixture(scope="module", params=DESIGNS + ["classical/border-4.8.8.toml", "motif"])
 def classed(request, sample_classes):
     if request.param != "motif":
         return sample_classes(request.param)
@@ -57,9 +59,13 @@ def classed(request, sample_classes):
 
 # -- what the test measures, with GEOS -----------------------------------------------
 def _cut(tile, faces):
-    """True for faces touching the frame's inner edge (or the outline with no frame): pieces."""
+    """True for faces touching the frame's inner edge (or the outline with no frame), or a border's line round
+    the field (its centre-line half a stroke away): pieces."""
     edge = shapely.get_exterior_ring(tile.inner_shape())
-    return shapely.distance(faces, edge) < 1e-6
+    cut = shapely.distance(faces, edge) < 1e-6
+    if tile.border_mm > 0:
+        cut |= shapely.distance(faces, shapely.get_exterior_ring(tile.field_shape())) < tile.stroke / 2 + 1e-6
+    return cut
 
 
 def _point_match(p, q, tol=1e-3):
@@ -381,3 +387,14 @@ def test_a_tile_with_no_material_is_one_face_its_outline():
     classes = face_classes(tile, by="shape")
     assert len(classes.faces) == 1 and [c.count for c in classes.classes] == [1]
     assert classes.faces[0].area == pytest.approx(tile.outline_shape().area)
+
+
+def test_a_border_wider_than_a_third_of_the_packings_period_is_classed():
+    # the whole faces are found in a window a few periods wide, which once carried the tile's border: a border
+    # the tile takes (at most a third of it) was refused there as wider than a third of the window
+    from fabtiles.pattern.archimedean import ArchimedeanPacking
+
+    packing = ArchimedeanPacking("3.3.3.3.3.3", edge=10, method="hankin", contact_angle=30)
+    tile = TileGeometry("square", 120, packing, frame=0, stroke=1, border_mm=35)
+    fc = face_classes(tile, by="shape")
+    assert len(fc.classes) > 1 and shapely.union_all(fc.faces).area + tile.region().area == pytest.approx(120 * 120)
