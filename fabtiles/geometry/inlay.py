@@ -263,11 +263,11 @@ def _check_apart(pieces, holes, fit: float, kerf: float) -> None:
         where = shapely.get_coordinates(shapely.shortest_line(pieces[a[k]], pieces[b[k]])).mean(axis=0)
         band = float(shapely.distance(holes[a[k]], holes[b[k]]))
         raise FabricationError(
-            f"{len(a)} pairs of inlay pieces would touch on the pieces sheet: the narrowest gap between two "
-            f"pieces is {distinct(gaps[k], kerf)} mm (at ({where[0]:.4g}, {where[1]:.4g}), where the band of "
-            f"lattice between their holes is {band:.3g} mm), and pieces must stand more than the kerf = "
-            f"{kerf:g} mm apart, so bands must be wider than kerf + 2 x fit = {kerf + 2 * fit:g} mm; make the "
-            f"stroke wider or inlay_fit_mm smaller"
+            f"{len(a)} pair{'s' if len(a) != 1 else ''} of inlay pieces would touch on the pieces sheet: the "
+            f"narrowest gap between two pieces is {distinct(gaps[k], kerf)} mm (at ({where[0]:.4g}, "
+            f"{where[1]:.4g}), where the band of lattice between their holes is {band:.3g} mm), and pieces must "
+            f"stand more than the kerf = {kerf:g} mm apart, so bands must be wider than kerf + 2 x fit = "
+            f"{kerf + 2 * fit:g} mm; make the stroke wider or inlay_fit_mm smaller"
         )
 
 
