@@ -1259,8 +1259,12 @@ def _merge_slivers(faces):
             if length > shared:
                 best, shared = j, length
         if best is not None:
-            faces[best] = shapely.union(faces[best], faces[i], grid_size=QUANTUM)
-            gone.add(i)
+            # on the grid the union may leave a tail of the sliver as a line beside the polygon: dropped
+            merged = shapely.get_parts(shapely.union(faces[best], faces[i], grid_size=QUANTUM))
+            merged = merged[(shapely.get_type_id(merged) == 3) & (shapely.area(merged) > 0)]
+            if len(merged) == 1:
+                faces[best] = merged[0]
+                gone.add(i)
     return np.asarray([f for k, f in enumerate(faces) if k not in gone], dtype=object)
 
 
