@@ -234,7 +234,7 @@ class Weave:
         order = np.argsort(g_lo)
         g_lo, g_hi = g_lo[order], np.maximum.accumulate(g_hi[order])
         # merge overlapping gaps into disjoint intervals
-        start = np.r_[True, g_lo[1:] > g_hi[:-1]]
+        start = np.r_[np.ones(min(len(g_lo), 1), bool), g_lo[1:] > g_hi[:-1]]  # none without crossings
         m_lo = g_lo[start]
         m_hi = np.maximum.reduceat(g_hi, np.flatnonzero(start)) if len(g_hi) else g_hi
         # kept intervals: the complement of the gaps

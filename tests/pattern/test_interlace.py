@@ -175,6 +175,15 @@ def test_broken_pieces_leave_the_over_strand_whole():
     assert np.allclose(gap, 0.15)
 
 
+def test_broken_pieces_without_a_crossing_are_the_segments():
+    # strands that never cross (a V and a line apart from it): nothing to break, every segment whole
+    seg = np.array([[[0, 0], [1, 1]], [[1, 1], [2, 0]], [[0, 3], [2, 3]]], float)
+    w = weave(seg)
+    assert len(w) == 0
+    pieces = w.broken_pieces(0.2, 0.1)
+    assert sorted(map(tuple, pieces.reshape(-1, 4).round(9).tolist())) == sorted(map(tuple, seg.reshape(-1, 4)))
+
+
 def test_max_gap_is_where_the_gaps_add_up_to_a_whole_strand():
     # a 4 long line under at one of two crossings (limit 2 - 0.25), 2 long crossers (1 - 0.25)
     seg = np.array([[[0, 0], [4, 0]], [[1, -1], [1, 1]], [[3, -1], [3, 1]]], float)
