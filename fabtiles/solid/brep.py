@@ -247,7 +247,10 @@ def _onto_side(k: int, sides, succ: dict, xy, out, side_of) -> None:
     """Move the points of the runs along side k onto its line, in place (see :func:`_onto_sides`).
 
     Along a run, a point moves only if it lies past the last one moved (or corner
-    passed): one that would fold back stays where it is.
+    passed) and strictly between the side's corners: one that would fold back stays
+    where it is, and so does one whose foot on the line is a corner or past it (a
+    point of the next side a quantum before the corner is within the tolerance of
+    this side too; moved, it would sit on the corner, a wall of no width).
     """
     a, d = sides[k, :2], sides[k, 2:] - sides[k, :2]
     for u in _run_starts(k, succ):
@@ -258,7 +261,7 @@ def _onto_side(k: int, sides, succ: dict, xy, out, side_of) -> None:
             corner = bool(np.all(xy[p] == sides[k, :2]) or np.all(xy[p] == sides[k, 2:]))
             if corner:
                 last = max(last, t)
-            elif side_of[p] < 0 and last < t < 1.0:
+            elif side_of[p] < 0 and max(last, 0.0) < t < 1.0:
                 out[p] = a + t * d
                 side_of[p] = k
                 last = t
@@ -269,7 +272,10 @@ def _keep_pieces_valid(topo, vxy, side_of, outer_loops):
     """Move back the points whose move onto a side made a piece or a bottom loop invalid (in place).
 
     A sliver of a piece thinner than the move (a region edge within a micron of
-    the side) would collapse; its points stay on the grid instead, as they were.
+    the side) would collapse; its points stay on the grid instead, as they were. So
+    does a point moved onto another (a notch a quantum deep along the side: its
+    moved end on the point where it meets the side), which GEOS does not call
+    invalid (a repeated point) but which is a wall of no width.
     """
 
     ring_of_point = np.repeat(np.arange(len(topo.ring_start) - 1), np.diff(topo.ring_start))
@@ -280,11 +286,18 @@ def _keep_pieces_valid(topo, vxy, side_of, outer_loops):
         if not len(rings):
             return
         bad_points = _points_of_invalid(topo, np.unique(poly_of_ring[rings]).tolist(), vxy, side_of, outer_loops)
-        bad = [p for p in set(bad_points) if side_of[p] >= 0]
+        bad = [p for p in set(bad_points) | set(_coinciding(vxy, moved)) if side_of[p] >= 0]
         if not bad:
             return
         vxy[bad] = topo.xy[bad]
         side_of[bad] = -1
+
+
+def _coinciding(vxy, moved) -> list:
+    """The moved points that lie on another point (the points are distinct before the moves)."""
+    # one complex key per point: a 1-D unique, much quicker than np.unique's rows
+    _, inverse, counts = np.unique(vxy[:, 0] + 1j * vxy[:, 1], return_inverse=True, return_counts=True)
+    return np.flatnonzero(moved & (counts[inverse] > 1)).tolist()
 
 
 def _points_of_invalid(topo, pieces: list, vxy, side_of, outer_loops) -> list:

@@ -197,6 +197,61 @@ def test_a_sliver_merged_on_the_grid_leaves_no_line_beside_its_face():
     assert big.area - 1e-12 <= merged.area <= big.area + sliver.area + 1e-12  # the sliver's tail is no area
 
 
+def _occt_volume(brep, tmp_path, parts=1):
+    """The volume OCCT reads back from the STEP file of ``brep``, its solids checked valid."""
+    from fabtiles.export.step import check_step_file
+    from fabtiles.export.step_file import step_text
+    from fabtiles.solid.brep import brep_volume
+
+    path = tmp_path / "b.step"
+    path.write_text(step_text([brep]))
+    return check_step_file(path, volume=brep_volume(brep), parts=parts)
+
+
+def _plate_on_sides(points, tmp_path):
+    """A plate 3 mm thick of the polygon ``points`` in the 10 mm square outline, its sides as
+    :func:`~fabtiles.solid.brep._sides` gives a square's (the first from its corner (10, 0) up):
+    ``(brep, volume)`` after the writers' check and OCCT's."""
+    from fabtiles.solid.brep import _sides
+    from fabtiles.solid.brep import check_brep as writers_check
+
+    region = shapely.Polygon(points)
+    b = planar_brep(coverage([(region, 3.0)], bottom=0.0), sides=_sides(box(0, 0, 10, 10)))
+    volume = region.area * 3.0
+    assert all(np.linalg.norm(f.normal) > 0 for f in b.faces)  # no wall of no width
+    assert writers_check(b, volume=volume, parts=1) == pytest.approx(volume, rel=1e-12)
+    assert _occt_volume(b, tmp_path) == pytest.approx(volume, rel=1e-9)
+    return b, volume
+
+
+def test_a_point_a_quantum_before_a_corner_stays_on_its_own_side(tmp_path):
+    """The region's bottom side has a point a quantum before the corner (10, 0): within the tolerance of the
+    first side (x = 10) too, whose line it meets at that corner. Moved onto that side, it sat on the corner,
+    and the wall between them had no width (the STEP was refused: an invalid horizontal face, a zero normal).
+    It stays on its own side, whose walls are one face."""
+    from fabtiles.solid._mesh_build import QUANTUM
+    from fabtiles.solid.brep import _onto_sides, _sides
+
+    points = [(0, 0), (10 - QUANTUM, 0), (10, 0), (10, QUANTUM), (10, 10), (0, 10)]
+    xy = np.array(points, float)
+    moved, side_of = _onto_sides(xy, _sides(box(0, 0, 10, 10)), [(i, (i + 1) % 6) for i in range(6)])
+    assert (moved == xy).all()  # every point already on its side
+    assert side_of.tolist() == [-1, 3, -1, 0, -1, -1]  # the bottom side is the fourth (corners: none)
+    b, _ = _plate_on_sides(points, tmp_path)
+    assert len(b.faces) == 6  # a box: each side one face
+    ends = b.points[b.edges][:, :, :2]
+    assert not np.all(ends == [10 - QUANTUM, 0], axis=(1, 2)).any()  # no vertical edge at the point
+    assert np.all(ends == [10, 0], axis=(1, 2)).sum() == 1  # one at the corner
+
+
+def test_a_notch_a_quantum_deep_along_a_side_keeps_its_walls(tmp_path):
+    """The notch's far corner, a quantum off the side, would be moved onto the point where the notch
+    meets the side again (a wall of no width): the move is undone, the notch stays as the region has it."""
+    from fabtiles.solid._mesh_build import QUANTUM
+
+    _plate_on_sides([(0, 0), (3, 0), (3, QUANTUM), (5, QUANTUM), (5, 0), (10, 0), (10, 10), (0, 10)], tmp_path)
+
+
 # --------------------------------------------------------------------------- round walls (issue 35)
 
 

@@ -90,6 +90,46 @@ def test_a_face_pinched_at_a_cell_line_is_split_there():
     assert len(tops) == 3  # the pinched piece in two, and the one below
 
 
+# A random pierced design whose STEP was refused at 100.54 mm (an invalid horizontal face): its region
+# has points a quantum from the outline's corners along its sides; the one before the corner (size, 0),
+# within the tolerance of the first side too, was moved onto the corner. At 39.98 mm it has the same
+# points, and failed the same way.
+DESIGN_2 = """
+[motif]
+preset = "table3-3"
+[packing]
+kind = "archimedean"
+tiling = "3.3.3.4.4"
+edge = 18.94
+[tile]
+outline = "square"
+size = 39.98
+frame = 2
+stroke = 1.86
+join = "miter"
+[output]
+printer_profile = "fdm-0.4mm"
+print_style = "pierced"
+formats = ["step"]
+"""
+
+
+def test_a_region_point_a_quantum_before_a_corner_writes_a_valid_step(tmp_path):
+    """Design 2: the point stays on its own side, and OCCT reads one valid solid of the mesh's volume."""
+    from fabtiles.export.step import check_step_file, step_bytes
+
+    design = design_from_text(DESIGN_2, name="design2")
+    model = Models(prepare_tile(design), BuildOptions.of_design(design)).print
+    brep, volume, parts = model.brep
+    corner = np.array([model.fused.outline.bounds[2], 0.0])
+    assert (shapely.get_coordinates(model.fused.region) == corner - [2**-10, 0]).all(axis=1).any()
+    assert parts == 1
+    bottom_side = [f for f in brep.faces if f.radius == 0 and f.normal[0] == f.normal[2] == 0 and f.origin[1] == 0]
+    assert len(bottom_side) == 1  # the side the point lies on is one face
+    (tmp_path / "d.step").write_bytes(step_bytes(model))  # checks the B-rep: every horizontal face valid
+    assert check_step_file(tmp_path / "d.step", volume=volume, parts=1) == pytest.approx(volume, rel=5e-4)
+
+
 @pytest.mark.slow
 def test_design_1_writes_every_format_and_its_step_is_valid_in_occt(tmp_path):
     from fabtiles import making as build
