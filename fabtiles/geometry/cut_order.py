@@ -384,16 +384,30 @@ def _cost(first, last, order, flipped, start, end=None) -> float:
 def _near(ends, exits, k: int) -> list:
     """For each exit point, the indices of the ``k`` nearest ``ends`` (fewer where the points are sparse).
 
-    GEOS's R-tree and its ``dwithin`` query with the radius that holds about ``2 k`` points
-    at the points' mean density, then the ``k`` nearest of those. (scipy's cKDTree does it
-    in one call, but importing scipy.spatial costs more than the whole order.)
+    GEOS's R-tree and its ``dwithin`` query within the radius that holds about ``2 k`` points at the
+    points' mean density, then the ``k`` nearest of those found. (scipy's cKDTree does it in one call,
+    but importing scipy.spatial costs more than the whole order.) The tree is asked first with a
+    64th of that radius, then for the exits that found fewer than ``k`` twice that, up to the whole
+    radius: where the points crowd far above their mean density (score lines meeting by the thousand
+    at one point, or crossing at a shallow angle in pieces hundredths of a millimetre long) no exit
+    gathers thousands of them. The tree returns what a smaller radius finds in the same order, so the
+    lists are the one query's.
     """
     m = len(ends)
     lo, hi = ends.min(axis=0), ends.max(axis=0)
     area = max(float(np.prod(np.maximum(hi - lo, 1e-6))), 1e-12)
-    r = float(np.sqrt(2 * k * area / (np.pi * m)))
+    reach = float(np.sqrt(2 * k * area / (np.pi * m)))
     tree = shapely.STRtree(shapely.points(ends))
-    a, b = tree.query(shapely.points(exits), predicate="dwithin", distance=r)
+    found_a, found_b = [], []
+    todo, r = np.arange(len(exits)), reach / 64
+    while len(todo):
+        a, b = tree.query(shapely.points(exits[todo]), predicate="dwithin", distance=r)
+        done = (np.bincount(a, minlength=len(todo)) >= k) | (r >= reach)
+        keep = done[a]
+        found_a.append(todo[a[keep]])
+        found_b.append(b[keep])
+        todo, r = todo[~done], min(2 * r, reach)
+    a, b = np.concatenate(found_a), np.concatenate(found_b)
     d = np.hypot(*(exits[a] - ends[b]).T)
     o = np.lexsort((d, a))
     a, b = a[o], b[o]

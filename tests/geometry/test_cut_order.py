@@ -138,3 +138,28 @@ def test_the_estimate_reports_both_travels():
     stats = plan.report.stats["job"]
     assert stats["travel_mm"] <= stats["travel_before_mm"]
     assert "head travel" in plan.estimate.travel_line()
+
+
+def test_neighbours_of_crowded_ends_are_found_without_gathering_the_crowd(monkeypatch):
+    # 400 ends in half a millimetre square among 4,000 over a 100 mm square: one query at the radius the mean
+    # density gives hands every crowded exit the whole crowd (53 points an exit over all); the radius grown
+    # from a 64th of it stops where each exit has its k
+    from fabtiles.geometry.cut_order import _near
+
+    rng = np.random.default_rng(5)
+    ends = np.concatenate([rng.uniform(0, 0.5, (400, 2)), rng.uniform(0, 100, (4000, 2))])
+    exits = ends[::-1].copy()
+    found = []
+    query = shapely.STRtree.query
+
+    def counted(self, *args, **kwargs):
+        out = query(self, *args, **kwargs)
+        found.append(out.shape[1])
+        return out
+
+    monkeypatch.setattr(shapely.STRtree, "query", counted)
+    near = _near(ends, exits, 9)
+    assert sum(found) < 35 * len(exits)
+    for i in rng.choice(len(exits), 300, replace=False):  # the k nearest, as a brute force finds them
+        d = np.hypot(*(ends - exits[i]).T)
+        assert 0 < len(near[i]) <= 9 and sorted(d[near[i]]) == pytest.approx(np.sort(d)[: len(near[i])])
