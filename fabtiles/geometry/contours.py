@@ -355,9 +355,13 @@ def unique_segments(segments) -> np.ndarray:
 def score_paths(centrelines, outline, *, tolerance_mm: float = 0.01) -> list:
     """Centre-lines clipped to ``outline`` and joined into open paths (the score layer).
 
-    Segments are rounded to 1e-6 mm, zero-length and repeated segments dropped, and
-    chains through vertices where exactly two segments meet merged into one path,
-    so the file holds a few long paths instead of thousands of 2-point lines.
+    Segments are rounded to 1e-6 mm, zero-length and repeated segments dropped, collinear ones
+    that overlap joined (:func:`dissolve_overlaps`: a line shared by two motifs is scored once),
+    and chains through vertices where exactly two segments meet merged into one path, so the
+    file holds a few long paths instead of thousands of 2-point lines. Lines that cross are
+    not split where they cross: the laser scores each straight through, one path each, not
+    a path between every two crossings (a dense star's lines cross every few hundredths of a
+    millimetre).
 
     >>> from shapely.geometry import box
     >>> seg = np.array([[[0, 0], [1, 0]], [[1, 0], [2, 1]], [[5, 5], [20, 5]]], dtype=float)
@@ -371,13 +375,15 @@ def score_paths(centrelines, outline, *, tolerance_mm: float = 0.01) -> list:
         )
     if not np.all(np.isfinite(seg)):
         raise ParameterError("centrelines must be finite numbers, got NaN or infinite values", param="centrelines")
-    seg = unique_segments(seg)
+    seg = dissolve_overlaps(unique_segments(seg))
     if not len(seg):
         return []
     polygon_parts(outline, "outline")
-    clip = shapely.intersection(shapely.multilinestrings(shapely.linestrings(seg)), outline)
-    merged = shapely.line_merge(clip)
-    lines = shapely.get_parts(merged)
+    clip = shapely.get_parts(shapely.intersection(shapely.linestrings(seg), outline))  # each on its own
+    clip = clip[(shapely.get_type_id(clip) == 1) & (shapely.length(clip) > 0)]
+    if not len(clip):
+        return []
+    lines = shapely.get_parts(shapely.line_merge(shapely.multilinestrings(clip)))
     lines = lines[shapely.get_type_id(lines) == 1]
     lines = lines[shapely.length(lines) > tolerance_mm / 10]
     paths = []
@@ -388,3 +394,59 @@ def score_paths(centrelines, outline, *, tolerance_mm: float = 0.01) -> list:
         if len(coords) >= 2:
             paths.append(coords)
     return _order(paths)
+
+
+def dissolve_overlaps(segments, *, tolerance_mm: float = 1e-5) -> np.ndarray:
+    """Segments ``(k, 2, 2)`` with the collinear ones that overlap or meet end to end joined into one.
+
+    Two segments within ``tolerance_mm`` of each other are collinear when the shorter one's ends lie
+    within ``tolerance_mm`` of the longer one's line; every set of segments joined so is laid along its
+    longest one's direction, and each run of them that overlaps becomes the segment from the
+    first's start to the farthest end, both original points.
+
+    >>> dissolve_overlaps([[[0, 0], [2, 0]], [[1, 0], [3, 0]], [[0, 1], [1, 2]]]).tolist()
+    [[[0.0, 1.0], [1.0, 2.0]], [[0.0, 0.0], [3.0, 0.0]]]
+    """
+    from ..core.graph import components
+
+    seg = np.asarray(segments, float).reshape(-1, 2, 2)
+    if len(seg) < 2:
+        return seg.copy()
+    lines = shapely.linestrings(seg)
+    i, j = shapely.STRtree(lines).query(lines, predicate="dwithin", distance=tolerance_mm)
+    i, j = i[i < j], j[i < j]
+    d = seg[:, 1] - seg[:, 0]
+    length = np.linalg.norm(d, axis=1)
+
+    def off(p, q):  # the larger distance of q's two ends from p's line
+        r = seg[q] - seg[p][:, :1]
+        return np.abs(d[p][:, None, 0] * r[..., 1] - d[p][:, None, 1] * r[..., 0]).max(axis=1) / length[p]
+
+    long_, short = np.where(length[i] >= length[j], i, j), np.where(length[i] >= length[j], j, i)
+    collinear = off(long_, short) <= tolerance_mm  # a short segment's direction is the less sure
+    if not collinear.any():
+        return seg.copy()
+    group = components(len(seg), i[collinear], j[collinear])
+    shared = np.bincount(group, minlength=len(seg))[group] > 1
+    # each group along its longest segment: the place of every end on that line
+    longest = np.zeros(len(seg), np.int64)
+    members = np.flatnonzero(shared)
+    by_length = members[np.lexsort((length[members], group[members]))]
+    longest[group[by_length]] = by_length  # the last of each group, its longest, stays
+    u = d[longest[group]] / length[longest[group]][:, None]
+    t = np.einsum("kij,kj->ki", seg - seg[longest[group]][:, :1], u)
+    lo_end = np.argmin(t, axis=1)
+    out = [seg[~shared]]
+    runs: list[list] = []  # (start point, farthest t, its point) of each run of overlapping segments in a group
+    previous = -1
+    along = np.lexsort((t.min(axis=1), group))  # group by group, each from its lowest end
+    for k in along[shared[along]].tolist():
+        a, b = seg[k, lo_end[k]], seg[k, 1 - lo_end[k]]
+        ta, tb = t[k].min(), t[k].max()
+        if group[k] != previous or ta > runs[-1][1] + tolerance_mm:
+            runs.append([a, tb, b])
+        elif tb > runs[-1][1]:
+            runs[-1][1:] = [tb, b]
+        previous = group[k]
+    out.append(np.array([[a, b] for a, _, b in runs]))
+    return np.concatenate(out)

@@ -16,6 +16,7 @@ from fabtiles import ParameterError
 from fabtiles.geometry.contours import (
     MITRE_LIMIT,
     clean_rings,
+    dissolve_overlaps,
     hilbert_order,
     laser_contours,
     outline_contours,
@@ -152,6 +153,38 @@ def test_score_paths_merge_clip_and_dedupe():
         score_paths(np.zeros((3, 2)), box(0, 0, 1, 1))
     with pytest.raises(ParameterError, match="finite"):
         score_paths(np.full((1, 2, 2), np.nan), box(0, 0, 1, 1))
+
+
+def test_score_paths_run_straight_through_crossings_and_score_overlaps_once():
+    # an X of two lines is two paths, not four; a line drawn again in two overlapping pieces (one a 1e-7 mm
+    # off, as two motifs compute a shared line) is one path as long as their union
+    x = np.array([[[0, 0], [4, 4]], [[0, 4], [4, 0]]], float)
+    assert sorted(len(p) for p in score_paths(x, box(-1, -1, 5, 5))) == [2, 2]
+    overlap = np.array([[[0, 6], [3, 6]], [[2, 6 + 1e-7], [5, 6 + 1e-7]], [[5, 6], [5, 8]]], float)
+    (path,) = score_paths(overlap, box(-1, -1, 9, 9))
+    assert float(np.hypot(*np.diff(path, axis=0).T).sum()) == pytest.approx(7.0, abs=1e-6)
+
+
+@given(
+    angle=st.floats(-89, 89),
+    cuts=st.lists(st.tuples(st.floats(0, 10), st.floats(0.01, 4)), min_size=1, max_size=6),
+    wobble=st.floats(-1e-7, 1e-7),
+)
+def test_dissolve_overlaps_covers_each_line_once(angle, cuts, wobble):
+    # pieces of one line at any direction (near horizontal: either way round pi), each end a little off the
+    # line: the dissolved segments cover their union, none overlapping another
+    u = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+    n = np.array([-u[1], u[0]])
+    seg = np.array([[u * a + n * wobble, u * (a + length) - n * wobble] for a, length in cuts])
+    out = dissolve_overlaps(seg)
+    runs = []  # the pieces' union along the line, as intervals
+    for a, b in sorted((a, a + length) for a, length in cuts):
+        if runs and a <= runs[-1][1] + 1e-5:
+            runs[-1][1] = max(runs[-1][1], b)
+        else:
+            runs.append([a, b])
+    lengths = np.sort(np.hypot(*(out[:, 1] - out[:, 0]).T))
+    assert lengths == pytest.approx(sorted(b - a for a, b in runs), abs=1e-5)
 
 
 @settings(max_examples=examples(25), deadline=None)
