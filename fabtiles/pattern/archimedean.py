@@ -202,6 +202,17 @@ class TilingPacking:
         """``contact_angle_to`` checked like ``contact_angle`` (every angle between the two then has
         a pattern too: the limit is one bound), and the direction and curve against their choices."""
         check_parquet(self.parquet_direction, self.parquet_curve)
+        if method != "hankin":
+            for name, value, default in (
+                ("parquet_direction", self.parquet_direction, "x"),
+                ("parquet_curve", self.parquet_curve, "linear"),
+            ):
+                if value != default:  # a parquet deformation's, which the motifs have not
+                    raise ParameterError(
+                        f"{name} = {value!r} shapes a parquet deformation of Hankin's rays, not of "
+                        f"method = {method!r}; set method = 'hankin' (and contact_angle_to) or leave {name} out",
+                        param=name,
+                    )
         if self.contact_angle_to is None:
             return None
         if method != "hankin":

@@ -263,6 +263,11 @@ def test_bad_parquet_values_are_refused_by_the_packing():
         deformed("4.8.8", parquet_curve="cubic")
     with pytest.raises(ParameterError, match=r"contact_angle_to = 70 is a parquet deformation of Hankin's rays"):
         TilingPacking("4.8.8", edge=8, contact_angle_to=70)
+    # the motifs have no parquet deformation: its direction and curve are refused there too (their defaults pass)
+    for key, value in (("parquet_direction", "y"), ("parquet_curve", "smooth")):
+        with pytest.raises(ParameterError, match=rf"{key} = '{value}' shapes a parquet deformation of Hankin's rays, "):
+            TilingPacking("4.8.8", edge=8, **{key: value})
+    assert TilingPacking("4.8.8", edge=8, parquet_direction="x", parquet_curve="linear").method == "motifs"
 
 
 def test_contact_angle_to_without_hankins_method_is_refused_in_a_design():
