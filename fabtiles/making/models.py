@@ -360,6 +360,12 @@ class Models:
                 param="colour.shaded",
             )
         classes = self.face_classes
+        if not classes.classes:  # the letters are checked against the classes, and there are none
+            raise ParameterError(
+                f"[colour] shaded = {spec.shaded!r} names face classes, and this design has no faces (its bands "
+                "cover the whole tile): drop it, or make the stroke narrower",
+                param="colour.shaded",
+            )
         letters = spec.engraved([c.letter for c in classes.classes])
         colours = [(letter, self.colouring.face(letter).srgb) for letter in letters]
         layers = shade_layers(self.options.cutter, colours, spec.shade_overrides())

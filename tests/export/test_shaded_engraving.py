@@ -267,6 +267,16 @@ def test_bad_shades_are_refused_naming_the_value(colours, msg, tmp_path):
     assert not (tmp_path / "t.dxf").exists()
 
 
+def test_a_design_with_no_faces_has_no_class_to_shade(tmp_path):
+    # bands wider than the packing's gaps cover the whole tile: no face, so no class A or B to engrave
+    import fabtiles as ft
+
+    covered = ft.Tile("circle", 60, ft.SquarePacking(radius=9, motif=ft.Star.preset("table1-part1")), stroke=6.5)
+    with pytest.raises(ParameterError, match=r"shaded = 'B' names face classes, and this design has no faces"):
+        covered.export(tmp_path / "t.dxf", mode="engrave", colours=Colours(**{**COLOURS, "shaded": "B"}))
+    assert not (tmp_path / "t.dxf").exists()
+
+
 def test_a_bad_spelling_or_letter_key_is_refused_at_once():
     with pytest.raises(
         ParameterError, match=r'\[colour\] shaded must be class letters \("A C"\) or "all", got \'A-B\''
