@@ -12,6 +12,9 @@ import click
 
 from ..making.plot import WHATS
 
+_OPTIONS = {"pen_mm": "--pen", "hatch_mm": "--hatch-mm"}
+"""The plot's API keywords whose errors the command says with the option's name."""
+
 
 @click.command("plot")
 @click.argument("design_file", metavar="DESIGN.toml", type=click.Path(dir_okay=False))
@@ -86,15 +89,23 @@ def command(design_file, output, what, pen_mm, fill, hatch_mm, angles, cross, ov
         )
     if fmt.requires is not None:
         fmt.requires()  # a library it needs (HPGL: vpype), before any geometry
-    drawing = plot_drawing(
-        load_design(design_file, overrides=overrides),
-        what=what,
-        pen_mm=pen_mm,
-        fill=fill,
-        hatch_mm=hatch_mm,
-        angles_deg=angles_from_text(angles) if angles else None,
-        cross=cross,
-    )
+    design = load_design(design_file, overrides=overrides)
+    try:
+        drawing = plot_drawing(
+            design,
+            what=what,
+            pen_mm=pen_mm,
+            fill=fill,
+            hatch_mm=hatch_mm,
+            angles_deg=angles_from_text(angles) if angles else None,
+            cross=cross,
+        )
+    except ParameterError as exc:
+        option = _OPTIONS.get(exc.param or "")
+        if option is None or not str(exc).startswith(f"{exc.param} "):
+            raise
+        # the message names the option typed, not the API's keyword
+        raise ParameterError(option + str(exc)[len(exc.param or "") :], param=exc.param) from None
     atomic_write(output, fmt.write(drawing, FileOptions(name=Path(output).stem)))
     layers = ", ".join(
         f"{layer.name} {len(layer.paths):,} stroke{'' if len(layer.paths) == 1 else 's'}" for layer in drawing.layers

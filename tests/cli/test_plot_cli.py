@@ -36,6 +36,13 @@ def test_bad_output_and_bad_key(tmp_path):
     assert res.exit_code == 2 and "size must be" in res.output and not (tmp_path / "t.svg").exists()
 
 
+def test_a_bad_pen_is_refused_naming_the_option(tmp_path):
+    res = CliRunner().invoke(cli, ["plot", str(SAMPLE), "-o", str(tmp_path / "t.svg"), "--pen", "-1"])
+    assert res.exit_code == 2 and res.output.count("\n") == 1, res.output
+    assert "fabtiles: error: --pen must be a finite number > 0 and <= 10, got -1" in res.output
+    assert not (tmp_path / "t.svg").exists()
+
+
 def test_hpgl_without_vpype_says_how_to_install(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "vpype", None)  # import vpype fails as when it is not installed
     res = CliRunner().invoke(cli, ["plot", str(SAMPLE), "-o", str(tmp_path / "t.hpgl")])

@@ -162,7 +162,7 @@ def test_fill_without_colours_says_how_to_give_them():
 @pytest.mark.parametrize(
     "args, message",
     [
-        (["--hatch-mm", "0.01"], "hatch_mm must be from 0.03"),
+        (["--hatch-mm", "0.01"], "--hatch-mm must be from 0.03"),
         (["--hatch-mm", "900"], "(the largest face's size), got 900"),
         (["--angle", "steep"], "angle must be degrees (30) or a class and degrees (B=60), got 'steep'"),
         (["--angle", "Q=30"], "angle's class 'Q' is not one of"),
