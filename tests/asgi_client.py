@@ -40,3 +40,32 @@ class TestClient:
 
     def post(self, url: str, **kwargs) -> httpx.Response:
         return self.request("POST", url, **kwargs)
+
+
+def asgi_get(app, url: str, receive) -> list[dict]:
+    """The ASGI messages ``app`` sends for a GET of ``url`` whose client's messages come from ``receive``
+    (an ``async`` callable): a client that goes away at a chosen moment, which httpx's transport
+    cannot be."""
+    path, _, query = url.partition("?")
+    scope = {
+        "type": "http",
+        "asgi": {"version": "3.0"},
+        "http_version": "1.1",
+        "method": "GET",
+        "scheme": "http",
+        "path": path,
+        "raw_path": path.encode(),
+        "query_string": query.encode(),
+        "root_path": "",
+        "headers": [(b"host", b"testserver")],
+        "client": ("127.0.0.1", 50000),
+        "server": ("testserver", 80),
+    }
+    sent: list[dict] = []
+
+    async def send(message):
+        sent.append(message)
+
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        pool.submit(anyio.run, app, scope, receive, send).result()
+    return sent

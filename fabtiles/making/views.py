@@ -8,6 +8,7 @@ kit's lattice and pieces (:func:`inlay_kit_of`); the 3D view the print model's p
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 
 from ..core.report import Report
@@ -123,21 +124,32 @@ def inlay_kit_of(tile, design):
     )
 
 
-def print_view(design, *, limits: _limits.Limits, max_segments: int = VIEW_SEGMENTS) -> tuple[bytes, Report]:
+def print_view(
+    design,
+    *,
+    limits: _limits.Limits,
+    max_segments: int = VIEW_SEGMENTS,
+    checkpoint: Callable[[], object] | None = None,
+) -> tuple[bytes, Report]:
     """The design's print as GLB, one mesh per part (the web app's 3D view), and its report.
 
     The tile passes the same work limits as an STL or 3MF export, before any geometry is
     built, and the parts are the print model's, after the same checks. A tile of more than
     ``max_segments`` segments shows its centre: ``report.stats["window_mm"]`` is then
     that window's ``[x0, y0, x1, y1]`` in file coordinates, and ``stats["view"]`` says so.
+    ``checkpoint`` is called before each stage of the work (the print's region, its model,
+    the parts' meshes) and may raise to stop a view nobody waits for any more: the web
+    app's, when its browser has asked for a newer one.
     """
     import numpy as np
     import shapely
 
     from ..export.formats import FORMATS, FileOptions
 
+    go_on = checkpoint or (lambda: None)
     tile = prepare_tile(design, limits=limits)
     check_format_limits(tile, ("3mf",), limits)
+    go_on()
     # the view shows the panel whole, however the files split it for the bed
     models = Models(tile, replace(BuildOptions.of_design(design), pieces=False))
     region, dips = models.print_region
@@ -153,9 +165,11 @@ def print_view(design, *, limits: _limits.Limits, max_segments: int = VIEW_SEGME
         region, outline = region.intersection(box), outline.intersection(box)
         dips = dips.intersection(box) if dips is not None else None
         models = Models(_Window(tile, outline), models.options, print_region=(region, dips))
+    go_on()
     glb = FORMATS["glb"]
     model = models.print
-    data = glb.write(model, FileOptions())
+    go_on()
+    data = glb.write(model, FileOptions())  # the parts' meshes are made here, on first use
     report = Report(
         path="",
         format="glb",

@@ -6,7 +6,7 @@ import json
 import numpy as np
 import pytest
 import trimesh
-from asgi_client import TestClient
+from asgi_client import TestClient, asgi_get
 
 from fabtiles.machines.limits import Limits
 from fabtiles.web.app import create_app
@@ -139,6 +139,90 @@ def test_limits_refuse_before_any_work(monkeypatch):
     r = small.get("/api/view.glb?width=90&radius=4")
     assert r.status_code == 422 and "more than the limit of 1,000" in r.json()["error"]
     assert r.json()["field"] == "radius"
+
+
+def _never(what):
+    def never(*a, **k):
+        raise AssertionError(f"{what} for a client that has gone")
+
+    return never
+
+
+def test_a_request_whose_client_has_gone_is_not_built(monkeypatch):
+    """The browser dropped the view (a newer design came) before the server took it up: no design is read,
+    no model built."""
+    from fabtiles import making
+    from fabtiles.web.routes import tile
+
+    monkeypatch.setattr(tile, "build", _never("the design was read"))
+    monkeypatch.setattr(making, "print_view", _never("the view was built"))
+
+    async def gone():
+        return {"type": "http.disconnect"}
+
+    sent = asgi_get(create_app(), f"/api/view.glb?{SMALL}", gone)
+    assert sent[0]["type"] == "http.response.start" and sent[0]["status"] == tile.CLIENT_GONE == 499
+
+
+def test_the_build_stops_between_its_stages_when_the_client_goes(monkeypatch):
+    """The client goes while the print's region is made: its model and meshes are not."""
+    import threading
+
+    import anyio
+
+    from fabtiles.making.models import Models
+    from fabtiles.web.routes import tile
+
+    left = threading.Event()
+    region = Models.print_region
+
+    def region_then_leave(self):
+        out = region.fget(self)
+        left.set()  # the browser closes the request while the region is made
+        return out
+
+    monkeypatch.setattr(Models, "print_region", property(region_then_leave))
+    monkeypatch.setattr(Models, "_make_print", _never("the print model was made"))
+    messages = iter([{"type": "http.request", "body": b"", "more_body": False}])
+
+    async def receive():
+        message = next(messages, None)
+        if message is not None:
+            return message
+        if left.is_set():
+            return {"type": "http.disconnect"}
+        await anyio.sleep_forever()  # the client is there: nothing to read (is_disconnected does not wait)
+
+    sent = asgi_get(create_app(), f"/api/view.glb?{SMALL}", receive)
+    assert left.is_set() and sent[0]["status"] == tile.CLIENT_GONE
+
+
+def test_print_view_checks_before_each_stage(monkeypatch):
+    """``checkpoint`` is called before the region, the model and the meshes; its exception stops the view."""
+    from fabtiles.designs.design_file import design_from_dict
+    from fabtiles.export import glb
+    from fabtiles.machines.limits import WEB_LIMITS
+    from fabtiles.making import print_view
+
+    design = design_from_dict(
+        {"motif": {"preset": "table3-3"}, "packing": {"radius": 8}, "tile": {"size": 40, "frame": 3}}, name="t"
+    )
+    calls = []
+    data, _ = print_view(design, limits=WEB_LIMITS, checkpoint=lambda: calls.append(1))
+    assert len(calls) == 3 and data[:4] == b"glTF"
+
+    class Stop(Exception):
+        pass
+
+    def third():
+        calls.append(1)
+        if len(calls) == 3:
+            raise Stop
+
+    calls.clear()
+    monkeypatch.setattr(glb, "model_glb_bytes", _never("the meshes were made"))
+    with pytest.raises(Stop):
+        print_view(design, limits=WEB_LIMITS, checkpoint=third)
 
 
 def test_viewer_files_are_served_only_from_the_list(client):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import anyio.from_thread
 from fastapi import APIRouter, Request
 from fastapi.responses import Response
 
@@ -11,6 +12,14 @@ from ..building import build, fabrication_checks
 from ..params import QueryError, parse_flag
 
 MEDIA_TYPES = {"toml": "application/toml"}
+
+CLIENT_GONE = 499
+"""The status of a request whose client went before its answer was built (nginx's "client closed
+request"): the server sends nothing to a closed connection, the code is for the tests."""
+
+
+class _ClientGone(Exception):
+    """The client of a request has gone: the work for its answer stops."""
 
 
 def _plain() -> dict:
@@ -146,18 +155,36 @@ def router(*, limits: _limits.Limits) -> APIRouter:
         )
 
     @api.get("/api/view.glb")
-    def view_glb(request: Request):
+    async def view_glb(request: Request):
         """The print in 3D: the 3MF's checked parts, one glTF mesh each in its colour.
 
         The headers say what is shown (``X-Fabtiles-View``: the whole tile, or a big
-        tile's centre) and the parts (``X-Fabtiles-Parts``, JSON).
+        tile's centre) and the parts (``X-Fabtiles-Parts``, JSON). The browser drops a view
+        it no longer wants (a newer design came) by closing its request: a request whose
+        client has gone is not built, or stops between the build's stages, answered
+        :data:`CLIENT_GONE` (which no one reads).
         """
         import json
 
-        from ...making import print_view
+        from starlette.concurrency import run_in_threadpool
 
-        _, spec, _ = build(request, limits=limits)
-        data, report = print_view(spec, limits=limits)
+        if await request.is_disconnected():
+            return Response(status_code=CLIENT_GONE)
+
+        def checkpoint():  # in the build's worker thread: asks the event loop whether the client is there
+            if anyio.from_thread.run(request.is_disconnected):
+                raise _ClientGone
+
+        def view():
+            from ...making import print_view
+
+            _, spec, _ = build(request, limits=limits)
+            return print_view(spec, limits=limits, checkpoint=checkpoint)
+
+        try:  # the build in the thread pool, never on the event loop
+            data, report = await run_in_threadpool(view)
+        except _ClientGone:
+            return Response(status_code=CLIENT_GONE)
         parts = {
             n: {"triangles": p["triangles"], "volume_mm3": round(p["volume_mm3"], 3)}
             for n, p in report.stats["parts"].items()
