@@ -96,6 +96,38 @@ def test_the_relief_turns_in_3d(page, server):
     _wait_model(page, v)
 
 
+DESIGN = "q => document.dispatchEvent(new CustomEvent('fabtiles:design', { detail: q }))"
+
+
+def test_a_newer_design_aborts_the_model_on_its_way(page, server):
+    """Two designs in a row: the first's model, still being built, is aborted (the browser closes its request,
+    the server stops); the view ends on the second's, and no caption on the way said anything went wrong."""
+    page.goto(f"{server}/?{SMALL}")
+    _wait_model(page)
+    v = _version(page)
+    page.evaluate(
+        """() => { window.captions = [];
+        new MutationObserver(() => window.captions.push(document.querySelector('#view3d-caption').textContent))
+          .observe(document.querySelector('#view3d-caption'), { childList: true, characterData: true, subtree: true });
+        }"""
+    )
+    big = "preset=table3-3&width=300&radius=10&frame=3&stroke=1.5"  # a second or more to build
+
+    def glb(width):
+        return lambda r: "/api/view.glb" in r.url and f"width={width}&" in r.url
+
+    with page.expect_request(glb(300)):
+        page.evaluate(DESIGN, big)
+    with page.expect_event("requestfailed", predicate=glb(300), timeout=20_000) as failed:
+        page.evaluate(DESIGN, f"{SMALL}&stroke=2")
+    assert "ERR_ABORTED" in failed.value.failure
+    _wait_model(page, v)
+    assert _version(page) == str(int(v) + 2)  # the second design's model
+    assert page.text_content("#view3d-caption").startswith("Showing the whole 60 x 60 mm tile")
+    captions = page.evaluate("() => window.captions")
+    assert captions and not any("not updated" in c or "could not be read" in c for c in captions), captions
+
+
 def _background(rgb: np.ndarray) -> np.ndarray:
     return np.abs(rgb - [0xEE, 0xF1, 0xF5]).sum(axis=-1) < 12
 

@@ -85,18 +85,35 @@ async function start() {
   const key = (size) => `${size.x.toFixed(1)}x${size.y.toFixed(1)}${standing(size) ? `x${size.z.toFixed(1)}` : ""}`;
   document.getElementById("view3d-reset").addEventListener("click", () => { if (model) { fit(); render(); } });
 
+  // The request of the model on its way: a newer design aborts it, so the browser closes its connection (it
+  // holds one of the six the page has, the 2D preview's wait behind them) and the server stops building it.
+  let asked = null;
+  const drop = () => { if (asked) asked.abort(); asked = null; };
   const show = async (q) => {
     const mine = ++seq;
+    drop();
+    const request = asked = new AbortController();
     box.classList.add("loading");
-    const res = await fetch(`/api/view.glb?${q}`);
+    let res, data;
+    try {
+      res = await fetch(`/api/view.glb?${q}`, { signal: request.signal });
+      if (res.ok) data = await res.arrayBuffer();
+    } catch (err) {
+      if (request.signal.aborted) return;  // a newer design's model replaced it: not an error
+      if (mine !== seq) return;
+      box.classList.remove("loading");
+      caption.textContent = `3D view not updated: ${err.message || err}`;  // the server did not answer
+      return;
+    }
     if (mine !== seq) return;
+    if (asked === request) asked = null;
     box.classList.remove("loading");
     if (!res.ok) {  // the design's error is the 2D preview's to show; the last good model stays
       const body = await res.json().catch(() => ({ error: res.statusText }));
       caption.textContent = `3D view not updated: ${body.error}`;
       return;
     }
-    const data = await res.arrayBuffer(), view = res.headers.get("X-Fabtiles-View") || "";
+    const view = res.headers.get("X-Fabtiles-View") || "";
     const parts = JSON.parse(res.headers.get("X-Fabtiles-Parts") || "{}");
     new GLTFLoader().parse(data, "", (gltf) => {
       if (mine !== seq) return;
@@ -140,6 +157,7 @@ async function start() {
   // an invalid design: no model is asked for; the last good one stays, the caption says why
   const invalid = (message) => {
     ++seq;
+    drop();  // the model still coming is not drawn: its request is closed
     box.classList.remove("loading");
     caption.textContent = model ? `3D view not updated: ${message}` : `The print in 3D: not shown, ${message}`;
   };
