@@ -307,30 +307,33 @@ def step_bytes(model, *, name: str = "tile") -> bytes:
     """The STEP file (AP214, mm) of a :class:`~fabtiles.solid.print_model.PrintModel`: planes and cylinders,
     one solid per piece, checked in memory (:func:`~fabtiles.solid.brep.check_brep`) before it is returned.
 
-    A mosaic of several colours holds each part's solids in turn (the 3MF's order), each
-    named by its part (:attr:`~fabtiles.solid.print_model.PrintModel.breps`), each part's
-    checked against its own mesh.
+    A mosaic of several colours is an assembly of a product per part, in the 3MF's order
+    and named as its parts (:attr:`~fabtiles.solid.print_model.PrintModel.breps`), each
+    part's solids checked against its own mesh.
 
     Raises :class:`~fabtiles.ProfileError` when the printer profile's ``tolerance_mm`` is so coarse that
-    the arcs found within it move a solid's volume by more than :data:`ARC_VOLUME_LIMIT`.
+    the arcs found within it move the print's volume by more than :data:`ARC_VOLUME_LIMIT`.
     """
     breps = model.breps
-    for label, (brep, volume, parts) in breps:
+    exact = volume = 0.0
+    for label, (brep, mesh_volume, parts) in breps:
         what = "STEP solid" if label is None else f"STEP solid of part {label!r}"
-        exact = check_brep(brep, volume=volume, parts=parts, what=what)
-        if abs(exact - volume) > ARC_VOLUME_LIMIT * volume:
-            tol = model.profile.tolerance_mm
-            # the default where it is finer, else a quarter: holes thinned within 0.02 mm for the slicers can
-            # differ from their arcs by more than the limit where there are many small ones
-            finer = "0.02 (the default)" if tol > 0.02 else f"{tol / 4:g}"
-            raise ProfileError(
-                f"printer profile {model.profile.name!r}: tolerance_mm = {tol:g} mm is too coarse for the round "
-                f"walls of this tile's STEP: the arcs found within it change the solid's volume by "
-                f"{abs(exact - volume) / volume:.2%} (at most {ARC_VOLUME_LIMIT:.1%}); set printer.tolerance_mm "
-                f"to {finer} or finer",
-                param="tolerance_mm",
-                key="printer.tolerance_mm",
-            )
+        exact += check_brep(brep, volume=mesh_volume, parts=parts, what=what)
+        volume += mesh_volume
+    # the print's volume, not a part's: a small round face of a mosaic alone moves by more than the whole does
+    if abs(exact - volume) > ARC_VOLUME_LIMIT * volume:
+        tol = model.profile.tolerance_mm
+        # the default where it is finer, else a quarter: holes thinned within 0.02 mm for the slicers can
+        # differ from their arcs by more than the limit where there are many small ones
+        finer = "0.02 (the default)" if tol > 0.02 else f"{tol / 4:g}"
+        raise ProfileError(
+            f"printer profile {model.profile.name!r}: tolerance_mm = {tol:g} mm is too coarse for the round "
+            f"walls of this tile's STEP: the arcs found within it change the solid's volume by "
+            f"{abs(exact - volume) / volume:.2%} (at most {ARC_VOLUME_LIMIT:.1%}); set printer.tolerance_mm "
+            f"to {finer} or finer",
+            param="tolerance_mm",
+            key="printer.tolerance_mm",
+        )
     # named parts make the file an assembly of them; else one product of the file's name
     labels = [label for label, _ in breps] if any(label is not None for label, _ in breps) else None
     return step_text([brep for _, (brep, _, _) in breps], name=name, labels=labels).encode("ascii")
