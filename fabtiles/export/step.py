@@ -307,11 +307,20 @@ def step_bytes(model, *, name: str = "tile") -> bytes:
     """The STEP file (AP214, mm) of a :class:`~fabtiles.solid.print_model.PrintModel`: planes and cylinders,
     one solid per piece, checked in memory (:func:`~fabtiles.solid.brep.check_brep`) before it is returned.
 
+    A mosaic of several colours is an assembly of a product per part, in the 3MF's order
+    and named as its parts (:attr:`~fabtiles.solid.print_model.PrintModel.breps`), each
+    part's solids checked against its own mesh.
+
     Raises :class:`~fabtiles.ProfileError` when the printer profile's ``tolerance_mm`` is so coarse that
-    the arcs found within it move the solid's volume by more than :data:`ARC_VOLUME_LIMIT`.
+    the arcs found within it move the print's volume by more than :data:`ARC_VOLUME_LIMIT`.
     """
-    brep, volume, parts = model.brep
-    exact = check_brep(brep, volume=volume, parts=parts)
+    breps = model.breps
+    exact = volume = 0.0
+    for label, (brep, mesh_volume, parts) in breps:
+        what = "STEP solid" if label is None else f"STEP solid of part {label!r}"
+        exact += check_brep(brep, volume=mesh_volume, parts=parts, what=what)
+        volume += mesh_volume
+    # the print's volume, not a part's: a small round face of a mosaic alone moves by more than the whole does
     if abs(exact - volume) > ARC_VOLUME_LIMIT * volume:
         tol = model.profile.tolerance_mm
         # the default where it is finer, else a quarter: holes thinned within 0.02 mm for the slicers can
@@ -325,19 +334,21 @@ def step_bytes(model, *, name: str = "tile") -> bytes:
             param="tolerance_mm",
             key="printer.tolerance_mm",
         )
-    return step_text([brep], name=name).encode("ascii")
+    # named parts make the file an assembly of them; else one product of the file's name
+    labels = [label for label, _ in breps] if any(label is not None for label, _ in breps) else None
+    return step_text([brep for _, (brep, _, _) in breps], name=name, labels=labels).encode("ascii")
 
 
 def figures(model) -> dict:
-    """What a STEP file adds to its model's report."""
-    brep, volume, parts = model.brep
+    """What a STEP file adds to its model's report (a mosaic's parts' B-reps summed)."""
+    breps = [b for _, b in model.breps]
     return dict(
-        material=filament({"solid": volume}, model.profile).as_stats(),
+        material=filament({"solid": sum(volume for _, volume, _ in breps)}, model.profile).as_stats(),
         style=model.stack.style,
-        solids=parts,
-        volume_mm3=brep_volume(brep),
+        solids=sum(parts for _, _, parts in breps),
+        volume_mm3=sum(brep_volume(brep) for brep, _, _ in breps),
         grid_mm=QUANTUM,
-        faces=len(brep.faces),
-        cylinders=sum(f.radius > 0 for f in brep.faces),
-        edges=len(brep.edges),
+        faces=sum(len(brep.faces) for brep, _, _ in breps),
+        cylinders=sum(f.radius > 0 for brep, _, _ in breps for f in brep.faces),
+        edges=sum(len(brep.edges) for brep, _, _ in breps),
     )

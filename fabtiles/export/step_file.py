@@ -300,18 +300,53 @@ def _face_entity(w: _Writer, face, surface: int, edges: list) -> int:
     return w.add("ADVANCED_FACE('',(" + ",".join(f"#{b}" for b in bounds) + f"),#{surface},{sense})")
 
 
-def step_text(breps, *, name: str = "tile") -> str:
-    """The STEP file (AP214, mm) of one product holding the solids of ``breps``."""
+def _product(w: _Writer, name: str, pctx: int, dctx: int) -> tuple[int, int]:
+    """Write a part's ``PRODUCT`` and its definition; return its ``PRODUCT_DEFINITION`` and its shape."""
+    prod = w.add(f"PRODUCT({_name(name)},{_name(name)},'',(#{pctx}))")
+    w.add(f"PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#{prod}))")
+    form = w.add(f"PRODUCT_DEFINITION_FORMATION('','',#{prod})")
+    pdef = w.add(f"PRODUCT_DEFINITION('design','',#{form},#{dctx})")
+    return pdef, w.add(f"PRODUCT_DEFINITION_SHAPE('','',#{pdef})")
+
+
+def _brep_representation(name: str, axis: int, solids: list, ctx: int) -> str:
+    """The ``ADVANCED_BREP_SHAPE_REPRESENTATION`` of ``solids``, placed by ``axis``."""
+    return (
+        f"ADVANCED_BREP_SHAPE_REPRESENTATION({_name(name)},(#{axis}," + ",".join(f"#{s}" for s in solids) + f"),#{ctx})"
+    )
+
+
+def _component(w: _Writer, k: int, label: str, solids: list, parent: tuple) -> None:
+    """Write product ``label`` holding ``solids`` as the ``k``-th component of the assembly ``parent``
+    (its definition, shape representation, placement and contexts), placed where it is modelled."""
+    pdef, top, axis, pctx, dctx, ctx = parent
+    part_def, part_shape = _product(w, label, pctx, dctx)
+    rep = w.add(_brep_representation(label, axis, solids, ctx))
+    w.add(f"SHAPE_DEFINITION_REPRESENTATION(#{part_shape},#{rep})")
+    use = w.add(f"NEXT_ASSEMBLY_USAGE_OCCURRENCE('{k}',{_name(label)},'',#{pdef},#{part_def},$)")
+    placed = w.add(f"PRODUCT_DEFINITION_SHAPE('Placement','Placement of an item',#{use})")
+    moved = w.add(f"ITEM_DEFINED_TRANSFORMATION('','',#{axis},#{axis})")  # where it is: no move
+    link = w.add(
+        f"( REPRESENTATION_RELATIONSHIP('','',#{rep},#{top}) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#{moved}) "
+        "SHAPE_REPRESENTATION_RELATIONSHIP() )"
+    )
+    w.add(f"CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#{link},#{placed})")
+
+
+def step_text(breps, *, name: str = "tile", labels=None) -> str:
+    """The STEP file (AP214, mm) of one product holding the solids of ``breps``.
+
+    With ``labels`` (one per B-rep), an assembly: the product ``name`` made of one
+    product per B-rep, named by its label and holding its solids (a mosaic's parts,
+    one per colour: OCCT-based CAD shows each by its name). Each solid is named by its
+    B-rep's label (default ``name``), ``<label>-<k>`` when its B-rep has several.
+    """
     w = _Writer()
     app = w.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')")
     w.add(f"APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})")
     pctx = w.add(f"PRODUCT_CONTEXT('',#{app},'mechanical')")
     dctx = w.add(f"PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design')")
-    prod = w.add(f"PRODUCT({_name(name)},{_name(name)},'',(#{pctx}))")
-    w.add(f"PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#{prod}))")
-    form = w.add(f"PRODUCT_DEFINITION_FORMATION('','',#{prod})")
-    pdef = w.add(f"PRODUCT_DEFINITION('design','',#{form},#{dctx})")
-    pshape = w.add(f"PRODUCT_DEFINITION_SHAPE('','',#{pdef})")
+    pdef, pshape = _product(w, name, pctx, dctx)
     mm = w.add("( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) )")
     rad = w.add("( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) )")
     sr = w.add("( NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT() )")
@@ -323,19 +358,17 @@ def step_text(breps, *, name: str = "tile") -> str:
         f"GLOBAL_UNIT_ASSIGNED_CONTEXT((#{mm},#{rad},#{sr})) REPRESENTATION_CONTEXT('','3D') )"
     )
     axis = w.placement((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0))
-    solids = []
-    for brep in breps:
-        solids.extend(_brep_entities(w, brep, name))
-    rep = w.add(
-        "ADVANCED_BREP_SHAPE_REPRESENTATION("
-        + _name(name)
-        + ",(#"
-        + str(axis)
-        + ","
-        + ",".join(f"#{s}" for s in solids)
-        + f"),#{ctx})"
-    )
-    w.add(f"SHAPE_DEFINITION_REPRESENTATION(#{pshape},#{rep})")
+    if labels is None:
+        solids = []
+        for brep in breps:
+            solids.extend(_brep_entities(w, brep, name))
+        rep = w.add(_brep_representation(name, axis, solids, ctx))
+        w.add(f"SHAPE_DEFINITION_REPRESENTATION(#{pshape},#{rep})")
+    else:
+        top = w.add(f"SHAPE_REPRESENTATION({_name(name)},(#{axis}),#{ctx})")
+        w.add(f"SHAPE_DEFINITION_REPRESENTATION(#{pshape},#{top})")
+        for k, (brep, label) in enumerate(zip(breps, labels, strict=True), 1):
+            _component(w, k, label, _brep_entities(w, brep, label), (pdef, top, axis, pctx, dctx, ctx))
     head = (
         "ISO-10303-21;\nHEADER;\n"
         f"FILE_DESCRIPTION(({_name('fabtiles tile')}),'2;1');\n"

@@ -1244,6 +1244,27 @@ def _layers(kind, r, o, stack, dips):
     return [(shapely.MultiPolygon(list(g)), z) for g, z in layers if len(g)], 0.0
 
 
+def _noded_levels(levels) -> list:
+    """A mosaic part's levels ``((geometry, z), ...)`` from ONE snap-rounded noding, as :func:`_layers` makes a
+    body's: each polygon of the noding takes the height of the first level holding it; none: not the part's."""
+    import shapely
+
+    geoms = [g for g, _ in levels if not g.is_empty]
+    lines = shapely.union_all([shapely.boundary(g) for g in geoms], grid_size=QUANTUM)
+    faces = shapely.get_parts(shapely.polygonize(shapely.get_parts(lines)))
+    faces = _merge_slivers(faces[shapely.area(faces) > 0])
+    probe = shapely.point_on_surface(faces)
+    height = np.full(len(faces), np.nan)
+    for g, z in levels:
+        if not g.is_empty:
+            height[np.isnan(height) & shapely.contains(g, probe)] = z
+    return [
+        (shapely.MultiPolygon(list(faces[height == z])), z)
+        for z in dict.fromkeys(z for _, z in levels)
+        if (height == z).any()
+    ]
+
+
 def _merge_slivers(faces):
     """``faces`` with every sliver under a quantum wide merged into the neighbour it shares most edge with.
 
@@ -1307,16 +1328,23 @@ def build_brep(*, region, outline, stack: Stack, dips=None, tolerance_mm: float 
 
 
 def brep_of_part(part, stack: Stack, dips=None, *, tolerance_mm: float = 0.0, radii=()):
-    """The B-rep of a checked fused body (see :func:`build_brep`): ``(brep, mesh_volume, n_solids)``."""
-    kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
-    layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
+    """The B-rep of a checked fused body (see :func:`build_brep`), or of a mosaic's part from the
+    levels it was meshed from (:attr:`~fabtiles.solid.parts.CheckedPart.layers`):
+    ``(brep, mesh_volume, n_solids)``."""
+    if part.layers:
+        layers, bottom = _noded_levels(part.layers), part.bottom_mm
+        recess = stack.recess if bottom == 0 else None  # a recess is sunk into the part on the bed
+    else:
+        kind = {"relief": "relief", "pierced": "pierced", "deboss": "plate", "mosaic": "mosaic"}[stack.style]
+        layers, bottom = _layers(kind, part.region, part.outline, stack, dips if stack.style == "relief" else None)
+        recess = stack.recess
     # a recess's holes go into the bottom's one face: not a bottom of cells
-    cells_at = _cells_for_faces(layers) if stack.recess is None else SINGLE_CELL
+    cells_at = _cells_for_faces(layers) if recess is None else SINGLE_CELL
     cov, cells = _face_coverage(layers, bottom, cells_at)
     sides, chords = _sides(part.outline), frozenset[tuple]()
     for _ in range(CHORD_ROUNDS):
         brep = planar_brep(
-            cov, sides=sides, tolerance_mm=tolerance_mm, radii=radii, cells=cells, chords=chords, recess=stack.recess
+            cov, sides=sides, tolerance_mm=tolerance_mm, radii=radii, cells=cells, chords=chords, recess=recess
         )
         crossing = _crossing_arcs(brep)
         if not crossing:

@@ -759,6 +759,11 @@ class CylinderPrint:
         """A cylinder's STEP is not made: raises :class:`~fabtiles.FabricationError`."""
         raise FabricationError(NO_STEP)
 
+    @property
+    def breps(self):
+        """A cylinder's STEP is not made (:attr:`brep` raises)."""
+        return [(None, self.brep)]
+
     def stats(self) -> dict:
         """The stack's style and heights and the cylinder's sizes, for a file's report."""
         return dict(

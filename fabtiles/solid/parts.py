@@ -413,6 +413,13 @@ class CheckedPart(NamedTuple):
     """The outline, snapped to the grid (shapely)."""
     mesh_volume_mm3: float
     """The mesh's own volume, as the check found it."""
+    layers: tuple = ()
+    """A mosaic part's levels as it was meshed, ``((geometry, top z), ...)`` over :attr:`bottom_mm`, the
+    first that holds a point giving its height: what its STEP solid is made of
+    (:func:`~fabtiles.solid.brep.brep_of_part`). Empty for every other part, whose B-rep is made from its
+    region and outline."""
+    bottom_mm: float = 0.0
+    """The height of the bottom of :attr:`layers` (a mosaic part standing on the plate: the plate's top)."""
 
 
 def relief_parts(fused: CheckedPart, stack: Stack) -> dict:
@@ -753,7 +760,8 @@ def _mosaic_mesh(spec: MosaicPart, layers, o, stack: Stack) -> CheckedPart:
             if exc.mesh is not None and _on_cell_lines(_nonmanifold_points(*exc.mesh), (cov.xs, cov.ys)):
                 continue
             raise error from None
-        return CheckedPart(mverts, mfaces, float(volume), int(bodies), top, o, float(found))
+        levels, bottom = _mosaic_levels(spec, layers, o, b)
+        return CheckedPart(mverts, mfaces, float(volume), int(bodies), top, o, float(found), levels, bottom)
     assert error is not None  # every attempt failed: the loop above returned otherwise
     raise error
 
@@ -786,6 +794,17 @@ def _mosaic_expected(spec: MosaicPart, layers, top, o, b: float) -> tuple:
     if spec.base:
         return o.area * b + sum(g.area * (z - b) for g, z in layers), len(polygons_of(o))
     return sum(g.area * (z - b) for g, z in layers), len(polygons_of(top))
+
+
+def _mosaic_levels(spec: MosaicPart, layers, o, b: float) -> tuple:
+    """``(levels, bottom)``: a mosaic part's layers as :attr:`CheckedPart.layers` keeps them, for its STEP solid.
+
+    A part with the plate stands on the bed, the outline at the plate's top wherever no layer
+    of it is (last: a point takes the first level holding it); one without stands on the plate.
+    """
+    if spec.base:
+        return (*layers, (o, b)), 0.0
+    return tuple(layers), b
 
 
 def _mosaic_coverage(spec: MosaicPart, layers, top, o, b: float, shift: int):

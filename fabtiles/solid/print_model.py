@@ -9,7 +9,8 @@ findings of the printability checks, and, made on first use and then kept:
   its ``inlay``, a pierced ``pattern``), each with its material (the slicer's
   extruder, 1-based) and display colour and its checked mesh;
 - ``fused``: the print as one checked body (an STL holds one body);
-- ``brep``: the B-rep of the fused body (planes and cylinders), only for STEP.
+- ``brep``: the B-rep of the fused body (planes and cylinders), only for STEP;
+- ``breps``: what the STEP holds: that B-rep, or a mosaic's of several colours one per part.
 
 A pierced or deboss print without inlay is one part: its fused body *is* that
 part, meshed once. A build makes one model, whatever print formats it writes.
@@ -209,6 +210,25 @@ class PrintModel:
 
         tolerance = self.profile.tolerance_mm if self.step_arcs else 0.0
         return brep_of_part(self.fused, self.stack, self.dips, tolerance_mm=tolerance, radii=self.arc_radii_mm)
+
+    @cached_property
+    def breps(self) -> list:
+        """``[(name, (brep, mesh volume, solids)), ...]``: the B-reps a STEP file holds, for STEP.
+
+        A mosaic of several colours: one per part, in the parts' order and named as they are,
+        each made from the levels its checked mesh was made from (so it is the body of its
+        STL and its 3MF part); anything else: the fused body's (:attr:`brep`), named None
+        (the file's name).
+        """
+        if self.stack.style == "mosaic" and len(self.parts) > 1:
+            from .brep import brep_of_part
+
+            tolerance = self.profile.tolerance_mm if self.step_arcs else 0.0
+            return [
+                (name, brep_of_part(part.mesh, self.stack, tolerance_mm=tolerance, radii=self.arc_radii_mm))
+                for name, part in self.parts.items()
+            ]
+        return [(None, self.brep)]
 
     def stats(self) -> dict:
         """The stack's style and heights, for a file's report."""

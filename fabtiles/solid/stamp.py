@@ -343,6 +343,11 @@ class StampPrint:
         """No STEP of a stamp: its chamfers are not the planes of a relief's prisms."""
         raise FabricationError(NO_STEP)
 
+    @property
+    def breps(self):
+        """No STEP of a stamp (:attr:`brep` raises)."""
+        return [(None, self.brep)]
+
 
 def stamp_print(model: PrintModel, *, settings: StampSettings | None = None) -> StampPrint:
     """A clay stamp of a relief print: its relief on a block with a finger grip (see the module text).

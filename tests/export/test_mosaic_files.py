@@ -108,14 +108,56 @@ def test_an_stl_per_colour_in_one_frame(built):
     assert list(report.stats["material"]["parts"]) == PARTS
 
 
-def test_the_step_is_the_whole_mosaic_as_one_solid(built):
+def test_the_step_holds_the_whole_mosaic_by_its_parts(built):
     out, _, models, _ = built
     model = models.print
     s = model.stack
     faces = model.outline.difference(shapely.intersection(model.region, model.outline))
     expected = model.outline.area * (s.base + s.relief) - faces.area * s.inset
-    volume = check_step_file(out / "mosaic-iznik.step", volume=model.fused.mesh_volume_mm3, parts=1)
+    solids = sum(p.mesh.bodies for p in model.parts.values())
+    volume = check_step_file(out / "mosaic-iznik.step", volume=model.fused.mesh_volume_mm3, parts=solids)
     assert volume == pytest.approx(expected, rel=1e-3)
+
+
+@pytest.fixture(scope="module")
+def small(tmp_path_factory):
+    """The sample as a 60 mm tile: its 3MF, its STEP read by build123d (OCCT's XCAF reader), its model."""
+    import build123d
+
+    out = tmp_path_factory.mktemp("small")
+    design = load_design(SAMPLE, overrides=["tile.size=60"])
+    build_design(design, out, formats=("3mf", "step"))
+    model = Models(design.build_tile(), BuildOptions.of_design(design)).print
+    return threemf.read_3mf(out / "mosaic-iznik.3mf"), build123d.import_step(out / "mosaic-iznik.step"), model
+
+
+def test_the_step_is_a_named_part_per_colour_each_its_3mf_parts_volume(small):
+    parts, shape, model = small
+    assert list(parts) == PARTS
+    # one component per 3MF part, in its order, named as it is (build123d writes " .()" as "_")
+    assert [c.label for c in shape.children] == [n.translate(str.maketrans(" .()", "____")) for n in PARTS]
+    for child, (name, part) in zip(shape.children, parts.items(), strict=True):
+        # its solids are the part's bodies (the faces of a class are pieces apart), valid by OCCT
+        assert len(child.solids()) == model.parts[name].mesh.bodies
+        assert all(solid.is_valid for solid in child.solids())
+        assert child.volume == pytest.approx(trimesh.Trimesh(part.vertices, part.faces).volume, rel=5e-4)
+    assert shape.volume == pytest.approx(model.fused.mesh_volume_mm3, rel=5e-4)
+    assert len(shape.solids()) == sum(c.mesh.bodies for c in model.parts.values()) > len(PARTS)
+
+
+def test_the_step_parts_touch_without_overlapping(small):
+    _, shape, model = small
+    children = shape.children
+    for k, a in enumerate(children):
+        for b in children[k + 1 :]:
+            common = a.intersect(b)
+            assert (common.volume if common is not None else 0.0) == pytest.approx(0.0, abs=1e-6 * a.volume)
+    # each where it prints: the plate on the bed, the bands and the faces on the plate up to their tops
+    s = model.stack
+    heights = [(c.bounding_box().min.Z, c.bounding_box().max.Z) for c in children]
+    top, faces_top = s.base + s.relief, s.base + s.relief - s.inset
+    expected = [(0.0, s.base), (s.base, top), (s.base, faces_top), (s.base, faces_top)]
+    np.testing.assert_allclose(heights, expected, atol=1e-6)
 
 
 # -- a 150 mm hexagon of the 6.6.6 tiling, interlaced: a mosaic that was refused, or ended in a traceback --

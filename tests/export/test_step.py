@@ -262,6 +262,16 @@ def test_pierced_in_pieces_gives_one_solid_each(tmp_path):
     assert len(_planes(back)) == 12  # two boxes
 
 
+def test_a_mosaic_of_one_colour_is_one_solid_not_an_assembly(tmp_path):
+    plate = box(0, 0, 40, 40).difference(box(10, 10, 30, 30))
+    path = tmp_path / "m.step"
+    report = write_print(path, region=plate, outline=box(0, 0, 40, 40), profile="fdm-0.4mm", style="mosaic")
+    assert report.stats["solids"] == 1
+    text = path.read_text()
+    assert text.count("MANIFOLD_SOLID_BREP(") == 1 and "NEXT_ASSEMBLY_USAGE_OCCURRENCE" not in text
+    assert occt_volume(step.read_step(path)) == pytest.approx(report.stats["volume_mm3"], rel=1e-9)
+
+
 @pytest.mark.parametrize("preset", Star.presets())
 def test_every_preset_relief(tmp_path, preset):
     tile = TileGeometry("square", 24, HexPacking(8, Star.preset(preset)), frame=2, stroke=1.0)

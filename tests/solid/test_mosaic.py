@@ -94,6 +94,40 @@ def test_the_parts_tile_the_outline_and_weigh_their_areas(holes, inset, shared):
     assert model.fused.mesh_volume_mm3 == pytest.approx(expected, rel=1e-3)
 
 
+@settings(max_examples=examples(8), deadline=None)
+@given(
+    st.lists(st.tuples(st.floats(5, 35), st.floats(5, 25), st.floats(1.0, 3.0)), min_size=2, max_size=5),
+    st.sampled_from([0.0, 0.4]),
+    st.booleans(),
+)
+def test_the_step_holds_each_part_checked_against_its_own_mesh(tmp_path_factory, holes, inset, shared):
+    from fabtiles.export.step import check_step_file, step_bytes
+
+    region, _faces = _tile(holes)
+    parts_geom = shapely.get_parts(OUTLINE.difference(region))
+    model = print_model(
+        region,
+        OUTLINE,
+        profile="fdm-0.4mm",
+        style="mosaic",
+        mosaic=_specs(parts_geom[::2], parts_geom[1::2], shared=shared),
+        colours=COLOURS,
+        mosaic_inset_mm=inset,
+        fill_small_holes=False,
+    )
+    path = tmp_path_factory.mktemp("step") / "m.step"
+    path.write_bytes(step_bytes(model, name="m"))  # each part's B-rep checked in memory against its mesh
+    breps = model.breps
+    assert [name for name, _ in breps] == list(model.parts)
+    for (_, (_brep, volume, solids)), part in zip(breps, model.parts.values(), strict=True):
+        assert (volume, solids) == (part.mesh.mesh_volume_mm3, part.mesh.bodies)
+    # OCCT reads every part's solids, valid, as many as the parts' bodies, their volumes the whole print's
+    solids = sum(p.mesh.bodies for p in model.parts.values())
+    assert check_step_file(path, volume=model.fused.mesh_volume_mm3, parts=solids) == pytest.approx(
+        model.fused.mesh_volume_mm3, rel=5e-4
+    )
+
+
 def test_a_faces_part_stands_on_the_plate_at_its_height():
     region, _ = _tile([(10, 10, 3), (30, 20, 3)])
     faces = shapely.get_parts(OUTLINE.difference(region))
