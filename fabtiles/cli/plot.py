@@ -13,7 +13,20 @@ import click
 from ..making.plot import WHATS
 
 _OPTIONS = {"pen_mm": "--pen", "hatch_mm": "--hatch-mm"}
-"""The plot's API keywords whose errors the command says with the option's name."""
+"""The plot's API keywords whose errors the commands (``fabtiles plot``, ``vpype fabtiles``) say with the option's
+name."""
+
+
+def said_as_option(exc):
+    """``exc`` (a :class:`~fabtiles.FabtilesError`) with a plot keyword that starts its message said as the
+    option typed (``pen_mm must be ...`` -> ``--pen must be ...``); any other error as it is."""
+    from ..core.errors import ParameterError
+
+    param = getattr(exc, "param", None) or ""
+    option = _OPTIONS.get(param)
+    if option is None or not isinstance(exc, ParameterError) or not str(exc).startswith(f"{param} "):
+        return exc
+    return ParameterError(option + str(exc)[len(param) :], param=param)
 
 
 @click.command("plot")
@@ -101,11 +114,7 @@ def command(design_file, output, what, pen_mm, fill, hatch_mm, angles, cross, ov
             cross=cross,
         )
     except ParameterError as exc:
-        option = _OPTIONS.get(exc.param or "")
-        if option is None or not str(exc).startswith(f"{exc.param} "):
-            raise
-        # the message names the option typed, not the API's keyword
-        raise ParameterError(option + str(exc)[len(exc.param or "") :], param=exc.param) from None
+        raise said_as_option(exc) from None
     atomic_write(output, fmt.write(drawing, FileOptions(name=Path(output).stem)))
     layers = ", ".join(
         f"{layer.name} {len(layer.paths):,} stroke{'' if len(layer.paths) == 1 else 's'}" for layer in drawing.layers

@@ -108,5 +108,7 @@ def add_design(
             cross=cross,
         )
     except FabtilesError as exc:
-        raise click.ClickException(f"fabtiles: {exc}") from None
+        from .plot import said_as_option
+
+        raise click.ClickException(f"fabtiles: {said_as_option(exc)}") from None
     return vpype_document(drawing, document)

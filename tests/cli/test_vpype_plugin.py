@@ -123,7 +123,7 @@ def test_fill_gives_the_layers_of_fabtiles_plot_fill(vpype):
         (["--fill", SAMPLE], "fill needs the design's colours"),
         (["--fill", "--angle", "x", ROOT / "samples" / "mosaic-iznik.toml"], "angle must be degrees"),
         (["--set", "tile.size=-3", SAMPLE], "[tile] size must be"),
-        (["--pen", "0", SAMPLE], "pen_mm must be"),
+        (["--pen", "0", SAMPLE], "--pen must be a finite number > 0"),
     ],
 )
 def test_errors_are_one_line(vpype, args, message):
