@@ -413,12 +413,13 @@ def _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps) -> tuple:
     mid = (a + b) / 2
     d = b - a
     h = np.hypot(*d.T) / 2
-    u = np.column_stack([-d[:, 1], d[:, 0]]) / (2 * h)[:, None]
+    chord = h > 0  # a run whose ends meet (round a whole ring) has no chord to fit on: it is no arc
+    u = np.column_stack([-d[:, 1], d[:, 0]]) / np.where(chord, 2 * h, 1.0)[:, None]
     w = pts - mid[run]
     wu = (w * u[run]).sum(axis=1)
     num = np.add.reduceat(((w * w).sum(axis=1) - h[run] ** 2) * wu, offs)
     den = 2 * np.add.reduceat(wu * wu, offs)
-    t = num / den
+    t = num / np.where(chord, den, 1.0)
     c = mid + t[:, None] * u
     r = np.hypot(h, t)
     res = np.maximum.reduceat(np.abs(np.hypot(*(pts - c[run]).T) - r[run]), offs)
@@ -431,10 +432,10 @@ def _fit_runs(p, order, start, cnt, ring_of, v0, v1, eps) -> tuple:
     ang = np.r_[ang, 0.0]
     ang[offs + m - 1] = 0.0  # the step from one run's last vertex to the next run's first
     sweep = np.add.reduceat(ang, offs)
-    good = ~straight & (res <= eps)
+    good = chord & ~straight & (res <= eps)
     cols = [ring_of[good], v0[good], v1[good], c[good], r[good], sweep[good]]
     extra = []
-    for i in np.flatnonzero(~straight & (res > eps)).tolist():  # rare: an ellipse (an anisotropic kerf)
+    for i in np.flatnonzero(chord & ~straight & (res > eps)).tolist():  # rare: an ellipse (an anisotropic kerf)
         j = int(ring_of[i])
         ring_pts = p[order[start[j] : start[j] + cnt[j]]]
         extra += [(j, *piece) for piece in _verified(ring_pts, int(v0[i]), int(v1[i]), eps)]

@@ -335,3 +335,19 @@ def test_one_chord_and_straight_bends_stay_straight_whatever_the_radii():
     assert len(arc_runs(bends, tolerance_mm=0.02, radii=(r,)).first) == 0
     deeper = bends * [1, 2]  # twice the offset: an arc
     assert len(arc_runs(deeper, tolerance_mm=0.02, radii=(r / 2,)).first) == 1
+
+
+def test_a_run_round_a_whole_ring_is_no_arc_and_no_warning():
+    # a run from a vertex round the ring back to it (its ends one point): no chord to fit a circle on
+    import warnings
+
+    from fabtiles.geometry.arcs import _fit_runs
+
+    t = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    p = np.column_stack([np.cos(t), np.sin(t)]) * 5
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a division by the zero chord warned, and gave NaNs
+        runs = _fit_runs(
+            p, np.arange(12), np.array([0]), np.array([12]), np.array([0]), np.array([0]), np.array([12]), 1e-3
+        )
+    assert [len(column) for column in runs] == [0] * 6  # ring, v0, v1, centre, radius, sweep
