@@ -21,20 +21,10 @@ import tempfile
 import time
 from pathlib import Path
 
+from bench_two_uniform import SHEET
 from build_timing import timed_build
 
 WINDOW = (-300.0, -200.0, 300.0, 200.0)
-SHEET = """
-[tile]
-outline = "rectangle"
-size = [600, 400]
-frame = 5.0
-stroke = 1.0
-
-[output]
-laser_profile = "laser-3mm-plywood"
-printer_profile = "fdm-0.4mm"
-"""
 REFERENCE = """
 [packing]
 kind = "archimedean"

@@ -25,14 +25,7 @@ def _tilings() -> tuple[str, ...]:
     return ("4.8.8", *TWO_UNIFORM)  # 4.8.8 first: the reference
 
 
-DESIGN = """
-[packing]
-kind = "archimedean"
-tiling = "{tiling}"
-edge = 14
-method = "hankin"
-contact_angle = 60
-
+SHEET = """
 [tile]
 outline = "rectangle"
 size = [600, 400]
@@ -43,6 +36,19 @@ stroke = 1.0
 laser_profile = "laser-3mm-plywood"
 printer_profile = "fdm-0.4mm"
 """
+"""The sheet sample's tile and machines (``samples/sheet-600x400.toml``), under a packing of the benchmark's."""
+
+DESIGN = (
+    """
+[packing]
+kind = "archimedean"
+tiling = "{tiling}"
+edge = 14
+method = "hankin"
+contact_angle = 60
+"""
+    + SHEET
+)
 
 
 def segments(tiling: str) -> int:

@@ -17,16 +17,30 @@ _OPTIONS = {"pen_mm": "--pen", "hatch_mm": "--hatch-mm"}
 name."""
 
 
-def said_as_option(exc):
-    """``exc`` (a :class:`~fabtiles.FabtilesError`) with a plot keyword that starts its message said as the
-    option typed (``pen_mm must be ...`` -> ``--pen must be ...``); any other error as it is."""
+def drawing_of(design_file, *, overrides=(), what, pen_mm, fill, hatch_mm, angles, cross):
+    """The pen drawing of a design file as ``fabtiles plot`` and ``vpype fabtiles`` take their options
+    (``angles``: the ``--angle`` texts); a bad ``--pen`` or ``--hatch-mm`` is refused naming that option, not
+    :func:`~fabtiles.making.plot.plot_drawing`'s keyword."""
     from ..core.errors import ParameterError
+    from ..designs.design_file import load_design
+    from ..making.plot import angles_from_text, plot_drawing
 
-    param = getattr(exc, "param", None) or ""
-    option = _OPTIONS.get(param)
-    if option is None or not isinstance(exc, ParameterError) or not str(exc).startswith(f"{param} "):
-        return exc
-    return ParameterError(option + str(exc)[len(param) :], param=param)
+    design = load_design(design_file, overrides=list(overrides))
+    try:
+        return plot_drawing(
+            design,
+            what=what,
+            pen_mm=pen_mm,
+            fill=fill,
+            hatch_mm=hatch_mm,
+            angles_deg=angles_from_text(angles) if angles else None,
+            cross=cross,
+        )
+    except ParameterError as exc:
+        option = _OPTIONS.get(exc.param or "")
+        if option is None or not str(exc).startswith(f"{exc.param} "):
+            raise
+        raise ParameterError(option + str(exc)[len(exc.param or "") :], param=exc.param) from None
 
 
 @click.command("plot")
@@ -88,9 +102,7 @@ def command(design_file, output, what, pen_mm, fill, hatch_mm, angles, cross, ov
     """
     from ..core.errors import ParameterError
     from ..core.files import atomic_write
-    from ..designs.design_file import load_design
     from ..export.formats import FORMATS, FileOptions
-    from ..making.plot import angles_from_text, plot_drawing
 
     pens = [f for f in FORMATS.values() if f.family == "pen"]  # the format table's pen drawings
     suffix = Path(output).suffix.lower()
@@ -102,19 +114,16 @@ def command(design_file, output, what, pen_mm, fill, hatch_mm, angles, cross, ov
         )
     if fmt.requires is not None:
         fmt.requires()  # a library it needs (HPGL: vpype), before any geometry
-    design = load_design(design_file, overrides=overrides)
-    try:
-        drawing = plot_drawing(
-            design,
-            what=what,
-            pen_mm=pen_mm,
-            fill=fill,
-            hatch_mm=hatch_mm,
-            angles_deg=angles_from_text(angles) if angles else None,
-            cross=cross,
-        )
-    except ParameterError as exc:
-        raise said_as_option(exc) from None
+    drawing = drawing_of(
+        design_file,
+        overrides=overrides,
+        what=what,
+        pen_mm=pen_mm,
+        fill=fill,
+        hatch_mm=hatch_mm,
+        angles=angles,
+        cross=cross,
+    )
     atomic_write(output, fmt.write(drawing, FileOptions(name=Path(output).stem)))
     layers = ", ".join(
         f"{layer.name} {len(layer.paths):,} stroke{'' if len(layer.paths) == 1 else 's'}" for layer in drawing.layers

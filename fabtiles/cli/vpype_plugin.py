@@ -93,22 +93,20 @@ def add_design(
     ``fill``, ``hatch_mm``, ``angles`` (``--angle`` texts) and ``cross`` as ``fabtiles plot``'s.
     """
     from ..core.errors import FabtilesError
-    from ..designs.design_file import load_design
     from ..export.plot_svg import vpype_document
-    from ..making.plot import angles_from_text, plot_drawing
+    from .plot import drawing_of
 
     try:
-        drawing = plot_drawing(
-            load_design(design, overrides=list(overrides)),
+        drawing = drawing_of(
+            design,
+            overrides=overrides,
             what=what,
             pen_mm=pen_mm,
             fill=fill,
             hatch_mm=hatch_mm,
-            angles_deg=angles_from_text(angles) if angles else None,
+            angles=angles,
             cross=cross,
         )
     except FabtilesError as exc:
-        from .plot import said_as_option
-
-        raise click.ClickException(f"fabtiles: {said_as_option(exc)}") from None
+        raise click.ClickException(f"fabtiles: {exc}") from None
     return vpype_document(drawing, document)
